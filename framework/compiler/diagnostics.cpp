@@ -1,0 +1,25 @@
+#include <skygraph/diagnostics.hpp>
+
+namespace skygraph {
+
+std::string Diagnostic::format() const {
+    std::string out = file.empty() ? "<memory>" : file;
+    if (line > 0) out += ":" + std::to_string(line) + ":" + std::to_string(column);
+    out += ": ";
+    if (!jsonPath.empty()) out += jsonPath + ": ";
+    if (!pass.empty()) out += "pass '" + pass + "'" + (resource.empty() ? ": " : ", ");
+    if (!resource.empty()) out += "resource '" + resource + "': ";
+    out += message;
+    return out;
+}
+
+std::string Diagnostics::format() const {
+    std::string out;
+    for (const auto& d : items_) out += d.format() + "\n";
+    return out;
+}
+
+GraphError::GraphError(Diagnostics d)
+    : std::runtime_error(d.format()), diagnostics_(std::move(d)) {}
+
+}  // namespace skygraph

@@ -1,0 +1,57 @@
+#include <skygraph/pass_registry.hpp>
+
+#include <set>
+#include <stdexcept>
+
+namespace skygraph {
+
+std::string SlotDecl::describeUsage() const {
+    std::string out;
+    for (size_t i = 0; i < accesses.size(); ++i) {
+        if (i) out += "|";
+        out += toString(accesses[i]);
+    }
+    out += "@" + std::string(toString(stage));
+    if (as != BindAs::Default) out += " as " + std::string(toString(as));
+    return out;
+}
+
+PassRegistry PassRegistry::withBuiltins() {
+    PassRegistry r;
+    registerBuiltinPassTypes(r);
+    return r;
+}
+
+void PassRegistry::add(PassTypeInfo info) {
+    if (info.name.empty()) throw std::invalid_argument("pass type with an empty name");
+    if (types_.count(info.name))
+        throw std::invalid_argument("pass type '" + info.name + "' is already registered");
+    std::set<std::string, std::less<>> slotNames;
+    for (const auto& slot : info.slots) {
+        if (slot.accesses.empty())
+            throw std::invalid_argument("pass type '" + info.name + "': slot '" + slot.name +
+                                        "' allows no access");
+        if (!slotNames.insert(slot.name).second)
+            throw std::invalid_argument("pass type '" + info.name + "': duplicate slot '" +
+                                        slot.name + "'");
+        if (slot.as != BindAs::Default && !isShaderStage(slot.stage) &&
+            !(slot.as == BindAs::Index && slot.stage == Stage::VertexInput))
+            throw std::invalid_argument("pass type '" + info.name + "': slot '" + slot.name +
+                                        "' sets `as` on a non-shader stage");
+    }
+    std::string name = info.name;
+    types_.emplace(std::move(name), std::move(info));
+}
+
+const PassTypeInfo* PassRegistry::find(std::string_view name) const {
+    auto it = types_.find(name);
+    return it == types_.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> PassRegistry::names() const {
+    std::vector<std::string> out;
+    for (const auto& [name, _] : types_) out.push_back(name);
+    return out;
+}
+
+}  // namespace skygraph

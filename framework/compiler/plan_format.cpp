@@ -1,0 +1,307 @@
+#include <skygraph/plan_format.hpp>
+
+#include <array>
+#include <sstream>
+#include <utility>
+
+namespace skygraph {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+#define SG_BIT(prefix, name) std::pair<uint64_t, const char*>{prefix##name, #prefix #name}
+
+constexpr std::array kStageBits{
+    SG_BIT(VK_PIPELINE_STAGE_2_, TOP_OF_PIPE_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, DRAW_INDIRECT_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, VERTEX_INPUT_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, VERTEX_SHADER_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, FRAGMENT_SHADER_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, EARLY_FRAGMENT_TESTS_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, LATE_FRAGMENT_TESTS_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, COLOR_ATTACHMENT_OUTPUT_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, COMPUTE_SHADER_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, TRANSFER_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, BOTTOM_OF_PIPE_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, HOST_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, ALL_GRAPHICS_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, ALL_COMMANDS_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, COPY_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, RESOLVE_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, BLIT_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, CLEAR_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, INDEX_INPUT_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, VERTEX_ATTRIBUTE_INPUT_BIT),
+    SG_BIT(VK_PIPELINE_STAGE_2_, PRE_RASTERIZATION_SHADERS_BIT),
+};
+
+constexpr std::array kAccessBits{
+    SG_BIT(VK_ACCESS_2_, INDIRECT_COMMAND_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, INDEX_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, VERTEX_ATTRIBUTE_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, UNIFORM_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, INPUT_ATTACHMENT_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, SHADER_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, SHADER_WRITE_BIT),
+    SG_BIT(VK_ACCESS_2_, COLOR_ATTACHMENT_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, COLOR_ATTACHMENT_WRITE_BIT),
+    SG_BIT(VK_ACCESS_2_, DEPTH_STENCIL_ATTACHMENT_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, DEPTH_STENCIL_ATTACHMENT_WRITE_BIT),
+    SG_BIT(VK_ACCESS_2_, TRANSFER_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, TRANSFER_WRITE_BIT),
+    SG_BIT(VK_ACCESS_2_, HOST_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, HOST_WRITE_BIT),
+    SG_BIT(VK_ACCESS_2_, MEMORY_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, MEMORY_WRITE_BIT),
+    SG_BIT(VK_ACCESS_2_, SHADER_SAMPLED_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, SHADER_STORAGE_READ_BIT),
+    SG_BIT(VK_ACCESS_2_, SHADER_STORAGE_WRITE_BIT),
+};
+#undef SG_BIT
+
+template <size_t N>
+std::vector<std::string> bitNames(uint64_t mask, const std::array<std::pair<uint64_t, const char*>, N>& table) {
+    std::vector<std::string> out;
+    for (const auto& [bit, name] : table)
+        if (mask & bit) {
+            out.emplace_back(name);
+            mask &= ~bit;
+        }
+    for (int b = 0; b < 64; ++b)  // bits this table does not know still show up, as numbers
+        if (mask & (1ull << b)) out.push_back("0x" + std::to_string(1ull << b));
+    return out;
+}
+
+std::string joined(const std::vector<std::string>& names, const char* prefix) {
+    if (names.empty()) return "NONE";
+    std::string out;
+    for (const auto& n : names) {
+        std::string shortName = n.starts_with(prefix) ? n.substr(std::string_view(prefix).size()) : n;
+        if (shortName.ends_with("_BIT")) shortName.resize(shortName.size() - 4);
+        out += (out.empty() ? "" : "|") + shortName;
+    }
+    return out;
+}
+
+std::string shortLayout(VkImageLayout l) {
+    std::string n = layoutName(l);
+    return n.starts_with("VK_IMAGE_LAYOUT_") ? n.substr(16) : n;
+}
+
+const char* kindName(BarrierKind k) {
+    switch (k) {
+        case BarrierKind::Image: return "image";
+        case BarrierKind::Buffer: return "buffer";
+        case BarrierKind::Memory: return "memory";
+    }
+    return "?";
+}
+
+const char* loadName(LoadOp op) {
+    switch (op) {
+        case LoadOp::Load: return "LOAD";
+        case LoadOp::Clear: return "CLEAR";
+        case LoadOp::DontCare: return "DONT_CARE";
+    }
+    return "?";
+}
+
+const char* storeName(StoreOp op) {
+    switch (op) {
+        case StoreOp::Store: return "STORE";
+        case StoreOp::DontCare: return "DONT_CARE";
+        case StoreOp::None: return "NONE";
+    }
+    return "?";
+}
+
+json barrierJson(const Plan& plan, const Barrier& b) {
+    json j = {{"resource", plan.resources[b.resource].name},
+              {"kind", kindName(b.kind)},
+              {"srcStageMask", stageMaskNames(b.srcStages)},
+              {"srcAccessMask", accessMaskNames(b.srcAccess)},
+              {"dstStageMask", stageMaskNames(b.dstStages)},
+              {"dstAccessMask", accessMaskNames(b.dstAccess)}};
+    if (b.kind == BarrierKind::Image) {
+        j["oldLayout"] = layoutName(b.oldLayout);
+        j["newLayout"] = layoutName(b.newLayout);
+        j["baseMipLevel"] = b.range.baseMip;
+        j["levelCount"] = b.range.mipCount;
+        j["baseArrayLayer"] = b.range.baseLayer;
+        j["layerCount"] = b.range.layerCount;
+    }
+    return j;
+}
+
+std::string barrierText(const Plan& plan, const Barrier& b) {
+    std::ostringstream o;
+    o << "    " << kindName(b.kind) << " " << plan.resources[b.resource].name;
+    if (b.kind == BarrierKind::Image)
+        o << " mips[" << b.range.baseMip << "+" << b.range.mipCount << "] layers["
+          << b.range.baseLayer << "+" << b.range.layerCount << "]";
+    o << "\n      " << joined(stageMaskNames(b.srcStages), "VK_PIPELINE_STAGE_2_") << " / "
+      << joined(accessMaskNames(b.srcAccess), "VK_ACCESS_2_") << "  ->  "
+      << joined(stageMaskNames(b.dstStages), "VK_PIPELINE_STAGE_2_") << " / "
+      << joined(accessMaskNames(b.dstAccess), "VK_ACCESS_2_");
+    if (b.kind == BarrierKind::Image) {
+        if (b.oldLayout != b.newLayout)
+            o << "\n      " << shortLayout(b.oldLayout) << " -> " << shortLayout(b.newLayout);
+        else
+            o << "\n      stays " << shortLayout(b.newLayout);
+    }
+    o << "\n";
+    return o.str();
+}
+
+std::string dotEscape(const std::string& s) {
+    std::string out;
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<std::string> stageMaskNames(VkPipelineStageFlags2 mask) { return bitNames(mask, kStageBits); }
+std::vector<std::string> accessMaskNames(VkAccessFlags2 mask) { return bitNames(mask, kAccessBits); }
+
+std::string layoutName(VkImageLayout layout) {
+    switch (layout) {
+#define SG_LAYOUT(n) \
+    case VK_IMAGE_LAYOUT_##n: return "VK_IMAGE_LAYOUT_" #n;
+        SG_LAYOUT(UNDEFINED)
+        SG_LAYOUT(GENERAL)
+        SG_LAYOUT(COLOR_ATTACHMENT_OPTIMAL)
+        SG_LAYOUT(DEPTH_STENCIL_ATTACHMENT_OPTIMAL)
+        SG_LAYOUT(DEPTH_STENCIL_READ_ONLY_OPTIMAL)
+        SG_LAYOUT(SHADER_READ_ONLY_OPTIMAL)
+        SG_LAYOUT(TRANSFER_SRC_OPTIMAL)
+        SG_LAYOUT(TRANSFER_DST_OPTIMAL)
+        SG_LAYOUT(PREINITIALIZED)
+        SG_LAYOUT(DEPTH_ATTACHMENT_OPTIMAL)
+        SG_LAYOUT(DEPTH_READ_ONLY_OPTIMAL)
+        SG_LAYOUT(STENCIL_ATTACHMENT_OPTIMAL)
+        SG_LAYOUT(STENCIL_READ_ONLY_OPTIMAL)
+        SG_LAYOUT(READ_ONLY_OPTIMAL)
+        SG_LAYOUT(ATTACHMENT_OPTIMAL)
+        SG_LAYOUT(PRESENT_SRC_KHR)
+#undef SG_LAYOUT
+        default: return "VK_IMAGE_LAYOUT_" + std::to_string(static_cast<int>(layout));
+    }
+}
+
+json planToJson(const Plan& plan) {
+    json j;
+    j["graph"] = plan.graph;
+    j["features"] = json::object();
+    for (const auto& [name, on] : plan.features) j["features"][name] = on;
+    j["passes"] = json::array();
+    for (const auto& p : plan.passes) {
+        json pass = {{"name", p.name}, {"type", p.type}, {"barriers", json::array()}};
+        for (const auto& b : p.barriers) pass["barriers"].push_back(barrierJson(plan, b));
+        // Extension: how the pass uses each resource once barriers have run.
+        pass["usages"] = json::array();
+        for (const auto& u : p.usages) {
+            json ju = {{"resource", plan.resources[u.resource].name},
+                       {"usage", toString(u.usage)},
+                       {"stageMask", stageMaskNames(u.stages)},
+                       {"accessMask", accessMaskNames(u.access)}};
+            if (!u.slot.empty()) ju["slot"] = u.slot;
+            if (u.layout != VK_IMAGE_LAYOUT_UNDEFINED) {
+                ju["layout"] = layoutName(u.layout);
+                ju["mips"] = {u.range.baseMip, u.range.mipCount};
+                ju["layers"] = {u.range.baseLayer, u.range.layerCount};
+            }
+            if (isAttachmentStage(u.usage.stage)) {
+                ju["loadOp"] = loadName(u.load);
+                ju["storeOp"] = storeName(u.store);
+            }
+            pass["usages"].push_back(std::move(ju));
+        }
+        j["passes"].push_back(std::move(pass));
+    }
+    j["final"] = json::array();
+    for (const auto& b : plan.finalBarriers) j["final"].push_back(barrierJson(plan, b));
+    j["culled"] = json::array();
+    for (const auto& c : plan.culled) j["culled"].push_back({{"pass", c.name}, {"reason", c.reason}});
+    // Extension: resource lifetimes as indices into "passes".
+    j["resources"] = json::array();
+    for (const auto& r : plan.resources)
+        j["resources"].push_back({{"name", r.name},
+                                  {"firstPass", r.firstPass},
+                                  {"lastPass", r.lastPass},
+                                  {"initialLayout", layoutName(r.initialLayout)},
+                                  {"finalLayout", layoutName(r.finalLayout)}});
+    return j;
+}
+
+std::string planToText(const Plan& plan) {
+    std::ostringstream o;
+    o << "graph " << plan.graph << "\nfeatures:";
+    for (const auto& [name, on] : plan.features) o << " " << name << "=" << (on ? "on" : "off");
+    o << "\n\n";
+    for (size_t i = 0; i < plan.passes.size(); ++i) {
+        const auto& p = plan.passes[i];
+        o << "[" << i << "] " << p.name << " (" << p.type << ")\n";
+        for (const auto& b : p.barriers) o << barrierText(plan, b);
+        for (const auto& u : p.usages) {
+            o << "    uses " << plan.resources[u.resource].name << " " << toString(u.usage);
+            if (u.layout != VK_IMAGE_LAYOUT_UNDEFINED) o << " in " << shortLayout(u.layout);
+            if (isAttachmentStage(u.usage.stage))
+                o << " load=" << loadName(u.load) << " store=" << storeName(u.store);
+            o << "\n";
+        }
+    }
+    o << "final:\n";
+    for (const auto& b : plan.finalBarriers) o << barrierText(plan, b);
+    o << "culled:\n";
+    for (const auto& c : plan.culled) o << "    " << c.name << ": " << c.reason << "\n";
+    o << "lifetimes:\n";
+    for (const auto& r : plan.resources)
+        o << "    " << r.name << ": passes " << r.firstPass << ".." << r.lastPass << "\n";
+    return o.str();
+}
+
+std::string planToDot(const Plan& plan, const GraphDesc& graph) {
+    std::ostringstream o;
+    o << "digraph \"" << dotEscape(plan.graph) << "\" {\n  rankdir=LR;\n"
+      << "  node [fontname=\"Helvetica\", fontsize=10];\n";
+    for (size_t i = 0; i < plan.passes.size(); ++i) {
+        const auto& p = plan.passes[i];
+        o << "  \"pass:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "
+          << "fillcolor=\"#cfe3ff\", label=\"" << i << ": " << dotEscape(p.name) << "\\n("
+          << dotEscape(p.type) << ")\\n" << p.barriers.size() << " barrier(s)\"];\n";
+    }
+    for (const auto& r : plan.resources)
+        o << "  \"res:" << dotEscape(r.name) << "\" [shape=ellipse, label=\"" << dotEscape(r.name)
+          << "\"];\n";
+    for (const auto& p : plan.passes)
+        for (const auto& u : p.usages) {
+            const std::string res = "\"res:" + dotEscape(plan.resources[u.resource].name) + "\"";
+            const std::string pass = "\"pass:" + dotEscape(p.name) + "\"";
+            const std::string label = " [label=\"" + std::string(toString(u.usage.stage)) + "\"]";
+            if (readsContents(u.usage.access)) o << "  " << res << " -> " << pass << label << ";\n";
+            if (writesContents(u.usage.access)) o << "  " << pass << " -> " << res << label << ";\n";
+        }
+    for (const auto& c : plan.culled) {
+        o << "  \"pass:" << dotEscape(c.name) << "\" [shape=box, style=\"rounded,dashed,filled\", "
+          << "fillcolor=\"#eeeeee\", fontcolor=\"#888888\", color=\"#aaaaaa\", label=\""
+          << dotEscape(c.name) << "\\nculled: " << dotEscape(c.reason) << "\"];\n";
+        for (const auto& pass : graph.passes) {
+            if (pass.name != c.name) continue;
+            for (const auto& u : pass.uses) {
+                const std::string res = "\"res:" + dotEscape(graph.resources[u.resource].name) + "\"";
+                if (plan.resourceIndex(graph.resources[u.resource].name) < 0)
+                    o << "  " << res << " [shape=ellipse, style=dashed, fontcolor=\"#888888\"];\n";
+                o << "  \"pass:" << dotEscape(c.name) << "\" -> " << res
+                  << " [style=dashed, color=\"#aaaaaa\", arrowhead=none];\n";
+            }
+        }
+    }
+    o << "}\n";
+    return o.str();
+}
+
+}  // namespace skygraph

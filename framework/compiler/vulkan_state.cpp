@@ -1,0 +1,199 @@
+#include "vulkan_state.hpp"
+
+namespace skygraph {
+namespace {
+
+constexpr VkAccessFlags2 kWriteBits =
+    VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT |
+    VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+    VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_HOST_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+
+VkAccessFlags2 pick(Access a, VkAccessFlags2 read, VkAccessFlags2 write) {
+    switch (a) {
+        case Access::Read: return read;
+        case Access::Write: return write;
+        case Access::ReadWrite: return read | write;
+    }
+    return 0;
+}
+
+bool isDepthReadOnly(VkImageLayout l) {
+    return l == VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL ||
+           l == VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL ||
+           l == VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL;
+}
+
+}  // namespace
+
+VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept { return access & kWriteBits; }
+
+BindAs resolveBindAs(const ResourceDesc& r, const Usage& u) {
+    if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
+    if (!r.isImage()) return BindAs::Storage;
+    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
+}
+
+std::string usageProblem(const ResourceDesc& r, const Usage& u) {
+    const std::string usage = toString(u);
+    const BindAs as = resolveBindAs(r, u);
+    if (u.as == BindAs::Index && u.stage != Stage::VertexInput)
+        return "`as: index` applies to VertexInput only";
+    if (u.as != BindAs::Default && u.as != BindAs::Index && !isShaderStage(u.stage))
+        return "`as` applies to shader stages (Vertex, Fragment, Compute), not " +
+               std::string(toString(u.stage));
+    if (isAttachmentStage(u.stage)) {
+        if (!r.isImage()) return "a buffer cannot be an attachment (" + usage + ")";
+        if (u.stage == Stage::ColorAttachment && r.format.isDepthStencil())
+            return "format " + std::string(r.format.name) +
+                   " is a depth/stencil format; it cannot be a color attachment "
+                   "(use Read|Write|ReadWrite@DepthAttachment)";
+        if (u.stage == Stage::DepthAttachment && !r.format.isDepthStencil())
+            return "format " + std::string(r.format.name) +
+                   " has no depth or stencil; it cannot be a depth attachment "
+                   "(use Read|Write|ReadWrite@ColorAttachment)";
+        if (u.range && u.range->mipCount != 1)
+            return "an attachment renders to one mip level; give \"mips\": [level, 1]";
+    }
+    if ((u.stage == Stage::VertexInput || u.stage == Stage::Indirect)) {
+        if (r.isImage()) return std::string(toString(u.stage)) + " reads buffers, not images";
+        if (u.access != Access::Read)
+            return std::string(toString(u.stage)) + " only reads; expected Read@" +
+                   std::string(toString(u.stage));
+    }
+    if (isShaderStage(u.stage)) {
+        if (as == BindAs::Sampled) {
+            if (!r.isImage()) return "a buffer cannot be sampled; use storage or uniform";
+            if (u.access != Access::Read)
+                return "a sampled image is read-only; expected Read@" +
+                       std::string(toString(u.stage)) + " or \"as\": \"storage\"";
+        }
+        if (as == BindAs::Uniform) {
+            if (r.isImage()) return "images cannot be uniform buffers; use sampled or storage";
+            if (u.access != Access::Read) return "uniform buffers are read-only";
+        }
+        if (as == BindAs::Storage && r.isImage() && !r.format.storageCapable)
+            return "format " + std::string(r.format.name) +
+                   " cannot be a storage image (sRGB and depth formats never can); sample it or "
+                   "pick a storage format";
+    }
+    if (u.range && r.isImage()) {
+        const auto& range = *u.range;
+        if (r.mips != 0 && range.baseMip + range.mipCount > r.mips)
+            return "mips [" + std::to_string(range.baseMip) + ", " + std::to_string(range.mipCount) +
+                   "] exceed the resource's " + std::to_string(r.mips) + " mip levels";
+        if (range.baseLayer + range.layerCount > r.layers)
+            return "layers [" + std::to_string(range.baseLayer) + ", " +
+                   std::to_string(range.layerCount) + "] exceed the resource's " +
+                   std::to_string(r.layers) + " layers";
+    }
+    return {};
+}
+
+VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) {
+    VulkanScope s;
+    const BindAs as = resolveBindAs(r, u);
+    switch (u.stage) {
+        case Stage::ColorAttachment:
+            s.stages = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+            s.access = pick(u.access, VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT,
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+            s.layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            break;
+        case Stage::DepthAttachment: {
+            // Depth tests run in early and late fragment tests; which one a driver uses is its
+            // choice, so both are in scope.
+            s.stages = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                       VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+            s.access = pick(u.access, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+            const bool ro = u.access == Access::Read;
+            if (r.format.hasDepth && r.format.hasStencil)
+                s.layout = ro ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                              : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+            else if (r.format.hasDepth)
+                s.layout = ro ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL
+                              : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+            else
+                s.layout = ro ? VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL
+                              : VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL;
+            break;
+        }
+        case Stage::Vertex:
+        case Stage::Fragment:
+        case Stage::Compute:
+            s.stages = u.stage == Stage::Vertex     ? VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT
+                       : u.stage == Stage::Fragment ? VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT
+                                                    : VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+            if (as == BindAs::Sampled) {
+                s.access = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+                s.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+            } else if (as == BindAs::Uniform) {
+                s.access = VK_ACCESS_2_UNIFORM_READ_BIT;
+            } else {
+                s.access = pick(u.access, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                                VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                s.layout = VK_IMAGE_LAYOUT_GENERAL;
+            }
+            break;
+        case Stage::Transfer:
+            s.stages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+            s.access = pick(u.access, VK_ACCESS_2_TRANSFER_READ_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            s.layout = u.access == Access::Read    ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL
+                       : u.access == Access::Write ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL
+                                                   : VK_IMAGE_LAYOUT_GENERAL;
+            break;
+        case Stage::VertexInput:
+            if (u.as == BindAs::Index) {
+                s.stages = VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT;
+                s.access = VK_ACCESS_2_INDEX_READ_BIT;
+            } else {
+                s.stages = VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT;
+                s.access = VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT;
+            }
+            break;
+        case Stage::Indirect:
+            s.stages = VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
+            s.access = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
+            break;
+    }
+    if (!r.isImage()) s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    return s;
+}
+
+VulkanScope externalScope(const ResourceDesc& r, ExternalState state) {
+    VulkanScope s;
+    const VkPipelineStageFlags2 shaders =
+        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    switch (state) {
+        case ExternalState::None: break;
+        case ExternalState::Present:
+            // The presentation engine waits on a semaphore, not on a pipeline stage.
+            s.layout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+            break;
+        case ExternalState::TransferSrc:
+            s = {VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+            break;
+        case ExternalState::ShaderRead:
+            s = {shaders,
+                 r.isImage() ? VK_ACCESS_2_SHADER_SAMPLED_READ_BIT : VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                 VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            break;
+        case ExternalState::General:
+            s = {shaders, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                 VK_IMAGE_LAYOUT_GENERAL};
+            break;
+    }
+    if (!r.isImage()) s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    return s;
+}
+
+VkImageLayout commonReadLayout(VkImageLayout a, VkImageLayout b) {
+    if (a == b) return a;
+    // Depth read-only layouts also allow sampling, so they serve a sampled read too.
+    if (isDepthReadOnly(a) && b == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) return a;
+    if (isDepthReadOnly(b) && a == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) return b;
+    return VK_IMAGE_LAYOUT_GENERAL;
+}
+
+}  // namespace skygraph

@@ -1,0 +1,42 @@
+// Graph file -> plan. Pure: reads files and data, never touches a device.
+#pragma once
+
+#include <skygraph/condition.hpp>
+#include <skygraph/diagnostics.hpp>
+#include <skygraph/graph.hpp>
+#include <skygraph/pass_registry.hpp>
+#include <skygraph/plan.hpp>
+
+#include <filesystem>
+#include <string_view>
+
+namespace skygraph {
+
+/// Reads and validates a graph file against `registry`. Throws GraphError listing every
+/// problem in the file at once, each with the file, JSON path, pass and resource.
+[[nodiscard]] GraphDesc loadGraphFile(const std::filesystem::path& path,
+                                      const PassRegistry& registry);
+
+/// As loadGraphFile, for text already in memory; `fileName` is used in messages only.
+[[nodiscard]] GraphDesc parseGraph(std::string_view text, const std::string& fileName,
+                                   const PassRegistry& registry);
+
+struct CompileOptions {
+    /// Overrides of the file's feature defaults. An unknown name is an error.
+    FeatureValues features;
+    /// When false, passes are removed only by their `if`, never for unused output.
+    bool cull = true;
+    /// Headless runs read the `Present` target back instead of presenting it: this replaces
+    /// every exported resource's `Present` final state with another (e.g. TransferSrc).
+    ExternalState presentReplacement = ExternalState::Present;
+    /// The size `"output"` extents resolve to; it matters for `"mips": "full"` only, since
+    /// barriers cover whole mip chains. The executor recompiles when the output is resized.
+    uint32_t outputWidth = 1920;
+    uint32_t outputHeight = 1080;
+};
+
+/// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the
+/// feature values (a read whose only writer is switched off, an unknown feature override).
+[[nodiscard]] Plan compile(const GraphDesc& graph, const CompileOptions& options = {});
+
+}  // namespace skygraph

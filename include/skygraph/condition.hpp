@@ -1,0 +1,40 @@
+// Feature-flag conditions: the `if` of a pass (contract §1, "Conditions").
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+
+/// Feature name -> on/off. Ordered so that printed plans are stable.
+using FeatureValues = std::map<std::string, bool>;
+
+/// A parsed boolean expression over feature names with `!`, `&&`, `||` and parentheses.
+/// Immutable and cheap to copy (the tree is shared).
+class Condition {
+public:
+    /// The always-true condition of a pass with no `if`.
+    Condition();
+
+    /// Parses `text`. On failure returns nullopt and sets `error` to a message that names the
+    /// column. Names are not checked here; see `features()`.
+    static std::optional<Condition> parse(const std::string& text, std::string& error);
+
+    [[nodiscard]] bool evaluate(const FeatureValues& values) const;
+    /// The source text, or empty for the always-true condition.
+    [[nodiscard]] const std::string& text() const noexcept { return text_; }
+    /// Every feature name the expression mentions, in order of appearance, without repeats.
+    [[nodiscard]] const std::vector<std::string>& features() const noexcept { return names_; }
+
+    struct Node;
+
+private:
+    std::shared_ptr<const Node> root_;
+    std::string text_;
+    std::vector<std::string> names_;
+};
+
+}  // namespace skygraph

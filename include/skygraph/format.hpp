@@ -1,0 +1,31 @@
+// The image formats skygraph understands, by their graph-file names.
+#pragma once
+
+#include <vulkan/vulkan_core.h>
+
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace skygraph {
+
+/// Static facts about a VkFormat that the compiler needs to check usages without a device.
+struct FormatInfo {
+    std::string_view name;  ///< Graph-file spelling: the VkFormat name without "VK_FORMAT_".
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t bytesPerTexel = 0;
+    bool hasDepth = false;
+    bool hasStencil = false;
+    bool srgb = false;
+    /// Whether storage-image use is plausible; the executor still asks the device.
+    bool storageCapable = false;
+
+    [[nodiscard]] bool isDepthStencil() const noexcept { return hasDepth || hasStencil; }
+};
+
+/// nullopt for names skygraph does not know; `knownFormats()` lists the ones it does.
+[[nodiscard]] std::optional<FormatInfo> findFormat(std::string_view name) noexcept;
+[[nodiscard]] std::optional<FormatInfo> findFormat(VkFormat format) noexcept;
+[[nodiscard]] std::span<const FormatInfo> knownFormats() noexcept;
+
+}  // namespace skygraph

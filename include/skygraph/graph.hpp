@@ -1,0 +1,99 @@
+// A graph file after loading: validated, with every usage bound to a slot of its pass type.
+#pragma once
+
+#include <skygraph/condition.hpp>
+#include <skygraph/format.hpp>
+#include <skygraph/usage.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+
+enum class ResourceType : uint8_t { Image2D, Cube, Image2DArray, Buffer };
+
+/// The state a resource arrives in (`initial`) or is left in (`final`), contract §1.
+enum class ExternalState : uint8_t { None, Present, TransferSrc, ShaderRead, General };
+
+/// `"output"`, `"output/N"` or `[w, h]`.
+struct Extent {
+    bool relativeToOutput = true;
+    uint32_t divisor = 1;  ///< For output-relative extents.
+    uint32_t width = 0;    ///< For fixed extents.
+    uint32_t height = 0;
+
+    /// Width and height for a given output size; never below 1.
+    [[nodiscard]] std::array<uint32_t, 2> resolve(uint32_t outputWidth,
+                                                  uint32_t outputHeight) const noexcept;
+};
+
+struct ClearValue {
+    bool isDepth = false;
+    std::array<float, 4> color{0, 0, 0, 0};
+    float depth = 0.0f;
+    uint32_t stencil = 0;
+};
+
+struct ResourceDesc {
+    std::string name;
+    ResourceType type = ResourceType::Image2D;
+    FormatInfo format;        ///< Unset (UNDEFINED) for buffers.
+    Extent extent;
+    uint32_t mips = 1;        ///< 0 means "full": resolved against the extent.
+    uint32_t layers = 1;      ///< 6 for cubes.
+    uint64_t sizeBytes = 0;   ///< Buffers only.
+    std::optional<ClearValue> clear;
+    bool external = false;
+    ExternalState initial = ExternalState::None;  ///< Meaningful for external resources.
+    ExternalState final = ExternalState::None;    ///< None: not exported.
+    std::string jsonPath;     ///< "resources.<name>"
+
+    [[nodiscard]] bool isImage() const noexcept { return type != ResourceType::Buffer; }
+    /// Exported resources are the graph's outputs; passes writing them are never culled.
+    [[nodiscard]] bool isExported() const noexcept { return final != ExternalState::None; }
+    /// Mip count with "full" resolved for a given output size.
+    [[nodiscard]] uint32_t mipCount(uint32_t outputWidth, uint32_t outputHeight) const noexcept;
+};
+
+/// One entry of a pass's `uses`, bound to a slot of its pass type.
+struct UsageDecl {
+    uint32_t resource = 0;  ///< Index into GraphDesc::resources.
+    Usage usage;
+    std::string slot;       ///< The slot it fills; empty for Generic.
+    std::string jsonPath;   ///< e.g. "passes[1].uses.depth" or "passes[3].uses[2]"
+};
+
+struct PassDesc {
+    std::string name;
+    std::string type;
+    Condition condition;
+    bool neverCull = false;
+    std::vector<UsageDecl> uses;
+    nlohmann::json params = nlohmann::json::object();
+    std::string jsonPath;  ///< "passes[i]"
+};
+
+struct FeatureDecl {
+    std::string name;
+    bool defaultValue = false;
+};
+
+/// A loaded graph file. Plain data; produced by the loader, read by the compiler.
+struct GraphDesc {
+    std::string file;  ///< For messages: the path it was read from, or "<memory>".
+    std::string name;
+    std::vector<FeatureDecl> features;
+    std::vector<ResourceDesc> resources;
+    std::vector<PassDesc> passes;
+
+    /// Defaults from the file's `features`.
+    [[nodiscard]] FeatureValues defaultFeatures() const;
+    [[nodiscard]] const ResourceDesc* findResource(std::string_view name) const noexcept;
+};
+
+}  // namespace skygraph

@@ -1,0 +1,78 @@
+// Pass types and the slots they declare. This is plain data: the compiler checks a graph
+// against it without a device, and the executor later attaches recording code by type name.
+#pragma once
+
+#include <skygraph/usage.hpp>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph {
+
+/// One resource role a pass type needs, e.g. TonemappingPass's "hdr" input.
+struct SlotDecl {
+    std::string name;
+    Stage stage = Stage::Fragment;
+    std::vector<Access> accesses;  ///< Allowed accesses; never empty.
+    BindAs as = BindAs::Default;   ///< Required binding for shader stages; Default = any.
+    bool optional = false;
+    /// Whether the slot may be bound several times (e.g. one entry per mip level).
+    bool repeated = false;
+    std::string doc;
+
+    /// "Read@Fragment" or "Write|ReadWrite@ColorAttachment".
+    [[nodiscard]] std::string describeUsage() const;
+};
+
+/// A problem found in a pass's `params`, relative to the params object.
+struct ParamError {
+    std::string path;  ///< e.g. "operator"; joined onto "passes[i].params".
+    std::string message;
+};
+
+using ParamValidator = std::function<std::vector<ParamError>(const nlohmann::json& params)>;
+
+/// Everything the compiler needs to know about a pass type.
+struct PassTypeInfo {
+    std::string name;
+    std::vector<SlotDecl> slots;
+    /// The built-in Generic type: any usages, no slots.
+    bool acceptsAnyUsage = false;
+    /// Optional; when empty, any params object is accepted.
+    ParamValidator validateParams;
+    std::string doc;
+};
+
+/// Pass types by name. Owns its entries; copyable because it is only data.
+class PassRegistry {
+public:
+    /// An empty registry. Most callers want `withBuiltins()`.
+    PassRegistry() = default;
+
+    /// Generic plus the seed's passes (forward, skybox, tonemapping, environment pipeline).
+    [[nodiscard]] static PassRegistry withBuiltins();
+
+    /// Registers a type. Throws std::invalid_argument if the name is taken or a slot is
+    /// malformed (no accesses, duplicate names, `as` on a non-shader stage).
+    void add(PassTypeInfo info);
+
+    /// nullptr when unknown. The pointer stays valid until the registry is destroyed or
+    /// another type is added.
+    [[nodiscard]] const PassTypeInfo* find(std::string_view name) const;
+
+    /// Registered names, sorted, for "unknown type" messages.
+    [[nodiscard]] std::vector<std::string> names() const;
+
+private:
+    std::map<std::string, PassTypeInfo, std::less<>> types_;
+};
+
+/// Adds the seed's pass types; `withBuiltins()` calls it. Defined in passes/.
+void registerBuiltinPassTypes(PassRegistry& registry);
+
+}  // namespace skygraph

@@ -1,0 +1,23 @@
+// Printing plans: JSON per contract §2, a readable text listing, and graphviz DOT.
+#pragma once
+
+#include <skygraph/graph.hpp>
+#include <skygraph/plan.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace skygraph {
+
+[[nodiscard]] nlohmann::ordered_json planToJson(const Plan& plan);
+[[nodiscard]] std::string planToText(const Plan& plan);
+/// Scheduled passes as boxes, culled ones greyed with their reason, resources as ellipses.
+[[nodiscard]] std::string planToDot(const Plan& plan, const GraphDesc& graph);
+
+/// Full Vulkan names: "VK_PIPELINE_STAGE_2_COPY_BIT", one entry per set bit.
+[[nodiscard]] std::vector<std::string> stageMaskNames(VkPipelineStageFlags2 mask);
+[[nodiscard]] std::vector<std::string> accessMaskNames(VkAccessFlags2 mask);
+[[nodiscard]] std::string layoutName(VkImageLayout layout);
+
+}  // namespace skygraph

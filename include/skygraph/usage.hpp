@@ -1,0 +1,72 @@
+// How a pass touches a resource: the vocabulary of graph files (contract §1, "Usages").
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace skygraph {
+
+/// What a pass does with the contents of a resource.
+enum class Access : uint8_t {
+    Read,       ///< Reads contents written earlier.
+    Write,      ///< Overwrites; whatever was there before the pass is discarded.
+    ReadWrite,  ///< Reads earlier contents and modifies them (blending, accumulation).
+};
+
+/// Where in the pipeline the access happens.
+enum class Stage : uint8_t {
+    ColorAttachment,
+    DepthAttachment,
+    Vertex,
+    Fragment,
+    Compute,
+    Transfer,
+    VertexInput,
+    Indirect,
+};
+
+/// How a shader stage binds the resource; meaningless for the other stages.
+/// `Index` is a skygraph extension for `VertexInput` (index buffers).
+enum class BindAs : uint8_t { Default, Sampled, Storage, Uniform, Index };
+
+/// A rectangle of mip levels x array layers. Counts are never zero once resolved.
+struct SubresourceRange {
+    uint32_t baseMip = 0;
+    uint32_t mipCount = 1;
+    uint32_t baseLayer = 0;
+    uint32_t layerCount = 1;
+
+    [[nodiscard]] bool overlaps(const SubresourceRange& o) const noexcept {
+        return baseMip < o.baseMip + o.mipCount && o.baseMip < baseMip + mipCount &&
+               baseLayer < o.baseLayer + o.layerCount && o.baseLayer < baseLayer + layerCount;
+    }
+    friend bool operator==(const SubresourceRange&, const SubresourceRange&) = default;
+};
+
+/// One `uses` entry after parsing, before it is bound to a pass slot.
+struct Usage {
+    Access access = Access::Read;
+    Stage stage = Stage::Fragment;
+    BindAs as = BindAs::Default;
+    /// Empty means "the whole resource"; resolved by the compiler.
+    std::optional<SubresourceRange> range;
+};
+
+[[nodiscard]] bool isShaderStage(Stage s) noexcept;
+[[nodiscard]] bool isAttachmentStage(Stage s) noexcept;
+[[nodiscard]] bool readsContents(Access a) noexcept;   ///< Read or ReadWrite
+[[nodiscard]] bool writesContents(Access a) noexcept;  ///< Write or ReadWrite
+
+[[nodiscard]] std::string_view toString(Access a) noexcept;
+[[nodiscard]] std::string_view toString(Stage s) noexcept;
+[[nodiscard]] std::string_view toString(BindAs a) noexcept;
+[[nodiscard]] std::optional<Access> parseAccess(std::string_view s) noexcept;
+[[nodiscard]] std::optional<Stage> parseStage(std::string_view s) noexcept;
+[[nodiscard]] std::optional<BindAs> parseBindAs(std::string_view s) noexcept;
+
+/// "Access@Stage", as written in graph files.
+[[nodiscard]] std::string toString(const Usage& u);
+
+}  // namespace skygraph

@@ -1,0 +1,67 @@
+#include "cli_common.hpp"
+
+#include <skygraph/diagnostics.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace skygraph::cli {
+
+FeatureValues parseFeatureFlags(const std::vector<std::string>& flags) {
+    FeatureValues out;
+    for (const auto& f : flags) {
+        const auto eq = f.find('=');
+        const std::string value = eq == std::string::npos ? "" : f.substr(eq + 1);
+        if (eq == 0 || eq == std::string::npos || (value != "on" && value != "off"))
+            throw UsageError("--feature expects NAME=on or NAME=off, got '" + f + "'");
+        out[f.substr(0, eq)] = value == "on";
+    }
+    return out;
+}
+
+void writeOutput(const std::string& path, const std::string& text) {
+    if (path.empty()) {
+        std::cout << text << std::flush;
+        return;
+    }
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".partial");
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out << text;
+        out.flush();
+        if (!out) {
+            std::error_code ignored;
+            fs::remove(temp, ignored);
+            throw std::runtime_error("cannot write '" + path + "'");
+        }
+    }
+    std::error_code ec;
+    fs::rename(temp, target, ec);
+    if (ec) {
+        fs::remove(temp, ec);
+        throw std::runtime_error("cannot write '" + path + "': " + ec.message());
+    }
+}
+
+int runGuarded(const std::function<int()>& body) {
+    try {
+        return body();
+    } catch (const GraphError& e) {
+        for (const auto& d : e.diagnostics().items()) std::cerr << "error: " << d.format() << "\n";
+        return 1;
+    } catch (const UsageError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 1;
+    }
+}
+
+}  // namespace skygraph::cli
