@@ -1,0 +1,415 @@
+// Device context: instance, validation with synchronization validation, device selection.
+#include "vk_util.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <cstring>
+#include <mutex>
+
+namespace skygraph::vk {
+
+const char* resultName(VkResult r) noexcept {
+    switch (r) {
+#define SG_CASE(x) \
+    case x:        \
+        return #x;
+        SG_CASE(VK_SUCCESS)
+        SG_CASE(VK_NOT_READY)
+        SG_CASE(VK_TIMEOUT)
+        SG_CASE(VK_INCOMPLETE)
+        SG_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        SG_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        SG_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        SG_CASE(VK_ERROR_DEVICE_LOST)
+        SG_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        SG_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        SG_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        SG_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        SG_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        SG_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        SG_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+#undef SG_CASE
+        default:
+            return "VkResult error";
+    }
+}
+
+uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,
+                        VkMemoryPropertyFlags required) {
+    VkPhysicalDeviceMemoryProperties props;
+    vkGetPhysicalDeviceMemoryProperties(physical, &props);
+    for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
+        if ((typeBits & (1u << i)) &&
+            (props.memoryTypes[i].propertyFlags & required) == required) {
+            return i;
+        }
+    }
+    throw ExecutorError("no memory type with the required properties");
+}
+
+}  // namespace skygraph::vk
+
+namespace skygraph {
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+constexpr size_t kKeptMessages = 256;
+
+VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                             VkDebugUtilsMessageTypeFlagsEXT,
+                                             const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                             void* user) {
+    auto* impl = static_cast<Device::Impl*>(user);
+    const char* id = data->pMessageIdName ? data->pMessageIdName : "";
+    const char* text = data->pMessage ? data->pMessage : "";
+    const bool counted = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    if (counted) {
+        std::lock_guard lock(impl->mutex);
+        ++impl->count;
+        if (impl->kept.size() < kKeptMessages) impl->kept.push_back({severity, id, text});
+    }
+    if (impl->logMessages) {
+        if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+            spdlog::error("[vulkan] {}", text);
+        } else if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+            spdlog::warn("[vulkan] {}", text);
+        } else {
+            spdlog::debug("[vulkan] {}", text);
+        }
+    }
+    return VK_FALSE;
+}
+
+bool layerAvailable(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    std::vector<VkLayerProperties> layers(n);
+    vkEnumerateInstanceLayerProperties(&n, layers.data());
+    return std::any_of(layers.begin(), layers.end(),
+                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool instanceExtensionAvailable(const char* name) {
+    uint32_t n = 0;
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> exts(n);
+    vkEnumerateInstanceExtensionProperties(nullptr, &n, exts.data());
+    return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, name) == 0;
+    });
+}
+
+bool deviceExtensionAvailable(VkPhysicalDevice pd, const char* name) {
+    uint32_t n = 0;
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, nullptr);
+    std::vector<VkExtensionProperties> exts(n);
+    vkEnumerateDeviceExtensionProperties(pd, nullptr, &n, exts.data());
+    return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
+        return std::strcmp(e.extensionName, name) == 0;
+    });
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+const char* typeName(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
+        default: return "other";
+    }
+}
+
+int typeRank(VkPhysicalDeviceType t) {
+    switch (t) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
+        default: return 4;
+    }
+}
+
+/// Why `pd` cannot run skygraph, or empty when it can; sets `family`.
+std::string unsuitable(VkPhysicalDevice pd, uint32_t& family) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(pd, &props);
+    if (props.apiVersion < VK_API_VERSION_1_3) return "does not support Vulkan 1.3";
+    if (!deviceExtensionAvailable(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
+        return "lacks VK_KHR_push_descriptor";
+    }
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+    vkGetPhysicalDeviceFeatures2(pd, &f2);
+    if (!f13.synchronization2) return "lacks synchronization2";
+    uint32_t n = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
+    std::vector<VkQueueFamilyProperties> fams(n);
+    vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, fams.data());
+    for (uint32_t i = 0; i < n; ++i) {
+        const auto need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+        if ((fams[i].queueFlags & need) == need && fams[i].timestampValidBits > 0) {
+            family = i;
+            return {};
+        }
+    }
+    return "has no graphics+compute queue with timestamps";
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    uint32_t n = 0;
+    vkEnumeratePhysicalDevices(instance, &n, nullptr);
+    std::vector<VkPhysicalDevice> pds(n);
+    vkEnumeratePhysicalDevices(instance, &n, pds.data());
+    return pds;
+}
+
+bool envFlag(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v && std::strcmp(v, "0") != 0 && lower(v) != "off" && lower(v) != "false";
+}
+
+}  // namespace
+
+Device::Impl::~Impl() {
+    if (device) {
+        vkDeviceWaitIdle(device);
+        vkDestroyDevice(device, nullptr);
+    }
+    if (messenger) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance, messenger, nullptr);
+    }
+    if (instance) vkDestroyInstance(instance, nullptr);
+}
+
+Device::Device(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Device::~Device() = default;
+
+std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
+    auto impl = std::make_unique<Impl>();
+    impl->logMessages = options.logMessages;
+    impl->validation = options.validation || envFlag("SKYGRAPH_VALIDATION");
+    if (impl->validation && !layerAvailable(kValidationLayer)) {
+        throw ExecutorError("validation requested but VK_LAYER_KHRONOS_validation is not installed");
+    }
+    const bool debugUtils = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+    if (impl->validation) {
+        // Layer 1.3.239 reads its QUEUE_SUBMIT synchronization checks only from its settings
+        // (file or VK_LAYER_ENABLES); there is no API struct for it in this version.
+        std::string enables = "VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT:"
+                              "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT";
+        if (const char* prev = std::getenv("VK_LAYER_ENABLES"); prev && *prev) {
+            if (std::strstr(prev, "QUEUE_SUBMIT") == nullptr) {
+                enables = std::string(prev) + ":" + enables;
+            } else {
+                enables = prev;
+            }
+        }
+        setenv("VK_LAYER_ENABLES", enables.c_str(), 1);
+    }
+
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "skygraph";
+    app.pEngineName = "skygraph";
+    app.apiVersion = VK_API_VERSION_1_3;
+
+    std::vector<const char*> layers;
+    std::vector<const char*> exts;
+    if (impl->validation) layers.push_back(kValidationLayer);
+    if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+
+    VkValidationFeatureEnableEXT enables[] = {
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+    features.enabledValidationFeatureCount = 1;
+    features.pEnabledValidationFeatures = enables;
+
+    VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
+                                    VK_DEBUG_UTILS_MESSAGE_SEVERITY_INFO_BIT_EXT;
+    messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    messengerInfo.pfnUserCallback = debugCallback;
+    messengerInfo.pUserData = impl.get();
+    if (impl->validation) {
+        features.pNext = debugUtils ? &messengerInfo : nullptr;
+    }
+
+    VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ici.pNext = impl->validation ? static_cast<const void*>(&features) : nullptr;
+    ici.pApplicationInfo = &app;
+    ici.enabledLayerCount = static_cast<uint32_t>(layers.size());
+    ici.ppEnabledLayerNames = layers.data();
+    ici.enabledExtensionCount = static_cast<uint32_t>(exts.size());
+    ici.ppEnabledExtensionNames = exts.data();
+    vk::check(vkCreateInstance(&ici, nullptr, &impl->instance), "vkCreateInstance");
+
+    if (debugUtils) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(impl->instance, "vkCreateDebugUtilsMessengerEXT"));
+        if (create) {
+            vk::check(create(impl->instance, &messengerInfo, nullptr, &impl->messenger),
+                      "vkCreateDebugUtilsMessengerEXT");
+        }
+    }
+
+    // Pick the physical device.
+    const auto pds = physicalDevices(impl->instance);
+    if (pds.empty()) throw ExecutorError("no Vulkan physical devices found");
+    std::string reasons;
+    VkPhysicalDevice chosen = VK_NULL_HANDLE;
+    uint32_t chosenFamily = 0;
+    const bool byIndex = !options.device.empty() &&
+                         std::all_of(options.device.begin(), options.device.end(),
+                                     [](unsigned char c) { return std::isdigit(c); });
+    int bestRank = 1000;
+    for (size_t i = 0; i < pds.size(); ++i) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(pds[i], &props);
+        if (byIndex && std::to_string(i) != options.device) continue;
+        if (!byIndex && !options.device.empty() &&
+            lower(props.deviceName).find(lower(options.device)) == std::string::npos) {
+            continue;
+        }
+        uint32_t family = 0;
+        if (auto why = unsuitable(pds[i], family); !why.empty()) {
+            reasons += "\n  " + std::to_string(i) + ": " + props.deviceName + " " + why;
+            continue;
+        }
+        const int rank = typeRank(props.deviceType);
+        if (rank < bestRank) {
+            bestRank = rank;
+            chosen = pds[i];
+            chosenFamily = family;
+        }
+    }
+    if (!chosen) {
+        std::string msg = options.device.empty()
+                              ? "no suitable Vulkan device"
+                              : "no suitable Vulkan device matches --device '" + options.device + "'";
+        msg += reasons.empty() ? "" : ":" + reasons;
+        msg += "\navailable devices:";
+        for (const auto& d : listDevices()) msg += "\n  " + d;
+        throw ExecutorError(msg);
+    }
+    impl->physical = chosen;
+    impl->queueFamily = chosenFamily;
+    vkGetPhysicalDeviceProperties(chosen, &impl->properties);
+    impl->name = impl->properties.deviceName;
+    impl->timestampPeriod = impl->properties.limits.timestampPeriod;
+
+    // Features: what the Generic pass needs to really perform every access.
+    VkPhysicalDeviceFeatures supported;
+    vkGetPhysicalDeviceFeatures(chosen, &supported);
+    VkPhysicalDeviceVulkan12Features s12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 sf2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &s12, {}};
+    vkGetPhysicalDeviceFeatures2(chosen, &sf2);
+
+    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    f13.synchronization2 = VK_TRUE;
+    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    f12.pNext = &f13;
+    f12.shaderOutputLayer = s12.shaderOutputLayer;
+    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
+    f2.features.robustBufferAccess = supported.robustBufferAccess;
+    f2.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+    f2.features.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+    f2.features.shaderStorageImageWriteWithoutFormat =
+        supported.shaderStorageImageWriteWithoutFormat;
+    f2.features.geometryShader = supported.geometryShader;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qci.queueFamilyIndex = chosenFamily;
+    qci.queueCount = 1;
+    qci.pQueuePriorities = &priority;
+    const char* devExts[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    dci.pNext = &f2;
+    dci.queueCreateInfoCount = 1;
+    dci.pQueueCreateInfos = &qci;
+    dci.enabledExtensionCount = 1;
+    dci.ppEnabledExtensionNames = devExts;
+    vk::check(vkCreateDevice(chosen, &dci, nullptr, &impl->device), "vkCreateDevice");
+    vkGetDeviceQueue(impl->device, chosenFamily, 0, &impl->queue);
+
+    impl->fn.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(impl->device, "vkCmdPushDescriptorSetKHR"));
+    if (!impl->fn.cmdPushDescriptorSet) throw ExecutorError("vkCmdPushDescriptorSetKHR missing");
+    if (debugUtils) {
+        impl->fn.cmdBeginLabel = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(impl->instance, "vkCmdBeginDebugUtilsLabelEXT"));
+        impl->fn.cmdEndLabel = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+            vkGetInstanceProcAddr(impl->instance, "vkCmdEndDebugUtilsLabelEXT"));
+        impl->fn.setObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+            vkGetInstanceProcAddr(impl->instance, "vkSetDebugUtilsObjectNameEXT"));
+    }
+    spdlog::info("skygraph: using device '{}'{}", impl->name,
+                 impl->validation ? " with validation + synchronization validation" : "");
+    return std::unique_ptr<Device>(new Device(std::move(impl)));
+}
+
+std::vector<std::string> Device::listDevices() {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.apiVersion = VK_API_VERSION_1_3;
+    VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    ici.pApplicationInfo = &app;
+    VkInstance instance = VK_NULL_HANDLE;
+    std::vector<std::string> out;
+    if (vkCreateInstance(&ici, nullptr, &instance) != VK_SUCCESS) return out;
+    const auto pds = physicalDevices(instance);
+    for (size_t i = 0; i < pds.size(); ++i) {
+        VkPhysicalDeviceProperties props;
+        vkGetPhysicalDeviceProperties(pds[i], &props);
+        out.push_back(std::to_string(i) + ": " + props.deviceName + " (" +
+                      typeName(props.deviceType) + ")");
+    }
+    vkDestroyInstance(instance, nullptr);
+    return out;
+}
+
+VkInstance Device::instance() const noexcept { return impl_->instance; }
+VkPhysicalDevice Device::physicalDevice() const noexcept { return impl_->physical; }
+VkDevice Device::device() const noexcept { return impl_->device; }
+VkQueue Device::queue() const noexcept { return impl_->queue; }
+uint32_t Device::queueFamily() const noexcept { return impl_->queueFamily; }
+const std::string& Device::name() const noexcept { return impl_->name; }
+bool Device::validationEnabled() const noexcept { return impl_->validation; }
+float Device::timestampPeriodNs() const noexcept { return impl_->timestampPeriod; }
+
+uint32_t Device::messageCount() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->count;
+}
+std::vector<ValidationMessage> Device::messages() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->kept;
+}
+bool Device::hasMessage(std::string_view needle) const {
+    std::lock_guard lock(impl_->mutex);
+    return std::any_of(impl_->kept.begin(), impl_->kept.end(), [&](const ValidationMessage& m) {
+        return m.idName.find(needle) != std::string::npos ||
+               m.message.find(needle) != std::string::npos;
+    });
+}
+void Device::clearMessages() {
+    std::lock_guard lock(impl_->mutex);
+    impl_->count = 0;
+    impl_->kept.clear();
+}
+
+}  // namespace skygraph

@@ -1,0 +1,451 @@
+#include "generic_program.hpp"
+
+#include <skygraph/executor.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace skygraph {
+namespace {
+
+std::string glslStorageFormat(VkFormat f) {
+    switch (f) {
+        case VK_FORMAT_R8G8B8A8_UNORM: return "rgba8";
+        case VK_FORMAT_R8G8B8A8_SNORM: return "rgba8_snorm";
+        case VK_FORMAT_R8G8B8A8_UINT: return "rgba8ui";
+        case VK_FORMAT_R8G8B8A8_SINT: return "rgba8i";
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return "rgba16f";
+        case VK_FORMAT_R16G16B16A16_UNORM: return "rgba16";
+        case VK_FORMAT_R16G16B16A16_UINT: return "rgba16ui";
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return "rgba32f";
+        case VK_FORMAT_R32G32B32A32_UINT: return "rgba32ui";
+        case VK_FORMAT_R32G32B32A32_SINT: return "rgba32i";
+        case VK_FORMAT_R16G16_SFLOAT: return "rg16f";
+        case VK_FORMAT_R32G32_SFLOAT: return "rg32f";
+        case VK_FORMAT_R16_SFLOAT: return "r16f";
+        case VK_FORMAT_R32_SFLOAT: return "r32f";
+        case VK_FORMAT_R32_UINT: return "r32ui";
+        case VK_FORMAT_R32_SINT: return "r32i";
+        case VK_FORMAT_R8_UNORM: return "r8";
+        case VK_FORMAT_R8G8_UNORM: return "rg8";
+        case VK_FORMAT_R16_UNORM: return "r16";
+        case VK_FORMAT_B10G11R11_UFLOAT_PACK32: return "r11f_g11f_b10f";
+        case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return "rgb10_a2";
+        default: return {};
+    }
+}
+
+BindAs resolveAs(const ResourceDesc& r, const Usage& u) {
+    if (u.as != BindAs::Default) return u.as;
+    if (!r.isImage()) return BindAs::Storage;
+    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
+}
+
+std::string err(const PlannedPass& pass, const std::string& resource, const std::string& what) {
+    std::string s = "pass '" + pass.name + "'";
+    if (!resource.empty()) s += ", resource '" + resource + "'";
+    return s + ": " + what;
+}
+
+uint16_t toHalf(float f) {
+    uint32_t x;
+    std::memcpy(&x, &f, 4);
+    const uint32_t sign = (x >> 16) & 0x8000u;
+    int32_t exp = static_cast<int32_t>((x >> 23) & 0xffu) - 127 + 15;
+    uint32_t mant = x & 0x7fffffu;
+    if (exp <= 0) return static_cast<uint16_t>(sign);
+    if (exp >= 31) return static_cast<uint16_t>(sign | 0x7c00u);
+    return static_cast<uint16_t>(sign | (static_cast<uint32_t>(exp) << 10) | (mant >> 13));
+}
+
+uint8_t unorm8(float v) {
+    return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+}
+
+/// Expression reading a binding at `xy` (ivec2) into a vec4, with `li` the linear index.
+std::string readExpr(const ShaderBinding& b) {
+    const std::string n = std::to_string(b.binding);
+    switch (b.kind) {
+        case BindKind::SampledImage:
+            if (b.viewType == VK_IMAGE_VIEW_TYPE_CUBE)
+                return "vec4(textureLod(t" + n + ", vec3(1.0, 0.0, 0.0), 0.0))";
+            if (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY)
+                return "vec4(texelFetch(t" + n + ", ivec3(clamp(xy, ivec2(0), textureSize(t" + n +
+                       ", 0).xy - 1), 0), 0))";
+            return "vec4(texelFetch(t" + n + ", clamp(xy, ivec2(0), textureSize(t" + n +
+                   ", 0) - 1), 0))";
+        case BindKind::StorageImage:
+            if (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY)
+                return "vec4(imageLoad(i" + n + ", ivec3(clamp(xy, ivec2(0), imageSize(i" + n +
+                       ").xy - 1), 0)))";
+            return "vec4(imageLoad(i" + n + ", clamp(xy, ivec2(0), imageSize(i" + n + ") - 1)))";
+        case BindKind::StorageBuffer:
+            return "(b" + n + ".data.length() > kValueIndex ? vec4(uintBitsToFloat(b" + n +
+                   ".data[kValueIndex])) : vec4(0.0))";
+        case BindKind::UniformBuffer:
+            if (b.uniformVec4s > 2) return "vec4(uintBitsToFloat(u" + n + ".data[2].x))";
+            return "vec4(0.0)";
+    }
+    return "vec4(0.0)";
+}
+
+std::string declare(const ShaderBinding& b) {
+    const std::string n = std::to_string(b.binding);
+    std::ostringstream s;
+    switch (b.kind) {
+        case BindKind::SampledImage: {
+            const char* type = b.viewType == VK_IMAGE_VIEW_TYPE_CUBE         ? "samplerCube"
+                               : b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY ? "sampler2DArray"
+                                                                           : "sampler2D";
+            s << "layout(set = 0, binding = " << n << ") uniform " << b.scalarPrefix << type
+              << " t" << n << ";\n";
+            break;
+        }
+        case BindKind::StorageImage: {
+            const char* type = b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY ? "image2DArray" : "image2D";
+            s << "layout(set = 0, binding = " << n;
+            if (!b.glslFormat.empty()) s << ", " << b.glslFormat;
+            s << ") uniform " << (b.write && !b.read ? "writeonly " : b.read && !b.write ? "readonly " : "")
+              << b.scalarPrefix << type << " i" << n << ";\n";
+            break;
+        }
+        case BindKind::StorageBuffer:
+            s << "layout(std430, set = 0, binding = " << n << ") "
+              << (b.write && !b.read ? "writeonly " : b.read && !b.write ? "readonly " : "")
+              << "buffer B" << n << " { uint data[]; } b" << n << ";\n";
+            break;
+        case BindKind::UniformBuffer:
+            s << "layout(std140, set = 0, binding = " << n << ") uniform U" << n
+              << " { uvec4 data[" << b.uniformVec4s << "]; } u" << n << ";\n";
+            break;
+    }
+    return s.str();
+}
+
+/// Statements performing every read (into `acc`) and then every write of `bindings` for
+/// one shader stage. `vertexStage` writes with vertex-invocation coordinates.
+std::string body(const std::vector<ShaderBinding>& bindings, VkShaderStageFlagBits stage) {
+    std::ostringstream s;
+    for (const auto& b : bindings) {
+        if (b.stage != stage || !b.read) continue;
+        if (b.kind == BindKind::StorageBuffer && b.write) {
+            // Read-modify-write buffers read their own element; it does not feed `acc` so that
+            // the result does not depend on invocation order.
+            const std::string n = std::to_string(b.binding);
+            s << "    if (b" << n << ".data.length() > 0 && b" << n << ".data[min(li, uint(b" << n
+              << ".data.length()) - 1u)] == 0xfeedfaceu) acc.w += 1.0;\n";
+            continue;
+        }
+        s << "    acc += " << readExpr(b) << ";\n";
+    }
+    for (const auto& b : bindings) {
+        if (b.stage != stage || !b.write) continue;
+        const std::string n = std::to_string(b.binding);
+        if (b.kind == BindKind::StorageImage) {
+            const std::string value = b.scalarPrefix + "vec4(acc)";
+            if (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY) {
+                s << "    if (all(lessThan(xy, imageSize(i" << n << ").xy)))\n"
+                  << "        for (int l = 0; l < imageSize(i" << n << ").z; ++l) imageStore(i" << n
+                  << ", ivec3(xy, l), " << value << ");\n";
+            } else {
+                s << "    if (all(lessThan(xy, imageSize(i" << n << ")))) imageStore(i" << n
+                  << ", xy, " << value << ");\n";
+            }
+        } else if (b.kind == BindKind::StorageBuffer) {
+            if (stage == VK_SHADER_STAGE_VERTEX_BIT) {
+                s << "    if (gl_VertexIndex == 0 && gl_InstanceIndex == 0)\n"
+                  << "        for (uint i = 0u; i < uint(b" << n << ".data.length()); ++i) b" << n
+                  << ".data[i] = genericBufferWord(i, acc);\n";
+            } else {
+                s << "    if (li < uint(b" << n << ".data.length())) b" << n
+                  << ".data[li] = genericBufferWord(li, acc);\n";
+            }
+        }
+    }
+    return s.str();
+}
+
+std::string vec4Literal(const std::array<float, 4>& c) {
+    std::ostringstream s;
+    s.precision(9);
+    s << "vec4(" << c[0] << ", " << c[1] << ", " << c[2] << ", " << c[3] << ")";
+    return s.str();
+}
+
+}  // namespace
+
+std::string scalarPrefix(VkFormat format) {
+    switch (format) {
+        case VK_FORMAT_R8_UINT: case VK_FORMAT_R8G8_UINT: case VK_FORMAT_R8G8B8A8_UINT:
+        case VK_FORMAT_R16_UINT: case VK_FORMAT_R16G16_UINT: case VK_FORMAT_R16G16B16A16_UINT:
+        case VK_FORMAT_R32_UINT: case VK_FORMAT_R32G32_UINT: case VK_FORMAT_R32G32B32A32_UINT:
+        case VK_FORMAT_A2B10G10R10_UINT_PACK32:
+            return "u";
+        case VK_FORMAT_R8_SINT: case VK_FORMAT_R8G8_SINT: case VK_FORMAT_R8G8B8A8_SINT:
+        case VK_FORMAT_R16_SINT: case VK_FORMAT_R16G16_SINT: case VK_FORMAT_R16G16B16A16_SINT:
+        case VK_FORMAT_R32_SINT: case VK_FORMAT_R32G32_SINT: case VK_FORMAT_R32G32B32A32_SINT:
+            return "i";
+        default:
+            return "";
+    }
+}
+
+std::vector<uint8_t> encodeTexel(VkFormat format, uint32_t texelBytes,
+                                 const std::array<float, 4>& c) {
+    std::vector<uint8_t> out(texelBytes, 0);
+    auto put = [&](const void* p, size_t n) {
+        std::memcpy(out.data(), p, std::min<size_t>(n, out.size()));
+    };
+    switch (format) {
+        case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_R8G8B8A8_SRGB: {
+            const uint8_t b[4] = {unorm8(c[0]), unorm8(c[1]), unorm8(c[2]), unorm8(c[3])};
+            put(b, 4);
+            break;
+        }
+        case VK_FORMAT_B8G8R8A8_UNORM:
+        case VK_FORMAT_B8G8R8A8_SRGB: {
+            const uint8_t b[4] = {unorm8(c[2]), unorm8(c[1]), unorm8(c[0]), unorm8(c[3])};
+            put(b, 4);
+            break;
+        }
+        case VK_FORMAT_R8_UNORM: {
+            const uint8_t b = unorm8(c[0]);
+            put(&b, 1);
+            break;
+        }
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+        case VK_FORMAT_R16G16_SFLOAT:
+        case VK_FORMAT_R16_SFLOAT: {
+            const uint16_t h[4] = {toHalf(c[0]), toHalf(c[1]), toHalf(c[2]), toHalf(c[3])};
+            put(h, 8);
+            break;
+        }
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+        case VK_FORMAT_R32G32_SFLOAT:
+        case VK_FORMAT_R32_SFLOAT:
+            put(c.data(), 16);
+            break;
+        case VK_FORMAT_D32_SFLOAT:
+        case VK_FORMAT_D32_SFLOAT_S8_UINT: {
+            const float d = std::clamp(c[0], 0.0f, 1.0f);
+            put(&d, 4);
+            break;
+        }
+        case VK_FORMAT_D16_UNORM: {
+            const auto d = static_cast<uint16_t>(std::lround(std::clamp(c[0], 0.0f, 1.0f) * 65535.0f));
+            put(&d, 2);
+            break;
+        }
+        default:
+            break;
+    }
+    return out;
+}
+
+GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
+                                   const PlannedPass& pass, const nlohmann::json& params,
+                                   bool strictParams, bool layeredRendering) {
+    GenericProgram p;
+    // params: { "color": [r, g, b, a], "depth": d }
+    if (params.is_object()) {
+        if (auto it = params.find("color"); it != params.end()) {
+            const bool ok = it->is_array() && it->size() == 4 &&
+                            std::all_of(it->begin(), it->end(),
+                                        [](const nlohmann::json& v) { return v.is_number(); });
+            if (ok) {
+                for (size_t i = 0; i < 4; ++i) p.color[i] = (*it)[i].get<float>();
+            } else if (strictParams) {
+                throw ExecutorError(err(pass, "", "params.color must be an array of 4 numbers"));
+            }
+        }
+        if (auto it = params.find("depth"); it != params.end()) {
+            if (it->is_number() && it->get<double>() >= 0.0 && it->get<double>() <= 1.0) {
+                p.depthValue = it->get<float>();
+            } else if (strictParams) {
+                throw ExecutorError(err(pass, "", "params.depth must be a number in [0, 1]"));
+            }
+        }
+    }
+
+    uint32_t nextBinding = 0;
+    for (uint32_t i = 0; i < pass.usages.size(); ++i) {
+        const PlannedUsage& u = pass.usages[i];
+        if (u.resource >= plan.resources.size()) {
+            throw ExecutorError(err(pass, "", "usage refers to unknown plan resource"));
+        }
+        const ResourceDesc& r = graph.resources.at(plan.resources[u.resource].decl);
+        switch (u.usage.stage) {
+            case Stage::ColorAttachment:
+                if (!r.isImage() || r.format.isDepthStencil())
+                    throw ExecutorError(err(pass, r.name, "is not a color image"));
+                p.colors.push_back(i);
+                p.graphics = true;
+                break;
+            case Stage::DepthAttachment:
+                if (!r.isImage() || !r.format.isDepthStencil())
+                    throw ExecutorError(err(pass, r.name, "is not a depth/stencil image"));
+                if (p.depth >= 0)
+                    throw ExecutorError(err(pass, r.name, "a pass can have one depth attachment"));
+                p.depth = static_cast<int32_t>(i);
+                p.graphics = true;
+                break;
+            case Stage::Transfer:
+                p.transfers.push_back(i);
+                break;
+            case Stage::VertexInput:
+                if (r.isImage()) throw ExecutorError(err(pass, r.name, "VertexInput needs a buffer"));
+                if (u.usage.as == BindAs::Index) {
+                    if (p.indexBuffer >= 0)
+                        throw ExecutorError(err(pass, r.name, "a pass can have one index buffer"));
+                    p.indexBuffer = static_cast<int32_t>(i);
+                } else {
+                    p.vertexBuffers.push_back(i);
+                }
+                p.graphics = true;
+                break;
+            case Stage::Indirect:
+                if (r.isImage()) throw ExecutorError(err(pass, r.name, "Indirect needs a buffer"));
+                if (p.indirectBuffer >= 0)
+                    throw ExecutorError(err(pass, r.name, "a pass can have one indirect buffer"));
+                p.indirectBuffer = static_cast<int32_t>(i);
+                p.graphics = true;
+                break;
+            case Stage::Vertex:
+            case Stage::Fragment:
+            case Stage::Compute: {
+                ShaderBinding b;
+                b.usage = i;
+                b.binding = nextBinding++;
+                b.stage = u.usage.stage == Stage::Vertex     ? VK_SHADER_STAGE_VERTEX_BIT
+                          : u.usage.stage == Stage::Fragment ? VK_SHADER_STAGE_FRAGMENT_BIT
+                                                             : VK_SHADER_STAGE_COMPUTE_BIT;
+                b.read = readsContents(u.usage.access);
+                b.write = writesContents(u.usage.access);
+                const BindAs as = resolveAs(r, u.usage);
+                if (r.isImage()) {
+                    b.scalarPrefix = scalarPrefix(r.format.format);
+                    const bool wholeCube = r.type == ResourceType::Cube && u.range.layerCount == 6;
+                    if (as == BindAs::Sampled) {
+                        b.kind = BindKind::SampledImage;
+                        b.viewType = wholeCube ? VK_IMAGE_VIEW_TYPE_CUBE
+                                     : (u.range.layerCount > 1 || r.type != ResourceType::Image2D)
+                                         ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                         : VK_IMAGE_VIEW_TYPE_2D;
+                    } else if (as == BindAs::Storage) {
+                        b.kind = BindKind::StorageImage;
+                        b.viewType = (u.range.layerCount > 1 || r.type != ResourceType::Image2D)
+                                         ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                         : VK_IMAGE_VIEW_TYPE_2D;
+                        b.glslFormat = glslStorageFormat(r.format.format);
+                        if (b.read && b.glslFormat.empty()) {
+                            throw ExecutorError(err(pass, r.name,
+                                                    "format " + std::string(r.format.name) +
+                                                        " cannot be read as a storage image"));
+                        }
+                        if (!b.read) b.glslFormat.clear();  // write-only: no qualifier needed
+                    } else {
+                        throw ExecutorError(err(pass, r.name, "an image cannot be a uniform buffer"));
+                    }
+                } else {
+                    if (as == BindAs::Uniform) {
+                        b.kind = BindKind::UniformBuffer;
+                        b.uniformVec4s = static_cast<uint32_t>(
+                            std::clamp<uint64_t>(r.sizeBytes / 16, 1, 1024));
+                    } else {
+                        b.kind = BindKind::StorageBuffer;
+                    }
+                    if (r.sizeBytes < 4)
+                        throw ExecutorError(err(pass, r.name, "buffer is smaller than 4 bytes"));
+                }
+                if (b.stage == VK_SHADER_STAGE_COMPUTE_BIT) {
+                    p.computeBindings.push_back(b);
+                    p.compute = true;
+                } else {
+                    p.graphicsBindings.push_back(b);
+                    p.graphics = true;
+                }
+                break;
+            }
+        }
+    }
+    for (uint32_t c : p.colors) p.attachmentLayers = std::max(p.attachmentLayers, pass.usages[c].range.layerCount);
+    if (p.depth >= 0)
+        p.attachmentLayers = std::max(p.attachmentLayers, pass.usages[size_t(p.depth)].range.layerCount);
+    if (p.attachmentLayers > 1 && !layeredRendering) {
+        throw ExecutorError(err(pass, "", "rendering to several layers needs shaderOutputLayer"));
+    }
+
+    const std::string header =
+        "#version 450\n#extension GL_GOOGLE_include_directive : require\n"
+        "#include \"generic_common.glsl\"\n"
+        "layout(push_constant) uniform PC { uvec4 extent; } pc;\n";
+
+    if (p.graphics) {
+        std::ostringstream vs;
+        vs << header;
+        if (p.attachmentLayers > 1) {
+            vs << "#extension GL_ARB_shader_viewport_layer_array : require\n";
+        }
+        for (const auto& b : p.graphicsBindings)
+            if (b.stage == VK_SHADER_STAGE_VERTEX_BIT) vs << declare(b);
+        for (size_t v = 0; v < p.vertexBuffers.size(); ++v)
+            vs << "layout(location = " << v << ") in float attr" << v << ";\n";
+        vs << "layout(location = 0) flat out vec4 vAcc;\n"
+           << "void main() {\n"
+           << "    vec4 acc = " << vec4Literal(p.color) << ";\n"
+           << "    ivec2 xy = ivec2(gl_VertexIndex, 0);\n"
+           << "    uint li = uint(gl_VertexIndex);\n";
+        for (size_t v = 0; v < p.vertexBuffers.size(); ++v)
+            vs << "    if (isnan(attr" << v << ")) acc.w += 0.0;\n";
+        vs << body(p.graphicsBindings, VK_SHADER_STAGE_VERTEX_BIT)
+           << "    vAcc = acc;\n"
+           << "    gl_Position = vec4(kFullscreen[gl_VertexIndex & 3], " << p.depthValue << ", 1.0);\n";
+        if (p.attachmentLayers > 1) vs << "    gl_Layer = gl_InstanceIndex;\n";
+        vs << "}\n";
+        p.vertexSource = vs.str();
+
+        std::ostringstream fs;
+        fs << header;
+        for (const auto& b : p.graphicsBindings)
+            if (b.stage == VK_SHADER_STAGE_FRAGMENT_BIT) fs << declare(b);
+        for (size_t c = 0; c < p.colors.size(); ++c) {
+            const ResourceDesc& r =
+                graph.resources[plan.resources[pass.usages[p.colors[c]].resource].decl];
+            fs << "layout(location = " << c << ") out " << scalarPrefix(r.format.format)
+               << "vec4 o" << c << ";\n";
+        }
+        fs << "layout(location = 0) flat in vec4 vAcc;\n"
+           << "void main() {\n"
+           << "    vec4 acc = vAcc;\n"
+           << "    ivec2 xy = ivec2(gl_FragCoord.xy);\n"
+           << "    uint li = uint(xy.y) * pc.extent.x + uint(xy.x);\n"
+           << body(p.graphicsBindings, VK_SHADER_STAGE_FRAGMENT_BIT);
+        for (size_t c = 0; c < p.colors.size(); ++c) {
+            const ResourceDesc& r =
+                graph.resources[plan.resources[pass.usages[p.colors[c]].resource].decl];
+            fs << "    o" << c << " = " << scalarPrefix(r.format.format) << "vec4(acc);\n";
+        }
+        fs << "}\n";
+        p.fragmentSource = fs.str();
+    }
+    if (p.compute) {
+        std::ostringstream cs;
+        cs << header << "layout(local_size_x = 8, local_size_y = 8) in;\n";
+        for (const auto& b : p.computeBindings) cs << declare(b);
+        cs << "void main() {\n"
+           << "    vec4 acc = " << vec4Literal(p.color) << ";\n"
+           << "    ivec2 xy = ivec2(gl_GlobalInvocationID.xy);\n"
+           << "    if (any(greaterThanEqual(uvec2(xy), pc.extent.xy))) return;\n"
+           << "    uint li = uint(xy.y) * pc.extent.x + uint(xy.x);\n"
+           << body(p.computeBindings, VK_SHADER_STAGE_COMPUTE_BIT) << "}\n";
+        p.computeSource = cs.str();
+    }
+    return p;
+}
+
+}  // namespace skygraph

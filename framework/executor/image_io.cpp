@@ -1,0 +1,64 @@
+// PNG and Radiance HDR output through stb_image_write.
+#include <skygraph/executor.hpp>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#endif
+#include <stb/stb_image_write.h>
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+#include <algorithm>
+#include <cmath>
+
+namespace skygraph {
+namespace {
+
+void checkImage(const ImageData& image) {
+    if (image.width == 0 || image.height == 0 ||
+        image.rgba.size() != size_t(image.width) * image.height * 4) {
+        throw ExecutorError("image to write is empty or malformed");
+    }
+}
+
+}  // namespace
+
+void writePng(const std::filesystem::path& path, const ImageData& image) {
+    checkImage(image);
+    std::vector<uint8_t> bytes(image.rgba.size());
+    for (size_t i = 0; i < bytes.size(); ++i) {
+        bytes[i] = static_cast<uint8_t>(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f));
+    }
+    const auto tmp = path.string() + ".tmp";
+    if (!stbi_write_png(tmp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 4,
+                        bytes.data(), static_cast<int>(image.width * 4))) {
+        throw ExecutorError("cannot write '" + path.string() + "'");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);  // nothing half-written under the final name
+    if (ec) throw ExecutorError("cannot write '" + path.string() + "': " + ec.message());
+}
+
+void writeHdr(const std::filesystem::path& path, const ImageData& image) {
+    checkImage(image);
+    std::vector<float> rgb(size_t(image.width) * image.height * 3);
+    for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
+        for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
+    }
+    const auto tmp = path.string() + ".tmp";
+    if (!stbi_write_hdr(tmp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 3,
+                        rgb.data())) {
+        throw ExecutorError("cannot write '" + path.string() + "'");
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) throw ExecutorError("cannot write '" + path.string() + "': " + ec.message());
+}
+
+}  // namespace skygraph

@@ -1,0 +1,139 @@
+#include "shader_compiler.hpp"
+
+#include <skygraph/executor.hpp>
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+namespace skygraph {
+namespace {
+
+/// Resolves `#include "x"` against one directory; owns the loaded text until released.
+class DirIncluder final : public glslang::TShader::Includer {
+public:
+    explicit DirIncluder(std::filesystem::path dir) : dir_(std::move(dir)) {}
+
+    IncludeResult* includeLocal(const char* headerName, const char*, size_t) override {
+        return load(headerName);
+    }
+    IncludeResult* includeSystem(const char* headerName, const char*, size_t) override {
+        return load(headerName);
+    }
+    void releaseInclude(IncludeResult* result) override {
+        if (result) {
+            delete static_cast<std::string*>(result->userData);
+            delete result;
+        }
+    }
+
+private:
+    IncludeResult* load(const char* name) {
+        const auto path = dir_ / name;
+        std::ifstream in(path, std::ios::binary);
+        if (!in) return nullptr;
+        std::stringstream ss;
+        ss << in.rdbuf();
+        auto* text = new std::string(ss.str());
+        return new IncludeResult(path.string(), text->data(), text->size(), text);
+    }
+    std::filesystem::path dir_;
+};
+
+EShLanguage toLanguage(VkShaderStageFlagBits stage) {
+    switch (stage) {
+        case VK_SHADER_STAGE_VERTEX_BIT: return EShLangVertex;
+        case VK_SHADER_STAGE_FRAGMENT_BIT: return EShLangFragment;
+        case VK_SHADER_STAGE_COMPUTE_BIT: return EShLangCompute;
+        case VK_SHADER_STAGE_GEOMETRY_BIT: return EShLangGeometry;
+        default: throw ExecutorError("unsupported shader stage");
+    }
+}
+
+std::mutex& processMutex() {
+    static std::mutex m;
+    return m;
+}
+int& processRefs() {
+    static int refs = 0;
+    return refs;
+}
+
+}  // namespace
+
+std::filesystem::path ShaderCompiler::defaultIncludeDir() { return SKYGRAPH_SHADER_DIR; }
+
+ShaderCompiler::ShaderCompiler(std::filesystem::path includeDir, std::filesystem::path cacheDir)
+    : includeDir_(includeDir.empty() ? defaultIncludeDir() : std::move(includeDir)),
+      cacheDir_(std::move(cacheDir)) {
+    std::lock_guard lock(processMutex());
+    if (processRefs()++ == 0) glslang::InitializeProcess();
+}
+
+ShaderCompiler::~ShaderCompiler() {
+    std::lock_guard lock(processMutex());
+    if (--processRefs() == 0) glslang::FinalizeProcess();
+}
+
+std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
+                                              const std::string& source,
+                                              const std::string& name) {
+    const std::string key = std::to_string(static_cast<int>(stage)) + '\n' + source;
+    std::lock_guard lock(mutex_);
+    if (auto it = cache_.find(key); it != cache_.end()) return it->second;
+
+    std::filesystem::path diskPath;
+    if (!cacheDir_.empty()) {
+        diskPath = cacheDir_ / (std::to_string(std::hash<std::string>{}(key)) + ".spv");
+        std::ifstream in(diskPath, std::ios::binary);
+        if (in) {
+            std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+            if (!bytes.empty() && bytes.size() % 4 == 0) {
+                std::vector<uint32_t> spirv(bytes.size() / 4);
+                std::memcpy(spirv.data(), bytes.data(), bytes.size());
+                cache_.emplace(key, spirv);
+                return spirv;
+            }
+        }
+    }
+
+    const EShLanguage lang = toLanguage(stage);
+    glslang::TShader shader(lang);
+    const char* text = source.c_str();
+    const char* names = name.c_str();
+    shader.setStringsWithLengthsAndNames(&text, nullptr, &names, 1);
+    shader.setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+    const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+    DirIncluder includer(includeDir_);
+    if (!shader.parse(GetDefaultResources(), 450, false, messages, includer)) {
+        throw ExecutorError("shader '" + name + "' does not compile:\n" + shader.getInfoLog());
+    }
+    glslang::TProgram program;
+    program.addShader(&shader);
+    if (!program.link(messages)) {
+        throw ExecutorError("shader '" + name + "' does not link:\n" + program.getInfoLog());
+    }
+    std::vector<uint32_t> spirv;
+    glslang::SpvOptions spvOptions;
+    spvOptions.validate = false;
+    glslang::GlslangToSpv(*program.getIntermediate(lang), spirv, &spvOptions);
+    ++compilations_;
+    if (!diskPath.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(cacheDir_, ec);
+        std::ofstream out(diskPath, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(spirv.data()),
+                  static_cast<std::streamsize>(spirv.size() * 4));
+    }
+    cache_.emplace(key, spirv);
+    return spirv;
+}
+
+}  // namespace skygraph

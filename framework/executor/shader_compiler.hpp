@@ -1,0 +1,45 @@
+// Run-time GLSL -> SPIR-V with glslang, with #include from a shader directory and a cache.
+#pragma once
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace skygraph {
+
+/// Compiles GLSL at run time. Results are cached in memory by (stage, source) and, when a
+/// cache directory is given, on disk as .spv files. Thread-safe.
+class ShaderCompiler {
+public:
+    /// `includeDir` is searched for `#include "..."`; `cacheDir` may be empty (memory only).
+    explicit ShaderCompiler(std::filesystem::path includeDir, std::filesystem::path cacheDir = {});
+    ~ShaderCompiler();
+    ShaderCompiler(const ShaderCompiler&) = delete;
+    ShaderCompiler& operator=(const ShaderCompiler&) = delete;
+
+    /// SPIR-V for `source`. Throws ExecutorError with glslang's log (prefixed with `name`)
+    /// when the source does not compile.
+    [[nodiscard]] std::vector<uint32_t> compile(VkShaderStageFlagBits stage,
+                                                const std::string& source,
+                                                const std::string& name);
+
+    /// Number of compilations that actually ran glslang (cache misses).
+    [[nodiscard]] uint32_t compilations() const noexcept { return compilations_; }
+
+    /// The source tree's shaders/ directory (compile-time default).
+    [[nodiscard]] static std::filesystem::path defaultIncludeDir();
+
+private:
+    std::filesystem::path includeDir_;
+    std::filesystem::path cacheDir_;
+    std::mutex mutex_;
+    std::unordered_map<std::string, std::vector<uint32_t>> cache_;
+    uint32_t compilations_ = 0;
+};
+
+}  // namespace skygraph

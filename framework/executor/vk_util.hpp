@@ -1,0 +1,108 @@
+// Internal helpers for the executor: error checking and small RAII owners of Vulkan handles.
+#pragma once
+
+#include <skygraph/executor.hpp>
+
+#include <vulkan/vulkan_core.h>
+
+#include <string>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+namespace skygraph::vk {
+
+[[nodiscard]] const char* resultName(VkResult r) noexcept;
+
+/// Throws ExecutorError naming the call when `r` is not VK_SUCCESS.
+inline void check(VkResult r, const char* what) {
+    if (r != VK_SUCCESS) {
+        throw ExecutorError(std::string(what) + " failed: " + resultName(r));
+    }
+}
+
+/// Owns one device-level handle; destroys it with `Destroy(device, handle, nullptr)`.
+template <typename T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)>
+class Owned {
+public:
+    Owned() = default;
+    Owned(VkDevice device, T handle) noexcept : device_(device), handle_(handle) {}
+    ~Owned() { reset(); }
+    Owned(const Owned&) = delete;
+    Owned& operator=(const Owned&) = delete;
+    Owned(Owned&& o) noexcept
+        : device_(o.device_), handle_(std::exchange(o.handle_, T(VK_NULL_HANDLE))) {}
+    Owned& operator=(Owned&& o) noexcept {
+        if (this != &o) {
+            reset();
+            device_ = o.device_;
+            handle_ = std::exchange(o.handle_, T(VK_NULL_HANDLE));
+        }
+        return *this;
+    }
+    void reset() noexcept {
+        if (handle_ != VK_NULL_HANDLE) Destroy(device_, handle_, nullptr);
+        handle_ = VK_NULL_HANDLE;
+    }
+    [[nodiscard]] T get() const noexcept { return handle_; }
+    [[nodiscard]] explicit operator bool() const noexcept { return handle_ != VK_NULL_HANDLE; }
+
+private:
+    VkDevice device_ = VK_NULL_HANDLE;
+    T handle_ = VK_NULL_HANDLE;
+};
+
+using Image = Owned<VkImage, vkDestroyImage>;
+using Buffer = Owned<VkBuffer, vkDestroyBuffer>;
+using Memory = Owned<VkDeviceMemory, vkFreeMemory>;
+using ImageView = Owned<VkImageView, vkDestroyImageView>;
+using Sampler = Owned<VkSampler, vkDestroySampler>;
+using RenderPass = Owned<VkRenderPass, vkDestroyRenderPass>;
+using Framebuffer = Owned<VkFramebuffer, vkDestroyFramebuffer>;
+using Pipeline = Owned<VkPipeline, vkDestroyPipeline>;
+using PipelineLayout = Owned<VkPipelineLayout, vkDestroyPipelineLayout>;
+using SetLayout = Owned<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
+using ShaderModule = Owned<VkShaderModule, vkDestroyShaderModule>;
+using CommandPool = Owned<VkCommandPool, vkDestroyCommandPool>;
+using Fence = Owned<VkFence, vkDestroyFence>;
+using QueryPool = Owned<VkQueryPool, vkDestroyQueryPool>;
+
+/// Device extension entry points the executor uses, loaded once per device.
+struct DeviceFunctions {
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+    PFN_vkCmdBeginDebugUtilsLabelEXT cmdBeginLabel = nullptr;  ///< null without debug utils
+    PFN_vkCmdEndDebugUtilsLabelEXT cmdEndLabel = nullptr;
+    PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
+};
+
+/// Index of a memory type with `required` properties among `typeBits`; throws if none.
+[[nodiscard]] uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,
+                                      VkMemoryPropertyFlags required);
+
+}  // namespace skygraph::vk
+
+namespace skygraph {
+
+struct Device::Impl {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    std::string name;
+    bool validation = false;
+    bool logMessages = true;
+    float timestampPeriod = 1.0f;
+    VkPhysicalDeviceProperties properties{};
+    vk::DeviceFunctions fn;
+
+    // Message counting; the callback may run on any thread.
+    mutable std::mutex mutex;
+    uint32_t count = 0;
+    std::vector<ValidationMessage> kept;
+
+    ~Impl();
+};
+
+}  // namespace skygraph

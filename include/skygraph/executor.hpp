@@ -1,0 +1,178 @@
+// The executor: runs compiled plans on a Vulkan 1.3 device. It records exactly the plan's
+// barriers and derives no synchronization of its own (contract §2).
+#pragma once
+
+#include <skygraph/condition.hpp>
+#include <skygraph/graph.hpp>
+#include <skygraph/plan.hpp>
+
+#include <vulkan/vulkan_core.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph {
+
+/// Thrown for Vulkan failures and for plans or graphs the executor cannot run. The message
+/// names the pass and resource involved where there is one.
+class ExecutorError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct DeviceOptions {
+    /// Physical device by index ("0") or case-insensitive name substring ("llvmpipe").
+    /// Empty: a discrete GPU, else an integrated one, else any, else the CPU (lavapipe).
+    std::string device;
+    /// Khronos validation with synchronization validation (including QUEUE_SUBMIT checks).
+    /// Also switched on by the environment variable SKYGRAPH_VALIDATION=1.
+    bool validation = false;
+    /// Log every validation message through spdlog as it arrives (they are always counted).
+    bool logMessages = true;
+};
+
+/// One validation / debug-utils message that was counted.
+struct ValidationMessage {
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity{};
+    std::string idName;   ///< e.g. "SYNC-HAZARD-READ-AFTER-WRITE"
+    std::string message;
+};
+
+/// Instance, physical device, logical device and one graphics+compute queue.
+/// Owns every handle it creates; not copyable. Must outlive every Renderer made from it.
+class Device {
+public:
+    /// Creates the instance and device. Throws ExecutorError when no device qualifies.
+    static std::unique_ptr<Device> create(const DeviceOptions& options = {});
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    [[nodiscard]] VkInstance instance() const noexcept;
+    [[nodiscard]] VkPhysicalDevice physicalDevice() const noexcept;
+    [[nodiscard]] VkDevice device() const noexcept;
+    [[nodiscard]] VkQueue queue() const noexcept;
+    [[nodiscard]] uint32_t queueFamily() const noexcept;
+    [[nodiscard]] const std::string& name() const noexcept;
+    [[nodiscard]] bool validationEnabled() const noexcept;
+    [[nodiscard]] float timestampPeriodNs() const noexcept;
+
+    /// Number of warning and error messages received since creation or the last clear.
+    [[nodiscard]] uint32_t messageCount() const;
+    /// A copy of the counted messages (the first 256 are kept).
+    [[nodiscard]] std::vector<ValidationMessage> messages() const;
+    /// True if a counted message's id name or text contains `needle`.
+    [[nodiscard]] bool hasMessage(std::string_view needle) const;
+    void clearMessages();
+
+    /// Lists "index: name (type)" for every physical device, for --device help.
+    [[nodiscard]] static std::vector<std::string> listDevices();
+
+    struct Impl;
+    [[nodiscard]] Impl& impl() noexcept { return *impl_; }
+
+private:
+    explicit Device(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Pixels of one image, converted to linear-agnostic float RGBA (values as stored; sRGB
+/// bytes are returned as byte/255, BGRA swizzled to RGBA).
+struct ImageData {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    std::vector<float> rgba;  ///< width*height*4
+
+    [[nodiscard]] std::array<float, 4> pixel(uint32_t x, uint32_t y) const {
+        const size_t i = (size_t(y) * width + x) * 4;
+        return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
+    }
+};
+
+/// Writes 8-bit RGBA PNG (values clamped to [0,1]). Throws ExecutorError on I/O failure.
+void writePng(const std::filesystem::path& path, const ImageData& image);
+/// Writes Radiance .hdr (RGB float). Throws ExecutorError on I/O failure.
+void writeHdr(const std::filesystem::path& path, const ImageData& image);
+
+struct RendererOptions {
+    uint32_t width = 16;
+    uint32_t height = 16;
+    uint32_t framesInFlight = 2;
+    /// Resource read back after every frame. Empty: the resource whose graph `final` is
+    /// Present (the swapchain target). It must end the frame in TRANSFER_SRC_OPTIMAL, i.e.
+    /// compile with CompileOptions::presentReplacement = ExternalState::TransferSrc.
+    std::string readback;
+    /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
+    std::filesystem::path shaderDir;
+};
+
+/// GPU time of one pass in the last completed frame of a slot.
+struct PassTiming {
+    std::string pass;
+    double milliseconds = 0.0;
+};
+
+/// Runs one plan of one graph. Owns all images, buffers, pipelines and command buffers it
+/// creates; borrows `device` (which must outlive it). Not copyable.
+class Renderer {
+public:
+    /// Creates resources, pipelines and per-frame state. Throws ExecutorError (e.g. a pass
+    /// type without recording code, a format the device cannot use as the plan requires).
+    Renderer(Device& device, const GraphDesc& graph, Plan plan, RendererOptions options = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
+    /// otherwise: up to framesInFlight frames run at once.
+    void renderFrame();
+    /// Waits until every submitted frame has finished.
+    void waitIdle();
+    /// Waits for the most recent frame and returns its read-back target.
+    [[nodiscard]] ImageData readback();
+    /// Re-creates every output-sized resource for a new output extent.
+    void resize(uint32_t width, uint32_t height);
+    /// Replaces graph and plan (e.g. after a hot reload). On failure throws and keeps the old
+    /// ones running.
+    void setPlan(const GraphDesc& graph, Plan plan);
+    /// Per-pass GPU times of the most recently completed frame.
+    [[nodiscard]] std::vector<PassTiming> lastTimings();
+
+    [[nodiscard]] const Plan& plan() const noexcept;
+    [[nodiscard]] uint64_t frameCount() const noexcept;
+
+    /// Records the current plan for frame slot 0 into `cmd` (begun by the caller), without
+    /// labels, timestamps or readback. For benchmarks that compare against hand recording.
+    void recordInto(VkCommandBuffer cmd, uint32_t slot);
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+/// `skygraph render`: options as parsed by the command line.
+struct RenderOptions {
+    std::filesystem::path graph;     ///< Required.
+    FeatureValues features;          ///< Overrides of the graph's defaults.
+    uint32_t width = 256;
+    uint32_t height = 256;
+    uint32_t frames = 3;
+    uint32_t framesInFlight = 2;
+    std::filesystem::path output;    ///< .png or .hdr; empty: no file.
+    bool validate = false;           ///< Validation + sync validation; fail on any message.
+    std::string device;
+};
+
+/// Compiles and renders a graph file, writing the swapchain target. Returns the contract's
+/// exit status (0 ok, 1 user error with a message on stderr). Never throws.
+int renderCommand(const RenderOptions& options);
+
+}  // namespace skygraph
