@@ -1,0 +1,348 @@
+// One focused test per synchronization rule. Each expectation below was checked against the
+// Vulkan spec's memory model (chapter "Synchronization and Cache Control"): a RAW or WAW needs
+// an availability + visibility operation, a WAR only an execution dependency, and an image
+// layout transition is itself a write ordered by the barrier that performs it.
+#include <skygraph/compiler.hpp>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace skygraph {
+namespace {
+
+const PassRegistry& registry() {
+    static const PassRegistry r = PassRegistry::withBuiltins();
+    return r;
+}
+
+/// Builds a graph file from resources and passes JSON fragments, then compiles it.
+Plan compileGraph(const std::string& resources, const std::string& passes,
+                  CompileOptions options = {}, const std::string& features = "{}") {
+    const std::string text = R"({"version": 1, "name": "t", "features": )" + features +
+                             R"(, "resources": {)" + resources + R"(}, "passes": [)" + passes + "]}";
+    return compile(parseGraph(text, "rules.json", registry()), options);
+}
+
+const PlannedPass& pass(const Plan& plan, const std::string& name) {
+    for (const auto& p : plan.passes)
+        if (p.name == name) return p;
+    throw std::runtime_error("no scheduled pass " + name);
+}
+
+/// The barriers of one pass that touch one resource, in batch order.
+std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
+    std::vector<Barrier> out;
+    for (const auto& b : pass(plan, passName).barriers)
+        if (plan.resources[b.resource].name == resource) out.push_back(b);
+    return out;
+}
+
+constexpr const char* kColor = R"("color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16]})";
+constexpr const char* kOut = R"("out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true, "final": "TransferSrc"})";
+constexpr const char* kBuf = R"("buf": {"type": "buffer", "size": 256})";
+constexpr const char* kSink = R"("sink": {"type": "buffer", "size": 64, "external": true, "final": "ShaderRead"})";
+
+TEST(BarrierRules, ReadAfterWriteIsAMemoryDependency) {
+    const Plan plan = compileGraph(std::string(kBuf) + "," + kSink, R"(
+        {"name": "w", "type": "Generic", "uses": {"buf": "Write@Compute"}},
+        {"name": "r", "type": "Generic", "uses": {"buf": "Read@Fragment", "sink": "Write@Fragment"}})");
+    ASSERT_EQ(pass(plan, "w").barriers.size(), 0u) << "a buffer's first write needs nothing";
+    const auto& b = pass(plan, "r").barriers;
+    ASSERT_EQ(b.size(), 2u);
+    EXPECT_EQ(b[0].kind, BarrierKind::Buffer);
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+}
+
+TEST(BarrierRules, WriteAfterWriteIsAMemoryDependency) {
+    const Plan plan = compileGraph(std::string(kBuf) + "," + kSink, R"(
+        {"name": "w1", "type": "Generic", "uses": {"buf": "Write@Compute"}},
+        {"name": "w2", "type": "Generic", "uses": {"buf": "Write@Transfer"}},
+        {"name": "r", "type": "Generic", "uses": {"buf": "Read@Compute", "sink": "Write@Compute"}})",
+        CompileOptions{.features = {}, .cull = false});
+    const auto& b = pass(plan, "w2").barriers;
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+}
+
+TEST(BarrierRules, WriteAfterReadIsExecutionOnly) {
+    const Plan plan = compileGraph(std::string(kBuf) + "," + kSink, R"(
+        {"name": "w1", "type": "Generic", "uses": {"buf": "Write@Compute"}},
+        {"name": "r", "type": "Generic", "uses": {"buf": "Read@Vertex", "sink": "Write@Compute"}},
+        {"name": "w2", "type": "Generic", "uses": {"buf": "Write@Compute"}},
+        {"name": "r2", "type": "Generic", "uses": {"buf": "Read@Compute", "sink": "ReadWrite@Compute"}})");
+    const auto& b = pass(plan, "w2").barriers;
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, 0u) << "WAR needs no availability operation";
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+TEST(BarrierRules, ReadAfterReadInTheSameLayoutNeedsNoBarrier) {
+    const Plan plan = compileGraph(std::string(kColor) + "," + kSink, R"(
+        {"name": "w", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "r1", "type": "Generic", "uses": {"color": "Read@Fragment", "sink": "Write@Fragment"}},
+        {"name": "r2", "type": "Generic", "uses": {"color": "Read@Fragment", "sink": "ReadWrite@Fragment"}})");
+    ASSERT_EQ(barriersOf(plan, "r1", "color").size(), 1u);
+    EXPECT_TRUE(barriersOf(plan, "r2", "color").empty());
+}
+
+TEST(BarrierRules, ReadRunAcrossStagesSharesOneLayoutAndOneBarrier) {
+    // A sampled read then a transfer read of the same image: one layout (GENERAL) serves
+    // both, made visible to both stages by a single barrier before the first.
+    const Plan plan = compileGraph(std::string(kColor) + "," + kSink + "," + kBuf, R"(
+        {"name": "w", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "sample", "type": "Generic", "uses": {"color": "Read@Fragment", "sink": "Write@Fragment"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "buf": "Write@Transfer"}},
+        {"name": "use", "type": "Generic", "uses": {"buf": "Read@Compute", "sink": "ReadWrite@Compute"}},
+        {"name": "rewrite", "type": "Generic", "never_cull": true, "uses": {"color": "Write@ColorAttachment"}})");
+    const auto first = barriersOf(plan, "sample", "color");
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_EQ(first[0].oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(first[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(first[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(first[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    for (const auto& b : pass(plan, "copy").barriers) EXPECT_NE(plan.resources[b.resource].name, "color");
+    // The next writer waits for every reader of the run, with no memory dependency.
+    const auto next = barriersOf(plan, "rewrite", "color");
+    ASSERT_EQ(next.size(), 1u);
+    EXPECT_EQ(next[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(next[0].srcAccess, 0u);
+    EXPECT_EQ(next[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED) << "Write discards";
+}
+
+TEST(BarrierRules, DepthTestAndSamplingShareTheDepthReadOnlyLayout) {
+    const Plan plan = compileGraph(
+        R"("depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": [16, 16]},)" + std::string(kColor) +
+            "," + kOut,
+        R"(
+        {"name": "z", "type": "Generic", "uses": {"depth": "Write@DepthAttachment"}},
+        {"name": "test", "type": "Generic", "uses": {"depth": "Read@DepthAttachment", "color": "Write@ColorAttachment"}},
+        {"name": "fog", "type": "Generic", "uses": {"depth": "Read@Fragment", "color": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    const auto b = barriersOf(plan, "test", "depth");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                  VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT |
+                                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_TRUE(barriersOf(plan, "fog", "depth").empty());
+}
+
+TEST(BarrierRules, FirstUseDiscardsOnlyForWrite) {
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut, R"(
+        {"name": "w", "type": "Generic", "uses": {"color": "Write@Compute"}},
+        {"name": "rw", "type": "Generic", "uses": {"color": "ReadWrite@Compute", "out": "Write@Transfer"}})");
+    const auto& w = pass(plan, "w").barriers;
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_EQ(w[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(w[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(w[0].srcStages, 0u) << "nothing earlier in the frame to wait for";
+    // A ReadWrite keeps contents: same layout, memory dependency, no UNDEFINED.
+    const auto& rw = pass(plan, "rw").barriers;
+    ASSERT_GE(rw.size(), 1u);
+    EXPECT_EQ(rw[0].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(rw[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(rw[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+TEST(BarrierRules, ClearByAttachmentLoadOp) {
+    const Plan plan = compileGraph(
+        R"("color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "clear": {"color": [0,0,0,1]}},)" +
+            std::string(kOut),
+        R"({"name": "blend", "type": "Generic", "uses": {"color": "ReadWrite@ColorAttachment"}},
+           {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}})");
+    const auto& u = pass(plan, "blend").usages[0];
+    EXPECT_EQ(u.load, LoadOp::Clear);
+    EXPECT_EQ(u.store, StoreOp::Store);
+    ASSERT_EQ(plan.passes.size(), 2u) << "no Clear pass when the load op clears";
+}
+
+TEST(BarrierRules, ClearBeforeANonAttachmentFirstUseIsAClearPass) {
+    const Plan plan = compileGraph(
+        R"("color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "clear": {"color": [1,0,0,1]}},)" +
+            std::string(kOut),
+        R"({"name": "show", "type": "Generic", "uses": {"color": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    ASSERT_EQ(plan.passes.size(), 2u);
+    EXPECT_EQ(plan.passes[0].type, "Clear");
+    ASSERT_EQ(plan.passes[0].barriers.size(), 1u);
+    EXPECT_EQ(plan.passes[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const auto& b = plan.passes[1].barriers;
+    ASSERT_GE(b.size(), 1u);
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+}
+
+TEST(BarrierRules, ExternalContentsAreVisibleToTheirDeclaredScope) {
+    const std::string tex = R"("tex": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true})";
+    // Default initial state ShaderRead: fragment sampling needs nothing...
+    Plan plan = compileGraph(tex + "," + kOut,
+                             R"({"name": "p", "type": "Generic", "uses": {"tex": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    EXPECT_TRUE(barriersOf(plan, "p", "tex").empty());
+    // ...but vertex sampling is outside that scope and gets an execution + visibility barrier.
+    plan = compileGraph(tex + "," + kOut,
+                        R"({"name": "p", "type": "Generic", "uses": {"tex": "Read@Vertex", "out": "Write@ColorAttachment"}})");
+    const auto b = barriersOf(plan, "p", "tex");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT);
+}
+
+TEST(BarrierRules, ExportedResourcesEndInTheirFinalState) {
+    const Plan plan = compileGraph(
+        R"("sc": {"type": "image2d", "format": "B8G8R8A8_SRGB", "extent": [16, 16], "external": true, "final": "Present"})",
+        R"({"name": "p", "type": "Generic", "uses": {"sc": "Write@ColorAttachment"}})");
+    ASSERT_EQ(plan.passes[0].barriers.size(), 1u);
+    const auto& first = plan.passes[0].barriers[0];
+    EXPECT_EQ(first.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    // Chains with the acquire semaphore, which waits in the first use's stage.
+    EXPECT_EQ(first.srcStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+    EXPECT_EQ(first.srcAccess, 0u);
+    ASSERT_EQ(plan.finalBarriers.size(), 1u);
+    const auto& fin = plan.finalBarriers[0];
+    EXPECT_EQ(fin.newLayout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    EXPECT_EQ(fin.srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    EXPECT_EQ(fin.dstStages, 0u);
+    EXPECT_EQ(fin.dstAccess, 0u);
+
+    CompileOptions headless;
+    headless.presentReplacement = ExternalState::TransferSrc;
+    const Plan h = compileGraph(
+        R"("sc": {"type": "image2d", "format": "B8G8R8A8_SRGB", "extent": [16, 16], "external": true, "final": "Present"})",
+        R"({"name": "p", "type": "Generic", "uses": {"sc": "Write@ColorAttachment"}})", headless);
+    ASSERT_EQ(h.finalBarriers.size(), 1u);
+    EXPECT_EQ(h.finalBarriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(h.finalBarriers[0].dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(h.finalBarriers[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+    // Next frame: the readback copy read it last, so the first write waits for transfer (WAR).
+    EXPECT_EQ(h.passes[0].barriers[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+}
+
+TEST(BarrierRules, PersistentAccumulationChainsAcrossFrames) {
+    const Plan plan = compileGraph(
+        R"("acc": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [16, 16], "external": true, "final": "General"})",
+        R"({"name": "trace", "type": "Generic", "uses": {"acc": "ReadWrite@Compute"}})");
+    EXPECT_TRUE(plan.passes[0].barriers.empty())
+        << "last frame's final barrier already made the writes visible to this use";
+    ASSERT_EQ(plan.finalBarriers.size(), 1u);
+    EXPECT_EQ(plan.finalBarriers[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(plan.finalBarriers[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(plan.finalBarriers[0].dstAccess,
+              VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
+TEST(BarrierRules, MipChainWrittenOneLevelAtATime) {
+    std::string passes =
+        R"({"name": "base", "type": "Generic", "uses": [{"resource": "chain", "access": "Write", "stage": "Compute", "mips": [0, 1]}]})";
+    for (int m = 1; m < 4; ++m)
+        passes += R"(, {"name": "mip)" + std::to_string(m) + R"(", "type": "Generic", "uses": [
+            {"resource": "chain", "access": "Read", "stage": "Compute", "mips": [)" + std::to_string(m - 1) + R"(, 1]},
+            {"resource": "chain", "access": "Write", "stage": "Compute", "mips": [)" + std::to_string(m) + R"(, 1]}]})";
+    const Plan plan = compileGraph(
+        R"("chain": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": 4, "external": true, "final": "ShaderRead"})",
+        passes);
+    ASSERT_EQ(plan.passes.size(), 4u);
+    for (int m = 1; m < 4; ++m) {
+        const auto& b = plan.passes[m].barriers;
+        ASSERT_EQ(b.size(), 2u) << "mip" << m;
+        EXPECT_EQ(b[0].range.baseMip, uint32_t(m - 1));
+        EXPECT_EQ(b[0].range.mipCount, 1u);
+        EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+        EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        EXPECT_EQ(b[1].range.baseMip, uint32_t(m));
+        EXPECT_EQ(b[1].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+        EXPECT_EQ(b[1].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    }
+    // Final: mips 0-2 are already SHADER_READ_ONLY (visible to compute only); mip 3 is
+    // GENERAL. The two groups cannot merge, so there are exactly two final barriers.
+    ASSERT_EQ(plan.finalBarriers.size(), 2u);
+    EXPECT_EQ(plan.finalBarriers[0].range.baseMip, 0u);
+    EXPECT_EQ(plan.finalBarriers[0].range.mipCount, 3u);
+    EXPECT_EQ(plan.finalBarriers[0].oldLayout, plan.finalBarriers[0].newLayout);
+    EXPECT_EQ(plan.finalBarriers[1].range.baseMip, 3u);
+    EXPECT_EQ(plan.finalBarriers[1].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+TEST(BarrierRules, SubresourceRangesMergeWhenTheyAgree) {
+    const Plan plan = compileGraph(
+        R"("cube": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "mips": 2, "external": true, "final": "ShaderRead"})",
+        R"({"name": "faces", "type": "Generic", "uses": [
+             {"resource": "cube", "access": "Write", "stage": "Compute", "mips": [0, 1], "layers": [0, 3]},
+             {"resource": "cube", "access": "Write", "stage": "Compute", "mips": [0, 1], "layers": [3, 3]},
+             {"resource": "cube", "access": "Write", "stage": "Compute", "mips": [1, 1]}]})");
+    ASSERT_EQ(plan.passes[0].barriers.size(), 1u) << "three usages, one rectangle of 2 mips x 6 layers";
+    EXPECT_EQ(plan.passes[0].barriers[0].range, (SubresourceRange{0, 2, 0, 6}));
+    ASSERT_EQ(plan.finalBarriers.size(), 1u);
+}
+
+TEST(Culling, ReasonsForEveryRemovedPass) {
+    CompileOptions options;
+    options.features = {{"fx", false}};
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut + "," + kBuf, R"(
+        {"name": "unused", "type": "Generic", "uses": {"buf": "Write@Compute"}},
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "fx", "type": "Generic", "if": "fx", "uses": {"color": "ReadWrite@Compute"}},
+        {"name": "both", "type": "Generic", "if": "fx && !other", "uses": {"color": "ReadWrite@Compute"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}},
+        {"name": "sidefx", "type": "Generic", "never_cull": true, "uses": {"buf": "Write@Compute"}})",
+        options, R"({"fx": true, "other": false})");
+    ASSERT_EQ(plan.culled.size(), 3u);
+    EXPECT_EQ(plan.culled[0].name, "unused");
+    EXPECT_NE(plan.culled[0].reason.find("no later pass reads 'buf'"), std::string::npos) << plan.culled[0].reason;
+    EXPECT_EQ(plan.culled[1].name, "fx");
+    EXPECT_EQ(plan.culled[1].reason, "feature 'fx' is off");
+    EXPECT_EQ(plan.culled[2].name, "both");
+    EXPECT_EQ(plan.culled[2].reason, "condition 'fx && !other' is false (fx=off, other=off)");
+    ASSERT_EQ(plan.passes.size(), 3u);
+    EXPECT_EQ(plan.passes[2].name, "sidefx") << "never_cull keeps a pass with side effects";
+
+    options.cull = false;
+    const Plan all = compileGraph(std::string(kColor) + "," + kOut + "," + kBuf,
+                                  R"({"name": "unused", "type": "Generic", "uses": {"buf": "Write@Compute"}},
+                                     {"name": "fx", "type": "Generic", "if": "fx", "uses": {"buf": "Write@Compute"}})",
+                                  options, R"({"fx": true})");
+    ASSERT_EQ(all.passes.size(), 1u) << "culling off still honours `if`";
+    ASSERT_EQ(all.culled.size(), 1u);
+}
+
+TEST(Culling, UnusedResourcesAreNeverCreated) {
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut + "," + kBuf,
+                                   R"({"name": "p", "type": "Generic", "uses": {"out": "Write@ColorAttachment"}})");
+    ASSERT_EQ(plan.resources.size(), 1u);
+    EXPECT_EQ(plan.resources[0].name, "out");
+    EXPECT_EQ(plan.resourceIndex("buf"), -1);
+}
+
+TEST(Reordering, SkyboxAfterTonemappingIsCulledWithItsReason) {
+    const std::string resources = R"(
+        "depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": {"depth": 0.0}},
+        "hdr_color": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output", "clear": {"color": [0,0,0,1]}},
+        "swapchain": {"type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output", "external": true, "final": "Present"})";
+    const Plan plan = compileGraph(resources, R"(
+        {"name": "forward", "type": "ForwardPass", "uses": {"depth": "Write@DepthAttachment", "hdr_color": "Write@ColorAttachment"}},
+        {"name": "tonemap", "type": "TonemappingPass", "uses": {"hdr_color": "Read@Fragment", "swapchain": "Write@ColorAttachment"}},
+        {"name": "skybox", "type": "SkyboxPass", "uses": {"depth": "Read@DepthAttachment", "hdr_color": "ReadWrite@ColorAttachment"}})");
+    ASSERT_EQ(plan.culled.size(), 1u);
+    EXPECT_EQ(plan.culled[0].name, "skybox");
+    EXPECT_EQ(plan.culled[0].reason,
+              "nothing reads what it writes: no later pass reads 'hdr_color' and none of it is exported");
+    ASSERT_EQ(plan.passes.size(), 2u);
+    // Forward's depth is now read by nobody: its store is dropped.
+    EXPECT_EQ(plan.passes[0].usages[0].store, StoreOp::DontCare);
+    // The tonemap barrier now comes from forward's write.
+    const auto& b = plan.passes[1].barriers[0];
+    EXPECT_EQ(plan.resources[b.resource].name, "hdr_color");
+    EXPECT_EQ(b.srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+}
+
+}  // namespace
+}  // namespace skygraph
