@@ -324,6 +324,9 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.pNext = &f13;
     f12.shaderOutputLayer = s12.shaderOutputLayer;
+    // Depth-only layouts (DEPTH_ATTACHMENT_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL) in plans.
+    if (!s12.separateDepthStencilLayouts) throw ExecutorError(impl->name + " lacks separateDepthStencilLayouts");
+    f12.separateDepthStencilLayouts = VK_TRUE;
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
     f2.features.robustBufferAccess = supported.robustBufferAccess;
     f2.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;

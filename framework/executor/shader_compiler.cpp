@@ -109,7 +109,7 @@ std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
     shader.setStringsWithLengthsAndNames(&text, nullptr, &names, 1);
     shader.setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
     const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
     DirIncluder includer(includeDir_);
     if (!shader.parse(GetDefaultResources(), 450, false, messages, includer)) {

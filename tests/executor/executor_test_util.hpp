@@ -1,0 +1,106 @@
+// Shared fixture for executor tests: one validated lavapipe device per test binary.
+#pragma once
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/executor.hpp>
+#include <skygraph/plan_format.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+namespace skygraph::test {
+
+/// Owns the device every test shares, and destroys it before static destruction (tearing
+/// down a Vulkan device from a static destructor hangs some drivers at exit).
+class DeviceEnvironment : public ::testing::Environment {
+public:
+    static std::unique_ptr<Device>& slot() {
+        static std::unique_ptr<Device> device;
+        return device;
+    }
+    void TearDown() override { slot().reset(); }
+};
+
+/// The device every test shares: validation + synchronization validation (QUEUE_SUBMIT
+/// included) on lavapipe unless SKYGRAPH_TEST_DEVICE names another.
+inline Device& sharedDevice() {
+    auto& device = DeviceEnvironment::slot();
+    if (!device) {
+        ::testing::AddGlobalTestEnvironment(new DeviceEnvironment);
+        DeviceOptions o;
+        o.validation = true;
+        o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
+        const char* name = std::getenv("SKYGRAPH_TEST_DEVICE");
+        o.device = name ? name : "llvmpipe";
+        device = Device::create(o);
+    }
+    return *device;
+}
+
+inline std::string formatMessages(const Device& d) {
+    std::string s;
+    for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message.substr(0, 600) + "\n";
+    return s;
+}
+
+/// A graph in memory and its plan, compiled for headless rendering.
+struct Compiled {
+    GraphDesc graph;
+    Plan plan;
+};
+
+inline Compiled compileText(const std::string& json, FeatureValues features = {}) {
+    Compiled c;
+    c.graph = parseGraph(json, "<test>", PassRegistry::withBuiltins());
+    CompileOptions o;
+    o.features = std::move(features);
+    o.presentReplacement = ExternalState::TransferSrc;
+    c.plan = compile(c.graph, o);
+    return c;
+}
+
+/// Every test fixture starts with a clean message count and fails on any message.
+class ExecutorTest : public ::testing::Test {
+protected:
+    void SetUp() override { sharedDevice().clearMessages(); }
+    void TearDown() override {
+        if (expectClean_) {
+            EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+        }
+        sharedDevice().clearMessages();
+    }
+    /// For negative controls: messages are expected and checked by the test itself.
+    void allowMessages() { expectClean_ = false; }
+
+    /// Renders `frames` frames with 2 in flight and returns the last read-back.
+    ImageData render(const Compiled& c, uint32_t frames = 3, uint32_t size = 16) {
+        if (std::getenv("SKYGRAPH_TEST_DUMP")) std::printf("%s\n", planToText(c.plan).c_str());
+        RendererOptions o;
+        o.width = size;
+        o.height = size;
+        o.framesInFlight = 2;
+        Renderer r(sharedDevice(), c.graph, c.plan, o);
+        for (uint32_t i = 0; i < frames; ++i) r.renderFrame();
+        ImageData img = r.readback();
+        r.waitIdle();
+        return img;
+    }
+
+private:
+    bool expectClean_ = true;
+};
+
+#define EXPECT_PIXEL_NEAR(img, x, y, r, g, b, a)                                      \
+    do {                                                                              \
+        const auto px_ = (img).pixel((x), (y));                                       \
+        EXPECT_NEAR(px_[0], (r), 0.01) << "pixel (" << (x) << "," << (y) << ") red";   \
+        EXPECT_NEAR(px_[1], (g), 0.01) << "pixel (" << (x) << "," << (y) << ") green"; \
+        EXPECT_NEAR(px_[2], (b), 0.01) << "pixel (" << (x) << "," << (y) << ") blue";  \
+        EXPECT_NEAR(px_[3], (a), 0.01) << "pixel (" << (x) << "," << (y) << ") alpha"; \
+    } while (0)
+
+}  // namespace skygraph::test

@@ -1,0 +1,286 @@
+// Generic graphs run under validation + synchronization validation, with real pixels read
+// back. Each test names the hazard kind (RAW, WAR, WAW, layout transition) it exercises.
+#include "executor_test_util.hpp"
+
+namespace skygraph::test {
+namespace {
+
+const char* kSwapchain =
+    R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                      "external": true, "final": "Present" })";
+
+std::string graph(const std::string& resources, const std::string& passes) {
+    return std::string(R"({ "version": 1, "name": "t", "resources": {)") + resources + ", " +
+           kSwapchain + R"(}, "passes": [)" + passes + "] }";
+}
+
+TEST_F(ExecutorTest, DeviceIsValidatedLavapipe) {
+    EXPECT_TRUE(sharedDevice().validationEnabled());
+    EXPECT_FALSE(sharedDevice().name().empty());
+}
+
+// RAW through a layout transition: color attachment -> sampled in the fragment shader.
+TEST_F(ExecutorTest, ColorThenSampledRAW) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
+             "params": { "color": [1, 0, 0, 1] } },
+           { "name": "b", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0, 0.25, 0, 0] } })"));
+    const ImageData img = render(c);
+    ASSERT_EQ(img.width, 16u);
+    EXPECT_PIXEL_NEAR(img, 0, 0, 1.0, 0.25, 0.0, 1.0);
+    EXPECT_PIXEL_NEAR(img, 15, 15, 1.0, 0.25, 0.0, 1.0);
+}
+
+// RAW on a storage image written by compute and loaded in the fragment shader (GENERAL,
+// no layout change: a pure memory dependency).
+TEST_F(ExecutorTest, ComputeStorageImageThenFragmentLoad) {
+    const auto c = compileText(graph(
+        R"("img": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output" })",
+        R"({ "name": "cs", "type": "Generic", "uses": { "img": "Write@Compute" },
+             "params": { "color": [0, 0, 0.5, 0.5] } },
+           { "name": "fs", "type": "Generic",
+             "uses": [ { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" },
+                       { "resource": "img", "access": "Read", "stage": "Fragment", "as": "storage" } ],
+             "params": { "color": [0.25, 0, 0, 0.5] } })"));
+    const ImageData img = render(c);
+    EXPECT_PIXEL_NEAR(img, 3, 7, 0.25, 0.0, 0.5, 1.0);
+}
+
+// Buffers: compute writes a storage buffer, the fragment shader reads it (RAW), a later
+// compute pass overwrites it (WAR), and it is finally read as vertex, index and indirect.
+TEST_F(ExecutorTest, BufferRawWarAndDrawInputs) {
+    const auto c = compileText(graph(
+        R"("buf": { "type": "buffer", "size": 256 },
+           "tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "fill", "type": "Generic", "uses": { "buf": "Write@Compute" },
+             "params": { "color": [0.5, 0, 0, 0] } },
+           { "name": "use", "type": "Generic",
+             "uses": { "buf": "Read@Fragment", "tex": "Write@ColorAttachment" },
+             "params": { "color": [0, 0, 0, 1] } },
+           { "name": "refill", "type": "Generic", "uses": { "buf": "Write@Compute" },
+             "params": { "color": [0.125, 0, 0, 0] } },
+           { "name": "draw", "type": "Generic",
+             "uses": [ { "resource": "buf", "access": "Read", "stage": "Indirect" },
+                       { "resource": "tex", "access": "Read", "stage": "Fragment" },
+                       { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ],
+             "params": { "color": [0, 0, 0, 0] } },
+           { "name": "verts", "type": "Generic",
+             "uses": [ { "resource": "buf", "access": "Read", "stage": "VertexInput" },
+                       { "resource": "swapchain", "access": "ReadWrite", "stage": "ColorAttachment" } ],
+             "params": { "color": [0, 0.25, 0, 0] } })"));
+    const ImageData img = render(c);
+    // use: 0.5 from the buffer in every channel + (0,0,0,1) -> tex = (0.5,0.5,0.5,1)
+    // draw: tex -> swapchain; verts adds (0,0.25,0,0) with additive blending.
+    EXPECT_PIXEL_NEAR(img, 8, 8, 0.5, 0.75, 0.5, 1.0);
+}
+
+// Index buffer and indexed indirect draw (VertexInput as index + Indirect).
+TEST_F(ExecutorTest, IndexedIndirectDraw) {
+    const auto c = compileText(graph(
+        R"("ind": { "type": "buffer", "size": 64 }, "idx": { "type": "buffer", "size": 64 },
+           "ubo": { "type": "buffer", "size": 64 })",
+        R"({ "name": "fill", "type": "Generic", "uses": { "ind": "Write@Compute", "idx": "Write@Compute" },
+             "params": { "color": [0.25, 0, 0, 0] } },
+           { "name": "fillubo", "type": "Generic", "uses": { "ubo": "Write@Transfer" },
+             "params": { "color": [0.125, 0, 0, 0] } },
+           { "name": "draw", "type": "Generic",
+             "uses": [ { "resource": "ind", "access": "Read", "stage": "Indirect" },
+                       { "resource": "idx", "access": "Read", "stage": "VertexInput", "as": "index" },
+                       { "resource": "ubo", "access": "Read", "stage": "Vertex", "as": "uniform" },
+                       { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ],
+             "params": { "color": [0, 0, 0, 1] } })"));
+    const ImageData img = render(c);
+    // The uniform buffer's value (0.125) reaches every channel through the vertex shader.
+    EXPECT_PIXEL_NEAR(img, 0, 0, 0.125, 0.125, 0.125, 1.0);
+    EXPECT_PIXEL_NEAR(img, 15, 15, 0.125, 0.125, 0.125, 1.0);
+}
+
+// WAW and RAW through transfers: a copy writes the image, a draw overwrites it, a copy
+// reads it, and the fragment shader samples it.
+TEST_F(ExecutorTest, TransferWawAndRead) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" },
+           "buf": { "type": "buffer", "size": 64 })",
+        R"({ "name": "upload", "type": "Generic", "uses": { "tex": "Write@Transfer" },
+             "params": { "color": [0, 1, 0, 1] } },
+           { "name": "sample1", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } },
+           { "name": "upload2", "type": "Generic", "uses": { "tex": "Write@Transfer", "buf": "Write@Transfer" },
+             "params": { "color": [0, 0, 1, 1] } },
+           { "name": "copyout", "type": "Generic", "uses": { "tex": "Read@Transfer", "buf": "ReadWrite@Transfer" } },
+           { "name": "sample2", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "ReadWrite@ColorAttachment" },
+             "params": { "color": [0, 0, 0, 0] } })"));
+    const ImageData img = render(c);
+    // sample1 writes (0.25,1.5,0.75,2) clamped; sample2 adds (0,0,1,1).
+    EXPECT_PIXEL_NEAR(img, 5, 5, 0.25, 1.0, 1.0, 1.0);
+}
+
+// A transient with `clear` read first: the compiler inserts a Clear pass.
+TEST_F(ExecutorTest, InsertedClearPass) {
+    const auto c = compileText(graph(
+        R"("acc": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output",
+                    "clear": { "color": [0.0, 0.5, 0.0, 1.0] } })",
+        R"({ "name": "read", "type": "Generic",
+             "uses": { "acc": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0.5, 0, 0, 0] } })"));
+    const ImageData img = render(c);
+    EXPECT_PIXEL_NEAR(img, 1, 2, 0.5, 0.5, 0.0, 1.0);
+}
+
+// Depth: written with a depth test, then tested read-only, then sampled.
+TEST_F(ExecutorTest, DepthWriteTestSample) {
+    const auto c = compileText(graph(
+        R"("depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output",
+                      "clear": { "depth": 0.0 } },
+           "color": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "zwrite", "type": "Generic",
+             "uses": { "depth": "Write@DepthAttachment", "color": "Write@ColorAttachment" },
+             "params": { "color": [0, 0, 0, 1], "depth": 0.75 } },
+           { "name": "ztest", "type": "Generic",
+             "uses": { "depth": "Read@DepthAttachment", "color": "ReadWrite@ColorAttachment" },
+             "params": { "color": [0, 0.25, 0, 0] } },
+           { "name": "show", "type": "Generic",
+             "uses": { "depth": "Read@Fragment", "color": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0, 0, 0, 0] } })"));
+    const ImageData img = render(c);
+    // sampled depth (0.75, 0, 0, 1) + color (0, 0.25, 0, 1)
+    EXPECT_PIXEL_NEAR(img, 4, 4, 0.75, 0.25, 0.0, 1.0);
+}
+
+// Mip chain: render mip 0, sample it while rendering mip 1, sample mip 1 into the output.
+TEST_F(ExecutorTest, MipChainPerLevelTransitions) {
+    const auto c = compileText(graph(
+        R"("chain": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "mips": 3 })",
+        R"({ "name": "base", "type": "Generic",
+             "uses": [ { "resource": "chain", "access": "Write", "stage": "ColorAttachment", "mips": [0, 1] } ],
+             "params": { "color": [0.25, 0, 0, 1] } },
+           { "name": "down1", "type": "Generic",
+             "uses": [ { "resource": "chain", "access": "Read", "stage": "Fragment", "mips": [0, 1] },
+                       { "resource": "chain", "access": "Write", "stage": "ColorAttachment", "mips": [1, 1] } ],
+             "params": { "color": [0, 0.25, 0, 0] } },
+           { "name": "down2", "type": "Generic",
+             "uses": [ { "resource": "chain", "access": "Read", "stage": "Compute", "mips": [1, 1] },
+                       { "resource": "chain", "access": "Write", "stage": "Transfer", "mips": [2, 1] } ] },
+           { "name": "show", "type": "Generic",
+             "uses": [ { "resource": "chain", "access": "Read", "stage": "Fragment", "mips": [1, 1] },
+                       { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ],
+             "params": { "color": [0, 0, 0.5, 0] } })"));
+    const ImageData img = render(c);
+    EXPECT_PIXEL_NEAR(img, 0, 0, 0.25, 0.25, 0.5, 1.0);
+    EXPECT_PIXEL_NEAR(img, 15, 15, 0.25, 0.25, 0.5, 1.0);
+}
+
+// Cube faces: each face written as a layer of a layered attachment, sampled as a cube.
+TEST_F(ExecutorTest, CubeLayersAndArray) {
+    const auto c = compileText(graph(
+        R"("cube": { "type": "cube", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
+           "arr": { "type": "image2d_array", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "layers": 2 })",
+        R"({ "name": "faces", "type": "Generic", "uses": { "cube": "Write@ColorAttachment" },
+             "params": { "color": [0.5, 0, 0, 1] } },
+           { "name": "face0again", "type": "Generic",
+             "uses": [ { "resource": "cube", "access": "ReadWrite", "stage": "Compute", "layers": [0, 1] } ],
+             "params": { "color": [0, 0, 0, 0] } },
+           { "name": "arrays", "type": "Generic", "uses": { "arr": "Write@Compute" },
+             "params": { "color": [0, 0.25, 0, 0] } },
+           { "name": "show", "type": "Generic",
+             "uses": { "cube": "Read@Fragment", "arr": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0, 0, 0, 0] } })"));
+    const ImageData img = render(c);
+    EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.25, 0.0, 1.0);
+}
+
+// Persistent external accumulated every frame (cross-frame RAW/WAR on one shared image,
+// with two frames in flight), like the path tracer's accumulation buffer.
+TEST_F(ExecutorTest, PersistentExternalAcrossFrames) {
+    const auto c = compileText(graph(
+        R"("accum": { "type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": "output",
+                      "external": true, "final": "General" })",
+        R"({ "name": "accumulate", "type": "Generic", "uses": { "accum": "ReadWrite@Compute" },
+             "params": { "color": [0.0625, 0, 0, 0] } },
+           { "name": "show", "type": "Generic",
+             "uses": [ { "resource": "accum", "access": "Read", "stage": "Fragment", "as": "storage" },
+                       { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ],
+             "params": { "color": [0, 0, 0, 0] } })"));
+    // Imported grey (0.5, 0.5, 0.5, 1); the accumulation adds 0.0625 to red each frame.
+    const ImageData img = render(c, 4);
+    EXPECT_PIXEL_NEAR(img, 2, 9, 0.75, 0.5, 0.5, 1.0);
+}
+
+TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output/2" })",
+        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@Compute" },
+             "params": { "color": [0, 1, 0, 1] } },
+           { "name": "b", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    RendererOptions o;
+    o.width = 16;
+    o.height = 16;
+    Renderer r(sharedDevice(), c.graph, c.plan, o);
+    r.renderFrame();
+    EXPECT_EQ(r.readback().width, 16u);
+    r.resize(24, 8);
+    r.renderFrame();
+    r.renderFrame();
+    const ImageData img = r.readback();
+    EXPECT_EQ(img.width, 24u);
+    EXPECT_EQ(img.height, 8u);
+    EXPECT_PIXEL_NEAR(img, 23, 7, 0.25, 1.0, 0.75, 1.0);
+    const auto timings = r.lastTimings();
+    ASSERT_EQ(timings.size(), 2u);
+    EXPECT_EQ(timings[0].pass, "a");
+    EXPECT_GE(timings[1].milliseconds, 0.0);
+}
+
+TEST_F(ExecutorTest, BadParamsAreClearErrors) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
+             "params": { "color": "red" } },
+           { "name": "b", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    try {
+        Renderer r(sharedDevice(), c.graph, c.plan, {});
+        FAIL() << "expected ExecutorError";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'a'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("params.color"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(ExecutorTest, ReadbackNeedsTransferSrcTarget) {
+    Compiled c;
+    c.graph = parseGraph(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" } })"),
+        "<test>", PassRegistry::withBuiltins());
+    c.plan = compile(c.graph, {});  // final stays Present
+    Renderer r(sharedDevice(), c.graph, c.plan, {});
+    r.renderFrame();
+    EXPECT_THROW((void)r.readback(), ExecutorError);
+    r.waitIdle();
+}
+
+TEST_F(ExecutorTest, SetPlanFailureKeepsOldPlan) {
+    const auto good = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [1, 0, 0, 1] } })"));
+    const auto bad = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
+             "params": { "depth": 7 } })"));
+    Renderer r(sharedDevice(), good.graph, good.plan, {});
+    r.renderFrame();
+    EXPECT_THROW(r.setPlan(bad.graph, bad.plan), ExecutorError);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 1.0, 0.0, 0.0, 1.0);
+    r.waitIdle();
+}
+
+}  // namespace
+}  // namespace skygraph::test
