@@ -287,6 +287,14 @@ struct Renderer::Impl {
                     throw ExecutorError("resource '" + r.desc->name + "' has no format");
             }
         }
+        // Layouts the resource arrives in or is left in need their usage flags too (an
+        // environment map exported as ShaderRead is sampled by the next graph).
+        for (size_t i = 0; i < s.plan.resources.size(); ++i) {
+            for (const VkImageLayout l : {s.plan.resources[i].initialLayout, s.plan.resources[i].finalLayout}) {
+                if (l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+                if (l == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+            }
+        }
         for (const PlannedPass& pass : s.plan.passes) {
             for (const PlannedUsage& u : pass.usages) {
                 if (u.resource >= s.resources.size())

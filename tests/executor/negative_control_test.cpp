@@ -1,0 +1,143 @@
+// Negative controls: the oracle can fail. Each test first runs a plan untouched (no messages),
+// then drops or weakens one barrier and asserts that synchronization validation reports the
+// matching SYNC-HAZARD.
+#include "executor_test_util.hpp"
+
+#include <algorithm>
+
+namespace skygraph::test {
+namespace {
+
+const char* kSwapchain =
+    R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                      "external": true, "final": "Present" })";
+
+std::string graph(const std::string& resources, const std::string& passes) {
+    return std::string(R"({ "version": 1, "name": "neg", "resources": {)") + resources + ", " +
+           kSwapchain + R"(}, "passes": [)" + passes + "] }";
+}
+
+/// The barrier recorded before `pass` for `resource`; fails the test when there is none.
+Barrier* findBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
+    const int32_t r = plan.resourceIndex(resource);
+    for (auto& p : plan.passes) {
+        if (p.name != pass) continue;
+        for (auto& b : p.barriers)
+            if (static_cast<int32_t>(b.resource) == r) return &b;
+    }
+    ADD_FAILURE() << "no barrier before '" << pass << "' for '" << resource << "'\n"
+                  << planToText(plan);
+    return nullptr;
+}
+
+void dropBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
+    Barrier* b = findBarrier(plan, pass, resource);
+    ASSERT_NE(b, nullptr);
+    for (auto& p : plan.passes) {
+        auto it = std::find_if(p.barriers.begin(), p.barriers.end(),
+                               [&](const Barrier& x) { return &x == b; });
+        if (it != p.barriers.end()) {
+            p.barriers.erase(it);
+            return;
+        }
+    }
+}
+
+class NegativeControl : public ExecutorTest {
+protected:
+    /// Runs `c` untouched and requires silence, then runs `broken` and returns the messages.
+    void expectHazard(const Compiled& c, const Plan& broken, const std::string& hazard) {
+        {
+            Renderer r(sharedDevice(), c.graph, c.plan, {});
+            for (int i = 0; i < 2; ++i) r.renderFrame();
+            r.waitIdle();
+        }
+        ASSERT_EQ(sharedDevice().messageCount(), 0u)
+            << "the intact plan must be clean:\n" << formatMessages(sharedDevice());
+        allowMessages();
+        {
+            Renderer r(sharedDevice(), c.graph, broken, {});
+            for (int i = 0; i < 2; ++i) r.renderFrame();
+            r.waitIdle();
+        }
+        EXPECT_TRUE(sharedDevice().hasMessage(hazard))
+            << "expected " << hazard << "; got:\n" << formatMessages(sharedDevice());
+    }
+};
+
+// RAW: compute writes a storage buffer, the next compute pass reads it.
+TEST_F(NegativeControl, DroppedRawBarrierIsReadAfterWrite) {
+    const auto c = compileText(graph(
+        R"("buf": { "type": "buffer", "size": 256 })",
+        R"({ "name": "produce", "type": "Generic", "uses": { "buf": "Write@Compute" } },
+           { "name": "consume", "type": "Generic",
+             "uses": { "buf": "Read@Compute", "swapchain": "Write@Transfer" } })"));
+    Plan broken = c.plan;
+    dropBarrier(broken, "consume", "buf");
+    expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
+}
+
+// WAR: compute reads a buffer, the next compute pass overwrites it (execution dependency only).
+TEST_F(NegativeControl, DroppedWarBarrierIsWriteAfterRead) {
+    const auto c = compileText(graph(
+        R"("buf": { "type": "buffer", "size": 256 })",
+        R"({ "name": "produce", "type": "Generic", "uses": { "buf": "Write@Compute" } },
+           { "name": "read", "type": "Generic", "uses": { "buf": "Read@Compute" }, "never_cull": true },
+           { "name": "overwrite", "type": "Generic", "uses": { "buf": "Write@Compute" } },
+           { "name": "consume", "type": "Generic",
+             "uses": { "buf": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    Plan broken = c.plan;
+    dropBarrier(broken, "overwrite", "buf");
+    expectHazard(c, broken, "SYNC-HAZARD-WRITE-AFTER-READ");
+}
+
+// Layout transition: a color attachment becomes a sampled image. Without the barrier the
+// sampled read races the attachment write.
+TEST_F(NegativeControl, DroppedLayoutTransitionIsReadAfterWrite) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
+           { "name": "sample", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    Plan broken = c.plan;
+    Barrier* b = findBarrier(broken, "sample", "tex");
+    ASSERT_NE(b, nullptr);
+    ASSERT_NE(b->oldLayout, b->newLayout) << "the control needs a layout transition";
+    dropBarrier(broken, "sample", "tex");
+    expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
+}
+
+// A layout transition is a write: keeping it but removing its source scope makes it race
+// the attachment write before it.
+TEST_F(NegativeControl, UnscopedLayoutTransitionIsWriteAfterWrite) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
+           { "name": "sample", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    Plan broken = c.plan;
+    Barrier* b = findBarrier(broken, "sample", "tex");
+    ASSERT_NE(b, nullptr);
+    b->srcStages = VK_PIPELINE_STAGE_2_NONE;
+    b->srcAccess = VK_ACCESS_2_NONE;
+    expectHazard(c, broken, "SYNC-HAZARD-WRITE-AFTER-WRITE");
+}
+
+// WAR through a layout transition: a sampled image is overwritten as an attachment.
+TEST_F(NegativeControl, DroppedWarTransitionIsWriteAfterRead) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" },
+           "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
+           { "name": "sample", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "out": "Write@ColorAttachment" } },
+           { "name": "redraw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
+           { "name": "show", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "out": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    Plan broken = c.plan;
+    dropBarrier(broken, "redraw", "tex");
+    expectHazard(c, broken, "SYNC-HAZARD-WRITE-AFTER-READ");
+}
+
+}  // namespace
+}  // namespace skygraph::test
