@@ -267,7 +267,7 @@ std::string planToText(const Plan& plan) {
 std::string planToDot(const Plan& plan, const GraphDesc& graph) {
     std::ostringstream o;
     o << "digraph \"" << dotEscape(plan.graph) << "\" {\n  rankdir=LR;\n"
-      << "  node [fontname=\"Helvetica\", fontsize=10];\n";
+      << "  node [fontname=\"Helvetica\", fontsize=10];\n  edge [fontname=\"Helvetica\", fontsize=8];\n";
     for (size_t i = 0; i < plan.passes.size(); ++i) {
         const auto& p = plan.passes[i];
         o << "  \"pass:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "
