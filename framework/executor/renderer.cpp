@@ -1441,3 +1441,50 @@ void Renderer::recordInto(VkCommandBuffer cmd, uint32_t slot) {
 }
 
 }  // namespace skygraph
+
+#include "renderer_access.hpp"
+
+namespace skygraph {
+
+HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
+    Renderer::Impl& d = *renderer.impl_;
+    PlanState& s = *d.state;
+    if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
+    HandFrame f;
+    f.pushDescriptors = d.dev.fn.cmdPushDescriptorSet;
+    for (PassState& ps : s.passes) {
+        const PassSlot& sl = ps.slots[slot];
+        const GenericProgram& p = ps.program;
+        if (ps.isClear || !p.transfers.empty() || !p.vertexBuffers.empty() || p.indexBuffer >= 0 ||
+            p.indirectBuffer >= 0) {
+            throw ExecutorError("pass '" + ps.pass->name + "': hand recording covers draws and dispatches only");
+        }
+        HandPass h;
+        h.imageBarriers = sl.imageBarriers;
+        h.bufferBarriers = sl.bufferBarriers;
+        h.memoryBarriers = sl.memoryBarriers;
+        if (p.graphics) {
+            h.renderPass = ps.renderPass.get();
+            h.framebuffer = sl.framebuffer.get();
+            h.extent = sl.extent;
+            h.clearValues = ps.clearValues;
+            h.graphicsPipeline = ps.graphicsPipeline.get();
+            h.graphicsLayout = ps.graphicsLayout.get();
+            h.graphicsWrites = sl.graphicsWrites;
+            h.instances = p.attachmentLayers;
+        }
+        if (p.compute) {
+            h.computePipeline = ps.computePipeline.get();
+            h.computeLayout = ps.computeLayout.get();
+            h.computeWrites = sl.computeWrites;
+            h.computeExtent = sl.computeExtent;
+        }
+        f.passes.push_back(std::move(h));
+    }
+    f.finalImageBarriers = s.finals[slot].imageBarriers;
+    f.finalBufferBarriers = s.finals[slot].bufferBarriers;
+    f.finalMemoryBarriers = s.finals[slot].memoryBarriers;
+    return f;
+}
+
+}  // namespace skygraph

@@ -155,6 +155,7 @@ public:
     struct Impl;
 
 private:
+    friend struct RendererAccess;  // benchmarks: the recorded handles, for hand recording
     std::unique_ptr<Impl> impl_;
 };
 

@@ -1,0 +1,47 @@
+// Internal: the handles a Renderer records with, for the benchmark's hand-written recording
+// of the same commands. Not part of the public API.
+#pragma once
+
+#include <skygraph/executor.hpp>
+
+#include <vulkan/vulkan_core.h>
+
+#include <vector>
+
+namespace skygraph {
+
+/// One pass as plain Vulkan handles and arrays (graphics and/or compute only).
+struct HandPass {
+    std::vector<VkImageMemoryBarrier2> imageBarriers;
+    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
+    std::vector<VkMemoryBarrier2> memoryBarriers;
+    VkRenderPass renderPass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkExtent2D extent{};
+    std::vector<VkClearValue> clearValues;
+    VkPipeline graphicsPipeline = VK_NULL_HANDLE;
+    VkPipelineLayout graphicsLayout = VK_NULL_HANDLE;
+    std::vector<VkWriteDescriptorSet> graphicsWrites;
+    uint32_t instances = 1;
+    VkPipeline computePipeline = VK_NULL_HANDLE;
+    VkPipelineLayout computeLayout = VK_NULL_HANDLE;
+    std::vector<VkWriteDescriptorSet> computeWrites;
+    VkExtent2D computeExtent{};
+};
+
+struct HandFrame {
+    std::vector<HandPass> passes;
+    std::vector<VkImageMemoryBarrier2> finalImageBarriers;
+    std::vector<VkBufferMemoryBarrier2> finalBufferBarriers;
+    std::vector<VkMemoryBarrier2> finalMemoryBarriers;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors = nullptr;
+};
+
+struct RendererAccess {
+    /// Copies the handles of frame slot `slot`. They stay valid while `renderer` lives and is
+    /// not resized. Throws ExecutorError for plans with transfers, clears or vertex input,
+    /// which the hand recording does not cover.
+    static HandFrame handFrame(Renderer& renderer, uint32_t slot);
+};
+
+}  // namespace skygraph
