@@ -7,7 +7,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers vulkan-tools
   glslang-dev glslang-tools spirv-tools libglm-dev
-  libstb-dev libopenexr-dev
+  libstb-dev libopenexr-dev blender-data
   graphviz python3-jsonschema
 )
 missing=()

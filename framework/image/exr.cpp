@@ -1,0 +1,118 @@
+// OpenEXR (.exr): any compression OpenEXR knows (ZIP, PIZ, DWAA, DWAB, ...), read at float
+// precision through Imf::InputFile; chroma-subsampled luminance files through Imf::RgbaInputFile.
+#include "image_internal.hpp"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfTestFile.h>
+#include <OpenEXR/ImfVersion.h>
+#include <OpenEXR/ImfXdr.h>
+
+#include <fstream>
+
+namespace skygraph {
+namespace {
+
+/// Reads only the first header and returns its data window, so that the size can be refused
+/// before OpenEXR or we allocate anything in proportion to it.
+Imath::Box2i peekDataWindow(const std::filesystem::path& path) {
+    Imf::StdIFStream stream(path.c_str());
+    int magic = 0, version = 0;
+    Imf::Xdr::read<Imf::StreamIO>(stream, magic);
+    Imf::Xdr::read<Imf::StreamIO>(stream, version);
+    Imf::Header header;
+    header.readFrom(stream, version);
+    return header.dataWindow();
+}
+
+void readPixels(const std::filesystem::path& path, const Imath::Box2i& window, HdrImage& image) {
+    Imf::InputFile file(path.c_str());
+    if (!file.isComplete()) throw ImageError(path, "truncated: some pixel blocks are missing");
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool rgb = channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+    if (!rgb && (channels.findChannel("RY") || channels.findChannel("BY"))) {
+        Imf::RgbaInputFile yc(path.c_str());  // converts luminance/chroma to RGB (half precision)
+        std::vector<Imf::Rgba> half(size_t(image.width) * image.height);
+        yc.setFrameBuffer(half.data() - window.min.x - ptrdiff_t(window.min.y) * image.width, 1,
+                          image.width);
+        yc.readPixels(window.min.y, window.max.y);
+        for (size_t i = 0; i < half.size(); ++i) {
+            const Imf::Rgba& p = half[i];
+            float* out = image.rgba.data() + i * 4;
+            out[0] = p.r, out[1] = p.g, out[2] = p.b, out[3] = p.a;
+        }
+        return;
+    }
+    if (!rgb && !channels.findChannel("Y"))
+        throw ImageError(path, "no R, G, B or Y channel; nothing to read as colour");
+    Imf::FrameBuffer frame;
+    const size_t xStride = 4 * sizeof(float), yStride = xStride * image.width;
+    auto slice = [&](int c, double fill) {
+        return Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, window, xStride, yStride, 1, 1, fill);
+    };
+    if (rgb) {
+        frame.insert("R", slice(0, 0.0));
+        frame.insert("G", slice(1, 0.0));
+        frame.insert("B", slice(2, 0.0));
+    } else {
+        frame.insert("Y", slice(0, 0.0));  // luminance only: copied to G and B below
+    }
+    frame.insert("A", slice(3, 1.0));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    if (!rgb)
+        for (size_t i = 0; i < image.rgba.size(); i += 4) image.rgba[i + 1] = image.rgba[i + 2] = image.rgba[i];
+}
+
+}  // namespace
+
+HdrImage loadExr(const std::filesystem::path& path) {
+    image_detail::requireReadableFile(path);
+    bool tiled = false, deep = false, multiPart = false;
+    if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multiPart)) {
+        std::ifstream in(path, std::ios::binary);
+        std::string head(16, '\0');
+        in.read(head.data(), std::streamsize(head.size()));
+        head.resize(size_t(in.gcount()));
+        const std::string kind = image_detail::sniffFormat(head);
+        throw ImageError(path, head.empty() ? "empty file; expected an OpenEXR image"
+                                            : "not an OpenEXR image (" +
+                                                  (kind.empty() ? "no EXR signature" : "it is " + kind) + ")");
+    }
+    if (deep) throw ImageError(path, "deep OpenEXR images are not supported");
+    try {
+        const Imath::Box2i window = peekDataWindow(path);
+        const int64_t w = int64_t(window.max.x) - window.min.x + 1;
+        const int64_t h = int64_t(window.max.y) - window.min.y + 1;
+        image_detail::requireLoadableSize(path, w, h);
+        HdrImage image{uint32_t(w), uint32_t(h), std::vector<float>(size_t(w) * size_t(h) * 4)};
+        readPixels(path, window, image);
+        return image;
+    } catch (const ImageError&) {
+        throw;
+    } catch (const std::exception& e) {  // Iex::BaseExc and std::bad_alloc
+        throw ImageError(path, std::string("corrupt or truncated OpenEXR data: ") + e.what());
+    }
+}
+
+void saveExr(const std::filesystem::path& path, const HdrImage& image) {
+    image_detail::requireWritable(path, image);
+    std::vector<Imf::Rgba> half(size_t(image.width) * image.height);
+    for (size_t i = 0; i < half.size(); ++i) {
+        const float* p = image.rgba.data() + i * 4;
+        half[i] = Imf::Rgba(p[0], p[1], p[2], p[3]);
+    }
+    image_detail::writeAtomically(path, [&](const std::string& temp) {
+        Imf::RgbaOutputFile out(temp.c_str(), int(image.width), int(image.height), Imf::WRITE_RGBA, 1.0f,
+                                Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y, Imf::ZIP_COMPRESSION);
+        out.setFrameBuffer(half.data(), 1, image.width);
+        out.writePixels(int(image.height));
+    });
+}
+
+}  // namespace skygraph

@@ -1,0 +1,127 @@
+// Radiance RGBE (.hdr) through stb_image and stb_image_write.
+//
+// stb_image reads zeros past the end of its input and, given a zero run count, spins forever on
+// the same scanline, so a truncated or damaged run-length stream would hang it. Before decoding,
+// checkRgbeStream() walks the stream's structure the way stb will read it (without decoding
+// pixels) and rejects it unless every byte stb will ask for is there and every count advances.
+#include "image_internal.hpp"
+
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
+#include <climits>
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+namespace skygraph {
+namespace {
+
+using image_detail::sniffFormat;
+
+/// Offset of the first pixel byte: after the signature line, the header lines up to the blank
+/// line, and the resolution line. Returns the file size when the header is not terminated.
+size_t rgbeDataOffset(const std::string& bytes) {
+    size_t pos = 0;
+    bool blankSeen = false;
+    for (int line = 0; pos < bytes.size(); ++line) {
+        const size_t end = bytes.find('\n', pos);
+        if (end == std::string::npos) return bytes.size();
+        const bool blank = end == pos;
+        pos = end + 1;
+        if (blankSeen) return pos;  // that was the resolution line
+        blankSeen = line > 0 && blank;
+    }
+    return bytes.size();
+}
+
+void checkRgbeStream(const std::filesystem::path& path, const std::string& bytes, size_t p,
+                     size_t w, size_t h) {
+    const size_t size = bytes.size();
+    auto byte = [&](size_t i) { return static_cast<unsigned char>(bytes[i]); };
+    auto truncated = [&](size_t row) {
+        return ImageError(path, "truncated: the pixel data ends in row " + std::to_string(row) +
+                                    " of " + std::to_string(h));
+    };
+    auto needFlat = [&](size_t from, size_t row) {  // stb reads w*h*4 bytes from `from`
+        if (size - from < w * h * 4) throw truncated(row + (size - from) / (w * 4));
+    };
+    if (w < 8 || w >= 32768) return needFlat(p, 0);
+    for (size_t row = 0; row < h; ++row) {
+        if (size - p < 4) throw truncated(row);
+        if (byte(p) != 2 || byte(p + 1) != 2 || (byte(p + 2) & 0x80)) return needFlat(p, row);
+        if ((size_t(byte(p + 2)) << 8 | byte(p + 3)) != w)
+            throw ImageError(path, "corrupt data: row " + std::to_string(row) +
+                                       " has a wrong run-length scanline width");
+        p += 4;
+        for (int channel = 0; channel < 4; ++channel) {
+            for (size_t x = 0; x < w;) {
+                if (p >= size) throw truncated(row);
+                const size_t count = byte(p++);
+                const size_t n = count > 128 ? count - 128 : count;
+                if (n == 0 || n > w - x)
+                    throw ImageError(path, "corrupt data: bad run length in row " + std::to_string(row));
+                const size_t payload = count > 128 ? 1 : n;
+                if (size - p < payload) throw truncated(row);
+                p += payload;
+                x += n;
+            }
+        }
+    }
+}
+
+std::string readWholeFile(const std::filesystem::path& path) {
+    image_detail::requireReadableFile(path);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ImageError(path, "cannot open for reading");
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw ImageError(path, "read error");
+    return bytes;
+}
+
+}  // namespace
+
+HdrImage loadRadianceHdr(const std::filesystem::path& path) {
+    const std::string bytes = readWholeFile(path);
+    if (bytes.empty()) throw ImageError(path, "empty file; expected a Radiance HDR image");
+    if (bytes.size() > size_t(INT_MAX)) throw ImageError(path, "over 2 GiB; stb_image cannot read it");
+    const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+    const int len = static_cast<int>(bytes.size());
+    if (!stbi_is_hdr_from_memory(data, len)) {
+        const std::string kind = sniffFormat(bytes);
+        throw ImageError(path, "not a Radiance HDR image (" +
+                                   (kind.empty() ? "no #?RADIANCE or #?RGBE signature" : "it is " + kind) + ")");
+    }
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(data, len, &w, &h, &comp))
+        throw ImageError(path, std::string("corrupt or truncated header: ") + stbi_failure_reason());
+    image_detail::requireLoadableSize(path, w, h);
+    if (size_t(w) * size_t(h) * 3 * sizeof(float) > size_t(INT_MAX))
+        throw ImageError(path, "size " + std::to_string(w) + "x" + std::to_string(h) +
+                                   " is over stb_image's 2 GiB decode limit for .hdr; use .exr");
+    checkRgbeStream(path, bytes, rgbeDataOffset(bytes), size_t(w), size_t(h));
+
+    std::unique_ptr<float, void (*)(void*)> rgb(stbi_loadf_from_memory(data, len, &w, &h, &comp, 3),
+                                                stbi_image_free);
+    if (!rgb) throw ImageError(path, std::string("cannot decode: ") + stbi_failure_reason());
+    HdrImage image{uint32_t(w), uint32_t(h), {}};
+    image.rgba.resize(size_t(w) * size_t(h) * 4);
+    for (size_t i = 0, n = size_t(w) * size_t(h); i < n; ++i) {
+        for (size_t c = 0; c < 3; ++c) image.rgba[i * 4 + c] = rgb.get()[i * 3 + c];
+        image.rgba[i * 4 + 3] = 1.0f;
+    }
+    return image;
+}
+
+void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image) {
+    image_detail::requireWritable(path, image);
+    std::vector<float> rgb(size_t(image.width) * image.height * 3);
+    for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
+        for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
+    image_detail::writeAtomically(path, [&](const std::string& temp) {
+        if (!stbi_write_hdr(temp.c_str(), int(image.width), int(image.height), 3, rgb.data()))
+            throw ImageError(path, "cannot write (stb_image_write failed; is the directory writable?)");
+    });
+}
+
+}  // namespace skygraph

@@ -1,0 +1,62 @@
+// What a loaded scene means for the frame: graph features, the tonemapper, names.
+#include <skygraph/scene.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace skygraph {
+
+FeatureValues sceneFeatures(const Scene& scene) {
+    return {{"geometry", !scene.objects.empty()}, {"skybox", scene.environment.has_value()}};
+}
+
+std::vector<std::string> explainSceneFeatures(const Scene& scene) {
+    std::vector<std::string> lines;
+    const size_t n = scene.objects.size();
+    lines.push_back(n ? "geometry = on: the scene has " + std::to_string(n) + (n == 1 ? " object" : " objects")
+                      : "geometry = off: the scene has no objects (no forward pass, no depth)");
+    if (!scene.environment)
+        lines.push_back("skybox = off: the scene has no environment (no skybox, no IBL)");
+    else if (scene.environment->procedural)
+        lines.push_back("skybox = on: environment is the procedural sky");
+    else
+        lines.push_back("skybox = on: environment is '" + scene.environment->file.string() + "'");
+    return lines;
+}
+
+Tonemapper effectiveTonemapper(const Scene& scene) {
+    return scene.debugView != DebugView::None ? Tonemapper::Passthrough : scene.tonemapper;
+}
+
+std::string_view toString(Tonemapper t) noexcept {
+    switch (t) {
+        case Tonemapper::AcesNarkowicz: return "aces_narkowicz";
+        case Tonemapper::AcesHill: return "aces_hill";
+        case Tonemapper::KhronosPbrNeutral: return "khronos_pbr_neutral";
+        case Tonemapper::Passthrough: return "passthrough";
+    }
+    return "?";
+}
+
+std::string_view toString(DebugView v) noexcept {
+    switch (v) {
+        case DebugView::None: return "none";
+        case DebugView::Normal: return "normal";
+        case DebugView::Metallic: return "metallic";
+        case DebugView::Roughness: return "roughness";
+        case DebugView::Ao: return "ao";
+    }
+    return "?";
+}
+
+std::string_view toString(EnvironmentSampling s) noexcept {
+    return s == EnvironmentSampling::Equirect ? "equirect" : "cubemap";
+}
+
+Vec3 cameraForward(const SceneCamera& camera) noexcept {
+    const double yaw = camera.yawDeg * std::numbers::pi / 180.0;
+    const double pitch = camera.pitchDeg * std::numbers::pi / 180.0;
+    return {-std::sin(yaw) * std::cos(pitch), std::sin(pitch), -std::cos(yaw) * std::cos(pitch)};
+}
+
+}  // namespace skygraph

@@ -1,0 +1,248 @@
+// Scene file -> Scene. Like the graph loader, it collects every problem in the file (each with
+// the file and the JSON path) before throwing, so one run shows all of them.
+#include "json_positions.hpp"
+
+#include <skygraph/scene.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace skygraph {
+namespace {
+
+using nlohmann::json;
+
+/// A closed or open interval, printed the way the messages and the schema say it.
+struct Range {
+    double lo = -HUGE_VAL, hi = HUGE_VAL;
+    bool loOpen = false, hiOpen = false;
+    [[nodiscard]] bool contains(double v) const {
+        return (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
+    }
+    [[nodiscard]] std::string text() const {
+        auto num = [](double v) { std::ostringstream o; o << v; return o.str(); };
+        if (hi == HUGE_VAL) return std::string(loOpen ? "> " : ">= ") + num(lo);
+        return (loOpen ? "in (" : "in [") + num(lo) + ", " + num(hi) + (hiOpen ? ")" : "]");
+    }
+};
+const Range kAny{};
+const Range kUnit{0.0, 1.0};
+const Range kPositive{0.0, HUGE_VAL, true};
+
+std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+}
+
+class SceneLoader {
+public:
+    SceneLoader(std::string file, std::filesystem::path baseDir) : baseDir_(std::move(baseDir)) {
+        scene_.file = std::move(file);
+    }
+
+    Scene load(std::string_view text) {
+        JsonParseResult parsed = parseJsonWithPositions(text);
+        if (!parsed.error.empty()) {
+            Diagnostic d{scene_.file, parsed.errorPath, "", "", parsed.error};
+            d.line = parsed.line;
+            d.column = parsed.column;
+            diags_.add(std::move(d));
+            throw SceneError(std::move(diags_));
+        }
+        for (const auto& dup : parsed.duplicateKeys)
+            error(dup.path, "duplicate key '" + dup.key + "'; JSON keeps only the last one");
+        loadRoot(parsed.value);
+        if (!diags_.empty()) throw SceneError(std::move(diags_));
+        return std::move(scene_);
+    }
+
+private:
+    void error(const std::string& path, const std::string& message) {
+        diags_.add(Diagnostic{scene_.file, path, "", "", message});
+    }
+
+    void checkKeys(const json& object, const std::string& path, std::initializer_list<std::string_view> allowed) {
+        for (const auto& [key, _] : object.items()) {
+            if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+            std::string list;
+            for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+            error(join(path, key), "unknown key '" + key + "'; expected one of: " + list);
+        }
+    }
+
+    /// A finite number in `range` at `path`; false (with an error) otherwise.
+    bool number(const json& v, const std::string& path, const Range& range, double& out) {
+        if (!v.is_number()) return error(path, "expected a number, got " + v.dump()), false;
+        const double d = v.get<double>();
+        if (!std::isfinite(d)) return error(path, "must be a finite number"), false;
+        if (!range.contains(d)) return error(path, "must be " + range.text() + ", got " + v.dump()), false;
+        out = d;
+        return true;
+    }
+
+    /// Reads optional `key` of `object` into `out`; an absent key leaves the default.
+    void optionalNumber(const json& object, const std::string& path, const char* key, const Range& range,
+                        double& out) {
+        if (auto it = object.find(key); it != object.end()) number(*it, join(path, key), range, out);
+    }
+
+    void vec3(const json& v, const std::string& path, const Range& range, std::array<double, 3>& out) {
+        if (!v.is_array() || v.size() != 3) return error(path, "expected an array of 3 numbers, got " + v.dump());
+        for (size_t i = 0; i < 3; ++i) number(v[i], path + "[" + std::to_string(i) + "]", range, out[i]);
+    }
+
+    void requiredVec3(const json& object, const std::string& path, const char* key, std::array<double, 3>& out) {
+        if (auto it = object.find(key); it != object.end()) vec3(*it, join(path, key), kAny, out);
+        else error(join(path, key), "missing; expected [x, y, z]");
+    }
+
+    template <typename Enum>
+    void enumeration(const json& object, const std::string& path, const char* key,
+                     const std::map<std::string, Enum>& names, Enum& out) {
+        auto it = object.find(key);
+        if (it == object.end()) return;
+        std::string list;
+        for (const auto& [n, _] : names) list += (list.empty() ? "" : ", ") + n;
+        if (!it->is_string() || !names.count(it->get<std::string>()))
+            return error(join(path, key), "expected one of " + list + ", got " + it->dump());
+        out = names.at(it->get<std::string>());
+    }
+
+    void loadRoot(const json& root) {
+        if (!root.is_object()) return error("", "a scene file must be a JSON object");
+        checkKeys(root, "", {"$schema", "description", "camera", "environment", "exposure_ev", "tonemapper",
+                             "debug_view", "objects"});
+        if (auto it = root.find("description"); it != root.end() && !it->is_string())
+            error("description", "must be a string");
+        if (auto it = root.find("camera"); it != root.end()) loadCamera(*it);
+        if (auto it = root.find("environment"); it != root.end() && !it->is_null()) loadEnvironment(*it);
+        optionalNumber(root, "", "exposure_ev", Range{-64.0, 64.0}, scene_.exposureEv);
+        enumeration(root, "", "tonemapper",
+                    std::map<std::string, Tonemapper>{{"aces_narkowicz", Tonemapper::AcesNarkowicz},
+                                                      {"aces_hill", Tonemapper::AcesHill},
+                                                      {"khronos_pbr_neutral", Tonemapper::KhronosPbrNeutral},
+                                                      {"passthrough", Tonemapper::Passthrough}},
+                    scene_.tonemapper);
+        enumeration(root, "", "debug_view",
+                    std::map<std::string, DebugView>{{"none", DebugView::None}, {"normal", DebugView::Normal},
+                                                     {"metallic", DebugView::Metallic},
+                                                     {"roughness", DebugView::Roughness}, {"ao", DebugView::Ao}},
+                    scene_.debugView);
+        if (auto it = root.find("objects"); it != root.end()) {
+            if (!it->is_array()) return error("objects", "must be an array of objects");
+            if (it->size() > kMaxSceneObjects)
+                error("objects", "has " + std::to_string(it->size()) + " objects; at most " +
+                                     std::to_string(kMaxSceneObjects) + " are allowed");
+            for (size_t i = 0; i < it->size(); ++i) loadObject((*it)[i], "objects[" + std::to_string(i) + "]");
+        }
+    }
+
+    void loadCamera(const json& c) {
+        if (!c.is_object()) return error("camera", "must be an object");
+        checkKeys(c, "camera", {"position", "yaw_deg", "pitch_deg", "roll_deg", "fov_y_deg", "near"});
+        SceneCamera& cam = scene_.camera;
+        if (auto it = c.find("position"); it != c.end()) vec3(*it, "camera.position", kAny, cam.position);
+        optionalNumber(c, "camera", "yaw_deg", kAny, cam.yawDeg);
+        optionalNumber(c, "camera", "pitch_deg", kAny, cam.pitchDeg);
+        optionalNumber(c, "camera", "roll_deg", kAny, cam.rollDeg);
+        optionalNumber(c, "camera", "fov_y_deg", Range{0.0, 180.0, true, true}, cam.fovYDeg);
+        optionalNumber(c, "camera", "near", kPositive, cam.near);
+    }
+
+    void loadEnvironment(const json& e) {
+        if (!e.is_object())
+            return error("environment", "must be an object {file, rotation_deg, sampling} or null for none");
+        checkKeys(e, "environment", {"file", "rotation_deg", "sampling"});
+        SceneEnvironment env;
+        optionalNumber(e, "environment", "rotation_deg", kAny, env.rotationDeg);
+        enumeration(e, "environment", "sampling",
+                    std::map<std::string, EnvironmentSampling>{{"cubemap", EnvironmentSampling::Cubemap},
+                                                               {"equirect", EnvironmentSampling::Equirect}},
+                    env.sampling);
+        auto file = e.find("file");
+        if (file == e.end() || !file->is_string() || file->get<std::string>().empty())
+            return error("environment.file", "missing; expected \"procedural\" or a .hdr/.exr path");
+        const std::string name = file->get<std::string>();
+        if (name != "procedural") {
+            env.procedural = false;
+            env.file = (baseDir_ / name).lexically_normal();  // an absolute name replaces baseDir_
+            std::string ext = env.file.extension().string();
+            for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            std::error_code ec;
+            if (ext != ".hdr" && ext != ".exr")
+                error("environment.file", "'" + name + "' is neither \"procedural\" nor a .hdr or .exr file");
+            else if (!std::filesystem::is_regular_file(env.file, ec))
+                error("environment.file", "'" + env.file.string() + "' does not exist or is not a file");
+        }
+        scene_.environment = std::move(env);
+    }
+
+    void loadObject(const json& o, const std::string& path) {
+        if (!o.is_object()) return error(path, "must be an object with a type");
+        auto type = o.find("type");
+        const std::string t = type != o.end() && type->is_string() ? type->get<std::string>() : "";
+        SceneObject obj;
+        if (t == "sphere") {
+            checkKeys(o, path, {"type", "center", "radius", "material"});
+            Sphere s;
+            requiredVec3(o, path, "center", s.center);
+            if (auto it = o.find("radius"); it != o.end()) number(*it, path + ".radius", kPositive, s.radius);
+            else error(path + ".radius", "missing; expected a number > 0");
+            obj.shape = s;
+        } else if (t == "plane") {
+            checkKeys(o, path, {"type", "point", "normal", "half_extent", "material"});
+            Plane p;
+            requiredVec3(o, path, "point", p.point);
+            requiredVec3(o, path, "normal", p.normal);
+            const double len = std::hypot(p.normal[0], p.normal[1], p.normal[2]);
+            if (!(len > 1e-12)) error(path + ".normal", "must not be the zero vector");
+            else for (double& c : p.normal) c /= len;
+            double half = 1.0;
+            if (o.contains("half_extent") && number(o["half_extent"], path + ".half_extent", kPositive, half))
+                p.halfExtent = half;
+            obj.shape = p;
+        } else {
+            return error(path + ".type", "expected \"sphere\" or \"plane\", got " +
+                                             (type == o.end() ? std::string("nothing") : type->dump()));
+        }
+        if (auto it = o.find("material"); it != o.end()) loadMaterial(*it, path + ".material", obj.material);
+        scene_.objects.push_back(std::move(obj));
+    }
+
+    void loadMaterial(const json& m, const std::string& path, Material& mat) {
+        if (!m.is_object()) return error(path, "must be an object");
+        checkKeys(m, path, {"base_color", "metallic", "roughness", "ao"});
+        if (auto it = m.find("base_color"); it != m.end()) vec3(*it, path + ".base_color", kUnit, mat.baseColor);
+        optionalNumber(m, path, "metallic", kUnit, mat.metallic);
+        optionalNumber(m, path, "roughness", kUnit, mat.roughness);
+        optionalNumber(m, path, "ao", kUnit, mat.ao);
+    }
+
+    std::filesystem::path baseDir_;
+    Scene scene_;
+    Diagnostics diags_;
+};
+
+}  // namespace
+
+Scene parseScene(std::string_view text, const std::string& fileName, const std::filesystem::path& baseDir) {
+    return SceneLoader(fileName, baseDir).load(text);
+}
+
+Scene loadSceneFile(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::error_code ec;
+    if (!in || std::filesystem::is_directory(path, ec)) {
+        Diagnostics d;
+        d.add({path.string(), "", "", "", "cannot open the file"});
+        throw SceneError(std::move(d));
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parseScene(text.str(), path.string(), std::filesystem::absolute(path, ec).parent_path());
+}
+
+}  // namespace skygraph

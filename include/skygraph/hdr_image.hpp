@@ -1,0 +1,77 @@
+// High-dynamic-range images on the CPU: Radiance .hdr (stb_image) and OpenEXR .exr.
+// Used for environment maps and for writing HDR captures. No Vulkan here.
+//
+// Every function reports failure by throwing ImageError, whose message names the file; none
+// crashes on bad input, and a save never leaves half a file under the final name.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+
+/// Largest image accepted by the loaders, checked from the header before any pixel memory is
+/// allocated: 32768 x 16384 (an 8 GiB RGBA float image).
+inline constexpr uint32_t kMaxHdrImageWidth = 32768;
+inline constexpr uint32_t kMaxHdrImageHeight = 16384;
+
+/// A linear-light image, 4 floats per pixel (R, G, B, A), rows top to bottom.
+/// Owns its pixels; a plain value type.
+struct HdrImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<float> rgba;  ///< width * height * 4 floats
+
+    /// The pixel at (x, y); no bounds check.
+    [[nodiscard]] const float* pixel(uint32_t x, uint32_t y) const {
+        return rgba.data() + (size_t(y) * width + x) * 4;
+    }
+};
+
+/// Any failure to read or write an image. what() names the file and the reason.
+class ImageError : public std::runtime_error {
+public:
+    ImageError(const std::filesystem::path& file, const std::string& reason);
+    /// The file the error is about.
+    [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
+
+private:
+    std::filesystem::path file_;
+};
+
+/// Loads `path` by its extension (.hdr or .exr, any case) and returns an image the caller owns.
+/// Radiance files have alpha 1; EXR alpha comes from the A channel or is 1.
+/// Non-finite pixel values are kept as they are (see countNonFinite()).
+/// Throws ImageError: missing file, unknown extension, truncated or corrupt data, a file whose
+/// contents are not of the format its extension names, a zero size, or a size over the limits.
+[[nodiscard]] HdrImage loadHdrImage(const std::filesystem::path& path);
+
+/// Loads a Radiance RGBE file through stb_image, whatever its extension. Throws ImageError.
+[[nodiscard]] HdrImage loadRadianceHdr(const std::filesystem::path& path);
+
+/// Loads the first part of an OpenEXR file (any compression, scanline or tiled, float, half or
+/// uint channels) at full float precision, whatever its extension. A luminance-only file (Y)
+/// becomes grey. Throws ImageError.
+[[nodiscard]] HdrImage loadExr(const std::filesystem::path& path);
+
+/// Saves by extension (.hdr or .exr). Reads `image` only; writes a temporary file next to
+/// `path` and renames it over `path` only once it is complete. Throws ImageError.
+void saveHdrImage(const std::filesystem::path& path, const HdrImage& image);
+
+/// Saves RGB as Radiance RGBE through stb_image_write (alpha is dropped; RGBE has ~1% precision
+/// and cannot store negative or non-finite values). Atomic as saveHdrImage(). Throws ImageError.
+void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image);
+
+/// Saves RGBA as half-float OpenEXR with ZIP compression (values beyond +-65504 become
+/// infinite, as half floats do). Atomic as saveHdrImage(). Throws ImageError.
+void saveExr(const std::filesystem::path& path, const HdrImage& image);
+
+/// How many floats of `image.rgba` are NaN or infinite. Loaders keep such values (they are
+/// legitimate test inputs); callers that need finite data check with this.
+[[nodiscard]] size_t countNonFinite(const HdrImage& image) noexcept;
+
+}  // namespace skygraph

@@ -1,0 +1,126 @@
+// Scene files (scenes/*.json, schema schemas/scene.schema.json): the camera, the environment,
+// exposure and tonemapping, a debug view, and analytic objects. The scene also decides which
+// features of graphs/raster.json are on (see sceneFeatures()).
+//
+// Units: positions in world units (Y up), angles in degrees. The camera uses reverse-Z with an
+// infinite far plane, so only `near` bounds depth.
+#pragma once
+
+#include <skygraph/condition.hpp>
+#include <skygraph/diagnostics.hpp>
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+namespace skygraph {
+
+/// Most objects a scene may hold; the forward pass may size its buffers by it.
+inline constexpr size_t kMaxSceneObjects = 256;
+
+using Vec3 = std::array<double, 3>;
+
+/// yaw 0, pitch 0 looks down -Z; yaw turns left about +Y, pitch up about the camera's X,
+/// roll about its view direction (counter-clockwise as seen by the camera).
+struct SceneCamera {
+    Vec3 position{0.0, 1.0, 5.0};
+    double yawDeg = 0.0;
+    double pitchDeg = 0.0;
+    double rollDeg = 0.0;
+    double fovYDeg = 60.0;  ///< vertical field of view, in (0, 180)
+    double near = 0.1;      ///< > 0; the far plane is at infinity (reverse-Z)
+};
+
+enum class EnvironmentSampling { Cubemap, Equirect };
+
+struct SceneEnvironment {
+    bool procedural = true;      ///< the built-in analytic sky; `file` is empty then
+    std::filesystem::path file;  ///< .hdr or .exr, absolute (resolved against the scene's folder)
+    double rotationDeg = 0.0;    ///< about +Y
+    EnvironmentSampling sampling = EnvironmentSampling::Cubemap;
+};
+
+enum class Tonemapper { AcesNarkowicz, AcesHill, KhronosPbrNeutral, Passthrough };
+enum class DebugView { None, Normal, Metallic, Roughness, Ao };
+
+struct Material {
+    std::array<double, 3> baseColor{0.8, 0.8, 0.8};  ///< linear, each in [0, 1]
+    double metallic = 0.0;                           ///< [0, 1]
+    double roughness = 0.5;                          ///< [0, 1]
+    double ao = 1.0;                                 ///< [0, 1]
+};
+
+struct Sphere {
+    Vec3 center{0.0, 0.0, 0.0};
+    double radius = 1.0;  ///< > 0
+};
+
+/// An infinite plane, or a square of side 2 * halfExtent centred on `point` when given.
+struct Plane {
+    Vec3 point{0.0, 0.0, 0.0};
+    Vec3 normal{0.0, 1.0, 0.0};  ///< unit length (the loader normalises it)
+    std::optional<double> halfExtent;  ///< > 0
+};
+
+struct SceneObject {
+    std::variant<Sphere, Plane> shape;
+    Material material;
+};
+
+struct Scene {
+    std::string file;                              ///< where it was loaded from, for messages
+    SceneCamera camera;
+    std::optional<SceneEnvironment> environment;  ///< nullopt: no environment at all
+    double exposureEv = 0.0;                       ///< the HDR image is scaled by 2^exposureEv
+    Tonemapper tonemapper = Tonemapper::AcesNarkowicz;
+    DebugView debugView = DebugView::None;
+    std::vector<SceneObject> objects;
+};
+
+/// Thrown by the scene loader; a GraphError, so command-line tools report it the same way.
+/// Holds every problem in the file, each naming the file and the JSON path.
+class SceneError : public GraphError {
+public:
+    using GraphError::GraphError;
+};
+
+/// Reads and validates the scene at `path`; returns a Scene the caller owns. Relative
+/// environment files are resolved against the scene file's folder and must exist.
+/// Throws SceneError listing all problems: unreadable file, malformed JSON, duplicate or
+/// unknown keys, wrong types, non-finite numbers, values out of range.
+[[nodiscard]] Scene loadSceneFile(const std::filesystem::path& path);
+
+/// As loadSceneFile() for text in memory. `fileName` is used in messages; relative environment
+/// files are resolved against `baseDir`.
+[[nodiscard]] Scene parseScene(std::string_view text, const std::string& fileName,
+                               const std::filesystem::path& baseDir);
+
+/// The features of graphs/raster.json that the scene decides:
+///   geometry = the scene has objects   (off: the forward pass and depth are culled)
+///   skybox   = the scene has an environment (off: no skybox and no IBL work)
+/// A debug view does not change features; it changes the tonemapper (effectiveTonemapper()).
+[[nodiscard]] FeatureValues sceneFeatures(const Scene& scene);
+
+/// One line per feature of sceneFeatures() saying why it is on or off, e.g.
+/// "geometry = off: the scene has no objects". For `skygraph render` to print.
+[[nodiscard]] std::vector<std::string> explainSceneFeatures(const Scene& scene);
+
+/// The operator the tonemapping pass must use: Passthrough whenever a debug view is on (the
+/// debug values are already in [0, 1]), otherwise the scene's tonemapper.
+[[nodiscard]] Tonemapper effectiveTonemapper(const Scene& scene);
+
+/// The scene-file spellings: "aces_narkowicz", "cubemap", "normal", ... Returned views point
+/// to static storage.
+[[nodiscard]] std::string_view toString(Tonemapper t) noexcept;
+[[nodiscard]] std::string_view toString(DebugView v) noexcept;
+[[nodiscard]] std::string_view toString(EnvironmentSampling s) noexcept;
+
+/// The unit view direction of `camera` in world space, fixing the angle convention above:
+/// (-sin yaw cos pitch, sin pitch, -cos yaw cos pitch). Roll does not change it.
+[[nodiscard]] Vec3 cameraForward(const SceneCamera& camera) noexcept;
+
+}  // namespace skygraph

@@ -1,0 +1,349 @@
+// skygraph_image: the blender-data studio lights, round trips, and every way a file can be bad.
+#include <skygraph/hdr_image.hpp>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <stb/stb_image_write.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <sys/resource.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using skygraph::HdrImage;
+using skygraph::ImageError;
+
+namespace {
+
+const fs::path kStudioLights = "/usr/share/blender/datafiles/studiolights/world";
+
+class HdrImageTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+        dir_ = fs::temp_directory_path() / ("skygraph_image_test_" + test);
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path dir_;
+};
+
+std::string readBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const fs::path& p, const std::string& bytes) {
+    std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+}
+
+/// A smooth HDR test pattern over several orders of magnitude.
+HdrImage pattern(uint32_t w, uint32_t h) {
+    HdrImage img{w, h, std::vector<float>(size_t(w) * h * 4)};
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            float* p = img.rgba.data() + (size_t(y) * w + x) * 4;
+            p[0] = std::pow(10.0f, -2.0f + 5.0f * float(x) / float(w));
+            p[1] = 0.5f + float(y) / float(h);
+            p[2] = float((x * 7 + y * 13) % 17) * 0.25f;
+            p[3] = float(x % 4) / 3.0f;
+        }
+    return img;
+}
+
+/// Loading `path` throws ImageError whose message names the file and contains `what`.
+void expectLoadError(const fs::path& path, const std::string& what) {
+    try {
+        (void)skygraph::loadHdrImage(path);
+        ADD_FAILURE() << "loading " << path << " did not throw";
+    } catch (const ImageError& e) {
+        EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        EXPECT_EQ(e.file(), path);
+    }
+}
+
+double meanLuminance(const HdrImage& img) {
+    double sum = 0;
+    for (size_t i = 0; i < img.rgba.size(); i += 4)
+        sum += 0.2126 * img.rgba[i] + 0.7152 * img.rgba[i + 1] + 0.0722 * img.rgba[i + 2];
+    return sum / double(size_t(img.width) * img.height);
+}
+
+// The CC0 studio lights of Debian's blender-data (tools/install-deps.sh installs it). Checked
+// with `exrheader` (Debian package openexr): all eight are 1024x512, 32-bit float R, G, B, with
+// "compression: dwa, medium scanline blocks", i.e. DWAB (written by oiiotool --compression
+// dwab:300). The test asserts that premise too, so it really exercises the DWA decoder.
+TEST_F(HdrImageTest, LoadsEveryBlenderStudioLightExr) {
+    ASSERT_TRUE(fs::is_directory(kStudioLights)) << kStudioLights << " missing; run tools/install-deps.sh";
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(kStudioLights)) {
+        if (entry.path().extension() != ".exr") continue;
+        SCOPED_TRACE(entry.path().string());
+        ++count;
+        const Imf::Compression compression = Imf::InputFile(entry.path().c_str()).header().compression();
+        EXPECT_TRUE(compression == Imf::DWAA_COMPRESSION || compression == Imf::DWAB_COMPRESSION);
+        const HdrImage img = skygraph::loadHdrImage(entry.path());
+        EXPECT_EQ(img.width, 1024u);
+        EXPECT_EQ(img.height, 512u);
+        ASSERT_EQ(img.rgba.size(), size_t(1024) * 512 * 4);
+        EXPECT_EQ(skygraph::countNonFinite(img), 0u);
+        float lo = 0, hi = 0;
+        for (size_t i = 0; i < img.rgba.size(); ++i) {
+            if (i % 4 == 3) {
+                ASSERT_EQ(img.rgba[i], 1.0f) << "alpha at float " << i;
+                continue;
+            }
+            lo = std::min(lo, img.rgba[i]);
+            hi = std::max(hi, img.rgba[i]);
+        }
+        // The sources were clamped to [0, 32000] before DWA, which is lossy: measured minima are
+        // about -0.004 and maxima up to 33952 (city.exr), so allow a little ringing both ways.
+        EXPECT_GT(lo, -0.01f);
+        EXPECT_LT(hi, 36000.0f);
+        const double mean = meanLuminance(img);  // measured 0.13 (night) to 1.05 (city)
+        EXPECT_GT(mean, 0.05);
+        EXPECT_LT(mean, 10.0);
+    }
+    EXPECT_GE(count, 1) << "no .exr in " << kStudioLights;
+}
+
+TEST_F(HdrImageTest, RadianceRoundTripKeepsValuesWithinRgbePrecision) {
+    const HdrImage src = pattern(67, 19);  // width >= 8: run-length encoded scanlines
+    const fs::path path = dir_ / "a.hdr";
+    skygraph::saveHdrImage(path, src);
+    const HdrImage back = skygraph::loadHdrImage(path);
+    ASSERT_EQ(back.width, src.width);
+    ASSERT_EQ(back.height, src.height);
+    for (size_t i = 0; i < src.rgba.size(); i += 4) {
+        const float scale = std::max({src.rgba[i], src.rgba[i + 1], src.rgba[i + 2]});
+        for (size_t c = 0; c < 3; ++c)  // RGBE: 8-bit mantissas sharing the largest exponent
+            ASSERT_NEAR(back.rgba[i + c], src.rgba[i + c], scale / 64.0f) << "float " << i + c;
+        ASSERT_EQ(back.rgba[i + 3], 1.0f);
+    }
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1) << "temp file left";
+}
+
+TEST_F(HdrImageTest, ExrRoundTripKeepsHalfPrecisionAlphaAndNonFiniteValues) {
+    HdrImage src = pattern(33, 21);
+    src.rgba[0] = std::numeric_limits<float>::infinity();
+    src.rgba[5] = std::numeric_limits<float>::quiet_NaN();
+    src.rgba[10] = -std::numeric_limits<float>::infinity();
+    const fs::path path = dir_ / "a.EXR";  // extensions are matched in any case
+    skygraph::saveHdrImage(path, src);
+    EXPECT_EQ(Imf::InputFile(path.c_str()).header().compression(), Imf::ZIP_COMPRESSION);
+    const HdrImage back = skygraph::loadHdrImage(path);
+    ASSERT_EQ(back.width, src.width);
+    ASSERT_EQ(back.height, src.height);
+    EXPECT_EQ(skygraph::countNonFinite(back), 3u);
+    EXPECT_TRUE(std::isinf(back.rgba[0]) && back.rgba[0] > 0);
+    EXPECT_TRUE(std::isnan(back.rgba[5]));
+    EXPECT_TRUE(std::isinf(back.rgba[10]) && back.rgba[10] < 0);
+    for (size_t i = 11; i < src.rgba.size(); ++i)
+        ASSERT_NEAR(back.rgba[i], src.rgba[i], std::abs(src.rgba[i]) / 1024.0f + 1e-7f) << "float " << i;
+}
+
+// Float channels are read at float precision (no trip through half), from a data window that
+// does not start at (0, 0).
+TEST_F(HdrImageTest, ExrFloatChannelsKeepFullPrecisionAndAnyDataWindow) {
+    const fs::path path = dir_ / "float.exr";
+    const Imath::Box2i window({10, 20}, {13, 22});  // 4 x 3
+    std::vector<float> rgb(4 * 3 * 3);
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = 1e6f + float(i) * 0.0625f;  // beyond half range
+    {
+        Imf::Header header(window, window);
+        for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+        Imf::FrameBuffer frame;
+        for (int c = 0; c < 3; ++c)
+            frame.insert(std::string(1, "RGB"[c]),
+                         Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, 12, 48));
+        Imf::OutputFile out(path.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(3);
+    }
+    const HdrImage img = skygraph::loadHdrImage(path);
+    ASSERT_EQ(img.width, 4u);
+    ASSERT_EQ(img.height, 3u);
+    for (size_t i = 0; i < 12; ++i) {
+        for (size_t c = 0; c < 3; ++c) ASSERT_EQ(img.rgba[i * 4 + c], rgb[i * 3 + c]) << i;
+        ASSERT_EQ(img.rgba[i * 4 + 3], 1.0f);  // no A channel: opaque
+    }
+}
+
+TEST_F(HdrImageTest, ExrLuminanceOnlyAndLuminanceChromaFilesBecomeRgb) {
+    const fs::path grey = dir_ / "y.exr";
+    std::vector<float> y = {0.25f, 2.0f, 8.0f, 0.0f};
+    {
+        Imf::Header header(2, 2);
+        header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+        Imf::FrameBuffer frame;
+        frame.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(y.data()), 4, 8));
+        Imf::OutputFile out(grey.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(2);
+    }
+    const HdrImage g = skygraph::loadHdrImage(grey);
+    for (size_t i = 0; i < 4; ++i)
+        for (size_t c = 0; c < 3; ++c) EXPECT_EQ(g.rgba[i * 4 + c], y[i]);
+
+    const fs::path yca = dir_ / "yca.exr";  // luminance + subsampled chroma (RY, BY)
+    std::vector<Imf::Rgba> px(16 * 16, Imf::Rgba(0.8f, 0.4f, 0.2f, 1.0f));
+    {
+        Imf::RgbaOutputFile out(yca.c_str(), 16, 16, Imf::WRITE_YCA);
+        out.setFrameBuffer(px.data(), 1, 16);
+        out.writePixels(16);
+    }
+    EXPECT_NE(Imf::InputFile(yca.c_str()).header().channels().findChannel("RY"), nullptr);
+    const HdrImage c = skygraph::loadHdrImage(yca);
+    EXPECT_NEAR(c.rgba[0], 0.8f, 0.02f);
+    EXPECT_NEAR(c.rgba[1], 0.4f, 0.02f);
+    EXPECT_NEAR(c.rgba[2], 0.2f, 0.02f);
+}
+
+TEST_F(HdrImageTest, CountNonFiniteCountsNanAndBothInfinities) {
+    HdrImage img{1, 2, {0, 1, NAN, INFINITY, -INFINITY, 1e38f, -0.0f, 3}};
+    EXPECT_EQ(skygraph::countNonFinite(img), 3u);
+    EXPECT_EQ(skygraph::countNonFinite(HdrImage{}), 0u);
+}
+
+TEST_F(HdrImageTest, SavingBadImagesOrToBadPlacesThrowsAndLeavesNothing) {
+    const fs::path nowhere = dir_ / "no_such_dir" / "x.exr";
+    EXPECT_THROW(skygraph::saveHdrImage(nowhere, pattern(4, 4)), ImageError);
+    EXPECT_THROW(skygraph::saveHdrImage(dir_ / "no_such_dir" / "x.hdr", pattern(4, 4)), ImageError);
+    EXPECT_THROW(skygraph::saveHdrImage(dir_ / "zero.exr", HdrImage{}), ImageError);
+    EXPECT_THROW(skygraph::saveHdrImage(dir_ / "short.hdr", HdrImage{2, 2, {1, 2, 3}}), ImageError);
+    EXPECT_THROW(skygraph::saveHdrImage(dir_ / "x.png", pattern(4, 4)), ImageError);
+    EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(HdrImageTest, FailedSaveKeepsThePreviousFile) {
+    const fs::path path = dir_ / "keep.exr";
+    skygraph::saveHdrImage(path, pattern(8, 8));
+    const std::string before = readBytes(path);
+    EXPECT_THROW(skygraph::saveHdrImage(path, HdrImage{8, 8, {}}), ImageError);
+    EXPECT_EQ(readBytes(path), before);
+}
+
+TEST_F(HdrImageTest, MissingEmptyAndDirectoryInputsNameTheFile) {
+    expectLoadError(dir_ / "missing.hdr", "no such file");
+    expectLoadError(dir_ / "missing.exr", "no such file");
+    writeBytes(dir_ / "empty.hdr", "");
+    expectLoadError(dir_ / "empty.hdr", "empty file");
+    writeBytes(dir_ / "empty.exr", "");
+    expectLoadError(dir_ / "empty.exr", "empty file");
+    fs::create_directory(dir_ / "dir.exr");
+    expectLoadError(dir_ / "dir.exr", "not a regular file");
+    writeBytes(dir_ / "image.tga", "x");
+    expectLoadError(dir_ / "image.tga", "unknown image extension");
+}
+
+TEST_F(HdrImageTest, TruncatedFilesGiveACleanError) {
+    const std::vector<fs::path> sources = {kStudioLights / "studio.exr", dir_ / "rle.hdr", dir_ / "flat.hdr",
+                                           dir_ / "zip.exr"};
+    skygraph::saveHdrImage(dir_ / "rle.hdr", pattern(64, 32));
+    skygraph::saveHdrImage(dir_ / "flat.hdr", pattern(5, 32));  // width < 8: uncompressed pixels
+    skygraph::saveHdrImage(dir_ / "zip.exr", pattern(64, 64));
+    for (const fs::path& src : sources) {
+        SCOPED_TRACE(src.string());
+        const std::string bytes = readBytes(src);
+        ASSERT_GT(bytes.size(), 100u);
+        const fs::path cut = dir_ / ("half_" + src.filename().string());
+        writeBytes(cut, bytes.substr(0, bytes.size() / 2));
+        expectLoadError(cut, "truncated");
+    }
+    writeBytes(dir_ / "header_only.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 4 +X 16\n");
+    expectLoadError(dir_ / "header_only.hdr", "truncated");
+    writeBytes(dir_ / "cut_header.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n");
+    expectLoadError(dir_ / "cut_header.hdr", "header");
+}
+
+TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
+    std::mt19937 rng(7);
+    std::string noise(4096, '\0');
+    for (char& c : noise) c = char(rng());
+    writeBytes(dir_ / "noise.hdr", noise);
+    expectLoadError(dir_ / "noise.hdr", "not a Radiance HDR image");
+    writeBytes(dir_ / "noise.exr", noise);
+    expectLoadError(dir_ / "noise.exr", "not an OpenEXR image");
+    // A valid EXR signature followed by noise.
+    writeBytes(dir_ / "magic_noise.exr", std::string("\x76\x2f\x31\x01\x02\0\0\0", 8) + noise);
+    expectLoadError(dir_ / "magic_noise.exr", "magic_noise.exr");
+    // A valid RGBE header whose run-length data contains a zero count (stb_image would spin).
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 16\n";
+    const std::string ones(300, '\x01');
+    writeBytes(dir_ / "zero_run.hdr", header + std::string("\x02\x02\x00\x10\x00", 5) + ones);
+    expectLoadError(dir_ / "zero_run.hdr", "corrupt data");
+    writeBytes(dir_ / "long_run.hdr", header + std::string("\x02\x02\x00\x10\xff\x01", 6) + ones);
+    expectLoadError(dir_ / "long_run.hdr", "corrupt data");
+    writeBytes(dir_ / "bad_format.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 2 +X 16\n" + noise);
+    expectLoadError(dir_ / "bad_format.hdr", "header");
+    writeBytes(dir_ / "zero.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 16\n");
+    expectLoadError(dir_ / "zero.hdr", "zero size");
+}
+
+TEST_F(HdrImageTest, PngRenamedToHdrOrExrIsRefusedAsPng) {
+    const std::vector<uint8_t> pixels(8 * 8 * 4, 128);
+    ASSERT_TRUE(stbi_write_png((dir_ / "p.hdr").c_str(), 8, 8, 4, pixels.data(), 32));
+    expectLoadError(dir_ / "p.hdr", "it is a PNG image");
+    fs::copy_file(dir_ / "p.hdr", dir_ / "p.exr");
+    expectLoadError(dir_ / "p.exr", "it is a PNG image");
+    skygraph::saveHdrImage(dir_ / "e.exr", pattern(4, 4));
+    fs::rename(dir_ / "e.exr", dir_ / "e.hdr");
+    expectLoadError(dir_ / "e.hdr", "it is an OpenEXR image");
+}
+
+// A header that claims 100000 x 100000 (160 GB as RGBA float) must be refused from the header,
+// before any allocation: the load runs in a child whose address space is capped at 512 MiB
+// above what it already uses, and must end with our "exceeds the limit" error.
+void loadUnderMemoryCap(const fs::path& path) {
+    rlimit limit{};
+    getrlimit(RLIMIT_AS, &limit);
+    std::ifstream statm("/proc/self/statm");
+    size_t pages = 0;
+    statm >> pages;
+    limit.rlim_cur = rlim_t(pages) * rlim_t(sysconf(_SC_PAGESIZE)) + (rlim_t(512) << 20);
+    setrlimit(RLIMIT_AS, &limit);
+    try {
+        (void)skygraph::loadHdrImage(path);
+    } catch (const ImageError& e) {
+        const std::string what = e.what();
+        std::exit(what.find("100000x100000 exceeds the limit 32768x16384") != std::string::npos &&
+                          what.find(path.string()) != std::string::npos
+                      ? 0
+                      : 3);
+    } catch (...) {
+        std::exit(4);
+    }
+    std::exit(5);
+}
+
+TEST_F(HdrImageTest, HugeHeaderIsRefusedBeforeAllocating) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const fs::path hdr = dir_ / "huge.hdr";
+    writeBytes(hdr, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n" + std::string(64, '\x02'));
+    EXPECT_EXIT(loadUnderMemoryCap(hdr), ::testing::ExitedWithCode(0), "");
+
+    // An EXR header with a 100000 x 100000 data window and no pixel data.
+    const fs::path exr = dir_ / "huge.exr";
+    {
+        Imf::Header header(100000, 100000);
+        header.compression() = Imf::NO_COMPRESSION;
+        header.channels().insert("R", Imf::Channel(Imf::HALF));
+        Imf::OutputFile out(exr.c_str(), header);
+    }
+    EXPECT_EXIT(loadUnderMemoryCap(exr), ::testing::ExitedWithCode(0), "");
+}
+
+}  // namespace

@@ -1,0 +1,237 @@
+// skygraph_scene: the shipped scenes, every class of error with its JSON path, and the mapping
+// from a scene to the features of graphs/raster.json.
+#include <skygraph/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using namespace skygraph;
+
+namespace {
+
+const fs::path kScenes = fs::path(SKYGRAPH_SOURCE_DIR) / "scenes";
+
+Scene parse(const std::string& text) { return parseScene(text, "test.json", kScenes); }
+
+/// Parsing `text` throws a SceneError with a diagnostic at `path` whose message contains `what`.
+void expectError(const std::string& text, const std::string& path, const std::string& what) {
+    SCOPED_TRACE(text);
+    try {
+        (void)parse(text);
+        ADD_FAILURE() << "no error";
+    } catch (const SceneError& e) {
+        bool found = false;
+        for (const Diagnostic& d : e.diagnostics().items()) {
+            EXPECT_EQ(d.file, "test.json");
+            found |= d.jsonPath == path && d.message.find(what) != std::string::npos;
+        }
+        EXPECT_TRUE(found) << "expected '" << what << "' at '" << path << "', got:\n" << e.what();
+        EXPECT_EQ(std::string(e.what()).rfind("test.json:", 0), 0u) << e.what();
+    }
+}
+
+std::string sphereWith(const std::string& material) {
+    return R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": )" + material + "}]}";
+}
+
+TEST(SceneFiles, EveryShippedSceneLoads) {
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(kScenes)) {
+        if (entry.path().extension() != ".json") continue;
+        SCOPED_TRACE(entry.path().string());
+        ++count;
+        EXPECT_NO_THROW((void)loadSceneFile(entry.path()));
+    }
+    EXPECT_GE(count, 4);
+}
+
+TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
+    const Scene def = loadSceneFile(kScenes / "default.json");
+    EXPECT_EQ(def.objects.size(), 7u);
+    ASSERT_TRUE(def.environment);
+    EXPECT_TRUE(def.environment->procedural);
+    EXPECT_EQ(sceneFeatures(def), (FeatureValues{{"geometry", true}, {"skybox", true}}));
+    EXPECT_EQ(effectiveTonemapper(def), Tonemapper::AcesNarkowicz);
+
+    const Scene sky = loadSceneFile(kScenes / "sky_only.json");
+    EXPECT_EQ(sceneFeatures(sky), (FeatureValues{{"geometry", false}, {"skybox", true}}));
+    EXPECT_EQ(sky.environment->sampling, EnvironmentSampling::Equirect);
+
+    const Scene studio = loadSceneFile(kScenes / "studio.json");
+    ASSERT_TRUE(studio.environment);
+    EXPECT_FALSE(studio.environment->procedural);
+    EXPECT_EQ(studio.environment->file, "/usr/share/blender/datafiles/studiolights/world/studio.exr");
+    EXPECT_EQ(sceneFeatures(studio), (FeatureValues{{"geometry", true}, {"skybox", true}}));
+
+    const Scene empty = loadSceneFile(kScenes / "empty.json");
+    EXPECT_FALSE(empty.environment);
+    EXPECT_EQ(sceneFeatures(empty), (FeatureValues{{"geometry", false}, {"skybox", false}}));
+    EXPECT_EQ(explainSceneFeatures(empty),
+              (std::vector<std::string>{"geometry = off: the scene has no objects (no forward pass, no depth)",
+                                        "skybox = off: the scene has no environment (no skybox, no IBL)"}));
+}
+
+TEST(SceneFeatures, DebugViewForcesPassthroughAndKeepsFeatures) {
+    Scene s = parse(R"({"tonemapper": "aces_hill", "debug_view": "roughness",
+                        "environment": {"file": "procedural"}})");
+    EXPECT_EQ(s.tonemapper, Tonemapper::AcesHill);
+    EXPECT_EQ(effectiveTonemapper(s), Tonemapper::Passthrough);
+    EXPECT_EQ(sceneFeatures(s), (FeatureValues{{"geometry", false}, {"skybox", true}}));
+    s.debugView = DebugView::None;
+    EXPECT_EQ(effectiveTonemapper(s), Tonemapper::AcesHill);
+    EXPECT_EQ(toString(effectiveTonemapper(parse(R"({"debug_view": "ao"})"))), "passthrough");
+}
+
+TEST(SceneLoader, EmptyObjectGivesTheDocumentedDefaults) {
+    const Scene s = parse("{}");
+    EXPECT_EQ(s.camera.fovYDeg, 60.0);
+    EXPECT_EQ(s.camera.near, 0.1);
+    EXPECT_FALSE(s.environment);
+    EXPECT_EQ(s.tonemapper, Tonemapper::AcesNarkowicz);
+    EXPECT_EQ(s.debugView, DebugView::None);
+    EXPECT_EQ(sceneFeatures(s), (FeatureValues{{"geometry", false}, {"skybox", false}}));
+    const Scene m = parse(R"({"objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 3, 4]}]})");
+    const auto& plane = std::get<Plane>(m.objects.at(0).shape);
+    EXPECT_DOUBLE_EQ(plane.normal[1], 0.6);
+    EXPECT_DOUBLE_EQ(plane.normal[2], 0.8);
+    EXPECT_FALSE(plane.halfExtent);
+    EXPECT_EQ(m.objects[0].material.roughness, 0.5);
+}
+
+TEST(SceneLoader, CameraFarFromTheOriginIsAccepted) {
+    const Scene s = parse(R"({"camera": {"position": [1e7, 0, -1e7], "near": 1e-5}})");
+    EXPECT_EQ(s.camera.position[0], 1e7);
+    EXPECT_EQ(s.camera.near, 1e-5);
+}
+
+TEST(SceneLoader, CameraForwardFollowsTheDocumentedConvention) {
+    auto near3 = [](Vec3 a, Vec3 b) {
+        for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-12);
+    };
+    near3(cameraForward({}), {0, 0, -1});
+    near3(cameraForward({.yawDeg = 90}), {-1, 0, 0});  // yaw turns left
+    near3(cameraForward({.pitchDeg = 90}), {0, 1, 0});  // pitch looks up
+    near3(cameraForward({.rollDeg = 45}), {0, 0, -1});
+}
+
+TEST(SceneLoader, RelativeEnvironmentFilesResolveAgainstTheSceneFolder) {
+    const fs::path dir = fs::temp_directory_path() / "skygraph_scene_test_rel";
+    fs::create_directories(dir / "env");
+    std::ofstream(dir / "env" / "sky.HDR") << "not read by the scene loader";
+    std::ofstream(dir / "s.json") << R"({"environment": {"file": "env/../env/sky.HDR", "rotation_deg": -45}})";
+    const Scene s = loadSceneFile(dir / "s.json");
+    EXPECT_EQ(s.environment->file, fs::absolute(dir / "env" / "sky.HDR"));
+    EXPECT_EQ(s.environment->rotationDeg, -45.0);
+    EXPECT_EQ(s.environment->sampling, EnvironmentSampling::Cubemap);
+    fs::remove_all(dir);
+}
+
+TEST(SceneErrors, FileAndSyntax) {
+    try {
+        (void)loadSceneFile(kScenes / "no_such_scene.json");
+        ADD_FAILURE();
+    } catch (const GraphError& e) {  // SceneError is a GraphError: the CLI reports both alike
+        EXPECT_NE(std::string(e.what()).find("no_such_scene.json: cannot open the file"), std::string::npos);
+    }
+    try {
+        (void)parse("{\n  \"camera\": {\"near\": 0.1,}\n}");
+        ADD_FAILURE();
+    } catch (const SceneError& e) {
+        ASSERT_EQ(e.diagnostics().size(), 1u);
+        EXPECT_EQ(e.diagnostics().items()[0].line, 2);
+        EXPECT_GT(e.diagnostics().items()[0].column, 0);
+    }
+    expectError("[1, 2]", "", "must be a JSON object");
+    expectError(R"({"exposure_ev": 1, "exposure_ev": 2})", "exposure_ev", "duplicate key");
+}
+
+TEST(SceneErrors, UnknownKeysAtEveryLevel) {
+    expectError(R"({"camra": {}})", "camra", "unknown key 'camra'");
+    expectError(R"({"camera": {"fov": 60}})", "camera.fov", "expected one of: position");
+    expectError(R"({"environment": {"file": "procedural", "intensity": 2}})", "environment.intensity",
+                "unknown key");
+    expectError(R"({"objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "normal": [0,1,0]}]})",
+                "objects[0].normal", "unknown key");
+    expectError(sphereWith(R"({"albedo": [1, 1, 1]})"), "objects[0].material.albedo", "unknown key");
+}
+
+TEST(SceneErrors, TypesAndFiniteNumbers) {
+    expectError(R"({"exposure_ev": "bright"})", "exposure_ev", "expected a number");
+    expectError(R"({"exposure_ev": true})", "exposure_ev", "expected a number");
+    // JSON has no inf or NaN; numbers too large for a double are refused by the parser, with
+    // line and column (the loader's own finiteness check is a second line of defence).
+    expectError(R"({"camera": {"yaw_deg": 1e400}})", "camera", "number overflow parsing '1e400'");
+    expectError(R"({"camera": {"position": [0, -1e999, 0]}})", "camera.position", "number overflow");
+    expectError(R"({"camera": {"yaw_deg": NaN}})", "camera", "malformed JSON");
+    expectError(R"({"camera": {"position": [0, 0]}})", "camera.position", "array of 3 numbers");
+    expectError(R"({"camera": []})", "camera", "must be an object");
+    expectError(R"({"description": 3})", "description", "must be a string");
+}
+
+TEST(SceneErrors, RangesAreChecked) {
+    expectError(R"({"camera": {"fov_y_deg": 0}})", "camera.fov_y_deg", "must be in (0, 180)");
+    expectError(R"({"camera": {"fov_y_deg": 180}})", "camera.fov_y_deg", "must be in (0, 180)");
+    expectError(R"({"camera": {"near": 0}})", "camera.near", "must be > 0");
+    expectError(R"({"camera": {"near": -1}})", "camera.near", "must be > 0");
+    expectError(R"({"exposure_ev": 100})", "exposure_ev", "must be in [-64, 64]");
+    expectError(sphereWith(R"({"roughness": 1.5})"), "objects[0].material.roughness", "must be in [0, 1]");
+    expectError(sphereWith(R"({"metallic": -0.1})"), "objects[0].material.metallic", "must be in [0, 1]");
+    expectError(sphereWith(R"({"ao": 2})"), "objects[0].material.ao", "must be in [0, 1]");
+    expectError(sphereWith(R"({"base_color": [0.5, 1.2, 0]})"), "objects[0].material.base_color[1]",
+                "must be in [0, 1]");
+    expectError(R"({"objects": [{"type": "sphere", "center": [0,0,0], "radius": 0}]})", "objects[0].radius",
+                "must be > 0");
+    expectError(R"({"objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "half_extent": -2}]})",
+                "objects[0].half_extent", "must be > 0");
+    expectError(R"({"objects": [{"type": "plane", "point": [0,0,0], "normal": [0,0,0]}]})", "objects[0].normal",
+                "zero vector");
+}
+
+TEST(SceneErrors, EnumerationsNameTheChoices) {
+    expectError(R"({"tonemapper": "reinhard"})", "tonemapper", "expected one of aces_hill, aces_narkowicz");
+    expectError(R"({"debug_view": "albedo"})", "debug_view", "ao, metallic, none, normal, roughness");
+    expectError(R"({"environment": {"file": "procedural", "sampling": "octahedral"}})", "environment.sampling",
+                "expected one of cubemap, equirect");
+}
+
+TEST(SceneErrors, Environment) {
+    expectError(R"({"environment": "procedural"})", "environment", "must be an object");
+    expectError(R"({"environment": {"rotation_deg": 0}})", "environment.file", "missing");
+    expectError(R"({"environment": {"file": "sky.png"}})", "environment.file", "neither");
+    expectError(R"({"environment": {"file": "missing_sky.exr"}})", "environment.file",
+                (kScenes / "missing_sky.exr").string() + "' does not exist");
+}
+
+TEST(SceneErrors, Objects) {
+    expectError(R"({"objects": {}})", "objects", "must be an array");
+    expectError(R"({"objects": [3]})", "objects[0]", "must be an object");
+    expectError(R"({"objects": [{"center": [0,0,0]}]})", "objects[0].type", "expected \"sphere\" or \"plane\"");
+    expectError(R"({"objects": [{"type": "cube"}]})", "objects[0].type", "got \"cube\"");
+    expectError(R"({"objects": [{"type": "sphere", "radius": 1}]})", "objects[0].center", "missing");
+    expectError(R"({"objects": [{"type": "sphere", "center": [0,0,0]}]})", "objects[0].radius", "missing");
+    expectError(R"({"objects": [{"type": "plane", "point": [0,0,0]}]})", "objects[0].normal", "missing");
+    std::string many = R"({"objects": [)";
+    for (size_t i = 0; i <= kMaxSceneObjects; ++i)
+        many += std::string(i ? "," : "") + R"({"type": "sphere", "center": [0,0,0], "radius": 1})";
+    expectError(many + "]}", "objects", "at most 256");
+}
+
+TEST(SceneErrors, AllProblemsAreReportedAtOnce) {
+    try {
+        (void)parse(R"({"camera": {"fov_y_deg": 200, "near": 0},
+                        "tonemapper": "x",
+                        "objects": [{"type": "sphere", "center": [0,0,0], "radius": -1,
+                                     "material": {"roughness": 3}}]})");
+        ADD_FAILURE();
+    } catch (const SceneError& e) {
+        std::vector<std::string> paths;
+        for (const auto& d : e.diagnostics().items()) paths.push_back(d.jsonPath);
+        EXPECT_EQ(paths, (std::vector<std::string>{"camera.fov_y_deg", "camera.near", "tonemapper",
+                                                   "objects[0].radius", "objects[0].material.roughness"}));
+    }
+}
+
+}  // namespace
