@@ -19,4 +19,8 @@ uint genericBufferWord(uint i, vec4 value) {
     return floatBitsToUint(value.x);
 }
 
+// What a Generic pass writes to its color attachments, given the sum of its reads and its
+// params.color. Edit to post-process every Generic output (hot reload picks it up).
+vec4 genericOutput(vec4 acc) { return acc; }
+
 #endif

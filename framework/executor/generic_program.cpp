@@ -428,7 +428,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
         for (size_t c = 0; c < p.colors.size(); ++c) {
             const ResourceDesc& r =
                 graph.resources[plan.resources[pass.usages[p.colors[c]].resource].decl];
-            fs << "    o" << c << " = " << scalarPrefix(r.format.format) << "vec4(acc);\n";
+            fs << "    o" << c << " = " << scalarPrefix(r.format.format) << "vec4(genericOutput(acc));\n";
         }
         fs << "}\n";
         p.fragmentSource = fs.str();

@@ -1433,6 +1433,17 @@ std::vector<PassTiming> Renderer::lastTimings() {
 }
 
 const Plan& Renderer::plan() const noexcept { return impl_->state->plan; }
+const GraphDesc& Renderer::graph() const noexcept { return impl_->state->graph; }
+
+void Renderer::reloadShaders() {
+    Impl& d = *impl_;
+    d.shaders.clear();
+    d.waitIdle();
+    auto next = d.build(d.state->graph, d.state->plan);  // throws: the old pipelines keep running
+    vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
+    d.state = std::move(next);
+    d.lastSlot = -1;
+}
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 
 void Renderer::recordInto(VkCommandBuffer cmd, uint32_t slot) {

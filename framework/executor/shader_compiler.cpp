@@ -80,6 +80,11 @@ ShaderCompiler::~ShaderCompiler() {
     if (--processRefs() == 0) glslang::FinalizeProcess();
 }
 
+void ShaderCompiler::clear() {
+    std::lock_guard lock(mutex_);
+    cache_.clear();
+}
+
 std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
                                               const std::string& source,
                                               const std::string& name) {

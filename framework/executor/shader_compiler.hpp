@@ -28,6 +28,11 @@ public:
                                                 const std::string& source,
                                                 const std::string& name);
 
+    /// Forgets every cached result (memory only), e.g. after an included file changed.
+    void clear();
+
+    [[nodiscard]] const std::filesystem::path& includeDir() const noexcept { return includeDir_; }
+
     /// Number of compilations that actually ran glslang (cache misses).
     [[nodiscard]] uint32_t compilations() const noexcept { return compilations_; }
 

@@ -2,6 +2,7 @@
 // barriers and derives no synchronization of its own (contract §2).
 #pragma once
 
+#include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
 #include <skygraph/plan.hpp>
@@ -142,6 +143,12 @@ public:
     /// Replaces graph and plan (e.g. after a hot reload). On failure throws and keeps the old
     /// ones running.
     void setPlan(const GraphDesc& graph, Plan plan);
+    /// Drops every cached shader and rebuilds the pipelines from the shader directory (after
+    /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
+    /// running.
+    void reloadShaders();
+    /// The graph the current plan was compiled from.
+    [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
 
@@ -157,6 +164,31 @@ public:
 private:
     friend struct RendererAccess;  // benchmarks: the recorded handles, for hand recording
     std::unique_ptr<Impl> impl_;
+};
+
+/// Hot reload: watches a graph file and a shader directory and, on a change, recompiles and
+/// hands the result to a Renderer. A failed rebuild logs the compiler's message as a warning
+/// and leaves the last good plan and pipelines running. Borrows the renderer.
+class HotReloader {
+public:
+    enum class Result : uint8_t { Unchanged, Reloaded, Failed };
+
+    HotReloader(Renderer& renderer, std::filesystem::path graphFile, CompileOptions options,
+                std::filesystem::path shaderDir = {});
+
+    /// Checks the watched files (by content) and reloads what changed. Cheap when nothing did.
+    Result poll();
+    /// The message of the last failed reload; empty after a success.
+    [[nodiscard]] const std::string& lastError() const noexcept { return lastError_; }
+
+private:
+    Renderer& renderer_;
+    std::filesystem::path graphFile_;
+    CompileOptions options_;
+    std::filesystem::path shaderDir_;
+    size_t graphHash_ = 0;
+    size_t shaderHash_ = 0;
+    std::string lastError_;
 };
 
 /// `skygraph render`: options as parsed by the command line.

@@ -1,0 +1,88 @@
+// Hot reload: a broken graph and a broken shader each leave the last good version running.
+#include "executor_test_util.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+namespace skygraph::test {
+namespace {
+
+std::string graphWithColor(const std::string& color) {
+    return R"({ "version": 1, "name": "reload", "resources": {
+      "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                     "external": true, "final": "Present" } },
+      "passes": [ { "name": "p", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
+                    "params": { "color": )" + color + " } } ] }";
+}
+
+void write(const std::filesystem::path& p, const std::string& text) {
+    std::ofstream(p, std::ios::binary | std::ios::trunc) << text;
+}
+
+TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("skygraph_reload_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "shaders");
+    const auto shader = dir / "shaders" / "generic_common.glsl";
+    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
+                               shader);
+    const auto graphFile = dir / "g.json";
+    write(graphFile, graphWithColor("[1, 0, 0, 1]"));
+
+    const auto registry = PassRegistry::withBuiltins();
+    CompileOptions co;
+    co.presentReplacement = ExternalState::TransferSrc;
+    GraphDesc graph = loadGraphFile(graphFile, registry);
+    RendererOptions ro;
+    ro.shaderDir = dir / "shaders";
+    Renderer r(sharedDevice(), graph, compile(graph, co), ro);
+    HotReloader reloader(r, graphFile, co, dir / "shaders");
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 1.0, 0.0, 0.0, 1.0);
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged);
+
+    // A broken graph: the old plan keeps rendering.
+    write(graphFile, "{ \"version\": 1, \"passes\": [ ");
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Failed);
+    EXPECT_NE(reloader.lastError().find("g.json"), std::string::npos) << reloader.lastError();
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 1.0, 0.0, 0.0, 1.0);
+
+    // Fixed: the new plan runs.
+    write(graphFile, graphWithColor("[0, 1, 0, 1]"));
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
+
+    // A broken shader: the old pipelines keep rendering.
+    const std::string good = [&] {
+        std::ifstream in(shader);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    }();
+    write(shader, good + "\nthis is not glsl;\n");
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Failed);
+    EXPECT_NE(reloader.lastError().find("does not compile"), std::string::npos) << reloader.lastError();
+    r.renderFrame();
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
+
+    // A working edit of the shader is picked up.
+    std::string edited = good;
+    const std::string from = "vec4 genericOutput(vec4 acc) { return acc; }";
+    ASSERT_NE(edited.find(from), std::string::npos);
+    edited.replace(edited.find(from), from.size(), "vec4 genericOutput(vec4 acc) { return acc.bgra; }");
+    write(shader, edited);
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);  // green stays green under bgra
+    write(graphFile, graphWithColor("[1, 0, 0.5, 1]"));
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 0.5, 0.0, 1.0, 1.0);  // red and blue swapped
+    r.waitIdle();
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace skygraph::test
