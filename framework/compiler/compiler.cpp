@@ -3,6 +3,9 @@
 
 #include <skygraph/compiler.hpp>
 
+#include <algorithm>
+#include <bit>
+
 namespace skygraph {
 
 Plan compile(const GraphDesc& graph, const CompileOptions& options) {
@@ -21,6 +24,17 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     }
     if (options.outputWidth == 0 || options.outputHeight == 0)
         diags.add({graph.file, "", "", "", "the output extent must not be zero"});
+    // Mip counts of output-relative images can only be checked against a real output size.
+    for (const auto& r : graph.resources) {
+        if (!r.isImage() || r.mips == 0 || !r.extent.relativeToOutput) continue;
+        const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
+        const auto most = static_cast<uint32_t>(std::bit_width(std::max(w, h)));
+        if (r.mips > most)
+            diags.add({graph.file, r.jsonPath + ".mips", "", r.name,
+                       std::to_string(r.mips) + " levels is more than a " + std::to_string(w) + "x" +
+                           std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
+                           std::to_string(options.outputWidth) + "x" + std::to_string(options.outputHeight)});
+    }
     if (diags.empty())
         checkReadsHaveSources(graph, features, diags, options.outputWidth, options.outputHeight);
     if (!diags.empty()) throw GraphError(std::move(diags));

@@ -1,6 +1,7 @@
 #include <skygraph/plan_format.hpp>
 
 #include <array>
+#include <cstdio>
 #include <sstream>
 #include <utility>
 
@@ -67,8 +68,12 @@ std::vector<std::string> bitNames(uint64_t mask, const std::array<std::pair<uint
             out.emplace_back(name);
             mask &= ~bit;
         }
-    for (int b = 0; b < 64; ++b)  // bits this table does not know still show up, as numbers
-        if (mask & (1ull << b)) out.push_back("0x" + std::to_string(1ull << b));
+    for (int b = 0; b < 64; ++b)  // bits this table does not know still show up, in hex
+        if (mask & (1ull << b)) {
+            char hex[24];
+            std::snprintf(hex, sizeof hex, "0x%llx", static_cast<unsigned long long>(1ull << b));
+            out.emplace_back(hex);
+        }
     return out;
 }
 

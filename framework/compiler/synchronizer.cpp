@@ -225,7 +225,7 @@ private:
                 o.baseLayer <= range.baseLayer && o.baseLayer + o.layerCount >= range.baseLayer + range.layerCount)
                 return false;
         }
-        return decl(r).isExported() || decl(r).external;
+        return decl(r).isExported();  // the same notion of "live at the end" as culling
     }
 
     /// Where a persistent external resource's contents must be visible at the frame's start.
@@ -441,11 +441,14 @@ private:
             res.finalLayout = state_[r].empty() ? VK_IMAGE_LAYOUT_UNDEFINED : state_[r][0].layout;
             if (!d.isExported()) continue;
             const VulkanScope scope = boundaryScope(r, replaced(d.final));
+            // A persistent resource's next user may write (accumulation): then the final
+            // barrier must also wait for this frame's readers, exactly as a write would.
+            const bool nextUseWrites = writeBits(scope.access) != 0;
             std::vector<std::optional<Barrier>> perSub(grids_[r].size());
             grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
                 perSub[sub] = barrierFor(state_[r][sub], scope,
                                          d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
-                                         false, false, scope);
+                                         nextUseWrites, false, scope);
             });
             emitMerged(r, grids_[r].whole(), perSub, plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;

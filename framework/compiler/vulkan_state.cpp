@@ -51,7 +51,7 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
             return "format " + std::string(r.format.name) +
                    " has no depth or stencil; it cannot be a depth attachment "
                    "(use Read|Write|ReadWrite@ColorAttachment)";
-        if (u.range && u.range->mipCount != 1)
+        if (u.range ? u.range->mipCount != 1 : r.mips != 1)
             return "an attachment renders to one mip level; give \"mips\": [level, 1]";
     }
     if ((u.stage == Stage::VertexInput || u.stage == Stage::Indirect)) {

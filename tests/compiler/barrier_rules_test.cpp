@@ -239,6 +239,23 @@ TEST(BarrierRules, PersistentAccumulationChainsAcrossFrames) {
               VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
+TEST(BarrierRules, PersistentFinalBarrierWaitsForThisFramesReaders) {
+    // The next frame's first use writes, so last frame's readers are a WAR source for it.
+    const Plan plan = compileGraph(
+        R"("acc": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [16, 16], "external": true, "final": "General"},)" +
+            std::string(kOut),
+        R"({"name": "trace", "type": "Generic", "uses": {"acc": "ReadWrite@Compute"}},
+           {"name": "show", "type": "Generic", "uses": {"acc": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    std::vector<Barrier> fin;
+    for (const auto& b : plan.finalBarriers)
+        if (plan.resources[b.resource].name == "acc") fin.push_back(b);
+    ASSERT_EQ(fin.size(), 1u);
+    EXPECT_EQ(fin[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(fin[0].srcAccess, 0u) << "the compute write was made available before the read";
+    EXPECT_EQ(fin[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(fin[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+}
+
 TEST(BarrierRules, MipChainWrittenOneLevelAtATime) {
     std::string passes =
         R"({"name": "base", "type": "Generic", "uses": [{"resource": "chain", "access": "Write", "stage": "Compute", "mips": [0, 1]}]})";

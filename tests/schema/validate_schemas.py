@@ -267,8 +267,8 @@ def raster_cases():
             d, "passes", 0, "description", value="draws"), True),
         ("`if` expression with !, && and parentheses", lambda d: add(d, "passes", 1, "if", value="(skybox && !false) || skybox"), True),
         ("never_cull", lambda d: add(d, "passes", 0, "never_cull", value=True), True),
-        ("extent \"output/2\" and mips \"full\"", lambda d: add(d, "passes", 2, "uses", "hdr_color", value="Read@Fragment")
-            and add(d, "resources", "hdr_color", "mips", value="full"), True),
+        ("extent \"output/2\" and mips \"full\"", lambda d: add(d, "resources", "bloom", value={
+            "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output/2", "mips": "full"}), True),
         ("extent \"output/0004\"", lambda d: add(d, "resources", "hdr_color", "extent", value="output/0004") and add(
             d, "resources", "depth", "extent", value="output/4"), True),
         ("depth and stencil clear on D24_UNORM_S8_UINT", lambda d: add(d, "resources", "depth", "format", value="D24_UNORM_S8_UINT")

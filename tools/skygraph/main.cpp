@@ -4,6 +4,9 @@
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
+#if SKYGRAPH_HAS_EXECUTOR
+#include <skygraph/executor.hpp>
+#endif
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -58,8 +61,21 @@ int main(int argc, char** argv) {
     compileCmd->add_flag("--no-cull", compileArgs.noCull, "Keep passes whose output nobody reads");
 
 #if SKYGRAPH_HAS_EXECUTOR
-    RenderArgs renderArgs;
-    auto* renderCmd = addRenderCommand(app, renderArgs);
+    RenderOptions renderArgs;
+    std::string renderGraph = "graphs/raster.json", renderOutput;
+    std::vector<std::string> renderFeatures;
+    auto* renderCmd = app.add_subcommand("render", "Render a graph headless and write the swapchain target");
+    renderCmd->add_option("graph", renderGraph, "Graph file (default: graphs/raster.json)");
+    renderCmd->add_option("--feature", renderFeatures, "Override a feature: NAME=on|off (repeatable)");
+    renderCmd->add_option("--width", renderArgs.width, "Output width")->check(CLI::Range(1u, 16384u));
+    renderCmd->add_option("--height", renderArgs.height, "Output height")->check(CLI::Range(1u, 16384u));
+    renderCmd->add_option("--frames", renderArgs.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
+    renderCmd->add_option("--frames-in-flight", renderArgs.framesInFlight, "Frames in flight")
+        ->check(CLI::Range(1u, 8u));
+    renderCmd->add_option("-o,--output", renderOutput, "Write the result (.png, or .hdr)");
+    renderCmd->add_flag("--validate", renderArgs.validate,
+                        "Khronos validation with synchronization validation; any message fails");
+    renderCmd->add_option("--device", renderArgs.device, "Device by index or name");
 #endif
 
     try {
@@ -73,7 +89,12 @@ int main(int argc, char** argv) {
     return runGuarded([&] {
         if (compileCmd->parsed()) return runCompile(compileArgs);
 #if SKYGRAPH_HAS_EXECUTOR
-        if (renderCmd->parsed()) return runRender(renderArgs);
+        if (renderCmd->parsed()) {
+            renderArgs.graph = renderGraph;
+            renderArgs.output = renderOutput;
+            renderArgs.features = parseFeatureFlags(renderFeatures);
+            return renderCommand(renderArgs);
+        }
 #endif
         return 2;
     });
