@@ -1,0 +1,84 @@
+// Device selection, validation switches and the render command's exit statuses.
+#include "executor_test_util.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace skygraph::test {
+namespace {
+
+TEST(DeviceSelection, ByIndexAndByName) {
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    auto byName = Device::create(o);
+    EXPECT_NE(byName->name().find("llvmpipe"), std::string::npos);
+    const auto list = Device::listDevices();
+    ASSERT_FALSE(list.empty());
+    size_t index = 0;
+    while (index < list.size() && list[index].find("llvmpipe") == std::string::npos) ++index;
+    ASSERT_LT(index, list.size());
+    o.device = std::to_string(index);
+    auto byIndex = Device::create(o);
+    EXPECT_EQ(byIndex->name(), byName->name());
+    EXPECT_FALSE(byIndex->validationEnabled());
+}
+
+TEST(DeviceSelection, UnknownDeviceIsAClearError) {
+    DeviceOptions o;
+    o.device = "no-such-gpu-9000";
+    try {
+        (void)Device::create(o);
+        FAIL() << "expected ExecutorError";
+    } catch (const ExecutorError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("no-such-gpu-9000"), std::string::npos) << what;
+        EXPECT_NE(what.find("available devices"), std::string::npos) << what;
+    }
+}
+
+TEST(DeviceSelection, ValidationByEnvironment) {
+    setenv("SKYGRAPH_VALIDATION", "1", 1);
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    auto d = Device::create(o);
+    unsetenv("SKYGRAPH_VALIDATION");
+    EXPECT_TRUE(d->validationEnabled());
+    EXPECT_EQ(d->messageCount(), 0u);
+}
+
+TEST(RenderCommand, WritesPngAndReportsUserErrors) {
+    const auto dir = std::filesystem::temp_directory_path() / "skygraph_render_cmd";
+    std::filesystem::create_directories(dir);
+    RenderOptions o;
+    o.graph = std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json";
+    o.width = 32;
+    o.height = 16;
+    o.frames = 3;
+    o.validate = true;
+    o.device = "llvmpipe";
+    o.output = dir / "out.png";
+    std::filesystem::remove(o.output);
+    EXPECT_EQ(renderCommand(o), 0);
+    ASSERT_TRUE(std::filesystem::exists(o.output));
+    std::ifstream in(o.output, std::ios::binary);
+    char magic[8] = {};
+    in.read(magic, 8);
+    EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+
+    RenderOptions bad = o;
+    bad.graph = dir / "missing.json";
+    bad.output = dir / "missing.png";
+    EXPECT_EQ(renderCommand(bad), 1);
+    EXPECT_FALSE(std::filesystem::exists(bad.output)) << "nothing half-written";
+
+    RenderOptions badFeature = o;
+    badFeature.features["no_such_feature"] = true;
+    badFeature.output = dir / "feature.png";
+    EXPECT_EQ(renderCommand(badFeature), 1);
+    EXPECT_FALSE(std::filesystem::exists(badFeature.output));
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace skygraph::test
