@@ -1,0 +1,37 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// SKY_MODE is defined by the pass when it builds the pipeline: 0 procedural, 1 cubemap,
+// 2 equirect. Each mode is its own pipeline, so only the texture it samples is bound.
+#include "common/environment.glsl"
+
+#ifndef SKY_MODE
+#define SKY_MODE 0
+#endif
+
+layout(push_constant) uniform Sky {
+    vec4 cameraToWorld[3];
+    vec4 projection;   // x: aspect * tan(fovY/2), y: tan(fovY/2), z: sin, w: cos of rotation
+    ivec4 mode;
+    vec4 environment;  // x: equirect height in texels
+} sky;
+
+#if SKY_MODE == 1
+layout(set = 0, binding = 0) uniform samplerCube environmentMap;
+#elif SKY_MODE == 2
+layout(set = 0, binding = 0) uniform sampler2D environmentMap;
+#endif
+
+layout(location = 0) in vec3 inDirection;
+layout(location = 0) out vec4 outColor;
+
+void main() {
+    vec3 d = rotateY(normalize(inDirection), sky.projection.z, sky.projection.w);
+#if SKY_MODE == 1
+    vec3 c = texture(environmentMap, d).rgb;
+#elif SKY_MODE == 2
+    vec3 c = textureLod(environmentMap, directionToEquirect(d), equirectLod(d, sky.environment.x)).rgb;
+#else
+    vec3 c = proceduralSky(d);
+#endif
+    outColor = vec4(c, 1.0);
+}
