@@ -2,19 +2,27 @@
 
 #include <algorithm>
 #include <cctype>
+#include <unordered_set>
 
 namespace skygraph {
 
+// And/Or are n-ary: a chain such as `a && b && c && ...` is one node with many children, so
+// the tree's depth grows only with parentheses and `!`, which the parser limits. That keeps
+// parsing, evaluation and destruction (all recursive) within a small, fixed stack depth.
 struct Condition::Node {
     enum class Kind { True, Feature, Not, And, Or } kind = Kind::True;
     std::string feature;
-    std::shared_ptr<const Node> lhs, rhs;
+    std::vector<std::shared_ptr<const Node>> children;  ///< One for Not, two or more for And/Or.
 };
 
 namespace {
 
 using NodePtr = std::shared_ptr<const Condition::Node>;
 using Kind = Condition::Node::Kind;
+
+/// Deepest nesting of `(` and `!` accepted. Real conditions nest a few levels; the limit only
+/// keeps generated or hostile input from exhausting the stack.
+constexpr int kMaxNesting = 256;
 
 // Recursive descent over: or := and ('||' and)* ; and := unary ('&&' unary)* ;
 // unary := '!' unary | '(' or ')' | name | 'true' | 'false'.
@@ -32,29 +40,42 @@ public:
     std::vector<std::string> names;
 
 private:
-    NodePtr parseOr() {
-        NodePtr lhs = parseAnd();
-        while (error_.empty() && consume("||")) lhs = binary(Kind::Or, lhs, parseAnd());
-        return lhs;
+    NodePtr parseOr() { return parseChain(Kind::Or, "||"); }
+    NodePtr parseAnd() { return parseChain(Kind::And, "&&"); }
+
+    NodePtr parseChain(Kind kind, std::string_view op) {
+        NodePtr first = kind == Kind::Or ? parseAnd() : parseUnary();
+        if (!error_.empty() || !peek(op)) return first;
+        auto n = std::make_shared<Condition::Node>();
+        n->kind = kind;
+        n->children.push_back(std::move(first));
+        while (error_.empty() && consume(op))
+            n->children.push_back(kind == Kind::Or ? parseAnd() : parseUnary());
+        return n;
     }
-    NodePtr parseAnd() {
-        NodePtr lhs = parseUnary();
-        while (error_.empty() && consume("&&")) lhs = binary(Kind::And, lhs, parseUnary());
-        return lhs;
-    }
+
     NodePtr parseUnary() {
         skipSpace();
         if (!error_.empty()) return nullptr;
-        if (consume("!")) {
-            auto n = std::make_shared<Condition::Node>();
-            n->kind = Kind::Not;
-            n->lhs = parseUnary();
-            return n;
-        }
-        if (consume("(")) {
-            NodePtr inner = parseOr();
-            if (error_.empty() && !consume(")")) fail("expected ')'");
-            return inner;
+        if (peek("!") || peek("(")) {
+            if (depth_ >= kMaxNesting) {
+                fail("nested deeper than " + std::to_string(kMaxNesting) + " levels");
+                return nullptr;
+            }
+            ++depth_;
+            NodePtr out;
+            if (consume("!")) {
+                auto n = std::make_shared<Condition::Node>();
+                n->kind = Kind::Not;
+                n->children.push_back(parseUnary());
+                out = std::move(n);
+            } else {
+                consume("(");
+                out = parseOr();
+                if (error_.empty() && !consume(")")) fail("expected ')'");
+            }
+            --depth_;
+            return out;
         }
         size_t start = pos_;
         while (pos_ < text_.size() &&
@@ -71,24 +92,20 @@ private:
         if (name == "true") return n;
         if (name == "false") {
             n->kind = Kind::Not;
-            n->lhs = std::make_shared<Condition::Node>();
+            n->children.push_back(std::make_shared<Condition::Node>());
             return n;
         }
         n->kind = Kind::Feature;
         n->feature = name;
-        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+        if (seen_.insert(name).second) names.push_back(name);
         return n;
     }
-    static NodePtr binary(Kind k, NodePtr l, NodePtr r) {
-        auto n = std::make_shared<Condition::Node>();
-        n->kind = k;
-        n->lhs = std::move(l);
-        n->rhs = std::move(r);
-        return n;
+    bool peek(std::string_view token) {
+        skipSpace();
+        return text_.compare(pos_, token.size(), token) == 0;
     }
     bool consume(std::string_view token) {
-        skipSpace();
-        if (text_.compare(pos_, token.size(), token) != 0) return false;
+        if (!peek(token)) return false;
         pos_ += token.size();
         return true;
     }
@@ -102,6 +119,8 @@ private:
 
     const std::string& text_;
     size_t pos_ = 0;
+    int depth_ = 0;
+    std::unordered_set<std::string> seen_;
     std::string error_;
 };
 
@@ -112,9 +131,13 @@ bool eval(const Condition::Node& n, const FeatureValues& values) {
             auto it = values.find(n.feature);
             return it != values.end() && it->second;
         }
-        case Kind::Not: return !eval(*n.lhs, values);
-        case Kind::And: return eval(*n.lhs, values) && eval(*n.rhs, values);
-        case Kind::Or: return eval(*n.lhs, values) || eval(*n.rhs, values);
+        case Kind::Not: return !eval(*n.children.front(), values);
+        case Kind::And:
+            return std::all_of(n.children.begin(), n.children.end(),
+                               [&](const NodePtr& c) { return eval(*c, values); });
+        case Kind::Or:
+            return std::any_of(n.children.begin(), n.children.end(),
+                               [&](const NodePtr& c) { return eval(*c, values); });
     }
     return false;
 }

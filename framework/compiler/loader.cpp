@@ -12,6 +12,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 namespace skygraph {
 namespace {
@@ -45,10 +46,8 @@ public:
             diags_.add(std::move(d));
             throw GraphError(std::move(diags_));
         }
-        for (const auto& dup : parsed.duplicateKeys)
-            error(dup.path, "", dup.path.starts_with("resources.") ? dup.key : "",
-                  "duplicate key '" + dup.key + "'; JSON keeps only the last one");
         loadRoot(parsed.value);
+        for (const auto& dup : parsed.duplicateKeys) reportDuplicate(dup);
         if (diags_.empty()) checkReadsHaveSources(graph_, std::nullopt, diags_);
         if (!diags_.empty()) throw GraphError(std::move(diags_));
         return std::move(graph_);
@@ -60,6 +59,32 @@ private:
         diags_.add(Diagnostic{graph_.file, path, pass, resource, message});
     }
 
+    static std::string join(const std::string& path, const std::string& key) {
+        return path.empty() ? key : path + "." + key;
+    }
+
+    /// A repeated JSON key, with the pass and resource it concerns: "resources.<r>..." names
+    /// resource r, "passes[i]..." pass i, and "passes[i].uses.<r>" both.
+    void reportDuplicate(const DuplicateKey& dup) {
+        std::string pass, resource;
+        const std::string& path = dup.path;
+        auto segment = [&](size_t from) { return path.substr(from, path.find('.', from) - from); };
+        if (path.starts_with("resources.")) resource = segment(10);
+        if (path.starts_with("passes[")) {
+            const size_t close = path.find(']');
+            const std::string index = path.substr(7, close - 7);
+            if (close != std::string::npos && !index.empty() &&
+                index.find_first_not_of("0123456789") == std::string::npos && index.size() < 10) {
+                if (auto it = passNames_.find(std::stoul(index)); it != passNames_.end()) pass = it->second;
+                if (path.compare(close + 1, 6, ".uses.") == 0) resource = segment(close + 7);
+            }
+        }
+        const bool isResource = path.starts_with("resources.") && path.find('.', 10) == std::string::npos;
+        error(path, pass, resource,
+              (isResource ? "duplicate resource name '" : "duplicate key '") + dup.key +
+                  "'; JSON keeps only the last one");
+    }
+
     void checkKeys(const json& object, const std::string& path,
                    std::initializer_list<std::string_view> allowed, const std::string& pass = "",
                    const std::string& resource = "") {
@@ -67,7 +92,7 @@ private:
             if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
             std::string list;
             for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-            error(path + "." + key, pass, resource, "unknown key '" + key + "'; expected one of: " + list);
+            error(join(path, key), pass, resource, "unknown key '" + key + "'; expected one of: " + list);
         }
     }
 
@@ -89,9 +114,11 @@ private:
         else
             error("name", "", "", "missing or not a string");
         if (auto it = root.find("features"); it != root.end()) loadFeatures(*it);
-        if (auto it = root.find("resources"); it != root.end() && it->is_object())
+        if (auto it = root.find("resources"); it != root.end() && it->is_object()) {
             for (const auto& [name, value] : it->items()) loadResource(name, value);
-        else
+            for (size_t i = 0; i < graph_.resources.size(); ++i)
+                resourceIndex_.emplace(graph_.resources[i].name, static_cast<uint32_t>(i));
+        } else
             error("resources", "", "", "missing or not an object of named resources");
         if (auto it = root.find("passes"); it != root.end() && it->is_array()) {
             for (size_t i = 0; i < it->size(); ++i) loadPass(i, (*it)[i]);
@@ -188,6 +215,9 @@ private:
             } else {
                 fail("extent", "expected \"output\", \"output/N\" or [width, height], got \"" + s + "\"");
             }
+            if (r.type == ResourceType::Cube)
+                fail("extent", "cube faces must be square, which an output-relative extent is not "
+                               "in general; give a fixed [n, n]");
         } else if (extent->is_array() && extent->size() == 2 && (*extent)[0].is_number_integer() &&
                    (*extent)[1].is_number_integer()) {
             int64_t w = (*extent)[0].get<int64_t>(), h = (*extent)[1].get<int64_t>();
@@ -319,9 +349,12 @@ private:
         else
             error(path + ".name", "", "", "missing or not a non-empty string");
         checkKeys(v, path, {"name", "type", "if", "uses", "params", "never_cull", "description"}, p.name);
-        for (const auto& other : graph_.passes)
-            if (!p.name.empty() && other.name == p.name)
-                error(path + ".name", p.name, "", "duplicate pass name; the first is " + other.jsonPath);
+        if (!p.name.empty()) {
+            passNames_.emplace(index, p.name);
+            auto [first, fresh] = passPaths_.emplace(p.name, path);
+            if (!fresh)
+                error(path + ".name", p.name, "", "duplicate pass name; the first is " + first->second);
+        }
 
         const PassTypeInfo* type = nullptr;
         if (auto it = v.find("type"); it != v.end() && it->is_string()) {
@@ -403,7 +436,9 @@ private:
                     error(upath, p.name, "", "expected {\"resource\", \"access\", \"stage\", ...}");
                     continue;
                 }
-                checkKeys(uses[i], upath, {"resource", "access", "stage", "as", "mips", "layers", "slot"}, p.name);
+                auto res = uses[i].find("resource");
+                checkKeys(uses[i], upath, {"resource", "access", "stage", "as", "mips", "layers", "slot"},
+                          p.name, res != uses[i].end() && res->is_string() ? res->get<std::string>() : "");
                 loadUsage(p, uses[i], upath);
             }
         } else {
@@ -412,10 +447,14 @@ private:
     }
 
     void loadUsage(PassDesc& p, const json& e, const std::string& path) {
-        std::string resName = e.value("resource", std::string());
+        auto resIt = e.find("resource");
+        if (resIt == e.end() || !resIt->is_string())
+            return error(resIt == e.end() ? path : path + ".resource", p.name, "",
+                         "expected \"resource\": the name of a declared resource");
+        const std::string resName = resIt->get<std::string>();
         auto fail = [&](const std::string& msg) { error(path, p.name, resName, msg); };
-        if (!e.contains("resource") || !e["resource"].is_string()) return fail("missing \"resource\"");
-        const ResourceDesc* res = graph_.findResource(resName);
+        auto found = resourceIndex_.find(resName);
+        const ResourceDesc* res = found == resourceIndex_.end() ? nullptr : &graph_.resources[found->second];
         if (!res) {
             std::vector<std::string> names;
             for (const auto& r : graph_.resources) names.push_back(r.name);
@@ -446,7 +485,13 @@ private:
             u.slot = e["slot"].get<std::string>();
         }
         if (e.contains("mips") || e.contains("layers")) {
-            SubresourceRange range{0, res->mips, 0, res->layers};
+            // A full chain's length is known here for fixed extents only; for output-relative
+            // ones the compiler clips the range to the chain it resolves.
+            const uint32_t levels = res->mips != 0 ? res->mips
+                                    : res->extent.relativeToOutput
+                                        ? static_cast<uint32_t>(std::bit_width(kMaxExtent))
+                                        : res->mipCount(0, 0);
+            SubresourceRange range{0, levels, 0, res->layers};
             auto pair = [&](const char* key, uint32_t& first, uint32_t& count) {
                 auto it = e.find(key);
                 if (it == e.end()) return true;
@@ -462,6 +507,14 @@ private:
             if (!pair("mips", range.baseMip, range.mipCount) ||
                 !pair("layers", range.baseLayer, range.layerCount))
                 return;
+            if (res->mips == 0 && range.baseMip + range.mipCount > levels)
+                return fail("mips [" + std::to_string(range.baseMip) + ", " + std::to_string(range.mipCount) +
+                            "] exceed the resource's " + std::to_string(levels) + " mip levels (" +
+                            (res->extent.relativeToOutput
+                                 ? std::string("the most any image can have")
+                                 : "the full chain of " + std::to_string(res->extent.width) + "x" +
+                                       std::to_string(res->extent.height)) +
+                            ")");
             u.usage.range = range;
         }
         std::string problem = usageProblem(*res, u.usage);
@@ -546,6 +599,9 @@ private:
     const PassRegistry& registry_;
     GraphDesc graph_;
     Diagnostics diags_;
+    std::unordered_map<std::string, uint32_t> resourceIndex_;  ///< name -> graph_.resources
+    std::unordered_map<std::string, std::string> passPaths_;   ///< name -> first JSON path
+    std::unordered_map<size_t, std::string> passNames_;        ///< JSON index -> name
 };
 
 }  // namespace

@@ -1,0 +1,170 @@
+// Compiler throughput on synthetic Generic graphs of 10 to 100,000 passes with about four
+// usages each. Parsing (parseGraph) and compiling (compile) are measured separately.
+//
+//   build/bench/compile_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+//
+// The counter `time_per_usage` is the time per usage (e.g. "25n" = 25 ns); docs/performance.md
+// records the table. Target: 10,000 passes compile in under 5 ms, scaling linearly.
+#include <skygraph/compiler.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <string>
+
+namespace {
+
+using namespace skygraph;
+
+/// A frame-like chain of N passes. Every pass renders its own target c<i> and samples the
+/// previous one, so nothing is culled and every resource is read a bounded number of times.
+/// Per group of four passes:
+///   i%4 == 0: compute samples mip 0 of m<k-1> and writes mip 1 (mip generation);
+///             every 16th pass also ReadWrites a storage buffer (accumulation);
+///   i%4 == 1: writes depth d<k> (cleared by the load op) and reads c<i-3> in the vertex stage;
+///   i%4 == 2: depth test against d<k> (read-only attachment), compute samples c<i-2>;
+///   i%4 == 3: samples d<k> in the fragment shader (layout change) and writes mip 0 of m<k>.
+/// That is 4 usages per pass, 4.06 on average with the buffers.
+std::string syntheticGraph(int n) {
+    std::string res, passes;
+    auto addRes = [&](const std::string& name, const std::string& body) {
+        res += (res.empty() ? "" : ",\n") + std::string("    \"") + name + "\": " + body;
+    };
+    auto c = [](int i) { return "c" + std::to_string(i); };
+    for (int i = 0; i < n; ++i) {
+        const int k = i / 4;
+        std::string body = R"({ "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output/2")";
+        if (i == n - 1) body += R"(, "external": true, "final": "ShaderRead")";
+        else if (i % 16 == 0) body += R"(, "clear": { "color": [0, 0, 0, 0] })";
+        addRes(c(i), body + " }");
+        if (i % 4 == 0) {
+            addRes("d" + std::to_string(k),
+                   R"({ "type": "image2d", "format": "D32_SFLOAT", "extent": "output/2", "clear": { "depth": 0.0 } })");
+            addRes("m" + std::to_string(k),
+                   R"({ "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [128, 128], "mips": 2 })");
+        }
+        if (i % 16 == 0)
+            addRes("b" + std::to_string(i / 16), R"({ "type": "buffer", "size": 65536, "external": true })");
+    }
+    for (int i = 0; i < n; ++i) {
+        const int k = i / 4;
+        std::string u;
+        auto use = [&](const std::string& r, const char* access, const char* stage,
+                       const std::string& extra = "") {
+            u += (u.empty() ? "" : ", ") + std::string(R"({ "resource": ")") + r + R"(", "access": ")" +
+                 access + R"(", "stage": ")" + stage + "\"" + extra + " }";
+        };
+        use(c(i), "Write", "ColorAttachment");
+        if (i >= 1) use(c(i - 1), "Read", "Fragment");
+        switch (i % 4) {
+            case 0:
+                if (k >= 1) {
+                    const std::string m = "m" + std::to_string(k - 1);
+                    use(m, "Read", "Compute", R"(, "mips": [0, 1])");
+                    use(m, "Write", "Compute", R"(, "mips": [1, 1])");
+                }
+                if (i % 16 == 0) use("b" + std::to_string(i / 16), "ReadWrite", "Compute");
+                break;
+            case 1:
+                use("d" + std::to_string(k), "Write", "DepthAttachment");
+                if (i >= 3) use(c(i - 3), "Read", "Vertex");
+                break;
+            case 2:
+                use("d" + std::to_string(k), "Read", "DepthAttachment");
+                use(c(i - 2), "Read", "Compute");
+                break;
+            case 3:
+                use("d" + std::to_string(k), "Read", "Fragment");
+                use("m" + std::to_string(k), "Write", "Compute", R"(, "mips": [0, 1])");
+                break;
+        }
+        passes += (passes.empty() ? "" : ",\n") + std::string(R"(    { "name": "p)") + std::to_string(i) +
+                  R"(", "type": "Generic", "uses": [ )" + u + " ] }";
+    }
+    return "{\n  \"version\": 1,\n  \"name\": \"synthetic" + std::to_string(n) +
+           "\",\n  \"features\": {},\n  \"resources\": {\n" + res + "\n  },\n  \"passes\": [\n" + passes +
+           "\n  ]\n}\n";
+}
+
+/// Like syntheticGraph, plus one buffer (scene constants) that every pass reads: one long run
+/// of reads of a single resource, as real frames have.
+std::string sharedReadGraph(int n) {
+    std::string g = syntheticGraph(n);
+    const std::string scene = R"(    "scene": { "type": "buffer", "size": 256, "external": true },
+)";
+    g.insert(g.find("  \"resources\": {\n") + 16, scene);
+    const std::string marker = R"("type": "Generic", "uses": [ )";
+    const std::string read = R"({ "resource": "scene", "access": "Read", "stage": "Vertex", "as": "uniform" }, )";
+    for (size_t at = g.find(marker); at != std::string::npos; at = g.find(marker, at + 1))
+        g.insert(at + marker.size(), read);
+    return g;
+}
+
+const PassRegistry& registry() {
+    static const PassRegistry r = PassRegistry::withBuiltins();
+    return r;
+}
+
+struct Case {
+    std::string text;
+    GraphDesc graph;
+    double usages = 0;
+};
+
+/// Graphs are generated and parsed once per size, outside the timed loops.
+const Case& graphFor(int n, bool sharedRead) {
+    static std::map<std::pair<int, bool>, Case> cache;
+    auto [it, fresh] = cache.try_emplace({n, sharedRead});
+    if (fresh) {
+        it->second.text = sharedRead ? sharedReadGraph(n) : syntheticGraph(n);
+        it->second.graph = parseGraph(it->second.text, "synthetic.json", registry());
+        for (const auto& p : it->second.graph.passes) it->second.usages += static_cast<double>(p.uses.size());
+    }
+    return it->second;
+}
+
+void setCounters(benchmark::State& state, const Case& c) {
+    state.counters["passes"] = static_cast<double>(c.graph.passes.size());
+    state.counters["usages"] = c.usages;
+    state.counters["time_per_usage"] =
+        benchmark::Counter(c.usages, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void compileBench(benchmark::State& state, bool sharedRead) {
+    const Case& c = graphFor(static_cast<int>(state.range(0)), sharedRead);
+    {
+        const Plan plan = compile(c.graph);
+        if (!plan.culled.empty() || plan.passes.size() < c.graph.passes.size()) {
+            state.SkipWithError("the synthetic graph lost passes to culling");
+            return;
+        }
+        size_t barriers = plan.finalBarriers.size();
+        for (const auto& p : plan.passes) barriers += p.barriers.size();
+        state.counters["barriers"] = static_cast<double>(barriers);
+    }
+    for (auto _ : state) {
+        Plan plan = compile(c.graph);
+        benchmark::DoNotOptimize(plan);
+    }
+    setCounters(state, c);
+}
+
+void BM_Compile(benchmark::State& state) { compileBench(state, false); }
+void BM_CompileSharedRead(benchmark::State& state) { compileBench(state, true); }
+
+void BM_Parse(benchmark::State& state) {
+    const Case& c = graphFor(static_cast<int>(state.range(0)), false);
+    for (auto _ : state) {
+        GraphDesc g = parseGraph(c.text, "synthetic.json", registry());
+        benchmark::DoNotOptimize(g);
+    }
+    setCounters(state, c);
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(c.text.size()));
+}
+
+BENCHMARK(BM_Compile)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Parse)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
+// Stops at 10k: the synchronizer is quadratic in the length of a run of reads (docs/performance.md).
+BENCHMARK(BM_CompileSharedRead)->RangeMultiplier(10)->Range(10, 10000)->Unit(benchmark::kMicrosecond);
+
+}  // namespace

@@ -1,0 +1,941 @@
+// Error tests for the loader and the compiler's feature-dependent checks (contract §1: every
+// error names the file, the JSON path and, where one is involved, the pass and the resource;
+// a file with several errors reports all of them).
+#include "json_positions.hpp"
+
+#include <skygraph/compiler.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kFile = "test.json";
+
+/// A valid graph: forward (if geo) writes depth and hdr_color; tonemap reads hdr_color and
+/// writes the exported swapchain. Tests break one thing at a time.
+Json baseGraph() {
+    return Json::parse(R"({
+      "version": 1,
+      "name": "t",
+      "features": { "geo": true, "sky": true },
+      "resources": {
+        "depth":     { "type": "image2d", "format": "D32_SFLOAT", "extent": "output",
+                       "clear": { "depth": 0.0 } },
+        "hdr_color": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output" },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output",
+                       "external": true, "final": "Present" },
+        "buf":       { "type": "buffer", "size": 1024, "external": true },
+        "cube":      { "type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64],
+                       "mips": "full", "external": true },
+        "mipped":    { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64],
+                       "mips": 3, "external": true }
+      },
+      "passes": [
+        { "name": "forward", "type": "ForwardPass", "if": "geo",
+          "uses": { "depth": "Write@DepthAttachment", "hdr_color": "Write@ColorAttachment" } },
+        { "name": "tonemap", "type": "TonemappingPass",
+          "uses": { "hdr_color": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+          "params": { "operator": "aces_narkowicz" } }
+      ]
+    })");
+}
+
+/// Appends a Generic pass named `name` with the given uses (object or array form).
+Json withGeneric(Json g, const std::string& name, Json uses) {
+    g["passes"].push_back(Json{{"name", name}, {"type", "Generic"}, {"uses", std::move(uses)},
+                               {"never_cull", true}});
+    return g;
+}
+
+const PassRegistry& registry() {
+    static const PassRegistry r = PassRegistry::withBuiltins();
+    return r;
+}
+
+/// The diagnostics that loading `text` produces; fails the test if it loads.
+std::vector<Diagnostic> textErrors(std::string_view text) {
+    try {
+        (void)parseGraph(text, kFile, registry());
+    } catch (const GraphError& e) {
+        EXPECT_FALSE(e.diagnostics().empty());
+        EXPECT_EQ(std::string(e.what()), e.diagnostics().format());
+        return e.diagnostics().items();
+    }
+    ADD_FAILURE() << "expected a GraphError for:\n" << text;
+    return {};
+}
+std::vector<Diagnostic> loadErrors(const Json& g) { return textErrors(g.dump(2)); }
+
+std::vector<Diagnostic> compileErrors(const Json& g, const CompileOptions& options) {
+    const GraphDesc graph = parseGraph(g.dump(2), kFile, registry());
+    try {
+        (void)compile(graph, options);
+    } catch (const GraphError& e) {
+        return e.diagnostics().items();
+    }
+    ADD_FAILURE() << "expected compile() to throw GraphError";
+    return {};
+}
+
+std::string listAll(const std::vector<Diagnostic>& ds) {
+    std::string out;
+    for (const auto& d : ds)
+        out += "  {path='" + d.jsonPath + "' pass='" + d.pass + "' resource='" + d.resource +
+               "'} " + d.format() + "\n";
+    return out;
+}
+
+/// Whether some diagnostic has exactly this file, path, pass and resource, and a message
+/// containing every one of `words`.
+::testing::AssertionResult hasDiag(const std::vector<Diagnostic>& ds, const std::string& path,
+                                   const std::string& pass, const std::string& resource,
+                                   std::initializer_list<std::string_view> words) {
+    for (const auto& d : ds) {
+        if (d.file != kFile || d.jsonPath != path || d.pass != pass || d.resource != resource)
+            continue;
+        bool all = true;
+        for (auto w : words) all = all && d.message.find(w) != std::string::npos;
+        if (all) return ::testing::AssertionSuccess();
+    }
+    std::string wanted;
+    for (auto w : words) wanted += " '" + std::string(w) + "'";
+    return ::testing::AssertionFailure()
+           << "no diagnostic {path='" << path << "' pass='" << pass << "' resource='" << resource
+           << "'} with" << wanted << "; got " << ds.size() << ":\n"
+           << listAll(ds);
+}
+
+void expectLoads(const Json& g) {
+    try {
+        (void)parseGraph(g.dump(2), kFile, registry());
+    } catch (const GraphError& e) {
+        ADD_FAILURE() << "expected the graph to load:\n" << e.what();
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+
+TEST(LoaderErrors, BaseGraphIsValid) {
+    expectLoads(baseGraph());
+    const GraphDesc g = parseGraph(baseGraph().dump(), kFile, registry());
+    EXPECT_EQ(g.file, kFile);
+    EXPECT_EQ(g.passes.size(), 2u);
+    EXPECT_NO_THROW((void)compile(g));
+}
+
+TEST(LoaderErrors, MalformedJsonGivesLineAndColumn) {
+    const std::string text =
+        "{\n"
+        "  \"version\": 1,\n"
+        "  \"name\": \"t\",\n"
+        "  \"resources\": {\n"
+        "    \"depth\": { \"type\": \"image2d\", \"format\": \"D32_SFLOAT\" \"extent\": \"output\" }\n"
+        "  }\n"
+        "}\n";
+    const auto ds = textErrors(text);
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    const Diagnostic& d = ds[0];
+    EXPECT_EQ(d.file, kFile);
+    EXPECT_EQ(d.line, 5);
+    // The string literal where a ',' or '}' should be starts on column 58.
+    EXPECT_EQ(d.column, 58) << d.format();
+    EXPECT_EQ(d.jsonPath, "resources.depth");
+    EXPECT_NE(d.message.find("malformed JSON"), std::string::npos) << d.message;
+    EXPECT_EQ(d.format().rfind("test.json:5:58: resources.depth: malformed JSON", 0), 0u) << d.format();
+}
+
+TEST(LoaderErrors, MalformedJsonStrayComma) {
+    const auto ds = textErrors("{\n  \"version\": 1,,\n  \"name\": \"t\"\n}");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].line, 2);
+    EXPECT_EQ(ds[0].column, 16);  // the second ','
+}
+
+TEST(LoaderErrors, MalformedJsonTruncatedFile) {
+    const auto ds = textErrors("{\n  \"version\": 1,\n  \"passes\": [\n");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].line, 4);
+    EXPECT_EQ(ds[0].column, 1);
+    EXPECT_EQ(ds[0].jsonPath, "passes");
+    EXPECT_NE(ds[0].message.find("end of input"), std::string::npos) << ds[0].message;
+}
+
+TEST(LoaderErrors, MalformedJsonBadLiteral) {
+    const auto ds = textErrors("{ \"version\": 1, \"name\": tru }");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].line, 1);
+    EXPECT_EQ(ds[0].column, 25);  // start of "tru"
+}
+
+TEST(LoaderErrors, NumberOverflowIsAnErrorNotACrash) {
+    const auto ds = textErrors(R"({ "version": 1e999, "name": "t", "resources": {}, "passes": [] })");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_NE(ds[0].message.find("1e999"), std::string::npos) << ds[0].message;
+}
+
+TEST(LoaderErrors, UnknownTopLevelKey) {
+    Json g = baseGraph();
+    g["passess"] = Json::array();
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passess", "", "", {"unknown key 'passess'", "passes", "resources"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+TEST(LoaderErrors, UnknownResourceKey) {
+    Json g = baseGraph();
+    g["resources"]["hdr_color"]["fromat"] = "R8_UNORM";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color.fromat", "", "hdr_color", {"unknown key 'fromat'", "format"}));
+}
+
+TEST(LoaderErrors, UnknownClearKey) {
+    Json g = baseGraph();
+    g["resources"]["depth"]["clear"]["dpeth"] = 1.0;
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.depth.clear.dpeth", "", "depth", {"unknown key 'dpeth'", "depth"}));
+}
+
+TEST(LoaderErrors, UnknownPassKey) {
+    Json g = baseGraph();
+    g["passes"][1]["paramz"] = Json::object();
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].paramz", "tonemap", "", {"unknown key 'paramz'", "params"}));
+}
+
+TEST(LoaderErrors, UnknownUsageKey) {
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json::array({{{"resource", "cube"}, {"access", "Read"}, {"stage", "Compute"},
+                                       {"mip", Json::array({0, 1})}}}));
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].mip", "gen", "cube", {"unknown key 'mip'", "mips"}));
+}
+
+TEST(LoaderErrors, UnknownResourceType) {
+    Json g = baseGraph();
+    g["resources"]["hdr_color"]["type"] = "texture3d";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color.type", "", "hdr_color",
+                        {"texture3d", "image2d", "cube", "image2d_array", "buffer"}));
+}
+
+TEST(LoaderErrors, UnknownFormat) {
+    Json g = baseGraph();
+    g["resources"]["hdr_color"]["format"] = "R16G16B16A16_SFLOATY";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color.format", "", "hdr_color",
+                        {"unknown format 'R16G16B16A16_SFLOATY'", "R16G16B16A16_SFLOAT,", "D32_SFLOAT"}));
+    // The VK_FORMAT_ prefix is not part of the name.
+    g["resources"]["hdr_color"]["format"] = "VK_FORMAT_R16G16B16A16_SFLOAT";
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.hdr_color.format", "", "hdr_color",
+                        {"unknown format 'VK_FORMAT_R16G16B16A16_SFLOAT'"}));
+}
+
+TEST(LoaderErrors, UnknownPassTypeListsRegisteredTypes) {
+    Json g = baseGraph();
+    g["passes"][1]["type"] = "BloomPass";
+    const auto ds = loadErrors(g);
+    std::vector<std::string_view> words{"unknown pass type 'BloomPass'"};
+    const auto names = registry().names();
+    ASSERT_GE(names.size(), 9u);
+    for (const auto& n : names) words.push_back(n);
+    bool found = false;
+    for (const auto& d : ds) {
+        if (d.jsonPath != "passes[1].type" || d.pass != "tonemap" || d.file != kFile) continue;
+        found = true;
+        for (auto w : words) EXPECT_NE(d.message.find(w), std::string::npos) << w << " in " << d.message;
+    }
+    EXPECT_TRUE(found) << listAll(ds);
+}
+
+TEST(LoaderErrors, UnknownResourceInUses) {
+    Json g = baseGraph();
+    g["passes"][1]["uses"] = Json{{"hdr", "Read@Fragment"}, {"swapchain", "Write@ColorAttachment"}};
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.hdr", "tonemap", "hdr", {"unknown resource", "hdr_color"}));
+}
+
+TEST(LoaderErrors, UnknownAccessStageAndAs) {
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json{{"cube", "Sample@Fragment"}, {"mipped", "Read@Pixel"}, {"buf", "Read"}});
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.cube", "gen", "cube", {"unknown access \"Sample\"", "ReadWrite"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.mipped", "gen", "mipped", {"unknown stage \"Pixel\"", "Compute"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.buf", "gen", "buf", {"Access@Stage"}));
+    g = withGeneric(baseGraph(), "gen",
+                    Json::array({{{"resource", "cube"}, {"access", "Read"}, {"stage", "Compute"}, {"as", "texture"}}}));
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0]", "gen", "cube", {"unknown `as` \"texture\"", "sampled"}));
+}
+
+TEST(LoaderErrors, NonStringResourceInUsageArrayIsAnError) {
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json::array({{{"resource", 5}, {"access", "Read"}, {"stage", "Compute"}}}));
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].resource", "gen", "", {"resource"}));
+}
+
+TEST(LoaderErrors, DuplicatePassNames) {
+    Json g = baseGraph();
+    g["passes"][1]["name"] = "forward";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].name", "forward", "", {"duplicate pass name", "passes[0]"}));
+}
+
+TEST(LoaderErrors, DuplicateResourceNames) {
+    // Only raw text can repeat a key; a JSON library would keep just the last one silently.
+    const std::string text = R"({
+      "version": 1, "name": "t",
+      "resources": {
+        "hdr_color": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output" },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output",
+                       "external": true, "final": "Present" },
+        "hdr_color": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" }
+      },
+      "passes": [
+        { "name": "a", "type": "Generic", "uses": { "hdr_color": "Write@ColorAttachment" } },
+        { "name": "b", "type": "Generic", "uses": { "hdr_color": "Read@Fragment",
+                                                    "swapchain": "Write@ColorAttachment" } }
+      ]
+    })";
+    const auto ds = textErrors(text);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color", "", "hdr_color", {"duplicate", "'hdr_color'"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+TEST(LoaderErrors, DuplicateResourceInOnePassUses) {
+    const std::string text = R"({
+      "version": 1, "name": "t",
+      "resources": {
+        "hdr_color": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output",
+                       "external": true, "final": "ShaderRead" }
+      },
+      "passes": [
+        { "name": "a", "type": "Generic",
+          "uses": { "hdr_color": "Write@ColorAttachment", "hdr_color": "Read@Fragment" } }
+      ]
+    })";
+    const auto ds = textErrors(text);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.hdr_color", "a", "hdr_color", {"duplicate"}));
+}
+
+TEST(LoaderErrors, UsageContradictingPassSlots) {
+    Json g = baseGraph();
+    g["passes"][1]["uses"]["hdr_color"] = "Write@Compute";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.hdr_color", "tonemap", "hdr_color",
+                        {"Write@Compute", "TonemappingPass", "Read@Fragment"}));
+}
+
+TEST(LoaderErrors, UsageContradictingANamedSlot) {
+    Json g = baseGraph();
+    g["passes"][1]["uses"] = Json::array(
+        {{{"resource", "hdr_color"}, {"access", "Read"}, {"stage", "Compute"}, {"slot", "hdr"}},
+         {{"resource", "swapchain"}, {"access", "Write"}, {"stage", "ColorAttachment"}}});
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0]", "tonemap", "hdr_color",
+                        {"Read@Compute", "slot 'hdr'", "TonemappingPass", "expected Read@Fragment"}));
+    g["passes"][1]["uses"][0] = Json{{"resource", "hdr_color"}, {"access", "Read"}, {"stage", "Fragment"},
+                                     {"slot", "bloom"}};
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0]", "tonemap", "hdr_color", {"no slot 'bloom'", "hdr (Read@Fragment"}));
+}
+
+TEST(LoaderErrors, DepthFormatAsColorAttachment) {
+    Json g = baseGraph();
+    g["passes"][0]["uses"]["depth"] = "Write@ColorAttachment";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.depth", "forward", "depth",
+                        {"D32_SFLOAT", "depth", "cannot be a color attachment", "DepthAttachment"}));
+}
+
+TEST(LoaderErrors, ColorFormatAsDepthAttachment) {
+    Json g = baseGraph();
+    g["passes"][0]["uses"]["hdr_color"] = "Write@DepthAttachment";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.hdr_color", "forward", "hdr_color",
+                        {"R16G16B16A16_SFLOAT", "cannot be a depth attachment", "ColorAttachment"}));
+}
+
+TEST(LoaderErrors, StorageUseOfSrgbOrDepthFormat) {
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json::array({{{"resource", "swapchain"}, {"access", "Write"}, {"stage", "Compute"}},
+                                      {{"resource", "depth"}, {"access", "Read"}, {"stage", "Fragment"},
+                                       {"as", "storage"}}}));
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0]", "gen", "swapchain",
+                        {"B8G8R8A8_SRGB", "cannot be a storage image"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "gen", "depth", {"D32_SFLOAT", "cannot be a storage image"}));
+}
+
+TEST(LoaderErrors, SampledWrite) {
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json::array({{{"resource", "mipped"}, {"access", "Write"}, {"stage", "Fragment"},
+                                       {"as", "sampled"}},
+                                      {{"resource", "cube"}, {"access", "ReadWrite"}, {"stage", "Compute"},
+                                       {"as", "sampled"}}}));
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0]", "gen", "mipped", {"sampled image is read-only", "Read@Fragment"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "gen", "cube", {"sampled image is read-only", "Read@Compute"}));
+}
+
+TEST(LoaderErrors, BufferAsAttachment) {
+    Json g = withGeneric(baseGraph(), "gen", Json{{"buf", "Write@ColorAttachment"}});
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.buf", "gen", "buf", {"buffer cannot be an attachment"}));
+    g = withGeneric(baseGraph(), "gen", Json{{"buf", "Read@DepthAttachment"}});
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.buf", "gen", "buf", {"buffer cannot be an attachment"}));
+}
+
+TEST(LoaderErrors, BufferUsagesThatOnlyImagesHave) {
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json::array({{{"resource", "buf"}, {"access", "Read"}, {"stage", "Fragment"},
+                                       {"as", "sampled"}}}));
+    EXPECT_TRUE(hasDiag(loadErrors(g), "passes[2].uses[0]", "gen", "buf", {"buffer cannot be sampled"}));
+}
+
+TEST(LoaderErrors, VertexInputOrIndirectOnImage) {
+    Json g = withGeneric(baseGraph(), "gen", Json{{"mipped", "Read@VertexInput"}, {"cube", "Read@Indirect"}});
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.mipped", "gen", "mipped", {"VertexInput reads buffers, not images"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.cube", "gen", "cube", {"Indirect reads buffers, not images"}));
+    // And they only read.
+    g = withGeneric(baseGraph(), "gen", Json{{"buf", "Write@Indirect"}});
+    EXPECT_TRUE(hasDiag(loadErrors(g), "passes[2].uses.buf", "gen", "buf", {"only reads", "Read@Indirect"}));
+}
+
+TEST(LoaderErrors, ReadWithNoEarlierWriter) {
+    Json g = baseGraph();
+    g["passes"].erase(0);  // nobody writes hdr_color any more
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.hdr_color", "tonemap", "hdr_color",
+                        {"no earlier pass writes it", "clear", "external"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+TEST(LoaderErrors, ReadBeforeItsWriterInFileOrder) {
+    Json g = baseGraph();
+    std::swap(g["passes"][0], g["passes"][1]);  // tonemap now reads before forward writes
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.hdr_color", "tonemap", "hdr_color", {"no earlier pass writes it"}));
+}
+
+TEST(LoaderErrors, ReadOfAnUnwrittenMipLevel) {
+    // Writing mip 0 does not make mip 1 readable.
+    Json g = baseGraph();
+    g["resources"]["lvl"] = Json::parse(
+        R"({ "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": 2 })");
+    g = withGeneric(g, "w", Json::array({{{"resource", "lvl"}, {"access", "Write"}, {"stage", "Compute"},
+                                          {"mips", Json::array({0, 1})}}}));
+    g = withGeneric(g, "r", Json::array({{{"resource", "lvl"}, {"access", "Read"}, {"stage", "Compute"},
+                                          {"mips", Json::array({1, 1})}}}));
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses[0]", "r", "lvl", {"no earlier pass writes it"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+TEST(LoaderErrors, ClearOrExternalIsASource) {
+    Json g = baseGraph();
+    g["passes"].erase(0);
+    g["resources"]["hdr_color"]["clear"] = Json{{"color", {0, 0, 0, 1}}};
+    expectLoads(g);
+    g["resources"]["hdr_color"].erase("clear");
+    g["resources"]["hdr_color"]["external"] = true;
+    expectLoads(g);
+}
+
+TEST(LoaderErrors, ReadWhoseOnlyWriterIsSwitchedOffByAFeature) {
+    CompileOptions options;
+    options.features["geo"] = false;
+    const auto ds = compileErrors(baseGraph(), options);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.hdr_color", "tonemap", "hdr_color",
+                        {"no earlier pass writes it", "'forward'", "feature 'geo' is off"}));
+    // With the feature on it compiles.
+    options.features["geo"] = true;
+    EXPECT_NO_THROW((void)compile(parseGraph(baseGraph().dump(), kFile, registry()), options));
+}
+
+TEST(LoaderErrors, ReadWhoseWriterHasACompoundConditionNamesTheCondition) {
+    Json g = baseGraph();
+    g["passes"][0]["if"] = "geo && !sky";
+    CompileOptions options;
+    options.features["sky"] = true;
+    const auto ds = compileErrors(g, options);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.hdr_color", "tonemap", "hdr_color",
+                        {"'forward'", "geo && !sky", "sky=on"}));
+}
+
+TEST(LoaderErrors, BadIfExpressionNamesTheColumn) {
+    Json g = baseGraph();
+    g["passes"][0]["if"] = "geo && && sky";
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].if", "forward", "", {"geo && && sky", "column 8"}));
+    g["passes"][0]["if"] = "(geo || sky";
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].if", "forward", "", {"column 12", "expected ')'"}));
+    g["passes"][0]["if"] = true;
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].if", "forward", "", {"string expression"}));
+}
+
+TEST(LoaderErrors, UnknownFeatureInIf) {
+    Json g = baseGraph();
+    g["passes"][0]["if"] = "geo && bloom";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].if", "forward", "", {"unknown feature 'bloom'", "geo", "sky"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+TEST(LoaderErrors, BadFeatureDeclarations) {
+    Json g = baseGraph();
+    g["features"]["has space"] = true;
+    g["features"]["on"] = "yes";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "features.has space", "", "", {"not a valid feature name"}));
+    EXPECT_TRUE(hasDiag(ds, "features.on", "", "", {"true or false"}));
+}
+
+TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {
+    CompileOptions options;
+    options.features["bloom"] = true;
+    const auto ds = compileErrors(baseGraph(), options);
+    EXPECT_TRUE(hasDiag(ds, "features", "", "", {"unknown feature 'bloom'", "geo", "sky"}));
+}
+
+TEST(LoaderErrors, AbsurdExtents) {
+    const std::vector<std::pair<Json, std::string_view>> cases{
+        {Json::array({0, 16}), "outside 1..16384"},
+        {Json::array({16, 0}), "outside 1..16384"},
+        {Json::array({-4, 16}), "outside 1..16384"},
+        {Json::array({100000, 100000}), "outside 1..16384"},
+        {Json::array({16384, 16385}), "outside 1..16384"},
+        {"output/0", "between 1 and 4096"},
+        {"output/5000", "between 1 and 4096"},
+        {"output/", "\"output\", \"output/N\" or [width, height]"},
+        {"output/-2", "\"output\", \"output/N\" or [width, height]"},
+        {"output/99999999999999", "\"output\", \"output/N\" or [width, height]"},
+        {"input", "\"output\", \"output/N\" or [width, height]"},
+        {Json::array({16}), "[width, height]"},
+        {Json::array({16.5, 16}), "[width, height]"},
+        {Json{{"w", 1}}, "[width, height]"},
+    };
+    for (const auto& [extent, words] : cases) {
+        Json g = baseGraph();
+        g["resources"]["hdr_color"]["extent"] = extent;
+        EXPECT_TRUE(hasDiag(loadErrors(g), "resources.hdr_color.extent", "", "hdr_color", {words}))
+            << "extent " << extent.dump();
+    }
+    Json g = baseGraph();
+    g["resources"]["hdr_color"].erase("extent");
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.hdr_color.extent", "", "hdr_color", {"missing"}));
+    g["resources"]["hdr_color"]["extent"] = Json::array({16384, 1});
+    expectLoads(g);
+    g["resources"]["hdr_color"]["extent"] = "output/4096";
+    expectLoads(g);
+    // Cube faces are square.
+    g = baseGraph();
+    g["resources"]["cube"]["extent"] = Json::array({64, 32});
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.cube.extent", "", "cube", {"square"}));
+    g["resources"]["cube"]["extent"] = "output/2";
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.cube.extent", "", "cube", {"square", "[n, n]"}));
+}
+
+TEST(LoaderErrors, AbsurdMipCounts) {
+    const std::vector<std::pair<Json, std::string_view>> cases{
+        {0, "between 1 and 15, got 0"},
+        {99, "between 1 and 15, got 99"},
+        {-1, "between 1 and 15"},
+        {"half", "\"full\""},
+        {2.5, "between 1 and 15"},
+    };
+    for (const auto& [mips, words] : cases) {
+        Json g = baseGraph();
+        g["resources"]["mipped"]["mips"] = mips;
+        EXPECT_TRUE(hasDiag(loadErrors(g), "resources.mipped.mips", "", "mipped", {words})) << mips.dump();
+    }
+    // A 64x64 image has 7 levels (64, 32, ..., 1).
+    Json g = baseGraph();
+    g["resources"]["mipped"]["mips"] = 8;
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.mipped.mips", "", "mipped", {"8 levels", "64x64"}));
+    g["resources"]["mipped"]["extent"] = Json::array({64, 3});
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.mipped.mips", "", "mipped", {"8 levels", "64x3"}));
+    g["resources"]["mipped"]["mips"] = 7;
+    expectLoads(g);
+    g["resources"]["mipped"]["mips"] = "full";
+    expectLoads(g);
+}
+
+TEST(LoaderErrors, MipCountsOfOutputSizedImagesAreCheckedAtCompile) {
+    // "output/2" at 1920x1080 is 960x540: 10 levels. The loader cannot know the output size.
+    Json g = baseGraph();
+    g["resources"]["hdr_color"]["extent"] = "output/2";
+    g["resources"]["hdr_color"]["mips"] = 11;
+    g["passes"][0]["uses"] = Json::array(
+        {{{"resource", "depth"}, {"access", "Write"}, {"stage", "DepthAttachment"}},
+         {{"resource", "hdr_color"}, {"access", "Write"}, {"stage", "ColorAttachment"}, {"mips", {0, 1}}}});
+    g["passes"][1]["uses"] = Json::array(
+        {{{"resource", "hdr_color"}, {"access", "Read"}, {"stage", "Fragment"}, {"mips", {0, 1}}},
+         {{"resource", "swapchain"}, {"access", "Write"}, {"stage", "ColorAttachment"}}});
+    expectLoads(g);
+    CompileOptions options;
+    const auto ds = compileErrors(g, options);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color.mips", "", "hdr_color", {"11 levels", "960x540", "1920x1080"}));
+    options.outputWidth = 3840;
+    options.outputHeight = 2160;
+    EXPECT_NO_THROW((void)compile(parseGraph(g.dump(), kFile, registry()), options));
+}
+
+TEST(LoaderErrors, AbsurdLayerCounts) {
+    Json g = baseGraph();
+    g["resources"]["arr"] = Json::parse(
+        R"({ "type": "image2d_array", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "layers": 0 })");
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.arr.layers", "", "arr", {"between 1 and 2048", "got 0"}));
+    g["resources"]["arr"]["layers"] = 5000;
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.arr.layers", "", "arr", {"between 1 and 2048", "got 5000"}));
+    g["resources"]["arr"]["layers"] = "many";
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.arr.layers", "", "arr", {"between 1 and 2048"}));
+    g = baseGraph();
+    g["resources"]["cube"]["layers"] = 5;
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.cube.layers", "", "cube", {"a cube has 6 layers"}));
+    g = baseGraph();
+    g["resources"]["mipped"]["layers"] = 2;
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.mipped.layers", "", "mipped", {"image2d_array"}));
+}
+
+TEST(LoaderErrors, AbsurdBufferSizes) {
+    const std::vector<Json> sizes{0, -16, 1.5, "1k", Json::number_unsigned_t(1) << 40,
+                                  Json::number_unsigned_t(18446744073709551615ull)};
+    for (const auto& size : sizes) {
+        Json g = baseGraph();
+        g["resources"]["buf"]["size"] = size;
+        EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"between 1 and 2 GiB"})) << size.dump();
+    }
+    Json g = baseGraph();
+    g["resources"]["buf"].erase("size");
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"size in bytes"}));
+    g["resources"]["buf"]["size"] = 1;
+    g["resources"]["buf"]["extent"] = "output";
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.extent", "", "buf", {"buffers have no extent"}));
+}
+
+TEST(LoaderErrors, UsageRangesOutOfBounds) {
+    auto usage = [](const char* res, Json mips, Json layers) {
+        Json u{{"resource", res}, {"access", "Read"}, {"stage", "Compute"}};
+        if (!mips.is_null()) u["mips"] = std::move(mips);
+        if (!layers.is_null()) u["layers"] = std::move(layers);
+        return u;
+    };
+    // mipped has 3 levels, cube 6 layers and a full chain of a 64x64 face (7 levels).
+    const std::vector<std::tuple<Json, std::string, std::string_view>> cases{
+        {usage("mipped", {3, 1}, nullptr), "mipped", "exceed the resource's 3 mip levels"},
+        {usage("mipped", {1, 3}, nullptr), "mipped", "exceed the resource's 3 mip levels"},
+        {usage("mipped", {0, 0}, nullptr), "mipped", "count >= 1"},
+        {usage("mipped", {-1, 1}, nullptr), "mipped", "[first, count]"},
+        {usage("mipped", {0}, nullptr), "mipped", "[first, count]"},
+        {usage("mipped", {4294967295u, 1}, nullptr), "mipped", "[first, count]"},
+        {usage("cube", nullptr, {5, 2}), "cube", "exceed the resource's 6 layers"},
+        {usage("cube", nullptr, {6, 1}), "cube", "exceed the resource's 6 layers"},
+        {usage("cube", {7, 1}, nullptr), "cube", "7 mip levels"},
+        {usage("cube", {0, 8}, nullptr), "cube", "7 mip levels"},
+        {usage("buf", {0, 1}, nullptr), "buf", "buffers have no mips"},
+        {usage("buf", nullptr, {0, 1}), "buf", "buffers have no layers"},
+    };
+    for (const auto& [u, res, words] : cases) {
+        Json g = withGeneric(baseGraph(), "gen", Json::array({u}));
+        EXPECT_TRUE(hasDiag(loadErrors(g), "passes[2].uses[0]", "gen", res, {words})) << u.dump();
+    }
+    // The last level of each is fine.
+    Json g = withGeneric(baseGraph(), "gen",
+                         Json::array({usage("mipped", {2, 1}, nullptr), usage("cube", {6, 1}, {5, 1})}));
+    expectLoads(g);
+}
+
+TEST(LoaderErrors, LayersOnlyRangeCoversEveryMipOfAFullChain) {
+    // Giving only "layers" leaves the mips whole, also for a "full" chain: a writer of every
+    // face makes the whole cube readable.
+    Json g = baseGraph();
+    g["resources"]["fullcube"] = Json::parse(
+        R"({ "type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "mips": "full" })");
+    g["resources"]["fullsky"] = Json::parse(
+        R"({ "type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": "output/4", "mips": "full", "layers": 6 })");
+    g = withGeneric(g, "w", Json::array({{{"resource", "fullcube"}, {"access", "Write"}, {"stage", "Compute"},
+                                          {"layers", {0, 6}}},
+                                         {{"resource", "fullsky"}, {"access", "Write"}, {"stage", "Compute"},
+                                          {"layers", {0, 6}}}}));
+    g = withGeneric(g, "r", Json{{"fullcube", "Read@Fragment"}, {"fullsky", "Read@Fragment"}});
+    const GraphDesc graph = parseGraph(g.dump(), kFile, registry());
+    const UsageDecl& fixed = graph.passes[2].uses[0];
+    ASSERT_TRUE(fixed.usage.range.has_value());
+    EXPECT_EQ(fixed.usage.range->baseMip, 0u);
+    EXPECT_EQ(fixed.usage.range->mipCount, 7u);  // 64, 32, ..., 1
+    EXPECT_EQ(fixed.usage.range->layerCount, 6u);
+    const Plan plan = compile(graph);  // 1920x1080: "output/4" is 480x270, 9 levels
+    const int32_t sky = plan.resourceIndex("fullsky");
+    ASSERT_GE(sky, 0);
+    bool seen = false;
+    for (const auto& p : plan.passes)
+        for (const auto& u : p.usages)
+            if (p.name == "w" && u.resource == static_cast<uint32_t>(sky)) {
+                seen = true;
+                EXPECT_EQ(u.range.mipCount, 9u);
+                EXPECT_EQ(u.range.layerCount, 6u);
+            }
+    EXPECT_TRUE(seen);
+}
+
+TEST(LoaderErrors, OverlappingUsagesOfOneResourceInOnePass) {
+    auto usage = [](const char* access, Json mips) {
+        return Json{{"resource", "mipped"}, {"access", access}, {"stage", "Compute"}, {"mips", std::move(mips)}};
+    };
+    Json g = withGeneric(baseGraph(), "gen", Json::array({usage("Read", {0, 2}), usage("Write", {1, 2})}));
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "gen", "mipped", {"overlaps passes[2].uses[0]"}));
+    // Whole resource twice.
+    g = withGeneric(baseGraph(), "gen",
+                    Json::array({{{"resource", "buf"}, {"access", "Read"}, {"stage", "Compute"}},
+                                 {{"resource", "buf"}, {"access", "Read"}, {"stage", "Vertex"}}}));
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "gen", "buf", {"overlaps passes[2].uses[0]"}));
+    // A level range against a whole full-chain resource.
+    g = withGeneric(baseGraph(), "gen",
+                    Json::array({{{"resource", "cube"}, {"access", "Read"}, {"stage", "Compute"}},
+                                 {{"resource", "cube"}, {"access", "Write"}, {"stage", "Compute"},
+                                  {"mips", {5, 1}}}}));
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "gen", "cube", {"overlaps passes[2].uses[0]"}));
+    // Disjoint levels are fine: mip generation reads one level and writes the next.
+    g = withGeneric(baseGraph(), "gen", Json::array({usage("Read", {0, 1}), usage("Write", {1, 1})}));
+    expectLoads(g);
+}
+
+TEST(LoaderErrors, BadParams) {
+    Json g = baseGraph();
+    g["passes"][1]["params"]["operator"] = "foo";
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].params.operator", "tonemap", "",
+                        {"\"foo\"", "aces_narkowicz", "khronos_pbr_neutral"}));
+    g = baseGraph();
+    g["passes"][1]["params"]["exposure_ev"] = 1000;
+    g["passes"][1]["params"]["gamma"] = 2.2;
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].params.exposure_ev", "tonemap", "", {"[-64", "1000"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[1].params.gamma", "tonemap", "", {"unknown parameter", "operator"}));
+    g = baseGraph();
+    g["passes"][1]["params"] = "aces";
+    EXPECT_TRUE(hasDiag(loadErrors(g), "passes[1].params", "tonemap", "", {"expected an object"}));
+}
+
+TEST(LoaderErrors, MissingRequiredSlot) {
+    Json g = baseGraph();
+    g["passes"][1]["uses"].erase("swapchain");
+    g["resources"].erase("swapchain");
+    g["resources"]["hdr_color"]["final"] = "ShaderRead";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses", "tonemap", "",
+                        {"TonemappingPass needs slot 'output'", "Write@ColorAttachment"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+TEST(LoaderErrors, MissingOrMistypedRequiredFields) {
+    Json g = baseGraph();
+    g.erase("version");
+    g["passes"][1].erase("uses");
+    g["passes"][0].erase("type");
+    g["passes"][0]["name"] = "";
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "version", "", "", {"version 1"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses", "tonemap", "", {"missing"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[0].type", "", "", {"missing"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[0].name", "", "", {"non-empty string"}));
+    g = baseGraph();
+    g["version"] = 2;
+    EXPECT_TRUE(hasDiag(loadErrors(g), "version", "", "", {"unsupported version 2"}));
+    EXPECT_TRUE(hasDiag(textErrors("[1, 2]"), "", "", "", {"JSON object"}));
+}
+
+TEST(LoaderErrors, SeveralErrorsAreAllReported) {
+    Json g = baseGraph();
+    g["bogus"] = 1;                                                   // unknown key
+    g["resources"]["hdr_color"]["format"] = "RGBA16F";                // unknown format
+    g["resources"]["mipped"]["mips"] = 0;                             // absurd mips
+    g["passes"][0]["if"] = "geo &&";                                  // bad expression
+    g["passes"][1]["type"] = "TonemapPass";                           // unknown type
+    g["passes"][1]["uses"]["swapchan"] = "Write@ColorAttachment";     // unknown resource
+    g = withGeneric(g, "forward", Json{{"depth", "Read@ColorAttachment"}});  // dup name + depth as color
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "bogus", "", "", {"unknown key"}));
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color.format", "", "hdr_color", {"RGBA16F"}));
+    EXPECT_TRUE(hasDiag(ds, "resources.mipped.mips", "", "mipped", {"got 0"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[0].if", "forward", "", {"column 7"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[1].type", "tonemap", "", {"TonemapPass"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.swapchan", "tonemap", "swapchan", {"unknown resource"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].name", "forward", "", {"duplicate pass name"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.depth", "forward", "depth", {"cannot be a color attachment"}));
+    EXPECT_EQ(ds.size(), 8u) << listAll(ds);
+}
+
+TEST(LoaderErrors, SeveralCompileErrorsAreAllReported) {
+    Json g = baseGraph();
+    g["passes"][0]["uses"] = Json{{"depth", "Write@DepthAttachment"}, {"hdr_color", "Write@ColorAttachment"}};
+    g["passes"].push_back(Json::parse(R"({ "name": "post", "type": "Generic",
+        "uses": { "hdr_color": "Read@Compute", "mipped": "Write@Compute" } })"));
+    CompileOptions options;
+    options.features = {{"geo", false}, {"bloom", true}, {"dof", false}};
+    const auto ds = compileErrors(g, options);
+    EXPECT_TRUE(hasDiag(ds, "features", "", "", {"'bloom'"}));
+    EXPECT_TRUE(hasDiag(ds, "features", "", "", {"'dof'"}));
+    // Unknown overrides are reported first; the reads are checked once the features are valid.
+    options.features = {{"geo", false}};
+    const auto reads = compileErrors(g, options);
+    EXPECT_TRUE(hasDiag(reads, "passes[1].uses.hdr_color", "tonemap", "hdr_color", {"'forward'"}));
+    EXPECT_TRUE(hasDiag(reads, "passes[2].uses.hdr_color", "post", "hdr_color", {"'forward'"}));
+    EXPECT_EQ(reads.size(), 2u) << listAll(reads);
+}
+
+TEST(LoaderErrors, FileErrorsNameTheFile) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("skygraph_loader_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    fs::create_directories(dir);
+    const fs::path file = dir / "broken.json";
+    {
+        Json g = baseGraph();
+        g["passes"][1]["params"]["operator"] = "foo";
+        std::ofstream(file) << g.dump(2);
+    }
+    try {
+        (void)loadGraphFile(file, registry());
+        ADD_FAILURE() << "expected GraphError";
+    } catch (const GraphError& e) {
+        ASSERT_EQ(e.diagnostics().size(), 1u);
+        const Diagnostic& d = e.diagnostics().items()[0];
+        EXPECT_EQ(d.file, file.string());
+        EXPECT_EQ(d.jsonPath, "passes[1].params.operator");
+        EXPECT_EQ(d.format().rfind(file.string() + ": passes[1].params.operator: pass 'tonemap': ", 0), 0u)
+            << d.format();
+    }
+    try {
+        (void)loadGraphFile(dir / "missing.json", registry());
+        ADD_FAILURE() << "expected GraphError";
+    } catch (const GraphError& e) {
+        ASSERT_EQ(e.diagnostics().size(), 1u);
+        EXPECT_EQ(e.diagnostics().items()[0].file, (dir / "missing.json").string());
+        EXPECT_NE(e.diagnostics().items()[0].message.find("cannot open"), std::string::npos);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(LoaderErrors, DiagnosticFormatNamesEverything) {
+    Json g = baseGraph();
+    g["passes"][0]["uses"]["depth"] = "Write@ColorAttachment";
+    for (const auto& d : loadErrors(g)) {
+        if (d.jsonPath != "passes[0].uses.depth") continue;
+        EXPECT_EQ(d.format().rfind("test.json: passes[0].uses.depth: pass 'forward', resource 'depth': ", 0), 0u)
+            << d.format();
+        return;
+    }
+    ADD_FAILURE() << "no diagnostic for passes[0].uses.depth";
+}
+
+// ---- JSON nesting and positions (json_positions) ----------------------------------------
+
+TEST(JsonPositions, DeepNestingIsRefusedNotFatal) {
+    // Balanced: parses, but the depth limit turns it into an error.
+    const std::string balanced = std::string(100000, '[') + std::string(100000, ']');
+    JsonParseResult r = parseJsonWithPositions(balanced);
+    EXPECT_NE(r.error.find("nesting deeper than 256"), std::string::npos) << r.error;
+    EXPECT_EQ(r.line, 1);
+    EXPECT_EQ(r.column, 257);  // the bracket that opens level 257
+    // Through the loader, inside a graph.
+    const std::string prefix = R"({ "version": 1, "name": "t", "resources": {},
+  "passes": )";
+    auto ds = textErrors(prefix + balanced + "}");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_NE(ds[0].message.find("nesting deeper than 256"), std::string::npos) << ds[0].message;
+    EXPECT_EQ(ds[0].jsonPath.rfind("passes[0][0]", 0), 0u) << ds[0].jsonPath;
+    EXPECT_EQ(ds[0].line, 2);
+    EXPECT_EQ(ds[0].column, 268);  // 12 characters of "  \"passes\": ", then 255 brackets (the root is level 1)
+    // Unbalanced: refused at the same place, without reading on to the end.
+    ds = textErrors(std::string(100000, '['));
+    ASSERT_EQ(ds.size(), 1u);
+    EXPECT_NE(ds[0].message.find("nesting deeper than 256"), std::string::npos) << ds[0].message;
+    EXPECT_EQ(ds[0].line, 1);
+    EXPECT_EQ(ds[0].column, 257);
+    // Brackets inside strings do not count.
+    r = parseJsonWithPositions("[\"" + std::string(1000, '[') + "\"]");
+    EXPECT_EQ(r.error, "");
+    // Deep objects too.
+    std::string objects;
+    for (int i = 0; i < 50000; ++i) objects += "{\"a\":";
+    objects += "1" + std::string(50000, '}');
+    r = parseJsonWithPositions(objects);
+    EXPECT_NE(r.error.find("nesting deeper than 256"), std::string::npos) << r.error;
+}
+
+TEST(JsonPositions, NestingUpToTheLimitParses) {
+    const std::string ok = std::string(256, '[') + std::string(256, ']');
+    JsonParseResult r = parseJsonWithPositions(ok);
+    EXPECT_EQ(r.error, "");
+    EXPECT_TRUE(r.value.is_array());
+    const std::string tooDeep = std::string(258, '[') + std::string(258, ']');
+    EXPECT_NE(parseJsonWithPositions(tooDeep).error, "");
+}
+
+TEST(JsonPositions, DuplicateKeysCarryTheirPath) {
+    JsonParseResult r = parseJsonWithPositions(
+        R"({ "a": { "x": 1, "x": 2 }, "b": [ {}, { "y": 1, "z": 2, "y": 3 } ], "a": 0 })");
+    EXPECT_EQ(r.error, "");
+    ASSERT_EQ(r.duplicateKeys.size(), 3u);
+    EXPECT_EQ(r.duplicateKeys[0].path, "a.x");
+    EXPECT_EQ(r.duplicateKeys[1].path, "b[1].y");
+    EXPECT_EQ(r.duplicateKeys[2].path, "a");
+    EXPECT_EQ(r.duplicateKeys[2].key, "a");
+}
+
+TEST(JsonPositions, ErrorPathFollowsArraysAndObjects) {
+    JsonParseResult r = parseJsonWithPositions(R"({ "p": [ 1, {"q": 2}, [3, {"r": ] } ] })");
+    EXPECT_NE(r.error, "");
+    EXPECT_EQ(r.errorPath, "p[2][1]");
+    EXPECT_EQ(r.line, 1);
+    EXPECT_EQ(r.column, 33);  // the ']'
+}
+
+TEST(JsonPositions, ColumnsPointAtTheStartOfTheBadToken) {
+    struct Case {
+        std::string text;
+        int line, column;
+    };
+    const std::vector<Case> cases{
+        {R"([1 2])", 1, 4},                         // unexpected number
+        {R"([1, 23456 789])", 1, 11},               // multi-digit number
+        {R"([1, -2.5e3 7])", 1, 12},
+        {R"([1})", 1, 3},                           // '}' right after a number
+        {R"({"a" true})", 1, 6},                    // unexpected true literal
+        {R"({"a": 1 null})", 1, 9},
+        {R"({"a": tru})", 1, 7},                    // invalid literal, broken by '}'
+        {R"({"a": nulll})", 1, 7},
+        {R"({"a": 1 "b\"c" : 2})", 1, 9},          // string with an escaped quote
+        {"{\n  \"a\": 1,\n  \"b\": 01\n}", 3, 8},  // leading zero: the lexer stops at the 1
+        {"{\"\u00e9t\u00e9\": 1 2}", 1, 11},       // columns count characters, not bytes
+        {"[\"abc\ndef\"]", 1, 6},                  // the control character inside a string
+    };
+    for (const auto& c : cases) {
+        const JsonParseResult r = parseJsonWithPositions(c.text);
+        EXPECT_NE(r.error, "") << c.text;
+        EXPECT_EQ(r.line, c.line) << c.text << " -> " << r.error;
+        EXPECT_EQ(r.column, c.column) << c.text << " -> " << r.error;
+    }
+}
+
+}  // namespace
+}  // namespace skygraph
