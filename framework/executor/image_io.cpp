@@ -1,18 +1,10 @@
 // PNG and Radiance HDR output through stb_image_write.
 #include <skygraph/executor.hpp>
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#endif
+// stb's implementation lives in skygraph_image (its only owner).
+#include <skygraph/hdr_image.hpp>
+
 #include <stb/stb_image_write.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 #include <algorithm>
 #include <cmath>
@@ -47,18 +39,15 @@ void writePng(const std::filesystem::path& path, const ImageData& image) {
 
 void writeHdr(const std::filesystem::path& path, const ImageData& image) {
     checkImage(image);
-    std::vector<float> rgb(size_t(image.width) * image.height * 3);
-    for (size_t i = 0; i < size_t(image.width) * image.height; ++i) {
-        for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
+    HdrImage hdr;
+    hdr.width = image.width;
+    hdr.height = image.height;
+    hdr.rgba = image.rgba;
+    try {
+        saveHdrImage(path, hdr);  // by extension: .hdr (Radiance) or .exr (half float)
+    } catch (const ImageError& e) {
+        throw ExecutorError(e.what());
     }
-    const auto tmp = path.string() + ".tmp";
-    if (!stbi_write_hdr(tmp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 3,
-                        rgb.data())) {
-        throw ExecutorError("cannot write '" + path.string() + "'");
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) throw ExecutorError("cannot write '" + path.string() + "': " + ec.message());
 }
 
 }  // namespace skygraph

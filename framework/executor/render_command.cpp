@@ -43,7 +43,7 @@ int renderCommand(const RenderOptions& options) {
         if (!options.output.empty()) {
             const ImageData image = renderer.readback();
             const auto ext = options.output.extension().string();
-            if (ext == ".hdr") {
+            if (ext == ".hdr" || ext == ".exr") {
                 writeHdr(options.output, image);
             } else {
                 writePng(options.output, image);

@@ -1,6 +1,8 @@
 // Device selection, validation switches and the render command's exit statuses.
 #include "executor_test_util.hpp"
 
+#include <skygraph/hdr_image.hpp>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -65,6 +67,14 @@ TEST(RenderCommand, WritesPngAndReportsUserErrors) {
     char magic[8] = {};
     in.read(magic, 8);
     EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+
+    // HDR output of the same target, by extension.
+    RenderOptions exr = o;
+    exr.output = dir / "out.exr";
+    EXPECT_EQ(renderCommand(exr), 0);
+    const HdrImage loaded = loadHdrImage(exr.output);
+    EXPECT_EQ(loaded.width, 32u);
+    EXPECT_EQ(loaded.height, 16u);
 
     RenderOptions bad = o;
     bad.graph = dir / "missing.json";
