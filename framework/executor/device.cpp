@@ -59,13 +59,17 @@ constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr size_t kKeptMessages = 256;
 
 VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                             VkDebugUtilsMessageTypeFlagsEXT,
+                                             VkDebugUtilsMessageTypeFlagsEXT types,
                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
                                              void* user) {
     auto* impl = static_cast<Device::Impl*>(user);
     const char* id = data->pMessageIdName ? data->pMessageIdName : "";
     const char* text = data->pMessage ? data->pMessage : "";
-    const bool counted = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+    // Validation and general warnings and errors are counted. Performance advice (e.g. "use
+    // TRANSFER_SRC_OPTIMAL instead of GENERAL" for a pass that both reads and writes by
+    // transfer) is logged but not counted: it is not a correctness problem.
+    const bool performanceOnly = types == VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    const bool counted = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT && !performanceOnly;
     if (counted) {
         std::lock_guard lock(impl->mutex);
         ++impl->count;
