@@ -1,5 +1,5 @@
 // Hot reload of the graph file and the shader directory.
-#include "shader_compiler.hpp"
+#include <skygraph/shader_compiler.hpp>
 
 #include <skygraph/executor.hpp>
 

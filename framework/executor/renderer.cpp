@@ -1,6 +1,6 @@
 // The Renderer: resources, pipelines and per-frame recording of one plan.
 #include "generic_program.hpp"
-#include "shader_compiler.hpp"
+#include <skygraph/shader_compiler.hpp>
 #include "vk_util.hpp"
 
 #include <skygraph/executor.hpp>

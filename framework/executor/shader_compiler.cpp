@@ -1,4 +1,4 @@
-#include "shader_compiler.hpp"
+#include <skygraph/shader_compiler.hpp>
 
 #include <skygraph/executor.hpp>
 
