@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 namespace skygraph::test {
 namespace {
 
@@ -50,7 +52,9 @@ TEST(DeviceSelection, ValidationByEnvironment) {
 }
 
 TEST(RenderCommand, WritesPngAndReportsUserErrors) {
-    const auto dir = std::filesystem::temp_directory_path() / "skygraph_render_cmd";
+    // Unique per process: ctest runs test binaries of several build trees in parallel.
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("skygraph_render_cmd_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     RenderOptions o;
     o.graph = std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json";

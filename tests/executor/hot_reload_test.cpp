@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 namespace skygraph::test {
 namespace {
 
@@ -21,7 +23,7 @@ void write(const std::filesystem::path& p, const std::string& text) {
 
 TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     const auto dir = std::filesystem::temp_directory_path() /
-                     ("skygraph_reload_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+                     ("skygraph_reload_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir / "shaders");
     const auto shader = dir / "shaders" / "generic_common.glsl";
