@@ -80,6 +80,16 @@ ShaderCompiler::~ShaderCompiler() {
     if (--processRefs() == 0) glslang::FinalizeProcess();
 }
 
+std::vector<uint32_t> ShaderCompiler::compileFile(VkShaderStageFlagBits stage,
+                                                  const std::filesystem::path& relativePath) {
+    const auto path = includeDir_ / relativePath;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ExecutorError("shader '" + path.string() + "' cannot be read");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return compile(stage, ss.str(), path.string());
+}
+
 void ShaderCompiler::clear() {
     std::lock_guard lock(mutex_);
     cache_.clear();

@@ -28,6 +28,12 @@ public:
                                                 const std::string& source,
                                                 const std::string& name);
 
+    /// Reads `relativePath` under the include directory (e.g. "passes/tonemap.frag") and
+    /// compiles it; the stage comes from `stage`. Throws ExecutorError when the file is
+    /// missing or does not compile. Reads the file every call, so edits are picked up.
+    [[nodiscard]] std::vector<uint32_t> compileFile(VkShaderStageFlagBits stage,
+                                                    const std::filesystem::path& relativePath);
+
     /// Forgets every cached result (memory only), e.g. after an included file changed.
     void clear();
 

@@ -1,6 +1,8 @@
 // Hot reload: a broken graph and a broken shader each leave the last good version running.
 #include "executor_test_util.hpp"
 
+#include <skygraph/shader_compiler.hpp>
+
 #include <filesystem>
 #include <fstream>
 
@@ -84,6 +86,34 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 0.5, 0.0, 1.0, 1.0);  // red and blue swapped
     r.waitIdle();
     std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace skygraph::test
+
+namespace skygraph::test {
+namespace {
+
+TEST(ShaderCompilerTest, CompilesShippedPassShadersWithIncludes) {
+    ShaderCompiler sc({});
+    const auto dir = ShaderCompiler::defaultIncludeDir();
+    int compiled = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir / "passes")) {
+        const auto ext = e.path().extension().string();
+        const VkShaderStageFlagBits stage = ext == ".vert"   ? VK_SHADER_STAGE_VERTEX_BIT
+                                            : ext == ".frag" ? VK_SHADER_STAGE_FRAGMENT_BIT
+                                                             : VK_SHADER_STAGE_COMPUTE_BIT;
+        EXPECT_FALSE(sc.compileFile(stage, std::filesystem::relative(e.path(), dir)).empty()) << e.path();
+        ++compiled;
+    }
+    EXPECT_GT(compiled, 0);
+    EXPECT_THROW((void)sc.compileFile(VK_SHADER_STAGE_VERTEX_BIT, "passes/missing.vert"), ExecutorError);
+    EXPECT_THROW((void)sc.compile(VK_SHADER_STAGE_VERTEX_BIT, "#version 450\nvoid main() { x; }\n", "bad"),
+                 ExecutorError);
+    const uint32_t before = sc.compilations();
+    (void)sc.compile(VK_SHADER_STAGE_COMPUTE_BIT, "#version 450\nlayout(local_size_x=1) in;\nvoid main(){}\n", "a");
+    (void)sc.compile(VK_SHADER_STAGE_COMPUTE_BIT, "#version 450\nlayout(local_size_x=1) in;\nvoid main(){}\n", "a");
+    EXPECT_EQ(sc.compilations(), before + 1) << "the second compile comes from the cache";
 }
 
 }  // namespace
