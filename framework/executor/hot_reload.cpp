@@ -36,9 +36,10 @@ size_t hashDir(const std::filesystem::path& dir) {
 }  // namespace
 
 HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, CompileOptions options,
-                         std::filesystem::path shaderDir)
+                         std::filesystem::path shaderDir, const PassRegistry* registry)
     : renderer_(renderer), graphFile_(std::move(graphFile)), options_(std::move(options)),
-      shaderDir_(shaderDir.empty() ? ShaderCompiler::defaultIncludeDir() : std::move(shaderDir)) {
+      shaderDir_(shaderDir.empty() ? ShaderCompiler::defaultIncludeDir() : std::move(shaderDir)),
+      registry_(registry) {
     graphHash_ = hashFile(graphFile_);
     shaderHash_ = hashDir(shaderDir_);
 }
@@ -52,7 +53,8 @@ HotReloader::Result HotReloader::poll() {
     shaderHash_ = s;
     try {
         if (graphChanged) {
-            GraphDesc graph = loadGraphFile(graphFile_, PassRegistry::withBuiltins());
+            GraphDesc graph = registry_ ? loadGraphFile(graphFile_, *registry_)
+                                        : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
             Plan plan = compile(graph, options_);
             renderer_.setPlan(graph, std::move(plan));
         } else {

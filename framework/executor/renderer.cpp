@@ -127,11 +127,19 @@ struct PassSlot {
     VkBuffer indexBuffer = VK_NULL_HANDLE;
     VkBuffer indirectBuffer = VK_NULL_HANDLE;
     OwnedBuffer sink;  ///< Destination of Transfer reads.
+#if SKYGRAPH_HAS_PASS_LIBRARY
+    std::vector<BoundResource> bound;  ///< Pass implementations: parallel to pass usages.
+#endif
 };
 
 struct PassState {
     const PlannedPass* pass = nullptr;
+    const PassDesc* desc = nullptr;
     bool isClear = false;
+#if SKYGRAPH_HAS_PASS_LIBRARY
+    /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
+    std::unique_ptr<PassImplementation> custom;
+#endif
     GenericProgram program;
     vk::RenderPass renderPass;
     std::vector<VkClearValue> clearValues;
@@ -181,6 +189,13 @@ struct Renderer::Impl {
     RendererOptions options;
     ShaderCompiler shaders;
     vk::Sampler sampler;
+    vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
+    vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
+#if SKYGRAPH_HAS_PASS_LIBRARY
+    FrameData frameData;
+#endif
+    /// Pixels given to setExternalImage, by resource name; uploaded on every import.
+    std::map<std::string, ImageData> uploads;
     bool layered = false;
     std::unique_ptr<PlanState> state;
     std::vector<FrameSlot> frames;
@@ -264,6 +279,26 @@ struct Renderer::Impl {
         describeResources(*s);
         for (size_t i = 0; i < s->plan.passes.size(); ++i) buildPassStatic(*s, i);
         buildSized(*s);
+#if SKYGRAPH_HAS_PASS_LIBRARY
+        for (PassState& ps : s->passes) {
+            if (!ps.custom) continue;
+            PipelineContext pc;
+            pc.device = vkd;
+            pc.physicalDevice = dev.physical;
+            pc.renderPass = ps.renderPass.get();
+            pc.pass = ps.pass;
+            pc.desc = ps.desc;
+            pc.resources = ps.slots[0].bound;
+            pc.shaders = &shaders;
+            try {
+                ps.custom->createPipelines(pc);
+            } catch (const ExecutorError&) {
+                throw;
+            } catch (const std::exception& e) {
+                throw ExecutorError(passError(*ps.pass, "", std::string("creating pipelines: ") + e.what()));
+            }
+        }
+#endif
         return s;
     }
 
@@ -279,7 +314,22 @@ struct Renderer::Impl {
             r.isImage = r.desc->isImage();
             // Transients get one copy per frame slot; so does the swapchain target, like the
             // images of a real swapchain. Other externals persist and are shared.
-            r.perSlot = (!r.desc->external || r.desc->final == ExternalState::Present) && slots > 1;
+            // Externals that the graph writes without exporting them have no cross-frame edge
+            // in the plan; a copy per slot keeps frames in flight apart (slot reuse waits on
+            // its fence).
+            bool written = false;
+            for (const PlannedPass& pass : s.plan.passes)
+                for (const PlannedUsage& u : pass.usages)
+                    written = written || (u.resource == i && writesContents(u.usage.access));
+            const bool unexportedWrite = r.desc->external && !r.desc->isExported() && written;
+            r.perSlot = (!r.desc->external || r.desc->final == ExternalState::Present || unexportedWrite) &&
+                        slots > 1;
+            if (unexportedWrite && r.isImage && pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
+                pr.finalLayout != pr.initialLayout) {
+                throw ExecutorError("resource '" + r.desc->name +
+                                    "': an external image that the graph writes ends the frame in a "
+                                    "different layout than it arrives in; give it a `final` state");
+            }
             if (r.isImage) {
                 r.format = r.desc->format.format;
                 r.aspect = aspectOf(r.desc->format);
@@ -338,8 +388,33 @@ struct Renderer::Impl {
             return;
         }
         nlohmann::json params = nlohmann::json::object();
-        if (pass.declIndex >= 0 && static_cast<size_t>(pass.declIndex) < s.graph.passes.size())
-            params = s.graph.passes[static_cast<size_t>(pass.declIndex)].params;
+        if (pass.declIndex >= 0 && static_cast<size_t>(pass.declIndex) < s.graph.passes.size()) {
+            ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
+            params = ps.desc->params;
+        }
+#if SKYGRAPH_HAS_PASS_LIBRARY
+        const PassFactory* factory =
+            options.passes && pass.type != "Generic" ? options.passes->factory(pass.type) : nullptr;
+        if (factory && ps.desc) {
+            ps.custom = (*factory)(*ps.desc);
+            if (!ps.custom) throw ExecutorError(passError(pass, "", "the pass factory returned nothing"));
+            for (uint32_t i = 0; i < pass.usages.size(); ++i) {
+                const Stage st = pass.usages[i].usage.stage;
+                if (st == Stage::ColorAttachment) ps.program.colors.push_back(i);
+                if (st == Stage::DepthAttachment) {
+                    if (ps.program.depth >= 0)
+                        throw ExecutorError(passError(pass, "", "a pass can have one depth attachment"));
+                    ps.program.depth = static_cast<int32_t>(i);
+                }
+            }
+            ps.program.graphics = !ps.program.colors.empty() || ps.program.depth >= 0;
+            for (uint32_t c : ps.program.colors)
+                ps.program.attachmentLayers = std::max(ps.program.attachmentLayers, pass.usages[c].range.layerCount);
+            if (ps.program.graphics) buildRenderPass(s, ps);
+            s.passes.push_back(std::move(ps));
+            return;
+        }
+#endif
         if (pass.type != "Generic") {
             spdlog::debug("pass '{}' of type '{}' runs as Generic (performs its declared accesses)",
                           pass.name, pass.type);
@@ -406,6 +481,11 @@ struct Renderer::Impl {
     }
 
     void buildGraphics(PlanState& s, PassState& ps) {
+        buildRenderPass(s, ps);
+        buildGraphicsPipeline(s, ps);
+    }
+
+    void buildRenderPass(PlanState& s, PassState& ps) {
         const PlannedPass& pass = *ps.pass;
         const GenericProgram& p = ps.program;
         // Render pass: every attachment stays in its planned layout (initial = subpass =
@@ -459,6 +539,12 @@ struct Renderer::Impl {
         VkRenderPass rp;
         vk::check(vkCreateRenderPass(vkd, &rpci, nullptr, &rp), "vkCreateRenderPass");
         ps.renderPass = vk::RenderPass(vkd, rp);
+    }
+
+    void buildGraphicsPipeline(PlanState& s, PassState& ps) {
+        const PlannedPass& pass = *ps.pass;
+        const GenericProgram& p = ps.program;
+        const VkRenderPass rp = ps.renderPass.get();
 
         ps.graphicsSetLayout = setLayout(p.graphicsBindings);
         ps.graphicsLayout = pipelineLayout(ps.graphicsSetLayout.get(),
@@ -855,7 +941,46 @@ struct Renderer::Impl {
             vk::check(vkCreateFramebuffer(vkd, &fci, nullptr, &fb), "vkCreateFramebuffer");
             sl.framebuffer = vk::Framebuffer(vkd, fb);
         }
+#if SKYGRAPH_HAS_PASS_LIBRARY
+        if (ps.custom) bindResources(s, ps, slot);
+#endif
     }
+
+#if SKYGRAPH_HAS_PASS_LIBRARY
+    /// What a pass implementation sees of each usage: handles and a view of exactly the
+    /// usage's subresources.
+    void bindResources(PlanState& s, PassState& ps, uint32_t slot) {
+        const PlannedPass& pass = *ps.pass;
+        PassSlot& sl = ps.slots[slot];
+        sl.bound.clear();
+        for (const PlannedUsage& u : pass.usages) {
+            ResourceState& r = s.resources[u.resource];
+            BoundResource b;
+            b.usage = &u;
+            b.desc = r.desc;
+            b.format = r.format;
+            const uint32_t copy = r.copyFor(slot);
+            if (!r.isImage) {
+                b.buffer = r.buffers[copy].buffer.get();
+                b.size = r.size;
+                sl.bound.push_back(b);
+                continue;
+            }
+            b.image = r.images[copy].image.get();
+            b.extent = {r.mipWidth(u.range.baseMip), r.mipHeight(u.range.baseMip)};
+            const bool attachment = isAttachmentStage(u.usage.stage);
+            const bool sampled = isShaderStage(u.usage.stage) && resolveAs(*r.desc, u.usage) == BindAs::Sampled;
+            VkImageViewType type = VK_IMAGE_VIEW_TYPE_2D;
+            if (sampled && r.desc->type == ResourceType::Cube && u.range.layerCount == 6 && u.range.baseLayer == 0) {
+                type = VK_IMAGE_VIEW_TYPE_CUBE;
+            } else if (u.range.layerCount > 1 || r.desc->type != ResourceType::Image2D) {
+                type = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+            }
+            b.view = view(r, copy, type, u.range, attachment);
+            sl.bound.push_back(b);
+        }
+    }
+#endif
 
     static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value) {
         const size_t words = static_cast<size_t>(bytes / 4);
@@ -984,6 +1109,48 @@ struct Renderer::Impl {
                     vkCmdClearColorImage(cmd, img.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
                 }
             }
+        }
+        // Loaded textures: copy their pixels over the clear into mip 0 of every layer.
+        std::vector<VkImageMemoryBarrier2> afterClear;
+        std::vector<std::pair<VkImage, const ResourceState*>> uploadsToDo;
+        for (size_t i = 0; i < s.resources.size(); ++i) {
+            ResourceState& r = s.resources[i];
+            if (!r.desc->external || !r.isImage || !uploads.count(r.desc->name)) continue;
+            for (auto& img : r.images) {
+                VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+                b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+                b.srcAccessMask = b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+                b.oldLayout = b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+                b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+                b.image = img.image.get();
+                b.subresourceRange = {r.aspect, 0, 1, 0, r.layers};
+                afterClear.push_back(b);
+                uploadsToDo.emplace_back(img.image.get(), &r);
+            }
+        }
+        barrier(afterClear);
+        for (const auto& [image, rp] : uploadsToDo) {
+            const ResourceState& r = *rp;
+            const ImageData& px = uploads.at(r.desc->name);
+            const uint32_t texel = copyTexelBytes(r.desc->format);
+            const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
+            staging.push_back(makeBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true));
+            auto* dst = static_cast<uint8_t*>(staging.back().mapped);
+            for (uint32_t l = 0; l < r.layers; ++l)
+                for (size_t p = 0; p < size_t(r.width) * r.height; ++p) {
+                    const std::array<float, 4> c{px.rgba[p * 4], px.rgba[p * 4 + 1], px.rgba[p * 4 + 2],
+                                                 px.rgba[p * 4 + 3]};
+                    const auto t = encodeTexel(r.format, texel, c);
+                    std::memcpy(dst + l * layerBytes + p * texel, t.data(), texel);
+                }
+            VkBufferImageCopy c{};
+            c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, r.layers};
+            c.imageExtent = {r.width, r.height, 1};
+            vkCmdCopyBufferToImage(cmd, staging.back().buffer.get(), image,
+                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+        }
+        for (auto& t : toInitial) {
+            t.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
         }
         barrier(toInitial);
         if (!staging.empty()) {
@@ -1163,6 +1330,37 @@ struct Renderer::Impl {
             recordClear(cmd, s, ps, slot);
             return;
         }
+#if SKYGRAPH_HAS_PASS_LIBRARY
+        if (ps.custom) {
+            PassSlot& sl = ps.slots[slot];
+            RecordContext rc;
+            rc.cmd = cmd;
+            rc.pass = ps.pass;
+            rc.desc = ps.desc;
+            rc.resources = sl.bound;
+            rc.renderArea = ps.program.graphics ? sl.extent : VkExtent2D{0, 0};
+            rc.linearSampler = linearSampler.get();
+            rc.repeatSampler = repeatSampler.get();
+            rc.frame = &frameData;
+            rc.frameIndex = frameIndex;
+            if (ps.program.graphics) {
+                VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+                rbi.renderPass = ps.renderPass.get();
+                rbi.framebuffer = sl.framebuffer.get();
+                rbi.renderArea = {{0, 0}, sl.extent};
+                rbi.clearValueCount = static_cast<uint32_t>(ps.clearValues.size());
+                rbi.pClearValues = ps.clearValues.data();
+                vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
+                const VkViewport vp{0, 0, float(sl.extent.width), float(sl.extent.height), 0, 1};
+                const VkRect2D sc{{0, 0}, sl.extent};
+                vkCmdSetViewport(cmd, 0, 1, &vp);
+                vkCmdSetScissor(cmd, 0, 1, &sc);
+            }
+            ps.custom->record(rc);
+            if (ps.program.graphics) vkCmdEndRenderPass(cmd);
+            return;
+        }
+#endif
         const GenericProgram& p = ps.program;
         PassSlot& sl = ps.slots[slot];
         if (!p.transfers.empty()) recordTransfers(cmd, s, ps, slot);
@@ -1367,6 +1565,13 @@ Renderer::Renderer(Device& device, const GraphDesc& graph, Plan plan, RendererOp
     VkSampler sampler;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.sampler = vk::Sampler(d.vkd, sampler);
+    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
+    d.linearSampler = vk::Sampler(d.vkd, sampler);
+    sci.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
+    d.repeatSampler = vk::Sampler(d.vkd, sampler);
     d.createFrames();
     d.state = d.build(graph, std::move(plan));
 }
@@ -1434,6 +1639,37 @@ std::vector<PassTiming> Renderer::lastTimings() {
 
 const Plan& Renderer::plan() const noexcept { return impl_->state->plan; }
 const GraphDesc& Renderer::graph() const noexcept { return impl_->state->graph; }
+#if SKYGRAPH_HAS_PASS_LIBRARY
+FrameData& Renderer::frameData() noexcept { return impl_->frameData; }
+#endif
+
+void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
+    Impl& d = *impl_;
+    const ResourceDesc* desc = d.state->graph.findResource(resource);
+    if (!desc) throw ExecutorError("setExternalImage: no resource '" + resource + "' in the graph");
+    if (!desc->external || !desc->isImage())
+        throw ExecutorError("setExternalImage: '" + resource + "' is not an external image");
+    const auto ext = desc->extent.resolve(d.options.width, d.options.height);
+    if (pixels.width != ext[0] || pixels.height != ext[1] ||
+        pixels.rgba.size() != size_t(pixels.width) * pixels.height * 4) {
+        throw ExecutorError("setExternalImage: '" + resource + "' is " + std::to_string(ext[0]) + "x" +
+                            std::to_string(ext[1]) + ", the pixels are " + std::to_string(pixels.width) +
+                            "x" + std::to_string(pixels.height));
+    }
+    const uint32_t texel = findFormat(desc->format.format) ? desc->format.bytesPerTexel : 0;
+    std::array<float, 4> probe{1, 1, 1, 1};
+    const auto encoded = encodeTexel(desc->format.format, texel, probe);
+    if (texel == 0 || std::all_of(encoded.begin(), encoded.end(), [](uint8_t b) { return b == 0; }))
+        throw ExecutorError("setExternalImage: cannot upload pixels to format " + std::string(desc->format.name));
+    auto previous = d.uploads;
+    d.uploads[resource] = std::move(pixels);
+    try {
+        setPlan(d.state->graph, d.state->plan);  // re-imports the externals with the pixels
+    } catch (...) {
+        d.uploads = std::move(previous);
+        throw;
+    }
+}
 
 void Renderer::reloadShaders() {
     Impl& d = *impl_;

@@ -5,6 +5,13 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
+// Pass implementations (PassLibrary) are optional until pass.hpp is in the tree.
+#if __has_include(<skygraph/pass.hpp>)
+#include <skygraph/pass.hpp>
+#define SKYGRAPH_HAS_PASS_LIBRARY 1
+#else
+#define SKYGRAPH_HAS_PASS_LIBRARY 0
+#endif
 #include <skygraph/plan.hpp>
 
 #include <vulkan/vulkan_core.h>
@@ -99,7 +106,8 @@ struct ImageData {
 
 /// Writes 8-bit RGBA PNG (values clamped to [0,1]). Throws ExecutorError on I/O failure.
 void writePng(const std::filesystem::path& path, const ImageData& image);
-/// Writes Radiance .hdr (RGB float). Throws ExecutorError on I/O failure.
+/// Writes an HDR file by extension: Radiance .hdr or OpenEXR .exr (half float). Throws
+/// ExecutorError on I/O failure.
 void writeHdr(const std::filesystem::path& path, const ImageData& image);
 
 struct RendererOptions {
@@ -112,6 +120,11 @@ struct RendererOptions {
     std::string readback;
     /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
     std::filesystem::path shaderDir;
+#if SKYGRAPH_HAS_PASS_LIBRARY
+    /// Recording code by pass type; borrowed, must outlive the renderer. Pass types without a
+    /// factory (and Generic) run as Generic: they perform exactly their declared accesses.
+    const PassLibrary* passes = nullptr;
+#endif
 };
 
 /// GPU time of one pass in the last completed frame of a slot.
@@ -147,6 +160,14 @@ public:
     /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
     /// running.
     void reloadShaders();
+    /// Imports a loaded texture: `pixels` (float RGBA, as stored) become the contents of mip 0
+    /// (every layer) of the external image `resource`, now and whenever the plan is
+    /// re-installed. Waits for the GPU. Throws ExecutorError for a wrong name, size or format.
+    void setExternalImage(const std::string& resource, ImageData pixels);
+#if SKYGRAPH_HAS_PASS_LIBRARY
+    /// Values handed to pass implementations while recording (camera, exposure, ...).
+    [[nodiscard]] FrameData& frameData() noexcept;
+#endif
     /// The graph the current plan was compiled from.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame.
@@ -173,8 +194,10 @@ class HotReloader {
 public:
     enum class Result : uint8_t { Unchanged, Reloaded, Failed };
 
+    /// `registry` (borrowed; null: PassRegistry::withBuiltins()) parses the reloaded graph,
+    /// e.g. `PassLibrary::registry()` when the renderer runs pass implementations.
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, CompileOptions options,
-                std::filesystem::path shaderDir = {});
+                std::filesystem::path shaderDir = {}, const PassRegistry* registry = nullptr);
 
     /// Checks the watched files (by content) and reloads what changed. Cheap when nothing did.
     Result poll();
@@ -186,6 +209,7 @@ private:
     std::filesystem::path graphFile_;
     CompileOptions options_;
     std::filesystem::path shaderDir_;
+    const PassRegistry* registry_ = nullptr;
     size_t graphHash_ = 0;
     size_t shaderHash_ = 0;
     std::string lastError_;

@@ -352,3 +352,27 @@ TEST_F(ExecutorTest, PersistentBufferCrossFrameReadInAnotherStage) {
 
 }  // namespace
 }  // namespace skygraph::test
+
+namespace skygraph::test {
+namespace {
+
+// An external buffer the graph writes without exporting it: each frame slot gets its own
+// copy, so frames in flight never race on it.
+TEST_F(ExecutorTest, UnexportedExternalWrittenEveryFrame) {
+    const auto c = compileText(
+        R"({ "version": 1, "name": "t", "resources": {
+          "scratch": { "type": "buffer", "size": 256, "external": true },
+          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                         "external": true, "final": "Present" } },
+          "passes": [
+            { "name": "cs", "type": "Generic", "uses": { "scratch": "Write@Transfer" },
+              "params": { "color": [0.5, 0, 0, 0] } },
+            { "name": "fs", "type": "Generic",
+              "uses": { "scratch": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+              "params": { "color": [0, 0, 0, 0] } } ] })");
+    const ImageData img = render(c, 4);
+    EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.5, 0.5, 0.5);
+}
+
+}  // namespace
+}  // namespace skygraph::test
