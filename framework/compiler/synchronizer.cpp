@@ -14,7 +14,10 @@ namespace {
 struct SubresourceState {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkPipelineStageFlags2 writeStages = 0;    ///< Stages of the last write (or the outside).
-    VkAccessFlags2 unavailableWrites = 0;     ///< Write accesses not yet made available.
+    /// Write accesses of that write. A barrier whose source is `writeStages` always repeats
+    /// them: an earlier availability operation only counts for barriers that chain after the
+    /// barrier that performed it (through its destination stages), which this one may not.
+    VkAccessFlags2 writeAccess = 0;
     VkPipelineStageFlags2 readStages = 0;     ///< Reads since the last write: WAR sources.
     VkPipelineStageFlags2 visibleStages = 0;  ///< Scope the last write is visible to.
     VkAccessFlags2 visibleAccess = 0;
@@ -52,7 +55,10 @@ public:
         plan_.graph = graph_.name;
         buildSteps(schedule);
         collectAccesses();
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) groupReadRuns(r);
+        for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
+            groupReadRuns(r);
+            computeRunScopes(r);
+        }
         initState();
         for (uint32_t s = 0; s < plan_.passes.size(); ++s) {
             for (uint32_t u = 0; u < plan_.passes[s].usages.size(); ++u) applyAccess(s, u);
@@ -109,26 +115,39 @@ private:
     // A `clear` resource is cleared by its first use: through the load op when that use is an
     // attachment covering the whole resource, otherwise by a Clear pass inserted before it.
     void placeClears() {
+        constexpr uint32_t kNone = ~0u;
+        std::vector<std::pair<uint32_t, uint32_t>> first(plan_.resources.size(), {kNone, 0});
+        for (uint32_t s = 0; s < plan_.passes.size(); ++s)
+            for (uint32_t u = 0; u < plan_.passes[s].usages.size(); ++u) {
+                auto& f = first[plan_.passes[s].usages[u].resource];
+                if (f.first == kNone) f = {s, u};
+            }
+        std::vector<std::vector<uint32_t>> clearsBefore(plan_.passes.size());
+        bool inserts = false;
         for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
-            if (!decl(r).clear) continue;
-            for (uint32_t s = 0; s < plan_.passes.size(); ++s) {
-                auto& usages = plan_.passes[s].usages;
-                auto it = std::find_if(usages.begin(), usages.end(),
-                                       [&](const PlannedUsage& u) { return u.resource == r; });
-                if (it == usages.end()) continue;
-                if (isAttachmentStage(it->usage.stage) && it->range == grids_[r].whole()) {
-                    it->load = LoadOp::Clear;
-                } else {
-                    PlannedUsage clear;
-                    clear.resource = r;
-                    clear.usage = {Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
-                    clear.range = grids_[r].whole();
-                    PlannedPass step{"clear " + decl(r).name, "Clear", -1, {}, {clear}};
-                    plan_.passes.insert(plan_.passes.begin() + s, std::move(step));
-                }
-                break;
+            if (!decl(r).clear || first[r].first == kNone) continue;
+            auto& use = plan_.passes[first[r].first].usages[first[r].second];
+            if (isAttachmentStage(use.usage.stage) && use.range == grids_[r].whole()) {
+                use.load = LoadOp::Clear;
+            } else {
+                clearsBefore[first[r].first].push_back(r);
+                inserts = true;
             }
         }
+        if (!inserts) return;
+        std::vector<PlannedPass> steps;
+        steps.reserve(plan_.passes.size() + plan_.resources.size());
+        for (uint32_t s = 0; s < plan_.passes.size(); ++s) {
+            for (uint32_t r : clearsBefore[s]) {
+                PlannedUsage clear;
+                clear.resource = r;
+                clear.usage = {Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
+                clear.range = grids_[r].whole();
+                steps.push_back(PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {clear}});
+            }
+            steps.push_back(std::move(plan_.passes[s]));
+        }
+        plan_.passes = std::move(steps);
     }
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
@@ -194,23 +213,34 @@ private:
         }
     }
 
-    /// Scope that a barrier before read access `i` must make visible on subresource `sub`:
-    /// every read of the same run from `i` on that touches `sub`.
-    VulkanScope runScopeFrom(uint32_t r, uint32_t i, size_t sub) const {
-        VulkanScope scope;
+    /// For every read access and subresource it touches: the union of the scopes of the reads
+    /// of that subresource from this one up to the next write. All of them belong to one run
+    /// (rule 4 in docs/barriers.md), so this is what a barrier before this read makes visible.
+    /// One backward sweep per resource; `runScopeOffset_` indexes the flattened result.
+    void computeRunScopes(uint32_t r) {
         const auto& list = accesses_[r];
-        const uint32_t root = runRoot_[r][i];
-        for (uint32_t j = i; j < list.size(); ++j) {
-            const auto& pu = usageOf(list[j]);
-            const auto mip = static_cast<uint32_t>(sub / grids_[r].layers);
-            const auto layer = static_cast<uint32_t>(sub % grids_[r].layers);
-            if (!pu.range.overlaps({mip, 1, layer, 1})) continue;
-            if (writes(pu)) break;
-            if (runRoot_[r][j] != root) continue;
-            scope.stages |= pu.stages;
-            scope.access |= pu.access;
+        auto& offsets = runScopeOffset_.emplace_back(list.size() + 1, 0);
+        for (uint32_t i = 0; i < list.size(); ++i) {
+            const auto& range = usageOf(list[i]).range;
+            offsets[i + 1] = offsets[i] + size_t(range.mipCount) * range.layerCount;
         }
-        return scope;
+        auto& scopes = runScope_.emplace_back(offsets.back());
+        std::vector<VulkanScope> pending(grids_[r].size());
+        for (uint32_t i = static_cast<uint32_t>(list.size()); i-- > 0;) {
+            const auto& pu = usageOf(list[i]);
+            const bool isWrite = writes(pu);
+            size_t k = offsets[i];
+            grids_[r].forEach(pu.range, [&](size_t sub) {
+                if (isWrite) {
+                    pending[sub] = {};
+                } else {
+                    pending[sub].stages |= pu.stages;
+                    pending[sub].access |= pu.access;
+                    scopes[k] = pending[sub];
+                }
+                ++k;
+            });
+        }
     }
 
     /// Whether a later access (or the export) reads what access `i` leaves in `range`.
@@ -288,7 +318,7 @@ private:
                 needed = true;
             } else if (st.writeStages && !(st.fromOutside && covers(st.visibleStages, st.visibleAccess, need))) {
                 b.srcStages = st.writeStages;  // WAW: memory dependency
-                b.srcAccess = st.unavailableWrites;
+                b.srcAccess = st.writeAccess;
                 needed = true;
             } else if (layoutChange && st.fromOutside) {
                 b.srcStages = st.writeStages;
@@ -296,13 +326,14 @@ private:
         } else {
             const bool visible = covers(st.visibleStages, st.visibleAccess, need);
             if (layoutChange) {
-                // The transition writes, so it waits for earlier reads (WAR); those reads
-                // already chain after the last write, so they alone are the source then.
+                // The transition writes, so it waits for earlier reads (WAR). Those reads chain
+                // after the barrier that made the last write available, so they alone are the
+                // source then; without reads, the write is (RAW, a memory dependency).
                 b.srcStages = st.readStages ? st.readStages : st.writeStages;
-                b.srcAccess = st.unavailableWrites;
+                b.srcAccess = st.readStages ? 0 : st.writeAccess;
             } else if (!visible && (st.writeStages || st.fromOutside)) {
                 b.srcStages = st.writeStages;  // RAW: memory dependency
-                b.srcAccess = st.unavailableWrites;
+                b.srcAccess = st.writeAccess;
                 needed = true;
             }
             if (needed) {
@@ -313,7 +344,6 @@ private:
         if (needed && b.srcStages == 0 && st.fromOutside) b.srcStages = b.dstStages;
         if (!needed) return std::nullopt;
         // What the barrier achieved.
-        st.unavailableWrites = 0;
         st.layout = target;
         st.fromOutside = st.fromOutside && !write;
         if (!write) {
@@ -333,22 +363,39 @@ private:
         const bool write = writesContents(eff.access);
         const VulkanScope need{pu.stages, pu.access, pu.layout};
 
-        std::vector<std::optional<Barrier>> perSub(grids_[r].size());
-        grids_[r].forEach(pu.range, [&](size_t sub) {
-            SubresourceState& st = state_[r][sub];
-            const VulkanScope after = write ? need : runScopeFrom(r, i, sub);
-            perSub[sub] = barrierFor(st, need, isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED,
-                                     write, eff.access == Access::Write, after);
+        const VkImageLayout target = isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+        auto update = [&](SubresourceState& st) {
             if (write) {
                 st = SubresourceState{};
-                st.layout = isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+                st.layout = target;
                 st.writeStages = pu.stages;
-                st.unavailableWrites = writeBits(pu.access);
+                st.writeAccess = writeBits(pu.access);
             } else {
                 st.readStages |= pu.stages;
             }
-        });
-        emitMerged(r, pu.range, perSub, plan_.passes[s].barriers);
+        };
+        const VulkanScope* runScopes = runScope_[r].data() + runScopeOffset_[r][i];
+        if (grids_[r].size() == 1) {  // the common case: no per-subresource bookkeeping
+            auto b = barrierFor(state_[r][0], need, target, write, eff.access == Access::Write,
+                                write ? need : runScopes[0]);
+            update(state_[r][0]);
+            if (b) {
+                b->resource = r;
+                b->kind = isImage ? BarrierKind::Image : BarrierKind::Buffer;
+                b->range = grids_[r].whole();
+                plan_.passes[s].barriers.push_back(*b);
+            }
+        } else {
+            scratch_.assign(grids_[r].size(), std::nullopt);
+            size_t k = 0;
+            grids_[r].forEach(pu.range, [&](size_t sub) {
+                SubresourceState& st = state_[r][sub];
+                scratch_[sub] = barrierFor(st, need, target, write, eff.access == Access::Write,
+                                           write ? need : runScopes[k++]);
+                update(st);
+            });
+            emitMerged(r, pu.range, scratch_, plan_.passes[s].barriers);
+        }
 
         if (isAttachmentStage(pu.usage.stage)) {
             if (pu.load != LoadOp::Clear)
@@ -441,9 +488,14 @@ private:
             res.finalLayout = state_[r].empty() ? VK_IMAGE_LAYOUT_UNDEFINED : state_[r][0].layout;
             if (!d.isExported()) continue;
             const VulkanScope scope = boundaryScope(r, replaced(d.final));
-            // A persistent resource's next user may write (accumulation): then the final
-            // barrier must also wait for this frame's readers, exactly as a write would.
-            const bool nextUseWrites = writeBits(scope.access) != 0;
+            // A persistent resource's next frame repeats this one. If it writes anywhere, the
+            // final barrier must order every access of this frame, readers included, before
+            // the next frame's first use, exactly as a write would: later passes of the next
+            // frame chain through that first use and never name this frame's stages.
+            const bool persistent = d.external && replaced(d.final) == replaced(d.initial);
+            bool framesWrite = false;
+            for (const auto& a : accesses_[r]) framesWrite |= writes(usageOf(a));
+            const bool nextUseWrites = writeBits(scope.access) != 0 || (persistent && framesWrite);
             std::vector<std::optional<Barrier>> perSub(grids_[r].size());
             grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
                 perSub[sub] = barrierFor(state_[r][sub], scope,
@@ -464,6 +516,9 @@ private:
     std::vector<std::vector<VkImageLayout>> runLayout_;     // per resource, by run root
     std::vector<std::vector<uint32_t>> runRoot_;            // per resource, per access
     std::vector<std::vector<SubresourceState>> state_;      // per resource, per subresource
+    std::vector<std::vector<size_t>> runScopeOffset_;       // per resource, per access (+1)
+    std::vector<std::vector<VulkanScope>> runScope_;        // per resource, flattened
+    std::vector<std::optional<Barrier>> scratch_;           // per-subresource barriers
 };
 
 }  // namespace
