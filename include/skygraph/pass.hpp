@@ -1,0 +1,130 @@
+// Recording code for pass types: the executor-side half of a pass type, whose other half
+// (slots, params) is the PassTypeInfo the compiler reads. Users add their own passes with
+// the same two halves and register both through PassLibrary.
+#pragma once
+
+#include <skygraph/graph.hpp>
+#include <skygraph/pass_registry.hpp>
+#include <skygraph/plan.hpp>
+
+#include <vulkan/vulkan_core.h>
+
+#include <any>
+#include <functional>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <typeindex>
+#include <unordered_map>
+#include <vector>
+
+namespace skygraph {
+
+class ShaderCompiler;
+
+/// Values the application hands to passes for one frame (a camera, an exposure, a scene...),
+/// stored by type. The renderer owns it; passes read it while recording.
+class FrameData {
+public:
+    /// Stores (replaces) the value of type T.
+    template <typename T>
+    void set(T value) {
+        values_[std::type_index(typeid(T))] = std::move(value);
+    }
+    /// The value of type T, or nullptr when none was set.
+    template <typename T>
+    [[nodiscard]] const T* get() const {
+        auto it = values_.find(std::type_index(typeid(T)));
+        return it == values_.end() ? nullptr : std::any_cast<T>(&it->second);
+    }
+
+private:
+    std::unordered_map<std::type_index, std::any> values_;
+};
+
+/// One resource as a pass sees it through one of its usages.
+struct BoundResource {
+    const PlannedUsage* usage = nullptr;
+    const ResourceDesc* desc = nullptr;
+    VkImage image = VK_NULL_HANDLE;
+    /// A view of exactly the usage's mips and layers (cube views for whole cubes that are
+    /// sampled; 2D-array views for storage access to cube faces).
+    VkImageView view = VK_NULL_HANDLE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent{0, 0};  ///< Of the usage's base mip.
+};
+
+/// What a pass may use while creating pipelines. Valid only during the call.
+struct PipelineContext {
+    VkDevice device = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    /// For graphics passes: the render pass the executor will begin around `record`, with one
+    /// subpass whose colour attachments are the pass's ColorAttachment usages in usage order
+    /// and whose depth attachment is its DepthAttachment usage. VK_NULL_HANDLE for others.
+    VkRenderPass renderPass = VK_NULL_HANDLE;
+    const PlannedPass* pass = nullptr;
+    const PassDesc* desc = nullptr;
+    std::span<const BoundResource> resources;  ///< Parallel to pass->usages (frame slot 0).
+    ShaderCompiler* shaders = nullptr;
+};
+
+/// What a pass may use while recording. Valid only during the call.
+struct RecordContext {
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    const PlannedPass* pass = nullptr;
+    const PassDesc* desc = nullptr;
+    std::span<const BoundResource> resources;  ///< Parallel to pass->usages.
+    VkExtent2D renderArea{0, 0};  ///< Graphics passes: the framebuffer's extent.
+    VkSampler linearSampler = VK_NULL_HANDLE;  ///< Trilinear, clamp to edge.
+    VkSampler repeatSampler = VK_NULL_HANDLE;  ///< Trilinear, repeat in U, clamp in V (equirect).
+    const FrameData* frame = nullptr;
+    uint64_t frameIndex = 0;
+
+    /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which.
+    [[nodiscard]] const BoundResource* slot(std::string_view name, size_t nth = 0) const;
+};
+
+/// The recording code of one pass instance. Created once per pass of a plan; not copyable.
+class PassImplementation {
+public:
+    PassImplementation() = default;
+    virtual ~PassImplementation() = default;
+    PassImplementation(const PassImplementation&) = delete;
+    PassImplementation& operator=(const PassImplementation&) = delete;
+
+    /// Builds pipelines. Called when the plan is installed and again on shader hot reload;
+    /// throwing keeps the previous pipelines of every pass running (the seed's pattern).
+    virtual void createPipelines(const PipelineContext& context) = 0;
+
+    /// Records the pass's work. The executor has already recorded the plan's barrier batch
+    /// and, for graphics passes, begun the render pass; it ends it afterwards.
+    virtual void record(const RecordContext& context) = 0;
+};
+
+using PassFactory = std::function<std::unique_ptr<PassImplementation>(const PassDesc&)>;
+
+/// Pass types with both halves: the declaration the compiler checks graphs against, and the
+/// factory the executor records with. Copyable; owns its entries.
+class PassLibrary {
+public:
+    /// Generic, Clear and the built-in passes of the seed documents.
+    [[nodiscard]] static PassLibrary withBuiltins();
+
+    /// Registers a pass type. Throws std::invalid_argument when the name is taken.
+    void add(PassTypeInfo info, PassFactory factory);
+
+    /// The declarations, for loadGraphFile / parseGraph.
+    [[nodiscard]] const PassRegistry& registry() const noexcept { return registry_; }
+    /// nullptr when the type has no recording code.
+    [[nodiscard]] const PassFactory* factory(std::string_view type) const;
+
+private:
+    PassRegistry registry_;
+    std::map<std::string, PassFactory, std::less<>> factories_;
+};
+
+}  // namespace skygraph
