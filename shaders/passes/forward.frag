@@ -13,7 +13,8 @@ layout(push_constant) uniform Draw {
     mat4 viewProjection;
     vec4 originAndScale;
     vec4 baseColorMetallic;
-    vec4 roughnessAoView;
+    vec4 planeNormalRoughness;
+    vec4 aoViewKind;
 } draw;
 
 #if FORWARD_IBL
@@ -32,12 +33,12 @@ void main() {
     if (dot(n, v) < 0.0) n = -n;  // planes are two-sided
     vec3 baseColor = draw.baseColorMetallic.rgb;
     float metallic = draw.baseColorMetallic.a;
-    float roughness = clamp(draw.roughnessAoView.x, 0.045, 1.0);
-    float ao = draw.roughnessAoView.y;
-    int view = int(draw.roughnessAoView.z);
+    float roughness = clamp(draw.planeNormalRoughness.w, 0.045, 1.0);
+    float ao = draw.aoViewKind.x;
+    int view = int(draw.aoViewKind.y + 0.5);
     if (view == 1) { outColor = vec4(n * 0.5 + 0.5, 1.0); return; }
     if (view == 2) { outColor = vec4(vec3(metallic), 1.0); return; }
-    if (view == 3) { outColor = vec4(vec3(draw.roughnessAoView.x), 1.0); return; }
+    if (view == 3) { outColor = vec4(vec3(draw.planeNormalRoughness.w), 1.0); return; }
     if (view == 4) { outColor = vec4(vec3(ao), 1.0); return; }
 
     float alpha = roughness * roughness;

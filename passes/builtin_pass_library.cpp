@@ -1,0 +1,21 @@
+// PassLibrary::withBuiltins(): the built-in declarations paired with their recording code.
+// Types without recording code here (the environment pipeline, the path tracer) run as
+// Generic, performing exactly their declared accesses, until their passes land.
+#include "builtin_passes.hpp"
+
+namespace skygraph {
+
+PassLibrary PassLibrary::withBuiltins() {
+    const PassRegistry declarations = PassRegistry::withBuiltins();
+    const std::pair<const char*, PassFactory> factories[] = {
+        {"TonemappingPass", passes::makeTonemappingPass},
+        {"SkyboxPass", passes::makeSkyboxPass},
+        {"ForwardPass", passes::makeForwardPass},
+    };
+    PassLibrary library;
+    library.registry_ = declarations;
+    for (const auto& [type, make] : factories) library.factories_.emplace(type, make);
+    return library;
+}
+
+}  // namespace skygraph

@@ -1,0 +1,196 @@
+// ForwardPass: the scene's spheres and planes, metal/rough GGX, into hdr_color and a
+// reverse-Z depth buffer (GREATER test, cleared to 0 by the graph).
+#include "builtin_passes.hpp"
+#include "pipeline_util.hpp"
+#include "scene_camera.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+
+namespace skygraph::passes {
+namespace {
+
+struct Vertex {
+    float position[3];
+    float normal[3];
+};
+
+/// A unit UV sphere followed by a unit square in the XZ plane (normal +Y).
+struct Meshes {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    uint32_t sphereIndexCount = 0, planeFirstIndex = 0, planeIndexCount = 0;
+};
+
+Meshes buildMeshes() {
+    constexpr uint32_t kSlices = 64, kStacks = 32;
+    Meshes m;
+    for (uint32_t i = 0; i <= kStacks; ++i) {
+        const double theta = math::kPi<double> * i / kStacks;
+        for (uint32_t j = 0; j <= kSlices; ++j) {
+            const double phi = 2.0 * math::kPi<double> * j / kSlices;
+            const float x = float(std::sin(theta) * std::cos(phi)), y = float(std::cos(theta)),
+                        z = float(std::sin(theta) * std::sin(phi));
+            m.vertices.push_back({{x, y, z}, {x, y, z}});
+        }
+    }
+    for (uint32_t i = 0; i < kStacks; ++i)
+        for (uint32_t j = 0; j < kSlices; ++j) {
+            const uint32_t a = i * (kSlices + 1) + j, b = a + kSlices + 1;
+            m.indices.insert(m.indices.end(), {a, a + 1, b, a + 1, b + 1, b});
+        }
+    m.sphereIndexCount = static_cast<uint32_t>(m.indices.size());
+    m.planeFirstIndex = m.sphereIndexCount;
+    const auto base = static_cast<uint32_t>(m.vertices.size());
+    for (float x : {-1.0f, 1.0f})
+        for (float z : {-1.0f, 1.0f}) m.vertices.push_back({{x, 0, z}, {0, 1, 0}});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base + 1, base + 3, base + 2});
+    m.planeIndexCount = 6;
+    return m;
+}
+
+int debugViewIndex(DebugView v) {
+    switch (v) {
+        case DebugView::None: return 0;
+        case DebugView::Normal: return 1;
+        case DebugView::Metallic: return 2;
+        case DebugView::Roughness: return 3;
+        case DebugView::Ao: return 4;
+    }
+    return 0;
+}
+
+/// Half size used for planes without a half extent: far beyond anything the scene shows, and
+/// centred under the camera, so the plane reads as infinite.
+constexpr double kInfinitePlaneHalfSize = 1e5;
+
+class ForwardPass final : public PassImplementation {
+public:
+    explicit ForwardPass(const PassDesc&) {}
+
+    void createPipelines(const PipelineContext& ctx) override {
+        GraphicsPipelineRecipe recipe;
+        recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/forward.vert");
+        recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/forward.frag");
+        recipe.renderPass = ctx.renderPass;
+        recipe.depthTest = true;
+        recipe.depthWrite = true;
+        recipe.depthCompare = VK_COMPARE_OP_GREATER;  // reverse-Z: nearer is larger
+        recipe.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+        recipe.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+                                   {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+        recipe.pushConstantBytes = sizeof(Push);
+        GraphicsPipeline pipeline = createGraphicsPipeline(ctx.device, recipe);
+        if (!vertexBuffer_) createMeshBuffer(ctx);
+        pipeline_ = std::move(pipeline);
+    }
+
+    void record(const RecordContext& ctx) override {
+        const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
+        if (!scene) return;  // nothing to draw; the render pass still clears
+        const CameraView view = cameraView(scene, ctx.renderArea);
+        // Camera at the origin: only the rotation enters the matrix.
+        const math::Mat4<double> viewProj =
+            math::reverseZInfiniteProjection(view.fovYDeg, view.aspect, view.nearPlane) *
+            math::viewMatrix(math::Vec3<double>(0.0), view.cameraToWorld);
+
+        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
+        setViewportAndScissor(ctx.cmd, ctx.renderArea);
+        const VkDeviceSize offset = 0;
+        const VkBuffer vb = vertexBuffer_.get();
+        vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(ctx.cmd, indexBuffer_.get(), 0, VK_INDEX_TYPE_UINT32);
+        for (const SceneObject& object : scene->objects) {
+            Push push{};
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r) push.viewProjection[c][r] = float(viewProj[c][r]);
+            const auto& mat = object.material;
+            for (int i = 0; i < 3; ++i) push.baseColorMetallic[i] = float(mat.baseColor[i]);
+            push.baseColorMetallic[3] = float(mat.metallic);
+            push.planeNormalRoughness[3] = float(mat.roughness);
+            push.aoViewKind[0] = float(mat.ao);
+            push.aoViewKind[1] = float(debugViewIndex(scene->debugView));
+            uint32_t first = 0, count = meshes_.sphereIndexCount;
+            if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
+                for (int i = 0; i < 3; ++i) push.originAndScale[i] = float(sphere->center[i] - view.position[i]);
+                push.originAndScale[3] = float(sphere->radius);
+            } else {
+                const auto& plane = std::get<Plane>(object.shape);
+                const math::Vec3<double> n(plane.normal[0], plane.normal[1], plane.normal[2]);
+                const math::Vec3<double> p(plane.point[0], plane.point[1], plane.point[2]);
+                // Bounded planes sit on their point; infinite ones under the camera.
+                const math::Vec3<double> origin =
+                    plane.halfExtent ? p - view.position : -n * glm::dot(view.position - p, n);
+                for (int i = 0; i < 3; ++i) {
+                    push.originAndScale[i] = float(origin[i]);
+                    push.planeNormalRoughness[i] = float(n[i]);
+                }
+                push.originAndScale[3] = float(plane.halfExtent.value_or(kInfinitePlaneHalfSize));
+                push.aoViewKind[2] = 1.0f;
+                first = meshes_.planeFirstIndex;
+                count = meshes_.planeIndexCount;
+            }
+            vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(),
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
+            vkCmdDrawIndexed(ctx.cmd, count, 1, first, 0, 0);
+        }
+    }
+
+private:
+    struct Push {  // matches `Draw` in shaders/passes/forward.{vert,frag}
+        float viewProjection[4][4];
+        float originAndScale[4];
+        float baseColorMetallic[4];
+        float planeNormalRoughness[4];
+        float aoViewKind[4];
+    };
+    static_assert(sizeof(Push) == 128, "the push constant budget every device guarantees");
+
+    // Static geometry in host-visible memory: written once, before any frame reads it.
+    void createMeshBuffer(const PipelineContext& ctx) {
+        meshes_ = buildMeshes();
+        auto make = [&](VkDeviceSize size, VkBufferUsageFlags usage, vk::Buffer& buffer, vk::Memory& memory,
+                        const void* data) {
+            VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+            bi.size = size;
+            bi.usage = usage;
+            VkBuffer b;
+            vk::check(vkCreateBuffer(ctx.device, &bi, nullptr, &b), "vkCreateBuffer");
+            buffer = vk::Buffer(ctx.device, b);
+            VkMemoryRequirements req;
+            vkGetBufferMemoryRequirements(ctx.device, b, &req);
+            VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+            ai.allocationSize = req.size;
+            ai.memoryTypeIndex = vk::findMemoryType(ctx.physicalDevice, req.memoryTypeBits,
+                                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                        VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+            VkDeviceMemory mem;
+            vk::check(vkAllocateMemory(ctx.device, &ai, nullptr, &mem), "vkAllocateMemory");
+            memory = vk::Memory(ctx.device, mem);
+            vk::check(vkBindBufferMemory(ctx.device, b, mem, 0), "vkBindBufferMemory");
+            void* mapped;
+            vk::check(vkMapMemory(ctx.device, mem, 0, size, 0, &mapped), "vkMapMemory");
+            std::memcpy(mapped, data, size);
+            vkUnmapMemory(ctx.device, mem);
+        };
+        make(meshes_.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertexBuffer_,
+             vertexMemory_, meshes_.vertices.data());
+        make(meshes_.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, indexBuffer_,
+             indexMemory_, meshes_.indices.data());
+    }
+
+    Meshes meshes_;
+    vk::Memory vertexMemory_, indexMemory_;
+    vk::Buffer vertexBuffer_, indexBuffer_;
+    GraphicsPipeline pipeline_;
+};
+
+}  // namespace
+
+std::unique_ptr<PassImplementation> makeForwardPass(const PassDesc& desc) {
+    return std::make_unique<ForwardPass>(desc);
+}
+
+}  // namespace skygraph::passes

@@ -1,0 +1,141 @@
+#include "pipeline_util.hpp"
+
+#include <array>
+#include <fstream>
+#include <sstream>
+
+namespace skygraph::passes {
+
+std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagBits stage,
+                                    const std::string& relativePath,
+                                    const std::vector<std::pair<std::string, std::string>>& defines) {
+    if (defines.empty()) return compiler.compileFile(stage, relativePath);
+    const auto path = compiler.includeDir() / relativePath;
+    std::ifstream in(path);
+    if (!in) throw ExecutorError("cannot read shader " + path.string());
+    std::ostringstream out;
+    std::string line;
+    bool inserted = false;
+    while (std::getline(in, line)) {
+        if (!inserted && !line.starts_with("#version") && !line.starts_with("#extension")) {
+            for (const auto& [name, value] : defines) out << "#define " << name << " " << value << "\n";
+            inserted = true;
+        }
+        out << line << "\n";
+    }
+    std::string name = relativePath;
+    for (const auto& [n, v] : defines) name += " " + n + "=" + v;
+    return compiler.compile(stage, out.str(), name);
+}
+
+GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineRecipe& recipe) {
+    GraphicsPipeline out;
+    VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    sli.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+    sli.bindingCount = static_cast<uint32_t>(recipe.bindings.size());
+    sli.pBindings = recipe.bindings.data();
+    VkDescriptorSetLayout setLayout;
+    vk::check(vkCreateDescriptorSetLayout(device, &sli, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
+    out.setLayout = vk::SetLayout(device, setLayout);
+
+    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                              recipe.pushConstantBytes};
+    VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pli.setLayoutCount = 1;
+    pli.pSetLayouts = &setLayout;
+    pli.pushConstantRangeCount = recipe.pushConstantBytes ? 1 : 0;
+    pli.pPushConstantRanges = &range;
+    VkPipelineLayout layout;
+    vk::check(vkCreatePipelineLayout(device, &pli, nullptr, &layout), "vkCreatePipelineLayout");
+    out.layout = vk::PipelineLayout(device, layout);
+
+    auto module = [&](const std::vector<uint32_t>& code) {
+        VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        mi.codeSize = code.size() * 4;
+        mi.pCode = code.data();
+        VkShaderModule m;
+        vk::check(vkCreateShaderModule(device, &mi, nullptr, &m), "vkCreateShaderModule");
+        return vk::ShaderModule(device, m);
+    };
+    const vk::ShaderModule vs = module(recipe.vertex), fs = module(recipe.fragment);
+    std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
+    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                 VK_SHADER_STAGE_VERTEX_BIT, vs.get(), "main", nullptr};
+    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                 VK_SHADER_STAGE_FRAGMENT_BIT, fs.get(), "main", nullptr};
+
+    VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    vi.vertexBindingDescriptionCount = static_cast<uint32_t>(recipe.vertexBindings.size());
+    vi.pVertexBindingDescriptions = recipe.vertexBindings.data();
+    vi.vertexAttributeDescriptionCount = static_cast<uint32_t>(recipe.vertexAttributes.size());
+    vi.pVertexAttributeDescriptions = recipe.vertexAttributes.data();
+    VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    vp.viewportCount = 1;
+    vp.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    rs.polygonMode = VK_POLYGON_MODE_FILL;
+    rs.cullMode = recipe.cullMode;
+    rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    rs.lineWidth = 1.0f;
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    ds.depthTestEnable = recipe.depthTest;
+    ds.depthWriteEnable = recipe.depthWrite;
+    ds.depthCompareOp = recipe.depthCompare;
+    std::vector<VkPipelineColorBlendAttachmentState> blends(recipe.colorAttachments);
+    for (auto& b : blends) b.colorWriteMask = 0xf;
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = recipe.colorAttachments;
+    cb.pAttachments = blends.data();
+    const std::array<VkDynamicState, 2> dynamics{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dyn.dynamicStateCount = static_cast<uint32_t>(dynamics.size());
+    dyn.pDynamicStates = dynamics.data();
+
+    VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    gi.stageCount = 2;
+    gi.pStages = stages.data();
+    gi.pVertexInputState = &vi;
+    gi.pInputAssemblyState = &ia;
+    gi.pViewportState = &vp;
+    gi.pRasterizationState = &rs;
+    gi.pMultisampleState = &ms;
+    gi.pDepthStencilState = &ds;
+    gi.pColorBlendState = &cb;
+    gi.pDynamicState = &dyn;
+    gi.layout = layout;
+    gi.renderPass = recipe.renderPass;
+    VkPipeline pipeline;
+    vk::check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gi, nullptr, &pipeline),
+              "vkCreateGraphicsPipelines");
+    out.pipeline = vk::Pipeline(device, pipeline);
+    return out;
+}
+
+void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent) {
+    const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
+    const VkRect2D scissor{{0, 0}, extent};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+PFN_vkCmdPushDescriptorSetKHR pushDescriptorFunction(VkDevice device) {
+    auto fn = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
+        vkGetDeviceProcAddr(device, "vkCmdPushDescriptorSetKHR"));
+    if (!fn) throw ExecutorError("VK_KHR_push_descriptor is not enabled on this device");
+    return fn;
+}
+
+VkWriteDescriptorSet sampledImageWrite(uint32_t binding, const VkDescriptorImageInfo* info) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstBinding = binding;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    w.pImageInfo = info;
+    return w;
+}
+
+}  // namespace skygraph::passes

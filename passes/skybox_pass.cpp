@@ -1,0 +1,89 @@
+// SkyboxPass: the seed's design (fullscreen triangle at the reverse-Z far plane, depth test
+// GREATER_OR_EQUAL without writes, LOAD of the HDR target) with the two departures the issue
+// asks for: rays from the camera rotation alone, and cubemap or direct equirect sampling.
+#include "builtin_passes.hpp"
+#include "pipeline_util.hpp"
+#include "scene_camera.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace skygraph::passes {
+namespace {
+
+class SkyboxPass final : public PassImplementation {
+public:
+    explicit SkyboxPass(const PassDesc& desc) : rotationDeg_(desc.params.value("rotation_deg", 0.0)) {}
+
+    void createPipelines(const PipelineContext& ctx) override {
+        const BoundResource* env = nullptr;
+        for (const auto& r : ctx.resources)
+            if (r.usage && r.usage->slot == "environment") env = &r;
+        // Which texture, if any, decides the pipeline: each mode binds only what it samples.
+        const int mode = !env ? 0 : env->desc->type == ResourceType::Cube ? 1 : 2;
+        GraphicsPipelineRecipe recipe;
+        recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/skybox.vert");
+        recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/skybox.frag",
+                                        {{"SKY_MODE", std::to_string(mode)}});
+        recipe.renderPass = ctx.renderPass;
+        recipe.depthTest = true;
+        recipe.depthWrite = false;
+        recipe.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
+        if (mode != 0)
+            recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+        recipe.pushConstantBytes = sizeof(Push);
+        pipeline_ = createGraphicsPipeline(ctx.device, recipe);
+        pushDescriptors_ = pushDescriptorFunction(ctx.device);
+        mode_ = mode;
+    }
+
+    void record(const RecordContext& ctx) override {
+        const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
+        const CameraView view = cameraView(scene, ctx.renderArea);
+        const double rotation = math::radians(
+            scene && scene->environment ? scene->environment->rotationDeg : rotationDeg_);
+        const double tanHalf = std::tan(math::radians(view.fovYDeg) / 2.0);
+        Push push{};
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r) push.cameraToWorld[c][r] = float(view.cameraToWorld[c][r]);
+        push.projection[0] = float(view.aspect * tanHalf);
+        push.projection[1] = float(tanHalf);
+        push.projection[2] = float(std::sin(rotation));
+        push.projection[3] = float(std::cos(rotation));
+        push.mode[0] = mode_;
+        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
+        if (mode_ != 0) {
+            const BoundResource* env = ctx.slot("environment");
+            push.environment[0] = float(env->extent.height);
+            const VkDescriptorImageInfo image{mode_ == 2 ? ctx.repeatSampler : ctx.linearSampler, env->view,
+                                              env->usage->layout};
+            const VkWriteDescriptorSet write = sampledImageWrite(0, &image);
+            pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), 0, 1, &write);
+        }
+        vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                           0, sizeof(push), &push);
+        setViewportAndScissor(ctx.cmd, ctx.renderArea);
+        vkCmdDraw(ctx.cmd, 3, 1, 0, 0);
+    }
+
+private:
+    struct Push {  // matches `Sky` in shaders/passes/skybox.{vert,frag}
+        float cameraToWorld[3][4];
+        float projection[4];
+        int32_t mode[4];
+        float environment[4];
+    };
+    double rotationDeg_;
+    int mode_ = 0;
+    GraphicsPipeline pipeline_;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<PassImplementation> makeSkyboxPass(const PassDesc& desc) {
+    return std::make_unique<SkyboxPass>(desc);
+}
+
+}  // namespace skygraph::passes
