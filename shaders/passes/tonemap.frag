@@ -12,6 +12,7 @@ layout(push_constant) uniform Params {
     int encodeSrgb;  // 1 when the output is UNORM and the shader must encode
 } params;
 
+layout(location = 0) in vec2 inUv;  // fullscreen.vert's; texelFetch needs whole pixels instead
 layout(location = 0) out vec4 outColor;
 
 void main() {

@@ -1,0 +1,115 @@
+// The seed's passes on lavapipe under synchronization validation, against the double-precision
+// reference in include/skygraph/shading_math.hpp.
+#include "executor_test_util.hpp"
+
+#include <skygraph/pass.hpp>
+#include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
+
+#include <cmath>
+
+namespace skygraph::test {
+namespace {
+
+const std::filesystem::path kSource = SKYGRAPH_SOURCE_DIR;
+
+class SeedPasses : public ExecutorTest {
+protected:
+    /// Renders graphs/raster.json for `scene` with the built-in passes and returns the
+    /// swapchain target (B8G8R8A8_SRGB, read back as byte / 255).
+    ImageData renderRaster(const Scene& scene, uint32_t width, uint32_t height) {
+        const PassLibrary library = PassLibrary::withBuiltins();
+        const GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
+        CompileOptions options;
+        options.features = sceneFeatures(scene);
+        options.presentReplacement = ExternalState::TransferSrc;
+        options.outputWidth = width;
+        options.outputHeight = height;
+        RendererOptions ro;
+        ro.width = width;
+        ro.height = height;
+        ro.passes = &library;
+        Renderer renderer(sharedDevice(), graph, compile(graph, options), ro);
+        renderer.frameData().set(scene);
+        for (int i = 0; i < 3; ++i) renderer.renderFrame();
+        return renderer.readback();
+    }
+};
+
+Scene skyOnlyScene() {
+    Scene s;
+    s.environment = SceneEnvironment{};  // procedural
+    s.camera.position = {0.0, 1.0, 0.0};
+    s.camera.yawDeg = 20.0;
+    s.camera.pitchDeg = 10.0;
+    s.camera.fovYDeg = 70.0;
+    return s;
+}
+
+/// The expected 8-bit code of a pixel of the sky, computed in double.
+double expectedSkyCode(const Scene& scene, uint32_t x, uint32_t y, uint32_t w, uint32_t h, int channel) {
+    using namespace math;
+    const auto r = cameraRotation(scene.camera.yawDeg, scene.camera.pitchDeg, scene.camera.rollDeg);
+    const auto ndc = pixelToNdc<double>(x, y, w, h);
+    const auto dir = glm::normalize(viewRayFromNdc(ndc, r, scene.camera.fovYDeg, double(w) / h));
+    const auto rgb = tonemap(proceduralSky(dir), scene.exposureEv, ToneOperator::AcesNarkowicz);
+    return srgbEncode(rgb[channel]) * 255.0;
+}
+
+TEST_F(SeedPasses, SkyAndTonemappingMatchTheReferenceWithinOneCode) {
+    const Scene scene = skyOnlyScene();
+    const uint32_t w = 48, h = 32;
+    const ImageData image = renderRaster(scene, w, h);
+    ASSERT_EQ(image.width, w);
+    int worst = 0, compared = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            // The sun disc's edge is a step: a pixel whose centre is within a pixel of it may
+            // land on either side, so those are left out.
+            const auto r = math::cameraRotation(scene.camera.yawDeg, scene.camera.pitchDeg, 0.0);
+            const auto d = glm::normalize(math::viewRayFromNdc(math::pixelToNdc<double>(x, y, w, h), r,
+                                                               scene.camera.fovYDeg, double(w) / h));
+            const double toSun = std::acos(glm::dot(d, glm::normalize(glm::dvec3(0.35, 0.45, -0.82))));
+            if (std::abs(toSun - math::radians(0.6)) < math::radians(70.0 / h * 2)) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double got = image.pixel(x, y)[c] * 255.0;
+                const int diff = int(std::lround(std::abs(got - expectedSkyCode(scene, x, y, w, h, c))));
+                worst = std::max(worst, diff);
+                ++compared;
+            }
+        }
+    EXPECT_GT(compared, int(w * h * 3 * 9 / 10));
+    EXPECT_LE(worst, 1) << "8-bit codes";
+}
+
+TEST_F(SeedPasses, DefaultSceneDrawsObjectsInFrontOfTheSky) {
+    const Scene scene = loadSceneFile(kSource / "scenes/default.json");
+    ASSERT_FALSE(scene.objects.empty());
+    const ImageData withObjects = renderRaster(scene, 64, 48);
+    writePng(std::filesystem::temp_directory_path() / "skygraph-default-scene-64x48.png", withObjects);
+    Scene skyOnly = scene;
+    skyOnly.objects.clear();
+    const ImageData sky = renderRaster(skyOnly, 64, 48);
+    int differing = 0;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x)
+            if (std::abs(withObjects.pixel(x, y)[0] - sky.pixel(x, y)[0]) > 2.0f / 255) ++differing;
+    // The objects cover a good part of the frame, and the sky still shows somewhere.
+    EXPECT_GT(differing, 64 * 48 / 10);
+    EXPECT_LT(differing, 64 * 48);
+}
+
+TEST_F(SeedPasses, DebugViewsPassThroughInZeroToOne) {
+    Scene scene = loadSceneFile(kSource / "scenes/default.json");
+    scene.debugView = DebugView::Roughness;
+    const ImageData image = renderRaster(scene, 32, 24);
+    for (uint32_t y = 0; y < 24; ++y)
+        for (uint32_t x = 0; x < 32; ++x)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_GE(image.pixel(x, y)[c], 0.0f);
+                EXPECT_LE(image.pixel(x, y)[c], 1.0f);
+            }
+}
+
+}  // namespace
+}  // namespace skygraph::test
