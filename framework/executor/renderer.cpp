@@ -4,6 +4,13 @@
 #include "vk_util.hpp"
 
 #include <skygraph/executor.hpp>
+// Pass implementations (PassLibrary) compile in once skygraph/pass.hpp is in the tree.
+#if __has_include(<skygraph/pass.hpp>)
+#include <skygraph/pass.hpp>
+#define SKYGRAPH_HAS_PASS_LIBRARY 1
+#else
+#define SKYGRAPH_HAS_PASS_LIBRARY 0
+#endif
 
 #include <spdlog/spdlog.h>
 

@@ -5,13 +5,6 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
-// Pass implementations (PassLibrary) are optional until pass.hpp is in the tree.
-#if __has_include(<skygraph/pass.hpp>)
-#include <skygraph/pass.hpp>
-#define SKYGRAPH_HAS_PASS_LIBRARY 1
-#else
-#define SKYGRAPH_HAS_PASS_LIBRARY 0
-#endif
 #include <skygraph/plan.hpp>
 
 #include <vulkan/vulkan_core.h>
@@ -26,6 +19,9 @@
 #include <vector>
 
 namespace skygraph {
+
+class PassLibrary;  // skygraph/pass.hpp
+class FrameData;    // skygraph/pass.hpp
 
 /// Thrown for Vulkan failures and for plans or graphs the executor cannot run. The message
 /// names the pass and resource involved where there is one.
@@ -120,11 +116,9 @@ struct RendererOptions {
     std::string readback;
     /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
     std::filesystem::path shaderDir;
-#if SKYGRAPH_HAS_PASS_LIBRARY
     /// Recording code by pass type; borrowed, must outlive the renderer. Pass types without a
     /// factory (and Generic) run as Generic: they perform exactly their declared accesses.
     const PassLibrary* passes = nullptr;
-#endif
 };
 
 /// GPU time of one pass in the last completed frame of a slot.
@@ -164,10 +158,8 @@ public:
     /// (every layer) of the external image `resource`, now and whenever the plan is
     /// re-installed. Waits for the GPU. Throws ExecutorError for a wrong name, size or format.
     void setExternalImage(const std::string& resource, ImageData pixels);
-#if SKYGRAPH_HAS_PASS_LIBRARY
     /// Values handed to pass implementations while recording (camera, exposure, ...).
     [[nodiscard]] FrameData& frameData() noexcept;
-#endif
     /// The graph the current plan was compiled from.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame.
