@@ -1,5 +1,4 @@
 // PassLibrary and RecordContext: the executor-side plumbing of pass implementations.
-#if __has_include(<skygraph/pass.hpp>)
 #include <skygraph/pass.hpp>
 
 #include <stdexcept>
@@ -31,4 +30,3 @@ const BoundResource* RecordContext::slot(std::string_view name, size_t nth) cons
 }
 
 }  // namespace skygraph
-#endif  // __has_include(<skygraph/pass.hpp>)

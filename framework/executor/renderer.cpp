@@ -4,13 +4,7 @@
 #include "vk_util.hpp"
 
 #include <skygraph/executor.hpp>
-// Pass implementations (PassLibrary) compile in once skygraph/pass.hpp is in the tree.
-#if __has_include(<skygraph/pass.hpp>)
 #include <skygraph/pass.hpp>
-#define SKYGRAPH_HAS_PASS_LIBRARY 1
-#else
-#define SKYGRAPH_HAS_PASS_LIBRARY 0
-#endif
 
 #include <spdlog/spdlog.h>
 
@@ -134,19 +128,15 @@ struct PassSlot {
     VkBuffer indexBuffer = VK_NULL_HANDLE;
     VkBuffer indirectBuffer = VK_NULL_HANDLE;
     OwnedBuffer sink;  ///< Destination of Transfer reads.
-#if SKYGRAPH_HAS_PASS_LIBRARY
     std::vector<BoundResource> bound;  ///< Pass implementations: parallel to pass usages.
-#endif
 };
 
 struct PassState {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     bool isClear = false;
-#if SKYGRAPH_HAS_PASS_LIBRARY
     /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
     std::unique_ptr<PassImplementation> custom;
-#endif
     GenericProgram program;
     vk::RenderPass renderPass;
     std::vector<VkClearValue> clearValues;
@@ -198,9 +188,7 @@ struct Renderer::Impl {
     vk::Sampler sampler;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
-#if SKYGRAPH_HAS_PASS_LIBRARY
     FrameData frameData;
-#endif
     /// Pixels given to setExternalImage, by resource name; uploaded on every import.
     std::map<std::string, ImageData> uploads;
     bool layered = false;
@@ -286,7 +274,6 @@ struct Renderer::Impl {
         describeResources(*s);
         for (size_t i = 0; i < s->plan.passes.size(); ++i) buildPassStatic(*s, i);
         buildSized(*s);
-#if SKYGRAPH_HAS_PASS_LIBRARY
         for (PassState& ps : s->passes) {
             if (!ps.custom) continue;
             PipelineContext pc;
@@ -305,7 +292,6 @@ struct Renderer::Impl {
                 throw ExecutorError(passError(*ps.pass, "", std::string("creating pipelines: ") + e.what()));
             }
         }
-#endif
         return s;
     }
 
@@ -399,7 +385,6 @@ struct Renderer::Impl {
             ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
             params = ps.desc->params;
         }
-#if SKYGRAPH_HAS_PASS_LIBRARY
         const PassFactory* factory =
             options.passes && pass.type != "Generic" ? options.passes->factory(pass.type) : nullptr;
         if (factory && ps.desc) {
@@ -421,7 +406,6 @@ struct Renderer::Impl {
             s.passes.push_back(std::move(ps));
             return;
         }
-#endif
         if (pass.type != "Generic") {
             spdlog::debug("pass '{}' of type '{}' runs as Generic (performs its declared accesses)",
                           pass.name, pass.type);
@@ -948,12 +932,9 @@ struct Renderer::Impl {
             vk::check(vkCreateFramebuffer(vkd, &fci, nullptr, &fb), "vkCreateFramebuffer");
             sl.framebuffer = vk::Framebuffer(vkd, fb);
         }
-#if SKYGRAPH_HAS_PASS_LIBRARY
         if (ps.custom) bindResources(s, ps, slot);
-#endif
     }
 
-#if SKYGRAPH_HAS_PASS_LIBRARY
     /// What a pass implementation sees of each usage: handles and a view of exactly the
     /// usage's subresources.
     void bindResources(PlanState& s, PassState& ps, uint32_t slot) {
@@ -987,7 +968,6 @@ struct Renderer::Impl {
             sl.bound.push_back(b);
         }
     }
-#endif
 
     static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value) {
         const size_t words = static_cast<size_t>(bytes / 4);
@@ -1337,7 +1317,6 @@ struct Renderer::Impl {
             recordClear(cmd, s, ps, slot);
             return;
         }
-#if SKYGRAPH_HAS_PASS_LIBRARY
         if (ps.custom) {
             PassSlot& sl = ps.slots[slot];
             RecordContext rc;
@@ -1367,7 +1346,6 @@ struct Renderer::Impl {
             if (ps.program.graphics) vkCmdEndRenderPass(cmd);
             return;
         }
-#endif
         const GenericProgram& p = ps.program;
         PassSlot& sl = ps.slots[slot];
         if (!p.transfers.empty()) recordTransfers(cmd, s, ps, slot);
@@ -1646,9 +1624,7 @@ std::vector<PassTiming> Renderer::lastTimings() {
 
 const Plan& Renderer::plan() const noexcept { return impl_->state->plan; }
 const GraphDesc& Renderer::graph() const noexcept { return impl_->state->graph; }
-#if SKYGRAPH_HAS_PASS_LIBRARY
 FrameData& Renderer::frameData() noexcept { return impl_->frameData; }
-#endif
 
 void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     Impl& d = *impl_;

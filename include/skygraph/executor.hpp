@@ -20,8 +20,8 @@
 
 namespace skygraph {
 
-class PassLibrary;  // skygraph/pass.hpp
-class FrameData;    // skygraph/pass.hpp
+class PassLibrary;  // skygraph/pass.hpp: pass implementations
+class FrameData;    // skygraph/pass.hpp: per-frame values for pass implementations
 
 /// Thrown for Vulkan failures and for plans or graphs the executor cannot run. The message
 /// names the pass and resource involved where there is one.

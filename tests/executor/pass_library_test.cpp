@@ -1,6 +1,5 @@
 // Pass implementations from a PassLibrary: the executor begins the render pass made from the
 // plan, hands the pass its resources by slot, and records the plan's barriers around it.
-#if __has_include(<skygraph/pass.hpp>)
 #include "executor_test_util.hpp"
 
 #include <skygraph/pass.hpp>
@@ -124,4 +123,3 @@ TEST_F(ExecutorTest, PassLibraryPipelineFailureIsAnErrorAndKeepsOldPlan) {
 
 }  // namespace
 }  // namespace skygraph::test
-#endif  // __has_include(<skygraph/pass.hpp>)
