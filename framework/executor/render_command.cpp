@@ -1,6 +1,7 @@
 // `skygraph render`: compile a graph file and render it headless.
 #include <skygraph/compiler.hpp>
 #include <skygraph/executor.hpp>
+#include <skygraph/pass.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -19,7 +20,8 @@ int renderCommand(const RenderOptions& options) {
             std::cerr << "skygraph render: --width, --height and --frames must be at least 1\n";
             return 1;
         }
-        const PassRegistry registry = PassRegistry::withBuiltins();
+        const PassRegistry builtins = options.passes ? PassRegistry{} : PassRegistry::withBuiltins();
+        const PassRegistry& registry = options.passes ? options.passes->registry() : builtins;
         const GraphDesc graph = loadGraphFile(options.graph, registry);
         CompileOptions co;
         co.features = options.features;
@@ -34,6 +36,7 @@ int renderCommand(const RenderOptions& options) {
         ropts.width = options.width;
         ropts.height = options.height;
         ropts.framesInFlight = options.framesInFlight;
+        ropts.passes = options.passes;
         Renderer renderer(*device, graph, std::move(plan), ropts);
         for (uint32_t i = 0; i < options.frames; ++i) renderer.renderFrame();
         renderer.waitIdle();

@@ -218,6 +218,9 @@ struct RenderOptions {
     std::filesystem::path output;    ///< .png or .hdr; empty: no file.
     bool validate = false;           ///< Validation + sync validation; fail on any message.
     std::string device;
+    /// Pass implementations (e.g. PassLibrary::withBuiltins() from skygraph_passes); borrowed.
+    /// Null: the built-in declarations, every pass recorded as Generic.
+    const PassLibrary* passes = nullptr;
 };
 
 /// Compiles and renders a graph file, writing the swapchain target. Returns the contract's
