@@ -35,15 +35,18 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
                            std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
                            std::to_string(options.outputWidth) + "x" + std::to_string(options.outputHeight)});
     }
-    if (diags.empty())
-        checkReadsHaveSources(graph, features, diags, options.outputWidth, options.outputHeight);
     if (!diags.empty()) throw GraphError(std::move(diags));
 
-    const Schedule schedule =
-        schedulePasses(graph, features, options.cull, options.outputWidth, options.outputHeight);
-    Plan plan = synchronize(graph, schedule, options);
+    // Computed once for the three sweeps below.
+    const std::vector<bool> active = activePasses(graph, features);
+    const SubresourceGrids grids(graph, options.outputWidth, options.outputHeight);
+    checkReadsHaveSources(graph, features, active, grids, diags);
+    if (!diags.empty()) throw GraphError(std::move(diags));
+
+    Schedule schedule = schedulePasses(graph, features, active, grids, options.cull);
+    Plan plan = synchronize(graph, schedule, grids, options);
     plan.features = std::move(features);
-    plan.culled = schedule.culled;
+    plan.culled = std::move(schedule.culled);
     return plan;
 }
 

@@ -21,11 +21,69 @@ std::string conditionReason(const Condition& c, const FeatureValues& features) {
     return "condition '" + c.text() + "' is false (" + values + ")";
 }
 
-std::vector<SubresourceGrid> grids(const GraphDesc& g, uint32_t w, uint32_t h) {
-    std::vector<SubresourceGrid> out;
-    out.reserve(g.resources.size());
-    for (const auto& r : g.resources) out.emplace_back(r, w, h);
-    return out;
+/// "; its writer 'x' is off: ..." for the first earlier pass that would write `resource` but
+/// is switched off by a feature: the usual cause of a read with no source.
+std::string switchedOffWriter(const GraphDesc& graph, const std::optional<FeatureValues>& features,
+                              const std::vector<bool>& active, size_t reader, uint32_t resource) {
+    if (!features) return {};
+    for (size_t q = 0; q < reader; ++q) {
+        if (active[q]) continue;
+        for (const auto& w : graph.passes[q].uses)
+            if (w.resource == resource && writesContents(w.usage.access))
+                return "; its writer '" + graph.passes[q].name +
+                       "' is off: " + conditionReason(graph.passes[q].condition, *features);
+    }
+    return {};
+}
+
+/// Whether a write of `pass` reaches a subresource that is live (`live`: flat, per subresource).
+bool writesLive(const PassDesc& pass, const SubresourceGrids& grids, const std::vector<uint8_t>& live) {
+    for (const auto& u : pass.uses) {
+        if (!writesContents(u.usage.access)) continue;
+        bool anyLive = false;
+        grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { anyLive |= live[i] != 0; });
+        if (anyLive) return true;
+    }
+    return false;
+}
+
+/// Why a pass whose writes nobody reads is culled, naming what it writes.
+std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
+    std::vector<const std::string*> names;
+    for (const auto& u : pass.uses) {
+        if (!writesContents(u.usage.access)) continue;
+        const std::string& name = graph.resources[u.resource].name;
+        if (std::find_if(names.begin(), names.end(), [&](const std::string* n) { return *n == name; }) ==
+            names.end())
+            names.push_back(&name);
+    }
+    if (names.empty()) return "it writes nothing (mark it never_cull if it has side effects)";
+    std::string list;
+    for (const std::string* n : names) list += (list.empty() ? "'" : ", '") + *n + "'";
+    return "nothing reads what it writes: no later pass reads " + list + " and none of it is exported";
+}
+
+/// Culling: backwards liveness per subresource. Contents are live if an exported resource
+/// holds them at the end or a kept pass reads them later; a pass that writes nothing live
+/// (and is not never_cull) is removed, with its reason in `reasons`.
+void cullUnreadPasses(const GraphDesc& graph, const std::vector<bool>& active,
+                      const SubresourceGrids& grids, std::vector<std::string>& reasons) {
+    auto live = grids.makeArray<uint8_t>(
+        [&](size_t r) { return static_cast<uint8_t>(graph.resources[r].isExported()); });
+    for (size_t p = graph.passes.size(); p-- > 0;) {
+        if (!active[p]) continue;
+        const auto& pass = graph.passes[p];
+        if (!pass.neverCull && !writesLive(pass, grids, live)) {
+            reasons[p] = unreadWritesReason(graph, pass);
+            continue;
+        }
+        for (const auto& u : pass.uses)
+            if (u.usage.access == Access::Write)
+                grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { live[i] = 0; });
+        for (const auto& u : pass.uses)
+            if (readsContents(u.usage.access))
+                grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { live[i] = 1; });
+    }
 }
 
 }  // namespace
@@ -40,100 +98,51 @@ std::vector<bool> activePasses(const GraphDesc& graph, const std::optional<Featu
 
 void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                            Diagnostics& out, uint32_t outputWidth, uint32_t outputHeight) {
-    const auto active = activePasses(graph, features);
-    const auto grid = grids(graph, outputWidth, outputHeight);
-    std::vector<std::vector<bool>> written(graph.resources.size());
-    for (size_t r = 0; r < graph.resources.size(); ++r) {
+    checkReadsHaveSources(graph, features, activePasses(graph, features),
+                          SubresourceGrids(graph, outputWidth, outputHeight), out);
+}
+
+void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
+                           const std::vector<bool>& active, const SubresourceGrids& grids,
+                           Diagnostics& out) {
+    // Whether each subresource holds contents at this point of the frame.
+    auto written = grids.makeArray<uint8_t>([&](size_t r) {
         const auto& res = graph.resources[r];
-        written[r].assign(grid[r].size(), res.clear.has_value() || res.external);
-    }
+        return static_cast<uint8_t>(res.clear.has_value() || res.external);
+    });
     for (size_t p = 0; p < graph.passes.size(); ++p) {
         if (!active[p]) continue;
         const auto& pass = graph.passes[p];
         for (const auto& u : pass.uses) {
             if (!readsContents(u.usage.access)) continue;
             bool missing = false;
-            grid[u.resource].forEach(grid[u.resource].resolve(u.usage),
-                                     [&](size_t i) { missing |= !written[u.resource][i]; });
+            grids.forEach(u.resource, grids[u.resource].resolve(u.usage),
+                          [&](size_t i) { missing |= written[i] == 0; });
             if (!missing) continue;
             const auto& res = graph.resources[u.resource];
-            std::string msg = "reads '" + res.name + "' (" + toString(u.usage) +
-                              ") but no earlier pass writes it, and it is neither `clear` nor `external`";
-            // Point at the writer that a feature switched off, which is the usual cause.
-            for (size_t q = 0; q < p; ++q) {
-                if (active[q]) continue;
-                for (const auto& w : graph.passes[q].uses)
-                    if (w.resource == u.resource && writesContents(w.usage.access) && features) {
-                        msg += "; its writer '" + graph.passes[q].name + "' is off: " +
-                               conditionReason(graph.passes[q].condition, *features);
-                        q = p;
-                        break;
-                    }
-            }
-            out.add({graph.file, u.jsonPath, pass.name, res.name, msg});
+            out.add({graph.file, u.jsonPath, pass.name, res.name,
+                     "reads '" + res.name + "' (" + toString(u.usage) +
+                         ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
+                         switchedOffWriter(graph, features, active, p, u.resource)});
         }
         for (const auto& u : pass.uses)
             if (writesContents(u.usage.access))
-                grid[u.resource].forEach(grid[u.resource].resolve(u.usage),
-                                         [&](size_t i) { written[u.resource][i] = true; });
+                grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { written[i] = 1; });
     }
 }
 
-Schedule schedulePasses(const GraphDesc& graph, const FeatureValues& features, bool cull,
-                        uint32_t outputWidth, uint32_t outputHeight) {
-    const auto active = activePasses(graph, features);
-    const auto grid = grids(graph, outputWidth, outputHeight);
-    std::vector<std::string> reasons(graph.passes.size());
+Schedule schedulePasses(const GraphDesc& graph, const FeatureValues& features,
+                        const std::vector<bool>& active, const SubresourceGrids& grids, bool cull) {
+    std::vector<std::string> reasons(graph.passes.size());  // empty: the pass runs
     for (size_t p = 0; p < graph.passes.size(); ++p)
         if (!active[p]) reasons[p] = conditionReason(graph.passes[p].condition, features);
-
-    if (cull) {
-        // Backwards liveness per subresource: contents are live if an exported resource holds
-        // them at the end or a kept pass reads them later.
-        std::vector<std::vector<bool>> live(graph.resources.size());
-        for (size_t r = 0; r < graph.resources.size(); ++r)
-            live[r].assign(grid[r].size(), graph.resources[r].isExported());
-        for (size_t p = graph.passes.size(); p-- > 0;) {
-            if (!active[p]) continue;
-            const auto& pass = graph.passes[p];
-            bool needed = pass.neverCull;
-            std::vector<std::string> deadWrites;
-            for (const auto& u : pass.uses) {
-                if (!writesContents(u.usage.access)) continue;
-                bool anyLive = false;
-                grid[u.resource].forEach(grid[u.resource].resolve(u.usage),
-                                         [&](size_t i) { anyLive |= live[u.resource][i]; });
-                needed |= anyLive;
-                const auto& name = graph.resources[u.resource].name;
-                if (std::find(deadWrites.begin(), deadWrites.end(), name) == deadWrites.end())
-                    deadWrites.push_back(name);
-            }
-            if (!needed) {
-                if (deadWrites.empty()) {
-                    reasons[p] = "it writes nothing (mark it never_cull if it has side effects)";
-                } else {
-                    std::string list;
-                    for (const auto& n : deadWrites) list += (list.empty() ? "'" : ", '") + n + "'";
-                    reasons[p] = "nothing reads what it writes: no later pass reads " + list +
-                                 " and none of it is exported";
-                }
-                continue;
-            }
-            for (const auto& u : pass.uses)
-                if (u.usage.access == Access::Write)
-                    grid[u.resource].forEach(grid[u.resource].resolve(u.usage),
-                                             [&](size_t i) { live[u.resource][i] = false; });
-            for (const auto& u : pass.uses)
-                if (readsContents(u.usage.access))
-                    grid[u.resource].forEach(grid[u.resource].resolve(u.usage),
-                                             [&](size_t i) { live[u.resource][i] = true; });
-        }
-    }
+    if (cull) cullUnreadPasses(graph, active, grids, reasons);
 
     Schedule s;
+    s.passes.reserve(graph.passes.size());
     for (size_t p = 0; p < graph.passes.size(); ++p) {
         if (reasons[p].empty()) s.passes.push_back(static_cast<uint32_t>(p));
-        else s.culled.push_back({graph.passes[p].name, reasons[p]});
+        else s.culled.push_back({graph.passes[p].name, std::move(reasons[p])});
     }
     return s;
 }

@@ -2,6 +2,8 @@
 // reads. Also the "read with no source" check, which the loader and the compiler share.
 #pragma once
 
+#include "subresources.hpp"
+
 #include <skygraph/condition.hpp>
 #include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
@@ -26,10 +28,16 @@ struct Schedule {
 void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                            Diagnostics& out, uint32_t outputWidth = 1920,
                            uint32_t outputHeight = 1080);
+/// The same, for a caller that already has `activePasses(graph, features)` and the graph's
+/// grids (compile() shares them between every sweep).
+void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
+                           const std::vector<bool>& active, const SubresourceGrids& grids,
+                           Diagnostics& out);
 
-/// Applies conditions and (when `cull`) removes passes that contribute nothing to an exported
-/// resource, giving a reason for each removed pass.
+/// Applies conditions (`active`, from activePasses) and (when `cull`) removes passes that
+/// contribute nothing to an exported resource, giving a reason for each removed pass.
 [[nodiscard]] Schedule schedulePasses(const GraphDesc& graph, const FeatureValues& features,
-                                      bool cull, uint32_t outputWidth, uint32_t outputHeight);
+                                      const std::vector<bool>& active,
+                                      const SubresourceGrids& grids, bool cull);
 
 }  // namespace skygraph

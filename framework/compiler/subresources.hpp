@@ -1,9 +1,12 @@
-// A resource's mip x layer grid, flattened, for per-subresource state tracking.
+// A resource's mip x layer grid, flattened, for per-subresource state tracking; and the grids
+// of a whole graph laid end to end, so that per-subresource values of every resource live in
+// one flat array (one allocation per sweep, not one per resource).
 #pragma once
 
 #include <skygraph/graph.hpp>
 #include <skygraph/usage.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -34,11 +37,63 @@ struct SubresourceGrid {
     [[nodiscard]] bool contains(const SubresourceRange& r) const noexcept {
         return r.baseMip + r.mipCount <= mips && r.baseLayer + r.layerCount <= layers;
     }
+    /// Calls f(grid index) for every subresource of `r`, mip-major: the order in which
+    /// per-subresource results of a range are stored (see cells()).
     template <typename F>
     void forEach(const SubresourceRange& r, F&& f) const {
         for (uint32_t m = r.baseMip; m < r.baseMip + r.mipCount; ++m)
             for (uint32_t l = r.baseLayer; l < r.baseLayer + r.layerCount; ++l) f(index(m, l));
     }
+};
+
+/// Number of subresources in a range.
+[[nodiscard]] inline size_t cells(const SubresourceRange& r) noexcept {
+    return size_t(r.mipCount) * r.layerCount;
+}
+
+/// The grids of a list of resources, each with its first index into a flat array that holds
+/// one value per subresource of every resource (CSR layout).
+class SubresourceGrids {
+public:
+    SubresourceGrids() = default;
+    /// Every resource of `graph`, in declaration order, at one output size.
+    SubresourceGrids(const GraphDesc& graph, uint32_t outputWidth, uint32_t outputHeight) {
+        grids_.reserve(graph.resources.size());
+        first_.reserve(graph.resources.size() + 1);
+        for (const auto& r : graph.resources) add(SubresourceGrid(r, outputWidth, outputHeight));
+    }
+
+    void add(const SubresourceGrid& g) {
+        grids_.push_back(g);
+        first_.push_back(first_.back() + g.size());
+    }
+    [[nodiscard]] const SubresourceGrid& operator[](size_t r) const noexcept { return grids_[r]; }
+    [[nodiscard]] size_t resources() const noexcept { return grids_.size(); }
+    /// Subresources of all resources together: the size of a flat per-subresource array.
+    [[nodiscard]] size_t total() const noexcept { return first_.back(); }
+    /// Where resource `r`'s subresources start in a flat per-subresource array.
+    [[nodiscard]] size_t first(size_t r) const noexcept { return first_[r]; }
+
+    /// A flat per-subresource array with resource r's entries set to init(r).
+    template <typename T, typename F>
+    [[nodiscard]] std::vector<T> makeArray(F&& init) const {
+        std::vector<T> out(total());
+        for (size_t r = 0; r < grids_.size(); ++r)
+            std::fill(out.begin() + static_cast<std::ptrdiff_t>(first_[r]),
+                      out.begin() + static_cast<std::ptrdiff_t>(first_[r + 1]), init(r));
+        return out;
+    }
+
+    /// Calls f(flat index) for every subresource of `range` of resource `r`.
+    template <typename F>
+    void forEach(size_t r, const SubresourceRange& range, F&& f) const {
+        const size_t base = first_[r];
+        grids_[r].forEach(range, [&](size_t sub) { f(base + sub); });
+    }
+
+private:
+    std::vector<SubresourceGrid> grids_;
+    std::vector<size_t> first_{0};
 };
 
 }  // namespace skygraph

@@ -26,20 +26,39 @@ struct SubresourceState {
     bool fromOutside = false;
 };
 
-/// One usage of one resource in plan order.
-struct AccessRef {
+/// One usage of one resource, in plan order. The per-resource sweeps (read runs, run scopes,
+/// store ops) walk each resource's usages in turn; what they need of a usage is copied here so
+/// that they stream through one array instead of jumping through the pass-major plan.
+struct AccessRecord {
     uint32_t step = 0;   ///< Index into Plan::passes.
     uint32_t usage = 0;  ///< Index into PlannedPass::usages.
+    SubresourceRange range;
+    VkPipelineStageFlags2 stages = 0;
+    VkAccessFlags2 access = 0;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Its read run's layout once grouped.
+    uint32_t runScopes = 0;  ///< Index of its first entry in Synchronizer::runScope_.
+    bool reads = false;      ///< Of the effective usage (a load-op clear writes).
+    bool writes = false;
 };
 
 bool covers(VkPipelineStageFlags2 haveStages, VkAccessFlags2 haveAccess, const VulkanScope& need) {
     return (need.stages & ~haveStages) == 0 && (need.access & ~haveAccess) == 0;
 }
 
+/// Whether two barriers could be one, apart from their ranges (rule 11).
+bool sameParams(Barrier a, Barrier b) {
+    a.range = b.range = {};
+    return a == b;
+}
+
 /// Union-find over the accesses of one resource, grouping runs of reads that must share one
 /// layout (reads of overlapping subresources with no write between).
 struct ReadRuns {
     std::vector<uint32_t> parent;
+    void reset(uint32_t n) {
+        parent.resize(n);
+        std::iota(parent.begin(), parent.end(), 0u);
+    }
     uint32_t find(uint32_t a) {
         while (parent[a] != a) a = parent[a] = parent[parent[a]];
         return a;
@@ -49,105 +68,92 @@ struct ReadRuns {
 
 class Synchronizer {
 public:
-    Synchronizer(const GraphDesc& g, const CompileOptions& o) : graph_(g), options_(o) {}
+    Synchronizer(const GraphDesc& g, const SubresourceGrids& grids, const CompileOptions& o)
+        : graph_(g), graphGrids_(grids), options_(o) {}
 
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
         buildSteps(schedule);
-        collectAccesses();
+        indexAccesses();
         for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
             groupReadRuns(r);
             computeRunScopes(r);
         }
         initState();
-        for (uint32_t s = 0; s < plan_.passes.size(); ++s) {
-            for (uint32_t u = 0; u < plan_.passes[s].usages.size(); ++u) applyAccess(s, u);
-            mergeAdjacent(plan_.passes[s].barriers);
+        uint32_t k = 0;  // the usage's index in plan order
+        for (auto& step : plan_.passes) {
+            batch_.clear();
+            for (uint32_t u = 0; u < step.usages.size(); ++u) applyAccess(step.usages[u], accessOf_[k++]);
+            mergeAdjacent(batch_);
+            step.barriers.assign(batch_.begin(), batch_.end());  // allocated once, to size
         }
         finalBarriers();
         return std::move(plan_);
     }
 
 private:
-    const ResourceDesc& decl(uint32_t planResource) const {
-        return graph_.resources[plan_.resources[planResource].decl];
-    }
+    static constexpr uint32_t kNone = ~0u;
+
+    const ResourceDesc& decl(uint32_t planResource) const { return *decls_[planResource]; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
     }
+    /// The accesses of plan resource r, in plan order.
+    uint32_t accessBegin(uint32_t r) const { return accessBegin_[r]; }
+    uint32_t accessEnd(uint32_t r) const { return accessBegin_[r + 1]; }
 
-    // Plan passes, resources and usages, with clears placed.
+    // Plan passes, resources and usages (with their Vulkan scopes), with clears placed.
     void buildSteps(const Schedule& schedule) {
-        std::vector<int32_t> planIndex(graph_.resources.size(), -1);
+        std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
+        std::vector<uint32_t> clearsBefore;  // resources a Clear pass before this pass clears
+        plan_.passes.reserve(schedule.passes.size());
         for (uint32_t p : schedule.passes) {
             const PassDesc& pass = graph_.passes[p];
             PlannedPass step{pass.name, pass.type, static_cast<int32_t>(p), {}, {}};
+            step.usages.reserve(pass.uses.size());
+            clearsBefore.clear();
             for (const auto& u : pass.uses) {
-                if (planIndex[u.resource] < 0) {
-                    planIndex[u.resource] = static_cast<int32_t>(plan_.resources.size());
-                    PlannedResource res;
-                    res.decl = u.resource;
-                    res.name = graph_.resources[u.resource].name;
-                    plan_.resources.push_back(res);
-                    grids_.emplace_back(graph_.resources[u.resource], options_.outputWidth,
-                                        options_.outputHeight);
-                }
-                const uint32_t r = static_cast<uint32_t>(planIndex[u.resource]);
-                PlannedUsage pu;
+                const bool firstUse = planIndex[u.resource] == kNone;
+                if (firstUse) planIndex[u.resource] = addResource(u.resource);
+                const uint32_t r = planIndex[u.resource];
+                PlannedUsage& pu = step.usages.emplace_back();
                 pu.resource = r;
                 pu.usage = u.usage;
                 pu.slot = u.slot;
                 pu.range = grids_[r].resolve(u.usage);
-                step.usages.push_back(pu);
+                if (firstUse && decl(r).clear) {
+                    if (clearsThroughLoadOp(pu)) pu.load = LoadOp::Clear;
+                    else clearsBefore.push_back(r);
+                }
+                setScope(pu);
             }
+            for (uint32_t r : clearsBefore) plan_.passes.push_back(clearPass(r));
             plan_.passes.push_back(std::move(step));
         }
-        placeClears();
-        for (auto& step : plan_.passes)
-            for (auto& pu : step.usages) {
-                const auto scope = vulkanScope(decl(pu.resource), effectiveUsage(pu));
-                pu.layout = scope.layout;
-                pu.stages = scope.stages;
-                pu.access = scope.access;
-            }
+    }
+
+    uint32_t addResource(uint32_t declIndex) {
+        PlannedResource res;
+        res.decl = declIndex;
+        res.name = graph_.resources[declIndex].name;
+        plan_.resources.push_back(std::move(res));
+        decls_.push_back(&graph_.resources[declIndex]);
+        grids_.add(graphGrids_[declIndex]);
+        return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
 
     // A `clear` resource is cleared by its first use: through the load op when that use is an
     // attachment covering the whole resource, otherwise by a Clear pass inserted before it.
-    void placeClears() {
-        constexpr uint32_t kNone = ~0u;
-        std::vector<std::pair<uint32_t, uint32_t>> first(plan_.resources.size(), {kNone, 0});
-        for (uint32_t s = 0; s < plan_.passes.size(); ++s)
-            for (uint32_t u = 0; u < plan_.passes[s].usages.size(); ++u) {
-                auto& f = first[plan_.passes[s].usages[u].resource];
-                if (f.first == kNone) f = {s, u};
-            }
-        std::vector<std::vector<uint32_t>> clearsBefore(plan_.passes.size());
-        bool inserts = false;
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
-            if (!decl(r).clear || first[r].first == kNone) continue;
-            auto& use = plan_.passes[first[r].first].usages[first[r].second];
-            if (isAttachmentStage(use.usage.stage) && use.range == grids_[r].whole()) {
-                use.load = LoadOp::Clear;
-            } else {
-                clearsBefore[first[r].first].push_back(r);
-                inserts = true;
-            }
-        }
-        if (!inserts) return;
-        std::vector<PlannedPass> steps;
-        steps.reserve(plan_.passes.size() + plan_.resources.size());
-        for (uint32_t s = 0; s < plan_.passes.size(); ++s) {
-            for (uint32_t r : clearsBefore[s]) {
-                PlannedUsage clear;
-                clear.resource = r;
-                clear.usage = {Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
-                clear.range = grids_[r].whole();
-                steps.push_back(PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {clear}});
-            }
-            steps.push_back(std::move(plan_.passes[s]));
-        }
-        plan_.passes = std::move(steps);
+    bool clearsThroughLoadOp(const PlannedUsage& firstUse) const {
+        return isAttachmentStage(firstUse.usage.stage) && firstUse.range == grids_[firstUse.resource].whole();
+    }
+    PlannedPass clearPass(uint32_t r) {
+        PlannedUsage clear;
+        clear.resource = r;
+        clear.usage = {Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
+        clear.range = grids_[r].whole();
+        setScope(clear);
+        return PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {clear}};
     }
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
@@ -156,101 +162,106 @@ private:
         if (pu.load == LoadOp::Clear && u.access == Access::Read) u.access = Access::ReadWrite;
         return u;
     }
+    void setScope(PlannedUsage& pu) const {
+        const auto scope = vulkanScope(decl(pu.resource), effectiveUsage(pu));
+        pu.layout = scope.layout;
+        pu.stages = scope.stages;
+        pu.access = scope.access;
+    }
 
-    void collectAccesses() {
-        accesses_.assign(plan_.resources.size(), {});
+    /// Groups the usages by resource (a counting sort, so each resource's stay in plan order),
+    /// sets the lifetimes and lays out the run scopes.
+    void indexAccesses() {
+        const size_t resources = plan_.resources.size();
+        accessBegin_.assign(resources + 1, 0);
+        for (const auto& step : plan_.passes)
+            for (const auto& pu : step.usages) ++accessBegin_[pu.resource + 1];
+        std::partial_sum(accessBegin_.begin(), accessBegin_.end(), accessBegin_.begin());
+        accesses_.resize(accessBegin_.back());
+        accessOf_.resize(accessBegin_.back());
+        std::vector<uint32_t> next(accessBegin_.begin(), accessBegin_.end() - 1);
+        uint32_t k = 0;
         for (uint32_t s = 0; s < plan_.passes.size(); ++s)
             for (uint32_t u = 0; u < plan_.passes[s].usages.size(); ++u) {
-                const uint32_t r = plan_.passes[s].usages[u].resource;
-                if (accesses_[r].empty()) plan_.resources[r].firstPass = s;
-                plan_.resources[r].lastPass = s;
-                accesses_[r].push_back({s, u});
+                const PlannedUsage& pu = plan_.passes[s].usages[u];
+                const uint32_t i = next[pu.resource]++;
+                const Access access = effectiveUsage(pu).access;
+                accesses_[i] = {s, u, pu.range, pu.stages, pu.access, pu.layout, 0,
+                                readsContents(access), writesContents(access)};
+                accessOf_[k++] = i;
             }
-        accessIndex_.resize(plan_.passes.size());
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r)
-            for (uint32_t i = 0; i < accesses_[r].size(); ++i) {
-                auto& per = accessIndex_[accesses_[r][i].step];
-                per.resize(plan_.passes[accesses_[r][i].step].usages.size());
-                per[accesses_[r][i].usage] = i;
-            }
+        uint32_t scopes = 0;
+        for (auto& a : accesses_) {
+            a.runScopes = scopes;
+            scopes += static_cast<uint32_t>(cells(a.range));
+        }
+        runScope_.resize(scopes);
+        for (uint32_t r = 0; r < resources; ++r) {
+            plan_.resources[r].firstPass = accesses_[accessBegin(r)].step;
+            plan_.resources[r].lastPass = accesses_[accessEnd(r) - 1].step;
+        }
     }
 
-    const PlannedUsage& usageOf(const AccessRef& a) const {
-        return plan_.passes[a.step].usages[a.usage];
-    }
-    bool writes(const PlannedUsage& pu) const { return writesContents(effectiveUsage(pu).access); }
-
+    /// Rule 4: one layout per run of reads, serving all of them.
     void groupReadRuns(uint32_t r) {
-        const auto& list = accesses_[r];
-        ReadRuns runs;
-        runs.parent.resize(list.size());
-        std::iota(runs.parent.begin(), runs.parent.end(), 0u);
-        std::vector<int64_t> open(grids_[r].size(), -1);
-        for (uint32_t i = 0; i < list.size(); ++i) {
-            const auto& pu = usageOf(list[i]);
-            const bool isWrite = writes(pu);
-            grids_[r].forEach(pu.range, [&](size_t sub) {
-                if (isWrite) {
-                    open[sub] = -1;
+        if (!decl(r).isImage()) return;  // buffers have no layout
+        const uint32_t first = accessBegin(r);
+        const uint32_t n = accessEnd(r) - first;
+        AccessRecord* list = &accesses_[first];
+        runs_.reset(n);
+        openRead_.assign(grids_[r].size(), kNone);  // per subresource: its run's latest read
+        for (uint32_t i = 0; i < n; ++i)
+            grids_[r].forEach(list[i].range, [&](size_t sub) {
+                if (list[i].writes) {
+                    openRead_[sub] = kNone;
                 } else {
-                    if (open[sub] >= 0) runs.unite(static_cast<uint32_t>(open[sub]), i);
-                    open[sub] = i;
+                    if (openRead_[sub] != kNone) runs_.unite(openRead_[sub], i);
+                    openRead_[sub] = i;
                 }
             });
+        runLayout_.assign(n, VK_IMAGE_LAYOUT_UNDEFINED);  // by run root
+        for (uint32_t i = 0; i < n; ++i) {
+            if (list[i].writes) continue;
+            auto& l = runLayout_[runs_.find(i)];
+            l = l == VK_IMAGE_LAYOUT_UNDEFINED ? list[i].layout : commonReadLayout(l, list[i].layout);
         }
-        auto& layouts = runLayout_.emplace_back(list.size(), VK_IMAGE_LAYOUT_UNDEFINED);
-        auto& root = runRoot_.emplace_back(list.size());
-        for (uint32_t i = 0; i < list.size(); ++i) {
-            root[i] = runs.find(i);
-            const auto& pu = usageOf(list[i]);
-            if (writes(pu)) continue;
-            auto& l = layouts[root[i]];
-            l = l == VK_IMAGE_LAYOUT_UNDEFINED ? pu.layout : commonReadLayout(l, pu.layout);
-        }
-        for (uint32_t i = 0; i < list.size(); ++i) {
-            auto& pu = plan_.passes[list[i].step].usages[list[i].usage];
-            if (!writes(pu) && decl(r).isImage()) pu.layout = layouts[root[i]];
+        for (uint32_t i = 0; i < n; ++i) {
+            if (list[i].writes) continue;
+            list[i].layout = runLayout_[runs_.find(i)];
+            plan_.passes[list[i].step].usages[list[i].usage].layout = list[i].layout;
         }
     }
 
     /// For every read access and subresource it touches: the union of the scopes of the reads
     /// of that subresource from this one up to the next write. All of them belong to one run
     /// (rule 4 in docs/barriers.md), so this is what a barrier before this read makes visible.
-    /// One backward sweep per resource; `runScopeOffset_` indexes the flattened result.
+    /// One backward sweep per resource, into `runScope_` from each access's `runScopes`.
     void computeRunScopes(uint32_t r) {
-        const auto& list = accesses_[r];
-        auto& offsets = runScopeOffset_.emplace_back(list.size() + 1, 0);
-        for (uint32_t i = 0; i < list.size(); ++i) {
-            const auto& range = usageOf(list[i]).range;
-            offsets[i + 1] = offsets[i] + size_t(range.mipCount) * range.layerCount;
-        }
-        auto& scopes = runScope_.emplace_back(offsets.back());
-        std::vector<VulkanScope> pending(grids_[r].size());
-        for (uint32_t i = static_cast<uint32_t>(list.size()); i-- > 0;) {
-            const auto& pu = usageOf(list[i]);
-            const bool isWrite = writes(pu);
-            size_t k = offsets[i];
-            grids_[r].forEach(pu.range, [&](size_t sub) {
-                if (isWrite) {
-                    pending[sub] = {};
+        pendingScope_.assign(grids_[r].size(), {});
+        for (uint32_t i = accessEnd(r); i-- > accessBegin(r);) {
+            const AccessRecord& a = accesses_[i];
+            VulkanScope* out = &runScope_[a.runScopes];
+            grids_[r].forEach(a.range, [&](size_t sub) {
+                VulkanScope& pending = pendingScope_[sub];
+                if (a.writes) {
+                    pending = {};
                 } else {
-                    pending[sub].stages |= pu.stages;
-                    pending[sub].access |= pu.access;
-                    scopes[k] = pending[sub];
+                    pending.stages |= a.stages;
+                    pending.access |= a.access;
+                    *out = pending;
                 }
-                ++k;
+                ++out;
             });
         }
     }
 
     /// Whether a later access (or the export) reads what access `i` leaves in `range`.
     bool readLater(uint32_t r, uint32_t i, const SubresourceRange& range) const {
-        const auto& list = accesses_[r];
-        for (uint32_t j = i + 1; j < list.size(); ++j) {
-            const auto& pu = usageOf(list[j]);
-            if (!pu.range.overlaps(range)) continue;
-            if (readsContents(effectiveUsage(pu).access)) return true;
-            const auto& o = pu.range;
+        for (uint32_t j = i + 1; j < accessEnd(r); ++j) {
+            const AccessRecord& a = accesses_[j];
+            if (!a.range.overlaps(range)) continue;
+            if (a.reads) return true;
+            const auto& o = a.range;
             if (o.baseMip <= range.baseMip && o.baseMip + o.mipCount >= range.baseMip + range.mipCount &&
                 o.baseLayer <= range.baseLayer && o.baseLayer + o.layerCount >= range.baseLayer + range.layerCount)
                 return false;
@@ -263,13 +274,12 @@ private:
     /// exactly the first use's scope; otherwise the documented table in vulkan_state.cpp.
     VulkanScope boundaryScope(uint32_t r, ExternalState state) const {
         VulkanScope scope = externalScope(decl(r), state);
-        if (state == ExternalState::General && decl(r).external && !accesses_[r].empty()) {
+        if (state == ExternalState::General && decl(r).external) {
             const uint32_t first = plan_.resources[r].firstPass;
             VulkanScope firstUse{0, 0, scope.layout};
-            for (const auto& a : accesses_[r]) {
-                if (a.step != first) break;
-                firstUse.stages |= usageOf(a).stages;
-                firstUse.access |= usageOf(a).access;
+            for (uint32_t i = accessBegin(r); i < accessEnd(r) && accesses_[i].step == first; ++i) {
+                firstUse.stages |= accesses_[i].stages;
+                firstUse.access |= accesses_[i].access;
             }
             return firstUse;
         }
@@ -277,7 +287,7 @@ private:
     }
 
     void initState() {
-        state_.resize(plan_.resources.size());
+        state_.resize(grids_.total());
         for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
             const auto& d = decl(r);
             SubresourceState init;
@@ -290,14 +300,14 @@ private:
                 init.visibleAccess = scope.access;
                 init.fromOutside = true;
             }
-            state_[r].assign(grids_[r].size(), init);
-            plan_.resources[r].initialLayout = init.layout;
-            for (const auto& a : accesses_[r])
-                if (a.step == plan_.resources[r].firstPass)
-                    plan_.resources[r].firstStages |= usageOf(a).stages;
+            std::fill_n(state_.begin() + static_cast<std::ptrdiff_t>(grids_.first(r)), grids_[r].size(), init);
+            auto& res = plan_.resources[r];
+            res.initialLayout = init.layout;
+            for (uint32_t i = accessBegin(r); i < accessEnd(r) && accesses_[i].step == res.firstPass; ++i)
+                res.firstStages |= accesses_[i].stages;
         }
     }
-
+    SubresourceState* stateOf(uint32_t r) { return &state_[grids_.first(r)]; }
     /// The barrier subresource `st` needs before an access in `scope` that reads
     /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
     std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need,
@@ -354,15 +364,15 @@ private:
         return b;
     }
 
-    void applyAccess(uint32_t s, uint32_t u) {
-        PlannedUsage& pu = plan_.passes[s].usages[u];
+    /// Barriers for one usage (access `i`) into batch_, then the state after it, and the
+    /// attachment's load and store ops.
+    void applyAccess(PlannedUsage& pu, uint32_t i) {
+        const AccessRecord& a = accesses_[i];
         const uint32_t r = pu.resource;
-        const uint32_t i = accessIndex_[s][u];
         const bool isImage = decl(r).isImage();
-        const Usage eff = effectiveUsage(pu);
-        const bool write = writesContents(eff.access);
+        const bool write = a.writes;
+        const bool discard = effectiveUsage(pu).access == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
-
         const VkImageLayout target = isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         auto update = [&](SubresourceState& st) {
             if (write) {
@@ -374,27 +384,28 @@ private:
                 st.readStages |= pu.stages;
             }
         };
-        const VulkanScope* runScopes = runScope_[r].data() + runScopeOffset_[r][i];
-        if (grids_[r].size() == 1) {  // the common case: no per-subresource bookkeeping
-            auto b = barrierFor(state_[r][0], need, target, write, eff.access == Access::Write,
-                                write ? need : runScopes[0]);
-            update(state_[r][0]);
+        const VulkanScope* runScopes = &runScope_[a.runScopes];
+        const SubresourceGrid& grid = grids_[r];
+        SubresourceState* states = stateOf(r);
+        if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
+            SubresourceState& st = states[grid.index(pu.range.baseMip, pu.range.baseLayer)];
+            auto b = barrierFor(st, need, target, write, discard, write ? need : runScopes[0]);
+            update(st);
             if (b) {
                 b->resource = r;
                 b->kind = isImage ? BarrierKind::Image : BarrierKind::Buffer;
-                b->range = grids_[r].whole();
-                plan_.passes[s].barriers.push_back(*b);
+                b->range = pu.range;
+                batch_.push_back(*b);
             }
         } else {
-            scratch_.assign(grids_[r].size(), std::nullopt);
-            size_t k = 0;
-            grids_[r].forEach(pu.range, [&](size_t sub) {
-                SubresourceState& st = state_[r][sub];
-                scratch_[sub] = barrierFor(st, need, target, write, eff.access == Access::Write,
-                                           write ? need : runScopes[k++]);
-                update(st);
+            perSub_.clear();
+            size_t c = 0;
+            grid.forEach(pu.range, [&](size_t sub) {
+                perSub_.push_back(barrierFor(states[sub], need, target, write, discard,
+                                             write ? need : runScopes[c++]));
+                update(states[sub]);
             });
-            emitMerged(r, pu.range, scratch_, plan_.passes[s].barriers);
+            emitMerged(r, pu.range, perSub_, batch_);
         }
 
         if (isAttachmentStage(pu.usage.stage)) {
@@ -404,21 +415,20 @@ private:
         }
     }
 
-    /// Coalesces per-subresource barriers into as few rectangles of mips x layers as agree.
+    /// Coalesces per-subresource barriers (`perSub`: one per subresource of `range`, in
+    /// forEach order) into as few rectangles of mips x layers as agree.
     void emitMerged(uint32_t r, const SubresourceRange& range,
                     const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
-        const auto& grid = grids_[r];
         const BarrierKind kind = decl(r).isImage() ? BarrierKind::Image : BarrierKind::Buffer;
-        std::vector<Barrier> open;  // rectangles that may still grow by one more mip
-        auto sameParams = [](const Barrier& a, const Barrier& b) {
-            Barrier x = a, y = b;
-            x.range = y.range = {};
-            return x == y;
-        };
+        auto& open = mergeOpen_;  // rectangles that may still grow by one more mip
+        auto& row = mergeRow_;
+        auto& next = mergeNext_;
+        open.clear();
+        size_t c = 0;
         for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m) {
-            std::vector<Barrier> row;
+            row.clear();
             for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l) {
-                const auto& b = perSub[grid.index(m, l)];
+                const auto& b = perSub[c++];
                 if (!b) continue;
                 Barrier nb = *b;
                 nb.resource = r;
@@ -431,7 +441,7 @@ private:
                 }
                 row.push_back(nb);
             }
-            std::vector<Barrier> next;
+            next.clear();
             for (auto& seg : row) {
                 auto it = std::find_if(open.begin(), open.end(), [&](const Barrier& o) {
                     return sameParams(o, seg) && o.range.baseLayer == seg.range.baseLayer &&
@@ -446,24 +456,22 @@ private:
                     next.push_back(seg);
                 }
             }
-            for (auto& closed : open) out.push_back(closed);
-            open = std::move(next);
+            out.insert(out.end(), open.begin(), open.end());  // closed: they did not grow
+            std::swap(open, next);
         }
-        for (auto& closed : open) out.push_back(closed);
+        out.insert(out.end(), open.begin(), open.end());
     }
 
     /// Joins barriers of one batch that differ only in adjoining ranges, e.g. the per-mip
     /// usages of a pass that writes every level.
     static void mergeAdjacent(std::vector<Barrier>& batch) {
-        for (bool merged = true; merged;) {
+        for (bool merged = batch.size() > 1; merged;) {
             merged = false;
             for (size_t i = 0; i < batch.size() && !merged; ++i)
                 for (size_t j = i + 1; j < batch.size() && !merged; ++j) {
                     Barrier& a = batch[i];
                     const Barrier& b = batch[j];
-                    Barrier x = a, y = b;
-                    x.range = y.range = {};
-                    if (!(x == y)) continue;
+                    if (!sameParams(a, b)) continue;
                     const bool sameLayers = a.range.baseLayer == b.range.baseLayer &&
                                             a.range.layerCount == b.range.layerCount;
                     const bool sameMips = a.range.baseMip == b.range.baseMip &&
@@ -485,7 +493,8 @@ private:
         for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
             const auto& d = decl(r);
             auto& res = plan_.resources[r];
-            res.finalLayout = state_[r].empty() ? VK_IMAGE_LAYOUT_UNDEFINED : state_[r][0].layout;
+            SubresourceState* states = stateOf(r);
+            res.finalLayout = states[0].layout;
             if (!d.isExported()) continue;
             const VulkanScope scope = boundaryScope(r, replaced(d.final));
             // A persistent resource's next frame repeats this one. If it writes anywhere, the
@@ -494,37 +503,47 @@ private:
             // frame chain through that first use and never name this frame's stages.
             const bool persistent = d.external && replaced(d.final) == replaced(d.initial);
             bool framesWrite = false;
-            for (const auto& a : accesses_[r]) framesWrite |= writes(usageOf(a));
+            for (uint32_t i = accessBegin(r); i < accessEnd(r); ++i) framesWrite |= accesses_[i].writes;
             const bool nextUseWrites = writeBits(scope.access) != 0 || (persistent && framesWrite);
-            std::vector<std::optional<Barrier>> perSub(grids_[r].size());
+            perSub_.clear();
             grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
-                perSub[sub] = barrierFor(state_[r][sub], scope,
-                                         d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
-                                         nextUseWrites, false, scope);
+                perSub_.push_back(barrierFor(states[sub], scope,
+                                             d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
+                                             nextUseWrites, false, scope));
             });
-            emitMerged(r, grids_[r].whole(), perSub, plan_.finalBarriers);
+            emitMerged(r, grids_[r].whole(), perSub_, plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         }
     }
 
     const GraphDesc& graph_;
+    const SubresourceGrids& graphGrids_;  // per graph resource
     const CompileOptions& options_;
     Plan plan_;
-    std::vector<SubresourceGrid> grids_;                    // per plan resource
-    std::vector<std::vector<AccessRef>> accesses_;          // per plan resource, in order
-    std::vector<std::vector<uint32_t>> accessIndex_;        // [step][usage] -> index in accesses_
-    std::vector<std::vector<VkImageLayout>> runLayout_;     // per resource, by run root
-    std::vector<std::vector<uint32_t>> runRoot_;            // per resource, per access
-    std::vector<std::vector<SubresourceState>> state_;      // per resource, per subresource
-    std::vector<std::vector<size_t>> runScopeOffset_;       // per resource, per access (+1)
-    std::vector<std::vector<VulkanScope>> runScope_;        // per resource, flattened
-    std::vector<std::optional<Barrier>> scratch_;           // per-subresource barriers
+    // Per plan resource.
+    std::vector<const ResourceDesc*> decls_;
+    SubresourceGrids grids_;              // also lays out state_
+    std::vector<uint32_t> accessBegin_;   // its accesses in accesses_ (+1 at the end)
+    // Flat.
+    std::vector<AccessRecord> accesses_;  // grouped by resource, each in plan order
+    std::vector<uint32_t> accessOf_;      // usage in plan order -> index in accesses_
+    std::vector<VulkanScope> runScope_;   // per access and subresource of its range
+    std::vector<SubresourceState> state_; // per subresource of every resource
+    // Scratch, reused across resources and usages.
+    ReadRuns runs_;
+    std::vector<uint32_t> openRead_;
+    std::vector<VkImageLayout> runLayout_;
+    std::vector<VulkanScope> pendingScope_;
+    std::vector<std::optional<Barrier>> perSub_;
+    std::vector<Barrier> mergeOpen_, mergeRow_, mergeNext_;
+    std::vector<Barrier> batch_;          // the current pass's barriers
 };
 
 }  // namespace
 
-Plan synchronize(const GraphDesc& graph, const Schedule& schedule, const CompileOptions& options) {
-    return Synchronizer(graph, options).run(schedule);
+Plan synchronize(const GraphDesc& graph, const Schedule& schedule, const SubresourceGrids& grids,
+                 const CompileOptions& options) {
+    return Synchronizer(graph, grids, options).run(schedule);
 }
 
 }  // namespace skygraph

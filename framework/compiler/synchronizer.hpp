@@ -11,8 +11,9 @@ namespace skygraph {
 
 /// Builds the plan's passes (inserting Clear passes where a `clear` resource is first used
 /// outside an attachment), their usages with load/store ops, every barrier batch, the final
-/// barriers and the resource lifetimes.
+/// barriers and the resource lifetimes. `grids` are the graph's resources' grids at the
+/// options' output size.
 [[nodiscard]] Plan synchronize(const GraphDesc& graph, const Schedule& schedule,
-                               const CompileOptions& options);
+                               const SubresourceGrids& grids, const CompileOptions& options);
 
 }  // namespace skygraph
