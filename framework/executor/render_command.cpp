@@ -2,17 +2,19 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/executor.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/scene.hpp>
 
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <optional>
 #include <iostream>
 
 namespace skygraph {
 
 int renderCommand(const RenderOptions& options) {
     try {
-        if (options.graph.empty()) {
+        if (options.graph.empty() && options.graphText.empty()) {
             std::cerr << "skygraph render: no graph file given\n";
             return 1;
         }
@@ -22,11 +24,25 @@ int renderCommand(const RenderOptions& options) {
         }
         const PassRegistry builtins = options.passes ? PassRegistry{} : PassRegistry::withBuiltins();
         const PassRegistry& registry = options.passes ? options.passes->registry() : builtins;
-        const GraphDesc graph = loadGraphFile(options.graph, registry);
+        const GraphDesc graph = options.graphText.empty()
+                                    ? loadGraphFile(options.graph, registry)
+                                    : parseGraph(options.graphText, "<built-in raster.json>", registry);
+        std::optional<Scene> scene;
+        if (!options.sceneText.empty())
+            scene = parseScene(options.sceneText, "<built-in default scene>", std::filesystem::current_path());
+        else if (!options.scene.empty())
+            scene = loadSceneFile(options.scene);
         CompileOptions co;
-        co.features = options.features;
+        if (scene) {
+            co.features = sceneFeatures(*scene);
+            for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
+        }
+        for (const auto& [name, on] : options.features) co.features[name] = on;
         co.presentReplacement = ExternalState::TransferSrc;
+        co.outputWidth = options.width;
+        co.outputHeight = options.height;
         Plan plan = compile(graph, co);
+        for (const auto& c : plan.culled) spdlog::info("culled {}: {}", c.name, c.reason);
 
         DeviceOptions dopts;
         dopts.device = options.device;
@@ -38,6 +54,7 @@ int renderCommand(const RenderOptions& options) {
         ropts.framesInFlight = options.framesInFlight;
         ropts.passes = options.passes;
         Renderer renderer(*device, graph, std::move(plan), ropts);
+        if (scene) renderer.frameData().set(*scene);
         for (uint32_t i = 0; i < options.frames; ++i) renderer.renderFrame();
         renderer.waitIdle();
         for (const auto& t : renderer.lastTimings()) {

@@ -209,7 +209,13 @@ private:
 
 /// `skygraph render`: options as parsed by the command line.
 struct RenderOptions {
-    std::filesystem::path graph;     ///< Required.
+    std::filesystem::path graph;     ///< Required unless `graphText` is given.
+    /// A graph in memory (the built-in default); used instead of `graph` when not empty.
+    std::string graphText;
+    /// A scene file (scenes/*.json). It decides the features (no objects: no forward pass;
+    /// no environment: no skybox) and is handed to the passes; `features` still override.
+    std::filesystem::path scene;
+    std::string sceneText;           ///< A scene in memory; used instead of `scene` when not empty.
     FeatureValues features;          ///< Overrides of the graph's defaults.
     uint32_t width = 256;
     uint32_t height = 256;

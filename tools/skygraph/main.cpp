@@ -5,7 +5,10 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 #if SKYGRAPH_HAS_EXECUTOR
+#include "builtin_defaults.hpp"
+
 #include <skygraph/executor.hpp>
+#include <skygraph/pass.hpp>
 #endif
 
 #include <CLI/CLI.hpp>
@@ -62,17 +65,21 @@ int main(int argc, char** argv) {
 
 #if SKYGRAPH_HAS_EXECUTOR
     RenderOptions renderArgs;
-    std::string renderGraph = "graphs/raster.json", renderOutput;
+    std::string renderGraph, renderScene, renderOutput = "skygraph.png";
     std::vector<std::string> renderFeatures;
-    auto* renderCmd = app.add_subcommand("render", "Render a graph headless and write the swapchain target");
-    renderCmd->add_option("graph", renderGraph, "Graph file (default: graphs/raster.json)");
+    auto* renderCmd = app.add_subcommand(
+        "render", "Render a graph headless and write the swapchain target. With no graph and no scene: "
+                  "the built-in raster graph and default scene");
+    renderCmd->add_option("graph", renderGraph, "Graph file (default: the built-in graphs/raster.json)");
+    renderCmd->add_option("--scene", renderScene, "Scene file (scenes/*.json); default with the built-in graph: "
+                                                  "the built-in scenes/default.json");
     renderCmd->add_option("--feature", renderFeatures, "Override a feature: NAME=on|off (repeatable)");
     renderCmd->add_option("--width", renderArgs.width, "Output width")->check(CLI::Range(1u, 16384u));
     renderCmd->add_option("--height", renderArgs.height, "Output height")->check(CLI::Range(1u, 16384u));
     renderCmd->add_option("--frames", renderArgs.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
     renderCmd->add_option("--frames-in-flight", renderArgs.framesInFlight, "Frames in flight")
         ->check(CLI::Range(1u, 8u));
-    renderCmd->add_option("-o,--output", renderOutput, "Write the result (.png, or .hdr)");
+    renderCmd->add_option("-o,--output", renderOutput, "Write the result: .png, .hdr or .exr (default skygraph.png)");
     renderCmd->add_flag("--validate", renderArgs.validate,
                         "Khronos validation with synchronization validation; any message fails");
     renderCmd->add_option("--device", renderArgs.device, "Device by index or name");
@@ -90,7 +97,14 @@ int main(int argc, char** argv) {
         if (compileCmd->parsed()) return runCompile(compileArgs);
 #if SKYGRAPH_HAS_EXECUTOR
         if (renderCmd->parsed()) {
+            static const PassLibrary library = PassLibrary::withBuiltins();
+            renderArgs.passes = &library;
+            if (renderGraph.empty()) {
+                renderArgs.graphText = kDefaultGraph;
+                if (renderScene.empty()) renderArgs.sceneText = kDefaultScene;
+            }
             renderArgs.graph = renderGraph;
+            renderArgs.scene = renderScene;
             renderArgs.output = renderOutput;
             renderArgs.features = parseFeatureFlags(renderFeatures);
             return renderCommand(renderArgs);
