@@ -4,11 +4,12 @@
 #include "vulkan_state.hpp"
 
 #include <algorithm>
-#include <numeric>
 #include <optional>
 
 namespace skygraph {
 namespace {
+
+constexpr uint32_t kNone = ~0u;
 
 /// What is known about one subresource between passes.
 struct SubresourceState {
@@ -26,19 +27,28 @@ struct SubresourceState {
     bool fromOutside = false;
 };
 
-/// One usage of one resource, in plan order. The per-resource sweeps (read runs, run scopes,
-/// store ops) walk each resource's usages in turn; what they need of a usage is copied here so
-/// that they stream through one array instead of jumping through the pass-major plan.
+/// One usage in plan order (access k is the k-th usage of the plan), with what the sweeps
+/// over the plan need of it, so that they stream through one compact array. Each resource's
+/// accesses are chained through `next`.
 struct AccessRecord {
-    uint32_t step = 0;   ///< Index into Plan::passes.
-    uint32_t usage = 0;  ///< Index into PlannedPass::usages.
     SubresourceRange range;
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Its read run's layout once grouped.
-    uint32_t runScopes = 0;  ///< Index of its first entry in Synchronizer::runScope_.
-    bool reads = false;      ///< Of the effective usage (a load-op clear writes).
+    uint32_t step = 0;        ///< Index into Plan::passes.
+    uint32_t resource = 0;    ///< Index into Plan::resources.
+    uint32_t next = kNone;    ///< The same resource's next access.
+    uint32_t runScopes = 0;   ///< Index of its first entry in Synchronizer::runScope_.
+    bool reads = false;       ///< Of the effective usage (a load-op clear writes).
     bool writes = false;
+};
+
+/// Per plan resource, what the sweeps ask of it often (its ResourceDesc is large and cold).
+struct ResourceFacts {
+    uint32_t firstAccess = kNone;  ///< Its accesses, chained through AccessRecord::next.
+    uint32_t lastAccess = kNone;
+    bool image = false;
+    bool exported = false;
 };
 
 bool covers(VkPipelineStageFlags2 haveStages, VkAccessFlags2 haveAccess, const VulkanScope& need) {
@@ -51,13 +61,13 @@ bool sameParams(Barrier a, Barrier b) {
     return a == b;
 }
 
-/// Union-find over the accesses of one resource, grouping runs of reads that must share one
-/// layout (reads of overlapping subresources with no write between).
+/// Union-find over accesses, grouping runs of reads that must share one layout (reads of
+/// overlapping subresources of one resource with no write between).
 struct ReadRuns {
     std::vector<uint32_t> parent;
-    void reset(uint32_t n) {
-        parent.resize(n);
-        std::iota(parent.begin(), parent.end(), 0u);
+    uint32_t add() {
+        parent.push_back(static_cast<uint32_t>(parent.size()));
+        return parent.back();
     }
     uint32_t find(uint32_t a) {
         while (parent[a] != a) a = parent[a] = parent[parent[a]];
@@ -74,16 +84,13 @@ public:
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
         buildSteps(schedule);
-        indexAccesses();
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
-            groupReadRuns(r);
-            computeRunScopes(r);
-        }
+        groupReadRuns();
+        computeRunScopes();
         initState();
-        uint32_t k = 0;  // the usage's index in plan order
+        uint32_t k = 0;  // access index: the usage's position in plan order
         for (auto& step : plan_.passes) {
             batch_.clear();
-            for (uint32_t u = 0; u < step.usages.size(); ++u) applyAccess(step.usages[u], accessOf_[k++]);
+            for (auto& pu : step.usages) applyAccess(pu, k++);
             mergeAdjacent(batch_);
             step.barriers.assign(batch_.begin(), batch_.end());  // allocated once, to size
         }
@@ -92,20 +99,15 @@ public:
     }
 
 private:
-    static constexpr uint32_t kNone = ~0u;
-
     const ResourceDesc& decl(uint32_t planResource) const { return *decls_[planResource]; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
     }
-    /// The accesses of plan resource r, in plan order.
-    uint32_t accessBegin(uint32_t r) const { return accessBegin_[r]; }
-    uint32_t accessEnd(uint32_t r) const { return accessBegin_[r + 1]; }
 
     // Plan passes, resources and usages (with their Vulkan scopes), with clears placed.
     void buildSteps(const Schedule& schedule) {
         std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
-        std::vector<uint32_t> clearsBefore;  // resources a Clear pass before this pass clears
+        std::vector<uint32_t> clearsBefore;  // resources that a Clear pass before this pass clears
         plan_.passes.reserve(schedule.passes.size());
         for (uint32_t p : schedule.passes) {
             const PassDesc& pass = graph_.passes[p];
@@ -127,17 +129,19 @@ private:
                 }
                 setScope(pu);
             }
-            for (uint32_t r : clearsBefore) plan_.passes.push_back(clearPass(r));
-            plan_.passes.push_back(std::move(step));
+            for (uint32_t r : clearsBefore) appendStep(clearPass(r));
+            appendStep(std::move(step));
         }
     }
 
     uint32_t addResource(uint32_t declIndex) {
+        const ResourceDesc& d = graph_.resources[declIndex];
         PlannedResource res;
         res.decl = declIndex;
-        res.name = graph_.resources[declIndex].name;
+        res.name = d.name;
         plan_.resources.push_back(std::move(res));
-        decls_.push_back(&graph_.resources[declIndex]);
+        decls_.push_back(&d);
+        facts_.push_back({kNone, kNone, d.isImage(), d.isExported()});
         grids_.add(graphGrids_[declIndex]);
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
@@ -147,7 +151,7 @@ private:
     bool clearsThroughLoadOp(const PlannedUsage& firstUse) const {
         return isAttachmentStage(firstUse.usage.stage) && firstUse.range == grids_[firstUse.resource].whole();
     }
-    PlannedPass clearPass(uint32_t r) {
+    PlannedPass clearPass(uint32_t r) const {
         PlannedUsage clear;
         clear.resource = r;
         clear.usage = {Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
@@ -169,95 +173,97 @@ private:
         pu.access = scope.access;
     }
 
-    /// Groups the usages by resource (a counting sort, so each resource's stay in plan order),
-    /// sets the lifetimes and lays out the run scopes.
-    void indexAccesses() {
-        const size_t resources = plan_.resources.size();
-        accessBegin_.assign(resources + 1, 0);
-        for (const auto& step : plan_.passes)
-            for (const auto& pu : step.usages) ++accessBegin_[pu.resource + 1];
-        std::partial_sum(accessBegin_.begin(), accessBegin_.end(), accessBegin_.begin());
-        accesses_.resize(accessBegin_.back());
-        accessOf_.resize(accessBegin_.back());
-        std::vector<uint32_t> next(accessBegin_.begin(), accessBegin_.end() - 1);
-        uint32_t k = 0;
-        for (uint32_t s = 0; s < plan_.passes.size(); ++s)
-            for (uint32_t u = 0; u < plan_.passes[s].usages.size(); ++u) {
-                const PlannedUsage& pu = plan_.passes[s].usages[u];
-                const uint32_t i = next[pu.resource]++;
-                const Access access = effectiveUsage(pu).access;
-                accesses_[i] = {s, u, pu.range, pu.stages, pu.access, pu.layout, 0,
-                                readsContents(access), writesContents(access)};
-                accessOf_[k++] = i;
+    /// Appends a pass to the plan and its usages to accesses_, chaining each to the previous
+    /// access of its resource; sets the resources' lifetimes.
+    void appendStep(PlannedPass&& step) {
+        const auto s = static_cast<uint32_t>(plan_.passes.size());
+        for (const PlannedUsage& pu : step.usages) {
+            const auto k = static_cast<uint32_t>(accesses_.size());
+            const Access access = effectiveUsage(pu).access;
+            AccessRecord& a = accesses_.emplace_back();
+            a.range = pu.range;
+            a.stages = pu.stages;
+            a.access = pu.access;
+            a.layout = pu.layout;
+            a.step = s;
+            a.resource = pu.resource;
+            a.runScopes = runScopeCount_;
+            a.reads = readsContents(access);
+            a.writes = writesContents(access);
+            runScopeCount_ += static_cast<uint32_t>(cells(pu.range));
+            ResourceFacts& f = facts_[pu.resource];
+            if (f.firstAccess == kNone) {
+                f.firstAccess = k;
+                plan_.resources[pu.resource].firstPass = s;
+            } else {
+                accesses_[f.lastAccess].next = k;
             }
-        uint32_t scopes = 0;
-        for (auto& a : accesses_) {
-            a.runScopes = scopes;
-            scopes += static_cast<uint32_t>(cells(a.range));
+            f.lastAccess = k;
+            plan_.resources[pu.resource].lastPass = s;
         }
-        runScope_.resize(scopes);
-        for (uint32_t r = 0; r < resources; ++r) {
-            plan_.resources[r].firstPass = accesses_[accessBegin(r)].step;
-            plan_.resources[r].lastPass = accesses_[accessEnd(r) - 1].step;
-        }
+        plan_.passes.push_back(std::move(step));
     }
 
-    /// Rule 4: one layout per run of reads, serving all of them.
-    void groupReadRuns(uint32_t r) {
-        if (!decl(r).isImage()) return;  // buffers have no layout
-        const uint32_t first = accessBegin(r);
-        const uint32_t n = accessEnd(r) - first;
-        AccessRecord* list = &accesses_[first];
-        runs_.reset(n);
-        openRead_.assign(grids_[r].size(), kNone);  // per subresource: its run's latest read
-        for (uint32_t i = 0; i < n; ++i)
-            grids_[r].forEach(list[i].range, [&](size_t sub) {
-                if (list[i].writes) {
-                    openRead_[sub] = kNone;
+    /// Rule 4: reads of overlapping subresources with no write between form a run, and the
+    /// run gets one layout that serves all its readers. One forward sweep over the accesses.
+    void groupReadRuns() {
+        // Union-find over all accesses at once: runs never span resources.
+        ReadRuns runs;
+        runs.parent.reserve(accesses_.size());
+        std::vector<uint32_t> openRead(grids_.total(), kNone);  // per subresource: latest read
+        for (const AccessRecord& a : accesses_) {
+            const uint32_t k = runs.add();
+            if (!facts_[a.resource].image) continue;  // buffers have no layout
+            grids_.forEach(a.resource, a.range, [&](size_t sub) {
+                if (a.writes) {
+                    openRead[sub] = kNone;
                 } else {
-                    if (openRead_[sub] != kNone) runs_.unite(openRead_[sub], i);
-                    openRead_[sub] = i;
+                    if (openRead[sub] != kNone) runs.unite(openRead[sub], k);
+                    openRead[sub] = k;
                 }
             });
-        runLayout_.assign(n, VK_IMAGE_LAYOUT_UNDEFINED);  // by run root
-        for (uint32_t i = 0; i < n; ++i) {
-            if (list[i].writes) continue;
-            auto& l = runLayout_[runs_.find(i)];
-            l = l == VK_IMAGE_LAYOUT_UNDEFINED ? list[i].layout : commonReadLayout(l, list[i].layout);
         }
-        for (uint32_t i = 0; i < n; ++i) {
-            if (list[i].writes) continue;
-            list[i].layout = runLayout_[runs_.find(i)];
-            plan_.passes[list[i].step].usages[list[i].usage].layout = list[i].layout;
+        std::vector<VkImageLayout> runLayout(accesses_.size(), VK_IMAGE_LAYOUT_UNDEFINED);  // by root
+        for (uint32_t k = 0; k < accesses_.size(); ++k) {
+            const AccessRecord& a = accesses_[k];
+            if (a.writes || !facts_[a.resource].image) continue;
+            auto& l = runLayout[runs.find(k)];
+            l = l == VK_IMAGE_LAYOUT_UNDEFINED ? a.layout : commonReadLayout(l, a.layout);
         }
+        uint32_t k = 0;
+        for (auto& step : plan_.passes)
+            for (auto& pu : step.usages) {
+                AccessRecord& a = accesses_[k];
+                if (!a.writes && facts_[a.resource].image) a.layout = pu.layout = runLayout[runs.find(k)];
+                ++k;
+            }
     }
 
     /// For every read access and subresource it touches: the union of the scopes of the reads
     /// of that subresource from this one up to the next write. All of them belong to one run
     /// (rule 4 in docs/barriers.md), so this is what a barrier before this read makes visible.
-    /// One backward sweep per resource, into `runScope_` from each access's `runScopes`.
-    void computeRunScopes(uint32_t r) {
-        pendingScope_.assign(grids_[r].size(), {});
-        for (uint32_t i = accessEnd(r); i-- > accessBegin(r);) {
-            const AccessRecord& a = accesses_[i];
-            VulkanScope* out = &runScope_[a.runScopes];
-            grids_[r].forEach(a.range, [&](size_t sub) {
-                VulkanScope& pending = pendingScope_[sub];
-                if (a.writes) {
-                    pending = {};
+    /// One backward sweep over the accesses, into `runScope_` from each access's `runScopes`.
+    void computeRunScopes() {
+        runScope_.resize(runScopeCount_);
+        std::vector<VulkanScope> pending(grids_.total());  // per subresource
+        for (auto a = accesses_.rbegin(); a != accesses_.rend(); ++a) {
+            VulkanScope* out = &runScope_[a->runScopes];
+            grids_.forEach(a->resource, a->range, [&](size_t sub) {
+                if (a->writes) {
+                    pending[sub] = {};
                 } else {
-                    pending.stages |= a.stages;
-                    pending.access |= a.access;
-                    *out = pending;
+                    pending[sub].stages |= a->stages;
+                    pending[sub].access |= a->access;
+                    *out = pending[sub];
                 }
                 ++out;
             });
         }
     }
 
-    /// Whether a later access (or the export) reads what access `i` leaves in `range`.
-    bool readLater(uint32_t r, uint32_t i, const SubresourceRange& range) const {
-        for (uint32_t j = i + 1; j < accessEnd(r); ++j) {
+    /// Whether a later access (or the export) reads what access `k` leaves in `range`.
+    bool readLater(uint32_t k, const SubresourceRange& range) const {
+        for (uint32_t j = accesses_[k].next; j != kNone; j = accesses_[j].next) {
             const AccessRecord& a = accesses_[j];
             if (!a.range.overlaps(range)) continue;
             if (a.reads) return true;
@@ -266,7 +272,18 @@ private:
                 o.baseLayer <= range.baseLayer && o.baseLayer + o.layerCount >= range.baseLayer + range.layerCount)
                 return false;
         }
-        return decl(r).isExported();  // the same notion of "live at the end" as culling
+        return facts_[accesses_[k].resource].exported;  // the same notion of "live at the end" as culling
+    }
+
+    /// Stages and accesses of resource r's uses in its first pass.
+    VulkanScope firstPassScope(uint32_t r) const {
+        VulkanScope scope;
+        const uint32_t first = plan_.resources[r].firstPass;
+        for (uint32_t k = facts_[r].firstAccess; k != kNone && accesses_[k].step == first; k = accesses_[k].next) {
+            scope.stages |= accesses_[k].stages;
+            scope.access |= accesses_[k].access;
+        }
+        return scope;
     }
 
     /// Where a persistent external resource's contents must be visible at the frame's start.
@@ -275,13 +292,8 @@ private:
     VulkanScope boundaryScope(uint32_t r, ExternalState state) const {
         VulkanScope scope = externalScope(decl(r), state);
         if (state == ExternalState::General && decl(r).external) {
-            const uint32_t first = plan_.resources[r].firstPass;
-            VulkanScope firstUse{0, 0, scope.layout};
-            for (uint32_t i = accessBegin(r); i < accessEnd(r) && accesses_[i].step == first; ++i) {
-                firstUse.stages |= accesses_[i].stages;
-                firstUse.access |= accesses_[i].access;
-            }
-            return firstUse;
+            const VulkanScope firstUse = firstPassScope(r);
+            return {firstUse.stages, firstUse.access, scope.layout};
         }
         return scope;
     }
@@ -300,14 +312,14 @@ private:
                 init.visibleAccess = scope.access;
                 init.fromOutside = true;
             }
-            std::fill_n(state_.begin() + static_cast<std::ptrdiff_t>(grids_.first(r)), grids_[r].size(), init);
-            auto& res = plan_.resources[r];
-            res.initialLayout = init.layout;
-            for (uint32_t i = accessBegin(r); i < accessEnd(r) && accesses_[i].step == res.firstPass; ++i)
-                res.firstStages |= accesses_[i].stages;
+            std::fill_n(stateOf(r), grids_[r].size(), init);
+            plan_.resources[r].initialLayout = init.layout;
+            plan_.resources[r].firstStages = firstPassScope(r).stages;
         }
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[grids_.first(r)]; }
+
+
     /// The barrier subresource `st` needs before an access in `scope` that reads
     /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
     std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need,
@@ -364,12 +376,12 @@ private:
         return b;
     }
 
-    /// Barriers for one usage (access `i`) into batch_, then the state after it, and the
+    /// Barriers for one usage (access `k`) into batch_, then the state after it, and the
     /// attachment's load and store ops.
-    void applyAccess(PlannedUsage& pu, uint32_t i) {
-        const AccessRecord& a = accesses_[i];
+    void applyAccess(PlannedUsage& pu, uint32_t k) {
+        const AccessRecord& a = accesses_[k];
         const uint32_t r = pu.resource;
-        const bool isImage = decl(r).isImage();
+        const bool isImage = facts_[r].image;
         const bool write = a.writes;
         const bool discard = effectiveUsage(pu).access == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
@@ -411,7 +423,7 @@ private:
         if (isAttachmentStage(pu.usage.stage)) {
             if (pu.load != LoadOp::Clear)
                 pu.load = pu.usage.access == Access::Write ? LoadOp::DontCare : LoadOp::Load;
-            pu.store = !write ? StoreOp::None : readLater(r, i, pu.range) ? StoreOp::Store : StoreOp::DontCare;
+            pu.store = !write ? StoreOp::None : readLater(k, pu.range) ? StoreOp::Store : StoreOp::DontCare;
         }
     }
 
@@ -419,7 +431,7 @@ private:
     /// forEach order) into as few rectangles of mips x layers as agree.
     void emitMerged(uint32_t r, const SubresourceRange& range,
                     const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
-        const BarrierKind kind = decl(r).isImage() ? BarrierKind::Image : BarrierKind::Buffer;
+        const BarrierKind kind = facts_[r].image ? BarrierKind::Image : BarrierKind::Buffer;
         auto& open = mergeOpen_;  // rectangles that may still grow by one more mip
         auto& row = mergeRow_;
         auto& next = mergeNext_;
@@ -491,11 +503,11 @@ private:
 
     void finalBarriers() {
         for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
-            const auto& d = decl(r);
             auto& res = plan_.resources[r];
             SubresourceState* states = stateOf(r);
             res.finalLayout = states[0].layout;
-            if (!d.isExported()) continue;
+            if (!facts_[r].exported) continue;
+            const auto& d = decl(r);
             const VulkanScope scope = boundaryScope(r, replaced(d.final));
             // A persistent resource's next frame repeats this one. If it writes anywhere, the
             // final barrier must order every access of this frame, readers included, before
@@ -503,7 +515,8 @@ private:
             // frame chain through that first use and never name this frame's stages.
             const bool persistent = d.external && replaced(d.final) == replaced(d.initial);
             bool framesWrite = false;
-            for (uint32_t i = accessBegin(r); i < accessEnd(r); ++i) framesWrite |= accesses_[i].writes;
+            for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next)
+                framesWrite |= accesses_[k].writes;
             const bool nextUseWrites = writeBits(scope.access) != 0 || (persistent && framesWrite);
             perSub_.clear();
             grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
@@ -522,21 +535,18 @@ private:
     Plan plan_;
     // Per plan resource.
     std::vector<const ResourceDesc*> decls_;
-    SubresourceGrids grids_;              // also lays out state_
-    std::vector<uint32_t> accessBegin_;   // its accesses in accesses_ (+1 at the end)
-    // Flat.
-    std::vector<AccessRecord> accesses_;  // grouped by resource, each in plan order
-    std::vector<uint32_t> accessOf_;      // usage in plan order -> index in accesses_
-    std::vector<VulkanScope> runScope_;   // per access and subresource of its range
-    std::vector<SubresourceState> state_; // per subresource of every resource
-    // Scratch, reused across resources and usages.
-    ReadRuns runs_;
-    std::vector<uint32_t> openRead_;
-    std::vector<VkImageLayout> runLayout_;
-    std::vector<VulkanScope> pendingScope_;
+    std::vector<ResourceFacts> facts_;
+    SubresourceGrids grids_;               // also lays out the per-subresource arrays
+    // Per access (usage in plan order).
+    std::vector<AccessRecord> accesses_;
+    uint32_t runScopeCount_ = 0;
+    std::vector<VulkanScope> runScope_;    // per access and subresource of its range
+    // Per subresource of every resource.
+    std::vector<SubresourceState> state_;
+    // Scratch, reused across usages.
     std::vector<std::optional<Barrier>> perSub_;
     std::vector<Barrier> mergeOpen_, mergeRow_, mergeNext_;
-    std::vector<Barrier> batch_;          // the current pass's barriers
+    std::vector<Barrier> batch_;           // the current pass's barriers
 };
 
 }  // namespace
