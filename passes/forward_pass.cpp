@@ -1,8 +1,10 @@
 // ForwardPass: the scene's spheres and planes, metal/rough GGX, into hdr_color and a
 // reverse-Z depth buffer (GREATER test, cleared to 0 by the graph).
 #include "builtin_passes.hpp"
-#include "pipeline_util.hpp"
 #include "scene_camera.hpp"
+#include "vk_util.hpp"
+
+#include <skygraph/pipeline_builder.hpp>
 
 #include <nlohmann/json.hpp>
 

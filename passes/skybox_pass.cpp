@@ -2,7 +2,7 @@
 // GREATER_OR_EQUAL without writes, LOAD of the HDR target) with the two departures the issue
 // asks for: rays from the camera rotation alone, and cubemap or direct equirect sampling.
 #include "builtin_passes.hpp"
-#include "pipeline_util.hpp"
+#include <skygraph/pipeline_builder.hpp>
 #include "scene_camera.hpp"
 
 #include <nlohmann/json.hpp>

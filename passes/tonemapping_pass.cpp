@@ -1,7 +1,7 @@
 // TonemappingPass: HDR -> display. Exposure and operator come from the scene when one is set
 // (FrameData<Scene>), else from the pass's params.
 #include "builtin_passes.hpp"
-#include "pipeline_util.hpp"
+#include <skygraph/pipeline_builder.hpp>
 
 #include <skygraph/scene.hpp>
 

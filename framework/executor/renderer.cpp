@@ -5,6 +5,7 @@
 
 #include <skygraph/executor.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/pipeline_builder.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -254,17 +255,6 @@ struct Renderer::Impl {
         return v;
     }
 
-    vk::ShaderModule module(VkShaderStageFlagBits stage, const std::string& source,
-                            const std::string& name) {
-        const auto spirv = shaders.compile(stage, source, name);
-        VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-        ci.codeSize = spirv.size() * 4;
-        ci.pCode = spirv.data();
-        VkShaderModule m;
-        vk::check(vkCreateShaderModule(vkd, &ci, nullptr, &m), "vkCreateShaderModule");
-        return vk::ShaderModule(vkd, m);
-    }
-
     // --- building a plan -----------------------------------------------------------------
 
     std::unique_ptr<PlanState> build(const GraphDesc& graph, Plan plan) {
@@ -418,7 +408,7 @@ struct Renderer::Impl {
         s.passes.push_back(std::move(ps));
     }
 
-    vk::SetLayout setLayout(const std::vector<ShaderBinding>& bindings) {
+    static std::vector<VkDescriptorSetLayoutBinding> layoutBindings(const std::vector<ShaderBinding>& bindings) {
         std::vector<VkDescriptorSetLayoutBinding> b;
         for (const auto& sb : bindings) {
             VkDescriptorSetLayoutBinding lb{};
@@ -433,25 +423,7 @@ struct Renderer::Impl {
             }
             b.push_back(lb);
         }
-        VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-        ci.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-        ci.bindingCount = static_cast<uint32_t>(b.size());
-        ci.pBindings = b.data();
-        VkDescriptorSetLayout l;
-        vk::check(vkCreateDescriptorSetLayout(vkd, &ci, nullptr, &l), "vkCreateDescriptorSetLayout");
-        return vk::SetLayout(vkd, l);
-    }
-
-    vk::PipelineLayout pipelineLayout(VkDescriptorSetLayout set, VkShaderStageFlags stages) {
-        VkPushConstantRange pcr{stages, 0, 16};
-        VkPipelineLayoutCreateInfo ci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-        ci.setLayoutCount = 1;
-        ci.pSetLayouts = &set;
-        ci.pushConstantRangeCount = 1;
-        ci.pPushConstantRanges = &pcr;
-        VkPipelineLayout l;
-        vk::check(vkCreatePipelineLayout(vkd, &ci, nullptr, &l), "vkCreatePipelineLayout");
-        return vk::PipelineLayout(vkd, l);
+        return b;
     }
 
     static VkAttachmentLoadOp loadOp(LoadOp op) {
@@ -535,51 +507,25 @@ struct Renderer::Impl {
     void buildGraphicsPipeline(PlanState& s, PassState& ps) {
         const PlannedPass& pass = *ps.pass;
         const GenericProgram& p = ps.program;
-        const VkRenderPass rp = ps.renderPass.get();
-
-        ps.graphicsSetLayout = setLayout(p.graphicsBindings);
-        ps.graphicsLayout = pipelineLayout(ps.graphicsSetLayout.get(),
-                                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
-        auto vs = module(VK_SHADER_STAGE_VERTEX_BIT, p.vertexSource, pass.name + ".vert");
-        auto fs = module(VK_SHADER_STAGE_FRAGMENT_BIT, p.fragmentSource, pass.name + ".frag");
-        VkPipelineShaderStageCreateInfo stages[2] = {
-            {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
-             vs.get(), "main", nullptr},
-            {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-             VK_SHADER_STAGE_FRAGMENT_BIT, fs.get(), "main", nullptr}};
-        std::vector<VkVertexInputBindingDescription> vbind;
-        std::vector<VkVertexInputAttributeDescription> vattr;
+        GraphicsPipelineRecipe recipe;
+        recipe.bindings = layoutBindings(p.graphicsBindings);
+        recipe.pushConstantBytes = 16;
+        recipe.vertex = shaders.compile(VK_SHADER_STAGE_VERTEX_BIT, p.vertexSource, pass.name + ".vert");
+        recipe.fragment = shaders.compile(VK_SHADER_STAGE_FRAGMENT_BIT, p.fragmentSource, pass.name + ".frag");
+        recipe.renderPass = ps.renderPass.get();
         for (uint32_t i = 0; i < p.vertexBuffers.size(); ++i) {
-            vbind.push_back({i, 4, VK_VERTEX_INPUT_RATE_VERTEX});
-            vattr.push_back({i, i, VK_FORMAT_R32_SFLOAT, 0});
+            recipe.vertexBindings.push_back({i, 4, VK_VERTEX_INPUT_RATE_VERTEX});
+            recipe.vertexAttributes.push_back({i, i, VK_FORMAT_R32_SFLOAT, 0});
         }
-        VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        vi.vertexBindingDescriptionCount = static_cast<uint32_t>(vbind.size());
-        vi.pVertexBindingDescriptions = vbind.data();
-        vi.vertexAttributeDescriptionCount = static_cast<uint32_t>(vattr.size());
-        vi.pVertexAttributeDescriptions = vattr.data();
-        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        vp.viewportCount = 1;
-        vp.scissorCount = 1;
-        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        rs.polygonMode = VK_POLYGON_MODE_FILL;
-        rs.cullMode = VK_CULL_MODE_NONE;
-        rs.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         if (p.depth >= 0) {
             const PlannedUsage& du = pass.usages[static_cast<size_t>(p.depth)];
             const bool hasDepth = s.resources[du.resource].desc->format.hasDepth;
             // The test always passes so that colors do not depend on earlier depth values,
             // but it is enabled: the attachment is really read (and written unless Read).
-            ds.depthTestEnable = hasDepth ? VK_TRUE : VK_FALSE;
-            ds.depthWriteEnable = hasDepth && writesContents(du.usage.access) ? VK_TRUE : VK_FALSE;
-            ds.depthCompareOp = VK_COMPARE_OP_ALWAYS;
+            recipe.depthTest = hasDepth;
+            recipe.depthWrite = hasDepth && writesContents(du.usage.access);
+            recipe.depthCompare = VK_COMPARE_OP_ALWAYS;
         }
-        std::vector<VkPipelineColorBlendAttachmentState> blends;
         for (uint32_t c : p.colors) {
             const PlannedUsage& u = pass.usages[c];
             VkPipelineColorBlendAttachmentState b{};
@@ -592,47 +538,25 @@ struct Renderer::Impl {
                 b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
                 b.colorBlendOp = b.alphaBlendOp = VK_BLEND_OP_ADD;
             }
-            blends.push_back(b);
+            recipe.blends.push_back(b);
         }
-        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        cb.attachmentCount = static_cast<uint32_t>(blends.size());
-        cb.pAttachments = blends.data();
-        const VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-        dy.dynamicStateCount = 2;
-        dy.pDynamicStates = dyn;
-        VkGraphicsPipelineCreateInfo gci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gci.stageCount = 2;
-        gci.pStages = stages;
-        gci.pVertexInputState = &vi;
-        gci.pInputAssemblyState = &ia;
-        gci.pViewportState = &vp;
-        gci.pRasterizationState = &rs;
-        gci.pMultisampleState = &ms;
-        gci.pDepthStencilState = &ds;
-        gci.pColorBlendState = &cb;
-        gci.pDynamicState = &dy;
-        gci.layout = ps.graphicsLayout.get();
-        gci.renderPass = rp;
-        VkPipeline pipe;
-        vk::check(vkCreateGraphicsPipelines(vkd, VK_NULL_HANDLE, 1, &gci, nullptr, &pipe),
-                  "vkCreateGraphicsPipelines");
-        ps.graphicsPipeline = vk::Pipeline(vkd, pipe);
+        recipe.colorAttachments = static_cast<uint32_t>(recipe.blends.size());
+        GraphicsPipeline built = createGraphicsPipeline(vkd, recipe);
+        ps.graphicsSetLayout = std::move(built.setLayout);
+        ps.graphicsLayout = std::move(built.layout);
+        ps.graphicsPipeline = std::move(built.pipeline);
     }
 
     void buildCompute(PassState& ps) {
         const GenericProgram& p = ps.program;
-        ps.computeSetLayout = setLayout(p.computeBindings);
-        ps.computeLayout = pipelineLayout(ps.computeSetLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT);
-        auto cs = module(VK_SHADER_STAGE_COMPUTE_BIT, p.computeSource, ps.pass->name + ".comp");
-        VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-                    VK_SHADER_STAGE_COMPUTE_BIT, cs.get(), "main", nullptr};
-        ci.layout = ps.computeLayout.get();
-        VkPipeline pipe;
-        vk::check(vkCreateComputePipelines(vkd, VK_NULL_HANDLE, 1, &ci, nullptr, &pipe),
-                  "vkCreateComputePipelines");
-        ps.computePipeline = vk::Pipeline(vkd, pipe);
+        ComputePipelineRecipe recipe;
+        recipe.bindings = layoutBindings(p.computeBindings);
+        recipe.pushConstantBytes = 16;
+        recipe.compute = shaders.compile(VK_SHADER_STAGE_COMPUTE_BIT, p.computeSource, ps.pass->name + ".comp");
+        ComputePipeline built = createComputePipeline(vkd, recipe);
+        ps.computeSetLayout = std::move(built.setLayout);
+        ps.computeLayout = std::move(built.layout);
+        ps.computePipeline = std::move(built.pipeline);
     }
 
     // --- output-sized state --------------------------------------------------------------

@@ -1,10 +1,13 @@
-#include "pipeline_util.hpp"
+// Pipeline building blocks for pass implementations; see include/skygraph/pipeline_builder.hpp.
+#include <skygraph/pipeline_builder.hpp>
+
+#include "vk_util.hpp"
 
 #include <array>
 #include <fstream>
 #include <sstream>
 
-namespace skygraph::passes {
+namespace skygraph {
 
 std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagBits stage,
                                     const std::string& relativePath,
@@ -28,36 +31,49 @@ std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagB
     return compiler.compile(stage, out.str(), name);
 }
 
-GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineRecipe& recipe) {
-    GraphicsPipeline out;
+namespace {
+
+/// Push-descriptor set 0 and the pipeline layout over it, owned by `setLayout`/`layout`.
+void createLayouts(VkDevice device, const std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                   VkShaderStageFlags pushStages, uint32_t pushConstantBytes, vk::SetLayout& setLayout,
+                   vk::PipelineLayout& layout) {
     VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     sli.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-    sli.bindingCount = static_cast<uint32_t>(recipe.bindings.size());
-    sli.pBindings = recipe.bindings.data();
-    VkDescriptorSetLayout setLayout;
-    vk::check(vkCreateDescriptorSetLayout(device, &sli, nullptr, &setLayout), "vkCreateDescriptorSetLayout");
-    out.setLayout = vk::SetLayout(device, setLayout);
+    sli.bindingCount = static_cast<uint32_t>(bindings.size());
+    sli.pBindings = bindings.data();
+    VkDescriptorSetLayout set;
+    vk::check(vkCreateDescriptorSetLayout(device, &sli, nullptr, &set), "vkCreateDescriptorSetLayout");
+    setLayout = vk::SetLayout(device, set);
 
-    VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                              recipe.pushConstantBytes};
+    VkPushConstantRange range{pushStages, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     pli.setLayoutCount = 1;
-    pli.pSetLayouts = &setLayout;
-    pli.pushConstantRangeCount = recipe.pushConstantBytes ? 1 : 0;
+    pli.pSetLayouts = &set;
+    pli.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
     pli.pPushConstantRanges = &range;
-    VkPipelineLayout layout;
-    vk::check(vkCreatePipelineLayout(device, &pli, nullptr, &layout), "vkCreatePipelineLayout");
-    out.layout = vk::PipelineLayout(device, layout);
+    VkPipelineLayout l;
+    vk::check(vkCreatePipelineLayout(device, &pli, nullptr, &l), "vkCreatePipelineLayout");
+    layout = vk::PipelineLayout(device, l);
+}
 
-    auto module = [&](const std::vector<uint32_t>& code) {
-        VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-        mi.codeSize = code.size() * 4;
-        mi.pCode = code.data();
-        VkShaderModule m;
-        vk::check(vkCreateShaderModule(device, &mi, nullptr, &m), "vkCreateShaderModule");
-        return vk::ShaderModule(device, m);
-    };
-    const vk::ShaderModule vs = module(recipe.vertex), fs = module(recipe.fragment);
+vk::ShaderModule shaderModule(VkDevice device, const std::vector<uint32_t>& code) {
+    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    mi.codeSize = code.size() * 4;
+    mi.pCode = code.data();
+    VkShaderModule m;
+    vk::check(vkCreateShaderModule(device, &mi, nullptr, &m), "vkCreateShaderModule");
+    return vk::ShaderModule(device, m);
+}
+
+}  // namespace
+
+GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineRecipe& recipe) {
+    GraphicsPipeline out;
+    createLayouts(device, recipe.bindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                  recipe.pushConstantBytes, out.setLayout, out.layout);
+    const VkPipelineLayout layout = out.layout.get();
+
+    const vk::ShaderModule vs = shaderModule(device, recipe.vertex), fs = shaderModule(device, recipe.fragment);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                  VK_SHADER_STAGE_VERTEX_BIT, vs.get(), "main", nullptr};
@@ -85,10 +101,13 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     ds.depthTestEnable = recipe.depthTest;
     ds.depthWriteEnable = recipe.depthWrite;
     ds.depthCompareOp = recipe.depthCompare;
-    std::vector<VkPipelineColorBlendAttachmentState> blends(recipe.colorAttachments);
-    for (auto& b : blends) b.colorWriteMask = 0xf;
+    std::vector<VkPipelineColorBlendAttachmentState> blends = recipe.blends;
+    if (blends.empty()) {
+        blends.resize(recipe.colorAttachments);
+        for (auto& b : blends) b.colorWriteMask = 0xf;
+    }
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = recipe.colorAttachments;
+    cb.attachmentCount = static_cast<uint32_t>(blends.size());
     cb.pAttachments = blends.data();
     const std::array<VkDynamicState, 2> dynamics{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
@@ -111,6 +130,22 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     VkPipeline pipeline;
     vk::check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gi, nullptr, &pipeline),
               "vkCreateGraphicsPipelines");
+    out.pipeline = vk::Pipeline(device, pipeline);
+    return out;
+}
+
+ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineRecipe& recipe) {
+    ComputePipeline out;
+    createLayouts(device, recipe.bindings, VK_SHADER_STAGE_COMPUTE_BIT, recipe.pushConstantBytes,
+                  out.setLayout, out.layout);
+    const vk::ShaderModule cs = shaderModule(device, recipe.compute);
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                VK_SHADER_STAGE_COMPUTE_BIT, cs.get(), "main", nullptr};
+    ci.layout = out.layout.get();
+    VkPipeline pipeline;
+    vk::check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
+              "vkCreateComputePipelines");
     out.pipeline = vk::Pipeline(device, pipeline);
     return out;
 }
@@ -138,4 +173,4 @@ VkWriteDescriptorSet sampledImageWrite(uint32_t binding, const VkDescriptorImage
     return w;
 }
 
-}  // namespace skygraph::passes
+}  // namespace skygraph
