@@ -141,8 +141,12 @@ Schedule schedulePasses(const GraphDesc& graph, const FeatureValues& features,
     Schedule s;
     s.passes.reserve(graph.passes.size());
     for (size_t p = 0; p < graph.passes.size(); ++p) {
-        if (reasons[p].empty()) s.passes.push_back(static_cast<uint32_t>(p));
-        else s.culled.push_back({graph.passes[p].name, std::move(reasons[p])});
+        if (reasons[p].empty()) {
+            s.passes.push_back(static_cast<uint32_t>(p));
+            s.usages += graph.passes[p].uses.size();
+        } else {
+            s.culled.push_back({graph.passes[p].name, std::move(reasons[p])});
+        }
     }
     return s;
 }

@@ -17,6 +17,7 @@ namespace skygraph {
 struct Schedule {
     std::vector<uint32_t> passes;     ///< Indices into GraphDesc::passes, in execution order.
     std::vector<CulledPass> culled;   ///< In file order.
+    size_t usages = 0;                ///< Of the scheduled passes (for reserving).
 };
 
 /// Passes whose `if` is true under `features`; nullopt features means every pass.

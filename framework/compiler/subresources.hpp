@@ -41,6 +41,7 @@ struct SubresourceGrid {
     /// per-subresource results of a range are stored (see cells()).
     template <typename F>
     void forEach(const SubresourceRange& r, F&& f) const {
+        if (r.mipCount == 1 && r.layerCount == 1) return f(index(r.baseMip, r.baseLayer));  // most usages
         for (uint32_t m = r.baseMip; m < r.baseMip + r.mipCount; ++m)
             for (uint32_t l = r.baseLayer; l < r.baseLayer + r.layerCount; ++l) f(index(m, l));
     }
@@ -56,10 +57,13 @@ struct SubresourceGrid {
 class SubresourceGrids {
 public:
     SubresourceGrids() = default;
+    explicit SubresourceGrids(size_t reserve) {
+        grids_.reserve(reserve);
+        first_.reserve(reserve + 1);
+    }
     /// Every resource of `graph`, in declaration order, at one output size.
-    SubresourceGrids(const GraphDesc& graph, uint32_t outputWidth, uint32_t outputHeight) {
-        grids_.reserve(graph.resources.size());
-        first_.reserve(graph.resources.size() + 1);
+    SubresourceGrids(const GraphDesc& graph, uint32_t outputWidth, uint32_t outputHeight)
+        : SubresourceGrids(graph.resources.size()) {
         for (const auto& r : graph.resources) add(SubresourceGrid(r, outputWidth, outputHeight));
     }
 
@@ -93,7 +97,7 @@ public:
 
 private:
     std::vector<SubresourceGrid> grids_;
-    std::vector<size_t> first_{0};
+    std::vector<size_t> first_ = std::vector<size_t>(1, 0);
 };
 
 }  // namespace skygraph

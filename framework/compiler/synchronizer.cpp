@@ -108,7 +108,13 @@ private:
     void buildSteps(const Schedule& schedule) {
         std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
         std::vector<uint32_t> clearsBefore;  // resources that a Clear pass before this pass clears
+        // At most: inserted clears add passes and usages beyond these, rarely.
         plan_.passes.reserve(schedule.passes.size());
+        plan_.resources.reserve(graph_.resources.size());
+        decls_.reserve(graph_.resources.size());
+        facts_.reserve(graph_.resources.size());
+        grids_ = SubresourceGrids(graph_.resources.size());
+        accesses_.reserve(schedule.usages);
         for (uint32_t p : schedule.passes) {
             const PassDesc& pass = graph_.passes[p];
             PlannedPass step{pass.name, pass.type, static_cast<int32_t>(p), {}, {}};
