@@ -34,7 +34,7 @@ struct AccessRecord {
     SubresourceRange range;
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
-    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Its read run's layout once grouped.
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Its own, not its read run's.
     uint32_t step = 0;        ///< Index into Plan::passes.
     uint32_t resource = 0;    ///< Index into Plan::resources.
     uint32_t next = kNone;    ///< The same resource's next access.
@@ -61,19 +61,53 @@ bool sameParams(Barrier a, Barrier b) {
     return a == b;
 }
 
-/// Union-find over accesses, grouping runs of reads that must share one layout (reads of
-/// overlapping subresources of one resource with no write between).
-struct ReadRuns {
-    std::vector<uint32_t> parent;
-    uint32_t add() {
-        parent.push_back(static_cast<uint32_t>(parent.size()));
-        return parent.back();
+/// Rule 4: reads of overlapping subresources of an image with no write between form a run,
+/// and the run gets one layout that serves all its readers. Accesses join runs as they are
+/// added in plan order (union-find over access indices, so runs never span resources); once
+/// all are in, every read's own layout is folded into its run's.
+class ReadRuns {
+public:
+    void reserve(size_t accesses) {
+        parent_.reserve(accesses);
+        layout_.reserve(accesses);
     }
+    /// Adds the next access. `forEachSub(f)` calls f(flat index) for every subresource it
+    /// touches (none for buffers, which have no layout). Returns its index.
+    template <typename ForEachSub>
+    uint32_t add(bool read, ForEachSub&& forEachSub) {
+        const auto k = static_cast<uint32_t>(parent_.size());
+        parent_.push_back(k);
+        layout_.push_back(VK_IMAGE_LAYOUT_UNDEFINED);
+        forEachSub([&](size_t sub) {
+            if (sub >= open_.size()) open_.resize(sub + 1, kNone);
+            if (!read) {
+                open_[sub] = kNone;  // a write ends the run
+            } else {
+                if (open_[sub] != kNone) unite(open_[sub], k);
+                open_[sub] = k;
+            }
+        });
+        return k;
+    }
+    /// Folds read k's own layout into its run's. commonReadLayout is commutative and
+    /// associative, so the order of folding does not matter.
+    void fold(uint32_t k, VkImageLayout own) {
+        VkImageLayout& l = layout_[find(k)];
+        l = l == VK_IMAGE_LAYOUT_UNDEFINED ? own : commonReadLayout(l, own);
+    }
+    /// The layout of read k's run, once every read is folded.
+    VkImageLayout layout(uint32_t k) { return layout_[find(k)]; }
+
+private:
     uint32_t find(uint32_t a) {
-        while (parent[a] != a) a = parent[a] = parent[parent[a]];
+        while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
         return a;
     }
-    void unite(uint32_t a, uint32_t b) { parent[find(a)] = find(b); }
+    void unite(uint32_t a, uint32_t b) { parent_[find(a)] = find(b); }
+
+    std::vector<uint32_t> parent_;       // per access
+    std::vector<VkImageLayout> layout_;  // per access; meaningful at run roots
+    std::vector<uint32_t> open_;         // per subresource: the latest read of its open run
 };
 
 class Synchronizer {
@@ -84,9 +118,8 @@ public:
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
         buildSteps(schedule);
-        groupReadRuns();
         computeRunScopes();
-        initState();
+        state_.resize(grids_.total());
         uint32_t k = 0;  // access index: the usage's position in plan order
         for (auto& step : plan_.passes) {
             batch_.clear();
@@ -115,6 +148,7 @@ private:
         facts_.reserve(graph_.resources.size());
         grids_ = SubresourceGrids(graph_.resources.size());
         accesses_.reserve(schedule.usages);
+        readRuns_.reserve(schedule.usages);
         for (uint32_t p : schedule.passes) {
             const PassDesc& pass = graph_.passes[p];
             PlannedPass step{pass.name, pass.type, static_cast<int32_t>(p), {}, {}};
@@ -180,7 +214,7 @@ private:
     }
 
     /// Appends a pass to the plan and its usages to accesses_, chaining each to the previous
-    /// access of its resource; sets the resources' lifetimes.
+    /// access of its resource and joining its read run; sets the resources' lifetimes.
     void appendStep(PlannedPass&& step) {
         const auto s = static_cast<uint32_t>(plan_.passes.size());
         for (const PlannedUsage& pu : step.usages) {
@@ -197,6 +231,9 @@ private:
             a.reads = readsContents(access);
             a.writes = writesContents(access);
             runScopeCount_ += static_cast<uint32_t>(cells(pu.range));
+            readRuns_.add(!a.writes, [&](auto&& f) {
+                if (facts_[pu.resource].image) grids_.forEach(pu.resource, pu.range, f);
+            });
             ResourceFacts& f = facts_[pu.resource];
             if (f.firstAccess == kNone) {
                 f.firstAccess = k;
@@ -210,56 +247,24 @@ private:
         plan_.passes.push_back(std::move(step));
     }
 
-    /// Rule 4: reads of overlapping subresources with no write between form a run, and the
-    /// run gets one layout that serves all its readers. One forward sweep over the accesses.
-    void groupReadRuns() {
-        // Union-find over all accesses at once: runs never span resources.
-        ReadRuns runs;
-        runs.parent.reserve(accesses_.size());
-        std::vector<uint32_t> openRead(grids_.total(), kNone);  // per subresource: latest read
-        for (const AccessRecord& a : accesses_) {
-            const uint32_t k = runs.add();
-            if (!facts_[a.resource].image) continue;  // buffers have no layout
-            grids_.forEach(a.resource, a.range, [&](size_t sub) {
-                if (a.writes) {
-                    openRead[sub] = kNone;
-                } else {
-                    if (openRead[sub] != kNone) runs.unite(openRead[sub], k);
-                    openRead[sub] = k;
-                }
-            });
-        }
-        std::vector<VkImageLayout> runLayout(accesses_.size(), VK_IMAGE_LAYOUT_UNDEFINED);  // by root
-        for (uint32_t k = 0; k < accesses_.size(); ++k) {
-            const AccessRecord& a = accesses_[k];
-            if (a.writes || !facts_[a.resource].image) continue;
-            auto& l = runLayout[runs.find(k)];
-            l = l == VK_IMAGE_LAYOUT_UNDEFINED ? a.layout : commonReadLayout(l, a.layout);
-        }
-        uint32_t k = 0;
-        for (auto& step : plan_.passes)
-            for (auto& pu : step.usages) {
-                AccessRecord& a = accesses_[k];
-                if (!a.writes && facts_[a.resource].image) a.layout = pu.layout = runLayout[runs.find(k)];
-                ++k;
-            }
-    }
-
     /// For every read access and subresource it touches: the union of the scopes of the reads
     /// of that subresource from this one up to the next write. All of them belong to one run
     /// (rule 4 in docs/barriers.md), so this is what a barrier before this read makes visible.
-    /// One backward sweep over the accesses, into `runScope_` from each access's `runScopes`.
+    /// One backward sweep over the accesses, into `runScope_` from each access's `runScopes`;
+    /// it also folds each read's layout into its run's.
     void computeRunScopes() {
         runScope_.resize(runScopeCount_);
         std::vector<VulkanScope> pending(grids_.total());  // per subresource
-        for (auto a = accesses_.rbegin(); a != accesses_.rend(); ++a) {
-            VulkanScope* out = &runScope_[a->runScopes];
-            grids_.forEach(a->resource, a->range, [&](size_t sub) {
-                if (a->writes) {
+        for (auto k = static_cast<uint32_t>(accesses_.size()); k-- > 0;) {
+            const AccessRecord& a = accesses_[k];
+            if (!a.writes && facts_[a.resource].image) readRuns_.fold(k, a.layout);
+            VulkanScope* out = &runScope_[a.runScopes];
+            grids_.forEach(a.resource, a.range, [&](size_t sub) {
+                if (a.writes) {
                     pending[sub] = {};
                 } else {
-                    pending[sub].stages |= a->stages;
-                    pending[sub].access |= a->access;
+                    pending[sub].stages |= a.stages;
+                    pending[sub].access |= a.access;
                     *out = pending[sub];
                 }
                 ++out;
@@ -304,24 +309,23 @@ private:
         return scope;
     }
 
-    void initState() {
-        state_.resize(grids_.total());
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
-            const auto& d = decl(r);
-            SubresourceState init;
-            if (d.external) {
-                const ExternalState s = replaced(d.initial);
-                const VulkanScope scope = boundaryScope(r, s);
-                init.layout = scope.layout;
-                init.writeStages = scope.stages;
-                init.visibleStages = scope.stages;
-                init.visibleAccess = scope.access;
-                init.fromOutside = true;
-            }
-            std::fill_n(stateOf(r), grids_[r].size(), init);
-            plan_.resources[r].initialLayout = init.layout;
-            plan_.resources[r].firstStages = firstPassScope(r).stages;
+    /// Resource r's state before its first access (the plan resource's first and initial
+    /// fields too): undefined, or for an external resource what its `initial` state holds.
+    void startState(uint32_t r) {
+        const auto& d = decl(r);
+        SubresourceState init;
+        if (d.external) {
+            const ExternalState s = replaced(d.initial);
+            const VulkanScope scope = boundaryScope(r, s);
+            init.layout = scope.layout;
+            init.writeStages = scope.stages;
+            init.visibleStages = scope.stages;
+            init.visibleAccess = scope.access;
+            init.fromOutside = true;
         }
+        std::fill_n(stateOf(r), grids_[r].size(), init);
+        plan_.resources[r].initialLayout = init.layout;
+        plan_.resources[r].firstStages = firstPassScope(r).stages;
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[grids_.first(r)]; }
 
@@ -389,6 +393,8 @@ private:
         const uint32_t r = pu.resource;
         const bool isImage = facts_[r].image;
         const bool write = a.writes;
+        if (k == facts_[r].firstAccess) startState(r);
+        if (!write && isImage) pu.layout = readRuns_.layout(k);  // rule 4
         const bool discard = effectiveUsage(pu).access == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
         const VkImageLayout target = isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
@@ -545,6 +551,7 @@ private:
     SubresourceGrids grids_;               // also lays out the per-subresource arrays
     // Per access (usage in plan order).
     std::vector<AccessRecord> accesses_;
+    ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
     std::vector<VulkanScope> runScope_;    // per access and subresource of its range
     // Per subresource of every resource.
