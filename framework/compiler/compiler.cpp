@@ -8,7 +8,33 @@
 
 namespace skygraph {
 
+namespace {
+
+/// A copy of `graph` with `exports` applied, or a diagnostic per unknown name.
+GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
+    GraphDesc copy = graph;
+    Diagnostics diags;
+    for (const auto& [name, state] : options.exports) {
+        auto it = std::find_if(copy.resources.begin(), copy.resources.end(),
+                               [&](const ResourceDesc& r) { return r.name == name; });
+        if (it == copy.resources.end()) {
+            diags.add({graph.file, "resources", "", name, "cannot export '" + name + "': no such resource"});
+        } else if (!it->isExported()) {
+            it->final = state;
+        }
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+    return copy;
+}
+
+}  // namespace
+
 Plan compile(const GraphDesc& graph, const CompileOptions& options) {
+    if (!options.exports.empty()) {
+        CompileOptions rest = options;
+        rest.exports.clear();
+        return compile(withExports(graph, options), rest);
+    }
     Diagnostics diags;
     FeatureValues features = graph.defaultFeatures();
     for (const auto& [name, value] : options.features) {

@@ -39,6 +39,7 @@ int renderCommand(const RenderOptions& options) {
         }
         for (const auto& [name, on] : options.features) co.features[name] = on;
         co.presentReplacement = ExternalState::TransferSrc;
+        if (!options.readback.empty()) co.exports[options.readback] = ExternalState::TransferSrc;
         co.outputWidth = options.width;
         co.outputHeight = options.height;
         Plan plan = compile(graph, co);
@@ -53,6 +54,7 @@ int renderCommand(const RenderOptions& options) {
         ropts.height = options.height;
         ropts.framesInFlight = options.framesInFlight;
         ropts.passes = options.passes;
+        ropts.readback = options.readback;
         Renderer renderer(*device, graph, std::move(plan), ropts);
         if (scene) renderer.frameData().set(*scene);
         for (uint32_t i = 0; i < options.frames; ++i) renderer.renderFrame();

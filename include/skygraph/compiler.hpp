@@ -8,6 +8,7 @@
 #include <skygraph/plan.hpp>
 
 #include <filesystem>
+#include <map>
 #include <string_view>
 
 namespace skygraph {
@@ -33,6 +34,11 @@ struct CompileOptions {
     /// barriers cover whole mip chains. The executor recompiles when the output is resized.
     uint32_t outputWidth = 1920;
     uint32_t outputHeight = 1080;
+    /// Resources to export in addition to the file's own exports, with the state to leave
+    /// them in: e.g. {"hdr_color", TransferSrc} to read an intermediate target back. Exporting
+    /// keeps the passes that write it from being culled. An unknown name is an error; a
+    /// resource the file already exports keeps its own `final`.
+    std::map<std::string, ExternalState, std::less<>> exports;
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the

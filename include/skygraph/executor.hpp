@@ -221,7 +221,10 @@ struct RenderOptions {
     uint32_t height = 256;
     uint32_t frames = 3;
     uint32_t framesInFlight = 2;
-    std::filesystem::path output;    ///< .png or .hdr; empty: no file.
+    std::filesystem::path output;    ///< .png, .hdr or .exr; empty: no file.
+    /// Resource to write instead of the swapchain target, e.g. "hdr_color" as .exr. It is
+    /// exported as TransferSrc for the run (CompileOptions::exports).
+    std::string readback;
     bool validate = false;           ///< Validation + sync validation; fail on any message.
     std::string device;
     /// Pass implementations (e.g. PassLibrary::withBuiltins() from skygraph_passes); borrowed.

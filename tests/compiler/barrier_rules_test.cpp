@@ -30,6 +30,12 @@ const PlannedPass& pass(const Plan& plan, const std::string& name) {
     throw std::runtime_error("no scheduled pass " + name);
 }
 
+CompileOptions noCulling() {
+    CompileOptions o;
+    o.cull = false;
+    return o;
+}
+
 /// The barriers of one pass that touch one resource, in batch order.
 std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
     std::vector<Barrier> out;
@@ -62,7 +68,7 @@ TEST(BarrierRules, WriteAfterWriteIsAMemoryDependency) {
         {"name": "w1", "type": "Generic", "uses": {"buf": "Write@Compute"}},
         {"name": "w2", "type": "Generic", "uses": {"buf": "Write@Transfer"}},
         {"name": "r", "type": "Generic", "uses": {"buf": "Read@Compute", "sink": "Write@Compute"}})",
-        CompileOptions{.features = {}, .cull = false});
+        noCulling());
     const auto& b = pass(plan, "w2").barriers;
     ASSERT_EQ(b.size(), 1u);
     EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
@@ -329,6 +335,29 @@ TEST(Culling, ReasonsForEveryRemovedPass) {
                                   options, R"({"fx": true})");
     ASSERT_EQ(all.passes.size(), 1u) << "culling off still honours `if`";
     ASSERT_EQ(all.culled.size(), 1u);
+}
+
+TEST(Culling, ExportingAnIntermediateKeepsItsWriterAndEndsInTheExportedState) {
+    CompileOptions options;
+    options.exports = {{"color", ExternalState::TransferSrc}};
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Fragment", "out": "Write@ColorAttachment"}})",
+                                   options);
+    ASSERT_EQ(plan.passes.size(), 2u);
+    bool found = false;
+    for (const auto& b : plan.finalBarriers)
+        if (plan.resources[b.resource].name == "color") {
+            found = true;
+            EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            EXPECT_EQ(b.srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << "waits for the sampling read";
+        }
+    EXPECT_TRUE(found);
+    options.exports = {{"nosuch", ExternalState::TransferSrc}};
+    EXPECT_THROW((void)compileGraph(std::string(kColor) + "," + kOut,
+                                    R"({"name": "p", "type": "Generic", "uses": {"out": "Write@ColorAttachment"}})",
+                                    options),
+                 GraphError);
 }
 
 TEST(Culling, UnusedResourcesAreNeverCreated) {

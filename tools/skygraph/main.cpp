@@ -80,6 +80,8 @@ int main(int argc, char** argv) {
     renderCmd->add_option("--frames-in-flight", renderArgs.framesInFlight, "Frames in flight")
         ->check(CLI::Range(1u, 8u));
     renderCmd->add_option("-o,--output", renderOutput, "Write the result: .png, .hdr or .exr (default skygraph.png)");
+    renderCmd->add_option("--readback", renderArgs.readback,
+                          "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)");
     renderCmd->add_flag("--validate", renderArgs.validate,
                         "Khronos validation with synchronization validation; any message fails");
     renderCmd->add_option("--device", renderArgs.device, "Device by index or name");
