@@ -63,14 +63,12 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 
-    // Computed once for the three sweeps below.
-    const std::vector<bool> active = activePasses(graph, features);
-    const SubresourceGrids grids(graph, options.outputWidth, options.outputHeight);
-    checkReadsHaveSources(graph, features, active, grids, diags);
+    const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
+    checkReadsHaveSources(index, features, diags);
     if (!diags.empty()) throw GraphError(std::move(diags));
 
-    Schedule schedule = schedulePasses(graph, features, active, grids, options.cull);
-    Plan plan = synchronize(graph, schedule, grids, options);
+    Schedule schedule = schedulePasses(index, features, options.cull);
+    Plan plan = synchronize(index, schedule, options);
     plan.features = std::move(features);
     plan.culled = std::move(schedule.culled);
     return plan;

@@ -23,11 +23,12 @@ std::string conditionReason(const Condition& c, const FeatureValues& features) {
 
 /// "; its writer 'x' is off: ..." for the first earlier pass that would write `resource` but
 /// is switched off by a feature: the usual cause of a read with no source.
-std::string switchedOffWriter(const GraphDesc& graph, const std::optional<FeatureValues>& features,
-                              const std::vector<bool>& active, size_t reader, uint32_t resource) {
+std::string switchedOffWriter(const GraphIndex& index, const std::optional<FeatureValues>& features,
+                              size_t reader, uint32_t resource) {
     if (!features) return {};
+    const GraphDesc& graph = index.graph();
     for (size_t q = 0; q < reader; ++q) {
-        if (active[q]) continue;
+        if (index.active(q)) continue;
         for (const auto& w : graph.passes[q].uses)
             if (w.resource == resource && writesContents(w.usage.access))
                 return "; its writer '" + graph.passes[q].name +
@@ -36,12 +37,12 @@ std::string switchedOffWriter(const GraphDesc& graph, const std::optional<Featur
     return {};
 }
 
-/// Whether a write of `pass` reaches a subresource that is live (`live`: flat, per subresource).
-bool writesLive(const PassDesc& pass, const SubresourceGrids& grids, const std::vector<uint8_t>& live) {
-    for (const auto& u : pass.uses) {
+/// Whether a write of pass p reaches a subresource that is live (`live`: flat, per subresource).
+bool writesLive(const GraphIndex& index, size_t p, const std::vector<uint8_t>& live) {
+    for (const auto& u : index.usesOf(p)) {
         if (!writesContents(u.usage.access)) continue;
         bool anyLive = false;
-        grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { anyLive |= live[i] != 0; });
+        index.grids().forEach(u.resource, index.range(u), [&](size_t i) { anyLive |= live[i] != 0; });
         if (anyLive) return true;
     }
     return false;
@@ -66,84 +67,71 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
 /// Culling: backwards liveness per subresource. Contents are live if an exported resource
 /// holds them at the end or a kept pass reads them later; a pass that writes nothing live
 /// (and is not never_cull) is removed, with its reason in `reasons`.
-void cullUnreadPasses(const GraphDesc& graph, const std::vector<bool>& active,
-                      const SubresourceGrids& grids, std::vector<std::string>& reasons) {
-    auto live = grids.makeArray<uint8_t>(
-        [&](size_t r) { return static_cast<uint8_t>(graph.resources[r].isExported()); });
-    for (size_t p = graph.passes.size(); p-- > 0;) {
-        if (!active[p]) continue;
-        const auto& pass = graph.passes[p];
-        if (!pass.neverCull && !writesLive(pass, grids, live)) {
-            reasons[p] = unreadWritesReason(graph, pass);
+void cullUnreadPasses(const GraphIndex& index, std::vector<std::string>& reasons) {
+    const GraphDesc& graph = index.graph();
+    const SubresourceGrids& grids = index.grids();
+    auto live = grids.makeArray<uint8_t>([&](size_t r) { return static_cast<uint8_t>(index.exported(r)); });
+    for (size_t p = index.passes(); p-- > 0;) {
+        if (!index.active(p)) continue;
+        if (!graph.passes[p].neverCull && !writesLive(index, p, live)) {
+            reasons[p] = unreadWritesReason(graph, graph.passes[p]);
             continue;
         }
-        for (const auto& u : pass.uses)
+        for (const auto& u : index.usesOf(p))
             if (u.usage.access == Access::Write)
-                grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { live[i] = 0; });
-        for (const auto& u : pass.uses)
+                grids.forEach(u.resource, index.range(u), [&](size_t i) { live[i] = 0; });
+        for (const auto& u : index.usesOf(p))
             if (readsContents(u.usage.access))
-                grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { live[i] = 1; });
+                grids.forEach(u.resource, index.range(u), [&](size_t i) { live[i] = 1; });
     }
 }
 
 }  // namespace
 
-std::vector<bool> activePasses(const GraphDesc& graph, const std::optional<FeatureValues>& features) {
-    std::vector<bool> active(graph.passes.size(), true);
-    if (features)
-        for (size_t i = 0; i < graph.passes.size(); ++i)
-            active[i] = graph.passes[i].condition.evaluate(*features);
-    return active;
-}
-
 void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                            Diagnostics& out, uint32_t outputWidth, uint32_t outputHeight) {
-    checkReadsHaveSources(graph, features, activePasses(graph, features),
-                          SubresourceGrids(graph, outputWidth, outputHeight), out);
+    checkReadsHaveSources(GraphIndex(graph, features, outputWidth, outputHeight), features, out);
 }
 
-void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
-                           const std::vector<bool>& active, const SubresourceGrids& grids,
+void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureValues>& features,
                            Diagnostics& out) {
+    const GraphDesc& graph = index.graph();
+    const SubresourceGrids& grids = index.grids();
     // Whether each subresource holds contents at this point of the frame.
-    auto written = grids.makeArray<uint8_t>([&](size_t r) {
-        const auto& res = graph.resources[r];
-        return static_cast<uint8_t>(res.clear.has_value() || res.external);
-    });
-    for (size_t p = 0; p < graph.passes.size(); ++p) {
-        if (!active[p]) continue;
-        const auto& pass = graph.passes[p];
-        for (const auto& u : pass.uses) {
+    auto written = grids.makeArray<uint8_t>(
+        [&](size_t r) { return static_cast<uint8_t>(index.clearOrExternal(r)); });
+    for (size_t p = 0; p < index.passes(); ++p) {
+        if (!index.active(p)) continue;
+        for (const auto& u : index.usesOf(p)) {
             if (!readsContents(u.usage.access)) continue;
             bool missing = false;
-            grids.forEach(u.resource, grids[u.resource].resolve(u.usage),
-                          [&](size_t i) { missing |= written[i] == 0; });
+            grids.forEach(u.resource, index.range(u), [&](size_t i) { missing |= written[i] == 0; });
             if (!missing) continue;
             const auto& res = graph.resources[u.resource];
-            out.add({graph.file, u.jsonPath, pass.name, res.name,
+            out.add({graph.file, index.declOf(p, u).jsonPath, graph.passes[p].name, res.name,
                      "reads '" + res.name + "' (" + toString(u.usage) +
                          ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
-                         switchedOffWriter(graph, features, active, p, u.resource)});
+                         switchedOffWriter(index, features, p, u.resource)});
         }
-        for (const auto& u : pass.uses)
+        for (const auto& u : index.usesOf(p))
             if (writesContents(u.usage.access))
-                grids.forEach(u.resource, grids[u.resource].resolve(u.usage), [&](size_t i) { written[i] = 1; });
+                grids.forEach(u.resource, index.range(u), [&](size_t i) { written[i] = 1; });
     }
 }
 
-Schedule schedulePasses(const GraphDesc& graph, const FeatureValues& features,
-                        const std::vector<bool>& active, const SubresourceGrids& grids, bool cull) {
-    std::vector<std::string> reasons(graph.passes.size());  // empty: the pass runs
-    for (size_t p = 0; p < graph.passes.size(); ++p)
-        if (!active[p]) reasons[p] = conditionReason(graph.passes[p].condition, features);
-    if (cull) cullUnreadPasses(graph, active, grids, reasons);
+Schedule schedulePasses(const GraphIndex& index, const FeatureValues& features, bool cull) {
+    const GraphDesc& graph = index.graph();
+    std::vector<std::string> reasons(index.passes());  // empty: the pass runs
+    for (size_t p = 0; p < index.passes(); ++p)
+        if (!index.active(p)) reasons[p] = conditionReason(graph.passes[p].condition, features);
+    if (cull) cullUnreadPasses(index, reasons);
 
     Schedule s;
-    s.passes.reserve(graph.passes.size());
-    for (size_t p = 0; p < graph.passes.size(); ++p) {
+    s.passes.reserve(index.passes());
+    for (size_t p = 0; p < index.passes(); ++p) {
         if (reasons[p].empty()) {
             s.passes.push_back(static_cast<uint32_t>(p));
-            s.usages += graph.passes[p].uses.size();
+            s.usages += index.usesOf(p).size();
         } else {
             s.culled.push_back({graph.passes[p].name, std::move(reasons[p])});
         }

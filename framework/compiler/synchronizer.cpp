@@ -112,8 +112,8 @@ private:
 
 class Synchronizer {
 public:
-    Synchronizer(const GraphDesc& g, const SubresourceGrids& grids, const CompileOptions& o)
-        : graph_(g), graphGrids_(grids), options_(o) {}
+    Synchronizer(const GraphIndex& index, const CompileOptions& o)
+        : graph_(index.graph()), index_(index), options_(o) {}
 
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
@@ -151,17 +151,18 @@ private:
         readRuns_.reserve(schedule.usages);
         for (uint32_t p : schedule.passes) {
             const PassDesc& pass = graph_.passes[p];
+            const auto uses = index_.usesOf(p);
             PlannedPass step{pass.name, pass.type, static_cast<int32_t>(p), {}, {}};
-            step.usages.reserve(pass.uses.size());
+            step.usages.reserve(uses.size());
             clearsBefore.clear();
-            for (const auto& u : pass.uses) {
+            for (const IndexedUsage& u : uses) {
                 const bool firstUse = planIndex[u.resource] == kNone;
                 if (firstUse) planIndex[u.resource] = addResource(u.resource);
                 const uint32_t r = planIndex[u.resource];
                 PlannedUsage& pu = step.usages.emplace_back();
                 pu.resource = r;
                 pu.usage = u.usage;
-                pu.slot = u.slot;
+                if (u.fillsSlot) pu.slot = index_.declOf(p, u).slot;
                 pu.range = grids_[r].resolve(u.usage);
                 if (firstUse && decl(r).clear) {
                     if (clearsThroughLoadOp(pu)) pu.load = LoadOp::Clear;
@@ -182,7 +183,7 @@ private:
         plan_.resources.push_back(std::move(res));
         decls_.push_back(&d);
         facts_.push_back({kNone, kNone, d.isImage(), d.isExported()});
-        grids_.add(graphGrids_[declIndex]);
+        grids_.add(index_.grids()[declIndex]);
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
 
@@ -542,7 +543,7 @@ private:
     }
 
     const GraphDesc& graph_;
-    const SubresourceGrids& graphGrids_;  // per graph resource
+    const GraphIndex& index_;
     const CompileOptions& options_;
     Plan plan_;
     // Per plan resource.
@@ -564,9 +565,8 @@ private:
 
 }  // namespace
 
-Plan synchronize(const GraphDesc& graph, const Schedule& schedule, const SubresourceGrids& grids,
-                 const CompileOptions& options) {
-    return Synchronizer(graph, grids, options).run(schedule);
+Plan synchronize(const GraphIndex& index, const Schedule& schedule, const CompileOptions& options) {
+    return Synchronizer(index, options).run(schedule);
 }
 
 }  // namespace skygraph

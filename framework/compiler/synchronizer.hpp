@@ -11,9 +11,8 @@ namespace skygraph {
 
 /// Builds the plan's passes (inserting Clear passes where a `clear` resource is first used
 /// outside an attachment), their usages with load/store ops, every barrier batch, the final
-/// barriers and the resource lifetimes. `grids` are the graph's resources' grids at the
-/// options' output size.
-[[nodiscard]] Plan synchronize(const GraphDesc& graph, const Schedule& schedule,
-                               const SubresourceGrids& grids, const CompileOptions& options);
+/// barriers and the resource lifetimes. `index` is the graph's, at the options' output size.
+[[nodiscard]] Plan synchronize(const GraphIndex& index, const Schedule& schedule,
+                               const CompileOptions& options);
 
 }  // namespace skygraph

@@ -1,0 +1,80 @@
+// The graph as the compiler's sweeps read it: flat arrays, built in one pass over GraphDesc.
+// GraphDesc is pointer-rich (each pass keeps its usages, and its condition, in allocations of
+// their own), so a sweep over it misses the cache at every pass; compile() sweeps the graph
+// three times (read check, culling, plan building). Shared by scheduler.cpp and
+// synchronizer.cpp.
+#pragma once
+
+#include "subresources.hpp"
+
+#include <skygraph/condition.hpp>
+#include <skygraph/graph.hpp>
+
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace skygraph {
+
+/// One entry of a pass's `uses`, with what the sweeps read of it.
+struct IndexedUsage {
+    Usage usage;             ///< As written.
+    uint32_t resource = 0;   ///< Index into GraphDesc::resources.
+    bool fillsSlot = false;  ///< Whether UsageDecl::slot is non-empty (never for Generic).
+};
+
+class GraphIndex {
+public:
+    /// A pass is active when its `if` holds under `features`; every pass is for nullopt.
+    /// Grids are resolved at the given output size.
+    GraphIndex(const GraphDesc& graph, const std::optional<FeatureValues>& features,
+               uint32_t outputWidth, uint32_t outputHeight)
+        : graph_(graph), grids_(graph, outputWidth, outputHeight) {
+        active_.reserve(graph.passes.size());
+        firstUse_.reserve(graph.passes.size() + 1);
+        firstUse_.push_back(0);
+        for (const auto& pass : graph.passes) {
+            active_.push_back(!features || pass.condition.evaluate(*features));
+            for (const auto& u : pass.uses) uses_.push_back({u.usage, u.resource, !u.slot.empty()});
+            firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
+        }
+        resources_.reserve(graph.resources.size());
+        for (const auto& r : graph.resources)
+            resources_.push_back({r.clear.has_value() || r.external, r.isExported()});
+    }
+
+    [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
+    [[nodiscard]] size_t passes() const noexcept { return active_.size(); }
+    [[nodiscard]] bool active(size_t pass) const noexcept { return active_[pass]; }
+    [[nodiscard]] std::span<const IndexedUsage> usesOf(size_t pass) const noexcept {
+        return {uses_.data() + firstUse_[pass], uses_.data() + firstUse_[pass + 1]};
+    }
+    /// The pass's usage as declared (slot, JSON path): `u` must come from usesOf(pass).
+    [[nodiscard]] const UsageDecl& declOf(size_t pass, const IndexedUsage& u) const noexcept {
+        return graph_.passes[pass].uses[static_cast<size_t>(&u - usesOf(pass).data())];
+    }
+
+    /// Per resource (index into GraphDesc::resources).
+    [[nodiscard]] const SubresourceGrids& grids() const noexcept { return grids_; }
+    [[nodiscard]] SubresourceRange range(const IndexedUsage& u) const noexcept {
+        return grids_[u.resource].resolve(u.usage);
+    }
+    /// Whether the resource holds contents before any pass writes it.
+    [[nodiscard]] bool clearOrExternal(size_t r) const noexcept { return resources_[r].clearOrExternal; }
+    [[nodiscard]] bool exported(size_t r) const noexcept { return resources_[r].exported; }
+
+private:
+    struct ResourceFlags {
+        bool clearOrExternal = false;
+        bool exported = false;
+    };
+
+    const GraphDesc& graph_;
+    std::vector<bool> active_;          // per pass
+    std::vector<uint32_t> firstUse_;    // per pass: its usages in uses_ (+1 at the end)
+    std::vector<IndexedUsage> uses_;
+    SubresourceGrids grids_;            // per resource
+    std::vector<ResourceFlags> resources_;
+};
+
+}  // namespace skygraph
