@@ -1,0 +1,252 @@
+// Private to the executor: the state a Renderer keeps for one plan (resources, passes, frame
+// slots) and Renderer::Impl, whose members are defined by concept in
+//   renderer.cpp            the public Renderer API, building a plan, read-back, hand frames
+//   renderer_resources.cpp  images, buffers, views, per-slot copies, importing externals
+//   renderer_passes.cpp     render passes, framebuffers, descriptors and barriers per slot
+//   renderer_generic.cpp    the Generic pass: pipelines and recording
+//   renderer_frame.cpp      frame slots, per-frame recording, submission, timestamps
+#pragma once
+
+#include "generic_program.hpp"
+#include "vk_util.hpp"
+
+#include <skygraph/executor.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/pipeline_builder.hpp>
+#include <skygraph/shader_compiler.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+// The .cpp files above use `using namespace detail;` for these names.
+namespace skygraph::detail {
+
+inline constexpr uint64_t kWaitForever = std::numeric_limits<uint64_t>::max();
+
+inline std::string passError(const PlannedPass& pass, const std::string& resource, const std::string& what) {
+    std::string s = "pass '" + pass.name + "'";
+    if (!resource.empty()) s += ", resource '" + resource + "'";
+    return s + ": " + what;
+}
+
+inline VkImageAspectFlags aspectOf(const FormatInfo& f) {
+    if (!f.isDepthStencil()) return VK_IMAGE_ASPECT_COLOR_BIT;
+    VkImageAspectFlags a = 0;
+    if (f.hasDepth) a |= VK_IMAGE_ASPECT_DEPTH_BIT;
+    if (f.hasStencil) a |= VK_IMAGE_ASPECT_STENCIL_BIT;
+    return a;
+}
+
+/// Aspect for buffer<->image copies: one aspect only (depth for depth formats).
+inline VkImageAspectFlags copyAspectOf(const FormatInfo& f) {
+    if (!f.isDepthStencil()) return VK_IMAGE_ASPECT_COLOR_BIT;
+    return f.hasDepth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_STENCIL_BIT;
+}
+
+inline uint32_t copyTexelBytes(const FormatInfo& f) {
+    if (!f.isDepthStencil()) return f.bytesPerTexel;
+    switch (f.format) {
+        case VK_FORMAT_D16_UNORM: case VK_FORMAT_D16_UNORM_S8_UINT: return 2;
+        case VK_FORMAT_S8_UINT: return 1;
+        default: return 4;  // D32, D24 (packed in 4 bytes), X8_D24
+    }
+}
+
+inline BindAs resolveAs(const ResourceDesc& r, const Usage& u) {
+    if (u.as != BindAs::Default) return u.as;
+    if (!r.isImage()) return BindAs::Storage;
+    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
+}
+
+/// A buffer with its memory; mapped when host-visible.
+struct OwnedBuffer {
+    vk::Buffer buffer;
+    vk::Memory memory;
+    void* mapped = nullptr;
+    VkDeviceSize size = 0;
+};
+
+struct ImageCopy {
+    vk::Image image;
+    vk::Memory memory;
+    std::map<std::tuple<int, uint32_t, uint32_t, uint32_t, uint32_t>, vk::ImageView> views;
+};
+
+/// One plan resource: its description and one or N (per frame slot) Vulkan copies.
+struct ResourceState {
+    const ResourceDesc* desc = nullptr;
+    bool isImage = false;
+    bool perSlot = false;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkImageAspectFlags aspect = 0;
+    uint32_t width = 1, height = 1, mips = 1, layers = 1;
+    VkDeviceSize size = 0;
+    VkImageUsageFlags imageUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    VkBufferUsageFlags bufferUsage =
+        VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    std::vector<ImageCopy> images;
+    std::vector<OwnedBuffer> buffers;
+
+    [[nodiscard]] uint32_t copyFor(uint32_t slot) const { return perSlot ? slot : 0; }
+    [[nodiscard]] uint32_t mipWidth(uint32_t mip) const { return std::max(1u, width >> mip); }
+    [[nodiscard]] uint32_t mipHeight(uint32_t mip) const { return std::max(1u, height >> mip); }
+};
+
+/// Per pass and frame slot: everything recording needs, with handles resolved.
+struct PassSlot {
+    vk::Framebuffer framebuffer;
+    VkExtent2D extent{1, 1};
+    VkExtent2D computeExtent{1, 1};
+    std::vector<VkDescriptorImageInfo> imageInfos;
+    std::vector<VkDescriptorBufferInfo> bufferInfos;
+    std::vector<VkWriteDescriptorSet> graphicsWrites;
+    std::vector<VkWriteDescriptorSet> computeWrites;
+    std::vector<VkImageMemoryBarrier2> imageBarriers;
+    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
+    std::vector<VkMemoryBarrier2> memoryBarriers;
+    std::vector<VkBuffer> vertexBuffers;
+    std::vector<VkDeviceSize> vertexOffsets;
+    VkBuffer indexBuffer = VK_NULL_HANDLE;
+    VkBuffer indirectBuffer = VK_NULL_HANDLE;
+    OwnedBuffer sink;  ///< Destination of Transfer reads.
+    std::vector<BoundResource> bound;  ///< Pass implementations: parallel to pass usages.
+};
+
+struct PassState {
+    const PlannedPass* pass = nullptr;
+    const PassDesc* desc = nullptr;
+    bool isClear = false;
+    /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
+    std::unique_ptr<PassImplementation> custom;
+    GenericProgram program;
+    vk::RenderPass renderPass;
+    std::vector<VkClearValue> clearValues;
+    vk::SetLayout graphicsSetLayout, computeSetLayout;
+    vk::PipelineLayout graphicsLayout, computeLayout;
+    vk::Pipeline graphicsPipeline, computePipeline;
+    std::vector<VkDeviceSize> transferOffsets;  ///< Per transfer usage, into source and sink.
+    VkDeviceSize transferBytes = 0;
+    OwnedBuffer source;  ///< Host-filled contents of Transfer writes; read-only on the GPU.
+    std::vector<PassSlot> slots;
+};
+
+struct FinalSlot {
+    std::vector<VkImageMemoryBarrier2> imageBarriers;
+    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
+    std::vector<VkMemoryBarrier2> memoryBarriers;
+};
+
+/// Everything that belongs to one plan; replaced whole by setPlan.
+struct PlanState {
+    GraphDesc graph;
+    Plan plan;
+    std::vector<ResourceState> resources;  ///< Parallel to plan.resources.
+    std::vector<PassState> passes;         ///< Parallel to plan.passes.
+    std::vector<FinalSlot> finals;         ///< Per slot.
+    int32_t readbackResource = -1;
+    std::vector<OwnedBuffer> readbackBuffers;  ///< Per slot.
+};
+
+struct FrameSlot {
+    vk::CommandPool pool;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vk::Fence fence;
+    vk::QueryPool queries;
+    uint32_t queryCount = 0;
+    bool submitted = false;
+    bool timingsPending = false;
+    std::vector<std::string> passNames;  ///< Of the frame last recorded in this slot.
+};
+
+}  // namespace skygraph::detail
+
+namespace skygraph {
+
+struct Renderer::Impl {
+    Device& device;
+    Device::Impl& dev;
+    VkDevice vkd;
+    RendererOptions options;
+    ShaderCompiler shaders;
+    vk::Sampler sampler;
+    vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
+    vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
+    FrameData frameData;
+    /// Pixels given to setExternalImage, by resource name; uploaded on every import.
+    std::map<std::string, ImageData> uploads;
+    bool layered = false;
+    std::unique_ptr<detail::PlanState> state;
+    std::vector<detail::FrameSlot> frames;
+    uint64_t frameIndex = 0;
+    int64_t lastSlot = -1;
+    std::vector<PassTiming> timings;
+
+    Impl(Device& d, RendererOptions o)
+        : device(d), dev(d.impl()), vkd(d.device()), options(std::move(o)),
+          shaders(options.shaderDir) {}
+
+    // --- renderer.cpp: building a plan --------------------------------------------------------
+    std::unique_ptr<detail::PlanState> build(const GraphDesc& graph, Plan plan);
+
+    // --- renderer_resources.cpp: resources and their per-slot copies --------------------------
+    detail::OwnedBuffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
+    VkImageView view(detail::ResourceState& r, uint32_t copy, VkImageViewType type,
+                     const SubresourceRange& range, bool attachment);
+    void describeResources(detail::PlanState& s);
+    void createResources(detail::PlanState& s);
+    static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value);
+    void buildSized(detail::PlanState& s);
+    /// Gives every external resource defined contents (its clear value, or grey) and the
+    /// layout the plan expects it to arrive in. Runs once, outside any frame, and waits.
+    void importExternals(detail::PlanState& s);
+
+    // --- renderer_passes.cpp: render passes, framebuffers, descriptors and barriers -----------
+    void buildPassStatic(detail::PlanState& s, size_t index);
+    static VkAttachmentLoadOp loadOp(LoadOp op);
+    static VkAttachmentStoreOp storeOp(StoreOp op);
+    void buildGraphics(detail::PlanState& s, detail::PassState& ps);
+    void buildRenderPass(detail::PlanState& s, detail::PassState& ps);
+    VkImageMemoryBarrier2 imageBarrier(const detail::PlanState& s, const Barrier& b, uint32_t slot) const;
+    void translateBarriers(const detail::PlanState& s, const std::vector<Barrier>& barriers, uint32_t slot,
+                           std::vector<VkImageMemoryBarrier2>& images,
+                           std::vector<VkBufferMemoryBarrier2>& buffers,
+                           std::vector<VkMemoryBarrier2>& memory) const;
+    VkExtent2D bindingExtent(const detail::PlanState& s, const PlannedPass& pass,
+                             const std::vector<ShaderBinding>& bindings, bool& any) const;
+    void buildPassSlot(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+    /// What a pass implementation sees of each usage: handles and a view of exactly the
+    /// usage's subresources.
+    void bindResources(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+
+    // --- renderer_generic.cpp: the Generic pass -----------------------------------------------
+    static std::vector<VkDescriptorSetLayoutBinding> layoutBindings(const std::vector<ShaderBinding>& bindings);
+    void buildGraphicsPipeline(detail::PlanState& s, detail::PassState& ps);
+    void buildCompute(detail::PassState& ps);
+    void recordTransfers(VkCommandBuffer cmd, detail::PlanState& s, const detail::PassState& ps, uint32_t slot);
+    /// A Generic pass: its transfers, then its dispatch, then its draw.
+    void recordGeneric(VkCommandBuffer cmd, detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+
+    // --- renderer_frame.cpp: frames -----------------------------------------------------------
+    void createFrames();
+    void ensureQueries(detail::FrameSlot& f, uint32_t count);
+    void waitSlot(detail::FrameSlot& f);
+    void collectTimings(detail::FrameSlot& f);
+    void dependency(VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier2>& images,
+                    const std::vector<VkBufferMemoryBarrier2>& buffers,
+                    const std::vector<VkMemoryBarrier2>& memory) const;
+    void recordClear(VkCommandBuffer cmd, detail::PlanState& s, const detail::PassState& ps, uint32_t slot);
+    /// Begins the pass's render pass on the slot's framebuffer, with full-area viewport and scissor.
+    static void beginRenderPass(VkCommandBuffer cmd, const detail::PassState& ps, const detail::PassSlot& sl);
+    void recordPass(VkCommandBuffer cmd, detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+    void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame);
+    void renderFrame();
+    void waitIdle();
+};
+
+}  // namespace skygraph

@@ -1,0 +1,389 @@
+// Renderer::Impl: images, buffers and views of the plan's resources, their per-slot copies,
+// and the one-time import of external resources.
+#include "renderer_impl.hpp"
+
+#include <cstring>
+
+namespace skygraph {
+
+using namespace detail;
+
+OwnedBuffer Renderer::Impl::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+    OwnedBuffer b;
+    b.size = std::max<VkDeviceSize>(size, 4);
+    VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bci.size = b.size;
+    bci.usage = usage;
+    VkBuffer buffer;
+    vk::check(vkCreateBuffer(vkd, &bci, nullptr, &buffer), "vkCreateBuffer");
+    b.buffer = vk::Buffer(vkd, buffer);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(vkd, buffer, &req);
+    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    mai.allocationSize = req.size;
+    mai.memoryTypeIndex = vk::findMemoryType(
+        dev.physical, req.memoryTypeBits,
+        hostVisible ? (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
+                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkDeviceMemory mem;
+    vk::check(vkAllocateMemory(vkd, &mai, nullptr, &mem), "vkAllocateMemory");
+    b.memory = vk::Memory(vkd, mem);
+    vk::check(vkBindBufferMemory(vkd, buffer, mem, 0), "vkBindBufferMemory");
+    if (hostVisible) vk::check(vkMapMemory(vkd, mem, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
+    return b;
+}
+
+VkImageView Renderer::Impl::view(ResourceState& r, uint32_t copy, VkImageViewType type,
+                                 const SubresourceRange& range, bool attachment) {
+    ImageCopy& img = r.images[copy];
+    const auto key = std::make_tuple(static_cast<int>(type) + (attachment ? 100 : 0), range.baseMip,
+                                     range.mipCount, range.baseLayer, range.layerCount);
+    if (auto it = img.views.find(key); it != img.views.end()) return it->second.get();
+    VkImageViewCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    ci.image = img.image.get();
+    ci.viewType = type;
+    ci.format = r.format;
+    // Sampling a depth/stencil image reads one aspect; attachments use all of them.
+    ci.subresourceRange.aspectMask =
+        attachment ? r.aspect
+                   : ((r.aspect & VK_IMAGE_ASPECT_DEPTH_BIT) ? VkImageAspectFlags(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                                            : r.aspect);
+    ci.subresourceRange.baseMipLevel = range.baseMip;
+    ci.subresourceRange.levelCount = range.mipCount;
+    ci.subresourceRange.baseArrayLayer = range.baseLayer;
+    ci.subresourceRange.layerCount = range.layerCount;
+    VkImageView v;
+    vk::check(vkCreateImageView(vkd, &ci, nullptr, &v), "vkCreateImageView");
+    img.views.emplace(key, vk::ImageView(vkd, v));
+    return v;
+}
+
+void Renderer::Impl::describeResources(PlanState& s) {
+    const uint32_t slots = options.framesInFlight;
+    s.resources.resize(s.plan.resources.size());
+    for (size_t i = 0; i < s.plan.resources.size(); ++i) {
+        const PlannedResource& pr = s.plan.resources[i];
+        if (pr.decl >= s.graph.resources.size())
+            throw ExecutorError("plan resource '" + pr.name + "' is not in the graph");
+        ResourceState& r = s.resources[i];
+        r.desc = &s.graph.resources[pr.decl];
+        r.isImage = r.desc->isImage();
+        // Transients get one copy per frame slot; so does the swapchain target, like the
+        // images of a real swapchain. Other externals persist and are shared.
+        // Externals that the graph writes without exporting them have no cross-frame edge
+        // in the plan; a copy per slot keeps frames in flight apart (slot reuse waits on
+        // its fence).
+        bool written = false;
+        for (const PlannedPass& pass : s.plan.passes)
+            for (const PlannedUsage& u : pass.usages)
+                written = written || (u.resource == i && writesContents(u.usage.access));
+        const bool unexportedWrite = r.desc->external && !r.desc->isExported() && written;
+        r.perSlot = (!r.desc->external || r.desc->final == ExternalState::Present || unexportedWrite) &&
+                    slots > 1;
+        if (unexportedWrite && r.isImage && pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
+            pr.finalLayout != pr.initialLayout) {
+            throw ExecutorError("resource '" + r.desc->name +
+                                "': an external image that the graph writes ends the frame in a "
+                                "different layout than it arrives in; give it a `final` state");
+        }
+        if (r.isImage) {
+            r.format = r.desc->format.format;
+            r.aspect = aspectOf(r.desc->format);
+            if (r.format == VK_FORMAT_UNDEFINED)
+                throw ExecutorError("resource '" + r.desc->name + "' has no format");
+        }
+    }
+    // Layouts the resource arrives in or is left in need their usage flags too (an
+    // environment map exported as ShaderRead is sampled by the next graph).
+    for (size_t i = 0; i < s.plan.resources.size(); ++i) {
+        for (const VkImageLayout l : {s.plan.resources[i].initialLayout, s.plan.resources[i].finalLayout}) {
+            if (l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+            if (l == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+        }
+    }
+    for (const PlannedPass& pass : s.plan.passes) {
+        for (const PlannedUsage& u : pass.usages) {
+            if (u.resource >= s.resources.size())
+                throw ExecutorError(passError(pass, "", "usage refers to an unknown resource"));
+            ResourceState& r = s.resources[u.resource];
+            const BindAs as = resolveAs(*r.desc, u.usage);
+            switch (u.usage.stage) {
+                case Stage::ColorAttachment: r.imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT; break;
+                case Stage::DepthAttachment: r.imageUsage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT; break;
+                case Stage::Vertex: case Stage::Fragment: case Stage::Compute:
+                    if (as == BindAs::Sampled) r.imageUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
+                    else if (as == BindAs::Uniform) r.bufferUsage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+                    else {
+                        r.imageUsage |= VK_IMAGE_USAGE_STORAGE_BIT;
+                        r.bufferUsage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+                    }
+                    break;
+                case Stage::VertexInput:
+                    r.bufferUsage |= as == BindAs::Index ? VK_BUFFER_USAGE_INDEX_BUFFER_BIT
+                                                         : VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+                    break;
+                case Stage::Indirect: r.bufferUsage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; break;
+                case Stage::Transfer: break;
+            }
+        }
+    }
+}
+
+void Renderer::Impl::createResources(PlanState& s) {
+    const uint32_t slots = options.framesInFlight;
+    for (ResourceState& r : s.resources) {
+        const ResourceDesc& d = *r.desc;
+        const uint32_t copies = r.perSlot ? slots : 1;
+        r.images.clear();
+        r.buffers.clear();
+        if (!r.isImage) {
+            if (d.sizeBytes == 0) throw ExecutorError("buffer '" + d.name + "' has no size");
+            r.size = d.sizeBytes;
+            for (uint32_t c = 0; c < copies; ++c) r.buffers.push_back(makeBuffer(r.size, r.bufferUsage, false));
+            continue;
+        }
+        const auto ext = d.extent.resolve(options.width, options.height);
+        r.width = ext[0];
+        r.height = ext[1];
+        r.mips = std::max(1u, d.mipCount(options.width, options.height));
+        r.layers = std::max(1u, d.layers);
+        VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        ci.flags = d.type == ResourceType::Cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
+        ci.imageType = VK_IMAGE_TYPE_2D;
+        ci.format = r.format;
+        ci.extent = {r.width, r.height, 1};
+        ci.mipLevels = r.mips;
+        ci.arrayLayers = r.layers;
+        ci.samples = VK_SAMPLE_COUNT_1_BIT;
+        ci.tiling = VK_IMAGE_TILING_OPTIMAL;
+        ci.usage = r.imageUsage;
+        ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        VkImageFormatProperties fp;
+        if (vkGetPhysicalDeviceImageFormatProperties(dev.physical, ci.format, ci.imageType, ci.tiling,
+                                                     ci.usage, ci.flags, &fp) != VK_SUCCESS ||
+            fp.maxMipLevels < r.mips || fp.maxArrayLayers < r.layers ||
+            fp.maxExtent.width < r.width || fp.maxExtent.height < r.height) {
+            throw ExecutorError("resource '" + d.name + "': the device cannot create a " +
+                                std::string(d.format.name) + " image of " +
+                                std::to_string(r.width) + "x" + std::to_string(r.height) +
+                                " with the usages the plan needs");
+        }
+        for (uint32_t c = 0; c < copies; ++c) {
+            ImageCopy img;
+            VkImage image;
+            vk::check(vkCreateImage(vkd, &ci, nullptr, &image), "vkCreateImage");
+            img.image = vk::Image(vkd, image);
+            VkMemoryRequirements req;
+            vkGetImageMemoryRequirements(vkd, image, &req);
+            VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+            mai.allocationSize = req.size;
+            mai.memoryTypeIndex = vk::findMemoryType(dev.physical, req.memoryTypeBits,
+                                                     VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+            VkDeviceMemory mem;
+            vk::check(vkAllocateMemory(vkd, &mai, nullptr, &mem), "vkAllocateMemory");
+            img.memory = vk::Memory(vkd, mem);
+            vk::check(vkBindImageMemory(vkd, image, mem, 0), "vkBindImageMemory");
+            if (dev.fn.setObjectName) {
+                VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+                ni.objectType = VK_OBJECT_TYPE_IMAGE;
+                ni.objectHandle = reinterpret_cast<uint64_t>(image);
+                const std::string name = d.name + (r.perSlot ? "#" + std::to_string(c) : "");
+                ni.pObjectName = name.c_str();
+                dev.fn.setObjectName(vkd, &ni);
+            }
+            r.images.push_back(std::move(img));
+        }
+    }
+}
+
+void Renderer::Impl::fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value) {
+    const size_t words = static_cast<size_t>(bytes / 4);
+    uint32_t valueBits;
+    std::memcpy(&valueBits, &value, 4);
+    for (size_t i = 0; i < words; ++i) {
+        const uint32_t w = i == 0 ? 3u : i == 1 ? 1u : i < 8 ? 0u : valueBits;
+        std::memcpy(dst + i * 4, &w, 4);
+    }
+}
+
+void Renderer::Impl::buildSized(PlanState& s) {
+    const uint32_t slots = options.framesInFlight;
+    createResources(s);
+    for (PassState& ps : s.passes) {
+        ps.slots.clear();
+        ps.slots.resize(slots);
+        for (uint32_t slot = 0; slot < slots; ++slot) buildPassSlot(s, ps, slot);
+    }
+    s.finals.assign(slots, {});
+    for (uint32_t slot = 0; slot < slots; ++slot) {
+        translateBarriers(s, s.plan.finalBarriers, slot, s.finals[slot].imageBarriers,
+                          s.finals[slot].bufferBarriers, s.finals[slot].memoryBarriers);
+    }
+    // Read-back target.
+    s.readbackResource = -1;
+    s.readbackBuffers.clear();
+    for (size_t i = 0; i < s.resources.size(); ++i) {
+        const ResourceDesc& d = *s.resources[i].desc;
+        const bool match = options.readback.empty() ? d.final == ExternalState::Present
+                                                    : d.name == options.readback;
+        if (match && s.resources[i].isImage &&
+            s.plan.resources[i].finalLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) {
+            s.readbackResource = static_cast<int32_t>(i);
+        }
+    }
+    if (s.readbackResource >= 0) {
+        const ResourceState& r = s.resources[size_t(s.readbackResource)];
+        const VkDeviceSize bytes = VkDeviceSize(r.width) * r.height * copyTexelBytes(r.desc->format);
+        for (uint32_t slot = 0; slot < slots; ++slot)
+            s.readbackBuffers.push_back(makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
+    }
+    importExternals(s);
+}
+
+void Renderer::Impl::importExternals(PlanState& s) {
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pci.queueFamilyIndex = dev.queueFamily;
+    VkCommandPool rawPool;
+    vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &rawPool), "vkCreateCommandPool");
+    vk::CommandPool pool(vkd, rawPool);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = rawPool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    vk::check(vkAllocateCommandBuffers(vkd, &ai, &cmd), "vkAllocateCommandBuffers");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk::check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+
+    std::vector<OwnedBuffer> staging;
+    std::vector<VkImageMemoryBarrier2> toDst, toInitial;
+    for (size_t i = 0; i < s.resources.size(); ++i) {
+        ResourceState& r = s.resources[i];
+        if (!r.desc->external) continue;
+        if (!r.isImage) {
+            staging.push_back(makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true));
+            fillBufferPattern(static_cast<uint8_t*>(staging.back().mapped), r.size, 0.5f);
+            for (auto& b : r.buffers) {
+                VkBufferCopy region{0, 0, r.size};
+                vkCmdCopyBuffer(cmd, staging.back().buffer.get(), b.buffer.get(), 1, &region);
+            }
+            continue;
+        }
+        for (auto& img : r.images) {
+            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            b.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+            b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+            b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = img.image.get();
+            b.subresourceRange = {r.aspect, 0, r.mips, 0, r.layers};
+            toDst.push_back(b);
+            const VkImageLayout initial = s.plan.resources[i].initialLayout;
+            VkImageMemoryBarrier2 t = b;
+            t.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
+            t.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            t.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            t.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+            t.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+            t.newLayout = initial == VK_IMAGE_LAYOUT_UNDEFINED ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : initial;
+            toInitial.push_back(t);
+        }
+    }
+    auto barrier = [&](std::vector<VkImageMemoryBarrier2>& images) {
+        if (images.empty()) return;
+        VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        di.imageMemoryBarrierCount = static_cast<uint32_t>(images.size());
+        di.pImageMemoryBarriers = images.data();
+        vkCmdPipelineBarrier2(cmd, &di);
+    };
+    barrier(toDst);
+    for (size_t i = 0; i < s.resources.size(); ++i) {
+        ResourceState& r = s.resources[i];
+        if (!r.desc->external || !r.isImage) continue;
+        for (auto& img : r.images) {
+            const VkImageSubresourceRange range{r.aspect, 0, r.mips, 0, r.layers};
+            if (r.desc->format.isDepthStencil()) {
+                VkClearDepthStencilValue v{r.desc->clear ? r.desc->clear->depth : 1.0f,
+                                           r.desc->clear ? r.desc->clear->stencil : 0u};
+                vkCmdClearDepthStencilImage(cmd, img.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+            } else {
+                VkClearColorValue v{};
+                const std::array<float, 4> grey{0.5f, 0.5f, 0.5f, 1.0f};
+                const auto& c = r.desc->clear ? r.desc->clear->color : grey;
+                if (scalarPrefix(r.format).empty()) {
+                    std::memcpy(v.float32, c.data(), 16);
+                } else {
+                    for (int k = 0; k < 4; ++k) v.uint32[k] = static_cast<uint32_t>(c[size_t(k)]);
+                }
+                vkCmdClearColorImage(cmd, img.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+            }
+        }
+    }
+    // Loaded textures: copy their pixels over the clear into mip 0 of every layer.
+    std::vector<VkImageMemoryBarrier2> afterClear;
+    std::vector<std::pair<VkImage, const ResourceState*>> uploadsToDo;
+    for (size_t i = 0; i < s.resources.size(); ++i) {
+        ResourceState& r = s.resources[i];
+        if (!r.desc->external || !r.isImage || !uploads.count(r.desc->name)) continue;
+        for (auto& img : r.images) {
+            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+            b.srcAccessMask = b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            b.oldLayout = b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            b.image = img.image.get();
+            b.subresourceRange = {r.aspect, 0, 1, 0, r.layers};
+            afterClear.push_back(b);
+            uploadsToDo.emplace_back(img.image.get(), &r);
+        }
+    }
+    barrier(afterClear);
+    for (const auto& [image, rp] : uploadsToDo) {
+        const ResourceState& r = *rp;
+        const ImageData& px = uploads.at(r.desc->name);
+        const uint32_t texel = copyTexelBytes(r.desc->format);
+        const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
+        staging.push_back(makeBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true));
+        auto* dst = static_cast<uint8_t*>(staging.back().mapped);
+        for (uint32_t l = 0; l < r.layers; ++l)
+            for (size_t p = 0; p < size_t(r.width) * r.height; ++p) {
+                const std::array<float, 4> c{px.rgba[p * 4], px.rgba[p * 4 + 1], px.rgba[p * 4 + 2],
+                                             px.rgba[p * 4 + 3]};
+                const auto t = encodeTexel(r.format, texel, c);
+                std::memcpy(dst + l * layerBytes + p * texel, t.data(), texel);
+            }
+        VkBufferImageCopy c{};
+        c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, r.layers};
+        c.imageExtent = {r.width, r.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging.back().buffer.get(), image,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
+    }
+    for (auto& t : toInitial) {
+        t.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    }
+    barrier(toInitial);
+    if (!staging.empty()) {
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+        VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        di.memoryBarrierCount = 1;
+        di.pMemoryBarriers = &mb;
+        vkCmdPipelineBarrier2(cmd, &di);
+    }
+    vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cbi.commandBuffer = cmd;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &cbi;
+    vk::check(vkQueueSubmit2(dev.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit2");
+    vk::check(vkQueueWaitIdle(dev.queue), "vkQueueWaitIdle");
+}
+
+}  // namespace skygraph
