@@ -29,18 +29,13 @@ public:
     /// Grids are resolved at the given output size.
     GraphIndex(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                uint32_t outputWidth, uint32_t outputHeight)
-        : graph_(graph), grids_(graph, outputWidth, outputHeight) {
-        active_.reserve(graph.passes.size());
-        firstUse_.reserve(graph.passes.size() + 1);
-        firstUse_.push_back(0);
-        for (const auto& pass : graph.passes) {
-            active_.push_back(!features || pass.condition.evaluate(*features));
-            for (const auto& u : pass.uses) uses_.push_back({u.usage, u.resource, !u.slot.empty()});
-            firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
-        }
+        : graph_(graph), grids_(graph.resources.size()) {
+        indexPasses(features);
         resources_.reserve(graph.resources.size());
-        for (const auto& r : graph.resources)
+        for (const auto& r : graph.resources) {
+            grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
             resources_.push_back({r.clear.has_value() || r.external, r.isExported()});
+        }
     }
 
     [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
@@ -64,6 +59,33 @@ public:
     [[nodiscard]] bool exported(size_t r) const noexcept { return resources_[r].exported; }
 
 private:
+    void indexPasses(const std::optional<FeatureValues>& features) {
+        const size_t passes = graph_.passes.size();
+        active_.reserve(passes);
+        firstUse_.reserve(passes + 1);
+        firstUse_.push_back(0);
+        size_t uses = 0;
+        for (const auto& pass : graph_.passes) uses += pass.uses.size();
+        uses_.reserve(uses);
+        for (size_t p = 0; p < passes; ++p) {
+            if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
+            const PassDesc& pass = graph_.passes[p];
+            active_.push_back(!features || pass.condition.evaluate(*features));
+            for (const auto& u : pass.uses) uses_.push_back({u.usage, u.resource, !u.slot.empty()});
+            firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
+        }
+    }
+
+    /// Each pass keeps its usages in an allocation of its own, usually on another page than
+    /// the last pass's: reading them in turn waits for memory at every pass unless they are
+    /// asked for a few passes ahead.
+    static constexpr size_t kPrefetchAhead = 4;
+    static void prefetchUses(const PassDesc& pass) {
+        const auto* begin = reinterpret_cast<const char*>(pass.uses.data());
+        const auto* end = reinterpret_cast<const char*>(pass.uses.data() + pass.uses.size());
+        for (const char* line = begin; line < end; line += 64) __builtin_prefetch(line);
+    }
+
     struct ResourceFlags {
         bool clearOrExternal = false;
         bool exported = false;

@@ -61,12 +61,6 @@ public:
         grids_.reserve(reserve);
         first_.reserve(reserve + 1);
     }
-    /// Every resource of `graph`, in declaration order, at one output size.
-    SubresourceGrids(const GraphDesc& graph, uint32_t outputWidth, uint32_t outputHeight)
-        : SubresourceGrids(graph.resources.size()) {
-        for (const auto& r : graph.resources) add(SubresourceGrid(r, outputWidth, outputHeight));
-    }
-
     void add(const SubresourceGrid& g) {
         grids_.push_back(g);
         first_.push_back(first_.back() + g.size());

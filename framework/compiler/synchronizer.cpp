@@ -49,6 +49,7 @@ struct ResourceFacts {
     uint32_t lastAccess = kNone;
     bool image = false;
     bool exported = false;
+    bool external = false;
 };
 
 bool covers(VkPipelineStageFlags2 haveStages, VkAccessFlags2 haveAccess, const VulkanScope& need) {
@@ -182,7 +183,7 @@ private:
         res.name = d.name;
         plan_.resources.push_back(std::move(res));
         decls_.push_back(&d);
-        facts_.push_back({kNone, kNone, d.isImage(), d.isExported()});
+        facts_.push_back({kNone, kNone, d.isImage(), d.isExported(), d.external});
         grids_.add(index_.grids()[declIndex]);
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
@@ -313,10 +314,9 @@ private:
     /// Resource r's state before its first access (the plan resource's first and initial
     /// fields too): undefined, or for an external resource what its `initial` state holds.
     void startState(uint32_t r) {
-        const auto& d = decl(r);
         SubresourceState init;
-        if (d.external) {
-            const ExternalState s = replaced(d.initial);
+        if (facts_[r].external) {
+            const ExternalState s = replaced(decl(r).initial);
             const VulkanScope scope = boundaryScope(r, s);
             init.layout = scope.layout;
             init.writeStages = scope.stages;
