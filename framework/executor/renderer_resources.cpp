@@ -324,7 +324,7 @@ void Renderer::Impl::importExternals(PlanState& s) {
     }
     // Loaded textures: copy their pixels over the clear into mip 0 of every layer.
     std::vector<VkImageMemoryBarrier2> afterClear;
-    std::vector<std::pair<VkImage, const ResourceState*>> uploadsToDo;
+    std::vector<std::pair<VkImage, const ResourceState*>> pendingUploads;
     for (size_t i = 0; i < s.resources.size(); ++i) {
         ResourceState& r = s.resources[i];
         if (!r.desc->external || !r.isImage || !uploads.count(r.desc->name)) continue;
@@ -337,11 +337,11 @@ void Renderer::Impl::importExternals(PlanState& s) {
             b.image = img.image.get();
             b.subresourceRange = {r.aspect, 0, 1, 0, r.layers};
             afterClear.push_back(b);
-            uploadsToDo.emplace_back(img.image.get(), &r);
+            pendingUploads.emplace_back(img.image.get(), &r);
         }
     }
     barrier(afterClear);
-    for (const auto& [image, rp] : uploadsToDo) {
+    for (const auto& [image, rp] : pendingUploads) {
         const ResourceState& r = *rp;
         const ImageData& px = uploads.at(r.desc->name);
         const uint32_t texel = copyTexelBytes(r.desc->format);
