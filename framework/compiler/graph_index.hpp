@@ -44,6 +44,11 @@ public:
     [[nodiscard]] std::span<const IndexedUsage> usesOf(size_t pass) const noexcept {
         return {uses_.data() + firstUse_[pass], uses_.data() + firstUse_[pass + 1]};
     }
+    /// A usage by its position among all the graph's usages, pass after pass, and back.
+    [[nodiscard]] uint32_t indexOf(const IndexedUsage& u) const noexcept {
+        return static_cast<uint32_t>(&u - uses_.data());
+    }
+    [[nodiscard]] const IndexedUsage& use(uint32_t i) const noexcept { return uses_[i]; }
     /// The pass's usage as declared (slot, JSON path): `u` must come from usesOf(pass).
     [[nodiscard]] const UsageDecl& declOf(size_t pass, const IndexedUsage& u) const noexcept {
         return graph_.passes[pass].uses[static_cast<size_t>(&u - usesOf(pass).data())];

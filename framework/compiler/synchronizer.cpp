@@ -27,9 +27,9 @@ struct SubresourceState {
     bool fromOutside = false;
 };
 
-/// One usage in plan order (access k is the k-th usage of the plan), with what the sweeps
-/// over the plan need of it, so that they stream through one compact array. Each resource's
-/// accesses are chained through `next`.
+/// One usage in plan order (access k is the k-th usage of the plan): what the sweeps need of
+/// it, in one compact array. The plan's PlannedUsage is written from it once, at the end.
+/// Each resource's accesses are chained through `next`.
 struct AccessRecord {
     SubresourceRange range;
     VkPipelineStageFlags2 stages = 0;
@@ -39,8 +39,10 @@ struct AccessRecord {
     uint32_t resource = 0;    ///< Index into Plan::resources.
     uint32_t next = kNone;    ///< The same resource's next access.
     uint32_t runScopes = 0;   ///< Index of its first entry in Synchronizer::runScope_.
+    uint32_t use = kNone;     ///< Index into GraphIndex's usages; kNone for an inserted clear.
     bool reads = false;       ///< Of the effective usage (a load-op clear writes).
     bool writes = false;
+    bool loadOpClear = false; ///< The first use of a `clear` resource, cleared by the load op.
 };
 
 /// Per plan resource, what the sweeps ask of it often (its ResourceDesc is large and cold).
@@ -118,70 +120,70 @@ public:
 
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
-        buildSteps(schedule);
+        planAccesses(schedule);
         computeRunScopes();
-        state_.resize(grids_.total());
-        uint32_t k = 0;  // access index: the usage's position in plan order
-        for (auto& step : plan_.passes) {
-            batch_.clear();
-            for (auto& pu : step.usages) applyAccess(pu, k++);
-            mergeAdjacent(batch_);
-            step.barriers.assign(batch_.begin(), batch_.end());  // allocated once, to size
-        }
+        emitSteps();
         finalBarriers();
         return std::move(plan_);
     }
 
 private:
+    /// Where a plan pass comes from: a scheduled pass, or a Clear inserted for a resource.
+    struct Step {
+        int32_t pass = -1;         ///< Index into GraphDesc::passes; -1 for an inserted clear.
+        uint32_t cleared = 0;      ///< The resource an inserted clear clears.
+        uint32_t firstAccess = 0;  ///< Its accesses are [firstAccess, next step's).
+    };
+
     const ResourceDesc& decl(uint32_t planResource) const { return *decls_[planResource]; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
     }
 
-    // Plan passes, resources and usages (with their Vulkan scopes), with clears placed.
-    void buildSteps(const Schedule& schedule) {
+    // Plan steps (with clears placed), plan resources, and an access record per usage.
+    void planAccesses(const Schedule& schedule) {
         std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
-        std::vector<uint32_t> clearsBefore;  // resources that a Clear pass before this pass clears
-        // At most: inserted clears add passes and usages beyond these, rarely.
-        plan_.passes.reserve(schedule.passes.size());
+        // Reserved for the scheduled passes; inserted clears add a few more, rarely.
+        steps_.reserve(schedule.passes.size());
         plan_.resources.reserve(graph_.resources.size());
         decls_.reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
         grids_ = SubresourceGrids(graph_.resources.size());
         accesses_.reserve(schedule.usages);
         readRuns_.reserve(schedule.usages);
+        std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
+        std::vector<bool> firstUses;         // per usage of this pass
         for (uint32_t p : schedule.passes) {
-            const PassDesc& pass = graph_.passes[p];
             const auto uses = index_.usesOf(p);
-            PlannedPass step{pass.name, pass.type, static_cast<int32_t>(p), {}, {}};
-            step.usages.reserve(uses.size());
             clearsBefore.clear();
+            firstUses.clear();
             for (const IndexedUsage& u : uses) {
-                const bool firstUse = planIndex[u.resource] == kNone;
-                if (firstUse) planIndex[u.resource] = addResource(u.resource);
-                const uint32_t r = planIndex[u.resource];
-                PlannedUsage& pu = step.usages.emplace_back();
-                pu.resource = r;
-                pu.usage = u.usage;
-                if (u.fillsSlot) pu.slot = index_.declOf(p, u).slot;
-                pu.range = grids_[r].resolve(u.usage);
-                if (firstUse && decl(r).clear) {
-                    if (clearsThroughLoadOp(pu)) pu.load = LoadOp::Clear;
-                    else clearsBefore.push_back(r);
-                }
-                setScope(pu);
+                const bool first = planIndex[u.resource] == kNone;
+                if (first) planIndex[u.resource] = addResource(u.resource);
+                firstUses.push_back(first);
+                if (first && decl(planIndex[u.resource]).clear && !clearsThroughLoadOp(u))
+                    clearsBefore.push_back(planIndex[u.resource]);
             }
-            for (uint32_t r : clearsBefore) appendStep(clearPass(r));
-            appendStep(std::move(step));
+            for (uint32_t r : clearsBefore) {
+                steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
+                addAccess(r, kClearUsage, grids_[r].whole(), kNone, false);
+            }
+            steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
+            for (size_t i = 0; i < uses.size(); ++i) {
+                const uint32_t r = planIndex[uses[i].resource];
+                addAccess(r, uses[i].usage, grids_[r].resolve(uses[i].usage), index_.indexOf(uses[i]),
+                          firstUses[i] && decl(r).clear && clearsThroughLoadOp(uses[i]));
+            }
         }
+        for (uint32_t r = 0; r < plan_.resources.size(); ++r)
+            plan_.resources[r].lastPass = accesses_[facts_[r].lastAccess].step;
     }
 
     uint32_t addResource(uint32_t declIndex) {
         const ResourceDesc& d = graph_.resources[declIndex];
-        PlannedResource res;
+        PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
         res.name = d.name;
-        plan_.resources.push_back(std::move(res));
         decls_.push_back(&d);
         facts_.push_back({kNone, kNone, d.isImage(), d.isExported(), d.external});
         grids_.add(index_.grids()[declIndex]);
@@ -190,63 +192,49 @@ private:
 
     // A `clear` resource is cleared by its first use: through the load op when that use is an
     // attachment covering the whole resource, otherwise by a Clear pass inserted before it.
-    bool clearsThroughLoadOp(const PlannedUsage& firstUse) const {
-        return isAttachmentStage(firstUse.usage.stage) && firstUse.range == grids_[firstUse.resource].whole();
+    bool clearsThroughLoadOp(const IndexedUsage& firstUse) const {
+        const SubresourceGrid& grid = index_.grids()[firstUse.resource];
+        return isAttachmentStage(firstUse.usage.stage) && grid.resolve(firstUse.usage) == grid.whole();
     }
-    PlannedPass clearPass(uint32_t r) const {
-        PlannedUsage clear;
-        clear.resource = r;
-        clear.usage = {Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
-        clear.range = grids_[r].whole();
-        setScope(clear);
-        return PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {clear}};
-    }
+    static constexpr Usage kClearUsage{Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
-    static Usage effectiveUsage(const PlannedUsage& pu) {
-        Usage u = pu.usage;
-        if (pu.load == LoadOp::Clear && u.access == Access::Read) u.access = Access::ReadWrite;
+    static Usage effectiveUsage(Usage u, bool loadOpClear) {
+        if (loadOpClear && u.access == Access::Read) u.access = Access::ReadWrite;
         return u;
     }
-    void setScope(PlannedUsage& pu) const {
-        const auto scope = vulkanScope(decl(pu.resource), effectiveUsage(pu));
-        pu.layout = scope.layout;
-        pu.stages = scope.stages;
-        pu.access = scope.access;
-    }
 
-    /// Appends a pass to the plan and its usages to accesses_, chaining each to the previous
-    /// access of its resource and joining its read run; sets the resources' lifetimes.
-    void appendStep(PlannedPass&& step) {
-        const auto s = static_cast<uint32_t>(plan_.passes.size());
-        for (const PlannedUsage& pu : step.usages) {
-            const auto k = static_cast<uint32_t>(accesses_.size());
-            const Access access = effectiveUsage(pu).access;
-            AccessRecord& a = accesses_.emplace_back();
-            a.range = pu.range;
-            a.stages = pu.stages;
-            a.access = pu.access;
-            a.layout = pu.layout;
-            a.step = s;
-            a.resource = pu.resource;
-            a.runScopes = runScopeCount_;
-            a.reads = readsContents(access);
-            a.writes = writesContents(access);
-            runScopeCount_ += static_cast<uint32_t>(cells(pu.range));
-            readRuns_.add(!a.writes, [&](auto&& f) {
-                if (facts_[pu.resource].image) grids_.forEach(pu.resource, pu.range, f);
-            });
-            ResourceFacts& f = facts_[pu.resource];
-            if (f.firstAccess == kNone) {
-                f.firstAccess = k;
-                plan_.resources[pu.resource].firstPass = s;
-            } else {
-                accesses_[f.lastAccess].next = k;
-            }
-            f.lastAccess = k;
-            plan_.resources[pu.resource].lastPass = s;
+    /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
+    /// place in its resource's chain of accesses and in its read run (rule 4).
+    void addAccess(uint32_t r, const Usage& usage, const SubresourceRange& range, uint32_t use,
+                   bool loadOpClear) {
+        const auto k = static_cast<uint32_t>(accesses_.size());
+        const Usage effective = effectiveUsage(usage, loadOpClear);
+        const VulkanScope scope = vulkanScope(decl(r), effective);
+        AccessRecord& a = accesses_.emplace_back();
+        a.range = range;
+        a.stages = scope.stages;
+        a.access = scope.access;
+        a.layout = scope.layout;
+        a.step = static_cast<uint32_t>(steps_.size() - 1);
+        a.resource = r;
+        a.runScopes = runScopeCount_;
+        a.use = use;
+        a.reads = readsContents(effective.access);
+        a.writes = writesContents(effective.access);
+        a.loadOpClear = loadOpClear;
+        runScopeCount_ += static_cast<uint32_t>(cells(range));
+        readRuns_.add(!a.writes, [&](auto&& f) {
+            if (facts_[r].image) grids_.forEach(r, range, f);
+        });
+        ResourceFacts& f = facts_[r];
+        if (f.firstAccess == kNone) {
+            f.firstAccess = k;
+            plan_.resources[r].firstPass = a.step;
+        } else {
+            accesses_[f.lastAccess].next = k;
         }
-        plan_.passes.push_back(std::move(step));
+        f.lastAccess = k;
     }
 
     /// For every read access and subresource it touches: the union of the scopes of the reads
@@ -272,6 +260,48 @@ private:
                 ++out;
             });
         }
+    }
+
+    /// Writes the plan's passes, each usage with its layout, load and store ops, and the
+    /// barriers before each pass, in one forward sweep.
+    void emitSteps() {
+        state_.resize(grids_.total());
+        plan_.passes.reserve(steps_.size());
+        for (uint32_t s = 0; s < steps_.size(); ++s) {
+            const Step& step = steps_[s];
+            const uint32_t end = s + 1 < steps_.size() ? steps_[s + 1].firstAccess : static_cast<uint32_t>(accesses_.size());
+            PlannedPass& pass = step.pass >= 0 ? plan_.passes.emplace_back(PlannedPass{
+                                                     graph_.passes[step.pass].name, graph_.passes[step.pass].type, step.pass, {}, {}})
+                                               : plan_.passes.emplace_back(PlannedPass{
+                                                     "clear " + decl(step.cleared).name, "Clear", -1, {}, {}});
+            pass.usages.reserve(end - step.firstAccess);
+            batch_.clear();
+            for (uint32_t k = step.firstAccess; k < end; ++k) {
+                PlannedUsage& pu = pass.usages.emplace_back();
+                describeUsage(pu, k);
+                applyAccess(pu, k);
+            }
+            mergeAdjacent(batch_);
+            pass.barriers.assign(batch_.begin(), batch_.end());  // allocated once, to size
+        }
+    }
+
+    /// Access k as the plan shows it, before its layout (rule 4) and attachment ops are settled.
+    void describeUsage(PlannedUsage& pu, uint32_t k) const {
+        const AccessRecord& a = accesses_[k];
+        pu.resource = a.resource;
+        if (a.use == kNone) {
+            pu.usage = kClearUsage;
+        } else {
+            const IndexedUsage& u = index_.use(a.use);
+            pu.usage = u.usage;
+            if (u.fillsSlot) pu.slot = index_.declOf(static_cast<size_t>(steps_[a.step].pass), u).slot;
+        }
+        pu.range = a.range;
+        pu.layout = a.layout;
+        pu.stages = a.stages;
+        pu.access = a.access;
+        if (a.loadOpClear) pu.load = LoadOp::Clear;
     }
 
     /// Whether a later access (or the export) reads what access `k` leaves in `range`.
@@ -330,7 +360,6 @@ private:
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[grids_.first(r)]; }
 
-
     /// The barrier subresource `st` needs before an access in `scope` that reads
     /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
     std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need,
@@ -388,7 +417,7 @@ private:
     }
 
     /// Barriers for one usage (access `k`) into batch_, then the state after it, and the
-    /// attachment's load and store ops.
+    /// usage's layout (its read run's) and attachment ops.
     void applyAccess(PlannedUsage& pu, uint32_t k) {
         const AccessRecord& a = accesses_[k];
         const uint32_t r = pu.resource;
@@ -396,7 +425,7 @@ private:
         const bool write = a.writes;
         if (k == facts_[r].firstAccess) startState(r);
         if (!write && isImage) pu.layout = readRuns_.layout(k);  // rule 4
-        const bool discard = effectiveUsage(pu).access == Access::Write;
+        const bool discard = effectiveUsage(pu.usage, a.loadOpClear).access == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
         const VkImageLayout target = isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         auto update = [&](SubresourceState& st) {
@@ -550,6 +579,7 @@ private:
     std::vector<const ResourceDesc*> decls_;
     std::vector<ResourceFacts> facts_;
     SubresourceGrids grids_;               // also lays out the per-subresource arrays
+    std::vector<Step> steps_;              // per plan pass
     // Per access (usage in plan order).
     std::vector<AccessRecord> accesses_;
     ReadRuns readRuns_;
