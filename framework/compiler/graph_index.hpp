@@ -6,6 +6,7 @@
 #pragma once
 
 #include "subresources.hpp"
+#include "vulkan_state.hpp"
 
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
@@ -34,7 +35,7 @@ public:
         resources_.reserve(graph.resources.size());
         for (const auto& r : graph.resources) {
             grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
-            resources_.push_back({r.clear.has_value() || r.external, r.isExported()});
+            resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
         }
     }
 
@@ -59,8 +60,9 @@ public:
     [[nodiscard]] SubresourceRange range(const IndexedUsage& u) const noexcept {
         return grids_[u.resource].resolve(u.usage);
     }
-    /// Whether the resource holds contents before any pass writes it.
-    [[nodiscard]] bool clearOrExternal(size_t r) const noexcept { return resources_[r].clearOrExternal; }
+    [[nodiscard]] const ResourceAspects& aspects(size_t r) const noexcept { return resources_[r].aspects; }
+    [[nodiscard]] bool clear(size_t r) const noexcept { return resources_[r].clear; }
+    [[nodiscard]] bool external(size_t r) const noexcept { return resources_[r].external; }
     [[nodiscard]] bool exported(size_t r) const noexcept { return resources_[r].exported; }
 
 private:
@@ -92,7 +94,9 @@ private:
     }
 
     struct ResourceFlags {
-        bool clearOrExternal = false;
+        ResourceAspects aspects;
+        bool clear = false;
+        bool external = false;
         bool exported = false;
     };
 

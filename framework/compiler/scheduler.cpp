@@ -99,7 +99,7 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
     const SubresourceGrids& grids = index.grids();
     // Whether each subresource holds contents at this point of the frame.
     auto written = grids.makeArray<uint8_t>(
-        [&](size_t r) { return static_cast<uint8_t>(index.clearOrExternal(r)); });
+        [&](size_t r) { return static_cast<uint8_t>(index.clear(r) || index.external(r)); });
     for (size_t p = 0; p < index.passes(); ++p) {
         if (!index.active(p)) continue;
         for (const auto& u : index.usesOf(p)) {

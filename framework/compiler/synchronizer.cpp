@@ -49,7 +49,7 @@ struct AccessRecord {
 struct ResourceFacts {
     uint32_t firstAccess = kNone;  ///< Its accesses, chained through AccessRecord::next.
     uint32_t lastAccess = kNone;
-    bool image = false;
+    ResourceAspects aspects;  ///< Whether it is an image, for vulkanScope.
     bool exported = false;
     bool external = false;
 };
@@ -136,6 +136,7 @@ private:
     };
 
     const ResourceDesc& decl(uint32_t planResource) const { return *decls_[planResource]; }
+    bool isImage(uint32_t planResource) const { return facts_[planResource].aspects.image; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
     }
@@ -161,7 +162,7 @@ private:
                 const bool first = planIndex[u.resource] == kNone;
                 if (first) planIndex[u.resource] = addResource(u.resource);
                 firstUses.push_back(first);
-                if (first && decl(planIndex[u.resource]).clear && !clearsThroughLoadOp(u))
+                if (first && index_.clear(u.resource) && !clearsThroughLoadOp(u))
                     clearsBefore.push_back(planIndex[u.resource]);
             }
             for (uint32_t r : clearsBefore) {
@@ -172,7 +173,7 @@ private:
             for (size_t i = 0; i < uses.size(); ++i) {
                 const uint32_t r = planIndex[uses[i].resource];
                 addAccess(r, uses[i].usage, grids_[r].resolve(uses[i].usage), index_.indexOf(uses[i]),
-                          firstUses[i] && decl(r).clear && clearsThroughLoadOp(uses[i]));
+                          firstUses[i] && index_.clear(uses[i].resource) && clearsThroughLoadOp(uses[i]));
             }
         }
         for (uint32_t r = 0; r < plan_.resources.size(); ++r)
@@ -185,7 +186,8 @@ private:
         res.decl = declIndex;
         res.name = d.name;
         decls_.push_back(&d);
-        facts_.push_back({kNone, kNone, d.isImage(), d.isExported(), d.external});
+        facts_.push_back({kNone, kNone, index_.aspects(declIndex), index_.exported(declIndex),
+                          index_.external(declIndex)});
         grids_.add(index_.grids()[declIndex]);
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
@@ -210,7 +212,7 @@ private:
                    bool loadOpClear) {
         const auto k = static_cast<uint32_t>(accesses_.size());
         const Usage effective = effectiveUsage(usage, loadOpClear);
-        const VulkanScope scope = vulkanScope(decl(r), effective);
+        const VulkanScope scope = vulkanScope(facts_[r].aspects, effective);
         AccessRecord& a = accesses_.emplace_back();
         a.range = range;
         a.stages = scope.stages;
@@ -225,7 +227,7 @@ private:
         a.loadOpClear = loadOpClear;
         runScopeCount_ += static_cast<uint32_t>(cells(range));
         readRuns_.add(!a.writes, [&](auto&& f) {
-            if (facts_[r].image) grids_.forEach(r, range, f);
+            if (isImage(r)) grids_.forEach(r, range, f);
         });
         ResourceFacts& f = facts_[r];
         if (f.firstAccess == kNone) {
@@ -247,7 +249,7 @@ private:
         std::vector<VulkanScope> pending(grids_.total());  // per subresource
         for (auto k = static_cast<uint32_t>(accesses_.size()); k-- > 0;) {
             const AccessRecord& a = accesses_[k];
-            if (!a.writes && facts_[a.resource].image) readRuns_.fold(k, a.layout);
+            if (!a.writes && isImage(a.resource)) readRuns_.fold(k, a.layout);
             VulkanScope* out = &runScope_[a.runScopes];
             grids_.forEach(a.resource, a.range, [&](size_t sub) {
                 if (a.writes) {
@@ -421,13 +423,13 @@ private:
     void applyAccess(PlannedUsage& pu, uint32_t k) {
         const AccessRecord& a = accesses_[k];
         const uint32_t r = pu.resource;
-        const bool isImage = facts_[r].image;
+        const bool image = isImage(r);
         const bool write = a.writes;
         if (k == facts_[r].firstAccess) startState(r);
-        if (!write && isImage) pu.layout = readRuns_.layout(k);  // rule 4
+        if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
         const bool discard = effectiveUsage(pu.usage, a.loadOpClear).access == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
-        const VkImageLayout target = isImage ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+        const VkImageLayout target = image ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         auto update = [&](SubresourceState& st) {
             if (write) {
                 st = SubresourceState{};
@@ -447,7 +449,7 @@ private:
             update(st);
             if (b) {
                 b->resource = r;
-                b->kind = isImage ? BarrierKind::Image : BarrierKind::Buffer;
+                b->kind = image ? BarrierKind::Image : BarrierKind::Buffer;
                 b->range = pu.range;
                 batch_.push_back(*b);
             }
@@ -473,7 +475,7 @@ private:
     /// forEach order) into as few rectangles of mips x layers as agree.
     void emitMerged(uint32_t r, const SubresourceRange& range,
                     const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
-        const BarrierKind kind = facts_[r].image ? BarrierKind::Image : BarrierKind::Buffer;
+        const BarrierKind kind = isImage(r) ? BarrierKind::Image : BarrierKind::Buffer;
         auto& open = mergeOpen_;  // rectangles that may still grow by one more mip
         auto& row = mergeRow_;
         auto& next = mergeNext_;

@@ -23,14 +23,20 @@ bool isDepthReadOnly(VkImageLayout l) {
            l == VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL;
 }
 
+BindAs resolveBindAs(bool image, const Usage& u) {
+    if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
+    if (!image) return BindAs::Storage;
+    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
+}
+
 }  // namespace
 
 VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept { return access & kWriteBits; }
 
-BindAs resolveBindAs(const ResourceDesc& r, const Usage& u) {
-    if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
-    if (!r.isImage()) return BindAs::Storage;
-    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
+BindAs resolveBindAs(const ResourceDesc& r, const Usage& u) { return resolveBindAs(r.isImage(), u); }
+
+ResourceAspects aspectsOf(const ResourceDesc& r) noexcept {
+    return {r.isImage(), r.format.hasDepth, r.format.hasStencil};
 }
 
 std::string usageProblem(const ResourceDesc& r, const Usage& u) {
@@ -89,9 +95,11 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
     return {};
 }
 
-VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) {
+VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) { return vulkanScope(aspectsOf(r), u); }
+
+VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) {
     VulkanScope s;
-    const BindAs as = resolveBindAs(r, u);
+    const BindAs as = resolveBindAs(r.image, u);
     switch (u.stage) {
         case Stage::ColorAttachment:
             s.stages = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
@@ -107,10 +115,10 @@ VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) {
             s.access = pick(u.access, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
                             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
             const bool ro = u.access == Access::Read;
-            if (r.format.hasDepth && r.format.hasStencil)
+            if (r.depth && r.stencil)
                 s.layout = ro ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                               : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-            else if (r.format.hasDepth)
+            else if (r.depth)
                 s.layout = ro ? VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL
                               : VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
             else
@@ -156,7 +164,7 @@ VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) {
             s.access = VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
             break;
     }
-    if (!r.isImage()) s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    if (!r.image) s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
     return s;
 }
 

@@ -25,8 +25,18 @@ struct VulkanScope {
 /// The `as` a usage gets when the file leaves it out (contract §1).
 [[nodiscard]] BindAs resolveBindAs(const ResourceDesc& resource, const Usage& usage);
 
+/// What the mapping below asks of a resource: kept apart by the compiler's sweeps, which would
+/// otherwise read a whole ResourceDesc per usage.
+struct ResourceAspects {
+    bool image = false;
+    bool depth = false;
+    bool stencil = false;
+};
+[[nodiscard]] ResourceAspects aspectsOf(const ResourceDesc& resource) noexcept;
+
 /// Stages, accesses and layout of a valid usage. Buffers get layout UNDEFINED.
 [[nodiscard]] VulkanScope vulkanScope(const ResourceDesc& resource, const Usage& usage);
+[[nodiscard]] VulkanScope vulkanScope(const ResourceAspects& resource, const Usage& usage);
 
 /// The scope of an external state: where `initial` contents are visible, and what a
 /// `final` barrier must make them visible to (docs/barriers.md has the table).
