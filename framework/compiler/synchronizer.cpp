@@ -70,27 +70,26 @@ bool sameParams(Barrier a, Barrier b) {
 /// all are in, every read's own layout is folded into its run's.
 class ReadRuns {
 public:
-    void reserve(size_t accesses) {
+    void reserve(size_t accesses, size_t subresources) {
         parent_.reserve(accesses);
         layout_.reserve(accesses);
+        open_.assign(subresources, kNone);
     }
-    /// Adds the next access. `forEachSub(f)` calls f(flat index) for every subresource it
-    /// touches (none for buffers, which have no layout). Returns its index.
-    template <typename ForEachSub>
-    uint32_t add(bool read, ForEachSub&& forEachSub) {
+    /// Adds the next access; returns its index. An image's access then visits each
+    /// subresource it touches (`sub`: flat index).
+    uint32_t add() {
         const auto k = static_cast<uint32_t>(parent_.size());
         parent_.push_back(k);
         layout_.push_back(VK_IMAGE_LAYOUT_UNDEFINED);
-        forEachSub([&](size_t sub) {
-            if (sub >= open_.size()) open_.resize(sub + 1, kNone);
-            if (!read) {
-                open_[sub] = kNone;  // a write ends the run
-            } else {
-                if (open_[sub] != kNone) unite(open_[sub], k);
-                open_[sub] = k;
-            }
-        });
         return k;
+    }
+    void visit(uint32_t k, size_t sub, bool read) {
+        if (!read) {
+            open_[sub] = kNone;  // a write ends the run
+        } else {
+            if (open_[sub] != kNone) unite(open_[sub], k);
+            open_[sub] = k;
+        }
     }
     /// Folds read k's own layout into its run's. commonReadLayout is commutative and
     /// associative, so the order of folding does not matter.
@@ -151,7 +150,7 @@ private:
         facts_.reserve(graph_.resources.size());
         grids_ = SubresourceGrids(graph_.resources.size());
         accesses_.reserve(schedule.usages);
-        readRuns_.reserve(schedule.usages);
+        readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
         std::vector<bool> firstUses;         // per usage of this pass
         for (uint32_t p : schedule.passes) {
@@ -226,9 +225,8 @@ private:
         a.writes = writesContents(effective.access);
         a.loadOpClear = loadOpClear;
         runScopeCount_ += static_cast<uint32_t>(cells(range));
-        readRuns_.add(!a.writes, [&](auto&& f) {
-            if (isImage(r)) grids_.forEach(r, range, f);
-        });
+        readRuns_.add();
+        if (isImage(r)) grids_.forEach(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
         ResourceFacts& f = facts_[r];
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
