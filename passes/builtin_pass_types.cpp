@@ -23,7 +23,10 @@ struct ParamRule {
 ParamValidator rules(std::vector<ParamRule> list) {
     return [list = std::move(list)](const json& params) {
         std::vector<ParamError> errors;
-        for (const auto& [key, value] : params.items()) {
+        for (const auto& item : params.items()) {
+            // Named copies, not structured bindings: clang 14 (the fuzz build) cannot capture those.
+            const std::string& key = item.key();
+            const json& value = item.value();
             auto it = std::find_if(list.begin(), list.end(), [&](const ParamRule& r) { return r.key == key; });
             if (it == list.end()) {
                 std::string known;

@@ -15,8 +15,10 @@ GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     GraphDesc copy = graph;
     Diagnostics diags;
     for (const auto& [name, state] : options.exports) {
+        // A plain reference: clang 14 (the fuzz build) cannot capture structured bindings.
+        const std::string& wanted = name;
         auto it = std::find_if(copy.resources.begin(), copy.resources.end(),
-                               [&](const ResourceDesc& r) { return r.name == name; });
+                               [&](const ResourceDesc& r) { return r.name == wanted; });
         if (it == copy.resources.end()) {
             diags.add({graph.file, "resources", "", name, "cannot export '" + name + "': no such resource"});
         } else if (!it->isExported()) {
