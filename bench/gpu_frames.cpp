@@ -1,0 +1,100 @@
+// Per-pass frame timings through the framework (see gpu_frames.hpp).
+#include "gpu_frames.hpp"
+
+#include "gpu_vk.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/scene.hpp>
+
+#include <map>
+#include <optional>
+
+namespace skygraph::gpubench {
+namespace {
+
+/// The fewest bytes a pass moves through memory if it touches every texel of each usage's
+/// subresources once: reads for Read/ReadWrite (attachments only when loaded), writes for
+/// Write/ReadWrite (attachments only when stored). Texture reads of small, cached inputs
+/// (an environment map) and buffers are counted the same way; clears count their writes.
+double bytesOfPass(const PlannedPass& pass, const Plan& plan, const GraphDesc& graph, uint32_t width,
+                   uint32_t height) {
+    double bytes = 0;
+    for (const PlannedUsage& u : pass.usages) {
+        const ResourceDesc& r = graph.resources[plan.resources[u.resource].decl];
+        double size = 0;
+        if (r.isImage()) {
+            const auto [w, h] = r.extent.resolve(width, height);
+            for (uint32_t m = u.range.baseMip; m < u.range.baseMip + u.range.mipCount; ++m)
+                size += double(std::max(1u, w >> m)) * double(std::max(1u, h >> m)) * r.format.bytesPerTexel;
+            size *= u.range.layerCount;
+        } else {
+            size = static_cast<double>(r.sizeBytes);
+        }
+        const bool attachment = isAttachmentStage(u.usage.stage);
+        const bool clearPass = pass.type == "Clear";
+        if (!clearPass && readsContents(u.usage.access) && (!attachment || u.load == LoadOp::Load)) bytes += size;
+        if (clearPass || (writesContents(u.usage.access) && (!attachment || u.store == StoreOp::Store)))
+            bytes += size;
+    }
+    return bytes;
+}
+
+}  // namespace
+
+FrameResult measureFrames(Device& device, const FrameCase& c) {
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    const GraphDesc graph = loadGraphFile(c.graph, library.registry());
+    std::optional<Scene> scene;
+    if (!c.scene.empty()) scene = loadSceneFile(c.scene);
+    CompileOptions co;
+    if (scene) co.features = sceneFeatures(*scene);
+    co.presentReplacement = ExternalState::TransferSrc;
+    co.outputWidth = c.width;
+    co.outputHeight = c.height;
+    Plan plan = compile(graph, co);
+    FrameResult result;
+    for (const auto& culled : plan.culled) result.culled.push_back(culled.name + ": " + culled.reason);
+    std::map<std::string, PassResult> byName;
+    std::vector<std::string> order;
+    for (const PlannedPass& p : plan.passes) {
+        byName[p.name] = {p.name, p.type, bytesOfPass(p, plan, graph, c.width, c.height), 0, 0, 0};
+        order.push_back(p.name);
+    }
+
+    RendererOptions ro;
+    ro.width = c.width;
+    ro.height = c.height;
+    ro.framesInFlight = 1;
+    ro.passes = &library;
+    ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
+    Renderer renderer(device, graph, std::move(plan), ro);
+    if (scene) renderer.frameData().set(*scene);
+
+    for (uint32_t i = 0; i < c.warmupFrames; ++i) renderer.renderFrame();
+    renderer.waitIdle();
+    std::map<std::string, std::vector<double>> samples;
+    for (uint32_t i = 0; i < c.frames; ++i) {
+        renderer.renderFrame();
+        renderer.waitIdle();  // one frame at a time: each pass's timestamps are its own frame's
+        for (const PassTiming& t : renderer.lastTimings()) samples[t.pass].push_back(t.milliseconds);
+    }
+    for (const std::string& name : order) {
+        PassResult r = byName[name];
+        const auto& s = samples[name];
+        r.medianMs = median(s);
+        r.p10Ms = quantile(s, 0.1);
+        r.p90Ms = quantile(s, 0.9);
+        result.passes.push_back(r);
+    }
+    // The same plan recorded without the per-pass timestamps, timed as a whole.
+    GpuTimer timer(device);
+    std::vector<double> frameMs;
+    for (uint32_t i = 0; i < c.frames; ++i)
+        frameMs.push_back(timer.time([&](VkCommandBuffer cmd) { renderer.recordInto(cmd, 0); }));
+    result.frameMedianMs = median(frameMs);
+    result.frames = c.frames;
+    return result;
+}
+
+}  // namespace skygraph::gpubench

@@ -1,0 +1,48 @@
+// Per-pass GPU time of a graph's frames through the framework (Renderer::lastTimings), with
+// the bytes each pass must read and write, for gpu_frame_bench. Bench-only.
+#pragma once
+
+#include <skygraph/executor.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace skygraph::gpubench {
+
+/// One graph at one output size.
+struct FrameCase {
+    std::filesystem::path graph;
+    std::filesystem::path scene;  ///< May be empty: the graph's default features, no scene data.
+    uint32_t width = 1920;
+    uint32_t height = 1080;
+    uint32_t warmupFrames = 20;
+    uint32_t frames = 200;
+};
+
+/// One pass's GPU times over the measured frames (timestamps around the pass, after its
+/// barriers, as Renderer::lastTimings() reports them).
+struct PassResult {
+    std::string pass;
+    std::string type;
+    double bytes = 0;     ///< Minimum bytes read plus written (see bytesOfPass in the .cpp).
+    double medianMs = 0;
+    double p10Ms = 0;
+    double p90Ms = 0;
+};
+
+struct FrameResult {
+    std::vector<PassResult> passes;
+    /// The whole recorded plan (Renderer::recordInto) between two ALL_COMMANDS timestamps:
+    /// passes and barriers, no readback, no per-pass timestamps.
+    double frameMedianMs = 0;
+    uint32_t frames = 0;
+    std::vector<std::string> culled;  ///< "name: reason"
+};
+
+/// Renders `c.frames` frames after `c.warmupFrames`, waiting for each, with the built-in pass
+/// implementations. Throws GraphError / ExecutorError / ImageError with the file named.
+[[nodiscard]] FrameResult measureFrames(Device& device, const FrameCase& c);
+
+}  // namespace skygraph::gpubench

@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# What runs on the GPU machine (docs/performance.md, "NVIDIA H100"): unpack the bundle from
+# tools/device/bundle.sh, configure and build the benchmark targets against it, run the
+# measurements on the NVIDIA device, and leave logs, CSV and JSON in $OUT (default: ./gpu-out).
+#
+#   tools/device/run-gpu-bench.sh [RUN...]
+#
+# RUN: GRAPH[:SCENE] for gpu_frame_bench (default graphs/raster.json:scenes/default.json).
+# Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
+# SKIP_EXECUTOR_BENCH=1 to skip executor_bench.
+#
+# Builds .devbundle/source.tar.gz (a committed snapshot, see bundle.sh --source) when it is
+# there, else the working tree it runs in. Never writes outside /tmp and $OUT: the carried
+# libraries are used through LD_LIBRARY_PATH, not unpacked into the system.
+set -uo pipefail
+here=$(pwd)
+out=${OUT:-$here/gpu-out}
+mkdir -p "$out"
+log=$out/run.log
+exec > >(tee -a "$log") 2>&1
+
+frames=${FRAMES:-200}
+sizes=${SIZES:-"1920x1080 3840x2160"}
+device=${DEVICE:-nvidia}
+jobs=${JOBS:-16}
+runs=("$@")
+[ ${#runs[@]} -gt 0 ] || runs=(graphs/raster.json:scenes/default.json)
+
+step() { echo; echo "=== $(date -u +%H:%M:%S) $*"; }
+
+step "machine"
+uname -srm; nproc
+nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm,clocks.max.mem --format=csv 2>&1 | head -3
+gcc --version | head -1; cmake --version | head -1; ninja --version 2>/dev/null
+
+step "unpack the bundle"
+deps=/tmp/skygraph-deps
+rm -rf "$deps" && mkdir -p "$deps" && tar -xJf .devbundle/deps.tar.xz -C "$deps" || { echo "no usable .devbundle/deps.tar.xz"; exit 1; }
+cat .devbundle/MANIFEST
+prefix=$deps/usr
+libdir=$prefix/lib/x86_64-linux-gnu
+export LD_LIBRARY_PATH=$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+export LIBRARY_PATH=$libdir  # glslang's CMake files name SPIRV-Tools-opt etc. as plain -l libraries
+src=$here
+if [ -f .devbundle/source.tar.gz ]; then
+  rm -rf /tmp/skygraph-src && mkdir -p /tmp/skygraph-src && tar -xzf .devbundle/source.tar.gz -C /tmp/skygraph-src
+  src=/tmp/skygraph-src/src
+  echo "source: commit $(cat .devbundle/SOURCE_COMMIT) (bundle.sh --source)"
+else
+  echo "source: the carried working tree"
+fi
+export SKYGRAPH_SHADER_DIR=$src/shaders
+
+step "Vulkan driver"
+icd=""
+for f in /usr/share/vulkan/icd.d/nvidia_icd*.json /etc/vulkan/icd.d/nvidia_icd*.json \
+         /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd*.json; do
+  [ -f "$f" ] && { icd=$f; break; }
+done
+[ -n "$icd" ] || icd=$(find / -xdev -name 'nvidia_icd*.json' 2>/dev/null | head -1)
+if [ -n "$icd" ]; then
+  echo "NVIDIA ICD: $icd"; cat "$icd"
+  export VK_DRIVER_FILES=$icd VK_ICD_FILENAMES=$icd
+else
+  echo "no nvidia_icd.json found; the loader's default search applies"
+fi
+
+step "configure and build (-j$jobs)"
+build=/tmp/skygraph-build
+t0=$(date +%s)
+cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYGRAPH_BUILD_TESTS=OFF \
+  -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_POLICY_VERSION_MINIMUM=3.5 > "$out/configure.log" 2>&1 \
+  && cmake --build "$build" -j"$jobs" --target gpu_frame_bench executor_bench skygraph -- -k 0 > "$out/build.log" 2>&1
+rc=$?
+t1=$(date +%s)
+echo "build rc=$rc in $((t1 - t0)) s"
+if [ $rc -ne 0 ]; then
+  tail -40 "$out/configure.log"; grep -B2 -A12 -m3 "error" "$out/build.log" | head -80
+fi
+bin_bench=$build/bench/gpu_frame_bench
+bin_exec=$build/framework/executor/executor_bench
+bin_cli=$build/tools/skygraph
+# A target that failed to build is reported and skipped; the others still run.
+ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
+
+step "render check on $device: skygraph render at 960x540"
+ran "$bin_cli" && (cd "$src" && "$bin_cli" render --device "$device" --scene scenes/default.json --width 960 --height 540 \
+  --frames 3 -o "$out/render-$device.png")
+
+step "gpu_frame_bench: ${runs[*]} at $sizes, $frames frames"
+args=()
+for r in "${runs[@]}"; do args+=(--run "$r"); done
+for s in $sizes; do args+=(--size "$s"); done
+ran "$bin_bench" && (cd "$src" && "$bin_bench" --device "$device" "${args[@]}" --frames "$frames" --csv "$out/gpu_frame_bench.csv") \
+  | tee "$out/gpu_frame_bench.txt"
+
+if [ "${SKIP_EXECUTOR_BENCH:-0}" != 1 ]; then
+  step "executor_bench on $device"
+  ran "$bin_exec" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_exec" --benchmark_repetitions=5 \
+    --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
+    --benchmark_out="$out/executor_bench.json" --benchmark_out_format=json)
+fi
+step "done"
