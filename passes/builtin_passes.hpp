@@ -11,5 +11,11 @@ namespace skygraph::passes {
 [[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeSkyboxPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeForwardPass(const PassDesc& desc);
+// The environment pipeline (passes/ibl/environment_passes.cpp).
+[[nodiscard]] std::unique_ptr<PassImplementation> makeEquirectToCubemapPass(const PassDesc& desc);
+[[nodiscard]] std::unique_ptr<PassImplementation> makeCubemapMipPass(const PassDesc& desc);
+[[nodiscard]] std::unique_ptr<PassImplementation> makeIrradiancePass(const PassDesc& desc);
+[[nodiscard]] std::unique_ptr<PassImplementation> makePrefilterPass(const PassDesc& desc);
+[[nodiscard]] std::unique_ptr<PassImplementation> makeBrdfLutPass(const PassDesc& desc);
 
 }  // namespace skygraph::passes

@@ -94,6 +94,15 @@ ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFor
             case VK_FORMAT_R32G32B32A32_SFLOAT:
                 std::memcpy(px, bytes + i * 16, 16);
                 break;
+            case VK_FORMAT_R16G16_SFLOAT: {  // e.g. a BRDF table
+                uint16_t h[2];
+                std::memcpy(h, bytes + i * 4, 4);
+                px[0] = halfToFloat(h[0]);
+                px[1] = halfToFloat(h[1]);
+                px[2] = 0.0f;
+                px[3] = 1.0f;
+                break;
+            }
             case VK_FORMAT_R32_SFLOAT:
             case VK_FORMAT_D32_SFLOAT:
                 std::memcpy(px, bytes + i * 4, 4);
@@ -171,6 +180,82 @@ ImageData Renderer::readback() {
     const ResourceState& r = s.resources[size_t(s.readbackResource)];
     return convertPixels(s.readbackBuffers[size_t(d.lastSlot)].mapped, r.width, r.height, r.format,
                          r.desc->name);
+}
+
+std::vector<ImageData> Renderer::readImage(const std::string& resource) {
+    Impl& d = *impl_;
+    d.waitIdle();
+    PlanState& s = *d.state;
+    size_t index = s.resources.size();
+    for (size_t i = 0; i < s.resources.size(); ++i)
+        if (s.resources[i].desc->name == resource) index = i;
+    if (index == s.resources.size()) throw ExecutorError("cannot read '" + resource + "': the plan has no such resource");
+    const ResourceState& r = s.resources[index];
+    const VkImageLayout layout = s.plan.resources[index].finalLayout;
+    if (!r.isImage || layout == VK_IMAGE_LAYOUT_UNDEFINED || d.lastSlot < 0)
+        throw ExecutorError("cannot read '" + resource + "': it is not an image that a rendered frame left written");
+    const uint32_t texel = copyTexelBytes(r.desc->format);
+    std::vector<VkBufferImageCopy> copies;
+    VkDeviceSize bytes = 0;
+    for (uint32_t m = 0; m < r.mips; ++m) {
+        VkBufferImageCopy c{};
+        c.bufferOffset = bytes;
+        c.imageSubresource = {copyAspectOf(r.desc->format), m, 0, r.layers};
+        c.imageExtent = {r.mipWidth(m), r.mipHeight(m), 1};
+        copies.push_back(c);
+        bytes += VkDeviceSize(r.mipWidth(m)) * r.mipHeight(m) * texel * r.layers;
+    }
+    OwnedBuffer host = d.makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    // After the frames: to TRANSFER_SRC, copy, back to the frame's final layout, host read.
+    VkImageMemoryBarrier2 toSrc{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    toSrc.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    toSrc.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    toSrc.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    toSrc.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    toSrc.oldLayout = layout;
+    toSrc.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    toSrc.srcQueueFamilyIndex = toSrc.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    toSrc.image = r.images[r.copyFor(uint32_t(d.lastSlot))].image.get();
+    toSrc.subresourceRange = {r.aspect, 0, r.mips, 0, r.layers};
+    VkImageMemoryBarrier2 back = toSrc;
+    back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    back.srcAccessMask = VK_ACCESS_2_NONE;
+    back.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    back.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    std::swap(back.oldLayout, back.newLayout);
+    VkBufferMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    toHost.srcQueueFamilyIndex = toHost.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    toHost.buffer = host.buffer.get();
+    toHost.size = VK_WHOLE_SIZE;
+    VkCommandBuffer cmd = d.frames[0].cmd;  // idle: every slot has been waited for
+    vk::check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk::check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    d.dependency(cmd, {toSrc}, {}, {});
+    vkCmdCopyImageToBuffer(cmd, toSrc.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.buffer.get(),
+                           uint32_t(copies.size()), copies.data());
+    d.dependency(cmd, {back}, {toHost}, {});
+    vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cbi.commandBuffer = cmd;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &cbi;
+    vk::check(vkQueueSubmit2(d.dev.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit2");
+    vk::check(vkQueueWaitIdle(d.dev.queue), "vkQueueWaitIdle");
+    std::vector<ImageData> levels;
+    for (uint32_t m = 0; m < r.mips; ++m)
+        for (uint32_t l = 0; l < r.layers; ++l) {
+            const VkDeviceSize layerBytes = VkDeviceSize(r.mipWidth(m)) * r.mipHeight(m) * texel;
+            const auto* data = static_cast<const uint8_t*>(host.mapped) + copies[m].bufferOffset + l * layerBytes;
+            levels.push_back(convertPixels(data, r.mipWidth(m), r.mipHeight(m), r.format, r.desc->name));
+        }
+    return levels;
 }
 
 void Renderer::resize(uint32_t width, uint32_t height) {

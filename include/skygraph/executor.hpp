@@ -145,6 +145,11 @@ public:
     void waitIdle();
     /// Waits for the most recent frame and returns its read-back target.
     [[nodiscard]] ImageData readback();
+    /// Waits for every submitted frame, then copies every mip and layer of the image
+    /// `resource` to the host (element mip * layers + layer), e.g. an environment cube and
+    /// its mip chain. The image is left in its end-of-frame layout (the plan's final layout).
+    /// Throws ExecutorError for an unknown name, a buffer, or an image no frame has written.
+    [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
     /// Re-creates every output-sized resource for a new output extent.
     void resize(uint32_t width, uint32_t height);
     /// Replaces graph and plan (e.g. after a hot reload). On failure throws and keeps the old
