@@ -1,5 +1,6 @@
 // `skygraph render`: compile a graph file and render it headless.
 #include <skygraph/compiler.hpp>
+#include <skygraph/hdr_image.hpp>
 #include <skygraph/executor.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
@@ -11,6 +12,30 @@
 #include <iostream>
 
 namespace skygraph {
+namespace {
+
+/// The graph resource that a loaded environment file becomes (graphs/raster.json, ibl.json).
+constexpr std::string_view kEnvironmentResource = "env_equirect";
+
+bool setEnvironmentExtent(GraphDesc& graph, const HdrImage& image) {
+    for (ResourceDesc& r : graph.resources) {
+        if (r.name != kEnvironmentResource) continue;
+        r.extent = Extent{false, 1, image.width, image.height};
+        return true;
+    }
+    return false;
+}
+
+ImageData toImageData(HdrImage&& image) {
+    ImageData d;
+    d.width = image.width;
+    d.height = image.height;
+    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    d.rgba = std::move(image.rgba);
+    return d;
+}
+
+}  // namespace
 
 int renderCommand(const RenderOptions& options) {
     try {
@@ -24,7 +49,7 @@ int renderCommand(const RenderOptions& options) {
         }
         const PassRegistry builtins = options.passes ? PassRegistry{} : PassRegistry::withBuiltins();
         const PassRegistry& registry = options.passes ? options.passes->registry() : builtins;
-        const GraphDesc graph = options.graphText.empty()
+        GraphDesc graph = options.graphText.empty()
                                     ? loadGraphFile(options.graph, registry)
                                     : parseGraph(options.graphText, "<built-in raster.json>", registry);
         std::optional<Scene> scene;
@@ -32,6 +57,17 @@ int renderCommand(const RenderOptions& options) {
             scene = parseScene(options.sceneText, "<built-in default scene>", std::filesystem::current_path());
         else if (!options.scene.empty())
             scene = loadSceneFile(options.scene);
+        // A file environment is loaded before compiling: its size is the extent of the graph's
+        // `env_equirect` (data-driven, so the plan's subresources match the image).
+        std::optional<HdrImage> environment;
+        if (scene && scene->environment && !scene->environment->procedural) {
+            environment = loadHdrImage(scene->environment->file);
+            spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
+                         environment->height);
+            if (!setEnvironmentExtent(graph, *environment))
+                spdlog::warn("graph '{}' has no resource 'env_equirect': the environment file is not used",
+                             graph.name);
+        }
         CompileOptions co;
         if (scene) {
             co.features = sceneFeatures(*scene);
@@ -57,7 +93,12 @@ int renderCommand(const RenderOptions& options) {
         ropts.readback = options.readback;
         Renderer renderer(*device, graph, std::move(plan), ropts);
         if (scene) renderer.frameData().set(*scene);
-        for (uint32_t i = 0; i < options.frames; ++i) renderer.renderFrame();
+        if (environment && renderer.plan().resourceIndex(kEnvironmentResource) >= 0)
+            renderer.setExternalImage(std::string(kEnvironmentResource), toImageData(std::move(*environment)));
+        for (uint32_t i = 0; i < options.frames; ++i) {
+            renderer.renderFrame();
+            if (options.onFrameSubmitted) options.onFrameSubmitted(i + 1, options.frames);
+        }
         renderer.waitIdle();
         for (const auto& t : renderer.lastTimings()) {
             spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);

@@ -7,7 +7,12 @@
 namespace skygraph {
 
 FeatureValues sceneFeatures(const Scene& scene) {
-    return {{"geometry", !scene.objects.empty()}, {"skybox", scene.environment.has_value()}};
+    const bool file = scene.environment && !scene.environment->procedural;
+    return {{"geometry", !scene.objects.empty()},
+            {"skybox", scene.environment.has_value()},
+            {"environment_file", file},
+            // The procedural sky is evaluated per pixel; only a file is sampled either way.
+            {"sample_cubemap", file && scene.environment->sampling == EnvironmentSampling::Cubemap}};
 }
 
 std::vector<std::string> explainSceneFeatures(const Scene& scene) {
@@ -20,7 +25,11 @@ std::vector<std::string> explainSceneFeatures(const Scene& scene) {
     else if (scene.environment->procedural)
         lines.push_back("skybox = on: environment is the procedural sky");
     else
-        lines.push_back("skybox = on: environment is '" + scene.environment->file.string() + "'");
+        lines.push_back("skybox = on, environment_file = on: environment is '" +
+                        scene.environment->file.string() + "', sampled " +
+                        (scene.environment->sampling == EnvironmentSampling::Cubemap
+                             ? "through a cubemap (sample_cubemap = on)"
+                             : "directly as equirect (sample_cubemap = off)"));
     return lines;
 }
 

@@ -102,6 +102,8 @@ public:
 /// The features of graphs/raster.json that the scene decides:
 ///   geometry = the scene has objects   (off: the forward pass and depth are culled)
 ///   skybox   = the scene has an environment (off: no skybox and no IBL work)
+///   environment_file = the environment is a file, not the procedural sky
+///   sample_cubemap   = a file environment is sampled through a cubemap (else as equirect)
 /// A debug view does not change features; it changes the tonemapper (effectiveTonemapper()).
 [[nodiscard]] FeatureValues sceneFeatures(const Scene& scene);
 

@@ -3,15 +3,24 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <spawn.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
+#include <functional>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
+
+extern char** environ;
 
 namespace {
 
@@ -63,6 +72,51 @@ protected:
         return r;
     }
 
+    /// Starts the CLI in the background from the source directory; stdout and stderr go to
+    /// files in the scratch folder. Returns the child's pid.
+    pid_t spawn(const std::vector<std::string>& args) {
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addopen(&actions, 1, (dir_ / "stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addopen(&actions, 2, (dir_ / "stderr").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addchdir_np(&actions, kSource.c_str());
+        std::vector<std::string> argv{kCli.string()};
+        argv.insert(argv.end(), args.begin(), args.end());
+        std::vector<char*> cargv;
+        for (auto& a : argv) cargv.push_back(a.data());
+        cargv.push_back(nullptr);
+        pid_t pid = -1;
+        const int rc = posix_spawn(&pid, kCli.c_str(), &actions, nullptr, cargv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        EXPECT_EQ(rc, 0);
+        return pid;
+    }
+
+    /// Waits for the child to exit (killing it after `seconds`); its exit status, or -1.
+    static int waitExit(pid_t pid, double seconds) {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+        int raw = 0;
+        while (::waitpid(pid, &raw, WNOHANG) == 0) {
+            if (std::chrono::steady_clock::now() > deadline) {
+                ::kill(pid, SIGKILL);
+                ::waitpid(pid, &raw, 0);
+                return -1;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    }
+
+    /// Polls `done` until it holds or `seconds` pass.
+    static bool waitFor(const std::function<bool()>& done, double seconds) {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+        while (!done()) {
+            if (std::chrono::steady_clock::now() > deadline) return false;
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        return true;
+    }
+
     fs::path writeGraph(const std::string& name, const std::string& text) {
         const fs::path p = dir_ / name;
         std::ofstream(p) << text;
@@ -102,7 +156,7 @@ TEST_F(Cli, CompileRasterAsJson) {
     for (const char* key : {"graph", "features", "passes", "final", "culled"})
         EXPECT_TRUE(plan.contains(key)) << key << " missing in " << r.out;
     EXPECT_EQ(plan["graph"], "raster");
-    EXPECT_EQ(plan["features"], (nlohmann::json{{"geometry", true}, {"skybox", true}}));
+    EXPECT_EQ(plan["features"], (nlohmann::json{{"environment_file", false}, {"geometry", true}, {"sample_cubemap", true}, {"skybox", true}}));
     std::vector<std::string> names;
     for (const auto& p : plan["passes"]) {
         names.push_back(p["name"].get<std::string>());
@@ -245,6 +299,190 @@ TEST_F(Cli, HelpExitsZero) {
     const CliRun r = run({"compile", "--help"});
     EXPECT_EQ(r.status, 0);
     EXPECT_NE(r.out.find("--feature"), std::string::npos) << r.out;
+}
+
+// ---- Every subcommand documents itself; -v / -q; exit statuses across subcommands ----------
+
+/// Subcommand names from `skygraph --help` ("Subcommands:" then one "  name  description" each),
+/// so a subcommand added later is covered without editing this test.
+std::vector<std::string> subcommandsFromHelp(const std::string& help) {
+    std::vector<std::string> names;
+    const auto at = help.find("Subcommands:");
+    if (at == std::string::npos) return names;
+    std::istringstream lines(help.substr(at));
+    std::string line;
+    std::getline(lines, line);
+    while (std::getline(lines, line) && line.rfind("  ", 0) == 0) {
+        std::istringstream words(line);
+        std::string name;
+        words >> name;
+        names.push_back(name);
+    }
+    return names;
+}
+
+TEST_F(Cli, EverySubcommandHasHelp) {
+    const CliRun top = run({"--help"});
+    ASSERT_EQ(top.status, 0) << top.err;
+    const std::vector<std::string> names = subcommandsFromHelp(top.out);
+    EXPECT_NE(std::find(names.begin(), names.end(), "compile"), names.end()) << top.out;
+#if SKYGRAPH_CLI_HAS_RENDER
+    EXPECT_NE(std::find(names.begin(), names.end(), "render"), names.end()) << top.out;
+#endif
+    for (const auto& name : names) {
+        const CliRun r = run({name, "--help"});
+        EXPECT_EQ(r.status, 0) << name << ": " << r.err;
+        EXPECT_NE(r.out.find("Usage:"), std::string::npos) << name << ": " << r.out;
+        EXPECT_NE(r.out.find("--help"), std::string::npos) << name << ": " << r.out;
+        EXPECT_EQ(r.err, "") << name;
+    }
+}
+
+TEST_F(Cli, VerboseLogsDebugToStderrAndLeavesThePlanAlone) {
+    const CliRun plain = run({"compile", "graphs/pathtrace.json"});
+    ASSERT_EQ(plain.status, 0) << plain.err;
+    EXPECT_EQ(plain.err, "");
+    for (const auto& args : std::vector<std::vector<std::string>>{{"-v", "compile", "graphs/pathtrace.json"},
+                                                                  {"compile", "graphs/pathtrace.json", "-v"}}) {
+        const CliRun verbose = run(args);
+        ASSERT_EQ(verbose.status, 0) << verbose.err;
+        EXPECT_EQ(verbose.out, plain.out);  // logs never go to stdout, where plans go
+        EXPECT_NE(verbose.err.find("debug: graphs/pathtrace.json: "), std::string::npos) << verbose.err;
+        EXPECT_NE(verbose.err.find(" passes run, "), std::string::npos) << verbose.err;
+    }
+}
+
+TEST_F(Cli, MisuseOfAnySubcommandExitsTwo) {
+    std::vector<std::vector<std::string>> cases{
+        {"--progress", "sometimes", "compile", "graphs/raster.json"},
+        {"compile", "graphs/raster.json", "--watch", "--watch-interval-ms", "1"},
+        {"compile", "graphs/raster.json", "--watch-iterations", "many"},
+    };
+#if SKYGRAPH_CLI_HAS_RENDER
+    cases.push_back({"render", "--width", "0"});
+    cases.push_back({"render", "--frames", "lots"});
+    cases.push_back({"render", "--feature", "skybox"});
+    cases.push_back({"render", "a.json", "b.json"});
+#endif
+    for (const auto& args : cases) {
+        std::string shown;
+        for (const auto& a : args) shown += a + " ";
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 2) << shown << "\nstderr: " << r.err;
+        EXPECT_NE(r.err, "") << shown;
+        EXPECT_TRUE(workFiles().empty()) << shown;
+    }
+}
+
+#if SKYGRAPH_CLI_HAS_RENDER
+TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
+    const fs::path graph = writeGraph("bad.json", kBadGraph);
+    const std::string out = (dir_ / "work" / "out.png").string();
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"render", graph.string(), "-o", out}, "passes[0].params.operator"},
+        {{"render", (dir_ / "nope.json").string(), "-o", out}, "nope.json"},
+        {{"render", "graphs/raster.json", "--feature", "nosuch=on", "-o", out}, "unknown feature 'nosuch'"},
+    };
+    for (const auto& [args, message] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 1) << args[1] << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty()) << args[1];
+    }
+}
+
+// The built-in graph and scene on lavapipe under validation; the bar counts frames when asked
+// for, and stays out of logs (stderr is a file here) when not.
+TEST_F(Cli, RenderDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
+    const fs::path out = dir_ / "work" / "out.png";
+    const CliRun withBar = run({"--progress", "always", "render", "--width", "16", "--height", "16", "--frames",
+                                "4", "--validate", "-o", out.string()});
+    ASSERT_EQ(withBar.status, 0) << withBar.err;
+    EXPECT_TRUE(fs::exists(out));
+    EXPECT_NE(withBar.err.find("render [##############################] 4/4 frames"), std::string::npos)
+        << withBar.err;
+    EXPECT_NE(withBar.err.find("info: wrote "), std::string::npos) << withBar.err;
+
+    const CliRun quiet = run({"render", "--width", "16", "--height", "16", "--frames", "2", "-q", "-o",
+                              out.string()});
+    ASSERT_EQ(quiet.status, 0) << quiet.err;
+    // No bar (stderr is not a terminal) and no info lines (-q); lavapipe's own warning may remain.
+    EXPECT_EQ(quiet.err.find("render ["), std::string::npos) << quiet.err;
+    EXPECT_EQ(quiet.err.find("info:"), std::string::npos) << quiet.err;
+}
+#endif
+
+// ---- compile --watch ----------------------------------------------------------------------
+
+const char* kWatchedGraph = R"({
+  "version": 1, "name": "watched", "features": { "blur": true },
+  "resources": {
+    "a":   { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" },
+    "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output",
+             "external": true, "final": "TransferSrc" }
+  },
+  "passes": [
+    { "name": "draw", "type": "Generic", "uses": { "a": "Write@ColorAttachment" } },
+    { "name": "blur", "type": "Generic", "if": "blur", "uses": { "a": "ReadWrite@Compute" } },
+    { "name": "present", "type": "Generic", "uses": { "a": "Read@Fragment", "out": "Write@ColorAttachment" } }
+  ]
+})";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    text.replace(text.find(from), from.size(), to);
+    return text;
+}
+
+/// Saves `text` the way editors do: a new file renamed over the old one.
+void saveAtomically(const fs::path& path, const std::string& text) {
+    const fs::path temp = path.string() + ".swp";
+    std::ofstream(temp) << text;
+    fs::rename(temp, path);
+}
+
+TEST_F(Cli, WatchRecompilesOnSaveAndPrintsThePlanDiff) {
+    const fs::path graph = writeGraph("watched.json", kWatchedGraph);
+    const fs::path out = dir_ / "work" / "plan.txt";
+    const pid_t pid = spawn({"compile", graph.string(), "--watch", "--watch-interval-ms", "20",
+                             "--watch-iterations", "2", "-o", out.string()});
+    ASSERT_TRUE(waitFor([&] { return fs::exists(out); }, 20)) << slurp(dir_ / "stderr");
+    const std::string first = slurp(out);
+    EXPECT_NE(first.find("] blur (Generic)"), std::string::npos) << first;
+
+    // A save that turns the feature off: the diff removes the pass and adds the culled entry.
+    const std::string blurOff = replaced(kWatchedGraph, R"("blur": true)", R"("blur": false)");
+    saveAtomically(graph, blurOff);
+    ASSERT_TRUE(waitFor([&] { return slurp(dir_ / "stdout").find("@@") != std::string::npos; }, 20))
+        << slurp(dir_ / "stderr");
+    ASSERT_TRUE(waitFor([&] { return slurp(out) != first; }, 20));
+    const std::string diff = slurp(dir_ / "stdout");
+    EXPECT_EQ(diff.rfind("--- plan (before)\n+++ plan (now)\n@@ -", 0), 0u) << diff;
+    EXPECT_NE(diff.find("\n-[1] blur (Generic)\n"), std::string::npos) << diff;
+    EXPECT_NE(diff.find("\n+    blur: feature 'blur' is off"), std::string::npos) << diff;
+    EXPECT_NE(diff.find("\n features: "), std::string::npos) << diff;  // context line
+    const std::string second = slurp(out);
+    const fs::path edited = writeGraph("edited.json", blurOff);
+    const CliRun direct = run({"compile", edited.string()});
+    EXPECT_EQ(second, direct.out);  // -o holds exactly what `compile` prints for the saved file
+
+    // A save that breaks the file: errors on stderr, the last good plan stays in -o.
+    saveAtomically(graph, "{\n  \"version\": 1,\n  \"name\": \n}\n");
+    EXPECT_EQ(waitExit(pid, 20), 0);  // the second recompilation ends the test hook
+    const std::string err = slurp(dir_ / "stderr");
+    EXPECT_NE(err.find(graph.string() + ":4:1:"), std::string::npos) << err;
+    EXPECT_NE(err.find("keeping the last plan that compiled"), std::string::npos) << err;
+    EXPECT_EQ(slurp(out), second);
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"plan.txt"});
+}
+
+TEST_F(Cli, WatchQuietPrintsNoLogsAndStopsOnSigint) {
+    const fs::path graph = writeGraph("watched.json", kWatchedGraph);
+    const pid_t pid = spawn({"-q", "compile", graph.string(), "--watch", "--watch-interval-ms", "20"});
+    ASSERT_TRUE(waitFor([&] { return slurp(dir_ / "stdout").find("present") != std::string::npos; }, 20));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ::kill(pid, SIGINT);
+    EXPECT_EQ(waitExit(pid, 20), 0);
+    EXPECT_EQ(slurp(dir_ / "stderr"), "");  // -q: not even "watching ..."
 }
 
 }  // namespace

@@ -48,27 +48,32 @@ TEST(SceneFiles, EveryShippedSceneLoads) {
     EXPECT_GE(count, 4);
 }
 
+/// The four features of graphs/raster.json that a scene decides.
+FeatureValues rasterFeatures(bool geometry, bool skybox, bool file, bool cubemap) {
+    return {{"geometry", geometry}, {"skybox", skybox}, {"environment_file", file}, {"sample_cubemap", cubemap}};
+}
+
 TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
     const Scene def = loadSceneFile(kScenes / "default.json");
     EXPECT_EQ(def.objects.size(), 7u);
     ASSERT_TRUE(def.environment);
     EXPECT_TRUE(def.environment->procedural);
-    EXPECT_EQ(sceneFeatures(def), (FeatureValues{{"geometry", true}, {"skybox", true}}));
+    EXPECT_EQ(sceneFeatures(def), rasterFeatures(true, true, false, false));
     EXPECT_EQ(effectiveTonemapper(def), Tonemapper::AcesNarkowicz);
 
     const Scene sky = loadSceneFile(kScenes / "sky_only.json");
-    EXPECT_EQ(sceneFeatures(sky), (FeatureValues{{"geometry", false}, {"skybox", true}}));
+    EXPECT_EQ(sceneFeatures(sky), rasterFeatures(false, true, false, false));
     EXPECT_EQ(sky.environment->sampling, EnvironmentSampling::Equirect);
 
     const Scene studio = loadSceneFile(kScenes / "studio.json");
     ASSERT_TRUE(studio.environment);
     EXPECT_FALSE(studio.environment->procedural);
     EXPECT_EQ(studio.environment->file, "/usr/share/blender/datafiles/studiolights/world/studio.exr");
-    EXPECT_EQ(sceneFeatures(studio), (FeatureValues{{"geometry", true}, {"skybox", true}}));
+    EXPECT_EQ(sceneFeatures(studio), rasterFeatures(true, true, true, studio.environment->sampling == EnvironmentSampling::Cubemap));
 
     const Scene empty = loadSceneFile(kScenes / "empty.json");
     EXPECT_FALSE(empty.environment);
-    EXPECT_EQ(sceneFeatures(empty), (FeatureValues{{"geometry", false}, {"skybox", false}}));
+    EXPECT_EQ(sceneFeatures(empty), rasterFeatures(false, false, false, false));
     EXPECT_EQ(explainSceneFeatures(empty),
               (std::vector<std::string>{"geometry = off: the scene has no objects (no forward pass, no depth)",
                                         "skybox = off: the scene has no environment (no skybox, no IBL)"}));
@@ -79,7 +84,7 @@ TEST(SceneFeatures, DebugViewForcesPassthroughAndKeepsFeatures) {
                         "environment": {"file": "procedural"}})");
     EXPECT_EQ(s.tonemapper, Tonemapper::AcesHill);
     EXPECT_EQ(effectiveTonemapper(s), Tonemapper::Passthrough);
-    EXPECT_EQ(sceneFeatures(s), (FeatureValues{{"geometry", false}, {"skybox", true}}));
+    EXPECT_EQ(sceneFeatures(s), rasterFeatures(false, true, false, false));
     s.debugView = DebugView::None;
     EXPECT_EQ(effectiveTonemapper(s), Tonemapper::AcesHill);
     EXPECT_EQ(toString(effectiveTonemapper(parse(R"({"debug_view": "ao"})"))), "passthrough");
@@ -92,7 +97,7 @@ TEST(SceneLoader, EmptyObjectGivesTheDocumentedDefaults) {
     EXPECT_FALSE(s.environment);
     EXPECT_EQ(s.tonemapper, Tonemapper::AcesNarkowicz);
     EXPECT_EQ(s.debugView, DebugView::None);
-    EXPECT_EQ(sceneFeatures(s), (FeatureValues{{"geometry", false}, {"skybox", false}}));
+    EXPECT_EQ(sceneFeatures(s), rasterFeatures(false, false, false, false));
     const Scene m = parse(R"({"objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 3, 4]}]})");
     const auto& plane = std::get<Plane>(m.objects.at(0).shape);
     EXPECT_DOUBLE_EQ(plane.normal[1], 0.6);
