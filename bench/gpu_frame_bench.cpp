@@ -8,7 +8,8 @@
 //    of --bandwidth-reps; the faster median is the bandwidth used for the bounds.
 // 2. Each --run GRAPH[:SCENE] at each --size: per-pass GPU medians over --frames frames
 //    (Renderer::lastTimings) beside bytes / bandwidth.
-// 3. The TonemappingPass's operation as a compute shader at each size (gpu_probes.hpp).
+// 3. Probes at each size (gpu_probes.hpp): the TonemappingPass's operation as compute shaders,
+//    and a fragment pass that only writes a constant (the fragment path's own cost).
 // Validation is off unless --validate; any validation message then fails the run (exit 1).
 #include "gpu_frames.hpp"
 #include "gpu_probes.hpp"
@@ -66,14 +67,14 @@ std::string fmt(double v, int decimals = 3) {
 
 void printRow(const Row& r) {
     const double ratio = r.boundMs > 0 ? r.medianMs / r.boundMs : 0;
-    std::printf("  %-26s %-22s %10s %10s %10s %9s %10s %8s\n", r.name.c_str(), r.type.c_str(),
+    std::printf("  %-38s %-16s %10s %10s %10s %9s %10s %8s\n", r.name.c_str(), r.type.c_str(),
                 fmt(r.medianMs, 4).c_str(), fmt(r.p10Ms, 4).c_str(), fmt(r.p90Ms, 4).c_str(),
                 fmt(r.bytes / 1e6, 1).c_str(), r.boundMs > 0 ? fmt(r.boundMs, 4).c_str() : "-",
                 r.boundMs > 0 ? (fmt(ratio, 2) + "x").c_str() : "-");
 }
 
 void printHeader(const std::string& title) {
-    std::printf("\n%s\n  %-26s %-22s %10s %10s %10s %9s %10s %8s\n", title.c_str(), "pass/probe", "type",
+    std::printf("\n%s\n  %-38s %-16s %10s %10s %10s %9s %10s %8s\n", title.c_str(), "pass/probe", "type",
                 "median ms", "p10 ms", "p90 ms", "MB moved", "bound ms", "/bound");
 }
 
@@ -115,7 +116,7 @@ int run(const Args& args) {
             Row r{"bandwidth", "buffer", std::to_string(args.bandwidthMib) + "MiB", p.name, "copy",
                   p.bytes, p.medianMs, p.p10Ms, p.p90Ms, 0};
             printRow(r);
-            std::printf("  %-26s %.1f GB/s\n", "", p.gigabytesPerSecond());
+            std::printf("  %-38s %.1f GB/s\n", "", p.gigabytesPerSecond());
             bandwidth = std::max(bandwidth, p.gigabytesPerSecond());
             rows.push_back(r);
         }
@@ -140,6 +141,7 @@ int run(const Args& args) {
             for (const PassResult& p : f.passes) {
                 Row r{"pass", spec, sizeText, p.pass, p.type, p.bytes, p.medianMs, p.p10Ms, p.p90Ms, boundMs(p.bytes)};
                 printRow(r);
+                if (!p.attachments.empty()) std::printf("  %-38s attachments: %s\n", "", p.attachments.c_str());
                 rows.push_back(r);
                 sum += p.medianMs;
             }
@@ -154,10 +156,13 @@ int run(const Args& args) {
     if (!args.noProbes) {
         for (const VkExtent2D size : sizes) {
             const std::string sizeText = std::to_string(size.width) + "x" + std::to_string(size.height);
-            printHeader("compute tonemap probe at " + sizeText + " (RGBA16F in, RGBA8 out), median of " +
-                        std::to_string(args.probeReps));
-            for (const ProbeResult& p : measureComputeTonemap(*device, size.width, size.height, args.probeReps)) {
-                Row r{"probe", "compute", sizeText, p.name, "compute", p.bytes, p.medianMs, p.p10Ms, p.p90Ms,
+            printHeader("probes at " + sizeText + ": compute tonemap (RGBA16F in, RGBA8 out, L2 evicted before "
+                        "each), fragment constant fill (RGBA8); median of " + std::to_string(args.probeReps));
+            std::vector<ProbeResult> probes = measureComputeTonemap(*device, size.width, size.height, args.probeReps);
+            probes.push_back(measureFragmentFill(*device, size.width, size.height, args.probeReps));
+            for (const ProbeResult& p : probes) {
+                const std::string kind = p.name.rfind("fragment", 0) == 0 ? "fragment" : "compute";
+                Row r{"probe", kind, sizeText, p.name, kind, p.bytes, p.medianMs, p.p10Ms, p.p90Ms,
                       boundMs(p.bytes)};
                 printRow(r);
                 rows.push_back(r);
@@ -186,7 +191,7 @@ int main(int argc, char** argv) {
     app.add_option("--bandwidth-mib", args.bandwidthMib, "Size of each bandwidth buffer in MiB (0: skip)");
     app.add_option("--bandwidth-reps", args.bandwidthReps, "Repetitions of each bandwidth copy")->check(CLI::PositiveNumber);
     app.add_option("--probe-reps", args.probeReps, "Repetitions of each tonemap probe")->check(CLI::PositiveNumber);
-    app.add_flag("--no-probes", args.noProbes, "Skip the compute tonemap probe");
+    app.add_flag("--no-probes", args.noProbes, "Skip the compute tonemap and fragment fill probes");
     app.add_flag("--validate", args.validate, "Validation + synchronization validation; fail on any message");
     app.add_option("--csv", args.csv, "Write every figure to this CSV file");
     CLI11_PARSE(app, argc, argv);

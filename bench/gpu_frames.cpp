@@ -40,6 +40,19 @@ double bytesOfPass(const PlannedPass& pass, const Plan& plan, const GraphDesc& g
     return bytes;
 }
 
+std::string attachmentOps(const PlannedPass& pass, const Plan& plan, const GraphDesc& graph) {
+    static constexpr const char* kLoad[] = {"Load", "Clear", "DontCare"};
+    static constexpr const char* kStore[] = {"Store", "DontCare", "None"};
+    std::string text;
+    for (const PlannedUsage& u : pass.usages) {
+        if (!isAttachmentStage(u.usage.stage)) continue;
+        const ResourceDesc& r = graph.resources[plan.resources[u.resource].decl];
+        if (!text.empty()) text += "; ";
+        text += r.name + " " + std::string(r.format.name) + " " + kLoad[int(u.load)] + "/" + kStore[int(u.store)];
+    }
+    return text;
+}
+
 }  // namespace
 
 FrameResult measureFrames(Device& device, const FrameCase& c) {
@@ -58,7 +71,8 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     std::map<std::string, PassResult> byName;
     std::vector<std::string> order;
     for (const PlannedPass& p : plan.passes) {
-        byName[p.name] = {p.name, p.type, bytesOfPass(p, plan, graph, c.width, c.height), 0, 0, 0};
+        byName[p.name] = {p.name, p.type, bytesOfPass(p, plan, graph, c.width, c.height),
+                          attachmentOps(p, plan, graph), 0, 0, 0};
         order.push_back(p.name);
     }
 

@@ -27,6 +27,8 @@ struct PassResult {
     std::string pass;
     std::string type;
     double bytes = 0;     ///< Minimum bytes read plus written (see bytesOfPass in the .cpp).
+    /// Each attachment's render-pass ops and format, e.g. "swapchain B8G8R8A8_SRGB DontCare/Store".
+    std::string attachments;
     double medianMs = 0;
     double p10Ms = 0;
     double p90Ms = 0;

@@ -100,20 +100,29 @@ GpuTimer::GpuTimer(Device& device) : device_(device) {
 
 GpuTimer::~GpuTimer() { vkDeviceWaitIdle(device_.device()); }
 
-double GpuTimer::time(const std::function<void(VkCommandBuffer)>& record) { return submit(record, true); }
+double GpuTimer::time(const std::function<void(VkCommandBuffer)>& record,
+                      const std::function<void(VkCommandBuffer)>& prologue) {
+    return submit(record, prologue, true);
+}
 
-void GpuTimer::run(const std::function<void(VkCommandBuffer)>& record) { submit(record, false); }
+void GpuTimer::run(const std::function<void(VkCommandBuffer)>& record) { submit(record, {}, false); }
 
-double GpuTimer::submit(const std::function<void(VkCommandBuffer)>& record, bool timed) {
+double GpuTimer::submit(const std::function<void(VkCommandBuffer)>& record,
+                        const std::function<void(VkCommandBuffer)>& prologue, bool timed) {
     const VkDevice vkd = device_.device();
     check(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     check(vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+    if (prologue) {
+        prologue(cmd_);
+        fullBarrier(cmd_);
+    }
     if (timed) {
         vkCmdResetQueryPool(cmd_, queries_.get(), 0, 2);
-        // ALL_COMMANDS on both sides: the first waits for nothing earlier in this buffer, the
-        // second for everything recorded, so the interval is the recorded work alone.
+        // ALL_COMMANDS on both sides: the first waits for everything earlier in this buffer
+        // (the prologue), the second for everything recorded, so the interval is the recorded
+        // work alone.
         vkCmdWriteTimestamp2(cmd_, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, queries_.get(), 0);
     }
     record(cmd_);

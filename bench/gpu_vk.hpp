@@ -46,13 +46,17 @@ public:
     GpuTimer(const GpuTimer&) = delete;
     GpuTimer& operator=(const GpuTimer&) = delete;
 
-    /// Runs `record` once on the GPU and returns its time in milliseconds.
-    double time(const std::function<void(VkCommandBuffer)>& record);
+    /// Runs `record` once on the GPU and returns its time in milliseconds. `prologue`, when
+    /// given, is recorded before the first timestamp (which waits for it): untimed set-up in
+    /// the same submission, e.g. evicting the cache.
+    double time(const std::function<void(VkCommandBuffer)>& record,
+                const std::function<void(VkCommandBuffer)>& prologue = {});
     /// Runs `record` once on the GPU, untimed (set-up work).
     void run(const std::function<void(VkCommandBuffer)>& record);
 
 private:
-    double submit(const std::function<void(VkCommandBuffer)>& record, bool timed);
+    double submit(const std::function<void(VkCommandBuffer)>& record,
+                  const std::function<void(VkCommandBuffer)>& prologue, bool timed);
 
     Device& device_;
     vk::CommandPool pool_;

@@ -5,7 +5,10 @@
 #
 #   tools/device/run-gpu-bench.sh [RUN...]
 #
-# RUN: GRAPH[:SCENE] for gpu_frame_bench (default graphs/raster.json:scenes/default.json).
+# RUN: GRAPH[:SCENE] for gpu_frame_bench. Default: graphs/raster.json with scenes/default.json,
+# and the same graph with a B8G8R8A8_UNORM swapchain (generated here as
+# /tmp/gpu_raster_unorm.json: the TonemappingPass then encodes sRGB in the shader), which
+# tells whether the sRGB attachment format costs anything.
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench.
 #
@@ -24,7 +27,7 @@ sizes=${SIZES:-"1920x1080 3840x2160"}
 device=${DEVICE:-nvidia}
 jobs=${JOBS:-16}
 runs=("$@")
-[ ${#runs[@]} -gt 0 ] || runs=(graphs/raster.json:scenes/default.json)
+[ ${#runs[@]} -gt 0 ] || runs=(graphs/raster.json:scenes/default.json /tmp/gpu_raster_unorm.json:scenes/default.json)
 
 step() { echo; echo "=== $(date -u +%H:%M:%S) $*"; }
 
@@ -50,6 +53,7 @@ else
   echo "source: the carried working tree"
 fi
 export SKYGRAPH_SHADER_DIR=$src/shaders
+sed 's/"B8G8R8A8_SRGB"/"B8G8R8A8_UNORM"/' "$src/graphs/raster.json" > /tmp/gpu_raster_unorm.json
 
 step "Vulkan driver"
 icd=""
