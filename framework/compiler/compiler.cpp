@@ -10,10 +10,17 @@ namespace skygraph {
 
 namespace {
 
-/// A copy of `graph` with `exports` applied, or a diagnostic per unknown name.
+/// A copy of `graph` with `outputs` and `exports` applied, or a diagnostic per unknown name.
 GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     GraphDesc copy = graph;
     Diagnostics diags;
+    if (options.outputs) {
+        for (const std::string& name : *options.outputs)
+            if (!graph.findResource(name))
+                diags.add({graph.file, "resources", "", name, "cannot keep '" + name + "' as an output: no such resource"});
+        for (ResourceDesc& r : copy.resources)
+            if (!options.outputs->count(r.name)) r.final = ExternalState::None;
+    }
     for (const auto& [name, state] : options.exports) {
         // A plain reference: clang 14 (the fuzz build) cannot capture structured bindings.
         const std::string& wanted = name;
@@ -32,9 +39,10 @@ GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
 }  // namespace
 
 Plan compile(const GraphDesc& graph, const CompileOptions& options) {
-    if (!options.exports.empty()) {
+    if (!options.exports.empty() || options.outputs) {
         CompileOptions rest = options;
         rest.exports.clear();
+        rest.outputs.reset();
         return compile(withExports(graph, options), rest);
     }
     Diagnostics diags;

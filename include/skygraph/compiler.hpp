@@ -9,6 +9,8 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <set>
 #include <string_view>
 
 namespace skygraph {
@@ -39,6 +41,11 @@ struct CompileOptions {
     /// keeps the passes that write it from being culled. An unknown name is an error; a
     /// resource the file already exports keeps its own `final`.
     std::map<std::string, ExternalState, std::less<>> exports;
+    /// When set, only these of the graph's exports are its outputs for this compile: the
+    /// file's other exports are dropped, so passes that feed only them are culled. This is
+    /// how a consumer asks for just the products it samples (e.g. graphs/ibl.json builds only
+    /// the cube a skybox-only scene needs). An unknown name is an error.
+    std::optional<std::set<std::string, std::less<>>> outputs;
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the

@@ -392,3 +392,37 @@ TEST(Reordering, SkyboxAfterTonemappingIsCulledWithItsReason) {
 
 }  // namespace
 }  // namespace skygraph
+
+namespace skygraph {
+namespace {
+
+// CompileOptions::outputs: a consumer keeps only the products it samples. On the shipped
+// environment graph, a skybox-only scene needs the cube alone, so the IBL passes go.
+TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
+    const GraphDesc ibl = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json",
+                                        PassRegistry::withBuiltins());
+    auto culledNames = [](const Plan& p) {
+        std::set<std::string> names;
+        for (const auto& c : p.culled) names.insert(c.name);
+        return names;
+    };
+    CompileOptions cubeOnly;
+    cubeOnly.outputs = std::set<std::string, std::less<>>{"environment"};
+    const Plan sky = compile(ibl, cubeOnly);
+    EXPECT_EQ(culledNames(sky), (std::set<std::string>{"irradiance", "prefilter", "brdf_lut"}));
+    EXPECT_EQ(sky.resourceIndex("irradiance"), -1) << "an unused product is never created";
+    ASSERT_GE(sky.resourceIndex("environment"), 0);
+    for (const auto& b : sky.finalBarriers) EXPECT_EQ(sky.resources[b.resource].name, "environment");
+
+    const Plan all = compile(ibl);
+    EXPECT_TRUE(all.culled.empty());
+    CompileOptions none;
+    none.outputs = std::set<std::string, std::less<>>{};
+    EXPECT_EQ(compile(ibl, none).passes.size(), 0u) << "nothing asked for, nothing runs";
+    CompileOptions unknown;
+    unknown.outputs = std::set<std::string, std::less<>>{"enviroment"};
+    EXPECT_THROW((void)compile(ibl, unknown), GraphError);
+}
+
+}  // namespace
+}  // namespace skygraph
