@@ -33,6 +33,7 @@ using namespace skygraph::gpubench;
 struct Args {
     std::string device;
     std::vector<std::string> runs;
+    std::vector<std::string> procedural;
     std::vector<std::string> sizes;
     uint32_t frames = 200;
     uint32_t warmup = 20;
@@ -131,6 +132,7 @@ int run(const Args& args) {
         if (colon != std::string::npos) c.scene = spec.substr(colon + 1);
         c.frames = args.frames;
         c.warmupFrames = args.warmup;
+        c.proceduralExternals = args.procedural;
         for (const VkExtent2D size : sizes) {
             c.width = size.width;
             c.height = size.height;
@@ -150,6 +152,7 @@ int run(const Args& args) {
             rows.push_back(frame);
             std::printf("  sum of pass medians: %.4f ms\n", sum);
             for (const auto& culled : f.culled) std::printf("  culled %s\n", culled.c_str());
+            for (const auto& name : f.proceduralExternals) std::printf("  %s: procedural HDR sky\n", name.c_str());
         }
     }
 
@@ -185,6 +188,9 @@ int main(int argc, char** argv) {
     Args args;
     app.add_option("--device", args.device, "Physical device: index or name substring (e.g. nvidia, llvmpipe)");
     app.add_option("--run", args.runs, "GRAPH[:SCENE] to render (repeatable)");
+    app.add_option("--procedural", args.procedural,
+                   "External image to fill with a procedural HDR sky before the first frame, where a "
+                   "run's graph has it (repeatable; e.g. equirect for graphs/ibl.json)");
     app.add_option("--size", args.sizes, "Output WIDTHxHEIGHT (repeatable; default 1920x1080 and 3840x2160)");
     app.add_option("--frames", args.frames, "Measured frames per run and size")->check(CLI::PositiveNumber);
     app.add_option("--warmup", args.warmup, "Frames rendered before measuring");

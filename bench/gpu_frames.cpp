@@ -7,6 +7,8 @@
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -53,6 +55,33 @@ std::string attachmentOps(const PlannedPass& pass, const Plan& plan, const Graph
     return text;
 }
 
+/// An equirect sky with real HDR range: a horizon-to-zenith gradient, a darker ground and a
+/// small sun about 2000 times brighter than the sky, so the filtering passes see the
+/// contrast an HDRI has. Row 0 is the zenith.
+ImageData proceduralSky(const ResourceDesc& r) {
+    const auto [w, h] = r.extent.resolve(1, 1);
+    ImageData image;
+    image.width = w;
+    image.height = h;
+    image.format = r.format.format;
+    image.rgba.resize(size_t(w) * h * 4);
+    for (uint32_t y = 0; y < h; ++y) {
+        const double elevation = 1.5707963 - 3.1415927 * (y + 0.5) / h;  // +pi/2 at the top
+        for (uint32_t x = 0; x < w; ++x) {
+            const double azimuth = 6.2831853 * (x + 0.5) / w;
+            const double up = std::max(0.0, std::sin(elevation));
+            double rgb[3] = {0.3 + 0.5 * up, 0.45 + 0.6 * up, 0.7 + 1.2 * up};
+            if (elevation < 0) rgb[0] = rgb[1] = rgb[2] = 0.08 + 0.02 * std::cos(8 * azimuth);
+            const double sunDistance = std::hypot(elevation - 0.7, (azimuth - 2.0) * std::cos(elevation));
+            if (sunDistance < 0.03) rgb[0] = rgb[1] = rgb[2] = 2000.0;
+            float* px = &image.rgba[(size_t(y) * w + x) * 4];
+            for (int c = 0; c < 3; ++c) px[c] = static_cast<float>(rgb[c]);
+            px[3] = 1.0f;
+        }
+    }
+    return image;
+}
+
 }  // namespace
 
 FrameResult measureFrames(Device& device, const FrameCase& c) {
@@ -84,6 +113,15 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
     Renderer renderer(device, graph, std::move(plan), ro);
     if (scene) renderer.frameData().set(*scene);
+    for (const std::string& name : c.proceduralExternals) {
+        const auto it = std::find_if(graph.resources.begin(), graph.resources.end(),
+                                     [&](const ResourceDesc& r) { return r.name == name; });
+        if (it == graph.resources.end()) continue;  // another run's resource
+        if (!it->isImage() || !it->external)
+            throw ExecutorError(c.graph.string() + ": procedural sky for '" + name + "': not an external image");
+        renderer.setExternalImage(name, proceduralSky(*it));
+        result.proceduralExternals.push_back(name);
+    }
 
     for (uint32_t i = 0; i < c.warmupFrames; ++i) renderer.renderFrame();
     renderer.waitIdle();

@@ -19,6 +19,10 @@ struct FrameCase {
     uint32_t height = 1080;
     uint32_t warmupFrames = 20;
     uint32_t frames = 200;
+    /// External images to fill with a procedural sky (e.g. graphs/ibl.json's "equirect"), at
+    /// the extent and format the graph declares, before the first frame; names the graph does
+    /// not have are skipped (FrameResult lists the ones used).
+    std::vector<std::string> proceduralExternals;
 };
 
 /// One pass's GPU times over the measured frames (timestamps around the pass, after its
@@ -41,6 +45,7 @@ struct FrameResult {
     double frameMedianMs = 0;
     uint32_t frames = 0;
     std::vector<std::string> culled;  ///< "name: reason"
+    std::vector<std::string> proceduralExternals;  ///< Those of FrameCase's this graph has.
 };
 
 /// Renders `c.frames` frames after `c.warmupFrames`, waiting for each, with the built-in pass

@@ -6,7 +6,7 @@
 # dispatch libraries that NVIDIA's Vulkan driver loads. Copied from this machine's installed
 # packages (dpkg -L), so run tools/install-deps.sh first.
 #
-# With --source [PATH...], also .devbundle/source.tar.gz: `git archive` of HEAD (with the
+# With --source [PATH...], also .devbundle/source.tar.gz: `git archive` of HEAD or $BASE (with the
 # working-tree versions of PATHs laid over it) and .devbundle/SOURCE_COMMIT, so the GPU
 # machine builds a known snapshot rather than a working tree that other work is editing.
 #
@@ -96,21 +96,23 @@ else
   echo "bundle.sh: $(du -h "$out/deps.tar.xz" | cut -f1) in $out/deps.tar.xz ($(du -sh "$stage/root" | cut -f1) unpacked), $(wc -l < "$out/MANIFEST") packages"
 fi
 
-# --source [PATH...]: HEAD, with the working-tree versions of PATHs (your own uncommitted
-# files) laid over it through a temporary index; the checkout and its index are untouched.
+# --source [PATH...]: HEAD (or the commit in $BASE, e.g. the last one that builds), with the
+# working-tree versions of PATHs (your own uncommitted files) laid over it through a
+# temporary index; the checkout and its index are untouched.
 if [ "${1:-}" = "--source" ]; then
   shift
-  tree=HEAD
+  base=$(git rev-parse "${BASE:-HEAD}")
+  tree=$base
   if [ $# -gt 0 ]; then
     export GIT_INDEX_FILE="$stage/index"
-    git read-tree HEAD
+    git read-tree "$base"
     git add -- "$@"
     tree=$(git write-tree)
     unset GIT_INDEX_FILE
   fi
   git archive --format=tar.gz --prefix=src/ -o "$out/source.tar.gz.tmp" "$tree"
   mv "$out/source.tar.gz.tmp" "$out/source.tar.gz"
-  { echo "$(git rev-parse HEAD)"; [ $# -gt 0 ] && echo "plus the working tree's: $*"; } > "$out/SOURCE_COMMIT"
+  { echo "$base"; [ $# -gt 0 ] && echo "plus the working tree's: $*"; } > "$out/SOURCE_COMMIT"
   echo "bundle.sh: source of $(head -1 "$out/SOURCE_COMMIT") in $out/source.tar.gz${*:+ (plus $*)}"
 else
   rm -f "$out/source.tar.gz" "$out/SOURCE_COMMIT"

@@ -10,7 +10,8 @@
 # /tmp/gpu_raster_unorm.json: the TonemappingPass then encodes sRGB in the shader), which
 # tells whether the sRGB attachment format costs anything.
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
-# SKIP_EXECUTOR_BENCH=1 to skip executor_bench.
+# SKIP_EXECUTOR_BENCH=1 to skip executor_bench. graphs/ibl.json's external "equirect" is
+# filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
 #
 # Builds .devbundle/source.tar.gz (a committed snapshot, see bundle.sh --source) when it is
 # there, else the working tree it runs in. Never writes outside /tmp and $OUT: the carried
@@ -95,7 +96,7 @@ step "gpu_frame_bench: ${runs[*]} at $sizes, $frames frames"
 args=()
 for r in "${runs[@]}"; do args+=(--run "$r"); done
 for s in $sizes; do args+=(--size "$s"); done
-ran "$bin_bench" && (cd "$src" && "$bin_bench" --device "$device" "${args[@]}" --frames "$frames" --csv "$out/gpu_frame_bench.csv") \
+ran "$bin_bench" && (cd "$src" && "$bin_bench" --device "$device" "${args[@]}" --procedural equirect --frames "$frames" --csv "$out/gpu_frame_bench.csv") \
   | tee "$out/gpu_frame_bench.txt"
 
 if [ "${SKIP_EXECUTOR_BENCH:-0}" != 1 ]; then
