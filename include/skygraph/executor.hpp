@@ -12,6 +12,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -235,6 +236,9 @@ struct RenderOptions {
     /// Pass implementations (e.g. PassLibrary::withBuiltins() from skygraph_passes); borrowed.
     /// Null: the built-in declarations, every pass recorded as Generic.
     const PassLibrary* passes = nullptr;
+    /// Called after each frame is submitted with (frames submitted so far, `frames`), e.g. to
+    /// draw a progress bar. May be empty.
+    std::function<void(uint32_t submitted, uint32_t total)> onFrameSubmitted;
 };
 
 /// Compiles and renders a graph file, writing the swapchain target. Returns the contract's
