@@ -8,7 +8,7 @@ packages=(
   libvulkan-dev vulkan-validationlayers mesa-vulkan-drivers vulkan-tools
   glslang-dev glslang-tools spirv-tools libglm-dev
   libstb-dev libopenexr-dev blender-data
-  graphviz python3-jsonschema
+  graphviz python3-jsonschema libdtl-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -147,6 +147,21 @@ const char* kBadGraph = R"({
   ]
 })";
 
+/// A small graph with one optional pass, for culling, formats and --watch.
+const char* kWatchedGraph = R"({
+  "version": 1, "name": "watched", "features": { "blur": true },
+  "resources": {
+    "a":   { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" },
+    "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output",
+             "external": true, "final": "TransferSrc" }
+  },
+  "passes": [
+    { "name": "draw", "type": "Generic", "uses": { "a": "Write@ColorAttachment" } },
+    { "name": "blur", "type": "Generic", "if": "blur", "uses": { "a": "ReadWrite@Compute" } },
+    { "name": "present", "type": "Generic", "uses": { "a": "Read@Fragment", "out": "Write@ColorAttachment" } }
+  ]
+})";
+
 TEST_F(Cli, CompileRasterAsJson) {
     const CliRun r = run({"compile", "graphs/raster.json", "--format", "json"});
     ASSERT_EQ(r.status, 0) << r.err;
@@ -156,7 +171,9 @@ TEST_F(Cli, CompileRasterAsJson) {
     for (const char* key : {"graph", "features", "passes", "final", "culled"})
         EXPECT_TRUE(plan.contains(key)) << key << " missing in " << r.out;
     EXPECT_EQ(plan["graph"], "raster");
-    EXPECT_EQ(plan["features"], (nlohmann::json{{"environment_file", false}, {"geometry", true}, {"sample_cubemap", true}, {"skybox", true}}));
+    // The shipped graph grows features and alternative passes; these stay on by default.
+    EXPECT_EQ(plan["features"]["geometry"], true) << plan["features"];
+    EXPECT_EQ(plan["features"]["skybox"], true) << plan["features"];
     std::vector<std::string> names;
     for (const auto& p : plan["passes"]) {
         names.push_back(p["name"].get<std::string>());
@@ -164,8 +181,11 @@ TEST_F(Cli, CompileRasterAsJson) {
         EXPECT_TRUE(p["barriers"].is_array());
     }
     EXPECT_EQ(names, (std::vector<std::string>{"forward", "skybox", "tonemap"}));
-    EXPECT_TRUE(plan["culled"].is_array());
-    EXPECT_TRUE(plan["culled"].empty());
+    ASSERT_TRUE(plan["culled"].is_array());
+    for (const auto& c : plan["culled"]) {
+        EXPECT_TRUE(c["pass"].is_string()) << c;
+        EXPECT_TRUE(c["reason"].is_string()) << c;
+    }
     // The swapchain ends in PRESENT_SRC.
     bool present = false;
     for (const auto& b : plan["final"])
@@ -174,13 +194,14 @@ TEST_F(Cli, CompileRasterAsJson) {
 }
 
 TEST_F(Cli, FeatureOffCullsWithAReason) {
-    const CliRun r = run({"compile", "graphs/raster.json", "--format", "json", "--feature", "skybox=off"});
+    const fs::path graph = writeGraph("watched.json", kWatchedGraph);
+    const CliRun r = run({"compile", graph.string(), "--format", "json", "--feature", "blur=off"});
     ASSERT_EQ(r.status, 0) << r.err;
     const auto plan = nlohmann::json::parse(r.out);
-    EXPECT_EQ(plan["features"]["skybox"], false);
+    EXPECT_EQ(plan["features"]["blur"], false);
     ASSERT_EQ(plan["culled"].size(), 1u) << plan["culled"].dump();
-    EXPECT_EQ(plan["culled"][0]["pass"], "skybox");
-    EXPECT_EQ(plan["culled"][0]["reason"], "feature 'skybox' is off");
+    EXPECT_EQ(plan["culled"][0]["pass"], "blur");
+    EXPECT_EQ(plan["culled"][0]["reason"], "feature 'blur' is off");
 }
 
 TEST_F(Cli, OutputFileMatchesStdout) {
@@ -198,11 +219,11 @@ TEST_F(Cli, TextAndDotFormats) {
     const CliRun text = run({"compile", "graphs/raster.json"});
     ASSERT_EQ(text.status, 0) << text.err;
     EXPECT_NE(text.out.find("tonemap"), std::string::npos) << text.out;
-    const CliRun dot = run({"compile", "graphs/raster.json", "--format", "dot", "--feature", "skybox=off"});
+    const fs::path graph = writeGraph("watched.json", kWatchedGraph);
+    const CliRun dot = run({"compile", graph.string(), "--format", "dot", "--feature", "blur=off"});
     ASSERT_EQ(dot.status, 0) << dot.err;
     EXPECT_EQ(dot.out.rfind("digraph", 0), 0u) << dot.out;
-    EXPECT_NE(dot.out.find("skybox"), std::string::npos);
-    EXPECT_NE(dot.out.find("feature 'skybox' is off"), std::string::npos) << dot.out;
+    EXPECT_NE(dot.out.find("feature 'blur' is off"), std::string::npos) << dot.out;
 }
 
 TEST_F(Cli, EveryShippedGraphCompiles) {
@@ -414,19 +435,6 @@ TEST_F(Cli, RenderDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
 
 // ---- compile --watch ----------------------------------------------------------------------
 
-const char* kWatchedGraph = R"({
-  "version": 1, "name": "watched", "features": { "blur": true },
-  "resources": {
-    "a":   { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" },
-    "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output",
-             "external": true, "final": "TransferSrc" }
-  },
-  "passes": [
-    { "name": "draw", "type": "Generic", "uses": { "a": "Write@ColorAttachment" } },
-    { "name": "blur", "type": "Generic", "if": "blur", "uses": { "a": "ReadWrite@Compute" } },
-    { "name": "present", "type": "Generic", "uses": { "a": "Read@Fragment", "out": "Write@ColorAttachment" } }
-  ]
-})";
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
     text.replace(text.find(from), from.size(), to);
@@ -459,7 +467,8 @@ TEST_F(Cli, WatchRecompilesOnSaveAndPrintsThePlanDiff) {
     EXPECT_EQ(diff.rfind("--- plan (before)\n+++ plan (now)\n@@ -", 0), 0u) << diff;
     EXPECT_NE(diff.find("\n-[1] blur (Generic)\n"), std::string::npos) << diff;
     EXPECT_NE(diff.find("\n+    blur: feature 'blur' is off"), std::string::npos) << diff;
-    EXPECT_NE(diff.find("\n features: "), std::string::npos) << diff;  // context line
+    EXPECT_NE(diff.find("\n graph watched\n-features: blur=on\n+features: blur=off\n"), std::string::npos)
+        << diff;  // a context line, then the change
     const std::string second = slurp(out);
     const fs::path edited = writeGraph("edited.json", blurOff);
     const CliRun direct = run({"compile", edited.string()});

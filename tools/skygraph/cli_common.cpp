@@ -2,6 +2,7 @@
 
 #include <skygraph/diagnostics.hpp>
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
@@ -49,18 +50,33 @@ void writeOutput(const std::string& path, const std::string& text) {
     }
 }
 
+void configureLogging(bool verbose, bool quiet) {
+    auto logger = spdlog::stderr_color_mt("skygraph");
+    logger->set_pattern("%^%l%$: %v");
+    spdlog::set_default_logger(std::move(logger));
+    spdlog::set_level(quiet ? spdlog::level::err : verbose ? spdlog::level::debug : spdlog::level::info);
+}
+
+int reportCurrentException() {
+    try {
+        throw;
+    } catch (const GraphError& e) {
+        for (const auto& d : e.diagnostics().items()) std::cerr << "error: " << d.format() << "\n";
+        return kExitUserError;
+    } catch (const UsageError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return kExitUsage;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return kExitUserError;
+    }
+}
+
 int runGuarded(const std::function<int()>& body) {
     try {
         return body();
-    } catch (const GraphError& e) {
-        for (const auto& d : e.diagnostics().items()) std::cerr << "error: " << d.format() << "\n";
-        return 1;
-    } catch (const UsageError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 2;
-    } catch (const std::exception& e) {
-        std::cerr << "error: " << e.what() << "\n";
-        return 1;
+    } catch (...) {
+        return reportCurrentException();
     }
 }
 

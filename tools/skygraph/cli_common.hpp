@@ -1,4 +1,10 @@
-// Pieces every skygraph subcommand shares: feature flags, safe output, error reporting.
+// Pieces every skygraph subcommand shares: how a subcommand plugs into main(), feature
+// flags, safe output, logging and error reporting with the contract's exit statuses (§3).
+//
+// Adding a subcommand: write x_command.{hpp,cpp} with `Command addXCommand(CLI::App& parent)`
+// that adds a CLI11 subcommand (its own --help comes with it), keeps its parsed arguments
+// alive in the returned `run` closure, and returns both; then add one line to main.cpp's
+// list of commands. Long work shows a ProgressBar (progress_bar.hpp).
 #pragma once
 
 #include <skygraph/condition.hpp>
@@ -8,11 +14,25 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace skygraph::cli {
+
+/// Exit statuses of contract §3.
+enum ExitStatus : int { kExitOk = 0, kExitUserError = 1, kExitUsage = 2 };
 
 /// A command-line mistake: exit status 2.
 struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
+};
+
+/// One subcommand: `app` is owned by the parent CLI::App; main() calls `run` when `app` was
+/// parsed, through runGuarded. `run` returns an ExitStatus.
+struct Command {
+    CLI::App* app = nullptr;
+    std::function<int()> run;
 };
 
 /// "NAME=on|off" strings -> values. Throws UsageError on bad syntax.
@@ -21,6 +41,13 @@ struct UsageError : std::runtime_error {
 /// Writes `text` to `path` (stdout when empty) through a temporary file and a rename, so a
 /// failure never leaves half a file behind.
 void writeOutput(const std::string& path, const std::string& text);
+
+/// Logs to stderr (stdout carries plans) at debug (-v), error (-q) or info level.
+void configureLogging(bool verbose, bool quiet);
+
+/// Prints the exception in flight (call from a catch block) to stderr, every diagnostic of a
+/// GraphError on its own line, and returns its exit status: 2 for UsageError, else 1.
+[[nodiscard]] int reportCurrentException();
 
 /// Runs a subcommand, turning exceptions into the contract's exit statuses and messages.
 [[nodiscard]] int runGuarded(const std::function<int()>& body);

@@ -1,0 +1,32 @@
+// Notices when a file is saved, for `skygraph compile --watch`.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace skygraph::cli {
+
+/// Remembers a file's contents and reports when they differ. Compares contents rather than
+/// modification times so that editors which save by rename, and saves within one timestamp
+/// tick, are both seen; graph files are small. Owns only the copy of the contents.
+class FileWatcher {
+public:
+    /// Reads the file's current contents (none if it cannot be read yet).
+    explicit FileWatcher(std::filesystem::path file);
+
+    /// True when the file can be read and its contents differ from the last time this
+    /// returned true (or from construction). A file that is briefly missing mid-save is
+    /// not a change.
+    [[nodiscard]] bool changed();
+
+    [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
+
+private:
+    [[nodiscard]] std::optional<std::string> read() const;
+
+    std::filesystem::path file_;
+    std::optional<std::string> contents_;
+};
+
+}  // namespace skygraph::cli

@@ -1,0 +1,73 @@
+#include "render_command.hpp"
+
+#include "builtin_defaults.hpp"
+#include "builtin_ibl_graph.hpp"
+#include "progress_bar.hpp"
+
+#include <skygraph/executor.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/shader_compiler.hpp>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <optional>
+
+namespace skygraph::cli {
+namespace {
+
+struct RenderArgs {
+    RenderOptions options;
+    std::string graph, scene, output = "skygraph.png";
+    std::vector<std::string> features;
+};
+
+int run(RenderArgs& args) {
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    RenderOptions options = args.options;
+    options.passes = &library;
+    if (args.graph.empty()) {
+        options.graphText = kDefaultGraph;
+        if (args.scene.empty()) options.sceneText = kDefaultScene;
+        options.environmentGraphText = kIblGraph;  // a scene with a file environment needs it
+    }
+    options.graph = args.graph;
+    options.scene = args.scene;
+    options.output = args.output;
+    options.features = parseFeatureFlags(args.features);
+    spdlog::debug("shaders from {}", ShaderCompiler::defaultIncludeDir().string());
+    std::optional<ProgressBar> bar;
+    options.onFrameSubmitted = [&](uint32_t submitted, uint32_t total) {
+        if (!bar) bar.emplace("render", total, "frames");
+        bar->advance(submitted - bar->done());
+        if (submitted == total) bar->finish();  // before the timings and "wrote" lines
+    };
+    return renderCommand(options);
+}
+
+}  // namespace
+
+Command addRenderCommand(CLI::App& parent) {
+    auto args = std::make_shared<RenderArgs>();
+    RenderOptions& o = args->options;
+    CLI::App* cmd = parent.add_subcommand(
+        "render", "Render a graph headless and write the swapchain target. With no graph and no scene: "
+                  "the built-in raster graph and default scene");
+    cmd->add_option("graph", args->graph, "Graph file (default: the built-in graphs/raster.json)");
+    cmd->add_option("--scene", args->scene, "Scene file (scenes/*.json); default with the built-in graph: "
+                                            "the built-in scenes/default.json");
+    cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
+    cmd->add_option("--width", o.width, "Output width")->check(CLI::Range(1u, 16384u));
+    cmd->add_option("--height", o.height, "Output height")->check(CLI::Range(1u, 16384u));
+    cmd->add_option("--frames", o.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
+    cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
+    cmd->add_option("-o,--output", args->output, "Write the result: .png, .hdr or .exr (default skygraph.png)");
+    cmd->add_option("--readback", o.readback,
+                    "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)");
+    cmd->add_flag("--validate", o.validate, "Khronos validation with synchronization validation; any message fails");
+    cmd->add_option("--device", o.device, "Device by index or name");
+    return {cmd, [args] { return run(*args); }};
+}
+
+}  // namespace skygraph::cli

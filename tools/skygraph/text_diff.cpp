@@ -1,0 +1,33 @@
+#include "text_diff.hpp"
+
+#include <dtl/dtl.hpp>
+
+#include <sstream>
+#include <vector>
+
+namespace skygraph::cli {
+namespace {
+
+std::vector<std::string> splitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+}  // namespace
+
+std::string unifiedDiff(const std::string& before, const std::string& after, std::string_view beforeName,
+                        std::string_view afterName) {
+    if (before == after) return {};
+    const std::vector<std::string> a = splitLines(before), b = splitLines(after);
+    dtl::Diff<std::string, std::vector<std::string>> diff(a, b);
+    diff.compose();
+    diff.composeUnifiedHunks();
+    std::ostringstream out;
+    out << "--- " << beforeName << "\n+++ " << afterName << "\n";
+    diff.printUnifiedFormat(out);
+    return out.str();
+}
+
+}  // namespace skygraph::cli
