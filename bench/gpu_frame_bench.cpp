@@ -6,11 +6,12 @@
 //
 // 1. DRAM bandwidth: vkCmdCopyBuffer and a compute copy of a --bandwidth-mib buffer, median
 //    of --bandwidth-reps; the faster median is the bandwidth used for the bounds.
-// 2. Each --run GRAPH[:SCENE] at each --size: per-pass GPU medians over --frames frames
+// 2. Each --run GRAPH[:SCENE][@VARIANT] at each --size (variants: gpu_compute_tonemap.hpp): per-pass GPU medians over --frames frames
 //    (Renderer::lastTimings) beside bytes / bandwidth.
 // 3. Probes at each size (gpu_probes.hpp): the TonemappingPass's operation as compute shaders,
 //    and a fragment pass that only writes a constant (the fragment path's own cost).
 // Validation is off unless --validate; any validation message then fails the run (exit 1).
+#include "gpu_compute_tonemap.hpp"
 #include "gpu_frames.hpp"
 #include "gpu_probes.hpp"
 
@@ -43,6 +44,7 @@ struct Args {
     bool noProbes = false;
     bool validate = false;
     std::string csv;
+    std::string pngDir;
 };
 
 /// One CSV row: section, graph/probe, size, name, type, bytes, median, p10, p90, bound, ratio.
@@ -126,16 +128,26 @@ int run(const Args& args) {
     const auto boundMs = [&](double bytes) { return bandwidth > 0 ? bytes / (bandwidth * 1e6) : 0.0; };
 
     for (const std::string& spec : args.runs) {
-        const auto colon = spec.find(':');
         FrameCase c;
-        c.graph = spec.substr(0, colon);
-        if (colon != std::string::npos) c.scene = spec.substr(colon + 1);
+        std::string rest = spec;
+        if (const auto at = rest.find('@'); at != std::string::npos) {
+            c.variant = rest.substr(at + 1);
+            rest = rest.substr(0, at);
+        }
+        const auto colon = rest.find(':');
+        c.graph = rest.substr(0, colon);
+        if (colon != std::string::npos) c.scene = rest.substr(colon + 1);
         c.frames = args.frames;
         c.warmupFrames = args.warmup;
         c.proceduralExternals = args.procedural;
         for (const VkExtent2D size : sizes) {
             c.width = size.width;
             c.height = size.height;
+            if (!args.pngDir.empty()) {
+                std::string name = c.graph.stem().string() + (c.variant.empty() ? "" : "-" + c.variant) + "-" +
+                                   std::to_string(size.width) + "x" + std::to_string(size.height) + ".png";
+                c.png = std::filesystem::path(args.pngDir) / name;
+            }
             const FrameResult f = measureFrames(*device, c);
             const std::string sizeText = std::to_string(size.width) + "x" + std::to_string(size.height);
             printHeader(spec + " at " + sizeText + ", median of " + std::to_string(f.frames) + " frames");
@@ -187,7 +199,10 @@ int main(int argc, char** argv) {
     CLI::App app{"gpu_frame_bench: per-pass GPU times against the memory-bandwidth bound"};
     Args args;
     app.add_option("--device", args.device, "Physical device: index or name substring (e.g. nvidia, llvmpipe)");
-    app.add_option("--run", args.runs, "GRAPH[:SCENE] to render (repeatable)");
+    app.add_option("--run", args.runs,
+                   "GRAPH[:SCENE][@VARIANT] to render (repeatable); VARIANT: unorm-swapchain, compute-tonemap");
+    app.add_option("--png-dir", args.pngDir,
+                   "Also write each run's last frame as PNG here (adds a read-back copy to every frame)");
     app.add_option("--procedural", args.procedural,
                    "External image to fill with a procedural HDR sky before the first frame, where a "
                    "run's graph has it (repeatable; e.g. equirect for graphs/ibl.json)");

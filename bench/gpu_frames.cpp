@@ -1,6 +1,7 @@
 // Per-pass frame timings through the framework (see gpu_frames.hpp).
 #include "gpu_frames.hpp"
 
+#include "gpu_compute_tonemap.hpp"
 #include "gpu_vk.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -9,6 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <optional>
 
@@ -82,11 +85,25 @@ ImageData proceduralSky(const ResourceDesc& r) {
     return image;
 }
 
+GraphDesc loadGraph(const FrameCase& c, const PassRegistry& registry) {
+    if (c.variant.empty()) return loadGraphFile(c.graph, registry);
+    std::ifstream in(c.graph);
+    if (!in) throw std::runtime_error("cannot read " + c.graph.string());
+    std::stringstream text;
+    text << in.rdbuf();
+    const nlohmann::json variant = graphVariant(nlohmann::json::parse(text.str()), c.variant);
+    return parseGraph(variant.dump(2), c.graph.string() + "@" + c.variant, registry);
+}
+
 }  // namespace
 
 FrameResult measureFrames(Device& device, const FrameCase& c) {
-    static const PassLibrary library = PassLibrary::withBuiltins();
-    const GraphDesc graph = loadGraphFile(c.graph, library.registry());
+    static const PassLibrary library = [] {
+        PassLibrary l = PassLibrary::withBuiltins();
+        addComputeTonemapPass(l);
+        return l;
+    }();
+    const GraphDesc graph = loadGraph(c, library.registry());
     std::optional<Scene> scene;
     if (!c.scene.empty()) scene = loadSceneFile(c.scene);
     CompileOptions co;
@@ -110,7 +127,7 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     ro.height = c.height;
     ro.framesInFlight = 1;
     ro.passes = &library;
-    ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
+    if (c.png.empty()) ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
     Renderer renderer(device, graph, std::move(plan), ro);
     if (scene) renderer.frameData().set(*scene);
     for (const std::string& name : c.proceduralExternals) {
@@ -145,6 +162,10 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     for (uint32_t i = 0; i < c.frames; ++i)
         frameMs.push_back(timer.time([&](VkCommandBuffer cmd) { renderer.recordInto(cmd, 0); }));
     result.frameMedianMs = median(frameMs);
+    if (!c.png.empty()) {
+        renderer.renderFrame();  // recordInto left slot 0's contents; a full frame fills the read-back
+        writePng(c.png, renderer.readback());
+    }
     result.frames = c.frames;
     return result;
 }

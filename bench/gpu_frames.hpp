@@ -15,6 +15,11 @@ namespace skygraph::gpubench {
 struct FrameCase {
     std::filesystem::path graph;
     std::filesystem::path scene;  ///< May be empty: the graph's default features, no scene data.
+    /// Empty, or a graph variant of gpu_compute_tonemap.hpp ("unorm-swapchain", "compute-tonemap").
+    std::string variant;
+    /// When set, the Present target of the last frame is written here as PNG (a read-back copy
+    /// then follows every frame, outside the pass timestamps): to compare variants' pictures.
+    std::filesystem::path png;
     uint32_t width = 1920;
     uint32_t height = 1080;
     uint32_t warmupFrames = 20;

@@ -5,10 +5,11 @@
 #
 #   tools/device/run-gpu-bench.sh [RUN...]
 #
-# RUN: GRAPH[:SCENE] for gpu_frame_bench. Default: graphs/raster.json with scenes/default.json,
-# and the same graph with a B8G8R8A8_UNORM swapchain (generated here as
-# /tmp/gpu_raster_unorm.json: the TonemappingPass then encodes sRGB in the shader), which
-# tells whether the sRGB attachment format costs anything.
+# RUN: GRAPH[:SCENE][@VARIANT] for gpu_frame_bench. Default: graphs/raster.json with
+# scenes/default.json as it is, with a B8G8R8A8_UNORM swapchain (@unorm-swapchain: the
+# TonemappingPass encodes sRGB in the shader), and with the bench's compute tonemapper
+# (@compute-tonemap, bench/gpu_compute_tonemap.hpp); then graphs/ibl.json. Before timing, the
+# last two raster pictures are compared with the first (tools/device/pngdiff.py).
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench. graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
@@ -28,7 +29,8 @@ sizes=${SIZES:-"1920x1080 3840x2160"}
 device=${DEVICE:-nvidia}
 jobs=${JOBS:-16}
 runs=("$@")
-[ ${#runs[@]} -gt 0 ] || runs=(graphs/raster.json:scenes/default.json /tmp/gpu_raster_unorm.json:scenes/default.json)
+raster=graphs/raster.json:scenes/default.json
+[ ${#runs[@]} -gt 0 ] || runs=("$raster" "$raster@unorm-swapchain" "$raster@compute-tonemap" graphs/ibl.json)
 
 step() { echo; echo "=== $(date -u +%H:%M:%S) $*"; }
 
@@ -54,7 +56,6 @@ else
   echo "source: the carried working tree"
 fi
 export SKYGRAPH_SHADER_DIR=$src/shaders
-sed 's/"B8G8R8A8_SRGB"/"B8G8R8A8_UNORM"/' "$src/graphs/raster.json" > /tmp/gpu_raster_unorm.json
 
 step "Vulkan driver"
 icd=""
@@ -90,7 +91,15 @@ ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
 
 step "render check on $device: skygraph render at 960x540"
 ran "$bin_cli" && (cd "$src" && "$bin_cli" render --device "$device" --scene scenes/default.json --width 960 --height 540 \
-  --frames 3 -o "$out/render-$device.png")
+  --frames 3 -o "/tmp/render-$device.png")
+
+step "same pictures: raster.json as it is, @unorm-swapchain, @compute-tonemap at 960x540"
+rm -rf /tmp/gpu-png && mkdir -p /tmp/gpu-png
+ran "$bin_bench" && (cd "$src" && "$bin_bench" --device "$device" --run "$raster" --run "$raster@unorm-swapchain" \
+  --run "$raster@compute-tonemap" --size 960x540 --frames 2 --warmup 1 --bandwidth-mib 0 --no-probes \
+  --png-dir /tmp/gpu-png > /tmp/gpu-png/log.txt) \
+  && python3 "$src/tools/device/pngdiff.py" /tmp/gpu-png/raster-960x540.png \
+       /tmp/gpu-png/raster-unorm-swapchain-960x540.png /tmp/gpu-png/raster-compute-tonemap-960x540.png
 
 step "gpu_frame_bench: ${runs[*]} at $sizes, $frames frames"
 args=()
