@@ -20,13 +20,23 @@ std::string readAll(const std::filesystem::path& p) {
     return ss.str();
 }
 
-size_t hashFile(const std::filesystem::path& p) { return std::hash<std::string>{}(readAll(p)); }
+/// A watched file that is missing (deleted, or renamed away mid-save) hashes apart from
+/// every content, so that its return is seen as a change even with the same text.
+constexpr size_t kMissing = 0x6d697373696e67;  // "missing"
+
+size_t hashFile(const std::filesystem::path& p) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) return kMissing;
+    return std::hash<std::string>{}(readAll(p));
+}
 
 size_t hashDir(const std::filesystem::path& dir) {
+    // error_code overloads throughout: files deleted or the directory removed while it is
+    // listed must not throw out of poll(); what is gone simply hashes differently.
     std::vector<std::filesystem::path> files;
     std::error_code ec;
-    for (const auto& e : std::filesystem::recursive_directory_iterator(dir, ec))
-        if (e.is_regular_file()) files.push_back(e.path());
+    for (std::filesystem::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file(ec)) files.push_back(it->path());
     std::sort(files.begin(), files.end());
     size_t h = 0;
     for (const auto& f : files) h = h * 31 + std::hash<std::string>{}(f.string() + readAll(f));
@@ -51,6 +61,14 @@ HotReloader::Result HotReloader::poll() {
     const bool graphChanged = g != graphHash_;
     graphHash_ = g;
     shaderHash_ = s;
+    if (graphChanged && g == kMissing) {
+        // Deleted while watched: keep rendering the last good plan and say so once; the
+        // file's return (any content) is the next change.
+        lastError_ = graphFile_.string() + ": the watched graph file is gone (deleted or renamed); the "
+                     "previous version keeps running until it is back";
+        spdlog::warn("hot reload: {}", lastError_);
+        return Result::Failed;
+    }
     try {
         if (graphChanged) {
             GraphDesc graph = registry_ ? loadGraphFile(graphFile_, *registry_)

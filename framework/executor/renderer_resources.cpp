@@ -2,11 +2,81 @@
 // and the one-time import of external resources.
 #include "renderer_impl.hpp"
 
+#include <cstdio>
 #include <cstring>
 
 namespace skygraph {
 
 using namespace detail;
+
+namespace {
+
+std::string gib(VkDeviceSize bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / double(1ull << 30));
+    return text;
+}
+
+/// Refuses a plan whose resources the device cannot hold, before anything is allocated (so
+/// a resize or a reload to an absurd extent leaves the running plan untouched): each image
+/// within the device's dimension and layer limits, each buffer within its binding range,
+/// and all of them together within the memory cap, half of the largest device-local heap
+/// (docs/reliability.md: the other half is left to pipelines, staging and other programs).
+void refuseOversizedResources(const PlanState& s, VkPhysicalDevice physical, uint32_t outputWidth,
+                              uint32_t outputHeight, uint32_t slots) {
+    VkPhysicalDeviceProperties props;
+    vkGetPhysicalDeviceProperties(physical, &props);
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(physical, &mem);
+    VkDeviceSize heap = 0;
+    for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
+        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) heap = std::max(heap, mem.memoryHeaps[i].size);
+    const VkDeviceSize cap = heap / 2;
+    const VkPhysicalDeviceLimits& limits = props.limits;
+    VkDeviceSize total = 0;
+    for (const ResourceState& r : s.resources) {
+        const ResourceDesc& d = *r.desc;
+        const uint32_t copies = r.perSlot ? slots : 1;
+        VkDeviceSize bytes = 0;
+        if (!r.isImage) {
+            const bool storage = r.bufferUsage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            const bool uniform = r.bufferUsage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+            if (storage && d.sizeBytes > limits.maxStorageBufferRange)
+                throw ExecutorError("resource '" + d.name + "': a storage buffer of " + std::to_string(d.sizeBytes) +
+                                    " bytes exceeds the device's maxStorageBufferRange (" +
+                                    std::to_string(limits.maxStorageBufferRange) + "); nothing was allocated");
+            if (uniform && d.sizeBytes > limits.maxUniformBufferRange)
+                throw ExecutorError("resource '" + d.name + "': a uniform buffer of " + std::to_string(d.sizeBytes) +
+                                    " bytes exceeds the device's maxUniformBufferRange (" +
+                                    std::to_string(limits.maxUniformBufferRange) + "); nothing was allocated");
+            bytes = d.sizeBytes;
+        } else {
+            const auto [w, h] = d.extent.resolve(outputWidth, outputHeight);
+            const bool cube = d.type == ResourceType::Cube;
+            const uint32_t most = cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D;
+            if (w > most || h > most)
+                throw ExecutorError("resource '" + d.name + "': " + std::to_string(w) + "x" + std::to_string(h) +
+                                    " exceeds the device's " + (cube ? "maxImageDimensionCube" : "maxImageDimension2D") +
+                                    " (" + std::to_string(most) + ") at output " + std::to_string(outputWidth) + "x" +
+                                    std::to_string(outputHeight) + "; nothing was allocated");
+            if (d.layers > limits.maxImageArrayLayers)
+                throw ExecutorError("resource '" + d.name + "': " + std::to_string(d.layers) +
+                                    " layers exceed the device's maxImageArrayLayers (" +
+                                    std::to_string(limits.maxImageArrayLayers) + "); nothing was allocated");
+            const uint32_t mips = std::max(1u, d.mipCount(outputWidth, outputHeight));
+            const VkDeviceSize texel = std::max(1u, copyTexelBytes(d.format));
+            for (uint32_t m = 0; m < mips; ++m)
+                bytes += VkDeviceSize(std::max(1u, w >> m)) * std::max(1u, h >> m) * texel * std::max(1u, d.layers);
+        }
+        total += bytes * copies;
+    }
+    if (cap != 0 && total > cap)
+        throw ExecutorError("the plan's resources need " + gib(total) + " at output " + std::to_string(outputWidth) +
+                            "x" + std::to_string(outputHeight) + ", over the memory cap of " + gib(cap) +
+                            " (half the device's largest device-local heap); nothing was allocated");
+}
+
+}  // namespace
 
 OwnedBuffer Renderer::Impl::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
     OwnedBuffer b;
@@ -127,6 +197,7 @@ void Renderer::Impl::describeResources(PlanState& s) {
             }
         }
     }
+    refuseOversizedResources(s, dev.physical, options.width, options.height, options.framesInFlight);
 }
 
 void Renderer::Impl::createResources(PlanState& s) {

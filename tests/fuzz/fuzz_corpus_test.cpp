@@ -37,9 +37,9 @@ TEST(FuzzCorpus, EveryInputEndsInAPlanOrAGraphError) {
         runOneInput(ss.str());
         const auto seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        // libFuzzer calls more than this a hang (tools/fuzz.sh: -timeout); sanitizers slow
-        // things down about 3x, hence the margin.
-        EXPECT_LT(seconds, 2.0) << f << " took " << seconds << " s";
+        // Each input takes milliseconds; tools/fuzz.sh calls 2 s a hang. The margin is for
+        // sanitizer builds on a loaded 2-core CI machine.
+        EXPECT_LT(seconds, 5.0) << f << " took " << seconds << " s";
     }
 }
 

@@ -1,0 +1,145 @@
+// Running generated graphs, and weakening their barriers one at a time for the oracle.
+#include "random_graph_check.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/plan_format.hpp>
+
+#include <bit>
+#include <string>
+
+namespace skygraph::test {
+namespace {
+
+std::string formatMessages(const Device& d) {
+    std::string s;
+    for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message.substr(0, 400) + "\n";
+    return s;
+}
+
+RendererOptions rendererOptions(const RunSettings& settings) {
+    RendererOptions o;
+    o.width = settings.size;
+    o.height = settings.size;
+    o.framesInFlight = settings.framesInFlight;
+    return o;
+}
+
+void renderFrames(Device& device, const GraphDesc& graph, const Plan& plan, const RunSettings& settings) {
+    Renderer r(device, graph, plan, rendererOptions(settings));
+    for (uint32_t i = 0; i < settings.frames; ++i) r.renderFrame();
+    (void)r.readback();
+    r.waitIdle();
+}
+
+/// Each set bit of `mask` cleared in turn.
+template <class F>
+void forEachBit(uint64_t mask, F&& f) {
+    while (mask) {
+        const uint64_t bit = mask & (~mask + 1);
+        f(bit);
+        mask &= ~bit;
+    }
+}
+
+std::string nameOf(const Plan& plan, const Barrier& b) { return plan.resources.at(b.resource).name; }
+
+/// Adds every weakening of `list[i]` (list is a barrier batch of `base`, found by `locate`).
+template <class Locate>
+void weakenBatch(const Plan& base, const std::vector<Barrier>& list, const std::string& where,
+                 Locate locate, std::vector<BarrierMutation>& out) {
+    for (size_t i = 0; i < list.size(); ++i) {
+        const Barrier& b = list[i];
+        const std::string what = where + ", " + nameOf(base, b) + ": ";
+        {
+            Plan p = base;
+            auto& batch = locate(p);
+            batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(i));
+            out.push_back({what + "barrier dropped", std::move(p)});
+        }
+        auto mutate = [&](const std::string& how, auto change) {
+            Plan p = base;
+            change(locate(p)[i]);
+            out.push_back({what + how, std::move(p)});
+        };
+        forEachBit(b.srcStages, [&](uint64_t bit) {
+            mutate("src stage " + stageMaskNames(bit).front() + " dropped", [&](Barrier& x) { x.srcStages &= ~bit; });
+        });
+        forEachBit(b.dstStages, [&](uint64_t bit) {
+            mutate("dst stage " + stageMaskNames(bit).front() + " dropped", [&](Barrier& x) { x.dstStages &= ~bit; });
+        });
+        forEachBit(b.srcAccess, [&](uint64_t bit) {
+            mutate("src access " + accessMaskNames(bit).front() + " dropped", [&](Barrier& x) { x.srcAccess &= ~bit; });
+        });
+        forEachBit(b.dstAccess, [&](uint64_t bit) {
+            mutate("dst access " + accessMaskNames(bit).front() + " dropped", [&](Barrier& x) { x.dstAccess &= ~bit; });
+        });
+        if (b.kind == BarrierKind::Image && b.oldLayout != b.newLayout &&
+            b.oldLayout != VK_IMAGE_LAYOUT_UNDEFINED)
+            mutate("layout change dropped", [&](Barrier& x) { x.newLayout = x.oldLayout; });
+    }
+}
+
+}  // namespace
+
+GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& features,
+                  const RunSettings& settings) {
+    GraphRun run;
+    GraphDesc graph;
+    try {
+        graph = parseGraph(json, "<random>", PassRegistry::withBuiltins());
+        CompileOptions o;
+        o.features = features;
+        o.presentReplacement = ExternalState::TransferSrc;
+        o.outputWidth = settings.size;
+        o.outputHeight = settings.size;
+        run.plan = compile(graph, o);
+    } catch (const GraphError& e) {
+        run.outcome = GraphRun::Outcome::Rejected;
+        run.detail = e.diagnostics().format();
+        return run;
+    }
+    device.clearMessages();
+    try {
+        renderFrames(device, graph, run.plan, settings);
+    } catch (const std::exception& e) {
+        run.outcome = GraphRun::Outcome::ExecutorFailed;
+        run.detail = e.what();
+        return run;
+    }
+    if (device.messageCount() != 0) {
+        run.outcome = GraphRun::Outcome::Messages;
+        run.detail = formatMessages(device) + planToText(run.plan);
+    }
+    device.clearMessages();
+    return run;
+}
+
+uint32_t messagesFor(Device& device, const GraphDesc& graph, const Plan& plan, const RunSettings& settings) {
+    device.clearMessages();
+    renderFrames(device, graph, plan, settings);
+    const uint32_t n = device.messageCount();
+    device.clearMessages();
+    return n;
+}
+
+std::vector<BarrierMutation> weakenedPlans(const Plan& plan) {
+    std::vector<BarrierMutation> out;
+    for (size_t p = 0; p < plan.passes.size(); ++p)
+        weakenBatch(plan, plan.passes[p].barriers, "before " + plan.passes[p].name,
+                    [p](Plan& x) -> std::vector<Barrier>& { return x.passes[p].barriers; }, out);
+    weakenBatch(plan, plan.finalBarriers, "final",
+                [](Plan& x) -> std::vector<Barrier>& { return x.finalBarriers; }, out);
+    return out;
+}
+
+MinimalityReport checkMinimality(Device& device, const GraphDesc& graph, const Plan& plan,
+                                 const RunSettings& settings) {
+    MinimalityReport report;
+    for (auto& m : weakenedPlans(plan)) {
+        ++report.mutations;
+        if (messagesFor(device, graph, m.plan, settings) == 0) report.unneeded.push_back(m.description);
+    }
+    return report;
+}
+
+}  // namespace skygraph::test

@@ -1,0 +1,59 @@
+// Runs generated graphs on a validated device: the random-graph suite's and
+// tools/random-graphs.sh's one definition of "this graph passed", and the brute-force
+// barrier-minimality oracle (docs/reliability.md explains the choice of oracle).
+#pragma once
+
+#include "random_graph_generator.hpp"
+
+#include <skygraph/executor.hpp>
+#include <skygraph/plan.hpp>
+
+#include <string>
+#include <vector>
+
+namespace skygraph::test {
+
+struct RunSettings {
+    uint32_t size = 16;           ///< Output width and height (the generator's outputSize).
+    uint32_t frames = 2;          ///< Two frames: the second meets the first's final state.
+    uint32_t framesInFlight = 1;  ///< Frame copies do not change the plan's barriers.
+};
+
+/// The outcome of one graph. `passed()` is the suite's verdict.
+struct GraphRun {
+    enum class Outcome : uint8_t { Clean, Rejected, ExecutorFailed, Messages };
+    Outcome outcome = Outcome::Clean;
+    std::string detail;  ///< The error or the validation messages, with the plan.
+    Plan plan;
+    [[nodiscard]] bool passed() const noexcept { return outcome == Outcome::Clean; }
+};
+
+/// Compiles `json` with `features` and renders it; the device's messages are cleared first.
+[[nodiscard]] GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& features,
+                                const RunSettings& settings = {});
+
+/// Renders an already compiled plan (e.g. a mutated one) and returns the message count.
+[[nodiscard]] uint32_t messagesFor(Device& device, const GraphDesc& graph, const Plan& plan,
+                                   const RunSettings& settings = {});
+
+/// One barrier of a plan weakened one way.
+struct BarrierMutation {
+    std::string description;  ///< e.g. "before p2: drop barrier for img0"
+    Plan plan;
+};
+
+/// Every way to weaken one barrier of `plan`: drop it; clear one source or destination
+/// stage bit; clear one source or destination access bit; keep the layout (newLayout =
+/// oldLayout) where it changes. Each must cause a validation message if the plan is minimal.
+[[nodiscard]] std::vector<BarrierMutation> weakenedPlans(const Plan& plan);
+
+/// The mutations that produced no message: barriers (or bits of them) that are not needed,
+/// as far as the validation layer sees real accesses of the Generic pass.
+struct MinimalityReport {
+    size_t mutations = 0;
+    std::vector<std::string> unneeded;
+};
+[[nodiscard]] MinimalityReport checkMinimality(Device& device, const GraphDesc& graph, const Plan& plan,
+                                               const RunSettings& settings = {});
+
+}  // namespace skygraph::test
