@@ -19,3 +19,14 @@ if ((${#missing[@]})); then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
+
+# ktx-parse: the independent KTX2 reader that tests/ibl runs under node to check
+# `skygraph cubemap`'s files. From the npm registry into build-deps/node (ignored by git).
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends nodejs npm
+fi
+if [ ! -f "$root/build-deps/node/node_modules/ktx-parse/package.json" ]; then
+  npm install --prefix "$root/build-deps/node" --no-audit --no-fund --loglevel=error ktx-parse@2.0.0
+fi

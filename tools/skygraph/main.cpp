@@ -6,6 +6,7 @@
 #include "progress_bar.hpp"
 #if SKYGRAPH_HAS_EXECUTOR
 #include "render_command.hpp"
+#include "cubemap_command.hpp"
 #endif
 
 #include <CLI/CLI.hpp>
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
         addCompileCommand(app),
 #if SKYGRAPH_HAS_EXECUTOR
         addRenderCommand(app),
+        addCubemapCommand(app),
 #endif
     };
 

@@ -1,0 +1,148 @@
+#include "cubemap_command.hpp"
+
+#include "builtin_ibl_graph.hpp"
+#include "environment_bake.hpp"
+#include "progress_bar.hpp"
+
+#include <skygraph/hdr_image.hpp>
+#include <skygraph/ktx2.hpp>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <memory>
+
+namespace skygraph::cli {
+namespace {
+
+struct CubemapArgs {
+    std::string input, output, cross, format = "rgba16f", device;
+    std::vector<std::string> products{"irradiance", "prefiltered", "brdf"};
+    BakeOptions bake;
+};
+
+/// OUT.ktx2 -> OUT.<product>.ktx2
+std::filesystem::path productPath(const std::filesystem::path& output, const std::string& product) {
+    std::filesystem::path p = output;
+    return p.replace_extension().string() + "." + product + ".ktx2";
+}
+
+HdrImage toHdr(const ImageData& image) {
+    HdrImage hdr;
+    hdr.width = image.width;
+    hdr.height = image.height;
+    hdr.rgba = image.rgba;
+    return hdr;
+}
+
+/// levels[mip * faces + face] -> a KTX2 texture.
+Ktx2Texture toKtx2(const std::vector<ImageData>& levels, size_t faces, Ktx2Format format) {
+    Ktx2Texture t;
+    t.format = format;
+    for (size_t i = 0; i < levels.size(); i += faces) {
+        t.levels.emplace_back();
+        for (size_t f = 0; f < faces; ++f) t.levels.back().push_back(toHdr(levels[i + f]));
+    }
+    return t;
+}
+
+/// The six mip-0 faces as a horizontal cross (+Y above, -X +Z +X -Z across, -Y below), each
+/// face as stored, so neighbouring faces meet along shared edges.
+HdrImage crossLayout(const std::vector<ImageData>& faces) {
+    const uint32_t n = faces[0].width;
+    HdrImage cross;
+    cross.width = 4 * n;
+    cross.height = 3 * n;
+    cross.rgba.assign(size_t(cross.width) * cross.height * 4, 0.0f);
+    const uint32_t cell[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};  // +X,-X,+Y,-Y,+Z,-Z
+    for (int f = 0; f < 6; ++f)
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                const float* src = &faces[size_t(f)].rgba[(size_t(y) * n + x) * 4];
+                float* dst = &cross.rgba[((size_t(cell[f][1] * n + y)) * cross.width + cell[f][0] * n + x) * 4];
+                std::copy(src, src + 4, dst);
+            }
+    return cross;
+}
+
+int run(CubemapArgs& args) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::filesystem::path output = args.output;
+    if (output.extension() != ".ktx2") throw UsageError("-o must name a .ktx2 file, got '" + args.output + "'");
+    if (!args.cross.empty()) {
+        const auto ext = std::filesystem::path(args.cross).extension();
+        if (ext != ".hdr" && ext != ".exr") throw UsageError("--cross must name a .hdr or .exr file");
+    }
+    if (args.bake.size & (args.bake.size - 1)) throw UsageError("--size must be a power of two");
+    BakeOptions bake = args.bake;
+    bake.graphText = kIblGraph;
+    bake.float32 = args.format == "rgba32f";
+    bake.products.clear();
+    for (const auto& p : args.products) bake.products.push_back(p == "brdf" ? "brdf_lut" : p);
+
+    ProgressBar bar("cubemap", 6, "steps");
+    const HdrImage equirect = loadHdrImage(args.input);  // ImageError names the file and reason
+    if (const size_t bad = countNonFinite(equirect))
+        throw ImageError(args.input, std::to_string(bad) + " pixel values are NaN or infinite");
+    if (equirect.width != 2 * equirect.height)
+        spdlog::warn("'{}' is {}x{}, not 2:1; it is read as an equirect map all the same", args.input,
+                     equirect.width, equirect.height);
+    bar.advance();
+    bake.onStep = [&](const std::string&) { bar.advance(); };
+    const BakeResult result = bakeEnvironment(equirect, bake);
+    if (args.bake.validate && result.validationMessages != 0)
+        throw std::runtime_error(std::to_string(result.validationMessages) + " validation messages (see the log)");
+
+    for (const PassTiming& t : result.passTimings) spdlog::debug("  {:<18} {:8.1f} ms", t.pass, t.milliseconds);
+    const Ktx2Format colour = bake.float32 ? Ktx2Format::Rgba32Float : Ktx2Format::Rgba16Float;
+    saveKtx2(output, toKtx2(result.products.at("environment"), 6, colour));
+    for (const auto& p : args.products) {
+        const std::string resource = p == "brdf" ? "brdf_lut" : p;
+        const bool table = resource == "brdf_lut";
+        const Ktx2Format format = table ? (bake.float32 ? Ktx2Format::Rg32Float : Ktx2Format::Rg16Float) : colour;
+        saveKtx2(productPath(output, p), toKtx2(result.products.at(resource), table ? 1 : 6, format));
+    }
+    if (!args.cross.empty()) {
+        const auto& env = result.products.at("environment");
+        saveHdrImage(args.cross, crossLayout({env.begin(), env.begin() + 6}));
+    }
+    bar.advance();
+    bar.finish();
+    const double totalMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    spdlog::info("wrote '{}' ({}^2 cube, {} products): {:.0f} ms in all, of which setup {:.0f} ms, passes {:.0f} ms",
+                 output.string(), bake.size, args.products.size(), totalMs, result.setupMs, result.gpuMs);
+    return kExitOk;
+}
+
+}  // namespace
+
+Command addCubemapCommand(CLI::App& parent) {
+    auto args = std::make_shared<CubemapArgs>();
+    CLI::App* cmd = parent.add_subcommand(
+        "cubemap", "Equirect HDR -> KTX2 cube with mips, plus IBL products (OUT.irradiance.ktx2, "
+                   "OUT.prefiltered.ktx2: one GGX roughness per mip, OUT.brdf.ktx2)");
+    cmd->add_option("input", args->input, "Equirectangular .hdr or .exr")->required();
+    cmd->add_option("-o,--output", args->output, "Output .ktx2 (the environment cube)")->required();
+    cmd->add_option("--size", args->bake.size, "Cube face size (power of two; the prefiltered cube has 6 levels from it)")
+        ->check(CLI::Range(32u, 4096u))->capture_default_str();
+    cmd->add_option("--samples", args->bake.samples, "Samples per texel for irradiance and prefilter")
+        ->check(CLI::Range(1u, 1u << 16))->capture_default_str();
+    cmd->add_option("--supersample", args->bake.supersample, "N: NxN equirect taps per cube texel")
+        ->check(CLI::Range(1u, 16u))->capture_default_str();
+    cmd->add_option("--products", args->products, "Products besides the cube: irradiance, prefiltered, brdf; "
+                                                  "'none' for the cube alone")
+        ->delimiter(',')->check(CLI::IsMember({"irradiance", "prefiltered", "brdf", "none"}))->capture_default_str();
+    cmd->add_option("--format", args->format, "Texel format")->check(CLI::IsMember({"rgba16f", "rgba32f"}))
+        ->capture_default_str();
+    cmd->add_option("--cross", args->cross, "Also write mip 0 as a horizontal cross (.hdr or .exr)");
+    cmd->add_option("--device", args->bake.device, "Vulkan device: index or name substring");
+    cmd->add_flag("--validate", args->bake.validate, "Validation + synchronization validation; fail on any message");
+    return {cmd, [args] {
+                std::erase(args->products, std::string("none"));
+                return run(*args);
+            }};
+}
+
+}  // namespace skygraph::cli

@@ -1,0 +1,120 @@
+// bakeEnvironment: graphs/ibl.json sized from the options and the input, products not asked
+// for un-exported (so the compiler culls their passes), one frame, every level read back.
+#include "environment_bake.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/format.hpp>
+#include <skygraph/pass.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+namespace skygraph::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+ResourceDesc& resource(GraphDesc& graph, const std::string& name) {
+    for (auto& r : graph.resources)
+        if (r.name == name) return r;
+    throw std::invalid_argument("the environment graph has no resource '" + name + "'");
+}
+
+void setFormat(ResourceDesc& r, VkFormat format) { r.format = *findFormat(format); }
+
+/// graphs/ibl.json writes the chain of a 256^2 cube, one CubemapMipPass per level; other
+/// sizes get one copy of the first per level of theirs, in its place.
+void fitMipChain(GraphDesc& graph, uint32_t size) {
+    const auto isMip = [](const PassDesc& p) { return p.type == "CubemapMipPass"; };
+    const auto first = std::find_if(graph.passes.begin(), graph.passes.end(), isMip);
+    if (first == graph.passes.end()) return;
+    const PassDesc model = *first;
+    const auto at = first - graph.passes.begin();
+    std::erase_if(graph.passes, isMip);
+    std::vector<PassDesc> chain;
+    for (uint32_t mip = 1; (size >> mip) >= 1; ++mip) {
+        PassDesc pass = model;
+        pass.name = "environment_mip" + std::to_string(mip);
+        for (UsageDecl& use : pass.uses) {
+            if (!use.usage.range) continue;
+            use.usage.range->baseMip = use.slot == "source" ? mip - 1 : mip;
+        }
+        chain.push_back(std::move(pass));
+    }
+    graph.passes.insert(graph.passes.begin() + at, chain.begin(), chain.end());
+}
+
+/// Sizes, formats and outputs of graphs/ibl.json for this bake.
+void configure(GraphDesc& graph, const HdrImage& equirect, const BakeOptions& o) {
+    static const std::vector<std::string> known{"irradiance", "prefiltered", "brdf_lut"};
+    for (const auto& p : o.products)
+        if (std::find(known.begin(), known.end(), p) == known.end())
+            throw std::invalid_argument("unknown product '" + p + "'; expected irradiance, prefiltered, brdf_lut");
+    resource(graph, "equirect").extent = Extent{false, 1, equirect.width, equirect.height};
+    resource(graph, "environment").extent = Extent{false, 1, o.size, o.size};
+    resource(graph, "prefiltered").extent = Extent{false, 1, o.size, o.size};
+    const VkFormat colour = o.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+    for (const char* name : {"environment", "irradiance", "prefiltered"}) setFormat(resource(graph, name), colour);
+    setFormat(resource(graph, "brdf_lut"), o.float32 ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT);
+    for (const auto& name : known)
+        if (std::find(o.products.begin(), o.products.end(), name) == o.products.end()) {
+            ResourceDesc& r = resource(graph, name);
+            r.external = false;  // no longer an output: the compiler culls its writers
+            r.final = ExternalState::None;
+        }
+    fitMipChain(graph, o.size);
+    for (auto& pass : graph.passes)
+        if (pass.type == "IrradiancePass" || pass.type == "PrefilterPass") pass.params["samples"] = o.samples;
+        else if (pass.type == "EquirectToCubemapPass") pass.params["supersample"] = o.supersample;
+}
+
+ImageData toImageData(const HdrImage& image) {
+    ImageData data;
+    data.width = image.width;
+    data.height = image.height;
+    data.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    data.rgba = image.rgba;
+    return data;
+}
+
+}  // namespace
+
+BakeResult bakeEnvironment(const HdrImage& equirect, const BakeOptions& options) {
+    const auto step = [&](const char* name) {
+        if (options.onStep) options.onStep(name);
+    };
+    const auto start = Clock::now();
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    GraphDesc graph = parseGraph(options.graphText, "graphs/ibl.json", library.registry());
+    configure(graph, equirect, options);
+    const Plan plan = compile(graph, CompileOptions{});
+    step("compile");
+    DeviceOptions deviceOptions;
+    deviceOptions.device = options.device;
+    deviceOptions.validation = options.validate;
+    auto device = Device::create(deviceOptions);
+    RendererOptions ro;
+    ro.passes = &library;
+    ro.framesInFlight = 1;
+    Renderer renderer(*device, graph, plan, ro);
+    renderer.setExternalImage("equirect", toImageData(equirect));
+    step("upload");
+    BakeResult result;
+    result.setupMs = msSince(start);
+    const auto gpuStart = Clock::now();
+    renderer.renderFrame();
+    renderer.waitIdle();
+    result.gpuMs = msSince(gpuStart);
+    result.passTimings = renderer.lastTimings();
+    step("passes");
+    result.products["environment"] = renderer.readImage("environment");
+    for (const auto& name : options.products) result.products[name] = renderer.readImage(name);
+    result.validationMessages = device->messageCount();
+    step("read back");
+    return result;
+}
+
+}  // namespace skygraph::cli
