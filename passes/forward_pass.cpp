@@ -75,7 +75,21 @@ public:
     void createPipelines(const PipelineContext& ctx) override {
         GraphicsPipelineRecipe recipe;
         recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/forward.vert");
-        recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/forward.frag");
+        // Lit by the environment pipeline's products when the graph binds all three (split-sum
+        // IBL); otherwise by a sun and an ambient term.
+        ibl_ = true;
+        for (const char* slot : kIblSlots) {
+            bool bound = false;
+            for (const auto& r : ctx.resources) bound = bound || (r.usage && r.usage->slot == slot);
+            ibl_ = ibl_ && bound;
+        }
+        recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/forward.frag",
+                                        {{"FORWARD_IBL", ibl_ ? "1" : "0"}});
+        if (ibl_) {
+            for (uint32_t b = 0; b < 3; ++b)
+                recipe.bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+            pushDescriptors_ = pushDescriptorFunction(ctx.device);
+        }
         recipe.renderPass = ctx.renderPass;
         recipe.depthTest = true;
         recipe.depthWrite = true;
@@ -104,6 +118,18 @@ public:
         const VkBuffer vb = vertexBuffer_.get();
         vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &vb, &offset);
         vkCmdBindIndexBuffer(ctx.cmd, indexBuffer_.get(), 0, VK_INDEX_TYPE_UINT32);
+        if (ibl_) {
+            VkDescriptorImageInfo images[3];
+            VkWriteDescriptorSet writes[3];
+            for (uint32_t b = 0; b < 3; ++b) {
+                const BoundResource* r = ctx.slot(kIblSlots[b]);
+                images[b] = {ctx.linearSampler, r->view, r->usage->layout};
+                writes[b] = sampledImageWrite(b, &images[b]);
+            }
+            pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), 0, 3, writes);
+        }
+        // The environment's rotation about +Y, as the skybox applies it (radians).
+        const float rotation = scene->environment ? float(math::radians(scene->environment->rotationDeg)) : 0.0f;
         for (const SceneObject& object : scene->objects) {
             Push push{};
             for (int c = 0; c < 4; ++c)
@@ -114,6 +140,7 @@ public:
             push.planeNormalRoughness[3] = float(mat.roughness);
             push.aoViewKind[0] = float(mat.ao);
             push.aoViewKind[1] = float(debugViewIndex(scene->debugView));
+            push.aoViewKind[3] = rotation;
             uint32_t first = 0, count = meshes_.sphereIndexCount;
             if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
                 for (int i = 0; i < 3; ++i) push.originAndScale[i] = float(sphere->center[i] - view.position[i]);
@@ -183,6 +210,9 @@ private:
              indexMemory_, meshes_.indices.data());
     }
 
+    static constexpr const char* kIblSlots[3] = {"irradiance", "prefiltered", "brdf_lut"};
+    bool ibl_ = false;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
     Meshes meshes_;
     vk::Memory vertexMemory_, indexMemory_;
     vk::Buffer vertexBuffer_, indexBuffer_;

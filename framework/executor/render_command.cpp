@@ -9,13 +9,14 @@
 
 #include <cstdio>
 #include <optional>
+#include <set>
 #include <iostream>
 
 namespace skygraph {
 namespace {
 
 /// The graph resource that a loaded environment file becomes (graphs/raster.json, ibl.json).
-constexpr std::string_view kEnvironmentResource = "env_equirect";
+constexpr std::string_view kEnvironmentResource = "equirect";
 
 bool setEnvironmentExtent(GraphDesc& graph, const HdrImage& image) {
     for (ResourceDesc& r : graph.resources) {
@@ -24,6 +25,62 @@ bool setEnvironmentExtent(GraphDesc& graph, const HdrImage& image) {
         return true;
     }
     return false;
+}
+
+/// graphs/ibl.json: RenderOptions::environmentGraph(Text), else ibl.json beside the graph file.
+std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, const PassRegistry& registry) {
+    if (!options.environmentGraphText.empty())
+        return parseGraph(options.environmentGraphText, "<built-in ibl.json>", registry);
+    std::filesystem::path file = options.environmentGraph;
+    if (file.empty() && !options.graph.empty()) file = options.graph.parent_path() / "ibl.json";
+    if (file.empty() || !std::filesystem::exists(file)) return std::nullopt;
+    return loadGraphFile(file, registry);
+}
+
+/// What the plan samples of the environment pipeline's outputs: the externals it imports
+/// (`initial` set) that the environment graph exports under the same name.
+std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const GraphDesc& graph,
+                                                       const GraphDesc* environmentGraph) {
+    std::set<std::string, std::less<>> products;
+    for (const PlannedResource& r : plan.resources) {
+        const ResourceDesc& d = graph.resources[r.decl];
+        if (!d.external || d.name == kEnvironmentResource) continue;
+        const ResourceDesc* produced = environmentGraph ? environmentGraph->findResource(d.name) : nullptr;
+        if (produced && produced->isExported()) {
+            products.insert(d.name);
+        } else if (d.initial == ExternalState::ShaderRead) {
+            spdlog::warn("'{}' is imported but no environment graph exports it: it holds a placeholder", d.name);
+        }
+    }
+    return products;
+}
+
+/// Runs the environment graph once on `equirect`, building only `products`; the returned
+/// renderer owns them (share them with Renderer::shareImage()).
+std::unique_ptr<Renderer> bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                          const std::set<std::string, std::less<>>& products,
+                                          const PassLibrary* passes) {
+    if (!setEnvironmentExtent(graph, equirect))
+        throw ExecutorError("the environment graph '" + graph.name + "' has no resource 'equirect'");
+    CompileOptions co;
+    co.outputs = products;
+    Plan plan = compile(graph, co);
+    for (const auto& c : plan.culled) spdlog::info("environment: culled {}: {}", c.name, c.reason);
+    RendererOptions ro;
+    ro.framesInFlight = 1;
+    ro.passes = passes;
+    auto renderer = std::make_unique<Renderer>(device, graph, std::move(plan), ro);
+    ImageData pixels;
+    pixels.width = equirect.width;
+    pixels.height = equirect.height;
+    pixels.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    pixels.rgba = equirect.rgba;
+    renderer->setExternalImage(std::string(kEnvironmentResource), std::move(pixels));
+    renderer->renderFrame();
+    renderer->waitIdle();
+    for (const auto& t : renderer->lastTimings())
+        spdlog::info("environment: pass {:<20} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
+    return renderer;
 }
 
 ImageData toImageData(HdrImage&& image) {
@@ -58,14 +115,14 @@ int renderCommand(const RenderOptions& options) {
         else if (!options.scene.empty())
             scene = loadSceneFile(options.scene);
         // A file environment is loaded before compiling: its size is the extent of the graph's
-        // `env_equirect` (data-driven, so the plan's subresources match the image).
+        // `equirect` (data-driven, so the plan's subresources match the image).
         std::optional<HdrImage> environment;
         if (scene && scene->environment && !scene->environment->procedural) {
             environment = loadHdrImage(scene->environment->file);
             spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
                          environment->height);
             if (!setEnvironmentExtent(graph, *environment))
-                spdlog::warn("graph '{}' has no resource 'env_equirect': the environment file is not used",
+                spdlog::warn("graph '{}' has no resource 'equirect': the environment file is not used",
                              graph.name);
         }
         CompileOptions co;
@@ -85,6 +142,16 @@ int renderCommand(const RenderOptions& options) {
         dopts.device = options.device;
         dopts.validation = options.validate;
         auto device = Device::create(dopts);
+        // The environment pipeline runs once, now (the environment does not change during a
+        // run), and builds only the products this plan samples; its renderer keeps them alive.
+        std::unique_ptr<Renderer> environmentRenderer;
+        std::set<std::string, std::less<>> products;
+        if (environment) {
+            const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, registry);
+            products = environmentProducts(plan, graph, envGraph ? &*envGraph : nullptr);
+            if (!products.empty())
+                environmentRenderer = bakeEnvironment(*device, *envGraph, *environment, products, options.passes);
+        }
         RendererOptions ropts;
         ropts.width = options.width;
         ropts.height = options.height;
@@ -93,6 +160,7 @@ int renderCommand(const RenderOptions& options) {
         ropts.readback = options.readback;
         Renderer renderer(*device, graph, std::move(plan), ropts);
         if (scene) renderer.frameData().set(*scene);
+        for (const auto& name : products) renderer.importImage(name, environmentRenderer->shareImage(name));
         if (environment && renderer.plan().resourceIndex(kEnvironmentResource) >= 0)
             renderer.setExternalImage(std::string(kEnvironmentResource), toImageData(std::move(*environment)));
         for (uint32_t i = 0; i < options.frames; ++i) {

@@ -215,7 +215,7 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     toSrc.oldLayout = layout;
     toSrc.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     toSrc.srcQueueFamilyIndex = toSrc.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    toSrc.image = r.images[r.copyFor(uint32_t(d.lastSlot))].image.get();
+    toSrc.image = r.images[r.copyFor(uint32_t(d.lastSlot))].image;
     toSrc.subresourceRange = {r.aspect, 0, r.mips, 0, r.layers};
     VkImageMemoryBarrier2 back = toSrc;
     back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
@@ -294,6 +294,55 @@ std::vector<PassTiming> Renderer::lastTimings() {
 const Plan& Renderer::plan() const noexcept { return impl_->state->plan; }
 const GraphDesc& Renderer::graph() const noexcept { return impl_->state->graph; }
 FrameData& Renderer::frameData() noexcept { return impl_->frameData; }
+
+SharedImage::SharedImage() = default;
+SharedImage::~SharedImage() = default;
+SharedImage::SharedImage(const SharedImage&) = default;
+SharedImage& SharedImage::operator=(const SharedImage&) = default;
+const std::string& SharedImage::origin() const noexcept {
+    static const std::string none = "nothing";
+    return impl_ ? impl_->origin : none;
+}
+
+SharedImage Renderer::shareImage(const std::string& resource) const {
+    const Impl& d = *impl_;
+    const int32_t index = d.state->plan.resourceIndex(resource);
+    if (index < 0) throw ExecutorError("shareImage: no resource '" + resource + "' in the current plan");
+    const ResourceState& r = d.state->resources[size_t(index)];
+    if (!r.isImage || !r.desc->external || !r.desc->isExported() || r.perSlot || r.images.size() != 1)
+        throw ExecutorError("shareImage: '" + resource + "' is not an exported external image (set `final`)");
+    auto impl = std::make_shared<SharedImage::Impl>();
+    impl->storage = r.images[0].storage;
+    impl->device = d.vkd;
+    impl->format = r.format;
+    impl->width = r.width;
+    impl->height = r.height;
+    impl->mips = r.mips;
+    impl->layers = r.layers;
+    impl->usage = r.imageUsage;
+    impl->layout = d.state->plan.resources[size_t(index)].finalLayout;
+    impl->origin = "graph '" + d.state->graph.name + "', resource '" + resource + "'";
+    SharedImage shared;
+    shared.impl_ = std::move(impl);
+    return shared;
+}
+
+void Renderer::importImage(const std::string& resource, SharedImage image) {
+    Impl& d = *impl_;
+    const ResourceDesc* desc = d.state->graph.findResource(resource);
+    if (!desc) throw ExecutorError("importImage: no resource '" + resource + "' in the graph");
+    if (!desc->external || !desc->isImage())
+        throw ExecutorError("importImage: '" + resource + "' is not an external image");
+    if (!image.impl_) throw ExecutorError("importImage: '" + resource + "': the SharedImage is empty");
+    auto previous = d.imports;
+    d.imports[resource] = std::move(image);
+    try {
+        setPlan(d.state->graph, d.state->plan);  // re-creates the resources around the import
+    } catch (...) {
+        d.imports = std::move(previous);
+        throw;
+    }
+}
 
 void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     Impl& d = *impl_;

@@ -83,7 +83,7 @@ void Renderer::Impl::recordClear(VkCommandBuffer cmd, PlanState& s, const PassSt
         const ResourceState& r = s.resources[u.resource];
         const VkImageSubresourceRange range{r.aspect, u.range.baseMip, u.range.mipCount,
                                             u.range.baseLayer, u.range.layerCount};
-        const VkImage image = r.images[r.copyFor(slot)].image.get();
+        const VkImage image = r.images[r.copyFor(slot)].image;
         if (r.desc->format.isDepthStencil()) {
             const VkClearDepthStencilValue v{r.desc->clear->depth, r.desc->clear->stencil};
             vkCmdClearDepthStencilImage(cmd, image, u.layout, &v, 1, &range);
@@ -163,7 +163,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
         c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, 1};
         c.imageExtent = {r.width, r.height, 1};
         const VkBuffer dst = s.readbackBuffers[slot].buffer.get();
-        vkCmdCopyImageToBuffer(cmd, r.images[r.copyFor(slot)].image.get(),
+        vkCmdCopyImageToBuffer(cmd, r.images[r.copyFor(slot)].image,
                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &c);
         VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
         bb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;

@@ -110,7 +110,7 @@ void Renderer::Impl::recordTransfers(VkCommandBuffer cmd, PlanState& s, const Pa
             }
             continue;
         }
-        const VkImage image = r.images[r.copyFor(slot)].image.get();
+        const VkImage image = r.images[r.copyFor(slot)].image;
         std::vector<VkBufferImageCopy> regions;
         VkDeviceSize o = offset;
         const uint32_t texel = copyTexelBytes(r.desc->format);

@@ -72,9 +72,16 @@ struct OwnedBuffer {
     VkDeviceSize size = 0;
 };
 
-struct ImageCopy {
+/// A Vulkan image and its memory. Shared so that another renderer on the same device can
+/// sample it (Renderer::importImage): it lives while any renderer or SharedImage holds it.
+struct ImageStorage {
     vk::Image image;
     vk::Memory memory;
+};
+
+struct ImageCopy {
+    std::shared_ptr<const ImageStorage> storage;
+    VkImage image = VK_NULL_HANDLE;  ///< storage's image
     std::map<std::tuple<int, uint32_t, uint32_t, uint32_t, uint32_t>, vk::ImageView> views;
 };
 
@@ -168,6 +175,16 @@ struct FrameSlot {
 
 namespace skygraph {
 
+struct SharedImage::Impl {
+    std::shared_ptr<const detail::ImageStorage> storage;
+    VkDevice device = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0, height = 0, mips = 0, layers = 0;
+    VkImageUsageFlags usage = 0;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< The producer's final layout.
+    std::string origin;
+};
+
 struct Renderer::Impl {
     Device& device;
     Device::Impl& dev;
@@ -180,6 +197,8 @@ struct Renderer::Impl {
     FrameData frameData;
     /// Pixels given to setExternalImage, by resource name; uploaded on every import.
     std::map<std::string, ImageData> uploads;
+    /// Images of other renderers that externals use instead of their own (importImage).
+    std::map<std::string, SharedImage> imports;
     bool layered = false;
     std::unique_ptr<detail::PlanState> state;
     std::vector<detail::FrameSlot> frames;
@@ -200,6 +219,8 @@ struct Renderer::Impl {
                      const SubresourceRange& range, bool attachment);
     void describeResources(detail::PlanState& s);
     void createResources(detail::PlanState& s);
+    /// The single copy of imported resource `r`, after checking that it fits the plan.
+    detail::ImageCopy adoptImport(const detail::PlanState& s, size_t index, const SharedImage& image) const;
     static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value);
     void buildSized(detail::PlanState& s);
     /// Gives every external resource defined contents (its clear value, or grey) and the

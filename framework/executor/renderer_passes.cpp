@@ -152,7 +152,7 @@ VkImageMemoryBarrier2 Renderer::Impl::imageBarrier(const PlanState& s, const Bar
     ib.newLayout = b.newLayout;
     ib.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    ib.image = r.images.at(r.copyFor(slot)).image.get();
+    ib.image = r.images.at(r.copyFor(slot)).image;
     ib.subresourceRange = {r.aspect, b.range.baseMip, b.range.mipCount, b.range.baseLayer,
                            b.range.layerCount};
     return ib;
@@ -389,7 +389,7 @@ void Renderer::Impl::bindResources(PlanState& s, PassState& ps, uint32_t slot) {
             sl.bound.push_back(b);
             continue;
         }
-        b.image = r.images[copy].image.get();
+        b.image = r.images[copy].image;
         b.extent = {r.mipWidth(u.range.baseMip), r.mipHeight(u.range.baseMip)};
         const bool attachment = isAttachmentStage(u.usage.stage);
         const bool sampled = isShaderStage(u.usage.stage) && resolveAs(*r.desc, u.usage) == BindAs::Sampled;

@@ -110,7 +110,7 @@ VkImageView Renderer::Impl::view(ResourceState& r, uint32_t copy, VkImageViewTyp
                                      range.mipCount, range.baseLayer, range.layerCount);
     if (auto it = img.views.find(key); it != img.views.end()) return it->second.get();
     VkImageViewCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    ci.image = img.image.get();
+    ci.image = img.image;
     ci.viewType = type;
     ci.format = r.format;
     // Sampling a depth/stencil image reads one aspect; attachments use all of them.
@@ -239,11 +239,17 @@ void Renderer::Impl::createResources(PlanState& s) {
                                 std::to_string(r.width) + "x" + std::to_string(r.height) +
                                 " with the usages the plan needs");
         }
+        if (const auto it = imports.find(d.name); it != imports.end()) {
+            r.images.push_back(adoptImport(s, size_t(&r - s.resources.data()), it->second));
+            continue;
+        }
         for (uint32_t c = 0; c < copies; ++c) {
             ImageCopy img;
+            auto storage = std::make_shared<ImageStorage>();
             VkImage image;
             vk::check(vkCreateImage(vkd, &ci, nullptr, &image), "vkCreateImage");
-            img.image = vk::Image(vkd, image);
+            storage->image = vk::Image(vkd, image);
+            img.image = image;
             VkMemoryRequirements req;
             vkGetImageMemoryRequirements(vkd, image, &req);
             VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -252,7 +258,8 @@ void Renderer::Impl::createResources(PlanState& s) {
                                                      VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
             VkDeviceMemory mem;
             vk::check(vkAllocateMemory(vkd, &mai, nullptr, &mem), "vkAllocateMemory");
-            img.memory = vk::Memory(vkd, mem);
+            storage->memory = vk::Memory(vkd, mem);
+            img.storage = std::move(storage);
             vk::check(vkBindImageMemory(vkd, image, mem, 0), "vkBindImageMemory");
             if (dev.fn.setObjectName) {
                 VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
@@ -311,6 +318,34 @@ void Renderer::Impl::buildSized(PlanState& s) {
     importExternals(s);
 }
 
+ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const SharedImage& shared) const {
+    const SharedImage::Impl& from = *shared.impl_;
+    const ResourceState& r = s.resources[index];
+    const std::string what = "importImage: resource '" + r.desc->name + "' from " + from.origin + ": ";
+    if (from.device != vkd) throw ExecutorError(what + "the image belongs to another device");
+    if (from.format != r.format || from.width != r.width || from.height != r.height || from.mips != r.mips ||
+        from.layers != r.layers) {
+        throw ExecutorError(what + "the image is " + std::to_string(from.width) + "x" + std::to_string(from.height) +
+                            ", " + std::to_string(from.mips) + " mips, " + std::to_string(from.layers) +
+                            " layers of format " + std::to_string(from.format) + "; the graph declares " +
+                            std::to_string(r.width) + "x" + std::to_string(r.height) + ", " + std::to_string(r.mips) +
+                            " mips, " + std::to_string(r.layers) + " layers of format " + std::to_string(r.format));
+    }
+    if ((r.imageUsage & ~from.usage) != 0) throw ExecutorError(what + "the image lacks usages this plan needs");
+    for (const PlannedPass& pass : s.plan.passes)
+        for (const PlannedUsage& u : pass.usages)
+            if (u.resource == index && writesContents(u.usage.access))
+                throw ExecutorError(what + "pass '" + pass.name + "' writes it; an imported image is read-only");
+    if (s.plan.resources[index].initialLayout != from.layout)
+        throw ExecutorError(what + "the producer leaves it in layout " + std::to_string(from.layout) +
+                            ", this plan expects it to arrive in " +
+                            std::to_string(s.plan.resources[index].initialLayout) + " (its `initial` state)");
+    ImageCopy copy;
+    copy.storage = from.storage;
+    copy.image = from.storage->image.get();
+    return copy;
+}
+
 void Renderer::Impl::importExternals(PlanState& s) {
     VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
@@ -332,7 +367,7 @@ void Renderer::Impl::importExternals(PlanState& s) {
     std::vector<VkImageMemoryBarrier2> toDst, toInitial;
     for (size_t i = 0; i < s.resources.size(); ++i) {
         ResourceState& r = s.resources[i];
-        if (!r.desc->external) continue;
+        if (!r.desc->external || imports.count(r.desc->name)) continue;  // imports: the producer's
         if (!r.isImage) {
             staging.push_back(makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true));
             fillBufferPattern(static_cast<uint8_t*>(staging.back().mapped), r.size, 0.5f);
@@ -349,7 +384,7 @@ void Renderer::Impl::importExternals(PlanState& s) {
             b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
             b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
             b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = img.image.get();
+            b.image = img.image;
             b.subresourceRange = {r.aspect, 0, r.mips, 0, r.layers};
             toDst.push_back(b);
             const VkImageLayout initial = s.plan.resources[i].initialLayout;
@@ -373,13 +408,13 @@ void Renderer::Impl::importExternals(PlanState& s) {
     barrier(toDst);
     for (size_t i = 0; i < s.resources.size(); ++i) {
         ResourceState& r = s.resources[i];
-        if (!r.desc->external || !r.isImage) continue;
+        if (!r.desc->external || !r.isImage || imports.count(r.desc->name)) continue;
         for (auto& img : r.images) {
             const VkImageSubresourceRange range{r.aspect, 0, r.mips, 0, r.layers};
             if (r.desc->format.isDepthStencil()) {
                 VkClearDepthStencilValue v{r.desc->clear ? r.desc->clear->depth : 1.0f,
                                            r.desc->clear ? r.desc->clear->stencil : 0u};
-                vkCmdClearDepthStencilImage(cmd, img.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+                vkCmdClearDepthStencilImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
             } else {
                 VkClearColorValue v{};
                 const std::array<float, 4> grey{0.5f, 0.5f, 0.5f, 1.0f};
@@ -389,7 +424,7 @@ void Renderer::Impl::importExternals(PlanState& s) {
                 } else {
                     for (int k = 0; k < 4; ++k) v.uint32[k] = static_cast<uint32_t>(c[size_t(k)]);
                 }
-                vkCmdClearColorImage(cmd, img.image.get(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+                vkCmdClearColorImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
             }
         }
     }
@@ -398,17 +433,18 @@ void Renderer::Impl::importExternals(PlanState& s) {
     std::vector<std::pair<VkImage, const ResourceState*>> pendingUploads;
     for (size_t i = 0; i < s.resources.size(); ++i) {
         ResourceState& r = s.resources[i];
-        if (!r.desc->external || !r.isImage || !uploads.count(r.desc->name)) continue;
+        if (!r.desc->external || !r.isImage || !uploads.count(r.desc->name) || imports.count(r.desc->name))
+            continue;
         for (auto& img : r.images) {
             VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
             b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
             b.srcAccessMask = b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
             b.oldLayout = b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
             b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = img.image.get();
+            b.image = img.image;
             b.subresourceRange = {r.aspect, 0, 1, 0, r.layers};
             afterClear.push_back(b);
-            pendingUploads.emplace_back(img.image.get(), &r);
+            pendingUploads.emplace_back(img.image, &r);
         }
     }
     barrier(afterClear);

@@ -107,6 +107,29 @@ void writePng(const std::filesystem::path& path, const ImageData& image);
 /// ExecutorError on I/O failure.
 void writeHdr(const std::filesystem::path& path, const ImageData& image);
 
+/// An image that one renderer wrote and another renderer on the same Device reads, e.g. the
+/// environment cube and IBL products that graphs/ibl.json builds when the environment changes
+/// and graphs/raster.json samples every frame. A handle: copies share ownership of the Vulkan
+/// image, which lives while any SharedImage or renderer holds it (so it may outlive the
+/// renderer that made it). Get one from Renderer::shareImage(), hand it to
+/// Renderer::importImage().
+class SharedImage {
+public:
+    SharedImage();
+    ~SharedImage();
+    SharedImage(const SharedImage&);
+    SharedImage& operator=(const SharedImage&);
+
+    /// "graph 'ibl', resource 'environment'": where it came from, for messages.
+    [[nodiscard]] const std::string& origin() const noexcept;
+
+    struct Impl;
+
+private:
+    friend class Renderer;
+    std::shared_ptr<const Impl> impl_;
+};
+
 struct RendererOptions {
     uint32_t width = 16;
     uint32_t height = 16;
@@ -164,6 +187,19 @@ public:
     /// (every layer) of the external image `resource`, now and whenever the plan is
     /// re-installed. Waits for the GPU. Throws ExecutorError for a wrong name, size or format.
     void setExternalImage(const std::string& resource, ImageData pixels);
+    /// Shares the image of `resource`, an external image this plan exports (`final` set),
+    /// with another renderer on the same Device. It holds this frame's contents once the
+    /// frames that write it have finished (waitIdle()), in the layout of its `final` state.
+    /// A later setPlan() or resize() makes new images; share again then. Throws
+    /// ExecutorError for a resource that is not an exported image of the current plan.
+    [[nodiscard]] SharedImage shareImage(const std::string& resource) const;
+    /// Makes the external image `resource` use `image` instead of creating its own, now and
+    /// whenever the plan is re-installed, and keeps a share of it. The graph must only read
+    /// it, its format, extent, mips and layers must match, and it must arrive in the layout
+    /// the producer leaves it in (`initial` here = `final` there). The caller orders the two
+    /// renderers' work: the producer's frames must have finished (its waitIdle()) before
+    /// this renderer's next frame. Throws ExecutorError on any mismatch, keeping the old plan.
+    void importImage(const std::string& resource, SharedImage image);
     /// Values handed to pass implementations while recording (camera, exposure, ...).
     [[nodiscard]] FrameData& frameData() noexcept;
     /// The graph the current plan was compiled from.
@@ -222,6 +258,11 @@ struct RenderOptions {
     /// no environment: no skybox) and is handed to the passes; `features` still override.
     std::filesystem::path scene;
     std::string sceneText;           ///< A scene in memory; used instead of `scene` when not empty.
+    /// The environment pipeline (graphs/ibl.json), run once when the scene's environment is a
+    /// file, for the products the plan imports by name (`environment`, `irradiance`, ...).
+    /// Empty: `environmentGraphText`, else ibl.json beside `graph`.
+    std::filesystem::path environmentGraph;
+    std::string environmentGraphText;  ///< A graph in memory (the built-in one).
     FeatureValues features;          ///< Overrides of the graph's defaults.
     uint32_t width = 256;
     uint32_t height = 256;

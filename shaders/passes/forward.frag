@@ -46,11 +46,14 @@ void main() {
     vec3 diffuseColor = baseColor * (1.0 - metallic);
     float nv = max(dot(n, v), 1e-4);
 #if FORWARD_IBL
-    vec3 r = reflect(-v, n);
+    // Prefiltered mip m holds perceptual roughness m / (levels - 1) (docs/environment.md);
+    // directions turn with the environment exactly as the skybox turns them.
+    float s = sin(draw.aoViewKind.w), c = cos(draw.aoViewKind.w);
+    vec3 r = rotateY(reflect(-v, n), s, c);
     float levels = float(textureQueryLevels(prefilteredMap) - 1);
     vec3 specular = textureLod(prefilteredMap, r, roughness * levels).rgb;
     vec2 ab = texture(brdfLut, vec2(nv, roughness)).rg;
-    vec3 color = diffuseColor * texture(irradianceMap, n).rgb + specular * (f0 * ab.x + ab.y);
+    vec3 color = diffuseColor * texture(irradianceMap, rotateY(n, s, c)).rgb + specular * (f0 * ab.x + ab.y);
     color *= ao;
 #else
     const vec3 sunDir = normalize(vec3(0.35, 0.45, -0.82));

@@ -10,7 +10,7 @@ layout(push_constant) uniform Draw {
     vec4 originAndScale;        // xyz: object origin minus camera position; w: size
     vec4 baseColorMetallic;
     vec4 planeNormalRoughness;  // xyz: the plane's normal (planes only); w: roughness
-    vec4 aoViewKind;            // x: ao, y: debug view (0 none, 1..4), z: 0 sphere, 1 plane
+    vec4 aoViewKind;            // x: ao, y: debug view (0 none, 1..4), z: 0 sphere, 1 plane, w: environment rotation (rad)
 } draw;
 
 layout(location = 0) out vec3 outRelativePosition;
