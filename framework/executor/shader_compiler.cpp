@@ -6,7 +6,9 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -66,7 +68,21 @@ int& processRefs() {
 
 }  // namespace
 
-std::filesystem::path ShaderCompiler::defaultIncludeDir() { return SKYGRAPH_SHADER_DIR; }
+std::filesystem::path ShaderCompiler::defaultIncludeDir() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    // An explicit override first; then the copy installed beside a `skygraph` executable (a
+    // relocated prefix); then the source tree, so build-tree binaries see edits; then the
+    // prefix the build was configured for (cmake/install.cmake).
+    if (const char* env = std::getenv("SKYGRAPH_SHADER_DIR"); env && *env) return env;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const fs::path besideExe = exe.parent_path() / SKYGRAPH_SHADER_DIR_FROM_BINDIR;
+        if (fs::is_directory(besideExe / "passes", ec)) return besideExe.lexically_normal();
+    }
+    if (fs::is_directory(SKYGRAPH_SHADER_DIR, ec)) return SKYGRAPH_SHADER_DIR;
+    return SKYGRAPH_SHADER_INSTALL_DIR;
+}
 
 ShaderCompiler::ShaderCompiler(std::filesystem::path includeDir, std::filesystem::path cacheDir)
     : includeDir_(includeDir.empty() ? defaultIncludeDir() : std::move(includeDir)),

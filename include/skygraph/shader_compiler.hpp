@@ -42,7 +42,11 @@ public:
     /// Number of compilations that actually ran glslang (cache misses).
     [[nodiscard]] uint32_t compilations() const noexcept { return compilations_; }
 
-    /// The source tree's shaders/ directory (compile-time default).
+    /// The shaders/ directory of the built-in passes, used when no include directory is given:
+    /// $SKYGRAPH_SHADER_DIR if set; else share/skygraph/shaders beside the running executable's
+    /// bin/ (an installed, possibly relocated prefix); else the source tree's shaders/ if it
+    /// exists; else the install prefix configured at build time. Programs built against an
+    /// installed package should pass SKYGRAPH_PACKAGE_SHADER_DIR instead (docs/embedding.md).
     [[nodiscard]] static std::filesystem::path defaultIncludeDir();
 
 private:
