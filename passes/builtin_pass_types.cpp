@@ -91,7 +91,9 @@ void registerBuiltinPassTypes(PassRegistry& r) {
             slot("color", Stage::ColorAttachment, RW, BindAs::Default, "HDR target; sky fills uncovered pixels"),
             slot("environment", Stage::Fragment, R, BindAs::Sampled, "cubemap or equirect environment", true)},
            false,
-           rules({{"sampling", oneOf({"cubemap", "equirect"})}, {"rotation_deg", numberIn(-360.0, 360.0)}}),
+           rules({{"sampling", oneOf({"cubemap", "equirect"})},
+                  {"rotation_deg", numberIn(-360.0, 360.0)},
+                  {"output", oneOf({"radiance", "direction"})}}),
            "Fullscreen-triangle sky at the reverse-Z far plane."});
 
     r.add({"TonemappingPass",

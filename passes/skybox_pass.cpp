@@ -14,7 +14,11 @@ namespace {
 
 class SkyboxPass final : public PassImplementation {
 public:
-    explicit SkyboxPass(const PassDesc& desc) : rotationDeg_(desc.params.value("rotation_deg", 0.0)) {}
+    explicit SkyboxPass(const PassDesc& desc)
+        : rotationDeg_(desc.params.value("rotation_deg", 0.0)),
+          // "direction" writes the world-space view ray instead of the sky: for tests of the
+          // ray's accuracy (into an fp32 target) and for debugging orientation.
+          outputDirection_(desc.params.value("output", std::string("radiance")) == "direction") {}
 
     void createPipelines(const PipelineContext& ctx) override {
         const BoundResource* env = nullptr;
@@ -25,7 +29,8 @@ public:
         GraphicsPipelineRecipe recipe;
         recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/skybox.vert");
         recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/skybox.frag",
-                                        {{"SKY_MODE", std::to_string(mode)}});
+                                        {{"SKY_MODE", std::to_string(mode)},
+                                         {"SKY_OUTPUT_DIRECTION", outputDirection_ ? "1" : "0"}});
         recipe.renderPass = ctx.renderPass;
         recipe.depthTest = true;
         recipe.depthWrite = false;
@@ -75,6 +80,7 @@ private:
         float environment[4];
     };
     double rotationDeg_;
+    bool outputDirection_;
     int mode_ = 0;
     GraphicsPipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;

@@ -4,6 +4,9 @@
 // 2 equirect. Each mode is its own pipeline, so only the texture it samples is bound.
 #include "common/environment.glsl"
 
+#ifndef SKY_OUTPUT_DIRECTION
+#define SKY_OUTPUT_DIRECTION 0
+#endif
 #ifndef SKY_MODE
 #define SKY_MODE 0
 #endif
@@ -26,6 +29,10 @@ layout(location = 0) out vec4 outColor;
 
 void main() {
     vec3 d = rotateY(normalize(inDirection), sky.projection.z, sky.projection.w);
+#if SKY_OUTPUT_DIRECTION
+    outColor = vec4(d, 1.0);
+    return;
+#endif
 #if SKY_MODE == 1
     vec3 c = texture(environmentMap, d).rgb;
 #elif SKY_MODE == 2
