@@ -41,6 +41,7 @@ struct Args {
     uint32_t bandwidthMib = 1024;
     uint32_t bandwidthReps = 50;
     uint32_t probeReps = 200;
+    uint32_t evictMib = 256;
     bool noProbes = false;
     bool validate = false;
     std::string csv;
@@ -173,7 +174,8 @@ int run(const Args& args) {
             const std::string sizeText = std::to_string(size.width) + "x" + std::to_string(size.height);
             printHeader("probes at " + sizeText + ": compute tonemap (RGBA16F in, RGBA8 out, L2 evicted before "
                         "each), fragment constant fill (RGBA8); median of " + std::to_string(args.probeReps));
-            std::vector<ProbeResult> probes = measureComputeTonemap(*device, size.width, size.height, args.probeReps);
+            std::vector<ProbeResult> probes = measureComputeTonemap(*device, size.width, size.height, args.probeReps,
+                                                                   uint64_t(args.evictMib) << 20);
             probes.push_back(measureFragmentFill(*device, size.width, size.height, args.probeReps));
             for (const ProbeResult& p : probes) {
                 const std::string kind = p.name.rfind("fragment", 0) == 0 ? "fragment" : "compute";
@@ -212,6 +214,8 @@ int main(int argc, char** argv) {
     app.add_option("--bandwidth-mib", args.bandwidthMib, "Size of each bandwidth buffer in MiB (0: skip)");
     app.add_option("--bandwidth-reps", args.bandwidthReps, "Repetitions of each bandwidth copy")->check(CLI::PositiveNumber);
     app.add_option("--probe-reps", args.probeReps, "Repetitions of each tonemap probe")->check(CLI::PositiveNumber);
+    app.add_option("--evict-mib", args.evictMib, "Buffer read before each tonemap probe to empty the L2 (MiB)")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--no-probes", args.noProbes, "Skip the compute tonemap and fragment fill probes");
     app.add_flag("--validate", args.validate, "Validation + synchronization validation; fail on any message");
     app.add_option("--csv", args.csv, "Write every figure to this CSV file");

@@ -299,13 +299,13 @@ ProbeResult measureFragmentFill(Device& device, uint32_t width, uint32_t height,
 }
 
 std::vector<ProbeResult> measureComputeTonemap(Device& device, uint32_t width, uint32_t height,
-                                               uint32_t repetitions) {
+                                               uint32_t repetitions, uint64_t evictBytes) {
     const VkExtent2D extent{width, height};
     const DeviceImage hdr = createDeviceImage(device, VK_FORMAT_R16G16B16A16_SFLOAT, extent,
                                               VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT);
     const DeviceImage out = createDeviceImage(device, VK_FORMAT_R8G8B8A8_UNORM, extent, VK_IMAGE_USAGE_STORAGE_BIT);
-    constexpr uint64_t kEvictBytes = 256ull << 20;  // 5x the H100's 50 MB L2
-    const DeviceBuffer evict = createDeviceBuffer(device, kEvictBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    evictBytes = std::max<uint64_t>(evictBytes - evictBytes % 256, 256);
+    const DeviceBuffer evict = createDeviceBuffer(device, evictBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     const DeviceBuffer sink = createDeviceBuffer(device, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
@@ -337,7 +337,7 @@ std::vector<ProbeResult> measureComputeTonemap(Device& device, uint32_t width, u
         vkCmdDispatch(cmd, (width + 7) / 8, (height + 7) / 8, 1);
     });
     const auto evictCache = [&](VkCommandBuffer cmd) {
-        dispatchOverBuffers(cmd, device, evictPipe, push, {evict.buffer.get()}, kEvictBytes, 1, sink.buffer.get());
+        dispatchOverBuffers(cmd, device, evictPipe, push, {evict.buffer.get()}, evictBytes, 1, sink.buffer.get());
     };
 
     std::vector<ProbeResult> results;

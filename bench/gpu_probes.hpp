@@ -31,11 +31,13 @@ struct ProbeResult {
 /// compute shader: an RGBA16F image of `width` x `height` (filled with a hash pattern) read
 /// once, an RGBA8 storage image written once, for several workgroup shapes, load paths
 /// (sampler texelFetch or imageLoad) and pixels per invocation. Bytes: 8 + 4 per pixel. Each
-/// repetition first reads a 256 MiB buffer (untimed), so the input comes from DRAM, not L2.
+/// repetition first reads a 256 MiB buffer (untimed; 5x the H100's L2), so the input comes from
+/// DRAM, not L2.
 /// The first result, "empty_dispatch", is one empty workgroup: the fixed cost of a dispatch
 /// between two timestamps.
+/// `evictBytes`: the size of that buffer (smaller only for quick checks on a CPU device).
 [[nodiscard]] std::vector<ProbeResult> measureComputeTonemap(Device& device, uint32_t width, uint32_t height,
-                                                             uint32_t repetitions);
+                                                             uint32_t repetitions, uint64_t evictBytes = 256ull << 20);
 
 /// The fragment path alone: a fullscreen triangle writing a constant to an RGBA8 attachment of
 /// `width` x `height` (load DONT_CARE, store STORE). Bytes: 4 per pixel.
