@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # What runs on the GPU machine (docs/performance.md, "NVIDIA H100"): unpack the bundle from
 # tools/device/bundle.sh, configure and build the benchmark targets against it, run the
-# measurements on the NVIDIA device, and leave logs, CSV and JSON in $OUT (default: ./gpu-out).
+# measurements on the NVIDIA device, and leave logs, CSV and JSON in $OUT (default:
+# /tmp/skygraph-gpu-out).
 #
 #   tools/device/run-gpu-bench.sh [RUN...]
 #
@@ -19,7 +20,7 @@
 # libraries are used through LD_LIBRARY_PATH, not unpacked into the system.
 set -uo pipefail
 here=$(pwd)
-out=${OUT:-$here/gpu-out}
+out=${OUT:-/tmp/skygraph-gpu-out}
 mkdir -p "$out"
 log=$out/run.log
 exec > >(tee -a "$log") 2>&1
