@@ -75,6 +75,8 @@ int run(CubemapArgs& args) {
         if (ext != ".hdr" && ext != ".exr") throw UsageError("--cross must name a .hdr or .exr file");
     }
     if (args.bake.size & (args.bake.size - 1)) throw UsageError("--size must be a power of two");
+    if (args.bake.prefilteredSize & (args.bake.prefilteredSize - 1))
+        throw UsageError("--prefiltered-size must be a power of two");
     BakeOptions bake = args.bake;
     bake.graphText = kIblGraph;
     bake.float32 = args.format == "rgba32f";
@@ -125,8 +127,11 @@ Command addCubemapCommand(CLI::App& parent) {
                    "OUT.prefiltered.ktx2: one GGX roughness per mip, OUT.brdf.ktx2)");
     cmd->add_option("input", args->input, "Equirectangular .hdr or .exr")->required();
     cmd->add_option("-o,--output", args->output, "Output .ktx2 (the environment cube)")->required();
-    cmd->add_option("--size", args->bake.size, "Cube face size (power of two; the prefiltered cube has 6 levels from it)")
+    cmd->add_option("--size", args->bake.size, "Environment cube face size (power of two)")
         ->check(CLI::Range(32u, 4096u))->capture_default_str();
+    cmd->add_option("--prefiltered-size", args->bake.prefilteredSize,
+                    "Prefiltered cube face size, 6 levels of roughness 0, 0.2 .. 1 (default: max(size/2, 32))")
+        ->check(CLI::Range(32u, 4096u));
     cmd->add_option("--samples", args->bake.samples, "Samples per texel for irradiance and prefilter")
         ->check(CLI::Range(1u, 1u << 16))->capture_default_str();
     cmd->add_option("--supersample", args->bake.supersample, "N: NxN equirect taps per cube texel")

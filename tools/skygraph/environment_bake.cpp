@@ -55,7 +55,10 @@ void configure(GraphDesc& graph, const HdrImage& equirect, const BakeOptions& o)
             throw std::invalid_argument("unknown product '" + p + "'; expected irradiance, prefiltered, brdf_lut");
     resource(graph, "equirect").extent = Extent{false, 1, equirect.width, equirect.height};
     resource(graph, "environment").extent = Extent{false, 1, o.size, o.size};
-    resource(graph, "prefiltered").extent = Extent{false, 1, o.size, o.size};
+    // Mip 0 of the prefiltered cube is the mirror; half the environment's size is the
+    // shipped graph's choice (a quarter of the texels to convolve at the sharpest rough mips).
+    const uint32_t prefiltered = o.prefilteredSize ? o.prefilteredSize : std::max(o.size / 2, 32u);
+    resource(graph, "prefiltered").extent = Extent{false, 1, prefiltered, prefiltered};
     const VkFormat colour = o.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     for (const char* name : {"environment", "irradiance", "prefiltered"}) setFormat(resource(graph, name), colour);
     setFormat(resource(graph, "brdf_lut"), o.float32 ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT);

@@ -15,7 +15,8 @@ namespace skygraph::cli {
 /// What to bake. Sizes are face sizes in texels.
 struct BakeOptions {
     std::string graphText;         ///< graphs/ibl.json's text.
-    uint32_t size = 256;           ///< environment cube (full mip chain) and prefiltered mip 0
+    uint32_t size = 256;           ///< environment cube (full mip chain)
+    uint32_t prefilteredSize = 0;  ///< prefiltered mip 0 (6 levels); 0: max(size / 2, 32)
     uint32_t supersample = 2;      ///< EquirectToCubemapPass taps per texel: N x N
     uint32_t samples = 1024;       ///< IrradiancePass and PrefilterPass samples per texel
     bool float32 = false;          ///< RGBA32F (and RG32F) products instead of 16-bit floats
