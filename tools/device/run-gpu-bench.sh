@@ -12,7 +12,9 @@
 # (@compute-tonemap, bench/gpu_compute_tonemap.hpp); then graphs/ibl.json. Before timing, the
 # last two raster pictures are compared with the first (tools/device/pngdiff.py).
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
-# SKIP_EXECUTOR_BENCH=1 to skip executor_bench. graphs/ibl.json's external "equirect" is
+# SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
+# random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone.
+# graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
 #
 # Builds .devbundle/source.tar.gz (a committed snapshot, see bundle.sh --source) when it is
@@ -90,6 +92,7 @@ bin_cli=$build/tools/skygraph
 # A target that failed to build is reported and skipped; the others still run.
 ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
 
+if [ "${SKIP_FRAME_BENCH:-0}" != 1 ]; then
 step "render check on $device: skygraph render at 960x540"
 ran "$bin_cli" && (cd "$src" && "$bin_cli" render --device "$device" --scene scenes/default.json --width 960 --height 540 \
   --frames 3 -o "/tmp/render-$device.png")
@@ -109,9 +112,14 @@ for s in $sizes; do args+=(--size "$s"); done
 ran "$bin_bench" && (cd "$src" && "$bin_bench" --device "$device" "${args[@]}" --procedural equirect --frames "$frames" --csv "$out/gpu_frame_bench.csv") \
   | tee "$out/gpu_frame_bench.txt"
 
+fi  # SKIP_FRAME_BENCH
+
 if [ "${SKIP_EXECUTOR_BENCH:-0}" != 1 ]; then
-  step "executor_bench on $device"
-  ran "$bin_exec" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_exec" --benchmark_repetitions=5 \
+  reps=${EXECUTOR_REPS:-5}
+  interleave=()
+  [ "$reps" -gt 5 ] && interleave=(--benchmark_enable_random_interleaving=true)
+  step "executor_bench on $device, $reps repetitions"
+  ran "$bin_exec" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_exec" --benchmark_repetitions="$reps" "${interleave[@]}" \
     --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
     --benchmark_out="$out/executor_bench.json" --benchmark_out_format=json)
 fi
