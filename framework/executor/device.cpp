@@ -338,6 +338,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     f2.features.shaderStorageImageWriteWithoutFormat =
         supported.shaderStorageImageWriteWithoutFormat;
     f2.features.geometryShader = supported.geometryShader;
+    // A Generic pass may blend one colour attachment (ReadWrite) and overwrite another.
+    f2.features.independentBlend = supported.independentBlend;
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -131,8 +131,10 @@ private:
             s += R"(, "external": true)";
             // Persisting externals start each frame in the state the last frame left them;
             // one the graph may write needs a `final` (the executor refuses it otherwise).
+            // Buffers have no layout: TransferSrc is for images only.
             static const std::vector<std::string> finals = {"ShaderRead", "General", "TransferSrc"};
-            s += R"(, "final": ")" + any(finals) + "\"";
+            const auto choices = static_cast<uint32_t>(r.kind == Kind::Buffer ? 2 : 3);
+            s += R"(, "final": ")" + finals[pick(choices)] + "\"";
         } else if (r.kind == Kind::Depth) {
             s += R"(, "clear": { "depth": 1.0 })";
         } else {
