@@ -9,6 +9,7 @@ packages=(
   glslang-dev glslang-tools spirv-tools libglm-dev
   libstb-dev libopenexr-dev blender-data
   graphviz python3-jsonschema libdtl-dev
+  clang-14 libclang-rt-14-dev llvm-14  # libFuzzer, ASan/UBSan runtimes, llvm-symbolizer (docs/reliability.md)
 )
 missing=()
 for p in "${packages[@]}"; do
