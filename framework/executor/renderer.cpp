@@ -365,7 +365,11 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     auto previous = d.uploads;
     d.uploads[resource] = std::move(pixels);
     try {
-        setPlan(d.state->graph, d.state->plan);  // re-imports the externals with the pixels
+        // Re-import the externals into the images the plan already has: rebuilding the plan
+        // would compile every pipeline again for nothing.
+        d.waitIdle();
+        d.importExternals(*d.state);
+        d.lastSlot = -1;
     } catch (...) {
         d.uploads = std::move(previous);
         throw;

@@ -134,6 +134,15 @@ TEST_F(CubeSampling, FacesFollowVulkanSelectionAtCentresEdgesAndCorners) {
                 for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - want[c]));
             }
     EXPECT_LT(worst, 2e-3) << "largest texel error against the double reference";
+
+    // A new environment into the same renderer (a re-import after frames have run, under
+    // synchronization validation) replaces the old one everywhere.
+    const auto flipped = [](const Dir& d) { return Dir(0.5) - 0.5 * d; };
+    renderer.setExternalImage("equirect", equirectImage(flipped, 512, 256));
+    renderer.renderFrame();
+    const ImageData again = renderer.readback();
+    for (size_t i = 0; i < dirs.size(); ++i)
+        EXPECT_NEAR(texel(again, uint32_t(i), 0).x, flipped(dirs[i]).x, 0.01) << "direction " << i;
 }
 
 }  // namespace
