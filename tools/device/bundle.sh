@@ -31,11 +31,12 @@ packages=(
 )
 # install-deps.sh packages the GPU machine does not need from us: it has its own toolchain,
 # runs no tests there (GoogleTest, validation layers, lavapipe, vulkaninfo, schema checks,
-# graphviz) and renders no scene with blender-data's HDRIs (the bench uses scenes/default.json).
+# graphviz, the clang-14 fuzzing and sanitizer stages) and renders no scene with blender-data's HDRIs (the bench uses scenes/default.json).
 # glslang-tools contributes two files below. Any other package of install-deps.sh missing from both lists fails the bundle,
 # so a new build dependency cannot be forgotten here.
 not_needed=(cmake ninja-build g++ pkg-config libgtest-dev libgmock-dev vulkan-validationlayers
-  mesa-vulkan-drivers vulkan-tools glslang-tools blender-data graphviz python3-jsonschema)
+  mesa-vulkan-drivers vulkan-tools glslang-tools blender-data graphviz python3-jsonschema
+  clang-14 libclang-rt-14-dev llvm-14)
 
 # Not needed to build or run: documentation, programs, Vulkan's C++ headers and XML registry,
 # the SPIR-V tools' shared library (glslang links the static ones).
@@ -46,7 +47,7 @@ skip='^/usr/share/(doc|man|lintian|bug|vulkan/registry|pkgconfig)/|^/usr/bin/|^/
 extra_files=(/usr/bin/glslangValidator /usr/bin/spirv-remap)
 
 out=.devbundle
-deps_list=$(sed -n '/^packages=(/,/^)/p' tools/install-deps.sh | sed '1d;$d' | tr -s ' \n' '\n' | sed '/^$/d')
+deps_list=$(sed -n '/^packages=(/,/^)/p' tools/install-deps.sh | sed '1d;$d;s/#.*//' | tr -s ' \n' '\n' | sed '/^$/d')
 for p in $deps_list; do
   case " ${packages[*]} ${not_needed[*]} " in *" $p "*) ;; *)
     echo "bundle.sh: tools/install-deps.sh installs $p; add it to packages or not_needed here" >&2; exit 1 ;;
