@@ -94,6 +94,11 @@ ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFor
             case VK_FORMAT_R32G32B32A32_SFLOAT:
                 std::memcpy(px, bytes + i * 16, 16);
                 break;
+            case VK_FORMAT_R32G32_SFLOAT:  // e.g. a BRDF table
+                std::memcpy(px, bytes + i * 8, 8);
+                px[2] = 0.0f;
+                px[3] = 1.0f;
+                break;
             case VK_FORMAT_R16G16_SFLOAT: {  // e.g. a BRDF table
                 uint16_t h[2];
                 std::memcpy(h, bytes + i * 4, 4);

@@ -4,6 +4,7 @@
 #include "analytic_environment.hpp"
 
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/ktx2.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -124,6 +125,32 @@ TEST_F(CubemapCommand, WritesKtx2CubesThatAnIndependentReaderDecodes) {
     // +Z sits in the middle of the cross, +Y above it.
     EXPECT_NEAR(cross.pixel(48, 48)[0], double(env["levels"][0]["centres"][4][0]), 1e-3);
     EXPECT_NEAR(cross.pixel(48, 16)[1], double(env["levels"][0]["centres"][2][1]), 1e-3);
+}
+
+TEST_F(CubemapCommand, Float32OutputAndOnlyTheProductsAskedFor) {
+    const CommandRun r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" +
+                             (dir_ / "f.ktx2").string() + "' --size 32 --samples 16 --format rgba32f --products brdf --validate");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const json env = readKtx2(dir_ / "f.ktx2");
+    EXPECT_EQ(env["vkFormat"], 109);  // VK_FORMAT_R32G32B32A32_SFLOAT
+    EXPECT_EQ(env["typeSize"], 4);
+    const Dir want = math::ibl::cubeTexelMean(polynomialSky, 4, 16, 16, 32, 8);
+    EXPECT_NEAR(double(env["levels"][0]["centres"][4][0]), want.x, 2e-3);
+    const json brdf = readKtx2(dir_ / "f.brdf.ktx2");
+    EXPECT_EQ(brdf["vkFormat"], 103);  // VK_FORMAT_R32G32_SFLOAT
+    EXPECT_FALSE(fs::exists(dir_ / "f.irradiance.ktx2"));
+    EXPECT_FALSE(fs::exists(dir_ / "f.prefiltered.ktx2"));
+}
+
+TEST(Ktx2Writer, RefusesInconsistentLevelsAndLeavesNoFile) {
+    const fs::path path = fs::temp_directory_path() / ("skygraph-ktx2-" + std::to_string(::getpid()) + ".ktx2");
+    Ktx2Texture texture;
+    texture.levels = {{HdrImage{4, 4, std::vector<float>(64)}}, {HdrImage{3, 2, std::vector<float>(24)}}};
+    EXPECT_THROW(saveKtx2(path, texture), ImageError) << "level 1 of a 4x4 texture must be 2x2";
+    texture.levels = {std::vector<HdrImage>(5, HdrImage{4, 4, std::vector<float>(64)})};
+    EXPECT_THROW(saveKtx2(path, texture), ImageError) << "5 faces";
+    EXPECT_FALSE(fs::exists(path));
+    EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
 }
 
 TEST_F(CubemapCommand, BadInputFailsWithTheFileNamedAndWritesNothing) {
