@@ -145,8 +145,9 @@ int run(const Args& args) {
             c.width = size.width;
             c.height = size.height;
             if (!args.pngDir.empty()) {
-                std::string name = c.graph.stem().string() + (c.variant.empty() ? "" : "-" + c.variant) + "-" +
-                                   std::to_string(size.width) + "x" + std::to_string(size.height) + ".png";
+                std::string name = c.graph.stem().string() + (c.scene.empty() ? "" : "-" + c.scene.stem().string()) +
+                                   (c.variant.empty() ? "" : "-" + c.variant) + "-" + std::to_string(size.width) + "x" +
+                                   std::to_string(size.height) + ".png";
                 c.png = std::filesystem::path(args.pngDir) / name;
             }
             const FrameResult f = measureFrames(*device, c);

@@ -5,6 +5,7 @@
 #include "gpu_vk.hpp"
 
 #include <skygraph/compiler.hpp>
+#include <skygraph/hdr_image.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 
@@ -14,6 +15,7 @@
 #include <sstream>
 #include <map>
 #include <optional>
+#include <set>
 
 namespace skygraph::gpubench {
 namespace {
@@ -95,6 +97,61 @@ GraphDesc loadGraph(const FrameCase& c, const PassRegistry& registry) {
     return parseGraph(variant.dump(2), c.graph.string() + "@" + c.variant, registry);
 }
 
+/// A scene's environment file, as `skygraph render` uses it (framework/executor/render_command.cpp):
+/// the graph's "equirect" takes the file's extent and pixels, and graphs/ibl.json beside the
+/// graph bakes, once and untimed, the products the plan imports (environment, irradiance,
+/// prefiltered, brdf_lut), which the measured renderer then samples.
+class EnvironmentFile {
+public:
+    EnvironmentFile(const Scene* scene, GraphDesc& graph) {
+        if (!scene || !scene->environment || scene->environment->procedural) return;
+        image_ = loadHdrImage(scene->environment->file);
+        for (ResourceDesc& r : graph.resources)
+            if (r.name == "equirect") r.extent = Extent{false, 1, image_->width, image_->height};
+    }
+
+    /// Bakes the products `plan` imports with `library`'s passes and hands them and the
+    /// equirect image to `renderer`. Does nothing for procedural environments.
+    void install(Device& device, const std::filesystem::path& graphFile, const GraphDesc& graph,
+                 const PassLibrary& library, Renderer& renderer) {
+        if (!image_) return;
+        GraphDesc ibl = loadGraphFile(graphFile.parent_path() / "ibl.json", library.registry());
+        std::set<std::string, std::less<>> products;
+        for (const PlannedResource& r : renderer.plan().resources) {
+            const ResourceDesc& d = graph.resources[r.decl];
+            const ResourceDesc* produced = ibl.findResource(d.name);
+            if (d.external && d.name != "equirect" && produced && produced->isExported()) products.insert(d.name);
+        }
+        if (renderer.plan().resourceIndex("equirect") >= 0) renderer.setExternalImage("equirect", pixels());
+        if (products.empty()) return;
+        for (ResourceDesc& r : ibl.resources)
+            if (r.name == "equirect") r.extent = Extent{false, 1, image_->width, image_->height};
+        CompileOptions co;
+        co.outputs = products;
+        RendererOptions ro;
+        ro.framesInFlight = 1;
+        ro.passes = &library;
+        baker_ = std::make_unique<Renderer>(device, ibl, compile(ibl, co), ro);
+        baker_->setExternalImage("equirect", pixels());
+        baker_->renderFrame();
+        baker_->waitIdle();
+        for (const auto& name : products) renderer.importImage(name, baker_->shareImage(name));
+    }
+
+private:
+    [[nodiscard]] ImageData pixels() const {
+        ImageData d;
+        d.width = image_->width;
+        d.height = image_->height;
+        d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+        d.rgba = image_->rgba;
+        return d;
+    }
+
+    std::optional<HdrImage> image_;
+    std::unique_ptr<Renderer> baker_;  // owns the products the measured renderer samples
+};
+
 }  // namespace
 
 FrameResult measureFrames(Device& device, const FrameCase& c) {
@@ -103,9 +160,10 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
         addComputeTonemapPass(l);
         return l;
     }();
-    const GraphDesc graph = loadGraph(c, library.registry());
+    GraphDesc graph = loadGraph(c, library.registry());
     std::optional<Scene> scene;
     if (!c.scene.empty()) scene = loadSceneFile(c.scene);
+    EnvironmentFile environment(scene ? &*scene : nullptr, graph);
     CompileOptions co;
     if (scene) co.features = sceneFeatures(*scene);
     co.presentReplacement = ExternalState::TransferSrc;
@@ -130,6 +188,7 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     if (c.png.empty()) ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
     Renderer renderer(device, graph, std::move(plan), ro);
     if (scene) renderer.frameData().set(*scene);
+    environment.install(device, c.graph, graph, library, renderer);
     for (const std::string& name : c.proceduralExternals) {
         const auto it = std::find_if(graph.resources.begin(), graph.resources.end(),
                                      [&](const ResourceDesc& r) { return r.name == name; });

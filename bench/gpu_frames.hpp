@@ -14,7 +14,10 @@ namespace skygraph::gpubench {
 /// One graph at one output size.
 struct FrameCase {
     std::filesystem::path graph;
-    std::filesystem::path scene;  ///< May be empty: the graph's default features, no scene data.
+    /// May be empty: the graph's default features, no scene data. A scene with an environment
+    /// file has it loaded and its IBL products baked (graphs/ibl.json beside the graph) before
+    /// the first frame, untimed, as `skygraph render` does.
+    std::filesystem::path scene;
     /// Empty, or a graph variant of gpu_compute_tonemap.hpp ("unorm-swapchain", "compute-tonemap").
     std::string variant;
     /// When set, the Present target of the last frame is written here as PNG (a read-back copy

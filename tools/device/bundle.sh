@@ -42,6 +42,9 @@ not_needed=(cmake ninja-build g++ pkg-config libgtest-dev libgmock-dev vulkan-va
 # the SPIR-V tools' shared library (glslang links the static ones).
 skip='^/usr/share/(doc|man|lintian|bug|vulkan/registry|pkgconfig)/|^/usr/bin/|^/usr/include/vulkan/.*\.(hpp|cppm)$|/libSPIRV-Tools-shared\.so|/libSPIRV-Tools-(diff|lint|reduce)\.a$|^/usr/share/(glm|nlohmann)/.*\.(md|txt)$'
 
+# Data the measured scenes read: scenes/studio.json's HDRI (blender-data), as .devbundle/data/.
+data_files=(/usr/share/blender/datafiles/studiolights/world/studio.exr)
+
 # Files that other packages' CMake files check for at configure time (glslang-targets.cmake
 # imports glslang::glslangValidator and glslang::spirv-remap from glslang-tools).
 extra_files=(/usr/bin/glslangValidator /usr/bin/spirv-remap)
@@ -96,6 +99,9 @@ else
   cp "$stage/MANIFEST" "$out/MANIFEST"
   echo "bundle.sh: $(du -h "$out/deps.tar.xz" | cut -f1) in $out/deps.tar.xz ($(du -sh "$stage/root" | cut -f1) unpacked), $(wc -l < "$out/MANIFEST") packages"
 fi
+
+mkdir -p "$out/data"
+for f in "${data_files[@]}"; do cp "$f" "$out/data/"; done
 
 # --source [PATH...]: HEAD (or the commit in $BASE, e.g. the last one that builds), with the
 # working-tree versions of PATHs (your own uncommitted files) laid over it through a

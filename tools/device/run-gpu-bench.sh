@@ -9,8 +9,9 @@
 # RUN: GRAPH[:SCENE][@VARIANT] for gpu_frame_bench. Default: graphs/raster.json with
 # scenes/default.json as it is, with a B8G8R8A8_UNORM swapchain (@unorm-swapchain: the
 # TonemappingPass encodes sRGB in the shader), and with the bench's compute tonemapper
-# (@compute-tonemap, bench/gpu_compute_tonemap.hpp); then graphs/ibl.json. Before timing, the
-# last two raster pictures are compared with the first (tools/device/pngdiff.py).
+# (@compute-tonemap, bench/gpu_compute_tonemap.hpp); scenes/studio.json (an HDRI: baked IBL,
+# forward_ibl, equirect skybox) as it is and @compute-tonemap; then graphs/ibl.json. Before
+# timing, the default scene's last two pictures are compared with the first (pngdiff.py).
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
 # random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone.
@@ -33,7 +34,10 @@ device=${DEVICE:-nvidia}
 jobs=${JOBS:-16}
 runs=("$@")
 raster=graphs/raster.json:scenes/default.json
-[ ${#runs[@]} -gt 0 ] || runs=("$raster" "$raster@unorm-swapchain" "$raster@compute-tonemap" graphs/ibl.json)
+# scenes/studio.json with its HDRI carried in .devbundle/data/ (the scene names Debian's path).
+studio=graphs/raster.json:/tmp/studio.json
+[ ${#runs[@]} -gt 0 ] || runs=("$raster" "$raster@unorm-swapchain" "$raster@compute-tonemap" "$studio"
+                               "$studio@compute-tonemap" graphs/ibl.json)
 
 step() { echo; echo "=== $(date -u +%H:%M:%S) $*"; }
 
@@ -59,6 +63,8 @@ else
   echo "source: the carried working tree"
 fi
 export SKYGRAPH_SHADER_DIR=$src/shaders
+sed "s|/usr/share/blender/datafiles/studiolights/world/studio.exr|$here/.devbundle/data/studio.exr|" \
+  "$src/scenes/studio.json" > /tmp/studio.json
 
 step "Vulkan driver"
 icd=""
@@ -102,8 +108,8 @@ rm -rf /tmp/gpu-png && mkdir -p /tmp/gpu-png
 ran "$bin_bench" && (cd "$src" && "$bin_bench" --device "$device" --run "$raster" --run "$raster@unorm-swapchain" \
   --run "$raster@compute-tonemap" --size 960x540 --frames 2 --warmup 1 --bandwidth-mib 0 --no-probes \
   --png-dir /tmp/gpu-png > /tmp/gpu-png/log.txt) \
-  && python3 "$src/tools/device/pngdiff.py" /tmp/gpu-png/raster-960x540.png \
-       /tmp/gpu-png/raster-unorm-swapchain-960x540.png /tmp/gpu-png/raster-compute-tonemap-960x540.png
+  && python3 "$src/tools/device/pngdiff.py" /tmp/gpu-png/raster-default-960x540.png \
+       /tmp/gpu-png/raster-default-unorm-swapchain-960x540.png /tmp/gpu-png/raster-default-compute-tonemap-960x540.png
 
 step "gpu_frame_bench: ${runs[*]} at $sizes, $frames frames"
 args=()
