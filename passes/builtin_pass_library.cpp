@@ -1,6 +1,6 @@
 // PassLibrary::withBuiltins(): the built-in declarations paired with their recording code.
-// Types without recording code here (the path tracer) run as Generic, performing exactly
-// their declared accesses, until their passes land.
+// Types without recording code here run as Generic, performing exactly their declared
+// accesses.
 #include "builtin_passes.hpp"
 
 namespace skygraph {
@@ -11,6 +11,7 @@ PassLibrary PassLibrary::withBuiltins() {
         {"TonemappingPass", passes::makeTonemappingPass},
         {"SkyboxPass", passes::makeSkyboxPass},
         {"ForwardPass", passes::makeForwardPass},
+        {"PathTracePass", passes::makePathTracePass},
         {"EquirectToCubemapPass", passes::makeEquirectToCubemapPass},
         {"CubemapMipPass", passes::makeCubemapMipPass},
         {"IrradiancePass", passes::makeIrradiancePass},

@@ -1,0 +1,229 @@
+// PathTracePass: progressive path tracing into the `accumulation` image (rgb: the running
+// mean, alpha: the sample count), see shaders/passes/pathtrace.comp. The scene's objects go
+// to the shader through a small host-visible storage buffer, one per frame in a ring so that
+// no frame in flight reads a buffer the host is rewriting. Accumulation starts over whenever
+// the scene, the output extent or the plan changes.
+#include "builtin_passes.hpp"
+#include "scene_camera.hpp"
+#include "vk_util.hpp"
+
+#include <skygraph/pipeline_builder.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace skygraph::passes {
+namespace {
+
+/// Frames a buffer of the ring waits before it is rewritten: more than any framesInFlight
+/// the executor allows, so the frame that last read it has finished (renderFrame waits for
+/// its slot before recording).
+constexpr uint32_t kRingSize = 8;
+/// Objects the shader sees; more are refused with the pass named, not silently dropped.
+constexpr uint32_t kMaxObjects = 256;
+
+struct GpuObject {  // matches `Object` in pathtrace.comp (std430)
+    float originSize[4];
+    float normalKind[4];
+    float baseColorMetallic[4];
+    float roughnessAo[4];
+};
+
+/// Everything a sample depends on, to notice when accumulation must start over.
+std::vector<double> sceneKey(const Scene* scene, VkExtent2D extent) {
+    std::vector<double> k{double(extent.width), double(extent.height)};
+    if (!scene) return k;
+    const auto& c = scene->camera;
+    k.insert(k.end(), {c.position[0], c.position[1], c.position[2], c.yawDeg, c.pitchDeg, c.rollDeg, c.fovYDeg});
+    k.push_back(scene->environment ? 1.0 + scene->environment->rotationDeg : -1.0);
+    if (scene->environment) k.push_back(scene->environment->procedural ? 1.0 : 0.0);
+    for (const SceneObject& o : scene->objects) {
+        if (const auto* s = std::get_if<Sphere>(&o.shape)) {
+            k.insert(k.end(), {0.0, s->center[0], s->center[1], s->center[2], s->radius});
+        } else {
+            const auto& p = std::get<Plane>(o.shape);
+            k.insert(k.end(), {1.0, p.point[0], p.point[1], p.point[2], p.normal[0], p.normal[1], p.normal[2],
+                               p.halfExtent.value_or(-1.0)});
+        }
+        const auto& m = o.material;
+        k.insert(k.end(), {m.baseColor[0], m.baseColor[1], m.baseColor[2], m.metallic, m.roughness});
+    }
+    return k;
+}
+
+class PathTracePass final : public PassImplementation {
+public:
+    explicit PathTracePass(const PassDesc& desc)
+        : samplesPerFrame_(desc.params.value("samples_per_frame", 1)), maxBounces_(desc.params.value("max_bounces", 4)) {}
+
+    void createPipelines(const PipelineContext& ctx) override {
+        bool environmentBound = false;
+        for (const auto& r : ctx.resources) environmentBound = environmentBound || (r.usage && r.usage->slot == "environment");
+        ComputePipelineRecipe recipe;
+        recipe.compute = compileShader(*ctx.shaders, VK_SHADER_STAGE_COMPUTE_BIT, "passes/pathtrace.comp",
+                                       {{"ENV_EQUIRECT", environmentBound ? "1" : "0"}});
+        recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+                           {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+        if (environmentBound)
+            recipe.bindings.push_back({2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+        recipe.pushConstantBytes = sizeof(Push);
+        ComputePipeline pipeline = createComputePipeline(ctx.device, recipe);  // throws before anything changes
+        pipeline_ = std::move(pipeline);
+        pushDescriptors_ = pushDescriptorFunction(ctx.device);
+        environmentBound_ = environmentBound;
+        if (ring_.empty()) createRing(ctx);
+        samplesSoFar_ = 0;  // a new plan or new shaders: start over
+    }
+
+    void record(const RecordContext& ctx) override {
+        const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
+        const BoundResource* accumulation = ctx.slot("accumulation");
+        const VkExtent2D extent{accumulation->extent.width, accumulation->extent.height};
+        std::vector<double> key = sceneKey(scene, extent);
+        if (key != lastKey_) {
+            samplesSoFar_ = 0;
+            lastKey_ = std::move(key);
+        }
+        const CameraView view = cameraView(scene, extent);
+        RingBuffer& objects = ring_[ctx.frameIndex % kRingSize];
+        const uint32_t count = writeObjects(scene, view, objects);
+
+        Push push{};
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r) push.cameraToWorld[c][r] = float(view.cameraToWorld[c][r]);
+        const double tanHalf = std::tan(math::radians(view.fovYDeg) / 2.0);
+        const double rotation = math::radians(scene && scene->environment ? scene->environment->rotationDeg : 0.0);
+        push.projection[0] = float(view.aspect * tanHalf);
+        push.projection[1] = float(tanHalf);
+        push.projection[2] = float(std::sin(rotation));
+        push.projection[3] = float(std::cos(rotation));
+        push.frame[0] = int32_t(samplesSoFar_);
+        push.frame[1] = samplesPerFrame_;
+        push.frame[2] = maxBounces_;
+        push.frame[3] = 0x5eed;
+
+        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
+        const VkDescriptorImageInfo image{VK_NULL_HANDLE, accumulation->view, accumulation->usage->layout};
+        const VkDescriptorBufferInfo buffer{objects.buffer.get(), 0, bufferBytes()};
+        VkWriteDescriptorSet writes[3]{};
+        writes[0] = sampledImageWrite(0, &image);
+        writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        writes[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[1].dstBinding = 1;
+        writes[1].descriptorCount = 1;
+        writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[1].pBufferInfo = &buffer;
+        uint32_t writeCount = 2;
+        VkDescriptorImageInfo env{};
+        if (environmentBound_) {
+            const BoundResource* e = ctx.slot("environment");
+            env = {ctx.repeatSampler, e->view, e->usage->layout};
+            writes[2] = sampledImageWrite(2, &env);
+            writeCount = 3;
+        }
+        pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, writeCount, writes);
+        vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        vkCmdDispatch(ctx.cmd, (extent.width + 7) / 8, (extent.height + 7) / 8, 1);
+        samplesSoFar_ += uint32_t(samplesPerFrame_);
+        (void)count;
+    }
+
+private:
+    struct Push {  // matches `Params` in pathtrace.comp
+        float cameraToWorld[3][4];
+        float projection[4];
+        int32_t frame[4];
+    };
+    struct RingBuffer {
+        vk::Memory memory;
+        vk::Buffer buffer;
+        void* mapped = nullptr;
+    };
+
+    static VkDeviceSize bufferBytes() { return 16 + VkDeviceSize(kMaxObjects) * sizeof(GpuObject); }
+
+    void createRing(const PipelineContext& ctx) {
+        ring_.resize(kRingSize);
+        for (RingBuffer& r : ring_) {
+            VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+            bi.size = bufferBytes();
+            bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            VkBuffer b;
+            vk::check(vkCreateBuffer(ctx.device, &bi, nullptr, &b), "vkCreateBuffer");
+            r.buffer = vk::Buffer(ctx.device, b);
+            VkMemoryRequirements req;
+            vkGetBufferMemoryRequirements(ctx.device, b, &req);
+            VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+            ai.allocationSize = req.size;
+            ai.memoryTypeIndex = vk::findMemoryType(ctx.physicalDevice, req.memoryTypeBits,
+                                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+            VkDeviceMemory mem;
+            vk::check(vkAllocateMemory(ctx.device, &ai, nullptr, &mem), "vkAllocateMemory");
+            r.memory = vk::Memory(ctx.device, mem);
+            vk::check(vkBindBufferMemory(ctx.device, b, mem, 0), "vkBindBufferMemory");
+            vk::check(vkMapMemory(ctx.device, mem, 0, VK_WHOLE_SIZE, 0, &r.mapped), "vkMapMemory");
+        }
+    }
+
+    /// Camera-relative objects (subtracted in double, as the forward pass does) into `out`.
+    static uint32_t writeObjects(const Scene* scene, const CameraView& view, RingBuffer& out) {
+        std::vector<GpuObject> objects;
+        if (scene) {
+            if (scene->objects.size() > kMaxObjects)
+                throw ExecutorError("PathTracePass: the scene has " + std::to_string(scene->objects.size()) +
+                                    " objects, more than the " + std::to_string(kMaxObjects) + " it traces");
+            for (const SceneObject& o : scene->objects) {
+                GpuObject g{};
+                if (const auto* s = std::get_if<Sphere>(&o.shape)) {
+                    for (int i = 0; i < 3; ++i) g.originSize[i] = float(s->center[i] - view.position[i]);
+                    g.originSize[3] = float(s->radius);
+                } else {
+                    const auto& p = std::get<Plane>(o.shape);
+                    const math::Vec3<double> n = glm::normalize(math::Vec3<double>(p.normal[0], p.normal[1], p.normal[2]));
+                    const math::Vec3<double> point(p.point[0], p.point[1], p.point[2]);
+                    // Bounded planes sit on their point; infinite ones under the camera (exact
+                    // far from the origin, as the forward pass places them).
+                    const math::Vec3<double> origin =
+                        p.halfExtent ? point - view.position : -n * glm::dot(view.position - point, n);
+                    for (int i = 0; i < 3; ++i) {
+                        g.originSize[i] = float(origin[i]);
+                        g.normalKind[i] = float(n[i]);
+                    }
+                    g.originSize[3] = float(p.halfExtent.value_or(0.0));
+                    g.normalKind[3] = 1.0f;
+                }
+                for (int i = 0; i < 3; ++i) g.baseColorMetallic[i] = float(o.material.baseColor[i]);
+                g.baseColorMetallic[3] = float(o.material.metallic);
+                g.roughnessAo[0] = float(o.material.roughness);
+                g.roughnessAo[1] = float(o.material.ao);
+                objects.push_back(g);
+            }
+        }
+        const int32_t header[4] = {int32_t(objects.size()), 0, 0, 0};
+        std::memcpy(out.mapped, header, sizeof header);
+        if (!objects.empty())
+            std::memcpy(static_cast<char*>(out.mapped) + 16, objects.data(), objects.size() * sizeof(GpuObject));
+        return uint32_t(objects.size());
+    }
+
+    int samplesPerFrame_;
+    int maxBounces_;
+    bool environmentBound_ = false;
+    uint32_t samplesSoFar_ = 0;
+    std::vector<double> lastKey_;
+    std::vector<RingBuffer> ring_;
+    ComputePipeline pipeline_;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<PassImplementation> makePathTracePass(const PassDesc& desc) {
+    return std::make_unique<PathTracePass>(desc);
+}
+
+}  // namespace skygraph::passes
