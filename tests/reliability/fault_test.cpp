@@ -130,7 +130,7 @@ TEST_F(FaultTest, InvalidGraphEditKeepsTheLastGoodPlan) {
     WarningLog log;
     // Well-formed JSON, wrong graph: an unknown resource. The message names the file and path.
     std::string bad = graphWithColor("[0, 1, 0, 1]");
-    bad.replace(bad.find("\"swapchain\": \"Write"), 11, "\"nowhere\":");
+    bad.replace(bad.find("\"swapchain\": \"Write"), 11, "\"nowhere\"");
     write(graphFile(), bad);
     expectOneWarningAndNoLostFrame(log, "passes[0].uses.nowhere");
     EXPECT_NE(reloader_->lastError().find("g.json"), std::string::npos);
