@@ -9,6 +9,7 @@ packages=(
   glslang-dev glslang-tools spirv-tools libglm-dev
   libstb-dev libopenexr-dev blender-data
   graphviz python3-jsonschema libdtl-dev
+  liblcms2-dev python3-matplotlib  # bench/study: CIEDE2000, the Pareto plot (docs/tradeoffs.md)
   clang-14 libclang-rt-14-dev llvm-14  # libFuzzer, ASan/UBSan runtimes, llvm-symbolizer (docs/reliability.md)
 )
 missing=()

@@ -1,0 +1,335 @@
+// study: the speed/accuracy sweep of issue 6 on one scene (scenes/default.json, procedural
+// sky) at a small output. Each point: wall time per frame, GPU time (the passes' timestamps),
+// and the error against a high-precision reference: RMSE and max in linear HDR, and the mean
+// and max CIEDE2000 after tonemapping (Little CMS's cmsCIE2000DeltaE on sRGB -> Lab D50).
+// Writes a CSV; bench/study_plot.py draws the Pareto plot; docs/tradeoffs.md reads both.
+//
+//   study [--size 128x96] [--out study.csv] [--device llvmpipe] [--pt-reference-spp 2048]
+//
+// Knobs swept here: the HDR target (fp16 / fp32), each tonemap operator, path-tracer samples
+// per pixel. References: raster points against the fp32 frame tonemapped in double precision
+// (include/skygraph/shading_math.hpp); path-tracer points against the same tracer at
+// --pt-reference-spp. Also printed: sRGB encode vs pow(1/2.2) and the two ACES fits against
+// each other, in 8-bit codes.
+#include <skygraph/compiler.hpp>
+#include <skygraph/executor.hpp>
+#include <skygraph/format.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
+
+#include <lcms2.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace skygraph;
+const std::filesystem::path kSource = SKYGRAPH_SOURCE_DIR;
+
+struct Options {
+    uint32_t width = 128, height = 96;
+    std::string out = "study.csv";
+    std::string device = "llvmpipe";
+    uint32_t ptReferenceSpp = 2048;
+};
+
+struct Point {
+    std::string knob, setting;
+    double wallMs = 0, gpuMs = 0, rmseHdr = 0, maxHdr = 0, deMean = 0, deMax = 0;
+};
+
+/// CIEDE2000 between two 8-bit-quantised sRGB images (values in [0, 1]), via Little CMS.
+class DeltaE2000 {
+public:
+    DeltaE2000() {
+        cmsHPROFILE srgb = cmsCreate_sRGBProfile();
+        cmsHPROFILE lab = cmsCreateLab4Profile(nullptr);
+        transform_ = cmsCreateTransform(srgb, TYPE_RGB_DBL, lab, TYPE_Lab_DBL, INTENT_RELATIVE_COLORIMETRIC, 0);
+        cmsCloseProfile(srgb);
+        cmsCloseProfile(lab);
+    }
+    ~DeltaE2000() { cmsDeleteTransform(transform_); }
+    DeltaE2000(const DeltaE2000&) = delete;
+    DeltaE2000& operator=(const DeltaE2000&) = delete;
+
+    /// (mean, max) over the pixels; `a` and `b` hold sRGB-encoded RGB in [0, 1] per pixel.
+    std::pair<double, double> compare(const std::vector<double>& a, const std::vector<double>& b) const {
+        double sum = 0, worst = 0;
+        const size_t n = a.size() / 3;
+        for (size_t i = 0; i < n; ++i) {
+            cmsCIELab la, lb;
+            cmsDoTransform(transform_, &a[3 * i], &la, 1);
+            cmsDoTransform(transform_, &b[3 * i], &lb, 1);
+            const double de = cmsCIE2000DeltaE(&la, &lb, 1, 1, 1);
+            sum += de;
+            worst = std::max(worst, de);
+        }
+        return {sum / double(std::max<size_t>(n, 1)), worst};
+    }
+
+private:
+    cmsHTRANSFORM transform_;
+};
+
+math::ToneOperator toMath(Tonemapper t) {
+    switch (t) {
+        case Tonemapper::AcesNarkowicz: return math::ToneOperator::AcesNarkowicz;
+        case Tonemapper::AcesHill: return math::ToneOperator::AcesHill;
+        case Tonemapper::KhronosPbrNeutral: return math::ToneOperator::KhronosPbrNeutral;
+        case Tonemapper::Passthrough: return math::ToneOperator::Passthrough;
+    }
+    return math::ToneOperator::AcesNarkowicz;
+}
+
+/// The display image of an HDR image: tonemap and sRGB encode in double, quantised to 8 bits.
+std::vector<double> displayOf(const ImageData& hdr, Tonemapper op, double ev) {
+    std::vector<double> out;
+    for (size_t i = 0; i < hdr.rgba.size(); i += 4) {
+        const auto c = math::tonemap(math::Vec3<double>(hdr.rgba[i], hdr.rgba[i + 1], hdr.rgba[i + 2]), ev, toMath(op));
+        for (int k = 0; k < 3; ++k) out.push_back(std::round(math::srgbEncode(c[k]) * 255.0) / 255.0);
+    }
+    return out;
+}
+
+std::vector<double> rgbOf(const ImageData& img) {
+    std::vector<double> out;
+    for (size_t i = 0; i < img.rgba.size(); i += 4)
+        for (int k = 0; k < 3; ++k) out.push_back(img.rgba[i + k]);
+    return out;
+}
+
+void hdrError(const ImageData& got, const ImageData& want, Point& p) {
+    double sum = 0, worst = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < got.rgba.size(); ++i) {
+        if (i % 4 == 3) continue;
+        const double d = double(got.rgba[i]) - double(want.rgba[i]);
+        sum += d * d;
+        worst = std::max(worst, std::abs(d));
+        ++n;
+    }
+    p.rmseHdr = std::sqrt(sum / double(std::max<size_t>(n, 1)));
+    p.maxHdr = worst;
+}
+
+double gpuMs(Renderer& r) {
+    double ms = 0;
+    for (const PassTiming& t : r.lastTimings()) ms += t.milliseconds;
+    return ms;
+}
+
+struct RasterFrame {
+    ImageData hdr, ldr;
+    double wallMs = 0, gpuMs = 0;
+};
+
+/// graphs/raster.json with hdr_color in `hdrFormat`, rendering `frames` timed frames.
+RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, VkFormat hdrFormat, int frames) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
+    for (auto& r : graph.resources)
+        if (r.name == "hdr_color") r.format = *findFormat(hdrFormat);
+    CompileOptions co;
+    co.features = sceneFeatures(scene);
+    co.presentReplacement = ExternalState::TransferSrc;
+    co.exports = {{"hdr_color", ExternalState::TransferSrc}};
+    co.outputWidth = o.width;
+    co.outputHeight = o.height;
+    RendererOptions ro;
+    ro.width = o.width;
+    ro.height = o.height;
+    ro.passes = &library;
+    ro.framesInFlight = 1;
+    Renderer renderer(device, graph, compile(graph, co), ro);
+    renderer.frameData().set(scene);
+    renderer.renderFrame();  // warm-up: pipelines, first-use costs
+    renderer.waitIdle();
+    RasterFrame f;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < frames; ++i) {
+        renderer.renderFrame();
+        renderer.waitIdle();
+        f.gpuMs += gpuMs(renderer);
+    }
+    f.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+    f.gpuMs /= frames;
+    f.ldr = renderer.readback();
+    f.hdr = renderer.readImage("hdr_color").at(0);
+    return f;
+}
+
+constexpr const char* kPathTraceGraph = R"({
+  "version": 1, "name": "study_pathtrace",
+  "resources": {
+    "accumulation": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": "output",
+                     "external": true, "final": "General"}
+  },
+  "passes": [
+    {"name": "NAME", "type": "PathTracePass", "params": {"samples_per_frame": SPF, "max_bounces": 4},
+     "uses": {"accumulation": "ReadWrite@Compute"}}
+  ]
+})";
+
+struct PathTraceRun {
+    std::vector<std::pair<uint32_t, ImageData>> images;  // (spp, mean)
+    std::vector<double> wallMs, gpuMs;                   // cumulative, per image
+};
+
+/// The path tracer at `samplesPerFrame`, read back at each spp of `checkpoints`.
+PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, uint32_t samplesPerFrame,
+                       const std::vector<uint32_t>& checkpoints) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    std::string text = kPathTraceGraph;
+    text.replace(text.find("SPF"), 3, std::to_string(samplesPerFrame));
+    // The pass name seeds the tracer: the reference draws samples independent of the sweep's.
+    text.replace(text.find("NAME"), 4, samplesPerFrame == 1 ? "pathtrace_sweep" : "pathtrace_reference");
+    const GraphDesc graph = parseGraph(text, "study_pathtrace.json", library.registry());
+    CompileOptions co;
+    co.outputWidth = o.width;
+    co.outputHeight = o.height;
+    RendererOptions ro;
+    ro.width = o.width;
+    ro.height = o.height;
+    ro.passes = &library;
+    ro.framesInFlight = 1;
+    Renderer renderer(device, graph, compile(graph, co), ro);
+    renderer.frameData().set(scene);
+    PathTraceRun run;
+    double wall = 0, gpu = 0;
+    uint32_t spp = 0;
+    for (const uint32_t target : checkpoints) {
+        while (spp < target) {
+            const auto start = std::chrono::steady_clock::now();
+            renderer.renderFrame();
+            renderer.waitIdle();
+            wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            gpu += gpuMs(renderer);
+            spp += samplesPerFrame;
+        }
+        run.images.emplace_back(spp, renderer.readImage("accumulation").at(0));
+        run.wallMs.push_back(wall);
+        run.gpuMs.push_back(gpu);
+    }
+    return run;
+}
+
+/// 8-bit code differences of curves over a log sweep of linear values.
+void printCurveTable() {
+    int worstGamma = 0;
+    double atGamma = 0;
+    int worstFits = 0;
+    double atFits = 0;
+    for (double lg = -8.0; lg <= 8.0; lg += 1.0 / 256) {
+        const double x = std::pow(2.0, lg);
+        if (x <= 1.0) {
+            const int srgb = int(std::lround(math::srgbEncode(x) * 255));
+            const int gamma = int(std::lround(std::pow(x, 1.0 / 2.2) * 255));
+            if (std::abs(srgb - gamma) > worstGamma) worstGamma = std::abs(srgb - gamma), atGamma = x;
+        }
+        const math::Vec3<double> grey(x);
+        const auto n = math::tonemap(grey, 0.0, math::ToneOperator::AcesNarkowicz);
+        const auto h = math::tonemap(grey, 0.0, math::ToneOperator::AcesHill);
+        const int cn = int(std::lround(math::srgbEncode(n.r) * 255)), ch = int(std::lround(math::srgbEncode(h.r) * 255));
+        if (std::abs(cn - ch) > worstFits) worstFits = std::abs(cn - ch), atFits = x;
+    }
+    std::printf("curves, 8-bit codes (grey ramp 2^-8..2^8, 256 steps per stop):\n");
+    std::printf("  sRGB encode vs pow(x, 1/2.2): worst %d codes at x = %.4g\n", worstGamma, atGamma);
+    std::printf("  ACES Narkowicz vs ACES Hill (after sRGB encode): worst %d codes at x = %.4g\n", worstFits, atFits);
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string k = argv[i], v = argv[i + 1];
+        if (k == "--size") {
+            if (std::sscanf(v.c_str(), "%ux%u", &o.width, &o.height) != 2) throw std::runtime_error("--size WxH");
+        } else if (k == "--out") {
+            o.out = v;
+        } else if (k == "--device") {
+            o.device = v;
+        } else if (k == "--pt-reference-spp") {
+            o.ptReferenceSpp = uint32_t(std::stoul(v));
+        } else {
+            throw std::runtime_error("unknown option " + k);
+        }
+    }
+    return o;
+}
+
+int run(int argc, char** argv) {
+    const Options o = parse(argc, argv);
+    DeviceOptions dopt;
+    dopt.device = o.device;
+    auto device = Device::create(dopt);
+    const DeltaE2000 deltaE;
+    Scene scene = loadSceneFile(kSource / "scenes/default.json");
+    std::vector<Point> points;
+
+    // The HDR target and each operator: the fp32 frame tonemapped in double is the reference.
+    const RasterFrame reference = renderRaster(*device, o, scene, VK_FORMAT_R32G32B32A32_SFLOAT, 1);
+    for (const VkFormat format : {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT})
+        for (const Tonemapper op : {Tonemapper::AcesNarkowicz, Tonemapper::AcesHill, Tonemapper::KhronosPbrNeutral,
+                                    Tonemapper::Passthrough}) {
+            scene.tonemapper = op;
+            const RasterFrame f = renderRaster(*device, o, scene, format, 8);
+            Point p{"raster hdr target + operator",
+                    std::string(format == VK_FORMAT_R16G16B16A16_SFLOAT ? "fp16 " : "fp32 ") +
+                        std::string(toString(op))};
+            p.wallMs = f.wallMs;
+            p.gpuMs = f.gpuMs;
+            hdrError(f.hdr, reference.hdr, p);
+            std::tie(p.deMean, p.deMax) = deltaE.compare(rgbOf(f.ldr), displayOf(reference.hdr, op, scene.exposureEv));
+            points.push_back(p);
+        }
+    scene.tonemapper = Tonemapper::AcesNarkowicz;
+
+    // Path-tracer samples per pixel against the same tracer at the reference count.
+    const uint32_t refSpf = std::min<uint32_t>(64, o.ptReferenceSpp);
+    const PathTraceRun ref = pathTrace(*device, o, scene, refSpf, {o.ptReferenceSpp});
+    const ImageData& ptReference = ref.images.back().second;
+    const auto refDisplay = displayOf(ptReference, Tonemapper::AcesNarkowicz, scene.exposureEv);
+    const PathTraceRun sweep = pathTrace(*device, o, scene, 1, {1, 4, 16, 64, 256});
+    for (size_t i = 0; i < sweep.images.size(); ++i) {
+        Point p{"path tracer spp", std::to_string(sweep.images[i].first)};
+        p.wallMs = sweep.wallMs[i];
+        p.gpuMs = sweep.gpuMs[i];
+        hdrError(sweep.images[i].second, ptReference, p);
+        std::tie(p.deMean, p.deMax) =
+            deltaE.compare(displayOf(sweep.images[i].second, Tonemapper::AcesNarkowicz, scene.exposureEv), refDisplay);
+        points.push_back(p);
+    }
+
+    std::ofstream csv(o.out);
+    csv << "knob,setting,wall_ms,gpu_ms,rmse_hdr,max_hdr,de2000_mean,de2000_max\n";
+    std::printf("%-30s %-28s %9s %9s %10s %10s %8s %8s\n", "knob", "setting", "wall_ms", "gpu_ms", "rmse_hdr",
+                "max_hdr", "dE_mean", "dE_max");
+    for (const Point& p : points) {
+        csv << p.knob << ',' << p.setting << ',' << p.wallMs << ',' << p.gpuMs << ',' << p.rmseHdr << ',' << p.maxHdr
+            << ',' << p.deMean << ',' << p.deMax << '\n';
+        std::printf("%-30s %-28s %9.2f %9.2f %10.3g %10.3g %8.3f %8.3f\n", p.knob.c_str(), p.setting.c_str(), p.wallMs,
+                    p.gpuMs, p.rmseHdr, p.maxHdr, p.deMean, p.deMax);
+    }
+    if (!csv) throw std::runtime_error("cannot write " + o.out);
+    std::printf("path-tracer reference: %u spp in %.0f ms wall\n", o.ptReferenceSpp, ref.wallMs.back());
+    printCurveTable();
+    std::printf("wrote %s (%zu points)\n", o.out.c_str(), points.size());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(argc, argv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "study: %s\n", e.what());
+        return 1;
+    }
+}
