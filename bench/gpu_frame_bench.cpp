@@ -22,6 +22,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -107,6 +108,7 @@ int run(const Args& args) {
     DeviceOptions dopts;
     dopts.device = args.device;
     dopts.validation = args.validate;
+    if (!args.pngDir.empty()) std::filesystem::create_directories(args.pngDir);
     auto device = Device::create(dopts);
     std::printf("device: %s (timestamp period %.3f ns)%s\n", device->name().c_str(), device->timestampPeriodNs(),
                 args.validate ? ", validation on" : "");

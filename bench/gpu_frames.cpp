@@ -138,6 +138,9 @@ public:
         for (const auto& name : products) renderer.importImage(name, baker_->shareImage(name));
     }
 
+    /// Whether the environment file fills the graph resource `name`.
+    [[nodiscard]] bool provides(const std::string& name) const { return image_ && name == "equirect"; }
+
 private:
     [[nodiscard]] ImageData pixels() const {
         ImageData d;
@@ -192,7 +195,7 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     for (const std::string& name : c.proceduralExternals) {
         const auto it = std::find_if(graph.resources.begin(), graph.resources.end(),
                                      [&](const ResourceDesc& r) { return r.name == name; });
-        if (it == graph.resources.end()) continue;  // another run's resource
+        if (it == graph.resources.end() || environment.provides(name)) continue;  // another run's, or the file's
         if (!it->isImage() || !it->external)
             throw ExecutorError(c.graph.string() + ": procedural sky for '" + name + "': not an external image");
         renderer.setExternalImage(name, proceduralSky(*it));
