@@ -26,7 +26,7 @@ packages=(
   glslang-dev spirv-tools
   libopenexr-dev libopenexr-3-1-30 libimath-dev libimath-3-1-29
   zlib1g-dev zlib1g
-  libdtl-dev
+  libdtl-dev liblcms2-dev liblcms2-2
   libglvnd0 libglx0 libegl1 libgl1 libopengl0
 )
 # install-deps.sh packages the GPU machine does not need from us: it has its own toolchain,
@@ -36,7 +36,7 @@ packages=(
 # so a new build dependency cannot be forgotten here.
 not_needed=(cmake ninja-build g++ pkg-config libgtest-dev libgmock-dev vulkan-validationlayers
   mesa-vulkan-drivers vulkan-tools glslang-tools blender-data graphviz python3-jsonschema
-  clang-14 libclang-rt-14-dev llvm-14)
+  clang-14 libclang-rt-14-dev llvm-14 python3-matplotlib)
 
 # Not needed to build or run: documentation, programs, Vulkan's C++ headers and XML registry,
 # the SPIR-V tools' shared library (glslang links the static ones).

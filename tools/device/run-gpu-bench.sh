@@ -54,6 +54,9 @@ prefix=$deps/usr
 libdir=$prefix/lib/x86_64-linux-gnu
 export LD_LIBRARY_PATH=$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 export LIBRARY_PATH=$libdir  # glslang's CMake files name SPIRV-Tools-opt etc. as plain -l libraries
+# Debian's .pc files say prefix=/usr: the sysroot moves them under the bundle (lcms2 for bench/study).
+export PKG_CONFIG_SYSROOT_DIR=$deps PKG_CONFIG_LIBDIR=$libdir/pkgconfig
+command -v pkg-config >/dev/null || echo "note: no pkg-config on this machine; targets that need it will not configure"
 src=$here
 if [ -f .devbundle/source.tar.gz ]; then
   rm -rf /tmp/skygraph-src && mkdir -p /tmp/skygraph-src && tar -xzf .devbundle/source.tar.gz -C /tmp/skygraph-src
