@@ -5,7 +5,7 @@
 // Writes a CSV; bench/study_plot.py draws the Pareto plot; docs/tradeoffs.md reads both.
 //
 //   study [--size 128x96] [--out study.csv] [--device llvmpipe] [--pt-reference-spp 2048]
-//         [--environment on|off]
+//         [--environment on|off] [--validate on|off]
 //
 // Knobs swept here: the HDR target (fp16 / fp32), each tonemap operator, cube face size and
 // supersampling, IBL sample counts, cubemap against direct equirect sampling of the sky (an
@@ -43,6 +43,7 @@ struct Options {
     std::string device = "llvmpipe";
     uint32_t ptReferenceSpp = 2048;
     bool environment = true;  ///< --environment off: skip the bakes (smoke runs)
+    bool validate = false;    ///< --validate on: validation + sync validation; any message fails the run
 };
 
 struct Point {
@@ -382,6 +383,8 @@ Options parse(int argc, char** argv) {
             o.out = v;
         } else if (k == "--device") {
             o.device = v;
+        } else if (k == "--validate") {
+            o.validate = v == "on";
         } else if (k == "--environment") {
             o.environment = v != "off";
         } else if (k == "--pt-reference-spp") {
@@ -397,6 +400,7 @@ int run(int argc, char** argv) {
     const Options o = parse(argc, argv);
     DeviceOptions dopt;
     dopt.device = o.device;
+    dopt.validation = o.validate;
     auto device = Device::create(dopt);
     const DeltaE2000 deltaE;
     Scene scene = loadSceneFile(kSource / "scenes/default.json");
@@ -495,6 +499,10 @@ int run(int argc, char** argv) {
     if (!csv) throw std::runtime_error("cannot write " + o.out);
     std::printf("path-tracer reference: %u spp in %.0f ms wall\n", o.ptReferenceSpp, ref.wallMs.back());
     printCurveTable();
+    if (o.validate && device->messageCount() > 0) {
+        for (const auto& m : device->messages()) std::fprintf(stderr, "[%s] %s\n", m.idName.c_str(), m.message.c_str());
+        throw std::runtime_error(std::to_string(device->messageCount()) + " validation messages");
+    }
     std::printf("wrote %s (%zu points)\n", o.out.c_str(), points.size());
     return 0;
 }
