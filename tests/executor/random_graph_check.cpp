@@ -49,7 +49,8 @@ void weakenBatch(const Plan& base, const std::vector<Barrier>& list, const std::
                  Locate locate, std::vector<BarrierMutation>& out) {
     for (size_t i = 0; i < list.size(); ++i) {
         const Barrier& b = list[i];
-        const std::string what = where + ", " + nameOf(base, b) + ": ";
+        const char* kind = b.kind == BarrierKind::Image ? "image" : b.kind == BarrierKind::Buffer ? "buffer" : "memory";
+        const std::string what = where + ", " + nameOf(base, b) + " (" + kind + "): ";
         {
             Plan p = base;
             auto& batch = locate(p);

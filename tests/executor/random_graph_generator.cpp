@@ -6,6 +6,7 @@
 #include <array>
 #include <optional>
 #include <random>
+#include <set>
 #include <sstream>
 
 namespace skygraph::test {
@@ -213,6 +214,7 @@ private:
         std::vector<Taken> taken;
         std::optional<std::array<uint32_t, 3>> attachmentShape;  // width, height, layers
         bool depth = false;
+        std::set<std::string> drawInputs;
         std::string uses;
         const uint32_t wanted = 1 + pick(shape_.maxUsagesPerPass);
         for (uint32_t attempt = 0; attempt < wanted * 4 && taken.size() < wanted; ++attempt) {
@@ -225,6 +227,12 @@ private:
             if (f.needsStorage && !r.storage) continue;
             const bool isDepthAttachment = std::string(f.stage) == "DepthAttachment";
             if (isDepthAttachment && depth) continue;
+            // One draw: at most one indirect and one index buffer a pass (the executor refuses more).
+            const std::string drawInput = std::string(f.stage) == "Indirect" ? "indirect"
+                                          : std::string(f.as) == "index"     ? "index"
+                                                                             : "";
+            if (!drawInput.empty() && drawInputs.count(drawInput)) continue;
+            if (!drawInput.empty()) drawInputs.insert(drawInput);
             const bool image = r.kind != Kind::Buffer;
             const bool whole = !image || (!f.attachment && chance(3)) ||
                                (f.attachment && r.mips == 1 && r.layers == 1);
