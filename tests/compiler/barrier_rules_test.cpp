@@ -426,3 +426,30 @@ TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
 
 }  // namespace
 }  // namespace skygraph
+
+namespace skygraph {
+namespace {
+
+// A level that the resolved chain does not have is an error at compile time, naming the pass
+// and resource, also when an embedder shrank the image after loading (as `skygraph cubemap
+// --size 32` does with ibl.json, whose chain is written for 256).
+TEST(Ranges, LevelsPastTheChainAreAnErrorNotAClippedPlan) {
+    GraphDesc ibl = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json",
+                                  PassRegistry::withBuiltins());
+    EXPECT_NO_THROW((void)compile(ibl));
+    for (auto& r : ibl.resources)
+        if (r.name == "environment") r.extent = Extent{false, 1, 32, 32};  // 6 levels, the graph writes 9
+    try {
+        (void)compile(ibl);
+        FAIL() << "expected a GraphError";
+    } catch (const GraphError& e) {
+        const std::string text = e.diagnostics().format();
+        EXPECT_NE(text.find("pass 'environment_mip6'"), std::string::npos) << text;
+        EXPECT_NE(text.find("resource 'environment'"), std::string::npos) << text;
+        EXPECT_NE(text.find("32x32 image has 6 mip level(s)"), std::string::npos) << text;
+        EXPECT_EQ(text.find("environment_mip5'"), std::string::npos) << "mip 5 exists: " << text;
+    }
+}
+
+}  // namespace
+}  // namespace skygraph

@@ -98,7 +98,8 @@ TEST(ShaderCompilerTest, CompilesShippedPassShadersWithIncludes) {
     ShaderCompiler sc({});
     const auto dir = ShaderCompiler::defaultIncludeDir();
     int compiled = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir / "passes")) {
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir / "passes")) {
+        if (!e.is_regular_file()) continue;  // passes/ibl/ and the like hold more shaders
         const auto ext = e.path().extension().string();
         const VkShaderStageFlagBits stage = ext == ".vert"   ? VK_SHADER_STAGE_VERTEX_BIT
                                             : ext == ".frag" ? VK_SHADER_STAGE_FRAGMENT_BIT
