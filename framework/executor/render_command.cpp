@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <set>
@@ -127,7 +128,11 @@ int renderCommand(const RenderOptions& options) {
         }
         CompileOptions co;
         if (scene) {
-            co.features = sceneFeatures(*scene);
+            // Only the scene features this graph declares: pathtrace.json has no skybox.
+            for (const auto& [name, on] : sceneFeatures(*scene))
+                if (std::any_of(graph.features.begin(), graph.features.end(),
+                                [&](const FeatureDecl& f) { return f.name == name; }))
+                    co.features[name] = on;
             for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
         }
         for (const auto& [name, on] : options.features) co.features[name] = on;
