@@ -32,6 +32,37 @@ installed_package() {
     rm -rf "$prefix"
 }
 
+# Issue 7 (docs/reliability.md): clang ASan + UBSan (+ libFuzzer's coverage hooks, so the
+# same build links the fuzzer) of the compiler, fuzz-corpus, executor and fault tests, run
+# under the sanitizers, then the fuzzer's 60 s time box on that build. The other suites are
+# not in this stage yet (docs/reliability.md says why). Binaries that create a Vulkan device
+# run with leak detection off: the loader unloads the driver and layers, whose lifetime
+# allocations then cannot be attributed or suppressed.
+sanitizers_and_fuzz() {
+    stage "sanitizers: clang ASan + UBSan build of the compiler, executor and fault tests (build-fuzz)"
+    local flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+    cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYGRAPH_FUZZ=ON \
+        -DCMAKE_CXX_COMPILER="$(command -v clang++-14 || command -v clang++)" -DSKYGRAPH_BUILD_BENCH=OFF \
+        "-DCMAKE_CXX_FLAGS=$flags"
+    cmake --build build-fuzz -j "$JOBS" --target compiler_tests fuzz_corpus_tests executor_tests \
+        reliability_tests graph_fuzzer
+    local lvp=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
+    (
+        export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" SKYGRAPH_TEST_QUIET=1
+        export LSAN_OPTIONS="suppressions=$PWD/tests/reliability/lsan.supp:print_suppressions=0"
+        export VK_ICD_FILENAMES="$lvp" VK_DRIVER_FILES="$lvp"
+        cd build-fuzz/tests
+        ASAN_OPTIONS=detect_leaks=1 ./compiler/compiler_tests --gtest_brief=1
+        ASAN_OPTIONS=detect_leaks=1 ./fuzz/fuzz_corpus_tests --gtest_brief=1
+        ASAN_OPTIONS=detect_leaks=0 ./reliability/reliability_tests --gtest_brief=1
+        # The minimality oracle already ran in the main suite; here the executor under ASan.
+        ASAN_OPTIONS=detect_leaks=0 ./executor/executor_tests --gtest_brief=1 --gtest_filter='-*BarrierMinimality*'
+    )
+    stage "fuzz the loader and compiler for ${SKYGRAPH_FUZZ_SECONDS:-60} s"
+    tools/fuzz.sh "${SKYGRAPH_FUZZ_SECONDS:-60}"
+}
+
 main_suite
 installed_package
+sanitizers_and_fuzz
 stage "all stages passed"
