@@ -129,10 +129,12 @@ int renderCommand(const RenderOptions& options) {
         CompileOptions co;
         if (scene) {
             // Only the scene features this graph declares: pathtrace.json has no skybox.
-            for (const auto& [name, on] : sceneFeatures(*scene))
+            for (const auto& [name, on] : sceneFeatures(*scene)) {
+                const std::string& feature = name;  // clang 14 (CI's sanitizer build) cannot capture bindings
                 if (std::any_of(graph.features.begin(), graph.features.end(),
-                                [&](const FeatureDecl& f) { return f.name == name; }))
+                                [&](const FeatureDecl& f) { return f.name == feature; }))
                     co.features[name] = on;
+            }
             for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
         }
         for (const auto& [name, on] : options.features) co.features[name] = on;
