@@ -15,10 +15,14 @@ vec3 rotateY(vec3 d, float s, float c) { return vec3(c * d.x + s * d.z, d.y, -s 
 // Mip level for an equirect lookup from the angular size of the pixel footprint, not from
 // derivatives of u: atan2's jump at the seam would otherwise select the smallest mip along a
 // line at u = 0/1, and the 1/sin(theta) stretch would blur the poles. `dir` is normalized.
+// Fragment shaders only (it takes derivatives): a compute shader that includes this file
+// defines ENVIRONMENT_NO_DERIVATIVES first.
+#ifndef ENVIRONMENT_NO_DERIVATIVES
 float equirectLod(vec3 dir, float mapHeight) {
     float pixelAngle = max(length(dFdx(dir)), length(dFdy(dir)));
     return log2(max(pixelAngle * mapHeight / PI, 1e-8));
 }
+#endif
 
 vec3 proceduralSky(vec3 dirIn) {
     vec3 d = normalize(dirIn);

@@ -7,14 +7,10 @@
 // holds the running MEAN of the samples in rgb and their count in alpha, so any reader
 // (TonemappingPass) sees the current estimate directly.
 #include "common/brdf.glsl"
-// environment.glsl's equirectLod (for the skybox) takes derivatives, which compute shaders
-// lack; it is never called here, so they are stubbed for that include alone. The path
+// Compute shaders have no derivatives: leave out environment.glsl's equirectLod. The path
 // tracer samples the equirect map's top level (one ray, no footprint).
-#define dFdx(x) vec3(0.0)
-#define dFdy(x) vec3(0.0)
+#define ENVIRONMENT_NO_DERIVATIVES
 #include "common/environment.glsl"
-#undef dFdx
-#undef dFdy
 
 #ifndef ENV_EQUIRECT
 #define ENV_EQUIRECT 0
