@@ -3,7 +3,7 @@
 // reference of include/skygraph/shading_math.hpp, and (through ExecutorTest) no message.
 // The camera 1e7 from the origin is tests/passes/far_camera_test.cpp's; the CPU reference's
 // own hostile-input properties are tests/math's. Here: the GPU passes.
-#include "executor_test_util.hpp"
+#include "pass_test_util.hpp"
 
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
@@ -19,20 +19,6 @@ namespace {
 const std::filesystem::path kSource = SKYGRAPH_SOURCE_DIR;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-// The skybox writing its world-space ray into an fp32 target (as in far_camera_test.cpp).
-constexpr const char* kDirectionGraph = R"({
-  "version": 1, "name": "sky_direction",
-  "resources": {
-    "depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": {"depth": 0.0}},
-    "ray":   {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": "output",
-              "clear": {"color": [0, 0, 0, 0]}}
-  },
-  "passes": [
-    {"name": "sky", "type": "SkyboxPass", "params": {"output": "direction"},
-     "uses": {"depth": "Read@DepthAttachment", "ray": "ReadWrite@ColorAttachment"}}
-  ]
-})";
 
 // TonemappingPass alone on an HDR image the test writes: fp32, so +inf, NaN and 1e38 reach
 // the shader as they are. The output is fp32 UNORM-free, so the shader sRGB-encodes and the
@@ -110,24 +96,10 @@ protected:
     /// The worst sky-ray error over a 32x24 frame, in pixels; fails on a non-finite ray.
     double worstRayErrorPx(const SceneCamera& camera) {
         const uint32_t w = 32, h = 24;
-        const PassLibrary library = PassLibrary::withBuiltins();
-        const GraphDesc graph = parseGraph(kDirectionGraph, "sky_direction.json", library.registry());
-        CompileOptions co;
-        co.outputWidth = w;
-        co.outputHeight = h;
-        co.exports = {{"ray", ExternalState::TransferSrc}};
-        RendererOptions ro;
-        ro.width = w;
-        ro.height = h;
-        ro.passes = &library;
-        ro.readback = "ray";
-        Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
         Scene s;
         s.environment = SceneEnvironment{};
         s.camera = camera;
-        renderer.frameData().set(s);
-        renderer.renderFrame();
-        const ImageData rays = renderer.readback();
+        const ImageData rays = renderSkyRays(s, w, h);
         EXPECT_TRUE(finiteImage(rays));
         double worst = 0.0;
         for (uint32_t y = 0; y < h; ++y)

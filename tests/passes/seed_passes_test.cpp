@@ -1,6 +1,6 @@
 // The seed's passes on lavapipe under synchronization validation, against the double-precision
 // reference in include/skygraph/shading_math.hpp.
-#include "executor_test_util.hpp"
+#include "pass_test_util.hpp"
 
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
@@ -15,24 +15,8 @@ const std::filesystem::path kSource = SKYGRAPH_SOURCE_DIR;
 
 class SeedPasses : public ExecutorTest {
 protected:
-    /// Renders graphs/raster.json for `scene` with the built-in passes and returns the
-    /// swapchain target (B8G8R8A8_SRGB, read back as byte / 255).
     ImageData renderRaster(const Scene& scene, uint32_t width, uint32_t height) {
-        const PassLibrary library = PassLibrary::withBuiltins();
-        const GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
-        CompileOptions options;
-        options.features = sceneFeatures(scene);
-        options.presentReplacement = ExternalState::TransferSrc;
-        options.outputWidth = width;
-        options.outputHeight = height;
-        RendererOptions ro;
-        ro.width = width;
-        ro.height = height;
-        ro.passes = &library;
-        Renderer renderer(sharedDevice(), graph, compile(graph, options), ro);
-        renderer.frameData().set(scene);
-        for (int i = 0; i < 3; ++i) renderer.renderFrame();
-        return renderer.readback();
+        return renderRasterFrame(scene, width, height, 3);
     }
 };
 
