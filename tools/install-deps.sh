@@ -10,6 +10,7 @@ packages=(
   libstb-dev libopenexr-dev blender-data
   graphviz python3-jsonschema libdtl-dev
   liblcms2-dev python3-matplotlib  # bench/study: CIEDE2000, the Pareto plot (docs/tradeoffs.md)
+  libopencolorio-dev  # the reference ACES RRT + ODT (bench/aces_reference.hpp, math_tests, study)
   clang-14 libclang-rt-14-dev llvm-14  # libFuzzer, ASan/UBSan runtimes, llvm-symbolizer (docs/reliability.md)
 )
 missing=()
