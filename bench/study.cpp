@@ -14,13 +14,16 @@
 // precision (include/skygraph/shading_math.hpp); environment points against the richest bake
 // (256 faces, 4x4 supersampling, 4096 samples); path-tracer points against the same tracer
 // at --pt-reference-spp with an independent sample stream. Also printed: sRGB encode vs pow(1/2.2) and the two ACES fits against
-// each other, in 8-bit codes.
+// each other, in 8-bit codes, and each fit against the reference ACES RRT + ODT from OpenColorIO
+// (bench/aces_reference.hpp; bench/aces_fits prints that table alone).
 #include <skygraph/compiler.hpp>
 #include <skygraph/executor.hpp>
 #include <skygraph/format.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
+
+#include "aces_reference.hpp"
 
 #include <lcms2.h>
 
@@ -499,6 +502,7 @@ int run(int argc, char** argv) {
     if (!csv) throw std::runtime_error("cannot write " + o.out);
     std::printf("path-tracer reference: %u spp in %.0f ms wall\n", o.ptReferenceSpp, ref.wallMs.back());
     printCurveTable();
+    aces::printFitTable(aces::Reference(), 32);
     if (o.validate && device->messageCount() > 0) {
         for (const auto& m : device->messages()) std::fprintf(stderr, "[%s] %s\n", m.idName.c_str(), m.message.c_str());
         throw std::runtime_error(std::to_string(device->messageCount()) + " validation messages");
