@@ -9,6 +9,7 @@ PassLibrary PassLibrary::withBuiltins() {
     const PassRegistry declarations = PassRegistry::withBuiltins();
     const std::pair<const char*, PassFactory> factories[] = {
         {"TonemappingPass", passes::makeTonemappingPass},
+        {"TonemappingComputePass", passes::makeTonemappingComputePass},
         {"SkyboxPass", passes::makeSkyboxPass},
         {"ForwardPass", passes::makeForwardPass},
         {"PathTracePass", passes::makePathTracePass},

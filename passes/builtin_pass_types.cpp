@@ -104,6 +104,15 @@ void registerBuiltinPassTypes(PassRegistry& r) {
                   {"exposure_ev", numberIn(-64.0, 64.0)}}),
            "Exposure (2^EV), a tone curve, and sRGB encoding from the output format."});
 
+    r.add({"TonemappingComputePass",
+           {slot("hdr", Stage::Compute, R, BindAs::Sampled, "HDR input"),
+            slot("output", Stage::Compute, W, BindAs::Storage,
+                 "display-referred output: R8G8B8A8_UNORM (or a float format), sRGB-encoded by the shader")},
+           false,
+           rules({{"operator", oneOf({"aces_narkowicz", "aces_hill", "khronos_pbr_neutral", "passthrough"})},
+                  {"exposure_ev", numberIn(-64.0, 64.0)}}),
+           "TonemappingPass as a compute shader (same math), writing a storage image with sRGB encoded by the shader."});
+
     r.add({"PathTracePass",
            {slot("accumulation", Stage::Compute, RW, BindAs::Storage, "running sum of samples"),
             slot("environment", Stage::Compute, R, BindAs::Sampled, "environment", true)},

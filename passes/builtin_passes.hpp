@@ -9,6 +9,7 @@
 namespace skygraph::passes {
 
 [[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingPass(const PassDesc& desc);
+[[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingComputePass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeSkyboxPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeForwardPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makePathTracePass(const PassDesc& desc);

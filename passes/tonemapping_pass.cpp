@@ -1,4 +1,5 @@
-// TonemappingPass: HDR -> display. Exposure and operator come from the scene when one is set
+// TonemappingPass (fragment) and TonemappingComputePass: HDR -> display with the same math
+// (shaders/common/tonemap.glsl). Exposure and operator come from the scene when one is set
 // (FrameData<Scene>), else from the pass's params.
 #include "builtin_passes.hpp"
 #include <skygraph/pipeline_builder.hpp>
@@ -32,6 +33,13 @@ bool isSrgb(VkFormat f) {
     return info && info->srgb;
 }
 
+/// Exposure and operator index of a frame: the scene's when one is set, else the params'.
+std::pair<float, int32_t> toneSettings(const RecordContext& ctx, double exposureEv, int op) {
+    if (const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr)
+        return {static_cast<float>(scene->exposureEv), operatorIndex(effectiveTonemapper(*scene))};
+    return {static_cast<float>(exposureEv), op};
+}
+
 class TonemappingPass final : public PassImplementation {
 public:
     explicit TonemappingPass(const PassDesc& desc)
@@ -57,11 +65,8 @@ public:
 
     void record(const RecordContext& ctx) override {
         const BoundResource* hdr = ctx.slot("hdr");
-        Push push{static_cast<float>(exposureEv_), operator_, encodeSrgb_ ? 1 : 0};
-        if (const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr) {
-            push.exposureEv = static_cast<float>(scene->exposureEv);
-            push.toneOperator = operatorIndex(effectiveTonemapper(*scene));
-        }
+        const auto [exposureEv, op] = toneSettings(ctx, exposureEv_, operator_);
+        const Push push{exposureEv, op, encodeSrgb_ ? 1 : 0};
         const VkDescriptorImageInfo image{ctx.linearSampler, hdr->view, hdr->usage->layout};
         const VkWriteDescriptorSet write = sampledImageWrite(0, &image);
         vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
@@ -85,7 +90,76 @@ private:
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
 };
 
+/// Storage images cannot be sRGB, so the compute pass always encodes sRGB in the shader and
+/// writes a UNORM or float image whose GLSL format qualifier is known.
+std::string storageQualifier(const PipelineContext& ctx, const BoundResource& output) {
+    switch (output.format) {
+        case VK_FORMAT_R8G8B8A8_UNORM: return "rgba8";
+        case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return "rgb10_a2";
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return "rgba16f";
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return "rgba32f";
+        default: break;
+    }
+    const auto info = findFormat(output.format);
+    throw ExecutorError("pass '" + ctx.desc->name + "', resource '" + (output.desc ? output.desc->name : "?") +
+                        "': TonemappingComputePass writes R8G8B8A8_UNORM, A2B10G10R10_UNORM_PACK32, "
+                        "R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT storage images (it encodes sRGB "
+                        "itself), not " + (info ? std::string(info->name) : std::to_string(output.format)));
+}
+
+class TonemappingComputePass final : public PassImplementation {
+public:
+    explicit TonemappingComputePass(const PassDesc& desc)
+        : exposureEv_(desc.params.value("exposure_ev", 0.0)),
+          operator_(operatorIndex(desc.params.value("operator", std::string("aces_narkowicz")))) {}
+
+    void createPipelines(const PipelineContext& ctx) override {
+        const BoundResource* output = nullptr;
+        for (const auto& r : ctx.resources)
+            if (r.usage && r.usage->slot == "output") output = &r;
+        if (!output) throw ExecutorError("pass '" + ctx.desc->name + "': no resource bound to slot 'output'");
+        ComputePipelineRecipe recipe;
+        recipe.compute = compileShader(*ctx.shaders, VK_SHADER_STAGE_COMPUTE_BIT, "passes/tonemap.comp",
+                                       {{"OUT_FORMAT", storageQualifier(ctx, *output)}});
+        recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+                           {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
+        recipe.pushConstantBytes = sizeof(Push);
+        pipeline_ = createComputePipeline(ctx.device, recipe);
+        pushDescriptors_ = pushDescriptorFunction(ctx.device);
+    }
+
+    void record(const RecordContext& ctx) override {
+        const BoundResource* hdr = ctx.slot("hdr");
+        const BoundResource* out = ctx.slot("output");
+        const auto [exposureEv, op] = toneSettings(ctx, exposureEv_, operator_);
+        const Push push{exposureEv, op};
+        const VkDescriptorImageInfo images[2] = {{ctx.linearSampler, hdr->view, hdr->usage->layout},
+                                                 {VK_NULL_HANDLE, out->view, out->usage->layout}};
+        VkWriteDescriptorSet writes[2] = {sampledImageWrite(0, &images[0]), sampledImageWrite(1, &images[1])};
+        writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
+        pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, 2, writes);
+        vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        // tonemap.comp: 8x8 invocations per 16x16 pixels.
+        vkCmdDispatch(ctx.cmd, (out->extent.width + 15) / 16, (out->extent.height + 15) / 16, 1);
+    }
+
+private:
+    struct Push {
+        float exposureEv;
+        int32_t toneOperator;
+    };
+    double exposureEv_;
+    int operator_;
+    ComputePipeline pipeline_;
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
+};
+
 }  // namespace
+
+std::unique_ptr<PassImplementation> makeTonemappingComputePass(const PassDesc& desc) {
+    return std::make_unique<TonemappingComputePass>(desc);
+}
 
 std::unique_ptr<PassImplementation> makeTonemappingPass(const PassDesc& desc) {
     return std::make_unique<TonemappingPass>(desc);
