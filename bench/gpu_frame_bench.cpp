@@ -6,12 +6,11 @@
 //
 // 1. DRAM bandwidth: vkCmdCopyBuffer and a compute copy of a --bandwidth-mib buffer, median
 //    of --bandwidth-reps; the faster median is the bandwidth used for the bounds.
-// 2. Each --run GRAPH[:SCENE][@VARIANT] at each --size (variants: gpu_compute_tonemap.hpp): per-pass GPU medians over --frames frames
-//    (Renderer::lastTimings) beside bytes / bandwidth.
+// 2. Each --run GRAPH[:SCENE][@VARIANT] at each --size (variants: gpu_frames.hpp): per-pass
+//    GPU medians over --frames frames (Renderer::lastTimings) beside bytes / bandwidth.
 // 3. Probes at each size (gpu_probes.hpp): the TonemappingPass's operation as compute shaders,
 //    and a fragment pass that only writes a constant (the fragment path's own cost).
 // Validation is off unless --validate; any validation message then fails the run (exit 1).
-#include "gpu_compute_tonemap.hpp"
 #include "gpu_frames.hpp"
 #include "gpu_probes.hpp"
 

@@ -1,13 +1,14 @@
 // Per-pass frame timings through the framework (see gpu_frames.hpp).
 #include "gpu_frames.hpp"
 
-#include "gpu_compute_tonemap.hpp"
 #include "gpu_vk.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 namespace skygraph::gpubench {
 namespace {
@@ -87,14 +89,23 @@ ImageData proceduralSky(const ResourceDesc& r) {
     return image;
 }
 
+/// A graph file's JSON for a named variant of gpu_frames.hpp; throws std::invalid_argument for
+/// an unknown name or a graph without what the variant changes.
 GraphDesc loadGraph(const FrameCase& c, const PassRegistry& registry) {
-    if (c.variant.empty()) return loadGraphFile(c.graph, registry);
+    if (c.variant.empty() || c.variant == "compute-tonemap") return loadGraphFile(c.graph, registry);
+    if (c.variant != "unorm-swapchain")
+        throw std::invalid_argument("unknown graph variant '" + c.variant + "' (unorm-swapchain, compute-tonemap)");
     std::ifstream in(c.graph);
     if (!in) throw std::runtime_error("cannot read " + c.graph.string());
     std::stringstream text;
     text << in.rdbuf();
-    const nlohmann::json variant = graphVariant(nlohmann::json::parse(text.str()), c.variant);
-    return parseGraph(variant.dump(2), c.graph.string() + "@" + c.variant, registry);
+    nlohmann::json graph = nlohmann::json::parse(text.str());
+    auto& resources = graph.at("resources");
+    if (!resources.contains("swapchain"))
+        throw std::invalid_argument(c.graph.string() + "@unorm-swapchain: the graph has no resource 'swapchain'");
+    resources["swapchain"]["format"] = "B8G8R8A8_UNORM";  // TonemappingPass then encodes sRGB in the shader
+    graph["name"] = graph.value("name", std::string("graph")) + "@unorm-swapchain";
+    return parseGraph(graph.dump(2), c.graph.string() + "@unorm-swapchain", registry);
 }
 
 /// A scene's environment file, as `skygraph render` uses it (framework/executor/render_command.cpp):
@@ -158,17 +169,19 @@ private:
 }  // namespace
 
 FrameResult measureFrames(Device& device, const FrameCase& c) {
-    static const PassLibrary library = [] {
-        PassLibrary l = PassLibrary::withBuiltins();
-        addComputeTonemapPass(l);
-        return l;
-    }();
+    static const PassLibrary library = PassLibrary::withBuiltins();
     GraphDesc graph = loadGraph(c, library.registry());
     std::optional<Scene> scene;
     if (!c.scene.empty()) scene = loadSceneFile(c.scene);
     EnvironmentFile environment(scene ? &*scene : nullptr, graph);
     CompileOptions co;
     if (scene) co.features = sceneFeatures(*scene);
+    if (c.variant == "compute-tonemap") {
+        if (std::none_of(graph.features.begin(), graph.features.end(),
+                         [](const FeatureDecl& f) { return f.name == "compute_tonemap"; }))
+            throw std::invalid_argument(c.graph.string() + "@compute-tonemap: the graph has no feature 'compute_tonemap'");
+        co.features["compute_tonemap"] = true;
+    }
     co.presentReplacement = ExternalState::TransferSrc;
     co.outputWidth = c.width;
     co.outputHeight = c.height;

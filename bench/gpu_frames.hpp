@@ -18,7 +18,9 @@ struct FrameCase {
     /// file has it loaded and its IBL products baked (graphs/ibl.json beside the graph) before
     /// the first frame, untimed, as `skygraph render` does.
     std::filesystem::path scene;
-    /// Empty, or a graph variant of gpu_compute_tonemap.hpp ("unorm-swapchain", "compute-tonemap").
+    /// Empty, or a variant: "unorm-swapchain" (the graph's `swapchain` becomes B8G8R8A8_UNORM,
+    /// so TonemappingPass encodes sRGB in its shader) or "compute-tonemap" (the graph's feature
+    /// compute_tonemap on: TonemappingComputePass writes an R8G8B8A8_UNORM storage target).
     std::string variant;
     /// When set, the Present target of the last frame is written here as PNG (a read-back copy
     /// then follows every frame, outside the pass timestamps): to compare variants' pictures.

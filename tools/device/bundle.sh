@@ -27,6 +27,7 @@ packages=(
   libopenexr-dev libopenexr-3-1-30 libimath-dev libimath-3-1-29
   zlib1g-dev zlib1g
   libdtl-dev liblcms2-dev liblcms2-2
+  libopencolorio-dev libopencolorio2.1 libpystring0 libyaml-cpp0.7
   libglvnd0 libglx0 libegl1 libgl1 libopengl0
 )
 # install-deps.sh packages the GPU machine does not need from us: it has its own toolchain,

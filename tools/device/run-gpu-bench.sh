@@ -8,8 +8,8 @@
 #
 # RUN: GRAPH[:SCENE][@VARIANT] for gpu_frame_bench. Default: graphs/raster.json with
 # scenes/default.json as it is, with a B8G8R8A8_UNORM swapchain (@unorm-swapchain: the
-# TonemappingPass encodes sRGB in the shader), and with the bench's compute tonemapper
-# (@compute-tonemap, bench/gpu_compute_tonemap.hpp); scenes/studio.json (an HDRI: baked IBL,
+# TonemappingPass encodes sRGB in the shader), and with raster.json's feature compute_tonemap
+# on (@compute-tonemap: the built-in TonemappingComputePass); scenes/studio.json (an HDRI: baked IBL,
 # forward_ibl, equirect skybox) as it is and @compute-tonemap; then graphs/ibl.json. Before
 # timing, the default scene's last two pictures are compared with the first (pngdiff.py).
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
@@ -102,9 +102,12 @@ bin_cli=$build/tools/skygraph
 ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
 
 if [ "${SKIP_FRAME_BENCH:-0}" != 1 ]; then
-step "render check on $device: skygraph render at 960x540"
+step "render check on $device: skygraph render at 960x540, and with --feature compute_tonemap=on"
 ran "$bin_cli" && (cd "$src" && "$bin_cli" render --device "$device" --scene scenes/default.json --width 960 --height 540 \
-  --frames 3 -o "/tmp/render-$device.png")
+  --frames 3 -o "/tmp/render-$device.png" \
+  && "$bin_cli" render --device "$device" --scene scenes/default.json --width 960 --height 540 \
+  --frames 3 --feature compute_tonemap=on -o "/tmp/render-$device-compute.png") \
+  && python3 "$src/tools/device/pngdiff.py" "/tmp/render-$device.png" "/tmp/render-$device-compute.png"
 
 step "same pictures: raster.json as it is, @unorm-swapchain, @compute-tonemap at 960x540"
 rm -rf /tmp/gpu-png && mkdir -p /tmp/gpu-png
