@@ -1,5 +1,6 @@
 // `skygraph render`: compile a graph file and render it headless.
 #include <skygraph/compiler.hpp>
+#include <skygraph/environment_graph.hpp>
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/executor.hpp>
 #include <skygraph/pass.hpp>
@@ -56,13 +57,14 @@ std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const G
     return products;
 }
 
-/// Runs the environment graph once on `equirect`, building only `products`; the returned
-/// renderer owns them (share them with Renderer::shareImage()).
+/// Runs the environment graph once on `equirect`, building only `products` (at `sizes` when
+/// given); the returned renderer owns them (share them with Renderer::shareImage()).
 std::unique_ptr<Renderer> bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
                                           const std::set<std::string, std::less<>>& products,
-                                          const PassLibrary* passes) {
+                                          const std::optional<EnvironmentSizes>& sizes, const PassLibrary* passes) {
     if (!setEnvironmentExtent(graph, equirect))
         throw ExecutorError("the environment graph '" + graph.name + "' has no resource 'equirect'");
+    if (sizes) resizeEnvironmentGraph(graph, *sizes);
     CompileOptions co;
     co.outputs = products;
     Plan plan = compile(graph, co);
@@ -126,6 +128,19 @@ int renderCommand(const RenderOptions& options) {
                 spdlog::warn("graph '{}' has no resource 'equirect': the environment file is not used",
                              graph.name);
         }
+        // No more environment than the view can show: both graphs get the same sizes, so the
+        // frame imports exactly what the environment graph exports.
+        std::optional<EnvironmentSizes> environmentSizes;
+        if (environment && options.fitEnvironmentToView) {
+            environmentSizes = viewEnvironmentSizes(graph, options.height, scene->camera.fovYDeg, environment->width);
+            if (environmentSizes) {
+                resizeEnvironmentGraph(graph, *environmentSizes);
+                spdlog::info("environment: cube {}^2, prefiltered {}^2 for a {}-pixel-tall view at {} degrees "
+                             "(equirect {} wide)",
+                             environmentSizes->environment, environmentSizes->prefiltered, options.height,
+                             scene->camera.fovYDeg, environment->width);
+            }
+        }
         CompileOptions co;
         if (scene) {
             // Only the scene features this graph declares: pathtrace.json has no skybox.
@@ -157,7 +172,8 @@ int renderCommand(const RenderOptions& options) {
             const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, registry);
             products = environmentProducts(plan, graph, envGraph ? &*envGraph : nullptr);
             if (!products.empty())
-                environmentRenderer = bakeEnvironment(*device, *envGraph, *environment, products, options.passes);
+                environmentRenderer = bakeEnvironment(*device, *envGraph, *environment, products, environmentSizes,
+                                                      options.passes);
         }
         RendererOptions ropts;
         ropts.width = options.width;

@@ -263,6 +263,10 @@ struct RenderOptions {
     /// Empty: `environmentGraphText`, else ibl.json beside `graph`.
     std::filesystem::path environmentGraph;
     std::string environmentGraphText;  ///< A graph in memory (the built-in one).
+    /// Size the environment cube and the prefiltered cube for the view (output height and
+    /// the scene camera's field of view, environment_graph.hpp), the graph's declared extents
+    /// being the largest allowed. false: build them at the declared extents.
+    bool fitEnvironmentToView = true;
     FeatureValues features;          ///< Overrides of the graph's defaults.
     uint32_t width = 256;
     uint32_t height = 256;

@@ -3,6 +3,7 @@
 #include "environment_bake.hpp"
 
 #include <skygraph/compiler.hpp>
+#include <skygraph/environment_graph.hpp>
 #include <skygraph/format.hpp>
 #include <skygraph/pass.hpp>
 
@@ -25,28 +26,6 @@ ResourceDesc& resource(GraphDesc& graph, const std::string& name) {
 
 void setFormat(ResourceDesc& r, VkFormat format) { r.format = *findFormat(format); }
 
-/// graphs/ibl.json writes the chain of a 256^2 cube, one CubemapMipPass per level; other
-/// sizes get one copy of the first per level of theirs, in its place.
-void fitMipChain(GraphDesc& graph, uint32_t size) {
-    const auto isMip = [](const PassDesc& p) { return p.type == "CubemapMipPass"; };
-    const auto first = std::find_if(graph.passes.begin(), graph.passes.end(), isMip);
-    if (first == graph.passes.end()) return;
-    const PassDesc model = *first;
-    const auto at = first - graph.passes.begin();
-    std::erase_if(graph.passes, isMip);
-    std::vector<PassDesc> chain;
-    for (uint32_t mip = 1; (size >> mip) >= 1; ++mip) {
-        PassDesc pass = model;
-        pass.name = "environment_mip" + std::to_string(mip);
-        for (UsageDecl& use : pass.uses) {
-            if (!use.usage.range) continue;
-            use.usage.range->baseMip = use.slot == "source" ? mip - 1 : mip;
-        }
-        chain.push_back(std::move(pass));
-    }
-    graph.passes.insert(graph.passes.begin() + at, chain.begin(), chain.end());
-}
-
 /// Sizes, formats and outputs of graphs/ibl.json for this bake.
 void configure(GraphDesc& graph, const HdrImage& equirect, const BakeOptions& o) {
     static const std::vector<std::string> known{"irradiance", "prefiltered", "brdf_lut"};
@@ -54,11 +33,12 @@ void configure(GraphDesc& graph, const HdrImage& equirect, const BakeOptions& o)
         if (std::find(known.begin(), known.end(), p) == known.end())
             throw std::invalid_argument("unknown product '" + p + "'; expected irradiance, prefiltered, brdf_lut");
     resource(graph, "equirect").extent = Extent{false, 1, equirect.width, equirect.height};
-    resource(graph, "environment").extent = Extent{false, 1, o.size, o.size};
     // Mip 0 of the prefiltered cube is the mirror; half the environment's size is the
     // shipped graph's choice (a quarter of the texels to convolve at the sharpest rough mips).
     const uint32_t prefiltered = o.prefilteredSize ? o.prefilteredSize : std::max(o.size / 2, 32u);
-    resource(graph, "prefiltered").extent = Extent{false, 1, prefiltered, prefiltered};
+    resource(graph, "environment");  // both must exist: the error names the one missing
+    resource(graph, "prefiltered");
+    resizeEnvironmentGraph(graph, EnvironmentSizes{o.size, prefiltered});
     const VkFormat colour = o.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
     for (const char* name : {"environment", "irradiance", "prefiltered"}) setFormat(resource(graph, name), colour);
     setFormat(resource(graph, "brdf_lut"), o.float32 ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT);
@@ -68,7 +48,6 @@ void configure(GraphDesc& graph, const HdrImage& equirect, const BakeOptions& o)
             r.external = false;  // no longer an output: the compiler culls its writers
             r.final = ExternalState::None;
         }
-    fitMipChain(graph, o.size);
     for (auto& pass : graph.passes)
         if (pass.type == "IrradiancePass" || pass.type == "PrefilterPass") pass.params["samples"] = o.samples;
         else if (pass.type == "EquirectToCubemapPass") pass.params["supersample"] = o.supersample;

@@ -65,6 +65,9 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_option("-o,--output", args->output, "Write the result: .png, .hdr or .exr (default skygraph.png)");
     cmd->add_option("--readback", o.readback,
                     "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)");
+    cmd->add_flag("!--no-fit-environment", o.fitEnvironmentToView,
+                  "Build the environment cube and the prefiltered cube at the graph's declared sizes, not at "
+                  "the sizes the view can show (output height, field of view, equirect width)");
     cmd->add_flag("--validate", o.validate, "Khronos validation with synchronization validation; any message fails");
     cmd->add_option("--device", o.device, "Device by index or name");
     return {cmd, [args] { return run(*args); }};

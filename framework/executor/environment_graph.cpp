@@ -1,0 +1,79 @@
+// Sizing the environment pipeline's graphs: see include/skygraph/environment_graph.hpp.
+#include <skygraph/environment_graph.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+namespace {
+
+ResourceDesc* findCube(GraphDesc& graph, std::string_view name) {
+    for (ResourceDesc& r : graph.resources)
+        if (r.name == name && r.type == ResourceType::Cube) return &r;
+    return nullptr;
+}
+
+/// The power of two at or above `texels` (a real number of texels), at least 1.
+uint32_t powerOfTwoAtLeast(double texels) {
+    if (!(texels > 1.0)) return 1;  // also NaN
+    if (texels >= double(1u << 31)) return 1u << 31;
+    return std::bit_ceil(uint32_t(std::ceil(texels)));
+}
+
+}  // namespace
+
+uint32_t viewEnvironmentFaceSize(uint32_t outputHeight, double fovYDeg, uint32_t equirectWidth,
+                                 uint32_t cap) noexcept {
+    // Near 0 degrees the view needs ever more texels: the cap and the equirect bound it.
+    const double fov = std::clamp(std::isnan(fovYDeg) ? 60.0 : fovYDeg, 1e-6, 179.999) * std::numbers::pi / 180.0;
+    const uint32_t forView = powerOfTwoAtLeast(double(std::max(outputHeight, 1u)) / std::tan(fov / 2.0));
+    const uint32_t forSource = powerOfTwoAtLeast(double(std::max(equirectWidth, 1u)) / std::numbers::pi);
+    return std::max(std::min({forView, forSource, cap}), 1u);
+}
+
+std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph, uint32_t outputHeight,
+                                                     double fovYDeg, uint32_t equirectWidth) {
+    const ResourceDesc* environment = frameGraph.findResource("environment");
+    if (!environment || environment->type != ResourceType::Cube || environment->extent.relativeToOutput)
+        return std::nullopt;
+    EnvironmentSizes sizes;
+    sizes.environment = viewEnvironmentFaceSize(outputHeight, fovYDeg, equirectWidth, environment->extent.width);
+    sizes.prefiltered = sizes.environment / 2;
+    if (const ResourceDesc* prefiltered = frameGraph.findResource("prefiltered");
+        prefiltered && !prefiltered->extent.relativeToOutput) {
+        const uint32_t levels = std::max(prefiltered->mips, 1u);  // "full" (0) needs one texel only
+        const uint32_t smallest = levels >= 32 ? (1u << 31) : (1u << (levels - 1));
+        sizes.prefiltered = std::max(std::min(sizes.prefiltered, prefiltered->extent.width), smallest);
+    }
+    sizes.prefiltered = std::max(sizes.prefiltered, 1u);
+    return sizes;
+}
+
+void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes) {
+    if (ResourceDesc* r = findCube(graph, "environment")) r->extent = Extent{false, 1, sizes.environment, sizes.environment};
+    if (ResourceDesc* r = findCube(graph, "prefiltered")) r->extent = Extent{false, 1, sizes.prefiltered, sizes.prefiltered};
+
+    const auto isMip = [](const PassDesc& p) { return p.type == "CubemapMipPass"; };
+    const auto first = std::find_if(graph.passes.begin(), graph.passes.end(), isMip);
+    if (first == graph.passes.end()) return;
+    const PassDesc model = *first;
+    const auto at = first - graph.passes.begin();
+    std::erase_if(graph.passes, isMip);
+    std::vector<PassDesc> chain;
+    for (uint32_t mip = 1; (sizes.environment >> mip) >= 1; ++mip) {
+        PassDesc pass = model;
+        pass.name = "environment_mip" + std::to_string(mip);
+        for (UsageDecl& use : pass.uses) {
+            if (!use.usage.range) continue;
+            use.usage.range->baseMip = use.slot == "source" ? mip - 1 : mip;
+        }
+        chain.push_back(std::move(pass));
+    }
+    graph.passes.insert(graph.passes.begin() + at, chain.begin(), chain.end());
+}
+
+}  // namespace skygraph

@@ -1,0 +1,46 @@
+// Sizing graphs/ibl.json (the environment pipeline) and the frame graph that imports its
+// products. Pure graph edits: no device. `skygraph render` uses them to build only as much
+// environment as the view can show; `skygraph cubemap` to bake at the sizes asked for.
+#pragma once
+
+#include <skygraph/graph.hpp>
+
+#include <cstdint>
+#include <optional>
+
+namespace skygraph {
+
+/// Face sizes of the environment cube and of the prefiltered cube's mip 0, in texels.
+struct EnvironmentSizes {
+    uint32_t environment = 256;
+    uint32_t prefiltered = 128;
+
+    friend bool operator==(const EnvironmentSizes&, const EnvironmentSizes&) = default;
+};
+
+/// The smallest power-of-two cube face size whose texel at a face's centre subtends no more
+/// than a pixel at the centre of a view `outputHeight` pixels tall with vertical field of view
+/// `fovYDeg` (texel 2/N radians, pixel 2 tan(fov/2)/H: N = H / tan(fov/2)), and no larger than
+/// an equirect `equirectWidth` texels wide can fill (2 pi / W radians a texel: N = W / pi),
+/// nor than `cap`. At least 1. Out-of-range arguments (fov outside (0, 180), zero sizes) are
+/// clamped, never undefined.
+[[nodiscard]] uint32_t viewEnvironmentFaceSize(uint32_t outputHeight, double fovYDeg, uint32_t equirectWidth,
+                                               uint32_t cap) noexcept;
+
+/// The sizes a frame graph's environment products should have for a view: the cube as
+/// viewEnvironmentFaceSize() with the graph's declared `environment` extent as the cap, and
+/// the prefiltered cube at half of it (its mip 0 is the mirror, seen only on curved, hence
+/// minified, surfaces), capped by its declared extent and never below 2^(mips - 1), so that
+/// each of its declared roughness levels keeps a texel. nullopt when `frameGraph` declares
+/// no `environment` cube.
+[[nodiscard]] std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph,
+                                                                   uint32_t outputHeight, double fovYDeg,
+                                                                   uint32_t equirectWidth);
+
+/// Sets the extents of `environment` and `prefiltered` in `graph` (either the environment
+/// graph or a frame graph importing its products; resources it lacks are skipped), and
+/// rebuilds the environment graph's mip chain: graphs/ibl.json writes one CubemapMipPass per
+/// level of its declared cube; the first is copied once per level of the new size, in place.
+void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes);
+
+}  // namespace skygraph
