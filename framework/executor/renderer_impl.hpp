@@ -8,6 +8,7 @@
 #pragma once
 
 #include "generic_program.hpp"
+#include "spirv_cache.hpp"
 #include "vk_util.hpp"
 
 #include <skygraph/executor.hpp>
@@ -208,7 +209,7 @@ struct Renderer::Impl {
 
     Impl(Device& d, RendererOptions o)
         : device(d), dev(d.impl()), vkd(d.device()), options(std::move(o)),
-          shaders(options.shaderDir) {}
+          shaders(options.shaderDir, SpirvDiskCache::defaultDir()) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(const GraphDesc& graph, Plan plan);

@@ -2,7 +2,10 @@
 
 #include <skygraph/executor.hpp>
 
+#include "spirv_cache.hpp"
+
 #include <glslang/Public/ResourceLimits.h>
+#include <glslang/build_info.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
@@ -16,7 +19,8 @@
 namespace skygraph {
 namespace {
 
-/// Resolves `#include "x"` against one directory; owns the loaded text until released.
+/// Resolves `#include "x"` against one directory; owns the loaded text until released, and
+/// remembers what it loaded (by content) for the disk cache.
 class DirIncluder final : public glslang::TShader::Includer {
 public:
     explicit DirIncluder(std::filesystem::path dir) : dir_(std::move(dir)) {}
@@ -33,18 +37,21 @@ public:
             delete result;
         }
     }
+    [[nodiscard]] const std::vector<IncludedFile>& loaded() const noexcept { return loaded_; }
 
 private:
     IncludeResult* load(const char* name) {
-        const auto path = dir_ / name;
+        const auto path = std::filesystem::absolute(dir_ / name);
         std::ifstream in(path, std::ios::binary);
         if (!in) return nullptr;
         std::stringstream ss;
         ss << in.rdbuf();
         auto* text = new std::string(ss.str());
+        loaded_.push_back({path, SpirvDiskCache::hash(*text)});
         return new IncludeResult(path.string(), text->data(), text->size(), text);
     }
     std::filesystem::path dir_;
+    std::vector<IncludedFile> loaded_;
 };
 
 EShLanguage toLanguage(VkShaderStageFlagBits stage) {
@@ -118,19 +125,15 @@ std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
     std::lock_guard lock(mutex_);
     if (auto it = cache_.find(key); it != cache_.end()) return it->second;
 
-    std::filesystem::path diskPath;
-    if (!cacheDir_.empty()) {
-        diskPath = cacheDir_ / (std::to_string(std::hash<std::string>{}(key)) + ".spv");
-        std::ifstream in(diskPath, std::ios::binary);
-        if (in) {
-            std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
-            if (!bytes.empty() && bytes.size() % 4 == 0) {
-                std::vector<uint32_t> spirv(bytes.size() / 4);
-                std::memcpy(spirv.data(), bytes.data(), bytes.size());
-                cache_.emplace(key, spirv);
-                return spirv;
-            }
-        }
+    // The disk cache's key also names glslang and the include directory: the same text
+    // compiles differently with another compiler or other includes.
+    const std::string diskKey = "glslang " + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
+                                std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH) +
+                                "\n" + includeDir_.string() + "\n" + key;
+    const SpirvDiskCache disk(cacheDir_);
+    if (auto spirv = disk.find(diskKey)) {
+        cache_.emplace(key, *spirv);
+        return std::move(*spirv);
     }
 
     const EShLanguage lang = toLanguage(stage);
@@ -156,13 +159,7 @@ std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
     spvOptions.validate = false;
     glslang::GlslangToSpv(*program.getIntermediate(lang), spirv, &spvOptions);
     ++compilations_;
-    if (!diskPath.empty()) {
-        std::error_code ec;
-        std::filesystem::create_directories(cacheDir_, ec);
-        std::ofstream out(diskPath, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(spirv.data()),
-                  static_cast<std::streamsize>(spirv.size() * 4));
-    }
+    disk.store(diskKey, includer.loaded(), spirv);
     cache_.emplace(key, spirv);
     return spirv;
 }

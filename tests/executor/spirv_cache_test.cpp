@@ -1,0 +1,104 @@
+// The SPIR-V disk cache (framework/executor/spirv_cache.hpp) through ShaderCompiler: reused
+// across compiler instances, invalidated by an edited include, and a damaged or foreign
+// entry is a miss, never a wrong shader. No device.
+#include "spirv_cache.hpp"
+
+#include <skygraph/executor.hpp>
+#include <skygraph/shader_compiler.hpp>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <unistd.h>
+
+namespace skygraph::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class SpirvCacheTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        root = fs::temp_directory_path() / ("skygraph-spirv-cache-" + std::to_string(::getpid()));
+        fs::remove_all(root);
+        fs::create_directories(root / "include");
+        writeInclude("float scale() { return 2.0; }\n");
+    }
+    void TearDown() override { fs::remove_all(root); }
+
+    void writeInclude(const std::string& text) const { std::ofstream(root / "include" / "lib.glsl") << text; }
+    [[nodiscard]] std::vector<fs::path> entries() const {
+        std::vector<fs::path> out;
+        if (fs::exists(root / "cache"))
+            for (const auto& e : fs::directory_iterator(root / "cache")) out.push_back(e.path());
+        return out;
+    }
+    /// Compiles kShader with a fresh compiler (an empty memory cache, as in a new process).
+    std::pair<std::vector<uint32_t>, uint32_t> compileFresh() const {
+        ShaderCompiler compiler(root / "include", root / "cache");
+        auto spirv = compiler.compile(VK_SHADER_STAGE_COMPUTE_BIT, kShader, "cached.comp");
+        return {std::move(spirv), compiler.compilations()};
+    }
+
+    static constexpr const char* kShader =
+        "#version 450\n#extension GL_GOOGLE_include_directive : require\n#include \"lib.glsl\"\n"
+        "layout(local_size_x = 1) in;\nlayout(std430, binding = 0) buffer B { float v; };\n"
+        "void main() { v = scale(); }\n";
+    fs::path root;
+};
+
+TEST_F(SpirvCacheTest, ASecondProcessReusesTheEntry) {
+    const auto [first, firstRuns] = compileFresh();
+    EXPECT_EQ(firstRuns, 1u);
+    ASSERT_EQ(entries().size(), 1u) << "one whole entry, no temporary left behind";
+    const auto [second, secondRuns] = compileFresh();
+    EXPECT_EQ(secondRuns, 0u) << "glslang did not run";
+    EXPECT_EQ(second, first);
+}
+
+TEST_F(SpirvCacheTest, AnEditedIncludeIsCompiledAgain) {
+    const auto [before, runs] = compileFresh();
+    writeInclude("float scale() { return 3.0; }\n");
+    const auto [after, againRuns] = compileFresh();
+    EXPECT_EQ(againRuns, 1u) << "the include changed, so the entry is stale";
+    EXPECT_NE(after, before);
+    writeInclude("float scale() { return oops; }\n");
+    EXPECT_THROW((void)compileFresh(), ExecutorError) << "a broken include is an error, not the old shader";
+}
+
+TEST_F(SpirvCacheTest, DamagedEntriesAreMisses) {
+    const auto [good, runs] = compileFresh();
+    ASSERT_EQ(entries().size(), 1u);
+    const fs::path entry = entries().front();
+    for (const auto size : {uintmax_t(0), uintmax_t(10), fs::file_size(entry) - 4, fs::file_size(entry) - 1}) {
+        SCOPED_TRACE(size);
+        (void)compileFresh();  // rewrite a whole entry
+        fs::resize_file(entry, size);
+        const auto [again, compiled] = compileFresh();
+        EXPECT_EQ(compiled, 1u) << "a truncated entry is recompiled";
+        EXPECT_EQ(again, good);
+    }
+    // An entry for another key stored under this key's name (a hash collision) is a miss.
+    const SpirvDiskCache cache(root / "cache");
+    fs::remove(entry);
+    cache.store("another key", {}, good);
+    fs::rename(entries().front(), entry);
+    EXPECT_EQ(compileFresh().second, 1u);
+}
+
+TEST_F(SpirvCacheTest, AnEmptyDirectoryDisablesIt) {
+    const SpirvDiskCache disabled{fs::path{}};
+    disabled.store("key", {}, {0x07230203u, 1u});
+    EXPECT_FALSE(disabled.find("key"));
+    ShaderCompiler memoryOnly(root / "include");
+    (void)memoryOnly.compile(VK_SHADER_STAGE_COMPUTE_BIT, kShader, "memory.comp");
+    EXPECT_TRUE(entries().empty());
+}
+
+TEST(SpirvCacheHash, IsFnv1a) {
+    EXPECT_EQ(SpirvDiskCache::hash(""), 0xcbf29ce484222325ull);
+    EXPECT_EQ(SpirvDiskCache::hash("a"), 0xaf63dc4c8601ec8cull);  // published FNV-1a 64 test vector
+}
+
+}  // namespace
+}  // namespace skygraph::test
