@@ -89,19 +89,15 @@ public:
         const BoundResource& environment = requireSlot(ctx, "environment");
         const BoundResource& target = requireSlot(ctx, "irradiance");
         program_.bind(ctx, &environment, ctx.linearSampler, target);
-        const auto lods = ibl::LodTable::forSource(environment.extent.width, kLodBias);
-        const Push push{int32_t(target.extent.width), int32_t(samples_), float(environment.extent.width), kLodBias,
-                        lods.step, lods.levels};
+        const Push push{int32_t(target.extent.width), int32_t(samples_), float(environment.extent.width), kLodBias};
         program_.dispatch(ctx.cmd, &push, sizeof(push), target.extent.width, target.extent.height, 6);
     }
 
 private:
     struct Push {
         int32_t faceSize, samples;
-        float environmentSize, lodBias, lodStep;
-        std::array<float, ibl::LodTable::kSteps> lodTable;
+        float environmentSize, lodBias;
     };
-    static_assert(sizeof(Push) <= 128, "Vulkan guarantees 128 bytes of push constants");
     uint32_t samples_;
     IblComputeProgram program_;
 };
@@ -120,12 +116,11 @@ public:
 
     void record(const RecordContext& ctx) override {
         const BoundResource& environment = requireSlot(ctx, "environment");
-        const auto lods = ibl::LodTable::forSource(environment.extent.width, kLodBias);
         for (size_t nth = 0; const BoundResource* target = ctx.slot("prefiltered", nth); ++nth) {
             program_.bind(ctx, &environment, ctx.linearSampler, *target);
             const uint32_t mip = target->usage->range.baseMip;
             const Push push{int32_t(target->extent.width), int32_t(samples_), float(environment.extent.width),
-                            roughnessOfMip(mip, mipCount(*target)), kLodBias, lods.step, lods.levels};
+                            roughnessOfMip(mip, mipCount(*target)), kLodBias};
             program_.dispatch(ctx.cmd, &push, sizeof(push), target->extent.width, target->extent.height, 6);
         }
     }
@@ -133,10 +128,8 @@ public:
 private:
     struct Push {
         int32_t faceSize, samples;
-        float environmentSize, roughness, lodBias, lodStep;
-        std::array<float, ibl::LodTable::kSteps> lodTable;
+        float environmentSize, roughness, lodBias;
     };
-    static_assert(sizeof(Push) <= 128, "Vulkan guarantees 128 bytes of push constants");
     /// The prefiltered resource's level count (a full chain when the graph says "full").
     static uint32_t mipCount(const BoundResource& target) {
         if (target.desc->mips != 0) return target.desc->mips;

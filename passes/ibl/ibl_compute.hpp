@@ -6,8 +6,6 @@
 #include <skygraph/pass.hpp>
 #include <skygraph/pipeline_builder.hpp>
 
-#include <array>
-#include <cmath>
 #include <string>
 #include <string_view>
 
@@ -19,23 +17,6 @@ namespace skygraph::passes::ibl {
 /// The GLSL storage image format qualifier (e.g. "rgba16f") of `resource`'s format. Throws
 /// ExecutorError naming the pass and resource for formats a storage image cannot be.
 [[nodiscard]] std::string storageQualifier(const PassDesc& pass, const BoundResource& resource);
-
-/// The source LODs a sampling shader may use, as common/ibl.glsl's push-constant table:
-/// IBL_LOD_STEPS levels from `lodBias` (the smallest LOD sourceLod() + bias gives) to the
-/// source's last mip, evenly spaced by `step`.
-struct LodTable {
-    static constexpr size_t kSteps = 24;  ///< IBL_LOD_STEPS
-    float step = 1.0f;
-    std::array<float, kSteps> levels{};
-
-    [[nodiscard]] static LodTable forSource(uint32_t sourceFaceSize, float lodBias) {
-        LodTable t;
-        const float lastMip = std::log2(float(std::max(sourceFaceSize, 1u)));
-        t.step = std::max(lastMip - lodBias, 1.0f) / float(kSteps - 1);
-        for (size_t k = 0; k < kSteps; ++k) t.levels[k] = lodBias + float(k) * t.step;
-        return t;
-    }
-};
 
 /// One compute pipeline: `sampled` at binding 0 (when the shader has one) and the storage
 /// image at binding 1 (binding 0 when there is no sampled input). Owns its pipeline objects.

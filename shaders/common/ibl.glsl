@@ -54,20 +54,6 @@ vec3 sampleCosine(vec2 xi) {
     return vec3(r * cos(phi), r * sin(phi), sqrt(max(1.0 - xi.y, 0.0)));
 }
 
-// Source LODs come from a table of IBL_LOD_STEPS evenly spaced levels in push constants
-// (lodTable[k] = lodTable[0] + k * lodStep), the LOD a sample computes rounded to the nearest.
-// A push-constant load is provably uniform (Vulkan requires dynamically uniform indices into
-// push-constant arrays), so lavapipe's llvmpipe selects and blends mips once per SIMD batch
-// instead of per lane. Measured on lavapipe (docs/environment.md): the same time, and the
-// prefiltered levels 1.4-4.8x closer to the analytic truth in RMSE; rounding moves a sample by
-// at most lodStep / 2 (0.15 levels for a 256^2 source), well inside the heuristic's own +1 bias.
-#define IBL_LOD_STEPS 24
-
-// The table index nearest `lod`.
-int lodTableIndex(float lod, float first, float step) {
-    return clamp(int(round((lod - first) / step)), 0, IBL_LOD_STEPS - 1);
-}
-
 // Filtered importance sampling (Krivanek & Colbert, GPU Gems 3 ch. 20): the source mip whose
 // texel solid angle matches the solid angle one of `samples` samples of density `pdf` covers.
 float sourceLod(float pdf, float samples, float faceSize) {

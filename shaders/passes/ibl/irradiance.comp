@@ -19,8 +19,6 @@ layout(push_constant) uniform Params {
     int samples;
     float environmentSize;   // face size of the environment's mip 0
     float lodBias;
-    float lodStep;
-    float lodTable[IBL_LOD_STEPS];  // see common/ibl.glsl
 } params;
 
 void main() {
@@ -35,7 +33,6 @@ void main() {
         vec3 local = sampleCosine(hammersley(i, count));
         float pdf = local.z / IBL_PI;
         float lod = sourceLod(pdf, float(count), params.environmentSize) + params.lodBias;
-        lod = params.lodTable[lodTableIndex(lod, params.lodTable[0], params.lodStep)];
         sum += textureLod(environment, frame * local, lod).rgb;
     }
     imageStore(irradiance, texel, vec4(sum / float(count), 1.0));

@@ -23,8 +23,6 @@ layout(push_constant) uniform Params {
     float environmentSize;   // face size of the environment's mip 0
     float roughness;         // perceptual
     float lodBias;
-    float lodStep;
-    float lodTable[IBL_LOD_STEPS];  // see common/ibl.glsl
 } params;
 
 void main() {
@@ -49,7 +47,6 @@ void main() {
         vec3 l = frame * vec3(2.0 * h.z * h.xy, nl);
         float pdf = ggxD(h.z, alpha) * 0.25;
         float lod = sourceLod(pdf, float(count), params.environmentSize) + params.lodBias;
-        lod = params.lodTable[lodTableIndex(lod, params.lodTable[0], params.lodStep)];
         sum += textureLod(environment, l, lod).rgb * nl;
         weight += nl;
     }
