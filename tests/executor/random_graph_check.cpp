@@ -12,7 +12,7 @@ namespace {
 
 std::string formatMessages(const Device& d) {
     std::string s;
-    for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message.substr(0, 400) + "\n";
+    for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message.substr(0, 800) + "\n";
     return s;
 }
 
