@@ -1,7 +1,7 @@
 #include "aces_reference.hpp"
+#include "delta_e2000.hpp"
 
 #include <OpenColorIO/OpenColorIO.h>
-#include <lcms2.h>
 
 #include <algorithm>
 #include <cmath>
@@ -51,31 +51,6 @@ Rgb process(const OCIO::ConstCPUProcessorRcPtr& p, const Rgb& in) {
 }
 
 int code(double v) { return int(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
-
-/// CIEDE2000 of two 8-bit sRGB colours, via Little CMS (as bench/study.cpp does for images).
-class DeltaE {
-public:
-    DeltaE() {
-        cmsHPROFILE srgb = cmsCreate_sRGBProfile();
-        cmsHPROFILE lab = cmsCreateLab4Profile(nullptr);
-        transform_ = cmsCreateTransform(srgb, TYPE_RGB_DBL, lab, TYPE_Lab_DBL, INTENT_RELATIVE_COLORIMETRIC, 0);
-        cmsCloseProfile(srgb);
-        cmsCloseProfile(lab);
-    }
-    ~DeltaE() { cmsDeleteTransform(transform_); }
-    DeltaE(const DeltaE&) = delete;
-    DeltaE& operator=(const DeltaE&) = delete;
-    double operator()(const int a[3], const int b[3]) const {
-        const double da[3] = {a[0] / 255.0, a[1] / 255.0, a[2] / 255.0}, db[3] = {b[0] / 255.0, b[1] / 255.0, b[2] / 255.0};
-        cmsCIELab la, lb;
-        cmsDoTransform(transform_, da, &la, 1);
-        cmsDoTransform(transform_, db, &lb, 1);
-        return cmsCIE2000DeltaE(&la, &lb, 1, 1, 1);
-    }
-
-private:
-    cmsHTRANSFORM transform_;
-};
 
 std::string at(const Swatch& s, double m) {
     char buf[96];
@@ -141,7 +116,7 @@ std::vector<double> exposureRamp(int perStop) {
 
 FitError compare(const Reference& ref, const Fit& fit, const std::vector<Swatch>& all, const std::string& group,
                  const std::vector<double>& ramp, Encoding e) {
-    static const DeltaE deltaE;
+    static const bench::DeltaE2000 deltaE;
     FitError r;
     double sumCodes = 0, sumDe = 0;
     size_t n = 0;
@@ -161,7 +136,9 @@ FitError compare(const Reference& ref, const Fit& fit, const std::vector<Swatch>
                 sumCodes += d;
                 if (d > r.maxCodes) r.maxCodes = d, r.worstCodesAt = at(s, m);
             }
-            const double de = deltaE(sa, sb);
+            const double da[3] = {sa[0] / 255.0, sa[1] / 255.0, sa[2] / 255.0};
+            const double db[3] = {sb[0] / 255.0, sb[1] / 255.0, sb[2] / 255.0};
+            const double de = deltaE(da, db);
             sumDe += de;
             if (de > r.maxDe) r.maxDe = de, r.worstDeAt = at(s, m);
             ++n;

@@ -16,6 +16,8 @@
 // at --pt-reference-spp with an independent sample stream. Also printed: sRGB encode vs pow(1/2.2) and the two ACES fits against
 // each other, in 8-bit codes, and each fit against the reference ACES RRT + ODT from OpenColorIO
 // (bench/aces_reference.hpp; bench/aces_fits prints that table alone).
+#include "delta_e2000.hpp"
+
 #include <skygraph/compiler.hpp>
 #include <skygraph/executor.hpp>
 #include <skygraph/format.hpp>
@@ -25,7 +27,6 @@
 
 #include "aces_reference.hpp"
 
-#include <lcms2.h>
 
 #include <chrono>
 #include <cmath>
@@ -55,38 +56,7 @@ struct Point {
     double bakeMs = 0;  ///< the environment bake (graphs/ibl.json) the frame needs, once per environment
 };
 
-/// CIEDE2000 between two 8-bit-quantised sRGB images (values in [0, 1]), via Little CMS.
-class DeltaE2000 {
-public:
-    DeltaE2000() {
-        cmsHPROFILE srgb = cmsCreate_sRGBProfile();
-        cmsHPROFILE lab = cmsCreateLab4Profile(nullptr);
-        transform_ = cmsCreateTransform(srgb, TYPE_RGB_DBL, lab, TYPE_Lab_DBL, INTENT_RELATIVE_COLORIMETRIC, 0);
-        cmsCloseProfile(srgb);
-        cmsCloseProfile(lab);
-    }
-    ~DeltaE2000() { cmsDeleteTransform(transform_); }
-    DeltaE2000(const DeltaE2000&) = delete;
-    DeltaE2000& operator=(const DeltaE2000&) = delete;
-
-    /// (mean, max) over the pixels; `a` and `b` hold sRGB-encoded RGB in [0, 1] per pixel.
-    std::pair<double, double> compare(const std::vector<double>& a, const std::vector<double>& b) const {
-        double sum = 0, worst = 0;
-        const size_t n = a.size() / 3;
-        for (size_t i = 0; i < n; ++i) {
-            cmsCIELab la, lb;
-            cmsDoTransform(transform_, &a[3 * i], &la, 1);
-            cmsDoTransform(transform_, &b[3 * i], &lb, 1);
-            const double de = cmsCIE2000DeltaE(&la, &lb, 1, 1, 1);
-            sum += de;
-            worst = std::max(worst, de);
-        }
-        return {sum / double(std::max<size_t>(n, 1)), worst};
-    }
-
-private:
-    cmsHTRANSFORM transform_;
-};
+using bench::DeltaE2000;
 
 math::ToneOperator toMath(Tonemapper t) {
     switch (t) {
