@@ -7,7 +7,8 @@ A failure is counted as the layer-1.3.239 false positive of docs/reliability.md 
 only if every message it carries is a WRITE_AFTER_WRITE of an image layout transition in a
 vkCmdPipelineBarrier2 whose prior write had already been made available by an earlier
 barrier (write_barriers not empty), and every barrier of the plan the message can name
-(same image, same index within its batch, with a layout change) has a source stage among
+(same image, same index within its batch, with a layout change, overlapping the range of
+a barrier in an earlier batch that made such a write available) has a source stage among
 the stages that write was made available to. That is the case the layer's fix
 (KhronosGroup/Vulkan-ValidationLayers PR #6684) stops reporting: the write is in the
 barrier's dependency chain, so it is available, and available memory is visible to a
@@ -17,7 +18,7 @@ import re
 import sys
 
 HAZARD = re.compile(
-    r"vkCmdPipelineBarrier2: Hazard WRITE_AFTER_WRITE for image barrier (\d+) VkImage \S+\[([^\]#]+)#\d+\]\. "
+    r"vkCmdPipelineBarrier2: Hazard WRITE_AFTER_WRITE for image barrier (\d+) VkImage \S+\[([^\]#]+)(?:#\d+)?\]\. "
     r"Access info \(usage: SYNC_IMAGE_LAYOUT_TRANSITION, prior_usage: (\w+), write_barriers: ([\w|]*),")
 MESSAGE = re.compile(r"^  \[[^\]]*\] ", re.M)  # one line a message (random_graph_check.cpp)
 # The layer names accesses SYNC_<STAGE>_<ACCESS>; the plan prints stages without the prefix.
@@ -45,13 +46,21 @@ def batches(plan_text):
             out.append(current)
         elif current is not None and line.startswith("    image "):
             name = line.split()[1]
-            src = lines[i + 1].split("->")[0].split("/")[0].split("|")
+            m = re.search(r"mips\[(\d+)\+(\d+)\] layers\[(\d+)\+(\d+)\]", line)
+            mips, layers = ((int(m[1]), int(m[1]) + int(m[2])), (int(m[3]), int(m[3]) + int(m[4]))) if m else (None, None)
+            src, dst = (side.split("/")[0].split("|") for side in lines[i + 1].split("->"))
             layout = lines[i + 2].strip()
-            current.append({"name": name, "src": {s.strip() for s in src},
-                            "transition": not layout.startswith("stays")})
+            current.append({"name": name, "src": {s.strip() for s in src}, "dst": {s.strip() for s in dst},
+                            "mips": mips, "layers": layers, "transition": not layout.startswith("stays")})
         elif line in ("culled:", "lifetimes:"):
             current = None
     return out
+
+
+def overlap(a, b):
+    def meet(x, y):
+        return x[0] < y[1] and y[0] < x[1]
+    return meet(a["mips"], b["mips"]) and meet(a["layers"], b["layers"])
 
 
 def classify(block):
@@ -68,8 +77,15 @@ def classify(block):
         if prior == "SYNC_IMAGE_LAYOUT_TRANSITION" or not write_barriers:
             return "other"
         available_to = {sync_stage(b) for b in write_barriers.split("|")}
-        candidates = [b[int(index)] for b in plan_batches
-                      if len(b) > int(index) and b[int(index)]["name"] == image and b[int(index)]["transition"]]
+        writer = sync_stage(prior)
+        # The barrier that made the write available comes in an earlier batch than the flagged
+        # one (a batch is validated before it is applied), so only later batches can be meant.
+        # It must also cover part of the range that barrier made available.
+        made_available = [(k, x) for k, b in enumerate(plan_batches) for x in b
+                          if x["name"] == image and writer in x["src"] and x["dst"] & available_to]
+        candidates = [b[int(index)] for k, b in enumerate(plan_batches)
+                      if len(b) > int(index) and b[int(index)]["name"] == image and b[int(index)]["transition"]
+                      and any(j < k and overlap(x, b[int(index)]) for j, x in made_available)]
         if not candidates or any(not (c["src"] & available_to) for c in candidates):
             return "other"
     return "layer-ilt-false-positive"
