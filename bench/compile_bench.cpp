@@ -152,8 +152,8 @@ void compileBench(benchmark::State& state, bool sharedRead) {
 void BM_Compile(benchmark::State& state) { compileBench(state, false); }
 
 // The floor under compile(): copying the finished plan allocates and writes what compile()
-// must produce (per pass two strings and two vectors, per usage a PlannedUsage with its slot
-// name), with none of the work.
+// must produce (per pass its name and type, the plan's one usage array and one barrier array,
+// each pass's spans rebased onto the copy), with none of the work.
 void BM_CopyPlan(benchmark::State& state) {
     const Case& c = graphFor(static_cast<int>(state.range(0)), false);
     const Plan plan = compile(c.graph);

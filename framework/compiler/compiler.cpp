@@ -61,45 +61,43 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     if (options.outputWidth == 0 || options.outputHeight == 0)
         diags.add({graph.file, "", "", "", "the output extent must not be zero"});
     // Mip counts of output-relative images can only be checked against a real output size.
-    for (const auto& r : graph.resources) {
-        if (!r.isImage() || r.mips == 0 || !r.extent.relativeToOutput) continue;
+    // The index finds them (and the ranged usages below) in the walks it makes anyway.
+    const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
+    for (const uint32_t i : index.tooManyMips()) {
+        const ResourceDesc& r = graph.resources[i];
         const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
         const auto most = static_cast<uint32_t>(std::bit_width(std::max(w, h)));
-        if (r.mips > most)
-            diags.add({graph.file, r.jsonPath + ".mips", "", r.name,
-                       std::to_string(r.mips) + " levels is more than a " + std::to_string(w) + "x" +
-                           std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
-                           std::to_string(options.outputWidth) + "x" + std::to_string(options.outputHeight)});
+        diags.add({graph.file, r.jsonPath + ".mips", "", r.name,
+                   std::to_string(r.mips) + " levels is more than a " + std::to_string(w) + "x" +
+                       std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
+                       std::to_string(options.outputWidth) + "x" + std::to_string(options.outputHeight)});
     }
     // Ranges are checked against the chain the output size resolves (and against extents an
     // embedder may have changed after loading): a range that starts past the last level, or
     // names layers the image lacks, is an error here, not a plan that fails at run time. One
     // that runs past the end of a chain is clipped to it: the loader gives a `layers`-only
     // usage of a full output-sized chain every level the largest image could have.
-    for (const PassDesc& p : graph.passes) {
-        if (!p.condition.evaluate(features)) continue;
-        for (size_t i = 0; i < p.uses.size(); ++i) {
-            const UsageDecl& u = p.uses[i];
-            if (!u.usage.range || u.resource >= graph.resources.size()) continue;
-            const ResourceDesc& r = graph.resources[u.resource];
-            const uint32_t levels = std::max(1u, r.mipCount(options.outputWidth, options.outputHeight));
-            const SubresourceRange& range = *u.usage.range;
-            const bool mipsFit = range.baseMip < levels;
-            const bool layersFit = uint64_t(range.baseLayer) + range.layerCount <= std::max(1u, r.layers);
-            if (mipsFit && layersFit) continue;
-            const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
-            diags.add({graph.file, u.jsonPath, p.name, r.name,
-                       !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +
-                                      std::to_string(range.mipCount) + "] but the " + std::to_string(w) + "x" +
-                                      std::to_string(h) + " image has " + std::to_string(levels) + " mip level(s)"
-                                : "uses layers [" + std::to_string(range.baseLayer) + ", " +
-                                      std::to_string(range.layerCount) + "] but the image has " +
-                                      std::to_string(r.layers) + " layer(s)"});
-        }
+    for (const auto& [pass, use] : index.rangedUses()) {
+        const PassDesc& p = graph.passes[pass];
+        const UsageDecl& u = p.uses[use];
+        if (u.resource >= graph.resources.size()) continue;
+        const ResourceDesc& r = graph.resources[u.resource];
+        const uint32_t levels = std::max(1u, r.mipCount(options.outputWidth, options.outputHeight));
+        const SubresourceRange& range = *u.usage.range;
+        const bool mipsFit = range.baseMip < levels;
+        const bool layersFit = uint64_t(range.baseLayer) + range.layerCount <= std::max(1u, r.layers);
+        if (mipsFit && layersFit) continue;
+        const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
+        diags.add({graph.file, u.jsonPath, p.name, r.name,
+                   !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +
+                                  std::to_string(range.mipCount) + "] but the " + std::to_string(w) + "x" +
+                                  std::to_string(h) + " image has " + std::to_string(levels) + " mip level(s)"
+                            : "uses layers [" + std::to_string(range.baseLayer) + ", " +
+                                  std::to_string(range.layerCount) + "] but the image has " +
+                                  std::to_string(r.layers) + " layer(s)"});
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 
-    const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
     checkReadsHaveSources(index, features, diags);
     if (!diags.empty()) throw GraphError(std::move(diags));
 

@@ -11,8 +11,11 @@
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
 
+#include <algorithm>
+#include <bit>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace skygraph {
@@ -36,6 +39,11 @@ public:
         for (const auto& r : graph.resources) {
             grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
+            if (r.isImage() && r.mips != 0 && r.extent.relativeToOutput) {
+                const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
+                if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(w, h))))
+                    tooManyMips_.push_back(static_cast<uint32_t>(&r - graph.resources.data()));
+            }
         }
     }
 
@@ -64,6 +72,12 @@ public:
     [[nodiscard]] bool clear(size_t r) const noexcept { return resources_[r].clear; }
     [[nodiscard]] bool external(size_t r) const noexcept { return resources_[r].external; }
     [[nodiscard]] bool exported(size_t r) const noexcept { return resources_[r].exported; }
+    /// Output-relative images whose `mips` exceed what the output size gives them, in file
+    /// order: compile() reports them (mip counts can only be checked at a real output size).
+    [[nodiscard]] std::span<const uint32_t> tooManyMips() const noexcept { return tooManyMips_; }
+    /// The active passes' usages that name a range, as (pass, index into its `uses`), in
+    /// file order: what compile() checks against the resolved mip chains.
+    [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> rangedUses() const noexcept { return ranged_; }
 
 private:
     void indexPasses(const std::optional<FeatureValues>& features) {
@@ -77,8 +91,13 @@ private:
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
-            active_.push_back(!features || pass.condition.evaluate(*features));
-            for (const auto& u : pass.uses) uses_.push_back({u.usage, u.resource, !u.slot.empty()});
+            const bool active = !features || pass.condition.evaluate(*features);
+            active_.push_back(active);
+            for (const auto& u : pass.uses) {
+                if (active && u.usage.range)
+                    ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(&u - pass.uses.data()));
+                uses_.push_back({u.usage, u.resource, !u.slot.empty()});
+            }
             firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
         }
     }
@@ -104,6 +123,8 @@ private:
     std::vector<bool> active_;          // per pass
     std::vector<uint32_t> firstUse_;    // per pass: its usages in uses_ (+1 at the end)
     std::vector<IndexedUsage> uses_;
+    std::vector<std::pair<uint32_t, uint32_t>> ranged_;
+    std::vector<uint32_t> tooManyMips_;
     SubresourceGrids grids_;            // per resource
     std::vector<ResourceFlags> resources_;
 };

@@ -3,6 +3,7 @@
 #include "subresources.hpp"
 
 #include <algorithm>
+#include <map>
 
 namespace skygraph {
 namespace {
@@ -66,14 +67,15 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
 
 /// Culling: backwards liveness per subresource. Contents are live if an exported resource
 /// holds them at the end or a kept pass reads them later; a pass that writes nothing live
-/// (and is not never_cull) is removed, with its reason in `reasons`.
-void cullUnreadPasses(const GraphIndex& index, std::vector<std::string>& reasons) {
+/// (and is not never_cull) is removed: marked in `culled`, its reason in `reasons`.
+void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std::map<size_t, std::string>& reasons) {
     const GraphDesc& graph = index.graph();
     const SubresourceGrids& grids = index.grids();
     auto live = grids.makeArray<uint8_t>([&](size_t r) { return static_cast<uint8_t>(index.exported(r)); });
     for (size_t p = index.passes(); p-- > 0;) {
         if (!index.active(p)) continue;
         if (!graph.passes[p].neverCull && !writesLive(index, p, live)) {
+            culled[p] = 1;
             reasons[p] = unreadWritesReason(graph, graph.passes[p]);
             continue;
         }
@@ -121,21 +123,25 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
 
 Schedule schedulePasses(const GraphIndex& index, const FeatureValues& features, bool cull) {
     const GraphDesc& graph = index.graph();
-    std::vector<std::string> reasons(index.passes());  // empty: the pass runs
+    // Culled passes are usually few: their reasons are kept apart, not one string per pass.
+    std::vector<uint8_t> culled(index.passes());
+    std::map<size_t, std::string> reasons;
     for (size_t p = 0; p < index.passes(); ++p)
-        if (!index.active(p)) reasons[p] = conditionReason(graph.passes[p].condition, features);
-    if (cull) cullUnreadPasses(index, reasons);
+        if (!index.active(p)) {
+            culled[p] = 1;
+            reasons[p] = conditionReason(graph.passes[p].condition, features);
+        }
+    if (cull) cullUnreadPasses(index, culled, reasons);
 
     Schedule s;
-    s.passes.reserve(index.passes());
+    s.passes.reserve(index.passes() - reasons.size());
     for (size_t p = 0; p < index.passes(); ++p) {
-        if (reasons[p].empty()) {
+        if (!culled[p]) {
             s.passes.push_back(static_cast<uint32_t>(p));
             s.usages += index.usesOf(p).size();
-        } else {
-            s.culled.push_back({graph.passes[p].name, std::move(reasons[p])});
         }
     }
+    for (auto& [p, reason] : reasons) s.culled.push_back({graph.passes[p].name, std::move(reason)});  // file order
     return s;
 }
 

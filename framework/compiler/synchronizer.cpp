@@ -1,10 +1,14 @@
 #include "synchronizer.hpp"
 
+#include "plan_builder.hpp"
 #include "subresources.hpp"
 #include "vulkan_state.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 
 namespace skygraph {
 namespace {
@@ -27,19 +31,14 @@ struct SubresourceState {
     bool fromOutside = false;
 };
 
-/// One usage in plan order (access k is the k-th usage of the plan): what the sweeps need of
-/// it, in one compact array. The plan's PlannedUsage is written from it once, at the end.
-/// Each resource's accesses are chained through `next`.
+/// One usage in plan order (access k is the k-th usage of the plan), beside its PlannedUsage
+/// (written when the access is recorded: resource, range, stages, access and, until rule 4
+/// settles it, its own layout): what the sweeps need besides. Each resource's accesses are
+/// chained through `next`.
 struct AccessRecord {
-    SubresourceRange range;
-    VkPipelineStageFlags2 stages = 0;
-    VkAccessFlags2 access = 0;
-    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Its own, not its read run's.
     uint32_t step = 0;        ///< Index into Plan::passes.
-    uint32_t resource = 0;    ///< Index into Plan::resources.
     uint32_t next = kNone;    ///< The same resource's next access.
     uint32_t runScopes = 0;   ///< Index of its first entry in Synchronizer::runScope_.
-    uint32_t use = kNone;     ///< Index into GraphIndex's usages; kNone for an inserted clear.
     bool reads = false;       ///< Of the effective usage (a load-op clear writes).
     bool writes = false;
     bool loadOpClear = false; ///< The first use of a `clear` resource, cleared by the load op.
@@ -119,6 +118,7 @@ public:
 
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
+        usages_ = &detail::PlanBuilder::usages(plan_);
         planAccesses(schedule);
         computeRunScopes();
         emitSteps();
@@ -150,9 +150,11 @@ private:
         facts_.reserve(graph_.resources.size());
         grids_ = SubresourceGrids(graph_.resources.size());
         accesses_.reserve(schedule.usages);
+        usages_->reserve(schedule.usages);  // inserted clears add a few more, rarely
+        plan_.passes.reserve(schedule.passes.size());
         readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
-        std::vector<bool> firstUses;         // per usage of this pass
+        std::vector<uint8_t> firstUses;      // per usage of this pass
         for (uint32_t p : schedule.passes) {
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
@@ -166,9 +168,12 @@ private:
             }
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
+                plan_.passes.push_back(PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {}});
                 addAccess(r, kClearUsage, grids_[r].whole(), kNone, false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
+            const PassDesc& d = graph_.passes[p];
+            plan_.passes.push_back(PlannedPass{d.name, d.type, static_cast<int32_t>(p), {}, {}});
             for (size_t i = 0; i < uses.size(); ++i) {
                 const uint32_t r = planIndex[uses[i].resource];
                 addAccess(r, uses[i].usage, grids_[r].resolve(uses[i].usage), index_.indexOf(uses[i]),
@@ -212,15 +217,22 @@ private:
         const auto k = static_cast<uint32_t>(accesses_.size());
         const Usage effective = effectiveUsage(usage, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].aspects, effective);
+        PlannedUsage& pu = usages_->emplace_back();
+        pu.resource = r;
+        pu.usage = usage;
+        pu.range = range;
+        pu.layout = scope.layout;
+        pu.stages = scope.stages;
+        pu.access = scope.access;
+        if (loadOpClear) pu.load = LoadOp::Clear;
+        if (use != kNone && index_.use(use).fillsSlot) {
+            const std::string& slot = index_.declOf(static_cast<size_t>(steps_.back().pass), index_.use(use)).slot;
+            slotAt_.push_back({k, static_cast<uint32_t>(slotText_.size()), static_cast<uint32_t>(slot.size())});
+            slotText_ += slot;
+        }
         AccessRecord& a = accesses_.emplace_back();
-        a.range = range;
-        a.stages = scope.stages;
-        a.access = scope.access;
-        a.layout = scope.layout;
         a.step = static_cast<uint32_t>(steps_.size() - 1);
-        a.resource = r;
         a.runScopes = runScopeCount_;
-        a.use = use;
         a.reads = readsContents(effective.access);
         a.writes = writesContents(effective.access);
         a.loadOpClear = loadOpClear;
@@ -247,14 +259,15 @@ private:
         std::vector<VulkanScope> pending(grids_.total());  // per subresource
         for (auto k = static_cast<uint32_t>(accesses_.size()); k-- > 0;) {
             const AccessRecord& a = accesses_[k];
-            if (!a.writes && isImage(a.resource)) readRuns_.fold(k, a.layout);
+            const PlannedUsage& u = (*usages_)[k];
+            if (!a.writes && isImage(u.resource)) readRuns_.fold(k, u.layout);
             VulkanScope* out = &runScope_[a.runScopes];
-            grids_.forEach(a.resource, a.range, [&](size_t sub) {
+            grids_.forEach(u.resource, u.range, [&](size_t sub) {
                 if (a.writes) {
                     pending[sub] = {};
                 } else {
-                    pending[sub].stages |= a.stages;
-                    pending[sub].access |= a.access;
+                    pending[sub].stages |= u.stages;
+                    pending[sub].access |= u.access;
                     *out = pending[sub];
                 }
                 ++out;
@@ -262,60 +275,49 @@ private:
         }
     }
 
-    /// Writes the plan's passes, each usage with its layout, load and store ops, and the
-    /// barriers before each pass, in one forward sweep.
+    /// Settles each usage's layout (rule 4) and attachment ops and writes the barriers before
+    /// each pass, in one forward sweep. Barriers go straight into the plan's array; the
+    /// passes' spans are set once it stops growing.
     void emitSteps() {
         state_.resize(grids_.total());
-        plan_.passes.reserve(steps_.size());
+        auto& usages = *usages_;
+        auto& barriers = detail::PlanBuilder::barriers(plan_);
+        barriers.reserve(accesses_.size());  // usually enough: most accesses need one at most
+        std::vector<uint32_t> barrierEnd;    // per pass
+        barrierEnd.reserve(steps_.size());
         for (uint32_t s = 0; s < steps_.size(); ++s) {
-            const Step& step = steps_[s];
-            const uint32_t end = s + 1 < steps_.size() ? steps_[s + 1].firstAccess : static_cast<uint32_t>(accesses_.size());
-            PlannedPass& pass = step.pass >= 0 ? plan_.passes.emplace_back(PlannedPass{
-                                                     graph_.passes[step.pass].name, graph_.passes[step.pass].type, step.pass, {}, {}})
-                                               : plan_.passes.emplace_back(PlannedPass{
-                                                     "clear " + decl(step.cleared).name, "Clear", -1, {}, {}});
-            pass.usages.reserve(end - step.firstAccess);
-            batch_.clear();
-            for (uint32_t k = step.firstAccess; k < end; ++k) {
-                PlannedUsage& pu = pass.usages.emplace_back();
-                describeUsage(pu, k);
-                applyAccess(pu, k);
-            }
-            mergeAdjacent(batch_);
-            pass.barriers.assign(batch_.begin(), batch_.end());  // allocated once, to size
+            const size_t batch = barriers.size();
+            for (uint32_t k = steps_[s].firstAccess; k < stepEnd(s); ++k) applyAccess(usages[k], k, barriers);
+            mergeAdjacent(barriers, batch);
+            barrierEnd.push_back(static_cast<uint32_t>(barriers.size()));
         }
+        for (uint32_t s = 0, firstBarrier = 0; s < steps_.size(); ++s) {
+            PlannedPass& pass = plan_.passes[s];
+            pass.usages = {usages.data() + steps_[s].firstAccess, stepEnd(s) - steps_[s].firstAccess};
+            if (barrierEnd[s] > firstBarrier) pass.barriers = {barriers.data() + firstBarrier, barrierEnd[s] - firstBarrier};
+            firstBarrier = barrierEnd[s];
+        }
+        auto names = std::make_shared<const std::string>(std::move(slotText_));
+        for (const SlotName& n : slotAt_) usages[n.usage].slot = std::string_view(*names).substr(n.offset, n.length);
+        detail::PlanBuilder::setSlotNames(plan_, std::move(names));
     }
-
-    /// Access k as the plan shows it, before its layout (rule 4) and attachment ops are settled.
-    void describeUsage(PlannedUsage& pu, uint32_t k) const {
-        const AccessRecord& a = accesses_[k];
-        pu.resource = a.resource;
-        if (a.use == kNone) {
-            pu.usage = kClearUsage;
-        } else {
-            const IndexedUsage& u = index_.use(a.use);
-            pu.usage = u.usage;
-            if (u.fillsSlot) pu.slot = index_.declOf(static_cast<size_t>(steps_[a.step].pass), u).slot;
-        }
-        pu.range = a.range;
-        pu.layout = a.layout;
-        pu.stages = a.stages;
-        pu.access = a.access;
-        if (a.loadOpClear) pu.load = LoadOp::Clear;
+    /// The end of step s's accesses.
+    uint32_t stepEnd(uint32_t s) const {
+        return s + 1 < steps_.size() ? steps_[s + 1].firstAccess : static_cast<uint32_t>(accesses_.size());
     }
 
     /// Whether a later access (or the export) reads what access `k` leaves in `range`.
     bool readLater(uint32_t k, const SubresourceRange& range) const {
         for (uint32_t j = accesses_[k].next; j != kNone; j = accesses_[j].next) {
             const AccessRecord& a = accesses_[j];
-            if (!a.range.overlaps(range)) continue;
+            const auto& o = (*usages_)[j].range;
+            if (!o.overlaps(range)) continue;
             if (a.reads) return true;
-            const auto& o = a.range;
             if (o.baseMip <= range.baseMip && o.baseMip + o.mipCount >= range.baseMip + range.mipCount &&
                 o.baseLayer <= range.baseLayer && o.baseLayer + o.layerCount >= range.baseLayer + range.layerCount)
                 return false;
         }
-        return facts_[accesses_[k].resource].exported;  // the same notion of "live at the end" as culling
+        return facts_[(*usages_)[k].resource].exported;  // the same notion of "live at the end" as culling
     }
 
     /// Stages and accesses of resource r's uses in its first pass.
@@ -323,8 +325,8 @@ private:
         VulkanScope scope;
         const uint32_t first = plan_.resources[r].firstPass;
         for (uint32_t k = facts_[r].firstAccess; k != kNone && accesses_[k].step == first; k = accesses_[k].next) {
-            scope.stages |= accesses_[k].stages;
-            scope.access |= accesses_[k].access;
+            scope.stages |= (*usages_)[k].stages;
+            scope.access |= (*usages_)[k].access;
         }
         return scope;
     }
@@ -416,9 +418,9 @@ private:
         return b;
     }
 
-    /// Barriers for one usage (access `k`) into batch_, then the state after it, and the
+    /// Barriers for one usage (access `k`) onto `batch`, then the state after it, and the
     /// usage's layout (its read run's) and attachment ops.
-    void applyAccess(PlannedUsage& pu, uint32_t k) {
+    void applyAccess(PlannedUsage& pu, uint32_t k, std::vector<Barrier>& batch) {
         const AccessRecord& a = accesses_[k];
         const uint32_t r = pu.resource;
         const bool image = isImage(r);
@@ -449,7 +451,7 @@ private:
                 b->resource = r;
                 b->kind = image ? BarrierKind::Image : BarrierKind::Buffer;
                 b->range = pu.range;
-                batch_.push_back(*b);
+                batch.push_back(*b);
             }
         } else {
             perSub_.clear();
@@ -459,7 +461,7 @@ private:
                                              write ? need : runScopes[c++]));
                 update(states[sub]);
             });
-            emitMerged(r, pu.range, perSub_, batch_);
+            emitMerged(r, pu.range, perSub_, batch);
         }
 
         if (isAttachmentStage(pu.usage.stage)) {
@@ -516,12 +518,12 @@ private:
         out.insert(out.end(), open.begin(), open.end());
     }
 
-    /// Joins barriers of one batch that differ only in adjoining ranges, e.g. the per-mip
-    /// usages of a pass that writes every level.
-    static void mergeAdjacent(std::vector<Barrier>& batch) {
-        for (bool merged = batch.size() > 1; merged;) {
+    /// Joins barriers of one batch (`batch` from `first` on) that differ only in adjoining
+    /// ranges, e.g. the per-mip usages of a pass that writes every level.
+    static void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
+        for (bool merged = batch.size() > first + 1; merged;) {
             merged = false;
-            for (size_t i = 0; i < batch.size() && !merged; ++i)
+            for (size_t i = first; i < batch.size() && !merged; ++i)
                 for (size_t j = i + 1; j < batch.size() && !merged; ++j) {
                     Barrier& a = batch[i];
                     const Barrier& b = batch[j];
@@ -582,6 +584,11 @@ private:
     std::vector<Step> steps_;              // per plan pass
     // Per access (usage in plan order).
     std::vector<AccessRecord> accesses_;
+    std::vector<PlannedUsage>* usages_ = nullptr;  // the plan's, one per access
+    // The slot table: the names of the usages that fill slots, one after another.
+    struct SlotName { uint32_t usage, offset, length; };
+    std::string slotText_;
+    std::vector<SlotName> slotAt_;
     ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
     std::vector<VulkanScope> runScope_;    // per access and subresource of its range
@@ -590,7 +597,6 @@ private:
     // Scratch, reused across usages.
     std::vector<std::optional<Barrier>> perSub_;
     std::vector<Barrier> mergeOpen_, mergeRow_, mergeNext_;
-    std::vector<Barrier> batch_;           // the current pass's barriers
 };
 
 }  // namespace

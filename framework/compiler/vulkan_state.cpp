@@ -1,5 +1,7 @@
 #include "vulkan_state.hpp"
 
+#include <array>
+
 namespace skygraph {
 namespace {
 
@@ -97,7 +99,9 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
 
 VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) { return vulkanScope(aspectsOf(r), u); }
 
-VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) {
+namespace {
+
+VulkanScope computeScope(const ResourceAspects& r, const Usage& u) {
     VulkanScope s;
     const BindAs as = resolveBindAs(r.image, u);
     switch (u.stage) {
@@ -166,6 +170,29 @@ VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) {
     }
     if (!r.image) s.layout = VK_IMAGE_LAYOUT_UNDEFINED;
     return s;
+}
+
+constexpr size_t kAccesses = 3, kStages = 8, kBindAs = 5;
+
+}  // namespace
+
+// The compiler asks this once per usage: every combination (8 aspect sets x 120 usages) is
+// worked out once, and a lookup replaces the switches.
+VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) {
+    static const std::array<VulkanScope, 8 * kAccesses * kStages * kBindAs> table = [] {
+        std::array<VulkanScope, 8 * kAccesses * kStages * kBindAs> t{};
+        size_t i = 0;
+        for (int aspects = 0; aspects < 8; ++aspects)
+            for (size_t stage = 0; stage < kStages; ++stage)
+                for (size_t access = 0; access < kAccesses; ++access)
+                    for (size_t as = 0; as < kBindAs; ++as)
+                        t[i++] = computeScope({(aspects & 1) != 0, (aspects & 2) != 0, (aspects & 4) != 0},
+                                              {static_cast<Access>(access), static_cast<Stage>(stage),
+                                               static_cast<BindAs>(as), std::nullopt});
+        return t;
+    }();
+    const size_t aspects = size_t(r.image) | size_t(r.depth) << 1 | size_t(r.stencil) << 2;
+    return table[((aspects * kStages + size_t(u.stage)) * kAccesses + size_t(u.access)) * kBindAs + size_t(u.as)];
 }
 
 VulkanScope externalScope(const ResourceDesc& r, ExternalState state) {

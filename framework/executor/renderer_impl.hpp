@@ -235,7 +235,7 @@ struct Renderer::Impl {
     void buildGraphics(detail::PlanState& s, detail::PassState& ps);
     void buildRenderPass(detail::PlanState& s, detail::PassState& ps);
     VkImageMemoryBarrier2 imageBarrier(const detail::PlanState& s, const Barrier& b, uint32_t slot) const;
-    void translateBarriers(const detail::PlanState& s, const std::vector<Barrier>& barriers, uint32_t slot,
+    void translateBarriers(const detail::PlanState& s, std::span<const Barrier> barriers, uint32_t slot,
                            std::vector<VkImageMemoryBarrier2>& images,
                            std::vector<VkBufferMemoryBarrier2>& buffers,
                            std::vector<VkMemoryBarrier2>& memory) const;

@@ -158,7 +158,7 @@ VkImageMemoryBarrier2 Renderer::Impl::imageBarrier(const PlanState& s, const Bar
     return ib;
 }
 
-void Renderer::Impl::translateBarriers(const PlanState& s, const std::vector<Barrier>& barriers, uint32_t slot,
+void Renderer::Impl::translateBarriers(const PlanState& s, std::span<const Barrier> barriers, uint32_t slot,
                                        std::vector<VkImageMemoryBarrier2>& images,
                                        std::vector<VkBufferMemoryBarrier2>& buffers,
                                        std::vector<VkMemoryBarrier2>& memory) const {

@@ -1,5 +1,13 @@
 // The compiler's output: what runs, in which order, and every barrier between.
 // The executor records exactly this and derives no synchronization of its own.
+//
+// Storage: a Plan keeps all usages of all passes in one array and all pass barriers in
+// another; each PlannedPass views its part of them through spans, and slot names are views
+// into one string table that copies of a plan share (it is never modified). So compiling
+// makes a handful of allocations instead of several per pass. The spans point into the Plan
+// that holds the pass: copying a Plan rebases them onto the copy (each copy is valid on its
+// own, whatever happens to the original); moving a Plan keeps them valid. A PlannedPass or
+// PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged.
 #pragma once
 
 #include <skygraph/condition.hpp>
@@ -9,7 +17,10 @@
 #include <vulkan/vulkan_core.h>
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace skygraph {
@@ -35,15 +46,18 @@ struct Barrier {
 enum class LoadOp : uint8_t { Load, Clear, DontCare };
 enum class StoreOp : uint8_t { Store, DontCare, None };
 
-/// A usage with everything Vulkan needs to perform it.
+/// A usage with everything Vulkan needs to perform it. (Members are ordered to pack: a plan
+/// holds one per usage.)
 struct PlannedUsage {
-    uint32_t resource = 0;  ///< Index into Plan::resources.
-    Usage usage;            ///< As written, with the range resolved.
-    std::string slot;
-    SubresourceRange range;
-    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Layout during the pass.
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
+    /// The pass type's slot this usage fills; empty for Generic passes and inserted clears.
+    /// Views the plan's shared slot table: valid while any copy of the plan lives.
+    std::string_view slot;
+    Usage usage;            ///< As written, with the range resolved.
+    SubresourceRange range;
+    uint32_t resource = 0;  ///< Index into Plan::resources.
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Layout during the pass.
     /// Attachments only. Clear when this is the first use of a `clear` resource.
     LoadOp load = LoadOp::Load;
     /// Attachments only: Store when a later pass or the export reads the result.
@@ -54,8 +68,10 @@ struct PlannedPass {
     std::string name;
     std::string type;      ///< Pass type; "Clear" for a clear inserted by the compiler.
     int32_t declIndex = -1;  ///< Index into GraphDesc::passes; -1 for inserted passes.
-    std::vector<Barrier> barriers;  ///< One vkCmdPipelineBarrier2 batch, before the pass.
-    std::vector<PlannedUsage> usages;
+    /// One vkCmdPipelineBarrier2 batch, before the pass. Views the plan's barrier array;
+    /// edit through Plan::barriersOf / Plan::eraseBarrier.
+    std::span<const Barrier> barriers;
+    std::span<const PlannedUsage> usages;  ///< Views the plan's usage array.
 };
 
 /// A resource that at least one scheduled pass uses. Unused resources are not listed.
@@ -77,6 +93,10 @@ struct CulledPass {
     std::string reason;
 };
 
+namespace detail {
+struct PlanBuilder;  // the compiler's way of filling a plan's storage
+}
+
 struct Plan {
     std::string graph;
     FeatureValues features;
@@ -87,6 +107,24 @@ struct Plan {
 
     /// Index into `resources` for a graph resource, or -1 when no scheduled pass uses it.
     [[nodiscard]] int32_t resourceIndex(std::string_view name) const noexcept;
+
+    /// Pass `pass`'s barriers, editable in place (tests weaken plans this way).
+    [[nodiscard]] std::span<Barrier> barriersOf(size_t pass);
+    /// Removes barrier `i` of pass `pass`; later passes' spans stay valid.
+    void eraseBarrier(size_t pass, size_t i);
+
+    Plan() = default;
+    Plan(const Plan& other);  ///< Deep copy, with every span rebased onto the copy.
+    Plan& operator=(const Plan& other);
+    Plan(Plan&&) noexcept = default;  ///< Moved arrays keep their addresses: spans stay valid.
+    Plan& operator=(Plan&&) noexcept = default;
+    ~Plan() = default;
+
+private:
+    friend struct detail::PlanBuilder;
+    std::vector<PlannedUsage> usages_;   // every pass's usages, pass after pass
+    std::vector<Barrier> barriers_;      // every pass's barrier batch, pass after pass
+    std::shared_ptr<const std::string> slotNames_;  // what PlannedUsage::slot views
 };
 
 }  // namespace skygraph

@@ -17,30 +17,30 @@ std::string graph(const std::string& resources, const std::string& passes) {
            kSwapchain + R"(}, "passes": [)" + passes + "] }";
 }
 
-/// The barrier recorded before `pass` for `resource`; fails the test when there is none.
-Barrier* findBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
+/// Where the barrier recorded before `pass` for `resource` is: (pass index, index in its
+/// batch); fails the test when there is none.
+std::pair<size_t, size_t> findBarrier(const Plan& plan, const std::string& pass, const std::string& resource) {
     const int32_t r = plan.resourceIndex(resource);
-    for (auto& p : plan.passes) {
-        if (p.name != pass) continue;
-        for (auto& b : p.barriers)
-            if (static_cast<int32_t>(b.resource) == r) return &b;
+    for (size_t p = 0; p < plan.passes.size(); ++p) {
+        if (plan.passes[p].name != pass) continue;
+        for (size_t i = 0; i < plan.passes[p].barriers.size(); ++i)
+            if (static_cast<int32_t>(plan.passes[p].barriers[i].resource) == r) return {p, i};
     }
     ADD_FAILURE() << "no barrier before '" << pass << "' for '" << resource << "'\n"
                   << planToText(plan);
-    return nullptr;
+    return {plan.passes.size(), 0};
+}
+
+/// The barrier itself, editable; nullptr (and a failure) when there is none.
+Barrier* barrierOf(Plan& plan, const std::string& pass, const std::string& resource) {
+    const auto [p, i] = findBarrier(plan, pass, resource);
+    return p < plan.passes.size() ? &plan.barriersOf(p)[i] : nullptr;
 }
 
 void dropBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
-    Barrier* b = findBarrier(plan, pass, resource);
-    ASSERT_NE(b, nullptr);
-    for (auto& p : plan.passes) {
-        auto it = std::find_if(p.barriers.begin(), p.barriers.end(),
-                               [&](const Barrier& x) { return &x == b; });
-        if (it != p.barriers.end()) {
-            p.barriers.erase(it);
-            return;
-        }
-    }
+    const auto [p, i] = findBarrier(plan, pass, resource);
+    ASSERT_LT(p, plan.passes.size());
+    plan.eraseBarrier(p, i);
 }
 
 class NegativeControl : public ExecutorTest {
@@ -100,7 +100,7 @@ TEST_F(NegativeControl, DroppedLayoutTransitionIsReadAfterWrite) {
            { "name": "sample", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
     Plan broken = c.plan;
-    Barrier* b = findBarrier(broken, "sample", "tex");
+    Barrier* b = barrierOf(broken, "sample", "tex");
     ASSERT_NE(b, nullptr);
     ASSERT_NE(b->oldLayout, b->newLayout) << "the control needs a layout transition";
     dropBarrier(broken, "sample", "tex");
@@ -116,7 +116,7 @@ TEST_F(NegativeControl, UnscopedLayoutTransitionIsWriteAfterWrite) {
            { "name": "sample", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
     Plan broken = c.plan;
-    Barrier* b = findBarrier(broken, "sample", "tex");
+    Barrier* b = barrierOf(broken, "sample", "tex");
     ASSERT_NE(b, nullptr);
     b->srcStages = VK_PIPELINE_STAGE_2_NONE;
     b->srcAccess = VK_ACCESS_2_NONE;

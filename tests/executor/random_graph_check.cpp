@@ -5,6 +5,7 @@
 #include <skygraph/plan_format.hpp>
 
 #include <bit>
+#include <span>
 #include <string>
 
 namespace skygraph::test {
@@ -43,18 +44,18 @@ void forEachBit(uint64_t mask, F&& f) {
 
 std::string nameOf(const Plan& plan, const Barrier& b) { return plan.resources.at(b.resource).name; }
 
-/// Adds every weakening of `list[i]` (list is a barrier batch of `base`, found by `locate`).
-template <class Locate>
-void weakenBatch(const Plan& base, const std::vector<Barrier>& list, const std::string& where,
-                 Locate locate, std::vector<BarrierMutation>& out) {
+/// Adds every weakening of `list[i]` (list is a barrier batch of `base`; `locate` finds the
+/// same batch in a copy, editable, and `drop(copy, i)` removes its barrier i).
+template <class Locate, class Drop>
+void weakenBatch(const Plan& base, std::span<const Barrier> list, const std::string& where,
+                 Locate locate, Drop drop, std::vector<BarrierMutation>& out) {
     for (size_t i = 0; i < list.size(); ++i) {
         const Barrier& b = list[i];
         const char* kind = b.kind == BarrierKind::Image ? "image" : b.kind == BarrierKind::Buffer ? "buffer" : "memory";
         const std::string what = where + ", " + nameOf(base, b) + " (" + kind + "): ";
         {
             Plan p = base;
-            auto& batch = locate(p);
-            batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(i));
+            drop(p, i);
             out.push_back({what + "barrier dropped", std::move(p)});
         }
         auto mutate = [&](const std::string& how, auto change) {
@@ -127,9 +128,11 @@ std::vector<BarrierMutation> weakenedPlans(const Plan& plan) {
     std::vector<BarrierMutation> out;
     for (size_t p = 0; p < plan.passes.size(); ++p)
         weakenBatch(plan, plan.passes[p].barriers, "before " + plan.passes[p].name,
-                    [p](Plan& x) -> std::vector<Barrier>& { return x.passes[p].barriers; }, out);
-    weakenBatch(plan, plan.finalBarriers, "final",
-                [](Plan& x) -> std::vector<Barrier>& { return x.finalBarriers; }, out);
+                    [p](Plan& x) { return x.barriersOf(p); }, [p](Plan& x, size_t i) { x.eraseBarrier(p, i); },
+                    out);
+    weakenBatch(plan, plan.finalBarriers, "final", [](Plan& x) { return std::span<Barrier>(x.finalBarriers); },
+                [](Plan& x, size_t i) { x.finalBarriers.erase(x.finalBarriers.begin() + static_cast<std::ptrdiff_t>(i)); },
+                out);
     return out;
 }
 
