@@ -66,6 +66,13 @@ uint8_t unorm8(float v) {
     return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
+/// The GLSL name of level `level` of a storage-image binding: `iN`, or `iN[level]` for an
+/// array of per-level views.
+std::string storageImage(const ShaderBinding& b, uint32_t level) {
+    const std::string name = "i" + std::to_string(b.binding);
+    return b.levels > 1 ? name + "[" + std::to_string(level) + "]" : name;
+}
+
 /// Expression reading a binding at `xy` (ivec2) into a vec4, with `li` the linear index.
 std::string readExpr(const ShaderBinding& b) {
     const std::string n = std::to_string(b.binding);
@@ -78,11 +85,18 @@ std::string readExpr(const ShaderBinding& b) {
                        ", 0).xy - 1), 0), 0))";
             return "vec4(texelFetch(t" + n + ", clamp(xy, ivec2(0), textureSize(t" + n +
                    ", 0) - 1), 0))";
-        case BindKind::StorageImage:
-            if (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY)
-                return "vec4(imageLoad(i" + n + ", ivec3(clamp(xy, ivec2(0), imageSize(i" + n +
-                       ").xy - 1), 0)))";
-            return "vec4(imageLoad(i" + n + ", clamp(xy, ivec2(0), imageSize(i" + n + ") - 1)))";
+        case BindKind::StorageImage: {
+            std::string sum;
+            for (uint32_t level = 0; level < b.levels; ++level) {
+                const std::string image = storageImage(b, level);
+                sum += (level ? " + " : "") +
+                       (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                            ? "vec4(imageLoad(" + image + ", ivec3(clamp(xy, ivec2(0), imageSize(" + image +
+                                  ").xy - 1), 0)))"
+                            : "vec4(imageLoad(" + image + ", clamp(xy, ivec2(0), imageSize(" + image + ") - 1)))");
+            }
+            return sum;
+        }
         case BindKind::StorageBuffer:
             return "(b" + n + ".data.length() > kValueIndex ? vec4(uintBitsToFloat(b" + n +
                    ".data[kValueIndex])) : vec4(0.0))";
@@ -110,7 +124,9 @@ std::string declare(const ShaderBinding& b) {
             s << "layout(set = 0, binding = " << n;
             if (!b.glslFormat.empty()) s << ", " << b.glslFormat;
             s << ") uniform " << (b.write && !b.read ? "writeonly " : b.read && !b.write ? "readonly " : "")
-              << b.scalarPrefix << type << " i" << n << ";\n";
+              << b.scalarPrefix << type << " i" << n;
+            if (b.levels > 1) s << "[" << b.levels << "]";
+            s << ";\n";
             break;
         }
         case BindKind::StorageBuffer:
@@ -147,13 +163,16 @@ std::string body(const std::vector<ShaderBinding>& bindings, VkShaderStageFlagBi
         const std::string n = std::to_string(b.binding);
         if (b.kind == BindKind::StorageImage) {
             const std::string value = b.scalarPrefix + "vec4(acc)";
-            if (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY) {
-                s << "    if (all(lessThan(xy, imageSize(i" << n << ").xy)))\n"
-                  << "        for (int l = 0; l < imageSize(i" << n << ").z; ++l) imageStore(i" << n
-                  << ", ivec3(xy, l), " << value << ");\n";
-            } else {
-                s << "    if (all(lessThan(xy, imageSize(i" << n << ")))) imageStore(i" << n
-                  << ", xy, " << value << ");\n";
+            for (uint32_t level = 0; level < b.levels; ++level) {
+                const std::string image = storageImage(b, level);
+                if (b.viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY) {
+                    s << "    if (all(lessThan(xy, imageSize(" << image << ").xy)))\n"
+                      << "        for (int l = 0; l < imageSize(" << image << ").z; ++l) imageStore(" << image
+                      << ", ivec3(xy, l), " << value << ");\n";
+                } else {
+                    s << "    if (all(lessThan(xy, imageSize(" << image << ")))) imageStore(" << image << ", xy, "
+                      << value << ");\n";
+                }
             }
         } else if (b.kind == BindKind::StorageBuffer) {
             if (stage == VK_SHADER_STAGE_VERTEX_BIT) {
@@ -338,6 +357,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                                          : VK_IMAGE_VIEW_TYPE_2D;
                     } else if (as == BindAs::Storage) {
                         b.kind = BindKind::StorageImage;
+                        b.levels = std::max(u.range.mipCount, 1u);
                         b.viewType = (u.range.layerCount > 1 || r.type != ResourceType::Image2D)
                                          ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                          : VK_IMAGE_VIEW_TYPE_2D;

@@ -27,6 +27,11 @@ struct ShaderBinding {
     std::string glslFormat;   ///< Storage-image format qualifier; empty for write-only.
     std::string scalarPrefix; ///< "", "u" or "i" for float, unsigned, signed formats.
     uint32_t uniformVec4s = 1;  ///< Uniform buffers: array length of uvec4.
+    /// Storage images: the usage's mip count. A storage view addresses one level, so the
+    /// binding is an array of one view per level and the shader reads and writes every one
+    /// (contract: every declared access is really performed, which synchronization
+    /// validation can only check for subresources a bound view covers).
+    uint32_t levels = 1;
 };
 
 /// How the Generic pass performs one planned pass: derived from usages only.

@@ -11,7 +11,7 @@ std::vector<VkDescriptorSetLayoutBinding> Renderer::Impl::layoutBindings(const s
     for (const auto& sb : bindings) {
         VkDescriptorSetLayoutBinding lb{};
         lb.binding = sb.binding;
-        lb.descriptorCount = 1;
+        lb.descriptorCount = sb.kind == BindKind::StorageImage ? sb.levels : 1;
         lb.stageFlags = static_cast<VkShaderStageFlags>(sb.stage);
         switch (sb.kind) {
             case BindKind::SampledImage: lb.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER; break;

@@ -277,7 +277,10 @@ void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
 
     // Descriptors.
     const size_t nb = p.graphicsBindings.size() + p.computeBindings.size();
-    sl.imageInfos.reserve(nb);
+    size_t imageDescriptors = 0;  // reserved up front: the writes point into imageInfos
+    for (const auto* list : {&p.graphicsBindings, &p.computeBindings})
+        for (const ShaderBinding& b : *list) imageDescriptors += b.levels;
+    sl.imageInfos.reserve(imageDescriptors);
     sl.bufferInfos.reserve(nb);
     auto writeFor = [&](const ShaderBinding& b) {
         const PlannedUsage& u = pass.usages[b.usage];
@@ -290,13 +293,22 @@ void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
             case BindKind::SampledImage:
             case BindKind::StorageImage: {
                 const bool sampled = b.kind == BindKind::SampledImage;
-                SubresourceRange range = u.range;
-                if (!sampled) range.mipCount = 1;  // storage views address one level
-                sl.imageInfos.push_back({sampled ? sampler.get() : VK_NULL_HANDLE,
-                                         view(r, copy, b.viewType, range, false), u.layout});
+                const size_t first = sl.imageInfos.size();
+                if (sampled) {
+                    sl.imageInfos.push_back({sampler.get(), view(r, copy, b.viewType, u.range, false), u.layout});
+                } else {
+                    // Storage views address one level: one descriptor per level of the usage.
+                    for (uint32_t level = 0; level < b.levels; ++level) {
+                        SubresourceRange range = u.range;
+                        range.baseMip = u.range.baseMip + level;
+                        range.mipCount = 1;
+                        sl.imageInfos.push_back({VK_NULL_HANDLE, view(r, copy, b.viewType, range, false), u.layout});
+                    }
+                }
+                w.descriptorCount = uint32_t(sl.imageInfos.size() - first);
                 w.descriptorType = sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
                                            : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-                w.pImageInfo = &sl.imageInfos.back();
+                w.pImageInfo = &sl.imageInfos[first];
                 break;
             }
             case BindKind::StorageBuffer:
