@@ -77,6 +77,35 @@ TEST_F(NegativeControl, DroppedRawBarrierIsReadAfterWrite) {
     expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
 }
 
+// A storage usage of several mips performs every level (one view per mip): dropping the
+// barrier that makes the write of mip 1 visible to a read of mips [0, 2) is caught. Before the
+// Generic pass bound one view per mip, only the base mip was read and this went unnoticed.
+TEST_F(NegativeControl, DroppedBarrierOfAnUpperMipOfAStorageReadIsReadAfterWrite) {
+    const auto c = compileText(graph(
+        R"("chain": { "type": "image2d", "format": "R32_UINT", "extent": [16, 16], "mips": 2,
+                      "clear": { "color": [1, 1, 1, 1] } })",
+        R"({ "name": "produce", "type": "Generic",
+             "uses": [ { "resource": "chain", "access": "Write", "stage": "Compute", "mips": [1, 1] } ] },
+           { "name": "consume", "type": "Generic",
+             "uses": [ { "resource": "chain", "access": "Read", "stage": "Compute", "as": "storage", "mips": [0, 2] },
+                       { "resource": "swapchain", "access": "Write", "stage": "Transfer" } ] })"));
+    Plan broken = c.plan;
+    const int32_t chain = broken.resourceIndex("chain");
+    bool dropped = false;
+    for (size_t p = 0; p < broken.passes.size() && !dropped; ++p) {
+        if (broken.passes[p].name != "consume") continue;
+        const auto barriers = broken.barriersOf(p);
+        for (size_t i = 0; i < barriers.size(); ++i)
+            if (int32_t(barriers[i].resource) == chain && barriers[i].range.baseMip == 1) {
+                broken.eraseBarrier(p, i);
+                dropped = true;
+                break;
+            }
+    }
+    ASSERT_TRUE(dropped) << "no barrier for mip 1 before 'consume':\n" << planToText(c.plan);
+    expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
+}
+
 // WAR: compute reads a buffer, the next compute pass overwrites it (execution dependency only).
 TEST_F(NegativeControl, DroppedWarBarrierIsWriteAfterRead) {
     const auto c = compileText(graph(
