@@ -77,24 +77,30 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     // names layers the image lacks, is an error here, not a plan that fails at run time. One
     // that runs past the end of a chain is clipped to it: the loader gives a `layers`-only
     // usage of a full output-sized chain every level the largest image could have.
-    for (const auto& [pass, use] : index.rangedUses()) {
-        const PassDesc& p = graph.passes[pass];
-        const UsageDecl& u = p.uses[use];
-        if (u.resource >= graph.resources.size()) continue;
-        const ResourceDesc& r = graph.resources[u.resource];
-        const uint32_t levels = std::max(1u, r.mipCount(options.outputWidth, options.outputHeight));
-        const SubresourceRange& range = *u.usage.range;
+    // Images are checked against the index's grids; the graph's own (cold) records are read
+    // for buffers and to word a diagnostic.
+    for (const auto& [pass, k] : index.rangedUses()) {
+        const IndexedUsage& iu = index.use(k);
+        if (iu.resource >= graph.resources.size()) continue;
+        const bool image = index.aspects(iu.resource).image;
+        const SubresourceGrid& grid = index.grids()[iu.resource];
+        const ResourceDesc* r = image ? nullptr : &graph.resources[iu.resource];
+        const uint32_t levels = std::max(1u, r ? r->mipCount(options.outputWidth, options.outputHeight) : grid.mips);
+        const uint32_t layers = std::max(1u, r ? r->layers : grid.layers);
+        const SubresourceRange& range = *iu.usage.range;
         const bool mipsFit = range.baseMip < levels;
-        const bool layersFit = uint64_t(range.baseLayer) + range.layerCount <= std::max(1u, r.layers);
+        const bool layersFit = uint64_t(range.baseLayer) + range.layerCount <= layers;
         if (mipsFit && layersFit) continue;
-        const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
-        diags.add({graph.file, u.jsonPath, p.name, r.name,
+        const ResourceDesc& res = graph.resources[iu.resource];
+        const PassDesc& p = graph.passes[pass];
+        const auto [w, h] = res.extent.resolve(options.outputWidth, options.outputHeight);
+        diags.add({graph.file, index.declOf(pass, iu).jsonPath, p.name, res.name,
                    !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +
                                   std::to_string(range.mipCount) + "] but the " + std::to_string(w) + "x" +
                                   std::to_string(h) + " image has " + std::to_string(levels) + " mip level(s)"
                             : "uses layers [" + std::to_string(range.baseLayer) + ", " +
                                   std::to_string(range.layerCount) + "] but the image has " +
-                                  std::to_string(r.layers) + " layer(s)"});
+                                  std::to_string(res.layers) + " layer(s)"});
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 

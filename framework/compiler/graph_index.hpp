@@ -75,7 +75,7 @@ public:
     /// Output-relative images whose `mips` exceed what the output size gives them, in file
     /// order: compile() reports them (mip counts can only be checked at a real output size).
     [[nodiscard]] std::span<const uint32_t> tooManyMips() const noexcept { return tooManyMips_; }
-    /// The active passes' usages that name a range, as (pass, index into its `uses`), in
+    /// The active passes' usages that name a range, as (pass, usage index for use()), in
     /// file order: what compile() checks against the resolved mip chains.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> rangedUses() const noexcept { return ranged_; }
 
@@ -95,7 +95,7 @@ private:
             active_.push_back(active);
             for (const auto& u : pass.uses) {
                 if (active && u.usage.range)
-                    ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(&u - pass.uses.data()));
+                    ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size()));
                 uses_.push_back({u.usage, u.resource, !u.slot.empty()});
             }
             firstUse_.push_back(static_cast<uint32_t>(uses_.size()));

@@ -53,6 +53,12 @@ struct ResourceFacts {
     bool external = false;
 };
 
+/// Stages and accesses without a layout: what a read run's scope needs (16 bytes a cell).
+struct StageAccess {
+    VkPipelineStageFlags2 stages = 0;
+    VkAccessFlags2 access = 0;
+};
+
 bool covers(VkPipelineStageFlags2 haveStages, VkAccessFlags2 haveAccess, const VulkanScope& need) {
     return (need.stages & ~haveStages) == 0 && (need.access & ~haveAccess) == 0;
 }
@@ -155,7 +161,9 @@ private:
         readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
         std::vector<uint8_t> firstUses;      // per usage of this pass
-        for (uint32_t p : schedule.passes) {
+        for (size_t s = 0; s < schedule.passes.size(); ++s) {
+            const uint32_t p = schedule.passes[s];
+            if (s + kPrefetchAhead < schedule.passes.size()) prefetchNewResources(schedule.passes[s + kPrefetchAhead], planIndex);
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
             firstUses.clear();
@@ -182,6 +190,14 @@ private:
         }
         for (uint32_t r = 0; r < plan_.resources.size(); ++r)
             plan_.resources[r].lastPass = accesses_[facts_[r].lastAccess].step;
+    }
+
+    /// A resource's first use copies its name out of its ResourceDesc, which is large and long
+    /// evicted by then: asked for a few passes ahead, it arrives before it is needed.
+    static constexpr size_t kPrefetchAhead = 8;
+    void prefetchNewResources(uint32_t pass, const std::vector<uint32_t>& planIndex) const {
+        for (const IndexedUsage& u : index_.usesOf(pass))
+            if (planIndex[u.resource] == kNone) __builtin_prefetch(&graph_.resources[u.resource]);
     }
 
     uint32_t addResource(uint32_t declIndex) {
@@ -256,12 +272,12 @@ private:
     /// it also folds each read's layout into its run's.
     void computeRunScopes() {
         runScope_.resize(runScopeCount_);
-        std::vector<VulkanScope> pending(grids_.total());  // per subresource
+        std::vector<StageAccess> pending(grids_.total());  // per subresource
         for (auto k = static_cast<uint32_t>(accesses_.size()); k-- > 0;) {
             const AccessRecord& a = accesses_[k];
             const PlannedUsage& u = (*usages_)[k];
             if (!a.writes && isImage(u.resource)) readRuns_.fold(k, u.layout);
-            VulkanScope* out = &runScope_[a.runScopes];
+            StageAccess* out = &runScope_[a.runScopes];
             grids_.forEach(u.resource, u.range, [&](size_t sub) {
                 if (a.writes) {
                     pending[sub] = {};
@@ -366,7 +382,7 @@ private:
     /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
     std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need,
                                       VkImageLayout target, bool write, bool discard,
-                                      const VulkanScope& visibleAfter) {
+                                      const StageAccess& visibleAfter) {
         const bool layoutChange = st.layout != target;
         Barrier b;
         b.dstStages = need.stages;
@@ -440,12 +456,13 @@ private:
                 st.readStages |= pu.stages;
             }
         };
-        const VulkanScope* runScopes = &runScope_[a.runScopes];
+        const StageAccess* runScopes = &runScope_[a.runScopes];
+        const StageAccess needed{need.stages, need.access};
         const SubresourceGrid& grid = grids_[r];
         SubresourceState* states = stateOf(r);
         if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
             SubresourceState& st = states[grid.index(pu.range.baseMip, pu.range.baseLayer)];
-            auto b = barrierFor(st, need, target, write, discard, write ? need : runScopes[0]);
+            auto b = barrierFor(st, need, target, write, discard, write ? needed : runScopes[0]);
             update(st);
             if (b) {
                 b->resource = r;
@@ -458,7 +475,7 @@ private:
             size_t c = 0;
             grid.forEach(pu.range, [&](size_t sub) {
                 perSub_.push_back(barrierFor(states[sub], need, target, write, discard,
-                                             write ? need : runScopes[c++]));
+                                             write ? needed : runScopes[c++]));
                 update(states[sub]);
             });
             emitMerged(r, pu.range, perSub_, batch);
@@ -566,7 +583,7 @@ private:
             grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
                 perSub_.push_back(barrierFor(states[sub], scope,
                                              d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
-                                             nextUseWrites, false, scope));
+                                             nextUseWrites, false, {scope.stages, scope.access}));
             });
             emitMerged(r, grids_[r].whole(), perSub_, plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
@@ -591,7 +608,7 @@ private:
     std::vector<SlotName> slotAt_;
     ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
-    std::vector<VulkanScope> runScope_;    // per access and subresource of its range
+    std::vector<StageAccess> runScope_;    // per access and subresource of its range
     // Per subresource of every resource.
     std::vector<SubresourceState> state_;
     // Scratch, reused across usages.

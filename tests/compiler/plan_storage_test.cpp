@@ -1,0 +1,84 @@
+// A Plan keeps every usage and barrier in two arrays that its passes view through spans
+// (include/skygraph/plan.hpp): copies must stand alone, and edits must keep every view right.
+#include <skygraph/compiler.hpp>
+#include <skygraph/plan_format.hpp>
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <optional>
+
+namespace skygraph {
+namespace {
+
+// The shipped raster graph: slots, inserted clears, several barriers per batch.
+Plan rasterPlan() {
+    const GraphDesc g = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
+                                      PassRegistry::withBuiltins());
+    return compile(g);
+}
+
+TEST(PlanStorage, CopyStandsAloneAfterTheOriginalIsGone) {
+    auto original = std::make_unique<Plan>(rasterPlan());
+    const std::string expected = planToJson(*original).dump(1);
+    bool hasSlot = false;
+    for (const auto& p : original->passes)
+        for (const auto& u : p.usages) hasSlot |= !u.slot.empty();
+    ASSERT_TRUE(hasSlot) << "the graph must exercise slot names";
+
+    Plan copy = *original;
+    for (size_t i = 0; i < copy.passes.size(); ++i) {
+        // No view of the copy may point into the original's arrays.
+        if (!copy.passes[i].usages.empty()) {
+            EXPECT_NE(copy.passes[i].usages.data(), original->passes[i].usages.data()) << copy.passes[i].name;
+        }
+        if (!copy.passes[i].barriers.empty()) {
+            EXPECT_NE(copy.passes[i].barriers.data(), original->passes[i].barriers.data()) << copy.passes[i].name;
+        }
+    }
+    original.reset();
+    EXPECT_EQ(planToJson(copy).dump(1), expected);
+
+    Plan assigned;
+    assigned = copy;
+    Plan moved = std::move(copy);
+    EXPECT_EQ(planToJson(moved).dump(1), expected);
+    EXPECT_EQ(planToJson(assigned).dump(1), expected);
+}
+
+TEST(PlanStorage, EditsStayInTheirPlanAndKeepLaterPassesIntact) {
+    const Plan base = rasterPlan();
+    // The first pass with at least two barriers, and some later pass with barriers.
+    std::optional<size_t> edited;
+    for (size_t p = 0; p < base.passes.size() && !edited; ++p)
+        if (base.passes[p].barriers.size() >= 2) edited = p;
+    ASSERT_TRUE(edited);
+    const size_t e = *edited;
+
+    Plan plan = base;
+    const VkPipelineStageFlags2 before = base.passes[e].barriers[0].srcStages;
+    plan.barriersOf(e)[0].srcStages = before ^ VK_PIPELINE_STAGE_2_HOST_BIT;
+    EXPECT_EQ(plan.passes[e].barriers[0].srcStages, before ^ VK_PIPELINE_STAGE_2_HOST_BIT);
+    EXPECT_EQ(base.passes[e].barriers[0].srcStages, before) << "the copy was edited, not the base";
+
+    const Barrier second = plan.passes[e].barriers[1];
+    plan.eraseBarrier(e, 0);
+    ASSERT_EQ(plan.passes[e].barriers.size(), base.passes[e].barriers.size() - 1);
+    EXPECT_EQ(plan.passes[e].barriers[0], second);
+    for (size_t p = 0; p < plan.passes.size(); ++p) {
+        if (p == e) continue;
+        ASSERT_EQ(plan.passes[p].barriers.size(), base.passes[p].barriers.size()) << plan.passes[p].name;
+        for (size_t i = 0; i < plan.passes[p].barriers.size(); ++i)
+            EXPECT_EQ(plan.passes[p].barriers[i], base.passes[p].barriers[i]) << plan.passes[p].name << " #" << i;
+    }
+    EXPECT_THROW(plan.eraseBarrier(e, plan.passes[e].barriers.size()), std::out_of_range);
+
+    // Emptying a batch leaves an empty view, and copying the edited plan keeps the edit.
+    while (!plan.passes[e].barriers.empty()) plan.eraseBarrier(e, 0);
+    const Plan again = plan;
+    EXPECT_TRUE(again.passes[e].barriers.empty());
+    EXPECT_EQ(planToJson(again).dump(1), planToJson(plan).dump(1));
+}
+
+}  // namespace
+}  // namespace skygraph
