@@ -7,7 +7,10 @@
 // makes a handful of allocations instead of several per pass. The spans point into the Plan
 // that holds the pass: copying a Plan rebases them onto the copy (each copy is valid on its
 // own, whatever happens to the original); moving a Plan keeps them valid. A PlannedPass or
-// PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged.
+// PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged. Code that
+// edits a plan keeps every non-empty span viewing that plan's own arrays (reorder or drop
+// `passes` freely; change barriers through barriersOf/eraseBarrier): a copy rebases views
+// by their offset into those arrays.
 #pragma once
 
 #include <skygraph/condition.hpp>
