@@ -33,23 +33,40 @@ bool isSrgb(VkFormat f) {
     return info && info->srgb;
 }
 
-/// Exposure and operator index of a frame: the scene's when one is set, else the params'.
-std::pair<float, int32_t> toneSettings(const RecordContext& ctx, double exposureEv, int op) {
-    if (const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr)
-        return {static_cast<float>(scene->exposureEv), operatorIndex(effectiveTonemapper(*scene))};
-    return {static_cast<float>(exposureEv), op};
+/// Both passes' settings: exposure and operator from the params, overridden per frame by the
+/// scene when one is set.
+class ToneSettings {
+public:
+    explicit ToneSettings(const PassDesc& desc)
+        : exposureEv_(desc.params.value("exposure_ev", 0.0)),
+          operator_(operatorIndex(desc.params.value("operator", std::string("aces_narkowicz")))) {}
+
+    /// Exposure (EV) and operator index for the frame being recorded.
+    [[nodiscard]] std::pair<float, int32_t> forFrame(const RecordContext& ctx) const {
+        if (const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr)
+            return {static_cast<float>(scene->exposureEv), operatorIndex(effectiveTonemapper(*scene))};
+        return {static_cast<float>(exposureEv_), operator_};
+    }
+
+private:
+    double exposureEv_;
+    int operator_;
+};
+
+/// The resource bound to the `output` slot, or nullptr.
+const BoundResource* boundOutput(const PipelineContext& ctx) {
+    for (const auto& r : ctx.resources)
+        if (r.usage && r.usage->slot == "output") return &r;
+    return nullptr;
 }
 
 class TonemappingPass final : public PassImplementation {
 public:
     explicit TonemappingPass(const PassDesc& desc)
-        : exposureEv_(desc.params.value("exposure_ev", 0.0)),
-          operator_(operatorIndex(desc.params.value("operator", std::string("aces_narkowicz")))) {}
+        : settings_(desc) {}
 
     void createPipelines(const PipelineContext& ctx) override {
-        const BoundResource* output = nullptr;
-        for (const auto& r : ctx.resources)
-            if (r.usage && r.usage->slot == "output") output = &r;
+        const BoundResource* output = boundOutput(ctx);
         GraphicsPipelineRecipe recipe;
         recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/fullscreen.vert");
         recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/tonemap.frag");
@@ -65,7 +82,7 @@ public:
 
     void record(const RecordContext& ctx) override {
         const BoundResource* hdr = ctx.slot("hdr");
-        const auto [exposureEv, op] = toneSettings(ctx, exposureEv_, operator_);
+        const auto [exposureEv, op] = settings_.forFrame(ctx);
         const Push push{exposureEv, op, encodeSrgb_ ? 1 : 0};
         const VkDescriptorImageInfo image{ctx.linearSampler, hdr->view, hdr->usage->layout};
         const VkWriteDescriptorSet write = sampledImageWrite(0, &image);
@@ -83,8 +100,7 @@ private:
         int32_t toneOperator;
         int32_t encodeSrgb;
     };
-    double exposureEv_;
-    int operator_;
+    ToneSettings settings_;
     bool encodeSrgb_ = false;
     GraphicsPipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
@@ -110,13 +126,10 @@ std::string storageQualifier(const PipelineContext& ctx, const BoundResource& ou
 class TonemappingComputePass final : public PassImplementation {
 public:
     explicit TonemappingComputePass(const PassDesc& desc)
-        : exposureEv_(desc.params.value("exposure_ev", 0.0)),
-          operator_(operatorIndex(desc.params.value("operator", std::string("aces_narkowicz")))) {}
+        : settings_(desc) {}
 
     void createPipelines(const PipelineContext& ctx) override {
-        const BoundResource* output = nullptr;
-        for (const auto& r : ctx.resources)
-            if (r.usage && r.usage->slot == "output") output = &r;
+        const BoundResource* output = boundOutput(ctx);
         if (!output) throw ExecutorError("pass '" + ctx.desc->name + "': no resource bound to slot 'output'");
         ComputePipelineRecipe recipe;
         recipe.compute = compileShader(*ctx.shaders, VK_SHADER_STAGE_COMPUTE_BIT, "passes/tonemap.comp",
@@ -131,7 +144,7 @@ public:
     void record(const RecordContext& ctx) override {
         const BoundResource* hdr = ctx.slot("hdr");
         const BoundResource* out = ctx.slot("output");
-        const auto [exposureEv, op] = toneSettings(ctx, exposureEv_, operator_);
+        const auto [exposureEv, op] = settings_.forFrame(ctx);
         const Push push{exposureEv, op};
         const VkDescriptorImageInfo images[2] = {{ctx.linearSampler, hdr->view, hdr->usage->layout},
                                                  {VK_NULL_HANDLE, out->view, out->usage->layout}};
@@ -149,8 +162,7 @@ private:
         float exposureEv;
         int32_t toneOperator;
     };
-    double exposureEv_;
-    int operator_;
+    ToneSettings settings_;
     ComputePipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
 };
