@@ -9,14 +9,16 @@
 
 namespace skygraph::test {
 
-/// graphs/raster.json for `scene` (its features), built-in passes, `frames` frames; returns
-/// the swapchain target (B8G8R8A8_SRGB read back as byte / 255).
-inline ImageData renderRasterFrame(const Scene& scene, uint32_t width, uint32_t height, int frames = 1) {
+/// graphs/raster.json for `scene` (its features, then `overrides`), built-in passes, `frames`
+/// frames; returns the Present target (the swapchain, B8G8R8A8_SRGB read back as byte / 255).
+inline ImageData renderRasterFrame(const Scene& scene, uint32_t width, uint32_t height, int frames = 1,
+                                   const FeatureValues& overrides = {}) {
     const PassLibrary library = PassLibrary::withBuiltins();
     const GraphDesc graph =
         loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs/raster.json", library.registry());
     CompileOptions co;
     co.features = sceneFeatures(scene);
+    for (const auto& [name, on] : overrides) co.features[name] = on;
     co.presentReplacement = ExternalState::TransferSrc;
     co.outputWidth = width;
     co.outputHeight = height;

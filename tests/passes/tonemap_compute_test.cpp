@@ -197,22 +197,7 @@ TEST_F(TonemapCompute, RefusesAnOutputItCannotStore) {
 
 /// graphs/raster.json for `scene` with compute_tonemap set; the Present target read back.
 ImageData renderRaster(const Scene& scene, bool computeTonemap, uint32_t w, uint32_t h) {
-    const PassLibrary library = PassLibrary::withBuiltins();
-    const GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
-    CompileOptions co;
-    co.features = sceneFeatures(scene);
-    co.features["compute_tonemap"] = computeTonemap;
-    co.presentReplacement = ExternalState::TransferSrc;
-    co.outputWidth = w;
-    co.outputHeight = h;
-    RendererOptions ro;
-    ro.width = w;
-    ro.height = h;
-    ro.passes = &library;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
-    renderer.frameData().set(scene);
-    renderer.renderFrame();
-    return renderer.readback();
+    return renderRasterFrame(scene, w, h, 1, {{"compute_tonemap", computeTonemap}});
 }
 
 // The shipped frame: feature compute_tonemap on (swapchain_storage, R8G8B8A8_UNORM) gives the
