@@ -15,6 +15,8 @@
 #include <bit>
 #include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -37,6 +39,7 @@ public:
         indexPasses(features);
         resources_.reserve(graph.resources.size());
         for (const auto& r : graph.resources) {
+            resourceNames_.push_back(names_.add(r.name));
             grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
             if (r.isImage() && r.mips != 0 && r.extent.relativeToOutput) {
@@ -58,6 +61,11 @@ public:
         return static_cast<uint32_t>(&u - uses_.data());
     }
     [[nodiscard]] const IndexedUsage& use(uint32_t i) const noexcept { return uses_[i]; }
+    /// Names, copied out of the graph in the index's walk: the plan copies them again, and
+    /// reading them from the large, long-evicted PassDesc/ResourceDesc would miss the cache.
+    [[nodiscard]] std::string_view passName(size_t pass) const noexcept { return names_[passNames_[pass].name]; }
+    [[nodiscard]] std::string_view passType(size_t pass) const noexcept { return names_[passNames_[pass].type]; }
+    [[nodiscard]] std::string_view resourceName(size_t r) const noexcept { return names_[resourceNames_[r]]; }
     /// The pass's usage as declared (slot, JSON path): `u` must come from usesOf(pass).
     [[nodiscard]] const UsageDecl& declOf(size_t pass, const IndexedUsage& u) const noexcept {
         return graph_.passes[pass].uses[static_cast<size_t>(&u - usesOf(pass).data())];
@@ -83,6 +91,7 @@ private:
     void indexPasses(const std::optional<FeatureValues>& features) {
         const size_t passes = graph_.passes.size();
         active_.reserve(passes);
+        passNames_.reserve(passes);
         firstUse_.reserve(passes + 1);
         firstUse_.push_back(0);
         size_t uses = 0;
@@ -91,6 +100,7 @@ private:
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
+            passNames_.push_back({names_.add(pass.name), names_.add(pass.type)});
             const bool active = !features || pass.condition.evaluate(*features);
             active_.push_back(active);
             for (const auto& u : pass.uses) {
@@ -106,11 +116,28 @@ private:
     /// the last pass's: reading them in turn waits for memory at every pass unless they are
     /// asked for a few passes ahead.
     static constexpr size_t kPrefetchAhead = 4;
-    static void prefetchUses(const PassDesc& pass) {
-        const auto* begin = reinterpret_cast<const char*>(pass.uses.data());
-        const auto* end = reinterpret_cast<const char*>(pass.uses.data() + pass.uses.size());
-        for (const char* line = begin; line < end; line += 64) __builtin_prefetch(line);
+    static void prefetchLines(const void* at, size_t bytes) {
+        const auto* begin = static_cast<const char*>(at);
+        for (const char* line = begin; line < begin + bytes; line += 64) __builtin_prefetch(line);
     }
+    static void prefetchUses(const PassDesc& pass) {
+        prefetchLines(pass.uses.data(), pass.uses.size() * sizeof(UsageDecl));
+    }
+
+    /// Strings laid end to end; a name is its (offset, length).
+    class NameTable {
+    public:
+        struct Ref { uint32_t offset = 0, length = 0; };
+        Ref add(const std::string& s) {
+            const Ref ref{static_cast<uint32_t>(text_.size()), static_cast<uint32_t>(s.size())};
+            text_ += s;
+            return ref;
+        }
+        std::string_view operator[](Ref r) const noexcept { return std::string_view(text_).substr(r.offset, r.length); }
+    private:
+        std::string text_;
+    };
+    struct PassNames { NameTable::Ref name, type; };
 
     struct ResourceFlags {
         ResourceAspects aspects;
@@ -126,6 +153,9 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
     std::vector<uint32_t> tooManyMips_;
     SubresourceGrids grids_;            // per resource
+    NameTable names_;
+    std::vector<PassNames> passNames_;               // per pass
+    std::vector<NameTable::Ref> resourceNames_;      // per resource
     std::vector<ResourceFlags> resources_;
 };
 

@@ -163,7 +163,6 @@ private:
         std::vector<uint8_t> firstUses;      // per usage of this pass
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
-            if (s + kPrefetchAhead < schedule.passes.size()) prefetchNewResources(schedule.passes[s + kPrefetchAhead], planIndex);
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
             firstUses.clear();
@@ -180,8 +179,8 @@ private:
                 addAccess(r, kClearUsage, grids_[r].whole(), kNone, false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
-            const PassDesc& d = graph_.passes[p];
-            plan_.passes.push_back(PlannedPass{d.name, d.type, static_cast<int32_t>(p), {}, {}});
+            plan_.passes.push_back(PlannedPass{std::string(index_.passName(p)), std::string(index_.passType(p)),
+                                               static_cast<int32_t>(p), {}, {}});
             for (size_t i = 0; i < uses.size(); ++i) {
                 const uint32_t r = planIndex[uses[i].resource];
                 addAccess(r, uses[i].usage, grids_[r].resolve(uses[i].usage), index_.indexOf(uses[i]),
@@ -192,19 +191,11 @@ private:
             plan_.resources[r].lastPass = accesses_[facts_[r].lastAccess].step;
     }
 
-    /// A resource's first use copies its name out of its ResourceDesc, which is large and long
-    /// evicted by then: asked for a few passes ahead, it arrives before it is needed.
-    static constexpr size_t kPrefetchAhead = 8;
-    void prefetchNewResources(uint32_t pass, const std::vector<uint32_t>& planIndex) const {
-        for (const IndexedUsage& u : index_.usesOf(pass))
-            if (planIndex[u.resource] == kNone) __builtin_prefetch(&graph_.resources[u.resource]);
-    }
-
     uint32_t addResource(uint32_t declIndex) {
         const ResourceDesc& d = graph_.resources[declIndex];
         PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
-        res.name = d.name;
+        res.name = index_.resourceName(declIndex);
         decls_.push_back(&d);
         facts_.push_back({kNone, kNone, index_.aspects(declIndex), index_.exported(declIndex),
                           index_.external(declIndex)});
