@@ -37,15 +37,6 @@ constexpr std::array<std::pair<std::string_view, BindAs>, 5> kBindAs{{
 
 }  // namespace
 
-bool isShaderStage(Stage s) noexcept {
-    return s == Stage::Vertex || s == Stage::Fragment || s == Stage::Compute;
-}
-bool isAttachmentStage(Stage s) noexcept {
-    return s == Stage::ColorAttachment || s == Stage::DepthAttachment;
-}
-bool readsContents(Access a) noexcept { return a != Access::Write; }
-bool writesContents(Access a) noexcept { return a != Access::Read; }
-
 std::string_view toString(Access a) noexcept { return nameOf(kAccesses, a); }
 std::string_view toString(Stage s) noexcept { return nameOf(kStages, s); }
 std::string_view toString(BindAs a) noexcept { return nameOf(kBindAs, a); }

@@ -10,7 +10,7 @@ constexpr VkAccessFlags2 kWriteBits =
     VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
     VK_ACCESS_2_TRANSFER_WRITE_BIT | VK_ACCESS_2_HOST_WRITE_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
 
-VkAccessFlags2 pick(Access a, VkAccessFlags2 read, VkAccessFlags2 write) {
+constexpr VkAccessFlags2 pick(Access a, VkAccessFlags2 read, VkAccessFlags2 write) {
     switch (a) {
         case Access::Read: return read;
         case Access::Write: return write;
@@ -25,7 +25,7 @@ bool isDepthReadOnly(VkImageLayout l) {
            l == VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL;
 }
 
-BindAs resolveBindAs(bool image, const Usage& u) {
+constexpr BindAs resolveBindAs(bool image, const Usage& u) {
     if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
     if (!image) return BindAs::Storage;
     return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
@@ -101,7 +101,7 @@ VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) { return vulkanSc
 
 namespace {
 
-VulkanScope computeScope(const ResourceAspects& r, const Usage& u) {
+constexpr VulkanScope computeScope(const ResourceAspects& r, const Usage& u) {
     VulkanScope s;
     const BindAs as = resolveBindAs(r.image, u);
     switch (u.stage) {
@@ -172,28 +172,22 @@ VulkanScope computeScope(const ResourceAspects& r, const Usage& u) {
     return s;
 }
 
-constexpr size_t kAccesses = 3, kStages = 8, kBindAs = 5;
-
 }  // namespace
 
-// The compiler asks this once per usage: every combination (8 aspect sets x 120 usages) is
-// worked out once, and a lookup replaces the switches.
-VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) {
-    static const std::array<VulkanScope, 8 * kAccesses * kStages * kBindAs> table = [] {
-        std::array<VulkanScope, 8 * kAccesses * kStages * kBindAs> t{};
-        size_t i = 0;
-        for (int aspects = 0; aspects < 8; ++aspects)
-            for (size_t stage = 0; stage < kStages; ++stage)
-                for (size_t access = 0; access < kAccesses; ++access)
-                    for (size_t as = 0; as < kBindAs; ++as)
-                        t[i++] = computeScope({(aspects & 1) != 0, (aspects & 2) != 0, (aspects & 4) != 0},
-                                              {static_cast<Access>(access), static_cast<Stage>(stage),
-                                               static_cast<BindAs>(as), std::nullopt});
-        return t;
-    }();
-    const size_t aspects = size_t(r.image) | size_t(r.depth) << 1 | size_t(r.stencil) << 2;
-    return table[((aspects * kStages + size_t(u.stage)) * kAccesses + size_t(u.access)) * kBindAs + size_t(u.as)];
-}
+// Every combination (8 aspect sets x 120 usages) is worked out while skygraph is built; the
+// compiler's per-usage vulkanScope is a lookup (vulkan_state.hpp).
+constinit const std::array<VulkanScope, detail::kScopeTableSize> detail::kScopeTable = [] {
+    std::array<VulkanScope, detail::kScopeTableSize> t{};
+    size_t i = 0;
+    for (int aspects = 0; aspects < 8; ++aspects)
+        for (size_t stage = 0; stage < kScopeStages; ++stage)
+            for (size_t access = 0; access < kScopeAccesses; ++access)
+                for (size_t as = 0; as < kScopeBindAs; ++as)
+                    t[i++] = computeScope({(aspects & 1) != 0, (aspects & 2) != 0, (aspects & 4) != 0},
+                                          {static_cast<Access>(access), static_cast<Stage>(stage),
+                                           static_cast<BindAs>(as), std::nullopt});
+    return t;
+}();
 
 VulkanScope externalScope(const ResourceDesc& r, ExternalState state) {
     VulkanScope s;

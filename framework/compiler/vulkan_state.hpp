@@ -7,6 +7,8 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
+#include <cstddef>
 #include <string>
 
 namespace skygraph {
@@ -34,9 +36,21 @@ struct ResourceAspects {
 };
 [[nodiscard]] ResourceAspects aspectsOf(const ResourceDesc& resource) noexcept;
 
+namespace detail {
+inline constexpr size_t kScopeAccesses = 3, kScopeStages = 8, kScopeBindAs = 5;
+inline constexpr size_t kScopeTableSize = 8 * kScopeStages * kScopeAccesses * kScopeBindAs;
+/// vulkanScope of every usage (range aside) for every aspect set, built at compile time.
+extern const std::array<VulkanScope, kScopeTableSize> kScopeTable;
+}  // namespace detail
+
 /// Stages, accesses and layout of a valid usage. Buffers get layout UNDEFINED.
 [[nodiscard]] VulkanScope vulkanScope(const ResourceDesc& resource, const Usage& usage);
-[[nodiscard]] VulkanScope vulkanScope(const ResourceAspects& resource, const Usage& usage);
+/// The same, inline: the compiler asks it once per usage.
+[[nodiscard]] inline VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) noexcept {
+    const size_t aspects = size_t(r.image) | size_t(r.depth) << 1 | size_t(r.stencil) << 2;
+    return detail::kScopeTable[((aspects * detail::kScopeStages + size_t(u.stage)) * detail::kScopeAccesses +
+                                size_t(u.access)) * detail::kScopeBindAs + size_t(u.as)];
+}
 
 /// The scope of an external state: where `initial` contents are visible, and what a
 /// `final` barrier must make them visible to (docs/barriers.md has the table).

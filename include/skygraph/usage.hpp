@@ -54,10 +54,15 @@ struct Usage {
     std::optional<SubresourceRange> range;
 };
 
-[[nodiscard]] bool isShaderStage(Stage s) noexcept;
-[[nodiscard]] bool isAttachmentStage(Stage s) noexcept;
-[[nodiscard]] bool readsContents(Access a) noexcept;   ///< Read or ReadWrite
-[[nodiscard]] bool writesContents(Access a) noexcept;  ///< Write or ReadWrite
+// Inline: the compiler asks these several times per usage in every sweep.
+[[nodiscard]] constexpr bool isShaderStage(Stage s) noexcept {
+    return s == Stage::Vertex || s == Stage::Fragment || s == Stage::Compute;
+}
+[[nodiscard]] constexpr bool isAttachmentStage(Stage s) noexcept {
+    return s == Stage::ColorAttachment || s == Stage::DepthAttachment;
+}
+[[nodiscard]] constexpr bool readsContents(Access a) noexcept { return a != Access::Write; }  ///< Read or ReadWrite
+[[nodiscard]] constexpr bool writesContents(Access a) noexcept { return a != Access::Read; }  ///< Write or ReadWrite
 
 [[nodiscard]] std::string_view toString(Access a) noexcept;
 [[nodiscard]] std::string_view toString(Stage s) noexcept;
