@@ -160,31 +160,35 @@ private:
         plan_.passes.reserve(schedule.passes.size());
         readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
-        std::vector<uint8_t> firstUses;      // per usage of this pass
+        std::vector<uint8_t> loadOpClears;   // per usage of this pass: whether its load op clears
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
-            firstUses.clear();
-            for (const IndexedUsage& u : uses) {
-                const bool first = planIndex[u.resource] == kNone;
-                if (first) planIndex[u.resource] = addResource(u.resource);
-                firstUses.push_back(first);
-                if (first && index_.clear(u.resource) && !clearsThroughLoadOp(u))
-                    clearsBefore.push_back(planIndex[u.resource]);
+            loadOpClears.assign(uses.size(), 0);
+            for (size_t i = 0; i < uses.size(); ++i) {
+                const uint32_t d = uses[i].resource;
+                if (planIndex[d] != kNone) continue;
+                planIndex[d] = addResource(d);
+                if (!index_.clear(d)) continue;
+                if (clearsThroughLoadOp(uses[i]))
+                    loadOpClears[i] = 1;
+                else
+                    clearsBefore.push_back(planIndex[d]);
             }
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
                 plan_.passes.push_back(PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {}});
-                addAccess(r, kClearUsage, grids_[r].whole(), kNone, false);
+                addAccess(r, kClearUsage, grids_[r].whole(), false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
             plan_.passes.push_back(PlannedPass{std::string(index_.passName(p)), std::string(index_.passType(p)),
                                                static_cast<int32_t>(p), {}, {}});
             for (size_t i = 0; i < uses.size(); ++i) {
-                const uint32_t r = planIndex[uses[i].resource];
-                addAccess(r, uses[i].usage, grids_[r].resolve(uses[i].usage), index_.indexOf(uses[i]),
-                          firstUses[i] && index_.clear(uses[i].resource) && clearsThroughLoadOp(uses[i]));
+                const IndexedUsage& u = uses[i];
+                const uint32_t r = planIndex[u.resource];
+                addAccess(r, u.usage, grids_[r].resolve(u.usage), loadOpClears[i] != 0);
+                if (u.fillsSlot) addSlot(p, u);
             }
         }
         for (uint32_t r = 0; r < plan_.resources.size(); ++r)
@@ -217,10 +221,17 @@ private:
         return u;
     }
 
+    /// Names the slot that the usage last added (`u`, of pass `pass`) fills.
+    void addSlot(uint32_t pass, const IndexedUsage& u) {
+        const std::string& slot = index_.declOf(pass, u).slot;
+        slotAt_.push_back({static_cast<uint32_t>(accesses_.size() - 1), static_cast<uint32_t>(slotText_.size()),
+                           static_cast<uint32_t>(slot.size())});
+        slotText_ += slot;
+    }
+
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
     /// place in its resource's chain of accesses and in its read run (rule 4).
-    void addAccess(uint32_t r, const Usage& usage, const SubresourceRange& range, uint32_t use,
-                   bool loadOpClear) {
+    void addAccess(uint32_t r, const Usage& usage, const SubresourceRange& range, bool loadOpClear) {
         const auto k = static_cast<uint32_t>(accesses_.size());
         const Usage effective = effectiveUsage(usage, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].aspects, effective);
@@ -232,11 +243,6 @@ private:
         pu.stages = scope.stages;
         pu.access = scope.access;
         if (loadOpClear) pu.load = LoadOp::Clear;
-        if (use != kNone && index_.use(use).fillsSlot) {
-            const std::string& slot = index_.declOf(static_cast<size_t>(steps_.back().pass), index_.use(use)).slot;
-            slotAt_.push_back({k, static_cast<uint32_t>(slotText_.size()), static_cast<uint32_t>(slot.size())});
-            slotText_ += slot;
-        }
         AccessRecord& a = accesses_.emplace_back();
         a.step = static_cast<uint32_t>(steps_.size() - 1);
         a.runScopes = runScopeCount_;
