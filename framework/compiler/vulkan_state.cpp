@@ -37,10 +37,6 @@ VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept { return access & kWrit
 
 BindAs resolveBindAs(const ResourceDesc& r, const Usage& u) { return resolveBindAs(r.isImage(), u); }
 
-ResourceAspects aspectsOf(const ResourceDesc& r) noexcept {
-    return {r.isImage(), r.format.hasDepth, r.format.hasStencil};
-}
-
 std::string usageProblem(const ResourceDesc& r, const Usage& u) {
     const std::string usage = toString(u);
     const BindAs as = resolveBindAs(r, u);

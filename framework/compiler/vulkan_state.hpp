@@ -34,7 +34,9 @@ struct ResourceAspects {
     bool depth = false;
     bool stencil = false;
 };
-[[nodiscard]] ResourceAspects aspectsOf(const ResourceDesc& resource) noexcept;
+[[nodiscard]] inline ResourceAspects aspectsOf(const ResourceDesc& r) noexcept {
+    return {r.isImage(), r.format.hasDepth, r.format.hasStencil};
+}
 
 namespace detail {
 inline constexpr size_t kScopeAccesses = 3, kScopeStages = 8, kScopeBindAs = 5;
