@@ -47,6 +47,17 @@ inline std::string formatMessages(const Device& d) {
     return s;
 }
 
+/// A test graph's JSON: `resources` (members of "resources") beside an output-sized
+/// "swapchain" to present, which compileText turns into the read-back target, and `passes`
+/// (elements of "passes").
+inline std::string graphWithSwapchain(const std::string& name, const std::string& resources,
+                                      const std::string& passes) {
+    return R"({ "version": 1, "name": ")" + name + R"(", "resources": {)" + resources + ", " +
+           R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                      "external": true, "final": "Present" })" +
+           R"(}, "passes": [)" + passes + "] }";
+}
+
 /// A graph in memory and its plan, compiled for headless rendering.
 struct Compiled {
     GraphDesc graph;

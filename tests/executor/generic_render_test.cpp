@@ -5,13 +5,8 @@
 namespace skygraph::test {
 namespace {
 
-const char* kSwapchain =
-    R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
-                      "external": true, "final": "Present" })";
-
 std::string graph(const std::string& resources, const std::string& passes) {
-    return std::string(R"({ "version": 1, "name": "t", "resources": {)") + resources + ", " +
-           kSwapchain + R"(}, "passes": [)" + passes + "] }";
+    return graphWithSwapchain("t", resources, passes);
 }
 
 TEST_F(ExecutorTest, DeviceIsValidatedLavapipe) {
@@ -282,12 +277,6 @@ TEST_F(ExecutorTest, SetPlanFailureKeepsOldPlan) {
     r.waitIdle();
 }
 
-}  // namespace
-}  // namespace skygraph::test
-
-namespace skygraph::test {
-namespace {
-
 // A loaded texture: an external image read first, its pixels given by the application.
 TEST_F(ExecutorTest, ExternalImageUpload) {
     const auto c = compileText(
@@ -324,52 +313,32 @@ TEST_F(ExecutorTest, ExternalImageUpload) {
     r.waitIdle();
 }
 
-}  // namespace
-}  // namespace skygraph::test
-
-namespace skygraph::test {
-namespace {
-
 // Cross-frame RAW into a different read stage: the frame reads the persistent buffer as
 // vertex input first, then overwrites it in compute, then reads it in the fragment shader.
 // The next frame's vertex-input read must see this frame's compute write, so the final
 // barrier has to make that write visible to VERTEX_ATTRIBUTE_READ (found by random seed 36).
 TEST_F(ExecutorTest, PersistentBufferCrossFrameReadInAnotherStage) {
-    const auto c = compileText(
-        R"({ "version": 1, "name": "t", "resources": {
-          "buf": { "type": "buffer", "size": 256, "external": true, "final": "General" },
-          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
-                         "external": true, "final": "Present" } },
-          "passes": [
-            { "name": "vin", "type": "Generic", "never_cull": true,
-              "uses": [ { "resource": "buf", "access": "Read", "stage": "VertexInput" },
-                        { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] },
-            { "name": "cs", "type": "Generic", "uses": { "buf": "Write@Compute" } },
-            { "name": "fs", "type": "Generic",
-              "uses": { "buf": "Read@Fragment", "swapchain": "ReadWrite@ColorAttachment" } } ] })");
+    const auto c = compileText(graph(
+        R"("buf": { "type": "buffer", "size": 256, "external": true, "final": "General" })",
+        R"({ "name": "vin", "type": "Generic", "never_cull": true,
+             "uses": [ { "resource": "buf", "access": "Read", "stage": "VertexInput" },
+                       { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] },
+           { "name": "cs", "type": "Generic", "uses": { "buf": "Write@Compute" } },
+           { "name": "fs", "type": "Generic",
+             "uses": { "buf": "Read@Fragment", "swapchain": "ReadWrite@ColorAttachment" } })"));
     (void)render(c);
 }
-
-}  // namespace
-}  // namespace skygraph::test
-
-namespace skygraph::test {
-namespace {
 
 // An external buffer the graph writes without exporting it: each frame slot gets its own
 // copy, so frames in flight never race on it.
 TEST_F(ExecutorTest, UnexportedExternalWrittenEveryFrame) {
-    const auto c = compileText(
-        R"({ "version": 1, "name": "t", "resources": {
-          "scratch": { "type": "buffer", "size": 256, "external": true },
-          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
-                         "external": true, "final": "Present" } },
-          "passes": [
-            { "name": "cs", "type": "Generic", "uses": { "scratch": "Write@Transfer" },
-              "params": { "color": [0.5, 0, 0, 0] } },
-            { "name": "fs", "type": "Generic",
-              "uses": { "scratch": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
-              "params": { "color": [0, 0, 0, 0] } } ] })");
+    const auto c = compileText(graph(
+        R"("scratch": { "type": "buffer", "size": 256, "external": true })",
+        R"({ "name": "cs", "type": "Generic", "uses": { "scratch": "Write@Transfer" },
+             "params": { "color": [0.5, 0, 0, 0] } },
+           { "name": "fs", "type": "Generic",
+             "uses": { "scratch": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0, 0, 0, 0] } })"));
     const ImageData img = render(c, 4);
     EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.5, 0.5, 0.5);
 }

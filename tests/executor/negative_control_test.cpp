@@ -8,13 +8,8 @@
 namespace skygraph::test {
 namespace {
 
-const char* kSwapchain =
-    R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
-                      "external": true, "final": "Present" })";
-
 std::string graph(const std::string& resources, const std::string& passes) {
-    return std::string(R"({ "version": 1, "name": "neg", "resources": {)") + resources + ", " +
-           kSwapchain + R"(}, "passes": [)" + passes + "] }";
+    return graphWithSwapchain("neg", resources, passes);
 }
 
 /// Where the barrier recorded before `pass` for `resource` is: (pass index, index in its
@@ -41,6 +36,17 @@ void dropBarrier(Plan& plan, const std::string& pass, const std::string& resourc
     const auto [p, i] = findBarrier(plan, pass, resource);
     ASSERT_LT(p, plan.passes.size());
     plan.eraseBarrier(p, i);
+}
+
+/// "draw" writes tex as a color attachment, "sample" reads it in the fragment shader: the
+/// barrier between them is a layout transition, which the two layout controls below break in
+/// different ways.
+Compiled attachmentThenSampled() {
+    return compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
+           { "name": "sample", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
 }
 
 class NegativeControl : public ExecutorTest {
@@ -123,11 +129,7 @@ TEST_F(NegativeControl, DroppedWarBarrierIsWriteAfterRead) {
 // Layout transition: a color attachment becomes a sampled image. Without the barrier the
 // sampled read races the attachment write.
 TEST_F(NegativeControl, DroppedLayoutTransitionIsReadAfterWrite) {
-    const auto c = compileText(graph(
-        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
-        R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
-           { "name": "sample", "type": "Generic",
-             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    const auto c = attachmentThenSampled();
     Plan broken = c.plan;
     Barrier* b = barrierOf(broken, "sample", "tex");
     ASSERT_NE(b, nullptr);
@@ -139,11 +141,7 @@ TEST_F(NegativeControl, DroppedLayoutTransitionIsReadAfterWrite) {
 // A layout transition is a write: keeping it but removing its source scope makes it race
 // the attachment write before it.
 TEST_F(NegativeControl, UnscopedLayoutTransitionIsWriteAfterWrite) {
-    const auto c = compileText(graph(
-        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
-        R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
-           { "name": "sample", "type": "Generic",
-             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    const auto c = attachmentThenSampled();
     Plan broken = c.plan;
     Barrier* b = barrierOf(broken, "sample", "tex");
     ASSERT_NE(b, nullptr);

@@ -8,6 +8,7 @@
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -87,6 +88,29 @@ double expectedFurnace(uint32_t x, uint32_t y) {
     return sum / n;
 }
 
+/// A renderer of `graph` at width x height on the shared device; it keeps a pointer to
+/// `library`, which must outlive it.
+Renderer rendererAt(const GraphDesc& graph, const PassLibrary& library, CompileOptions co, uint32_t width,
+                    uint32_t height) {
+    co.outputWidth = width;
+    co.outputHeight = height;
+    RendererOptions ro;
+    ro.width = width;
+    ro.height = height;
+    ro.passes = &library;
+    return Renderer(sharedDevice(), graph, compile(graph, co), ro);
+}
+
+/// A 2x1 fp32 equirect of `texel` everywhere: an environment of one radiance in every direction.
+ImageData constantEquirect(const std::array<float, 4>& texel) {
+    ImageData env;
+    env.width = 2;
+    env.height = 1;
+    env.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    for (int i = 0; i < 2; ++i) env.rgba.insert(env.rgba.end(), texel.begin(), texel.end());
+    return env;
+}
+
 class PathTrace : public ExecutorTest {
 protected:
     struct Stats {
@@ -97,20 +121,9 @@ protected:
     Stats furnace(uint32_t frames, ImageData* out = nullptr) {
         const PassLibrary library = PassLibrary::withBuiltins();
         const GraphDesc graph = parseGraph(kFurnaceGraph, "furnace.json", library.registry());
-        CompileOptions co;
-        co.outputWidth = kWidth;
-        co.outputHeight = kHeight;
-        RendererOptions ro;
-        ro.width = kWidth;
-        ro.height = kHeight;
-        ro.passes = &library;
-        Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
-        ImageData env;
-        env.width = 2;
-        env.height = 1;
-        env.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-        env.rgba.assign(8, float(kEnvironment));
-        renderer.setExternalImage("equirect", env);
+        Renderer renderer = rendererAt(graph, library, {}, kWidth, kHeight);
+        const float l = float(kEnvironment);
+        renderer.setExternalImage("equirect", constantEquirect({l, l, l, l}));
         renderer.frameData().set(furnaceScene());
         for (uint32_t i = 0; i < frames; ++i) renderer.renderFrame();
         const ImageData img = renderer.readImage("accumulation").at(0);
@@ -165,13 +178,7 @@ TEST_F(PathTrace, ShippedGraphRendersTheDefaultSceneCleanly) {
     co.features.erase("skybox");
     co.features.erase("sample_cubemap");
     co.presentReplacement = ExternalState::TransferSrc;
-    co.outputWidth = 32;
-    co.outputHeight = 24;
-    RendererOptions ro;
-    ro.width = 32;
-    ro.height = 24;
-    ro.passes = &library;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer = rendererAt(graph, library, co, 32, 24);
     renderer.frameData().set(scene);
     for (int i = 0; i < 4; ++i) renderer.renderFrame();
     const ImageData ldr = renderer.readback();
@@ -196,19 +203,8 @@ TEST_F(PathTrace, ShippedGraphTracesTheEnvironmentFileWhenBound) {
     CompileOptions co;
     co.features = {{"environment_file", true}};
     co.presentReplacement = ExternalState::TransferSrc;
-    co.outputWidth = 16;
-    co.outputHeight = 12;
-    RendererOptions ro;
-    ro.width = 16;
-    ro.height = 12;
-    ro.passes = &library;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
-    ImageData env;
-    env.width = 2;
-    env.height = 1;
-    env.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    env.rgba = {0.25f, 0.5f, 2.0f, 1.0f, 0.25f, 0.5f, 2.0f, 1.0f};
-    renderer.setExternalImage("equirect", env);
+    Renderer renderer = rendererAt(graph, library, co, 16, 12);
+    renderer.setExternalImage("equirect", constantEquirect({0.25f, 0.5f, 2.0f, 1.0f}));
     Scene scene;
     scene.environment = SceneEnvironment{false, "unused.hdr", 30.0, EnvironmentSampling::Equirect};
     renderer.frameData().set(scene);
