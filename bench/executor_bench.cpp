@@ -172,33 +172,35 @@ void setCounters(benchmark::State& state) {
         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-void BM_Record_Framework(benchmark::State& state) {
+/// Every recording starts the same way on both sides, so they differ only in what they record.
+/// `vkd` is fetched once, outside the timed loop.
+void beginCommandBuffer(VkDevice vkd, Fixture& f) {
+    vkResetCommandPool(vkd, f.pool, 0);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vkBeginCommandBuffer(f.cmd, &bi);
+}
+
+/// Recording alone: one loop for both sides, so only `record` differs between them.
+template <class Record>
+void recordOnly(benchmark::State& state, Record record) {
     Fixture& f = fixture();
     const VkDevice vkd = f.device->device();
     for (auto _ : state) {
-        vkResetCommandPool(vkd, f.pool, 0);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vkBeginCommandBuffer(f.cmd, &bi);
-        f.renderer->recordInto(f.cmd, 0);
+        beginCommandBuffer(vkd, f);
+        record(f);
         vkEndCommandBuffer(f.cmd);
     }
     setCounters(state);
 }
+
+void BM_Record_Framework(benchmark::State& state) {
+    recordOnly(state, [](Fixture& f) { f.renderer->recordInto(f.cmd, 0); });
+}
 BENCHMARK(BM_Record_Framework);
 
 void BM_Record_Hand(benchmark::State& state) {
-    Fixture& f = fixture();
-    const VkDevice vkd = f.device->device();
-    for (auto _ : state) {
-        vkResetCommandPool(vkd, f.pool, 0);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vkBeginCommandBuffer(f.cmd, &bi);
-        recordByHand(f, f.cmd, false);
-        vkEndCommandBuffer(f.cmd);
-    }
-    setCounters(state);
+    recordOnly(state, [](Fixture& f) { recordByHand(f, f.cmd, false); });
 }
 BENCHMARK(BM_Record_Hand);
 
@@ -220,10 +222,7 @@ void BM_RecordSubmit_Hand(benchmark::State& state) {
     const VkDevice vkd = f.device->device();
     for (auto _ : state) {
         vkResetFences(vkd, 1, &f.fence);
-        vkResetCommandPool(vkd, f.pool, 0);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vkBeginCommandBuffer(f.cmd, &bi);
+        beginCommandBuffer(vkd, f);
         recordByHand(f, f.cmd, true);
         vkEndCommandBuffer(f.cmd);
         VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};

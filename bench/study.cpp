@@ -105,31 +105,41 @@ double gpuMs(Renderer& r) {
     return ms;
 }
 
-struct RasterFrame {
-    ImageData hdr, ldr;
-    double wallMs = 0, gpuMs = 0;
-};
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
-/// graphs/raster.json with hdr_color in `hdrFormat`, rendering `frames` timed frames.
-RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, VkFormat hdrFormat, int frames) {
-    const PassLibrary library = PassLibrary::withBuiltins();
-    GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
-    for (auto& r : graph.resources)
-        if (r.name == "hdr_color") r.format = *findFormat(hdrFormat);
+/// Every renderer here: the study's output size, and one frame in flight so that a frame's
+/// wall time is that frame's alone. `library` must outlive the renderer.
+RendererOptions rendererOptions(const Options& o, const PassLibrary& library) {
+    RendererOptions ro;
+    ro.width = o.width;
+    ro.height = o.height;
+    ro.passes = &library;
+    ro.framesInFlight = 1;
+    return ro;
+}
+
+/// graphs/raster.json for `scene`, with hdr_color exported: the HDR error reads it back.
+CompileOptions rasterCompileOptions(const Options& o, const Scene& scene) {
     CompileOptions co;
     co.features = sceneFeatures(scene);
     co.presentReplacement = ExternalState::TransferSrc;
     co.exports = {{"hdr_color", ExternalState::TransferSrc}};
     co.outputWidth = o.width;
     co.outputHeight = o.height;
-    RendererOptions ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.passes = &library;
-    ro.framesInFlight = 1;
-    Renderer renderer(device, graph, compile(graph, co), ro);
-    renderer.frameData().set(scene);
-    renderer.renderFrame();  // warm-up: pipelines, first-use costs
+    return co;
+}
+
+struct RasterFrame {
+    ImageData hdr, ldr;
+    double wallMs = 0, gpuMs = 0;
+};
+
+/// The mean of `frames` frames after one untimed warm-up (pipelines, first-use costs), and
+/// the last frame's images.
+RasterFrame timeRasterFrames(Renderer& renderer, int frames) {
+    renderer.renderFrame();
     renderer.waitIdle();
     RasterFrame f;
     const auto start = std::chrono::steady_clock::now();
@@ -138,11 +148,22 @@ RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, V
         renderer.waitIdle();
         f.gpuMs += gpuMs(renderer);
     }
-    f.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / frames;
+    f.wallMs = msSince(start) / frames;
     f.gpuMs /= frames;
     f.ldr = renderer.readback();
     f.hdr = renderer.readImage("hdr_color").at(0);
     return f;
+}
+
+/// graphs/raster.json with hdr_color in `hdrFormat`, rendering `frames` timed frames.
+RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, VkFormat hdrFormat, int frames) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
+    for (auto& r : graph.resources)
+        if (r.name == "hdr_color") r.format = *findFormat(hdrFormat);
+    Renderer renderer(device, graph, compile(graph, rasterCompileOptions(o, scene)), rendererOptions(o, library));
+    renderer.frameData().set(scene);
+    return timeRasterFrames(renderer, frames);
 }
 
 /// The procedural sky (sun disc included, 400x the sky) in double, as a w x h equirect map:
@@ -193,7 +214,7 @@ RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene,
     const auto start = std::chrono::steady_clock::now();
     baker.renderFrame();
     baker.waitIdle();
-    bakeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    bakeMs = msSince(start);
 
     scene.environment = SceneEnvironment{false, "study-sky.hdr", 0.0,
                                          k.cubemap ? EnvironmentSampling::Cubemap : EnvironmentSampling::Equirect};
@@ -203,37 +224,12 @@ RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene,
         if (r.name == "equirect") r.extent = Extent{false, 1, map.width, map.height};
         if (r.name == "environment") r.extent = Extent{false, 1, k.faceSize, k.faceSize};
     }
-    CompileOptions co;
-    co.features = sceneFeatures(scene);
-    co.presentReplacement = ExternalState::TransferSrc;
-    co.exports = {{"hdr_color", ExternalState::TransferSrc}};
-    co.outputWidth = o.width;
-    co.outputHeight = o.height;
-    RendererOptions ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.passes = &library;
-    ro.framesInFlight = 1;
-    Renderer renderer(device, graph, compile(graph, co), ro);
+    Renderer renderer(device, graph, compile(graph, rasterCompileOptions(o, scene)), rendererOptions(o, library));
     renderer.frameData().set(scene);
     for (const char* product : {"environment", "irradiance", "prefiltered", "brdf_lut"})
         if (renderer.plan().resourceIndex(product) >= 0) renderer.importImage(product, baker.shareImage(product));
     if (renderer.plan().resourceIndex("equirect") >= 0) renderer.setExternalImage("equirect", map);
-    renderer.renderFrame();
-    renderer.waitIdle();
-    RasterFrame f;
-    const int frames = 4;
-    const auto frameStart = std::chrono::steady_clock::now();
-    for (int i = 0; i < frames; ++i) {
-        renderer.renderFrame();
-        renderer.waitIdle();
-        f.gpuMs += gpuMs(renderer);
-    }
-    f.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count() / frames;
-    f.gpuMs /= frames;
-    f.ldr = renderer.readback();
-    f.hdr = renderer.readImage("hdr_color").at(0);
-    return f;
+    return timeRasterFrames(renderer, 4);
 }
 
 constexpr const char* kPathTraceGraph = R"({
@@ -265,12 +261,7 @@ PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, uin
     CompileOptions co;
     co.outputWidth = o.width;
     co.outputHeight = o.height;
-    RendererOptions ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.passes = &library;
-    ro.framesInFlight = 1;
-    Renderer renderer(device, graph, compile(graph, co), ro);
+    Renderer renderer(device, graph, compile(graph, co), rendererOptions(o, library));
     renderer.frameData().set(scene);
     PathTraceRun run;
     double wall = 0, gpu = 0;
@@ -280,7 +271,7 @@ PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, uin
             const auto start = std::chrono::steady_clock::now();
             renderer.renderFrame();
             renderer.waitIdle();
-            wall += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            wall += msSince(start);
             gpu += gpuMs(renderer);
             spp += samplesPerFrame;
         }
@@ -307,18 +298,13 @@ ImageData pathTracedTruth(Device& device, const Options& o, Scene scene, const I
     co.presentReplacement = ExternalState::TransferSrc;
     co.outputWidth = o.width;
     co.outputHeight = o.height;
-    RendererOptions ro;
-    ro.width = o.width;
-    ro.height = o.height;
-    ro.passes = &library;
-    ro.framesInFlight = 1;
-    Renderer renderer(device, graph, compile(graph, co), ro);
+    Renderer renderer(device, graph, compile(graph, co), rendererOptions(o, library));
     renderer.setExternalImage("equirect", map);
     renderer.frameData().set(scene);
     const auto start = std::chrono::steady_clock::now();
     for (uint32_t n = 0; n < spp; n += 64) renderer.renderFrame();
     renderer.waitIdle();
-    wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    wallMs = msSince(start);
     return renderer.readImage("accumulation").at(0);
 }
 
