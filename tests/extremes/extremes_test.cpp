@@ -67,15 +67,6 @@ bool finiteImage(const ImageData& img) {
     return true;
 }
 
-ImageData constantImage(uint32_t w, uint32_t h, glm::vec3 c) {
-    ImageData img;
-    img.width = w;
-    img.height = h;
-    img.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    for (uint32_t i = 0; i < w * h; ++i) img.rgba.insert(img.rgba.end(), {c.r, c.g, c.b, 1.0f});
-    return img;
-}
-
 /// Angle between the GPU's ray and the double reference at pixel (x, y) in pixels (the
 /// angle over the angular size of a pixel at the image centre), as far_camera_test.cpp.
 double rayErrorPx(const ImageData& rays, const SceneCamera& cam, uint32_t x, uint32_t y) {
@@ -118,14 +109,7 @@ protected:
         co.features = sceneFeatures(scene);
         co.presentReplacement = ExternalState::TransferSrc;
         if (readback == "hdr_color") co.exports = {{"hdr_color", ExternalState::TransferSrc}};
-        co.outputWidth = w;
-        co.outputHeight = h;
-        RendererOptions ro;
-        ro.width = w;
-        ro.height = h;
-        ro.passes = &library;
-        ro.readback = readback;
-        Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+        Renderer renderer = rendererAt(graph, library, co, w, h, readback);
         if (external) renderer.setExternalImage(externalName, *external);
         renderer.frameData().set(scene);
         renderer.renderFrame();

@@ -1,14 +1,13 @@
 // PathTracePass (issue 6) on lavapipe under validation + synchronization validation: a white
 // furnace whose answer is known in closed form, progressive accumulation across frames, and
 // the shipped graphs/pathtrace.json end to end.
-#include "executor_test_util.hpp"
+#include "pass_test_util.hpp"
 
 #include <skygraph/ibl_math.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 
-#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -88,29 +87,6 @@ double expectedFurnace(uint32_t x, uint32_t y) {
     return sum / n;
 }
 
-/// A renderer of `graph` at width x height on the shared device; it keeps a pointer to
-/// `library`, which must outlive it.
-Renderer rendererAt(const GraphDesc& graph, const PassLibrary& library, CompileOptions co, uint32_t width,
-                    uint32_t height) {
-    co.outputWidth = width;
-    co.outputHeight = height;
-    RendererOptions ro;
-    ro.width = width;
-    ro.height = height;
-    ro.passes = &library;
-    return Renderer(sharedDevice(), graph, compile(graph, co), ro);
-}
-
-/// A 2x1 fp32 equirect of `texel` everywhere: an environment of one radiance in every direction.
-ImageData constantEquirect(const std::array<float, 4>& texel) {
-    ImageData env;
-    env.width = 2;
-    env.height = 1;
-    env.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    for (int i = 0; i < 2; ++i) env.rgba.insert(env.rgba.end(), texel.begin(), texel.end());
-    return env;
-}
-
 class PathTrace : public ExecutorTest {
 protected:
     struct Stats {
@@ -123,7 +99,7 @@ protected:
         const GraphDesc graph = parseGraph(kFurnaceGraph, "furnace.json", library.registry());
         Renderer renderer = rendererAt(graph, library, {}, kWidth, kHeight);
         const float l = float(kEnvironment);
-        renderer.setExternalImage("equirect", constantEquirect({l, l, l, l}));
+        renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(l)));
         renderer.frameData().set(furnaceScene());
         for (uint32_t i = 0; i < frames; ++i) renderer.renderFrame();
         const ImageData img = renderer.readImage("accumulation").at(0);
@@ -204,7 +180,7 @@ TEST_F(PathTrace, ShippedGraphTracesTheEnvironmentFileWhenBound) {
     co.features = {{"environment_file", true}};
     co.presentReplacement = ExternalState::TransferSrc;
     Renderer renderer = rendererAt(graph, library, co, 16, 12);
-    renderer.setExternalImage("equirect", constantEquirect({0.25f, 0.5f, 2.0f, 1.0f}));
+    renderer.setExternalImage("equirect", constantImage(2, 1, {0.25f, 0.5f, 2.0f}));
     Scene scene;
     scene.environment = SceneEnvironment{false, "unused.hdr", 30.0, EnvironmentSampling::Equirect};
     renderer.frameData().set(scene);

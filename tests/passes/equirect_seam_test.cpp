@@ -2,7 +2,8 @@
 // the skybox's image must follow the environment's function of direction there as everywhere,
 // with no line or pinch. The environment is a smooth function of direction, so the truth is
 // known at every pixel; the HDR target (fp16) is read back and compared.
-#include "executor_test_util.hpp"
+#include "analytic_environment.hpp"
+#include "pass_test_util.hpp"
 
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
@@ -19,19 +20,6 @@ const std::filesystem::path kSource = SKYGRAPH_SOURCE_DIR;
 /// The environment: smooth and different along every axis, positive.
 glm::dvec3 field(const glm::dvec3& d) { return 0.5 * (d + 1.0) + glm::dvec3(0.1); }
 
-ImageData equirectOf(uint32_t w, uint32_t h) {
-    ImageData img;
-    img.width = w;
-    img.height = h;
-    img.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) {
-            const auto c = field(math::equirectToDirection(glm::dvec2((x + 0.5) / w, (y + 0.5) / h)));
-            img.rgba.insert(img.rgba.end(), {float(c.x), float(c.y), float(c.z), 1.0f});
-        }
-    return img;
-}
-
 class EquirectSampling : public ExecutorTest {};
 
 TEST_F(EquirectSampling, SeamAndPolesFollowTheEnvironment) {
@@ -43,15 +31,8 @@ TEST_F(EquirectSampling, SeamAndPolesFollowTheEnvironment) {
     CompileOptions co;
     co.features = {{"geometry", false}, {"environment_file", true}, {"sample_cubemap", false}};
     co.exports = {{"hdr_color", ExternalState::TransferSrc}};
-    co.outputWidth = w;
-    co.outputHeight = h;
-    RendererOptions ro;
-    ro.width = w;
-    ro.height = h;
-    ro.passes = &library;
-    ro.readback = "hdr_color";
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
-    renderer.setExternalImage("equirect", equirectOf(mapW, mapH));
+    Renderer renderer = rendererAt(graph, library, co, w, h, "hdr_color");
+    renderer.setExternalImage("equirect", equirectImage(field, mapW, mapH));
     // Bilinear filtering of a 256 x 128 map misses a smooth field by at most ~(pi/128)^2/8 of
     // its curvature, and fp16 stores ~1e-3 relative: 4e-3 covers both; a seam line of the
     // wrong texels or a pole pinch misses by > 0.05.

@@ -1,5 +1,6 @@
-// Renders for the pass tests (tests/passes, tests/extremes): the shipped raster frame of a
-// scene, and the skybox's world-space view ray, on the shared validated device.
+// Renders for the pass tests (tests/passes, tests/extremes): a graph's renderer at a size,
+// the shipped raster frame of a scene, and the skybox's world-space view ray, on the shared
+// validated device; and the constant image those tests feed as an environment.
 #pragma once
 
 #include "executor_test_util.hpp"
@@ -7,7 +8,34 @@
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 
+#include <glm/vec3.hpp>
+
 namespace skygraph::test {
+
+/// A renderer of `graph` at width x height on the shared device, reading back `readback`
+/// (empty: the Present target); it keeps a pointer to `library`, which must outlive it.
+inline Renderer rendererAt(const GraphDesc& graph, const PassLibrary& library, CompileOptions co, uint32_t width,
+                           uint32_t height, std::string readback = {}) {
+    co.outputWidth = width;
+    co.outputHeight = height;
+    RendererOptions ro;
+    ro.width = width;
+    ro.height = height;
+    ro.passes = &library;
+    ro.readback = std::move(readback);
+    return Renderer(sharedDevice(), graph, compile(graph, co), ro);
+}
+
+/// A w x h fp32 image of `c` everywhere (alpha 1): as an equirect, an environment of one
+/// radiance in every direction.
+inline ImageData constantImage(uint32_t w, uint32_t h, glm::vec3 c) {
+    ImageData img;
+    img.width = w;
+    img.height = h;
+    img.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    for (uint32_t i = 0; i < w * h; ++i) img.rgba.insert(img.rgba.end(), {c.r, c.g, c.b, 1.0f});
+    return img;
+}
 
 /// graphs/raster.json for `scene` (its features, then `overrides`), built-in passes, `frames`
 /// frames; returns the Present target (the swapchain, B8G8R8A8_SRGB read back as byte / 255).
@@ -20,13 +48,7 @@ inline ImageData renderRasterFrame(const Scene& scene, uint32_t width, uint32_t 
     co.features = sceneFeatures(scene);
     for (const auto& [name, on] : overrides) co.features[name] = on;
     co.presentReplacement = ExternalState::TransferSrc;
-    co.outputWidth = width;
-    co.outputHeight = height;
-    RendererOptions ro;
-    ro.width = width;
-    ro.height = height;
-    ro.passes = &library;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer = rendererAt(graph, library, co, width, height);
     renderer.frameData().set(scene);
     for (int i = 0; i < frames; ++i) renderer.renderFrame();
     return renderer.readback();
@@ -50,15 +72,8 @@ inline ImageData renderSkyRays(const Scene& scene, uint32_t width, uint32_t heig
     const PassLibrary library = PassLibrary::withBuiltins();
     const GraphDesc graph = parseGraph(kGraph, "sky_direction.json", library.registry());
     CompileOptions co;
-    co.outputWidth = width;
-    co.outputHeight = height;
     co.exports = {{"ray", ExternalState::TransferSrc}};
-    RendererOptions ro;
-    ro.width = width;
-    ro.height = height;
-    ro.passes = &library;
-    ro.readback = "ray";
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer = rendererAt(graph, library, co, width, height, "ray");
     renderer.frameData().set(scene);
     renderer.renderFrame();
     return renderer.readback();
