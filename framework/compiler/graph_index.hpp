@@ -116,12 +116,10 @@ private:
     /// the last pass's: reading them in turn waits for memory at every pass unless they are
     /// asked for a few passes ahead.
     static constexpr size_t kPrefetchAhead = 4;
-    static void prefetchLines(const void* at, size_t bytes) {
-        const auto* begin = static_cast<const char*>(at);
-        for (const char* line = begin; line < begin + bytes; line += 64) __builtin_prefetch(line);
-    }
     static void prefetchUses(const PassDesc& pass) {
-        prefetchLines(pass.uses.data(), pass.uses.size() * sizeof(UsageDecl));
+        const auto* begin = reinterpret_cast<const char*>(pass.uses.data());
+        const auto* end = reinterpret_cast<const char*>(pass.uses.data() + pass.uses.size());
+        for (const char* line = begin; line < end; line += 64) __builtin_prefetch(line);
     }
 
     /// Strings laid end to end; a name is its (offset, length).

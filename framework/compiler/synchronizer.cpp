@@ -140,7 +140,7 @@ private:
         uint32_t firstAccess = 0;  ///< Its accesses are [firstAccess, next step's).
     };
 
-    const ResourceDesc& decl(uint32_t planResource) const { return *decls_[planResource]; }
+    const ResourceDesc& decl(uint32_t planResource) const { return graph_.resources[plan_.resources[planResource].decl]; }
     bool isImage(uint32_t planResource) const { return facts_[planResource].aspects.image; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
@@ -152,7 +152,6 @@ private:
         // Reserved for the scheduled passes; inserted clears add a few more, rarely.
         steps_.reserve(schedule.passes.size());
         plan_.resources.reserve(graph_.resources.size());
-        decls_.reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
         grids_ = SubresourceGrids(graph_.resources.size());
         accesses_.reserve(schedule.usages);
@@ -178,7 +177,7 @@ private:
             }
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
-                plan_.passes.push_back(PlannedPass{"clear " + decl(r).name, "Clear", -1, {}, {}});
+                plan_.passes.push_back(PlannedPass{"clear " + plan_.resources[r].name, "Clear", -1, {}, {}});
                 addAccess(r, kClearUsage, grids_[r].whole(), false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
@@ -196,11 +195,9 @@ private:
     }
 
     uint32_t addResource(uint32_t declIndex) {
-        const ResourceDesc& d = graph_.resources[declIndex];
         PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
-        decls_.push_back(&d);
         facts_.push_back({kNone, kNone, index_.aspects(declIndex), index_.exported(declIndex),
                           index_.external(declIndex)});
         grids_.add(index_.grids()[declIndex]);
@@ -592,7 +589,6 @@ private:
     const CompileOptions& options_;
     Plan plan_;
     // Per plan resource.
-    std::vector<const ResourceDesc*> decls_;
     std::vector<ResourceFacts> facts_;
     SubresourceGrids grids_;               // also lays out the per-subresource arrays
     std::vector<Step> steps_;              // per plan pass
