@@ -106,7 +106,10 @@ private:
             for (const auto& u : pass.uses) {
                 if (active && u.usage.range)
                     ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size()));
-                uses_.push_back({u.usage, u.resource, !u.slot.empty()});
+                IndexedUsage& iu = uses_.emplace_back();  // field by field: see vulkanScope
+                iu.usage = u.usage;
+                iu.resource = u.resource;
+                iu.fillsSlot = !u.slot.empty();
             }
             firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
         }

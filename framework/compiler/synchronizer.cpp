@@ -181,8 +181,10 @@ private:
                 addAccess(r, kClearUsage, grids_[r].whole(), false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
-            plan_.passes.push_back(PlannedPass{std::string(index_.passName(p)), std::string(index_.passType(p)),
-                                               static_cast<int32_t>(p), {}, {}});
+            PlannedPass& pass = plan_.passes.emplace_back();  // in place: no temporary to zero and move
+            pass.name = index_.passName(p);
+            pass.type = index_.passType(p);
+            pass.declIndex = static_cast<int32_t>(p);
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
@@ -213,9 +215,8 @@ private:
     static constexpr Usage kClearUsage{Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
-    static Usage effectiveUsage(Usage u, bool loadOpClear) {
-        if (loadOpClear && u.access == Access::Read) u.access = Access::ReadWrite;
-        return u;
+    static Access effectiveAccess(Access a, bool loadOpClear) {
+        return loadOpClear && a == Access::Read ? Access::ReadWrite : a;
     }
 
     /// Names the slot that the usage last added (`u`, of pass `pass`) fills.
@@ -230,21 +231,24 @@ private:
     /// place in its resource's chain of accesses and in its read run (rule 4).
     void addAccess(uint32_t r, const Usage& usage, const SubresourceRange& range, bool loadOpClear) {
         const auto k = static_cast<uint32_t>(accesses_.size());
-        const Usage effective = effectiveUsage(usage, loadOpClear);
-        const VulkanScope scope = vulkanScope(facts_[r].aspects, effective);
-        PlannedUsage& pu = usages_->emplace_back();
-        pu.resource = r;
-        pu.usage = usage;
-        pu.range = range;
-        pu.layout = scope.layout;
-        pu.stages = scope.stages;
-        pu.access = scope.access;
-        if (loadOpClear) pu.load = LoadOp::Clear;
+        const Access effective = effectiveAccess(usage.access, loadOpClear);
+        const VulkanScope scope = vulkanScope(facts_[r].aspects, effective, usage.stage, usage.as);
+        // Every field given: value-initialising first would zero the record with `rep stos`,
+        // whose start-up cost is paid once per usage.
+        usages_->push_back(PlannedUsage{.stages = scope.stages,
+                                        .access = scope.access,
+                                        .slot = {},
+                                        .usage = usage,
+                                        .range = range,
+                                        .resource = r,
+                                        .layout = scope.layout,
+                                        .load = loadOpClear ? LoadOp::Clear : LoadOp::Load,
+                                        .store = StoreOp::Store});
         AccessRecord& a = accesses_.emplace_back();
         a.step = static_cast<uint32_t>(steps_.size() - 1);
         a.runScopes = runScopeCount_;
-        a.reads = readsContents(effective.access);
-        a.writes = writesContents(effective.access);
+        a.reads = readsContents(effective);
+        a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
         runScopeCount_ += static_cast<uint32_t>(cells(range));
         readRuns_.add();
@@ -355,20 +359,23 @@ private:
 
     /// Resource r's state before its first access (the plan resource's first and initial
     /// fields too): undefined, or for an external resource what its `initial` state holds.
+    /// state_ starts value-initialised, which is the undefined state; external resources'
+    /// states are written field by field (a local SubresourceState copied in would stall the
+    /// CPU's store forwarding, once per resource).
     void startState(uint32_t r) {
-        SubresourceState init;
-        if (facts_[r].external) {
-            const ExternalState s = replaced(decl(r).initial);
-            const VulkanScope scope = boundaryScope(r, s);
-            init.layout = scope.layout;
-            init.writeStages = scope.stages;
-            init.visibleStages = scope.stages;
-            init.visibleAccess = scope.access;
-            init.fromOutside = true;
+        PlannedResource& res = plan_.resources[r];
+        res.firstStages = firstPassScope(r).stages;
+        if (!facts_[r].external) return;
+        const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
+        SubresourceState* states = stateOf(r);
+        for (size_t i = 0; i < grids_[r].size(); ++i) {
+            states[i].layout = scope.layout;
+            states[i].writeStages = scope.stages;
+            states[i].visibleStages = scope.stages;
+            states[i].visibleAccess = scope.access;
+            states[i].fromOutside = true;
         }
-        std::fill_n(stateOf(r), grids_[r].size(), init);
-        plan_.resources[r].initialLayout = init.layout;
-        plan_.resources[r].firstStages = firstPassScope(r).stages;
+        res.initialLayout = scope.layout;
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[grids_.first(r)]; }
 
@@ -437,7 +444,7 @@ private:
         const bool write = a.writes;
         if (k == facts_[r].firstAccess) startState(r);
         if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
-        const bool discard = effectiveUsage(pu.usage, a.loadOpClear).access == Access::Write;
+        const bool discard = effectiveAccess(pu.usage.access, a.loadOpClear) == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
         const VkImageLayout target = image ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         auto update = [&](SubresourceState& st) {
