@@ -94,9 +94,15 @@ private:
         passNames_.reserve(passes);
         firstUse_.reserve(passes + 1);
         firstUse_.push_back(0);
-        size_t uses = 0;
-        for (const auto& pass : graph_.passes) uses += pass.uses.size();
+        size_t uses = 0, nameBytes = 0;
+        for (const auto& pass : graph_.passes) {
+            uses += pass.uses.size();
+            nameBytes += pass.name.size() + pass.type.size();
+        }
         uses_.reserve(uses);
+        // Resource names are not counted (their records are not walked yet): a guess, which
+        // at worst costs the table one more doubling.
+        names_.reserve(nameBytes + 8 * graph_.resources.size());
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
@@ -134,6 +140,7 @@ private:
             text_ += s;
             return ref;
         }
+        void reserve(size_t bytes) { text_.reserve(bytes); }
         std::string_view operator[](Ref r) const noexcept { return std::string_view(text_).substr(r.offset, r.length); }
     private:
         std::string text_;

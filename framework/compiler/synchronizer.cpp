@@ -181,10 +181,9 @@ private:
                 addAccess(r, kClearUsage, grids_[r].whole(), false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
-            PlannedPass& pass = plan_.passes.emplace_back();  // in place: no temporary to zero and move
-            pass.name = index_.passName(p);
-            pass.type = index_.passType(p);
-            pass.declIndex = static_cast<int32_t>(p);
+            // Constructed in place (not from a braced temporary, which GCC zeroes whole first).
+            plan_.passes.emplace_back(std::string(index_.passName(p)), std::string(index_.passType(p)),
+                                      static_cast<int32_t>(p));
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
@@ -252,7 +251,12 @@ private:
         a.loadOpClear = loadOpClear;
         runScopeCount_ += static_cast<uint32_t>(cells(range));
         readRuns_.add();
-        if (isImage(r)) grids_.forEach(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
+        if (isImage(r)) {
+            if (cells(range) == 1)  // most accesses; spelled out, as the lambda below is not inlined
+                readRuns_.visit(k, grids_.first(r) + grids_[r].index(range.baseMip, range.baseLayer), !a.writes);
+            else
+                grids_.forEach(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
+        }
         ResourceFacts& f = facts_[r];
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
@@ -301,7 +305,7 @@ private:
         barrierEnd.reserve(steps_.size());
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
-            for (uint32_t k = steps_[s].firstAccess; k < stepEnd(s); ++k) applyAccess(usages[k], k, barriers);
+            for (uint32_t k = steps_[s].firstAccess, end = stepEnd(s); k < end; ++k) applyAccess(usages[k], k, barriers);
             mergeAdjacent(barriers, batch);
             barrierEnd.push_back(static_cast<uint32_t>(barriers.size()));
         }
@@ -545,7 +549,8 @@ private:
                 for (size_t j = i + 1; j < batch.size() && !merged; ++j) {
                     Barrier& a = batch[i];
                     const Barrier& b = batch[j];
-                    if (!sameParams(a, b)) continue;
+                    // Most batches hold one barrier per resource: the resource alone rules them out.
+                    if (a.resource != b.resource || !sameParams(a, b)) continue;
                     const bool sameLayers = a.range.baseLayer == b.range.baseLayer &&
                                             a.range.layerCount == b.range.layerCount;
                     const bool sameMips = a.range.baseMip == b.range.baseMip &&
