@@ -52,7 +52,7 @@ public:
 
     [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
     [[nodiscard]] size_t passes() const noexcept { return active_.size(); }
-    [[nodiscard]] bool active(size_t pass) const noexcept { return active_[pass]; }
+    [[nodiscard]] bool active(size_t pass) const noexcept { return active_[pass] != 0; }
     [[nodiscard]] std::span<const IndexedUsage> usesOf(size_t pass) const noexcept {
         return {uses_.data() + firstUse_[pass], uses_.data() + firstUse_[pass + 1]};
     }
@@ -108,7 +108,7 @@ private:
             const PassDesc& pass = graph_.passes[p];
             passNames_.push_back({names_.add(pass.name), names_.add(pass.type)});
             const bool active = !features || pass.condition.evaluate(*features);
-            active_.push_back(active);
+            active_.push_back(static_cast<uint8_t>(active));
             for (const auto& u : pass.uses) {
                 if (active && u.usage.range)
                     ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size()));
@@ -141,7 +141,7 @@ private:
             return ref;
         }
         void reserve(size_t bytes) { text_.reserve(bytes); }
-        std::string_view operator[](Ref r) const noexcept { return std::string_view(text_).substr(r.offset, r.length); }
+        std::string_view operator[](Ref r) const noexcept { return {text_.data() + r.offset, r.length}; }
     private:
         std::string text_;
     };
@@ -155,7 +155,7 @@ private:
     };
 
     const GraphDesc& graph_;
-    std::vector<bool> active_;          // per pass
+    std::vector<uint8_t> active_;       // per pass (bytes: a bit vector costs more to read)
     std::vector<uint32_t> firstUse_;    // per pass: its usages in uses_ (+1 at the end)
     std::vector<IndexedUsage> uses_;
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;

@@ -76,9 +76,14 @@ public:
     template <typename T, typename F>
     [[nodiscard]] std::vector<T> makeArray(F&& init) const {
         std::vector<T> out(total());
-        for (size_t r = 0; r < grids_.size(); ++r)
+        for (size_t r = 0; r < grids_.size(); ++r) {
+            if (first_[r + 1] == first_[r] + 1) {  // most resources: no call to fill for one value
+                out[first_[r]] = init(r);
+                continue;
+            }
             std::fill(out.begin() + static_cast<std::ptrdiff_t>(first_[r]),
                       out.begin() + static_cast<std::ptrdiff_t>(first_[r + 1]), init(r));
+        }
         return out;
     }
 

@@ -159,21 +159,15 @@ private:
         plan_.passes.reserve(schedule.passes.size());
         readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
-        std::vector<uint8_t> loadOpClears;   // per usage of this pass: whether its load op clears
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
-            loadOpClears.assign(uses.size(), 0);
             for (size_t i = 0; i < uses.size(); ++i) {
                 const uint32_t d = uses[i].resource;
                 if (planIndex[d] != kNone) continue;
                 planIndex[d] = addResource(d);
-                if (!index_.clear(d)) continue;
-                if (clearsThroughLoadOp(uses[i]))
-                    loadOpClears[i] = 1;
-                else
-                    clearsBefore.push_back(planIndex[d]);
+                if (index_.clear(d) && !clearsThroughLoadOp(uses[i])) clearsBefore.push_back(planIndex[d]);
             }
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
@@ -187,7 +181,10 @@ private:
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
-                addAccess(r, u.usage, grids_[r].resolve(u.usage), loadOpClears[i] != 0);
+                // The resource's first access, unless a Clear pass above took that role.
+                const bool loadOpClear =
+                    facts_[r].firstAccess == kNone && index_.clear(u.resource) && clearsThroughLoadOp(u);
+                addAccess(r, u.usage, grids_[r].resolve(u.usage), loadOpClear);
                 if (u.fillsSlot) addSlot(p, u);
             }
         }
