@@ -298,7 +298,6 @@ private:
     /// passes' spans are set once it stops growing.
     void emitSteps() {
         state_.resize(grids_.total());
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) startState(r);
         auto& usages = *usages_;
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         barriers.reserve(accesses_.size());  // usually enough: most accesses need one at most
@@ -454,6 +453,8 @@ private:
         const uint32_t r = pu.resource;
         const bool image = isImage(r);
         const bool write = a.writes;
+        // Here, not in a loop of its own: the first pass's usages it reads are in cache now.
+        if (k == facts_[r].firstAccess) startState(r);
         if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
         const bool discard = effectiveAccess(pu.usage.access, a.loadOpClear) == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
