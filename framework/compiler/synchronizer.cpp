@@ -38,7 +38,9 @@ struct SubresourceState {
 struct AccessRecord {
     uint32_t step = 0;        ///< Index into Plan::passes.
     uint32_t next = kNone;    ///< The same resource's next access.
-    uint32_t runScopes = 0;   ///< Index of its first entry in Synchronizer::runScope_.
+    /// Index of its first entry in Synchronizer::runScope_; only for resources with more
+    /// than one subresource (see runScopeFrom).
+    uint32_t runScopes = 0;
     bool reads = false;       ///< Of the effective usage (a load-op clear writes).
     bool writes = false;
     bool loadOpClear = false; ///< The first use of a `clear` resource, cleared by the load op.
@@ -53,7 +55,7 @@ struct ResourceFacts {
     bool external = false;
 };
 
-/// Stages and accesses without a layout: what a read run's scope needs (16 bytes a cell).
+/// Stages and accesses without a layout: what a read run's scope needs.
 struct StageAccess {
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
@@ -71,21 +73,22 @@ bool sameParams(Barrier a, Barrier b) {
 
 /// Rule 4: reads of overlapping subresources of an image with no write between form a run,
 /// and the run gets one layout that serves all its readers. Accesses join runs as they are
-/// added in plan order (union-find over access indices, so runs never span resources); once
-/// all are in, every read's own layout is folded into its run's.
+/// added in plan order (union-find over access indices, so runs never span resources), each
+/// read bringing its own layout; when two runs join, so do their layouts. commonReadLayout
+/// is commutative and associative, so the order of joining does not matter: once every
+/// access is in, a read's run layout is final.
 class ReadRuns {
 public:
     void reserve(size_t accesses, size_t subresources) {
-        parent_.reserve(accesses);
-        layout_.reserve(accesses);
+        nodes_.reserve(accesses);
         open_.assign(subresources, kNone);
     }
-    /// Adds the next access; returns its index. An image's access then visits each
-    /// subresource it touches (`sub`: flat index).
-    uint32_t add() {
-        const auto k = static_cast<uint32_t>(parent_.size());
-        parent_.push_back(k);
-        layout_.push_back(VK_IMAGE_LAYOUT_UNDEFINED);
+    /// Adds the next access (`own`: the layout of an image read, UNDEFINED otherwise);
+    /// returns its index. An image's access then visits each subresource it touches (`sub`:
+    /// flat index).
+    uint32_t add(VkImageLayout own) {
+        const auto k = static_cast<uint32_t>(nodes_.size());
+        nodes_.push_back({k, own});
         return k;
     }
     void visit(uint32_t k, size_t sub, bool read) {
@@ -96,24 +99,30 @@ public:
             open_[sub] = k;
         }
     }
-    /// Folds read k's own layout into its run's. commonReadLayout is commutative and
-    /// associative, so the order of folding does not matter.
-    void fold(uint32_t k, VkImageLayout own) {
-        VkImageLayout& l = layout_[find(k)];
-        l = l == VK_IMAGE_LAYOUT_UNDEFINED ? own : commonReadLayout(l, own);
-    }
-    /// The layout of read k's run, once every read is folded.
-    VkImageLayout layout(uint32_t k) { return layout_[find(k)]; }
+    /// The layout of read k's run, once every access is added.
+    VkImageLayout layout(uint32_t k) { return nodes_[find(k)].layout; }
 
 private:
     uint32_t find(uint32_t a) {
-        while (parent_[a] != a) a = parent_[a] = parent_[parent_[a]];
+        while (nodes_[a].parent != a) a = nodes_[a].parent = nodes_[nodes_[a].parent].parent;
         return a;
     }
-    void unite(uint32_t a, uint32_t b) { parent_[find(a)] = find(b); }
+    void unite(uint32_t a, uint32_t b) {
+        const uint32_t from = find(a), to = find(b);
+        if (from == to) return;
+        nodes_[from].parent = to;
+        const VkImageLayout joined = nodes_[from].layout;
+        VkImageLayout& l = nodes_[to].layout;
+        l = l == VK_IMAGE_LAYOUT_UNDEFINED ? joined
+            : joined == VK_IMAGE_LAYOUT_UNDEFINED ? l
+                                                  : commonReadLayout(l, joined);
+    }
 
-    std::vector<uint32_t> parent_;       // per access
-    std::vector<VkImageLayout> layout_;  // per access; meaningful at run roots
+    struct Node {
+        uint32_t parent;
+        VkImageLayout layout;  // meaningful at run roots
+    };
+    std::vector<Node> nodes_;            // per access
     std::vector<uint32_t> open_;         // per subresource: the latest read of its open run
 };
 
@@ -245,12 +254,15 @@ private:
         if (loadOpClear) pu.load = LoadOp::Clear;
         AccessRecord& a = accesses_.emplace_back();
         a.step = static_cast<uint32_t>(steps_.size() - 1);
-        a.runScopes = runScopeCount_;
         a.reads = readsContents(effective);
         a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
-        runScopeCount_ += static_cast<uint32_t>(cells(range));
-        readRuns_.add();
+        if (grids_[r].size() > 1) {
+            a.runScopes = runScopeCount_;
+            runScopeCount_ += static_cast<uint32_t>(cells(range));
+            multiCellAccesses_.push_back(k);
+        }
+        readRuns_.add(!a.writes && isImage(r) ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED);
         if (isImage(r)) {
             if (cells(range) == 1)  // most accesses; spelled out, as the lambda below is not inlined
                 readRuns_.visit(k, grids_.first(r) + grids_[r].index(range.baseMip, range.baseLayer), !a.writes);
@@ -267,18 +279,34 @@ private:
         f.lastAccess = k;
     }
 
-    /// For every read access and subresource it touches: the union of the scopes of the reads
-    /// of that subresource from this one up to the next write. All of them belong to one run
-    /// (rule 4 in docs/barriers.md), so this is what a barrier before this read makes visible.
-    /// One backward sweep over the accesses, into `runScope_` from each access's `runScopes`;
-    /// it also folds each read's layout into its run's.
+    /// What a barrier before read `k` makes visible in subresource (`mip`, `layer`), the
+    /// `cell`-th of its range: the union of the scopes of the reads of that subresource from
+    /// this one up to the next write. They all belong to one run (rule 4 in
+    /// docs/barriers.md), and only the run's first read that needs a barrier asks (the
+    /// barrier makes the rest visible). For a resource of one subresource every later access
+    /// touches it, so walking its chain to the next write costs no more than the run; for
+    /// one of several, a walk would step over the accesses of other subresources again for
+    /// each (quadratic for a layer-per-pass array), so those come from computeRunScopes().
+    StageAccess runScopeFrom(uint32_t k, uint32_t r, size_t cell) const {
+        if (grids_[r].size() > 1) return runScope_[accesses_[k].runScopes + cell];
+        const auto& usages = *usages_;
+        StageAccess scope{usages[k].stages, usages[k].access};
+        for (uint32_t j = accesses_[k].next; j != kNone && !accesses_[j].writes; j = accesses_[j].next) {
+            scope.stages |= usages[j].stages;
+            scope.access |= usages[j].access;
+        }
+        return scope;
+    }
+
+    /// runScopeFrom's answers for every read of a resource of several subresources, per
+    /// subresource of its range: one backward sweep over those resources' accesses.
     void computeRunScopes() {
+        const auto& usages = *usages_;
         runScope_.resize(runScopeCount_);
         std::vector<StageAccess> pending(grids_.total());  // per subresource
-        for (auto k = static_cast<uint32_t>(accesses_.size()); k-- > 0;) {
-            const AccessRecord& a = accesses_[k];
-            const PlannedUsage& u = (*usages_)[k];
-            if (!a.writes && isImage(u.resource)) readRuns_.fold(k, u.layout);
+        for (auto it = multiCellAccesses_.rbegin(); it != multiCellAccesses_.rend(); ++it) {
+            const AccessRecord& a = accesses_[*it];
+            const PlannedUsage& u = usages[*it];
             StageAccess* out = &runScope_[a.runScopes];
             grids_.forEach(u.resource, u.range, [&](size_t sub) {
                 if (a.writes) {
@@ -385,17 +413,20 @@ private:
 
     /// The barrier subresource `st` needs before an access in `scope` that reads
     /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
-    std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need,
-                                      VkImageLayout target, bool write, bool discard,
-                                      const StageAccess& visibleAfter) {
+    /// `visibleAfter()` gives what a barrier before a read makes visible; it is asked only
+    /// when a read needs one.
+    template <typename VisibleAfter>
+    std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need, VkImageLayout target,
+                                      bool write, bool discard, VisibleAfter&& visibleAfter) {
         Barrier b;
         if (!barrierInto(b, st, need, target, write, discard, visibleAfter)) return std::nullopt;
         return b;
     }
     /// The same, written into `b` (default-constructed by the caller, usually in place at
     /// the end of the batch): whether a barrier is needed. Nothing is copied on the way.
+    template <typename VisibleAfter>
     bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkImageLayout target,
-                     bool write, bool discard, const StageAccess& visibleAfter) {
+                     bool write, bool discard, VisibleAfter&& visibleAfter) {
         const bool layoutChange = st.layout != target;
         b.dstStages = need.stages;
         b.dstAccess = need.access;
@@ -429,8 +460,9 @@ private:
                 needed = true;
             }
             if (needed) {
-                b.dstStages = visibleAfter.stages;
-                b.dstAccess = visibleAfter.access;
+                const StageAccess after = visibleAfter();
+                b.dstStages = after.stages;
+                b.dstAccess = after.access;
             }
         }
         if (needed && b.srcStages == 0 && st.fromOutside) b.srcStages = b.dstStages;
@@ -469,14 +501,13 @@ private:
                 st.readStages |= pu.stages;
             }
         };
-        const StageAccess* runScopes = &runScope_[a.runScopes];
-        const StageAccess needed{need.stages, need.access};
         const SubresourceGrid& grid = grids_[r];
         SubresourceState* states = stateOf(r);
         if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
             SubresourceState& st = states[grid.index(pu.range.baseMip, pu.range.baseLayer)];
             Barrier& b = batch.emplace_back();
-            if (barrierInto(b, st, need, target, write, discard, write ? needed : runScopes[0])) {
+            const auto runScope = [&] { return runScopeFrom(k, r, 0); };
+            if (barrierInto(b, st, need, target, write, discard, runScope)) {
                 b.resource = r;
                 b.kind = image ? BarrierKind::Image : BarrierKind::Buffer;
                 b.range = pu.range;
@@ -486,10 +517,10 @@ private:
             update(st);
         } else {
             perSub_.clear();
-            size_t c = 0;
+            size_t cell = 0;
             grid.forEach(pu.range, [&](size_t sub) {
-                perSub_.push_back(barrierFor(states[sub], need, target, write, discard,
-                                             write ? needed : runScopes[c++]));
+                const auto runScope = [&, c = cell++] { return runScopeFrom(k, r, c); };
+                perSub_.push_back(barrierFor(states[sub], need, target, write, discard, runScope));
                 update(states[sub]);
             });
             emitMerged(r, pu.range, perSub_, batch);
@@ -598,7 +629,8 @@ private:
             grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
                 perSub_.push_back(barrierFor(states[sub], scope,
                                              d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
-                                             nextUseWrites, false, {scope.stages, scope.access}));
+                                             nextUseWrites, false,
+                                             [&] { return StageAccess{scope.stages, scope.access}; }));
             });
             emitMerged(r, grids_[r].whole(), perSub_, plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
@@ -622,7 +654,8 @@ private:
     std::vector<SlotName> slotAt_;
     ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
-    std::vector<StageAccess> runScope_;    // per access and subresource of its range
+    std::vector<StageAccess> runScope_;    // per access of a multi-subresource resource, per cell
+    std::vector<uint32_t> multiCellAccesses_;  // accesses whose run scopes runScope_ holds
     // Per subresource of every resource.
     std::vector<SubresourceState> state_;
     // Scratch, reused across usages.
