@@ -76,6 +76,13 @@ public:
     [[nodiscard]] SubresourceRange range(const IndexedUsage& u) const noexcept {
         return grids_[u.resource].resolve(u.usage);
     }
+    /// Calls f(flat index) for every subresource the usage touches; a resource of one
+    /// subresource (most of them) skips resolving the range.
+    template <typename F>
+    void forEachCell(const IndexedUsage& u, F&& f) const {
+        if (grids_[u.resource].size() == 1) return f(grids_.first(u.resource));
+        grids_.forEach(u.resource, range(u), f);
+    }
     [[nodiscard]] const ResourceAspects& aspects(size_t r) const noexcept { return resources_[r].aspects; }
     [[nodiscard]] bool clear(size_t r) const noexcept { return resources_[r].clear; }
     [[nodiscard]] bool external(size_t r) const noexcept { return resources_[r].external; }

@@ -43,7 +43,7 @@ bool writesLive(const GraphIndex& index, size_t p, const std::vector<uint8_t>& l
     for (const auto& u : index.usesOf(p)) {
         if (!writesContents(u.usage.access)) continue;
         bool anyLive = false;
-        index.grids().forEach(u.resource, index.range(u), [&](size_t i) { anyLive |= live[i] != 0; });
+        index.forEachCell(u, [&](size_t i) { anyLive |= live[i] != 0; });
         if (anyLive) return true;
     }
     return false;
@@ -81,10 +81,10 @@ void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std
         }
         for (const auto& u : index.usesOf(p))
             if (u.usage.access == Access::Write)
-                grids.forEach(u.resource, index.range(u), [&](size_t i) { live[i] = 0; });
+                index.forEachCell(u, [&](size_t i) { live[i] = 0; });
         for (const auto& u : index.usesOf(p))
             if (readsContents(u.usage.access))
-                grids.forEach(u.resource, index.range(u), [&](size_t i) { live[i] = 1; });
+                index.forEachCell(u, [&](size_t i) { live[i] = 1; });
     }
 }
 
@@ -107,7 +107,7 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
         for (const auto& u : index.usesOf(p)) {
             if (!readsContents(u.usage.access)) continue;
             bool missing = false;
-            grids.forEach(u.resource, index.range(u), [&](size_t i) { missing |= written[i] == 0; });
+            index.forEachCell(u, [&](size_t i) { missing |= written[i] == 0; });
             if (!missing) continue;
             const auto& res = graph.resources[u.resource];
             out.add({graph.file, index.declOf(p, u).jsonPath, graph.passes[p].name, res.name,
@@ -117,7 +117,7 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
         }
         for (const auto& u : index.usesOf(p))
             if (writesContents(u.usage.access))
-                grids.forEach(u.resource, index.range(u), [&](size_t i) { written[i] = 1; });
+                index.forEachCell(u, [&](size_t i) { written[i] = 1; });
     }
 }
 

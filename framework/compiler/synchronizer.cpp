@@ -15,6 +15,13 @@ namespace {
 
 constexpr uint32_t kNone = ~0u;
 
+/// Initialises a std::string member straight from a view: the conversion's result is the
+/// member itself (guaranteed copy elision), with no temporary string to move from.
+struct NameInPlace {
+    std::string_view text;
+    operator std::string() const { return std::string(text); }  // NOLINT: implicit by design
+};
+
 /// What is known about one subresource between passes.
 struct SubresourceState {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -184,8 +191,9 @@ private:
                 addAccess(r, kClearUsage, grids_[r].whole(), false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
-            // Constructed in place (not from a braced temporary, which GCC zeroes whole first).
-            plan_.passes.emplace_back(std::string(index_.passName(p)), std::string(index_.passType(p)),
+            // Constructed in place, names included (see NameInPlace): a braced temporary would
+            // be zeroed whole first, and std::string arguments constructed and then moved.
+            plan_.passes.emplace_back(NameInPlace{index_.passName(p)}, NameInPlace{index_.passType(p)},
                                       static_cast<int32_t>(p));
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
@@ -583,11 +591,12 @@ private:
     /// Joins barriers of one batch (`batch` from `first` on) that differ only in adjoining
     /// ranges, e.g. the per-mip usages of a pass that writes every level.
     static void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
-        for (bool merged = batch.size() > first + 1; merged;) {
+        for (bool merged = true; merged;) {  // after each merge, look again from the start
             merged = false;
-            for (size_t i = first; i < batch.size() && !merged; ++i)
-                for (size_t j = i + 1; j < batch.size() && !merged; ++j) {
-                    Barrier& a = batch[i];
+            const size_t n = batch.size();
+            for (size_t i = first; i + 1 < n && !merged; ++i) {
+                Barrier& a = batch[i];
+                for (size_t j = i + 1; j < n; ++j) {
                     const Barrier& b = batch[j];
                     // Most batches hold one barrier per resource: the resource alone rules them out.
                     if (a.resource != b.resource || !sameParams(a, b)) continue;
@@ -604,7 +613,9 @@ private:
                     }
                     batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(j));
                     merged = true;
+                    break;
                 }
+            }
         }
     }
 
