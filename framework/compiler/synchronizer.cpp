@@ -41,16 +41,19 @@ struct SubresourceState {
 /// One usage in plan order (access k is the k-th usage of the plan), beside its PlannedUsage
 /// (written when the access is recorded: resource, range, stages, access and, until rule 4
 /// settles it, its own layout): what the sweeps need besides. Each resource's accesses are
-/// chained through `next`.
+/// chained through `next`. It repeats what the forward sweep would otherwise look up per
+/// access in the per-resource tables, which it reaches in no useful order (a cache miss each).
 struct AccessRecord {
     uint32_t step = 0;        ///< Index into Plan::passes.
     uint32_t next = kNone;    ///< The same resource's next access.
     /// Index of its first entry in Synchronizer::runScope_; only for resources with more
     /// than one subresource (see runScopeFrom).
     uint32_t runScopes = 0;
-    bool reads = false;       ///< Of the effective usage (a load-op clear writes).
-    bool writes = false;
+    uint32_t cell = 0;        ///< Flat index of its range's first subresource.
+    bool writes = false;      ///< Of the effective usage (a load-op clear writes).
     bool loadOpClear = false; ///< The first use of a `clear` resource, cleared by the load op.
+    bool image = false;       ///< Of its resource.
+    bool firstOfResource = false;
 };
 
 /// Per plan resource, what the sweeps ask of it often (its ResourceDesc is large and cold).
@@ -262,24 +265,26 @@ private:
         if (loadOpClear) pu.load = LoadOp::Clear;
         AccessRecord& a = accesses_.emplace_back();
         a.step = static_cast<uint32_t>(steps_.size() - 1);
-        a.reads = readsContents(effective);
         a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
+        a.image = facts_[r].aspects.image;
+        a.cell = static_cast<uint32_t>(grids_.first(r) + grids_[r].index(range.baseMip, range.baseLayer));
         if (grids_[r].size() > 1) {
             a.runScopes = runScopeCount_;
             runScopeCount_ += static_cast<uint32_t>(cells(range));
             multiCellAccesses_.push_back(k);
         }
-        readRuns_.add(!a.writes && isImage(r) ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED);
-        if (isImage(r)) {
+        readRuns_.add(!a.writes && a.image ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED);
+        if (a.image) {
             if (cells(range) == 1)  // most accesses; spelled out, as the lambda below is not inlined
-                readRuns_.visit(k, grids_.first(r) + grids_[r].index(range.baseMip, range.baseLayer), !a.writes);
+                readRuns_.visit(k, a.cell, !a.writes);
             else
                 grids_.forEach(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
         }
         ResourceFacts& f = facts_[r];
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
+            a.firstOfResource = true;
             plan_.resources[r].firstPass = a.step;
         } else {
             accesses_[f.lastAccess].next = k;
@@ -363,10 +368,9 @@ private:
     /// Whether a later access (or the export) reads what access `k` leaves in `range`.
     bool readLater(uint32_t k, const SubresourceRange& range) const {
         for (uint32_t j = accesses_[k].next; j != kNone; j = accesses_[j].next) {
-            const AccessRecord& a = accesses_[j];
             const auto& o = (*usages_)[j].range;
             if (!o.overlaps(range)) continue;
-            if (a.reads) return true;
+            if (readsContents((*usages_)[j].usage.access)) return true;  // (a load-op clear is only ever first)
             if (o.baseMip <= range.baseMip && o.baseMip + o.mipCount >= range.baseMip + range.mipCount &&
                 o.baseLayer <= range.baseLayer && o.baseLayer + o.layerCount >= range.baseLayer + range.layerCount)
                 return false;
@@ -491,10 +495,10 @@ private:
     void applyAccess(PlannedUsage& pu, uint32_t k, std::vector<Barrier>& batch) {
         const AccessRecord& a = accesses_[k];
         const uint32_t r = pu.resource;
-        const bool image = isImage(r);
+        const bool image = a.image;
         const bool write = a.writes;
         // Here, not in a loop of its own: the first pass's usages it reads are in cache now.
-        if (k == facts_[r].firstAccess) startState(r);
+        if (a.firstOfResource) startState(r);
         if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
         const bool discard = effectiveAccess(pu.usage.access, a.loadOpClear) == Access::Write;
         const VulkanScope need{pu.stages, pu.access, pu.layout};
@@ -509,10 +513,8 @@ private:
                 st.readStages |= pu.stages;
             }
         };
-        const SubresourceGrid& grid = grids_[r];
-        SubresourceState* states = stateOf(r);
         if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
-            SubresourceState& st = states[grid.index(pu.range.baseMip, pu.range.baseLayer)];
+            SubresourceState& st = state_[a.cell];
             Barrier& b = batch.emplace_back();
             const auto runScope = [&] { return runScopeFrom(k, r, 0); };
             if (barrierInto(b, st, need, target, write, discard, runScope)) {
@@ -524,6 +526,8 @@ private:
             }
             update(st);
         } else {
+            const SubresourceGrid& grid = grids_[r];
+            SubresourceState* states = stateOf(r);
             perSub_.clear();
             size_t cell = 0;
             grid.forEach(pu.range, [&](size_t sub) {
