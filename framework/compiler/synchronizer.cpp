@@ -60,6 +60,10 @@ struct AccessRecord {
 struct ResourceFacts {
     uint32_t firstAccess = kNone;  ///< Its accesses, chained through AccessRecord::next.
     uint32_t lastAccess = kNone;
+    SubresourceGrid grid;          ///< At the output size.
+    /// Where its subresources start in the per-subresource arrays (state_, and the read
+    /// runs' and run scopes' scratch), which hold the plan's resources end to end.
+    uint32_t firstCell = 0;
     ResourceAspects aspects;  ///< Whether it is an image, for vulkanScope.
     bool exported = false;
     bool external = false;
@@ -172,7 +176,6 @@ private:
         steps_.reserve(schedule.passes.size());
         plan_.resources.reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        grids_ = SubresourceGrids(graph_.resources.size());
         accesses_.reserve(schedule.usages);
         usages_->reserve(schedule.usages);  // inserted clears add a few more, rarely
         plan_.passes.reserve(schedule.passes.size());
@@ -191,7 +194,7 @@ private:
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
                 plan_.passes.push_back(PlannedPass{"clear " + plan_.resources[r].name, "Clear", -1, {}, {}});
-                addAccess(r, kClearUsage, grids_[r].whole(), false);
+                addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
             }
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
             // Constructed in place, names included (see NameInPlace): a braced temporary would
@@ -204,7 +207,7 @@ private:
                 // The resource's first access, unless a Clear pass above took that role.
                 const bool loadOpClear =
                     facts_[r].firstAccess == kNone && index_.clear(u.resource) && clearsThroughLoadOp(u);
-                addAccess(r, u.usage, grids_[r].resolve(u.usage), loadOpClear);
+                addAccess(r, u.usage, facts_[r].grid.resolve(u.usage), loadOpClear);
                 if (u.fillsSlot) addSlot(p, u);
             }
         }
@@ -216,9 +219,10 @@ private:
         PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
-        facts_.push_back({kNone, kNone, index_.aspects(declIndex), index_.exported(declIndex),
+        const SubresourceGrid& grid = index_.grids()[declIndex];
+        facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
                           index_.external(declIndex)});
-        grids_.add(index_.grids()[declIndex]);
+        cellCount_ += static_cast<uint32_t>(grid.size());
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
 
@@ -268,8 +272,9 @@ private:
         a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
         a.image = facts_[r].aspects.image;
-        a.cell = static_cast<uint32_t>(grids_.first(r) + grids_[r].index(range.baseMip, range.baseLayer));
-        if (grids_[r].size() > 1) {
+        const ResourceFacts& facts = facts_[r];
+        a.cell = facts.firstCell + static_cast<uint32_t>(facts.grid.index(range.baseMip, range.baseLayer));
+        if (facts.grid.size() > 1) {
             a.runScopes = runScopeCount_;
             runScopeCount_ += static_cast<uint32_t>(cells(range));
             multiCellAccesses_.push_back(k);
@@ -279,7 +284,7 @@ private:
             if (cells(range) == 1)  // most accesses; spelled out, as the lambda below is not inlined
                 readRuns_.visit(k, a.cell, !a.writes);
             else
-                grids_.forEach(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
+                forEachCell(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
         }
         ResourceFacts& f = facts_[r];
         if (f.firstAccess == kNone) {
@@ -301,7 +306,7 @@ private:
     /// one of several, a walk would step over the accesses of other subresources again for
     /// each (quadratic for a layer-per-pass array), so those come from computeRunScopes().
     StageAccess runScopeFrom(uint32_t k, uint32_t r, size_t cell) const {
-        if (grids_[r].size() > 1) return runScope_[accesses_[k].runScopes + cell];
+        if (facts_[r].grid.size() > 1) return runScope_[accesses_[k].runScopes + cell];
         const auto& usages = *usages_;
         StageAccess scope{usages[k].stages, usages[k].access};
         for (uint32_t j = accesses_[k].next; j != kNone && !accesses_[j].writes; j = accesses_[j].next) {
@@ -316,12 +321,12 @@ private:
     void computeRunScopes() {
         const auto& usages = *usages_;
         runScope_.resize(runScopeCount_);
-        std::vector<StageAccess> pending(grids_.total());  // per subresource
+        std::vector<StageAccess> pending(cellCount_);  // per subresource
         for (auto it = multiCellAccesses_.rbegin(); it != multiCellAccesses_.rend(); ++it) {
             const AccessRecord& a = accesses_[*it];
             const PlannedUsage& u = usages[*it];
             StageAccess* out = &runScope_[a.runScopes];
-            grids_.forEach(u.resource, u.range, [&](size_t sub) {
+            forEachCell(u.resource, u.range, [&](size_t sub) {
                 if (a.writes) {
                     pending[sub] = {};
                 } else {
@@ -338,7 +343,7 @@ private:
     /// each pass, in one forward sweep. Barriers go straight into the plan's array; the
     /// passes' spans are set once it stops growing.
     void emitSteps() {
-        state_.resize(grids_.total());
+        state_.resize(cellCount_);
         auto& usages = *usages_;
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         barriers.reserve(accesses_.size());  // usually enough: most accesses need one at most
@@ -412,7 +417,7 @@ private:
         if (!facts_[r].external) return;
         const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
         SubresourceState* states = stateOf(r);
-        for (size_t i = 0; i < grids_[r].size(); ++i) {
+        for (size_t i = 0; i < facts_[r].grid.size(); ++i) {
             states[i].layout = scope.layout;
             states[i].writeStages = scope.stages;
             states[i].visibleStages = scope.stages;
@@ -421,7 +426,14 @@ private:
         }
         res.initialLayout = scope.layout;
     }
-    SubresourceState* stateOf(uint32_t r) { return &state_[grids_.first(r)]; }
+    SubresourceState* stateOf(uint32_t r) { return &state_[facts_[r].firstCell]; }
+    /// Calls f(flat index into the per-subresource arrays) for every subresource of `range`
+    /// of resource r.
+    template <typename F>
+    void forEachCell(uint32_t r, const SubresourceRange& range, F&& f) const {
+        const uint32_t base = facts_[r].firstCell;
+        facts_[r].grid.forEach(range, [&](size_t sub) { f(base + sub); });
+    }
 
     /// The barrier subresource `st` needs before an access in `scope` that reads
     /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
@@ -526,7 +538,7 @@ private:
             }
             update(st);
         } else {
-            const SubresourceGrid& grid = grids_[r];
+            const SubresourceGrid& grid = facts_[r].grid;
             SubresourceState* states = stateOf(r);
             perSub_.clear();
             size_t cell = 0;
@@ -641,13 +653,14 @@ private:
                 framesWrite |= accesses_[k].writes;
             const bool nextUseWrites = writeBits(scope.access) != 0 || (persistent && framesWrite);
             perSub_.clear();
-            grids_[r].forEach(grids_[r].whole(), [&](size_t sub) {
+            const SubresourceGrid& grid = facts_[r].grid;
+            grid.forEach(grid.whole(), [&](size_t sub) {
                 perSub_.push_back(barrierFor(states[sub], scope,
                                              d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
                                              nextUseWrites, false,
                                              [&] { return StageAccess{scope.stages, scope.access}; }));
             });
-            emitMerged(r, grids_[r].whole(), perSub_, plan_.finalBarriers);
+            emitMerged(r, grid.whole(), perSub_, plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         }
     }
@@ -658,7 +671,7 @@ private:
     Plan plan_;
     // Per plan resource.
     std::vector<ResourceFacts> facts_;
-    SubresourceGrids grids_;               // also lays out the per-subresource arrays
+    uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
     // Per access (usage in plan order).
     std::vector<AccessRecord> accesses_;
