@@ -25,6 +25,9 @@ struct NameInPlace {
 /// What is known about one subresource between passes.
 struct SubresourceState {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    /// Contents came from outside the frame; a barrier needing a source stage chains with
+    /// the semaphore wait at the first use's stages. (Beside the layout: 48 bytes, not 56.)
+    bool fromOutside = false;
     VkPipelineStageFlags2 writeStages = 0;    ///< Stages of the last write (or the outside).
     /// Write accesses of that write. A barrier whose source is `writeStages` always repeats
     /// them: an earlier availability operation only counts for barriers that chain after the
@@ -33,10 +36,8 @@ struct SubresourceState {
     VkPipelineStageFlags2 readStages = 0;     ///< Reads since the last write: WAR sources.
     VkPipelineStageFlags2 visibleStages = 0;  ///< Scope the last write is visible to.
     VkAccessFlags2 visibleAccess = 0;
-    /// Contents came from outside the frame; a barrier needing a source stage chains with
-    /// the semaphore wait at the first use's stages.
-    bool fromOutside = false;
 };
+static_assert(sizeof(SubresourceState) == 48);
 
 /// One usage in plan order (access k is the k-th usage of the plan), beside its PlannedUsage
 /// (written when the access is recorded: resource, range, stages, access and, until rule 4
