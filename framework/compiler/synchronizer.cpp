@@ -162,6 +162,9 @@ private:
         int32_t pass = -1;         ///< Index into GraphDesc::passes; -1 for an inserted clear.
         uint32_t cleared = 0;      ///< The resource an inserted clear clears.
         uint32_t firstAccess = 0;  ///< Its accesses are [firstAccess, next step's).
+        /// Whether two of its barriers can be for one resource (a resource used twice, or a
+        /// range of several subresources): only then can mergeAdjacent find anything.
+        bool mayMerge = false;
     };
 
     const ResourceDesc& decl(uint32_t planResource) const { return graph_.resources[plan_.resources[planResource].decl]; }
@@ -294,7 +297,9 @@ private:
             plan_.resources[r].firstPass = a.step;
         } else {
             accesses_[f.lastAccess].next = k;
+            if (accesses_[f.lastAccess].step == a.step) steps_.back().mayMerge = true;
         }
+        if (cells(range) > 1) steps_.back().mayMerge = true;
         f.lastAccess = k;
     }
 
@@ -353,7 +358,7 @@ private:
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
             for (uint32_t k = steps_[s].firstAccess, end = stepEnd(s); k < end; ++k) applyAccess(usages[k], k, barriers);
-            mergeAdjacent(barriers, batch);
+            if (steps_[s].mayMerge) mergeAdjacent(barriers, batch);
             barrierEnd.push_back(static_cast<uint32_t>(barriers.size()));
         }
         for (uint32_t s = 0, firstBarrier = 0; s < steps_.size(); ++s) {
@@ -513,7 +518,7 @@ private:
         // Here, not in a loop of its own: the first pass's usages it reads are in cache now.
         if (a.firstOfResource) startState(r);
         if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
-        const bool discard = effectiveAccess(pu.usage.access, a.loadOpClear) == Access::Write;
+        const bool discard = pu.usage.access == Access::Write;  // a load-op clear only turns Read into ReadWrite
         const VulkanScope need{pu.stages, pu.access, pu.layout};
         const VkImageLayout target = image ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         auto update = [&](SubresourceState& st) {
