@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -352,21 +353,20 @@ private:
         state_.resize(cellCount_);
         auto& usages = *usages_;
         auto& barriers = detail::PlanBuilder::barriers(plan_);
-        barriers.reserve(accesses_.size());  // usually enough: most accesses need one at most
-        std::vector<uint32_t> barrierEnd;    // per pass
-        barrierEnd.reserve(steps_.size());
+        // Room for the most barriers there can be (one per subresource an access touches), so
+        // the array never moves and each pass's spans are set as its batch is done.
+        barriers.reserve(accesses_.size() - multiCellAccesses_.size() + runScopeCount_);
+        const Barrier* const base = barriers.data();
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
-            for (uint32_t k = steps_[s].firstAccess, end = stepEnd(s); k < end; ++k) applyAccess(usages[k], k, barriers);
+            const uint32_t first = steps_[s].firstAccess, end = stepEnd(s);
+            for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
             if (steps_[s].mayMerge) mergeAdjacent(barriers, batch);
-            barrierEnd.push_back(static_cast<uint32_t>(barriers.size()));
-        }
-        for (uint32_t s = 0, firstBarrier = 0; s < steps_.size(); ++s) {
             PlannedPass& pass = plan_.passes[s];
-            pass.usages = {usages.data() + steps_[s].firstAccess, stepEnd(s) - steps_[s].firstAccess};
-            if (barrierEnd[s] > firstBarrier) pass.barriers = {barriers.data() + firstBarrier, barrierEnd[s] - firstBarrier};
-            firstBarrier = barrierEnd[s];
+            pass.usages = {usages.data() + first, end - first};
+            if (barriers.size() > batch) pass.barriers = {base + batch, barriers.size() - batch};
         }
+        if (barriers.data() != base) throw std::logic_error("synchronizer: the barrier bound was exceeded");
         auto names = std::make_shared<const std::string>(std::move(slotText_));
         for (const SlotName& n : slotAt_) usages[n.usage].slot = std::string_view(*names).substr(n.offset, n.length);
         detail::PlanBuilder::setSlotNames(plan_, std::move(names));
