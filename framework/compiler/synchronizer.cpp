@@ -153,7 +153,7 @@ public:
         planAccesses(schedule);
         computeRunScopes();
         emitSteps();
-        finalBarriers();
+        finishResources();
         return std::move(plan_);
     }
 
@@ -216,8 +216,6 @@ private:
                 if (u.fillsSlot) addSlot(p, u);
             }
         }
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r)
-            plan_.resources[r].lastPass = accesses_[facts_[r].lastAccess].step;
     }
 
     uint32_t addResource(uint32_t declIndex) {
@@ -641,9 +639,12 @@ private:
         }
     }
 
-    void finalBarriers() {
+    /// Each plan resource's last pass and final layout, and the final barriers of exported
+    /// ones: one sweep over the plan's resources once every pass is emitted.
+    void finishResources() {
         for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
             auto& res = plan_.resources[r];
+            res.lastPass = accesses_[facts_[r].lastAccess].step;
             SubresourceState* states = stateOf(r);
             res.finalLayout = states[0].layout;
             if (!facts_[r].exported) continue;
