@@ -51,8 +51,11 @@ public:
     }
 
     [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
-    [[nodiscard]] size_t passes() const noexcept { return active_.size(); }
-    [[nodiscard]] bool active(size_t pass) const noexcept { return active_[pass] != 0; }
+    [[nodiscard]] size_t passes() const noexcept { return passFlags_.size(); }
+    [[nodiscard]] bool active(size_t pass) const noexcept { return (passFlags_[pass] & kActive) != 0; }
+    /// PassDesc::neverCull, kept here so that culling's backward sweep need not read the
+    /// (large, cold) PassDesc of every pass.
+    [[nodiscard]] bool neverCull(size_t pass) const noexcept { return (passFlags_[pass] & kNeverCull) != 0; }
     [[nodiscard]] std::span<const IndexedUsage> usesOf(size_t pass) const noexcept {
         return {uses_.data() + firstUse_[pass], uses_.data() + firstUse_[pass + 1]};
     }
@@ -97,7 +100,7 @@ public:
 private:
     void indexPasses(const std::optional<FeatureValues>& features) {
         const size_t passes = graph_.passes.size();
-        active_.reserve(passes);
+        passFlags_.reserve(passes);
         passNames_.reserve(passes);
         firstUse_.reserve(passes + 1);
         firstUse_.push_back(0);
@@ -115,7 +118,7 @@ private:
             const PassDesc& pass = graph_.passes[p];
             passNames_.push_back({names_.add(pass.name), names_.add(pass.type)});
             const bool active = !features || pass.condition.evaluate(*features);
-            active_.push_back(static_cast<uint8_t>(active));
+            passFlags_.push_back(static_cast<uint8_t>((active ? kActive : 0) | (pass.neverCull ? kNeverCull : 0)));
             for (const auto& u : pass.uses) {
                 if (active && u.usage.range)
                     ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size()));
@@ -162,7 +165,8 @@ private:
     };
 
     const GraphDesc& graph_;
-    std::vector<uint8_t> active_;       // per pass (bytes: a bit vector costs more to read)
+    static constexpr uint8_t kActive = 1, kNeverCull = 2;
+    std::vector<uint8_t> passFlags_;    // per pass (bytes: a bit vector costs more to read)
     std::vector<uint32_t> firstUse_;    // per pass: its usages in uses_ (+1 at the end)
     std::vector<IndexedUsage> uses_;
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;

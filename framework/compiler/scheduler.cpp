@@ -74,7 +74,7 @@ void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std
     auto live = grids.makeArray<uint8_t>([&](size_t r) { return static_cast<uint8_t>(index.exported(r)); });
     for (size_t p = index.passes(); p-- > 0;) {
         if (!index.active(p)) continue;
-        if (!graph.passes[p].neverCull && !writesLive(index, p, live)) {
+        if (!index.neverCull(p) && !writesLive(index, p, live)) {
             culled[p] = 1;
             reasons[p] = unreadWritesReason(graph, graph.passes[p]);
             continue;
