@@ -88,14 +88,19 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
         const uint32_t levels = std::max(1u, r ? r->mipCount(options.outputWidth, options.outputHeight) : grid.mips);
         const uint32_t layers = std::max(1u, r ? r->layers : grid.layers);
         const SubresourceRange& range = *iu.usage.range;
+        // The loader never writes an empty range; a GraphDesc built in code can, and every
+        // sweep assumes a usage touches at least one subresource.
+        const bool empty = range.mipCount == 0 || range.layerCount == 0;
         const bool mipsFit = range.baseMip < levels;
         const bool layersFit = uint64_t(range.baseLayer) + range.layerCount <= layers;
-        if (mipsFit && layersFit) continue;
+        if (!empty && mipsFit && layersFit) continue;
         const ResourceDesc& res = graph.resources[iu.resource];
         const PassDesc& p = graph.passes[pass];
         const auto [w, h] = res.extent.resolve(options.outputWidth, options.outputHeight);
         diags.add({graph.file, index.declOf(pass, iu).jsonPath, p.name, res.name,
-                   !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +
+                   empty    ? "uses an empty range (" + std::to_string(range.mipCount) + " mip(s), " +
+                                  std::to_string(range.layerCount) + " layer(s)): a usage must touch a subresource"
+                   : !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +
                                   std::to_string(range.mipCount) + "] but the " + std::to_string(w) + "x" +
                                   std::to_string(h) + " image has " + std::to_string(levels) + " mip level(s)"
                             : "uses layers [" + std::to_string(range.baseLayer) + ", " +

@@ -16,8 +16,8 @@ namespace {
 
 constexpr uint32_t kNone = ~0u;
 
-/// Initialises a std::string member straight from a view: the conversion's result is the
-/// member itself (guaranteed copy elision), with no temporary string to move from.
+/// Initialises a std::string member straight from a view: GCC and Clang build the
+/// conversion's result in the member itself (CWG 2327), with no temporary string to move from.
 struct NameInPlace {
     std::string_view text;
     operator std::string() const { return std::string(text); }  // NOLINT: implicit by design
@@ -129,6 +129,9 @@ private:
         nodes_[from].parent = to;
         const VkImageLayout joined = nodes_[from].layout;
         VkImageLayout& l = nodes_[to].layout;
+        // Only image reads join runs, and each brings a read layout (the loader rejects image
+        // usages without one), so UNDEFINED is never met here; it is kept as the identity so
+        // that a hand-built graph cannot make the result depend on the order of joining.
         l = l == VK_IMAGE_LAYOUT_UNDEFINED ? joined
             : joined == VK_IMAGE_LAYOUT_UNDEFINED ? l
                                                   : commonReadLayout(l, joined);
@@ -355,6 +358,7 @@ private:
         // the array never moves and each pass's spans are set as its batch is done.
         barriers.reserve(accesses_.size() - multiCellAccesses_.size() + runScopeCount_);
         const Barrier* const base = barriers.data();
+        const size_t room = barriers.capacity();
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
             const uint32_t first = steps_[s].firstAccess, end = stepEnd(s);
@@ -364,7 +368,7 @@ private:
             pass.usages = {usages.data() + first, end - first};
             if (barriers.size() > batch) pass.barriers = {base + batch, barriers.size() - batch};
         }
-        if (barriers.data() != base) throw std::logic_error("synchronizer: the barrier bound was exceeded");
+        if (barriers.capacity() != room) throw std::logic_error("synchronizer: the barrier bound was exceeded");
         auto names = std::make_shared<const std::string>(std::move(slotText_));
         for (const SlotName& n : slotAt_) usages[n.usage].slot = std::string_view(*names).substr(n.offset, n.length);
         detail::PlanBuilder::setSlotNames(plan_, std::move(names));
@@ -379,7 +383,8 @@ private:
         for (uint32_t j = accesses_[k].next; j != kNone; j = accesses_[j].next) {
             const auto& o = (*usages_)[j].range;
             if (!o.overlaps(range)) continue;
-            if (readsContents((*usages_)[j].usage.access)) return true;  // (a load-op clear is only ever first)
+            // As written: a load-op clear turns Read into ReadWrite, and both read.
+            if (readsContents((*usages_)[j].usage.access)) return true;
             if (o.baseMip <= range.baseMip && o.baseMip + o.mipCount >= range.baseMip + range.mipCount &&
                 o.baseLayer <= range.baseLayer && o.baseLayer + o.layerCount >= range.baseLayer + range.layerCount)
                 return false;
@@ -439,8 +444,9 @@ private:
         facts_[r].grid.forEach(range, [&](size_t sub) { f(base + sub); });
     }
 
-    /// The barrier subresource `st` needs before an access in `scope` that reads
-    /// (`reads`) and/or writes (`write`) and must find it in `target` layout.
+    /// The barrier subresource `st` needs before an access with scope `need` that reads, or
+    /// writes (`write`), and must find it in `target` layout (`discard`: its old contents
+    /// may be dropped in a layout change).
     /// `visibleAfter()` gives what a barrier before a read makes visible; it is asked only
     /// when a read needs one.
     template <typename VisibleAfter>

@@ -451,5 +451,33 @@ TEST(Ranges, LevelsPastTheChainAreAnErrorNotAClippedPlan) {
     }
 }
 
+// The loader never writes an empty range, but an embedder's GraphDesc can: compile() names it
+// rather than planning a usage that touches nothing (every sweep assumes at least one
+// subresource).
+TEST(Ranges, AnEmptyRangeFromCodeIsAnError) {
+    for (const bool emptyMips : {true, false}) {
+        GraphDesc ibl = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json",
+                                      PassRegistry::withBuiltins());
+        std::string passName, resourceName;
+        for (auto& pass : ibl.passes)
+            for (auto& use : pass.uses)
+                if (passName.empty() && use.usage.range) {
+                    (emptyMips ? use.usage.range->mipCount : use.usage.range->layerCount) = 0;
+                    passName = pass.name;
+                    resourceName = ibl.resources[use.resource].name;
+                }
+        ASSERT_FALSE(passName.empty()) << "ibl.json has ranged usages";
+        try {
+            (void)compile(ibl);
+            FAIL() << "expected a GraphError";
+        } catch (const GraphError& e) {
+            const std::string text = e.diagnostics().format();
+            EXPECT_NE(text.find("uses an empty range"), std::string::npos) << text;
+            EXPECT_NE(text.find("pass '" + passName + "'"), std::string::npos) << text;
+            EXPECT_NE(text.find("resource '" + resourceName + "'"), std::string::npos) << text;
+        }
+    }
+}
+
 }  // namespace
 }  // namespace skygraph
