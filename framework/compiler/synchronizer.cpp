@@ -207,8 +207,13 @@ private:
             steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
             // Constructed in place, names included (see NameInPlace): a braced temporary would
             // be zeroed whole first, and std::string arguments constructed and then moved.
+#if __cpp_aggregate_paren_init >= 201902L
             plan_.passes.emplace_back(NameInPlace{index_.passName(p)}, NameInPlace{index_.passType(p)},
                                       static_cast<int32_t>(p));
+#else  // clang before 16 (the sanitizer build): no aggregate initialisation from parentheses
+            plan_.passes.push_back(PlannedPass{NameInPlace{index_.passName(p)}, NameInPlace{index_.passType(p)},
+                                               static_cast<int32_t>(p), {}, {}});
+#endif
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
