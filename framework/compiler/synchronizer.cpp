@@ -161,10 +161,9 @@ public:
     }
 
 private:
-    /// Where a plan pass comes from: a scheduled pass, or a Clear inserted for a resource.
+    /// What the barrier sweep needs of a plan pass (a scheduled pass or an inserted Clear;
+    /// where it comes from is the PlannedPass's declIndex).
     struct Step {
-        int32_t pass = -1;         ///< Index into GraphDesc::passes; -1 for an inserted clear.
-        uint32_t cleared = 0;      ///< The resource an inserted clear clears.
         uint32_t firstAccess = 0;  ///< Its accesses are [firstAccess, next step's).
         /// Whether two of its barriers can be for one resource (a resource used twice, or a
         /// range of several subresources): only then can mergeAdjacent find anything.
@@ -200,11 +199,11 @@ private:
                 if (index_.clear(d) && !clearsThroughLoadOp(uses[i])) clearsBefore.push_back(planIndex[d]);
             }
             for (uint32_t r : clearsBefore) {
-                steps_.push_back({-1, r, static_cast<uint32_t>(accesses_.size())});
+                steps_.push_back({static_cast<uint32_t>(accesses_.size())});
                 plan_.passes.push_back(PlannedPass{"clear " + plan_.resources[r].name, "Clear", -1, {}, {}});
                 addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
             }
-            steps_.push_back({static_cast<int32_t>(p), 0, static_cast<uint32_t>(accesses_.size())});
+            steps_.push_back({static_cast<uint32_t>(accesses_.size())});
             // Constructed in place, names included (see NameInPlace): a braced temporary would
             // be zeroed whole first, and std::string arguments constructed and then moved.
 #if __cpp_aggregate_paren_init >= 201902L
