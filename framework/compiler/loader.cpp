@@ -519,7 +519,7 @@ private:
         }
         std::string problem = usageProblem(*res, u.usage);
         if (!problem.empty()) return fail(problem);
-        u.usage.as = resolveBindAs(*res, u.usage);
+        u.usage.as = resolvedBinding(u.usage.mode(), res->isImage());
         p.uses.push_back(std::move(u));
     }
 

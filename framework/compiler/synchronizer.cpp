@@ -272,7 +272,7 @@ private:
         PlannedUsage& pu = usages_->emplace_back(kBlankUsage);
         pu.stages = scope.stages;
         pu.access = scope.access;
-        pu.usage = usage;
+        pu.usage = usage.mode();
         pu.range = range;
         pu.resource = r;
         pu.layout = scope.layout;

@@ -47,7 +47,7 @@ std::optional<BindAs> parseBindAs(std::string_view s) noexcept {
     return lookup(kBindAs, s);
 }
 
-std::string toString(const Usage& u) {
+std::string toString(const UsageMode& u) {
     std::string out = std::string(toString(u.access)) + "@" + std::string(toString(u.stage));
     if (u.as != BindAs::Default) out += " as " + std::string(toString(u.as));
     return out;

@@ -25,21 +25,13 @@ bool isDepthReadOnly(VkImageLayout l) {
            l == VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL;
 }
 
-constexpr BindAs resolveBindAs(bool image, const Usage& u) {
-    if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
-    if (!image) return BindAs::Storage;
-    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
-}
-
 }  // namespace
 
 VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept { return access & kWriteBits; }
 
-BindAs resolveBindAs(const ResourceDesc& r, const Usage& u) { return resolveBindAs(r.isImage(), u); }
-
 std::string usageProblem(const ResourceDesc& r, const Usage& u) {
     const std::string usage = toString(u);
-    const BindAs as = resolveBindAs(r, u);
+    const BindAs as = resolvedBinding(u.mode(), r.isImage());
     if (u.as == BindAs::Index && u.stage != Stage::VertexInput)
         return "`as: index` applies to VertexInput only";
     if (u.as != BindAs::Default && u.as != BindAs::Index && !isShaderStage(u.stage))
@@ -99,7 +91,7 @@ namespace {
 
 constexpr VulkanScope computeScope(const ResourceAspects& r, const Usage& u) {
     VulkanScope s;
-    const BindAs as = resolveBindAs(r.image, u);
+    const BindAs as = resolvedBinding(u.mode(), r.image);
     switch (u.stage) {
         case Stage::ColorAttachment:
             s.stages = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;

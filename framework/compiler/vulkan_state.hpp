@@ -24,9 +24,6 @@ struct VulkanScope {
 /// the expected usage (e.g. a depth format used as a color attachment).
 [[nodiscard]] std::string usageProblem(const ResourceDesc& resource, const Usage& usage);
 
-/// The `as` a usage gets when the file leaves it out (contract §1).
-[[nodiscard]] BindAs resolveBindAs(const ResourceDesc& resource, const Usage& usage);
-
 /// What the mapping below asks of a resource: kept apart by the compiler's sweeps, which would
 /// otherwise read a whole ResourceDesc per usage.
 struct ResourceAspects {

@@ -39,12 +39,6 @@ std::string glslStorageFormat(VkFormat f) {
     }
 }
 
-BindAs resolveAs(const ResourceDesc& r, const Usage& u) {
-    if (u.as != BindAs::Default) return u.as;
-    if (!r.isImage()) return BindAs::Storage;
-    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
-}
-
 std::string err(const PlannedPass& pass, const std::string& resource, const std::string& what) {
     std::string s = "pass '" + pass.name + "'";
     if (!resource.empty()) s += ", resource '" + resource + "'";
@@ -345,7 +339,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                                                              : VK_SHADER_STAGE_COMPUTE_BIT;
                 b.read = readsContents(u.usage.access);
                 b.write = writesContents(u.usage.access);
-                const BindAs as = resolveAs(r, u.usage);
+                const BindAs as = resolvedBinding(u.usage, r.isImage());
                 if (r.isImage()) {
                     b.scalarPrefix = scalarPrefix(r.format.format);
                     const bool wholeCube = r.type == ResourceType::Cube && u.range.layerCount == 6;

@@ -59,12 +59,6 @@ inline uint32_t copyTexelBytes(const FormatInfo& f) {
     }
 }
 
-inline BindAs resolveAs(const ResourceDesc& r, const Usage& u) {
-    if (u.as != BindAs::Default) return u.as;
-    if (!r.isImage()) return BindAs::Storage;
-    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
-}
-
 /// A buffer with its memory; mapped when host-visible.
 struct OwnedBuffer {
     vk::Buffer buffer;

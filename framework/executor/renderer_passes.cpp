@@ -404,7 +404,7 @@ void Renderer::Impl::bindResources(PlanState& s, PassState& ps, uint32_t slot) {
         b.image = r.images[copy].image;
         b.extent = {r.mipWidth(u.range.baseMip), r.mipHeight(u.range.baseMip)};
         const bool attachment = isAttachmentStage(u.usage.stage);
-        const bool sampled = isShaderStage(u.usage.stage) && resolveAs(*r.desc, u.usage) == BindAs::Sampled;
+        const bool sampled = isShaderStage(u.usage.stage) && resolvedBinding(u.usage, r.desc->isImage()) == BindAs::Sampled;
         VkImageViewType type = VK_IMAGE_VIEW_TYPE_2D;
         if (sampled && r.desc->type == ResourceType::Cube && u.range.layerCount == 6 && u.range.baseLayer == 0) {
             type = VK_IMAGE_VIEW_TYPE_CUBE;

@@ -176,7 +176,7 @@ void Renderer::Impl::describeResources(PlanState& s) {
             if (u.resource >= s.resources.size())
                 throw ExecutorError(passError(pass, "", "usage refers to an unknown resource"));
             ResourceState& r = s.resources[u.resource];
-            const BindAs as = resolveAs(*r.desc, u.usage);
+            const BindAs as = resolvedBinding(u.usage, r.desc->isImage());
             switch (u.usage.stage) {
                 case Stage::ColorAttachment: r.imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT; break;
                 case Stage::DepthAttachment: r.imageUsage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT; break;

@@ -49,23 +49,24 @@ struct Barrier {
 enum class LoadOp : uint8_t { Load, Clear, DontCare };
 enum class StoreOp : uint8_t { Store, DontCare, None };
 
-/// A usage with everything Vulkan needs to perform it. (Members are ordered to pack: a plan
-/// holds one per usage.)
+/// A usage with everything Vulkan needs to perform it. (Members are ordered to pack into one
+/// 64-byte cache line: a plan holds one per usage, and the compiler writes and reads them all.)
 struct PlannedUsage {
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
     /// The pass type's slot this usage fills; empty for Generic passes and inserted clears.
     /// Views the plan's shared slot table: valid while any copy of the plan lives.
     std::string_view slot;
-    Usage usage;            ///< As written, with the range resolved.
-    SubresourceRange range;
-    uint32_t resource = 0;  ///< Index into Plan::resources.
+    SubresourceRange range;  ///< Resolved: the usage's range, or the whole resource.
+    uint32_t resource = 0;   ///< Index into Plan::resources.
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Layout during the pass.
+    UsageMode usage;         ///< As written; its range, resolved, is `range`.
     /// Attachments only. Clear when this is the first use of a `clear` resource.
     LoadOp load = LoadOp::Load;
     /// Attachments only: Store when a later pass or the export reads the result.
     StoreOp store = StoreOp::Store;
 };
+static_assert(sizeof(PlannedUsage) == 64, "PlannedUsage: keep it one cache line");
 
 struct PlannedPass {
     std::string name;

@@ -45,6 +45,16 @@ struct SubresourceRange {
     friend bool operator==(const SubresourceRange&, const SubresourceRange&) = default;
 };
 
+/// How a usage touches its resource, without which part: what a plan keeps of a usage
+/// beside the range it resolved (PlannedUsage::usage).
+struct UsageMode {
+    Access access = Access::Read;
+    Stage stage = Stage::Fragment;
+    BindAs as = BindAs::Default;
+
+    friend bool operator==(const UsageMode&, const UsageMode&) = default;
+};
+
 /// One `uses` entry after parsing, before it is bound to a pass slot.
 struct Usage {
     Access access = Access::Read;
@@ -52,6 +62,8 @@ struct Usage {
     BindAs as = BindAs::Default;
     /// Empty means "the whole resource"; resolved by the compiler.
     std::optional<SubresourceRange> range;
+
+    [[nodiscard]] constexpr UsageMode mode() const noexcept { return {access, stage, as}; }
 };
 
 // Inline: the compiler asks these several times per usage in every sweep.
@@ -71,7 +83,17 @@ struct Usage {
 [[nodiscard]] std::optional<Stage> parseStage(std::string_view s) noexcept;
 [[nodiscard]] std::optional<BindAs> parseBindAs(std::string_view s) noexcept;
 
-/// "Access@Stage", as written in graph files.
-[[nodiscard]] std::string toString(const Usage& u);
+/// "Access@Stage", as written in graph files (with " as Binding" unless Default).
+[[nodiscard]] std::string toString(const UsageMode& u);
+[[nodiscard]] inline std::string toString(const Usage& u) { return toString(u.mode()); }
+
+/// The `as` a usage gets when the file leaves it out (contract §1): for a shader stage, storage
+/// for buffers and image writes, sampled for image reads; other stages keep Default. The
+/// loader resolves every usage it reads; GraphDescs built in code may leave it to this.
+[[nodiscard]] constexpr BindAs resolvedBinding(const UsageMode& u, bool image) noexcept {
+    if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
+    if (!image) return BindAs::Storage;
+    return u.access == Access::Read ? BindAs::Sampled : BindAs::Storage;
+}
 
 }  // namespace skygraph

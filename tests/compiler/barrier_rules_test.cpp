@@ -481,5 +481,37 @@ TEST(Ranges, AnEmptyRangeFromCodeIsAnError) {
     }
 }
 
+// A planned usage keeps how it was written (access, stage, binding) and the range the compiler
+// resolved: the written range where there is one, the whole resource where there is none.
+TEST(Ranges, APlannedUsageKeepsItsModeAndTheResolvedRange) {
+    const Plan plan = compileGraph(
+        R"("chain": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": 4, "external": true, "final": "ShaderRead"})",
+        R"({"name": "all", "type": "Generic", "uses": [{"resource": "chain", "access": "Write", "stage": "Compute", "as": "storage"}]},
+           {"name": "one", "type": "Generic", "never_cull": true, "uses": [{"resource": "chain", "access": "Read", "stage": "Fragment", "mips": [2, 1]}]})");
+    const auto& all = pass(plan, "all").usages;
+    ASSERT_EQ(all.size(), 1u);
+    EXPECT_EQ(all[0].usage, (UsageMode{Access::Write, Stage::Compute, BindAs::Storage}));
+    EXPECT_EQ(all[0].range, (SubresourceRange{0, 4, 0, 1}));
+    const auto& one = pass(plan, "one").usages;
+    ASSERT_EQ(one.size(), 1u);
+    // The loader settles the binding the file left out (contract §1).
+    EXPECT_EQ(one[0].usage, (UsageMode{Access::Read, Stage::Fragment, BindAs::Sampled}));
+    EXPECT_EQ(one[0].range, (SubresourceRange{2, 1, 0, 1}));
+    EXPECT_EQ(toString(one[0].usage), "Read@Fragment as sampled");
+    EXPECT_EQ(toString(all[0].usage), "Write@Compute as storage");
+}
+
+// What a shader binds a usage as when the file (or a GraphDesc built in code) leaves it out.
+TEST(Ranges, ADefaultBindingResolvesByResourceAndAccess) {
+    EXPECT_EQ(resolvedBinding({Access::Read, Stage::Fragment, BindAs::Default}, true), BindAs::Sampled);
+    EXPECT_EQ(resolvedBinding({Access::Write, Stage::Compute, BindAs::Default}, true), BindAs::Storage);
+    EXPECT_EQ(resolvedBinding({Access::ReadWrite, Stage::Compute, BindAs::Default}, true), BindAs::Storage);
+    EXPECT_EQ(resolvedBinding({Access::Read, Stage::Compute, BindAs::Default}, false), BindAs::Storage);
+    EXPECT_EQ(resolvedBinding({Access::Read, Stage::Fragment, BindAs::Uniform}, false), BindAs::Uniform);
+    EXPECT_EQ(resolvedBinding({Access::Read, Stage::Compute, BindAs::Storage}, true), BindAs::Storage);
+    EXPECT_EQ(resolvedBinding({Access::Read, Stage::Transfer, BindAs::Default}, true), BindAs::Default)
+        << "only shader stages bind";
+}
+
 }  // namespace
 }  // namespace skygraph
