@@ -232,6 +232,7 @@ private:
         const SubresourceGrid& grid = index_.grids()[declIndex];
         facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
                           index_.external(declIndex)});
+        if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
@@ -569,6 +570,14 @@ private:
                 pu.load = pu.usage.access == Access::Write ? LoadOp::DontCare : LoadOp::Load;
             pu.store = !write ? StoreOp::None : readLater(k, pu.range) ? StoreOp::Store : StoreOp::DontCare;
         }
+        // Its last access: the lifetime ends, and the layout is final unless an export's final
+        // barrier changes it (finishResources). Set here, while the resource's record is in
+        // cache from its first access a few passes back, rather than in a sweep of its own.
+        if (a.next == kNone) {
+            PlannedResource& res = plan_.resources[r];
+            res.lastPass = a.step;
+            res.finalLayout = stateOf(r)->layout;
+        }
     }
 
     /// Coalesces per-subresource barriers (`perSub`: one per subresource of `range`, in
@@ -649,15 +658,12 @@ private:
         }
     }
 
-    /// Each plan resource's last pass and final layout, and the final barriers of exported
-    /// ones: one sweep over the plan's resources once every pass is emitted.
+    /// The final barriers of exported resources, and their final layouts, once every pass
+    /// is emitted.
     void finishResources() {
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
+        for (const uint32_t r : exported_) {
             auto& res = plan_.resources[r];
-            res.lastPass = accesses_[facts_[r].lastAccess].step;
             SubresourceState* states = stateOf(r);
-            res.finalLayout = states[0].layout;
-            if (!facts_[r].exported) continue;
             const auto& d = decl(r);
             const VulkanScope scope = boundaryScope(r, replaced(d.final));
             // A persistent resource's next frame repeats this one. If it writes anywhere, the
@@ -688,6 +694,7 @@ private:
     Plan plan_;
     // Per plan resource.
     std::vector<ResourceFacts> facts_;
+    std::vector<uint32_t> exported_;       // plan resources that are exported, in plan order
     uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
     // Per access (usage in plan order).
