@@ -104,15 +104,19 @@ private:
         passNames_.reserve(passes);
         firstUse_.reserve(passes + 1);
         firstUse_.push_back(0);
-        size_t uses = 0, nameBytes = 0;
-        for (const auto& pass : graph_.passes) {
-            uses += pass.uses.size();
-            nameBytes += pass.name.size() + pass.type.size();
+        // Sized from a sample of passes spread over the graph, not by counting: a counting
+        // walk reads every (cold) PassDesc once more, which costs more than the one further
+        // doubling a low guess costs. Resource names are guessed at 8 bytes.
+        const size_t stride = std::max<size_t>(1, passes / kSampledPasses);
+        size_t sampled = 0, sampledUses = 0, sampledNameBytes = 0;
+        for (size_t p = 0; p < passes; p += stride, ++sampled) {
+            const PassDesc& pass = graph_.passes[p];
+            sampledUses += pass.uses.size();
+            sampledNameBytes += pass.name.size() + pass.type.size();
         }
-        uses_.reserve(uses);
-        // Resource names are not counted (their records are not walked yet): a guess, which
-        // at worst costs the table one more doubling.
-        names_.reserve(nameBytes + 8 * graph_.resources.size());
+        const auto estimate = [&](size_t total) { return sampled ? total * passes / sampled * 9 / 8 : 0; };
+        uses_.reserve(estimate(sampledUses));
+        names_.reserve(estimate(sampledNameBytes) + 8 * graph_.resources.size());
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
@@ -135,6 +139,7 @@ private:
     /// the last pass's: reading them in turn waits for memory at every pass unless they are
     /// asked for a few passes ahead.
     static constexpr size_t kPrefetchAhead = 4;
+    static constexpr size_t kSampledPasses = 64;
     static void prefetchUses(const PassDesc& pass) {
         const auto* begin = reinterpret_cast<const char*>(pass.uses.data());
         const auto* end = reinterpret_cast<const char*>(pass.uses.data() + pass.uses.size());
