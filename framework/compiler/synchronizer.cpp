@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 namespace skygraph {
 namespace {
@@ -23,22 +24,25 @@ struct NameInPlace {
     operator std::string() const { return std::string(text); }  // NOLINT: implicit by design
 };
 
-/// What is known about one subresource between passes.
+/// What is known about one subresource between passes. Value-initialised (`{}`), it is the
+/// undefined state: nothing written, no layout. Trivially constructible, so that the array of
+/// them is not zeroed up front (see startState).
 struct SubresourceState {
-    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImageLayout layout;
     /// Contents came from outside the frame; a barrier needing a source stage chains with
     /// the semaphore wait at the first use's stages. (Beside the layout: 48 bytes, not 56.)
-    bool fromOutside = false;
-    VkPipelineStageFlags2 writeStages = 0;    ///< Stages of the last write (or the outside).
+    bool fromOutside;
+    VkPipelineStageFlags2 writeStages;    ///< Stages of the last write (or the outside).
     /// Write accesses of that write. A barrier whose source is `writeStages` always repeats
     /// them: an earlier availability operation only counts for barriers that chain after the
     /// barrier that performed it (through its destination stages), which this one may not.
-    VkAccessFlags2 writeAccess = 0;
-    VkPipelineStageFlags2 readStages = 0;     ///< Reads since the last write: WAR sources.
-    VkPipelineStageFlags2 visibleStages = 0;  ///< Scope the last write is visible to.
-    VkAccessFlags2 visibleAccess = 0;
+    VkAccessFlags2 writeAccess;
+    VkPipelineStageFlags2 readStages;     ///< Reads since the last write: WAR sources.
+    VkPipelineStageFlags2 visibleStages;  ///< Scope the last write is visible to.
+    VkAccessFlags2 visibleAccess;
 };
 static_assert(sizeof(SubresourceState) == 48);
+static_assert(std::is_trivially_default_constructible_v<SubresourceState>);
 
 /// One usage in plan order (access k is the k-th usage of the plan), beside its PlannedUsage
 /// (written when the access is recorded: resource, range, stages, access and, until rule 4
@@ -356,7 +360,7 @@ private:
     /// each pass, in one forward sweep. Barriers go straight into the plan's array, and each
     /// pass's spans are set as soon as its batch is done.
     void emitSteps() {
-        state_.resize(cellCount_);
+        state_ = std::make_unique_for_overwrite<SubresourceState[]>(cellCount_);
         auto& usages = *usages_;
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         // Room for the most barriers there can be (one per subresource an access touches), so
@@ -422,15 +426,17 @@ private:
 
     /// Resource r's state before its first access (the plan resource's first and initial
     /// fields too): undefined, or for an external resource what its `initial` state holds.
-    /// state_ starts value-initialised, which is the undefined state; external resources'
-    /// states are written field by field (a local SubresourceState copied in would stall the
-    /// CPU's store forwarding, once per resource).
+    /// state_ is not initialised before: written here, its lines are in cache for the access
+    /// that follows, where zeroing the whole array first would have them evicted by then (a
+    /// second miss per line). External resources' states are written field by field (a local
+    /// SubresourceState copied in would stall the CPU's store forwarding, once per resource).
     void startState(uint32_t r) {
         PlannedResource& res = plan_.resources[r];
         res.firstStages = firstPassScope(r).stages;
+        SubresourceState* states = stateOf(r);
+        std::fill_n(states, facts_[r].grid.size(), SubresourceState{});
         if (!facts_[r].external) return;
         const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
-        SubresourceState* states = stateOf(r);
         for (size_t i = 0; i < facts_[r].grid.size(); ++i) {
             states[i].layout = scope.layout;
             states[i].writeStages = scope.stages;
@@ -709,7 +715,7 @@ private:
     std::vector<StageAccess> runScope_;    // per access of a multi-subresource resource, per cell
     std::vector<uint32_t> multiCellAccesses_;  // accesses whose run scopes runScope_ holds
     // Per subresource of every resource.
-    std::vector<SubresourceState> state_;
+    std::unique_ptr<SubresourceState[]> state_;  // each resource's set at its first access
     // Scratch, reused across usages.
     std::vector<std::optional<Barrier>> perSub_;
     std::vector<Barrier> mergeOpen_, mergeRow_, mergeNext_;
