@@ -87,7 +87,7 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
         const ResourceDesc* r = image ? nullptr : &graph.resources[iu.resource];
         const uint32_t levels = std::max(1u, r ? r->mipCount(options.outputWidth, options.outputHeight) : grid.mips);
         const uint32_t layers = std::max(1u, r ? r->layers : grid.layers);
-        const SubresourceRange& range = *iu.usage.range;
+        const SubresourceRange& range = *index.writtenRange(iu);
         // The loader never writes an empty range; a GraphDesc built in code can, and every
         // sweep assumes a usage touches at least one subresource.
         const bool empty = range.mipCount == 0 || range.layerCount == 0;

@@ -22,12 +22,16 @@
 
 namespace skygraph {
 
-/// One entry of a pass's `uses`, with what the sweeps read of it.
+/// One entry of a pass's `uses`, with what the sweeps read of it. 12 bytes: three sweeps
+/// stream every one, so the few written ranges live in a table of their own.
 struct IndexedUsage {
-    Usage usage;             ///< As written.
-    uint32_t resource = 0;   ///< Index into GraphDesc::resources.
-    bool fillsSlot = false;  ///< Whether UsageDecl::slot is non-empty (never for Generic).
+    static constexpr uint32_t kWhole = ~0u;
+    UsageMode usage;           ///< As written.
+    bool fillsSlot = false;    ///< Whether UsageDecl::slot is non-empty (never for Generic).
+    uint32_t resource = 0;     ///< Index into GraphDesc::resources.
+    uint32_t range = kWhole;   ///< Its written range (GraphIndex::writtenRange), or none.
 };
+static_assert(sizeof(IndexedUsage) == 12);
 
 class GraphIndex {
 public:
@@ -76,8 +80,12 @@ public:
 
     /// Per resource (index into GraphDesc::resources).
     [[nodiscard]] const SubresourceGrids& grids() const noexcept { return grids_; }
+    /// The range the usage's file entry names; null when it names none (the whole resource).
+    [[nodiscard]] const SubresourceRange* writtenRange(const IndexedUsage& u) const noexcept {
+        return u.range == IndexedUsage::kWhole ? nullptr : &ranges_[u.range];
+    }
     [[nodiscard]] SubresourceRange range(const IndexedUsage& u) const noexcept {
-        return grids_[u.resource].resolve(u.usage);
+        return grids_[u.resource].resolve(writtenRange(u));
     }
     /// Calls f(flat index) for every subresource the usage touches; a resource of one
     /// subresource (most of them) skips resolving the range.
@@ -108,14 +116,16 @@ private:
         // walk reads every (cold) PassDesc once more, which costs more than the one further
         // doubling a low guess costs. Resource names are guessed at 8 bytes.
         const size_t stride = std::max<size_t>(1, passes / kSampledPasses);
-        size_t sampled = 0, sampledUses = 0, sampledNameBytes = 0;
+        size_t sampled = 0, sampledUses = 0, sampledRanges = 0, sampledNameBytes = 0;
         for (size_t p = 0; p < passes; p += stride, ++sampled) {
             const PassDesc& pass = graph_.passes[p];
             sampledUses += pass.uses.size();
+            for (const auto& u : pass.uses) sampledRanges += u.usage.range.has_value();
             sampledNameBytes += pass.name.size() + pass.type.size();
         }
         const auto estimate = [&](size_t total) { return sampled ? total * passes / sampled * 9 / 8 : 0; };
         uses_.reserve(estimate(sampledUses));
+        ranges_.reserve(estimate(sampledRanges));
         names_.reserve(estimate(sampledNameBytes) + 8 * graph_.resources.size());
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
@@ -124,12 +134,15 @@ private:
             const bool active = !features || pass.condition.evaluate(*features);
             passFlags_.push_back(static_cast<uint8_t>((active ? kActive : 0) | (pass.neverCull ? kNeverCull : 0)));
             for (const auto& u : pass.uses) {
-                if (active && u.usage.range)
-                    ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size()));
                 IndexedUsage& iu = uses_.emplace_back();  // field by field: see vulkanScope
-                iu.usage = u.usage;
+                iu.usage = u.usage.mode();
                 iu.resource = u.resource;
                 iu.fillsSlot = !u.slot.empty();
+                if (u.usage.range) {
+                    iu.range = static_cast<uint32_t>(ranges_.size());
+                    ranges_.push_back(*u.usage.range);
+                    if (active) ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size() - 1));
+                }
             }
             firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
         }
@@ -174,6 +187,7 @@ private:
     std::vector<uint8_t> passFlags_;    // per pass (bytes: a bit vector costs more to read)
     std::vector<uint32_t> firstUse_;    // per pass: its usages in uses_ (+1 at the end)
     std::vector<IndexedUsage> uses_;
+    std::vector<SubresourceRange> ranges_;  // the written ranges that uses_ refer to
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
     std::vector<uint32_t> tooManyMips_;
     SubresourceGrids grids_;            // per resource

@@ -26,10 +26,10 @@ struct SubresourceGrid {
         return size_t(mip) * layers + layer;
     }
     [[nodiscard]] SubresourceRange whole() const noexcept { return {0, mips, 0, layers}; }
-    /// The usage's range, or the whole resource; clipped to the grid.
-    [[nodiscard]] SubresourceRange resolve(const Usage& u) const noexcept {
-        if (!u.range) return whole();
-        SubresourceRange r = *u.range;
+    /// A usage's range as written (null: none), or the whole resource; clipped to the grid.
+    [[nodiscard]] SubresourceRange resolve(const SubresourceRange* written) const noexcept {
+        if (!written) return whole();
+        SubresourceRange r = *written;
         r.baseMip = std::min(r.baseMip, mips - 1);
         r.mipCount = std::min(r.mipCount, mips - r.baseMip);
         return r;

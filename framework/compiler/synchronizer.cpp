@@ -223,7 +223,7 @@ private:
                 // The resource's first access, unless a Clear pass above took that role.
                 const bool loadOpClear =
                     facts_[r].firstAccess == kNone && index_.clear(u.resource) && clearsThroughLoadOp(u);
-                addAccess(r, u.usage, facts_[r].grid.resolve(u.usage), loadOpClear);
+                addAccess(r, u.usage, facts_[r].grid.resolve(index_.writtenRange(u)), loadOpClear);
                 if (u.fillsSlot) addSlot(p, u);
             }
         }
@@ -245,10 +245,10 @@ private:
     // attachment covering the whole resource, otherwise by a Clear pass inserted before it.
     bool clearsThroughLoadOp(const IndexedUsage& firstUse) const {
         const SubresourceGrid& grid = index_.grids()[firstUse.resource];
-        return isAttachmentStage(firstUse.usage.stage) && grid.resolve(firstUse.usage) == grid.whole();
+        return isAttachmentStage(firstUse.usage.stage) && index_.range(firstUse) == grid.whole();
     }
     static inline const PlannedUsage kBlankUsage{};
-    static constexpr Usage kClearUsage{Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
+    static constexpr UsageMode kClearUsage{Access::Write, Stage::Transfer, BindAs::Default};
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
     static Access effectiveAccess(Access a, bool loadOpClear) {
@@ -265,7 +265,7 @@ private:
 
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
     /// place in its resource's chain of accesses and in its read run (rule 4).
-    void addAccess(uint32_t r, const Usage& usage, const SubresourceRange& range, bool loadOpClear) {
+    void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range, bool loadOpClear) {
         const auto k = static_cast<uint32_t>(accesses_.size());
         const Access effective = effectiveAccess(usage.access, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].aspects, effective, usage.stage, usage.as);
@@ -277,7 +277,7 @@ private:
         PlannedUsage& pu = usages_->emplace_back(kBlankUsage);
         pu.stages = scope.stages;
         pu.access = scope.access;
-        pu.usage = usage.mode();
+        pu.usage = usage;
         pu.range = range;
         pu.resource = r;
         pu.layout = scope.layout;
