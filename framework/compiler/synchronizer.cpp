@@ -302,13 +302,19 @@ private:
                 forEachCell(r, range, [&](size_t sub) { readRuns_.visit(k, sub, !a.writes); });
         }
         ResourceFacts& f = facts_[r];  // taken again: one mutable reference from the top measured +0.35M instructions
+        // The stages that the resource's first pass uses it in are gathered here, while its
+        // plan record is in cache (the barrier sweep would reach it cold).
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
             a.firstOfResource = true;
             plan_.resources[r].firstPass = a.step;
+            plan_.resources[r].firstStages = scope.stages;
         } else {
             accesses_[f.lastAccess].next = k;
-            if (accesses_[f.lastAccess].step == a.step) steps_.back().mayMerge = true;
+            if (accesses_[f.lastAccess].step == a.step) {
+                steps_.back().mayMerge = true;
+                if (plan_.resources[r].firstPass == a.step) plan_.resources[r].firstStages |= scope.stages;
+            }
         }
         if (cells(range) > 1) steps_.back().mayMerge = true;
         f.lastAccess = k;
@@ -424,15 +430,13 @@ private:
         return scope;
     }
 
-    /// Resource r's state before its first access (the plan resource's first and initial
-    /// fields too): undefined, or for an external resource what its `initial` state holds.
+    /// Resource r's state before its first access (and an external plan resource's initial
+    /// layout): undefined, or for an external resource what its `initial` state holds.
     /// state_ is not initialised before: written here, its lines are in cache for the access
     /// that follows, where zeroing the whole array first would have them evicted by then (a
     /// second miss per line). External resources' states are written field by field (a local
     /// SubresourceState copied in would stall the CPU's store forwarding, once per resource).
     void startState(uint32_t r) {
-        PlannedResource& res = plan_.resources[r];
-        res.firstStages = firstPassScope(r).stages;
         SubresourceState* states = stateOf(r);
         std::fill_n(states, facts_[r].grid.size(), SubresourceState{});
         if (!facts_[r].external) return;
@@ -444,7 +448,7 @@ private:
             states[i].visibleAccess = scope.access;
             states[i].fromOutside = true;
         }
-        res.initialLayout = scope.layout;
+        plan_.resources[r].initialLayout = scope.layout;
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[facts_[r].firstCell]; }
     /// Calls f(flat index into the per-subresource arrays) for every subresource of `range`
