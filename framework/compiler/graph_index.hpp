@@ -29,7 +29,7 @@ struct IndexedUsage {
     UsageMode usage;           ///< As written.
     bool fillsSlot = false;    ///< Whether UsageDecl::slot is non-empty (never for Generic).
     uint32_t resource = 0;     ///< Index into GraphDesc::resources.
-    uint32_t range = kWhole;   ///< Its written range (GraphIndex::writtenRange), or none.
+    uint32_t rangeIndex = kWhole;  ///< Its written range's place in the index's table, or none.
 };
 static_assert(sizeof(IndexedUsage) == 12);
 
@@ -82,7 +82,7 @@ public:
     [[nodiscard]] const SubresourceGrids& grids() const noexcept { return grids_; }
     /// The range the usage's file entry names; null when it names none (the whole resource).
     [[nodiscard]] const SubresourceRange* writtenRange(const IndexedUsage& u) const noexcept {
-        return u.range == IndexedUsage::kWhole ? nullptr : &ranges_[u.range];
+        return u.rangeIndex == IndexedUsage::kWhole ? nullptr : &ranges_[u.rangeIndex];
     }
     [[nodiscard]] SubresourceRange range(const IndexedUsage& u) const noexcept {
         return grids_[u.resource].resolve(writtenRange(u));
@@ -139,7 +139,7 @@ private:
                 iu.resource = u.resource;
                 iu.fillsSlot = !u.slot.empty();
                 if (u.usage.range) {
-                    iu.range = static_cast<uint32_t>(ranges_.size());
+                    iu.rangeIndex = static_cast<uint32_t>(ranges_.size());
                     ranges_.push_back(*u.usage.range);
                     if (active) ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size() - 1));
                 }
