@@ -245,7 +245,7 @@ private:
     // attachment covering the whole resource, otherwise by a Clear pass inserted before it.
     bool clearsThroughLoadOp(const IndexedUsage& firstUse) const {
         const SubresourceGrid& grid = index_.grids()[firstUse.resource];
-        return isAttachmentStage(firstUse.usage.stage) && index_.range(firstUse) == grid.whole();
+        return isAttachmentStage(firstUse.usage.stage) && grid.resolve(index_.writtenRange(firstUse)) == grid.whole();
     }
     static inline const PlannedUsage kBlankUsage{};
     static constexpr UsageMode kClearUsage{Access::Write, Stage::Transfer, BindAs::Default};

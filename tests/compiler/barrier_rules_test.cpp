@@ -502,7 +502,7 @@ TEST(Ranges, APlannedUsageKeepsItsModeAndTheResolvedRange) {
 }
 
 // What a shader binds a usage as when the file (or a GraphDesc built in code) leaves it out.
-TEST(Ranges, ADefaultBindingResolvesByResourceAndAccess) {
+TEST(UsageModes, ADefaultBindingResolvesByResourceAndAccess) {
     EXPECT_EQ(resolvedBinding({Access::Read, Stage::Fragment, BindAs::Default}, true), BindAs::Sampled);
     EXPECT_EQ(resolvedBinding({Access::Write, Stage::Compute, BindAs::Default}, true), BindAs::Storage);
     EXPECT_EQ(resolvedBinding({Access::ReadWrite, Stage::Compute, BindAs::Default}, true), BindAs::Storage);
