@@ -56,7 +56,7 @@ struct Fixture {
         CompileOptions co;
         co.presentReplacement = ExternalState::TransferSrc;
         Plan plan = compile(graph, co);
-        for (const auto& p : plan.passes) names.push_back(p.name);
+        for (const auto& p : plan.passes) names.emplace_back(p.name);
         RendererOptions ro;
         ro.width = 64;
         ro.height = 64;

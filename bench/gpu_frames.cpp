@@ -191,9 +191,9 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     std::map<std::string, PassResult> byName;
     std::vector<std::string> order;
     for (const PlannedPass& p : plan.passes) {
-        byName[p.name] = {p.name, p.type, bytesOfPass(p, plan, graph, c.width, c.height),
+        byName[std::string(p.name)] = {std::string(p.name), std::string(p.type), bytesOfPass(p, plan, graph, c.width, c.height),
                           attachmentOps(p, plan, graph), 0, 0, 0};
-        order.push_back(p.name);
+        order.emplace_back(p.name);
     }
 
     RendererOptions ro;

@@ -50,7 +50,7 @@ std::span<T> rebased(std::span<T> view, const std::vector<U>& from, std::vector<
 Plan::Plan(const Plan& other)
     : graph(other.graph), features(other.features), resources(other.resources), passes(other.passes),
       finalBarriers(other.finalBarriers), culled(other.culled), usages_(other.usages_),
-      barriers_(other.barriers_), slotNames_(other.slotNames_) {
+      barriers_(other.barriers_), nameTables_(other.nameTables_) {
     for (PlannedPass& p : passes) {
         p.usages = rebased(p.usages, other.usages_, usages_);
         p.barriers = rebased(p.barriers, other.barriers_, barriers_);

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -68,11 +69,14 @@ public:
         return static_cast<uint32_t>(&u - uses_.data());
     }
     [[nodiscard]] const IndexedUsage& use(uint32_t i) const noexcept { return uses_[i]; }
-    /// Names, copied out of the graph in the index's walk: the plan copies them again, and
-    /// reading them from the large, long-evicted PassDesc/ResourceDesc would miss the cache.
+    /// Names, copied out of the graph in the index's walk: the plan views them (in the text
+    /// that names() shares), and reading them from the large, long-evicted
+    /// PassDesc/ResourceDesc would miss the cache. Valid while the index or that text lives.
     [[nodiscard]] std::string_view passName(size_t pass) const noexcept { return names_[passNames_[pass].name]; }
     [[nodiscard]] std::string_view passType(size_t pass) const noexcept { return names_[passNames_[pass].type]; }
     [[nodiscard]] std::string_view resourceName(size_t r) const noexcept { return names_[resourceNames_[r]]; }
+    /// The text every name above views, complete once the index is built.
+    [[nodiscard]] std::shared_ptr<const std::string> names() const noexcept { return names_.text(); }
     /// The pass's usage as declared (slot, JSON path): `u` must come from usesOf(pass).
     [[nodiscard]] const UsageDecl& declOf(size_t pass, const IndexedUsage& u) const noexcept {
         return graph_.passes[pass].uses[static_cast<size_t>(&u - usesOf(pass).data())];
@@ -159,19 +163,21 @@ private:
         for (const char* line = begin; line < end; line += 64) __builtin_prefetch(line);
     }
 
-    /// Strings laid end to end; a name is its (offset, length).
+    /// Strings laid end to end; a name is its (offset, length). Shared: a plan keeps the
+    /// text alive and views its names in it rather than copying them.
     class NameTable {
     public:
         struct Ref { uint32_t offset = 0, length = 0; };
         Ref add(const std::string& s) {
-            const Ref ref{static_cast<uint32_t>(text_.size()), static_cast<uint32_t>(s.size())};
-            text_ += s;
+            const Ref ref{static_cast<uint32_t>(text_->size()), static_cast<uint32_t>(s.size())};
+            *text_ += s;
             return ref;
         }
-        void reserve(size_t bytes) { text_.reserve(bytes); }
-        std::string_view operator[](Ref r) const noexcept { return {text_.data() + r.offset, r.length}; }
+        void reserve(size_t bytes) { text_->reserve(bytes); }
+        std::string_view operator[](Ref r) const noexcept { return {text_->data() + r.offset, r.length}; }
+        [[nodiscard]] std::shared_ptr<const std::string> text() const noexcept { return text_; }
     private:
-        std::string text_;
+        std::shared_ptr<std::string> text_ = std::make_shared<std::string>();
     };
     struct PassNames { NameTable::Ref name, type; };
 

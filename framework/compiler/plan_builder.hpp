@@ -1,5 +1,5 @@
 // The compiler's access to a Plan's storage (see include/skygraph/plan.hpp): the synchronizer
-// fills the usage and barrier arrays and the slot table, then points each pass into them.
+// fills the usage and barrier arrays and hands over the name tables, then points each pass into them.
 #pragma once
 
 #include <skygraph/plan.hpp>
@@ -13,8 +13,9 @@ namespace skygraph::detail {
 struct PlanBuilder {
     static std::vector<PlannedUsage>& usages(Plan& p) noexcept { return p.usages_; }
     static std::vector<Barrier>& barriers(Plan& p) noexcept { return p.barriers_; }
-    static void setSlotNames(Plan& p, std::shared_ptr<const std::string> names) noexcept {
-        p.slotNames_ = std::move(names);
+    /// Keeps `names` alive as long as the plan (and its copies): the plan's names view it.
+    static void keepNames(Plan& p, std::shared_ptr<const std::string> names) {
+        p.nameTables_.push_back(std::move(names));
     }
 };
 

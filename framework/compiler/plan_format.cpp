@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <sstream>
+#include <string_view>
 #include <utility>
 
 namespace skygraph {
@@ -158,7 +159,7 @@ std::string barrierText(const Plan& plan, const Barrier& b) {
     return o.str();
 }
 
-std::string dotEscape(const std::string& s) {
+std::string dotEscape(std::string_view s) {
     std::string out;
     for (char c : s) {
         if (c == '"' || c == '\\') out += '\\';

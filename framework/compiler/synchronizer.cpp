@@ -17,13 +17,6 @@ namespace {
 
 constexpr uint32_t kNone = ~0u;
 
-/// Initialises a std::string member straight from a view: GCC and Clang build the
-/// conversion's result in the member itself (CWG 2327), with no temporary string to move from.
-struct NameInPlace {
-    std::string_view text;
-    operator std::string() const { return std::string(text); }  // NOLINT: implicit by design
-};
-
 /// What is known about one subresource between passes. Value-initialised (`{}`), it is the
 /// undefined state: nothing written, no layout. Trivially constructible, so that the array of
 /// them is not zeroed up front (see startState).
@@ -204,18 +197,20 @@ private:
             }
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({static_cast<uint32_t>(accesses_.size())});
-                plan_.passes.push_back(PlannedPass{"clear " + plan_.resources[r].name, "Clear", -1, {}, {}});
+                // Named once the compiler's own text is complete (emitSteps).
+                const uint32_t at = addOwnText("clear ");
+                addOwnText(plan_.resources[r].name);
+                clearNameAt_.push_back({static_cast<uint32_t>(plan_.passes.size()), at,
+                                        static_cast<uint32_t>(ownText_.size() - at)});
+                plan_.passes.push_back(PlannedPass{{}, "Clear", -1, {}, {}});
                 addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
             }
             steps_.push_back({static_cast<uint32_t>(accesses_.size())});
-            // Constructed in place, names included (see NameInPlace): a braced temporary would
-            // be zeroed whole first, and std::string arguments constructed and then moved.
+            // Constructed in place: a braced temporary would be zeroed whole first.
 #if __cpp_aggregate_paren_init >= 201902L
-            plan_.passes.emplace_back(NameInPlace{index_.passName(p)}, NameInPlace{index_.passType(p)},
-                                      static_cast<int32_t>(p));
+            plan_.passes.emplace_back(index_.passName(p), index_.passType(p), static_cast<int32_t>(p));
 #else  // clang before 16 (the sanitizer build): no aggregate initialisation from parentheses
-            plan_.passes.push_back(PlannedPass{NameInPlace{index_.passName(p)}, NameInPlace{index_.passType(p)},
-                                               static_cast<int32_t>(p), {}, {}});
+            plan_.passes.push_back(PlannedPass{index_.passName(p), index_.passType(p), static_cast<int32_t>(p), {}, {}});
 #endif
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
@@ -258,9 +253,14 @@ private:
     /// Names the slot that the usage last added (`u`, of pass `pass`) fills.
     void addSlot(uint32_t pass, const IndexedUsage& u) {
         const std::string& slot = index_.declOf(pass, u).slot;
-        slotAt_.push_back({static_cast<uint32_t>(accesses_.size() - 1), static_cast<uint32_t>(slotText_.size()),
+        slotAt_.push_back({static_cast<uint32_t>(accesses_.size() - 1), addOwnText(slot),
                            static_cast<uint32_t>(slot.size())});
-        slotText_ += slot;
+    }
+    /// Appends to the compiler's own name table; returns where the text starts.
+    uint32_t addOwnText(std::string_view text) {
+        const auto offset = static_cast<uint32_t>(ownText_.size());
+        ownText_ += text;
+        return offset;
     }
 
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
@@ -384,9 +384,15 @@ private:
             if (barriers.size() > batch) pass.barriers = {base + batch, barriers.size() - batch};
         }
         if (barriers.capacity() != room) throw std::logic_error("synchronizer: the barrier bound was exceeded");
-        auto names = std::make_shared<const std::string>(std::move(slotText_));
-        for (const SlotName& n : slotAt_) usages[n.usage].slot = std::string_view(*names).substr(n.offset, n.length);
-        detail::PlanBuilder::setSlotNames(plan_, std::move(names));
+        // Pass and resource names view the index's name table; slots and inserted clears
+        // view the compiler's own, which no longer grows.
+        detail::PlanBuilder::keepNames(plan_, index_.names());
+        if (ownText_.empty()) return;
+        auto own = std::make_shared<const std::string>(std::move(ownText_));
+        const std::string_view text = *own;
+        for (const NameAt& n : slotAt_) usages[n.item].slot = text.substr(n.offset, n.length);
+        for (const NameAt& n : clearNameAt_) plan_.passes[n.item].name = text.substr(n.offset, n.length);
+        detail::PlanBuilder::keepNames(plan_, std::move(own));
     }
     /// The end of step s's accesses.
     uint32_t stepEnd(uint32_t s) const {
@@ -710,10 +716,11 @@ private:
     // Per access (usage in plan order).
     std::vector<AccessRecord> accesses_;
     std::vector<PlannedUsage>* usages_ = nullptr;  // the plan's, one per access
-    // The slot table: the names of the usages that fill slots, one after another.
-    struct SlotName { uint32_t usage, offset, length; };
-    std::string slotText_;
-    std::vector<SlotName> slotAt_;
+    // The compiler's own name table: slot names and inserted clears' names, one after
+    // another, and which usage's slot (slotAt_) or plan pass's name (clearNameAt_) views each.
+    struct NameAt { uint32_t item, offset, length; };
+    std::string ownText_;
+    std::vector<NameAt> slotAt_, clearNameAt_;
     ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
     std::vector<StageAccess> runScope_;    // per access of a multi-subresource resource, per cell

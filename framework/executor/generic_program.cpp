@@ -40,7 +40,7 @@ std::string glslStorageFormat(VkFormat f) {
 }
 
 std::string err(const PlannedPass& pass, const std::string& resource, const std::string& what) {
-    std::string s = "pass '" + pass.name + "'";
+    std::string s = "pass '" + std::string(pass.name) + "'";
     if (!resource.empty()) s += ", resource '" + resource + "'";
     return s + ": " + what;
 }

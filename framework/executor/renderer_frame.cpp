@@ -143,7 +143,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
         const PassSlot& sl = ps.slots[slot];
         if (frame && dev.fn.cmdBeginLabel) {
             VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
-            label.pLabelName = ps.pass->name.c_str();
+            label.pLabelName = ps.label.c_str();
             dev.fn.cmdBeginLabel(cmd, &label);
         }
         dependency(cmd, sl.imageBarriers, sl.bufferBarriers, sl.memoryBarriers);
@@ -177,7 +177,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     }
     if (frame) {
         frame->passNames.clear();
-        for (const PassState& ps : s.passes) frame->passNames.push_back(ps.pass->name);
+        for (const PassState& ps : s.passes) frame->passNames.push_back(ps.label);
     }
 }
 

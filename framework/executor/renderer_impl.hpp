@@ -31,7 +31,7 @@ namespace skygraph::detail {
 inline constexpr uint64_t kWaitForever = std::numeric_limits<uint64_t>::max();
 
 inline std::string passError(const PlannedPass& pass, const std::string& resource, const std::string& what) {
-    std::string s = "pass '" + pass.name + "'";
+    std::string s = "pass '" + std::string(pass.name) + "'";
     if (!resource.empty()) s += ", resource '" + resource + "'";
     return s + ": " + what;
 }
@@ -123,6 +123,7 @@ struct PassSlot {
 struct PassState {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
+    std::string label;  ///< The pass's name, NUL-terminated for debug labels (the plan's is a view).
     bool isClear = false;
     /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
     std::unique_ptr<PassImplementation> custom;

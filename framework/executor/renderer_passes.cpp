@@ -14,6 +14,7 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     const PlannedPass& pass = s.plan.passes[index];
     PassState ps;
     ps.pass = &pass;
+    ps.label = pass.name;
     ps.isClear = pass.type == "Clear" && pass.declIndex < 0;
     if (ps.isClear) {
         for (const PlannedUsage& u : pass.usages) {

@@ -134,7 +134,7 @@ void Renderer::Impl::describeResources(PlanState& s) {
     for (size_t i = 0; i < s.plan.resources.size(); ++i) {
         const PlannedResource& pr = s.plan.resources[i];
         if (pr.decl >= s.graph.resources.size())
-            throw ExecutorError("plan resource '" + pr.name + "' is not in the graph");
+            throw ExecutorError("plan resource '" + std::string(pr.name) + "' is not in the graph");
         ResourceState& r = s.resources[i];
         r.desc = &s.graph.resources[pr.decl];
         r.isImage = r.desc->isImage();
@@ -335,7 +335,7 @@ ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const Sh
     for (const PlannedPass& pass : s.plan.passes)
         for (const PlannedUsage& u : pass.usages)
             if (u.resource == index && writesContents(u.usage.access))
-                throw ExecutorError(what + "pass '" + pass.name + "' writes it; an imported image is read-only");
+                throw ExecutorError(what + "pass '" + std::string(pass.name) + "' writes it; an imported image is read-only");
     if (s.plan.resources[index].initialLayout != from.layout)
         throw ExecutorError(what + "the producer leaves it in layout " + std::to_string(from.layout) +
                             ", this plan expects it to arrive in " +

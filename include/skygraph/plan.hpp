@@ -2,9 +2,10 @@
 // The executor records exactly this and derives no synchronization of its own.
 //
 // Storage: a Plan keeps all usages of all passes in one array and all pass barriers in
-// another; each PlannedPass views its part of them through spans, and slot names are views
-// into one string table that copies of a plan share (it is never modified). So compiling
-// makes a handful of allocations instead of several per pass. The spans point into the Plan
+// another; each PlannedPass views its part of them through spans, and names (of passes, pass
+// types, resources and slots) are views into string tables that copies of a plan share (they
+// are never modified). So compiling makes a handful of allocations instead of several per
+// pass, and copies no name. The spans point into the Plan
 // that holds the pass: copying a Plan rebases them onto the copy (each copy is valid on its
 // own, whatever happens to the original); moving a Plan keeps them valid. A PlannedPass or
 // PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged. Code that
@@ -55,7 +56,7 @@ struct PlannedUsage {
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
     /// The pass type's slot this usage fills; empty for Generic passes and inserted clears.
-    /// Views the plan's shared slot table: valid while any copy of the plan lives.
+    /// Views the plan's shared name tables: valid while any copy of the plan lives.
     std::string_view slot;
     SubresourceRange range;  ///< Resolved: the usage's range, or the whole resource.
     uint32_t resource = 0;   ///< Index into Plan::resources.
@@ -68,9 +69,11 @@ struct PlannedUsage {
 };
 static_assert(sizeof(PlannedUsage) == 64, "PlannedUsage: keep it one cache line");
 
+/// A pass that runs. Its names view the plan's shared name tables (valid while any copy of
+/// the plan lives); code that renames a pass keeps the new text alive as long as the plan.
 struct PlannedPass {
-    std::string name;
-    std::string type;      ///< Pass type; "Clear" for a clear inserted by the compiler.
+    std::string_view name;
+    std::string_view type;   ///< Pass type; "Clear" for a clear inserted by the compiler.
     int32_t declIndex = -1;  ///< Index into GraphDesc::passes; -1 for inserted passes.
     /// One vkCmdPipelineBarrier2 batch, before the pass. Views the plan's barrier array;
     /// edit through Plan::barriersOf / Plan::eraseBarrier.
@@ -81,7 +84,7 @@ struct PlannedPass {
 /// A resource that at least one scheduled pass uses. Unused resources are not listed.
 struct PlannedResource {
     uint32_t decl = 0;        ///< Index into GraphDesc::resources.
-    std::string name;
+    std::string_view name;    ///< Views the plan's shared name tables, like PlannedPass::name.
     uint32_t firstPass = 0;   ///< Indices into Plan::passes: the lifetime.
     uint32_t lastPass = 0;
     /// Layout the resource must be in when the frame starts (external resources), and the
@@ -128,7 +131,9 @@ private:
     friend struct detail::PlanBuilder;
     std::vector<PlannedUsage> usages_;   // every pass's usages, pass after pass
     std::vector<Barrier> barriers_;      // every pass's barrier batch, pass after pass
-    std::shared_ptr<const std::string> slotNames_;  // what PlannedUsage::slot views
+    /// What the names of passes, resources and slots view: the graph's names, copied once
+    /// by the compiler's index walk, and the compiler's own (slots, inserted clears).
+    std::vector<std::shared_ptr<const std::string>> nameTables_;
 };
 
 }  // namespace skygraph

@@ -46,6 +46,44 @@ TEST(PlanStorage, CopyStandsAloneAfterTheOriginalIsGone) {
     EXPECT_EQ(planToJson(assigned).dump(1), expected);
 }
 
+// Names are views into tables the plan shares (the compiler's copy of the graph's names, and
+// its own for slots and inserted clears): they must outlive the graph and every copy but one.
+// Names past the small-string size live on the heap, where ASan sees a dangling view.
+TEST(PlanStorage, NamesOutliveTheGraphAndEveryOtherCopy) {
+    std::optional<Plan> plan;
+    {
+        const GraphDesc g = parseGraph(R"({"version": 1, "name": "names", "features": {}, "resources": {
+            "accumulation_of_every_sample": {"type": "image2d", "format": "R16G16B16A16_SFLOAT",
+                                             "extent": [8, 8], "clear": {"color": [0, 0, 0, 0]}},
+            "presented_image": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8],
+                                "final": "ShaderRead"}},
+          "passes": [
+            {"name": "trace_one_more_sample_per_pixel", "type": "Generic",
+             "uses": {"accumulation_of_every_sample": "ReadWrite@Compute"}},
+            {"name": "show_the_average", "type": "TonemappingPass",
+             "uses": [{"resource": "accumulation_of_every_sample", "access": "Read", "stage": "Fragment",
+                       "slot": "hdr"},
+                      {"resource": "presented_image", "access": "Write", "stage": "ColorAttachment"}]}]})",
+                                       "names.json", PassRegistry::withBuiltins());
+        plan = compile(g);
+    }
+    const Plan copy = *plan;
+    plan.reset();
+    ASSERT_EQ(copy.passes.size(), 3u);
+    EXPECT_EQ(copy.passes[0].name, "clear accumulation_of_every_sample");
+    EXPECT_EQ(copy.passes[0].type, "Clear");
+    EXPECT_EQ(copy.passes[1].name, "trace_one_more_sample_per_pixel");
+    EXPECT_EQ(copy.passes[1].type, "Generic");
+    EXPECT_EQ(copy.passes[2].name, "show_the_average");
+    EXPECT_EQ(copy.passes[2].type, "TonemappingPass");
+    ASSERT_EQ(copy.passes[2].usages.size(), 2u);
+    EXPECT_EQ(copy.passes[2].usages[0].slot, "hdr");
+    EXPECT_EQ(copy.passes[2].usages[1].slot, "output");  // the unique slot it fits
+    ASSERT_EQ(copy.resources.size(), 2u);
+    EXPECT_EQ(copy.resources[0].name, "accumulation_of_every_sample");
+    EXPECT_EQ(copy.resources[1].name, "presented_image");
+}
+
 TEST(PlanStorage, EditsStayInTheirPlanAndKeepLaterPassesIntact) {
     const Plan base = rasterPlan();
     // The first pass with at least two barriers, and some later pass with barriers.

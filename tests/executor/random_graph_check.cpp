@@ -42,7 +42,7 @@ void forEachBit(uint64_t mask, F&& f) {
     }
 }
 
-std::string nameOf(const Plan& plan, const Barrier& b) { return plan.resources.at(b.resource).name; }
+std::string nameOf(const Plan& plan, const Barrier& b) { return std::string(plan.resources.at(b.resource).name); }
 
 /// Adds every weakening of `list[i]` (list is a barrier batch of `base`; `locate` finds the
 /// same batch in a copy, editable, and `drop(copy, i)` removes its barrier i).
@@ -127,7 +127,7 @@ uint32_t messagesFor(Device& device, const GraphDesc& graph, const Plan& plan, c
 std::vector<BarrierMutation> weakenedPlans(const Plan& plan) {
     std::vector<BarrierMutation> out;
     for (size_t p = 0; p < plan.passes.size(); ++p)
-        weakenBatch(plan, plan.passes[p].barriers, "before " + plan.passes[p].name,
+        weakenBatch(plan, plan.passes[p].barriers, "before " + std::string(plan.passes[p].name),
                     [p](Plan& x) { return x.barriersOf(p); }, [p](Plan& x, size_t i) { x.eraseBarrier(p, i); },
                     out);
     weakenBatch(plan, plan.finalBarriers, "final", [](Plan& x) { return std::span<Barrier>(x.finalBarriers); },
