@@ -6,7 +6,8 @@
 # CPU, so that what the machine's neighbours do to the shared cache hits both alike: on this
 # VM the same binary's 10k-pass median moves by a quarter from minute to minute, so only
 # interleaved runs compare. Prints, per benchmark and binary, the median, quartiles and
-# minimum of the CPU times, and the new/old ratio of the medians.
+# minimum of the CPU times, the new/old ratio of the medians, and the median (and quartiles)
+# of each round's own new/old ratio, which the drift between rounds does not reach.
 set -euo pipefail
 old=$1 new=$2 rounds=${3:-25} filter=${4:-'BM_Compile/1000$|BM_Compile/10000$'}
 cpu=$(($(nproc) - 1))
@@ -29,5 +30,9 @@ for name in sorted({n for n, _ in times}):
         print(f"{name:22} {label}  median {statistics.median(t):9.3f} us  q1 {q[0]:9.3f}  q3 {q[2]:9.3f}"
               f"  min {t[0]:9.3f}  n={len(t)}")
     ratio = statistics.median(times[(name, new)]) / statistics.median(times[(name, old)])
-    print(f"{name:22} new/old median {ratio:.2f}")
+    # The two runs of a round were seconds apart: their ratio cancels the drift between rounds.
+    paired = sorted(n / o for o, n in zip(times[(name, old)], times[(name, new)]))
+    pq = statistics.quantiles(paired, n=4)
+    print(f"{name:22} new/old median {ratio:.2f}; per round {statistics.median(paired):.3f}"
+          f" (q1 {pq[0]:.3f}, q3 {pq[2]:.3f})")
 ' "$old" "$new"
