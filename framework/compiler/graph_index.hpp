@@ -43,11 +43,13 @@ public:
         : graph_(graph), grids_(graph.resources.size()) {
         indexPasses(features);
         resources_.reserve(graph.resources.size());
+        resourceNames_.reserve(graph.resources.size());
         for (const auto& r : graph.resources) {
             resourceNames_.push_back(names_.add(r.name));
             grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
-            if (r.isImage() && r.mips != 0 && r.extent.relativeToOutput) {
+            // One level always fits (most images): the extent is resolved only for more.
+            if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
                 const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
                 if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(w, h))))
                     tooManyMips_.push_back(static_cast<uint32_t>(&r - graph.resources.data()));

@@ -18,7 +18,7 @@ struct SubresourceGrid {
 
     SubresourceGrid() = default;
     SubresourceGrid(const ResourceDesc& r, uint32_t outputWidth, uint32_t outputHeight)
-        : mips(r.isImage() ? r.mipCount(outputWidth, outputHeight) : 1),
+        : mips(!r.isImage() ? 1 : r.mips != 0 ? r.mips : r.mipCount(outputWidth, outputHeight)),
           layers(r.isImage() ? r.layers : 1) {}
 
     [[nodiscard]] size_t size() const noexcept { return size_t(mips) * layers; }
