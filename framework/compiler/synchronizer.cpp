@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -162,6 +163,7 @@ private:
     /// where it comes from is the PlannedPass's declIndex).
     struct Step {
         uint32_t firstAccess = 0;  ///< Its accesses are [firstAccess, next step's).
+        int32_t declIndex = kInsertedPass;  ///< PlannedPass::declIndex.
         /// Whether two of its barriers can be for one resource (a resource used twice, or a
         /// range of several subresources): only then can mergeAdjacent find anything.
         bool mayMerge = false;
@@ -182,7 +184,6 @@ private:
         facts_.reserve(graph_.resources.size());
         accesses_.reserve(schedule.usages);
         usages_->reserve(schedule.usages);  // inserted clears add a few more, rarely
-        plan_.passes.reserve(schedule.passes.size());
         readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
@@ -196,22 +197,15 @@ private:
                 if (index_.clear(d) && !clearsThroughLoadOp(uses[i])) clearsBefore.push_back(planIndex[d]);
             }
             for (uint32_t r : clearsBefore) {
-                steps_.push_back({static_cast<uint32_t>(accesses_.size())});
+                steps_.push_back({static_cast<uint32_t>(accesses_.size()), kInsertedPass});
                 // Named once the compiler's own text is complete (emitSteps).
                 const uint32_t at = addOwnText("clear ");
                 addOwnText(plan_.resources[r].name);
-                clearNameAt_.push_back({static_cast<uint32_t>(plan_.passes.size()), at,
+                clearNameAt_.push_back({static_cast<uint32_t>(steps_.size() - 1), at,
                                         static_cast<uint32_t>(ownText_.size() - at)});
-                plan_.passes.push_back(PlannedPass{{}, "Clear", -1, {}, {}});
                 addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
             }
-            steps_.push_back({static_cast<uint32_t>(accesses_.size())});
-            // Constructed in place: a braced temporary would be zeroed whole first.
-#if __cpp_aggregate_paren_init >= 201902L
-            plan_.passes.emplace_back(index_.passName(p), index_.passType(p), static_cast<int32_t>(p));
-#else  // clang before 16 (the sanitizer build): no aggregate initialisation from parentheses
-            plan_.passes.push_back(PlannedPass{index_.passName(p), index_.passType(p), static_cast<int32_t>(p), {}, {}});
-#endif
+            steps_.push_back({static_cast<uint32_t>(accesses_.size()), static_cast<int32_t>(p)});
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
@@ -243,6 +237,8 @@ private:
         return isAttachmentStage(firstUse.usage.stage) && grid.resolve(index_.writtenRange(firstUse)) == grid.whole();
     }
     static inline const PlannedUsage kBlankUsage{};
+    static constexpr int32_t kInsertedPass = -1;  // a Step's declIndex for an inserted Clear
+    static constexpr std::string_view kClearType = "Clear";
     static constexpr UsageMode kClearUsage{Access::Write, Stage::Transfer, BindAs::Default};
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
@@ -374,14 +370,27 @@ private:
         barriers.reserve(accesses_.size() - multiCellAccesses_.size() + runScopeCount_);
         const Barrier* const base = barriers.data();
         const size_t room = barriers.capacity();
+        // Each plan pass is written once, whole, here: built in planAccesses, its record would
+        // have left the cache by the time its spans are known.
+        plan_.passes.reserve(steps_.size());
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
-            const uint32_t first = steps_[s].firstAccess, end = stepEnd(s);
+            const Step& step = steps_[s];
+            const uint32_t first = step.firstAccess, end = stepEnd(s);
             for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
-            if (steps_[s].mayMerge) mergeAdjacent(barriers, batch);
-            PlannedPass& pass = plan_.passes[s];
-            pass.usages = {usages.data() + first, end - first};
-            if (barriers.size() > batch) pass.barriers = {base + batch, barriers.size() - batch};
+            if (step.mayMerge) mergeAdjacent(barriers, batch);
+            const std::span<const Barrier> batchView =
+                barriers.size() > batch ? std::span<const Barrier>(base + batch, barriers.size() - batch)
+                                        : std::span<const Barrier>();
+            const std::span<const PlannedUsage> usesView(usages.data() + first, end - first);
+            // Inserted clears are named below, once the compiler's own text is complete.
+            const std::string_view name = step.declIndex < 0 ? std::string_view() : index_.passName(step.declIndex);
+            const std::string_view type = step.declIndex < 0 ? kClearType : index_.passType(step.declIndex);
+#if __cpp_aggregate_paren_init >= 201902L
+            plan_.passes.emplace_back(name, type, step.declIndex, batchView, usesView);
+#else  // clang before 16 (the sanitizer build): no aggregate initialisation from parentheses
+            plan_.passes.push_back(PlannedPass{name, type, step.declIndex, batchView, usesView});
+#endif
         }
         if (barriers.capacity() != room) throw std::logic_error("synchronizer: the barrier bound was exceeded");
         // Pass and resource names view the index's name table; slots and inserted clears

@@ -83,17 +83,18 @@ struct PlannedPass {
 
 /// A resource that at least one scheduled pass uses. Unused resources are not listed.
 struct PlannedResource {
-    uint32_t decl = 0;        ///< Index into GraphDesc::resources.
     std::string_view name;    ///< Views the plan's shared name tables, like PlannedPass::name.
+    /// The stages that the frame's first access waits in (for semaphores at the frame's start).
+    VkPipelineStageFlags2 firstStages = 0;
+    uint32_t decl = 0;        ///< Index into GraphDesc::resources.
     uint32_t firstPass = 0;   ///< Indices into Plan::passes: the lifetime.
     uint32_t lastPass = 0;
-    /// Layout the resource must be in when the frame starts (external resources), and the
-    /// stages that the frame's first access waits in (for semaphores at the frame's start).
+    /// Layout the resource must be in when the frame starts (external resources).
     VkImageLayout initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    VkPipelineStageFlags2 firstStages = 0;
     /// Layout after the final barriers; the next frame's `initialLayout` for externals.
     VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
+static_assert(sizeof(PlannedResource) == 48, "PlannedResource: members ordered to pack (a plan holds one per resource)");
 
 struct CulledPass {
     std::string name;
