@@ -106,12 +106,9 @@ public:
         return k;
     }
     void visit(uint32_t k, size_t sub, bool read) {
-        if (!read) {
-            open_[sub] = kNone;  // a write ends the run
-        } else {
-            if (open_[sub] != kNone) unite(open_[sub], k);
-            open_[sub] = k;
-        }
+        uint32_t& open = open_[sub];
+        if (read && open != kNone) unite(open, k);
+        open = read ? k : kNone;  // a write ends the run
     }
     /// The layout of read k's run, once every access is added.
     VkImageLayout layout(uint32_t k) { return nodes_[find(k)].layout; }
@@ -265,11 +262,17 @@ private:
         const auto k = static_cast<uint32_t>(accesses_.size());
         const Access effective = effectiveAccess(usage.access, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].aspects, effective, usage.stage, usage.as);
-        // Copied from a blank constant, then filled in place. Value-initialising the record
-        // zeroes it with `rep stos`, whose start-up cost is paid once per usage; building it
-        // as a braced temporary first stores its empty slot as two 8-byte halves, which the
-        // copy into the array reads as one 16-byte load that the CPU cannot forward from its
-        // store buffer (perf showed that one instruction at a tenth of this function).
+        // Constructed in place, each field stored once. Value-initialising the record zeroes
+        // it with `rep stos`, whose start-up cost is paid once per usage; building it as a
+        // braced temporary first stores its empty slot as two 8-byte halves, which the copy
+        // into the array reads as one 16-byte load that the CPU cannot forward from its store
+        // buffer (perf showed that one instruction at a tenth of this function). Without
+        // aggregate initialisation from parentheses (clang before 16), it is copied from a
+        // blank constant and filled in place.
+#if __cpp_aggregate_paren_init >= 201902L
+        usages_->emplace_back(scope.stages, scope.access, std::string_view(), range, r, scope.layout, usage,
+                              loadOpClear ? LoadOp::Clear : LoadOp::Load, StoreOp::Store);
+#else
         PlannedUsage& pu = usages_->emplace_back(kBlankUsage);
         pu.stages = scope.stages;
         pu.access = scope.access;
@@ -278,6 +281,7 @@ private:
         pu.resource = r;
         pu.layout = scope.layout;
         if (loadOpClear) pu.load = LoadOp::Clear;
+#endif
         AccessRecord& a = accesses_.emplace_back();
         a.step = static_cast<uint32_t>(steps_.size() - 1);
         const ResourceFacts& facts = facts_[r];
