@@ -44,10 +44,24 @@ public:
         indexPasses(features);
         resources_.reserve(graph.resources.size());
         resourceNames_.reserve(graph.resources.size());
+        onlyCell_.reserve(graph.resources.size());
+        heldAtStart_.reserve(graph.resources.size() * 9 / 8);  // most resources have one subresource
+        liveAtEnd_.reserve(graph.resources.size() * 9 / 8);
         for (const auto& r : graph.resources) {
             resourceNames_.push_back(names_.add(r.name));
             grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
+            const size_t last = grids_.resources() - 1;
+            const size_t cells = grids_[last].size();
+            onlyCell_.push_back(cells == 1 && grids_.first(last) < kSeveralCells ? static_cast<uint32_t>(grids_.first(last))
+                                                                               : kSeveralCells);
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
+            if (cells == 1) {  // most resources: the general insert costs more than the loop it saves
+                heldAtStart_.push_back(r.clear.has_value() || r.external);
+                liveAtEnd_.push_back(r.isExported());
+            } else {
+                heldAtStart_.insert(heldAtStart_.end(), cells, r.clear.has_value() || r.external);
+                liveAtEnd_.insert(liveAtEnd_.end(), cells, r.isExported());
+            }
             // One level always fits (most images): the extent is resolved only for more.
             if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
                 const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
@@ -97,9 +111,14 @@ public:
     /// subresource (most of them) skips resolving the range.
     template <typename F>
     void forEachCell(const IndexedUsage& u, F&& f) const {
-        if (grids_[u.resource].size() == 1) return f(grids_.first(u.resource));
+        if (const uint32_t cell = onlyCell_[u.resource]; cell != kSeveralCells) return f(size_t(cell));
         grids_.forEach(u.resource, range(u), f);
     }
+    /// Per subresource of every resource (flat, as grids() lays them out): whether it holds
+    /// contents when the frame starts (its resource is `clear` or `external`), and whether
+    /// they are wanted when it ends (exported). What the read check and culling start from.
+    [[nodiscard]] const std::vector<uint8_t>& heldAtStart() const noexcept { return heldAtStart_; }
+    [[nodiscard]] const std::vector<uint8_t>& liveAtEnd() const noexcept { return liveAtEnd_; }
     [[nodiscard]] const ResourceAspects& aspects(size_t r) const noexcept { return resources_[r].aspects; }
     [[nodiscard]] bool clear(size_t r) const noexcept { return resources_[r].clear; }
     [[nodiscard]] bool external(size_t r) const noexcept { return resources_[r].external; }
@@ -199,6 +218,11 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
     std::vector<uint32_t> tooManyMips_;
     SubresourceGrids grids_;            // per resource
+    // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask
+    // it of every usage; from the grids it takes two lookups and a multiplication.
+    static constexpr uint32_t kSeveralCells = ~0u;
+    std::vector<uint32_t> onlyCell_;
+    std::vector<uint8_t> heldAtStart_, liveAtEnd_;  // per subresource
     NameTable names_;
     std::vector<PassNames> passNames_;               // per pass
     std::vector<NameTable::Ref> resourceNames_;      // per resource

@@ -70,8 +70,7 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
 /// (and is not never_cull) is removed: marked in `culled`, its reason in `reasons`.
 void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std::map<size_t, std::string>& reasons) {
     const GraphDesc& graph = index.graph();
-    const SubresourceGrids& grids = index.grids();
-    auto live = grids.makeArray<uint8_t>([&](size_t r) { return static_cast<uint8_t>(index.exported(r)); });
+    std::vector<uint8_t> live = index.liveAtEnd();
     for (size_t p = index.passes(); p-- > 0;) {
         if (!index.active(p)) continue;
         if (!index.neverCull(p) && !writesLive(index, p, live)) {
@@ -98,10 +97,8 @@ void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureVa
 void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureValues>& features,
                            Diagnostics& out) {
     const GraphDesc& graph = index.graph();
-    const SubresourceGrids& grids = index.grids();
     // Whether each subresource holds contents at this point of the frame.
-    auto written = grids.makeArray<uint8_t>(
-        [&](size_t r) { return static_cast<uint8_t>(index.clear(r) || index.external(r)); });
+    std::vector<uint8_t> written = index.heldAtStart();
     for (size_t p = 0; p < index.passes(); ++p) {
         if (!index.active(p)) continue;
         for (const auto& u : index.usesOf(p)) {

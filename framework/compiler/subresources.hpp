@@ -72,21 +72,6 @@ public:
     /// Where resource `r`'s subresources start in a flat per-subresource array.
     [[nodiscard]] size_t first(size_t r) const noexcept { return first_[r]; }
 
-    /// A flat per-subresource array with resource r's entries set to init(r).
-    template <typename T, typename F>
-    [[nodiscard]] std::vector<T> makeArray(F&& init) const {
-        std::vector<T> out(total());
-        for (size_t r = 0; r < grids_.size(); ++r) {
-            if (first_[r + 1] == first_[r] + 1) {  // most resources: no call to fill for one value
-                out[first_[r]] = init(r);
-                continue;
-            }
-            std::fill(out.begin() + static_cast<std::ptrdiff_t>(first_[r]),
-                      out.begin() + static_cast<std::ptrdiff_t>(first_[r + 1]), init(r));
-        }
-        return out;
-    }
-
     /// Calls f(flat index) for every subresource of `range` of resource `r`.
     template <typename F>
     void forEach(size_t r, const SubresourceRange& range, F&& f) const {
