@@ -55,6 +55,7 @@ public:
             onlyCell_.push_back(cells == 1 && grids_.first(last) < kSeveralCells ? static_cast<uint32_t>(grids_.first(last))
                                                                                : kSeveralCells);
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
+            clearResources_ += r.clear.has_value();
             if (cells == 1) {  // most resources: the general insert costs more than the loop it saves
                 heldAtStart_.push_back(r.clear.has_value() || r.external);
                 liveAtEnd_.push_back(r.isExported());
@@ -121,6 +122,8 @@ public:
     [[nodiscard]] const std::vector<uint8_t>& liveAtEnd() const noexcept { return liveAtEnd_; }
     [[nodiscard]] const ResourceAspects& aspects(size_t r) const noexcept { return resources_[r].aspects; }
     [[nodiscard]] bool clear(size_t r) const noexcept { return resources_[r].clear; }
+    /// How many resources are `clear`.
+    [[nodiscard]] size_t clearResources() const noexcept { return clearResources_; }
     [[nodiscard]] bool external(size_t r) const noexcept { return resources_[r].external; }
     [[nodiscard]] bool exported(size_t r) const noexcept { return resources_[r].exported; }
     /// Output-relative images whose `mips` exceed what the output size gives them, in file
@@ -227,6 +230,7 @@ private:
     std::vector<PassNames> passNames_;               // per pass
     std::vector<NameTable::Ref> resourceNames_;      // per resource
     std::vector<ResourceFlags> resources_;
+    size_t clearResources_ = 0;
 };
 
 }  // namespace skygraph

@@ -43,18 +43,20 @@ static_assert(std::is_trivially_default_constructible_v<SubresourceState>);
 /// settles it, its own layout): what the sweeps need besides. Each resource's accesses are
 /// chained through `next`. It repeats what the forward sweep would otherwise look up per
 /// access in the per-resource tables, which it reaches in no useful order (a cache miss each).
+/// Trivially constructible: addAccess writes every field into an array it does not zero first.
 struct AccessRecord {
-    uint32_t step = 0;        ///< Index into Plan::passes.
-    uint32_t next = kNone;    ///< The same resource's next access.
+    uint32_t step;        ///< Index into Plan::passes.
+    uint32_t next;        ///< The same resource's next access, or kNone.
     /// Index of its first entry in Synchronizer::runScope_; only for resources with more
     /// than one subresource (see runScopeFrom).
-    uint32_t runScopes = 0;
-    uint32_t cell = 0;        ///< Flat index of its range's first subresource.
-    bool writes = false;      ///< Of the effective usage (a load-op clear writes).
-    bool loadOpClear = false; ///< The first use of a `clear` resource, cleared by the load op.
-    bool image = false;       ///< Of its resource.
-    bool firstOfResource = false;
+    uint32_t runScopes;
+    uint32_t cell;        ///< Flat index of its range's first subresource.
+    bool writes;          ///< Of the effective usage (a load-op clear writes).
+    bool loadOpClear;     ///< The first use of a `clear` resource, cleared by the load op.
+    bool image;           ///< Of its resource.
+    bool firstOfResource;
 };
+static_assert(std::is_trivially_default_constructible_v<AccessRecord>);
 
 /// Per plan resource, what the sweeps ask of it often (its ResourceDesc is large and cold).
 struct ResourceFacts {
@@ -93,18 +95,14 @@ bool sameParams(Barrier a, Barrier b) {
 /// access is in, a read's run layout is final.
 class ReadRuns {
 public:
+    /// Room for `accesses` accesses (no more may be added) over `subresources` subresources.
     void reserve(size_t accesses, size_t subresources) {
-        nodes_.reserve(accesses);
+        nodes_ = std::make_unique_for_overwrite<Node[]>(accesses);
         open_.assign(subresources, kNone);
     }
-    /// Adds the next access (`own`: the layout of an image read, UNDEFINED otherwise);
-    /// returns its index. An image's access then visits each subresource it touches (`sub`:
-    /// flat index).
-    uint32_t add(VkImageLayout own) {
-        const auto k = static_cast<uint32_t>(nodes_.size());
-        nodes_.push_back({k, own});
-        return k;
-    }
+    /// Adds access k, the next (`own`: the layout of an image read, UNDEFINED otherwise). An
+    /// image's access then visits each subresource it touches (`sub`: flat index).
+    void add(uint32_t k, VkImageLayout own) { nodes_[k] = {k, own}; }
     void visit(uint32_t k, size_t sub, bool read) {
         uint32_t& open = open_[sub];
         if (read && open != kNone) unite(open, k);
@@ -136,7 +134,7 @@ private:
         uint32_t parent;
         VkImageLayout layout;  // meaningful at run roots
     };
-    std::vector<Node> nodes_;            // per access
+    std::unique_ptr<Node[]> nodes_;      // per access
     std::vector<uint32_t> open_;         // per subresource: the latest read of its open run
 };
 
@@ -179,9 +177,11 @@ private:
         steps_.reserve(schedule.passes.size());
         plan_.resources.reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        accesses_.reserve(schedule.usages);
+        // Every scheduled usage, and one per inserted Clear: at most one per `clear` resource.
+        const size_t accessRoom = schedule.usages + index_.clearResources();
+        accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
         usages_->reserve(schedule.usages);  // inserted clears add a few more, rarely
-        readRuns_.reserve(schedule.usages, index_.grids().total());  // the plan's resources are fewer
+        readRuns_.reserve(accessRoom, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
@@ -193,8 +193,12 @@ private:
                 planIndex[d] = addResource(d);
                 if (index_.clear(d) && !clearsThroughLoadOp(uses[i])) clearsBefore.push_back(planIndex[d]);
             }
+            // The bound above is exact arithmetic; checked once per pass all the same, as the
+            // records are written without bounds checks.
+            if (accessCount_ + clearsBefore.size() + uses.size() > accessRoom)
+                throw std::logic_error("synchronizer: the access bound was exceeded");
             for (uint32_t r : clearsBefore) {
-                steps_.push_back({static_cast<uint32_t>(accesses_.size()), kInsertedPass});
+                steps_.push_back({accessCount_, kInsertedPass});
                 // Named once the compiler's own text is complete (emitSteps).
                 const uint32_t at = addOwnText("clear ");
                 addOwnText(plan_.resources[r].name);
@@ -202,7 +206,7 @@ private:
                                         static_cast<uint32_t>(ownText_.size() - at)});
                 addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
             }
-            steps_.push_back({static_cast<uint32_t>(accesses_.size()), static_cast<int32_t>(p)});
+            steps_.push_back({accessCount_, static_cast<int32_t>(p)});
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
@@ -246,7 +250,7 @@ private:
     /// Names the slot that the usage last added (`u`, of pass `pass`) fills.
     void addSlot(uint32_t pass, const IndexedUsage& u) {
         const std::string& slot = index_.declOf(pass, u).slot;
-        slotAt_.push_back({static_cast<uint32_t>(accesses_.size() - 1), addOwnText(slot),
+        slotAt_.push_back({accessCount_ - 1, addOwnText(slot),
                            static_cast<uint32_t>(slot.size())});
     }
     /// Appends to the compiler's own name table; returns where the text starts.
@@ -259,7 +263,7 @@ private:
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
     /// place in its resource's chain of accesses and in its read run (rule 4).
     void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range, bool loadOpClear) {
-        const auto k = static_cast<uint32_t>(accesses_.size());
+        const uint32_t k = accessCount_++;
         const Access effective = effectiveAccess(usage.access, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].aspects, effective, usage.stage, usage.as);
         // Constructed in place, each field stored once. Value-initialising the record zeroes
@@ -282,19 +286,22 @@ private:
         pu.layout = scope.layout;
         if (loadOpClear) pu.load = LoadOp::Clear;
 #endif
-        AccessRecord& a = accesses_.emplace_back();
+        AccessRecord& a = accesses_[k];
         a.step = static_cast<uint32_t>(steps_.size() - 1);
+        a.next = kNone;
         const ResourceFacts& facts = facts_[r];
         a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
         a.image = facts.aspects.image;
+        a.firstOfResource = false;
         a.cell = facts.firstCell + static_cast<uint32_t>(facts.grid.index(range.baseMip, range.baseLayer));
+        a.runScopes = 0;
         if (facts.grid.size() > 1) {
             a.runScopes = runScopeCount_;
             runScopeCount_ += static_cast<uint32_t>(cells(range));
             multiCellAccesses_.push_back(k);
         }
-        readRuns_.add(!a.writes && a.image ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED);
+        readRuns_.add(k, !a.writes && a.image ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED);
         if (a.image) {
             if (cells(range) == 1)  // most accesses; spelled out, as the lambda below is not inlined
                 readRuns_.visit(k, a.cell, !a.writes);
@@ -371,7 +378,7 @@ private:
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         // Room for the most barriers there can be (one per subresource an access touches), so
         // the array never moves and each pass's spans are set as its batch is done.
-        barriers.reserve(accesses_.size() - multiCellAccesses_.size() + runScopeCount_);
+        barriers.reserve(accessCount_ - multiCellAccesses_.size() + runScopeCount_);
         const Barrier* const base = barriers.data();
         const size_t room = barriers.capacity();
         // Each plan pass is written once, whole, here: built in planAccesses, its record would
@@ -409,7 +416,7 @@ private:
     }
     /// The end of step s's accesses.
     uint32_t stepEnd(uint32_t s) const {
-        return s + 1 < steps_.size() ? steps_[s + 1].firstAccess : static_cast<uint32_t>(accesses_.size());
+        return s + 1 < steps_.size() ? steps_[s + 1].firstAccess : accessCount_;
     }
 
     /// Whether a later access (or the export) reads what access `k` leaves in `range`.
@@ -727,7 +734,9 @@ private:
     uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
     // Per access (usage in plan order).
-    std::vector<AccessRecord> accesses_;
+    // Sized for every access there can be (planAccesses), so records are written in place.
+    std::unique_ptr<AccessRecord[]> accesses_;
+    uint32_t accessCount_ = 0;
     std::vector<PlannedUsage>* usages_ = nullptr;  // the plan's, one per access
     // The compiler's own name table: slot names and inserted clears' names, one after
     // another, and which usage's slot (slotAt_) or plan pass's name (clearNameAt_) views each.
