@@ -11,18 +11,20 @@
 set -euo pipefail
 old=$1 new=$2 rounds=${3:-25} filter=${4:-'BM_Compile/1000$|BM_Compile/10000$'}
 cpu=$(($(nproc) - 1))
-for _ in $(seq "$rounds"); do
+for round in $(seq "$rounds"); do
     for bin in "$old" "$new"; do
         taskset -c "$cpu" "$bin" --benchmark_filter="$filter" --benchmark_min_time=0.1 \
-            --benchmark_format=csv 2>/dev/null | grep '^"' | awk -F, -v b="$bin" '{print b, $1, $4}'
+            --benchmark_format=csv 2>/dev/null | grep '^"' | awk -F, -v b="$bin" -v r="$round" '{print r, b, $1, $4}'
     done
 done | python3 -c '
 import collections, statistics, sys
 old, new = sys.argv[1:3]
 times = collections.defaultdict(list)
+byRound = collections.defaultdict(dict)  # (name, round) -> {binary: time}
 for line in sys.stdin:
-    binary, name, cpu_us = line.split()  # the benchmarks report microseconds
+    rnd, binary, name, cpu_us = line.split()  # the benchmarks report microseconds
     times[(name.strip("\""), binary)].append(float(cpu_us))
+    byRound[(name.strip("\""), rnd)][binary] = float(cpu_us)
 for name in sorted({n for n, _ in times}):
     for binary, label in ((old, "old"), (new, "new")):
         t = sorted(times[(name, binary)])
@@ -31,7 +33,7 @@ for name in sorted({n for n, _ in times}):
               f"  min {t[0]:9.3f}  n={len(t)}")
     ratio = statistics.median(times[(name, new)]) / statistics.median(times[(name, old)])
     # The two runs of a round were seconds apart: their ratio cancels the drift between rounds.
-    paired = sorted(n / o for o, n in zip(times[(name, old)], times[(name, new)]))
+    paired = sorted(r[new] / r[old] for (n, _), r in byRound.items() if n == name and len(r) == 2)
     pq = statistics.quantiles(paired, n=4)
     print(f"{name:22} new/old median {ratio:.2f}; per round {statistics.median(paired):.3f}"
           f" (q1 {pq[0]:.3f}, q3 {pq[2]:.3f})")

@@ -56,7 +56,7 @@ public:
                                                                                : kSeveralCells);
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
             clearResources_ += r.clear.has_value();
-            if (cells == 1) {  // most resources: the general insert costs more than the loop it saves
+            if (cells == 1) {  // most resources: push_back is cheaper than insert(n, value)
                 heldAtStart_.push_back(r.clear.has_value() || r.external);
                 liveAtEnd_.push_back(r.isExported());
             } else {
@@ -71,6 +71,10 @@ public:
             }
         }
     }
+
+    /// Not copyable: plans view its name text, which a copy would share and could grow.
+    GraphIndex(const GraphIndex&) = delete;
+    GraphIndex& operator=(const GraphIndex&) = delete;
 
     [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
     [[nodiscard]] size_t passes() const noexcept { return passFlags_.size(); }

@@ -17,7 +17,8 @@ namespace skygraph {
 struct Schedule {
     std::vector<uint32_t> passes;     ///< Indices into GraphDesc::passes, in execution order.
     std::vector<CulledPass> culled;   ///< In file order.
-    size_t usages = 0;                ///< Of the scheduled passes (for reserving).
+    /// Of the scheduled passes, exactly: the synchronizer sizes its per-access arrays from it.
+    size_t usages = 0;
 };
 
 /// Adds a diagnostic for every read of a subresource that no earlier active pass wrote and

@@ -18,6 +18,7 @@ struct SubresourceGrid {
 
     SubresourceGrid() = default;
     SubresourceGrid(const ResourceDesc& r, uint32_t outputWidth, uint32_t outputHeight)
+        // mipCount is out of line: it is called only for "full" chains.
         : mips(!r.isImage() ? 1 : r.mips != 0 ? r.mips : r.mipCount(outputWidth, outputHeight)),
           layers(r.isImage() ? r.layers : 1) {}
 

@@ -95,8 +95,9 @@ bool sameParams(Barrier a, Barrier b) {
 /// access is in, a read's run layout is final.
 class ReadRuns {
 public:
-    /// Room for `accesses` accesses (no more may be added) over `subresources` subresources.
-    void reserve(size_t accesses, size_t subresources) {
+    /// Room for `accesses` accesses (no more may be added: add() does not check) over
+    /// `subresources` subresources.
+    void allocate(size_t accesses, size_t subresources) {
         nodes_ = std::make_unique_for_overwrite<Node[]>(accesses);
         open_.assign(subresources, kNone);
     }
@@ -154,8 +155,8 @@ public:
     }
 
 private:
-    /// What the barrier sweep needs of a plan pass (a scheduled pass or an inserted Clear;
-    /// where it comes from is the PlannedPass's declIndex).
+    /// What the barrier sweep needs of a plan pass (a scheduled pass or an inserted Clear),
+    /// and where it comes from, which the sweep writes into its PlannedPass.
     struct Step {
         uint32_t firstAccess = 0;  ///< Its accesses are [firstAccess, next step's).
         int32_t declIndex = kInsertedPass;  ///< PlannedPass::declIndex.
@@ -173,15 +174,16 @@ private:
     // Plan steps (with clears placed), plan resources, and an access record per usage.
     void planAccesses(const Schedule& schedule) {
         std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
-        // Reserved for the scheduled passes; inserted clears add a few more, rarely.
-        steps_.reserve(schedule.passes.size());
+        // Every scheduled pass and usage, and an inserted Clear (one access) at most per
+        // `clear` resource: at its first use only.
+        steps_.reserve(schedule.passes.size() + index_.clearResources());
         plan_.resources.reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        // Every scheduled usage, and one per inserted Clear: at most one per `clear` resource.
         const size_t accessRoom = schedule.usages + index_.clearResources();
+        if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
-        usages_->reserve(schedule.usages);  // inserted clears add a few more, rarely
-        readRuns_.reserve(accessRoom, index_.grids().total());  // the plan's resources are fewer
+        usages_->reserve(accessRoom);
+        readRuns_.allocate(accessRoom, index_.grids().total());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
@@ -193,7 +195,7 @@ private:
                 planIndex[d] = addResource(d);
                 if (index_.clear(d) && !clearsThroughLoadOp(uses[i])) clearsBefore.push_back(planIndex[d]);
             }
-            // The bound above is exact arithmetic; checked once per pass all the same, as the
+            // The bound above holds by construction; checked once per pass all the same, as the
             // records are written without bounds checks.
             if (accessCount_ + clearsBefore.size() + uses.size() > accessRoom)
                 throw std::logic_error("synchronizer: the access bound was exceeded");
@@ -237,7 +239,9 @@ private:
         const SubresourceGrid& grid = index_.grids()[firstUse.resource];
         return isAttachmentStage(firstUse.usage.stage) && grid.resolve(index_.writtenRange(firstUse)) == grid.whole();
     }
-    static inline const PlannedUsage kBlankUsage{};
+#if __cpp_aggregate_paren_init < 201902L
+    static inline const PlannedUsage kBlankUsage{};  // see addAccess
+#endif
     static constexpr int32_t kInsertedPass = -1;  // a Step's declIndex for an inserted Clear
     static constexpr std::string_view kClearType = "Clear";
     static constexpr UsageMode kClearUsage{Access::Write, Stage::Transfer, BindAs::Default};
@@ -371,7 +375,8 @@ private:
 
     /// Settles each usage's layout (rule 4) and attachment ops and writes the barriers before
     /// each pass, in one forward sweep. Barriers go straight into the plan's array, and each
-    /// pass's spans are set as soon as its batch is done.
+    /// PlannedPass is written as soon as its batch is done; then the plan takes the name
+    /// tables that its names view.
     void emitSteps() {
         state_ = std::make_unique_for_overwrite<SubresourceState[]>(cellCount_);
         auto& usages = *usages_;
@@ -381,8 +386,9 @@ private:
         barriers.reserve(accessCount_ - multiCellAccesses_.size() + runScopeCount_);
         const Barrier* const base = barriers.data();
         const size_t room = barriers.capacity();
-        // Each plan pass is written once, whole, here: built in planAccesses, its record would
-        // have left the cache by the time its spans are known.
+        // Each plan pass is written once, whole, here (an inserted Clear's name comes at the
+        // end): built in planAccesses, its record would have left the cache by the time its
+        // spans are known.
         plan_.passes.reserve(steps_.size());
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
@@ -407,12 +413,13 @@ private:
         // Pass and resource names view the index's name table; slots and inserted clears
         // view the compiler's own, which no longer grows.
         detail::PlanBuilder::keepNames(plan_, index_.names());
-        if (ownText_.empty()) return;
-        auto own = std::make_shared<const std::string>(std::move(ownText_));
-        const std::string_view text = *own;
-        for (const NameAt& n : slotAt_) usages[n.item].slot = text.substr(n.offset, n.length);
-        for (const NameAt& n : clearNameAt_) plan_.passes[n.item].name = text.substr(n.offset, n.length);
-        detail::PlanBuilder::keepNames(plan_, std::move(own));
+        if (!ownText_.empty()) {
+            auto own = std::make_shared<const std::string>(std::move(ownText_));
+            const std::string_view text = *own;
+            for (const NameAt& n : slotAt_) usages[n.item].slot = text.substr(n.offset, n.length);
+            for (const NameAt& n : clearNameAt_) plan_.passes[n.item].name = text.substr(n.offset, n.length);
+            detail::PlanBuilder::keepNames(plan_, std::move(own));
+        }
     }
     /// The end of step s's accesses.
     uint32_t stepEnd(uint32_t s) const {

@@ -30,8 +30,8 @@ void Renderer::Impl::buildGraphicsPipeline(PlanState& s, PassState& ps) {
     GraphicsPipelineRecipe recipe;
     recipe.bindings = layoutBindings(p.graphicsBindings);
     recipe.pushConstantBytes = 16;
-    recipe.vertex = shaders.compile(VK_SHADER_STAGE_VERTEX_BIT, p.vertexSource, std::string(pass.name) + ".vert");
-    recipe.fragment = shaders.compile(VK_SHADER_STAGE_FRAGMENT_BIT, p.fragmentSource, std::string(pass.name) + ".frag");
+    recipe.vertex = shaders.compile(VK_SHADER_STAGE_VERTEX_BIT, p.vertexSource, ps.label + ".vert");
+    recipe.fragment = shaders.compile(VK_SHADER_STAGE_FRAGMENT_BIT, p.fragmentSource, ps.label + ".frag");
     recipe.renderPass = ps.renderPass.get();
     for (uint32_t i = 0; i < p.vertexBuffers.size(); ++i) {
         recipe.vertexBindings.push_back({i, 4, VK_VERTEX_INPUT_RATE_VERTEX});

@@ -4,14 +4,15 @@
 // Storage: a Plan keeps all usages of all passes in one array and all pass barriers in
 // another; each PlannedPass views its part of them through spans, and names (of passes, pass
 // types, resources and slots) are views into string tables that copies of a plan share (they
-// are never modified). So compiling makes a handful of allocations instead of several per
-// pass, and copies no name. The spans point into the Plan
-// that holds the pass: copying a Plan rebases them onto the copy (each copy is valid on its
-// own, whatever happens to the original); moving a Plan keeps them valid. A PlannedPass or
-// PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged. Code that
-// edits a plan keeps every non-empty span viewing that plan's own arrays (reorder or drop
-// `passes` freely; change barriers through barriersOf/eraseBarrier): a copy rebases views
-// by their offset into those arrays.
+// are never modified): the text of every name in the graph, culled passes' and unused
+// resources' included, and the compiler's own (slots, inserted clears). So compiling makes a
+// handful of allocations instead of one or more per pass and name. The spans point into the
+// Plan that holds the pass: copying a Plan rebases them onto the copy (each copy is valid on
+// its own, whatever happens to the original); moving a Plan keeps them valid. A PlannedPass
+// or PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged. Code
+// that edits a plan keeps every non-empty span viewing that plan's own arrays (reorder or
+// drop `passes` freely; change barriers through barriersOf/eraseBarrier): a copy rebases
+// views by their offset into those arrays.
 #pragma once
 
 #include <skygraph/condition.hpp>
@@ -70,7 +71,8 @@ struct PlannedUsage {
 static_assert(sizeof(PlannedUsage) == 64, "PlannedUsage: keep it one cache line");
 
 /// A pass that runs. Its names view the plan's shared name tables (valid while any copy of
-/// the plan lives); code that renames a pass keeps the new text alive as long as the plan.
+/// the plan lives). A plan cannot take text of its own: code that renames a pass keeps the new
+/// text alive as long as the plan and every copy of it.
 struct PlannedPass {
     std::string_view name;
     std::string_view type;   ///< Pass type; "Clear" for a clear inserted by the compiler.

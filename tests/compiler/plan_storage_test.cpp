@@ -1,5 +1,6 @@
-// A Plan keeps every usage and barrier in two arrays that its passes view through spans
-// (include/skygraph/plan.hpp): copies must stand alone, and edits must keep every view right.
+// A Plan keeps every usage and barrier in two arrays that its passes view through spans, and
+// its names in shared tables that they view (include/skygraph/plan.hpp): copies must stand
+// alone, names must outlive the graph, and edits must keep every view right.
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 
@@ -82,6 +83,48 @@ TEST(PlanStorage, NamesOutliveTheGraphAndEveryOtherCopy) {
     ASSERT_EQ(copy.resources.size(), 2u);
     EXPECT_EQ(copy.resources[0].name, "accumulation_of_every_sample");
     EXPECT_EQ(copy.resources[1].name, "presented_image");
+}
+
+// No slots and no inserted clears: the names view the graph's table alone.
+TEST(PlanStorage, NamesOfAPlanWithoutSlotsOrClearsOutliveTheGraph) {
+    std::optional<Plan> plan;
+    {
+        const GraphDesc g = parseGraph(R"({"version": 1, "name": "plain", "features": {}, "resources": {
+            "an_image_with_a_name_past_the_small_string_size": {"type": "image2d", "format": "R8G8B8A8_UNORM",
+                                                                "extent": [8, 8], "final": "ShaderRead"}},
+          "passes": [{"name": "a_pass_with_a_name_past_the_small_string_size", "type": "Generic",
+                      "uses": {"an_image_with_a_name_past_the_small_string_size": "Write@Compute"}}]})",
+                                       "plain.json", PassRegistry::withBuiltins());
+        plan = compile(g);
+    }
+    ASSERT_EQ(plan->passes.size(), 1u);
+    EXPECT_EQ(plan->passes[0].name, "a_pass_with_a_name_past_the_small_string_size");
+    EXPECT_EQ(plan->passes[0].type, "Generic");
+    EXPECT_TRUE(plan->passes[0].usages[0].slot.empty());
+    ASSERT_EQ(plan->resources.size(), 1u);
+    EXPECT_EQ(plan->resources[0].name, "an_image_with_a_name_past_the_small_string_size");
+}
+
+// The most accesses a plan can have: every scheduled usage and a Clear per `clear` resource,
+// here one resource used twice (a mip each), outside an attachment, in its first pass: one
+// Clear, not two.
+TEST(PlanStorage, AClearResourceUsedTwiceInItsFirstPassGetsOneClear) {
+    const GraphDesc g = parseGraph(R"({"version": 1, "name": "twice", "features": {}, "resources": {
+        "lut": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "mips": 2,
+                "clear": {"color": [0, 0, 0, 0]}},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "final": "ShaderRead"}},
+      "passes": [{"name": "p", "type": "Generic", "uses": [
+          {"resource": "lut", "access": "Read", "stage": "Compute", "mips": [0, 1]},
+          {"resource": "lut", "access": "Read", "stage": "Fragment", "mips": [1, 1]},
+          {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]}]})",
+                                   "twice.json", PassRegistry::withBuiltins());
+    const Plan plan = compile(g);
+    ASSERT_EQ(plan.passes.size(), 2u);
+    EXPECT_EQ(plan.passes[0].type, "Clear");
+    EXPECT_EQ(plan.passes[0].name, "clear lut");
+    ASSERT_EQ(plan.passes[0].usages.size(), 1u);
+    EXPECT_EQ(plan.passes[1].name, "p");
+    EXPECT_EQ(plan.passes[1].usages.size(), 3u);
 }
 
 TEST(PlanStorage, EditsStayInTheirPlanAndKeepLaterPassesIntact) {
