@@ -39,12 +39,6 @@ std::string glslStorageFormat(VkFormat f) {
     }
 }
 
-std::string err(const PlannedPass& pass, const std::string& resource, const std::string& what) {
-    std::string s = "pass '" + std::string(pass.name) + "'";
-    if (!resource.empty()) s += ", resource '" + resource + "'";
-    return s + ": " + what;
-}
-
 uint16_t toHalf(float f) {
     uint32_t x;
     std::memcpy(&x, &f, 4);
@@ -273,14 +267,14 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
             if (ok) {
                 for (size_t i = 0; i < 4; ++i) p.color[i] = (*it)[i].get<float>();
             } else if (strictParams) {
-                throw ExecutorError(err(pass, "", "params.color must be an array of 4 numbers"));
+                throw ExecutorError(detail::passError(pass, "", "params.color must be an array of 4 numbers"));
             }
         }
         if (auto it = params.find("depth"); it != params.end()) {
             if (it->is_number() && it->get<double>() >= 0.0 && it->get<double>() <= 1.0) {
                 p.depthValue = it->get<float>();
             } else if (strictParams) {
-                throw ExecutorError(err(pass, "", "params.depth must be a number in [0, 1]"));
+                throw ExecutorError(detail::passError(pass, "", "params.depth must be a number in [0, 1]"));
             }
         }
     }
@@ -289,21 +283,21 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
     for (uint32_t i = 0; i < pass.usages.size(); ++i) {
         const PlannedUsage& u = pass.usages[i];
         if (u.resource >= plan.resources.size()) {
-            throw ExecutorError(err(pass, "", "usage refers to unknown plan resource"));
+            throw ExecutorError(detail::passError(pass, "", "usage refers to unknown plan resource"));
         }
         const ResourceDesc& r = graph.resources.at(plan.resources[u.resource].decl);
         switch (u.usage.stage) {
             case Stage::ColorAttachment:
                 if (!r.isImage() || r.format.isDepthStencil())
-                    throw ExecutorError(err(pass, r.name, "is not a color image"));
+                    throw ExecutorError(detail::passError(pass, r.name, "is not a color image"));
                 p.colors.push_back(i);
                 p.graphics = true;
                 break;
             case Stage::DepthAttachment:
                 if (!r.isImage() || !r.format.isDepthStencil())
-                    throw ExecutorError(err(pass, r.name, "is not a depth/stencil image"));
+                    throw ExecutorError(detail::passError(pass, r.name, "is not a depth/stencil image"));
                 if (p.depth >= 0)
-                    throw ExecutorError(err(pass, r.name, "a pass can have one depth attachment"));
+                    throw ExecutorError(detail::passError(pass, r.name, "a pass can have one depth attachment"));
                 p.depth = static_cast<int32_t>(i);
                 p.graphics = true;
                 break;
@@ -311,10 +305,10 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                 p.transfers.push_back(i);
                 break;
             case Stage::VertexInput:
-                if (r.isImage()) throw ExecutorError(err(pass, r.name, "VertexInput needs a buffer"));
+                if (r.isImage()) throw ExecutorError(detail::passError(pass, r.name, "VertexInput needs a buffer"));
                 if (u.usage.as == BindAs::Index) {
                     if (p.indexBuffer >= 0)
-                        throw ExecutorError(err(pass, r.name, "a pass can have one index buffer"));
+                        throw ExecutorError(detail::passError(pass, r.name, "a pass can have one index buffer"));
                     p.indexBuffer = static_cast<int32_t>(i);
                 } else {
                     p.vertexBuffers.push_back(i);
@@ -322,9 +316,9 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                 p.graphics = true;
                 break;
             case Stage::Indirect:
-                if (r.isImage()) throw ExecutorError(err(pass, r.name, "Indirect needs a buffer"));
+                if (r.isImage()) throw ExecutorError(detail::passError(pass, r.name, "Indirect needs a buffer"));
                 if (p.indirectBuffer >= 0)
-                    throw ExecutorError(err(pass, r.name, "a pass can have one indirect buffer"));
+                    throw ExecutorError(detail::passError(pass, r.name, "a pass can have one indirect buffer"));
                 p.indirectBuffer = static_cast<int32_t>(i);
                 p.graphics = true;
                 break;
@@ -357,13 +351,13 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                                          : VK_IMAGE_VIEW_TYPE_2D;
                         b.glslFormat = glslStorageFormat(r.format.format);
                         if (b.read && b.glslFormat.empty()) {
-                            throw ExecutorError(err(pass, r.name,
+                            throw ExecutorError(detail::passError(pass, r.name,
                                                     "format " + std::string(r.format.name) +
                                                         " cannot be read as a storage image"));
                         }
                         if (!b.read) b.glslFormat.clear();  // write-only: no qualifier needed
                     } else {
-                        throw ExecutorError(err(pass, r.name, "an image cannot be a uniform buffer"));
+                        throw ExecutorError(detail::passError(pass, r.name, "an image cannot be a uniform buffer"));
                     }
                 } else {
                     if (as == BindAs::Uniform) {
@@ -374,7 +368,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                         b.kind = BindKind::StorageBuffer;
                     }
                     if (r.sizeBytes < 4)
-                        throw ExecutorError(err(pass, r.name, "buffer is smaller than 4 bytes"));
+                        throw ExecutorError(detail::passError(pass, r.name, "buffer is smaller than 4 bytes"));
                 }
                 if (b.stage == VK_SHADER_STAGE_COMPUTE_BIT) {
                     p.computeBindings.push_back(b);
@@ -391,7 +385,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
     if (p.depth >= 0)
         p.attachmentLayers = std::max(p.attachmentLayers, pass.usages[size_t(p.depth)].range.layerCount);
     if (p.attachmentLayers > 1 && !layeredRendering) {
-        throw ExecutorError(err(pass, "", "rendering to several layers needs shaderOutputLayer"));
+        throw ExecutorError(detail::passError(pass, "", "rendering to several layers needs shaderOutputLayer"));
     }
 
     const std::string header =

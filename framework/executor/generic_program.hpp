@@ -71,4 +71,14 @@ struct GenericProgram {
 [[nodiscard]] std::vector<uint8_t> encodeTexel(VkFormat format, uint32_t texelBytes,
                                                const std::array<float, 4>& color);
 
+namespace detail {
+/// "pass 'P', resource 'R': what" (", resource" only when `resource` is set): how the
+/// executor's errors name what they are about.
+inline std::string passError(const PlannedPass& pass, const std::string& resource, const std::string& what) {
+    std::string s = "pass '" + std::string(pass.name) + "'";
+    if (!resource.empty()) s += ", resource '" + resource + "'";
+    return s + ": " + what;
+}
+}  // namespace detail
+
 }  // namespace skygraph

@@ -30,12 +30,6 @@ namespace skygraph::detail {
 
 inline constexpr uint64_t kWaitForever = std::numeric_limits<uint64_t>::max();
 
-inline std::string passError(const PlannedPass& pass, const std::string& resource, const std::string& what) {
-    std::string s = "pass '" + std::string(pass.name) + "'";
-    if (!resource.empty()) s += ", resource '" + resource + "'";
-    return s + ": " + what;
-}
-
 inline VkImageAspectFlags aspectOf(const FormatInfo& f) {
     if (!f.isDepthStencil()) return VK_IMAGE_ASPECT_COLOR_BIT;
     VkImageAspectFlags a = 0;
