@@ -50,19 +50,14 @@ public:
         for (const auto& r : graph.resources) {
             resourceNames_.push_back(names_.add(r.name));
             grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
-            const size_t last = grids_.resources() - 1;
-            const size_t cells = grids_[last].size();
-            onlyCell_.push_back(cells == 1 && grids_.first(last) < kSeveralCells ? static_cast<uint32_t>(grids_.first(last))
-                                                                               : kSeveralCells);
+            const size_t last = grids_.resources() - 1, cells = grids_[last].size();
+            const bool single = cells == 1 && grids_.first(last) < kSeveralCells;
+            onlyCell_.push_back(single ? static_cast<uint32_t>(grids_.first(last)) : kSeveralCells);
             resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
-            clearResources_ += r.clear.has_value();
-            if (cells == 1) {  // most resources: push_back is cheaper than insert(n, value)
-                heldAtStart_.push_back(r.clear.has_value() || r.external);
-                liveAtEnd_.push_back(r.isExported());
-            } else {
-                heldAtStart_.insert(heldAtStart_.end(), cells, r.clear.has_value() || r.external);
-                liveAtEnd_.insert(liveAtEnd_.end(), cells, r.isExported());
-            }
+            const ResourceFlags& flags = resources_.back();
+            clearResources_ += flags.clear;
+            appendCells(heldAtStart_, cells, flags.clear || flags.external);
+            appendCells(liveAtEnd_, cells, flags.exported);
             // One level always fits (most images): the extent is resolved only for more.
             if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
                 const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
@@ -138,6 +133,12 @@ public:
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> rangedUses() const noexcept { return ranged_; }
 
 private:
+    /// Appends `count` subresources' `value`; one (most resources) without insert's overhead.
+    static void appendCells(std::vector<uint8_t>& cells, size_t count, bool value) {
+        if (count == 1) cells.push_back(value);
+        else cells.insert(cells.end(), count, value);
+    }
+
     void indexPasses(const std::optional<FeatureValues>& features) {
         const size_t passes = graph_.passes.size();
         passFlags_.reserve(passes);

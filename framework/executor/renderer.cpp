@@ -408,7 +408,7 @@ HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
         const GenericProgram& p = ps.program;
         if (ps.isClear || !p.transfers.empty() || !p.vertexBuffers.empty() || p.indexBuffer >= 0 ||
             p.indirectBuffer >= 0) {
-            throw ExecutorError("pass '" + std::string(ps.pass->name) + "': hand recording covers draws and dispatches only");
+            throw ExecutorError(passError(*ps.pass, "", "hand recording covers draws and dispatches only"));
         }
         HandPass h;
         h.imageBarriers = sl.imageBarriers;
