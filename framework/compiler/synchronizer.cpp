@@ -123,6 +123,7 @@ private:
         nodes_[from].parent = to;
         const VkImageLayout joined = nodes_[from].layout;
         VkImageLayout& l = nodes_[to].layout;
+        if (l == joined) return;  // most runs: readers that agree (commonReadLayout is out of line)
         // Only image reads join runs, and each brings a read layout (the loader rejects image
         // usages without one), so UNDEFINED is never met here; it is kept as the identity so
         // that a hand-built graph cannot make the result depend on the order of joining.
