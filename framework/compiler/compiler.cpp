@@ -63,6 +63,15 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     // Mip counts of output-relative images can only be checked against a real output size.
     // The index finds them (and the ranged usages below) in the walks it makes anyway.
     const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
+    // A GraphDesc built in code can name a resource that is not there: every sweep would
+    // index past its tables.
+    for (const auto& [pass, k] : index.invalidUses()) {
+        const IndexedUsage& iu = index.use(k);
+        diags.add({graph.file, index.declOf(pass, iu).jsonPath, graph.passes[pass].name, "",
+                   "names resource index " + std::to_string(iu.resource) + ", but the graph has " +
+                       std::to_string(graph.resources.size()) + " resource(s)"});
+    }
+    if (!index.invalidUses().empty()) throw GraphError(std::move(diags));
     for (const uint32_t i : index.tooManyMips()) {
         const ResourceDesc& r = graph.resources[i];
         const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
@@ -81,7 +90,6 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     // for buffers and to word a diagnostic.
     for (const auto& [pass, k] : index.rangedUses()) {
         const IndexedUsage& iu = index.use(k);
-        if (iu.resource >= graph.resources.size()) continue;
         const bool image = index.aspects(iu.resource).image;
         const SubresourceGrid& grid = index.grids()[iu.resource];
         const ResourceDesc* r = image ? nullptr : &graph.resources[iu.resource];

@@ -131,6 +131,10 @@ public:
     /// The active passes' usages that name a range, as (pass, usage index for use()), in
     /// file order: what compile() checks against the resolved mip chains.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> rangedUses() const noexcept { return ranged_; }
+    /// Usages, of any pass, whose resource index is past the graph's resources, as (pass,
+    /// usage index for use()), in file order. Only a GraphDesc built in code has them (the
+    /// loader writes none); compile() reports them, and no sweep may run on such an index.
+    [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> invalidUses() const noexcept { return invalid_; }
 
 private:
     /// Appends `count` subresources' `value`; one (most resources) without insert's overhead.
@@ -160,6 +164,7 @@ private:
         uses_.reserve(estimate(sampledUses));
         ranges_.reserve(estimate(sampledRanges));
         names_.reserve(estimate(sampledNameBytes) + 8 * graph_.resources.size());
+        const size_t resources = graph_.resources.size();
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
@@ -171,6 +176,8 @@ private:
                 iu.usage = u.usage.mode();
                 iu.resource = u.resource;
                 iu.fillsSlot = !u.slot.empty();
+                if (u.resource >= resources)
+                    invalid_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size() - 1));
                 if (u.usage.range) {
                     iu.rangeIndex = static_cast<uint32_t>(ranges_.size());
                     ranges_.push_back(*u.usage.range);
@@ -224,6 +231,7 @@ private:
     std::vector<IndexedUsage> uses_;
     std::vector<SubresourceRange> ranges_;  // the written ranges that uses_ refer to
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
+    std::vector<std::pair<uint32_t, uint32_t>> invalid_;
     std::vector<uint32_t> tooManyMips_;
     SubresourceGrids grids_;            // per resource
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask

@@ -481,6 +481,25 @@ TEST(Ranges, AnEmptyRangeFromCodeIsAnError) {
     }
 }
 
+// The loader only writes resource indices it resolved, but an embedder's GraphDesc can name one
+// past the graph's resources: compile() names the pass and the usage's JSON path rather than
+// reading past the end of its per-resource tables (under ASan, a heap overflow without it).
+TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
+    GraphDesc raster = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json",
+                                     PassRegistry::withBuiltins());
+    ASSERT_GE(raster.passes.size(), 2u);
+    UsageDecl& use = raster.passes[1].uses.at(0);
+    use.resource = static_cast<uint32_t>(raster.resources.size() + 7);
+    const std::string text = compileErrorText(raster);
+    ASSERT_FALSE(text.empty()) << "expected a GraphError";
+    EXPECT_NE(text.find(use.jsonPath), std::string::npos) << text;
+    EXPECT_NE(text.find("pass '" + raster.passes[1].name + "'"), std::string::npos) << text;
+    EXPECT_NE(text.find("names resource index " + std::to_string(use.resource) + ", but the graph has " +
+                        std::to_string(raster.resources.size()) + " resource(s)"),
+              std::string::npos)
+        << text;
+}
+
 // A planned usage keeps how it was written (access, stage, binding) and the range the compiler
 // resolved: the written range where there is one, the whole resource where there is none.
 TEST(Ranges, APlannedUsageKeepsItsModeAndTheResolvedRange) {
