@@ -1,6 +1,14 @@
+// The synchronizer's sweeps over the plan's accesses: the first (planAccesses) places clears,
+// records every usage and joins read runs; a backward one gives multi-subresource reads their
+// run scopes; the last (emitSteps) settles layouts and attachment ops and writes the barriers.
+// The rules themselves live beside it: one subresource's hazards in barrier_rules.hpp, the
+// layout of a run of reads in read_runs.hpp, merging of ranges in barrier_merge.hpp.
 #include "synchronizer.hpp"
 
+#include "barrier_merge.hpp"
+#include "barrier_rules.hpp"
 #include "plan_builder.hpp"
+#include "read_runs.hpp"
 #include "subresources.hpp"
 #include "vulkan_state.hpp"
 
@@ -17,26 +25,6 @@ namespace skygraph {
 namespace {
 
 constexpr uint32_t kNone = ~0u;
-
-/// What is known about one subresource between passes. Value-initialised (`{}`), it is the
-/// undefined state: nothing written, no layout. Trivially constructible, so that the array of
-/// them is not zeroed up front (see startState).
-struct SubresourceState {
-    VkImageLayout layout;
-    /// Contents came from outside the frame; a barrier needing a source stage chains with
-    /// the semaphore wait at the first use's stages. (Beside the layout: 48 bytes, not 56.)
-    bool fromOutside;
-    VkPipelineStageFlags2 writeStages;    ///< Stages of the last write (or the outside).
-    /// Write accesses of that write. A barrier whose source is `writeStages` always repeats
-    /// them: an earlier availability operation only counts for barriers that chain after the
-    /// barrier that performed it (through its destination stages), which this one may not.
-    VkAccessFlags2 writeAccess;
-    VkPipelineStageFlags2 readStages;     ///< Reads since the last write: WAR sources.
-    VkPipelineStageFlags2 visibleStages;  ///< Scope the last write is visible to.
-    VkAccessFlags2 visibleAccess;
-};
-static_assert(sizeof(SubresourceState) == 48);
-static_assert(std::is_trivially_default_constructible_v<SubresourceState>);
 
 /// One usage in plan order (access k is the k-th usage of the plan), beside its PlannedUsage
 /// (written when the access is recorded: resource, range, stages, access and, until rule 4
@@ -69,75 +57,6 @@ struct ResourceFacts {
     ResourceAspects aspects;  ///< Whether it is an image, for vulkanScope.
     bool exported = false;
     bool external = false;
-};
-
-/// Stages and accesses without a layout: what a read run's scope needs.
-struct StageAccess {
-    VkPipelineStageFlags2 stages = 0;
-    VkAccessFlags2 access = 0;
-};
-
-bool covers(VkPipelineStageFlags2 haveStages, VkAccessFlags2 haveAccess, const VulkanScope& need) {
-    return (need.stages & ~haveStages) == 0 && (need.access & ~haveAccess) == 0;
-}
-
-/// Whether two barriers could be one, apart from their ranges (rule 11).
-bool sameParams(Barrier a, Barrier b) {
-    a.range = b.range = {};
-    return a == b;
-}
-
-/// Rule 4: reads of overlapping subresources of an image with no write between form a run,
-/// and the run gets one layout that serves all its readers. Accesses join runs as they are
-/// added in plan order (union-find over access indices, so runs never span resources), each
-/// read bringing its own layout; when two runs join, so do their layouts. commonReadLayout
-/// is commutative and associative, so the order of joining does not matter: once every
-/// access is in, a read's run layout is final.
-class ReadRuns {
-public:
-    /// Room for `accesses` accesses (no more may be added: add() does not check) over
-    /// `subresources` subresources.
-    void allocate(size_t accesses, size_t subresources) {
-        nodes_ = std::make_unique_for_overwrite<Node[]>(accesses);
-        open_.assign(subresources, kNone);
-    }
-    /// Adds access k, the next (`own`: the layout of an image read, UNDEFINED otherwise). An
-    /// image's access then visits each subresource it touches (`sub`: flat index).
-    void add(uint32_t k, VkImageLayout own) { nodes_[k] = {k, own}; }
-    void visit(uint32_t k, size_t sub, bool read) {
-        uint32_t& open = open_[sub];
-        if (read && open != kNone) unite(open, k);
-        open = read ? k : kNone;  // a write ends the run
-    }
-    /// The layout of read k's run, once every access is added.
-    VkImageLayout layout(uint32_t k) { return nodes_[find(k)].layout; }
-
-private:
-    uint32_t find(uint32_t a) {
-        while (nodes_[a].parent != a) a = nodes_[a].parent = nodes_[nodes_[a].parent].parent;
-        return a;
-    }
-    void unite(uint32_t a, uint32_t b) {
-        const uint32_t from = find(a), to = find(b);
-        if (from == to) return;
-        nodes_[from].parent = to;
-        const VkImageLayout joined = nodes_[from].layout;
-        VkImageLayout& l = nodes_[to].layout;
-        if (l == joined) return;  // most runs: readers that agree (commonReadLayout is out of line)
-        // Only image reads join runs, and each brings a read layout (the loader rejects image
-        // usages without one), so UNDEFINED is never met here; it is kept as the identity so
-        // that a hand-built graph cannot make the result depend on the order of joining.
-        l = l == VK_IMAGE_LAYOUT_UNDEFINED ? joined
-            : joined == VK_IMAGE_LAYOUT_UNDEFINED ? l
-                                                  : commonReadLayout(l, joined);
-    }
-
-    struct Node {
-        uint32_t parent;
-        VkImageLayout layout;  // meaningful at run roots
-    };
-    std::unique_ptr<Node[]> nodes_;      // per access
-    std::vector<uint32_t> open_;         // per subresource: the latest read of its open run
 };
 
 class Synchronizer {
@@ -396,7 +315,7 @@ private:
             const Step& step = steps_[s];
             const uint32_t first = step.firstAccess, end = stepEnd(s);
             for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
-            if (step.mayMerge) mergeAdjacent(barriers, batch);
+            if (step.mayMerge) BarrierMerger::mergeAdjacent(barriers, batch);
             const std::span<const Barrier> batchView =
                 barriers.size() > batch ? std::span<const Barrier>(base + batch, barriers.size() - batch)
                                         : std::span<const Barrier>();
@@ -493,74 +412,6 @@ private:
         facts_[r].grid.forEach(range, [&](size_t sub) { f(base + sub); });
     }
 
-    /// The barrier subresource `st` needs before an access with scope `need` that reads, or
-    /// writes (`write`), and must find it in `target` layout (`discard`: its old contents
-    /// may be dropped in a layout change).
-    /// `visibleAfter()` gives what a barrier before a read makes visible; it is asked only
-    /// when a read needs one.
-    template <typename VisibleAfter>
-    std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need, VkImageLayout target,
-                                      bool write, bool discard, VisibleAfter&& visibleAfter) {
-        Barrier b;
-        if (!barrierInto(b, st, need, target, write, discard, visibleAfter)) return std::nullopt;
-        return b;
-    }
-    /// The same, written into `b` (default-constructed by the caller, usually in place at
-    /// the end of the batch): whether a barrier is needed. Nothing is copied on the way.
-    template <typename VisibleAfter>
-    bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkImageLayout target,
-                     bool write, bool discard, VisibleAfter&& visibleAfter) {
-        const bool layoutChange = st.layout != target;
-        b.dstStages = need.stages;
-        b.dstAccess = need.access;
-        b.oldLayout = discard && layoutChange ? VK_IMAGE_LAYOUT_UNDEFINED : st.layout;
-        b.newLayout = target;
-        bool needed = layoutChange;
-        if (write) {
-            // WAR: the reads since the last write chain after it, so waiting for them is an
-            // execution dependency that also orders this write after that write.
-            if (st.readStages) {
-                b.srcStages = st.readStages;
-                needed = true;
-            } else if (st.writeStages && !(st.fromOutside && covers(st.visibleStages, st.visibleAccess, need))) {
-                b.srcStages = st.writeStages;  // WAW: memory dependency
-                b.srcAccess = st.writeAccess;
-                needed = true;
-            } else if (layoutChange && st.fromOutside) {
-                b.srcStages = st.writeStages;
-            }
-        } else {
-            const bool visible = covers(st.visibleStages, st.visibleAccess, need);
-            if (layoutChange) {
-                // The transition writes, so it waits for earlier reads (WAR). Those reads chain
-                // after the barrier that made the last write available, so they alone are the
-                // source then; without reads, the write is (RAW, a memory dependency).
-                b.srcStages = st.readStages ? st.readStages : st.writeStages;
-                b.srcAccess = st.readStages ? 0 : st.writeAccess;
-            } else if (!visible && (st.writeStages || st.fromOutside)) {
-                b.srcStages = st.writeStages;  // RAW: memory dependency
-                b.srcAccess = st.writeAccess;
-                needed = true;
-            }
-            if (needed) {
-                const StageAccess after = visibleAfter();
-                b.dstStages = after.stages;
-                b.dstAccess = after.access;
-            }
-        }
-        if (needed && b.srcStages == 0 && st.fromOutside) b.srcStages = b.dstStages;
-        if (!needed) return false;
-        // What the barrier achieved.
-        st.layout = target;
-        st.fromOutside = st.fromOutside && !write;
-        if (!write) {
-            // A transition rewrites the memory: only this barrier's scope sees the result.
-            st.visibleStages = (layoutChange ? 0 : st.visibleStages) | b.dstStages;
-            st.visibleAccess = (layoutChange ? 0 : st.visibleAccess) | b.dstAccess;
-        }
-        return true;
-    }
-
     /// Barriers for one usage (access `k`) onto `batch`, then the state after it, and the
     /// usage's layout (its read run's) and attachment ops.
     void applyAccess(PlannedUsage& pu, uint32_t k, std::vector<Barrier>& batch) {
@@ -574,16 +425,6 @@ private:
         const bool discard = pu.usage.access == Access::Write;  // a load-op clear only turns Read into ReadWrite
         const VulkanScope need{pu.stages, pu.access, pu.layout};
         const VkImageLayout target = image ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
-        auto update = [&](SubresourceState& st) {
-            if (write) {
-                st = SubresourceState{};
-                st.layout = target;
-                st.writeStages = pu.stages;
-                st.writeAccess = writeBits(pu.access);
-            } else {
-                st.readStages |= pu.stages;
-            }
-        };
         if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
             SubresourceState& st = state_[a.cell];
             Barrier& b = batch.emplace_back();
@@ -595,7 +436,7 @@ private:
             } else {
                 batch.pop_back();
             }
-            update(st);
+            recordAccess(st, write, target, need);
         } else {
             const SubresourceGrid& grid = facts_[r].grid;
             SubresourceState* states = stateOf(r);
@@ -604,9 +445,9 @@ private:
             grid.forEach(pu.range, [&](size_t sub) {
                 const auto runScope = [&, c = cell++] { return runScopeFrom(k, r, c); };
                 perSub_.push_back(barrierFor(states[sub], need, target, write, discard, runScope));
-                update(states[sub]);
+                recordAccess(states[sub], write, target, need);
             });
-            emitMerged(r, pu.range, perSub_, batch);
+            merger_.emitMerged(r, image ? BarrierKind::Image : BarrierKind::Buffer, pu.range, perSub_, batch);
         }
 
         if (isAttachmentStage(pu.usage.stage)) {
@@ -621,84 +462,6 @@ private:
             PlannedResource& res = plan_.resources[r];
             res.lastPass = a.step;
             res.finalLayout = stateOf(r)->layout;
-        }
-    }
-
-    /// Coalesces per-subresource barriers (`perSub`: one per subresource of `range`, in
-    /// forEach order) into as few rectangles of mips x layers as agree.
-    void emitMerged(uint32_t r, const SubresourceRange& range,
-                    const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
-        const BarrierKind kind = isImage(r) ? BarrierKind::Image : BarrierKind::Buffer;
-        auto& open = mergeOpen_;  // rectangles that may still grow by one more mip
-        auto& row = mergeRow_;
-        auto& next = mergeNext_;
-        open.clear();
-        size_t c = 0;
-        for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m) {
-            row.clear();
-            for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l) {
-                const auto& b = perSub[c++];
-                if (!b) continue;
-                Barrier nb = *b;
-                nb.resource = r;
-                nb.kind = kind;
-                nb.range = {m, 1, l, 1};
-                if (!row.empty() && sameParams(row.back(), nb) &&
-                    row.back().range.baseLayer + row.back().range.layerCount == l) {
-                    row.back().range.layerCount++;
-                    continue;
-                }
-                row.push_back(nb);
-            }
-            next.clear();
-            for (auto& seg : row) {
-                auto it = std::find_if(open.begin(), open.end(), [&](const Barrier& o) {
-                    return sameParams(o, seg) && o.range.baseLayer == seg.range.baseLayer &&
-                           o.range.layerCount == seg.range.layerCount &&
-                           o.range.baseMip + o.range.mipCount == m;
-                });
-                if (it != open.end()) {
-                    it->range.mipCount++;
-                    next.push_back(*it);
-                    open.erase(it);
-                } else {
-                    next.push_back(seg);
-                }
-            }
-            out.insert(out.end(), open.begin(), open.end());  // closed: they did not grow
-            std::swap(open, next);
-        }
-        out.insert(out.end(), open.begin(), open.end());
-    }
-
-    /// Joins barriers of one batch (`batch` from `first` on) that differ only in adjoining
-    /// ranges, e.g. the per-mip usages of a pass that writes every level.
-    static void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
-        for (bool merged = true; merged;) {  // after each merge, look again from the start
-            merged = false;
-            const size_t n = batch.size();
-            for (size_t i = first; i + 1 < n && !merged; ++i) {
-                Barrier& a = batch[i];
-                for (size_t j = i + 1; j < n; ++j) {
-                    const Barrier& b = batch[j];
-                    // Most batches hold one barrier per resource: the resource alone rules them out.
-                    if (a.resource != b.resource || !sameParams(a, b)) continue;
-                    const bool sameLayers = a.range.baseLayer == b.range.baseLayer &&
-                                            a.range.layerCount == b.range.layerCount;
-                    const bool sameMips = a.range.baseMip == b.range.baseMip &&
-                                          a.range.mipCount == b.range.mipCount;
-                    if (sameLayers && a.range.baseMip + a.range.mipCount == b.range.baseMip) {
-                        a.range.mipCount += b.range.mipCount;
-                    } else if (sameMips && a.range.baseLayer + a.range.layerCount == b.range.baseLayer) {
-                        a.range.layerCount += b.range.layerCount;
-                    } else {
-                        continue;
-                    }
-                    batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(j));
-                    merged = true;
-                    break;
-                }
-            }
         }
     }
 
@@ -727,7 +490,8 @@ private:
                                              nextUseWrites, false,
                                              [&] { return StageAccess{scope.stages, scope.access}; }));
             });
-            emitMerged(r, grid.whole(), perSub_, plan_.finalBarriers);
+            merger_.emitMerged(r, isImage(r) ? BarrierKind::Image : BarrierKind::Buffer, grid.whole(), perSub_,
+                               plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         }
     }
@@ -759,7 +523,7 @@ private:
     std::unique_ptr<SubresourceState[]> state_;  // each resource's set at its first access
     // Scratch, reused across usages.
     std::vector<std::optional<Barrier>> perSub_;
-    std::vector<Barrier> mergeOpen_, mergeRow_, mergeNext_;
+    BarrierMerger merger_;
 };
 
 }  // namespace

@@ -1,0 +1,107 @@
+// Rule 11 of docs/barriers.md: barriers that agree in everything but their subresource
+// ranges become one barrier over the union of those ranges, when it is a rectangle of mips x
+// layers. Internal to the synchronizer (synchronizer.cpp).
+#pragma once
+
+#include <skygraph/plan.hpp>
+
+#include <algorithm>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace skygraph {
+
+/// Whether two barriers could be one, apart from their ranges (rule 11).
+inline bool sameParams(Barrier a, Barrier b) {
+    a.range = b.range = {};
+    return a == b;
+}
+
+/// Merges barriers of one resource's range as they are emitted, and of a finished batch.
+/// Keeps its scratch between calls (one per synchronizer).
+class BarrierMerger {
+public:
+    /// Appends to `out` the per-subresource barriers of resource `r` (`perSub`: one per
+    /// subresource of `range`, in SubresourceGrid::forEach order; empty where none is
+    /// needed), coalesced into as few rectangles of mips x layers as agree.
+    void emitMerged(uint32_t r, BarrierKind kind, const SubresourceRange& range,
+                    const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
+        auto& open = open_;  // rectangles that may still grow by one more mip
+        auto& row = row_;
+        auto& next = next_;
+        open.clear();
+        size_t c = 0;
+        for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m) {
+            row.clear();
+            for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l) {
+                const auto& b = perSub[c++];
+                if (!b) continue;
+                Barrier nb = *b;
+                nb.resource = r;
+                nb.kind = kind;
+                nb.range = {m, 1, l, 1};
+                if (!row.empty() && sameParams(row.back(), nb) &&
+                    row.back().range.baseLayer + row.back().range.layerCount == l) {
+                    row.back().range.layerCount++;
+                    continue;
+                }
+                row.push_back(nb);
+            }
+            next.clear();
+            for (auto& seg : row) {
+                auto it = std::find_if(open.begin(), open.end(), [&](const Barrier& o) {
+                    return sameParams(o, seg) && o.range.baseLayer == seg.range.baseLayer &&
+                           o.range.layerCount == seg.range.layerCount &&
+                           o.range.baseMip + o.range.mipCount == m;
+                });
+                if (it != open.end()) {
+                    it->range.mipCount++;
+                    next.push_back(*it);
+                    open.erase(it);
+                } else {
+                    next.push_back(seg);
+                }
+            }
+            out.insert(out.end(), open.begin(), open.end());  // closed: they did not grow
+            std::swap(open, next);
+        }
+        out.insert(out.end(), open.begin(), open.end());
+    }
+
+    /// Joins barriers of one batch (`batch` from `first` on) that differ only in adjoining
+    /// ranges, e.g. the per-mip usages of a pass that writes every level.
+    static void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
+        for (bool merged = true; merged;) {  // after each merge, look again from the start
+            merged = false;
+            const size_t n = batch.size();
+            for (size_t i = first; i + 1 < n && !merged; ++i) {
+                Barrier& a = batch[i];
+                for (size_t j = i + 1; j < n; ++j) {
+                    const Barrier& b = batch[j];
+                    // Most batches hold one barrier per resource: the resource alone rules them out.
+                    if (a.resource != b.resource || !sameParams(a, b)) continue;
+                    const bool sameLayers = a.range.baseLayer == b.range.baseLayer &&
+                                            a.range.layerCount == b.range.layerCount;
+                    const bool sameMips = a.range.baseMip == b.range.baseMip &&
+                                          a.range.mipCount == b.range.mipCount;
+                    if (sameLayers && a.range.baseMip + a.range.mipCount == b.range.baseMip) {
+                        a.range.mipCount += b.range.mipCount;
+                    } else if (sameMips && a.range.baseLayer + a.range.layerCount == b.range.baseLayer) {
+                        a.range.layerCount += b.range.layerCount;
+                    } else {
+                        continue;
+                    }
+                    batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(j));
+                    merged = true;
+                    break;
+                }
+            }
+        }
+    }
+
+private:
+    std::vector<Barrier> open_, row_, next_;  // emitMerged's scratch
+};
+
+}  // namespace skygraph
