@@ -91,7 +91,7 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     for (const auto& [pass, k] : index.rangedUses()) {
         const IndexedUsage& iu = index.use(k);
         const bool image = index.aspects(iu.resource).image;
-        const SubresourceGrid& grid = index.grids()[iu.resource];
+        const SubresourceGrid& grid = index.grid(iu.resource);
         const ResourceDesc* r = image ? nullptr : &graph.resources[iu.resource];
         const uint32_t levels = std::max(1u, r ? r->mipCount(options.outputWidth, options.outputHeight) : grid.mips);
         const uint32_t layers = std::max(1u, r ? r->layers : grid.layers);

@@ -17,6 +17,7 @@
 #include <memory>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -41,24 +42,25 @@ public:
     /// Grids are resolved at the given output size.
     GraphIndex(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                uint32_t outputWidth, uint32_t outputHeight)
-        : graph_(graph), grids_(graph.resources.size()) {
+        : graph_(graph) {
         indexPasses(features);
         resources_.reserve(graph.resources.size());
-        resourceNames_.reserve(graph.resources.size());
         onlyCell_.reserve(graph.resources.size());
         heldAtStart_.reserve(graph.resources.size() * 9 / 8);  // most resources have one subresource
         liveAtEnd_.reserve(graph.resources.size() * 9 / 8);
         for (const auto& r : graph.resources) {
-            resourceNames_.push_back(names_.add(r.name));
-            grids_.add(SubresourceGrid(r, outputWidth, outputHeight));
-            const size_t last = grids_.resources() - 1, cells = grids_[last].size();
-            const bool single = cells == 1 && grids_.first(last) < kSeveralCells;
-            onlyCell_.push_back(single ? static_cast<uint32_t>(grids_.first(last)) : kSeveralCells);
-            resources_.push_back({aspectsOf(r), r.clear.has_value(), r.external, r.isExported()});
-            const ResourceFlags& flags = resources_.back();
-            clearResources_ += flags.clear;
-            appendCells(heldAtStart_, cells, flags.clear || flags.external);
-            appendCells(liveAtEnd_, cells, flags.exported);
+            // One record per resource, written once (each array of its own cost a push_back).
+            const SubresourceGrid grid(r, outputWidth, outputHeight);
+            const size_t cells = grid.size();
+            if (cells >= kSeveralCells - cells_) throw std::length_error("graph index: more subresources than cell indices");
+            const IndexedResource& res = resources_.emplace_back(
+                IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
+                                r.clear.has_value(), r.external, r.isExported()});
+            onlyCell_.push_back(cells == 1 ? static_cast<uint32_t>(cells_) : kSeveralCells);
+            cells_ += cells;
+            clearResources_ += res.clear;
+            appendCells(heldAtStart_, cells, res.clear || res.external);
+            appendCells(liveAtEnd_, cells, res.exported);
             // One level always fits (most images): the extent is resolved only for more.
             if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
                 const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
@@ -92,7 +94,7 @@ public:
     /// PassDesc/ResourceDesc would miss the cache. Valid while the index or that text lives.
     [[nodiscard]] std::string_view passName(size_t pass) const noexcept { return names_[passNames_[pass].name]; }
     [[nodiscard]] std::string_view passType(size_t pass) const noexcept { return names_[passNames_[pass].type]; }
-    [[nodiscard]] std::string_view resourceName(size_t r) const noexcept { return names_[resourceNames_[r]]; }
+    [[nodiscard]] std::string_view resourceName(size_t r) const noexcept { return names_[resources_[r].name]; }
     /// The text every name above views, complete once the index is built.
     [[nodiscard]] std::shared_ptr<const std::string> names() const noexcept { return names_.text(); }
     /// The pass's usage as declared (slot, JSON path): `u` must come from usesOf(pass).
@@ -101,22 +103,26 @@ public:
     }
 
     /// Per resource (index into GraphDesc::resources).
-    [[nodiscard]] const SubresourceGrids& grids() const noexcept { return grids_; }
+    [[nodiscard]] const SubresourceGrid& grid(size_t r) const noexcept { return resources_[r].grid; }
+    /// Subresources of all resources together: the size of a flat per-subresource array,
+    /// which holds each resource's end to end, in file order.
+    [[nodiscard]] size_t cells() const noexcept { return cells_; }
     /// The range the usage's file entry names; null when it names none (the whole resource).
     [[nodiscard]] const SubresourceRange* writtenRange(const IndexedUsage& u) const noexcept {
         return u.rangeIndex == IndexedUsage::kWhole ? nullptr : &ranges_[u.rangeIndex];
     }
     [[nodiscard]] SubresourceRange range(const IndexedUsage& u) const noexcept {
-        return grids_[u.resource].resolve(writtenRange(u));
+        return resources_[u.resource].grid.resolve(writtenRange(u));
     }
     /// Calls f(flat index) for every subresource the usage touches; a resource of one
     /// subresource (most of them) skips resolving the range.
     template <typename F>
     void forEachCell(const IndexedUsage& u, F&& f) const {
         if (const uint32_t cell = onlyCell_[u.resource]; cell != kSeveralCells) return f(size_t(cell));
-        grids_.forEach(u.resource, range(u), f);
+        const IndexedResource& res = resources_[u.resource];
+        res.grid.forEach(range(u), [&](size_t sub) { f(res.firstCell + sub); });
     }
-    /// Per subresource of every resource (flat, as grids() lays them out): whether it holds
+    /// Per subresource of every resource (flat, as cells() lays them out): whether it holds
     /// contents when the frame starts (its resource is `clear` or `external`), and whether
     /// they are wanted when it ends (exported). What the read check and culling start from.
     [[nodiscard]] const std::vector<uint8_t>& heldAtStart() const noexcept { return heldAtStart_; }
@@ -240,11 +246,14 @@ private:
     };
     struct PassNames { NameTable::Ref name, type; };
 
-    struct ResourceFlags {
+    struct IndexedResource {
+        SubresourceGrid grid;    ///< At the output size.
+        uint32_t firstCell;      ///< Where its subresources start in a flat per-subresource array.
+        NameTable::Ref name;
         ResourceAspects aspects;
-        bool clear = false;
-        bool external = false;
-        bool exported = false;
+        bool clear;
+        bool external;
+        bool exported;
     };
 
     const GraphDesc& graph_;
@@ -256,7 +265,6 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
     std::vector<std::pair<uint32_t, uint32_t>> invalid_;
     std::vector<uint32_t> tooManyMips_;
-    SubresourceGrids grids_;            // per resource
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask
     // it of every usage; from the grids it takes two lookups and a multiplication.
     static constexpr uint32_t kSeveralCells = ~0u;
@@ -264,8 +272,8 @@ private:
     std::vector<uint8_t> heldAtStart_, liveAtEnd_;  // per subresource
     NameTable names_;
     std::vector<PassNames> passNames_;               // per pass
-    std::vector<NameTable::Ref> resourceNames_;      // per resource
-    std::vector<ResourceFlags> resources_;
+    std::vector<IndexedResource> resources_;         // per resource
+    size_t cells_ = 0;                               // subresources of all resources
     size_t clearResources_ = 0;
 };
 

@@ -1,6 +1,6 @@
-// A resource's mip x layer grid, flattened, for per-subresource state tracking; and the grids
-// of a whole graph laid end to end, so that per-subresource values of every resource live in
-// one flat array (one allocation per sweep, not one per resource).
+// A resource's mip x layer grid, flattened, for per-subresource state tracking. GraphIndex lays
+// the grids of a whole graph end to end, so that per-subresource values of every resource live
+// in one flat array (one allocation per sweep, not one per resource).
 #pragma once
 
 #include <skygraph/graph.hpp>
@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <vector>
 
 namespace skygraph {
 
@@ -52,37 +51,5 @@ struct SubresourceGrid {
 [[nodiscard]] inline size_t cells(const SubresourceRange& r) noexcept {
     return size_t(r.mipCount) * r.layerCount;
 }
-
-/// The grids of a list of resources, each with its first index into a flat array that holds
-/// one value per subresource of every resource (CSR layout).
-class SubresourceGrids {
-public:
-    SubresourceGrids() = default;
-    explicit SubresourceGrids(size_t reserve) {
-        grids_.reserve(reserve);
-        first_.reserve(reserve + 1);
-    }
-    void add(const SubresourceGrid& g) {
-        grids_.push_back(g);
-        first_.push_back(first_.back() + g.size());
-    }
-    [[nodiscard]] const SubresourceGrid& operator[](size_t r) const noexcept { return grids_[r]; }
-    [[nodiscard]] size_t resources() const noexcept { return grids_.size(); }
-    /// Subresources of all resources together: the size of a flat per-subresource array.
-    [[nodiscard]] size_t total() const noexcept { return first_.back(); }
-    /// Where resource `r`'s subresources start in a flat per-subresource array.
-    [[nodiscard]] size_t first(size_t r) const noexcept { return first_[r]; }
-
-    /// Calls f(flat index) for every subresource of `range` of resource `r`.
-    template <typename F>
-    void forEach(size_t r, const SubresourceRange& range, F&& f) const {
-        const size_t base = first_[r];
-        grids_[r].forEach(range, [&](size_t sub) { f(base + sub); });
-    }
-
-private:
-    std::vector<SubresourceGrid> grids_;
-    std::vector<size_t> first_ = std::vector<size_t>(1, 0);
-};
 
 }  // namespace skygraph

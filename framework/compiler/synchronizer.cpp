@@ -103,7 +103,7 @@ private:
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
         usages_->reserve(accessRoom);
-        readRuns_.allocate(accessRoom, index_.grids().total());  // the plan's resources are fewer
+        readRuns_.allocate(accessRoom, index_.cells());  // the plan's resources are fewer
         std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
@@ -145,7 +145,7 @@ private:
         PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
-        const SubresourceGrid& grid = index_.grids()[declIndex];
+        const SubresourceGrid& grid = index_.grid(declIndex);
         facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
                           index_.external(declIndex)});
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
@@ -156,7 +156,7 @@ private:
     // A `clear` resource is cleared by its first use: through the load op when that use is an
     // attachment covering the whole resource, otherwise by a Clear pass inserted before it.
     bool clearsThroughLoadOp(const IndexedUsage& firstUse) const {
-        const SubresourceGrid& grid = index_.grids()[firstUse.resource];
+        const SubresourceGrid& grid = index_.grid(firstUse.resource);
         return isAttachmentStage(firstUse.usage.stage) && grid.resolve(index_.writtenRange(firstUse)) == grid.whole();
     }
 #if __cpp_aggregate_paren_init < 201902L
