@@ -3,14 +3,17 @@
 // layers. Internal to the synchronizer (synchronizer.cpp).
 #pragma once
 
+#include "subresources.hpp"
+
 #include <skygraph/plan.hpp>
 
 #include <algorithm>
+#include <cassert>
 #include <cstddef>
 #include <optional>
 #include <vector>
 
-namespace skygraph {
+namespace skygraph::sync {
 
 /// Whether two barriers could be one, apart from their ranges (rule 11).
 inline bool sameParams(Barrier a, Barrier b) {
@@ -18,8 +21,8 @@ inline bool sameParams(Barrier a, Barrier b) {
     return a == b;
 }
 
-/// Merges barriers of one resource's range as they are emitted, and of a finished batch.
-/// Keeps its scratch between calls (one per synchronizer).
+/// Merges the barriers of one resource's range as they are emitted. Keeps its scratch
+/// between calls (one per synchronizer).
 class BarrierMerger {
 public:
     /// Appends to `out` the per-subresource barriers of resource `r` (`perSub`: one per
@@ -27,6 +30,7 @@ public:
     /// needed), coalesced into as few rectangles of mips x layers as agree.
     void emitMerged(uint32_t r, BarrierKind kind, const SubresourceRange& range,
                     const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
+        assert(perSub.size() == cells(range));
         auto& open = open_;  // rectangles that may still grow by one more mip
         auto& row = row_;
         auto& next = next_;
@@ -69,39 +73,39 @@ public:
         out.insert(out.end(), open.begin(), open.end());
     }
 
-    /// Joins barriers of one batch (`batch` from `first` on) that differ only in adjoining
-    /// ranges, e.g. the per-mip usages of a pass that writes every level.
-    static void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
-        for (bool merged = true; merged;) {  // after each merge, look again from the start
-            merged = false;
-            const size_t n = batch.size();
-            for (size_t i = first; i + 1 < n && !merged; ++i) {
-                Barrier& a = batch[i];
-                for (size_t j = i + 1; j < n; ++j) {
-                    const Barrier& b = batch[j];
-                    // Most batches hold one barrier per resource: the resource alone rules them out.
-                    if (a.resource != b.resource || !sameParams(a, b)) continue;
-                    const bool sameLayers = a.range.baseLayer == b.range.baseLayer &&
-                                            a.range.layerCount == b.range.layerCount;
-                    const bool sameMips = a.range.baseMip == b.range.baseMip &&
-                                          a.range.mipCount == b.range.mipCount;
-                    if (sameLayers && a.range.baseMip + a.range.mipCount == b.range.baseMip) {
-                        a.range.mipCount += b.range.mipCount;
-                    } else if (sameMips && a.range.baseLayer + a.range.layerCount == b.range.baseLayer) {
-                        a.range.layerCount += b.range.layerCount;
-                    } else {
-                        continue;
-                    }
-                    batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(j));
-                    merged = true;
-                    break;
-                }
-            }
-        }
-    }
-
 private:
     std::vector<Barrier> open_, row_, next_;  // emitMerged's scratch
 };
 
-}  // namespace skygraph
+/// Joins barriers of one batch (`batch` from `first` on) that differ only in adjoining
+/// ranges, e.g. the per-mip usages of a pass that writes every level.
+inline void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
+    for (bool merged = true; merged;) {  // after each merge, look again from the start
+        merged = false;
+        const size_t n = batch.size();
+        for (size_t i = first; i + 1 < n && !merged; ++i) {
+            Barrier& a = batch[i];
+            for (size_t j = i + 1; j < n; ++j) {
+                const Barrier& b = batch[j];
+                // Most batches hold one barrier per resource: the resource alone rules them out.
+                if (a.resource != b.resource || !sameParams(a, b)) continue;
+                const bool sameLayers = a.range.baseLayer == b.range.baseLayer &&
+                                        a.range.layerCount == b.range.layerCount;
+                const bool sameMips = a.range.baseMip == b.range.baseMip &&
+                                      a.range.mipCount == b.range.mipCount;
+                if (sameLayers && a.range.baseMip + a.range.mipCount == b.range.baseMip) {
+                    a.range.mipCount += b.range.mipCount;
+                } else if (sameMips && a.range.baseLayer + a.range.layerCount == b.range.baseLayer) {
+                    a.range.layerCount += b.range.layerCount;
+                } else {
+                    continue;
+                }
+                batch.erase(batch.begin() + static_cast<std::ptrdiff_t>(j));
+                merged = true;
+                break;
+            }
+        }
+    }
+}
+
+}  // namespace skygraph::sync

@@ -11,7 +11,7 @@
 #include <optional>
 #include <type_traits>
 
-namespace skygraph {
+namespace skygraph::sync {
 
 /// What is known about one subresource between passes. Value-initialised (`{}`), it is the
 /// undefined state: nothing written, no layout. Trivially constructible, so that an array of
@@ -113,17 +113,17 @@ std::optional<Barrier> barrierFor(SubresourceState& st, const VulkanScope& need,
     return b;
 }
 
-/// What an access leaves in `st` after its barrier: a write replaces everything known (in
+/// What an access (of `scope`) leaves in `st` after its barrier: a write replaces everything known (in
 /// `target` layout); a read adds its stages to the reads a later write must wait for (WAR).
-inline void recordAccess(SubresourceState& st, bool write, VkImageLayout target, const VulkanScope& access) {
+inline void recordAccess(SubresourceState& st, bool write, VkImageLayout target, const VulkanScope& scope) {
     if (write) {
         st = SubresourceState{};
         st.layout = target;
-        st.writeStages = access.stages;
-        st.writeAccess = writeBits(access.access);
+        st.writeStages = scope.stages;
+        st.writeAccess = writeBits(scope.access);
     } else {
-        st.readStages |= access.stages;
+        st.readStages |= scope.stages;
     }
 }
 
-}  // namespace skygraph
+}  // namespace skygraph::sync

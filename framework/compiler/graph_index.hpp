@@ -9,10 +9,12 @@
 #include "vulkan_state.hpp"
 
 #include <skygraph/condition.hpp>
+#include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <optional>
@@ -49,10 +51,17 @@ public:
         heldAtStart_.reserve(graph.resources.size() * 9 / 8);  // most resources have one subresource
         liveAtEnd_.reserve(graph.resources.size() * 9 / 8);
         for (const auto& r : graph.resources) {
-            // One record per resource, written once (each array of its own cost a push_back).
             const SubresourceGrid grid(r, outputWidth, outputHeight);
             const size_t cells = grid.size();
-            if (cells >= kSeveralCells - cells_) throw std::length_error("graph index: more subresources than cell indices");
+            // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can
+            // come near (the loader bounds mips and layers).
+            if (cells > kMaxCells - cells_) {
+                Diagnostics d;
+                d.add({graph.file, r.jsonPath, "", r.name,
+                       "the graph's resources have more than " + std::to_string(kMaxCells) +
+                           " subresources (mip levels x layers) together"});
+                throw GraphError(std::move(d));
+            }
             const IndexedResource& res = resources_.emplace_back(
                 IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
                                 r.clear.has_value(), r.external, r.isExported()});
@@ -122,7 +131,8 @@ public:
         const IndexedResource& res = resources_[u.resource];
         res.grid.forEach(range(u), [&](size_t sub) { f(res.firstCell + sub); });
     }
-    /// Per subresource of every resource (flat, as cells() lays them out): whether it holds
+    /// Per subresource of every resource (flat: a resource's start at its first cell, in file
+    /// order, as forEachCell numbers them): whether it holds
     /// contents when the frame starts (its resource is `clear` or `external`), and whether
     /// they are wanted when it ends (exported). What the read check and culling start from.
     [[nodiscard]] const std::vector<uint8_t>& heldAtStart() const noexcept { return heldAtStart_; }
@@ -171,7 +181,7 @@ private:
         const auto estimate = [&](size_t total) { return sampled ? total * passes / sampled * 9 / 8 : 0; };
         uses_.reserve(estimate(sampledUses));
         ranges_.reserve(estimate(sampledRanges));
-        names_.reserve(estimate(sampledNameBytes) + 8 * graph_.resources.size());
+        names_.makeRoom(estimate(sampledNameBytes) + 8 * graph_.resources.size());
         const size_t resources = graph_.resources.size();
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
@@ -221,14 +231,19 @@ private:
             used_ += s.size();
             return ref;
         }
-        /// Room for `bytes` more bytes of names; more may be added all the same.
-        void reserve(size_t bytes) { text_->resize(used_ + bytes); }
-        /// Done adding: the text is exactly the names.
-        void finish() { text_->resize(used_); }
+        /// Room for `bytes` more bytes of names, made now (the text is written in place);
+        /// more may be added all the same.
+        void makeRoom(size_t bytes) { text_->resize(used_ + bytes); }
+        /// Done adding: the text is exactly the names. (Refs are 32-bit: a larger text,
+        /// which only a GraphDesc built in code could have, is refused here.)
+        void finish() {
+            if (used_ > UINT32_MAX) throw std::length_error("graph index: more than 4 GiB of names");
+            text_->resize(used_);
+        }
         std::string_view operator[](Ref r) const noexcept { return {text_->data() + r.offset, r.length}; }
         [[nodiscard]] std::shared_ptr<const std::string> text() const noexcept { return text_; }
     private:
-        /// memcpy, with names of up to 16 bytes (nearly all) copied inline as two overlapping
+        /// memcpy, with names of 4 to 16 bytes (nearly all) copied inline as two overlapping
         /// words rather than through a call.
         static void copyName(char* to, const char* from, size_t n) noexcept {
             if (n >= 8 && n <= 16) {
@@ -266,8 +281,10 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> invalid_;
     std::vector<uint32_t> tooManyMips_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask
-    // it of every usage; from the grids it takes two lookups and a multiplication.
+    // it of every usage, from an array dense enough to stay in cache (the resource records
+    // are 28 bytes each); otherwise it takes the record, a range and a multiplication.
     static constexpr uint32_t kSeveralCells = ~0u;
+    static constexpr uint32_t kMaxCells = kSeveralCells - 1;
     std::vector<uint32_t> onlyCell_;
     std::vector<uint8_t> heldAtStart_, liveAtEnd_;  // per subresource
     NameTable names_;

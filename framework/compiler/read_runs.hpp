@@ -4,11 +4,12 @@
 
 #include "vulkan_state.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
-namespace skygraph {
+namespace skygraph::sync {
 
 /// Rule 4: reads of overlapping subresources of an image with no write between form a run,
 /// and the run gets one layout that serves all its readers. Accesses join runs as they are
@@ -64,4 +65,4 @@ private:
     std::vector<uint32_t> open_;         // per subresource: the latest read of its open run
 };
 
-}  // namespace skygraph
+}  // namespace skygraph::sync

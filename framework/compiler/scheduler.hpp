@@ -26,7 +26,9 @@ struct Schedule {
 /// feature switched off); which passes are active comes from `index`.
 void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureValues>& features,
                            Diagnostics& out);
-/// The same for the loader: every pass active, at a default output size.
+/// The same for the loader: every pass active, at a default output size. For a loaded graph
+/// only: every usage must name one of its resources (compile() checks a GraphDesc built in
+/// code first; see GraphIndex::invalidUses).
 void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                            Diagnostics& out, uint32_t outputWidth = 1920,
                            uint32_t outputHeight = 1080);

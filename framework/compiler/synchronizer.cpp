@@ -24,6 +24,8 @@
 namespace skygraph {
 namespace {
 
+using namespace sync;  // the rules beside this file: barrier_rules.hpp, read_runs.hpp, barrier_merge.hpp
+
 constexpr uint32_t kNone = ~0u;
 
 /// One usage in plan order (access k is the k-th usage of the plan), beside its PlannedUsage
@@ -315,7 +317,7 @@ private:
             const Step& step = steps_[s];
             const uint32_t first = step.firstAccess, end = stepEnd(s);
             for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
-            if (step.mayMerge) BarrierMerger::mergeAdjacent(barriers, batch);
+            if (step.mayMerge) mergeAdjacent(barriers, batch);
             const std::span<const Barrier> batchView =
                 barriers.size() > batch ? std::span<const Barrier>(base + batch, barriers.size() - batch)
                                         : std::span<const Barrier>();

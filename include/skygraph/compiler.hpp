@@ -49,7 +49,11 @@ struct CompileOptions {
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the
-/// feature values (a read whose only writer is switched off, an unknown feature override).
+/// feature values (a read whose only writer is switched off, an unknown feature override) or
+/// on the output size (a mip range past the resolved chain), and for what only a GraphDesc
+/// built in code can hold: a usage naming a resource index past `resources`, an empty range,
+/// or more subresources than 32-bit indices can number. Every error names what it can of the
+/// file, JSON path, pass and resource.
 [[nodiscard]] Plan compile(const GraphDesc& graph, const CompileOptions& options = {});
 
 }  // namespace skygraph

@@ -489,7 +489,7 @@ TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
                                      PassRegistry::withBuiltins());
     ASSERT_GE(raster.passes.size(), 2u);
     UsageDecl& use = raster.passes[1].uses.at(0);
-    use.resource = static_cast<uint32_t>(raster.resources.size() + 7);
+    use.resource = static_cast<uint32_t>(raster.resources.size());  // the first index past the end
     const std::string text = compileErrorText(raster);
     ASSERT_FALSE(text.empty()) << "expected a GraphError";
     EXPECT_NE(text.find(use.jsonPath), std::string::npos) << text;
@@ -498,6 +498,22 @@ TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
                         std::to_string(raster.resources.size()) + " resource(s)"),
               std::string::npos)
         << text;
+}
+
+// Subresources are numbered with 32 bits: a GraphDesc built in code whose images have more
+// layers than that together is an error naming the resource, not a wrapped index.
+TEST(GraphsFromCode, MoreSubresourcesThan32BitIndicesIsAnError) {
+    GraphDesc raster = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json",
+                                     PassRegistry::withBuiltins());
+    ResourceDesc* image = nullptr;
+    for (auto& r : raster.resources)
+        if (r.isImage() && !image) image = &r;
+    ASSERT_NE(image, nullptr);
+    image->layers = UINT32_MAX;
+    const std::string text = compileErrorText(raster);
+    ASSERT_FALSE(text.empty()) << "expected a GraphError";
+    EXPECT_NE(text.find("resource '" + image->name + "'"), std::string::npos) << text;
+    EXPECT_NE(text.find("subresources (mip levels x layers) together"), std::string::npos) << text;
 }
 
 // A planned usage keeps how it was written (access, stage, binding) and the range the compiler
