@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <span>
 
 namespace skygraph {
 namespace {
@@ -38,9 +39,10 @@ std::string switchedOffWriter(const GraphIndex& index, const std::optional<Featu
     return {};
 }
 
-/// Whether a write of pass p reaches a subresource that is live (`live`: flat, per subresource).
-bool writesLive(const GraphIndex& index, size_t p, const std::vector<uint8_t>& live) {
-    for (const auto& u : index.usesOf(p)) {
+/// Whether a write of a pass (`uses`) reaches a subresource that is live (`live`: flat, per
+/// subresource).
+bool writesLive(const GraphIndex& index, std::span<const IndexedUsage> uses, const std::vector<uint8_t>& live) {
+    for (const auto& u : uses) {
         if (!writesContents(u.usage.access)) continue;
         bool anyLive = false;
         index.forEachCell(u, [&](size_t i) { anyLive |= live[i] != 0; });
@@ -73,15 +75,16 @@ void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std
     std::vector<uint8_t> live = index.liveAtEnd();
     for (size_t p = index.passes(); p-- > 0;) {
         if (!index.active(p)) continue;
-        if (!index.neverCull(p) && !writesLive(index, p, live)) {
+        const auto uses = index.usesOf(p);
+        if (!index.neverCull(p) && !writesLive(index, uses, live)) {
             culled[p] = 1;
             reasons[p] = unreadWritesReason(graph, graph.passes[p]);
             continue;
         }
-        for (const auto& u : index.usesOf(p))
+        for (const auto& u : uses)
             if (u.usage.access == Access::Write)
                 index.forEachCell(u, [&](size_t i) { live[i] = 0; });
-        for (const auto& u : index.usesOf(p))
+        for (const auto& u : uses)
             if (readsContents(u.usage.access))
                 index.forEachCell(u, [&](size_t i) { live[i] = 1; });
     }
@@ -101,7 +104,8 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
     std::vector<uint8_t> written = index.heldAtStart();
     for (size_t p = 0; p < index.passes(); ++p) {
         if (!index.active(p)) continue;
-        for (const auto& u : index.usesOf(p)) {
+        const auto uses = index.usesOf(p);
+        for (const auto& u : uses) {
             if (!readsContents(u.usage.access)) continue;
             bool missing = false;
             index.forEachCell(u, [&](size_t i) { missing |= written[i] == 0; });
@@ -112,7 +116,7 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
                          ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
                          switchedOffWriter(index, features, p, u.resource)});
         }
-        for (const auto& u : index.usesOf(p))
+        for (const auto& u : uses)
             if (writesContents(u.usage.access))
                 index.forEachCell(u, [&](size_t i) { written[i] = 1; });
     }

@@ -148,8 +148,13 @@ private:
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
         const SubresourceGrid& grid = index_.grid(declIndex);
+#if __cpp_aggregate_paren_init >= 201902L  // in place: a braced temporary is built, then copied
+        facts_.emplace_back(kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
+                            index_.external(declIndex));
+#else
         facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
                           index_.external(declIndex)});
+#endif
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
         return static_cast<uint32_t>(plan_.resources.size() - 1);
