@@ -123,14 +123,16 @@ private:
                 throw std::logic_error("synchronizer: the access bound was exceeded");
             for (uint32_t r : clearsBefore) {
                 steps_.push_back({accessCount_, kInsertedPass});
+                currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
                 // Named once the compiler's own text is complete (emitSteps).
                 const uint32_t at = addOwnText("clear ");
                 addOwnText(plan_.resources[r].name);
-                clearNameAt_.push_back({static_cast<uint32_t>(steps_.size() - 1), at,
+                clearNameAt_.push_back({currentStep_, at,
                                         static_cast<uint32_t>(ownText_.size() - at)});
                 addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
             }
             steps_.push_back({accessCount_, static_cast<int32_t>(p)});
+            currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
             for (size_t i = 0; i < uses.size(); ++i) {
                 const IndexedUsage& u = uses[i];
                 const uint32_t r = planIndex[u.resource];
@@ -218,16 +220,17 @@ private:
         if (loadOpClear) pu.load = LoadOp::Clear;
 #endif
         AccessRecord& a = accesses_[k];
-        a.step = static_cast<uint32_t>(steps_.size() - 1);
+        a.step = currentStep_;
         a.next = kNone;
         const ResourceFacts& facts = facts_[r];
         a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
         a.image = facts.aspects.image;
         a.firstOfResource = false;
-        a.cell = facts.firstCell + static_cast<uint32_t>(facts.grid.index(range.baseMip, range.baseLayer));
+        a.cell = facts.firstCell;  // of a resource of one subresource, every range compile() accepts
         a.runScopes = 0;
         if (facts.grid.size() > 1) {
+            a.cell += static_cast<uint32_t>(facts.grid.index(range.baseMip, range.baseLayer));
             a.runScopes = runScopeCount_;
             runScopeCount_ += static_cast<uint32_t>(cells(range));
             multiCellAccesses_.push_back(k);
@@ -397,8 +400,11 @@ private:
     /// second miss per line). External resources' states are written field by field (a local
     /// SubresourceState copied in would stall the CPU's store forwarding, once per resource).
     void startState(uint32_t r) {
-        SubresourceState* states = stateOf(r);
-        std::fill_n(states, facts_[r].grid.size(), SubresourceState{});
+        const ResourceFacts& facts = facts_[r];
+        SubresourceState* states = &state_[facts.firstCell];
+        const size_t cells = facts.grid.size();
+        if (cells == 1) *states = SubresourceState{};  // most resources; fill_n's loop costs more
+        else std::fill_n(states, cells, SubresourceState{});
         if (!facts_[r].external) return;
         const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
         for (size_t i = 0; i < facts_[r].grid.size(); ++i) {
@@ -512,6 +518,7 @@ private:
     std::vector<uint32_t> exported_;       // plan resources that are exported, in plan order
     uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
+    uint32_t currentStep_ = 0;             // the step last added, whose accesses are being added
     // Per access (usage in plan order).
     // Sized for every access there can be (planAccesses), so records are written in place.
     std::unique_ptr<AccessRecord[]> accesses_;
