@@ -56,7 +56,8 @@ struct ResourceFacts {
     /// Where its subresources start in the per-subresource arrays (state_, and the read
     /// runs' and run scopes' scratch), which hold the plan's resources end to end.
     uint32_t firstCell = 0;
-    ResourceAspects aspects;  ///< Whether it is an image, for vulkanScope.
+    ResourceAspects aspects;  ///< Whether it is an image.
+    ScopeRow scopeRow{};      ///< The aspects as vulkanScope's table row.
     bool exported = false;
     bool external = false;
 };
@@ -151,11 +152,11 @@ private:
         res.name = index_.resourceName(declIndex);
         const SubresourceGrid& grid = index_.grid(declIndex);
 #if __cpp_aggregate_paren_init >= 201902L  // in place: a braced temporary is built, then copied
-        facts_.emplace_back(kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
-                            index_.external(declIndex));
+        facts_.emplace_back(kNone, kNone, grid, cellCount_, index_.aspects(declIndex),
+                            scopeRow(index_.aspects(declIndex)), index_.exported(declIndex), index_.external(declIndex));
 #else
-        facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex), index_.exported(declIndex),
-                          index_.external(declIndex)});
+        facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex),
+                          scopeRow(index_.aspects(declIndex)), index_.exported(declIndex), index_.external(declIndex)});
 #endif
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
@@ -198,7 +199,7 @@ private:
     void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range, bool loadOpClear) {
         const uint32_t k = accessCount_++;
         const Access effective = effectiveAccess(usage.access, loadOpClear);
-        const VulkanScope scope = vulkanScope(facts_[r].aspects, effective, usage.stage, usage.as);
+        const VulkanScope scope = vulkanScope(facts_[r].scopeRow, effective, usage.stage, usage.as);
         // Constructed in place, each field stored once. Value-initialising the record zeroes
         // it with `rep stos`, whose start-up cost is paid once per usage; building it as a
         // braced temporary first stores its empty slot as two 8-byte halves, which the copy

@@ -48,10 +48,18 @@ extern const std::array<VulkanScope, kScopeTableSize> kScopeTable;
 /// usage's own when a load-op clear makes a read a read-write. (The fields are passed one by
 /// one: a copy of the Usage with one byte changed and then read whole stalls the store
 /// forwarding of the CPU's load unit, measurably so at one usage per call.)
-[[nodiscard]] inline VulkanScope vulkanScope(const ResourceAspects& r, Access access, Stage stage, BindAs as) noexcept {
-    const size_t aspects = size_t(r.image) | size_t(r.depth) << 1 | size_t(r.stencil) << 2;
-    return detail::kScopeTable[((aspects * detail::kScopeStages + size_t(stage)) * detail::kScopeAccesses +
+/// A resource's aspects as the table's row, which the compiler keeps per resource rather than
+/// combine three flags at every usage.
+enum class ScopeRow : uint8_t {};
+[[nodiscard]] inline ScopeRow scopeRow(const ResourceAspects& r) noexcept {
+    return ScopeRow(uint8_t(r.image) | uint8_t(r.depth) << 1 | uint8_t(r.stencil) << 2);
+}
+[[nodiscard]] inline VulkanScope vulkanScope(ScopeRow row, Access access, Stage stage, BindAs as) noexcept {
+    return detail::kScopeTable[((size_t(row) * detail::kScopeStages + size_t(stage)) * detail::kScopeAccesses +
                                 size_t(access)) * detail::kScopeBindAs + size_t(as)];
+}
+[[nodiscard]] inline VulkanScope vulkanScope(const ResourceAspects& r, Access access, Stage stage, BindAs as) noexcept {
+    return vulkanScope(scopeRow(r), access, stage, as);
 }
 [[nodiscard]] inline VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) noexcept {
     return vulkanScope(r, u.access, u.stage, u.as);
