@@ -131,10 +131,10 @@ public:
         const IndexedResource& res = resources_[u.resource];
         res.grid.forEach(range(u), [&](size_t sub) { f(res.firstCell + sub); });
     }
-    /// Per subresource of every resource (flat: a resource's start at its first cell, in file
-    /// order, as forEachCell numbers them): whether it holds
-    /// contents when the frame starts (its resource is `clear` or `external`), and whether
-    /// they are wanted when it ends (exported). What the read check and culling start from.
+    /// Per subresource of every resource (flat, numbered as forEachCell numbers them):
+    /// whether it holds contents when the frame starts (its resource is `clear` or
+    /// `external`), and whether they are wanted when it ends (exported). What the read check
+    /// and culling start from.
     [[nodiscard]] const std::vector<uint8_t>& heldAtStart() const noexcept { return heldAtStart_; }
     [[nodiscard]] const std::vector<uint8_t>& liveAtEnd() const noexcept { return liveAtEnd_; }
     [[nodiscard]] const ResourceAspects& aspects(size_t r) const noexcept { return resources_[r].aspects; }
