@@ -56,8 +56,8 @@ struct ResourceFacts {
     /// Where its subresources start in the per-subresource arrays (state_, and the read
     /// runs' and run scopes' scratch), which hold the plan's resources end to end.
     uint32_t firstCell = 0;
-    ResourceAspects aspects;  ///< Whether it is an image.
-    ScopeRow scopeRow{};      ///< The aspects as vulkanScope's table row.
+    ScopeRow scopeRow{};      ///< Its aspects, as vulkanScope's table row.
+    bool image = false;
     bool exported = false;
     bool external = false;
 };
@@ -89,7 +89,7 @@ private:
     };
 
     const ResourceDesc& decl(uint32_t planResource) const { return graph_.resources[plan_.resources[planResource].decl]; }
-    bool isImage(uint32_t planResource) const { return facts_[planResource].aspects.image; }
+    bool isImage(uint32_t planResource) const { return facts_[planResource].image; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
     }
@@ -152,11 +152,11 @@ private:
         res.name = index_.resourceName(declIndex);
         const SubresourceGrid& grid = index_.grid(declIndex);
 #if __cpp_aggregate_paren_init >= 201902L  // in place: a braced temporary is built, then copied
-        facts_.emplace_back(kNone, kNone, grid, cellCount_, index_.aspects(declIndex),
-                            scopeRow(index_.aspects(declIndex)), index_.exported(declIndex), index_.external(declIndex));
+        facts_.emplace_back(kNone, kNone, grid, cellCount_, scopeRow(index_.aspects(declIndex)),
+                            index_.aspects(declIndex).image, index_.exported(declIndex), index_.external(declIndex));
 #else
-        facts_.push_back({kNone, kNone, grid, cellCount_, index_.aspects(declIndex),
-                          scopeRow(index_.aspects(declIndex)), index_.exported(declIndex), index_.external(declIndex)});
+        facts_.push_back({kNone, kNone, grid, cellCount_, scopeRow(index_.aspects(declIndex)),
+                          index_.aspects(declIndex).image, index_.exported(declIndex), index_.external(declIndex)});
 #endif
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
@@ -226,7 +226,7 @@ private:
         const ResourceFacts& facts = facts_[r];
         a.writes = writesContents(effective);
         a.loadOpClear = loadOpClear;
-        a.image = facts.aspects.image;
+        a.image = facts.image;
         a.firstOfResource = false;
         a.cell = facts.firstCell;  // of a resource of one subresource, every range compile() accepts
         a.runScopes = 0;

@@ -85,7 +85,9 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
     return {};
 }
 
-VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) { return vulkanScope(aspectsOf(r), u); }
+VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) {
+    return vulkanScope(scopeRow(aspectsOf(r)), u.access, u.stage, u.as);
+}
 
 namespace {
 

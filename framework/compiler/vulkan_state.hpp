@@ -44,25 +44,19 @@ extern const std::array<VulkanScope, kScopeTableSize> kScopeTable;
 
 /// Stages, accesses and layout of a valid usage. Buffers get layout UNDEFINED.
 [[nodiscard]] VulkanScope vulkanScope(const ResourceDesc& resource, const Usage& usage);
-/// The same, inline: the compiler asks it once per usage, with `access` in place of the
-/// usage's own when a load-op clear makes a read a read-write. (The fields are passed one by
-/// one: a copy of the Usage with one byte changed and then read whole stalls the store
-/// forwarding of the CPU's load unit, measurably so at one usage per call.)
 /// A resource's aspects as the table's row, which the compiler keeps per resource rather than
 /// combine three flags at every usage.
 enum class ScopeRow : uint8_t {};
 [[nodiscard]] inline ScopeRow scopeRow(const ResourceAspects& r) noexcept {
     return ScopeRow(uint8_t(r.image) | uint8_t(r.depth) << 1 | uint8_t(r.stencil) << 2);
 }
+/// The same, inline, for a resource's row: the compiler asks it once per usage, with `access`
+/// in place of the usage's own when a load-op clear makes a read a read-write. (The fields are
+/// passed one by one: a copy of the Usage with one byte changed and then read whole stalls the
+/// store forwarding of the CPU's load unit, measurably so at one usage per call.)
 [[nodiscard]] inline VulkanScope vulkanScope(ScopeRow row, Access access, Stage stage, BindAs as) noexcept {
     return detail::kScopeTable[((size_t(row) * detail::kScopeStages + size_t(stage)) * detail::kScopeAccesses +
                                 size_t(access)) * detail::kScopeBindAs + size_t(as)];
-}
-[[nodiscard]] inline VulkanScope vulkanScope(const ResourceAspects& r, Access access, Stage stage, BindAs as) noexcept {
-    return vulkanScope(scopeRow(r), access, stage, as);
-}
-[[nodiscard]] inline VulkanScope vulkanScope(const ResourceAspects& r, const Usage& u) noexcept {
-    return vulkanScope(r, u.access, u.stage, u.as);
 }
 
 /// The scope of an external state: where `initial` contents are visible, and what a
