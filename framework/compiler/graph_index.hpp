@@ -1,8 +1,8 @@
 // The graph as the compiler's sweeps read it: flat arrays, built in one pass over GraphDesc.
 // GraphDesc is pointer-rich (each pass keeps its usages, and its condition, in allocations of
 // their own), so a sweep over it misses the cache at every pass; compile() sweeps the graph
-// three times (read check, culling, plan building). Shared by scheduler.cpp and
-// synchronizer.cpp.
+// twice more (culling, plan building). The walk that builds the index also finds reads with
+// no source. Shared by scheduler.cpp and synchronizer.cpp.
 #pragma once
 
 #include "subresources.hpp"
@@ -45,38 +45,9 @@ public:
     GraphIndex(const GraphDesc& graph, const std::optional<FeatureValues>& features,
                uint32_t outputWidth, uint32_t outputHeight)
         : graph_(graph) {
+        reserveForPasses();
+        indexResources(outputWidth, outputHeight);
         indexPasses(features);
-        resources_.reserve(graph.resources.size());
-        onlyCell_.reserve(graph.resources.size());
-        heldAtStart_.reserve(graph.resources.size() * 9 / 8);  // most resources have one subresource
-        liveAtEnd_.reserve(graph.resources.size() * 9 / 8);
-        for (const auto& r : graph.resources) {
-            const SubresourceGrid grid(r, outputWidth, outputHeight);
-            const size_t cells = grid.size();
-            // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can
-            // come near (the loader bounds mips and layers).
-            if (cells > kMaxCells - cells_) {
-                Diagnostics d;
-                d.add({graph.file, r.jsonPath, "", r.name,
-                       "the graph's resources have more than " + std::to_string(kMaxCells) +
-                           " subresources (mip levels x layers) together"});
-                throw GraphError(std::move(d));
-            }
-            const IndexedResource& res = resources_.emplace_back(
-                IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
-                                r.clear.has_value(), r.external, r.isExported()});
-            onlyCell_.push_back(cells == 1 ? static_cast<uint32_t>(cells_) : kSeveralCells);
-            cells_ += cells;
-            clearResources_ += res.clear;
-            appendCells(heldAtStart_, cells, res.clear || res.external);
-            appendCells(liveAtEnd_, cells, res.exported);
-            // One level always fits (most images): the extent is resolved only for more.
-            if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
-                const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
-                if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(w, h))))
-                    tooManyMips_.push_back(static_cast<uint32_t>(&r - graph.resources.data()));
-            }
-        }
         names_.finish();
     }
 
@@ -153,6 +124,11 @@ public:
     /// usage index for use()), in file order. Only a GraphDesc built in code has them (the
     /// loader writes none); compile() reports them, and no sweep may run on such an index.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> invalidUses() const noexcept { return invalid_; }
+    /// Reads, by active passes, of a subresource that no earlier active pass wrote and whose
+    /// resource is neither `clear` nor `external`, as (pass, usage index for use()), in file
+    /// order. Found in the index's own walk (a sweep of their own cost as much again as
+    /// finding them there); checkReadsHaveSources words them.
+    [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> unsourcedReads() const noexcept { return unsourced_; }
 
 private:
     /// Appends `count` subresources' `value`; one (most resources) without insert's overhead.
@@ -161,15 +137,15 @@ private:
         else cells.insert(cells.end(), count, value);
     }
 
-    void indexPasses(const std::optional<FeatureValues>& features) {
+    /// Reserves the per-pass and per-usage arrays and the name table's room. Sized from a
+    /// sample of passes spread over the graph, not by counting: a counting walk reads every
+    /// (cold) PassDesc once more, which costs more than the one further doubling a low guess
+    /// costs. Resource names are guessed at 8 bytes.
+    void reserveForPasses() {
         const size_t passes = graph_.passes.size();
         passFlags_.reserve(passes);
         passNames_.reserve(passes);
         firstUse_.reserve(passes + 1);
-        firstUse_.push_back(0);
-        // Sized from a sample of passes spread over the graph, not by counting: a counting
-        // walk reads every (cold) PassDesc once more, which costs more than the one further
-        // doubling a low guess costs. Resource names are guessed at 8 bytes.
         const size_t stride = std::max<size_t>(1, passes / kSampledPasses);
         size_t sampled = 0, sampledUses = 0, sampledRanges = 0, sampledNameBytes = 0;
         for (size_t p = 0; p < passes; p += stride, ++sampled) {
@@ -182,27 +158,86 @@ private:
         uses_.reserve(estimate(sampledUses));
         ranges_.reserve(estimate(sampledRanges));
         names_.makeRoom(estimate(sampledNameBytes) + 8 * graph_.resources.size());
+    }
+
+    void indexResources(uint32_t outputWidth, uint32_t outputHeight) {
+        resources_.reserve(graph_.resources.size());
+        onlyCell_.reserve(graph_.resources.size());
+        heldAtStart_.reserve(graph_.resources.size() * 9 / 8);  // most resources have one subresource
+        liveAtEnd_.reserve(graph_.resources.size() * 9 / 8);
+        for (const auto& r : graph_.resources) {
+            const SubresourceGrid grid(r, outputWidth, outputHeight);
+            const size_t cells = grid.size();
+            // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can
+            // come near (the loader bounds mips and layers).
+            if (cells > kMaxCells - cells_) {
+                Diagnostics d;
+                d.add({graph_.file, r.jsonPath, "", r.name,
+                       "the graph's resources have more than " + std::to_string(kMaxCells) +
+                           " subresources (mip levels x layers) together"});
+                throw GraphError(std::move(d));
+            }
+            const IndexedResource& res = resources_.emplace_back(
+                IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
+                                r.clear.has_value(), r.external, r.isExported()});
+            onlyCell_.push_back(cells == 1 ? static_cast<uint32_t>(cells_) : kSeveralCells);
+            cells_ += cells;
+            clearResources_ += res.clear;
+            appendCells(heldAtStart_, cells, res.clear || res.external);
+            appendCells(liveAtEnd_, cells, res.exported);
+            // One level always fits (most images): the extent is resolved only for more.
+            if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
+                const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
+                if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(w, h))))
+                    tooManyMips_.push_back(static_cast<uint32_t>(&r - graph_.resources.data()));
+            }
+        }
+    }
+
+    /// The passes' usages, and (for active passes, in the same walk) the reads of contents
+    /// that no earlier active pass wrote: checkReadsHaveSources words them.
+    void indexPasses(const std::optional<FeatureValues>& features) {
+        const size_t passes = graph_.passes.size();
+        firstUse_.push_back(0);
         const size_t resources = graph_.resources.size();
+        // Per subresource, from when its contents are held: 0 never yet, 1 from the frame's
+        // start (heldAtStart), p + 2 from pass p's write on. A read in pass p is sourced by
+        // what holds before p + 2: a pass's reads see what earlier passes wrote, not its own
+        // writes, whichever order its usages come in (stamps spare a second loop over them).
+        std::vector<uint32_t> heldFrom(heldAtStart_.begin(), heldAtStart_.end());
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
             passNames_.push_back({names_.add(pass.name), names_.add(pass.type)});
             const bool active = !features || pass.condition.evaluate(*features);
             passFlags_.push_back(static_cast<uint8_t>((active ? kActive : 0) | (pass.neverCull ? kNeverCull : 0)));
+            const auto stamp = static_cast<uint32_t>(p + 2);
+            uint32_t next = firstUse_.back();  // the usage's index for use() (size() would divide by 12)
             for (const auto& u : pass.uses) {
                 IndexedUsage& iu = uses_.emplace_back();  // field by field: see vulkanScope
                 iu.usage = u.usage.mode();
                 iu.resource = u.resource;
                 iu.fillsSlot = !u.slot.empty();
-                if (u.resource >= resources)
-                    invalid_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size() - 1));
+                const uint32_t at = next++;
                 if (u.usage.range) {
                     iu.rangeIndex = static_cast<uint32_t>(ranges_.size());
                     ranges_.push_back(*u.usage.range);
-                    if (active) ranged_.emplace_back(static_cast<uint32_t>(p), static_cast<uint32_t>(uses_.size() - 1));
+                    if (active) ranged_.emplace_back(static_cast<uint32_t>(p), at);
                 }
+                if (u.resource >= resources) {
+                    invalid_.emplace_back(static_cast<uint32_t>(p), at);
+                    continue;
+                }
+                if (!active) continue;
+                if (readsContents(iu.usage.access)) {
+                    bool missing = false;
+                    forEachCell(iu, [&](size_t i) { missing |= heldFrom[i] - 1 >= stamp - 1; });  // 0 wraps
+                    if (missing) unsourced_.emplace_back(static_cast<uint32_t>(p), at);
+                }
+                if (writesContents(iu.usage.access))
+                    forEachCell(iu, [&](size_t i) { if (heldFrom[i] == 0) heldFrom[i] = stamp; });
             }
-            firstUse_.push_back(static_cast<uint32_t>(uses_.size()));
+            firstUse_.push_back(next);
         }
     }
 
@@ -279,6 +314,7 @@ private:
     std::vector<SubresourceRange> ranges_;  // the written ranges that uses_ refer to
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
     std::vector<std::pair<uint32_t, uint32_t>> invalid_;
+    std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
     std::vector<uint32_t> tooManyMips_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask
     // it of every usage, from an array dense enough to stay in cache (the resource records

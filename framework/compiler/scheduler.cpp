@@ -100,25 +100,13 @@ void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureVa
 void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureValues>& features,
                            Diagnostics& out) {
     const GraphDesc& graph = index.graph();
-    // Whether each subresource holds contents at this point of the frame.
-    std::vector<uint8_t> written = index.heldAtStart();
-    for (size_t p = 0; p < index.passes(); ++p) {
-        if (!index.active(p)) continue;
-        const auto uses = index.usesOf(p);
-        for (const auto& u : uses) {
-            if (!readsContents(u.usage.access)) continue;
-            bool missing = false;
-            index.forEachCell(u, [&](size_t i) { missing |= written[i] == 0; });
-            if (!missing) continue;
-            const auto& res = graph.resources[u.resource];
-            out.add({graph.file, index.declOf(p, u).jsonPath, graph.passes[p].name, res.name,
-                     "reads '" + res.name + "' (" + toString(u.usage) +
-                         ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
-                         switchedOffWriter(index, features, p, u.resource)});
-        }
-        for (const auto& u : uses)
-            if (writesContents(u.usage.access))
-                index.forEachCell(u, [&](size_t i) { written[i] = 1; });
+    for (const auto& [p, k] : index.unsourcedReads()) {
+        const IndexedUsage& u = index.use(k);
+        const auto& res = graph.resources[u.resource];
+        out.add({graph.file, index.declOf(p, u).jsonPath, graph.passes[p].name, res.name,
+                 "reads '" + res.name + "' (" + toString(u.usage) +
+                     ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
+                     switchedOffWriter(index, features, p, u.resource)});
     }
 }
 

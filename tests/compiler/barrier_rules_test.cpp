@@ -500,6 +500,31 @@ TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
         << text;
 }
 
+// A pass's reads are sourced by earlier passes only, whichever order its usages come in. The
+// loader refuses a pass that uses a subresource twice; a GraphDesc built in code can have one
+// that writes an image and then reads it, and that read has no source.
+TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
+    const std::string text =
+        R"({"version": 1, "name": "t", "resources": {
+              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
+              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                       "final": "ShaderRead" } },
+            "passes": [
+              { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
+              { "name": "r", "type": "Generic", "uses": { "img": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})";
+    GraphDesc graph = parseGraph(text, "rules.json", registry());
+    EXPECT_EQ(compileErrorText(graph), "");  // as loaded: w's write sources r's read
+    // w then writes img and reads it in one pass; r no longer reads it.
+    UsageDecl read = graph.passes[1].uses.at(0);
+    ASSERT_EQ(read.usage.access, Access::Read);
+    graph.passes[1].uses.erase(graph.passes[1].uses.begin());
+    read.jsonPath = "passes[0].uses[1]";
+    graph.passes[0].uses.push_back(read);
+    const std::string errors = compileErrorText(graph);
+    EXPECT_NE(errors.find("passes[0].uses[1]"), std::string::npos) << errors;
+    EXPECT_NE(errors.find("no earlier pass writes it"), std::string::npos) << errors;
+}
+
 // Subresources are numbered with 32 bits: a GraphDesc built in code whose images have more
 // layers than that together is an error naming the resource, not a wrapped index.
 TEST(GraphsFromCode, MoreSubresourcesThan32BitIndicesIsAnError) {
