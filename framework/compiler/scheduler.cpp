@@ -39,13 +39,13 @@ std::string switchedOffWriter(const GraphIndex& index, const std::optional<Featu
     return {};
 }
 
-/// Whether a write of a pass (`uses`) reaches a subresource that is live (`live`: flat, per
-/// subresource).
-bool writesLive(const GraphIndex& index, std::span<const IndexedUsage> uses, const std::vector<uint8_t>& live) {
+/// Whether a write of a pass (`uses`) reaches a subresource that is live (`liveFrom`: flat,
+/// per subresource, non-zero when live).
+bool writesLive(const GraphIndex& index, std::span<const IndexedUsage> uses, const std::vector<uint32_t>& liveFrom) {
     for (const auto& u : uses) {
         if (!writesContents(u.usage.access)) continue;
         bool anyLive = false;
-        index.forEachCell(u, [&](size_t i) { anyLive |= live[i] != 0; });
+        index.forEachCell(u, [&](size_t i) { anyLive |= liveFrom[i] != 0; });
         if (anyLive) return true;
     }
     return false;
@@ -72,21 +72,27 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
 /// (and is not never_cull) is removed: marked in `culled`, its reason in `reasons`.
 void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std::map<size_t, std::string>& reasons) {
     const GraphDesc& graph = index.graph();
-    std::vector<uint8_t> live = index.liveAtEnd();
+    // Per subresource, why its contents are live here: 0 they are not, 1 they are exported,
+    // p + 2 kept pass p reads them. A kept pass's writes end liveness and its reads begin it,
+    // the reads winning where both touch a subresource; the stamp lets one loop over its
+    // usages do both, whichever order they come in.
+    const std::vector<uint8_t>& atEnd = index.liveAtEnd();
+    std::vector<uint32_t> liveFrom(atEnd.begin(), atEnd.end());
     for (size_t p = index.passes(); p-- > 0;) {
         if (!index.active(p)) continue;
         const auto uses = index.usesOf(p);
-        if (!index.neverCull(p) && !writesLive(index, uses, live)) {
+        if (!index.neverCull(p) && !writesLive(index, uses, liveFrom)) {
             culled[p] = 1;
             reasons[p] = unreadWritesReason(graph, graph.passes[p]);
             continue;
         }
-        for (const auto& u : uses)
-            if (u.usage.access == Access::Write)
-                index.forEachCell(u, [&](size_t i) { live[i] = 0; });
-        for (const auto& u : uses)
+        const auto stamp = static_cast<uint32_t>(p + 2);
+        for (const auto& u : uses) {
             if (readsContents(u.usage.access))
-                index.forEachCell(u, [&](size_t i) { live[i] = 1; });
+                index.forEachCell(u, [&](size_t i) { liveFrom[i] = stamp; });
+            else  // a Write
+                index.forEachCell(u, [&](size_t i) { if (liveFrom[i] != stamp) liveFrom[i] = 0; });
+        }
     }
 }
 

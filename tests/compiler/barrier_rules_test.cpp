@@ -525,6 +525,33 @@ TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
     EXPECT_NE(errors.find("no earlier pass writes it"), std::string::npos) << errors;
 }
 
+// Culling: a kept pass that reads a subresource and also writes it (only a GraphDesc built in
+// code can) still needs what earlier passes wrote there, whichever order its usages come in.
+TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
+    const std::string text =
+        R"({"version": 1, "name": "t", "resources": {
+              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
+              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                       "final": "ShaderRead" } },
+            "passes": [
+              { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
+              { "name": "rw", "type": "Generic", "uses": { "img": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})";
+    GraphDesc graph = parseGraph(text, "rules.json", registry());
+    ASSERT_EQ(graph.passes[1].uses.at(0).usage.access, Access::Read);
+    for (const bool writeFirst : {false, true}) {
+        GraphDesc g = graph;
+        UsageDecl write = g.passes[1].uses.at(0);
+        write.usage.access = Access::Write;
+        write.usage.stage = Stage::Compute;
+        write.usage.as = BindAs::Storage;
+        auto& uses = g.passes[1].uses;
+        uses.insert(writeFirst ? uses.begin() : uses.begin() + 1, write);
+        const Plan plan = compile(g);
+        ASSERT_EQ(plan.passes.size(), 2u) << "writeFirst=" << writeFirst;
+        EXPECT_EQ(plan.passes[0].name, "w") << "writeFirst=" << writeFirst;
+    }
+}
+
 // Subresources are numbered with 32 bits: a GraphDesc built in code whose images have more
 // layers than that together is an error naming the resource, not a wrapped index.
 TEST(GraphsFromCode, MoreSubresourcesThan32BitIndicesIsAnError) {
