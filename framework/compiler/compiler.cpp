@@ -67,7 +67,7 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     // index past its tables.
     for (const auto& [pass, k] : index.invalidUses()) {
         const IndexedUsage& iu = index.use(k);
-        diags.add({graph.file, index.declOf(pass, iu).jsonPath, graph.passes[pass].name, "",
+        diags.add({graph.file, index.jsonPathOf(pass, iu), graph.passes[pass].name, "",
                    "names resource index " + std::to_string(iu.resource) + ", but the graph has " +
                        std::to_string(graph.resources.size()) + " resource(s)"});
     }
@@ -76,7 +76,7 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
         const ResourceDesc& r = graph.resources[i];
         const auto [w, h] = r.extent.resolve(options.outputWidth, options.outputHeight);
         const auto most = static_cast<uint32_t>(std::bit_width(std::max(w, h)));
-        diags.add({graph.file, r.jsonPath + ".mips", "", r.name,
+        diags.add({graph.file, r.jsonPath() + ".mips", "", r.name,
                    std::to_string(r.mips) + " levels is more than a " + std::to_string(w) + "x" +
                        std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
                        std::to_string(options.outputWidth) + "x" + std::to_string(options.outputHeight)});
@@ -105,7 +105,7 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
         const ResourceDesc& res = graph.resources[iu.resource];
         const PassDesc& p = graph.passes[pass];
         const auto [w, h] = res.extent.resolve(options.outputWidth, options.outputHeight);
-        diags.add({graph.file, index.declOf(pass, iu).jsonPath, p.name, res.name,
+        diags.add({graph.file, index.jsonPathOf(pass, iu), p.name, res.name,
                    empty    ? "uses an empty range (" + std::to_string(range.mipCount) + " mip(s), " +
                                   std::to_string(range.layerCount) + " layer(s)): a usage must touch a subresource"
                    : !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +

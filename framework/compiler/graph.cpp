@@ -2,6 +2,7 @@
 #include <skygraph/plan.hpp>
 
 #include <stdexcept>
+#include <string>
 
 #include <algorithm>
 #include <bit>
@@ -30,6 +31,15 @@ const ResourceDesc* GraphDesc::findResource(std::string_view n) const noexcept {
     for (const auto& r : resources)
         if (r.name == n) return &r;
     return nullptr;
+}
+
+std::string GraphDesc::usageJsonPath(size_t pass, size_t use) const {
+    const PassDesc& p = passes.at(pass);
+    std::string path = p.jsonPath.empty() ? "passes[" + std::to_string(pass) + "]" : p.jsonPath;
+    const uint32_t r = p.uses.at(use).resource;
+    // A GraphDesc built in code may name a resource that is not there (compile() reports it).
+    if (p.usesByName && r < resources.size()) return path + ".uses." + resources[r].name;
+    return path + ".uses[" + std::to_string(use) + "]";
 }
 
 int32_t Plan::resourceIndex(std::string_view n) const noexcept {

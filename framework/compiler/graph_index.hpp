@@ -77,9 +77,13 @@ public:
     [[nodiscard]] std::string_view resourceName(size_t r) const noexcept { return names_[resources_[r].name]; }
     /// The text every name above views, complete once the index is built.
     [[nodiscard]] std::shared_ptr<const std::string> names() const noexcept { return names_.text(); }
-    /// The pass's usage as declared (slot, JSON path): `u` must come from usesOf(pass).
+    /// The pass's usage as declared (its slot): `u` must come from usesOf(pass).
     [[nodiscard]] const UsageDecl& declOf(size_t pass, const IndexedUsage& u) const noexcept {
         return graph_.passes[pass].uses[static_cast<size_t>(&u - usesOf(pass).data())];
+    }
+    /// Its JSON path, for messages (derived: see GraphDesc::usageJsonPath).
+    [[nodiscard]] std::string jsonPathOf(size_t pass, const IndexedUsage& u) const {
+        return graph_.usageJsonPath(pass, static_cast<size_t>(&u - usesOf(pass).data()));
     }
 
     /// Per resource (index into GraphDesc::resources).
@@ -172,7 +176,7 @@ private:
             // come near (the loader bounds mips and layers).
             if (cells > kMaxCells - cells_) {
                 Diagnostics d;
-                d.add({graph_.file, r.jsonPath, "", r.name,
+                d.add({graph_.file, r.jsonPath(), "", r.name,
                        "the graph's resources have more than " + std::to_string(kMaxCells) +
                            " subresources (mip levels x layers) together"});
                 throw GraphError(std::move(d));

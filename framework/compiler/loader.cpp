@@ -148,7 +148,6 @@ private:
         std::string path = "resources." + name;
         ResourceDesc r;
         r.name = name;
-        r.jsonPath = path;
         auto fail = [&](const std::string& sub, const std::string& msg) {
             error(sub.empty() ? path : path + "." + sub, "", name, msg);
         };
@@ -273,7 +272,7 @@ private:
             fail("clear", "expected {\"color\": [r, g, b, a]} or {\"depth\": d}");
             return;
         }
-        checkKeys(*clear, r.jsonPath + ".clear", {"color", "depth", "stencil"}, "", r.name);
+        checkKeys(*clear, r.jsonPath() + ".clear", {"color", "depth", "stencil"}, "", r.name);
         if (!r.isImage()) fail("clear", "buffers cannot be cleared by the graph");
         if (auto color = clear->find("color"); color != clear->end()) {
             if (!color->is_array() || color->size() != 4 ||
@@ -340,6 +339,7 @@ private:
         std::string path = "passes[" + std::to_string(index) + "]";
         PassDesc p;
         p.jsonPath = path;
+        usePaths_.clear();
         if (!v.is_object()) {
             error(path, "", "", "a pass must be an object");
             return;
@@ -412,6 +412,7 @@ private:
 
     void loadUses(PassDesc& p, const json& uses) {
         std::string path = p.jsonPath + ".uses";
+        p.usesByName = uses.is_object();
         if (uses.is_object()) {
             for (const auto& [name, value] : uses.items()) {
                 std::string upath = path + "." + name;
@@ -462,7 +463,6 @@ private:
         }
         UsageDecl u;
         u.resource = static_cast<uint32_t>(res - graph_.resources.data());
-        u.jsonPath = path;
         auto access = e.contains("access") && e["access"].is_string()
                           ? parseAccess(e["access"].get<std::string>()) : std::nullopt;
         auto stage = e.contains("stage") && e["stage"].is_string()
@@ -521,6 +521,7 @@ private:
         if (!problem.empty()) return fail(problem);
         u.usage.as = resolvedBinding(u.usage.mode(), res->isImage());
         p.uses.push_back(std::move(u));
+        usePaths_.push_back(path);
     }
 
     void bindSlots(PassDesc& p, const PassTypeInfo& type) {
@@ -534,14 +535,16 @@ private:
         std::string expected;
         for (const auto& s : type.slots)
             expected += (expected.empty() ? "" : "; ") + s.name + " (" + s.describeUsage() + ")";
-        for (auto& u : p.uses) {
+        for (size_t i = 0; i < p.uses.size(); ++i) {
+            UsageDecl& u = p.uses[i];
+            const std::string& path = usePaths_[i];
             const std::string& resName = graph_.resources[u.resource].name;
             const SlotDecl* slot = nullptr;
             std::string wanted = u.slot.empty() ? resName : u.slot;
             for (const auto& s : type.slots)
                 if (s.name == wanted) slot = &s;
             if (!slot && !u.slot.empty()) {
-                error(u.jsonPath, p.name, resName, type.name + " has no slot '" + u.slot +
+                error(path, p.name, resName, type.name + " has no slot '" + u.slot +
                                                        "'; its slots: " + expected);
                 continue;
             }
@@ -550,25 +553,25 @@ private:
                 for (const auto& s : type.slots)
                     if (matches(s, u) && (s.repeated || !filled.count(s.name))) candidates.push_back(&s);
                 if (candidates.size() > 1) {
-                    error(u.jsonPath, p.name, resName, "usage " + toString(u.usage) + " fits several slots of " +
+                    error(path, p.name, resName, "usage " + toString(u.usage) + " fits several slots of " +
                                                            type.name + "; name one with \"slot\"");
                     continue;
                 }
                 if (candidates.empty()) {
-                    error(u.jsonPath, p.name, resName, "usage " + toString(u.usage) + " contradicts " +
+                    error(path, p.name, resName, "usage " + toString(u.usage) + " contradicts " +
                                                            type.name + "; expected " + expected);
                     continue;
                 }
                 slot = candidates.front();
             }
             if (!matches(*slot, u)) {
-                error(u.jsonPath, p.name, resName, "usage " + toString(u.usage) + " contradicts slot '" +
+                error(path, p.name, resName, "usage " + toString(u.usage) + " contradicts slot '" +
                                                        slot->name + "' of " + type.name + "; expected " +
                                                        slot->describeUsage());
                 continue;
             }
             if (filled.count(slot->name) && !slot->repeated) {
-                error(u.jsonPath, p.name, resName, "slot '" + slot->name + "' of " + type.name +
+                error(path, p.name, resName, "slot '" + slot->name + "' of " + type.name +
                                                        " is already filled");
                 continue;
             }
@@ -591,7 +594,7 @@ private:
                 SubresourceRange whole{0, std::max(1u, res.mips), 0, res.layers};
                 if (a.usage.range.value_or(whole).overlaps(b.usage.range.value_or(whole)) ||
                     (res.mips == 0 && (!a.usage.range || !b.usage.range)))
-                    error(a.jsonPath, p.name, res.name, "overlaps " + b.jsonPath +
+                    error(usePaths_[i], p.name, res.name, "overlaps " + usePaths_[j] +
                                                             "; one pass may use each subresource once");
             }
     }
@@ -602,6 +605,9 @@ private:
     std::unordered_map<std::string, uint32_t> resourceIndex_;  ///< name -> graph_.resources
     std::unordered_map<std::string, std::string> passPaths_;   ///< name -> first JSON path
     std::unordered_map<size_t, std::string> passNames_;        ///< JSON index -> name
+    /// The JSON paths of the pass being loaded's usages, beside PassDesc::uses (a usage that
+    /// fails to load leaves a gap in the file's numbering, so they cannot be derived yet).
+    std::vector<std::string> usePaths_;
 };
 
 }  // namespace

@@ -109,7 +109,7 @@ void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureV
     for (const auto& [p, k] : index.unsourcedReads()) {
         const IndexedUsage& u = index.use(k);
         const auto& res = graph.resources[u.resource];
-        out.add({graph.file, index.declOf(p, u).jsonPath, graph.passes[p].name, res.name,
+        out.add({graph.file, index.jsonPathOf(p, u), graph.passes[p].name, res.name,
                  "reads '" + res.name + "' (" + toString(u.usage) +
                      ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
                      switchedOffWriter(index, features, p, u.resource)});

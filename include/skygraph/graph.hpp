@@ -51,7 +51,9 @@ struct ResourceDesc {
     bool external = false;
     ExternalState initial = ExternalState::None;  ///< Meaningful for external resources.
     ExternalState final = ExternalState::None;    ///< None: not exported.
-    std::string jsonPath;     ///< "resources.<name>"
+
+    /// Where a graph file declares it, for messages: "resources.<name>".
+    [[nodiscard]] std::string jsonPath() const { return "resources." + name; }
 
     [[nodiscard]] bool isImage() const noexcept { return type != ResourceType::Buffer; }
     /// Exported resources are the graph's outputs; passes writing them are never culled.
@@ -60,12 +62,12 @@ struct ResourceDesc {
     [[nodiscard]] uint32_t mipCount(uint32_t outputWidth, uint32_t outputHeight) const noexcept;
 };
 
-/// One entry of a pass's `uses`, bound to a slot of its pass type.
+/// One entry of a pass's `uses`, bound to a slot of its pass type. 64 bytes: the compiler
+/// reads every one, so its JSON path is derived (GraphDesc::usageJsonPath), not stored.
 struct UsageDecl {
     uint32_t resource = 0;  ///< Index into GraphDesc::resources.
     Usage usage;
     std::string slot;       ///< The slot it fills; empty for Generic.
-    std::string jsonPath;   ///< e.g. "passes[1].uses.depth" or "passes[3].uses[2]"
 };
 
 struct PassDesc {
@@ -73,9 +75,12 @@ struct PassDesc {
     std::string type;
     Condition condition;
     bool neverCull = false;
+    /// Whether the file writes `uses` as an object keyed by resource name (each usage's JSON
+    /// path ends in ".uses.<resource>") rather than an array (".uses[i]").
+    bool usesByName = false;
     std::vector<UsageDecl> uses;
     nlohmann::json params = nlohmann::json::object();
-    std::string jsonPath;  ///< "passes[i]"
+    std::string jsonPath;  ///< "passes[i]"; empty for a pass built in code (its index is used)
 };
 
 struct FeatureDecl {
@@ -94,6 +99,10 @@ struct GraphDesc {
     /// Defaults from the file's `features`.
     [[nodiscard]] FeatureValues defaultFeatures() const;
     [[nodiscard]] const ResourceDesc* findResource(std::string_view name) const noexcept;
+    /// The JSON path of `passes[pass].uses[use]`, for messages: e.g. "passes[1].uses.depth"
+    /// (uses written as an object) or "passes[3].uses[2]" (as an array). Both indices must be
+    /// in range.
+    [[nodiscard]] std::string usageJsonPath(size_t pass, size_t use) const;
 };
 
 }  // namespace skygraph

@@ -492,7 +492,7 @@ TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
     use.resource = static_cast<uint32_t>(raster.resources.size());  // the first index past the end
     const std::string text = compileErrorText(raster);
     ASSERT_FALSE(text.empty()) << "expected a GraphError";
-    EXPECT_NE(text.find(use.jsonPath), std::string::npos) << text;
+    EXPECT_NE(text.find(raster.usageJsonPath(1, 0)), std::string::npos) << text;
     EXPECT_NE(text.find("pass '" + raster.passes[1].name + "'"), std::string::npos) << text;
     EXPECT_NE(text.find("names resource index " + std::to_string(use.resource) + ", but the graph has " +
                         std::to_string(raster.resources.size()) + " resource(s)"),
@@ -518,10 +518,10 @@ TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
     UsageDecl read = graph.passes[1].uses.at(0);
     ASSERT_EQ(read.usage.access, Access::Read);
     graph.passes[1].uses.erase(graph.passes[1].uses.begin());
-    read.jsonPath = "passes[0].uses[1]";
     graph.passes[0].uses.push_back(read);
     const std::string errors = compileErrorText(graph);
-    EXPECT_NE(errors.find("passes[0].uses[1]"), std::string::npos) << errors;
+    EXPECT_NE(errors.find("passes[0].uses.img"), std::string::npos) << errors;
+    EXPECT_NE(errors.find("pass 'w'"), std::string::npos) << errors;
     EXPECT_NE(errors.find("no earlier pass writes it"), std::string::npos) << errors;
 }
 
