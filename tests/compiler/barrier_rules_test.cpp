@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
 #include <string>
 
 namespace skygraph {
@@ -550,6 +551,34 @@ TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
         ASSERT_EQ(plan.passes.size(), 2u) << "writeFirst=" << writeFirst;
         EXPECT_EQ(plan.passes[0].name, "w") << "writeFirst=" << writeFirst;
     }
+}
+
+// Usages' JSON paths are derived from where they sit: by resource name when the file writes
+// `uses` as an object, by index when as an array, and from the pass's index when a pass built
+// in code has no path of its own.
+TEST(GraphsFromCode, UsageJsonPathsAreDerivedFromTheirPlace) {
+    const std::string text =
+        R"({"version": 1, "name": "t", "resources": {
+              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
+              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                       "final": "ShaderRead" } },
+            "passes": [
+              { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
+              { "name": "r", "type": "Generic", "uses": [
+                  { "resource": "img", "access": "Read", "stage": "Fragment" },
+                  { "resource": "out", "access": "Write", "stage": "ColorAttachment" } ] } ]})";
+    GraphDesc graph = parseGraph(text, "rules.json", registry());
+    EXPECT_EQ(graph.usageJsonPath(0, 0), "passes[0].uses.img");
+    EXPECT_EQ(graph.usageJsonPath(1, 1), "passes[1].uses[1]");
+    EXPECT_EQ(graph.resources.at(1).jsonPath(), "resources.out");
+    PassDesc built = graph.passes[1];
+    built.jsonPath.clear();
+    built.usesByName = true;
+    built.uses[0].resource = 7;  // not there: worded by index
+    graph.passes.push_back(built);
+    EXPECT_EQ(graph.usageJsonPath(2, 0), "passes[2].uses[0]");
+    EXPECT_EQ(graph.usageJsonPath(2, 1), "passes[2].uses.out");
+    EXPECT_THROW((void)graph.usageJsonPath(2, 2), std::out_of_range);
 }
 
 // Subresources are numbered with 32 bits: a GraphDesc built in code whose images have more
