@@ -70,15 +70,16 @@ struct UsageDecl {
     std::string slot;       ///< The slot it fills; empty for Generic.
 };
 
+/// Members the compiler reads of every pass come first, on its first two cache lines.
 struct PassDesc {
     std::string name;
     std::string type;
-    Condition condition;
     bool neverCull = false;
     /// Whether the file writes `uses` as an object keyed by resource name (each usage's JSON
     /// path ends in ".uses.<resource>") rather than an array (".uses[i]").
     bool usesByName = false;
     std::vector<UsageDecl> uses;
+    Condition condition;
     nlohmann::json params = nlohmann::json::object();
     std::string jsonPath;  ///< "passes[i]"; empty for a pass built in code (its index is used)
 };
