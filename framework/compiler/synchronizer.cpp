@@ -112,11 +112,11 @@ private:
             const uint32_t p = schedule.passes[s];
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
-            for (size_t i = 0; i < uses.size(); ++i) {
-                const uint32_t d = uses[i].resource;
+            for (const IndexedUsage& u : uses) {
+                const uint32_t d = u.resource;
                 if (planIndex[d] != kNone) continue;
                 planIndex[d] = addResource(d);
-                if (index_.clear(d) && !clearsThroughLoadOp(uses[i])) clearsBefore.push_back(planIndex[d]);
+                if (index_.clear(d) && !clearsThroughLoadOp(u)) clearsBefore.push_back(planIndex[d]);
             }
             // The bound above holds by construction; checked once per pass all the same, as the
             // records are written without bounds checks.
@@ -134,8 +134,7 @@ private:
             }
             steps_.push_back({accessCount_, static_cast<int32_t>(p)});
             currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
-            for (size_t i = 0; i < uses.size(); ++i) {
-                const IndexedUsage& u = uses[i];
+            for (const IndexedUsage& u : uses) {
                 const uint32_t r = planIndex[u.resource];
                 // The resource's first access, unless a Clear pass above took that role.
                 const bool loadOpClear =
@@ -352,6 +351,7 @@ private:
             detail::PlanBuilder::keepNames(plan_, std::move(own));
         }
     }
+
     /// The end of step s's accesses.
     uint32_t stepEnd(uint32_t s) const {
         return s + 1 < steps_.size() ? steps_[s + 1].firstAccess : accessCount_;
