@@ -63,13 +63,17 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     // Mip counts of output-relative images can only be checked against a real output size.
     // The index finds them (and the ranged usages below) in the walks it makes anyway.
     const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
-    // A GraphDesc built in code can name a resource that is not there: every sweep would
-    // index past its tables.
+    // A GraphDesc built in code can name a resource or a slot that is not there: every sweep
+    // would index past its tables.
     for (const auto& [pass, k] : index.invalidUses()) {
         const IndexedUsage& iu = index.use(k);
+        const SlotId slot = index.declOf(pass, iu).slot;
         diags.add({graph.file, index.jsonPathOf(pass, iu), graph.passes[pass].name, "",
-                   "names resource index " + std::to_string(iu.resource) + ", but the graph has " +
-                       std::to_string(graph.resources.size()) + " resource(s)"});
+                   iu.resource >= graph.resources.size()
+                       ? "names resource index " + std::to_string(iu.resource) + ", but the graph has " +
+                             std::to_string(graph.resources.size()) + " resource(s)"
+                       : "names slot id " + std::to_string(slot) + ", but the graph has " +
+                             std::to_string(graph.slotNames.size()) + " slot name(s)"});
     }
     if (!index.invalidUses().empty()) throw GraphError(std::move(diags));
     for (const uint32_t i : index.tooManyMips()) {

@@ -33,6 +33,15 @@ const ResourceDesc* GraphDesc::findResource(std::string_view n) const noexcept {
     return nullptr;
 }
 
+SlotId GraphDesc::internSlot(std::string_view slot) {
+    if (slot.empty()) return 0;
+    // A graph has a few slot names (its pass types'), so a search beats a map.
+    const auto it = std::find(slotNames.begin(), slotNames.end(), slot);
+    if (it != slotNames.end()) return static_cast<SlotId>(it - slotNames.begin()) + 1;
+    slotNames.emplace_back(slot);
+    return static_cast<SlotId>(slotNames.size());
+}
+
 std::string GraphDesc::usageJsonPath(size_t pass, size_t use) const {
     const PassDesc& p = passes.at(pass);
     std::string path = p.jsonPath.empty() ? "passes[" + std::to_string(pass) + "]" : p.jsonPath;

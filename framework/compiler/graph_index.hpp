@@ -124,9 +124,10 @@ public:
     /// The active passes' usages that name a range, as (pass, usage index for use()), in
     /// file order: what compile() checks against the resolved mip chains.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> rangedUses() const noexcept { return ranged_; }
-    /// Usages, of any pass, whose resource index is past the graph's resources, as (pass,
-    /// usage index for use()), in file order. Only a GraphDesc built in code has them (the
-    /// loader writes none); compile() reports them, and no sweep may run on such an index.
+    /// Usages, of any pass, whose resource index is past the graph's resources or whose slot
+    /// id is past its slot names, as (pass, usage index for use()), in file order. Only a
+    /// GraphDesc built in code has them (the loader writes none); compile() reports them, and
+    /// no sweep may run on such an index.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> invalidUses() const noexcept { return invalid_; }
     /// Reads, by active passes, of a subresource that no earlier active pass wrote and whose
     /// resource is neither `clear` nor `external`, as (pass, usage index for use()), in file
@@ -203,7 +204,7 @@ private:
     void indexPasses(const std::optional<FeatureValues>& features) {
         const size_t passes = graph_.passes.size();
         firstUse_.push_back(0);
-        const size_t resources = graph_.resources.size();
+        const size_t resources = graph_.resources.size(), slots = graph_.slotNames.size();
         // Per subresource, from when its contents are held: 0 never yet, 1 from the frame's
         // start (heldAtStart), p + 2 from pass p's write on. A read in pass p is sourced by
         // what holds before p + 2: a pass's reads see what earlier passes wrote, not its own
@@ -221,14 +222,14 @@ private:
                 IndexedUsage& iu = uses_.emplace_back();  // field by field: see vulkanScope
                 iu.usage = u.usage.mode();
                 iu.resource = u.resource;
-                iu.fillsSlot = !u.slot.empty();
+                iu.fillsSlot = u.slot != 0;
                 const uint32_t at = next++;
                 if (u.usage.range) {
                     iu.rangeIndex = static_cast<uint32_t>(ranges_.size());
                     ranges_.push_back(*u.usage.range);
                     if (active) ranged_.emplace_back(static_cast<uint32_t>(p), at);
                 }
-                if (u.resource >= resources) {
+                if (u.resource >= resources || u.slot > slots) {
                     invalid_.emplace_back(static_cast<uint32_t>(p), at);
                     continue;
                 }

@@ -482,7 +482,7 @@ private:
         }
         if (e.contains("slot")) {
             if (!e["slot"].is_string()) return fail("`slot` must be a string");
-            u.slot = e["slot"].get<std::string>();
+            u.slot = graph_.internSlot(e["slot"].get<std::string>());
         }
         if (e.contains("mips") || e.contains("layers")) {
             // A full chain's length is known here for fixed extents only; for output-relative
@@ -540,11 +540,12 @@ private:
             const std::string& path = usePaths_[i];
             const std::string& resName = graph_.resources[u.resource].name;
             const SlotDecl* slot = nullptr;
-            std::string wanted = u.slot.empty() ? resName : u.slot;
+            const std::string named(graph_.slotName(u.slot));  // as the file names it, or empty
+            const std::string& wanted = named.empty() ? resName : named;
             for (const auto& s : type.slots)
                 if (s.name == wanted) slot = &s;
-            if (!slot && !u.slot.empty()) {
-                error(path, p.name, resName, type.name + " has no slot '" + u.slot +
+            if (!slot && !named.empty()) {
+                error(path, p.name, resName, type.name + " has no slot '" + named +
                                                        "'; its slots: " + expected);
                 continue;
             }
@@ -576,7 +577,7 @@ private:
                 continue;
             }
             filled[slot->name]++;
-            u.slot = slot->name;
+            u.slot = graph_.internSlot(slot->name);
         }
         for (const auto& s : type.slots)
             if (!s.optional && !filled.count(s.name))

@@ -182,7 +182,7 @@ private:
 
     /// Names the slot that the usage last added (`u`, of pass `pass`) fills.
     void addSlot(uint32_t pass, const IndexedUsage& u) {
-        const std::string& slot = index_.declOf(pass, u).slot;
+        const std::string_view slot = graph_.slotName(index_.declOf(pass, u).slot);
         slotAt_.push_back({accessCount_ - 1, addOwnText(slot),
                            static_cast<uint32_t>(slot.size())});
     }

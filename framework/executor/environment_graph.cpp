@@ -69,7 +69,7 @@ void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes) {
         pass.name = "environment_mip" + std::to_string(mip);
         for (UsageDecl& use : pass.uses) {
             if (!use.usage.range) continue;
-            use.usage.range->baseMip = use.slot == "source" ? mip - 1 : mip;
+            use.usage.range->baseMip = graph.slotName(use.slot) == "source" ? mip - 1 : mip;
         }
         chain.push_back(std::move(pass));
     }

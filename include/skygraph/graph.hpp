@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace skygraph {
@@ -62,12 +63,16 @@ struct ResourceDesc {
     [[nodiscard]] uint32_t mipCount(uint32_t outputWidth, uint32_t outputHeight) const noexcept;
 };
 
-/// One entry of a pass's `uses`, bound to a slot of its pass type. 64 bytes: the compiler
-/// reads every one, so its JSON path is derived (GraphDesc::usageJsonPath), not stored.
+/// A slot name interned in its graph (GraphDesc::internSlot); 0 names no slot.
+using SlotId = uint32_t;
+
+/// One entry of a pass's `uses`, bound to a slot of its pass type. 32 bytes of plain data:
+/// the compiler reads every one, so its slot is an id into the graph's names and its JSON
+/// path is derived (GraphDesc::usageJsonPath), neither stored as text.
 struct UsageDecl {
     uint32_t resource = 0;  ///< Index into GraphDesc::resources.
     Usage usage;
-    std::string slot;       ///< The slot it fills; empty for Generic.
+    SlotId slot = 0;        ///< The slot it fills (GraphDesc::slotName); 0 for Generic.
 };
 
 /// Members the compiler reads of every pass come first, on its first two cache lines.
@@ -100,6 +105,16 @@ struct GraphDesc {
     /// Defaults from the file's `features`.
     [[nodiscard]] FeatureValues defaultFeatures() const;
     [[nodiscard]] const ResourceDesc* findResource(std::string_view name) const noexcept;
+    /// Slot names that usages fill: SlotId i (from 1) is slotNames[i - 1].
+    std::vector<std::string> slotNames;
+
+    /// The id of slot name `slot`, added to slotNames if it is new; 0 for an empty name.
+    SlotId internSlot(std::string_view slot);
+    /// The name slot `id` stands for; "" for 0. Throws std::out_of_range for an id the graph
+    /// did not hand out.
+    [[nodiscard]] std::string_view slotName(SlotId id) const {
+        return id == 0 ? std::string_view() : std::string_view(slotNames.at(id - 1));
+    }
     /// The JSON path of `passes[pass].uses[use]`, for messages: e.g. "passes[1].uses.depth"
     /// (uses written as an object) or "passes[3].uses[2]" (as an array). Both indices must be
     /// in range.

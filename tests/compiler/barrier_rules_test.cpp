@@ -581,6 +581,34 @@ TEST(GraphsFromCode, UsageJsonPathsAreDerivedFromTheirPlace) {
     EXPECT_THROW((void)graph.usageJsonPath(2, 2), std::out_of_range);
 }
 
+// Slot names are interned per graph: a usage's slot is an id, and an id the graph did not hand
+// out (only a GraphDesc built in code can have one) is a GraphError naming the usage.
+TEST(GraphsFromCode, SlotsAreInternedAndAnUnknownSlotIdIsAnError) {
+    GraphDesc raster = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json",
+                                     PassRegistry::withBuiltins());
+    ASSERT_FALSE(raster.slotNames.empty());
+    const SlotId depth = raster.internSlot("depth");
+    EXPECT_EQ(raster.slotName(depth), "depth");
+    EXPECT_EQ(raster.internSlot("depth"), depth);  // interned once
+    EXPECT_EQ(raster.internSlot(""), 0u);
+    EXPECT_EQ(raster.slotName(0), "");
+    const size_t names = raster.slotNames.size();
+    const SlotId fresh = raster.internSlot("a slot no pass type has");
+    EXPECT_EQ(fresh, names + 1);
+    EXPECT_EQ(raster.slotName(fresh), "a slot no pass type has");
+    EXPECT_THROW((void)raster.slotName(fresh + 1), std::out_of_range);
+
+    UsageDecl& use = raster.passes.at(1).uses.at(0);
+    use.slot = fresh + 1;
+    const std::string text = compileErrorText(raster);
+    ASSERT_FALSE(text.empty()) << "expected a GraphError";
+    EXPECT_NE(text.find(raster.usageJsonPath(1, 0)), std::string::npos) << text;
+    EXPECT_NE(text.find("names slot id " + std::to_string(fresh + 1) + ", but the graph has " +
+                        std::to_string(fresh) + " slot name(s)"),
+              std::string::npos)
+        << text;
+}
+
 // Subresources are numbered with 32 bits: a GraphDesc built in code whose images have more
 // layers than that together is an error naming the resource, not a wrapped index.
 TEST(GraphsFromCode, MoreSubresourcesThan32BitIndicesIsAnError) {
