@@ -501,10 +501,13 @@ TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
         << text;
 }
 
-// A pass's reads are sourced by earlier passes only, whichever order its usages come in. The
-// loader refuses a pass that uses a subresource twice; a GraphDesc built in code can have one
-// that writes an image and then reads it, and that read has no source.
-TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
+/// Two Generic passes: `w` writes img, then `r` samples it and writes the exported `out`;
+/// r's `uses` is written as an object, or as an array when `readerUsesArray`.
+GraphDesc writerThenReader(bool readerUsesArray = false) {
+    const std::string readerUses =
+        readerUsesArray ? R"([ { "resource": "img", "access": "Read", "stage": "Fragment" },
+                               { "resource": "out", "access": "Write", "stage": "ColorAttachment" } ])"
+                        : R"({ "img": "Read@Fragment", "out": "Write@ColorAttachment" })";
     const std::string text =
         R"({"version": 1, "name": "t", "resources": {
               "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
@@ -512,8 +515,15 @@ TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
                        "final": "ShaderRead" } },
             "passes": [
               { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
-              { "name": "r", "type": "Generic", "uses": { "img": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})";
-    GraphDesc graph = parseGraph(text, "rules.json", registry());
+              { "name": "r", "type": "Generic", "uses": )" + readerUses + " } ]}";
+    return parseGraph(text, "rules.json", registry());
+}
+
+// A pass's reads are sourced by earlier passes only, whichever order its usages come in. The
+// loader refuses a pass that uses a subresource twice; a GraphDesc built in code can have one
+// that writes an image and then reads it, and that read has no source.
+TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
+    GraphDesc graph = writerThenReader();
     EXPECT_EQ(compileErrorText(graph), "");  // as loaded: w's write sources r's read
     // w then writes img and reads it in one pass; r no longer reads it.
     UsageDecl read = graph.passes[1].uses.at(0);
@@ -529,15 +539,7 @@ TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
 // Culling: a kept pass that reads a subresource and also writes it (only a GraphDesc built in
 // code can) still needs what earlier passes wrote there, whichever order its usages come in.
 TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
-    const std::string text =
-        R"({"version": 1, "name": "t", "resources": {
-              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
-              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
-                       "final": "ShaderRead" } },
-            "passes": [
-              { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
-              { "name": "rw", "type": "Generic", "uses": { "img": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})";
-    GraphDesc graph = parseGraph(text, "rules.json", registry());
+    GraphDesc graph = writerThenReader();
     ASSERT_EQ(graph.passes[1].uses.at(0).usage.access, Access::Read);
     for (const bool writeFirst : {false, true}) {
         GraphDesc g = graph;
@@ -557,17 +559,7 @@ TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
 // `uses` as an object, by index when as an array, and from the pass's index when a pass built
 // in code has no path of its own.
 TEST(GraphsFromCode, UsageJsonPathsAreDerivedFromTheirPlace) {
-    const std::string text =
-        R"({"version": 1, "name": "t", "resources": {
-              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
-              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
-                       "final": "ShaderRead" } },
-            "passes": [
-              { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
-              { "name": "r", "type": "Generic", "uses": [
-                  { "resource": "img", "access": "Read", "stage": "Fragment" },
-                  { "resource": "out", "access": "Write", "stage": "ColorAttachment" } ] } ]})";
-    GraphDesc graph = parseGraph(text, "rules.json", registry());
+    GraphDesc graph = writerThenReader(/*readerUsesArray=*/true);
     EXPECT_EQ(graph.usageJsonPath(0, 0), "passes[0].uses.img");
     EXPECT_EQ(graph.usageJsonPath(1, 1), "passes[1].uses[1]");
     EXPECT_EQ(graph.resources.at(1).jsonPath(), "resources.out");
