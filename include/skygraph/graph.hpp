@@ -72,7 +72,9 @@ using SlotId = uint32_t;
 struct UsageDecl {
     uint32_t resource = 0;  ///< Index into GraphDesc::resources.
     Usage usage;
-    SlotId slot = 0;        ///< The slot it fills (GraphDesc::slotName); 0 for Generic.
+    /// The slot it fills (GraphDesc::slotName); 0 for Generic. Ids belong to one graph: a
+    /// usage copied into another graph takes its slot's id there (GraphDesc::internSlot).
+    SlotId slot = 0;
 };
 
 /// Members the compiler reads of every pass come first, on its first two cache lines.
