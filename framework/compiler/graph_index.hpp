@@ -46,8 +46,7 @@ public:
                uint32_t outputWidth, uint32_t outputHeight)
         : graph_(graph) {
         reserveForPasses();
-        indexResources(outputWidth, outputHeight);
-        indexPasses(features);
+        indexPasses(features, indexResources(outputWidth, outputHeight));
         names_.finish();
     }
 
@@ -107,10 +106,8 @@ public:
         res.grid.forEach(range(u), [&](size_t sub) { f(res.firstCell + sub); });
     }
     /// Per subresource of every resource (flat, numbered as forEachCell numbers them):
-    /// whether it holds contents when the frame starts (its resource is `clear` or
-    /// `external`), and whether they are wanted when it ends (exported). What the read check
-    /// and culling start from.
-    [[nodiscard]] const std::vector<uint8_t>& heldAtStart() const noexcept { return heldAtStart_; }
+    /// whether its contents are wanted when the frame ends (exported). What culling starts
+    /// from.
     [[nodiscard]] const std::vector<uint8_t>& liveAtEnd() const noexcept { return liveAtEnd_; }
     [[nodiscard]] const ResourceAspects& aspects(size_t r) const noexcept { return resources_[r].aspects; }
     [[nodiscard]] bool clear(size_t r) const noexcept { return resources_[r].clear; }
@@ -137,7 +134,8 @@ public:
 
 private:
     /// Appends `count` subresources' `value`; one (most resources) without insert's overhead.
-    static void appendCells(std::vector<uint8_t>& cells, size_t count, bool value) {
+    template <typename T>
+    static void appendCells(std::vector<T>& cells, size_t count, T value) {
         if (count == 1) cells.push_back(value);
         else cells.insert(cells.end(), count, value);
     }
@@ -165,10 +163,13 @@ private:
         names_.makeRoom(estimate(sampledNameBytes) + 8 * graph_.resources.size());
     }
 
-    void indexResources(uint32_t outputWidth, uint32_t outputHeight) {
+    /// Returns, per subresource, 1 where it holds contents when the frame starts (its resource
+    /// is `clear` or `external`), else 0: where indexPasses' read check starts.
+    std::vector<uint32_t> indexResources(uint32_t outputWidth, uint32_t outputHeight) {
+        std::vector<uint32_t> heldAtStart;
         resources_.reserve(graph_.resources.size());
         onlyCell_.reserve(graph_.resources.size());
-        heldAtStart_.reserve(graph_.resources.size() * 9 / 8);  // most resources have one subresource
+        heldAtStart.reserve(graph_.resources.size() * 9 / 8);  // most resources have one subresource
         liveAtEnd_.reserve(graph_.resources.size() * 9 / 8);
         for (const auto& r : graph_.resources) {
             const SubresourceGrid grid(r, outputWidth, outputHeight);
@@ -188,8 +189,8 @@ private:
             onlyCell_.push_back(cells == 1 ? static_cast<uint32_t>(cells_) : kSeveralCells);
             cells_ += cells;
             clearResources_ += res.clear;
-            appendCells(heldAtStart_, cells, res.clear || res.external);
-            appendCells(liveAtEnd_, cells, res.exported);
+            appendCells(heldAtStart, cells, uint32_t{res.clear || res.external});
+            appendCells(liveAtEnd_, cells, uint8_t{res.exported});
             // One level always fits (most images): the extent is resolved only for more.
             if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
                 const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
@@ -197,19 +198,19 @@ private:
                     tooManyMips_.push_back(static_cast<uint32_t>(&r - graph_.resources.data()));
             }
         }
+        return heldAtStart;
     }
 
     /// The passes' usages, and (for active passes, in the same walk) the reads of contents
     /// that no earlier active pass wrote: checkReadsHaveSources words them.
-    void indexPasses(const std::optional<FeatureValues>& features) {
+    void indexPasses(const std::optional<FeatureValues>& features, std::vector<uint32_t> heldFrom) {
         const size_t passes = graph_.passes.size();
         firstUse_.push_back(0);
         const size_t resources = graph_.resources.size(), slots = graph_.slotNames.size();
         // Per subresource, from when its contents are held: 0 never yet, 1 from the frame's
-        // start (heldAtStart), p + 2 from pass p's write on. A read in pass p is sourced by
+        // start (indexResources), p + 2 from pass p's write on. A read in pass p is sourced by
         // what holds before p + 2: a pass's reads see what earlier passes wrote, not its own
         // writes, whichever order its usages come in (stamps spare a second loop over them).
-        std::vector<uint32_t> heldFrom(heldAtStart_.begin(), heldAtStart_.end());
         for (size_t p = 0; p < passes; ++p) {
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
@@ -327,7 +328,7 @@ private:
     static constexpr uint32_t kSeveralCells = ~0u;
     static constexpr uint32_t kMaxCells = kSeveralCells - 1;
     std::vector<uint32_t> onlyCell_;
-    std::vector<uint8_t> heldAtStart_, liveAtEnd_;  // per subresource
+    std::vector<uint8_t> liveAtEnd_;  // per subresource
     NameTable names_;
     std::vector<PassNames> passNames_;               // per pass
     std::vector<IndexedResource> resources_;         // per resource
