@@ -1,127 +1,11 @@
 #include "json_positions.hpp"
 
+#include "json_document.hpp"
+
 #include <cctype>
 
 namespace skygraph {
 namespace {
-
-using nlohmann::json;
-
-constexpr size_t kMaxDepth = 256;
-
-// Builds the document through nlohmann's SAX interface while tracking the JSON path, repeated
-// keys and the nesting depth. (nlohmann's parse callback would do too, but its DOM builder
-// rescans every parent on each end of object, which is quadratic in a graph's passes.)
-class Builder final : public nlohmann::json_sax<json> {
-public:
-    json root;
-    std::vector<DuplicateKey> duplicates;
-    std::string error;      ///< Set by parse_error or the depth limit.
-    size_t errorByte = 0;   ///< nlohmann's position for parse errors (1-based, last read).
-    bool tooDeep = false;
-    std::string errorPath;
-
-    bool null() override { return place(json(nullptr)); }
-    bool boolean(bool v) override { return place(json(v)); }
-    bool number_integer(number_integer_t v) override { return place(json(v)); }
-    bool number_unsigned(number_unsigned_t v) override { return place(json(v)); }
-    bool number_float(number_float_t v, const string_t&) override { return place(json(v)); }
-    bool string(string_t& v) override { return place(json(std::move(v))); }
-    bool binary(binary_t& v) override { return place(json::binary(std::move(v))); }
-
-    bool start_object(std::size_t) override { return open(json::object(), false); }
-    bool start_array(std::size_t) override { return open(json::array(), true); }
-    bool end_object() override { return close(); }
-    bool end_array() override { return close(); }
-
-    bool key(string_t& k) override {
-        Frame& f = frames_.back();
-        if (f.value->contains(k)) {
-            std::string path = currentPath();
-            duplicates.push_back({path.empty() ? k : path + "." + k, k});
-        }
-        f.key = std::move(k);
-        return true;
-    }
-
-    bool parse_error(std::size_t position, const std::string&,
-                     const nlohmann::detail::exception& ex) override {
-        errorByte = position;
-        error = ex.what();
-        errorPath = currentPath();
-        return false;
-    }
-
-    /// Path of the innermost open container.
-    std::string currentPath() const { return path(false); }
-
-private:
-    struct Frame {
-        json* value = nullptr;
-        std::string key;     ///< Objects: the current key (of the open child or the next value).
-        size_t next = 0;     ///< Arrays: index of the next element.
-    };
-
-    /// Paths are built only when needed (errors, repeated keys): each open container's place
-    /// in its parent is the parent's current key or last index. With `pending`, the path
-    /// continues to where the next value will go.
-    std::string path(bool pending) const {
-        std::string out;
-        for (size_t i = 0; i < frames_.size(); ++i) {
-            const bool last = i + 1 == frames_.size();
-            if (last && !pending) break;
-            const Frame& f = frames_[i];
-            if (f.value->is_array()) {
-                out += "[" + std::to_string(last ? f.next : f.next - 1) + "]";
-            } else {
-                if (!out.empty()) out += ".";
-                out += f.key;
-            }
-        }
-        return out;
-    }
-    std::string childPath() const { return path(true); }
-
-    /// Stores `v` where the parser is: the root, the next array element, or the current key
-    /// (the last of repeated keys wins, as in nlohmann). Parents do not change while a child
-    /// container is open, so the pointers in frames_ stay valid.
-    json* store(json&& v) {
-        if (frames_.empty()) {
-            root = std::move(v);
-            return &root;
-        }
-        Frame& f = frames_.back();
-        if (f.value->is_array()) {
-            ++f.next;
-            f.value->push_back(std::move(v));
-            return &f.value->back();
-        }
-        json& slot = (*f.value)[f.key];
-        slot = std::move(v);
-        return &slot;
-    }
-    bool place(json&& v) {
-        store(std::move(v));
-        return true;
-    }
-    bool open(json&& container, bool) {
-        if (frames_.size() >= kMaxDepth) {
-            tooDeep = true;
-            error = "nesting deeper than " + std::to_string(kMaxDepth) + " levels";
-            errorPath = childPath();
-            return false;  // stops the parse
-        }
-        json* value = store(std::move(container));
-        frames_.push_back({value, {}, 0});
-        return true;
-    }
-    bool close() {
-        frames_.pop_back();
-        return true;
-    }
-
-    std::vector<Frame> frames_;
-};
 
 /// Offset of the first character of the token that made parsing fail. nlohmann reports
 /// `byte`, the 1-based offset of the last character it read, which for a multi-character
@@ -165,7 +49,7 @@ size_t tokenStart(std::string_view text, size_t byte, std::string_view what) {
     return end;
 }
 
-/// Offset of the bracket that opens nesting level kMaxDepth + 1, skipping strings.
+/// Offset of the bracket that opens nesting level kMaxJsonDepth + 1, skipping strings.
 size_t tooDeepOffset(std::string_view text) {
     size_t depth = 0;
     bool inString = false;
@@ -177,7 +61,7 @@ size_t tooDeepOffset(std::string_view text) {
         } else if (c == '"') {
             inString = true;
         } else if (c == '[' || c == '{') {
-            if (++depth > kMaxDepth) return i;
+            if (++depth > kMaxJsonDepth) return i;
         } else if (c == ']' || c == '}') {
             --depth;
         }
@@ -187,50 +71,47 @@ size_t tooDeepOffset(std::string_view text) {
 
 }  // namespace
 
-JsonParseResult parseJsonWithPositions(std::string_view text) {
-    JsonParseResult result;
-    Builder builder;
-    bool ok = false;
-    try {
-        ok = json::sax_parse(text.begin(), text.end(), &builder);
-    } catch (const std::exception& e) {  // not expected: errors arrive through parse_error
-        builder.error = e.what();
-    }
-    if (ok && builder.error.empty()) {
-        result.value = std::move(builder.root);
-        result.duplicateKeys = std::move(builder.duplicates);
-        return result;
-    }
-    result.duplicateKeys = std::move(builder.duplicates);
-    result.errorPath = builder.errorPath;
+JsonSyntaxError describeJsonError(std::string_view text, size_t byte, const std::string& what,
+                                  bool tooDeep) {
+    JsonSyntaxError result;
     size_t start = text.size();
-    std::string what = builder.error;
+    std::string message = what;
     // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 3, column 5: ",
     // since the position is reported separately and more precisely.
-    if (auto colon = what.find(": ", what.find("parse error")); what.starts_with("[json.exception.parse_error") &&
-                                                                 colon != std::string::npos)
-        what = what.substr(colon + 2);
-    else if (auto bracket = what.find("] "); what.starts_with("[json.exception.") && bracket != std::string::npos)
-        what = what.substr(bracket + 2);
-    if (builder.tooDeep) {
-        result.error = builder.error;
+    if (auto colon = message.find(": ", message.find("parse error"));
+        message.starts_with("[json.exception.parse_error") && colon != std::string::npos)
+        message = message.substr(colon + 2);
+    else if (auto bracket = message.find("] "); message.starts_with("[json.exception.") && bracket != std::string::npos)
+        message = message.substr(bracket + 2);
+    if (tooDeep) {
+        result.message = what;
         start = tooDeepOffset(text);
     } else {
-        result.error = "malformed JSON: " + (what.empty() ? std::string("unreadable") : what);
-        if (builder.errorByte > 0) start = tokenStart(text, builder.errorByte, builder.error);
+        result.message = "malformed JSON: " + (message.empty() ? std::string("unreadable") : message);
+        if (byte > 0) start = tokenStart(text, byte, what);
     }
-    {
-        result.line = 1;
-        result.column = 1;
-        for (size_t i = 0; i < start; ++i) {
-            if (text[i] == '\n') {
-                ++result.line;
-                result.column = 1;
-            } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
-                ++result.column;  // columns count characters, not UTF-8 continuation bytes
-            }
+    result.line = 1;
+    result.column = 1;
+    for (size_t i = 0; i < start; ++i) {
+        if (text[i] == '\n') {
+            ++result.line;
+            result.column = 1;
+        } else if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) {
+            ++result.column;  // columns count characters, not UTF-8 continuation bytes
         }
     }
+    return result;
+}
+
+JsonParseResult parseJsonWithPositions(std::string_view text) {
+    JsonRead read = readJson(text);
+    JsonParseResult result;
+    result.error = std::move(read.error);
+    result.errorPath = std::move(read.errorPath);
+    result.line = read.line;
+    result.column = read.column;
+    result.duplicateKeys = std::move(read.duplicateKeys);
+    if (result.error.empty()) result.value = read.document.root().toJson();
     return result;
 }
 

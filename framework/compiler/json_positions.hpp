@@ -28,4 +28,21 @@ struct JsonParseResult {
 /// from a fuzzer or a generator gone wrong, and deep recursion can exhaust the stack).
 [[nodiscard]] JsonParseResult parseJsonWithPositions(std::string_view text);
 
+/// The nesting limit of parseJsonWithPositions and readJson (json_document.hpp).
+constexpr size_t kMaxJsonDepth = 256;
+
+/// A failed parse as a diagnostic words it: nlohmann's message without its own position, and
+/// the line and column of the token that broke the text.
+struct JsonSyntaxError {
+    std::string message;
+    int line = 0;
+    int column = 0;
+};
+
+/// `what` is nlohmann's exception text and `byte` its position (the 1-based offset of the
+/// last character read), or, for `tooDeep`, the depth limit's message. Finds positions by
+/// reading `text` again: only failed parses pay for it.
+[[nodiscard]] JsonSyntaxError describeJsonError(std::string_view text, size_t byte, const std::string& what,
+                                                bool tooDeep);
+
 }  // namespace skygraph
