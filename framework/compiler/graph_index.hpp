@@ -2,7 +2,7 @@
 // GraphDesc is pointer-rich (each pass keeps its usages, and its condition, in allocations of
 // their own), so a sweep over it misses the cache at every pass; compile() sweeps the graph
 // twice more (culling, plan building). The walk that builds the index also finds reads with
-// no source. Shared by scheduler.cpp and synchronizer.cpp.
+// no source. Shared by validation.cpp, scheduler.cpp and synchronizer.cpp.
 #pragma once
 
 #include "subresources.hpp"
@@ -17,7 +17,6 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
-#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -38,12 +37,23 @@ struct IndexedUsage {
 };
 static_assert(sizeof(IndexedUsage) == 12);
 
+/// The sweeps number subresources with 32 bits: a graph may have this many, together.
+inline constexpr size_t kMaxSubresources = ~0u - 1;
+
+/// The error for a graph whose resources, up to and including `r`, have more.
+inline Diagnostics tooManySubresources(const GraphDesc& graph, const ResourceDesc& r) {
+    Diagnostics d;
+    d.add({graph.file, r.jsonPath(), "", r.name,
+           "the graph's resources have more than " + std::to_string(kMaxSubresources) +
+               " subresources (mip levels x layers) together"});
+    return d;
+}
+
 class GraphIndex {
 public:
-    /// A pass is active when its `if` holds under `features`; every pass is for nullopt.
-    /// Grids are resolved at the given output size.
-    GraphIndex(const GraphDesc& graph, const std::optional<FeatureValues>& features,
-               uint32_t outputWidth, uint32_t outputHeight)
+    /// A pass is active when its `if` holds under `features`. Grids are resolved at the given
+    /// output size.
+    GraphIndex(const GraphDesc& graph, const FeatureValues& features, uint32_t outputWidth, uint32_t outputHeight)
         : graph_(graph) {
         reserveForPasses();
         indexPasses(features, indexResources(outputWidth, outputHeight));
@@ -129,7 +139,7 @@ public:
     /// Reads, by active passes, of a subresource that no earlier active pass wrote and whose
     /// resource is neither `clear` nor `external`, as (pass, usage index for use()), in file
     /// order. Found in the index's own walk (a sweep of their own cost as much again as
-    /// finding them there); checkReadsHaveSources words them.
+    /// finding them there); validate() words them.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> unsourcedReads() const noexcept { return unsourced_; }
 
 private:
@@ -176,13 +186,7 @@ private:
             const size_t cells = grid.size();
             // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can
             // come near (the loader bounds mips and layers).
-            if (cells > kMaxCells - cells_) {
-                Diagnostics d;
-                d.add({graph_.file, r.jsonPath(), "", r.name,
-                       "the graph's resources have more than " + std::to_string(kMaxCells) +
-                           " subresources (mip levels x layers) together"});
-                throw GraphError(std::move(d));
-            }
+            if (cells > kMaxCells - cells_) throw GraphError(tooManySubresources(graph_, r));
             const IndexedResource& res = resources_.emplace_back(
                 IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
                                 r.clear.has_value(), r.external, r.isExported()});
@@ -202,8 +206,8 @@ private:
     }
 
     /// The passes' usages, and (for active passes, in the same walk) the reads of contents
-    /// that no earlier active pass wrote: checkReadsHaveSources words them.
-    void indexPasses(const std::optional<FeatureValues>& features, std::vector<uint32_t> heldFrom) {
+    /// that no earlier active pass wrote: validate() words them.
+    void indexPasses(const FeatureValues& features, std::vector<uint32_t> heldFrom) {
         const size_t passes = graph_.passes.size();
         firstUse_.push_back(0);
         const size_t resources = graph_.resources.size(), slots = graph_.slotNames.size();
@@ -215,7 +219,7 @@ private:
             if (p + kPrefetchAhead < passes) prefetchUses(graph_.passes[p + kPrefetchAhead]);
             const PassDesc& pass = graph_.passes[p];
             passNames_.push_back({names_.add(pass.name), names_.add(pass.type)});
-            const bool active = !features || pass.condition.evaluate(*features);
+            const bool active = pass.condition.evaluate(features);
             passFlags_.push_back(static_cast<uint8_t>((active ? kActive : 0) | (pass.neverCull ? kNeverCull : 0)));
             const auto stamp = static_cast<uint32_t>(p + 2);
             uint32_t next = firstUse_.back();  // the usage's index for use() (size() would divide by 12)
@@ -326,7 +330,8 @@ private:
     // it of every usage, from an array dense enough to stay in cache (the resource records
     // are 28 bytes each); otherwise it takes the record, a range and a multiplication.
     static constexpr uint32_t kSeveralCells = ~0u;
-    static constexpr uint32_t kMaxCells = kSeveralCells - 1;
+    static constexpr uint32_t kMaxCells = kMaxSubresources;
+    static_assert(kMaxCells < kSeveralCells);
     std::vector<uint32_t> onlyCell_;
     std::vector<uint8_t> liveAtEnd_;  // per subresource
     NameTable names_;

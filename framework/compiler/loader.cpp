@@ -1,7 +1,7 @@
 // Graph file -> GraphDesc. Collects every problem in the file before giving up, so a user
 // fixing a hand-edited graph sees all of them in one run.
 #include "json_positions.hpp"
-#include "scheduler.hpp"
+#include "validation.hpp"
 #include "vulkan_state.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -48,7 +48,7 @@ public:
         }
         loadRoot(parsed.value);
         for (const auto& dup : parsed.duplicateKeys) reportDuplicate(dup);
-        if (diags_.empty()) checkReadsHaveSources(graph_, std::nullopt, diags_);
+        if (diags_.empty()) checkReadsHaveSourcesAtLoad(graph_, diags_);
         if (!diags_.empty()) throw GraphError(std::move(diags_));
         return std::move(graph_);
     }

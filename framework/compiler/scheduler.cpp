@@ -11,34 +11,6 @@ namespace {
 
 std::string onOff(bool v) { return v ? "on" : "off"; }
 
-std::string conditionReason(const Condition& c, const FeatureValues& features) {
-    auto value = [&](const std::string& f) {
-        auto it = features.find(f);
-        return it != features.end() && it->second;
-    };
-    if (c.features().size() == 1 && c.text().find_first_of("!&|()") == std::string::npos)
-        return "feature '" + c.features().front() + "' is off";
-    std::string values;
-    for (const auto& f : c.features()) values += (values.empty() ? "" : ", ") + f + "=" + onOff(value(f));
-    return "condition '" + c.text() + "' is false (" + values + ")";
-}
-
-/// "; its writer 'x' is off: ..." for the first earlier pass that would write `resource` but
-/// is switched off by a feature: the usual cause of a read with no source.
-std::string switchedOffWriter(const GraphIndex& index, const std::optional<FeatureValues>& features,
-                              size_t reader, uint32_t resource) {
-    if (!features) return {};
-    const GraphDesc& graph = index.graph();
-    for (size_t q = 0; q < reader; ++q) {
-        if (index.active(q)) continue;
-        for (const auto& w : graph.passes[q].uses)
-            if (w.resource == resource && writesContents(w.usage.access))
-                return "; its writer '" + graph.passes[q].name +
-                       "' is off: " + conditionReason(graph.passes[q].condition, *features);
-    }
-    return {};
-}
-
 /// Whether a write of a pass (`uses`) reaches a subresource that is live (`liveFrom`: flat,
 /// per subresource, non-zero when live).
 bool writesLive(const GraphIndex& index, std::span<const IndexedUsage> uses, const std::vector<uint32_t>& liveFrom) {
@@ -98,22 +70,16 @@ void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std
 
 }  // namespace
 
-void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
-                           Diagnostics& out, uint32_t outputWidth, uint32_t outputHeight) {
-    checkReadsHaveSources(GraphIndex(graph, features, outputWidth, outputHeight), features, out);
-}
-
-void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureValues>& features,
-                           Diagnostics& out) {
-    const GraphDesc& graph = index.graph();
-    for (const auto& [p, k] : index.unsourcedReads()) {
-        const IndexedUsage& u = index.use(k);
-        const auto& res = graph.resources[u.resource];
-        out.add({graph.file, index.jsonPathOf(p, u), graph.passes[p].name, res.name,
-                 "reads '" + res.name + "' (" + toString(u.usage) +
-                     ") but no earlier pass writes it, and it is neither `clear` nor `external`" +
-                     switchedOffWriter(index, features, p, u.resource)});
-    }
+std::string conditionReason(const Condition& c, const FeatureValues& features) {
+    auto value = [&](const std::string& f) {
+        auto it = features.find(f);
+        return it != features.end() && it->second;
+    };
+    if (c.features().size() == 1 && c.text().find_first_of("!&|()") == std::string::npos)
+        return "feature '" + c.features().front() + "' is off";
+    std::string values;
+    for (const auto& f : c.features()) values += (values.empty() ? "" : ", ") + f + "=" + onOff(value(f));
+    return "condition '" + c.text() + "' is false (" + values + ")";
 }
 
 Schedule schedulePasses(const GraphIndex& index, const FeatureValues& features, bool cull) {

@@ -1,15 +1,14 @@
 // Which passes run: feature conditions first, then culling of passes whose output nobody
-// reads. Also the "read with no source" check, which the loader and the compiler share.
+// reads.
 #pragma once
 
 #include "graph_index.hpp"
 
 #include <skygraph/condition.hpp>
-#include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
 #include <skygraph/plan.hpp>
 
-#include <optional>
+#include <string>
 #include <vector>
 
 namespace skygraph {
@@ -21,17 +20,9 @@ struct Schedule {
     size_t usages = 0;
 };
 
-/// Adds a diagnostic for every read of a subresource that no earlier active pass wrote and
-/// that is neither `clear` nor `external`. `features` only words the message (which writer a
-/// feature switched off); which passes are active comes from `index`.
-void checkReadsHaveSources(const GraphIndex& index, const std::optional<FeatureValues>& features,
-                           Diagnostics& out);
-/// The same for the loader: every pass active, at a default output size. For a loaded graph
-/// only: every usage must name one of its resources (compile() checks a GraphDesc built in
-/// code first; see GraphIndex::invalidUses).
-void checkReadsHaveSources(const GraphDesc& graph, const std::optional<FeatureValues>& features,
-                           Diagnostics& out, uint32_t outputWidth = 1920,
-                           uint32_t outputHeight = 1080);
+/// Why a pass whose `if` is `c` is off under `features`: "feature 'sky' is off" or
+/// "condition 'a && !b' is false (a=on, b=on)".
+[[nodiscard]] std::string conditionReason(const Condition& c, const FeatureValues& features);
 
 /// Applies conditions (the index's active passes) and (when `cull`) removes passes that
 /// contribute nothing to an exported resource, giving a reason for each removed pass.

@@ -16,7 +16,8 @@
 namespace skygraph {
 
 /// Reads and validates a graph file against `registry`. Throws GraphError listing every
-/// problem in the file at once, each with the file, JSON path, pass and resource.
+/// problem in the file at once, each with the file, JSON path, pass and resource. What can
+/// only be checked at an output size is compile()'s.
 [[nodiscard]] GraphDesc loadGraphFile(const std::filesystem::path& path,
                                       const PassRegistry& registry);
 
@@ -50,7 +51,8 @@ struct CompileOptions {
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the
 /// feature values (a read whose only writer is switched off, an unknown feature override) or
-/// on the output size (a mip range past the resolved chain), and for what only a GraphDesc
+/// on the output size (a mip range past the resolved chain, a read of levels of an
+/// output-sized "full" chain that no pass writes), and for what only a GraphDesc
 /// built in code can hold: a usage naming a resource index past `resources`, an empty range,
 /// or more subresources than 32-bit indices can number. Every error names what it can of the
 /// file, JSON path, pass and resource.

@@ -445,6 +445,36 @@ TEST(LoaderErrors, ReadOfAnUnwrittenMipLevel) {
     EXPECT_EQ(ds.size(), 1u) << listAll(ds);
 }
 
+// The loader checks reads without an output size. A "full" chain of an output-relative image
+// has the levels the output gives it, so the loader checks a read of one at its first level,
+// which every output has; the levels past it are compile()'s to check, at the output it is
+// given (before, the loader invented one: 1920x1080).
+TEST(LoaderErrors, ReadOfAnOutputSizedChainIsCheckedAtTheOutputSizeItCompilesFor) {
+    Json g = baseGraph();
+    g["resources"]["chain"] = Json::parse(
+        R"({ "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output", "mips": "full" })");
+    g = withGeneric(g, "w", Json::array({{{"resource", "chain"}, {"access", "Write"}, {"stage", "Compute"},
+                                          {"mips", {0, 4}}}}));
+    g = withGeneric(g, "r", Json{{"chain", "Read@Fragment"}});
+    expectLoads(g);
+    // An 8x8 output has the 4 levels w writes; a 1920x1080 one has 11, and r reads 7 that
+    // nothing writes.
+    const GraphDesc graph = parseGraph(g.dump(2), kFile, registry());
+    CompileOptions small;
+    small.outputWidth = small.outputHeight = 8;
+    EXPECT_NO_THROW((void)compile(graph, small));
+    const auto ds = compileErrors(g, CompileOptions{});
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses.chain", "r", "chain",
+                        {"reads 'chain' (Read@Fragment as sampled) but no earlier pass writes it", "clear", "external"}));
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    // A read whose first level nothing writes has no source at any output size.
+    g["passes"][3]["uses"] = Json::array({{{"resource", "chain"}, {"access", "Read"}, {"stage", "Fragment"},
+                                           {"mips", {4, 1}}}});
+    const auto ls = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ls, "passes[3].uses[0]", "r", "chain", {"no earlier pass writes it"}));
+    EXPECT_EQ(ls.size(), 1u) << listAll(ls);
+}
+
 TEST(LoaderErrors, ClearOrExternalIsASource) {
     Json g = baseGraph();
     g["passes"].erase(0);

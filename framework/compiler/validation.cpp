@@ -1,0 +1,219 @@
+#include "validation.hpp"
+
+#include "graph_file.hpp"
+#include "scheduler.hpp"
+
+#include <algorithm>
+#include <bit>
+
+namespace skygraph {
+namespace {
+
+/// "reads 'x' (Read@Fragment) but no earlier pass writes it, ...", for a read with no source.
+Diagnostic unsourcedRead(const GraphDesc& graph, size_t pass, size_t use, const std::string& why) {
+    const UsageDecl& u = graph.passes[pass].uses[use];
+    const ResourceDesc& res = graph.resources[u.resource];
+    return {graph.file, graph.usageJsonPath(pass, use), graph.passes[pass].name, res.name,
+            "reads '" + res.name + "' (" + toString(u.usage) +
+                ") but no earlier pass writes it, and it is neither `clear` nor `external`" + why};
+}
+
+/// "; its writer 'x' is off: ..." for the first earlier pass that would write `resource` but
+/// is switched off by a feature: the usual cause of a read with no source.
+std::string switchedOffWriter(const GraphIndex& index, const FeatureValues& features, size_t reader,
+                              uint32_t resource) {
+    const GraphDesc& graph = index.graph();
+    for (size_t q = 0; q < reader; ++q) {
+        if (index.active(q)) continue;
+        for (const auto& w : graph.passes[q].uses)
+            if (w.resource == resource && writesContents(w.usage.access))
+                return "; its writer '" + graph.passes[q].name +
+                       "' is off: " + conditionReason(graph.passes[q].condition, features);
+    }
+    return {};
+}
+
+/// A resource's subresources as the load-time check sees them, with no output size. Small:
+/// the check reads one per usage, in no order.
+struct LoadGrid {
+    uint32_t firstCell = 0;  ///< Cells number fewer than kMaxSubresources.
+    uint16_t mips = 1;       ///< At most 15 (kMaxImageExtent's chain).
+    uint16_t layers = 1;     ///< At most the loader's 2048.
+    /// A "full" chain of an output-relative image: its length comes with the output size, so
+    /// reads are checked at their first level only, and the grid has every level a file can
+    /// name.
+    bool chainOfOutput = false;
+};
+
+LoadGrid loadGrid(const ResourceDesc& r) {
+    LoadGrid g;
+    if (!r.isImage()) return g;
+    g.layers = static_cast<uint16_t>(r.layers);
+    g.chainOfOutput = r.mips == 0 && r.extent.relativeToOutput;
+    if (g.chainOfOutput) {
+        g.mips = static_cast<uint16_t>(std::bit_width(kMaxImageExtent));
+    } else if (r.mips != 0) {
+        g.mips = static_cast<uint16_t>(r.mips);
+    } else {  // a full chain of a fixed extent
+        g.mips = static_cast<uint16_t>(std::bit_width(std::max(r.extent.width, r.extent.height)));
+    }
+    return g;
+}
+
+}  // namespace
+
+// ---- at load time -------------------------------------------------------------------------
+
+void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
+    std::vector<LoadGrid> grids;
+    grids.reserve(graph.resources.size());
+    size_t cells = 0;
+    for (const ResourceDesc& r : graph.resources) {
+        LoadGrid& g = grids.emplace_back(loadGrid(r));
+        const size_t n = size_t(g.mips) * g.layers;
+        if (n > kMaxSubresources - cells) throw GraphError(tooManySubresources(graph, r));
+        g.firstCell = static_cast<uint32_t>(cells);
+        cells += n;
+    }
+    // Per subresource, from when its contents are held: 0 never yet, 1 from the frame's start,
+    // p + 2 from pass p's write on. A read in pass p is sourced by what holds before p + 2 (a
+    // pass's reads see earlier passes' writes, not its own), as GraphIndex checks it.
+    std::vector<uint32_t> heldFrom(cells, 0);
+    for (size_t i = 0; i < graph.resources.size(); ++i) {
+        const ResourceDesc& r = graph.resources[i];
+        if (r.clear || r.external)
+            std::fill_n(heldFrom.begin() + static_cast<std::ptrdiff_t>(grids[i].firstCell),
+                        size_t(grids[i].mips) * grids[i].layers, 1u);
+    }
+    auto forEachCell = [&](const LoadGrid& g, const SubresourceRange& range, auto&& f) {
+        for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m)
+            for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l)
+                f(heldFrom[g.firstCell + size_t(m) * g.layers + l]);
+    };
+    for (size_t p = 0; p < graph.passes.size(); ++p) {
+        const auto stamp = static_cast<uint32_t>(p + 2);
+        const auto& uses = graph.passes[p].uses;
+        for (size_t k = 0; k < uses.size(); ++k) {
+            const UsageDecl& u = uses[k];
+            const LoadGrid& g = grids[u.resource];
+            SubresourceRange range = u.usage.range.value_or(SubresourceRange{0, g.mips, 0, g.layers});
+            // The loader keeps a range's first level inside the grid, and clips nothing else.
+            range.mipCount = std::min<uint32_t>(range.mipCount, g.mips - range.baseMip);
+            if (readsContents(u.usage.access)) {
+                SubresourceRange read = range;
+                if (g.chainOfOutput) read.mipCount = 1;
+                bool missing = false;
+                forEachCell(g, read, [&](uint32_t held) { missing |= held - 1 >= stamp - 1; });  // 0 wraps
+                if (missing) out.add(unsourcedRead(graph, p, k, ""));
+            }
+            if (writesContents(u.usage.access))
+                forEachCell(g, range, [&](uint32_t& held) { if (held == 0) held = stamp; });
+        }
+    }
+}
+
+// ---- compile() ---------------------------------------------------------------------------
+
+void checkOutputNames(const GraphDesc& graph, const CompileOptions& options) {
+    Diagnostics diags;
+    if (options.outputs)
+        for (const std::string& name : *options.outputs)
+            if (!graph.findResource(name))
+                diags.add({graph.file, "resources", "", name,
+                           "cannot keep '" + name + "' as an output: no such resource"});
+    for (const auto& [name, state] : options.exports)
+        if (!graph.findResource(name))
+            diags.add({graph.file, "resources", "", name, "cannot export '" + name + "': no such resource"});
+    if (!diags.empty()) throw GraphError(std::move(diags));
+}
+
+FeatureValues checkedFeatures(const GraphDesc& graph, const CompileOptions& options, Diagnostics& out) {
+    FeatureValues features = graph.defaultFeatures();
+    for (const auto& [name, value] : options.features) {
+        if (!features.count(name)) {
+            std::string known;
+            for (const auto& f : graph.features) known += (known.empty() ? "" : ", ") + f.name;
+            out.add({graph.file, "features", "", "",
+                     "unknown feature '" + name + "'; the graph declares: " + (known.empty() ? "none" : known)});
+            continue;
+        }
+        features[name] = value;
+    }
+    if (options.outputWidth == 0 || options.outputHeight == 0)
+        out.add({graph.file, "", "", "", "the output extent must not be zero"});
+    return features;
+}
+
+void validate(const GraphIndex& index, const FeatureValues& features, const CompileOptions& options,
+              Diagnostics diags) {
+    const GraphDesc& graph = index.graph();
+    const uint32_t width = options.outputWidth, height = options.outputHeight;
+    // A GraphDesc built in code can name a resource or a slot that is not there: every sweep
+    // would index past its tables.
+    for (const auto& [pass, k] : index.invalidUses()) {
+        const IndexedUsage& iu = index.use(k);
+        const SlotId slot = index.declOf(pass, iu).slot;
+        diags.add({graph.file, index.jsonPathOf(pass, iu), graph.passes[pass].name, "",
+                   iu.resource >= graph.resources.size()
+                       ? "names resource index " + std::to_string(iu.resource) + ", but the graph has " +
+                             std::to_string(graph.resources.size()) + " resource(s)"
+                       : "names slot id " + std::to_string(slot) + ", but the graph has " +
+                             std::to_string(graph.slotNames.size()) + " slot name(s)"});
+    }
+    if (!index.invalidUses().empty()) throw GraphError(std::move(diags));
+    // Mip counts of output-relative images can only be checked against a real output size.
+    // The index finds them (and the ranged usages below) in the walks it makes anyway.
+    for (const uint32_t i : index.tooManyMips()) {
+        const ResourceDesc& r = graph.resources[i];
+        const auto [w, h] = r.extent.resolve(width, height);
+        const auto most = static_cast<uint32_t>(std::bit_width(std::max(w, h)));
+        diags.add({graph.file, r.jsonPath() + ".mips", "", r.name,
+                   std::to_string(r.mips) + " levels is more than a " + std::to_string(w) + "x" +
+                       std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
+                       std::to_string(width) + "x" + std::to_string(height)});
+    }
+    // Ranges are checked against the chain the output size resolves (and against extents an
+    // embedder may have changed after loading): a range that starts past the last level, or
+    // names layers the image lacks, is an error here, not a plan that fails at run time. One
+    // that runs past the end of a chain is clipped to it: the loader gives a `layers`-only
+    // usage of a full output-sized chain every level the largest image could have.
+    // Images are checked against the index's grids; the graph's own (cold) records are read
+    // for buffers and to word a diagnostic.
+    for (const auto& [pass, k] : index.rangedUses()) {
+        const IndexedUsage& iu = index.use(k);
+        const bool image = index.aspects(iu.resource).image;
+        const SubresourceGrid& grid = index.grid(iu.resource);
+        const ResourceDesc* r = image ? nullptr : &graph.resources[iu.resource];
+        const uint32_t levels = std::max(1u, r ? r->mipCount(width, height) : grid.mips);
+        const uint32_t layers = std::max(1u, r ? r->layers : grid.layers);
+        const SubresourceRange& range = *index.writtenRange(iu);
+        // The loader never writes an empty range; a GraphDesc built in code can, and every
+        // sweep assumes a usage touches at least one subresource.
+        const bool empty = range.mipCount == 0 || range.layerCount == 0;
+        const bool mipsFit = range.baseMip < levels;
+        const bool layersFit = uint64_t(range.baseLayer) + range.layerCount <= layers;
+        if (!empty && mipsFit && layersFit) continue;
+        const ResourceDesc& res = graph.resources[iu.resource];
+        const PassDesc& p = graph.passes[pass];
+        const auto [w, h] = res.extent.resolve(width, height);
+        diags.add({graph.file, index.jsonPathOf(pass, iu), p.name, res.name,
+                   empty    ? "uses an empty range (" + std::to_string(range.mipCount) + " mip(s), " +
+                                  std::to_string(range.layerCount) + " layer(s)): a usage must touch a subresource"
+                   : !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +
+                                  std::to_string(range.mipCount) + "] but the " + std::to_string(w) + "x" +
+                                  std::to_string(h) + " image has " + std::to_string(levels) + " mip level(s)"
+                            : "uses layers [" + std::to_string(range.baseLayer) + ", " +
+                                  std::to_string(range.layerCount) + "] but the image has " +
+                                  std::to_string(res.layers) + " layer(s)"});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+    // Reads with no source at this size and these features, found in the index's walk.
+    for (const auto& [p, k] : index.unsourcedReads()) {
+        const IndexedUsage& u = index.use(k);
+        const size_t use = static_cast<size_t>(&u - index.usesOf(p).data());
+        diags.add(unsourcedRead(graph, p, use, switchedOffWriter(index, features, p, u.resource)));
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+}
+
+}  // namespace skygraph

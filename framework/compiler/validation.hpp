@@ -1,0 +1,41 @@
+// What makes a graph unusable as a whole, apart from how its file is written: the checks the
+// loader makes once a file is read, and those compile() makes against its options and output
+// size. (The loader's own checks are of the file: keys, types and values of each entry.)
+// Every problem is a Diagnostic naming the file, the JSON path, the pass and the resource.
+#pragma once
+
+#include "graph_index.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/diagnostics.hpp>
+#include <skygraph/graph.hpp>
+
+namespace skygraph {
+
+// ---- at load time: no output size, every pass active ------------------------------------
+
+/// Reads that no earlier pass writes, in any feature combination and at any output size:
+/// every pass counts as a writer, and a read of a "full" chain of an output-relative image
+/// (whose length only the output size gives) is checked at its first level, which every
+/// output size has. Neither `clear` nor `external`. For a loaded graph only (every usage
+/// names one of its resources and a range within it).
+void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out);
+
+// ---- compile(): in the order it calls them -----------------------------------------------
+
+/// CompileOptions::outputs and ::exports name resources of `graph`; throws GraphError if not.
+void checkOutputNames(const GraphDesc& graph, const CompileOptions& options);
+
+/// The file's feature defaults with the options' overrides, adding a diagnostic for each
+/// override the graph does not declare, and for a zero output extent.
+[[nodiscard]] FeatureValues checkedFeatures(const GraphDesc& graph, const CompileOptions& options,
+                                            Diagnostics& out);
+
+/// Everything compile() refuses about the indexed graph at the options' output size: usages
+/// naming a resource or slot the graph lacks (only a GraphDesc built in code has them), mip
+/// counts and ranges that the resolved chains cannot hold, and reads of active passes with no
+/// source. Throws GraphError with `found` (the earlier checks' diagnostics) and its own, if any.
+void validate(const GraphIndex& index, const FeatureValues& features, const CompileOptions& options,
+              Diagnostics found);
+
+}  // namespace skygraph
