@@ -1,13 +1,50 @@
 #include <skygraph/graph.hpp>
 #include <skygraph/plan.hpp>
 
-#include <stdexcept>
-#include <string>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <bit>
+#include <stdexcept>
+#include <string>
+
+// Layout, for the compiler's sweeps (graph.hpp documents the API only): a UsageDecl is 32
+// bytes of plain data, since the compiler reads every one; that is why its slot is an id into
+// the graph's names and its JSON path is derived, neither stored as text. PassDesc's members
+// that the compiler reads of every pass (name, type, the flags, uses, the condition's root)
+// come first, within its first two cache lines; the condition's text and names, the params
+// and the path follow.
 
 namespace skygraph {
+
+PassParams::PassParams() noexcept = default;
+PassParams::PassParams(nlohmann::json object) {
+    if (!object.is_object()) throw std::invalid_argument("PassParams: params must be a JSON object");
+    if (!object.empty()) object_ = std::make_unique<nlohmann::json>(std::move(object));
+}
+PassParams::PassParams(const PassParams& other)
+    : object_(other.object_ ? std::make_unique<nlohmann::json>(*other.object_) : nullptr) {}
+PassParams::PassParams(PassParams&& other) noexcept = default;
+PassParams& PassParams::operator=(const PassParams& other) {
+    if (this != &other) *this = PassParams(other);
+    return *this;
+}
+PassParams& PassParams::operator=(PassParams&& other) noexcept = default;
+PassParams::~PassParams() = default;
+
+const nlohmann::json& PassParams::json() const noexcept {
+    static const nlohmann::json empty = nlohmann::json::object();
+    return object_ ? *object_ : empty;
+}
+
+nlohmann::json& PassParams::edit() {
+    if (!object_) object_ = std::make_unique<nlohmann::json>(nlohmann::json::object());
+    return *object_;
+}
+
+nlohmann::json& PassParams::operator[](std::string_view key) { return edit()[std::string(key)]; }
+
+bool PassParams::empty() const noexcept { return !object_ || object_->empty(); }
 
 std::array<uint32_t, 2> Extent::resolve(uint32_t outputWidth,
                                         uint32_t outputHeight) const noexcept {

@@ -373,7 +373,7 @@ private:
         }
         if (auto it = v.find("params"); it != v.end()) {
             if (!it->is_object()) error(path + ".params", p.name, "", "expected an object");
-            else p.params = *it;
+            else p.params = PassParams(*it);
         }
         if (type && type->validateParams)
             for (const auto& e : type->validateParams(p.params))

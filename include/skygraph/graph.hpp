@@ -5,10 +5,11 @@
 #include <skygraph/format.hpp>
 #include <skygraph/usage.hpp>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,7 +19,7 @@ namespace skygraph {
 
 enum class ResourceType : uint8_t { Image2D, Cube, Image2DArray, Buffer };
 
-/// The state a resource arrives in (`initial`) or is left in (`final`), contract §1.
+/// The state a resource arrives in (`initial`) or is left in (`final`).
 enum class ExternalState : uint8_t { None, Present, TransferSrc, ShaderRead, General };
 
 /// `"output"`, `"output/N"` or `[w, h]`.
@@ -66,9 +67,8 @@ struct ResourceDesc {
 /// A slot name interned in its graph (GraphDesc::internSlot); 0 names no slot.
 using SlotId = uint32_t;
 
-/// One entry of a pass's `uses`, bound to a slot of its pass type. 32 bytes of plain data:
-/// the compiler reads every one, so its slot is an id into the graph's names and its JSON
-/// path is derived (GraphDesc::usageJsonPath), neither stored as text.
+/// One entry of a pass's `uses`, bound to a slot of its pass type. Its slot is an id into the
+/// graph's slot names, and its JSON path is derived (GraphDesc::usageJsonPath).
 struct UsageDecl {
     uint32_t resource = 0;  ///< Index into GraphDesc::resources.
     Usage usage;
@@ -77,7 +77,52 @@ struct UsageDecl {
     SlotId slot = 0;
 };
 
-/// Members the compiler reads of every pass come first, on its first two cache lines.
+/// A pass's `params`: the JSON object its pass type reads its settings from, e.g.
+/// `desc.params.value("exposure_ev", 0.0)`. Owns the object (copying a PassDesc copies it);
+/// empty when the file gives none. This header names nlohmann::json only: reading or changing
+/// the values needs <nlohmann/json.hpp>.
+class PassParams {
+public:
+    /// An empty object.
+    PassParams() noexcept;
+    /// Takes `object`. Throws std::invalid_argument if it is not a JSON object.
+    explicit PassParams(nlohmann::json object);
+    PassParams(const PassParams& other);
+    PassParams(PassParams&& other) noexcept;
+    PassParams& operator=(const PassParams& other);
+    PassParams& operator=(PassParams&& other) noexcept;
+    ~PassParams();
+
+    /// The object; an empty one when there are no params. The reference is valid until this
+    /// PassParams is changed, assigned to or destroyed.
+    [[nodiscard]] const nlohmann::json& json() const noexcept;
+    /// The object, to change (e.g. a tool raising a pass's sample count). Keep it an object.
+    [[nodiscard]] nlohmann::json& edit();
+    /// A PassParams reads as its object wherever a const nlohmann::json& is wanted.
+    operator const nlohmann::json&() const noexcept { return json(); }
+
+    /// The value at `key` converted to T, or `fallback` when there is none; as
+    /// nlohmann::json::value (which throws nlohmann::json::type_error for a value that does
+    /// not convert to T).
+    template <typename T, typename Json = nlohmann::json>
+    [[nodiscard]] T value(std::string_view key, const T& fallback) const {
+        const Json& object = json();
+        return object.value(key, fallback);
+    }
+    template <typename Json = nlohmann::json>
+    [[nodiscard]] std::string value(std::string_view key, const char* fallback) const {
+        const Json& object = json();
+        return object.value(key, std::string(fallback));
+    }
+    /// The value at `key`, added as null if there is none (edit()[key]).
+    nlohmann::json& operator[](std::string_view key);
+
+    [[nodiscard]] bool empty() const noexcept;
+
+private:
+    std::unique_ptr<nlohmann::json> object_;  ///< Null for an empty object.
+};
+
 struct PassDesc {
     std::string name;
     std::string type;
@@ -87,7 +132,7 @@ struct PassDesc {
     bool usesByName = false;
     std::vector<UsageDecl> uses;
     Condition condition;
-    nlohmann::json params = nlohmann::json::object();
+    PassParams params;
     std::string jsonPath;  ///< "passes[i]"; empty for a pass built in code (its index is used)
 };
 

@@ -9,6 +9,10 @@
 
 #include <vulkan/vulkan_core.h>
 
+// Passes read their settings from PassDesc::params (e.g. `desc.params.value("samples", 64)`),
+// which takes nlohmann::json's full definition; graph.hpp only names the type.
+#include <nlohmann/json.hpp>
+
 #include <any>
 #include <functional>
 #include <map>
