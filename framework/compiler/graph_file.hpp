@@ -1,12 +1,78 @@
-// The graph file format's limits, which the loader and the load-time checks share.
+// What the loader's parts share: the graph file format's limits, where each problem found in
+// a file goes, and the check for keys that an entry of the file does not have.
 #pragma once
 
+#include "json_document.hpp"
+
+#include <skygraph/diagnostics.hpp>
+
+#include <algorithm>
+#include <array>
 #include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace skygraph {
 
 /// The largest image extent a file may give (the common maxImageDimension2D; devices may allow
 /// less); extents, mip counts and mip ranges are bounded by it.
 inline constexpr uint32_t kMaxImageExtent = 16384;
+inline constexpr uint32_t kMaxLayers = 2048;
+inline constexpr uint32_t kMaxDivisor = 4096;  ///< Of "output/N".
+inline constexpr uint64_t kMaxBufferBytes = 1ull << 31;
+
+/// The keys an entry of the file may have, in the order messages list them.
+template <size_t N>
+using Keys = std::array<std::string_view, N>;
+
+/// Where `key` is in `keys`; for constants (a key not in the list does not compile).
+template <size_t N>
+constexpr size_t keyIndex(const Keys<N>& keys, std::string_view key) {
+    for (size_t i = 0; i < N; ++i)
+        if (keys[i] == key) return i;
+    throw "not a key of the list";
+}
+
+/// The problems found in a graph file, each added to the list of the part of the file being
+/// loaded (into()).
+class FileProblems {
+public:
+    using Part = std::vector<Diagnostic>;
+
+    explicit FileProblems(std::string file) : file_(std::move(file)) {}
+
+    void into(Part& part) noexcept { part_ = &part; }
+
+    /// The problem as a diagnostic of this file.
+    [[nodiscard]] Diagnostic diagnostic(const std::string& path, std::string_view pass, std::string_view resource,
+                                        const std::string& message) const {
+        return {file_, path, std::string(pass), std::string(resource), message};
+    }
+    void operator()(const std::string& path, std::string_view pass, std::string_view resource,
+                    const std::string& message) {
+        part_->push_back(diagnostic(path, pass, resource, message));
+    }
+
+    /// Every key of `object` (read into `fields`) that is not in `keys`, in key order. `path`
+    /// gives the object's JSON path; it is called only when there is something to report.
+    template <size_t N, typename Path>
+    void unknownKeys(JsonValue object, const JsonFields<N>& fields, Path&& path, const Keys<N>& keys,
+                     std::string_view pass = "", std::string_view resource = "") {
+        if (!fields.unknownKeys) return;
+        std::string list;
+        for (auto k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+        for (const auto& [key, _] : object.members()) {
+            if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
+            const std::string where = path();
+            (*this)(where.empty() ? std::string(key) : where + "." + std::string(key), pass, resource,
+                    "unknown key '" + std::string(key) + "'; expected one of: " + list);
+        }
+    }
+
+private:
+    std::string file_;
+    Part* part_ = nullptr;
+};
 
 }  // namespace skygraph

@@ -1,28 +1,27 @@
 // Graph file -> GraphDesc. Collects every problem in the file before giving up, so a user
 // fixing a hand-edited graph sees all of them in one run.
-#include "json_positions.hpp"
+//
+// Loading costs in proportion to the file: the text is read once into a JsonDocument (no
+// allocation per value), and everything only a message needs (JSON paths, lists of names) is
+// worked out when there is a problem to report.
+#include "graph_file.hpp"
+#include "json_document.hpp"
+#include "name_index.hpp"
+#include "resource_loader.hpp"
 #include "validation.hpp"
 #include "vulkan_state.hpp"
 
 #include <skygraph/compiler.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
-#include <map>
+#include <cstring>
 #include <fstream>
-#include <set>
 #include <sstream>
-#include <unordered_map>
 
 namespace skygraph {
 namespace {
-
-using nlohmann::json;
-
-constexpr uint32_t kMaxExtent = 16384;  // the common maxImageDimension2D; devices may allow less
-constexpr uint32_t kMaxLayers = 2048;
-constexpr uint32_t kMaxDivisor = 4096;
-constexpr uint64_t kMaxBufferBytes = 1ull << 31;
 
 std::string joinNames(const std::vector<std::string>& names) {
     std::string out;
@@ -30,37 +29,128 @@ std::string joinNames(const std::vector<std::string>& names) {
     return out;
 }
 
-class GraphLoader {
+/// A value as nlohmann prints it, for messages: strings quoted and escaped.
+std::string dumpString(std::string_view s) { return nlohmann::json(std::string(s)).dump(); }
+
+constexpr Keys<7> kRootKeys{"$schema", "version", "name", "description", "features", "resources", "passes"};
+constexpr Keys<7> kPassKeys{"name", "type", "if", "uses", "params", "never_cull", "description"};
+constexpr Keys<7> kUsageKeys{"resource", "access", "stage", "as", "mips", "layers", "slot"};
+
+// Each entry's keys by name, for JsonFields.
+namespace rootKey {
+constexpr size_t version = keyIndex(kRootKeys, "version"), name = keyIndex(kRootKeys, "name"),
+                 features = keyIndex(kRootKeys, "features"), resources = keyIndex(kRootKeys, "resources"),
+                 passes = keyIndex(kRootKeys, "passes");
+}
+namespace passKey {
+constexpr size_t name = keyIndex(kPassKeys, "name"), type = keyIndex(kPassKeys, "type"),
+                 condition = keyIndex(kPassKeys, "if"), uses = keyIndex(kPassKeys, "uses"),
+                 params = keyIndex(kPassKeys, "params"), neverCull = keyIndex(kPassKeys, "never_cull");
+}
+namespace usageKey {
+constexpr size_t resource = keyIndex(kUsageKeys, "resource"), access = keyIndex(kUsageKeys, "access"),
+                 stage = keyIndex(kUsageKeys, "stage"), as = keyIndex(kUsageKeys, "as"),
+                 mips = keyIndex(kUsageKeys, "mips"), layers = keyIndex(kUsageKeys, "layers"),
+                 slot = keyIndex(kUsageKeys, "slot");
+}
+
+/// One entry of a pass's `uses` in either form: an object in an array (its fields), or a
+/// "resource": "Access@Stage" member split at the '@'.
+struct UsageEntry {
+    JsonFields<kUsageKeys.size()> fields;  ///< The array form's entry; none for the object form.
+    bool split = false;  ///< The object form: `access` and `stage` are its halves.
+    std::string_view access, stage;
+};
+
+/// Loads a graph file's document. As a JsonListener it loads `features` and `resources` as
+/// they are read and then each pass as it is, so that a large file's passes never sit in the
+/// document all at once; the file's other parts, and everything of a file it was not told
+/// of, are loaded by finish(). Problems are kept per part and reported in the file format's
+/// order (the root's own keys, features, resources, passes), whatever the file's order.
+class GraphLoader final : public JsonListener {
 public:
-    GraphLoader(std::string file, const PassRegistry& registry)
-        : registry_(registry) {
+    /// `textSize`: the file's, to guess from.
+    GraphLoader(std::string file, const PassRegistry& registry, size_t textSize)
+        : registry_(registry), textSize_(textSize), report_(file) {
         graph_.file = std::move(file);
+        into(rootDiags_);
     }
 
-    GraphDesc load(std::string_view text) {
-        JsonParseResult parsed = parseJsonWithPositions(text);
-        if (!parsed.error.empty()) {
-            Diagnostic d{graph_.file, parsed.errorPath, "", "", parsed.error};
-            d.line = parsed.line;
-            d.column = parsed.column;
-            diags_.add(std::move(d));
-            throw GraphError(std::move(diags_));
+    /// The malformed text's one diagnostic.
+    [[noreturn]] void refuse(const JsonRead& read) {
+        Diagnostic d{graph_.file, read.errorPath, "", "", read.error};
+        d.line = read.line;
+        d.column = read.column;
+        Diagnostics diags;
+        diags.add(std::move(d));
+        throw GraphError(std::move(diags));
+    }
+
+    /// Whether what the listener was told can stand: false when the file repeats `features`,
+    /// `resources` or `passes`, or gives the first two after passes it streamed (which then
+    /// were loaded against the wrong ones).
+    [[nodiscard]] bool toldSoundly() const noexcept { return !unsound_; }
+
+    /// Loads what the listener was not told of (all of `root`, without one) and returns the
+    /// graph, or throws GraphError listing every problem.
+    GraphDesc finish(JsonValue root, const std::vector<DuplicateKey>& duplicateKeys) {
+        if (!root.isObject()) {
+            into(rootDiags_);
+            error("", "", "", "a graph file must be a JSON object");
+        } else {
+            loadRoot(root);
         }
-        loadRoot(parsed.value);
-        for (const auto& dup : parsed.duplicateKeys) reportDuplicate(dup);
-        if (diags_.empty()) checkReadsHaveSourcesAtLoad(graph_, diags_);
-        if (!diags_.empty()) throw GraphError(std::move(diags_));
+        checkPassNames();
+        FileProblems::Part repeatedKeys;
+        into(repeatedKeys);
+        for (const auto& dup : duplicateKeys) reportDuplicate(dup);
+        Diagnostics diags;
+        for (FileProblems::Part* part : {&rootDiags_, &featureDiags_, &resourceDiags_, &passDiags_, &repeatedKeys})
+            for (Diagnostic& d : *part) diags.add(std::move(d));
+        if (diags.empty()) checkReadsHaveSourcesAtLoad(graph_, diags);
+        if (!diags.empty()) throw GraphError(std::move(diags));
         return std::move(graph_);
     }
 
-private:
-    void error(const std::string& path, const std::string& pass, const std::string& resource,
-               const std::string& message) {
-        diags_.add(Diagnostic{graph_.file, path, pass, resource, message});
+    // ---- JsonListener ----------------------------------------------------------------
+    void rootMember(std::string_view key, JsonValue value) override {
+        if (key == "features" || key == "resources") {
+            bool& seen = key == "features" ? featuresSeen_ : resourcesSeen_;
+            if (seen || passesStreamed_) unsound_ = true;
+            seen = true;
+            if (unsound_) return;
+            if (key == "features") loadFeatures(value);
+            else loadResources(value);
+        } else if (key == "passes") {
+            if (passesSeen_) unsound_ = true;
+            passesSeen_ = true;
+        }
+    }
+    bool streamArray(std::string_view key, size_t offset) override {
+        if (key != "passes" || passesSeen_ || !resourcesSeen_ || unsound_) return false;
+        passesStreamed_ = true;
+        passesStart_ = offset;
+        return true;
+    }
+    void element(size_t index, JsonValue value, size_t end) override {
+        if (unsound_) return;
+        // The passes' number is not known yet: guessed from the bytes of the first ones, it
+        // spares the copies of growing the array one doubling at a time.
+        if (index == kPassesSampled) {
+            const size_t bytesPerPass = std::max<size_t>(1, (end - passesStart_) / index);
+            const size_t guess = index + (textSize_ - end) / bytesPerPass;
+            graph_.passes.reserve(guess + guess / 8);
+            passNames_.reserve(guess + guess / 8);
+            passIndex_.reserve(guess + guess / 8);
+        }
+        loadPass(index, value);
     }
 
-    static std::string join(const std::string& path, const std::string& key) {
-        return path.empty() ? key : path + "." + key;
+private:
+    void into(FileProblems::Part& part) { report_.into(part); }
+    void error(const std::string& path, std::string_view pass, std::string_view resource,
+               const std::string& message) {
+        report_(path, pass, resource, message);
     }
 
     /// A repeated JSON key, with the pass and resource it concerns: "resources.<r>..." names
@@ -75,7 +165,7 @@ private:
             const std::string index = path.substr(7, close - 7);
             if (close != std::string::npos && !index.empty() &&
                 index.find_first_not_of("0123456789") == std::string::npos && index.size() < 10) {
-                if (auto it = passNames_.find(std::stoul(index)); it != passNames_.end()) pass = it->second;
+                if (const size_t i = std::stoul(index); i < passNames_.size()) pass = passNames_[i];
                 if (path.compare(close + 1, 6, ".uses.") == 0) resource = segment(close + 7);
             }
         }
@@ -85,316 +175,159 @@ private:
                   "'; JSON keeps only the last one");
     }
 
-    void checkKeys(const json& object, const std::string& path,
-                   std::initializer_list<std::string_view> allowed, const std::string& pass = "",
-                   const std::string& resource = "") {
-        for (const auto& [key, _] : object.items()) {
-            if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-            std::string list;
-            for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-            error(join(path, key), pass, resource, "unknown key '" + key + "'; expected one of: " + list);
-        }
-    }
-
-    void loadRoot(const json& root) {
-        if (!root.is_object()) {
-            error("", "", "", "a graph file must be a JSON object");
-            return;
-        }
-        checkKeys(root, "", {"$schema", "version", "name", "description", "features",
-                             "resources", "passes"});
-        if (!root.contains("version")) {
+    /// The root object's own keys, and the parts the listener was not told of.
+    void loadRoot(JsonValue root) {
+        into(rootDiags_);
+        const auto f = fieldsOf(root, kRootKeys);
+        report_.unknownKeys(root, f, [] { return std::string(); }, kRootKeys);
+        if (const JsonValue version = f[rootKey::version]; !version) {
             error("version", "", "", "missing; this reader understands version 1");
-        } else if (root["version"] != 1) {
-            error("version", "", "", "unsupported version " + root["version"].dump() +
+        } else if (!version.equals(1)) {
+            error("version", "", "", "unsupported version " + version.dump() +
                                          "; this reader understands version 1");
         }
-        if (auto it = root.find("name"); it != root.end() && it->is_string())
-            graph_.name = it->get<std::string>();
+        if (const JsonValue name = f[rootKey::name]; name && name.isString())
+            graph_.name = name.string();
         else
             error("name", "", "", "missing or not a string");
-        if (auto it = root.find("features"); it != root.end()) loadFeatures(*it);
-        if (auto it = root.find("resources"); it != root.end() && it->is_object()) {
-            for (const auto& [name, value] : it->items()) loadResource(name, value);
-            for (size_t i = 0; i < graph_.resources.size(); ++i)
-                resourceIndex_.emplace(graph_.resources[i].name, static_cast<uint32_t>(i));
-        } else
-            error("resources", "", "", "missing or not an object of named resources");
-        if (auto it = root.find("passes"); it != root.end() && it->is_array()) {
-            for (size_t i = 0; i < it->size(); ++i) loadPass(i, (*it)[i]);
+        if (!featuresSeen_)
+            if (const JsonValue features = f[rootKey::features]) loadFeatures(features);
+        if (!resourcesSeen_) loadResources(f[rootKey::resources]);
+        if (passesStreamed_) return;
+        into(passDiags_);
+        if (const JsonValue passes = f[rootKey::passes]; passes && passes.isArray()) {
+            graph_.passes.reserve(passes.size());
+            passIndex_.reserve(passes.size());
+            for (size_t i = 0; i < passes.size(); ++i) loadPass(i, passes[i]);
         } else {
             error("passes", "", "", "missing or not an array");
         }
     }
 
-    void loadFeatures(const json& features) {
-        if (!features.is_object()) {
+    void loadResources(JsonValue resources) {
+        into(resourceDiags_);
+        if (!resources || !resources.isObject()) {
+            error("resources", "", "", "missing or not an object of named resources");
+            return;
+        }
+        graph_.resources.reserve(resources.size());
+        for (const auto& [name, value] : resources.members())  // in place: a ResourceDesc is large
+            loadResource(name, value, report_, graph_.resources.emplace_back());
+        // Keys are unique: every name is new.
+        resourceIndex_.reserve(graph_.resources.size());
+        for (size_t i = 0; i < graph_.resources.size(); ++i)
+            resourceIndex_.insert(graph_.resources[i].name, static_cast<uint32_t>(i));
+    }
+
+    void loadFeatures(JsonValue features) {
+        into(featureDiags_);
+        if (!features.isObject()) {
             error("features", "", "", "must be an object of feature name -> true/false");
             return;
         }
-        for (const auto& [name, value] : features.items()) {
+        for (const auto& [key, value] : features.members()) {
+            const std::string name(key);
             std::string err;
             if (!Condition::parse(name, err) || name == "true" || name == "false" ||
                 name.find_first_of("!&|() ") != std::string::npos)
                 error("features." + name, "", "", "'" + name + "' is not a valid feature name");
-            if (!value.is_boolean())
+            if (!value.isBoolean())
                 error("features." + name, "", "", "default must be true or false");
-            graph_.features.push_back({name, value.is_boolean() && value.get<bool>()});
+            graph_.features.push_back({name, value.isBoolean() && value.boolean()});
         }
-    }
-
-    // ---- resources -------------------------------------------------------------------
-    void loadResource(const std::string& name, const json& v) {
-        std::string path = "resources." + name;
-        ResourceDesc r;
-        r.name = name;
-        auto fail = [&](const std::string& sub, const std::string& msg) {
-            error(sub.empty() ? path : path + "." + sub, "", name, msg);
-        };
-        if (!v.is_object()) {
-            fail("", "must be an object");
-            graph_.resources.push_back(std::move(r));
-            return;
-        }
-        checkKeys(v, path, {"type", "format", "extent", "mips", "layers", "size", "clear",
-                            "external", "initial", "final", "description"}, "", name);
-        static const std::map<std::string, ResourceType> types{
-            {"image2d", ResourceType::Image2D}, {"cube", ResourceType::Cube},
-            {"image2d_array", ResourceType::Image2DArray}, {"buffer", ResourceType::Buffer}};
-        auto type = v.find("type");
-        if (type == v.end() || !type->is_string() || !types.count(type->get<std::string>())) {
-            fail("type", "expected one of image2d, cube, image2d_array, buffer" +
-                             (type == v.end() ? std::string(" (missing)") : ", got " + type->dump()));
-            graph_.resources.push_back(std::move(r));
-            return;
-        }
-        r.type = types.at(type->get<std::string>());
-        if (r.isImage()) {
-            loadImageShape(r, v, fail);
-        } else {
-            for (const char* k : {"format", "extent", "mips", "layers"})
-                if (v.contains(k)) fail(k, std::string("buffers have no ") + k);
-            auto size = v.find("size");
-            if (size == v.end() || !size->is_number_unsigned() || size->get<uint64_t>() == 0 ||
-                size->get<uint64_t>() > kMaxBufferBytes)
-                fail("size", "buffers need a size in bytes between 1 and 2 GiB");
-            else
-                r.sizeBytes = size->get<uint64_t>();
-        }
-        loadClear(r, v, fail);
-        loadExternal(r, v, fail);
-        graph_.resources.push_back(std::move(r));
-    }
-
-    template <typename Fail>
-    void loadImageShape(ResourceDesc& r, const json& v, Fail& fail) {
-        if (v.contains("size")) fail("size", "images have an extent, not a size");
-        auto format = v.find("format");
-        if (format == v.end() || !format->is_string()) {
-            fail("format", "missing; a VkFormat name without VK_FORMAT_, e.g. R16G16B16A16_SFLOAT");
-        } else if (auto f = findFormat(format->get<std::string>())) {
-            r.format = *f;
-        } else {
-            std::string known;
-            for (const auto& k : knownFormats()) known += (known.empty() ? "" : ", ") + std::string(k.name);
-            fail("format", "unknown format '" + format->get<std::string>() + "'; known: " + known);
-        }
-        auto extent = v.find("extent");
-        if (extent == v.end()) {
-            fail("extent", "missing; \"output\", \"output/N\" or [width, height]");
-        } else if (extent->is_string()) {
-            std::string s = extent->get<std::string>();
-            if (s == "output") {
-                r.extent.divisor = 1;
-            } else if (s.starts_with("output/") && s.size() > 7 &&
-                       s.find_first_not_of("0123456789", 7) == std::string::npos && s.size() < 13) {
-                r.extent.divisor = static_cast<uint32_t>(std::stoul(s.substr(7)));
-                if (r.extent.divisor == 0 || r.extent.divisor > kMaxDivisor)
-                    fail("extent", "divisor must be between 1 and " + std::to_string(kMaxDivisor));
-            } else {
-                fail("extent", "expected \"output\", \"output/N\" or [width, height], got \"" + s + "\"");
-            }
-            if (r.type == ResourceType::Cube)
-                fail("extent", "cube faces must be square, which an output-relative extent is not "
-                               "in general; give a fixed [n, n]");
-        } else if (extent->is_array() && extent->size() == 2 && (*extent)[0].is_number_integer() &&
-                   (*extent)[1].is_number_integer()) {
-            int64_t w = (*extent)[0].get<int64_t>(), h = (*extent)[1].get<int64_t>();
-            if (w < 1 || h < 1 || w > kMaxExtent || h > kMaxExtent)
-                fail("extent", "[" + std::to_string(w) + ", " + std::to_string(h) +
-                                   "] is outside 1.." + std::to_string(kMaxExtent));
-            r.extent.relativeToOutput = false;
-            r.extent.width = static_cast<uint32_t>(std::clamp<int64_t>(w, 1, kMaxExtent));
-            r.extent.height = static_cast<uint32_t>(std::clamp<int64_t>(h, 1, kMaxExtent));
-            if (r.type == ResourceType::Cube && w != h) fail("extent", "cube faces must be square");
-        } else {
-            fail("extent", "expected \"output\", \"output/N\" or [width, height]");
-        }
-        if (auto mips = v.find("mips"); mips != v.end()) {
-            uint32_t maxMips = static_cast<uint32_t>(std::bit_width(kMaxExtent));
-            if (*mips == "full") {
-                r.mips = 0;
-            } else if (!mips->is_number_integer() || mips->get<int64_t>() < 1 ||
-                       mips->get<int64_t>() > maxMips) {
-                fail("mips", "expected \"full\" or a count between 1 and " + std::to_string(maxMips) +
-                                 ", got " + mips->dump());
-            } else {
-                r.mips = mips->get<uint32_t>();
-                if (!r.extent.relativeToOutput &&
-                    r.mips > static_cast<uint32_t>(std::bit_width(std::max(r.extent.width, r.extent.height))))
-                    fail("mips", std::to_string(r.mips) + " levels is more than a " +
-                                     std::to_string(r.extent.width) + "x" +
-                                     std::to_string(r.extent.height) + " image has");
-            }
-        }
-        r.layers = r.type == ResourceType::Cube ? 6 : 1;
-        if (auto layers = v.find("layers"); layers != v.end()) {
-            if (!layers->is_number_integer() || layers->get<int64_t>() < 1 ||
-                layers->get<int64_t>() > kMaxLayers) {
-                fail("layers", "expected a count between 1 and " + std::to_string(kMaxLayers) +
-                                   ", got " + layers->dump());
-            } else {
-                r.layers = layers->get<uint32_t>();
-                if (r.type == ResourceType::Cube && r.layers != 6)
-                    fail("layers", "a cube has 6 layers");
-                if (r.type == ResourceType::Image2D && r.layers != 1)
-                    fail("layers", "an image2d has 1 layer; use image2d_array");
-            }
-        }
-    }
-
-    template <typename Fail>
-    void loadClear(ResourceDesc& r, const json& v, Fail& fail) {
-        auto clear = v.find("clear");
-        if (clear == v.end()) return;
-        ClearValue c;
-        if (!clear->is_object()) {
-            fail("clear", "expected {\"color\": [r, g, b, a]} or {\"depth\": d}");
-            return;
-        }
-        checkKeys(*clear, r.jsonPath() + ".clear", {"color", "depth", "stencil"}, "", r.name);
-        if (!r.isImage()) fail("clear", "buffers cannot be cleared by the graph");
-        if (auto color = clear->find("color"); color != clear->end()) {
-            if (!color->is_array() || color->size() != 4 ||
-                !std::all_of(color->begin(), color->end(), [](const json& x) { return x.is_number(); }))
-                fail("clear.color", "expected four numbers");
-            else
-                for (size_t i = 0; i < 4; ++i) c.color[i] = (*color)[i].get<float>();
-            if (r.format.isDepthStencil()) fail("clear.color", "a depth format needs {\"depth\": d}");
-        } else if (clear->contains("depth") || clear->contains("stencil")) {
-            c.isDepth = true;
-            if (auto depth = clear->find("depth"); depth != clear->end()) {
-                if (!depth->is_number() || depth->get<double>() < 0.0 || depth->get<double>() > 1.0)
-                    fail("clear.depth", "expected a number in [0, 1]");
-                else
-                    c.depth = depth->get<float>();
-            }
-            if (auto st = clear->find("stencil"); st != clear->end()) {
-                if (!st->is_number_unsigned() || st->get<uint64_t>() > 255)
-                    fail("clear.stencil", "expected an integer in [0, 255]");
-                else
-                    c.stencil = st->get<uint32_t>();
-            }
-            if (r.isImage() && r.format.format != VK_FORMAT_UNDEFINED && !r.format.isDepthStencil())
-                fail("clear", "a color format needs {\"color\": [r, g, b, a]}");
-        } else {
-            fail("clear", "expected {\"color\": [r, g, b, a]} or {\"depth\": d}");
-        }
-        r.clear = c;
-    }
-
-    template <typename Fail>
-    void loadExternal(ResourceDesc& r, const json& v, Fail& fail) {
-        static const std::map<std::string, ExternalState> states{
-            {"Present", ExternalState::Present}, {"TransferSrc", ExternalState::TransferSrc},
-            {"ShaderRead", ExternalState::ShaderRead}, {"General", ExternalState::General}};
-        auto state = [&](const char* key) {
-            auto it = v.find(key);
-            if (it == v.end()) return ExternalState::None;
-            if (!it->is_string() || !states.count(it->get<std::string>())) {
-                fail(key, "expected one of Present, TransferSrc, ShaderRead, General");
-                return ExternalState::None;
-            }
-            ExternalState s = states.at(it->get<std::string>());
-            if (!r.isImage() && (s == ExternalState::Present || s == ExternalState::TransferSrc))
-                fail(key, "a buffer cannot be in state " + it->get<std::string>());
-            return s;
-        };
-        if (auto ext = v.find("external"); ext != v.end()) {
-            if (!ext->is_boolean()) fail("external", "expected true or false");
-            else r.external = ext->get<bool>();
-        }
-        r.final = state("final");
-        r.initial = state("initial");
-        if (r.initial != ExternalState::None && !r.external)
-            fail("initial", "only external resources arrive in a state");
-        // An external resource that persists comes back in the state it was left in.
-        if (r.external && r.initial == ExternalState::None)
-            r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;
-        if (r.external && r.clear) fail("clear", "an external resource arrives with contents; it is not cleared");
     }
 
     // ---- passes ----------------------------------------------------------------------
-    void loadPass(size_t index, const json& v) {
-        std::string path = "passes[" + std::to_string(index) + "]";
-        PassDesc p;
-        p.jsonPath = path;
-        usePaths_.clear();
-        if (!v.is_object()) {
-            error(path, "", "", "a pass must be an object");
+    static std::string passPath(size_t index) { return "passes[" + std::to_string(index) + "]"; }
+
+    void loadPass(size_t index, JsonValue v) {
+        into(passDiags_);
+        if (index >= passNames_.size()) passNames_.resize(index + 1);
+        if (!v.isObject()) {
+            error(passPath(index), "", "", "a pass must be an object");
             return;
         }
-        if (auto it = v.find("name"); it != v.end() && it->is_string() && !it->get<std::string>().empty())
-            p.name = it->get<std::string>();
+        PassDesc& p = graph_.passes.emplace_back();  // built in place: a PassDesc is large
+        p.jsonPath = passPath(index);
+        const std::string& path = p.jsonPath;
+        useIndices_.clear();
+        const auto f = fieldsOf(v, kPassKeys);
+        const JsonValue name = f[passKey::name];
+        if (name && name.isString() && !name.string().empty())
+            p.name = name.string();
         else
             error(path + ".name", "", "", "missing or not a non-empty string");
-        checkKeys(v, path, {"name", "type", "if", "uses", "params", "never_cull", "description"}, p.name);
+        report_.unknownKeys(v, f, [&] { return path; }, kPassKeys, p.name);
         if (!p.name.empty()) {
-            passNames_.emplace(index, p.name);
-            auto [first, fresh] = passPaths_.emplace(p.name, path);
-            if (!fresh)
-                error(path + ".name", p.name, "", "duplicate pass name; the first is " + first->second);
+            passNames_[index] = name.string();
+            const PassIndex::Key key = PassIndex::keyOf(name.string());
+            passIndex_.prefetch(key);
+            namesToCheck_.push_back({static_cast<uint32_t>(index), passDiags_.size(), key});
+            if (namesToCheck_.size() == kNamesCheckedTogether) checkPassNames();
         }
 
         const PassTypeInfo* type = nullptr;
-        if (auto it = v.find("type"); it != v.end() && it->is_string()) {
-            p.type = it->get<std::string>();
-            type = registry_.find(p.type);
+        if (const JsonValue t = f[passKey::type]; t && t.isString()) {
+            p.type = t.string();
+            type = findType(p.type);
             if (!type)
                 error(path + ".type", p.name, "", "unknown pass type '" + p.type +
                                                       "'; registered: " + joinNames(registry_.names()));
         } else {
             error(path + ".type", p.name, "", "missing or not a string");
         }
-        if (auto it = v.find("if"); it != v.end()) loadCondition(p, *it);
-        if (auto it = v.find("never_cull"); it != v.end()) {
-            if (it->is_boolean()) p.neverCull = it->get<bool>();
+        if (const JsonValue cond = f[passKey::condition]) loadCondition(p, cond);
+        if (const JsonValue nc = f[passKey::neverCull]) {
+            if (nc.isBoolean()) p.neverCull = nc.boolean();
             else error(path + ".never_cull", p.name, "", "expected true or false");
         }
-        if (auto it = v.find("params"); it != v.end()) {
-            if (!it->is_object()) error(path + ".params", p.name, "", "expected an object");
-            else p.params = PassParams(*it);
+        if (const JsonValue params = f[passKey::params]) {
+            if (!params.isObject()) error(path + ".params", p.name, "", "expected an object");
+            else if (params.size() != 0) p.params = PassParams(params.toJson());
         }
         if (type && type->validateParams)
             for (const auto& e : type->validateParams(p.params))
                 error(path + ".params" + (e.path.empty() ? "" : "." + e.path), p.name, "", e.message);
-        if (auto it = v.find("uses"); it != v.end()) loadUses(p, *it);
+        if (const JsonValue uses = f[passKey::uses]) loadUses(p, uses);
         else error(path + ".uses", p.name, "", "missing; a pass that uses nothing does nothing");
         if (type) bindSlots(p, *type);
         checkOverlaps(p);
-        graph_.passes.push_back(std::move(p));
     }
 
-    void loadCondition(PassDesc& p, const json& v) {
-        std::string path = p.jsonPath + ".if";
-        if (!v.is_string()) {
+    /// Enters the names of the passes loaded since the last call, in file order, reporting
+    /// each name an earlier pass has. In batches: on a large graph the table of names is far
+    /// larger than the cache, and the misses of lookups started together overlap. A repeated
+    /// name's diagnostic goes where the pass's problems were at its name.
+    void checkPassNames() {
+        size_t inserted = 0;
+        for (const PendingName& n : namesToCheck_) {
+            const auto [first, fresh] = passIndex_.insert(passNames_[n.pass], n.pass, n.key);
+            if (fresh) continue;
+            const std::string path = passPath(n.pass);
+            passDiags_.insert(passDiags_.begin() + static_cast<std::ptrdiff_t>(n.problemsBefore + inserted++),
+                              report_.diagnostic(path + ".name", passNames_[n.pass], "",
+                                                 "duplicate pass name; the first is " + passPath(first)));
+        }
+        namesToCheck_.clear();
+    }
+
+    /// Passes of one type usually come in runs: the last type found is asked first.
+    const PassTypeInfo* findType(const std::string& name) {
+        if (!lastType_ || lastType_->name != name) lastType_ = registry_.find(name);
+        return lastType_;
+    }
+
+    void loadCondition(PassDesc& p, JsonValue v) {
+        const std::string path = p.jsonPath + ".if";
+        if (!v.isString()) {
             error(path, p.name, "", "expected a string expression such as \"skybox && !debug\"");
             return;
         }
+        const std::string text(v.string());
         std::string err;
-        auto cond = Condition::parse(v.get<std::string>(), err);
+        auto cond = Condition::parse(text, err);
         if (!cond) {
-            error(path, p.name, "", "bad expression \"" + v.get<std::string>() + "\": " + err);
+            error(path, p.name, "", "bad expression \"" + text + "\": " + err);
             return;
         }
         for (const auto& f : cond->features()) {
@@ -410,102 +343,140 @@ private:
         p.condition = *cond;
     }
 
-    void loadUses(PassDesc& p, const json& uses) {
-        std::string path = p.jsonPath + ".uses";
-        p.usesByName = uses.is_object();
-        if (uses.is_object()) {
-            for (const auto& [name, value] : uses.items()) {
-                std::string upath = path + "." + name;
-                if (!value.is_string()) {
-                    error(upath, p.name, name, "expected \"Access@Stage\", e.g. \"Read@Fragment\"");
-                    continue;
-                }
-                json entry = {{"resource", name}};
-                auto at = value.get<std::string>().find('@');
-                if (at == std::string::npos) {
-                    error(upath, p.name, name, "expected \"Access@Stage\", got \"" + value.get<std::string>() + "\"");
-                    continue;
-                }
-                entry["access"] = value.get<std::string>().substr(0, at);
-                entry["stage"] = value.get<std::string>().substr(at + 1);
-                loadUsage(p, entry, upath);
+    /// Looks up the resources of a pass's usages all at once, before loading them: on a large
+    /// graph the name table and the resources are far larger than the cache, and misses that
+    /// are started together overlap instead of waiting one for the other. ahead_[i].found is
+    /// entry i's resource, if it names a declared one.
+    void lookUpAhead(JsonValue uses) {
+        ahead_.clear();
+        for (const auto& [key, value] : uses.members()) {
+            Ahead& a = ahead_.emplace_back();
+            a.name = key;  // the object form
+            if (uses.isArray()) {
+                const JsonValue res = value.isObject() ? value.find("resource") : JsonValue();
+                a.named = res && res.isString();
+                a.name = a.named ? res.string() : std::string_view();
             }
-        } else if (uses.is_array()) {
-            for (size_t i = 0; i < uses.size(); ++i) {
-                std::string upath = path + "[" + std::to_string(i) + "]";
-                if (!uses[i].is_object()) {
-                    error(upath, p.name, "", "expected {\"resource\", \"access\", \"stage\", ...}");
-                    continue;
-                }
-                auto res = uses[i].find("resource");
-                checkKeys(uses[i], upath, {"resource", "access", "stage", "as", "mips", "layers", "slot"},
-                          p.name, res != uses[i].end() && res->is_string() ? res->get<std::string>() : "");
-                loadUsage(p, uses[i], upath);
-            }
-        } else {
-            error(path, p.name, "", "expected an object (resource -> \"Access@Stage\") or an array of usage objects");
+            a.key = ResourceIndex::keyOf(a.name);
+            resourceIndex_.prefetch(a.key);
+        }
+        for (Ahead& a : ahead_) {
+            if (!a.named || !(a.found = resourceIndex_.find(a.name, a.key))) continue;
+            const auto* record = reinterpret_cast<const char*>(&graph_.resources[*a.found]);
+            __builtin_prefetch(record);
+            __builtin_prefetch(record + 64);
         }
     }
 
-    void loadUsage(PassDesc& p, const json& e, const std::string& path) {
-        auto resIt = e.find("resource");
-        if (resIt == e.end() || !resIt->is_string())
-            return error(resIt == e.end() ? path : path + ".resource", p.name, "",
-                         "expected \"resource\": the name of a declared resource");
-        const std::string resName = resIt->get<std::string>();
-        auto fail = [&](const std::string& msg) { error(path, p.name, resName, msg); };
-        auto found = resourceIndex_.find(resName);
-        const ResourceDesc* res = found == resourceIndex_.end() ? nullptr : &graph_.resources[found->second];
-        if (!res) {
+    void loadUses(PassDesc& p, JsonValue uses) {
+        auto path = [&] { return p.jsonPath + ".uses"; };
+        p.usesByName = uses.isObject();
+        p.uses.reserve(uses.isObject() || uses.isArray() ? uses.size() : 0);
+        if (uses.isObject() || uses.isArray()) lookUpAhead(uses);
+        if (uses.isObject()) {
+            size_t i = 0;
+            for (const auto& [name, value] : uses.members()) {
+                const std::optional<uint32_t> found = ahead_[i++].found;
+                auto upath = [&, name = name] { return path() + "." + std::string(name); };
+                if (!value.isString()) {
+                    error(upath(), p.name, name, "expected \"Access@Stage\", e.g. \"Read@Fragment\"");
+                    continue;
+                }
+                const std::string_view text = value.string();
+                const size_t at = text.find('@');
+                if (at == std::string_view::npos) {
+                    error(upath(), p.name, name, "expected \"Access@Stage\", got \"" + std::string(text) + "\"");
+                    continue;
+                }
+                loadUsage(p, name, found, UsageEntry{{}, true, text.substr(0, at), text.substr(at + 1)}, 0, upath);
+            }
+        } else if (uses.isArray()) {
+            for (size_t i = 0; i < uses.size(); ++i) {
+                auto upath = [&] { return path() + "[" + std::to_string(i) + "]"; };
+                const JsonValue entry = uses[i];
+                if (!entry.isObject()) {
+                    error(upath(), p.name, "", "expected {\"resource\", \"access\", \"stage\", ...}");
+                    continue;
+                }
+                UsageEntry e{fieldsOf(entry, kUsageKeys), false, {}, {}};
+                const JsonValue res = e.fields[usageKey::resource];
+                const std::string_view resName = res && res.isString() ? res.string() : std::string_view();
+                report_.unknownKeys(entry, e.fields, upath, kUsageKeys, p.name, resName);
+                if (!res || !res.isString()) {
+                    error(!res ? upath() : upath() + ".resource", p.name, "",
+                          "expected \"resource\": the name of a declared resource");
+                    continue;
+                }
+                loadUsage(p, resName, ahead_[i].found, e, static_cast<uint32_t>(i), upath);
+            }
+        } else {
+            error(path(), p.name, "", "expected an object (resource -> \"Access@Stage\") or an array of usage objects");
+        }
+    }
+
+    /// One usage of `resName` (`found`: its index, if declared); `fileIndex` is its place in
+    /// an array of uses (for its path).
+    template <typename Path>
+    void loadUsage(PassDesc& p, std::string_view resName, std::optional<uint32_t> found, const UsageEntry& e,
+                   uint32_t fileIndex, Path&& path) {
+        auto fail = [&](const std::string& msg) { error(path(), p.name, resName, msg); };
+        if (!found) {
             std::vector<std::string> names;
             for (const auto& r : graph_.resources) names.push_back(r.name);
             return fail("unknown resource; declared: " + joinNames(names));
         }
+        const ResourceDesc* res = &graph_.resources[*found];
         UsageDecl u;
-        u.resource = static_cast<uint32_t>(res - graph_.resources.data());
-        auto access = e.contains("access") && e["access"].is_string()
-                          ? parseAccess(e["access"].get<std::string>()) : std::nullopt;
-        auto stage = e.contains("stage") && e["stage"].is_string()
-                         ? parseStage(e["stage"].get<std::string>()) : std::nullopt;
-        if (!access) fail("unknown access " + (e.contains("access") ? e["access"].dump() : "(missing)") +
-                          "; expected Read, Write or ReadWrite");
-        if (!stage) fail("unknown stage " + (e.contains("stage") ? e["stage"].dump() : "(missing)") +
-                         "; expected ColorAttachment, DepthAttachment, Vertex, Fragment, Compute, "
-                         "Transfer, VertexInput or Indirect");
+        u.resource = *found;
+        const JsonValue accessValue = e.fields[usageKey::access], stageValue = e.fields[usageKey::stage];
+        const auto access = e.split ? parseAccess(e.access)
+                            : accessValue && accessValue.isString() ? parseAccess(accessValue.string())
+                                                                    : std::nullopt;
+        const auto stage = e.split ? parseStage(e.stage)
+                           : stageValue && stageValue.isString() ? parseStage(stageValue.string())
+                                                                 : std::nullopt;
+        if (!access)
+            fail("unknown access " +
+                 (e.split ? dumpString(e.access) : accessValue ? accessValue.dump() : "(missing)") +
+                 "; expected Read, Write or ReadWrite");
+        if (!stage)
+            fail("unknown stage " + (e.split ? dumpString(e.stage) : stageValue ? stageValue.dump() : "(missing)") +
+                 "; expected ColorAttachment, DepthAttachment, Vertex, Fragment, Compute, "
+                 "Transfer, VertexInput or Indirect");
         if (!access || !stage) return;
         u.usage.access = *access;
         u.usage.stage = *stage;
-        if (auto as = e.find("as"); as != e.end()) {
-            auto parsed = as->is_string() ? parseBindAs(as->get<std::string>()) : std::nullopt;
-            if (!parsed) return fail("unknown `as` " + as->dump() + "; expected sampled, storage, uniform or index");
+        if (const JsonValue as = e.fields[usageKey::as]) {
+            auto parsed = as.isString() ? parseBindAs(as.string()) : std::nullopt;
+            if (!parsed) return fail("unknown `as` " + as.dump() + "; expected sampled, storage, uniform or index");
             u.usage.as = *parsed;
         }
-        if (e.contains("slot")) {
-            if (!e["slot"].is_string()) return fail("`slot` must be a string");
-            u.slot = graph_.internSlot(e["slot"].get<std::string>());
+        if (const JsonValue slot = e.fields[usageKey::slot]) {
+            if (!slot.isString()) return fail("`slot` must be a string");
+            u.slot = graph_.internSlot(slot.string());
         }
-        if (e.contains("mips") || e.contains("layers")) {
+        const JsonValue mips = e.fields[usageKey::mips], layers = e.fields[usageKey::layers];
+        if (mips || layers) {
             // A full chain's length is known here for fixed extents only; for output-relative
             // ones the compiler clips the range to the chain it resolves.
             const uint32_t levels = res->mips != 0 ? res->mips
                                     : res->extent.relativeToOutput
-                                        ? static_cast<uint32_t>(std::bit_width(kMaxExtent))
+                                        ? static_cast<uint32_t>(std::bit_width(kMaxImageExtent))
                                         : res->mipCount(0, 0);
             SubresourceRange range{0, levels, 0, res->layers};
-            auto pair = [&](const char* key, uint32_t& first, uint32_t& count) {
-                auto it = e.find(key);
-                if (it == e.end()) return true;
+            auto pair = [&](const char* key, JsonValue it, uint32_t& first, uint32_t& count) {
+                if (!it) return true;
                 if (!res->isImage()) return fail(std::string("buffers have no ") + key), false;
-                if (!it->is_array() || it->size() != 2 || !(*it)[0].is_number_unsigned() ||
-                    !(*it)[1].is_number_unsigned() || (*it)[1].get<uint64_t>() == 0 ||
-                    (*it)[0].get<uint64_t>() > kMaxLayers || (*it)[1].get<uint64_t>() > kMaxLayers)
+                if (!it.isArray() || it.size() != 2 || !it[0].isUnsigned() || !it[1].isUnsigned() ||
+                    it[1].number<uint64_t>() == 0 || it[0].number<uint64_t>() > kMaxLayers ||
+                    it[1].number<uint64_t>() > kMaxLayers)
                     return fail(std::string("`") + key + "` must be [first, count] with count >= 1"), false;
-                first = (*it)[0].get<uint32_t>();
-                count = (*it)[1].get<uint32_t>();
+                first = it[0].number<uint32_t>();
+                count = it[1].number<uint32_t>();
                 return true;
             };
-            if (!pair("mips", range.baseMip, range.mipCount) ||
-                !pair("layers", range.baseLayer, range.layerCount))
+            if (!pair("mips", mips, range.baseMip, range.mipCount) ||
+                !pair("layers", layers, range.baseLayer, range.layerCount))
                 return;
             if (res->mips == 0 && range.baseMip + range.mipCount > levels)
                 return fail("mips [" + std::to_string(range.baseMip) + ", " + std::to_string(range.mipCount) +
@@ -520,69 +491,81 @@ private:
         std::string problem = usageProblem(*res, u.usage);
         if (!problem.empty()) return fail(problem);
         u.usage.as = resolvedBinding(u.usage.mode(), res->isImage());
-        p.uses.push_back(std::move(u));
-        usePaths_.push_back(path);
+        p.uses.push_back(u);
+        useIndices_.push_back(fileIndex);
+    }
+
+    /// The JSON path of usage `i` of the pass being loaded: a usage that failed to load
+    /// leaves a gap in an array's numbering, so it is not always GraphDesc::usageJsonPath.
+    std::string usePath(const PassDesc& p, size_t i) const {
+        if (p.usesByName) return p.jsonPath + ".uses." + graph_.resources[p.uses[i].resource].name;
+        return p.jsonPath + ".uses[" + std::to_string(useIndices_[i]) + "]";
     }
 
     void bindSlots(PassDesc& p, const PassTypeInfo& type) {
         if (type.acceptsAnyUsage) return;
-        std::map<std::string, int> filled;
+        // Per slot of the type (slot names are unique in a type): how many usages fill it.
+        filled_.assign(type.slots.size(), 0);
         auto matches = [&](const SlotDecl& s, const UsageDecl& u) {
             return s.stage == u.usage.stage &&
                    std::find(s.accesses.begin(), s.accesses.end(), u.usage.access) != s.accesses.end() &&
                    (s.as == BindAs::Default || s.as == u.usage.as);
         };
-        std::string expected;
-        for (const auto& s : type.slots)
-            expected += (expected.empty() ? "" : "; ") + s.name + " (" + s.describeUsage() + ")";
+        auto expected = [&] {
+            std::string list;
+            for (const auto& s : type.slots)
+                list += (list.empty() ? "" : "; ") + s.name + " (" + s.describeUsage() + ")";
+            return list;
+        };
         for (size_t i = 0; i < p.uses.size(); ++i) {
             UsageDecl& u = p.uses[i];
-            const std::string& path = usePaths_[i];
             const std::string& resName = graph_.resources[u.resource].name;
-            const SlotDecl* slot = nullptr;
             const std::string named(graph_.slotName(u.slot));  // as the file names it, or empty
             const std::string& wanted = named.empty() ? resName : named;
-            for (const auto& s : type.slots)
-                if (s.name == wanted) slot = &s;
-            if (!slot && !named.empty()) {
-                error(path, p.name, resName, type.name + " has no slot '" + named +
-                                                       "'; its slots: " + expected);
+            size_t slot = type.slots.size();
+            for (size_t s = 0; s < type.slots.size(); ++s)
+                if (type.slots[s].name == wanted) slot = s;
+            if (slot == type.slots.size() && !named.empty()) {
+                error(usePath(p, i), p.name, resName, type.name + " has no slot '" + named +
+                                                          "'; its slots: " + expected());
                 continue;
             }
-            if (!slot) {
-                std::vector<const SlotDecl*> candidates;
-                for (const auto& s : type.slots)
-                    if (matches(s, u) && (s.repeated || !filled.count(s.name))) candidates.push_back(&s);
-                if (candidates.size() > 1) {
-                    error(path, p.name, resName, "usage " + toString(u.usage) + " fits several slots of " +
-                                                           type.name + "; name one with \"slot\"");
+            if (slot == type.slots.size()) {
+                size_t candidates = 0;
+                for (size_t s = 0; s < type.slots.size(); ++s)
+                    if (matches(type.slots[s], u) && (type.slots[s].repeated || !filled_[s])) {
+                        if (candidates++ == 0) slot = s;
+                    }
+                if (candidates > 1) {
+                    error(usePath(p, i), p.name, resName, "usage " + toString(u.usage) + " fits several slots of " +
+                                                              type.name + "; name one with \"slot\"");
                     continue;
                 }
-                if (candidates.empty()) {
-                    error(path, p.name, resName, "usage " + toString(u.usage) + " contradicts " +
-                                                           type.name + "; expected " + expected);
+                if (candidates == 0) {
+                    error(usePath(p, i), p.name, resName, "usage " + toString(u.usage) + " contradicts " +
+                                                              type.name + "; expected " + expected());
                     continue;
                 }
-                slot = candidates.front();
             }
-            if (!matches(*slot, u)) {
-                error(path, p.name, resName, "usage " + toString(u.usage) + " contradicts slot '" +
-                                                       slot->name + "' of " + type.name + "; expected " +
-                                                       slot->describeUsage());
+            const SlotDecl& decl = type.slots[slot];
+            if (!matches(decl, u)) {
+                error(usePath(p, i), p.name, resName, "usage " + toString(u.usage) + " contradicts slot '" +
+                                                          decl.name + "' of " + type.name + "; expected " +
+                                                          decl.describeUsage());
                 continue;
             }
-            if (filled.count(slot->name) && !slot->repeated) {
-                error(path, p.name, resName, "slot '" + slot->name + "' of " + type.name +
-                                                       " is already filled");
+            if (filled_[slot] && !decl.repeated) {
+                error(usePath(p, i), p.name, resName, "slot '" + decl.name + "' of " + type.name +
+                                                          " is already filled");
                 continue;
             }
-            filled[slot->name]++;
-            u.slot = graph_.internSlot(slot->name);
+            ++filled_[slot];
+            u.slot = graph_.internSlot(decl.name);
         }
-        for (const auto& s : type.slots)
-            if (!s.optional && !filled.count(s.name))
-                error(p.jsonPath + ".uses", p.name, "", type.name + " needs slot '" + s.name + "' (" +
-                                                            s.describeUsage() + "); no usage fills it");
+        for (size_t s = 0; s < type.slots.size(); ++s)
+            if (!type.slots[s].optional && !filled_[s])
+                error(p.jsonPath + ".uses", p.name, "", type.name + " needs slot '" + type.slots[s].name + "' (" +
+                                                            type.slots[s].describeUsage() + "); no usage fills it");
     }
 
     void checkOverlaps(const PassDesc& p) {
@@ -595,26 +578,74 @@ private:
                 SubresourceRange whole{0, std::max(1u, res.mips), 0, res.layers};
                 if (a.usage.range.value_or(whole).overlaps(b.usage.range.value_or(whole)) ||
                     (res.mips == 0 && (!a.usage.range || !b.usage.range)))
-                    error(usePaths_[i], p.name, res.name, "overlaps " + usePaths_[j] +
-                                                            "; one pass may use each subresource once");
+                    error(usePath(p, i), p.name, res.name, "overlaps " + usePath(p, j) +
+                                                               "; one pass may use each subresource once");
             }
     }
 
+    static constexpr size_t kPassesSampled = 256;
+
+    /// NameIndex's view of the names it holds.
+    struct ResourceName {
+        const GraphDesc* graph;
+        std::string_view operator()(uint32_t i) const { return graph->resources[i].name; }
+    };
+    struct PassName {
+        const std::vector<std::string_view>* names;
+        std::string_view operator()(uint32_t i) const { return (*names)[i]; }
+    };
+
     const PassRegistry& registry_;
+    const size_t textSize_;
+    size_t passesStart_ = 0;
     GraphDesc graph_;
-    Diagnostics diags_;
-    std::unordered_map<std::string, uint32_t> resourceIndex_;  ///< name -> graph_.resources
-    std::unordered_map<std::string, std::string> passPaths_;   ///< name -> first JSON path
-    std::unordered_map<size_t, std::string> passNames_;        ///< JSON index -> name
-    /// The JSON paths of the pass being loaded's usages, beside PassDesc::uses (a usage that
-    /// fails to load leaves a gap in the file's numbering, so they cannot be derived yet).
-    std::vector<std::string> usePaths_;
+    FileProblems::Part rootDiags_, featureDiags_, resourceDiags_, passDiags_;
+    FileProblems report_;
+    bool featuresSeen_ = false, resourcesSeen_ = false, passesSeen_ = false;
+    bool passesStreamed_ = false;
+    bool unsound_ = false;
+    /// JSON index -> pass name (empty: none). Names view the document, which outlives them.
+    std::vector<std::string_view> passNames_;
+    using ResourceIndex = NameIndex<ResourceName>;
+    ResourceIndex resourceIndex_{ResourceName{&graph_}};  ///< name -> graph_.resources
+    using PassIndex = NameIndex<PassName>;
+    PassIndex passIndex_{PassName{&passNames_}};  ///< pass name -> JSON index of the first
+    /// Loaded passes whose names are yet to be entered (checkPassNames), and how many problems
+    /// the passes had before each's name.
+    struct PendingName {
+        uint32_t pass;
+        size_t problemsBefore;
+        PassIndex::Key key;
+    };
+    static constexpr size_t kNamesCheckedTogether = 16;
+    std::vector<PendingName> namesToCheck_;
+    const PassTypeInfo* lastType_ = nullptr;
+    /// Of the pass being loaded, beside PassDesc::uses: each usage's index in an array of
+    /// uses, for its JSON path.
+    std::vector<uint32_t> useIndices_;
+    std::vector<uint32_t> filled_;           ///< bindSlots: per slot, the usages filling it
+    struct Ahead {
+        std::string_view name;
+        bool named = true;  ///< Whether the entry names a resource at all.
+        ResourceIndex::Key key{};
+        std::optional<uint32_t> found;
+    };
+    std::vector<Ahead> ahead_;  ///< lookUpAhead's, per entry of the pass's `uses`
 };
 
 }  // namespace
 
 GraphDesc parseGraph(std::string_view text, const std::string& fileName, const PassRegistry& registry) {
-    return GraphLoader(fileName, registry).load(text);
+    GraphLoader loader(fileName, registry, text.size());
+    const JsonRead read = readJson(text, &loader);
+    if (!read.error.empty()) loader.refuse(read);
+    if (read.listened && loader.toldSoundly()) return loader.finish(read.document.root(), read.duplicateKeys);
+    // Told of part of the file only (the document is then whole), or of parts that the file
+    // repeats or gives late: load the whole document afresh.
+    GraphLoader whole(fileName, registry, text.size());
+    if (!read.listened) return whole.finish(read.document.root(), read.duplicateKeys);
+    const JsonRead again = readJson(text);
+    return whole.finish(again.document.root(), again.duplicateKeys);
 }
 
 GraphDesc loadGraphFile(const std::filesystem::path& path, const PassRegistry& registry) {

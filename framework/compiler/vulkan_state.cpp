@@ -30,7 +30,8 @@ bool isDepthReadOnly(VkImageLayout l) {
 VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept { return access & kWriteBits; }
 
 std::string usageProblem(const ResourceDesc& r, const Usage& u) {
-    const std::string usage = toString(u);
+    // The loader asks this of every usage: the usage's text is made only for a message.
+    const auto usage = [&] { return toString(u); };
     const BindAs as = resolvedBinding(u.mode(), r.isImage());
     if (u.as == BindAs::Index && u.stage != Stage::VertexInput)
         return "`as: index` applies to VertexInput only";
@@ -38,7 +39,7 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
         return "`as` applies to shader stages (Vertex, Fragment, Compute), not " +
                std::string(toString(u.stage));
     if (isAttachmentStage(u.stage)) {
-        if (!r.isImage()) return "a buffer cannot be an attachment (" + usage + ")";
+        if (!r.isImage()) return "a buffer cannot be an attachment (" + usage() + ")";
         if (u.stage == Stage::ColorAttachment && r.format.isDepthStencil())
             return "format " + std::string(r.format.name) +
                    " is a depth/stencil format; it cannot be a color attachment "
