@@ -9,6 +9,7 @@
 #include <skygraph/compiler.hpp>
 
 #include <benchmark/benchmark.h>
+#include <nlohmann/json.hpp>
 
 #include <sys/resource.h>
 #if defined(__GLIBC__)
@@ -208,6 +209,35 @@ void BM_Parse(benchmark::State& state) {
     state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(c.text.size()));
 }
 
+// The floor under parseGraph()'s reading: nlohmann's SAX parser over the same text, its events
+// dropped (the loader reads through the same parser, and builds its document from the events).
+struct DroppedEvents : nlohmann::json_sax<nlohmann::json> {
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override { return true; }
+    bool key(string_t&) override { return true; }
+    bool end_object() override { return true; }
+    bool start_array(std::size_t) override { return true; }
+    bool end_array() override { return true; }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+};
+
+void BM_JsonSax(benchmark::State& state) {
+    const Case& c = graphFor(static_cast<int>(state.range(0)), false);
+    for (auto _ : state) {
+        DroppedEvents events;
+        const bool ok = nlohmann::json::sax_parse(c.text, &events);
+        benchmark::DoNotOptimize(ok);
+    }
+    setCounters(state, c);
+    state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(c.text.size()));
+}
+
 // The floor under parseGraph(), as BM_CopyPlan is under compile(): copying the loaded graph
 // allocates and writes what loading must produce (every pass, usage array and resource).
 void BM_CopyGraph(benchmark::State& state) {
@@ -225,6 +255,7 @@ void BM_CopyGraph(benchmark::State& state) {
 BENCHMARK(BM_Compile)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CopyPlan)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Parse)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_JsonSax)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CopyGraph)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 // Stops at 10k: the synchronizer is quadratic in the length of a run of reads (docs/performance.md).
 BENCHMARK(BM_CompileSharedRead)->RangeMultiplier(10)->Range(10, 10000)->Unit(benchmark::kMicrosecond);

@@ -1,10 +1,11 @@
 #include "json_document.hpp"
 
 #include "json_document_builder.hpp"
-#include "json_fast_reader.hpp"
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
+#include <iterator>
 
 namespace skygraph {
 
@@ -13,26 +14,56 @@ using Kind = JsonValue::Kind;
 
 namespace {
 
-// nlohmann's SAX events, for the builder. Strings arrive decoded, without their place in the
-// text: they are copied.
+/// nlohmann reads the text through this iterator, which writes down how far it has read:
+/// nlohmann's SAX events come without their place in the text, and a string's place is what
+/// lets the document view it where it is written rather than copy it.
+class TrackedChar {
+public:
+    using iterator_category = std::input_iterator_tag;
+    using value_type = char;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const char*;
+    using reference = const char&;
+
+    TrackedChar(const char* at, const char** published) : at_(at), published_(published) {}
+    reference operator*() const { return *at_; }
+    TrackedChar& operator++() {
+        *published_ = ++at_;
+        return *this;
+    }
+    bool operator==(const TrackedChar& o) const { return at_ == o.at_; }
+    bool operator!=(const TrackedChar& o) const { return at_ != o.at_; }
+
+private:
+    const char* at_;
+    const char** published_;
+};
+
+// nlohmann's SAX events, for the builder. Each arrives just after its token is read: the
+// parser's place then is the token's end (one byte later for a number, whose end nlohmann
+// finds by reading the byte after it).
 class SaxEvents {
 public:
-    explicit SaxEvents(JsonDocumentBuilder& b) : b_(b) {}
-    bool null() { return b_.add(Kind::Null, 0); }
-    bool boolean(bool v) { return b_.add(Kind::Boolean, v ? 1 : 0); }
-    bool number_integer(int64_t v) { return b_.add(Kind::Integer, std::bit_cast<uint64_t>(v)); }
-    bool number_unsigned(uint64_t v) { return b_.add(Kind::Unsigned, v); }
-    bool number_float(double v, const std::string&) { return b_.add(Kind::Float, std::bit_cast<uint64_t>(v)); }
-    bool string(std::string& v) { return b_.add(Kind::String, b_.decoded(v)); }
-    bool binary(nlohmann::json::binary_t&) { return b_.add(Kind::Null, 0); }  // JSON text has none
-    bool start_object(size_t) { return b_.open(false); }
-    bool start_array(size_t) { return b_.open(true); }
+    SaxEvents(JsonDocumentBuilder& b, std::string_view text) : b_(b), text_(text), read_(text.data()) {}
+    const char** readUpTo() { return &read_; }
+
+    bool null() { return b_.add(Kind::Null, 0, here()); }
+    bool boolean(bool v) { return b_.add(Kind::Boolean, v ? 1 : 0, here()); }
+    bool number_integer(int64_t v) { return b_.add(Kind::Integer, std::bit_cast<uint64_t>(v), numberEnd()); }
+    bool number_unsigned(uint64_t v) { return b_.add(Kind::Unsigned, v, numberEnd()); }
+    bool number_float(double v, const std::string&) {
+        return b_.add(Kind::Float, std::bit_cast<uint64_t>(v), numberEnd());
+    }
+    bool string(std::string& v) { return b_.add(Kind::String, stringRef(v), here()); }
+    bool binary(nlohmann::json::binary_t&) { return b_.add(Kind::Null, 0, here()); }  // JSON text has none
+    bool start_object(size_t) { return b_.open(false, here() - 1); }
+    bool start_array(size_t) { return b_.open(true, here() - 1); }
     bool key(std::string& k) {
-        b_.key(b_.decoded(k));
+        b_.key(stringRef(k));
         return true;
     }
-    bool end_object() { return b_.close(Kind::Object); }
-    bool end_array() { return b_.close(Kind::Array); }
+    bool end_object() { return b_.close(Kind::Object, here()); }
+    bool end_array() { return b_.close(Kind::Array, here()); }
     bool parse_error(size_t position, const std::string&, const nlohmann::detail::exception& ex) {
         b_.errorByte = position;
         b_.error = ex.what();
@@ -41,7 +72,31 @@ public:
     }
 
 private:
+    [[nodiscard]] size_t here() const { return static_cast<size_t>(read_ - text_.data()); }
+    /// A number's last byte is a digit; the byte nlohmann read after it (if any) is not.
+    [[nodiscard]] size_t numberEnd() const {
+        const size_t at = here();
+        return text_[at - 1] >= '0' && text_[at - 1] <= '9' ? at : at - 1;
+    }
+    /// The string just read, as the document keeps it: viewed in the text where it is
+    /// written without escapes, else a decoded copy. Its closing quote is the last byte read.
+    /// Without escapes, it is the `v.size()` bytes before that quote, after an opening quote.
+    /// With any, it is longer than its value (an escape is longer than what it stands for),
+    /// so those bytes are only its end: they hold a backslash, or the byte before them is in
+    /// the string, and a quote in a string is the escape \".
+    uint64_t stringRef(const std::string& v) {
+        const size_t quote = here() - 1;
+        if (quote > v.size()) {
+            const size_t start = quote - v.size();
+            if (text_[start - 1] == '"' && std::memchr(text_.data() + start, '\\', v.size()) == nullptr)
+                return JsonDocumentBuilder::inText(start, v.size());
+        }
+        return b_.decoded(v);
+    }
+
     JsonDocumentBuilder& b_;
+    std::string_view text_;
+    const char* read_;  ///< Where nlohmann's input is.
 };
 
 }  // namespace
@@ -55,20 +110,12 @@ JsonRead readJson(std::string_view text, JsonListener* listener) {
         result.column = 1;
         return result;
     }
-    {
-        JsonDocumentBuilder builder(result.document, text, listener);
-        if (readJsonFast(text, builder)) {
-            result.duplicateKeys = builder.takeDuplicates();
-            result.listened = listener != nullptr;
-            return result;
-        }
-    }
-    result.document = JsonDocument();
-    JsonDocumentBuilder builder(result.document, text, nullptr);
-    SaxEvents events(builder);
+    JsonDocumentBuilder builder(result.document, text, listener);
+    SaxEvents events(builder, text);
     bool ok = false;
     try {
-        ok = nlohmann::json::sax_parse(text.begin(), text.end(), &events);
+        ok = nlohmann::json::sax_parse(TrackedChar(text.data(), events.readUpTo()),
+                                       TrackedChar(text.data() + text.size(), events.readUpTo()), &events);
     } catch (const std::exception& e) {  // not expected: errors arrive through parse_error
         builder.error = e.what();
     }

@@ -1,8 +1,8 @@
-// A JSON text parsed into a compact, read-only tree: every value in one array, strings viewed
-// in the text itself (only those with escapes are decoded, into one buffer). The graph loader
-// reads files through it rather than through nlohmann::json, whose tree allocates per value:
-// on a large graph building and freeing that tree costs several times the parse, and more
-// per byte the larger the file.
+// A JSON text parsed by nlohmann's SAX parser into a compact, read-only tree: every value in
+// one array, strings viewed in the text itself (only those with escapes are decoded, into one
+// buffer). The graph loader reads files through it rather than through nlohmann::json, whose
+// tree allocates per value: on a large graph building and freeing that tree costs several
+// times the parse, and more per byte the larger the file.
 //
 // Objects read as nlohmann::json's do: members sorted by key (byte order), a repeated key
 // keeping its last value. Numbers keep the kind nlohmann gives them (integer, unsigned,
@@ -215,15 +215,11 @@ struct JsonRead {
     int line = 0;
     int column = 0;
     std::vector<DuplicateKey> duplicateKeys;  ///< In the order they appear in the text.
-    /// Whether the listener was told of the whole document. When false, it was told of part
-    /// of it (it should forget that part) and `document` is complete as without a listener.
-    bool listened = false;
 };
 
-/// Never throws. The text must outlive the document. Texts of the usual kind are read in one
-/// pass straight from their bytes; the rest (malformed ones, and a few rare forms such as a
-/// byte-order mark or an integer of 19 digits or more) are read again by nlohmann's parser,
-/// whose events, values and messages are the reference, and then `listener` is not told.
+/// Never throws. The text must outlive the document. nlohmann's SAX parser reads the text, so
+/// what it accepts, its values and its messages are nlohmann's. On success `listener` has
+/// been told of the whole document; on an error, of the part before it, to be forgotten.
 [[nodiscard]] JsonRead readJson(std::string_view text, JsonListener* listener = nullptr);
 
 inline std::string_view JsonValue::string() const noexcept {

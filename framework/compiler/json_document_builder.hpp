@@ -1,6 +1,5 @@
-// Builds a JsonDocument from parse events, which come from the fast reader
-// (json_fast_reader.cpp) or from nlohmann's SAX parser (json_document.cpp). Internal to the
-// JSON reader.
+// Builds a JsonDocument from nlohmann's SAX events (json_document.cpp). Internal to the JSON
+// reader.
 #pragma once
 
 #include "json_document.hpp"
@@ -37,7 +36,6 @@ public:
         doc_.text_ = text;
     }
 
-    size_t position = 0;    ///< Where the reader is in the text, for the listener.
     std::string error;      ///< Set by a parse error or the depth limit.
     size_t errorByte = 0;   ///< nlohmann's position for parse errors.
     bool tooDeep = false;
@@ -48,15 +46,17 @@ public:
     /// `s`, copied to the document's decoded strings.
     uint64_t decoded(std::string_view s) {
         // Decoded strings are never longer than their text, and all of them are in the text
-        // after `position`: room for that much, made once, keeps the buffer (and views of its
-        // strings) in place while it is filled.
-        if (doc_.decoded_.capacity() == 0) doc_.decoded_.reserve(doc_.text_.size() - position);
+        // after the last event's end: room for that much, made once, keeps the buffer (and
+        // views of its strings) in place while it is filled.
+        if (doc_.decoded_.capacity() == 0) doc_.decoded_.reserve(doc_.text_.size() - position_);
         const size_t offset = doc_.text_.size() + doc_.decoded_.size();
         doc_.decoded_.append(s);
         return offset | (uint64_t(s.size()) << 32);
     }
 
-    bool add(Kind kind, uint64_t payload) {
+    /// Events give where in the text they end (open: where the container begins).
+    bool add(Kind kind, uint64_t payload, size_t textEnd) {
+        position_ = textEnd;
         const Node n = placed(kind, payload);
         if (frames_.empty()) doc_.root_ = n;
         else complete(n);
@@ -68,7 +68,8 @@ public:
         f.keyLength = static_cast<uint32_t>(ref >> 32);
         f.keyOrder = keys_++;
     }
-    bool open(bool array) {
+    bool open(bool array, size_t offset) {
+        position_ = offset;
         if (frames_.size() >= kMaxJsonDepth) {
             tooDeep = true;
             error = "nesting deeper than " + std::to_string(kMaxJsonDepth) + " levels";
@@ -81,7 +82,7 @@ public:
         if (listener_ && frames_.size() <= 2) {  // the listener's parts are near the root
             if (streaming()) elementNodes_ = doc_.nodes_.size();
             stream = array && frames_.size() == 1 && !frames_[0].array &&
-                     listener_->streamArray(keyOf(self), position);
+                     listener_->streamArray(keyOf(self), offset);
         }
         Frame f;
         f.array = array;
@@ -93,7 +94,8 @@ public:
         frames_.push_back(f);
         return true;
     }
-    bool close(Kind kind) {
+    bool close(Kind kind, size_t textEnd) {
+        position_ = textEnd;
         const Frame frame = frames_.back();
         size_t end = pending_.size();
         if (kind == Kind::Object) end = sortMembers(frame.firstPending, end);
@@ -167,7 +169,7 @@ private:
     void complete(const Node& n) {
         if (listener_ && frames_.size() <= 2) {
             if (streaming()) {
-                listener_->element(frames_[1].next - 1, JsonValue(&doc_, &n), position);
+                listener_->element(frames_[1].next - 1, JsonValue(&doc_, &n), position_);
                 if (n.kind == Kind::Object || n.kind == Kind::Array)
                     doc_.nodes_.resize(elementNodes_);  // drops its children
                 return;
@@ -258,6 +260,7 @@ private:
 
     JsonDocument& doc_;
     JsonListener* listener_;
+    size_t position_ = 0;  ///< Where the last event ended in the text.
     std::vector<Node> pending_;
     std::vector<Frame> frames_;
     size_t elementNodes_ = 0;  ///< Streaming: the document's size when the element began.

@@ -639,11 +639,9 @@ GraphDesc parseGraph(std::string_view text, const std::string& fileName, const P
     GraphLoader loader(fileName, registry, text.size());
     const JsonRead read = readJson(text, &loader);
     if (!read.error.empty()) loader.refuse(read);
-    if (read.listened && loader.toldSoundly()) return loader.finish(read.document.root(), read.duplicateKeys);
-    // Told of part of the file only (the document is then whole), or of parts that the file
-    // repeats or gives late: load the whole document afresh.
+    if (loader.toldSoundly()) return loader.finish(read.document.root(), read.duplicateKeys);
+    // Told of parts that the file repeats or gives late: load the whole document afresh.
     GraphLoader whole(fileName, registry, text.size());
-    if (!read.listened) return whole.finish(read.document.root(), read.duplicateKeys);
     const JsonRead again = readJson(text);
     return whole.finish(again.document.root(), again.duplicateKeys);
 }
