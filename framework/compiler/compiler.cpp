@@ -32,19 +32,61 @@ GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
             it->final = state;
         }
     }
+    for (const std::string& name : options.readbacks) {
+        auto it = std::find_if(copy.resources.begin(), copy.resources.end(),
+                               [&](const ResourceDesc& r) { return r.name == name; });
+        if (it == copy.resources.end())
+            diags.add({graph.file, "resources", "", name, "cannot read back '" + name + "': no such resource"});
+        else if (!it->isImage())
+            diags.add({graph.file, it->jsonPath(), "", name,
+                       "cannot read back '" + name + "': it is a buffer; read-backs copy images"});
+        else if (!it->isExported())
+            it->final = ExternalState::TransferSrc;
+    }
     if (!diags.empty()) throw GraphError(std::move(diags));
     return copy;
 }
 
+/// A read-back of an image that no scheduled pass writes, that is neither external nor
+/// `clear`, would copy undefined contents.
+void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule, const CompileOptions& options,
+                               Diagnostics& diags) {
+    const GraphDesc& graph = index.graph();
+    for (const std::string& name : options.readbacks) {
+        const ResourceDesc* r = graph.findResource(name);
+        const auto d = static_cast<uint32_t>(r - graph.resources.data());
+        bool source = r->external || r->clear.has_value();
+        for (size_t s = 0; s < schedule.passes.size() && !source; ++s)
+            for (const IndexedUsage& u : index.usesOf(schedule.passes[s]))
+                source = source || (u.resource == d && writesContents(u.usage.access));
+        if (!source)
+            diags.add({graph.file, r->jsonPath(), "", name,
+                       "cannot read back '" + name + "': no pass that runs writes it, and it is neither external nor `clear`"});
+    }
+}
+
+}  // namespace
+
+namespace {
+/// compile() once the options' exports, outputs and read-backs are in the graph.
+Plan compileExported(const GraphDesc& graph, const CompileOptions& options);
 }  // namespace
 
 Plan compile(const GraphDesc& graph, const CompileOptions& options) {
-    if (!options.exports.empty() || options.outputs) {
+    if (!options.exports.empty() || options.outputs || !options.readbacks.empty()) {
         CompileOptions rest = options;
         rest.exports.clear();
         rest.outputs.reset();
-        return compile(withExports(graph, options), rest);
+        rest.readbacks.clear();
+        const GraphDesc exported = withExports(graph, options);
+        rest.readbacks = options.readbacks;  // exported now: compile() takes them as they are
+        return compileExported(exported, rest);
     }
+    return compileExported(graph, options);
+}
+
+namespace {
+Plan compileExported(const GraphDesc& graph, const CompileOptions& options) {
     Diagnostics diags;
     FeatureValues features = graph.defaultFeatures();
     for (const auto& [name, value] : options.features) {
@@ -125,10 +167,16 @@ Plan compile(const GraphDesc& graph, const CompileOptions& options) {
     if (!diags.empty()) throw GraphError(std::move(diags));
 
     Schedule schedule = schedulePasses(index, features, options.cull);
+    checkReadbacksHaveSources(index, schedule, options, diags);
+    if (!diags.empty()) throw GraphError(std::move(diags));
     Plan plan = synchronize(index, schedule, options);
     plan.features = std::move(features);
+    plan.outputWidth = options.outputWidth;
+    plan.outputHeight = options.outputHeight;
     plan.culled = std::move(schedule.culled);
     return plan;
 }
+
+}  // namespace
 
 }  // namespace skygraph
