@@ -67,12 +67,12 @@ std::unique_ptr<Renderer> bakeEnvironment(Device& device, GraphDesc graph, const
     if (sizes) resizeEnvironmentGraph(graph, *sizes);
     CompileOptions co;
     co.outputs = products;
-    Plan plan = compile(graph, co);
-    for (const auto& c : plan.culled) spdlog::info("environment: culled {}: {}", c.name, c.reason);
+    CompiledGraph compiled(std::move(graph), co);
+    for (const auto& c : compiled.plan().culled) spdlog::info("environment: culled {}: {}", c.name, c.reason);
     RendererOptions ro;
     ro.framesInFlight = 1;
     ro.passes = passes;
-    auto renderer = std::make_unique<Renderer>(device, graph, std::move(plan), ro);
+    auto renderer = std::make_unique<Renderer>(device, std::move(compiled), ro);
     ImageData pixels;
     pixels.width = equirect.width;
     pixels.height = equirect.height;
@@ -84,6 +84,21 @@ std::unique_ptr<Renderer> bakeEnvironment(Device& device, GraphDesc graph, const
     for (const auto& t : renderer->lastTimings())
         spdlog::info("environment: pass {:<20} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
     return renderer;
+}
+
+/// The image `render` writes: `readback` if named, else the graph's Present image, else none.
+std::string outputTarget(const GraphDesc& graph, const std::string& readback) {
+    if (!readback.empty()) return readback;
+    for (const ResourceDesc& r : graph.resources)
+        if (r.final == ExternalState::Present) return r.name;
+    return {};
+}
+
+std::string imageNames(const GraphDesc& graph) {
+    std::string names;
+    for (const ResourceDesc& r : graph.resources)
+        if (r.isImage()) names += (names.empty() ? "" : ", ") + r.name;
+    return names.empty() ? "none" : names;
 }
 
 ImageData toImageData(HdrImage&& image) {
@@ -153,11 +168,27 @@ int renderCommand(const RenderOptions& options) {
             for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
         }
         for (const auto& [name, on] : options.features) co.features[name] = on;
+        // Headless: the swapchain target is an image of our own, read back instead of presented.
         co.presentReplacement = ExternalState::TransferSrc;
-        if (!options.readback.empty()) co.exports[options.readback] = ExternalState::TransferSrc;
+        std::filesystem::path output = options.output;
+        const std::string target = outputTarget(graph, options.readback);
+        if (target.empty()) {
+            if (!output.empty()) {
+                std::cerr << "skygraph render: nothing to write to " << output.string() << ": graph '" << graph.name
+                          << "' has no Present image; add --readback NAME with one of its images: "
+                          << imageNames(graph) << "\n";
+                return 1;
+            }
+            spdlog::info("graph '{}' has no Present image: no file is written (-o FILE --readback NAME writes one)",
+                         graph.name);
+        } else {
+            if (output.empty()) output = "skygraph.png";
+            co.readbacks = {target};
+        }
         co.outputWidth = options.width;
         co.outputHeight = options.height;
-        Plan plan = compile(graph, co);
+        CompiledGraph compiled(graph, co);
+        const Plan& plan = compiled.plan();
         for (const auto& c : plan.culled) spdlog::info("culled {}: {}", c.name, c.reason);
 
         DeviceOptions dopts;
@@ -176,12 +207,9 @@ int renderCommand(const RenderOptions& options) {
                                                       options.passes);
         }
         RendererOptions ropts;
-        ropts.width = options.width;
-        ropts.height = options.height;
         ropts.framesInFlight = options.framesInFlight;
         ropts.passes = options.passes;
-        ropts.readback = options.readback;
-        Renderer renderer(*device, graph, std::move(plan), ropts);
+        Renderer renderer(*device, std::move(compiled), ropts);
         if (scene) renderer.frameData().set(*scene);
         for (const auto& name : products) renderer.importImage(name, environmentRenderer->shareImage(name));
         if (environment && renderer.plan().resourceIndex(kEnvironmentResource) >= 0)
@@ -194,15 +222,15 @@ int renderCommand(const RenderOptions& options) {
         for (const auto& t : renderer.lastTimings()) {
             spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
         }
-        if (!options.output.empty()) {
-            const ImageData image = renderer.readback();
-            const auto ext = options.output.extension().string();
+        if (!target.empty()) {
+            const ImageData image = renderer.readback(target);
+            const auto ext = output.extension().string();
             if (ext == ".hdr" || ext == ".exr") {
-                writeHdr(options.output, image);
+                writeHdr(output, image);
             } else {
-                writePng(options.output, image);
+                writePng(output, image);
             }
-            spdlog::info("wrote {}", options.output.string());
+            spdlog::info("wrote {}", output.string());
         }
         if (device->validationEnabled() && device->messageCount() > 0) {
             std::cerr << "skygraph render: validation reported " << device->messageCount()

@@ -4,9 +4,13 @@
 //   renderer_resources.cpp  images, buffers, views, per-slot copies, importing externals
 //   renderer_passes.cpp     render passes, framebuffers, descriptors and barriers per slot
 //   renderer_generic.cpp    the Generic pass: pipelines and recording
-//   renderer_frame.cpp      frame slots, per-frame recording, submission, timestamps
+//   renderer_frame.cpp      frame slots, submission, timestamps
+//   renderer_setup.cpp      the setup plan before the first frame, and reading images back
+//   frame_recording.cpp     recording a plan's steps into a CommandSink (no device needed)
 #pragma once
 
+#include "barrier_batch.hpp"
+#include "command_sink.hpp"
 #include "generic_program.hpp"
 #include "spirv_cache.hpp"
 #include "vk_util.hpp"
@@ -17,6 +21,7 @@
 #include <skygraph/shader_compiler.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -78,7 +83,7 @@ struct ImageCopy {
 struct ResourceState {
     const ResourceDesc* desc = nullptr;
     bool isImage = false;
-    bool perSlot = false;
+    bool perSlot = false;  ///< The plan's PlannedResource::copies, with more than one slot.
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkImageAspectFlags aspect = 0;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
@@ -90,6 +95,12 @@ struct ResourceState {
     std::vector<OwnedBuffer> buffers;
 
     [[nodiscard]] uint32_t copyFor(uint32_t slot) const { return perSlot ? slot : 0; }
+    /// What a barrier on this resource names in frame slot `slot`.
+    [[nodiscard]] BarrierTarget barrierTarget(uint32_t slot) const {
+        const uint32_t c = copyFor(slot);
+        if (isImage) return {images.at(c).image, VK_NULL_HANDLE, aspect};
+        return {VK_NULL_HANDLE, buffers.at(c).buffer.get(), 0};
+    }
     [[nodiscard]] uint32_t mipWidth(uint32_t mip) const { return std::max(1u, width >> mip); }
     [[nodiscard]] uint32_t mipHeight(uint32_t mip) const { return std::max(1u, height >> mip); }
 };
@@ -103,9 +114,8 @@ struct PassSlot {
     std::vector<VkDescriptorBufferInfo> bufferInfos;
     std::vector<VkWriteDescriptorSet> graphicsWrites;
     std::vector<VkWriteDescriptorSet> computeWrites;
-    std::vector<VkImageMemoryBarrier2> imageBarriers;
-    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
-    std::vector<VkMemoryBarrier2> memoryBarriers;
+    BarrierBatch before;  ///< The plan's batch before the pass.
+    BarrierBatch inPass;  ///< The plan's in-pass barriers: between its copies out and in.
     std::vector<VkBuffer> vertexBuffers;
     std::vector<VkDeviceSize> vertexOffsets;
     VkBuffer indexBuffer = VK_NULL_HANDLE;
@@ -114,11 +124,14 @@ struct PassSlot {
     std::vector<BoundResource> bound;  ///< Pass implementations: parallel to pass usages.
 };
 
+/// What the executor does for a plan step: a pass's recording, or a step the compiler inserted.
+enum class StepKind : uint8_t { Pass, Clear, Readback, Upload };
+
 struct PassState {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::string label;  ///< The pass's name, NUL-terminated for debug labels (the plan's is a view).
-    bool isClear = false;
+    StepKind kind = StepKind::Pass;
     /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
     std::unique_ptr<PassImplementation> custom;
     GenericProgram program;
@@ -133,22 +146,52 @@ struct PassState {
     std::vector<PassSlot> slots;
 };
 
-struct FinalSlot {
-    std::vector<VkImageMemoryBarrier2> imageBarriers;
-    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
-    std::vector<VkMemoryBarrier2> memoryBarriers;
+/// Host memory that a Readback step of the frame copies its image into, one per frame slot.
+struct ReadbackTarget {
+    uint32_t step = 0;      ///< Index into Plan::passes.
+    uint32_t resource = 0;  ///< Index into Plan::resources.
+    std::vector<OwnedBuffer> perSlot;
 };
 
-/// Everything that belongs to one plan; replaced whole by setPlan.
+/// Everything that belongs to one plan; replaced whole by setGraph and resize.
 struct PlanState {
-    GraphDesc graph;
-    Plan plan;
+    explicit PlanState(CompiledGraph c) : compiled(std::move(c)), graph(compiled.graph()), plan(compiled.plan()) {}
+    PlanState(const PlanState&) = delete;
+    PlanState& operator=(const PlanState&) = delete;
+
+    CompiledGraph compiled;
+    const GraphDesc& graph;  ///< compiled's
+    const Plan& plan;        ///< compiled's
+    [[nodiscard]] uint32_t outputWidth() const noexcept { return compiled.outputWidth(); }
+    [[nodiscard]] uint32_t outputHeight() const noexcept { return compiled.outputHeight(); }
     std::vector<ResourceState> resources;  ///< Parallel to plan.resources.
     std::vector<PassState> passes;         ///< Parallel to plan.passes.
-    std::vector<FinalSlot> finals;         ///< Per slot.
-    int32_t readbackResource = -1;
-    std::vector<OwnedBuffer> readbackBuffers;  ///< Per slot.
+    std::vector<BarrierBatch> finals;      ///< Per slot.
+    std::vector<ReadbackTarget> readbacks; ///< One per Readback step of the plan.
+    Plan setup;  ///< planSetup of `plan`: what ran before the first frame.
+
+    [[nodiscard]] const ReadbackTarget* readbackOf(uint32_t resource) const {
+        for (const ReadbackTarget& t : readbacks)
+            if (t.resource == resource) return &t;
+        return nullptr;
+    }
 };
+
+/// What recording one frame needs besides the plan's state.
+struct FrameRecording {
+    uint32_t slot = 0;
+    uint64_t frameIndex = 0;
+    VkSampler linearSampler = VK_NULL_HANDLE;
+    VkSampler repeatSampler = VK_NULL_HANDLE;
+    const FrameData* frameData = nullptr;
+    VkQueryPool queries = VK_NULL_HANDLE;  ///< Two timestamps per pass; none when null.
+    uint32_t queryCount = 0;
+    bool labels = false;  ///< A debug label around each pass.
+};
+
+/// Records frame `r.slot` of `s` into `sink`: each pass's barrier batch and work (inserted
+/// clears and read-backs included), then the final barriers.
+void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r);
 
 struct FrameSlot {
     vk::CommandPool pool;
@@ -201,9 +244,11 @@ struct Renderer::Impl {
           shaders(options.shaderDir, SpirvDiskCache::defaultDir()) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
-    std::unique_ptr<detail::PlanState> build(const GraphDesc& graph, Plan plan);
+    std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);
 
     // --- renderer_resources.cpp: resources and their per-slot copies --------------------------
+    /// Per-frame copies of the plan's read-backs: host-visible buffers.
+    void createReadbackTargets(detail::PlanState& s);
     detail::OwnedBuffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
     VkImageView view(detail::ResourceState& r, uint32_t copy, VkImageViewType type,
                      const SubresourceRange& range, bool attachment);
@@ -213,9 +258,15 @@ struct Renderer::Impl {
     detail::ImageCopy adoptImport(const detail::PlanState& s, size_t index, const SharedImage& image) const;
     static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value);
     void buildSized(detail::PlanState& s);
-    /// Gives every external resource defined contents (its clear value, or grey) and the
-    /// layout the plan expects it to arrive in. Runs once, outside any frame, and waits.
-    void importExternals(detail::PlanState& s);
+
+    // --- renderer_setup.cpp: plans around the frame -------------------------------------------
+    /// Runs the plan's setup (planSetup): every external resource gets defined contents (the
+    /// uploaded pixels, its clear value, or grey) and the state the frame expects it in. Runs
+    /// outside any frame and waits.
+    void runSetup(detail::PlanState& s);
+    /// Records `steps` (a setup or image-read plan over resources of `s`) with `record` for
+    /// each step, submits once and waits. `copy` picks the per-slot copy of each resource.
+    void submitAndWait(const std::function<void(detail::CommandSink&)>& record);
 
     // --- renderer_passes.cpp: render passes, framebuffers, descriptors and barriers -----------
     void buildPassStatic(detail::PlanState& s, size_t index);
@@ -223,11 +274,6 @@ struct Renderer::Impl {
     static VkAttachmentStoreOp storeOp(StoreOp op);
     void buildGraphics(detail::PlanState& s, detail::PassState& ps);
     void buildRenderPass(detail::PlanState& s, detail::PassState& ps);
-    VkImageMemoryBarrier2 imageBarrier(const detail::PlanState& s, const Barrier& b, uint32_t slot) const;
-    void translateBarriers(const detail::PlanState& s, std::span<const Barrier> barriers, uint32_t slot,
-                           std::vector<VkImageMemoryBarrier2>& images,
-                           std::vector<VkBufferMemoryBarrier2>& buffers,
-                           std::vector<VkMemoryBarrier2>& memory) const;
     VkExtent2D bindingExtent(const detail::PlanState& s, const PlannedPass& pass,
                              const std::vector<ShaderBinding>& bindings, bool& any) const;
     void buildPassSlot(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
@@ -239,22 +285,15 @@ struct Renderer::Impl {
     static std::vector<VkDescriptorSetLayoutBinding> layoutBindings(const std::vector<ShaderBinding>& bindings);
     void buildGraphicsPipeline(detail::PlanState& s, detail::PassState& ps);
     void buildCompute(detail::PassState& ps);
-    void recordTransfers(VkCommandBuffer cmd, detail::PlanState& s, const detail::PassState& ps, uint32_t slot);
-    /// A Generic pass: its transfers, then its dispatch, then its draw.
-    void recordGeneric(VkCommandBuffer cmd, detail::PlanState& s, detail::PassState& ps, uint32_t slot);
 
     // --- renderer_frame.cpp: frames -----------------------------------------------------------
     void createFrames();
     void ensureQueries(detail::FrameSlot& f, uint32_t count);
     void waitSlot(detail::FrameSlot& f);
     void collectTimings(detail::FrameSlot& f);
-    void dependency(VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier2>& images,
-                    const std::vector<VkBufferMemoryBarrier2>& buffers,
-                    const std::vector<VkMemoryBarrier2>& memory) const;
-    void recordClear(VkCommandBuffer cmd, detail::PlanState& s, const detail::PassState& ps, uint32_t slot);
-    /// Begins the pass's render pass on the slot's framebuffer, with full-area viewport and scissor.
-    static void beginRenderPass(VkCommandBuffer cmd, const detail::PassState& ps, const detail::PassSlot& sl);
-    void recordPass(VkCommandBuffer cmd, detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+    [[nodiscard]] detail::VulkanCommands::Functions commandFunctions() const;
+    /// Records the current plan's frame for `slot` into `cmd` (begun by the caller); with
+    /// `frame`, timestamps and labels too.
     void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame);
     void renderFrame();
     void waitIdle();

@@ -15,12 +15,15 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     PassState ps;
     ps.pass = &pass;
     ps.label = pass.name;
-    ps.isClear = pass.type == "Clear" && pass.declIndex < 0;
-    if (ps.isClear) {
+    if (pass.declIndex < 0) {
+        // A step the compiler inserted.
+        ps.kind = pass.type == "Clear" ? StepKind::Clear : pass.type == "Readback" ? StepKind::Readback : StepKind::Upload;
         for (const PlannedUsage& u : pass.usages) {
             const ResourceState& r = s.resources[u.resource];
-            if (!r.isImage || !r.desc->clear)
+            if (ps.kind == StepKind::Clear && (!r.isImage || !r.desc->clear))
                 throw ExecutorError(passError(pass, r.desc->name, "clear pass on a resource without `clear`"));
+            if (ps.kind == StepKind::Readback && !r.isImage)
+                throw ExecutorError(passError(pass, r.desc->name, "a read-back of a buffer"));
         }
         s.passes.push_back(std::move(ps));
         return;
@@ -142,63 +145,6 @@ void Renderer::Impl::buildRenderPass(PlanState& s, PassState& ps) {
     ps.renderPass = vk::RenderPass(vkd, rp);
 }
 
-VkImageMemoryBarrier2 Renderer::Impl::imageBarrier(const PlanState& s, const Barrier& b, uint32_t slot) const {
-    const ResourceState& r = s.resources.at(b.resource);
-    VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    ib.srcStageMask = b.srcStages;
-    ib.srcAccessMask = b.srcAccess;
-    ib.dstStageMask = b.dstStages;
-    ib.dstAccessMask = b.dstAccess;
-    ib.oldLayout = b.oldLayout;
-    ib.newLayout = b.newLayout;
-    ib.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    ib.image = r.images.at(r.copyFor(slot)).image;
-    ib.subresourceRange = {r.aspect, b.range.baseMip, b.range.mipCount, b.range.baseLayer,
-                           b.range.layerCount};
-    return ib;
-}
-
-void Renderer::Impl::translateBarriers(const PlanState& s, std::span<const Barrier> barriers, uint32_t slot,
-                                       std::vector<VkImageMemoryBarrier2>& images,
-                                       std::vector<VkBufferMemoryBarrier2>& buffers,
-                                       std::vector<VkMemoryBarrier2>& memory) const {
-    for (const Barrier& b : barriers) {
-        if (b.resource >= s.resources.size()) throw ExecutorError("barrier on unknown resource");
-        const ResourceState& r = s.resources[b.resource];
-        switch (b.kind) {
-            case BarrierKind::Image:
-                if (!r.isImage) throw ExecutorError("image barrier on buffer '" + r.desc->name + "'");
-                images.push_back(imageBarrier(s, b, slot));
-                break;
-            case BarrierKind::Buffer: {
-                if (r.isImage) throw ExecutorError("buffer barrier on image '" + r.desc->name + "'");
-                VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-                bb.srcStageMask = b.srcStages;
-                bb.srcAccessMask = b.srcAccess;
-                bb.dstStageMask = b.dstStages;
-                bb.dstAccessMask = b.dstAccess;
-                bb.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                bb.buffer = r.buffers.at(r.copyFor(slot)).buffer.get();
-                bb.offset = 0;
-                bb.size = VK_WHOLE_SIZE;
-                buffers.push_back(bb);
-                break;
-            }
-            case BarrierKind::Memory: {
-                VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-                mb.srcStageMask = b.srcStages;
-                mb.srcAccessMask = b.srcAccess;
-                mb.dstStageMask = b.dstStages;
-                mb.dstAccessMask = b.dstAccess;
-                memory.push_back(mb);
-                break;
-            }
-        }
-    }
-}
-
 VkExtent2D Renderer::Impl::bindingExtent(const PlanState& s, const PlannedPass& pass,
                                          const std::vector<ShaderBinding>& bindings, bool& any) const {
     VkExtent2D e{1, 1};
@@ -231,8 +177,13 @@ void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
     const PlannedPass& pass = *ps.pass;
     const GenericProgram& p = ps.program;
     PassSlot& sl = ps.slots[slot];
-    translateBarriers(s, pass.barriers, slot, sl.imageBarriers, sl.bufferBarriers, sl.memoryBarriers);
-    if (ps.isClear) return;
+    const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
+    sl.before = BarrierBatch(pass.barriers, target);
+    std::vector<Barrier> inPass;
+    for (const InPassBarrier& ib : s.plan.inPassBarriers)
+        if (&s.plan.passes[ib.pass] == &pass) inPass.push_back(ib.barrier);
+    sl.inPass = BarrierBatch(inPass, target);
+    if (ps.kind != StepKind::Pass) return;
 
     // Transfer scratch buffers (sizes depend on the output extent).
     if (slot == 0) {
@@ -368,7 +319,7 @@ void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
         if (!haveExtent) {
             bool any = false;
             e = bindingExtent(s, pass, p.graphicsBindings, any);
-            if (!any) e = {options.width, options.height};
+            if (!any) e = {s.outputWidth(), s.outputHeight()};
         }
         sl.extent = e;
         VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};

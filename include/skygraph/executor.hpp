@@ -2,6 +2,7 @@
 // barriers and derives no synchronization of its own (contract §2).
 #pragma once
 
+#include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
@@ -130,14 +131,9 @@ private:
     std::shared_ptr<const Impl> impl_;
 };
 
+/// How a Renderer runs; what it runs (graph, options, output size) is the CompiledGraph.
 struct RendererOptions {
-    uint32_t width = 16;
-    uint32_t height = 16;
     uint32_t framesInFlight = 2;
-    /// Resource read back after every frame. Empty: the resource whose graph `final` is
-    /// Present (the swapchain target). It must end the frame in TRANSFER_SRC_OPTIMAL, i.e.
-    /// compile with CompileOptions::presentReplacement = ExternalState::TransferSrc.
-    std::string readback;
     /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
     std::filesystem::path shaderDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. Pass types without a
@@ -151,13 +147,14 @@ struct PassTiming {
     double milliseconds = 0.0;
 };
 
-/// Runs one plan of one graph. Owns all images, buffers, pipelines and command buffers it
-/// creates; borrows `device` (which must outlive it). Not copyable.
+/// Runs one compiled graph. Owns all images, buffers, pipelines and command buffers it
+/// creates, and its CompiledGraph; borrows `device` (which must outlive it). Not copyable.
 class Renderer {
 public:
-    /// Creates resources, pipelines and per-frame state. Throws ExecutorError (e.g. a pass
-    /// type without recording code, a format the device cannot use as the plan requires).
-    Renderer(Device& device, const GraphDesc& graph, Plan plan, RendererOptions options = {});
+    /// Creates resources, pipelines and per-frame state at the compiled graph's output size,
+    /// and runs the plan's setup (planSetup). Throws ExecutorError (e.g. a pass type without
+    /// recording code, a format the device cannot use as the plan requires).
+    Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -167,25 +164,32 @@ public:
     void renderFrame();
     /// Waits until every submitted frame has finished.
     void waitIdle();
-    /// Waits for the most recent frame and returns its read-back target.
+    /// Waits for the most recent frame and returns what its one Readback step copied (the plan
+    /// was compiled with one name in CompileOptions::readbacks). Throws ExecutorError when the
+    /// plan reads back no image or several, or before the first frame.
     [[nodiscard]] ImageData readback();
+    /// The same for the read-back of `resource`, one of CompileOptions::readbacks.
+    [[nodiscard]] ImageData readback(std::string_view resource);
     /// Waits for every submitted frame, then copies every mip and layer of the image
     /// `resource` to the host (element mip * layers + layer), e.g. an environment cube and
     /// its mip chain. The image is left in its end-of-frame layout (the plan's final layout).
     /// Throws ExecutorError for an unknown name, a buffer, or an image no frame has written.
     [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
-    /// Re-creates every output-sized resource for a new output extent.
+    /// Compiles the graph again for a new output extent (CompiledGraph::resized) and re-creates
+    /// everything the plan sizes. On failure (GraphError or ExecutorError, as ExecutorError)
+    /// the old plan keeps running.
     void resize(uint32_t width, uint32_t height);
-    /// Replaces graph and plan (e.g. after a hot reload). On failure throws and keeps the old
-    /// ones running.
-    void setPlan(const GraphDesc& graph, Plan plan);
+    /// Replaces what runs (e.g. after a hot reload). On failure throws ExecutorError and keeps
+    /// the old one running.
+    void setGraph(CompiledGraph compiled);
     /// Drops every cached shader and rebuilds the pipelines from the shader directory (after
     /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
     /// running.
     void reloadShaders();
     /// Imports a loaded texture: `pixels` (float RGBA, as stored) become the contents of mip 0
-    /// (every layer) of the external image `resource`, now and whenever the plan is
-    /// re-installed. Waits for the GPU. Throws ExecutorError for a wrong name, size or format.
+    /// (every layer) of the external image `resource`, by an Upload step of the plan's setup,
+    /// now and whenever the plan is re-installed. Waits for the GPU. Throws ExecutorError for a
+    /// wrong name, size or format, or an image whose `initial` state the frame discards.
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// Shares the image of `resource`, an external image this plan exports (`final` set),
     /// with another renderer on the same Device. It holds this frame's contents once the
@@ -202,12 +206,19 @@ public:
     void importImage(const std::string& resource, SharedImage image);
     /// Values handed to pass implementations while recording (camera, exposure, ...).
     [[nodiscard]] FrameData& frameData() noexcept;
-    /// The graph the current plan was compiled from.
+    /// What runs: the graph, its compile options and the plan. Valid until the next
+    /// setGraph(), resize(), importImage() or the renderer's end.
+    [[nodiscard]] const CompiledGraph& compiled() const noexcept;
+    /// The graph the current plan was compiled from (compiled().graph()).
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
 
+    /// The current plan (compiled().plan()); the setup that ran before its first frame is
+    /// setupPlan(). Both valid until the next setGraph(), resize(), importImage(),
+    /// setExternalImage() or the renderer's end.
     [[nodiscard]] const Plan& plan() const noexcept;
+    [[nodiscard]] const Plan& setupPlan() const noexcept;
     [[nodiscard]] uint64_t frameCount() const noexcept;
 
     /// Records the current plan for frame slot 0 into `cmd` (begun by the caller), without
@@ -229,9 +240,10 @@ public:
     enum class Result : uint8_t { Unchanged, Reloaded, Failed };
 
     /// `registry` (borrowed; null: PassRegistry::withBuiltins()) parses the reloaded graph,
-    /// e.g. `PassLibrary::registry()` when the renderer runs pass implementations.
-    HotReloader(Renderer& renderer, std::filesystem::path graphFile, CompileOptions options,
-                std::filesystem::path shaderDir = {}, const PassRegistry* registry = nullptr);
+    /// e.g. `PassLibrary::registry()` when the renderer runs pass implementations. A reloaded
+    /// graph compiles with the options the renderer's current graph was compiled with.
+    HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
+                const PassRegistry* registry = nullptr);
 
     /// Checks the watched files (by content) and reloads what changed. Cheap when nothing did.
     Result poll();
@@ -241,7 +253,6 @@ public:
 private:
     Renderer& renderer_;
     std::filesystem::path graphFile_;
-    CompileOptions options_;
     std::filesystem::path shaderDir_;
     const PassRegistry* registry_ = nullptr;
     size_t graphHash_ = 0;
@@ -272,9 +283,10 @@ struct RenderOptions {
     uint32_t height = 256;
     uint32_t frames = 3;
     uint32_t framesInFlight = 2;
-    std::filesystem::path output;    ///< .png, .hdr or .exr; empty: no file.
-    /// Resource to write instead of the swapchain target, e.g. "hdr_color" as .exr. It is
-    /// exported as TransferSrc for the run (CompileOptions::exports).
+    /// .png, .hdr or .exr. Empty: skygraph.png when there is an image to write, else no file.
+    std::filesystem::path output;
+    /// Resource to write instead of the swapchain target, e.g. "hdr_color" as .exr
+    /// (CompileOptions::readbacks). A graph with neither writes no file.
     std::string readback;
     bool validate = false;           ///< Validation + sync validation; fail on any message.
     std::string device;

@@ -72,7 +72,7 @@ BakeResult bakeEnvironment(const HdrImage& equirect, const BakeOptions& options)
     static const PassLibrary library = PassLibrary::withBuiltins();
     GraphDesc graph = parseGraph(options.graphText, "graphs/ibl.json", library.registry());
     configure(graph, equirect, options);
-    const Plan plan = compile(graph, CompileOptions{});
+    CompiledGraph compiled(std::move(graph), CompileOptions{});
     step("compile");
     DeviceOptions deviceOptions;
     deviceOptions.device = options.device;
@@ -81,7 +81,7 @@ BakeResult bakeEnvironment(const HdrImage& equirect, const BakeOptions& options)
     RendererOptions ro;
     ro.passes = &library;
     ro.framesInFlight = 1;
-    Renderer renderer(*device, graph, plan, ro);
+    Renderer renderer(*device, std::move(compiled), ro);
     renderer.setExternalImage("equirect", toImageData(equirect));
     step("upload");
     BakeResult result;

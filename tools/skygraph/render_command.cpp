@@ -19,7 +19,7 @@ namespace {
 
 struct RenderArgs {
     RenderOptions options;
-    std::string graph, scene, output = "skygraph.png";
+    std::string graph, scene, output;
     std::vector<std::string> features;
 };
 
@@ -62,7 +62,9 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_option("--height", o.height, "Output height")->check(CLI::Range(1u, 16384u));
     cmd->add_option("--frames", o.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
     cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
-    cmd->add_option("-o,--output", args->output, "Write the result: .png, .hdr or .exr (default skygraph.png)");
+    cmd->add_option("-o,--output", args->output,
+                    "Write the result: .png, .hdr or .exr (default skygraph.png, when the graph has a Present image "
+                    "or --readback names one)");
     cmd->add_option("--readback", o.readback,
                     "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)");
     cmd->add_flag("!--no-fit-environment", o.fitEnvironmentToView,
