@@ -141,6 +141,27 @@ void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecor
 
 }  // namespace
 
+StepKind stepKindOf(const PlannedPass& pass) {
+    if (pass.declIndex >= 0) return StepKind::Pass;
+    return pass.type == "Clear" ? StepKind::Clear : pass.type == "Readback" ? StepKind::Readback : StepKind::Upload;
+}
+
+void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot) {
+    PassSlot& sl = ps.slots.at(slot);
+    const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
+    sl.before = BarrierBatch(ps.pass->barriers, target);
+    std::vector<Barrier> inPass;
+    for (const InPassBarrier& ib : s.plan.inPassBarriers)
+        if (&s.plan.passes[ib.pass] == ps.pass) inPass.push_back(ib.barrier);
+    sl.inPass = BarrierBatch(inPass, target);
+}
+
+void translateFinalBarriers(PlanState& s, uint32_t slots) {
+    s.finals.clear();
+    for (uint32_t slot = 0; slot < slots; ++slot)
+        s.finals.emplace_back(s.plan.finalBarriers, [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); });
+}
+
 void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r) {
     const auto passCount = static_cast<uint32_t>(s.passes.size());
     if (r.queries) sink.resetQueries(r.queries, r.queryCount);

@@ -193,6 +193,14 @@ struct FrameRecording {
 /// clears and read-backs included), then the final barriers.
 void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r);
 
+/// What the executor does for plan step `pass`.
+[[nodiscard]] StepKind stepKindOf(const PlannedPass& pass);
+/// The plan's barriers of pass `ps` (before it, and in it) for frame slot `slot`, in Vulkan's
+/// form, naming the slot's copies of `s`'s resources.
+void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot);
+/// The plan's final barriers, per frame slot (`slots` of them).
+void translateFinalBarriers(PlanState& s, uint32_t slots);
+
 struct FrameSlot {
     vk::CommandPool pool;
     VkCommandBuffer cmd = VK_NULL_HANDLE;

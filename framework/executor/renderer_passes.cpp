@@ -15,9 +15,8 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     PassState ps;
     ps.pass = &pass;
     ps.label = pass.name;
-    if (pass.declIndex < 0) {
-        // A step the compiler inserted.
-        ps.kind = pass.type == "Clear" ? StepKind::Clear : pass.type == "Readback" ? StepKind::Readback : StepKind::Upload;
+    ps.kind = stepKindOf(pass);
+    if (ps.kind != StepKind::Pass) {
         for (const PlannedUsage& u : pass.usages) {
             const ResourceState& r = s.resources[u.resource];
             if (ps.kind == StepKind::Clear && (!r.isImage || !r.desc->clear))
@@ -177,12 +176,7 @@ void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
     const PlannedPass& pass = *ps.pass;
     const GenericProgram& p = ps.program;
     PassSlot& sl = ps.slots[slot];
-    const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
-    sl.before = BarrierBatch(pass.barriers, target);
-    std::vector<Barrier> inPass;
-    for (const InPassBarrier& ib : s.plan.inPassBarriers)
-        if (&s.plan.passes[ib.pass] == &pass) inPass.push_back(ib.barrier);
-    sl.inPass = BarrierBatch(inPass, target);
+    translatePassBarriers(s, ps, slot);
     if (ps.kind != StepKind::Pass) return;
 
     // Transfer scratch buffers (sizes depend on the output extent).

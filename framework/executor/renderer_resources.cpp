@@ -282,9 +282,7 @@ void Renderer::Impl::buildSized(PlanState& s) {
         ps.slots.resize(slots);
         for (uint32_t slot = 0; slot < slots; ++slot) buildPassSlot(s, ps, slot);
     }
-    s.finals.clear();
-    for (uint32_t slot = 0; slot < slots; ++slot)
-        s.finals.emplace_back(s.plan.finalBarriers, [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); });
+    translateFinalBarriers(s, slots);
     createReadbackTargets(s);
     runSetup(s);
 }
