@@ -1,4 +1,4 @@
-// study: the speed/accuracy sweep of issue 6 on one scene (scenes/default.json, procedural
+// study: the speed/accuracy sweep on one scene (scenes/default.json, procedural
 // sky) at a small output. Each point: wall time per frame, GPU time (the passes' timestamps),
 // and the error against a high-precision reference: RMSE and max in linear HDR, and the mean
 // and max CIEDE2000 after tonemapping (Little CMS's cmsCIE2000DeltaE on sRGB -> Lab D50).

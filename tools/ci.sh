@@ -32,7 +32,7 @@ installed_package() {
     rm -rf "$prefix"
 }
 
-# Issue 7 (docs/reliability.md): clang ASan + UBSan (+ libFuzzer's coverage hooks, so the
+# Reliability (docs/reliability.md): clang ASan + UBSan (+ libFuzzer's coverage hooks, so the
 # same build links the fuzzer) of every test ctest knows, benchmarks' smoke tests included, run
 # under the sanitizers on lavapipe with validation, then the fuzzer's 60 s time box on that
 # build. A test target missing from SANITIZED_TARGETS shows up as a failing *_NOT_BUILT test.

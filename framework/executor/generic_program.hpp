@@ -29,7 +29,7 @@ struct ShaderBinding {
     uint32_t uniformVec4s = 1;  ///< Uniform buffers: array length of uvec4.
     /// Storage images: the usage's mip count. A storage view addresses one level, so the
     /// binding is an array of one view per level and the shader reads and writes every one
-    /// (contract: every declared access is really performed, which synchronization
+    /// (docs/executor.md: every declared access is really performed, which synchronization
     /// validation can only check for subresources a bound view covers).
     uint32_t levels = 1;
 };

@@ -1,5 +1,5 @@
 // The executor: runs compiled plans on a Vulkan 1.3 device. It records exactly the plan's
-// barriers and derives no synchronization of its own (contract §2).
+// barriers and derives no synchronization of its own (docs/executor.md).
 #pragma once
 
 #include <skygraph/compiled_graph.hpp>
@@ -298,7 +298,7 @@ struct RenderOptions {
     std::function<void(uint32_t submitted, uint32_t total)> onFrameSubmitted;
 };
 
-/// Compiles and renders a graph file, writing the swapchain target. Returns the contract's
+/// Compiles and renders a graph file, writing the swapchain target. Returns the command line's
 /// exit status (0 ok, 1 user error with a message on stderr). Never throws.
 int renderCommand(const RenderOptions& options);
 

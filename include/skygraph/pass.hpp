@@ -101,7 +101,7 @@ public:
     PassImplementation& operator=(const PassImplementation&) = delete;
 
     /// Builds pipelines. Called when the plan is installed and again on shader hot reload;
-    /// throwing keeps the previous pipelines of every pass running (the seed's pattern).
+    /// throwing keeps the previous pipelines of every pass running.
     virtual void createPipelines(const PipelineContext& context) = 0;
 
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
@@ -115,7 +115,7 @@ using PassFactory = std::function<std::unique_ptr<PassImplementation>(const Pass
 /// factory the executor records with. Copyable; owns its entries.
 class PassLibrary {
 public:
-    /// Generic, Clear and the built-in passes of the seed documents.
+    /// Generic, Clear and the built-in passes (docs/graph-format.md, "Built-in pass types").
     [[nodiscard]] static PassLibrary withBuiltins();
 
     /// Registers a pass type. Throws std::invalid_argument when the name is taken.

@@ -54,7 +54,7 @@ public:
     /// An empty registry. Most callers want `withBuiltins()`.
     PassRegistry() = default;
 
-    /// Generic plus the seed's passes (forward, skybox, tonemapping, environment pipeline).
+    /// Generic plus the built-in passes (forward, skybox, tonemapping, environment pipeline).
     [[nodiscard]] static PassRegistry withBuiltins();
 
     /// Registers a type. Throws std::invalid_argument if the name is taken or a slot is
@@ -72,7 +72,7 @@ private:
     std::map<std::string, PassTypeInfo, std::less<>> types_;
 };
 
-/// Adds the seed's pass types; `withBuiltins()` calls it. Defined in passes/.
+/// Adds the built-in pass types; `withBuiltins()` calls it. Defined in passes/.
 void registerBuiltinPassTypes(PassRegistry& registry);
 
 }  // namespace skygraph

@@ -1,4 +1,5 @@
-// Printing plans: JSON per contract §2, a readable text listing, and graphviz DOT.
+// Printing plans: JSON (docs/graph-format.md, "Compiled plan"), a readable text listing, and
+// graphviz DOT.
 #pragma once
 
 #include <skygraph/graph.hpp>

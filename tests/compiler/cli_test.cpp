@@ -1,5 +1,6 @@
-// `skygraph compile` as users call it (contract §3): exit status 0 on success, 1 on a user
-// error with the message on stderr and nothing half-written, 2 on misuse of the command line.
+// `skygraph compile` as users call it (docs/graph-format.md, "Command line"): exit status 0
+// on success, 1 on a user error with the message on stderr and nothing half-written, 2 on
+// misuse of the command line.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-// Numerics at the extremes (issue 6), on lavapipe under validation + synchronization
+// Numerics at the extremes (docs/tradeoffs.md), on lavapipe under validation + synchronization
 // validation: every test asserts finite output, a stated error bound against the double
 // reference of include/skygraph/shading_math.hpp, and (through ExecutorTest) no message.
 // The camera 1e7 from the origin is tests/passes/far_camera_test.cpp's; the CPU reference's

@@ -1,6 +1,6 @@
-// PathTracePass (issue 6) on lavapipe under validation + synchronization validation: a white
-// furnace whose answer is known in closed form, progressive accumulation across frames, and
-// the shipped graphs/pathtrace.json end to end.
+// PathTracePass (docs/tradeoffs.md) on lavapipe under validation + synchronization validation:
+// a white furnace whose answer is known in closed form, progressive accumulation across frames,
+// and the shipped graphs/pathtrace.json end to end.
 #include "pass_test_util.hpp"
 
 #include <skygraph/ibl_math.hpp>

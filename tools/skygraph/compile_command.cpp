@@ -119,7 +119,7 @@ Command addCompileCommand(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("compile", "Compile a graph file into a plan of passes and barriers");
     cmd->add_option("graph", args->graph, "Graph file (graphs/*.json)")->required();
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
-    cmd->add_option("--format", args->format, "Output format: text, json (contract §2) or dot (graphviz)")
+    cmd->add_option("--format", args->format, "Output format: text, json (schemas/plan.schema.json) or dot (graphviz)")
         ->check(CLI::IsMember({"text", "json", "dot"}));
     cmd->add_option("-o,--output", args->output, "Write to FILE instead of stdout (never half-written)");
     cmd->add_flag("--no-cull", args->noCull, "Keep passes whose output nobody reads");
