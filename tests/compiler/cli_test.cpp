@@ -413,6 +413,48 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
     }
 }
 
+// A graph without a Present image: a compute-only bake writes nothing unless asked, and then
+// only an image it names.
+const char* kComputeOnlyGraph = R"({
+  "version": 1, "name": "bake",
+  "resources": {
+    "field": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16],
+               "external": true, "final": "ShaderRead" },
+    "table": { "type": "buffer", "size": 256, "external": true, "final": "ShaderRead" }
+  },
+  "passes": [ { "name": "bake", "type": "Generic", "uses": { "field": "Write@Compute", "table": "Write@Compute" } } ]
+})";
+
+TEST_F(Cli, RenderOfAGraphWithoutAPresentImageRendersValidatesAndExitsZero) {
+    const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
+    const CliRun r = run({"render", graph.string(), "--frames", "2", "--validate"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("graph 'bake' has no Present image: no file is written"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
+
+    const fs::path out = dir_ / "work" / "field.exr";
+    const CliRun named = run({"render", graph.string(), "--frames", "2", "--validate", "--readback", "field",
+                              "-o", out.string()});
+    ASSERT_EQ(named.status, 0) << named.err;
+    EXPECT_TRUE(fs::exists(out));
+}
+
+TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
+    const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
+    const fs::path out = dir_ / "work" / "out.png";
+    const CliRun r = run({"render", graph.string(), "-o", out.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("nothing to write to " + out.string() + ": graph 'bake' has no Present image; add "
+                         "--readback NAME with one of its images: field"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(workFiles().empty());
+    const CliRun buffer = run({"render", graph.string(), "--readback", "table", "-o", out.string()});
+    EXPECT_EQ(buffer.status, 1) << buffer.err;
+    EXPECT_NE(buffer.err.find("cannot read back 'table': it is a buffer"), std::string::npos) << buffer.err;
+    EXPECT_TRUE(workFiles().empty());
+}
+
 // The built-in graph and scene on lavapipe under validation; the bar counts frames when asked
 // for, and stays out of logs (stderr is a file here) when not.
 TEST_F(Cli, RenderDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
