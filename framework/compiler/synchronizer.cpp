@@ -149,6 +149,7 @@ private:
             const uint32_t r = planIndex[d];
             steps_.push_back({accessCount_, kInsertedPass, false, true});
             currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
+            readbackSteps_.push_back(currentStep_);
             nameInsertedStep("read back ", r);
             addAccess(r, kReadbackUsage, SubresourceRange{0, 1, 0, 1}, false);
         }
@@ -169,7 +170,9 @@ private:
         insertedNameAt_.push_back({currentStep_, at, static_cast<uint32_t>(ownText_.size() - at)});
     }
 
-    uint32_t addResource(uint32_t declIndex) {
+    // Both run once per usage or resource, from planAccesses' loop: inlined there (GCC 12 stops
+    // inlining them once they have three callers, which costs 5% of a large compile).
+    [[gnu::always_inline]] uint32_t addResource(uint32_t declIndex) {
         PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
@@ -182,6 +185,7 @@ private:
                           index_.aspects(declIndex).image, index_.exported(declIndex), index_.external(declIndex)});
 #endif
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
+        if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
@@ -221,7 +225,8 @@ private:
 
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
     /// place in its resource's chain of accesses and in its read run (rule 4).
-    void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range, bool loadOpClear) {
+    [[gnu::always_inline]] void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range,
+                                          bool loadOpClear) {
         const uint32_t k = accessCount_++;
         const Access effective = effectiveAccess(usage.access, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].scopeRow, effective, usage.stage, usage.as);
@@ -554,8 +559,7 @@ private:
         }
         // Each read-back's copy lands in host memory the executor reads after the frame's
         // fence: its writes are made available to the host domain here.
-        for (uint32_t s = 0; s < steps_.size(); ++s) {
-            if (!steps_[s].readback) continue;
+        for (const uint32_t s : readbackSteps_) {
             Barrier b;
             b.resource = (*usages_)[steps_[s].firstAccess].resource;
             b.kind = BarrierKind::Memory;
@@ -569,14 +573,13 @@ private:
 
     /// Which resources need a copy per frame in flight: frames in flight overlap on the GPU,
     /// and nothing in a plan orders one frame's accesses after another's unless a resource is
-    /// exported (its final barrier and the next frame's first use chain across frames).
+    /// exported (its final barrier and the next frame's first use chain across frames). A
+    /// resource that is not external keeps the default, PerFrameTransient.
     void decideCopies() {
-        for (uint32_t r = 0; r < plan_.resources.size(); ++r) {
+        for (const uint32_t r : external_) {
             const ResourceFacts& f = facts_[r];
             PlannedResource& res = plan_.resources[r];
-            if (!f.external) {
-                res.copies = ResourceCopies::PerFrameTransient;
-            } else if (decl(r).final == ExternalState::Present) {
+            if (decl(r).final == ExternalState::Present) {
                 res.copies = ResourceCopies::PerFramePresented;
             } else if (f.exported) {
                 res.copies = ResourceCopies::SharedExported;
@@ -595,7 +598,9 @@ private:
     // Per plan resource.
     std::vector<ResourceFacts> facts_;
     std::vector<uint32_t> exported_;       // plan resources that are exported, in plan order
+    std::vector<uint32_t> external_;       // plan resources that are external, in plan order
     std::vector<uint32_t> readbacks_;      // graph resources read back to the host, by name
+    std::vector<uint32_t> readbackSteps_;  // their steps
     uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
     uint32_t currentStep_ = 0;             // the step last added, whose accesses are being added
