@@ -294,10 +294,26 @@ std::string planToText(const Plan& plan) {
     return o.str();
 }
 
-std::string planToDot(const Plan& plan, const GraphDesc& graph) {
+std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setup) {
     std::ostringstream o;
     o << "digraph \"" << dotEscape(plan.graph) << "\" {\n  rankdir=LR;\n"
       << "  node [fontname=\"Helvetica\", fontsize=10];\n  edge [fontname=\"Helvetica\", fontsize=8];\n";
+    if (setup && !setup->passes.empty()) {
+        // What runs once before the first frame, in a box of its own beside the frame.
+        o << "  subgraph \"cluster_setup\" {\n    label=\"setup, once before the first frame\";\n"
+          << "    style=dashed;\n    color=\"#888888\";\n";
+        for (size_t i = 0; i < setup->passes.size(); ++i) {
+            const auto& p = setup->passes[i];
+            o << "    \"setup:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "
+              << "fillcolor=\"#e4f2dc\", label=\"" << dotEscape(p.name) << "\\n(" << dotEscape(p.type) << ")\\n"
+              << p.barriers.size() << " barrier(s)\"];\n";
+        }
+        o << "  }\n";
+        for (const auto& p : setup->passes)
+            for (const auto& u : p.usages)
+                o << "  \"setup:" << dotEscape(p.name) << "\" -> \"res:" << dotEscape(setup->resources[u.resource].name)
+                  << "\" [style=dashed, color=\"#5a9a3a\", label=\"" << toString(u.usage.stage) << "\"];\n";
+    }
     for (size_t i = 0; i < plan.passes.size(); ++i) {
         const auto& p = plan.passes[i];
         o << "  \"pass:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "

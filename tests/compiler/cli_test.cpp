@@ -227,6 +227,23 @@ TEST_F(Cli, TextAndDotFormats) {
     EXPECT_NE(dot.out.find("feature 'blur' is off"), std::string::npos) << dot.out;
 }
 
+// What runs before the first frame is part of what `compile` shows, in every format.
+TEST_F(Cli, EveryFormatShowsTheSetupBeforeTheFirstFrame) {
+    const CliRun text = run({"compile", "graphs/pathtrace.json"});
+    ASSERT_EQ(text.status, 0) << text.err;
+    EXPECT_NE(text.out.find("setup, once before the first frame:"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("initialize accumulation (Clear)"), std::string::npos) << text.out;
+    const CliRun json = run({"compile", "graphs/pathtrace.json", "--format", "json"});
+    ASSERT_EQ(json.status, 0) << json.err;
+    const auto plan = nlohmann::json::parse(json.out);
+    ASSERT_TRUE(plan.contains("setup")) << json.out;
+    EXPECT_EQ(plan["setup"]["passes"][0]["name"], "initialize accumulation");
+    const CliRun dot = run({"compile", "graphs/pathtrace.json", "--format", "dot"});
+    ASSERT_EQ(dot.status, 0) << dot.err;
+    EXPECT_NE(dot.out.find("cluster_setup"), std::string::npos) << dot.out;
+    EXPECT_NE(dot.out.find("initialize accumulation"), std::string::npos) << dot.out;
+}
+
 TEST_F(Cli, EveryShippedGraphCompiles) {
     for (const char* g : {"graphs/raster.json", "graphs/pathtrace.json", "graphs/ibl.json"}) {
         const CliRun r = run({"compile", g, "--format", "json"});

@@ -60,7 +60,7 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
         if (!setup.passes.empty()) j["setup"] = planToJson(setup);
         out.formatted = j.dump(2) + "\n";
     }
-    else if (args.format == "dot") out.formatted = planToDot(plan, graph);
+    else if (args.format == "dot") out.formatted = planToDot(plan, graph, &setup);
     else out.formatted = out.text;
     return out;
 }
