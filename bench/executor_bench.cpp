@@ -53,16 +53,15 @@ struct Fixture {
         device = Device::create(d);
         const auto registry = PassRegistry::withBuiltins();
         GraphDesc graph = parseGraph(kGraph, "<bench>", registry);
-        CompileOptions co;
+        CompileOptions co;  // no read-backs: both sides record the same commands
         co.presentReplacement = ExternalState::TransferSrc;
-        Plan plan = compile(graph, co);
-        for (const auto& p : plan.passes) names.emplace_back(p.name);
+        co.outputWidth = 64;
+        co.outputHeight = 64;
+        CompiledGraph compiled(std::move(graph), co);
+        for (const auto& p : compiled.plan().passes) names.emplace_back(p.name);
         RendererOptions ro;
-        ro.width = 64;
-        ro.height = 64;
         ro.framesInFlight = 2;
-        ro.readback = "<none>";  // no read-back copy: both sides record the same commands
-        renderer = std::make_unique<Renderer>(*device, graph, std::move(plan), ro);
+        renderer = std::make_unique<Renderer>(*device, std::move(compiled), ro);
         hand = RendererAccess::handFrame(*renderer, 0);
 
         const VkDevice vkd = device->device();

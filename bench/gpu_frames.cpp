@@ -142,7 +142,7 @@ public:
         RendererOptions ro;
         ro.framesInFlight = 1;
         ro.passes = &library;
-        baker_ = std::make_unique<Renderer>(device, ibl, compile(ibl, co), ro);
+        baker_ = std::make_unique<Renderer>(device, CompiledGraph(std::move(ibl), co), ro);
         baker_->setExternalImage("equirect", pixels());
         baker_->renderFrame();
         baker_->waitIdle();
@@ -185,7 +185,16 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     co.presentReplacement = ExternalState::TransferSrc;
     co.outputWidth = c.width;
     co.outputHeight = c.height;
-    Plan plan = compile(graph, co);
+    CompiledGraph compiled(graph, co);
+    // No read-back copy unless a picture is asked for: the frame is the plan's passes alone.
+    // The picture is the Present target the plan writes (a graph may declare one per feature).
+    if (!c.png.empty()) {
+        for (const ResourceDesc& r : graph.resources)
+            if (r.final == ExternalState::Present && compiled.plan().resourceIndex(r.name) >= 0)
+                co.readbacks.insert(r.name);
+        compiled = CompiledGraph(graph, co);
+    }
+    const Plan& plan = compiled.plan();
     FrameResult result;
     for (const auto& culled : plan.culled) result.culled.push_back(culled.name + ": " + culled.reason);
     std::map<std::string, PassResult> byName;
@@ -197,12 +206,9 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     }
 
     RendererOptions ro;
-    ro.width = c.width;
-    ro.height = c.height;
     ro.framesInFlight = 1;
     ro.passes = &library;
-    if (c.png.empty()) ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
-    Renderer renderer(device, graph, std::move(plan), ro);
+    Renderer renderer(device, std::move(compiled), ro);
     if (scene) renderer.frameData().set(*scene);
     environment.install(device, c.graph, graph, library, renderer);
     for (const std::string& name : c.proceduralExternals) {

@@ -11,6 +11,10 @@
 
 namespace skygraph {
 
+namespace detail {
+struct CompiledGraphAccess;  // tests: run a plan they weakened on purpose
+}
+
 /// Owns its graph, options and plan; copies are independent.
 class CompiledGraph {
 public:
@@ -32,6 +36,7 @@ public:
     [[nodiscard]] CompiledGraph withGraph(GraphDesc graph) const;
 
 private:
+    friend struct detail::CompiledGraphAccess;
     GraphDesc graph_;
     CompileOptions options_;
     Plan plan_;

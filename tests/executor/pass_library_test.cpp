@@ -85,15 +85,12 @@ std::string graphText(const std::string& type) {
 
 TEST_F(ExecutorTest, PassLibraryImplementationRecordsInsideRenderPass) {
     const PassLibrary lib = library();
-    Compiled c;
-    c.graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());
-    CompileOptions co;
-    co.presentReplacement = ExternalState::TransferSrc;
-    c.plan = compile(c.graph, co);
+    GraphDesc graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
     RendererOptions o;
     o.passes = &lib;
     FillPass::pipelinesCreated = 0;
-    Renderer r(sharedDevice(), c.graph, c.plan, o);
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), o);
     EXPECT_EQ(FillPass::pipelinesCreated, 1);
     for (int i = 0; i < 3; ++i) r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 5, 5, 0.25, 0.5, 0.5, 1.0);
@@ -102,15 +99,14 @@ TEST_F(ExecutorTest, PassLibraryImplementationRecordsInsideRenderPass) {
 
 TEST_F(ExecutorTest, PassLibraryPipelineFailureIsAnErrorAndKeepsOldPlan) {
     const PassLibrary lib = library();
-    CompileOptions co;
-    co.presentReplacement = ExternalState::TransferSrc;
-    const GraphDesc good = parseGraph(graphText("Fill"), "<lib>", lib.registry());
-    const GraphDesc bad = parseGraph(graphText("Broken"), "<lib>", lib.registry());
+    GraphDesc good = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    GraphDesc bad = parseGraph(graphText("Broken"), "<lib>", lib.registry());
+    const CompileOptions co = headless(good);
     RendererOptions o;
     o.passes = &lib;
-    Renderer r(sharedDevice(), good, compile(good, co), o);
+    Renderer r(sharedDevice(), CompiledGraph(std::move(good), co), o);
     try {
-        r.setPlan(bad, compile(bad, co));
+        r.setGraph(CompiledGraph(std::move(bad), co));
         FAIL() << "expected ExecutorError";
     } catch (const ExecutorError& e) {
         EXPECT_NE(std::string(e.what()).find("shader exploded"), std::string::npos) << e.what();
