@@ -3,7 +3,7 @@
 #pragma once
 
 #include <skygraph/executor.hpp>
-#include <skygraph/ibl_math.hpp>
+#include "ibl_math.hpp"
 
 #include <cmath>
 
