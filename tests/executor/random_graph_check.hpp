@@ -5,7 +5,7 @@
 
 #include "random_graph_generator.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/plan.hpp>
 
 #include <string>

@@ -7,7 +7,7 @@
 // the references: look at every image before committing it.
 #include "app/render.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
 
 #include <gtest/gtest.h>

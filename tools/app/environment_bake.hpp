@@ -4,9 +4,11 @@
 // device of its own and reads them back (what bench/ibl_compare.sh measures).
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/graph.hpp>
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/image_data.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <functional>
 #include <map>

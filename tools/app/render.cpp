@@ -6,9 +6,11 @@
 #include "shipped_names.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/renderer.hpp>
 #include <skygraph/scene.hpp>
 
 #include <spdlog/spdlog.h>
