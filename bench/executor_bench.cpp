@@ -4,7 +4,8 @@
 #include "renderer_access.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <benchmark/benchmark.h>
 #include <spdlog/spdlog.h>
@@ -194,7 +195,7 @@ void recordOnly(benchmark::State& state, Record record) {
 }
 
 void BM_Record_Framework(benchmark::State& state) {
-    recordOnly(state, [](Fixture& f) { f.renderer->recordInto(f.cmd, 0); });
+    recordOnly(state, [](Fixture& f) { RendererAccess::recordInto(*f.renderer, f.cmd, 0); });
 }
 BENCHMARK(BM_Record_Framework);
 

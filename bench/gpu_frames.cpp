@@ -2,6 +2,7 @@
 #include "gpu_frames.hpp"
 
 #include "gpu_vk.hpp"
+#include "renderer_access.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/hdr_image.hpp>
@@ -241,7 +242,7 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     GpuTimer timer(device);
     std::vector<double> frameMs;
     for (uint32_t i = 0; i < c.frames; ++i)
-        frameMs.push_back(timer.time([&](VkCommandBuffer cmd) { renderer.recordInto(cmd, 0); }));
+        frameMs.push_back(timer.time([&](VkCommandBuffer cmd) { RendererAccess::recordInto(renderer, cmd, 0); }));
     result.frameMedianMs = median(frameMs);
     if (!c.png.empty()) {
         renderer.renderFrame();  // recordInto left slot 0's contents; a full frame fills the read-back

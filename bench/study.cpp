@@ -19,9 +19,11 @@
 #include "delta_e2000.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/format.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/renderer.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 

@@ -1,5 +1,5 @@
-// Factories of the built-in passes' recording code (the declarations are in
-// builtin_pass_types.cpp). PassLibrary::withBuiltins() pairs the two.
+// Factories of the built-in passes' recording code, each defined in its pass's *_pass.cpp
+// (the declarations: builtin_pass_types.hpp). PassLibrary::withBuiltins() pairs the two.
 #pragma once
 
 #include <skygraph/pass.hpp>

@@ -1,6 +1,6 @@
 #include "generic_program.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,8 @@
 // Hot reload of the graph file and the shader directory.
 #include <skygraph/shader_compiler.hpp>
 
-#include <skygraph/executor.hpp>
+#include <skygraph/hot_reload.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <spdlog/spdlog.h>
 

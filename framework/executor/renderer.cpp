@@ -361,9 +361,10 @@ void Renderer::reloadShaders() {
 }
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 
-void Renderer::recordInto(VkCommandBuffer cmd, uint32_t slot) {
-    if (slot >= impl_->frames.size()) throw ExecutorError("frame slot out of range");
-    impl_->recordFrame(cmd, slot, nullptr);
+void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {
+    Renderer::Impl& d = *renderer.impl_;
+    if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
+    d.recordFrame(cmd, slot, nullptr);
 }
 
 HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {

@@ -1,8 +1,9 @@
-// Internal: the handles a Renderer records with, for the benchmark's hand-written recording
-// of the same commands. Not part of the public API.
+// Internal: what benchmarks reach inside a Renderer: recording its plan into their own command
+// buffer, and the handles it records with, for the benchmark's hand-written recording of the
+// same commands. Not part of the public API (bench/ includes it from framework/executor).
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <vulkan/vulkan_core.h>
 
@@ -38,6 +39,10 @@ struct HandFrame {
 };
 
 struct RendererAccess {
+    /// Records `renderer`'s current plan for frame slot `slot` into `cmd` (begun by the
+    /// caller), without labels, timestamps or readback. For benchmarks that compare against
+    /// hand recording. Throws ExecutorError for a slot out of range.
+    static void recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot);
     /// Copies the handles of frame slot `slot`. They stay valid while `renderer` lives and is
     /// not resized. Throws ExecutorError for plans with transfers, clears or vertex input,
     /// which the hand recording does not cover.

@@ -11,11 +11,12 @@
 
 #include "barrier_batch.hpp"
 #include "command_sink.hpp"
+#include "device_access.hpp"
 #include "generic_program.hpp"
 #include "spirv_cache.hpp"
 #include "vk_util.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/renderer.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/pipeline_builder.hpp>
 #include <skygraph/shader_compiler.hpp>
@@ -248,7 +249,7 @@ struct Renderer::Impl {
     std::vector<PassTiming> timings;
 
     Impl(Device& d, RendererOptions o)
-        : device(d), dev(d.impl()), vkd(d.device()), options(std::move(o)),
+        : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
           shaders(options.shaderDir, SpirvDiskCache::defaultDir()) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------

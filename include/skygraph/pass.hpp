@@ -28,12 +28,13 @@ class ShaderCompiler;
 /// stored by type. The renderer owns it; passes read it while recording.
 class FrameData {
 public:
-    /// Stores (replaces) the value of type T.
+    /// Stores (replaces) the value of type T; the FrameData owns the copy.
     template <typename T>
     void set(T value) {
         values_[std::type_index(typeid(T))] = std::move(value);
     }
-    /// The value of type T, or nullptr when none was set.
+    /// The value of type T, or nullptr when none was set. The pointer is valid until a value
+    /// of type T is set again or the FrameData is destroyed.
     template <typename T>
     [[nodiscard]] const T* get() const {
         auto it = values_.find(std::type_index(typeid(T)));
@@ -44,7 +45,9 @@ private:
     std::unordered_map<std::type_index, std::any> values_;
 };
 
-/// One resource as a pass sees it through one of its usages.
+/// One resource as a pass sees it through one of its usages. The renderer owns the handles and
+/// the plan and graph the pointers point into; see PipelineContext and RecordContext for how
+/// long they are valid.
 struct BoundResource {
     const PlannedUsage* usage = nullptr;
     const ResourceDesc* desc = nullptr;
@@ -88,11 +91,14 @@ struct RecordContext {
     /// only barrier a pass may record, and the executor provides it.
     std::function<void()> recordInPassBarriers;
 
-    /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which.
+    /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which. The
+    /// pointer is into `resources`: valid during the call only.
     [[nodiscard]] const BoundResource* slot(std::string_view name, size_t nth = 0) const;
 };
 
-/// The recording code of one pass instance. Created once per pass of a plan; not copyable.
+/// The recording code of one pass instance. Created once per pass of a plan and owned by the
+/// renderer, which destroys it with the plan state (a new plan, a resize, a shader reload);
+/// not copyable. Vulkan objects it creates are its own to destroy.
 class PassImplementation {
 public:
     PassImplementation() = default;
@@ -116,14 +122,17 @@ using PassFactory = std::function<std::unique_ptr<PassImplementation>(const Pass
 class PassLibrary {
 public:
     /// Generic, Clear and the built-in passes (docs/graph-format.md, "Built-in pass types").
+    /// Defined by the built-in passes' library (skygraph_passes, passes/): link it to call this.
     [[nodiscard]] static PassLibrary withBuiltins();
 
     /// Registers a pass type. Throws std::invalid_argument when the name is taken.
     void add(PassTypeInfo info, PassFactory factory);
 
-    /// The declarations, for loadGraphFile / parseGraph.
+    /// The declarations, for loadGraphFile / parseGraph. The reference is valid while the
+    /// library lives (and is not assigned to); add() extends what it holds.
     [[nodiscard]] const PassRegistry& registry() const noexcept { return registry_; }
-    /// nullptr when the type has no recording code.
+    /// nullptr when the type has no recording code. The pointer is valid while the library
+    /// lives (and is not assigned to).
     [[nodiscard]] const PassFactory* factory(std::string_view type) const;
 
 private:

@@ -4,8 +4,10 @@
 #include "headless_options.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/plan_format.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // Hot reload: a broken graph and a broken shader each leave the last good version running.
 #include "executor_test_util.hpp"
 
+#include <skygraph/hot_reload.hpp>
 #include <skygraph/shader_compiler.hpp>
 
 #include <filesystem>

@@ -6,6 +6,7 @@
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <bit>
 #include <span>

@@ -6,7 +6,7 @@
 #include "random_graph_generator.hpp"
 
 #include <skygraph/compiled_graph.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/plan.hpp>
 
 #include <optional>

@@ -6,6 +6,8 @@
 // with its seed, graph and messages, and ends with "N passed, N failed".
 #include "random_graph_check.hpp"
 
+#include <skygraph/compiler.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <string>

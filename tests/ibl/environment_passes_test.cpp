@@ -1,6 +1,6 @@
 // graphs/ibl.json as shipped, on lavapipe under validation, with an analytic environment:
 // the cube, its mip chain, irradiance, GGX prefilter and BRDF table against the double
-// references of include/skygraph/ibl_math.hpp.
+// references of tests/support/ibl_math.hpp.
 #include "analytic_environment.hpp"
 #include "executor_test_util.hpp"
 

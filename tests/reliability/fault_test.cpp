@@ -6,6 +6,7 @@
 #include "executor_test_util.hpp"
 
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/hot_reload.hpp>
 
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
