@@ -52,7 +52,7 @@ struct PassResult {
 struct FrameResult {
     std::vector<PassResult> passes;
     /// The whole recorded plan (RendererAccess::recordInto) between two ALL_COMMANDS timestamps:
-    /// passes and barriers, no readback, no per-pass timestamps.
+    /// passes and barriers (a Readback step only when a PNG is asked for), no per-pass timestamps.
     double frameMedianMs = 0;
     uint32_t frames = 0;
     std::vector<std::string> culled;  ///< "name: reason"

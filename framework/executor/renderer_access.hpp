@@ -40,8 +40,8 @@ struct HandFrame {
 
 struct RendererAccess {
     /// Records `renderer`'s current plan for frame slot `slot` into `cmd` (begun by the
-    /// caller), without labels, timestamps or readback. For benchmarks that compare against
-    /// hand recording. Throws ExecutorError for a slot out of range.
+    /// caller), without labels or timestamps (its Readback steps included). For benchmarks that
+    /// compare against hand recording. Throws ExecutorError for a slot out of range.
     static void recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot);
     /// Copies the handles of frame slot `slot`. They stay valid while `renderer` lives and is
     /// not resized. Throws ExecutorError for plans with transfers, clears or vertex input,
