@@ -76,10 +76,10 @@ void Renderer::Impl::runSetup(PlanState& s) {
     if (setup.passes.empty()) return;
     // Each setup resource is a frame resource of the same name; a per-slot one is set up once
     // per copy.
-    std::vector<uint32_t> frameIndex;
-    for (const PlannedResource& r : setup.resources) frameIndex.push_back(uint32_t(s.plan.resourceIndex(r.name)));
+    std::vector<uint32_t> frameResource;
+    for (const PlannedResource& r : setup.resources) frameResource.push_back(uint32_t(s.plan.resourceIndex(r.name)));
     auto copiesOf = [&](uint32_t setupResource) {
-        const ResourceState& r = s.resources[frameIndex[setupResource]];
+        const ResourceState& r = s.resources[frameResource[setupResource]];
         return r.isImage ? r.images.size() : r.buffers.size();
     };
     // Host contents of the Upload steps, written before the submission (which makes host writes
@@ -87,7 +87,7 @@ void Renderer::Impl::runSetup(PlanState& s) {
     std::vector<OwnedBuffer> staging(setup.passes.size());
     for (size_t i = 0; i < setup.passes.size(); ++i) {
         if (setup.passes[i].type != "Upload") continue;
-        const ResourceState& r = s.resources[frameIndex[setup.passes[i].usages[0].resource]];
+        const ResourceState& r = s.resources[frameResource[setup.passes[i].usages[0].resource]];
         if (!r.isImage) {
             staging[i] = makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
             fillBufferPattern(static_cast<uint8_t*>(staging[i].mapped), r.size, 0.5f);
@@ -108,12 +108,12 @@ void Renderer::Impl::runSetup(PlanState& s) {
     submitAndWait([&](CommandSink& sink) {
         const size_t copies = options.framesInFlight;
         for (uint32_t c = 0; c < copies; ++c) {
-            const auto target = [&](uint32_t r) { return s.resources[frameIndex[r]].barrierTarget(c); };
+            const auto target = [&](uint32_t r) { return s.resources[frameResource[r]].barrierTarget(c); };
             for (size_t i = 0; i < setup.passes.size(); ++i) {
                 const PlannedPass& step = setup.passes[i];
                 const PlannedUsage& u = step.usages[0];
                 if (c >= copiesOf(u.resource)) continue;
-                const ResourceState& r = s.resources[frameIndex[u.resource]];
+                const ResourceState& r = s.resources[frameResource[u.resource]];
                 if (const BarrierBatch before(step.barriers, target); !before.empty()) sink.barriers(before);
                 if (step.type == "Clear") {
                     recordInitialClear(sink, r, r.images[c].image, u);
