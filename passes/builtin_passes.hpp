@@ -8,6 +8,8 @@
 
 namespace skygraph::passes {
 
+/// Generic (passes/generic/generic_pass.cpp), also for types without recording code of their own.
+[[nodiscard]] std::unique_ptr<PassImplementation> makeGenericPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingComputePass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeSkyboxPass(const PassDesc& desc);

@@ -106,33 +106,16 @@ void CommandLog::beginRenderPass(const VkRenderPassBeginInfo& info) {
                      std::to_string(info.renderArea.extent.height));
 }
 void CommandLog::endRenderPass() { lines_.emplace_back("end render pass"); }
-void CommandLog::bindPipeline(VkPipelineBindPoint point, VkPipeline) {
-    lines_.push_back(point == VK_PIPELINE_BIND_POINT_COMPUTE ? "bind compute pipeline" : "bind graphics pipeline");
-}
-void CommandLog::pushDescriptors(VkPipelineBindPoint, VkPipelineLayout, std::span<const VkWriteDescriptorSet> writes) {
-    lines_.push_back("push " + std::to_string(writes.size()) + " descriptor(s)");
-}
-void CommandLog::pushConstants(VkPipelineLayout, VkShaderStageFlags, const uint32_t (&)[4]) {
-    lines_.emplace_back("push constants");
-}
-void CommandLog::bindVertexBuffers(std::span<const VkBuffer> buffers, std::span<const VkDeviceSize>) {
-    lines_.push_back("bind " + std::to_string(buffers.size()) + " vertex buffer(s)");
-}
-void CommandLog::bindIndexBuffer(VkBuffer buffer) { lines_.push_back("bind index buffer " + name(buffer)); }
-void CommandLog::dispatch(uint32_t x, uint32_t y) {
-    lines_.push_back("dispatch " + std::to_string(x) + "x" + std::to_string(y));
-}
-void CommandLog::draw(uint32_t vertices, uint32_t instances) {
-    lines_.push_back("draw " + std::to_string(vertices) + " x" + std::to_string(instances));
-}
-void CommandLog::drawIndexed(uint32_t indices, uint32_t instances) {
-    lines_.push_back("draw indexed " + std::to_string(indices) + " x" + std::to_string(instances));
-}
-void CommandLog::drawIndirect(VkBuffer buffer, bool indexed) {
-    lines_.push_back(std::string(indexed ? "draw indexed indirect " : "draw indirect ") + name(buffer));
-}
-void CommandLog::recordPass(PassImplementation&, RecordContext& context) {
+void CommandLog::recordPass(PassImplementation& pass, RecordContext& context) {
     lines_.push_back("record pass " + std::string(context.pass ? context.pass->name : "?"));
+    context.cmd = VK_NULL_HANDLE;
+    pass.record(context);
+}
+
+void CommandLog::recordPassBeforeRenderPass(PassImplementation& pass, RecordContext& context) {
+    lines_.push_back("record pass " + std::string(context.pass ? context.pass->name : "?") + " before its render pass");
+    context.cmd = VK_NULL_HANDLE;
+    pass.recordBeforeRenderPass(context);
 }
 
 }  // namespace skygraph::detail

@@ -44,17 +44,14 @@ public:
     void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) override;
     void beginRenderPass(const VkRenderPassBeginInfo& info) override;
     void endRenderPass() override;
-    void bindPipeline(VkPipelineBindPoint point, VkPipeline pipeline) override;
-    void pushDescriptors(VkPipelineBindPoint point, VkPipelineLayout layout,
-                         std::span<const VkWriteDescriptorSet> writes) override;
-    void pushConstants(VkPipelineLayout layout, VkShaderStageFlags stages, const uint32_t (&values)[4]) override;
-    void bindVertexBuffers(std::span<const VkBuffer> buffers, std::span<const VkDeviceSize> offsets) override;
-    void bindIndexBuffer(VkBuffer buffer) override;
-    void dispatch(uint32_t x, uint32_t y) override;
-    void draw(uint32_t vertices, uint32_t instances) override;
-    void drawIndexed(uint32_t indices, uint32_t instances) override;
-    void drawIndirect(VkBuffer buffer, bool indexed) override;
+    /// Writes "record pass NAME" (NAME "before its render pass"), then lets `pass` record
+    /// with no command buffer: only stand-ins for recording code, which record through the
+    /// context (recordInPassBarriers) and note(), can be logged.
     void recordPass(PassImplementation& pass, RecordContext& context) override;
+    void recordPassBeforeRenderPass(PassImplementation& pass, RecordContext& context) override;
+
+    /// Writes `line` down as it is: what a stand-in pass says it records.
+    void note(std::string line) { lines_.push_back(std::move(line)); }
 
 private:
     template <typename Handle>

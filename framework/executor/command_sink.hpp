@@ -2,7 +2,7 @@
 // VulkanCommands records into a command buffer; CommandLog (command_log.hpp) writes each
 // command down as a line of text, so a test can compare a frame's commands and barriers with
 // its plan without a device (Blender's VKCommandBufferLog is the model). Pass implementations
-// record their own draws into the command buffer they are given (recordPass).
+// record their own work into the command buffer they are given (recordPass).
 #pragma once
 
 #include "barrier_batch.hpp"
@@ -42,27 +42,19 @@ public:
     /// Begins a render pass over the whole framebuffer, with viewport and scissor to match.
     virtual void beginRenderPass(const VkRenderPassBeginInfo& info) = 0;
     virtual void endRenderPass() = 0;
-    virtual void bindPipeline(VkPipelineBindPoint point, VkPipeline pipeline) = 0;
-    virtual void pushDescriptors(VkPipelineBindPoint point, VkPipelineLayout layout,
-                                 std::span<const VkWriteDescriptorSet> writes) = 0;
-    /// 16 bytes of push constants.
-    virtual void pushConstants(VkPipelineLayout layout, VkShaderStageFlags stages, const uint32_t (&values)[4]) = 0;
-    virtual void bindVertexBuffers(std::span<const VkBuffer> buffers, std::span<const VkDeviceSize> offsets) = 0;
-    virtual void bindIndexBuffer(VkBuffer buffer) = 0;  ///< 32-bit indices
-    virtual void dispatch(uint32_t x, uint32_t y) = 0;
-    virtual void draw(uint32_t vertices, uint32_t instances) = 0;
-    virtual void drawIndexed(uint32_t indices, uint32_t instances) = 0;
-    virtual void drawIndirect(VkBuffer buffer, bool indexed) = 0;
 
-    /// A pass implementation records its work; `context.cmd` is this sink's command buffer.
+    /// A pass implementation records its work (PassImplementation::record); `context.cmd` is
+    /// this sink's command buffer.
     virtual void recordPass(PassImplementation& pass, RecordContext& context) = 0;
+    /// The same for what a graphics pass records before its render pass
+    /// (PassImplementation::recordBeforeRenderPass).
+    virtual void recordPassBeforeRenderPass(PassImplementation& pass, RecordContext& context) = 0;
 };
 
 /// Records into a command buffer that the caller has begun. Borrows everything.
 class VulkanCommands final : public CommandSink {
 public:
     struct Functions {
-        PFN_vkCmdPushDescriptorSetKHR pushDescriptors = nullptr;
         PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel = nullptr;  ///< may be null
         PFN_vkCmdEndDebugUtilsLabelEXT endLabel = nullptr;
     };
@@ -84,17 +76,8 @@ public:
     void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) override;
     void beginRenderPass(const VkRenderPassBeginInfo& info) override;
     void endRenderPass() override;
-    void bindPipeline(VkPipelineBindPoint point, VkPipeline pipeline) override;
-    void pushDescriptors(VkPipelineBindPoint point, VkPipelineLayout layout,
-                         std::span<const VkWriteDescriptorSet> writes) override;
-    void pushConstants(VkPipelineLayout layout, VkShaderStageFlags stages, const uint32_t (&values)[4]) override;
-    void bindVertexBuffers(std::span<const VkBuffer> buffers, std::span<const VkDeviceSize> offsets) override;
-    void bindIndexBuffer(VkBuffer buffer) override;
-    void dispatch(uint32_t x, uint32_t y) override;
-    void draw(uint32_t vertices, uint32_t instances) override;
-    void drawIndexed(uint32_t indices, uint32_t instances) override;
-    void drawIndirect(VkBuffer buffer, bool indexed) override;
     void recordPass(PassImplementation& pass, RecordContext& context) override;
+    void recordPassBeforeRenderPass(PassImplementation& pass, RecordContext& context) override;
 
 private:
     VkCommandBuffer cmd_;

@@ -20,24 +20,7 @@ std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
     describeResources(*s);
     for (size_t i = 0; i < s->plan.passes.size(); ++i) buildPassStatic(*s, i);
     buildSized(*s);
-    for (PassState& ps : s->passes) {
-        if (!ps.custom) continue;
-        PipelineContext pc;
-        pc.device = vkd;
-        pc.physicalDevice = dev.physical;
-        pc.renderPass = ps.renderPass.get();
-        pc.pass = ps.pass;
-        pc.desc = ps.desc;
-        pc.resources = ps.slots[0].bound;
-        pc.shaders = &shaders;
-        try {
-            ps.custom->createPipelines(pc);
-        } catch (const ExecutorError&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw ExecutorError(passError(*ps.pass, "", std::string("creating pipelines: ") + e.what()));
-        }
-    }
+    createPipelines(*s);
     return s;
 }
 
@@ -137,20 +120,12 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
         throw ExecutorError("framesInFlight must be between 1 and 8");
     impl_ = std::make_unique<Impl>(device, std::move(options));
     Impl& d = *impl_;
-    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
-    vkGetPhysicalDeviceFeatures2(d.dev.physical, &f2);
-    d.layered = f12.shaderOutputLayer == VK_TRUE;
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
-    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     sci.maxLod = VK_LOD_CLAMP_NONE;
     VkSampler sampler;
-    vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
-    d.sampler = vk::Sampler(d.vkd, sampler);
-    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
-    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.linearSampler = vk::Sampler(d.vkd, sampler);
     sci.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
@@ -372,34 +347,21 @@ HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
     PlanState& s = *d.state;
     if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
     HandFrame f;
-    f.pushDescriptors = d.dev.fn.cmdPushDescriptorSet;
     for (PassState& ps : s.passes) {
+        if (ps.kind != StepKind::Pass)
+            throw ExecutorError(passError(*ps.pass, "", "hand recording covers the passes' recording code only"));
         const PassSlot& sl = ps.slots[slot];
-        const GenericProgram& p = ps.program;
-        if (ps.kind != StepKind::Pass || !p.transfers.empty() || !p.vertexBuffers.empty() || p.indexBuffer >= 0 ||
-            p.indirectBuffer >= 0) {
-            throw ExecutorError(passError(*ps.pass, "", "hand recording covers draws and dispatches only"));
-        }
         HandPass h;
         h.imageBarriers = sl.before.images();
         h.bufferBarriers = sl.before.buffers();
         h.memoryBarriers = sl.before.memory();
-        if (p.graphics) {
+        if (ps.attachments.any()) {
             h.renderPass = ps.renderPass.get();
             h.framebuffer = sl.framebuffer.get();
             h.extent = sl.extent;
             h.clearValues = ps.clearValues;
-            h.graphicsPipeline = ps.graphicsPipeline.get();
-            h.graphicsLayout = ps.graphicsLayout.get();
-            h.graphicsWrites = sl.graphicsWrites;
-            h.instances = p.attachmentLayers;
         }
-        if (p.compute) {
-            h.computePipeline = ps.computePipeline.get();
-            h.computeLayout = ps.computeLayout.get();
-            h.computeWrites = sl.computeWrites;
-            h.computeExtent = sl.computeExtent;
-        }
+        h.implementation = ps.implementation.get();
         f.passes.push_back(std::move(h));
     }
     f.finalImageBarriers = s.finals[slot].images();

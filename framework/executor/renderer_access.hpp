@@ -11,23 +11,20 @@
 
 namespace skygraph {
 
-/// One pass as plain Vulkan handles and arrays (graphics and/or compute only).
+class PassImplementation;  // skygraph/pass.hpp
+
+/// What the executor records around one pass, as plain Vulkan handles and arrays: the plan's
+/// barrier batch and, for a graphics pass, its render pass. What the pass records inside is
+/// its recording code's (`implementation`).
 struct HandPass {
     std::vector<VkImageMemoryBarrier2> imageBarriers;
     std::vector<VkBufferMemoryBarrier2> bufferBarriers;
     std::vector<VkMemoryBarrier2> memoryBarriers;
-    VkRenderPass renderPass = VK_NULL_HANDLE;
+    VkRenderPass renderPass = VK_NULL_HANDLE;  ///< Null for passes without attachments.
     VkFramebuffer framebuffer = VK_NULL_HANDLE;
     VkExtent2D extent{};
     std::vector<VkClearValue> clearValues;
-    VkPipeline graphicsPipeline = VK_NULL_HANDLE;
-    VkPipelineLayout graphicsLayout = VK_NULL_HANDLE;
-    std::vector<VkWriteDescriptorSet> graphicsWrites;
-    uint32_t instances = 1;
-    VkPipeline computePipeline = VK_NULL_HANDLE;
-    VkPipelineLayout computeLayout = VK_NULL_HANDLE;
-    std::vector<VkWriteDescriptorSet> computeWrites;
-    VkExtent2D computeExtent{};
+    PassImplementation* implementation = nullptr;  ///< The renderer's; valid like the handles.
 };
 
 struct HandFrame {
@@ -35,7 +32,6 @@ struct HandFrame {
     std::vector<VkImageMemoryBarrier2> finalImageBarriers;
     std::vector<VkBufferMemoryBarrier2> finalBufferBarriers;
     std::vector<VkMemoryBarrier2> finalMemoryBarriers;
-    PFN_vkCmdPushDescriptorSetKHR pushDescriptors = nullptr;
 };
 
 struct RendererAccess {
@@ -44,8 +40,8 @@ struct RendererAccess {
     /// compare against hand recording. Throws ExecutorError for a slot out of range.
     static void recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot);
     /// Copies the handles of frame slot `slot`. They stay valid while `renderer` lives and is
-    /// not resized. Throws ExecutorError for plans with transfers, clears or vertex input,
-    /// which the hand recording does not cover.
+    /// not resized. Throws ExecutorError for plans with steps the compiler inserted (clears,
+    /// read-backs), which the hand recording does not cover.
     static HandFrame handFrame(Renderer& renderer, uint32_t slot);
 };
 

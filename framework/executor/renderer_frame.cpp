@@ -65,7 +65,7 @@ void Renderer::Impl::collectTimings(FrameSlot& f) {
 }
 
 VulkanCommands::Functions Renderer::Impl::commandFunctions() const {
-    return {dev.fn.cmdPushDescriptorSet, dev.fn.cmdBeginLabel, dev.fn.cmdEndLabel};
+    return {dev.fn.cmdBeginLabel, dev.fn.cmdEndLabel};
 }
 
 void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* frame) {

@@ -2,8 +2,7 @@
 // slots) and Renderer::Impl, whose members are defined by concept in
 //   renderer.cpp            the public Renderer API, building a plan, read-back, hand frames
 //   renderer_resources.cpp  images, buffers, views, per-slot copies, importing externals
-//   renderer_passes.cpp     render passes, framebuffers, descriptors and barriers per slot
-//   renderer_generic.cpp    the Generic pass: pipelines and recording
+//   renderer_passes.cpp     each pass's recording code, render pass, framebuffers, barriers
 //   renderer_frame.cpp      frame slots, submission, timestamps
 //   renderer_setup.cpp      the setup plan before the first frame, and reading images back
 //   frame_recording.cpp     recording a plan's steps into a CommandSink (no device needed)
@@ -12,8 +11,9 @@
 #include "barrier_batch.hpp"
 #include "command_sink.hpp"
 #include "device_access.hpp"
-#include "generic_program.hpp"
+#include "pass_error.hpp"
 #include "spirv_cache.hpp"
+#include "texel_encoding.hpp"
 #include "vk_util.hpp"
 
 #include <skygraph/renderer.hpp>
@@ -42,21 +42,6 @@ inline VkImageAspectFlags aspectOf(const FormatInfo& f) {
     if (f.hasDepth) a |= VK_IMAGE_ASPECT_DEPTH_BIT;
     if (f.hasStencil) a |= VK_IMAGE_ASPECT_STENCIL_BIT;
     return a;
-}
-
-/// Aspect for buffer<->image copies: one aspect only (depth for depth formats).
-inline VkImageAspectFlags copyAspectOf(const FormatInfo& f) {
-    if (!f.isDepthStencil()) return VK_IMAGE_ASPECT_COLOR_BIT;
-    return f.hasDepth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_STENCIL_BIT;
-}
-
-inline uint32_t copyTexelBytes(const FormatInfo& f) {
-    if (!f.isDepthStencil()) return f.bytesPerTexel;
-    switch (f.format) {
-        case VK_FORMAT_D16_UNORM: case VK_FORMAT_D16_UNORM_S8_UINT: return 2;
-        case VK_FORMAT_S8_UINT: return 1;
-        default: return 4;  // D32, D24 (packed in 4 bytes), X8_D24
-    }
 }
 
 /// A buffer with its memory; mapped when host-visible.
@@ -108,22 +93,27 @@ struct ResourceState {
 
 /// Per pass and frame slot: everything recording needs, with handles resolved.
 struct PassSlot {
-    vk::Framebuffer framebuffer;
-    VkExtent2D extent{1, 1};
-    VkExtent2D computeExtent{1, 1};
-    std::vector<VkDescriptorImageInfo> imageInfos;
-    std::vector<VkDescriptorBufferInfo> bufferInfos;
-    std::vector<VkWriteDescriptorSet> graphicsWrites;
-    std::vector<VkWriteDescriptorSet> computeWrites;
+    vk::Framebuffer framebuffer;  ///< Graphics passes.
+    VkExtent2D extent{1, 1};      ///< The framebuffer's.
     BarrierBatch before;  ///< The plan's batch before the pass.
     BarrierBatch inPass;  ///< The plan's in-pass barriers: between its copies out and in.
-    std::vector<VkBuffer> vertexBuffers;
-    std::vector<VkDeviceSize> vertexOffsets;
-    VkBuffer indexBuffer = VK_NULL_HANDLE;
-    VkBuffer indirectBuffer = VK_NULL_HANDLE;
-    OwnedBuffer sink;  ///< Destination of Transfer reads.
-    std::vector<BoundResource> bound;  ///< Pass implementations: parallel to pass usages.
+    std::vector<BoundResource> bound;  ///< What the pass's recording code sees: parallel to its usages.
 };
+
+/// The attachments of a pass, from its usages: a pass with any is a graphics pass, recorded
+/// inside a render pass of them.
+struct PassAttachments {
+    std::vector<uint32_t> colors;  ///< Usage indices of ColorAttachment usages, in order.
+    int32_t depth = -1;            ///< Usage index of the DepthAttachment usage, or -1.
+    uint32_t layers = 1;           ///< The framebuffer's: the most layers of any attachment.
+    [[nodiscard]] bool any() const noexcept { return !colors.empty() || depth >= 0; }
+};
+
+/// `pass`'s attachments. Throws ExecutorError for a second depth attachment.
+[[nodiscard]] PassAttachments attachmentsOf(const PlannedPass& pass, const std::vector<ResourceState>& resources);
+/// The framebuffer's extent: the smallest of the attachments' (their usages' base mip).
+[[nodiscard]] VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
+                                           const std::vector<ResourceState>& resources);
 
 /// What the executor does for a plan step: a pass's recording, or a step the compiler inserted.
 enum class StepKind : uint8_t { Pass, Clear, Readback, Upload };
@@ -133,17 +123,12 @@ struct PassState {
     const PassDesc* desc = nullptr;
     std::string label;  ///< The pass's name, NUL-terminated for debug labels (the plan's is a view).
     StepKind kind = StepKind::Pass;
-    /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
-    std::unique_ptr<PassImplementation> custom;
-    GenericProgram program;
-    vk::RenderPass renderPass;
+    /// Steps of kind Pass: the recording code from the PassLibrary (the library's Generic
+    /// for a type without its own).
+    std::unique_ptr<PassImplementation> implementation;
+    PassAttachments attachments;
+    vk::RenderPass renderPass;  ///< Graphics passes.
     std::vector<VkClearValue> clearValues;
-    vk::SetLayout graphicsSetLayout, computeSetLayout;
-    vk::PipelineLayout graphicsLayout, computeLayout;
-    vk::Pipeline graphicsPipeline, computePipeline;
-    std::vector<VkDeviceSize> transferOffsets;  ///< Per transfer usage, into source and sink.
-    VkDeviceSize transferBytes = 0;
-    OwnedBuffer source;  ///< Host-filled contents of Transfer writes; read-only on the GPU.
     std::vector<PassSlot> slots;
 };
 
@@ -233,7 +218,6 @@ struct Renderer::Impl {
     VkDevice vkd;
     RendererOptions options;
     ShaderCompiler shaders;
-    vk::Sampler sampler;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
@@ -241,7 +225,6 @@ struct Renderer::Impl {
     std::map<std::string, ImageData> uploads;
     /// Images of other renderers that externals use instead of their own (importImage).
     std::map<std::string, SharedImage> imports;
-    bool layered = false;
     std::unique_ptr<detail::PlanState> state;
     std::vector<detail::FrameSlot> frames;
     uint64_t frameIndex = 0;
@@ -265,7 +248,6 @@ struct Renderer::Impl {
     void createResources(detail::PlanState& s);
     /// The single copy of imported resource `r`, after checking that it fits the plan.
     detail::ImageCopy adoptImport(const detail::PlanState& s, size_t index, const SharedImage& image) const;
-    static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value);
     void buildSized(detail::PlanState& s);
 
     // --- renderer_setup.cpp: plans around the frame -------------------------------------------
@@ -277,23 +259,20 @@ struct Renderer::Impl {
     /// each step, submits once and waits. `copy` picks the per-slot copy of each resource.
     void submitAndWait(const std::function<void(detail::CommandSink&)>& record);
 
-    // --- renderer_passes.cpp: render passes, framebuffers, descriptors and barriers -----------
+    // --- renderer_passes.cpp: recording code, render passes, framebuffers and barriers --------
     void buildPassStatic(detail::PlanState& s, size_t index);
+    /// The recording code of `pass` (type `desc.type`) from options.passes; throws
+    /// ExecutorError naming the pass when there is none.
+    [[nodiscard]] std::unique_ptr<PassImplementation> implementationOf(const PlannedPass& pass, const PassDesc& desc) const;
     static VkAttachmentLoadOp loadOp(LoadOp op);
     static VkAttachmentStoreOp storeOp(StoreOp op);
-    void buildGraphics(detail::PlanState& s, detail::PassState& ps);
     void buildRenderPass(detail::PlanState& s, detail::PassState& ps);
-    VkExtent2D bindingExtent(const detail::PlanState& s, const PlannedPass& pass,
-                             const std::vector<ShaderBinding>& bindings, bool& any) const;
     void buildPassSlot(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
     /// What a pass implementation sees of each usage: handles and a view of exactly the
     /// usage's subresources.
     void bindResources(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
-
-    // --- renderer_generic.cpp: the Generic pass -----------------------------------------------
-    static std::vector<VkDescriptorSetLayoutBinding> layoutBindings(const std::vector<ShaderBinding>& bindings);
-    void buildGraphicsPipeline(detail::PlanState& s, detail::PassState& ps);
-    void buildCompute(detail::PassState& ps);
+    /// createPipelines of every pass's recording code, with each frame slot's resources.
+    void createPipelines(detail::PlanState& s);
 
     // --- renderer_frame.cpp: frames -----------------------------------------------------------
     void createFrames();

@@ -3,7 +3,6 @@
 #include "renderer_impl.hpp"
 
 #include <cstdio>
-#include <cstring>
 
 namespace skygraph {
 
@@ -261,16 +260,6 @@ void Renderer::Impl::createResources(PlanState& s) {
             }
             r.images.push_back(std::move(img));
         }
-    }
-}
-
-void Renderer::Impl::fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value) {
-    const size_t words = static_cast<size_t>(bytes / 4);
-    uint32_t valueBits;
-    std::memcpy(&valueBits, &value, 4);
-    for (size_t i = 0; i < words; ++i) {
-        const uint32_t w = i == 0 ? 3u : i == 1 ? 1u : i < 8 ? 0u : valueBits;
-        std::memcpy(dst + i * 4, &w, 4);
     }
 }
 

@@ -57,42 +57,14 @@ void VulkanCommands::beginRenderPass(const VkRenderPassBeginInfo& info) {
 
 void VulkanCommands::endRenderPass() { vkCmdEndRenderPass(cmd_); }
 
-void VulkanCommands::bindPipeline(VkPipelineBindPoint point, VkPipeline pipeline) {
-    vkCmdBindPipeline(cmd_, point, pipeline);
-}
-
-void VulkanCommands::pushDescriptors(VkPipelineBindPoint point, VkPipelineLayout layout,
-                                     std::span<const VkWriteDescriptorSet> writes) {
-    fn_.pushDescriptors(cmd_, point, layout, 0, static_cast<uint32_t>(writes.size()), writes.data());
-}
-
-void VulkanCommands::pushConstants(VkPipelineLayout layout, VkShaderStageFlags stages, const uint32_t (&values)[4]) {
-    vkCmdPushConstants(cmd_, layout, stages, 0, sizeof values, values);
-}
-
-void VulkanCommands::bindVertexBuffers(std::span<const VkBuffer> buffers, std::span<const VkDeviceSize> offsets) {
-    vkCmdBindVertexBuffers(cmd_, 0, static_cast<uint32_t>(buffers.size()), buffers.data(), offsets.data());
-}
-
-void VulkanCommands::bindIndexBuffer(VkBuffer buffer) { vkCmdBindIndexBuffer(cmd_, buffer, 0, VK_INDEX_TYPE_UINT32); }
-
-void VulkanCommands::dispatch(uint32_t x, uint32_t y) { vkCmdDispatch(cmd_, x, y, 1); }
-
-void VulkanCommands::draw(uint32_t vertices, uint32_t instances) { vkCmdDraw(cmd_, vertices, instances, 0, 0); }
-
-void VulkanCommands::drawIndexed(uint32_t indices, uint32_t instances) {
-    vkCmdDrawIndexed(cmd_, indices, instances, 0, 0, 0);
-}
-
-void VulkanCommands::drawIndirect(VkBuffer buffer, bool indexed) {
-    // The Generic pass's indirect buffers hold one command at offset 0.
-    if (indexed) vkCmdDrawIndexedIndirect(cmd_, buffer, 0, 1, sizeof(VkDrawIndexedIndirectCommand));
-    else vkCmdDrawIndirect(cmd_, buffer, 0, 1, sizeof(VkDrawIndirectCommand));
-}
-
 void VulkanCommands::recordPass(PassImplementation& pass, RecordContext& context) {
     context.cmd = cmd_;
     pass.record(context);
+}
+
+void VulkanCommands::recordPassBeforeRenderPass(PassImplementation& pass, RecordContext& context) {
+    context.cmd = cmd_;
+    pass.recordBeforeRenderPass(context);
 }
 
 }  // namespace skygraph::detail

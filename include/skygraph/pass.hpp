@@ -53,7 +53,8 @@ struct BoundResource {
     const ResourceDesc* desc = nullptr;
     VkImage image = VK_NULL_HANDLE;
     /// A view of exactly the usage's mips and layers (cube views for whole cubes that are
-    /// sampled; 2D-array views for storage access to cube faces).
+    /// sampled; 2D-array views for storage access to cube faces). VK_NULL_HANDLE for Transfer
+    /// usages: copies take the image.
     VkImageView view = VK_NULL_HANDLE;
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceSize size = 0;
@@ -65,13 +66,21 @@ struct BoundResource {
 struct PipelineContext {
     VkDevice device = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
-    /// For graphics passes: the render pass the executor will begin around `record`, with one
-    /// subpass whose colour attachments are the pass's ColorAttachment usages in usage order
-    /// and whose depth attachment is its DepthAttachment usage. VK_NULL_HANDLE for others.
+    /// For graphics passes (those with a ColorAttachment or DepthAttachment usage): the render
+    /// pass the executor will begin around `record`, with one subpass whose colour attachments
+    /// are the pass's ColorAttachment usages in usage order and whose depth attachment is its
+    /// DepthAttachment usage. VK_NULL_HANDLE for others.
     VkRenderPass renderPass = VK_NULL_HANDLE;
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::span<const BoundResource> resources;  ///< Parallel to pass->usages (frame slot 0).
+    /// The resources of every frame slot (RendererOptions::framesInFlight of them), each
+    /// parallel to pass->usages; element 0 is `resources`. A slot's handles stay the same for
+    /// the pass implementation's whole life: `record` for frame slot s (RecordContext::frameSlot)
+    /// gets exactly frameSlots[s], so what a pass prepares per slot here (views, descriptor
+    /// writes, scratch buffers) stays valid. The spans are valid only during the call.
+    std::span<const std::span<const BoundResource>> frameSlots;
+    VkExtent2D outputExtent{0, 0};  ///< The plan's output extent.
     ShaderCompiler* shaders = nullptr;
 };
 
@@ -81,6 +90,7 @@ struct RecordContext {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::span<const BoundResource> resources;  ///< Parallel to pass->usages.
+    uint32_t frameSlot = 0;  ///< Whose resources these are: PipelineContext::frameSlots[frameSlot].
     VkExtent2D renderArea{0, 0};  ///< Graphics passes: the framebuffer's extent.
     VkSampler linearSampler = VK_NULL_HANDLE;  ///< Trilinear, clamp to edge.
     VkSampler repeatSampler = VK_NULL_HANDLE;  ///< Trilinear, repeat in U, clamp in V (equirect).
@@ -113,6 +123,11 @@ public:
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
     /// and, for graphics passes, begun the render pass; it ends it afterwards.
     virtual void record(const RecordContext& context) = 0;
+
+    /// Graphics passes only: records what Vulkan does not allow inside a render pass (copies,
+    /// dispatches) before the executor begins it; `record` follows inside the render pass with
+    /// the same context. The plan's barrier batch is already recorded. By default nothing.
+    virtual void recordBeforeRenderPass(const RecordContext& context) { (void)context; }
 };
 
 using PassFactory = std::function<std::unique_ptr<PassImplementation>(const PassDesc&)>;
@@ -121,8 +136,9 @@ using PassFactory = std::function<std::unique_ptr<PassImplementation>(const Pass
 /// factory the executor records with. Copyable; owns its entries.
 class PassLibrary {
 public:
-    /// Generic, Clear and the built-in passes (docs/graph-format.md, "Built-in pass types").
-    /// Defined by the built-in passes' library (skygraph_passes, passes/): link it to call this.
+    /// Generic and the built-in passes (docs/graph-format.md, "Built-in pass types"), each
+    /// with its recording code; Generic's performs exactly the declared accesses. Defined by
+    /// the built-in passes' library (skygraph_passes, passes/): link it to call this.
     [[nodiscard]] static PassLibrary withBuiltins();
 
     /// Registers a pass type. Throws std::invalid_argument when the name is taken.
@@ -131,8 +147,9 @@ public:
     /// The declarations, for loadGraphFile / parseGraph. The reference is valid while the
     /// library lives (and is not assigned to); add() extends what it holds.
     [[nodiscard]] const PassRegistry& registry() const noexcept { return registry_; }
-    /// nullptr when the type has no recording code. The pointer is valid while the library
-    /// lives (and is not assigned to).
+    /// nullptr when the type has no recording code (a renderer then runs it with the
+    /// library's "Generic"). The pointer is valid while the library lives (and is not assigned
+    /// to).
     [[nodiscard]] const PassFactory* factory(std::string_view type) const;
 
 private:

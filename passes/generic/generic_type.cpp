@@ -1,5 +1,5 @@
-// Generic: performs every declared access for real. The executor records it (and every pass
-// type without recording code) itself, from the plan: framework/executor/renderer_generic.cpp.
+// Generic: performs every declared access for real. Its recording code, which a renderer also
+// runs for every pass type without recording code of its own: generic_pass.cpp.
 #include "builtin_pass_types.hpp"
 
 namespace skygraph::passes {

@@ -1,8 +1,9 @@
 // The executor's recording, read without a device: every shipped graph under every feature
 // combination (and headless, with its read-back), recorded into a CommandLog with stand-in
-// handles, records exactly the plan's barriers in the plan's order — each pass's batch before it,
-// a ReadWrite transfer's in-pass barrier between its copies, the final barriers last — and no
-// other barrier. On lavapipe, synchronization validation is the oracle for the same frames.
+// handles and stand-in recording code, records exactly the plan's barriers in the plan's order
+// — each pass's batch before it, a ReadWrite transfer's in-pass barrier where the pass asks for
+// it, the final barriers last — and no other barrier. On lavapipe, synchronization validation
+// is the oracle for the same frames, recorded by the passes' real code.
 #include "command_log.hpp"
 #include "renderer_impl.hpp"
 
@@ -22,6 +23,28 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr uint32_t kSlots = 2;
+
+/// Stands in for every pass's recording code, recording like a pass with a ReadWrite transfer:
+/// says in the log what it records ("copy out", "copy in") and asks for the plan's in-pass
+/// barriers between the two (RecordContext::recordInPassBarriers), the only barrier a pass may
+/// record. `log` is the log being recorded into.
+class StandInPass final : public PassImplementation {
+public:
+    explicit StandInPass(CommandLog* const& log) : log_(log) {}
+    void createPipelines(const PipelineContext&) override {}
+    void recordBeforeRenderPass(const RecordContext& c) override { log_->note(who(c) + ": before its render pass"); }
+    void record(const RecordContext& c) override {
+        log_->note(who(c) + ": copy out");
+        c.recordInPassBarriers();
+        log_->note(who(c) + ": copy in");
+    }
+
+private:
+    static std::string who(const RecordContext& c) {
+        return std::string(c.pass->name) + " (slot " + std::to_string(c.frameSlot) + ")";
+    }
+    CommandLog* const& log_;
+};
 
 /// A plan's state as the executor builds it, with stand-in handles instead of Vulkan objects:
 /// image r's copy c is handle 0x1000 * (r + 1) + c, and is named "<resource>#<c>" in the log.
@@ -59,12 +82,14 @@ struct StandIn {
             ps.label = pass.name;
             ps.kind = stepKindOf(pass);
             if (ps.kind == StepKind::Pass) {
-                // Every pass type runs as Generic here: it performs exactly its declared usages.
-                ps.program = buildGenericProgram(state.graph, plan, pass, nlohmann::json::object(), false, true);
-                ps.transferOffsets.assign(ps.program.transfers.size(), 0);
+                ps.implementation = std::make_unique<StandInPass>(log);
+                ps.attachments = attachmentsOf(pass, state.resources);
             }
             ps.slots.resize(kSlots);
-            for (uint32_t slot = 0; slot < kSlots; ++slot) translatePassBarriers(state, ps, slot);
+            for (uint32_t slot = 0; slot < kSlots; ++slot) {
+                translatePassBarriers(state, ps, slot);
+                if (ps.attachments.any()) ps.slots[slot].extent = framebufferExtent(pass, ps.attachments, state.resources);
+            }
             state.passes.push_back(std::move(ps));
         }
         translateFinalBarriers(state, kSlots);
@@ -117,6 +142,7 @@ struct StandIn {
 
     PlanState state;
     std::map<uint64_t, std::string> names;
+    CommandLog* log = nullptr;  ///< Where the stand-in passes write: the log being recorded into.
 };
 
 std::vector<std::string> barrierLines(const std::vector<std::string>& log) {
@@ -170,6 +196,7 @@ TEST(CommandLog, EveryShippedPlanIsRecordedWithExactlyItsOwnBarriers) {
         StandIn s(compiled);
         for (uint32_t slot = 0; slot < kSlots; ++slot) {
             CommandLog log(s.names);
+            s.log = &log;
             FrameRecording r;
             r.slot = slot;
             recordFrame(log, s.state, r);
@@ -187,15 +214,18 @@ TEST(CommandLog, EveryShippedPlanIsRecordedWithExactlyItsOwnBarriers) {
 TEST(CommandLog, AFramesStepsComeInPlanOrderWithTheirCommands) {
     const GraphDesc g = parseGraph(R"({"version": 1, "name": "t", "resources": {
         "color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "clear": {"color": [0, 0, 0, 1]}},
+        "canvas": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [4, 2]},
         "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true, "final": "TransferSrc"}},
       "passes": [
         {"name": "edit", "type": "Generic", "uses": {"color": "ReadWrite@Transfer"}},
-        {"name": "blit", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}}]})",
+        {"name": "blit", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}},
+        {"name": "draw", "type": "Generic", "never_cull": true, "uses": {"canvas": "Write@ColorAttachment"}}]})",
                                    "log.json", registry());
     CompileOptions o;
     o.readbacks = {"out"};
     StandIn s(CompiledGraph(g, o));
     CommandLog log(s.names);
+    s.log = &log;
     FrameRecording r;
     r.slot = 1;
     recordFrame(log, s.state, r);
@@ -203,20 +233,38 @@ TEST(CommandLog, AFramesStepsComeInPlanOrderWithTheirCommands) {
     for (const std::string& line : log.lines())
         if (!line.starts_with("barrier ")) commands.push_back(line);
     // color is transient (slot 1's copy); out is exported (one copy); the host copy is slot 1's.
+    // A pass's recording code gets the slot it records; a graphics pass records part of its work
+    // before the render pass the executor begins for it, the rest inside.
     EXPECT_EQ(commands, (std::vector<std::string>{
                             "clear color color#1 mips[0+1] layers[0+1] in TRANSFER_DST_OPTIMAL",
-                            "copy color#1 in GENERAL -> 0x0, 1 region(s)",  // edit: the copy out
-                            "copy 0x0 -> color#1 in GENERAL, 1 region(s)",  // edit: the copy in
-                            "copy color#1 in TRANSFER_SRC_OPTIMAL -> 0x0, 1 region(s)",
-                            "copy 0x0 -> out#0 in TRANSFER_DST_OPTIMAL, 1 region(s)",
+                            "record pass edit",
+                            "edit (slot 1): copy out",
+                            "edit (slot 1): copy in",
+                            "record pass blit",
+                            "blit (slot 1): copy out",
+                            "blit (slot 1): copy in",
+                            "record pass draw before its render pass",
+                            "draw (slot 1): before its render pass",
+                            "begin render pass 4x2",
+                            "record pass draw",
+                            "draw (slot 1): copy out",
+                            "draw (slot 1): copy in",
+                            "end render pass",
                             "copy out#0 in TRANSFER_SRC_OPTIMAL -> host#1, 1 region(s)",
                         }));
-    // The in-pass barrier sits between edit's copy out and copy in.
+    // The in-pass barrier sits where edit asked for it, between its copy out and copy in; the
+    // other passes have none.
     const auto& lines = log.lines();
-    const auto out = std::find(lines.begin(), lines.end(), "copy color#1 in GENERAL -> 0x0, 1 region(s)");
+    const auto out = std::find(lines.begin(), lines.end(), "edit (slot 1): copy out");
     ASSERT_NE(out, lines.end());
     EXPECT_TRUE((out + 1)->starts_with("barrier image color#1 mips[0+1] layers[0+1] TRANSFER/NONE -> TRANSFER/TRANSFER_WRITE"))
         << *(out + 1);
+    EXPECT_EQ(*(out + 2), "edit (slot 1): copy in");
+    for (const char* pass : {"blit", "draw"}) {
+        const auto copyOut = std::find(lines.begin(), lines.end(), std::string(pass) + " (slot 1): copy out");
+        ASSERT_NE(copyOut, lines.end());
+        EXPECT_EQ(*(copyOut + 1), std::string(pass) + " (slot 1): copy in");
+    }
 }
 
 }  // namespace

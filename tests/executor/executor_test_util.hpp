@@ -1,6 +1,7 @@
 // Shared fixture for executor tests: one validated lavapipe device per test binary.
 #pragma once
 
+#include "generic_passes.hpp"
 #include "headless_options.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -87,9 +88,7 @@ protected:
     /// Renders `frames` frames with 2 in flight and returns the last read-back.
     ImageData render(const CompiledGraph& c, uint32_t frames = 3) {
         if (std::getenv("SKYGRAPH_TEST_DUMP")) std::printf("%s\n", planToText(c.plan()).c_str());
-        RendererOptions o;
-        o.framesInFlight = 2;
-        Renderer r(sharedDevice(), c, o);
+        Renderer r(sharedDevice(), c, genericOptions(2));
         for (uint32_t i = 0; i < frames; ++i) r.renderFrame();
         ImageData img = r.readback();
         r.waitIdle();

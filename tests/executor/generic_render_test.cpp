@@ -212,7 +212,7 @@ TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
              "params": { "color": [0, 1, 0, 1] } },
            { "name": "b", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
-    Renderer r(sharedDevice(), c, {});
+    Renderer r(sharedDevice(), c, genericOptions());
     r.renderFrame();
     EXPECT_EQ(r.readback().width, 16u);
     r.resize(24, 8);
@@ -238,7 +238,7 @@ TEST_F(ExecutorTest, BadParamsAreClearErrors) {
            { "name": "b", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
     try {
-        Renderer r(sharedDevice(), c, {});
+        Renderer r(sharedDevice(), c, genericOptions());
         FAIL() << "expected ExecutorError";
     } catch (const ExecutorError& e) {
         EXPECT_NE(std::string(e.what()).find("pass 'a'"), std::string::npos) << e.what();
@@ -254,7 +254,7 @@ TEST_F(ExecutorTest, ReadbackNeedsTheImageInCompileOptionsReadbacks) {
         "<test>", PassRegistry::withBuiltins());
     CompileOptions co;  // final stays Present, nothing read back
     co.outputWidth = co.outputHeight = 16;
-    Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), {});
+    Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), genericOptions());
     r.renderFrame();
     EXPECT_THROW((void)r.readback(), ExecutorError);
     EXPECT_THROW((void)r.readback("swapchain"), ExecutorError);
@@ -270,7 +270,7 @@ TEST_F(ExecutorTest, SetGraphFailureKeepsOldPlan) {
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
              "params": { "depth": 7 } })"));
-    Renderer r(sharedDevice(), good, {});
+    Renderer r(sharedDevice(), good, genericOptions());
     r.renderFrame();
     EXPECT_THROW(r.setGraph(bad), ExecutorError);
     r.renderFrame();
@@ -289,7 +289,7 @@ TEST_F(ExecutorTest, ExternalImageUpload) {
           "passes": [ { "name": "show", "type": "Generic",
             "uses": { "photo": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
             "params": { "color": [0, 0, 0, 0] } } ] })");
-    Renderer r(sharedDevice(), c, {});
+    Renderer r(sharedDevice(), c, genericOptions());
     ImageData px;
     px.width = 8;
     px.height = 4;

@@ -38,7 +38,7 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     const auto registry = PassRegistry::withBuiltins();
     GraphDesc graph = loadGraphFile(graphFile, registry);
     const CompileOptions co = headless(graph);
-    RendererOptions ro;
+    RendererOptions ro = genericOptions();
     ro.shaderDir = dir / "shaders";
     Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
     HotReloader reloader(r, graphFile, dir / "shaders");

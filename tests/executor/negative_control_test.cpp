@@ -56,7 +56,7 @@ protected:
     /// Runs `c` untouched and requires silence, then runs `broken` and returns the messages.
     void expectHazard(const CompiledGraph& c, const Plan& broken, const std::string& hazard) {
         {
-            Renderer r(sharedDevice(), c, {});
+            Renderer r(sharedDevice(), c, genericOptions());
             for (int i = 0; i < 2; ++i) r.renderFrame();
             r.waitIdle();
         }
@@ -64,7 +64,7 @@ protected:
             << "the intact plan must be clean:\n" << formatMessages(sharedDevice());
         allowMessages();
         {
-            Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(c, broken), {});
+            Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(c, broken), genericOptions());
             for (int i = 0; i < 2; ++i) r.renderFrame();
             r.waitIdle();
         }

@@ -2,6 +2,7 @@
 #include "random_graph_check.hpp"
 
 #include "compiled_graph_access.hpp"
+#include "generic_passes.hpp"
 #include "headless_options.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -22,9 +23,7 @@ std::string formatMessages(const Device& d) {
 }
 
 void renderFrames(Device& device, CompiledGraph compiled, const RunSettings& settings) {
-    RendererOptions o;
-    o.framesInFlight = settings.framesInFlight;
-    Renderer r(device, std::move(compiled), o);
+    Renderer r(device, std::move(compiled), genericOptions(settings.framesInFlight));
     for (uint32_t i = 0; i < settings.frames; ++i) r.renderFrame();
     (void)r.readback();
     r.waitIdle();

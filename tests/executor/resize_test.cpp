@@ -23,7 +23,7 @@ TEST_F(Resize, AnOutputSizedFullMipChainIsRecompiledAtEverySize) {
     o.readbacks = {"swapchain"};
     o.outputWidth = 64;
     o.outputHeight = 64;
-    Renderer r(sharedDevice(), CompiledGraph(parseGraph(kChainGraph, "chain.json", PassRegistry::withBuiltins()), o));
+    Renderer r(sharedDevice(), CompiledGraph(parseGraph(kChainGraph, "chain.json", PassRegistry::withBuiltins()), o), genericOptions());
     struct Size {
         uint32_t width, height, mips;
     };
@@ -58,7 +58,7 @@ TEST_F(Resize, APlanCompiledForAnotherSizeIsCaughtByValidation) {
     const CompiledGraph at37 = at64.resized(37, 19);
     ASSERT_EQ(at37.plan().passes.at(0).usages[0].range.mipCount, 6u);
     try {
-        Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(at37, at64.plan()));
+        Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(at37, at64.plan()), genericOptions());
         for (int frame = 0; frame < 3; ++frame) r.renderFrame();
         r.waitIdle();
     } catch (const ExecutorError&) {
@@ -81,7 +81,7 @@ TEST_F(Resize, ASizeTheGraphCannotTakeKeepsTheOldPlanRunning) {
     o.readbacks = {"swapchain"};
     o.outputWidth = 64;
     o.outputHeight = 64;
-    Renderer r(sharedDevice(), CompiledGraph(parseGraph(graph, "ranged.json", PassRegistry::withBuiltins()), o));
+    Renderer r(sharedDevice(), CompiledGraph(parseGraph(graph, "ranged.json", PassRegistry::withBuiltins()), o), genericOptions());
     r.renderFrame();
     try {
         r.resize(16, 16);  // 5 levels: mip 6 is not there

@@ -69,8 +69,9 @@ TEST_P(ShippedGraph, RunsThreeFramesCleanly) {
         EXPECT_FALSE(e.diagnostics().empty());
         return;
     }
-    RendererOptions ro;
-    ro.framesInFlight = 2;
+    // Every pass type runs as Generic: the plan's barriers are checked against exactly the
+    // accesses the graph declares.
+    const RendererOptions ro = genericOptions(2);
     Renderer r(sharedDevice(), std::move(*compiled), ro);
     for (int i = 0; i < 3; ++i) r.renderFrame();
     const bool hasTarget = std::any_of(graph.resources.begin(), graph.resources.end(),

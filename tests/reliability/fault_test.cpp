@@ -73,7 +73,7 @@ protected:
         write(graphFile(), graphWithColor("[1, 0, 0, 1]"));
         GraphDesc graph = loadGraphFile(graphFile(), PassRegistry::withBuiltins());
         CompileOptions options = headless(graph);
-        RendererOptions ro;
+        RendererOptions ro = genericOptions();
         ro.shaderDir = dir_ / "shaders";
         renderer_ = std::make_unique<Renderer>(sharedDevice(), CompiledGraph(std::move(graph), std::move(options)), ro);
         reloader_ = std::make_unique<HotReloader>(*renderer_, graphFile(), dir_ / "shaders");
@@ -217,7 +217,7 @@ TEST_F(ExecutorTest, BadEnvironmentImageLeavesTheRendererUntouched) {
                                  "<test>", PassRegistry::withBuiltins());
     CompileOptions co = headless(graph);
     co.readbacks = {"env"};
-    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), {});
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), genericOptions());
     r.setExternalImage("env", env);
     r.renderFrame();
     const ImageData shown = r.readback();

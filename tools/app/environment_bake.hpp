@@ -39,9 +39,9 @@ struct EnvironmentBake {
 /// Runs `graph` (graphs/ibl.json, sized and configured by the caller) once on `equirect`,
 /// building only `products`: they are the compile's outputs (CompileOptions::outputs), so the
 /// passes of the graph's other exports are culled. `equirect` sets the extent of the graph's
-/// `equirect` and is uploaded to it (the renderer keeps its own copy). `passes` is borrowed
-/// for the renderer's life (null: every pass recorded as Generic); `device` must outlive the
-/// result. Throws GraphError / ExecutorError naming what is wrong, e.g. a product the graph
+/// `equirect` and is uploaded to it (the renderer keeps its own copy). `passes` (the recording
+/// code, e.g. PassLibrary::withBuiltins()) is borrowed for the renderer's life; `device` must
+/// outlive the result. Throws GraphError / ExecutorError naming what is wrong, e.g. a product the graph
 /// does not export.
 [[nodiscard]] EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
                                               const std::set<std::string, std::less<>>& products,

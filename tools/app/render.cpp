@@ -26,6 +26,18 @@ namespace {
 
 using namespace shipped;
 
+/// What runs when RenderOptions::passes is null: the built-in library's Generic alone, so that
+/// every pass type is recorded as Generic.
+const PassLibrary& genericOnly() {
+    static const PassLibrary library = [] {
+        const PassLibrary builtins = PassLibrary::withBuiltins();
+        PassLibrary generic;
+        generic.add(*builtins.registry().find("Generic"), *builtins.factory("Generic"));
+        return generic;
+    }();
+    return library;
+}
+
 /// graphs/ibl.json: RenderOptions::environmentGraph(Text), else ibl.json beside the graph file.
 std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, const PassRegistry& registry) {
     if (!options.environmentGraphText.empty())
@@ -105,6 +117,7 @@ int renderCommand(const RenderOptions& options) {
         }
         const PassRegistry builtins = options.passes ? PassRegistry{} : PassRegistry::withBuiltins();
         const PassRegistry& registry = options.passes ? options.passes->registry() : builtins;
+        const PassLibrary* passes = options.passes ? options.passes : &genericOnly();
         GraphDesc graph = options.graphText.empty()
                                     ? loadGraphFile(options.graph, registry)
                                     : parseGraph(options.graphText, std::string(kBuiltinFrameGraphName), registry);
@@ -185,11 +198,11 @@ int renderCommand(const RenderOptions& options) {
             products = environmentProducts(plan, graph, envGraph ? &*envGraph : nullptr);
             if (!products.empty())
                 environmentRenderer = bakeForFrame(*device, *envGraph, *environment, products, environmentSizes,
-                                                   options.passes);
+                                                   passes);
         }
         RendererOptions ropts;
         ropts.framesInFlight = options.framesInFlight;
-        ropts.passes = options.passes;
+        ropts.passes = passes;
         Renderer renderer(*device, std::move(compiled), ropts);
         if (scene) renderer.frameData().set(*scene);
         for (const auto& name : products) renderer.importImage(name, environmentRenderer->shareImage(name));
