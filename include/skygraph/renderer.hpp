@@ -26,8 +26,8 @@ struct RendererOptions {
     uint32_t framesInFlight = 2;
     /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
     std::filesystem::path shaderDir;
-    /// Recording code by pass type; borrowed, must outlive the renderer. Pass types without a
-    /// factory (and Generic) run as Generic: they perform exactly their declared accesses.
+    /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
+    /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
 };
 

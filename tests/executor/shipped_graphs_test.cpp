@@ -1,6 +1,6 @@
 // Every shipped graph (graphs/*.json), under every feature combination, runs 3 frames with 2
-// in flight on the validated device with zero messages. Pass types without their own
-// recording code run as Generic: they perform exactly the accesses they declare.
+// in flight on the validated device with zero messages. Every pass runs as Generic
+// (genericPasses()): it performs exactly the accesses it declares.
 #include "executor_test_util.hpp"
 
 #include <algorithm>
@@ -69,8 +69,6 @@ TEST_P(ShippedGraph, RunsThreeFramesCleanly) {
         EXPECT_FALSE(e.diagnostics().empty());
         return;
     }
-    // Every pass type runs as Generic: the plan's barriers are checked against exactly the
-    // accesses the graph declares.
     const RendererOptions ro = genericOptions(2);
     Renderer r(sharedDevice(), std::move(*compiled), ro);
     for (int i = 0; i < 3; ++i) r.renderFrame();
