@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Two builds of compile_bench side by side, for a change to the compiler:
 #   bench/compile_compare.sh OLD_BENCH NEW_BENCH [ROUNDS] [FILTER]
-# e.g. OLD_BENCH from `git worktree add /tmp/old <commit>` built like build-perf
+# e.g. OLD_BENCH from `git worktree add /tmp/old <commit>` built like build-rel
 # (docs/performance.md, "Compiler"). Short runs of the two binaries alternate, pinned to one
 # CPU, so that what the machine's neighbours do to the shared cache hits both alike: on this
 # VM the same binary's 10k-pass median moves by a quarter from minute to minute, so only

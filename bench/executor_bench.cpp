@@ -1,10 +1,14 @@
 // CPU cost of recording (and submitting) a frame: the framework's Renderer against a
 // hand-written recording of the same commands and barriers, in the same process, on the same
 // handles. Validation is off. Run: build/.../executor_bench --benchmark_counters_tabular=true
+#include "generic_pass.hpp"
 #include "renderer_access.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/pipeline_builder.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <benchmark/benchmark.h>
 #include <spdlog/spdlog.h>
@@ -34,9 +38,12 @@ constexpr const char* kGraph = R"({
   ] })";
 
 struct Fixture {
+    PassLibrary library = PassLibrary::withBuiltins();  // Generic records every pass
     std::unique_ptr<Device> device;
     std::unique_ptr<Renderer> renderer;
     HandFrame hand;
+    std::vector<passes::GenericHandles> generic;  ///< Parallel to hand.passes.
+    PFN_vkCmdPushDescriptorSetKHR pushDescriptors = nullptr;
     VkCommandPool pool = VK_NULL_HANDLE;
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     VkFence fence = VK_NULL_HANDLE;
@@ -53,17 +60,24 @@ struct Fixture {
         device = Device::create(d);
         const auto registry = PassRegistry::withBuiltins();
         GraphDesc graph = parseGraph(kGraph, "<bench>", registry);
-        CompileOptions co;
+        CompileOptions co;  // no read-backs: both sides record the same commands
         co.presentReplacement = ExternalState::TransferSrc;
-        Plan plan = compile(graph, co);
-        for (const auto& p : plan.passes) names.emplace_back(p.name);
+        co.outputWidth = 64;
+        co.outputHeight = 64;
+        CompiledGraph compiled(std::move(graph), co);
+        for (const auto& p : compiled.plan().passes) names.emplace_back(p.name);
         RendererOptions ro;
-        ro.width = 64;
-        ro.height = 64;
         ro.framesInFlight = 2;
-        ro.readback = "<none>";  // no read-back copy: both sides record the same commands
-        renderer = std::make_unique<Renderer>(*device, graph, std::move(plan), ro);
+        ro.passes = &library;
+        renderer = std::make_unique<Renderer>(*device, std::move(compiled), ro);
         hand = RendererAccess::handFrame(*renderer, 0);
+        for (const HandPass& p : hand.passes) {
+            const auto* pass = dynamic_cast<const passes::GenericPass*>(p.implementation);
+            if (!pass) throw ExecutorError("the hand recording covers Generic passes only");
+            generic.push_back(pass->handles(0));
+            if (generic.back().recordsMore) throw ExecutorError("the hand recording covers draws and dispatches only");
+        }
+        pushDescriptors = pushDescriptorFunction(device->device());
 
         const VkDevice vkd = device->device();
         VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO, nullptr, 0,
@@ -119,6 +133,7 @@ void recordByHand(Fixture& f, VkCommandBuffer cmd, bool instrumented) {
     uint32_t q = 0;
     for (size_t i = 0; i < f.hand.passes.size(); ++i) {
         const HandPass& p = f.hand.passes[i];
+        const passes::GenericHandles& g = f.generic[i];
         if (instrumented && f.beginLabel) {
             VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
             label.pLabelName = f.names[i].c_str();
@@ -126,15 +141,15 @@ void recordByHand(Fixture& f, VkCommandBuffer cmd, bool instrumented) {
         }
         barrier(cmd, p.imageBarriers, p.bufferBarriers, p.memoryBarriers);
         if (instrumented) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, f.queries, q++);
-        if (p.computePipeline) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.computePipeline);
-            f.hand.pushDescriptors(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.computeLayout, 0,
-                                   static_cast<uint32_t>(p.computeWrites.size()), p.computeWrites.data());
-            const uint32_t pc[4] = {p.computeExtent.width, p.computeExtent.height, 0, 0};
-            vkCmdPushConstants(cmd, p.computeLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, pc);
-            vkCmdDispatch(cmd, (p.computeExtent.width + 7) / 8, (p.computeExtent.height + 7) / 8, 1);
+        if (g.computePipeline) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.computePipeline);
+            f.pushDescriptors(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.computeLayout, 0,
+                              static_cast<uint32_t>(g.computeWrites.size()), g.computeWrites.data());
+            const uint32_t pc[4] = {g.computeExtent.width, g.computeExtent.height, 0, 0};
+            vkCmdPushConstants(cmd, g.computeLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, 16, pc);
+            vkCmdDispatch(cmd, (g.computeExtent.width + 7) / 8, (g.computeExtent.height + 7) / 8, 1);
         }
-        if (p.graphicsPipeline) {
+        if (g.graphicsPipeline) {
             VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
             rbi.renderPass = p.renderPass;
             rbi.framebuffer = p.framebuffer;
@@ -142,18 +157,18 @@ void recordByHand(Fixture& f, VkCommandBuffer cmd, bool instrumented) {
             rbi.clearValueCount = static_cast<uint32_t>(p.clearValues.size());
             rbi.pClearValues = p.clearValues.data();
             vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.graphicsPipeline);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.graphicsPipeline);
             const VkViewport vp{0, 0, float(p.extent.width), float(p.extent.height), 0, 1};
             const VkRect2D sc{{0, 0}, p.extent};
             vkCmdSetViewport(cmd, 0, 1, &vp);
             vkCmdSetScissor(cmd, 0, 1, &sc);
-            if (!p.graphicsWrites.empty())
-                f.hand.pushDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.graphicsLayout, 0,
-                                       static_cast<uint32_t>(p.graphicsWrites.size()), p.graphicsWrites.data());
+            if (!g.graphicsWrites.empty())
+                f.pushDescriptors(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.graphicsLayout, 0,
+                                  static_cast<uint32_t>(g.graphicsWrites.size()), g.graphicsWrites.data());
             const uint32_t pc[4] = {p.extent.width, p.extent.height, 0, 0};
-            vkCmdPushConstants(cmd, p.graphicsLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+            vkCmdPushConstants(cmd, g.graphicsLayout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                                0, 16, pc);
-            vkCmdDraw(cmd, 3, p.instances, 0, 0);
+            vkCmdDraw(cmd, 3, g.instances, 0, 0);
             vkCmdEndRenderPass(cmd);
         }
         if (instrumented) {
@@ -195,7 +210,7 @@ void recordOnly(benchmark::State& state, Record record) {
 }
 
 void BM_Record_Framework(benchmark::State& state) {
-    recordOnly(state, [](Fixture& f) { f.renderer->recordInto(f.cmd, 0); });
+    recordOnly(state, [](Fixture& f) { RendererAccess::recordInto(*f.renderer, f.cmd, 0); });
 }
 BENCHMARK(BM_Record_Framework);
 

@@ -15,7 +15,8 @@
 #include "gpu_probes.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>

@@ -2,6 +2,7 @@
 #include "gpu_frames.hpp"
 
 #include "gpu_vk.hpp"
+#include "renderer_access.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/hdr_image.hpp>
@@ -142,7 +143,7 @@ public:
         RendererOptions ro;
         ro.framesInFlight = 1;
         ro.passes = &library;
-        baker_ = std::make_unique<Renderer>(device, ibl, compile(ibl, co), ro);
+        baker_ = std::make_unique<Renderer>(device, CompiledGraph(std::move(ibl), co), ro);
         baker_->setExternalImage("equirect", pixels());
         baker_->renderFrame();
         baker_->waitIdle();
@@ -185,7 +186,16 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     co.presentReplacement = ExternalState::TransferSrc;
     co.outputWidth = c.width;
     co.outputHeight = c.height;
-    Plan plan = compile(graph, co);
+    CompiledGraph compiled(graph, co);
+    // No read-back copy unless a picture is asked for: the frame is the plan's passes alone.
+    // The picture is the Present target the plan writes (a graph may declare one per feature).
+    if (!c.png.empty()) {
+        for (const ResourceDesc& r : graph.resources)
+            if (r.final == ExternalState::Present && compiled.plan().resourceIndex(r.name) >= 0)
+                co.readbacks.insert(r.name);
+        compiled = CompiledGraph(graph, co);
+    }
+    const Plan& plan = compiled.plan();
     FrameResult result;
     for (const auto& culled : plan.culled) result.culled.push_back(culled.name + ": " + culled.reason);
     std::map<std::string, PassResult> byName;
@@ -197,12 +207,9 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     }
 
     RendererOptions ro;
-    ro.width = c.width;
-    ro.height = c.height;
     ro.framesInFlight = 1;
     ro.passes = &library;
-    if (c.png.empty()) ro.readback = "<none>";  // no read-back copy: the frame is the plan's passes alone
-    Renderer renderer(device, graph, std::move(plan), ro);
+    Renderer renderer(device, std::move(compiled), ro);
     if (scene) renderer.frameData().set(*scene);
     environment.install(device, c.graph, graph, library, renderer);
     for (const std::string& name : c.proceduralExternals) {
@@ -235,7 +242,7 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     GpuTimer timer(device);
     std::vector<double> frameMs;
     for (uint32_t i = 0; i < c.frames; ++i)
-        frameMs.push_back(timer.time([&](VkCommandBuffer cmd) { renderer.recordInto(cmd, 0); }));
+        frameMs.push_back(timer.time([&](VkCommandBuffer cmd) { RendererAccess::recordInto(renderer, cmd, 0); }));
     result.frameMedianMs = median(frameMs);
     if (!c.png.empty()) {
         renderer.renderFrame();  // recordInto left slot 0's contents; a full frame fills the read-back

@@ -2,7 +2,8 @@
 // the bytes each pass must read and write, for gpu_frame_bench. Bench-only.
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -50,8 +51,8 @@ struct PassResult {
 
 struct FrameResult {
     std::vector<PassResult> passes;
-    /// The whole recorded plan (Renderer::recordInto) between two ALL_COMMANDS timestamps:
-    /// passes and barriers, no readback, no per-pass timestamps.
+    /// The whole recorded plan (RendererAccess::recordInto) between two ALL_COMMANDS timestamps:
+    /// passes and barriers (a Readback step only when a PNG is asked for), no per-pass timestamps.
     double frameMedianMs = 0;
     uint32_t frames = 0;
     std::vector<std::string> culled;  ///< "name: reason"

@@ -3,7 +3,7 @@
 // TonemappingPass's work costs off the fragment path. Bench-only.
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 
 #include <cstdint>
 #include <string>

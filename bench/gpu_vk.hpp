@@ -3,7 +3,7 @@
 // the executor keeps its own helpers, and nothing here is part of the embedding API.
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/vk_handles.hpp>
 
 #include <vulkan/vulkan_core.h>

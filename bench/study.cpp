@@ -1,4 +1,4 @@
-// study: the speed/accuracy sweep of issue 6 on one scene (scenes/default.json, procedural
+// study: the speed/accuracy sweep on one scene (scenes/default.json, procedural
 // sky) at a small output. Each point: wall time per frame, GPU time (the passes' timestamps),
 // and the error against a high-precision reference: RMSE and max in linear HDR, and the mean
 // and max CIEDE2000 after tonemapping (Little CMS's cmsCIE2000DeltaE on sRGB -> Lab D50).
@@ -19,9 +19,11 @@
 #include "delta_e2000.hpp"
 
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/format.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/renderer.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 
@@ -109,12 +111,10 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Every renderer here: the study's output size, and one frame in flight so that a frame's
-/// wall time is that frame's alone. `library` must outlive the renderer.
-RendererOptions rendererOptions(const Options& o, const PassLibrary& library) {
+/// Every renderer here: one frame in flight so that a frame's wall time is that frame's alone
+/// (the output size is each CompileOptions'). `library` must outlive the renderer.
+RendererOptions rendererOptions(const PassLibrary& library) {
     RendererOptions ro;
-    ro.width = o.width;
-    ro.height = o.height;
     ro.passes = &library;
     ro.framesInFlight = 1;
     return ro;
@@ -150,7 +150,7 @@ RasterFrame timeRasterFrames(Renderer& renderer, int frames) {
     }
     f.wallMs = msSince(start) / frames;
     f.gpuMs /= frames;
-    f.ldr = renderer.readback();
+    f.ldr = renderer.readImage("swapchain").at(0);
     f.hdr = renderer.readImage("hdr_color").at(0);
     return f;
 }
@@ -161,7 +161,7 @@ RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, V
     GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
     for (auto& r : graph.resources)
         if (r.name == "hdr_color") r.format = *findFormat(hdrFormat);
-    Renderer renderer(device, graph, compile(graph, rasterCompileOptions(o, scene)), rendererOptions(o, library));
+    Renderer renderer(device, CompiledGraph(std::move(graph), rasterCompileOptions(o, scene)), rendererOptions(library));
     renderer.frameData().set(scene);
     return timeRasterFrames(renderer, frames);
 }
@@ -209,7 +209,7 @@ RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene,
     RendererOptions bo;
     bo.framesInFlight = 1;
     bo.passes = &library;
-    Renderer baker(device, ibl, compile(ibl, CompileOptions{}), bo);
+    Renderer baker(device, CompiledGraph(std::move(ibl), CompileOptions{}), bo);
     baker.setExternalImage("equirect", map);
     const auto start = std::chrono::steady_clock::now();
     baker.renderFrame();
@@ -224,7 +224,7 @@ RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene,
         if (r.name == "equirect") r.extent = Extent{false, 1, map.width, map.height};
         if (r.name == "environment") r.extent = Extent{false, 1, k.faceSize, k.faceSize};
     }
-    Renderer renderer(device, graph, compile(graph, rasterCompileOptions(o, scene)), rendererOptions(o, library));
+    Renderer renderer(device, CompiledGraph(std::move(graph), rasterCompileOptions(o, scene)), rendererOptions(library));
     renderer.frameData().set(scene);
     for (const char* product : {"environment", "irradiance", "prefiltered", "brdf_lut"})
         if (renderer.plan().resourceIndex(product) >= 0) renderer.importImage(product, baker.shareImage(product));
@@ -261,7 +261,7 @@ PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, uin
     CompileOptions co;
     co.outputWidth = o.width;
     co.outputHeight = o.height;
-    Renderer renderer(device, graph, compile(graph, co), rendererOptions(o, library));
+    Renderer renderer(device, CompiledGraph(graph, co), rendererOptions(library));
     renderer.frameData().set(scene);
     PathTraceRun run;
     double wall = 0, gpu = 0;
@@ -298,7 +298,7 @@ ImageData pathTracedTruth(Device& device, const Options& o, Scene scene, const I
     co.presentReplacement = ExternalState::TransferSrc;
     co.outputWidth = o.width;
     co.outputHeight = o.height;
-    Renderer renderer(device, graph, compile(graph, co), rendererOptions(o, library));
+    Renderer renderer(device, CompiledGraph(graph, co), rendererOptions(library));
     renderer.setExternalImage("equirect", map);
     renderer.frameData().set(scene);
     const auto start = std::chrono::steady_clock::now();

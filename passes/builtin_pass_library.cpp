@@ -1,6 +1,6 @@
 // PassLibrary::withBuiltins(): the built-in declarations paired with their recording code.
-// Types without recording code here run as Generic, performing exactly their declared
-// accesses.
+// A renderer runs types without recording code with this library's Generic, which performs
+// exactly their declared accesses.
 #include "builtin_passes.hpp"
 
 namespace skygraph {
@@ -8,6 +8,7 @@ namespace skygraph {
 PassLibrary PassLibrary::withBuiltins() {
     const PassRegistry declarations = PassRegistry::withBuiltins();
     const std::pair<const char*, PassFactory> factories[] = {
+        {"Generic", passes::makeGenericPass},
         {"TonemappingPass", passes::makeTonemappingPass},
         {"TonemappingComputePass", passes::makeTonemappingComputePass},
         {"SkyboxPass", passes::makeSkyboxPass},

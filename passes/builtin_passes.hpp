@@ -1,5 +1,5 @@
-// Factories of the built-in passes' recording code (the declarations are in
-// builtin_pass_types.cpp). PassLibrary::withBuiltins() pairs the two.
+// Factories of the built-in passes' recording code, each defined in its pass's *_pass.cpp
+// (the declarations: builtin_pass_types.hpp). PassLibrary::withBuiltins() pairs the two.
 #pragma once
 
 #include <skygraph/pass.hpp>
@@ -8,6 +8,8 @@
 
 namespace skygraph::passes {
 
+/// Generic (passes/generic/generic_pass.cpp), also for types without recording code of their own.
+[[nodiscard]] std::unique_ptr<PassImplementation> makeGenericPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeTonemappingComputePass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeSkyboxPass(const PassDesc& desc);

@@ -32,7 +32,7 @@ installed_package() {
     rm -rf "$prefix"
 }
 
-# Issue 7 (docs/reliability.md): clang ASan + UBSan (+ libFuzzer's coverage hooks, so the
+# Reliability (docs/reliability.md): clang ASan + UBSan (+ libFuzzer's coverage hooks, so the
 # same build links the fuzzer) of every test ctest knows, benchmarks' smoke tests included, run
 # under the sanitizers on lavapipe with validation, then the fuzzer's 60 s time box on that
 # build. A test target missing from SANITIZED_TARGETS shows up as a failing *_NOT_BUILT test.
@@ -41,10 +41,10 @@ installed_package() {
 # attributed nor suppressed; the binaries that make no Vulkan device are run again directly
 # with leak detection on (seconds).
 SANITIZED_TARGETS=(compiler_tests cli_tests skygraph fuzz_corpus_tests graph_fuzzer math_tests
-    image_tests scene_tests executor_tests reliability_tests pass_tests ibl_tests
+    image_tests scene_tests executor_tests recording_tests reliability_tests pass_tests ibl_tests
     cubemap_command_tests extremes_tests path_trace_tests gpu_frame_bench study)
 LEAK_CHECKED_TESTS=(compiler/compiler_tests fuzz/fuzz_corpus_tests math/math_tests
-    scene/scene_tests image/image_tests)
+    scene/scene_tests image/image_tests executor/recording_tests)
 sanitizers_and_fuzz() {
     stage "sanitizers: clang ASan + UBSan build of every test (build-fuzz)"
     local flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined -fno-omit-frame-pointer"

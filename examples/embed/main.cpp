@@ -41,21 +41,21 @@ int countMismatches(const ImageData& image) {
 int run(const char* outputPng) {
     PassLibrary library = PassLibrary::withBuiltins();
     library.add(embed::vignettePassType(), embed::makeVignettePass);
-    const GraphDesc graph = loadGraphFile(EMBED_DATA_DIR "/vignette.json", library.registry());
+    GraphDesc graph = loadGraphFile(EMBED_DATA_DIR "/vignette.json", library.registry());
 
     CompileOptions compileOptions;
     compileOptions.outputWidth = compileOptions.outputHeight = kSize;
-    compileOptions.presentReplacement = ExternalState::TransferSrc;  // read back, not presented
-    Plan plan = compile(graph, compileOptions);
+    compileOptions.presentReplacement = ExternalState::TransferSrc;  // headless: read back, not presented
+    compileOptions.readbacks = {"swapchain"};
+    CompiledGraph compiled(std::move(graph), compileOptions);
 
     DeviceOptions deviceOptions;
     deviceOptions.validation = true;
     const auto device = Device::create(deviceOptions);
     RendererOptions rendererOptions;
-    rendererOptions.width = rendererOptions.height = kSize;
     rendererOptions.passes = &library;
     rendererOptions.shaderDir = SKYGRAPH_PACKAGE_SHADER_DIR;  // the installed package's shaders
-    Renderer renderer(*device, graph, std::move(plan), rendererOptions);
+    Renderer renderer(*device, std::move(compiled), rendererOptions);
     for (int frame = 0; frame < 3; ++frame) renderer.renderFrame();
     const ImageData image = renderer.readback();
     renderer.waitIdle();

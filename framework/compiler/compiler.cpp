@@ -10,41 +10,57 @@ namespace skygraph {
 
 namespace {
 
-/// A copy of `graph` with `outputs` and `exports` applied (checkOutputNames has found them).
+/// A copy of `graph` with `outputs`, `exports` and `readbacks` applied (checkOutputNames has
+/// found them): a read-back copies the image out after the frame, so it leaves it TransferSrc
+/// unless the graph exports it anyway.
 GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     GraphDesc copy = graph;
     if (options.outputs)
         for (ResourceDesc& r : copy.resources)
             if (!options.outputs->count(r.name)) r.final = ExternalState::None;
+    auto resource = [&](const std::string& name) {
+        return std::find_if(copy.resources.begin(), copy.resources.end(),
+                            [&](const ResourceDesc& r) { return r.name == name; });
+    };
     for (const auto& [name, state] : options.exports) {
-        // A plain reference: clang 14 (the fuzz build) cannot capture structured bindings.
-        const std::string& wanted = name;
-        auto it = std::find_if(copy.resources.begin(), copy.resources.end(),
-                               [&](const ResourceDesc& r) { return r.name == wanted; });
+        auto it = resource(name);
         if (!it->isExported()) it->final = state;
+    }
+    for (const std::string& name : options.readbacks) {
+        auto it = resource(name);
+        if (!it->isExported()) it->final = ExternalState::TransferSrc;
     }
     return copy;
 }
 
-}  // namespace
-
-Plan compile(const GraphDesc& graph, const CompileOptions& options) {
-    if (!options.exports.empty() || options.outputs) {
-        checkOutputNames(graph, options);
-        CompileOptions rest = options;
-        rest.exports.clear();
-        rest.outputs.reset();
-        return compile(withExports(graph, options), rest);
-    }
+/// compile() once the options' exports, outputs and read-backs are in the graph.
+Plan compileExported(const GraphDesc& graph, const CompileOptions& options) {
     Diagnostics problems;
     FeatureValues features = checkedFeatures(graph, options, problems);
     const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
     validate(index, features, options, std::move(problems));
     Schedule schedule = schedulePasses(index, features, options.cull);
+    checkReadbacksHaveSources(index, schedule, options);
     Plan plan = synchronize(index, schedule, options);
     plan.features = std::move(features);
+    plan.outputWidth = options.outputWidth;
+    plan.outputHeight = options.outputHeight;
     plan.culled = std::move(schedule.culled);
     return plan;
+}
+
+}  // namespace
+
+Plan compile(const GraphDesc& graph, const CompileOptions& options) {
+    if (options.exports.empty() && !options.outputs && options.readbacks.empty())
+        return compileExported(graph, options);
+    checkOutputNames(graph, options);
+    CompileOptions rest = options;
+    rest.exports.clear();
+    rest.outputs.reset();
+    // Kept: the synchronizer inserts the read-back steps; they are exported now.
+    rest.readbacks = options.readbacks;
+    return compileExported(withExports(graph, options), rest);
 }
 
 }  // namespace skygraph

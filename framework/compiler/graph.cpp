@@ -104,8 +104,10 @@ std::span<T> rebased(std::span<T> view, const std::vector<U>& from, std::vector<
 }  // namespace
 
 Plan::Plan(const Plan& other)
-    : graph(other.graph), features(other.features), resources(other.resources), passes(other.passes),
-      finalBarriers(other.finalBarriers), culled(other.culled), usages_(other.usages_),
+    : graph(other.graph), features(other.features), outputWidth(other.outputWidth),
+      outputHeight(other.outputHeight), resources(other.resources), passes(other.passes),
+      finalBarriers(other.finalBarriers), inPassBarriers(other.inPassBarriers), culled(other.culled),
+      usages_(other.usages_),
       barriers_(other.barriers_), nameTables_(other.nameTables_) {
     for (PlannedPass& p : passes) {
         p.usages = rebased(p.usages, other.usages_, usages_);

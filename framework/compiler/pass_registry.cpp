@@ -16,12 +16,6 @@ std::string SlotDecl::describeUsage() const {
     return out;
 }
 
-PassRegistry PassRegistry::withBuiltins() {
-    PassRegistry r;
-    registerBuiltinPassTypes(r);
-    return r;
-}
-
 void PassRegistry::add(PassTypeInfo info) {
     if (info.name.empty()) throw std::invalid_argument("pass type with an empty name");
     if (types_.count(info.name))

@@ -17,6 +17,10 @@ struct PlanBuilder {
     static void keepNames(Plan& p, std::shared_ptr<const std::string> names) {
         p.nameTables_.push_back(std::move(names));
     }
+    /// Lets `to` view the names that `from` views.
+    static void shareNames(Plan& to, const Plan& from) {
+        to.nameTables_.insert(to.nameTables_.end(), from.nameTables_.begin(), from.nameTables_.end());
+    }
 };
 
 }  // namespace skygraph::detail

@@ -121,6 +121,18 @@ const char* storeName(StoreOp op) {
     return "?";
 }
 
+/// Why the executor keeps the copies it does of a resource, in the plan's words.
+const char* copiesReason(ResourceCopies c) {
+    switch (c) {
+        case ResourceCopies::PerFrameTransient: return "transient";
+        case ResourceCopies::PerFramePresented: return "presented";
+        case ResourceCopies::PerFrameWrittenNotExported: return "writtenNotExported";
+        case ResourceCopies::SharedExported: return "exported";
+        case ResourceCopies::SharedReadOnly: return "readOnly";
+    }
+    return "?";
+}
+
 json barrierJson(const Plan& plan, const Barrier& b) {
     json j = {{"resource", plan.resources[b.resource].name},
               {"kind", kindName(b.kind)},
@@ -203,6 +215,7 @@ json planToJson(const Plan& plan) {
     j["graph"] = plan.graph;
     j["features"] = json::object();
     for (const auto& [name, on] : plan.features) j["features"][name] = on;
+    j["output"] = {plan.outputWidth, plan.outputHeight};
     j["passes"] = json::array();
     for (const auto& p : plan.passes) {
         json pass = {{"name", p.name}, {"type", p.type}, {"barriers", json::array()}};
@@ -226,6 +239,10 @@ json planToJson(const Plan& plan) {
             }
             pass["usages"].push_back(std::move(ju));
         }
+        for (const InPassBarrier& ib : plan.inPassBarriers) {
+            if (&plan.passes[ib.pass] != &p) continue;
+            pass["inPassBarriers"].push_back({{"beforeWriteOfUsage", ib.usage}, {"barrier", barrierJson(plan, ib.barrier)}});
+        }
         j["passes"].push_back(std::move(pass));
     }
     j["final"] = json::array();
@@ -239,7 +256,9 @@ json planToJson(const Plan& plan) {
                                   {"firstPass", r.firstPass},
                                   {"lastPass", r.lastPass},
                                   {"initialLayout", layoutName(r.initialLayout)},
-                                  {"finalLayout", layoutName(r.finalLayout)}});
+                                  {"finalLayout", layoutName(r.finalLayout)},
+                                  {"copies", perFrameInFlight(r.copies) ? "perFrameInFlight" : "one"},
+                                  {"copiesWhy", copiesReason(r.copies)}});
     return j;
 }
 
@@ -247,7 +266,7 @@ std::string planToText(const Plan& plan) {
     std::ostringstream o;
     o << "graph " << plan.graph << "\nfeatures:";
     for (const auto& [name, on] : plan.features) o << " " << name << "=" << (on ? "on" : "off");
-    o << "\n\n";
+    o << "\noutput: " << plan.outputWidth << "x" << plan.outputHeight << "\n\n";
     for (size_t i = 0; i < plan.passes.size(); ++i) {
         const auto& p = plan.passes[i];
         o << "[" << i << "] " << p.name << " (" << p.type << ")\n";
@@ -259,6 +278,9 @@ std::string planToText(const Plan& plan) {
                 o << " load=" << loadName(u.load) << " store=" << storeName(u.store);
             o << "\n";
         }
+        for (const InPassBarrier& ib : plan.inPassBarriers)
+            if (ib.pass == i) o << "  between the copy out and the copy in of usage " << ib.usage << ":\n"
+                                << barrierText(plan, ib.barrier);
     }
     o << "final:\n";
     for (const auto& b : plan.finalBarriers) o << barrierText(plan, b);
@@ -266,14 +288,32 @@ std::string planToText(const Plan& plan) {
     for (const auto& c : plan.culled) o << "    " << c.name << ": " << c.reason << "\n";
     o << "lifetimes:\n";
     for (const auto& r : plan.resources)
-        o << "    " << r.name << ": passes " << r.firstPass << ".." << r.lastPass << "\n";
+        o << "    " << r.name << ": passes " << r.firstPass << ".." << r.lastPass << ", "
+          << (perFrameInFlight(r.copies) ? "a copy per frame in flight" : "one copy") << " ("
+          << copiesReason(r.copies) << ")\n";
     return o.str();
 }
 
-std::string planToDot(const Plan& plan, const GraphDesc& graph) {
+std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setup) {
     std::ostringstream o;
     o << "digraph \"" << dotEscape(plan.graph) << "\" {\n  rankdir=LR;\n"
       << "  node [fontname=\"Helvetica\", fontsize=10];\n  edge [fontname=\"Helvetica\", fontsize=8];\n";
+    if (setup && !setup->passes.empty()) {
+        // What runs once before the first frame, in a box of its own beside the frame.
+        o << "  subgraph \"cluster_setup\" {\n    label=\"setup, once before the first frame\";\n"
+          << "    style=dashed;\n    color=\"#888888\";\n";
+        for (size_t i = 0; i < setup->passes.size(); ++i) {
+            const auto& p = setup->passes[i];
+            o << "    \"setup:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "
+              << "fillcolor=\"#e4f2dc\", label=\"" << dotEscape(p.name) << "\\n(" << dotEscape(p.type) << ")\\n"
+              << p.barriers.size() << " barrier(s)\"];\n";
+        }
+        o << "  }\n";
+        for (const auto& p : setup->passes)
+            for (const auto& u : p.usages)
+                o << "  \"setup:" << dotEscape(p.name) << "\" -> \"res:" << dotEscape(setup->resources[u.resource].name)
+                  << "\" [style=dashed, color=\"#5a9a3a\", label=\"" << toString(u.usage.stage) << "\"];\n";
+    }
     for (size_t i = 0; i < plan.passes.size(); ++i) {
         const auto& p = plan.passes[i];
         o << "  \"pass:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "

@@ -70,10 +70,13 @@ public:
     Plan run(const Schedule& schedule) {
         plan_.graph = graph_.name;
         usages_ = &detail::PlanBuilder::usages(plan_);
+        for (const std::string& name : options_.readbacks)  // compile() checked the names
+            readbacks_.push_back(static_cast<uint32_t>(graph_.findResource(name) - graph_.resources.data()));
         planAccesses(schedule);
         computeRunScopes();
         emitSteps();
         finishResources();
+        decideCopies();
         return std::move(plan_);
     }
 
@@ -86,6 +89,8 @@ private:
         /// Whether two of its barriers can be for one resource (a resource used twice, or a
         /// range of several subresources): only then can mergeAdjacent find anything.
         bool mayMerge = false;
+        /// For an inserted step (declIndex < 0): a Readback rather than a Clear.
+        bool readback = false;
     };
 
     const ResourceDesc& decl(uint32_t planResource) const { return graph_.resources[plan_.resources[planResource].decl]; }
@@ -99,10 +104,10 @@ private:
         std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
         // Every scheduled pass and usage, and an inserted Clear (one access) at most per
         // `clear` resource: at its first use only.
-        steps_.reserve(schedule.passes.size() + index_.clearResources());
+        steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size());
         plan_.resources.reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        const size_t accessRoom = schedule.usages + index_.clearResources();
+        const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size();
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
         usages_->reserve(accessRoom);
@@ -122,16 +127,7 @@ private:
             // records are written without bounds checks.
             if (accessCount_ + clearsBefore.size() + uses.size() > accessRoom)
                 throw std::logic_error("synchronizer: the access bound was exceeded");
-            for (uint32_t r : clearsBefore) {
-                steps_.push_back({accessCount_, kInsertedPass});
-                currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
-                // Named once the compiler's own text is complete (emitSteps).
-                const uint32_t at = addOwnText("clear ");
-                addOwnText(plan_.resources[r].name);
-                clearNameAt_.push_back({currentStep_, at,
-                                        static_cast<uint32_t>(ownText_.size() - at)});
-                addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
-            }
+            for (uint32_t r : clearsBefore) addClearStep(r);
             steps_.push_back({accessCount_, static_cast<int32_t>(p)});
             currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
             for (const IndexedUsage& u : uses) {
@@ -143,9 +139,40 @@ private:
                 if (u.fillsSlot) addSlot(p, u);
             }
         }
+        // After the frame's last pass: each read-back copies its image's first mip and layer
+        // (a `clear` image no pass uses is cleared first, as at any first use).
+        for (const uint32_t d : readbacks_) {
+            if (planIndex[d] == kNone) {
+                planIndex[d] = addResource(d);
+                if (index_.clear(d)) addClearStep(planIndex[d]);
+            }
+            const uint32_t r = planIndex[d];
+            steps_.push_back({accessCount_, kInsertedPass, false, true});
+            currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
+            readbackSteps_.push_back(currentStep_);
+            nameInsertedStep("read back ", r);
+            addAccess(r, kReadbackUsage, SubresourceRange{0, 1, 0, 1}, false);
+        }
     }
 
-    uint32_t addResource(uint32_t declIndex) {
+    void addClearStep(uint32_t r) {
+        steps_.push_back({accessCount_, kInsertedPass});
+        currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
+        nameInsertedStep("clear ", r);
+        addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
+    }
+
+    /// Names the step last added "<verb><resource>", once the compiler's own text is complete
+    /// (emitSteps).
+    void nameInsertedStep(std::string_view verb, uint32_t r) {
+        const uint32_t at = addOwnText(verb);
+        addOwnText(plan_.resources[r].name);
+        insertedNameAt_.push_back({currentStep_, at, static_cast<uint32_t>(ownText_.size() - at)});
+    }
+
+    // Both run once per usage or resource, from planAccesses' loop: inlined there (GCC 12 stops
+    // inlining them once they have three callers, which costs 5% of a large compile).
+    [[gnu::always_inline]] uint32_t addResource(uint32_t declIndex) {
         PlannedResource& res = plan_.resources.emplace_back();
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
@@ -158,6 +185,7 @@ private:
                           index_.aspects(declIndex).image, index_.exported(declIndex), index_.external(declIndex)});
 #endif
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
+        if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
         return static_cast<uint32_t>(plan_.resources.size() - 1);
     }
@@ -171,9 +199,11 @@ private:
 #if __cpp_aggregate_paren_init < 201902L
     static inline const PlannedUsage kBlankUsage{};  // see addAccess
 #endif
-    static constexpr int32_t kInsertedPass = -1;  // a Step's declIndex for an inserted Clear
+    static constexpr int32_t kInsertedPass = -1;  // a Step's declIndex for an inserted step
     static constexpr std::string_view kClearType = "Clear";
+    static constexpr std::string_view kReadbackType = "Readback";
     static constexpr UsageMode kClearUsage{Access::Write, Stage::Transfer, BindAs::Default};
+    static constexpr UsageMode kReadbackUsage{Access::Read, Stage::Transfer, BindAs::Default};
 
     // A load-op clear writes, so a Read attachment that clears is a ReadWrite for sync.
     static Access effectiveAccess(Access a, bool loadOpClear) {
@@ -195,7 +225,8 @@ private:
 
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
     /// place in its resource's chain of accesses and in its read run (rule 4).
-    void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range, bool loadOpClear) {
+    [[gnu::always_inline]] void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range,
+                                          bool loadOpClear) {
         const uint32_t k = accessCount_++;
         const Access effective = effectiveAccess(usage.access, loadOpClear);
         const VulkanScope scope = vulkanScope(facts_[r].scopeRow, effective, usage.stage, usage.as);
@@ -332,7 +363,9 @@ private:
             const std::span<const PlannedUsage> usesView(usages.data() + first, end - first);
             // Inserted clears are named below, once the compiler's own text is complete.
             const std::string_view name = step.declIndex < 0 ? std::string_view() : index_.passName(step.declIndex);
-            const std::string_view type = step.declIndex < 0 ? kClearType : index_.passType(step.declIndex);
+            const std::string_view type = step.declIndex >= 0 ? index_.passType(step.declIndex)
+                                          : step.readback      ? kReadbackType
+                                                               : kClearType;
 #if __cpp_aggregate_paren_init >= 201902L
             plan_.passes.emplace_back(name, type, step.declIndex, batchView, usesView);
 #else  // clang before 16 (the sanitizer build): no aggregate initialisation from parentheses
@@ -347,7 +380,7 @@ private:
             auto own = std::make_shared<const std::string>(std::move(ownText_));
             const std::string_view text = *own;
             for (const NameAt& n : slotAt_) usages[n.item].slot = text.substr(n.offset, n.length);
-            for (const NameAt& n : clearNameAt_) plan_.passes[n.item].name = text.substr(n.offset, n.length);
+            for (const NameAt& n : insertedNameAt_) plan_.passes[n.item].name = text.substr(n.offset, n.length);
             detail::PlanBuilder::keepNames(plan_, std::move(own));
         }
     }
@@ -464,6 +497,7 @@ private:
             merger_.emitMerged(r, image ? BarrierKind::Image : BarrierKind::Buffer, pu.range, perSub_, batch);
         }
 
+        if (pu.usage.stage == Stage::Transfer && pu.usage.access == Access::ReadWrite) addInPassBarrier(pu, k);
         if (isAttachmentStage(pu.usage.stage)) {
             if (pu.load != LoadOp::Clear)
                 pu.load = pu.usage.access == Access::Write ? LoadOp::DontCare : LoadOp::Load;
@@ -477,6 +511,21 @@ private:
             res.lastPass = a.step;
             res.finalLayout = stateOf(r)->layout;
         }
+    }
+
+    /// A ReadWrite transfer takes two commands, a copy out and then a copy in, of the same
+    /// subresources: the write waits for the read (write-after-read: execution only).
+    void addInPassBarrier(const PlannedUsage& pu, uint32_t k) {
+        const uint32_t step = accesses_[k].step;
+        Barrier b;
+        b.resource = pu.resource;
+        b.kind = accesses_[k].image ? BarrierKind::Image : BarrierKind::Buffer;
+        b.srcStages = pu.stages;
+        b.dstStages = pu.stages;
+        b.dstAccess = writeBits(pu.access);
+        b.oldLayout = b.newLayout = pu.layout;
+        b.range = pu.range;
+        plan_.inPassBarriers.push_back({step, k - steps_[step].firstAccess, b});
     }
 
     /// The final barriers of exported resources, and their final layouts, once every pass
@@ -508,6 +557,38 @@ private:
                                plan_.finalBarriers);
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         }
+        // Each read-back's copy lands in host memory the executor reads after the frame's
+        // fence: its writes are made available to the host domain here.
+        for (const uint32_t s : readbackSteps_) {
+            Barrier b;
+            b.resource = (*usages_)[steps_[s].firstAccess].resource;
+            b.kind = BarrierKind::Memory;
+            b.srcStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+            b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
+            b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
+            plan_.finalBarriers.push_back(b);
+        }
+    }
+
+    /// Which resources need a copy per frame in flight: frames in flight overlap on the GPU,
+    /// and nothing in a plan orders one frame's accesses after another's unless a resource is
+    /// exported (its final barrier and the next frame's first use chain across frames). A
+    /// resource that is not external keeps the default, PerFrameTransient.
+    void decideCopies() {
+        for (const uint32_t r : external_) {
+            const ResourceFacts& f = facts_[r];
+            PlannedResource& res = plan_.resources[r];
+            if (decl(r).final == ExternalState::Present) {
+                res.copies = ResourceCopies::PerFramePresented;
+            } else if (f.exported) {
+                res.copies = ResourceCopies::SharedExported;
+            } else {
+                bool written = false;
+                for (uint32_t k = f.firstAccess; k != kNone; k = accesses_[k].next) written |= accesses_[k].writes;
+                res.copies = written ? ResourceCopies::PerFrameWrittenNotExported : ResourceCopies::SharedReadOnly;
+            }
+        }
     }
 
     const GraphDesc& graph_;
@@ -517,6 +598,9 @@ private:
     // Per plan resource.
     std::vector<ResourceFacts> facts_;
     std::vector<uint32_t> exported_;       // plan resources that are exported, in plan order
+    std::vector<uint32_t> external_;       // plan resources that are external, in plan order
+    std::vector<uint32_t> readbacks_;      // graph resources read back to the host, by name
+    std::vector<uint32_t> readbackSteps_;  // their steps
     uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
     uint32_t currentStep_ = 0;             // the step last added, whose accesses are being added
@@ -526,10 +610,10 @@ private:
     uint32_t accessCount_ = 0;
     std::vector<PlannedUsage>* usages_ = nullptr;  // the plan's, one per access
     // The compiler's own name table: slot names and inserted clears' names, one after
-    // another, and which usage's slot (slotAt_) or plan pass's name (clearNameAt_) views each.
+    // another, and which usage's slot (slotAt_) or plan pass's name (insertedNameAt_) views each.
     struct NameAt { uint32_t item, offset, length; };
     std::string ownText_;
-    std::vector<NameAt> slotAt_, clearNameAt_;
+    std::vector<NameAt> slotAt_, insertedNameAt_;
     ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
     std::vector<StageAccess> runScope_;    // per access of a multi-subresource resource, per cell

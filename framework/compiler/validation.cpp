@@ -124,6 +124,32 @@ void checkOutputNames(const GraphDesc& graph, const CompileOptions& options) {
     for (const auto& [name, state] : options.exports)
         if (!graph.findResource(name))
             diags.add({graph.file, "resources", "", name, "cannot export '" + name + "': no such resource"});
+    for (const std::string& name : options.readbacks) {
+        const ResourceDesc* r = graph.findResource(name);
+        if (!r)
+            diags.add({graph.file, "resources", "", name, "cannot read back '" + name + "': no such resource"});
+        else if (!r->isImage())
+            diags.add({graph.file, r->jsonPath(), "", name,
+                       "cannot read back '" + name + "': it is a buffer; read-backs copy images"});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+}
+
+void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule, const CompileOptions& options) {
+    const GraphDesc& graph = index.graph();
+    Diagnostics diags;
+    for (const std::string& name : options.readbacks) {
+        const ResourceDesc* r = graph.findResource(name);
+        const auto d = static_cast<uint32_t>(r - graph.resources.data());
+        bool source = r->external || r->clear.has_value();
+        for (size_t s = 0; s < schedule.passes.size() && !source; ++s)
+            for (const IndexedUsage& u : index.usesOf(schedule.passes[s]))
+                source = source || (u.resource == d && writesContents(u.usage.access));
+        if (!source)
+            diags.add({graph.file, r->jsonPath(), "", name,
+                       "cannot read back '" + name +
+                           "': no pass that runs writes it, and it is neither external nor `clear`"});
+    }
     if (!diags.empty()) throw GraphError(std::move(diags));
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "graph_index.hpp"
+#include "scheduler.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
@@ -23,7 +24,8 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out);
 
 // ---- compile(): in the order it calls them -----------------------------------------------
 
-/// CompileOptions::outputs and ::exports name resources of `graph`; throws GraphError if not.
+/// CompileOptions::outputs, ::exports and ::readbacks name resources of `graph` (images, for
+/// read-backs); throws GraphError if not.
 void checkOutputNames(const GraphDesc& graph, const CompileOptions& options);
 
 /// The file's feature defaults with the options' overrides, adding a diagnostic for each
@@ -37,5 +39,9 @@ void checkOutputNames(const GraphDesc& graph, const CompileOptions& options);
 /// source. Throws GraphError with `found` (the earlier checks' diagnostics) and its own, if any.
 void validate(const GraphIndex& index, const FeatureValues& features, const CompileOptions& options,
               Diagnostics found);
+
+/// A read-back of an image that no scheduled pass writes, and that is neither external nor
+/// `clear`, would copy undefined contents: throws GraphError naming each.
+void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule, const CompileOptions& options);
 
 }  // namespace skygraph

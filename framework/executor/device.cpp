@@ -316,7 +316,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     impl->name = impl->properties.deviceName;
     impl->timestampPeriod = impl->properties.limits.timestampPeriod;
 
-    // Features: what the Generic pass needs to really perform every access.
+    // Features: what passes need to really perform every access a usage can declare (stores
+    // from vertex and fragment shaders, storage writes without a format, layered rendering).
     VkPhysicalDeviceFeatures supported;
     vkGetPhysicalDeviceFeatures(chosen, &supported);
     VkPhysicalDeviceVulkan12Features s12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
@@ -338,7 +339,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     f2.features.shaderStorageImageWriteWithoutFormat =
         supported.shaderStorageImageWriteWithoutFormat;
     f2.features.geometryShader = supported.geometryShader;
-    // A Generic pass may blend one colour attachment (ReadWrite) and overwrite another.
+    // A pass may blend one colour attachment (ReadWrite) and overwrite another.
     f2.features.independentBlend = supported.independentBlend;
 
     const float priority = 1.0f;

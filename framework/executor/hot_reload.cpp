@@ -1,7 +1,8 @@
 // Hot reload of the graph file and the shader directory.
 #include <skygraph/shader_compiler.hpp>
 
-#include <skygraph/executor.hpp>
+#include <skygraph/hot_reload.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -45,9 +46,9 @@ size_t hashDir(const std::filesystem::path& dir) {
 
 }  // namespace
 
-HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, CompileOptions options,
-                         std::filesystem::path shaderDir, const PassRegistry* registry)
-    : renderer_(renderer), graphFile_(std::move(graphFile)), options_(std::move(options)),
+HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir,
+                         const PassRegistry* registry)
+    : renderer_(renderer), graphFile_(std::move(graphFile)),
       shaderDir_(shaderDir.empty() ? ShaderCompiler::defaultIncludeDir() : std::move(shaderDir)),
       registry_(registry) {
     graphHash_ = hashFile(graphFile_);
@@ -73,8 +74,7 @@ HotReloader::Result HotReloader::poll() {
         if (graphChanged) {
             GraphDesc graph = registry_ ? loadGraphFile(graphFile_, *registry_)
                                         : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
-            Plan plan = compile(graph, options_);
-            renderer_.setPlan(graph, std::move(plan));
+            renderer_.setGraph(renderer_.compiled().withGraph(std::move(graph)));
         } else {
             renderer_.reloadShaders();
         }

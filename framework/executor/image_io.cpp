@@ -1,5 +1,6 @@
 // PNG and Radiance HDR output through stb_image_write.
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/image_data.hpp>
 
 // stb's implementation lives in skygraph_image (its only owner).
 #include <skygraph/hdr_image.hpp>

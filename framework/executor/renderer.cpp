@@ -3,38 +3,24 @@
 #include "renderer_impl.hpp"
 #include "renderer_access.hpp"
 
+#include <skygraph/transfer_plans.hpp>
+
 #include <cmath>
+#include <optional>
 #include <cstring>
 
 namespace skygraph {
 
 using namespace detail;
 
-std::unique_ptr<PlanState> Renderer::Impl::build(const GraphDesc& graph, Plan plan) {
-    auto s = std::make_unique<PlanState>();
-    s->graph = graph;
-    s->plan = std::move(plan);
+std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
+    if (compiled.outputWidth() == 0 || compiled.outputHeight() == 0)
+        throw ExecutorError("output extent must be at least 1x1");
+    auto s = std::make_unique<PlanState>(std::move(compiled));
     describeResources(*s);
     for (size_t i = 0; i < s->plan.passes.size(); ++i) buildPassStatic(*s, i);
     buildSized(*s);
-    for (PassState& ps : s->passes) {
-        if (!ps.custom) continue;
-        PipelineContext pc;
-        pc.device = vkd;
-        pc.physicalDevice = dev.physical;
-        pc.renderPass = ps.renderPass.get();
-        pc.pass = ps.pass;
-        pc.desc = ps.desc;
-        pc.resources = ps.slots[0].bound;
-        pc.shaders = &shaders;
-        try {
-            ps.custom->createPipelines(pc);
-        } catch (const ExecutorError&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw ExecutorError(passError(*ps.pass, "", std::string("creating pipelines: ") + e.what()));
-        }
-    }
+    createPipelines(*s);
     return s;
 }
 
@@ -129,34 +115,24 @@ ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFor
 
 }  // namespace
 
-Renderer::Renderer(Device& device, const GraphDesc& graph, Plan plan, RendererOptions options) {
-    if (options.width == 0 || options.height == 0)
-        throw ExecutorError("output extent must be at least 1x1");
+Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions options) {
     if (options.framesInFlight == 0 || options.framesInFlight > 8)
         throw ExecutorError("framesInFlight must be between 1 and 8");
     impl_ = std::make_unique<Impl>(device, std::move(options));
     Impl& d = *impl_;
-    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
-    vkGetPhysicalDeviceFeatures2(d.dev.physical, &f2);
-    d.layered = f12.shaderOutputLayer == VK_TRUE;
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
-    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     sci.maxLod = VK_LOD_CLAMP_NONE;
     VkSampler sampler;
-    vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
-    d.sampler = vk::Sampler(d.vkd, sampler);
-    sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
-    sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.linearSampler = vk::Sampler(d.vkd, sampler);
     sci.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.repeatSampler = vk::Sampler(d.vkd, sampler);
     d.createFrames();
-    d.state = d.build(graph, std::move(plan));
+    d.state = d.build(std::move(compiled));
 }
 
 Renderer::~Renderer() {
@@ -169,36 +145,43 @@ void Renderer::renderFrame() { impl_->renderFrame(); }
 void Renderer::waitIdle() { impl_->waitIdle(); }
 
 ImageData Renderer::readback() {
+    const PlanState& s = *impl_->state;
+    if (s.readbacks.size() != 1)
+        throw ExecutorError(s.readbacks.empty()
+                                ? "no read-back: the plan copies no image to the host (CompileOptions::readbacks)"
+                                : "the plan reads back " + std::to_string(s.readbacks.size()) +
+                                      " images; name one (readback(name))");
+    return readback(s.plan.resources[s.readbacks[0].resource].name);
+}
+
+ImageData Renderer::readback(std::string_view resource) {
     Impl& d = *impl_;
     PlanState& s = *d.state;
-    if (s.readbackResource < 0) {
-        throw ExecutorError(
-            d.options.readback.empty()
-                ? "no read-back target: the graph exports no `Present` image that ends the frame in "
-                  "TRANSFER_SRC_OPTIMAL (compile with presentReplacement = TransferSrc)"
-                : "cannot read back '" + d.options.readback +
-                      "': it is not an image left in TRANSFER_SRC_OPTIMAL (final: TransferSrc)");
-    }
+    const int32_t index = s.plan.resourceIndex(resource);
+    const ReadbackTarget* target = index < 0 ? nullptr : s.readbackOf(uint32_t(index));
+    if (!target)
+        throw ExecutorError("no read-back of '" + std::string(resource) +
+                            "': the plan does not copy it to the host (CompileOptions::readbacks)");
     if (d.lastSlot < 0) throw ExecutorError("no frame has been rendered yet");
-    FrameSlot& f = d.frames[size_t(d.lastSlot)];
-    d.waitSlot(f);
-    const ResourceState& r = s.resources[size_t(s.readbackResource)];
-    return convertPixels(s.readbackBuffers[size_t(d.lastSlot)].mapped, r.width, r.height, r.format,
-                         r.desc->name);
+    d.waitSlot(d.frames[size_t(d.lastSlot)]);
+    const ResourceState& r = s.resources[target->resource];
+    return convertPixels(target->perSlot[size_t(d.lastSlot)].mapped, r.width, r.height, r.format, r.desc->name);
 }
 
 std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     Impl& d = *impl_;
     d.waitIdle();
     PlanState& s = *d.state;
-    size_t index = s.resources.size();
-    for (size_t i = 0; i < s.resources.size(); ++i)
-        if (s.resources[i].desc->name == resource) index = i;
-    if (index == s.resources.size()) throw ExecutorError("cannot read '" + resource + "': the plan has no such resource");
+    if (d.lastSlot < 0) throw ExecutorError("cannot read '" + resource + "': no frame has been rendered yet");
+    Plan read;
+    try {
+        read = planImageRead(s.graph, s.plan, resource);
+    } catch (const GraphError& e) {
+        throw ExecutorError(e.what());
+    }
+    const uint32_t index = uint32_t(s.plan.resourceIndex(resource));
     const ResourceState& r = s.resources[index];
-    const VkImageLayout layout = s.plan.resources[index].finalLayout;
-    if (!r.isImage || layout == VK_IMAGE_LAYOUT_UNDEFINED || d.lastSlot < 0)
-        throw ExecutorError("cannot read '" + resource + "': it is not an image that a rendered frame left written");
+    const uint32_t slot = uint32_t(d.lastSlot);
     const uint32_t texel = copyTexelBytes(r.desc->format);
     std::vector<VkBufferImageCopy> copies;
     VkDeviceSize bytes = 0;
@@ -211,48 +194,13 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
         bytes += VkDeviceSize(r.mipWidth(m)) * r.mipHeight(m) * texel * r.layers;
     }
     OwnedBuffer host = d.makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-    // After the frames: to TRANSFER_SRC, copy, back to the frame's final layout, host read.
-    VkImageMemoryBarrier2 toSrc{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    toSrc.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    toSrc.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    toSrc.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toSrc.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    toSrc.oldLayout = layout;
-    toSrc.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    toSrc.srcQueueFamilyIndex = toSrc.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    toSrc.image = r.images[r.copyFor(uint32_t(d.lastSlot))].image;
-    toSrc.subresourceRange = {r.aspect, 0, r.mips, 0, r.layers};
-    VkImageMemoryBarrier2 back = toSrc;
-    back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    back.srcAccessMask = VK_ACCESS_2_NONE;
-    back.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    back.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    std::swap(back.oldLayout, back.newLayout);
-    VkBufferMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    toHost.srcQueueFamilyIndex = toHost.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    toHost.buffer = host.buffer.get();
-    toHost.size = VK_WHOLE_SIZE;
-    VkCommandBuffer cmd = d.frames[0].cmd;  // idle: every slot has been waited for
-    vk::check(vkResetCommandBuffer(cmd, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk::check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-    d.dependency(cmd, {toSrc}, {}, {});
-    vkCmdCopyImageToBuffer(cmd, toSrc.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.buffer.get(),
-                           uint32_t(copies.size()), copies.data());
-    d.dependency(cmd, {back}, {toHost}, {});
-    vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    cbi.commandBuffer = cmd;
-    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &cbi;
-    vk::check(vkQueueSubmit2(d.dev.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit2");
-    vk::check(vkQueueWaitIdle(d.dev.queue), "vkQueueWaitIdle");
+    d.submitAndWait([&](CommandSink& sink) {
+        const auto target = [&](uint32_t) { return r.barrierTarget(slot); };  // the plan's one resource
+        const PlannedPass& step = read.passes.at(0);
+        if (const BarrierBatch before(step.barriers, target); !before.empty()) sink.barriers(before);
+        sink.copyImageToBuffer(r.images[r.copyFor(slot)].image, step.usages[0].layout, host.buffer.get(), copies);
+        if (const BarrierBatch after(read.finalBarriers, target); !after.empty()) sink.barriers(after);
+    });
     std::vector<ImageData> levels;
     for (uint32_t m = 0; m < r.mips; ++m)
         for (uint32_t l = 0; l < r.layers; ++l) {
@@ -265,26 +213,20 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
 
 void Renderer::resize(uint32_t width, uint32_t height) {
     if (width == 0 || height == 0) throw ExecutorError("output extent must be at least 1x1");
-    Impl& d = *impl_;
-    d.waitIdle();
-    vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
-    const uint32_t oldW = d.options.width, oldH = d.options.height;
-    d.options.width = width;
-    d.options.height = height;
+    std::optional<CompiledGraph> next;
     try {
-        d.state = d.build(d.state->graph, d.state->plan);
-    } catch (...) {
-        d.options.width = oldW;
-        d.options.height = oldH;
-        throw;
+        next.emplace(impl_->state->compiled.resized(width, height));
+    } catch (const GraphError& e) {
+        throw ExecutorError(std::string("resize to ") + std::to_string(width) + "x" + std::to_string(height) + ": " +
+                            e.what());
     }
-    d.lastSlot = -1;
+    setGraph(std::move(*next));
 }
 
-void Renderer::setPlan(const GraphDesc& graph, Plan plan) {
+void Renderer::setGraph(CompiledGraph compiled) {
     Impl& d = *impl_;
     d.waitIdle();
-    auto next = d.build(graph, std::move(plan));  // throws: the old plan keeps running
+    auto next = d.build(std::move(compiled));  // throws: the old plan keeps running
     vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     d.state = std::move(next);
     d.lastSlot = -1;
@@ -298,6 +240,8 @@ std::vector<PassTiming> Renderer::lastTimings() {
 
 const Plan& Renderer::plan() const noexcept { return impl_->state->plan; }
 const GraphDesc& Renderer::graph() const noexcept { return impl_->state->graph; }
+const CompiledGraph& Renderer::compiled() const noexcept { return impl_->state->compiled; }
+const Plan& Renderer::setupPlan() const noexcept { return impl_->state->setup; }
 FrameData& Renderer::frameData() noexcept { return impl_->frameData; }
 
 SharedImage::SharedImage() = default;
@@ -342,7 +286,7 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     auto previous = d.imports;
     d.imports[resource] = std::move(image);
     try {
-        setPlan(d.state->graph, d.state->plan);  // re-creates the resources around the import
+        setGraph(d.state->compiled);  // re-creates the resources around the import
     } catch (...) {
         d.imports = std::move(previous);
         throw;
@@ -355,7 +299,7 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     if (!desc) throw ExecutorError("setExternalImage: no resource '" + resource + "' in the graph");
     if (!desc->external || !desc->isImage())
         throw ExecutorError("setExternalImage: '" + resource + "' is not an external image");
-    const auto ext = desc->extent.resolve(d.options.width, d.options.height);
+    const auto ext = desc->extent.resolve(d.state->outputWidth(), d.state->outputHeight());
     if (pixels.width != ext[0] || pixels.height != ext[1] ||
         pixels.rgba.size() != size_t(pixels.width) * pixels.height * 4) {
         throw ExecutorError("setExternalImage: '" + resource + "' is " + std::to_string(ext[0]) + "x" +
@@ -373,7 +317,7 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
         // Re-import the externals into the images the plan already has: rebuilding the plan
         // would compile every pipeline again for nothing.
         d.waitIdle();
-        d.importExternals(*d.state);
+        d.runSetup(*d.state);
         d.lastSlot = -1;
     } catch (...) {
         d.uploads = std::move(previous);
@@ -385,16 +329,17 @@ void Renderer::reloadShaders() {
     Impl& d = *impl_;
     d.shaders.clear();
     d.waitIdle();
-    auto next = d.build(d.state->graph, d.state->plan);  // throws: the old pipelines keep running
+    auto next = d.build(d.state->compiled);  // throws: the old pipelines keep running
     vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     d.state = std::move(next);
     d.lastSlot = -1;
 }
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 
-void Renderer::recordInto(VkCommandBuffer cmd, uint32_t slot) {
-    if (slot >= impl_->frames.size()) throw ExecutorError("frame slot out of range");
-    impl_->recordFrame(cmd, slot, nullptr);
+void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {
+    Renderer::Impl& d = *renderer.impl_;
+    if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
+    d.recordFrame(cmd, slot, nullptr);
 }
 
 HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
@@ -402,39 +347,26 @@ HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
     PlanState& s = *d.state;
     if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
     HandFrame f;
-    f.pushDescriptors = d.dev.fn.cmdPushDescriptorSet;
     for (PassState& ps : s.passes) {
+        if (ps.kind != StepKind::Pass)
+            throw ExecutorError(passError(*ps.pass, "", "hand recording covers the passes' recording code only"));
         const PassSlot& sl = ps.slots[slot];
-        const GenericProgram& p = ps.program;
-        if (ps.isClear || !p.transfers.empty() || !p.vertexBuffers.empty() || p.indexBuffer >= 0 ||
-            p.indirectBuffer >= 0) {
-            throw ExecutorError(passError(*ps.pass, "", "hand recording covers draws and dispatches only"));
-        }
         HandPass h;
-        h.imageBarriers = sl.imageBarriers;
-        h.bufferBarriers = sl.bufferBarriers;
-        h.memoryBarriers = sl.memoryBarriers;
-        if (p.graphics) {
+        h.imageBarriers = sl.before.images();
+        h.bufferBarriers = sl.before.buffers();
+        h.memoryBarriers = sl.before.memory();
+        if (ps.attachments.any()) {
             h.renderPass = ps.renderPass.get();
             h.framebuffer = sl.framebuffer.get();
             h.extent = sl.extent;
             h.clearValues = ps.clearValues;
-            h.graphicsPipeline = ps.graphicsPipeline.get();
-            h.graphicsLayout = ps.graphicsLayout.get();
-            h.graphicsWrites = sl.graphicsWrites;
-            h.instances = p.attachmentLayers;
         }
-        if (p.compute) {
-            h.computePipeline = ps.computePipeline.get();
-            h.computeLayout = ps.computeLayout.get();
-            h.computeWrites = sl.computeWrites;
-            h.computeExtent = sl.computeExtent;
-        }
+        h.implementation = ps.implementation.get();
         f.passes.push_back(std::move(h));
     }
-    f.finalImageBarriers = s.finals[slot].imageBarriers;
-    f.finalBufferBarriers = s.finals[slot].bufferBarriers;
-    f.finalMemoryBarriers = s.finals[slot].memoryBarriers;
+    f.finalImageBarriers = s.finals[slot].images();
+    f.finalBufferBarriers = s.finals[slot].buffers();
+    f.finalMemoryBarriers = s.finals[slot].memory();
     return f;
 }
 

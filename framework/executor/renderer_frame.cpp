@@ -64,117 +64,27 @@ void Renderer::Impl::collectTimings(FrameSlot& f) {
     }
 }
 
-void Renderer::Impl::dependency(VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier2>& images,
-                                const std::vector<VkBufferMemoryBarrier2>& buffers,
-                                const std::vector<VkMemoryBarrier2>& memory) const {
-    if (images.empty() && buffers.empty() && memory.empty()) return;
-    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    di.memoryBarrierCount = static_cast<uint32_t>(memory.size());
-    di.pMemoryBarriers = memory.data();
-    di.bufferMemoryBarrierCount = static_cast<uint32_t>(buffers.size());
-    di.pBufferMemoryBarriers = buffers.data();
-    di.imageMemoryBarrierCount = static_cast<uint32_t>(images.size());
-    di.pImageMemoryBarriers = images.data();
-    vkCmdPipelineBarrier2(cmd, &di);
-}
-
-void Renderer::Impl::recordClear(VkCommandBuffer cmd, PlanState& s, const PassState& ps, uint32_t slot) {
-    for (const PlannedUsage& u : ps.pass->usages) {
-        const ResourceState& r = s.resources[u.resource];
-        const VkImageSubresourceRange range{r.aspect, u.range.baseMip, u.range.mipCount,
-                                            u.range.baseLayer, u.range.layerCount};
-        const VkImage image = r.images[r.copyFor(slot)].image;
-        if (r.desc->format.isDepthStencil()) {
-            const VkClearDepthStencilValue v{r.desc->clear->depth, r.desc->clear->stencil};
-            vkCmdClearDepthStencilImage(cmd, image, u.layout, &v, 1, &range);
-        } else {
-            VkClearColorValue v{};
-            std::memcpy(v.float32, r.desc->clear->color.data(), 16);
-            vkCmdClearColorImage(cmd, image, u.layout, &v, 1, &range);
-        }
-    }
-}
-
-void Renderer::Impl::beginRenderPass(VkCommandBuffer cmd, const PassState& ps, const PassSlot& sl) {
-    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    rbi.renderPass = ps.renderPass.get();
-    rbi.framebuffer = sl.framebuffer.get();
-    rbi.renderArea = {{0, 0}, sl.extent};
-    rbi.clearValueCount = static_cast<uint32_t>(ps.clearValues.size());
-    rbi.pClearValues = ps.clearValues.data();
-    vkCmdBeginRenderPass(cmd, &rbi, VK_SUBPASS_CONTENTS_INLINE);
-    setViewportAndScissor(cmd, sl.extent);
-}
-
-void Renderer::Impl::recordPass(VkCommandBuffer cmd, PlanState& s, PassState& ps, uint32_t slot) {
-    if (ps.isClear) {
-        recordClear(cmd, s, ps, slot);
-        return;
-    }
-    if (ps.custom) {
-        PassSlot& sl = ps.slots[slot];
-        RecordContext rc;
-        rc.cmd = cmd;
-        rc.pass = ps.pass;
-        rc.desc = ps.desc;
-        rc.resources = sl.bound;
-        rc.renderArea = ps.program.graphics ? sl.extent : VkExtent2D{0, 0};
-        rc.linearSampler = linearSampler.get();
-        rc.repeatSampler = repeatSampler.get();
-        rc.frame = &frameData;
-        rc.frameIndex = frameIndex;
-        if (ps.program.graphics) beginRenderPass(cmd, ps, sl);
-        ps.custom->record(rc);
-        if (ps.program.graphics) vkCmdEndRenderPass(cmd);
-        return;
-    }
-    recordGeneric(cmd, s, ps, slot);
+VulkanCommands::Functions Renderer::Impl::commandFunctions() const {
+    return {dev.fn.cmdBeginLabel, dev.fn.cmdEndLabel};
 }
 
 void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* frame) {
     PlanState& s = *state;
     const auto passCount = static_cast<uint32_t>(s.passes.size());
+    FrameRecording r;
+    r.slot = slot;
+    r.frameIndex = frameIndex;
+    r.linearSampler = linearSampler.get();
+    r.repeatSampler = repeatSampler.get();
+    r.frameData = &frameData;
     if (frame) {
         ensureQueries(*frame, passCount * 2);
-        vkCmdResetQueryPool(cmd, frame->queries.get(), 0, frame->queryCount);
+        r.queries = frame->queries.get();
+        r.queryCount = frame->queryCount;
+        r.labels = dev.fn.cmdBeginLabel != nullptr;
     }
-    for (uint32_t i = 0; i < passCount; ++i) {
-        PassState& ps = s.passes[i];
-        const PassSlot& sl = ps.slots[slot];
-        if (frame && dev.fn.cmdBeginLabel) {
-            VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
-            label.pLabelName = ps.label.c_str();
-            dev.fn.cmdBeginLabel(cmd, &label);
-        }
-        dependency(cmd, sl.imageBarriers, sl.bufferBarriers, sl.memoryBarriers);
-        if (frame) vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, frame->queries.get(), 2 * i);
-        recordPass(cmd, s, ps, slot);
-        if (frame) {
-            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, frame->queries.get(), 2 * i + 1);
-            if (dev.fn.cmdEndLabel) dev.fn.cmdEndLabel(cmd);
-        }
-    }
-    const FinalSlot& fin = s.finals[slot];
-    dependency(cmd, fin.imageBarriers, fin.bufferBarriers, fin.memoryBarriers);
-    if (frame && s.readbackResource >= 0) {
-        // The executor's "present": copy the target out, then make it visible to the host.
-        const ResourceState& r = s.resources[size_t(s.readbackResource)];
-        VkBufferImageCopy c{};
-        c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, 1};
-        c.imageExtent = {r.width, r.height, 1};
-        const VkBuffer dst = s.readbackBuffers[slot].buffer.get();
-        vkCmdCopyImageToBuffer(cmd, r.images[r.copyFor(slot)].image,
-                               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, 1, &c);
-        VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-        bb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        bb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        bb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        bb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-        bb.buffer = dst;
-        bb.size = VK_WHOLE_SIZE;
-        dependency(cmd, {}, {bb}, {});
-    }
+    VulkanCommands sink(cmd, commandFunctions());
+    detail::recordFrame(sink, s, r);
     if (frame) {
         frame->passNames.clear();
         for (const PassState& ps : s.passes) frame->passNames.push_back(ps.label);

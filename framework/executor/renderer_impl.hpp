@@ -2,21 +2,27 @@
 // slots) and Renderer::Impl, whose members are defined by concept in
 //   renderer.cpp            the public Renderer API, building a plan, read-back, hand frames
 //   renderer_resources.cpp  images, buffers, views, per-slot copies, importing externals
-//   renderer_passes.cpp     render passes, framebuffers, descriptors and barriers per slot
-//   renderer_generic.cpp    the Generic pass: pipelines and recording
-//   renderer_frame.cpp      frame slots, per-frame recording, submission, timestamps
+//   renderer_passes.cpp     each pass's recording code, render pass, framebuffers, barriers
+//   renderer_frame.cpp      frame slots, submission, timestamps
+//   renderer_setup.cpp      the setup plan before the first frame, and reading images back
+//   frame_recording.cpp     recording a plan's steps into a CommandSink (no device needed)
 #pragma once
 
-#include "generic_program.hpp"
+#include "barrier_batch.hpp"
+#include "command_sink.hpp"
+#include "device_access.hpp"
+#include "pass_error.hpp"
 #include "spirv_cache.hpp"
+#include "texel_encoding.hpp"
 #include "vk_util.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/renderer.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/pipeline_builder.hpp>
 #include <skygraph/shader_compiler.hpp>
 
 #include <algorithm>
+#include <functional>
 #include <cstdint>
 #include <limits>
 #include <map>
@@ -36,21 +42,6 @@ inline VkImageAspectFlags aspectOf(const FormatInfo& f) {
     if (f.hasDepth) a |= VK_IMAGE_ASPECT_DEPTH_BIT;
     if (f.hasStencil) a |= VK_IMAGE_ASPECT_STENCIL_BIT;
     return a;
-}
-
-/// Aspect for buffer<->image copies: one aspect only (depth for depth formats).
-inline VkImageAspectFlags copyAspectOf(const FormatInfo& f) {
-    if (!f.isDepthStencil()) return VK_IMAGE_ASPECT_COLOR_BIT;
-    return f.hasDepth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_STENCIL_BIT;
-}
-
-inline uint32_t copyTexelBytes(const FormatInfo& f) {
-    if (!f.isDepthStencil()) return f.bytesPerTexel;
-    switch (f.format) {
-        case VK_FORMAT_D16_UNORM: case VK_FORMAT_D16_UNORM_S8_UINT: return 2;
-        case VK_FORMAT_S8_UINT: return 1;
-        default: return 4;  // D32, D24 (packed in 4 bytes), X8_D24
-    }
 }
 
 /// A buffer with its memory; mapped when host-visible.
@@ -78,7 +69,7 @@ struct ImageCopy {
 struct ResourceState {
     const ResourceDesc* desc = nullptr;
     bool isImage = false;
-    bool perSlot = false;
+    bool perSlot = false;  ///< The plan's PlannedResource::copies, with more than one slot.
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkImageAspectFlags aspect = 0;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
@@ -90,65 +81,111 @@ struct ResourceState {
     std::vector<OwnedBuffer> buffers;
 
     [[nodiscard]] uint32_t copyFor(uint32_t slot) const { return perSlot ? slot : 0; }
+    /// What a barrier on this resource names in frame slot `slot`.
+    [[nodiscard]] BarrierTarget barrierTarget(uint32_t slot) const {
+        const uint32_t c = copyFor(slot);
+        if (isImage) return {images.at(c).image, VK_NULL_HANDLE, aspect};
+        return {VK_NULL_HANDLE, buffers.at(c).buffer.get(), 0};
+    }
     [[nodiscard]] uint32_t mipWidth(uint32_t mip) const { return std::max(1u, width >> mip); }
     [[nodiscard]] uint32_t mipHeight(uint32_t mip) const { return std::max(1u, height >> mip); }
 };
 
 /// Per pass and frame slot: everything recording needs, with handles resolved.
 struct PassSlot {
-    vk::Framebuffer framebuffer;
-    VkExtent2D extent{1, 1};
-    VkExtent2D computeExtent{1, 1};
-    std::vector<VkDescriptorImageInfo> imageInfos;
-    std::vector<VkDescriptorBufferInfo> bufferInfos;
-    std::vector<VkWriteDescriptorSet> graphicsWrites;
-    std::vector<VkWriteDescriptorSet> computeWrites;
-    std::vector<VkImageMemoryBarrier2> imageBarriers;
-    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
-    std::vector<VkMemoryBarrier2> memoryBarriers;
-    std::vector<VkBuffer> vertexBuffers;
-    std::vector<VkDeviceSize> vertexOffsets;
-    VkBuffer indexBuffer = VK_NULL_HANDLE;
-    VkBuffer indirectBuffer = VK_NULL_HANDLE;
-    OwnedBuffer sink;  ///< Destination of Transfer reads.
-    std::vector<BoundResource> bound;  ///< Pass implementations: parallel to pass usages.
+    vk::Framebuffer framebuffer;  ///< Graphics passes.
+    VkExtent2D extent{1, 1};      ///< The framebuffer's.
+    BarrierBatch before;  ///< The plan's batch before the pass.
+    BarrierBatch inPass;  ///< The plan's in-pass barriers: between its copies out and in.
+    std::vector<BoundResource> bound;  ///< What the pass's recording code sees: parallel to its usages.
 };
+
+/// The attachments of a pass, from its usages: a pass with any is a graphics pass, recorded
+/// inside a render pass of them.
+struct PassAttachments {
+    std::vector<uint32_t> colors;  ///< Usage indices of ColorAttachment usages, in order.
+    int32_t depth = -1;            ///< Usage index of the DepthAttachment usage, or -1.
+    uint32_t layers = 1;           ///< The framebuffer's: the most layers of any attachment.
+    [[nodiscard]] bool any() const noexcept { return !colors.empty() || depth >= 0; }
+};
+
+/// `pass`'s attachments. Throws ExecutorError for a second depth attachment.
+[[nodiscard]] PassAttachments attachmentsOf(const PlannedPass& pass, const std::vector<ResourceState>& resources);
+/// The framebuffer's extent: the smallest of the attachments' (their usages' base mip).
+[[nodiscard]] VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
+                                           const std::vector<ResourceState>& resources);
+
+/// What the executor does for a plan step: a pass's recording, or a step the compiler inserted.
+enum class StepKind : uint8_t { Pass, Clear, Readback, Upload };
 
 struct PassState {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::string label;  ///< The pass's name, NUL-terminated for debug labels (the plan's is a view).
-    bool isClear = false;
-    /// Recording code from the PassLibrary; null for Generic (and types run as Generic).
-    std::unique_ptr<PassImplementation> custom;
-    GenericProgram program;
-    vk::RenderPass renderPass;
+    StepKind kind = StepKind::Pass;
+    /// Steps of kind Pass: the recording code from the PassLibrary (the library's Generic
+    /// for a type without its own).
+    std::unique_ptr<PassImplementation> implementation;
+    PassAttachments attachments;
+    vk::RenderPass renderPass;  ///< Graphics passes.
     std::vector<VkClearValue> clearValues;
-    vk::SetLayout graphicsSetLayout, computeSetLayout;
-    vk::PipelineLayout graphicsLayout, computeLayout;
-    vk::Pipeline graphicsPipeline, computePipeline;
-    std::vector<VkDeviceSize> transferOffsets;  ///< Per transfer usage, into source and sink.
-    VkDeviceSize transferBytes = 0;
-    OwnedBuffer source;  ///< Host-filled contents of Transfer writes; read-only on the GPU.
     std::vector<PassSlot> slots;
 };
 
-struct FinalSlot {
-    std::vector<VkImageMemoryBarrier2> imageBarriers;
-    std::vector<VkBufferMemoryBarrier2> bufferBarriers;
-    std::vector<VkMemoryBarrier2> memoryBarriers;
+/// Host memory that a Readback step of the frame copies its image into, one per frame slot.
+struct ReadbackTarget {
+    uint32_t step = 0;      ///< Index into Plan::passes.
+    uint32_t resource = 0;  ///< Index into Plan::resources.
+    std::vector<OwnedBuffer> perSlot;
 };
 
-/// Everything that belongs to one plan; replaced whole by setPlan.
+/// Everything that belongs to one plan; replaced whole by setGraph and resize.
 struct PlanState {
-    GraphDesc graph;
-    Plan plan;
+    explicit PlanState(CompiledGraph c) : compiled(std::move(c)), graph(compiled.graph()), plan(compiled.plan()) {}
+    PlanState(const PlanState&) = delete;
+    PlanState& operator=(const PlanState&) = delete;
+
+    CompiledGraph compiled;
+    const GraphDesc& graph;  ///< compiled's
+    const Plan& plan;        ///< compiled's
+    [[nodiscard]] uint32_t outputWidth() const noexcept { return compiled.outputWidth(); }
+    [[nodiscard]] uint32_t outputHeight() const noexcept { return compiled.outputHeight(); }
     std::vector<ResourceState> resources;  ///< Parallel to plan.resources.
     std::vector<PassState> passes;         ///< Parallel to plan.passes.
-    std::vector<FinalSlot> finals;         ///< Per slot.
-    int32_t readbackResource = -1;
-    std::vector<OwnedBuffer> readbackBuffers;  ///< Per slot.
+    std::vector<BarrierBatch> finals;      ///< Per slot.
+    std::vector<ReadbackTarget> readbacks; ///< One per Readback step of the plan.
+    Plan setup;  ///< planSetup of `plan`: what ran before the first frame.
+
+    [[nodiscard]] const ReadbackTarget* readbackOf(uint32_t resource) const {
+        for (const ReadbackTarget& t : readbacks)
+            if (t.resource == resource) return &t;
+        return nullptr;
+    }
 };
+
+/// What recording one frame needs besides the plan's state.
+struct FrameRecording {
+    uint32_t slot = 0;
+    uint64_t frameIndex = 0;
+    VkSampler linearSampler = VK_NULL_HANDLE;
+    VkSampler repeatSampler = VK_NULL_HANDLE;
+    const FrameData* frameData = nullptr;
+    VkQueryPool queries = VK_NULL_HANDLE;  ///< Two timestamps per pass; none when null.
+    uint32_t queryCount = 0;
+    bool labels = false;  ///< A debug label around each pass.
+};
+
+/// Records frame `r.slot` of `s` into `sink`: each pass's barrier batch and work (inserted
+/// clears and read-backs included), then the final barriers.
+void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r);
+
+/// What the executor does for plan step `pass`.
+[[nodiscard]] StepKind stepKindOf(const PlannedPass& pass);
+/// The plan's barriers of pass `ps` (before it, and in it) for frame slot `slot`, in Vulkan's
+/// form, naming the slot's copies of `s`'s resources.
+void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot);
+/// The plan's final barriers, per frame slot (`slots` of them).
+void translateFinalBarriers(PlanState& s, uint32_t slots);
 
 struct FrameSlot {
     vk::CommandPool pool;
@@ -181,7 +218,6 @@ struct Renderer::Impl {
     VkDevice vkd;
     RendererOptions options;
     ShaderCompiler shaders;
-    vk::Sampler sampler;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
@@ -189,7 +225,6 @@ struct Renderer::Impl {
     std::map<std::string, ImageData> uploads;
     /// Images of other renderers that externals use instead of their own (importImage).
     std::map<std::string, SharedImage> imports;
-    bool layered = false;
     std::unique_ptr<detail::PlanState> state;
     std::vector<detail::FrameSlot> frames;
     uint64_t frameIndex = 0;
@@ -197,13 +232,15 @@ struct Renderer::Impl {
     std::vector<PassTiming> timings;
 
     Impl(Device& d, RendererOptions o)
-        : device(d), dev(d.impl()), vkd(d.device()), options(std::move(o)),
+        : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
           shaders(options.shaderDir, SpirvDiskCache::defaultDir()) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
-    std::unique_ptr<detail::PlanState> build(const GraphDesc& graph, Plan plan);
+    std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);
 
     // --- renderer_resources.cpp: resources and their per-slot copies --------------------------
+    /// Per-frame copies of the plan's read-backs: host-visible buffers.
+    void createReadbackTargets(detail::PlanState& s);
     detail::OwnedBuffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
     VkImageView view(detail::ResourceState& r, uint32_t copy, VkImageViewType type,
                      const SubresourceRange& range, bool attachment);
@@ -211,50 +248,40 @@ struct Renderer::Impl {
     void createResources(detail::PlanState& s);
     /// The single copy of imported resource `r`, after checking that it fits the plan.
     detail::ImageCopy adoptImport(const detail::PlanState& s, size_t index, const SharedImage& image) const;
-    static void fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value);
     void buildSized(detail::PlanState& s);
-    /// Gives every external resource defined contents (its clear value, or grey) and the
-    /// layout the plan expects it to arrive in. Runs once, outside any frame, and waits.
-    void importExternals(detail::PlanState& s);
 
-    // --- renderer_passes.cpp: render passes, framebuffers, descriptors and barriers -----------
+    // --- renderer_setup.cpp: plans around the frame -------------------------------------------
+    /// Runs the plan's setup (planSetup): every external resource gets defined contents (the
+    /// uploaded pixels, its clear value, or grey) and the state the frame expects it in. Runs
+    /// outside any frame and waits.
+    void runSetup(detail::PlanState& s);
+    /// Records `steps` (a setup or image-read plan over resources of `s`) with `record` for
+    /// each step, submits once and waits. `copy` picks the per-slot copy of each resource.
+    void submitAndWait(const std::function<void(detail::CommandSink&)>& record);
+
+    // --- renderer_passes.cpp: recording code, render passes, framebuffers and barriers --------
     void buildPassStatic(detail::PlanState& s, size_t index);
+    /// The recording code of `pass` (type `desc.type`) from options.passes; throws
+    /// ExecutorError naming the pass when there is none.
+    [[nodiscard]] std::unique_ptr<PassImplementation> implementationOf(const PlannedPass& pass, const PassDesc& desc) const;
     static VkAttachmentLoadOp loadOp(LoadOp op);
     static VkAttachmentStoreOp storeOp(StoreOp op);
-    void buildGraphics(detail::PlanState& s, detail::PassState& ps);
     void buildRenderPass(detail::PlanState& s, detail::PassState& ps);
-    VkImageMemoryBarrier2 imageBarrier(const detail::PlanState& s, const Barrier& b, uint32_t slot) const;
-    void translateBarriers(const detail::PlanState& s, std::span<const Barrier> barriers, uint32_t slot,
-                           std::vector<VkImageMemoryBarrier2>& images,
-                           std::vector<VkBufferMemoryBarrier2>& buffers,
-                           std::vector<VkMemoryBarrier2>& memory) const;
-    VkExtent2D bindingExtent(const detail::PlanState& s, const PlannedPass& pass,
-                             const std::vector<ShaderBinding>& bindings, bool& any) const;
     void buildPassSlot(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
     /// What a pass implementation sees of each usage: handles and a view of exactly the
     /// usage's subresources.
     void bindResources(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
-
-    // --- renderer_generic.cpp: the Generic pass -----------------------------------------------
-    static std::vector<VkDescriptorSetLayoutBinding> layoutBindings(const std::vector<ShaderBinding>& bindings);
-    void buildGraphicsPipeline(detail::PlanState& s, detail::PassState& ps);
-    void buildCompute(detail::PassState& ps);
-    void recordTransfers(VkCommandBuffer cmd, detail::PlanState& s, const detail::PassState& ps, uint32_t slot);
-    /// A Generic pass: its transfers, then its dispatch, then its draw.
-    void recordGeneric(VkCommandBuffer cmd, detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+    /// createPipelines of every pass's recording code, with each frame slot's resources.
+    void createPipelines(detail::PlanState& s);
 
     // --- renderer_frame.cpp: frames -----------------------------------------------------------
     void createFrames();
     void ensureQueries(detail::FrameSlot& f, uint32_t count);
     void waitSlot(detail::FrameSlot& f);
     void collectTimings(detail::FrameSlot& f);
-    void dependency(VkCommandBuffer cmd, const std::vector<VkImageMemoryBarrier2>& images,
-                    const std::vector<VkBufferMemoryBarrier2>& buffers,
-                    const std::vector<VkMemoryBarrier2>& memory) const;
-    void recordClear(VkCommandBuffer cmd, detail::PlanState& s, const detail::PassState& ps, uint32_t slot);
-    /// Begins the pass's render pass on the slot's framebuffer, with full-area viewport and scissor.
-    static void beginRenderPass(VkCommandBuffer cmd, const detail::PassState& ps, const detail::PassSlot& sl);
-    void recordPass(VkCommandBuffer cmd, detail::PlanState& s, detail::PassState& ps, uint32_t slot);
+    [[nodiscard]] detail::VulkanCommands::Functions commandFunctions() const;
+    /// Records the current plan's frame for `slot` into `cmd` (begun by the caller); with
+    /// `frame`, timestamps and labels too.
     void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame);
     void renderFrame();
     void waitIdle();

@@ -1,5 +1,5 @@
-// Renderer::Impl: each pass's static state (render pass from the plan's attachments) and its
-// per-slot state (framebuffer, descriptor writes, barriers, bound resources).
+// Renderer::Impl: each pass's static state (its recording code, the render pass from the
+// plan's attachments) and its per-slot state (framebuffer, barriers, bound resources).
 #include "renderer_impl.hpp"
 
 #include <spdlog/spdlog.h>
@@ -10,57 +10,111 @@ namespace skygraph {
 
 using namespace detail;
 
+namespace detail {
+
+PassAttachments attachmentsOf(const PlannedPass& pass, const std::vector<ResourceState>& resources) {
+    PassAttachments a;
+    for (uint32_t i = 0; i < pass.usages.size(); ++i) {
+        const PlannedUsage& u = pass.usages[i];
+        if (u.usage.stage == Stage::ColorAttachment) a.colors.push_back(i);
+        if (u.usage.stage == Stage::DepthAttachment) {
+            if (a.depth >= 0)
+                throw ExecutorError(passError(pass, resources.at(u.resource).desc->name,
+                                              "a pass can have one depth attachment"));
+            a.depth = static_cast<int32_t>(i);
+        }
+    }
+    for (uint32_t c : a.colors) a.layers = std::max(a.layers, pass.usages[c].range.layerCount);
+    if (a.depth >= 0) a.layers = std::max(a.layers, pass.usages[size_t(a.depth)].range.layerCount);
+    return a;
+}
+
+VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
+                             const std::vector<ResourceState>& resources) {
+    std::vector<uint32_t> usages = attachments.colors;
+    if (attachments.depth >= 0) usages.push_back(static_cast<uint32_t>(attachments.depth));
+    VkExtent2D e{0, 0};
+    for (size_t i = 0; i < usages.size(); ++i) {
+        const PlannedUsage& u = pass.usages[usages[i]];
+        const ResourceState& r = resources[u.resource];
+        const uint32_t w = r.mipWidth(u.range.baseMip), h = r.mipHeight(u.range.baseMip);
+        e = i > 0 ? VkExtent2D{std::min(e.width, w), std::min(e.height, h)} : VkExtent2D{w, h};
+    }
+    return e;
+}
+
+}  // namespace detail
+
+std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const PlannedPass& pass, const PassDesc& desc) const {
+    if (!options.passes)
+        throw ExecutorError(passError(pass, "", "no recording code for type '" + desc.type +
+                                                    "': the renderer has no pass library (RendererOptions::passes); "
+                                                    "pass one, e.g. PassLibrary::withBuiltins()"));
+    const PassFactory* factory = options.passes->factory(desc.type);
+    if (!factory) {
+        // Types without recording code of their own run with the library's Generic.
+        factory = options.passes->factory("Generic");
+        if (!factory)
+            throw ExecutorError(passError(pass, "", "type '" + desc.type +
+                                                        "' has no recording code and the pass library has no "
+                                                        "'Generic' to run it with"));
+        spdlog::debug("pass '{}' of type '{}' runs as Generic (performs its declared accesses)", pass.name,
+                      desc.type);
+    }
+    std::unique_ptr<PassImplementation> implementation = (*factory)(desc);
+    if (!implementation) throw ExecutorError(passError(pass, "", "the pass factory returned nothing"));
+    return implementation;
+}
+
 void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     const PlannedPass& pass = s.plan.passes[index];
     PassState ps;
     ps.pass = &pass;
     ps.label = pass.name;
-    ps.isClear = pass.type == "Clear" && pass.declIndex < 0;
-    if (ps.isClear) {
+    ps.kind = stepKindOf(pass);
+    if (ps.kind != StepKind::Pass) {
         for (const PlannedUsage& u : pass.usages) {
             const ResourceState& r = s.resources[u.resource];
-            if (!r.isImage || !r.desc->clear)
+            if (ps.kind == StepKind::Clear && (!r.isImage || !r.desc->clear))
                 throw ExecutorError(passError(pass, r.desc->name, "clear pass on a resource without `clear`"));
+            if (ps.kind == StepKind::Readback && !r.isImage)
+                throw ExecutorError(passError(pass, r.desc->name, "a read-back of a buffer"));
         }
         s.passes.push_back(std::move(ps));
         return;
     }
-    nlohmann::json params = nlohmann::json::object();
-    if (pass.declIndex >= 0 && static_cast<size_t>(pass.declIndex) < s.graph.passes.size()) {
-        ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
-        params = ps.desc->params;
-    }
-    const PassFactory* factory =
-        options.passes && pass.type != "Generic" ? options.passes->factory(pass.type) : nullptr;
-    if (factory && ps.desc) {
-        ps.custom = (*factory)(*ps.desc);
-        if (!ps.custom) throw ExecutorError(passError(pass, "", "the pass factory returned nothing"));
-        for (uint32_t i = 0; i < pass.usages.size(); ++i) {
-            const Stage st = pass.usages[i].usage.stage;
-            if (st == Stage::ColorAttachment) ps.program.colors.push_back(i);
-            if (st == Stage::DepthAttachment) {
-                if (ps.program.depth >= 0)
-                    throw ExecutorError(passError(pass, "", "a pass can have one depth attachment"));
-                ps.program.depth = static_cast<int32_t>(i);
-            }
-        }
-        ps.program.graphics = !ps.program.colors.empty() || ps.program.depth >= 0;
-        for (uint32_t c : ps.program.colors)
-            ps.program.attachmentLayers = std::max(ps.program.attachmentLayers, pass.usages[c].range.layerCount);
-        if (ps.program.graphics) buildRenderPass(s, ps);
-        s.passes.push_back(std::move(ps));
-        return;
-    }
-    if (pass.type != "Generic") {
-        spdlog::debug("pass '{}' of type '{}' runs as Generic (performs its declared accesses)",
-                      pass.name, pass.type);
-    }
-    ps.program = buildGenericProgram(s.graph, s.plan, pass, params, pass.type == "Generic", layered);
-    GenericProgram& p = ps.program;
-
-    if (p.graphics) buildGraphics(s, ps);
-    if (p.compute) buildCompute(ps);
+    if (static_cast<size_t>(pass.declIndex) >= s.graph.passes.size())
+        throw ExecutorError(passError(pass, "", "the plan's pass is not in the graph"));
+    ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
+    ps.implementation = implementationOf(pass, *ps.desc);
+    ps.attachments = attachmentsOf(pass, s.resources);
+    if (ps.attachments.any()) buildRenderPass(s, ps);
     s.passes.push_back(std::move(ps));
+}
+
+void Renderer::Impl::createPipelines(PlanState& s) {
+    for (PassState& ps : s.passes) {
+        if (!ps.implementation) continue;
+        std::vector<std::span<const BoundResource>> frameSlots;
+        for (const PassSlot& sl : ps.slots) frameSlots.emplace_back(sl.bound);
+        PipelineContext pc;
+        pc.device = vkd;
+        pc.physicalDevice = dev.physical;
+        pc.renderPass = ps.renderPass.get();
+        pc.pass = ps.pass;
+        pc.desc = ps.desc;
+        pc.resources = ps.slots[0].bound;
+        pc.frameSlots = frameSlots;
+        pc.outputExtent = {s.outputWidth(), s.outputHeight()};
+        pc.shaders = &shaders;
+        try {
+            ps.implementation->createPipelines(pc);
+        } catch (const ExecutorError&) {
+            throw;
+        } catch (const std::exception& e) {
+            throw ExecutorError(passError(*ps.pass, "", std::string("creating pipelines: ") + e.what()));
+        }
+    }
 }
 
 VkAttachmentLoadOp Renderer::Impl::loadOp(LoadOp op) {
@@ -81,14 +135,9 @@ VkAttachmentStoreOp Renderer::Impl::storeOp(StoreOp op) {
     return VK_ATTACHMENT_STORE_OP_STORE;
 }
 
-void Renderer::Impl::buildGraphics(PlanState& s, PassState& ps) {
-    buildRenderPass(s, ps);
-    buildGraphicsPipeline(s, ps);
-}
-
 void Renderer::Impl::buildRenderPass(PlanState& s, PassState& ps) {
     const PlannedPass& pass = *ps.pass;
-    const GenericProgram& p = ps.program;
+    const PassAttachments& p = ps.attachments;
     // Render pass: every attachment stays in its planned layout (initial = subpass =
     // final), so there are no implicit transitions and no implicit external dependencies.
     std::vector<VkAttachmentDescription> atts;
@@ -142,247 +191,35 @@ void Renderer::Impl::buildRenderPass(PlanState& s, PassState& ps) {
     ps.renderPass = vk::RenderPass(vkd, rp);
 }
 
-VkImageMemoryBarrier2 Renderer::Impl::imageBarrier(const PlanState& s, const Barrier& b, uint32_t slot) const {
-    const ResourceState& r = s.resources.at(b.resource);
-    VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    ib.srcStageMask = b.srcStages;
-    ib.srcAccessMask = b.srcAccess;
-    ib.dstStageMask = b.dstStages;
-    ib.dstAccessMask = b.dstAccess;
-    ib.oldLayout = b.oldLayout;
-    ib.newLayout = b.newLayout;
-    ib.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    ib.image = r.images.at(r.copyFor(slot)).image;
-    ib.subresourceRange = {r.aspect, b.range.baseMip, b.range.mipCount, b.range.baseLayer,
-                           b.range.layerCount};
-    return ib;
-}
-
-void Renderer::Impl::translateBarriers(const PlanState& s, std::span<const Barrier> barriers, uint32_t slot,
-                                       std::vector<VkImageMemoryBarrier2>& images,
-                                       std::vector<VkBufferMemoryBarrier2>& buffers,
-                                       std::vector<VkMemoryBarrier2>& memory) const {
-    for (const Barrier& b : barriers) {
-        if (b.resource >= s.resources.size()) throw ExecutorError("barrier on unknown resource");
-        const ResourceState& r = s.resources[b.resource];
-        switch (b.kind) {
-            case BarrierKind::Image:
-                if (!r.isImage) throw ExecutorError("image barrier on buffer '" + r.desc->name + "'");
-                images.push_back(imageBarrier(s, b, slot));
-                break;
-            case BarrierKind::Buffer: {
-                if (r.isImage) throw ExecutorError("buffer barrier on image '" + r.desc->name + "'");
-                VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
-                bb.srcStageMask = b.srcStages;
-                bb.srcAccessMask = b.srcAccess;
-                bb.dstStageMask = b.dstStages;
-                bb.dstAccessMask = b.dstAccess;
-                bb.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-                bb.buffer = r.buffers.at(r.copyFor(slot)).buffer.get();
-                bb.offset = 0;
-                bb.size = VK_WHOLE_SIZE;
-                buffers.push_back(bb);
-                break;
-            }
-            case BarrierKind::Memory: {
-                VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-                mb.srcStageMask = b.srcStages;
-                mb.srcAccessMask = b.srcAccess;
-                mb.dstStageMask = b.dstStages;
-                mb.dstAccessMask = b.dstAccess;
-                memory.push_back(mb);
-                break;
-            }
-        }
-    }
-}
-
-VkExtent2D Renderer::Impl::bindingExtent(const PlanState& s, const PlannedPass& pass,
-                                         const std::vector<ShaderBinding>& bindings, bool& any) const {
-    VkExtent2D e{1, 1};
-    any = false;
-    for (const auto& b : bindings) {
-        const PlannedUsage& u = pass.usages[b.usage];
-        const ResourceState& r = s.resources[u.resource];
-        if (b.kind == BindKind::StorageImage && b.write) {
-            e.width = std::max(e.width, r.mipWidth(u.range.baseMip));
-            e.height = std::max(e.height, r.mipHeight(u.range.baseMip));
-            any = true;
-        }
-    }
-    for (const auto& b : bindings) {
-        const PlannedUsage& u = pass.usages[b.usage];
-        const ResourceState& r = s.resources[u.resource];
-        if (b.kind == BindKind::StorageBuffer && b.write) {
-            const auto n = static_cast<uint32_t>(std::min<VkDeviceSize>(r.size / 4, 1u << 20));
-            if (!any) {
-                e.width = std::max(e.width, std::min(n, 256u));
-            }
-            e.height = std::max(e.height, (n + e.width - 1) / e.width);
-            any = true;
-        }
-    }
-    return e;
-}
-
 void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
     const PlannedPass& pass = *ps.pass;
-    const GenericProgram& p = ps.program;
     PassSlot& sl = ps.slots[slot];
-    translateBarriers(s, pass.barriers, slot, sl.imageBarriers, sl.bufferBarriers, sl.memoryBarriers);
-    if (ps.isClear) return;
+    translatePassBarriers(s, ps, slot);
+    if (ps.kind != StepKind::Pass) return;
+    bindResources(s, ps, slot);
+    if (!ps.attachments.any()) return;
 
-    // Transfer scratch buffers (sizes depend on the output extent).
-    if (slot == 0) {
-        ps.transferOffsets.clear();
-        ps.transferBytes = 0;
-        for (uint32_t t : p.transfers) {
-            const PlannedUsage& u = pass.usages[t];
-            const ResourceState& r = s.resources[u.resource];
-            ps.transferOffsets.push_back(ps.transferBytes);
-            VkDeviceSize bytes = r.size;
-            if (r.isImage) {
-                bytes = 0;
-                const uint32_t texel = copyTexelBytes(r.desc->format);
-                if (texel == 0)
-                    throw ExecutorError(passError(pass, r.desc->name, "format cannot be copied"));
-                for (uint32_t m = u.range.baseMip; m < u.range.baseMip + u.range.mipCount; ++m)
-                    bytes += VkDeviceSize(r.mipWidth(m)) * r.mipHeight(m) * texel * u.range.layerCount;
-            }
-            ps.transferBytes += (bytes + 15) & ~VkDeviceSize(15);
-        }
-        if (ps.transferBytes > 0) {
-            ps.source = makeBuffer(ps.transferBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
-            auto* bytes = static_cast<uint8_t*>(ps.source.mapped);
-            for (size_t i = 0; i < p.transfers.size(); ++i) {
-                const PlannedUsage& u = pass.usages[p.transfers[i]];
-                const ResourceState& r = s.resources[u.resource];
-                const VkDeviceSize begin = ps.transferOffsets[i];
-                const VkDeviceSize end =
-                    i + 1 < p.transfers.size() ? ps.transferOffsets[i + 1] : ps.transferBytes;
-                if (r.isImage) {
-                    const uint32_t texel = copyTexelBytes(r.desc->format);
-                    const auto t = encodeTexel(r.format, texel, p.color);
-                    for (VkDeviceSize o = begin; o + texel <= end; o += texel)
-                        std::memcpy(bytes + o, t.data(), texel);
-                } else {
-                    fillBufferPattern(bytes + begin, end - begin, p.color[0]);
-                }
-            }
-        }
-    }
-    if (ps.transferBytes > 0)
-        sl.sink = makeBuffer(ps.transferBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
-
-    // Descriptors.
-    const size_t nb = p.graphicsBindings.size() + p.computeBindings.size();
-    size_t imageDescriptors = 0;  // reserved up front: the writes point into imageInfos
-    for (const auto* list : {&p.graphicsBindings, &p.computeBindings})
-        for (const ShaderBinding& b : *list) imageDescriptors += b.levels;
-    sl.imageInfos.reserve(imageDescriptors);
-    sl.bufferInfos.reserve(nb);
-    auto writeFor = [&](const ShaderBinding& b) {
-        const PlannedUsage& u = pass.usages[b.usage];
+    std::vector<VkImageView> views;
+    auto attach = [&](uint32_t usageIndex) {
+        const PlannedUsage& u = pass.usages[usageIndex];
         ResourceState& r = s.resources[u.resource];
-        const uint32_t copy = r.copyFor(slot);
-        VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        w.dstBinding = b.binding;
-        w.descriptorCount = 1;
-        switch (b.kind) {
-            case BindKind::SampledImage:
-            case BindKind::StorageImage: {
-                const bool sampled = b.kind == BindKind::SampledImage;
-                const size_t first = sl.imageInfos.size();
-                if (sampled) {
-                    sl.imageInfos.push_back({sampler.get(), view(r, copy, b.viewType, u.range, false), u.layout});
-                } else {
-                    // Storage views address one level: one descriptor per level of the usage.
-                    for (uint32_t level = 0; level < b.levels; ++level) {
-                        SubresourceRange range = u.range;
-                        range.baseMip = u.range.baseMip + level;
-                        range.mipCount = 1;
-                        sl.imageInfos.push_back({VK_NULL_HANDLE, view(r, copy, b.viewType, range, false), u.layout});
-                    }
-                }
-                w.descriptorCount = uint32_t(sl.imageInfos.size() - first);
-                w.descriptorType = sampled ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                                           : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-                w.pImageInfo = &sl.imageInfos[first];
-                break;
-            }
-            case BindKind::StorageBuffer:
-            case BindKind::UniformBuffer: {
-                const bool uniform = b.kind == BindKind::UniformBuffer;
-                sl.bufferInfos.push_back({r.buffers[copy].buffer.get(), 0,
-                                          uniform ? VkDeviceSize(b.uniformVec4s) * 16 : VK_WHOLE_SIZE});
-                w.descriptorType = uniform ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                           : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-                w.pBufferInfo = &sl.bufferInfos.back();
-                break;
-            }
-        }
-        return w;
+        const VkImageViewType type = u.range.layerCount > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+        views.push_back(view(r, r.copyFor(slot), type, u.range, true));
     };
-    for (const auto& b : p.graphicsBindings) sl.graphicsWrites.push_back(writeFor(b));
-    for (const auto& b : p.computeBindings) sl.computeWrites.push_back(writeFor(b));
-
-    auto bufferOf = [&](uint32_t usageIndex) {
-        const ResourceState& r = s.resources[pass.usages[usageIndex].resource];
-        return r.buffers[r.copyFor(slot)].buffer.get();
-    };
-    for (uint32_t v : p.vertexBuffers) {
-        sl.vertexBuffers.push_back(bufferOf(v));
-        sl.vertexOffsets.push_back(0);
-    }
-    if (p.indexBuffer >= 0) {
-        const auto& r = s.resources[pass.usages[size_t(p.indexBuffer)].resource];
-        if (r.size < 12) throw ExecutorError(passError(pass, r.desc->name, "index buffer smaller than 12 bytes"));
-        sl.indexBuffer = bufferOf(static_cast<uint32_t>(p.indexBuffer));
-    }
-    if (p.indirectBuffer >= 0) {
-        const auto& r = s.resources[pass.usages[size_t(p.indirectBuffer)].resource];
-        if (r.size < 20) throw ExecutorError(passError(pass, r.desc->name, "indirect buffer smaller than 20 bytes"));
-        sl.indirectBuffer = bufferOf(static_cast<uint32_t>(p.indirectBuffer));
-    }
-
-    bool anyCompute = false;
-    sl.computeExtent = bindingExtent(s, pass, p.computeBindings, anyCompute);
-
-    if (p.graphics) {
-        std::vector<VkImageView> views;
-        bool haveExtent = false;
-        VkExtent2D e{0, 0};
-        auto attach = [&](uint32_t usageIndex) {
-            const PlannedUsage& u = pass.usages[usageIndex];
-            ResourceState& r = s.resources[u.resource];
-            const VkImageViewType type = u.range.layerCount > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
-            views.push_back(view(r, r.copyFor(slot), type, u.range, true));
-            const uint32_t w = r.mipWidth(u.range.baseMip), h = r.mipHeight(u.range.baseMip);
-            e = haveExtent ? VkExtent2D{std::min(e.width, w), std::min(e.height, h)} : VkExtent2D{w, h};
-            haveExtent = true;
-        };
-        for (uint32_t c : p.colors) attach(c);
-        if (p.depth >= 0) attach(static_cast<uint32_t>(p.depth));
-        if (!haveExtent) {
-            bool any = false;
-            e = bindingExtent(s, pass, p.graphicsBindings, any);
-            if (!any) e = {options.width, options.height};
-        }
-        sl.extent = e;
-        VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        fci.renderPass = ps.renderPass.get();
-        fci.attachmentCount = static_cast<uint32_t>(views.size());
-        fci.pAttachments = views.data();
-        fci.width = e.width;
-        fci.height = e.height;
-        fci.layers = p.attachmentLayers;
-        VkFramebuffer fb;
-        vk::check(vkCreateFramebuffer(vkd, &fci, nullptr, &fb), "vkCreateFramebuffer");
-        sl.framebuffer = vk::Framebuffer(vkd, fb);
-    }
-    if (ps.custom) bindResources(s, ps, slot);
+    for (uint32_t c : ps.attachments.colors) attach(c);
+    if (ps.attachments.depth >= 0) attach(static_cast<uint32_t>(ps.attachments.depth));
+    const VkExtent2D e = framebufferExtent(pass, ps.attachments, s.resources);
+    sl.extent = e;
+    VkFramebufferCreateInfo fci{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fci.renderPass = ps.renderPass.get();
+    fci.attachmentCount = static_cast<uint32_t>(views.size());
+    fci.pAttachments = views.data();
+    fci.width = e.width;
+    fci.height = e.height;
+    fci.layers = ps.attachments.layers;
+    VkFramebuffer fb;
+    vk::check(vkCreateFramebuffer(vkd, &fci, nullptr, &fb), "vkCreateFramebuffer");
+    sl.framebuffer = vk::Framebuffer(vkd, fb);
 }
 
 void Renderer::Impl::bindResources(PlanState& s, PassState& ps, uint32_t slot) {
@@ -405,6 +242,11 @@ void Renderer::Impl::bindResources(PlanState& s, PassState& ps, uint32_t slot) {
         b.image = r.images[copy].image;
         b.extent = {r.mipWidth(u.range.baseMip), r.mipHeight(u.range.baseMip)};
         const bool attachment = isAttachmentStage(u.usage.stage);
+        if (!attachment && !isShaderStage(u.usage.stage)) {
+            // A copy needs no view, and an image only copied has no usage a view could have.
+            sl.bound.push_back(b);
+            continue;
+        }
         const bool sampled = isShaderStage(u.usage.stage) && resolvedBinding(u.usage, r.desc->isImage()) == BindAs::Sampled;
         VkImageViewType type = VK_IMAGE_VIEW_TYPE_2D;
         if (sampled && r.desc->type == ResourceType::Cube && u.range.layerCount == 6 && u.range.baseLayer == 0) {

@@ -3,7 +3,6 @@
 #include "renderer_impl.hpp"
 
 #include <cstdio>
-#include <cstring>
 
 namespace skygraph {
 
@@ -138,19 +137,9 @@ void Renderer::Impl::describeResources(PlanState& s) {
         ResourceState& r = s.resources[i];
         r.desc = &s.graph.resources[pr.decl];
         r.isImage = r.desc->isImage();
-        // Transients get one copy per frame slot; so does the swapchain target, like the
-        // images of a real swapchain. Other externals persist and are shared.
-        // Externals that the graph writes without exporting them have no cross-frame edge
-        // in the plan; a copy per slot keeps frames in flight apart (slot reuse waits on
-        // its fence).
-        bool written = false;
-        for (const PlannedPass& pass : s.plan.passes)
-            for (const PlannedUsage& u : pass.usages)
-                written = written || (u.resource == i && writesContents(u.usage.access));
-        const bool unexportedWrite = r.desc->external && !r.desc->isExported() && written;
-        r.perSlot = (!r.desc->external || r.desc->final == ExternalState::Present || unexportedWrite) &&
-                    slots > 1;
-        if (unexportedWrite && r.isImage && pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
+        r.perSlot = perFrameInFlight(pr.copies) && slots > 1;
+        if (pr.copies == ResourceCopies::PerFrameWrittenNotExported && r.isImage &&
+            pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
             pr.finalLayout != pr.initialLayout) {
             throw ExecutorError("resource '" + r.desc->name +
                                 "': an external image that the graph writes ends the frame in a "
@@ -197,7 +186,7 @@ void Renderer::Impl::describeResources(PlanState& s) {
             }
         }
     }
-    refuseOversizedResources(s, dev.physical, options.width, options.height, options.framesInFlight);
+    refuseOversizedResources(s, dev.physical, s.outputWidth(), s.outputHeight(), options.framesInFlight);
 }
 
 void Renderer::Impl::createResources(PlanState& s) {
@@ -213,10 +202,10 @@ void Renderer::Impl::createResources(PlanState& s) {
             for (uint32_t c = 0; c < copies; ++c) r.buffers.push_back(makeBuffer(r.size, r.bufferUsage, false));
             continue;
         }
-        const auto ext = d.extent.resolve(options.width, options.height);
+        const auto ext = d.extent.resolve(s.outputWidth(), s.outputHeight());
         r.width = ext[0];
         r.height = ext[1];
-        r.mips = std::max(1u, d.mipCount(options.width, options.height));
+        r.mips = std::max(1u, d.mipCount(s.outputWidth(), s.outputHeight()));
         r.layers = std::max(1u, d.layers);
         VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         ci.flags = d.type == ResourceType::Cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
@@ -274,16 +263,6 @@ void Renderer::Impl::createResources(PlanState& s) {
     }
 }
 
-void Renderer::Impl::fillBufferPattern(uint8_t* dst, VkDeviceSize bytes, float value) {
-    const size_t words = static_cast<size_t>(bytes / 4);
-    uint32_t valueBits;
-    std::memcpy(&valueBits, &value, 4);
-    for (size_t i = 0; i < words; ++i) {
-        const uint32_t w = i == 0 ? 3u : i == 1 ? 1u : i < 8 ? 0u : valueBits;
-        std::memcpy(dst + i * 4, &w, 4);
-    }
-}
-
 void Renderer::Impl::buildSized(PlanState& s) {
     const uint32_t slots = options.framesInFlight;
     createResources(s);
@@ -292,30 +271,24 @@ void Renderer::Impl::buildSized(PlanState& s) {
         ps.slots.resize(slots);
         for (uint32_t slot = 0; slot < slots; ++slot) buildPassSlot(s, ps, slot);
     }
-    s.finals.assign(slots, {});
-    for (uint32_t slot = 0; slot < slots; ++slot) {
-        translateBarriers(s, s.plan.finalBarriers, slot, s.finals[slot].imageBarriers,
-                          s.finals[slot].bufferBarriers, s.finals[slot].memoryBarriers);
-    }
-    // Read-back target.
-    s.readbackResource = -1;
-    s.readbackBuffers.clear();
-    for (size_t i = 0; i < s.resources.size(); ++i) {
-        const ResourceDesc& d = *s.resources[i].desc;
-        const bool match = options.readback.empty() ? d.final == ExternalState::Present
-                                                    : d.name == options.readback;
-        if (match && s.resources[i].isImage &&
-            s.plan.resources[i].finalLayout == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL) {
-            s.readbackResource = static_cast<int32_t>(i);
-        }
-    }
-    if (s.readbackResource >= 0) {
-        const ResourceState& r = s.resources[size_t(s.readbackResource)];
+    translateFinalBarriers(s, slots);
+    createReadbackTargets(s);
+    runSetup(s);
+}
+
+void Renderer::Impl::createReadbackTargets(PlanState& s) {
+    s.readbacks.clear();
+    for (uint32_t step = 0; step < s.plan.passes.size(); ++step) {
+        if (s.passes[step].kind != StepKind::Readback) continue;
+        ReadbackTarget t;
+        t.step = step;
+        t.resource = s.plan.passes[step].usages[0].resource;
+        const ResourceState& r = s.resources[t.resource];
         const VkDeviceSize bytes = VkDeviceSize(r.width) * r.height * copyTexelBytes(r.desc->format);
-        for (uint32_t slot = 0; slot < slots; ++slot)
-            s.readbackBuffers.push_back(makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
+        for (uint32_t slot = 0; slot < options.framesInFlight; ++slot)
+            t.perSlot.push_back(makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
+        s.readbacks.push_back(std::move(t));
     }
-    importExternals(s);
 }
 
 ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const SharedImage& shared) const {
@@ -344,153 +317,6 @@ ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const Sh
     copy.storage = from.storage;
     copy.image = from.storage->image.get();
     return copy;
-}
-
-void Renderer::Impl::importExternals(PlanState& s) {
-    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    pci.queueFamilyIndex = dev.queueFamily;
-    VkCommandPool rawPool;
-    vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &rawPool), "vkCreateCommandPool");
-    vk::CommandPool pool(vkd, rawPool);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = rawPool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer cmd;
-    vk::check(vkAllocateCommandBuffers(vkd, &ai, &cmd), "vkAllocateCommandBuffers");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk::check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
-
-    std::vector<OwnedBuffer> staging;
-    std::vector<VkImageMemoryBarrier2> toDst, toInitial;
-    for (size_t i = 0; i < s.resources.size(); ++i) {
-        ResourceState& r = s.resources[i];
-        if (!r.desc->external || imports.count(r.desc->name)) continue;  // imports: the producer's
-        if (!r.isImage) {
-            staging.push_back(makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true));
-            fillBufferPattern(static_cast<uint8_t*>(staging.back().mapped), r.size, 0.5f);
-            for (auto& b : r.buffers) {
-                VkBufferCopy region{0, 0, r.size};
-                vkCmdCopyBuffer(cmd, staging.back().buffer.get(), b.buffer.get(), 1, &region);
-            }
-            continue;
-        }
-        for (auto& img : r.images) {
-            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-            b.dstStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-            b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-            b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = img.image;
-            b.subresourceRange = {r.aspect, 0, r.mips, 0, r.layers};
-            toDst.push_back(b);
-            const VkImageLayout initial = s.plan.resources[i].initialLayout;
-            VkImageMemoryBarrier2 t = b;
-            t.srcStageMask = VK_PIPELINE_STAGE_2_CLEAR_BIT;
-            t.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            t.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-            t.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-            t.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            t.newLayout = initial == VK_IMAGE_LAYOUT_UNDEFINED ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : initial;
-            toInitial.push_back(t);
-        }
-    }
-    auto barrier = [&](std::vector<VkImageMemoryBarrier2>& images) {
-        if (images.empty()) return;
-        VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        di.imageMemoryBarrierCount = static_cast<uint32_t>(images.size());
-        di.pImageMemoryBarriers = images.data();
-        vkCmdPipelineBarrier2(cmd, &di);
-    };
-    barrier(toDst);
-    for (size_t i = 0; i < s.resources.size(); ++i) {
-        ResourceState& r = s.resources[i];
-        if (!r.desc->external || !r.isImage || imports.count(r.desc->name)) continue;
-        for (auto& img : r.images) {
-            const VkImageSubresourceRange range{r.aspect, 0, r.mips, 0, r.layers};
-            if (r.desc->format.isDepthStencil()) {
-                VkClearDepthStencilValue v{r.desc->clear ? r.desc->clear->depth : 1.0f,
-                                           r.desc->clear ? r.desc->clear->stencil : 0u};
-                vkCmdClearDepthStencilImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
-            } else {
-                VkClearColorValue v{};
-                const std::array<float, 4> grey{0.5f, 0.5f, 0.5f, 1.0f};
-                const auto& c = r.desc->clear ? r.desc->clear->color : grey;
-                if (scalarPrefix(r.format).empty()) {
-                    std::memcpy(v.float32, c.data(), 16);
-                } else {
-                    for (int k = 0; k < 4; ++k) v.uint32[k] = static_cast<uint32_t>(c[size_t(k)]);
-                }
-                vkCmdClearColorImage(cmd, img.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
-            }
-        }
-    }
-    // Loaded textures: copy their pixels over the clear into mip 0 of every layer.
-    std::vector<VkImageMemoryBarrier2> afterClear;
-    std::vector<std::pair<VkImage, const ResourceState*>> pendingUploads;
-    for (size_t i = 0; i < s.resources.size(); ++i) {
-        ResourceState& r = s.resources[i];
-        if (!r.desc->external || !r.isImage || !uploads.count(r.desc->name) || imports.count(r.desc->name))
-            continue;
-        for (auto& img : r.images) {
-            VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-            b.srcStageMask = b.dstStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-            b.srcAccessMask = b.dstAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            b.oldLayout = b.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-            b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-            b.image = img.image;
-            b.subresourceRange = {r.aspect, 0, 1, 0, r.layers};
-            afterClear.push_back(b);
-            pendingUploads.emplace_back(img.image, &r);
-        }
-    }
-    barrier(afterClear);
-    for (const auto& [image, rp] : pendingUploads) {
-        const ResourceState& r = *rp;
-        const ImageData& px = uploads.at(r.desc->name);
-        const uint32_t texel = copyTexelBytes(r.desc->format);
-        const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
-        staging.push_back(makeBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true));
-        auto* dst = static_cast<uint8_t*>(staging.back().mapped);
-        for (uint32_t l = 0; l < r.layers; ++l)
-            for (size_t p = 0; p < size_t(r.width) * r.height; ++p) {
-                const std::array<float, 4> c{px.rgba[p * 4], px.rgba[p * 4 + 1], px.rgba[p * 4 + 2],
-                                             px.rgba[p * 4 + 3]};
-                const auto t = encodeTexel(r.format, texel, c);
-                std::memcpy(dst + l * layerBytes + p * texel, t.data(), texel);
-            }
-        VkBufferImageCopy c{};
-        c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, r.layers};
-        c.imageExtent = {r.width, r.height, 1};
-        vkCmdCopyBufferToImage(cmd, staging.back().buffer.get(), image,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &c);
-    }
-    for (auto& t : toInitial) {
-        t.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    }
-    barrier(toInitial);
-    if (!staging.empty()) {
-        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-        VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        di.memoryBarrierCount = 1;
-        di.pMemoryBarriers = &mb;
-        vkCmdPipelineBarrier2(cmd, &di);
-    }
-    vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
-    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    cbi.commandBuffer = cmd;
-    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &cbi;
-    vk::check(vkQueueSubmit2(dev.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit2");
-    vk::check(vkQueueWaitIdle(dev.queue), "vkQueueWaitIdle");
 }
 
 }  // namespace skygraph

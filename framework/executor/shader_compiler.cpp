@@ -1,6 +1,6 @@
 #include <skygraph/shader_compiler.hpp>
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 
 #include "spirv_cache.hpp"
 

@@ -1,7 +1,7 @@
 // Internal helpers for the executor: error checking and small RAII owners of Vulkan handles.
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/vk_handles.hpp>
 
 #include <vulkan/vulkan_core.h>

@@ -1,6 +1,8 @@
 // What a loaded scene means for the frame: graph features, the tonemapper, names.
 #include <skygraph/scene.hpp>
 
+#include "shipped_names.hpp"
+
 #include <cmath>
 #include <numbers>
 
@@ -8,28 +10,33 @@ namespace skygraph {
 
 FeatureValues sceneFeatures(const Scene& scene) {
     const bool file = scene.environment && !scene.environment->procedural;
-    return {{"geometry", !scene.objects.empty()},
-            {"skybox", scene.environment.has_value()},
-            {"environment_file", file},
+    using namespace shipped;
+    return {{std::string(kGeometryFeature), !scene.objects.empty()},
+            {std::string(kSkyboxFeature), scene.environment.has_value()},
+            {std::string(kEnvironmentFileFeature), file},
             // The procedural sky is evaluated per pixel; only a file is sampled either way.
-            {"sample_cubemap", file && scene.environment->sampling == EnvironmentSampling::Cubemap}};
+            {std::string(kSampleCubemapFeature),
+             file && scene.environment->sampling == EnvironmentSampling::Cubemap}};
 }
 
 std::vector<std::string> explainSceneFeatures(const Scene& scene) {
+    using namespace shipped;
+    const std::string geometry(kGeometryFeature), skybox(kSkyboxFeature);
+    const std::string environmentFile(kEnvironmentFileFeature), sampleCubemap(kSampleCubemapFeature);
     std::vector<std::string> lines;
     const size_t n = scene.objects.size();
-    lines.push_back(n ? "geometry = on: the scene has " + std::to_string(n) + (n == 1 ? " object" : " objects")
-                      : "geometry = off: the scene has no objects (no forward pass, no depth)");
+    lines.push_back(n ? geometry + " = on: the scene has " + std::to_string(n) + (n == 1 ? " object" : " objects")
+                      : geometry + " = off: the scene has no objects (no forward pass, no depth)");
     if (!scene.environment)
-        lines.push_back("skybox = off: the scene has no environment (no skybox, no IBL)");
+        lines.push_back(skybox + " = off: the scene has no environment (no skybox, no IBL)");
     else if (scene.environment->procedural)
-        lines.push_back("skybox = on: environment is the procedural sky");
+        lines.push_back(skybox + " = on: environment is the procedural sky");
     else
-        lines.push_back("skybox = on, environment_file = on: environment is '" +
+        lines.push_back(skybox + " = on, " + environmentFile + " = on: environment is '" +
                         scene.environment->file.string() + "', sampled " +
                         (scene.environment->sampling == EnvironmentSampling::Cubemap
-                             ? "through a cubemap (sample_cubemap = on)"
-                             : "directly as equirect (sample_cubemap = off)"));
+                             ? "through a cubemap (" + sampleCubemap + " = on)"
+                             : "directly as equirect (" + sampleCubemap + " = off)"));
     return lines;
 }
 

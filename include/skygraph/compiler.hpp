@@ -47,6 +47,11 @@ struct CompileOptions {
     /// how a consumer asks for just the products it samples (e.g. graphs/ibl.json builds only
     /// the cube a skybox-only scene needs). An unknown name is an error.
     std::optional<std::set<std::string, std::less<>>> outputs;
+    /// Images copied to the host at the end of every frame (the first mip and layer), by
+    /// steps of type Readback after the last pass; the final barriers make the copies visible
+    /// to the host. Each is kept as an output, exported as TransferSrc unless the file exports
+    /// it. An unknown name, a buffer, or an image that nothing writes is an error.
+    std::set<std::string, std::less<>> readbacks;
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the

@@ -1,4 +1,4 @@
-// Feature-flag conditions: the `if` of a pass (contract §1, "Conditions").
+// Feature-flag conditions: the `if` of a pass (docs/graph-format.md, "Features and conditions").
 #pragma once
 
 #include <map>

@@ -22,7 +22,7 @@ struct Diagnostic {
     [[nodiscard]] std::string format() const;
 };
 
-/// Collects every problem instead of stopping at the first, as the contract demands.
+/// Collects every problem instead of stopping at the first (docs/graph-format.md, "Errors").
 class Diagnostics {
 public:
     void add(Diagnostic d) { items_.push_back(std::move(d)); }

@@ -19,7 +19,8 @@ namespace skygraph {
 
 enum class ResourceType : uint8_t { Image2D, Cube, Image2DArray, Buffer };
 
-/// The state a resource arrives in (`initial`) or is left in (`final`).
+/// The state a resource arrives in (`initial`) or is left in (`final`): docs/graph-format.md,
+/// "External, initial and final".
 enum class ExternalState : uint8_t { None, Present, TransferSrc, ShaderRead, General };
 
 /// `"output"`, `"output/N"` or `[w, h]`.

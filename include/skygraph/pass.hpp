@@ -32,12 +32,13 @@ class ShaderCompiler;
 /// stored by type. The renderer owns it; passes read it while recording.
 class FrameData {
 public:
-    /// Stores (replaces) the value of type T.
+    /// Stores (replaces) the value of type T; the FrameData owns the copy.
     template <typename T>
     void set(T value) {
         values_[std::type_index(typeid(T))] = std::move(value);
     }
-    /// The value of type T, or nullptr when none was set.
+    /// The value of type T, or nullptr when none was set. The pointer is valid until a value
+    /// of type T is set again or the FrameData is destroyed.
     template <typename T>
     [[nodiscard]] const T* get() const {
         auto it = values_.find(std::type_index(typeid(T)));
@@ -48,13 +49,16 @@ private:
     std::unordered_map<std::type_index, std::any> values_;
 };
 
-/// One resource as a pass sees it through one of its usages.
+/// One resource as a pass sees it through one of its usages. The renderer owns the handles and
+/// the plan and graph the pointers point into; see PipelineContext and RecordContext for how
+/// long they are valid.
 struct BoundResource {
     const PlannedUsage* usage = nullptr;
     const ResourceDesc* desc = nullptr;
     VkImage image = VK_NULL_HANDLE;
     /// A view of exactly the usage's mips and layers (cube views for whole cubes that are
-    /// sampled; 2D-array views for storage access to cube faces).
+    /// sampled; 2D-array views for storage access to cube faces). VK_NULL_HANDLE for Transfer
+    /// usages: copies take the image.
     VkImageView view = VK_NULL_HANDLE;
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceSize size = 0;
@@ -66,13 +70,21 @@ struct BoundResource {
 struct PipelineContext {
     VkDevice device = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
-    /// For graphics passes: the render pass the executor will begin around `record`, with one
-    /// subpass whose colour attachments are the pass's ColorAttachment usages in usage order
-    /// and whose depth attachment is its DepthAttachment usage. VK_NULL_HANDLE for others.
+    /// For graphics passes (those with a ColorAttachment or DepthAttachment usage): the render
+    /// pass the executor will begin around `record`, with one subpass whose colour attachments
+    /// are the pass's ColorAttachment usages in usage order and whose depth attachment is its
+    /// DepthAttachment usage. VK_NULL_HANDLE for others.
     VkRenderPass renderPass = VK_NULL_HANDLE;
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::span<const BoundResource> resources;  ///< Parallel to pass->usages (frame slot 0).
+    /// The resources of every frame slot (RendererOptions::framesInFlight of them), each
+    /// parallel to pass->usages; element 0 is `resources`. A slot's handles stay the same for
+    /// the pass implementation's whole life: `record` for frame slot s (RecordContext::frameSlot)
+    /// gets exactly frameSlots[s], so what a pass prepares per slot here (views, descriptor
+    /// writes, scratch buffers) stays valid. The spans are valid only during the call.
+    std::span<const std::span<const BoundResource>> frameSlots;
+    VkExtent2D outputExtent{0, 0};  ///< The plan's output extent.
     ShaderCompiler* shaders = nullptr;
 };
 
@@ -82,17 +94,25 @@ struct RecordContext {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::span<const BoundResource> resources;  ///< Parallel to pass->usages.
+    uint32_t frameSlot = 0;  ///< Whose resources these are: PipelineContext::frameSlots[frameSlot].
     VkExtent2D renderArea{0, 0};  ///< Graphics passes: the framebuffer's extent.
     VkSampler linearSampler = VK_NULL_HANDLE;  ///< Trilinear, clamp to edge.
     VkSampler repeatSampler = VK_NULL_HANDLE;  ///< Trilinear, repeat in U, clamp in V (equirect).
     const FrameData* frame = nullptr;
     uint64_t frameIndex = 0;
+    /// Records the plan's in-pass barriers of this pass (Plan::inPassBarriers). A pass with a
+    /// ReadWrite transfer calls it once, between its copies out and its copies in; it is the
+    /// only barrier a pass may record, and the executor provides it.
+    std::function<void()> recordInPassBarriers;
 
-    /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which.
+    /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which. The
+    /// pointer is into `resources`: valid during the call only.
     [[nodiscard]] const BoundResource* slot(std::string_view name, size_t nth = 0) const;
 };
 
-/// The recording code of one pass instance. Created once per pass of a plan; not copyable.
+/// The recording code of one pass instance. Created once per pass of a plan and owned by the
+/// renderer, which destroys it with the plan state (a new plan, a resize, a shader reload);
+/// not copyable. Vulkan objects it creates are its own to destroy.
 class PassImplementation {
 public:
     PassImplementation() = default;
@@ -101,12 +121,17 @@ public:
     PassImplementation& operator=(const PassImplementation&) = delete;
 
     /// Builds pipelines. Called when the plan is installed and again on shader hot reload;
-    /// throwing keeps the previous pipelines of every pass running (the seed's pattern).
+    /// throwing keeps the previous pipelines of every pass running.
     virtual void createPipelines(const PipelineContext& context) = 0;
 
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
     /// and, for graphics passes, begun the render pass; it ends it afterwards.
     virtual void record(const RecordContext& context) = 0;
+
+    /// Graphics passes only: records what Vulkan does not allow inside a render pass (copies,
+    /// dispatches) before the executor begins it; `record` follows inside the render pass with
+    /// the same context. The plan's barrier batch is already recorded. By default nothing.
+    virtual void recordBeforeRenderPass(const RecordContext& context) { (void)context; }
 };
 
 using PassFactory = std::function<std::unique_ptr<PassImplementation>(const PassDesc&)>;
@@ -115,15 +140,20 @@ using PassFactory = std::function<std::unique_ptr<PassImplementation>(const Pass
 /// factory the executor records with. Copyable; owns its entries.
 class PassLibrary {
 public:
-    /// Generic, Clear and the built-in passes of the seed documents.
+    /// Generic and the built-in passes (docs/graph-format.md, "Built-in pass types"), each
+    /// with its recording code; Generic's performs exactly the declared accesses. Defined by
+    /// the built-in passes' library (skygraph_passes, passes/): link it to call this.
     [[nodiscard]] static PassLibrary withBuiltins();
 
     /// Registers a pass type. Throws std::invalid_argument when the name is taken.
     void add(PassTypeInfo info, PassFactory factory);
 
-    /// The declarations, for loadGraphFile / parseGraph.
+    /// The declarations, for loadGraphFile / parseGraph. The reference is valid while the
+    /// library lives (and is not assigned to); add() extends what it holds.
     [[nodiscard]] const PassRegistry& registry() const noexcept { return registry_; }
-    /// nullptr when the type has no recording code.
+    /// nullptr when the type has no recording code (a renderer then runs it with the
+    /// library's "Generic"). The pointer is valid while the library lives (and is not assigned
+    /// to).
     [[nodiscard]] const PassFactory* factory(std::string_view type) const;
 
 private:

@@ -54,7 +54,8 @@ public:
     /// An empty registry. Most callers want `withBuiltins()`.
     PassRegistry() = default;
 
-    /// Generic plus the seed's passes (forward, skybox, tonemapping, environment pipeline).
+    /// Generic plus the built-in passes (forward, skybox, tonemapping, environment pipeline).
+    /// Defined by the pass types' library (skygraph_pass_types, passes/): link it to call this.
     [[nodiscard]] static PassRegistry withBuiltins();
 
     /// Registers a type. Throws std::invalid_argument if the name is taken or a slot is
@@ -72,7 +73,7 @@ private:
     std::map<std::string, PassTypeInfo, std::less<>> types_;
 };
 
-/// Adds the seed's pass types; `withBuiltins()` calls it. Defined in passes/.
+/// Adds the built-in pass types; `withBuiltins()` calls it. Defined in skygraph_pass_types.
 void registerBuiltinPassTypes(PassRegistry& registry);
 
 }  // namespace skygraph

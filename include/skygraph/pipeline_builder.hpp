@@ -10,7 +10,7 @@
 // Every function throws ExecutorError on failure and then leaves nothing behind.
 #pragma once
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/shader_compiler.hpp>
 #include <skygraph/vk_handles.hpp>
 

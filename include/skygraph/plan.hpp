@@ -83,6 +83,23 @@ struct PlannedPass {
     std::span<const PlannedUsage> usages;  ///< Views the plan's usage array.
 };
 
+/// How many copies of a resource the executor keeps, and why. Frames in flight overlap on
+/// the GPU, and only an exported resource's final barrier orders one frame's accesses before
+/// the next frame's; every other resource that a frame writes gets a copy per frame in flight.
+enum class ResourceCopies : uint8_t {
+    PerFrameTransient,           ///< Not external: written anew by every frame.
+    PerFramePresented,           ///< The swapchain target (`final: Present`), like swapchain images.
+    PerFrameWrittenNotExported,  ///< External, written, not exported: nothing orders the frames.
+    SharedExported,              ///< External and exported: its contents carry from frame to frame.
+    SharedReadOnly,              ///< External and only read.
+};
+
+/// Whether the executor keeps one copy of the resource per frame in flight.
+[[nodiscard]] constexpr bool perFrameInFlight(ResourceCopies c) noexcept {
+    return c == ResourceCopies::PerFrameTransient || c == ResourceCopies::PerFramePresented ||
+           c == ResourceCopies::PerFrameWrittenNotExported;
+}
+
 /// A resource that at least one scheduled pass uses. Unused resources are not listed.
 struct PlannedResource {
     std::string_view name;    ///< Views the plan's shared name tables, like PlannedPass::name.
@@ -95,8 +112,16 @@ struct PlannedResource {
     VkImageLayout initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     /// Layout after the final barriers; the next frame's `initialLayout` for externals.
     VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    ResourceCopies copies = ResourceCopies::PerFrameTransient;
 };
-static_assert(sizeof(PlannedResource) == 48, "PlannedResource: members ordered to pack (a plan holds one per resource)");
+
+/// A barrier between two commands of one pass. A ReadWrite transfer is a copy out of the
+/// subresources and then a copy into them; the copy in waits for the copy out.
+struct InPassBarrier {
+    uint32_t pass = 0;   ///< Index into Plan::passes.
+    uint32_t usage = 0;  ///< Index into that pass's usages: the ReadWrite transfer.
+    Barrier barrier;
+};
 
 struct CulledPass {
     std::string name;
@@ -110,9 +135,15 @@ struct PlanBuilder;  // the compiler's way of filling a plan's storage
 struct Plan {
     std::string graph;
     FeatureValues features;
+    /// The output extent the plan was compiled for: `"output"` extents and `"mips": "full"`
+    /// chains resolve against it, so the plan is valid at this size only.
+    uint32_t outputWidth = 0;
+    uint32_t outputHeight = 0;
     std::vector<PlannedResource> resources;
     std::vector<PlannedPass> passes;
     std::vector<Barrier> finalBarriers;
+    /// In pass order; empty unless a pass performs a ReadWrite transfer.
+    std::vector<InPassBarrier> inPassBarriers;
     std::vector<CulledPass> culled;
 
     /// Index into `resources` for a graph resource, or -1 when no scheduled pass uses it.

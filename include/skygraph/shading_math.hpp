@@ -1,4 +1,4 @@
-// The math of the seed's passes, on the CPU, templated on the scalar type: `double` is the
+// The math of the built-in passes, on the CPU, templated on the scalar type: `double` is the
 // reference that GPU images are tested against; `float` mirrors the GLSL in shaders/common/
 // line for line. Conventions (docs/conventions.md):
 //   - world: right-handed, +Y up; a camera with yaw = pitch = roll = 0 looks down -Z;
@@ -81,7 +81,7 @@ Vec2<T> pixelToNdc(T px, T py, T width, T height) {
     return {(T(2) * (px + T(0.5)) / width) - T(1), (T(2) * (py + T(0.5)) / height) - T(1)};
 }
 
-/// The seed's method (unproject the near point, subtract the camera position), kept to
+/// The near-point method (unproject the near point, subtract the camera position), kept to
 /// measure what it loses far from the origin. `invViewProj` maps clip to world.
 template <typename T>
 Vec3<T> seedViewRay(const Vec2<T>& ndc, const Mat4<T>& invViewProj, const Vec3<T>& position) {
@@ -189,7 +189,7 @@ T sanitizeHdr(T x) {
     return x < T(65504) ? x : T(65504);
 }
 
-/// Narkowicz 2015 ACES fit, the seed's constants.
+/// Narkowicz 2015 ACES fit, his published constants (no 0.6 pre-exposure: docs/tradeoffs.md).
 template <typename T>
 T acesNarkowicz(T x) {
     const T a = T(2.51), b = T(0.03), c = T(2.43), d = T(0.59), e = T(0.14);

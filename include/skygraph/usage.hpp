@@ -1,4 +1,4 @@
-// How a pass touches a resource: the vocabulary of graph files (contract §1, "Usages").
+// How a pass touches a resource: the vocabulary of graph files (docs/graph-format.md, "Usages").
 #pragma once
 
 #include <cstdint>
@@ -87,9 +87,10 @@ struct Usage {
 [[nodiscard]] std::string toString(const UsageMode& u);
 [[nodiscard]] inline std::string toString(const Usage& u) { return toString(u.mode()); }
 
-/// The `as` a usage gets when the file leaves it out (contract §1): for a shader stage, storage
-/// for buffers and image writes, sampled for image reads; other stages keep Default. The
-/// loader resolves every usage it reads; GraphDescs built in code may leave it to this.
+/// The `as` a usage gets when the file leaves it out (docs/graph-format.md, "Usages"): for a
+/// shader stage, storage for buffers and image writes, sampled for image reads; other stages
+/// keep Default. The loader resolves every usage it reads; GraphDescs built in code may leave
+/// it to this.
 [[nodiscard]] constexpr BindAs resolvedBinding(const UsageMode& u, bool image) noexcept {
     if (u.as != BindAs::Default || !isShaderStage(u.stage)) return u.as;
     if (!image) return BindAs::Storage;

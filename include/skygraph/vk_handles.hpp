@@ -35,6 +35,8 @@ public:
         handle_ = VK_NULL_HANDLE;
     }
     [[nodiscard]] T get() const noexcept { return handle_; }
+    /// Gives up ownership: the handle is returned and no longer destroyed here.
+    [[nodiscard]] T release() noexcept { return std::exchange(handle_, T(VK_NULL_HANDLE)); }
     [[nodiscard]] explicit operator bool() const noexcept { return handle_ != VK_NULL_HANDLE; }
 
 private:

@@ -1,5 +1,5 @@
 #version 450
-// The seed's fullscreen triangle: three vertices, no vertex buffer; (-1,-1) (3,-1) (-1,3).
+// A fullscreen triangle: three vertices, no vertex buffer; (-1,-1) (3,-1) (-1,3).
 layout(location = 0) out vec2 outUv;
 
 void main() {

@@ -630,7 +630,7 @@ TEST(Ranges, APlannedUsageKeepsItsModeAndTheResolvedRange) {
     EXPECT_EQ(all[0].range, (SubresourceRange{0, 4, 0, 1}));
     const auto& one = pass(plan, "one").usages;
     ASSERT_EQ(one.size(), 1u);
-    // The loader settles the binding the file left out (contract §1).
+    // The loader settles the binding the file left out (docs/graph-format.md, "Usages").
     EXPECT_EQ(one[0].usage, (UsageMode{Access::Read, Stage::Fragment, BindAs::Sampled}));
     EXPECT_EQ(one[0].range, (SubresourceRange{2, 1, 0, 1}));
     EXPECT_EQ(toString(one[0].usage), "Read@Fragment as sampled");

@@ -1,5 +1,6 @@
-// `skygraph compile` as users call it (contract §3): exit status 0 on success, 1 on a user
-// error with the message on stderr and nothing half-written, 2 on misuse of the command line.
+// `skygraph compile` as users call it (docs/graph-format.md, "Command line"): exit status 0
+// on success, 1 on a user error with the message on stderr and nothing half-written, 2 on
+// misuse of the command line.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -226,6 +227,23 @@ TEST_F(Cli, TextAndDotFormats) {
     EXPECT_NE(dot.out.find("feature 'blur' is off"), std::string::npos) << dot.out;
 }
 
+// What runs before the first frame is part of what `compile` shows, in every format.
+TEST_F(Cli, EveryFormatShowsTheSetupBeforeTheFirstFrame) {
+    const CliRun text = run({"compile", "graphs/pathtrace.json"});
+    ASSERT_EQ(text.status, 0) << text.err;
+    EXPECT_NE(text.out.find("setup, once before the first frame:"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("initialize accumulation (Clear)"), std::string::npos) << text.out;
+    const CliRun json = run({"compile", "graphs/pathtrace.json", "--format", "json"});
+    ASSERT_EQ(json.status, 0) << json.err;
+    const auto plan = nlohmann::json::parse(json.out);
+    ASSERT_TRUE(plan.contains("setup")) << json.out;
+    EXPECT_EQ(plan["setup"]["passes"][0]["name"], "initialize accumulation");
+    const CliRun dot = run({"compile", "graphs/pathtrace.json", "--format", "dot"});
+    ASSERT_EQ(dot.status, 0) << dot.err;
+    EXPECT_NE(dot.out.find("cluster_setup"), std::string::npos) << dot.out;
+    EXPECT_NE(dot.out.find("initialize accumulation"), std::string::npos) << dot.out;
+}
+
 TEST_F(Cli, EveryShippedGraphCompiles) {
     for (const char* g : {"graphs/raster.json", "graphs/pathtrace.json", "graphs/ibl.json"}) {
         const CliRun r = run({"compile", g, "--format", "json"});
@@ -410,6 +428,48 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
         EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
         EXPECT_TRUE(workFiles().empty()) << args[1];
     }
+}
+
+// A graph without a Present image: a compute-only bake writes nothing unless asked, and then
+// only an image it names.
+const char* kComputeOnlyGraph = R"({
+  "version": 1, "name": "bake",
+  "resources": {
+    "field": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16],
+               "external": true, "final": "ShaderRead" },
+    "table": { "type": "buffer", "size": 256, "external": true, "final": "ShaderRead" }
+  },
+  "passes": [ { "name": "bake", "type": "Generic", "uses": { "field": "Write@Compute", "table": "Write@Compute" } } ]
+})";
+
+TEST_F(Cli, RenderOfAGraphWithoutAPresentImageRendersValidatesAndExitsZero) {
+    const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
+    const CliRun r = run({"render", graph.string(), "--frames", "2", "--validate"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("graph 'bake' has no Present image: no file is written"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
+
+    const fs::path out = dir_ / "work" / "field.exr";
+    const CliRun named = run({"render", graph.string(), "--frames", "2", "--validate", "--readback", "field",
+                              "-o", out.string()});
+    ASSERT_EQ(named.status, 0) << named.err;
+    EXPECT_TRUE(fs::exists(out));
+}
+
+TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
+    const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
+    const fs::path out = dir_ / "work" / "out.png";
+    const CliRun r = run({"render", graph.string(), "-o", out.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("nothing to write to " + out.string() + ": graph 'bake' has no Present image; add "
+                         "--readback NAME with one of its images: field"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(workFiles().empty());
+    const CliRun buffer = run({"render", graph.string(), "--readback", "table", "-o", out.string()});
+    EXPECT_EQ(buffer.status, 1) << buffer.err;
+    EXPECT_NE(buffer.err.find("cannot read back 'table': it is a buffer"), std::string::npos) << buffer.err;
+    EXPECT_TRUE(workFiles().empty());
 }
 
 // The built-in graph and scene on lavapipe under validation; the bar counts frames when asked

@@ -1,5 +1,5 @@
-// Feature conditions (contract §1, "Conditions"): grammar, precedence, errors with columns,
-// and limits that keep hostile input from exhausting the stack.
+// Feature conditions (docs/graph-format.md, "Features and conditions"): grammar, precedence,
+// errors with columns, and limits that keep hostile input from exhausting the stack.
 #include <skygraph/condition.hpp>
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
-// Error tests for the loader and the compiler's feature-dependent checks (contract §1: every
-// error names the file, the JSON path and, where one is involved, the pass and the resource;
-// a file with several errors reports all of them).
+// Error tests for the loader and the compiler's feature-dependent checks (docs/graph-format.md,
+// "Errors": every error names the file, the JSON path and, where one is involved, the pass and
+// the resource; a file with several errors reports all of them).
 #include "json_positions.hpp"
 
 #include <skygraph/compiler.hpp>

@@ -1,6 +1,8 @@
 // Device selection, validation switches and the render command's exit statuses.
 #include "executor_test_util.hpp"
 
+#include "app/render.hpp"
+
 #include <skygraph/hdr_image.hpp>
 
 #include <cstdlib>
@@ -11,6 +13,9 @@
 
 namespace skygraph::test {
 namespace {
+
+using app::renderCommand;
+using app::RenderOptions;
 
 TEST(DeviceSelection, ByIndexAndByName) {
     DeviceOptions o;

@@ -1,9 +1,14 @@
 // Shared fixture for executor tests: one validated lavapipe device per test binary.
 #pragma once
 
+#include "generic_passes.hpp"
+#include "headless_options.hpp"
+
 #include <skygraph/compiler.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/plan_format.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <gtest/gtest.h>
 
@@ -58,20 +63,13 @@ inline std::string graphWithSwapchain(const std::string& name, const std::string
            R"(}, "passes": [)" + passes + "] }";
 }
 
-/// A graph in memory and its plan, compiled for headless rendering.
-struct Compiled {
-    GraphDesc graph;
-    Plan plan;
-};
-
-inline Compiled compileText(const std::string& json, FeatureValues features = {}) {
-    Compiled c;
-    c.graph = parseGraph(json, "<test>", PassRegistry::withBuiltins());
-    CompileOptions o;
+/// A graph in memory compiled for headless rendering at 16x16.
+inline CompiledGraph compileText(const std::string& json, FeatureValues features = {}) {
+    GraphDesc graph = parseGraph(json, "<test>", PassRegistry::withBuiltins());
+    CompileOptions o = sizedOptions();
     o.features = std::move(features);
-    o.presentReplacement = ExternalState::TransferSrc;
-    c.plan = compile(c.graph, o);
-    return c;
+    o = headless(graph, std::move(o));
+    return CompiledGraph(std::move(graph), std::move(o));
 }
 
 /// Every test fixture starts with a clean message count and fails on any message.
@@ -88,13 +86,9 @@ protected:
     void allowMessages() { expectClean_ = false; }
 
     /// Renders `frames` frames with 2 in flight and returns the last read-back.
-    ImageData render(const Compiled& c, uint32_t frames = 3, uint32_t size = 16) {
-        if (std::getenv("SKYGRAPH_TEST_DUMP")) std::printf("%s\n", planToText(c.plan).c_str());
-        RendererOptions o;
-        o.width = size;
-        o.height = size;
-        o.framesInFlight = 2;
-        Renderer r(sharedDevice(), c.graph, c.plan, o);
+    ImageData render(const CompiledGraph& c, uint32_t frames = 3) {
+        if (std::getenv("SKYGRAPH_TEST_DUMP")) std::printf("%s\n", planToText(c.plan()).c_str());
+        Renderer r(sharedDevice(), c, genericOptions(2));
         for (uint32_t i = 0; i < frames; ++i) r.renderFrame();
         ImageData img = r.readback();
         r.waitIdle();

@@ -212,10 +212,7 @@ TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
              "params": { "color": [0, 1, 0, 1] } },
            { "name": "b", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
-    RendererOptions o;
-    o.width = 16;
-    o.height = 16;
-    Renderer r(sharedDevice(), c.graph, c.plan, o);
+    Renderer r(sharedDevice(), c, genericOptions());
     r.renderFrame();
     EXPECT_EQ(r.readback().width, 16u);
     r.resize(24, 8);
@@ -225,10 +222,12 @@ TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
     EXPECT_EQ(img.width, 24u);
     EXPECT_EQ(img.height, 8u);
     EXPECT_PIXEL_NEAR(img, 23, 7, 0.25, 1.0, 0.75, 1.0);
+    EXPECT_EQ(r.plan().outputWidth, 24u) << "resize compiles the graph again at the new size";
     const auto timings = r.lastTimings();
-    ASSERT_EQ(timings.size(), 2u);
+    ASSERT_EQ(timings.size(), 3u) << "a, b and the read-back step";
     EXPECT_EQ(timings[0].pass, "a");
     EXPECT_GE(timings[1].milliseconds, 0.0);
+    EXPECT_EQ(timings[2].pass, "read back swapchain");
 }
 
 TEST_F(ExecutorTest, BadParamsAreClearErrors) {
@@ -239,7 +238,7 @@ TEST_F(ExecutorTest, BadParamsAreClearErrors) {
            { "name": "b", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
     try {
-        Renderer r(sharedDevice(), c.graph, c.plan, {});
+        Renderer r(sharedDevice(), c, genericOptions());
         FAIL() << "expected ExecutorError";
     } catch (const ExecutorError& e) {
         EXPECT_NE(std::string(e.what()).find("pass 'a'"), std::string::npos) << e.what();
@@ -247,20 +246,22 @@ TEST_F(ExecutorTest, BadParamsAreClearErrors) {
     }
 }
 
-TEST_F(ExecutorTest, ReadbackNeedsTransferSrcTarget) {
-    Compiled c;
-    c.graph = parseGraph(graph(
+// Only what CompileOptions::readbacks names is copied to the host.
+TEST_F(ExecutorTest, ReadbackNeedsTheImageInCompileOptionsReadbacks) {
+    GraphDesc g = parseGraph(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" } })"),
         "<test>", PassRegistry::withBuiltins());
-    c.plan = compile(c.graph, {});  // final stays Present
-    Renderer r(sharedDevice(), c.graph, c.plan, {});
+    CompileOptions co;  // final stays Present, nothing read back
+    co.outputWidth = co.outputHeight = 16;
+    Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), genericOptions());
     r.renderFrame();
     EXPECT_THROW((void)r.readback(), ExecutorError);
+    EXPECT_THROW((void)r.readback("swapchain"), ExecutorError);
     r.waitIdle();
 }
 
-TEST_F(ExecutorTest, SetPlanFailureKeepsOldPlan) {
+TEST_F(ExecutorTest, SetGraphFailureKeepsOldPlan) {
     const auto good = compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
@@ -269,9 +270,9 @@ TEST_F(ExecutorTest, SetPlanFailureKeepsOldPlan) {
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
              "params": { "depth": 7 } })"));
-    Renderer r(sharedDevice(), good.graph, good.plan, {});
+    Renderer r(sharedDevice(), good, genericOptions());
     r.renderFrame();
-    EXPECT_THROW(r.setPlan(bad.graph, bad.plan), ExecutorError);
+    EXPECT_THROW(r.setGraph(bad), ExecutorError);
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 1.0, 0.0, 0.0, 1.0);
     r.waitIdle();
@@ -288,7 +289,7 @@ TEST_F(ExecutorTest, ExternalImageUpload) {
           "passes": [ { "name": "show", "type": "Generic",
             "uses": { "photo": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
             "params": { "color": [0, 0, 0, 0] } } ] })");
-    Renderer r(sharedDevice(), c.graph, c.plan, {});
+    Renderer r(sharedDevice(), c, genericOptions());
     ImageData px;
     px.width = 8;
     px.height = 4;

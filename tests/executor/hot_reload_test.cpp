@@ -1,6 +1,7 @@
 // Hot reload: a broken graph and a broken shader each leave the last good version running.
 #include "executor_test_util.hpp"
 
+#include <skygraph/hot_reload.hpp>
 #include <skygraph/shader_compiler.hpp>
 
 #include <filesystem>
@@ -35,13 +36,12 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     write(graphFile, graphWithColor("[1, 0, 0, 1]"));
 
     const auto registry = PassRegistry::withBuiltins();
-    CompileOptions co;
-    co.presentReplacement = ExternalState::TransferSrc;
     GraphDesc graph = loadGraphFile(graphFile, registry);
-    RendererOptions ro;
+    const CompileOptions co = headless(graph);
+    RendererOptions ro = genericOptions();
     ro.shaderDir = dir / "shaders";
-    Renderer r(sharedDevice(), graph, compile(graph, co), ro);
-    HotReloader reloader(r, graphFile, co, dir / "shaders");
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
+    HotReloader reloader(r, graphFile, dir / "shaders");
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 1.0, 0.0, 0.0, 1.0);
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged);
@@ -56,6 +56,7 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     // Fixed: the new plan runs.
     write(graphFile, graphWithColor("[0, 1, 0, 1]"));
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    EXPECT_EQ(r.plan().outputWidth, 16u) << "the reloaded graph compiles with the renderer's options";
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
 

@@ -3,6 +3,8 @@
 // matching SYNC-HAZARD.
 #include "executor_test_util.hpp"
 
+#include "compiled_graph_access.hpp"
+
 #include <algorithm>
 
 namespace skygraph::test {
@@ -41,7 +43,7 @@ void dropBarrier(Plan& plan, const std::string& pass, const std::string& resourc
 /// "draw" writes tex as a color attachment, "sample" reads it in the fragment shader: the
 /// barrier between them is a layout transition, which the two layout controls below break in
 /// different ways.
-Compiled attachmentThenSampled() {
+CompiledGraph attachmentThenSampled() {
     return compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "draw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
@@ -52,9 +54,9 @@ Compiled attachmentThenSampled() {
 class NegativeControl : public ExecutorTest {
 protected:
     /// Runs `c` untouched and requires silence, then runs `broken` and returns the messages.
-    void expectHazard(const Compiled& c, const Plan& broken, const std::string& hazard) {
+    void expectHazard(const CompiledGraph& c, const Plan& broken, const std::string& hazard) {
         {
-            Renderer r(sharedDevice(), c.graph, c.plan, {});
+            Renderer r(sharedDevice(), c, genericOptions());
             for (int i = 0; i < 2; ++i) r.renderFrame();
             r.waitIdle();
         }
@@ -62,7 +64,7 @@ protected:
             << "the intact plan must be clean:\n" << formatMessages(sharedDevice());
         allowMessages();
         {
-            Renderer r(sharedDevice(), c.graph, broken, {});
+            Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(c, broken), genericOptions());
             for (int i = 0; i < 2; ++i) r.renderFrame();
             r.waitIdle();
         }
@@ -78,7 +80,7 @@ TEST_F(NegativeControl, DroppedRawBarrierIsReadAfterWrite) {
         R"({ "name": "produce", "type": "Generic", "uses": { "buf": "Write@Compute" } },
            { "name": "consume", "type": "Generic",
              "uses": { "buf": "Read@Compute", "swapchain": "Write@Transfer" } })"));
-    Plan broken = c.plan;
+    Plan broken = c.plan();
     dropBarrier(broken, "consume", "buf");
     expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
 }
@@ -95,7 +97,7 @@ TEST_F(NegativeControl, DroppedBarrierOfAnUpperMipOfAStorageReadIsReadAfterWrite
            { "name": "consume", "type": "Generic",
              "uses": [ { "resource": "chain", "access": "Read", "stage": "Compute", "as": "storage", "mips": [0, 2] },
                        { "resource": "swapchain", "access": "Write", "stage": "Transfer" } ] })"));
-    Plan broken = c.plan;
+    Plan broken = c.plan();
     const int32_t chain = broken.resourceIndex("chain");
     bool dropped = false;
     for (size_t p = 0; p < broken.passes.size() && !dropped; ++p) {
@@ -108,7 +110,7 @@ TEST_F(NegativeControl, DroppedBarrierOfAnUpperMipOfAStorageReadIsReadAfterWrite
                 break;
             }
     }
-    ASSERT_TRUE(dropped) << "no barrier for mip 1 before 'consume':\n" << planToText(c.plan);
+    ASSERT_TRUE(dropped) << "no barrier for mip 1 before 'consume':\n" << planToText(c.plan());
     expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
 }
 
@@ -121,7 +123,7 @@ TEST_F(NegativeControl, DroppedWarBarrierIsWriteAfterRead) {
            { "name": "overwrite", "type": "Generic", "uses": { "buf": "Write@Compute" } },
            { "name": "consume", "type": "Generic",
              "uses": { "buf": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
-    Plan broken = c.plan;
+    Plan broken = c.plan();
     dropBarrier(broken, "overwrite", "buf");
     expectHazard(c, broken, "SYNC-HAZARD-WRITE-AFTER-READ");
 }
@@ -130,7 +132,7 @@ TEST_F(NegativeControl, DroppedWarBarrierIsWriteAfterRead) {
 // sampled read races the attachment write.
 TEST_F(NegativeControl, DroppedLayoutTransitionIsReadAfterWrite) {
     const auto c = attachmentThenSampled();
-    Plan broken = c.plan;
+    Plan broken = c.plan();
     Barrier* b = barrierOf(broken, "sample", "tex");
     ASSERT_NE(b, nullptr);
     ASSERT_NE(b->oldLayout, b->newLayout) << "the control needs a layout transition";
@@ -142,7 +144,7 @@ TEST_F(NegativeControl, DroppedLayoutTransitionIsReadAfterWrite) {
 // the attachment write before it.
 TEST_F(NegativeControl, UnscopedLayoutTransitionIsWriteAfterWrite) {
     const auto c = attachmentThenSampled();
-    Plan broken = c.plan;
+    Plan broken = c.plan();
     Barrier* b = barrierOf(broken, "sample", "tex");
     ASSERT_NE(b, nullptr);
     b->srcStages = VK_PIPELINE_STAGE_2_NONE;
@@ -161,7 +163,7 @@ TEST_F(NegativeControl, DroppedWarTransitionIsWriteAfterRead) {
            { "name": "redraw", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" } },
            { "name": "show", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "out": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
-    Plan broken = c.plan;
+    Plan broken = c.plan();
     dropBarrier(broken, "redraw", "tex");
     expectHazard(c, broken, "SYNC-HAZARD-WRITE-AFTER-READ");
 }

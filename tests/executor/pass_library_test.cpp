@@ -1,5 +1,7 @@
 // Pass implementations from a PassLibrary: the executor begins the render pass made from the
-// plan, hands the pass its resources by slot, and records the plan's barriers around it.
+// plan, hands the pass its resources by slot, and records the plan's barriers around it. A
+// type without recording code runs with the library's Generic; without a library, or without
+// a Generic in it, such a pass is an error that says so.
 #include "executor_test_util.hpp"
 
 #include <skygraph/pass.hpp>
@@ -50,8 +52,7 @@ public:
     void record(const RecordContext&) override {}
 };
 
-PassLibrary library() {
-    PassLibrary lib;
+PassTypeInfo fillType() {
     PassTypeInfo fill;
     fill.name = "Fill";
     SlotDecl target;
@@ -59,14 +60,16 @@ PassLibrary library() {
     target.stage = Stage::ColorAttachment;
     target.accesses = {Access::Write};
     fill.slots = {target};
-    lib.add(fill, [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
-    PassTypeInfo broken = fill;
+    return fill;
+}
+
+/// The built-in passes (Generic for "show") and the two above.
+PassLibrary library() {
+    PassLibrary lib = PassLibrary::withBuiltins();
+    lib.add(fillType(), [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
+    PassTypeInfo broken = fillType();
     broken.name = "Broken";
     lib.add(broken, [](const PassDesc&) { return std::make_unique<BrokenPass>(); });
-    PassTypeInfo generic;
-    generic.name = "Generic";
-    generic.acceptsAnyUsage = true;
-    lib.add(generic, [](const PassDesc&) -> std::unique_ptr<PassImplementation> { return nullptr; });
     return lib;
 }
 
@@ -85,15 +88,12 @@ std::string graphText(const std::string& type) {
 
 TEST_F(ExecutorTest, PassLibraryImplementationRecordsInsideRenderPass) {
     const PassLibrary lib = library();
-    Compiled c;
-    c.graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());
-    CompileOptions co;
-    co.presentReplacement = ExternalState::TransferSrc;
-    c.plan = compile(c.graph, co);
+    GraphDesc graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
     RendererOptions o;
     o.passes = &lib;
     FillPass::pipelinesCreated = 0;
-    Renderer r(sharedDevice(), c.graph, c.plan, o);
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), o);
     EXPECT_EQ(FillPass::pipelinesCreated, 1);
     for (int i = 0; i < 3; ++i) r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 5, 5, 0.25, 0.5, 0.5, 1.0);
@@ -102,15 +102,14 @@ TEST_F(ExecutorTest, PassLibraryImplementationRecordsInsideRenderPass) {
 
 TEST_F(ExecutorTest, PassLibraryPipelineFailureIsAnErrorAndKeepsOldPlan) {
     const PassLibrary lib = library();
-    CompileOptions co;
-    co.presentReplacement = ExternalState::TransferSrc;
-    const GraphDesc good = parseGraph(graphText("Fill"), "<lib>", lib.registry());
-    const GraphDesc bad = parseGraph(graphText("Broken"), "<lib>", lib.registry());
+    GraphDesc good = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    GraphDesc bad = parseGraph(graphText("Broken"), "<lib>", lib.registry());
+    const CompileOptions co = headless(good);
     RendererOptions o;
     o.passes = &lib;
-    Renderer r(sharedDevice(), good, compile(good, co), o);
+    Renderer r(sharedDevice(), CompiledGraph(std::move(good), co), o);
     try {
-        r.setPlan(bad, compile(bad, co));
+        r.setGraph(CompiledGraph(std::move(bad), co));
         FAIL() << "expected ExecutorError";
     } catch (const ExecutorError& e) {
         EXPECT_NE(std::string(e.what()).find("shader exploded"), std::string::npos) << e.what();
@@ -118,6 +117,45 @@ TEST_F(ExecutorTest, PassLibraryPipelineFailureIsAnErrorAndKeepsOldPlan) {
     }
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 1, 1, 0.25, 0.5, 0.5, 1.0);
+    r.waitIdle();
+}
+
+TEST_F(ExecutorTest, APassWithoutRecordingCodeNeedsAPassLibrary) {
+    const PassLibrary lib = library();
+    GraphDesc graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), RendererOptions{});
+        FAIL() << "expected ExecutorError";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'fill'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("RendererOptions::passes"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("PassLibrary::withBuiltins()"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(ExecutorTest, ATypeWithoutRecordingCodeRunsWithTheLibrarysGeneric) {
+    // A library of Fill alone: "show" (type Generic) has no recording code and no Generic to
+    // run with; with Generic added it renders.
+    PassLibrary fillOnly;
+    fillOnly.add(fillType(), [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
+    const PassLibrary lib = library();
+    GraphDesc graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
+    RendererOptions o;
+    o.passes = &fillOnly;
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(graph, co), o);
+        FAIL() << "expected ExecutorError";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'show'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("no 'Generic'"), std::string::npos) << e.what();
+    }
+    const PassLibrary builtins = PassLibrary::withBuiltins();
+    fillOnly.add(*builtins.registry().find("Generic"), *builtins.factory("Generic"));
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), o);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 3, 3, 0.25, 0.5, 0.5, 1.0);
     r.waitIdle();
 }
 

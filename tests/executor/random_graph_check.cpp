@@ -1,8 +1,13 @@
 // Running generated graphs, and weakening their barriers one at a time for the oracle.
 #include "random_graph_check.hpp"
 
+#include "compiled_graph_access.hpp"
+#include "generic_passes.hpp"
+#include "headless_options.hpp"
+
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
+#include <skygraph/renderer.hpp>
 
 #include <bit>
 #include <span>
@@ -17,16 +22,8 @@ std::string formatMessages(const Device& d) {
     return s;
 }
 
-RendererOptions rendererOptions(const RunSettings& settings) {
-    RendererOptions o;
-    o.width = settings.size;
-    o.height = settings.size;
-    o.framesInFlight = settings.framesInFlight;
-    return o;
-}
-
-void renderFrames(Device& device, const GraphDesc& graph, const Plan& plan, const RunSettings& settings) {
-    Renderer r(device, graph, plan, rendererOptions(settings));
+void renderFrames(Device& device, CompiledGraph compiled, const RunSettings& settings) {
+    Renderer r(device, std::move(compiled), genericOptions(settings.framesInFlight));
     for (uint32_t i = 0; i < settings.frames; ++i) r.renderFrame();
     (void)r.readback();
     r.waitIdle();
@@ -86,15 +83,12 @@ void weakenBatch(const Plan& base, std::span<const Barrier> list, const std::str
 GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& features,
                   const RunSettings& settings) {
     GraphRun run;
-    GraphDesc graph;
     try {
-        graph = parseGraph(json, "<random>", PassRegistry::withBuiltins());
-        CompileOptions o;
+        GraphDesc graph = parseGraph(json, "<random>", PassRegistry::withBuiltins());
+        CompileOptions o = sizedOptions(settings.size, settings.size);
         o.features = features;
-        o.presentReplacement = ExternalState::TransferSrc;
-        o.outputWidth = settings.size;
-        o.outputHeight = settings.size;
-        run.plan = compile(graph, o);
+        o = headless(graph, std::move(o));
+        run.compiled.emplace(std::move(graph), std::move(o));
     } catch (const GraphError& e) {
         run.outcome = GraphRun::Outcome::Rejected;
         run.detail = e.diagnostics().format();
@@ -102,7 +96,7 @@ GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& 
     }
     device.clearMessages();
     try {
-        renderFrames(device, graph, run.plan, settings);
+        renderFrames(device, *run.compiled, settings);
     } catch (const std::exception& e) {
         run.outcome = GraphRun::Outcome::ExecutorFailed;
         run.detail = e.what();
@@ -110,15 +104,15 @@ GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& 
     }
     if (device.messageCount() != 0) {
         run.outcome = GraphRun::Outcome::Messages;
-        run.detail = formatMessages(device) + planToText(run.plan);
+        run.detail = formatMessages(device) + planToText(run.compiled->plan());
     }
     device.clearMessages();
     return run;
 }
 
-uint32_t messagesFor(Device& device, const GraphDesc& graph, const Plan& plan, const RunSettings& settings) {
+uint32_t messagesFor(Device& device, const CompiledGraph& compiled, const Plan& plan, const RunSettings& settings) {
     device.clearMessages();
-    renderFrames(device, graph, plan, settings);
+    renderFrames(device, detail::CompiledGraphAccess::withPlan(compiled, plan), settings);
     const uint32_t n = device.messageCount();
     device.clearMessages();
     return n;
@@ -136,12 +130,11 @@ std::vector<BarrierMutation> weakenedPlans(const Plan& plan) {
     return out;
 }
 
-MinimalityReport checkMinimality(Device& device, const GraphDesc& graph, const Plan& plan,
-                                 const RunSettings& settings) {
+MinimalityReport checkMinimality(Device& device, const CompiledGraph& compiled, const RunSettings& settings) {
     MinimalityReport report;
-    for (auto& m : weakenedPlans(plan)) {
+    for (auto& m : weakenedPlans(compiled.plan())) {
         ++report.mutations;
-        if (messagesFor(device, graph, m.plan, settings) == 0) report.unneeded.push_back(m.description);
+        if (messagesFor(device, compiled, m.plan, settings) == 0) report.unneeded.push_back(m.description);
     }
     return report;
 }

@@ -5,9 +5,11 @@
 
 #include "random_graph_generator.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/compiled_graph.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/plan.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,7 +26,8 @@ struct GraphRun {
     enum class Outcome : uint8_t { Clean, Rejected, ExecutorFailed, Messages };
     Outcome outcome = Outcome::Clean;
     std::string detail;  ///< The error or the validation messages, with the plan.
-    Plan plan;
+    /// The graph compiled for the run (headless, its swapchain read back); empty if Rejected.
+    std::optional<CompiledGraph> compiled;
     [[nodiscard]] bool passed() const noexcept { return outcome == Outcome::Clean; }
 };
 
@@ -32,8 +35,9 @@ struct GraphRun {
 [[nodiscard]] GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& features,
                                 const RunSettings& settings = {});
 
-/// Renders an already compiled plan (e.g. a mutated one) and returns the message count.
-[[nodiscard]] uint32_t messagesFor(Device& device, const GraphDesc& graph, const Plan& plan,
+/// Renders `plan`, a copy of compiled.plan() (e.g. a mutated one), in place of compiled's own
+/// plan and returns the message count.
+[[nodiscard]] uint32_t messagesFor(Device& device, const CompiledGraph& compiled, const Plan& plan,
                                    const RunSettings& settings = {});
 
 /// One barrier of a plan weakened one way.
@@ -53,7 +57,7 @@ struct MinimalityReport {
     size_t mutations = 0;
     std::vector<std::string> unneeded;
 };
-[[nodiscard]] MinimalityReport checkMinimality(Device& device, const GraphDesc& graph, const Plan& plan,
+[[nodiscard]] MinimalityReport checkMinimality(Device& device, const CompiledGraph& compiled,
                                                const RunSettings& settings = {});
 
 }  // namespace skygraph::test

@@ -6,6 +6,8 @@
 // with its seed, graph and messages, and ends with "N passed, N failed".
 #include "random_graph_check.hpp"
 
+#include <skygraph/compiler.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -56,8 +58,7 @@ int main(int argc, char** argv) {
                 report(seed, "small", base.detail, s.json());
                 continue;
             }
-            const GraphDesc graph = parseGraph(s.json(), "<random>", PassRegistry::withBuiltins());
-            const MinimalityReport m = checkMinimality(*device, graph, base.plan);
+            const MinimalityReport m = checkMinimality(*device, *base.compiled);
             mutations += m.mutations;
             unneeded += m.unneeded.size();
             for (const auto& u : m.unneeded) std::printf("UNNEEDED seed %u: %s\n", seed, u.c_str());

@@ -61,8 +61,7 @@ TEST_P(BarrierMinimality, DroppedImageBarriersAndLayoutChangesAreCaught) {
     const RandomGraph g = generateRandomGraph(GetParam(), small);
     const GraphRun run = runGraph(sharedDevice(), g.json(), g.features);
     ASSERT_TRUE(run.passed()) << run.detail;
-    const GraphDesc graph = parseGraph(g.json(), "<random>", PassRegistry::withBuiltins());
-    const MinimalityReport report = checkMinimality(sharedDevice(), graph, run.plan);
+    const MinimalityReport report = checkMinimality(sharedDevice(), *run.compiled);
     ASSERT_GT(report.mutations, 0u);
     std::string missed, unnoticed;
     for (const auto& u : report.unneeded) {
@@ -71,7 +70,7 @@ TEST_P(BarrierMinimality, DroppedImageBarriersAndLayoutChangesAreCaught) {
                            u.find("layout change dropped") != std::string::npos;
         (inFrame && whole && u.find("(image)") != std::string::npos ? missed : unnoticed) += "  " + u + "\n";
     }
-    EXPECT_TRUE(missed.empty()) << "image barriers dropped without a message:\n" << missed << planToText(run.plan)
+    EXPECT_TRUE(missed.empty()) << "image barriers dropped without a message:\n" << missed << planToText(run.compiled->plan())
                                 << g.json();
     if (!unnoticed.empty())
         std::printf("seed %u: %zu of %zu weakenings not noticed by the layer:\n%s", GetParam(),

@@ -1,10 +1,11 @@
 // Every shipped graph (graphs/*.json), under every feature combination, runs 3 frames with 2
-// in flight on the validated device with zero messages. Pass types without their own
-// recording code run as Generic: they perform exactly the accesses they declare.
+// in flight on the validated device with zero messages. Every pass runs as Generic
+// (genericPasses()): it performs exactly the accesses it declares.
 #include "executor_test_util.hpp"
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 
 namespace skygraph::test {
 namespace {
@@ -57,23 +58,19 @@ TEST_P(ShippedGraph, RunsThreeFramesCleanly) {
     const GraphCase& gc = GetParam();
     const auto registry = PassRegistry::withBuiltins();
     const GraphDesc graph = loadGraphFile(gc.file, registry);
-    CompileOptions o;
+    CompileOptions o = sizedOptions();
     o.features = gc.features;
-    o.presentReplacement = ExternalState::TransferSrc;
-    Plan plan;
+    std::optional<CompiledGraph> compiled;
     try {
-        plan = compile(graph, o);
+        compiled.emplace(graph, headless(graph, o));
     } catch (const GraphError& e) {
         // A combination the compiler rejects (e.g. a read whose only writer is off) is a
         // user error with a message, not something to render.
         EXPECT_FALSE(e.diagnostics().empty());
         return;
     }
-    RendererOptions ro;
-    ro.width = 16;
-    ro.height = 16;
-    ro.framesInFlight = 2;
-    Renderer r(sharedDevice(), graph, plan, ro);
+    const RendererOptions ro = genericOptions(2);
+    Renderer r(sharedDevice(), std::move(*compiled), ro);
     for (int i = 0; i < 3; ++i) r.renderFrame();
     const bool hasTarget = std::any_of(graph.resources.begin(), graph.resources.end(),
                                        [](const ResourceDesc& d) { return d.final == ExternalState::Present; });
@@ -85,7 +82,7 @@ TEST_P(ShippedGraph, RunsThreeFramesCleanly) {
         EXPECT_GT(px[0] + px[1] + px[2], 0.0f);
     }
     r.waitIdle();
-    EXPECT_EQ(r.lastTimings().size(), plan.passes.size());
+    EXPECT_EQ(r.lastTimings().size(), r.plan().passes.size()) << "a timing per pass and read-back step";
 }
 
 INSTANTIATE_TEST_SUITE_P(Graphs, ShippedGraph, ::testing::ValuesIn(shippedCases()),

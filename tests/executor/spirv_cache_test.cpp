@@ -3,7 +3,7 @@
 // entry is a miss, never a wrong shader. No device.
 #include "spirv_cache.hpp"
 
-#include <skygraph/executor.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/shader_compiler.hpp>
 
 #include <gtest/gtest.h>

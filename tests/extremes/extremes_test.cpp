@@ -1,4 +1,4 @@
-// Numerics at the extremes (issue 6), on lavapipe under validation + synchronization
+// Numerics at the extremes (docs/tradeoffs.md), on lavapipe under validation + synchronization
 // validation: every test asserts finite output, a stated error bound against the double
 // reference of include/skygraph/shading_math.hpp, and (through ExecutorTest) no message.
 // The camera 1e7 from the origin is tests/passes/far_camera_test.cpp's; the CPU reference's
@@ -108,7 +108,6 @@ protected:
         CompileOptions co;
         co.features = sceneFeatures(scene);
         co.presentReplacement = ExternalState::TransferSrc;
-        if (readback == "hdr_color") co.exports = {{"hdr_color", ExternalState::TransferSrc}};
         Renderer renderer = rendererAt(graph, library, co, w, h, readback);
         if (external) renderer.setExternalImage(externalName, *external);
         renderer.frameData().set(scene);
@@ -181,14 +180,13 @@ TEST_F(Extremes, HostileHdrInputsAtEveryExposureMatchTheReferenceWithinOneCode) 
     const PassLibrary library = PassLibrary::withBuiltins();
     const GraphDesc graph = parseGraph(kTonemapGraph, "tonemap_only.json", library.registry());
     CompileOptions co;
-    co.exports = {{"ldr", ExternalState::TransferSrc}};
+    co.readbacks = {"ldr"};
+    co.outputWidth = 8;
+    co.outputHeight = 2;
     RendererOptions ro;
-    ro.width = 8;
-    ro.height = 2;
     ro.passes = &library;
-    ro.readback = "ldr";
     ro.framesInFlight = 1;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer(sharedDevice(), CompiledGraph(graph, co), ro);
     renderer.setExternalImage("hdr", hdr);
     const std::pair<Tonemapper, math::ToneOperator> operators[] = {
         {Tonemapper::AcesNarkowicz, math::ToneOperator::AcesNarkowicz},
@@ -326,10 +324,11 @@ TEST_F(Extremes, TwoByOneEquirectIntoOneByOneCubesThroughTheEnvironmentPasses) {
     const GraphDesc graph = parseGraph(kTinyIblGraph, "tiny_ibl.json", library.registry());
     CompileOptions co;
     co.presentReplacement = ExternalState::TransferSrc;
+    co.outputWidth = co.outputHeight = 16;
     RendererOptions ro;
     ro.passes = &library;
     ro.framesInFlight = 1;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer(sharedDevice(), CompiledGraph(graph, co), ro);
     for (const bool twoColours : {false, true}) {
         ImageData map = constantImage(2, 1, {0.5f, 1.0f, 8.0f});
         if (twoColours) map.rgba[4] = 2.0f;  // red: 2 in one half of the sphere, 0.5 in the other

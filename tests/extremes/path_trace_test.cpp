@@ -1,9 +1,9 @@
-// PathTracePass (issue 6) on lavapipe under validation + synchronization validation: a white
-// furnace whose answer is known in closed form, progressive accumulation across frames, and
-// the shipped graphs/pathtrace.json end to end.
+// PathTracePass (docs/tradeoffs.md) on lavapipe under validation + synchronization validation:
+// a white furnace whose answer is known in closed form, progressive accumulation across frames,
+// and the shipped graphs/pathtrace.json end to end.
 #include "pass_test_util.hpp"
 
-#include <skygraph/ibl_math.hpp>
+#include "ibl_math.hpp"
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
@@ -72,7 +72,7 @@ bool fullyOnSphere(uint32_t x, uint32_t y) {
 
 /// The furnace's closed form: a convex Lambert + GGX object under a constant environment L
 /// sees only the environment after one bounce, so it returns L (albedo + F0 A + B) with
-/// (A, B) the split-sum integral at its n.v (include/skygraph/ibl_math.hpp). Averaged over
+/// (A, B) the split-sum integral at its n.v (tests/support/ibl_math.hpp). Averaged over
 /// the pixel's footprint.
 double expectedFurnace(uint32_t x, uint32_t y) {
     double sum = 0.0;

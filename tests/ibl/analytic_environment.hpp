@@ -2,8 +2,8 @@
 // environment pipeline's passes on them, for the tests of tests/ibl and bench/ibl_*.
 #pragma once
 
-#include <skygraph/executor.hpp>
-#include <skygraph/ibl_math.hpp>
+#include <skygraph/image_data.hpp>
+#include "ibl_math.hpp"
 
 #include <cmath>
 

@@ -105,11 +105,12 @@ TEST_F(CubeSampling, FacesFollowVulkanSelectionAtCentresEdgesAndCorners) {
     const GraphDesc graph = parseGraph(probeGraph(uint32_t(dirs.size()), size, 4), "<probe>", library.registry());
     CompileOptions co;
     co.presentReplacement = ExternalState::TransferSrc;
+    co.readbacks = {"probe"};
+    co.outputWidth = co.outputHeight = 16;
     RendererOptions ro;
     ro.passes = &library;
-    ro.readback = "probe";
     ro.framesInFlight = 1;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer(sharedDevice(), CompiledGraph(graph, co), ro);
     renderer.setExternalImage("equirect", equirectImage(axisColour, 512, 256));
     renderer.renderFrame();
     const ImageData probe = renderer.readback();

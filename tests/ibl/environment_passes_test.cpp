@@ -1,6 +1,6 @@
 // graphs/ibl.json as shipped, on lavapipe under validation, with an analytic environment:
 // the cube, its mip chain, irradiance, GGX prefilter and BRDF table against the double
-// references of include/skygraph/ibl_math.hpp.
+// references of tests/support/ibl_math.hpp.
 #include "analytic_environment.hpp"
 #include "executor_test_util.hpp"
 
@@ -22,10 +22,11 @@ std::map<std::string, std::vector<ImageData>> runIblGraph(Dir (*radiance)(const 
         if (r.name == "equirect") r.extent = Extent{false, 1, kEquirectWidth, kEquirectHeight};
     CompileOptions co;
     co.presentReplacement = ExternalState::TransferSrc;
+    co.outputWidth = co.outputHeight = 16;
     RendererOptions ro;
     ro.passes = &library;
     ro.framesInFlight = 1;
-    Renderer renderer(sharedDevice(), graph, compile(graph, co), ro);
+    Renderer renderer(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
     renderer.setExternalImage("equirect", equirectImage(radiance, kEquirectWidth, kEquirectHeight));
     renderer.renderFrame();
     std::map<std::string, std::vector<ImageData>> out;

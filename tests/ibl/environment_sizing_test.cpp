@@ -1,8 +1,9 @@
-// Sizing the environment for a view (include/skygraph/environment_graph.hpp): the cube face
+// Sizing the environment for a view (tools/app/environment_graph.hpp): the cube face
 // size against the pixel it must resolve, the shipped graphs resized and compiled, and the
 // frame graph importing exactly what the environment graph exports. Pure: no device.
+#include "app/environment_graph.hpp"
+
 #include <skygraph/compiler.hpp>
-#include <skygraph/environment_graph.hpp>
 #include <skygraph/pass_registry.hpp>
 
 #include <gtest/gtest.h>
@@ -13,6 +14,8 @@
 
 namespace skygraph {
 namespace {
+
+using namespace app;
 
 const std::filesystem::path kSource = SKYGRAPH_SOURCE_DIR;
 constexpr double kPi = std::numbers::pi;

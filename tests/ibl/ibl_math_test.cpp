@@ -1,4 +1,4 @@
-// The references themselves (include/skygraph/ibl_math.hpp), on the CPU: the quasi-Monte
+// The references themselves (tests/support/ibl_math.hpp), on the CPU: the quasi-Monte
 // Carlo integrals against closed forms, so the GPU tests measure against something right.
 #include "analytic_environment.hpp"
 

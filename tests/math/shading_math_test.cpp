@@ -157,7 +157,7 @@ TEST(Camera, RotationOnlyRaysStayExactFarFromTheOriginWhereTheSeedsMethodFails) 
             worstSeed = std::max(worstSeed, std::isfinite(seedAngle) ? seedAngle / pixelAngle : 1e9);
         }
     EXPECT_LT(worstOurs, 1e-3) << "error in pixels at 1080p";
-    EXPECT_GT(worstSeed, 100.0) << "the seed's method should be visibly wrong here";
+    EXPECT_GT(worstSeed, 100.0) << "the near-point method should be visibly wrong here";
     RecordProperty("seed_error_px", std::to_string(worstSeed));
 }
 

@@ -30,7 +30,6 @@ TEST_F(EquirectSampling, SeamAndPolesFollowTheEnvironment) {
         if (r.name == "equirect") r.extent = Extent{false, 1, mapW, mapH};
     CompileOptions co;
     co.features = {{"geometry", false}, {"environment_file", true}, {"sample_cubemap", false}};
-    co.exports = {{"hdr_color", ExternalState::TransferSrc}};
     Renderer renderer = rendererAt(graph, library, co, w, h, "hdr_color");
     renderer.setExternalImage("equirect", equirectImage(field, mapW, mapH));
     // Bilinear filtering of a 256 x 128 map misses a smooth field by at most ~(pi/128)^2/8 of

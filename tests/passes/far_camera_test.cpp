@@ -1,6 +1,7 @@
-// The camera far from the origin (issue 4): the skybox's view ray comes from the rotation alone
-// and the forward pass draws camera-relative, so nothing depends on the distance. Checked on
-// lavapipe under synchronization validation against the double-precision reference.
+// The camera far from the origin (docs/conventions.md): the skybox's view ray comes from the
+// rotation alone and the forward pass draws camera-relative, so nothing depends on the
+// distance. Checked on lavapipe under synchronization validation against the double-precision
+// reference.
 #include "pass_test_util.hpp"
 
 #include <skygraph/pass.hpp>
@@ -53,8 +54,9 @@ TEST_F(FarCamera, SkyRayWithinOneThousandthOfAPixelAtEveryDistance) {
     }
 }
 
-// That the bound can fail: tests/math's seed-method test measures the seed's near-point
-// unprojection in float at 1e7 at thousands of pixels off, against the same reference.
+// That the bound can fail: tests/math's Camera.RotationOnlyRaysStayExactFarFromTheOrigin...
+// measures the near-point unprojection in float at 1e7 at thousands of pixels off, against the
+// same reference.
 
 TEST_F(FarCamera, ObjectsRenderTheSameTenMillionUnitsAway) {
     Scene near = loadSceneFile(kSource / "scenes/default.json");

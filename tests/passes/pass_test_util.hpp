@@ -13,17 +13,17 @@
 namespace skygraph::test {
 
 /// A renderer of `graph` at width x height on the shared device, reading back `readback`
-/// (empty: the Present target); it keeps a pointer to `library`, which must outlive it.
+/// (empty: the Present target, headless); it keeps a pointer to `library`, which must
+/// outlive it.
 inline Renderer rendererAt(const GraphDesc& graph, const PassLibrary& library, CompileOptions co, uint32_t width,
-                           uint32_t height, std::string readback = {}) {
+                           uint32_t height, const std::string& readback = {}) {
     co.outputWidth = width;
     co.outputHeight = height;
+    if (readback.empty()) co = headless(graph, std::move(co));
+    else co.readbacks = {readback};
     RendererOptions ro;
-    ro.width = width;
-    ro.height = height;
     ro.passes = &library;
-    ro.readback = std::move(readback);
-    return Renderer(sharedDevice(), graph, compile(graph, co), ro);
+    return Renderer(sharedDevice(), CompiledGraph(graph, std::move(co)), ro);
 }
 
 /// A w x h fp32 image of `c` everywhere (alpha 1): as an equirect, an environment of one
@@ -71,9 +71,7 @@ inline ImageData renderSkyRays(const Scene& scene, uint32_t width, uint32_t heig
     })";
     const PassLibrary library = PassLibrary::withBuiltins();
     const GraphDesc graph = parseGraph(kGraph, "sky_direction.json", library.registry());
-    CompileOptions co;
-    co.exports = {{"ray", ExternalState::TransferSrc}};
-    Renderer renderer = rendererAt(graph, library, co, width, height, "ray");
+    Renderer renderer = rendererAt(graph, library, {}, width, height, "ray");
     renderer.frameData().set(scene);
     renderer.renderFrame();
     return renderer.readback();

@@ -5,7 +5,9 @@
 // differently across versions). On failure the test writes the frame and a diff image (|a - b|
 // x 16) next to the build's test binaries and names them. SKYGRAPH_UPDATE_REFERENCE=1 rewrites
 // the references: look at every image before committing it.
-#include <skygraph/executor.hpp>
+#include "app/render.hpp"
+
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
 
 #include <gtest/gtest.h>
@@ -57,7 +59,7 @@ TEST_P(ReferenceImages, MatchTheReviewedFrame) {
         std::ofstream(scene) << text;
     }
     static const PassLibrary library = PassLibrary::withBuiltins();
-    RenderOptions o;
+    app::RenderOptions o;
     o.graph = kSource / "graphs/raster.json";
     o.scene = scene;
     o.width = 96;
@@ -66,7 +68,7 @@ TEST_P(ReferenceImages, MatchTheReviewedFrame) {
     o.output = out / (c.name + ".png");
     o.validate = true;
     o.passes = &library;
-    ASSERT_EQ(renderCommand(o), 0) << "render failed or validation reported messages";
+    ASSERT_EQ(app::renderCommand(o), 0) << "render failed or validation reported messages";
 
     const fs::path reference = kSource / "tests/passes/reference" / (c.name + ".png");
     if (std::getenv("SKYGRAPH_UPDATE_REFERENCE")) fs::copy_file(o.output, reference, fs::copy_options::overwrite_existing);

@@ -1,4 +1,4 @@
-// The seed's passes on lavapipe under synchronization validation, against the double-precision
+// The built-in passes on lavapipe under synchronization validation, against the double-precision
 // reference in include/skygraph/shading_math.hpp.
 #include "pass_test_util.hpp"
 

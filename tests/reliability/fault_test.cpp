@@ -6,6 +6,7 @@
 #include "executor_test_util.hpp"
 
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/hot_reload.hpp>
 
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
@@ -70,12 +71,12 @@ protected:
         fs::create_directories(dir_ / "shaders");
         fs::copy_file(fs::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl", shader());
         write(graphFile(), graphWithColor("[1, 0, 0, 1]"));
-        options_.presentReplacement = ExternalState::TransferSrc;
-        const GraphDesc graph = loadGraphFile(graphFile(), PassRegistry::withBuiltins());
-        RendererOptions ro;
+        GraphDesc graph = loadGraphFile(graphFile(), PassRegistry::withBuiltins());
+        CompileOptions options = headless(graph);
+        RendererOptions ro = genericOptions();
         ro.shaderDir = dir_ / "shaders";
-        renderer_ = std::make_unique<Renderer>(sharedDevice(), graph, compile(graph, options_), ro);
-        reloader_ = std::make_unique<HotReloader>(*renderer_, graphFile(), options_, dir_ / "shaders");
+        renderer_ = std::make_unique<Renderer>(sharedDevice(), CompiledGraph(std::move(graph), std::move(options)), ro);
+        reloader_ = std::make_unique<HotReloader>(*renderer_, graphFile(), dir_ / "shaders");
         renderer_->renderFrame();
         expectRed();
     }
@@ -110,7 +111,6 @@ protected:
     }
 
     fs::path dir_;
-    CompileOptions options_;
     std::unique_ptr<Renderer> renderer_;
     std::unique_ptr<HotReloader> reloader_;
 };
@@ -207,16 +207,17 @@ TEST_F(ExecutorTest, BadEnvironmentImageLeavesTheRendererUntouched) {
         for (uint32_t x = 0; x < env.width; ++x)
             for (uint32_t c = 0; c < 4; ++c)
                 env.rgba.push_back(real.rgba[(size_t(y * (real.height / 4)) * real.width + x * (real.width / 8)) * 4 + c]);
-    const auto c = compileText(R"({ "version": 1, "name": "env", "resources": {
+    GraphDesc graph = parseGraph(R"({ "version": 1, "name": "env", "resources": {
         "env": { "type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [8, 4], "external": true,
                  "final": "TransferSrc" },
         "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true,
                        "final": "Present" } },
       "passes": [ { "name": "sky", "type": "Generic",
-                    "uses": { "env": "Read@Fragment", "swapchain": "Write@ColorAttachment" } } ] })");
-    RendererOptions ro;
-    ro.readback = "env";
-    Renderer r(sharedDevice(), c.graph, c.plan, ro);
+                    "uses": { "env": "Read@Fragment", "swapchain": "Write@ColorAttachment" } } ] })",
+                                 "<test>", PassRegistry::withBuiltins());
+    CompileOptions co = headless(graph);
+    co.readbacks = {"env"};
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), genericOptions());
     r.setExternalImage("env", env);
     r.renderFrame();
     const ImageData shown = r.readback();

@@ -104,18 +104,20 @@ def check_drift(root, graph_schema, plan_schema):
     accesses = re.findall(r'\{"(\w+)", Access::\w+\}', usage_src)
     check(defs["usageObject"]["properties"]["access"]["enum"] == accesses, "access enum matches usage.cpp", accesses)
 
-    # Pass types: names, slots (stage, accesses, as) and params, from passes/builtin_pass_types.cpp.
-    src = (root / "passes/builtin_pass_types.cpp").read_text()
-    access_sets = {"R": ["Read"], "W": ["Write"], "RW": ["ReadWrite"], "W_RW": ["Write", "ReadWrite"]}
+    # Pass types: names, slots (stage, accesses, as) and params, from each pass's declaration
+    # (passes/<pass>/*_type.cpp, *_types.cpp), one `return {"Name", ...}` per type.
+    sources = sorted((root / "passes").glob("*/*_type*.cpp"))
+    check(len(sources) > 0, "pass type declarations found in passes/*/", sources)
+    src = "\n".join(p.read_text() for p in sources)
     types = {}
-    for block in src.split('r.add({"')[1:]:
+    for block in src.split('return {"')[1:]:
         name = block.split('"', 1)[0]
-        slots = {s: (st, access_sets[a], None if b == "Default" else b.lower())
-                 for s, st, a, b in re.findall(r'slot\("(\w+)", Stage::(\w+), (\w+), BindAs::(\w+)', block)}
+        slots = {s: (st, re.findall(r"Access::(\w+)", a), None if b == "Default" else b.lower())
+                 for s, st, a, b in re.findall(r'slot\("(\w+)", Stage::(\w+), (\{[^}]*\}), BindAs::(\w+)', block)}
         params = re.findall(r'\{"(\w+)", (?:oneOf|numberIn|integerIn)\(', block)
         types[name] = (slots, params, "rules(" in block)
     schema_types = defs["pass"]["properties"]["type"]["enum"]
-    check(sorted(schema_types) == sorted(types), "pass type enum matches builtin_pass_types.cpp",
+    check(sorted(schema_types) == sorted(types), "pass type enum matches the declarations in passes/",
           f"sources: {sorted(types)}\nschema: {sorted(schema_types)}")
     rules = {r["if"]["properties"]["type"]["const"]: r["then"] for r in defs["pass"]["allOf"]}
     for name, (slots, params, has_rules) in sorted(types.items()):

@@ -1,5 +1,6 @@
 // Pieces every skygraph subcommand shares: how a subcommand plugs into main(), feature
-// flags, safe output, logging and error reporting with the contract's exit statuses (§3).
+// flags, safe output, logging and error reporting with the command line's exit statuses
+// (docs/graph-format.md, "Command line").
 //
 // Adding a subcommand: write x_command.{hpp,cpp} with `Command addXCommand(CLI::App& parent)`
 // that adds a CLI11 subcommand (its own --help comes with it), keeps its parsed arguments
@@ -20,7 +21,7 @@ class App;
 
 namespace skygraph::cli {
 
-/// Exit statuses of contract §3.
+/// Exit statuses of the command line (docs/graph-format.md, "Command line").
 enum ExitStatus : int { kExitOk = 0, kExitUserError = 1, kExitUsage = 2 };
 
 /// A command-line mistake: exit status 2.
@@ -49,7 +50,7 @@ void configureLogging(bool verbose, bool quiet);
 /// GraphError on its own line, and returns its exit status: 2 for UsageError, else 1.
 [[nodiscard]] int reportCurrentException();
 
-/// Runs a subcommand, turning exceptions into the contract's exit statuses and messages.
+/// Runs a subcommand, turning exceptions into those exit statuses and messages.
 [[nodiscard]] int runGuarded(const std::function<int()>& body);
 
 }  // namespace skygraph::cli

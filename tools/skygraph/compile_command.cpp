@@ -6,6 +6,7 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
 #include <skygraph/plan_format.hpp>
+#include <skygraph/transfer_plans.hpp>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -49,10 +50,17 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
     spdlog::debug("{}: {} passes and {} resources -> {} passes run, {} culled, in {:.2f} ms", args.graph,
                   graph.passes.size(), graph.resources.size(), plan.passes.size(), plan.culled.size(),
                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    // What runs once before the first frame belongs to the plan as much as the frame does.
+    const Plan setup = planSetup(graph, plan);
     CompiledPlan out;
     out.text = planToText(plan);
-    if (args.format == "json") out.formatted = planToJson(plan).dump(2) + "\n";
-    else if (args.format == "dot") out.formatted = planToDot(plan, graph);
+    if (!setup.passes.empty()) out.text += "\nsetup, once before the first frame:\n" + planToText(setup);
+    if (args.format == "json") {
+        auto j = planToJson(plan);
+        if (!setup.passes.empty()) j["setup"] = planToJson(setup);
+        out.formatted = j.dump(2) + "\n";
+    }
+    else if (args.format == "dot") out.formatted = planToDot(plan, graph, &setup);
     else out.formatted = out.text;
     return out;
 }
@@ -111,7 +119,7 @@ Command addCompileCommand(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand("compile", "Compile a graph file into a plan of passes and barriers");
     cmd->add_option("graph", args->graph, "Graph file (graphs/*.json)")->required();
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
-    cmd->add_option("--format", args->format, "Output format: text, json (contract §2) or dot (graphviz)")
+    cmd->add_option("--format", args->format, "Output format: text, json (schemas/plan.schema.json) or dot (graphviz)")
         ->check(CLI::IsMember({"text", "json", "dot"}));
     cmd->add_option("-o,--output", args->output, "Write to FILE instead of stdout (never half-written)");
     cmd->add_flag("--no-cull", args->noCull, "Keep passes whose output nobody reads");

@@ -1,4 +1,4 @@
-// `skygraph compile GRAPH`: print the plan (text, contract JSON or graphviz DOT), or with
+// `skygraph compile GRAPH`: print the plan (text, JSON or graphviz DOT), or with
 // --watch keep recompiling on every save and print how the plan changed.
 #pragma once
 

@@ -1,8 +1,10 @@
 #include "cubemap_command.hpp"
 
 #include "builtin_ibl_graph.hpp"
-#include "environment_bake.hpp"
 #include "progress_bar.hpp"
+
+#include "app/environment_bake.hpp"
+#include "shipped_names.hpp"
 
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/ktx2.hpp>
@@ -15,6 +17,10 @@
 
 namespace skygraph::cli {
 namespace {
+
+using app::BakeOptions;
+using app::BakeResult;
+using namespace shipped;
 
 struct CubemapArgs {
     std::string input, output, cross, format = "rgba16f", device;
@@ -81,7 +87,7 @@ int run(CubemapArgs& args) {
     bake.graphText = kIblGraph;
     bake.float32 = args.format == "rgba32f";
     bake.products.clear();
-    for (const auto& p : args.products) bake.products.push_back(p == "brdf" ? "brdf_lut" : p);
+    for (const auto& p : args.products) bake.products.push_back(p == "brdf" ? std::string(kBrdfLut) : p);
 
     ProgressBar bar("cubemap", 6, "steps");
     const HdrImage equirect = loadHdrImage(args.input);  // ImageError names the file and reason
@@ -92,21 +98,21 @@ int run(CubemapArgs& args) {
                      equirect.width, equirect.height);
     bar.advance();
     bake.onStep = [&](const std::string&) { bar.advance(); };
-    const BakeResult result = bakeEnvironment(equirect, bake);
+    const BakeResult result = app::bakeAndReadBack(equirect, bake);
     if (args.bake.validate && result.validationMessages != 0)
         throw std::runtime_error(std::to_string(result.validationMessages) + " validation messages (see the log)");
 
     for (const PassTiming& t : result.passTimings) spdlog::debug("  {:<18} {:8.1f} ms", t.pass, t.milliseconds);
     const Ktx2Format colour = bake.float32 ? Ktx2Format::Rgba32Float : Ktx2Format::Rgba16Float;
-    saveKtx2(output, toKtx2(result.products.at("environment"), 6, colour));
+    saveKtx2(output, toKtx2(result.products.at(std::string(kEnvironment)), 6, colour));
     for (const auto& p : args.products) {
-        const std::string resource = p == "brdf" ? "brdf_lut" : p;
-        const bool table = resource == "brdf_lut";
+        const std::string resource = p == "brdf" ? std::string(kBrdfLut) : p;
+        const bool table = resource == kBrdfLut;
         const Ktx2Format format = table ? (bake.float32 ? Ktx2Format::Rg32Float : Ktx2Format::Rg16Float) : colour;
         saveKtx2(productPath(output, p), toKtx2(result.products.at(resource), table ? 1 : 6, format));
     }
     if (!args.cross.empty()) {
-        const auto& env = result.products.at("environment");
+        const auto& env = result.products.at(std::string(kEnvironment));
         saveHdrImage(args.cross, crossLayout({env.begin(), env.begin() + 6}));
     }
     bar.advance();

@@ -1,6 +1,6 @@
-// The skygraph command line (contract §3). Exit status: 0 success, 1 user error (message on
-// stderr, nothing half-written), 2 misuse of the command line. Each subcommand lives in its
-// own x_command.{hpp,cpp} and is listed once below (see cli_common.hpp).
+// The skygraph command line (docs/graph-format.md, "Command line"). Exit status: 0 success,
+// 1 user error (message on stderr, nothing half-written), 2 misuse of the command line. Each
+// subcommand lives in its own x_command.{hpp,cpp} and is listed once below (see cli_common.hpp).
 #include "cli_common.hpp"
 #include "compile_command.hpp"
 #include "progress_bar.hpp"

@@ -4,7 +4,8 @@
 #include "builtin_ibl_graph.hpp"
 #include "progress_bar.hpp"
 
-#include <skygraph/executor.hpp>
+#include "app/render.hpp"
+
 #include <skygraph/pass.hpp>
 #include <skygraph/shader_compiler.hpp>
 
@@ -18,14 +19,14 @@ namespace skygraph::cli {
 namespace {
 
 struct RenderArgs {
-    RenderOptions options;
-    std::string graph, scene, output = "skygraph.png";
+    app::RenderOptions options;
+    std::string graph, scene, output;
     std::vector<std::string> features;
 };
 
 int run(RenderArgs& args) {
     static const PassLibrary library = PassLibrary::withBuiltins();
-    RenderOptions options = args.options;
+    app::RenderOptions options = args.options;
     options.passes = &library;
     if (args.graph.empty()) {
         options.graphText = kDefaultGraph;
@@ -43,14 +44,14 @@ int run(RenderArgs& args) {
         bar->advance(submitted - bar->done());
         if (submitted == total) bar->finish();  // before the timings and "wrote" lines
     };
-    return renderCommand(options);
+    return app::renderCommand(options);
 }
 
 }  // namespace
 
 Command addRenderCommand(CLI::App& parent) {
     auto args = std::make_shared<RenderArgs>();
-    RenderOptions& o = args->options;
+    app::RenderOptions& o = args->options;
     CLI::App* cmd = parent.add_subcommand(
         "render", "Render a graph headless and write the swapchain target. With no graph and no scene: "
                   "the built-in raster graph and default scene");
@@ -62,7 +63,9 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_option("--height", o.height, "Output height")->check(CLI::Range(1u, 16384u));
     cmd->add_option("--frames", o.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
     cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
-    cmd->add_option("-o,--output", args->output, "Write the result: .png, .hdr or .exr (default skygraph.png)");
+    cmd->add_option("-o,--output", args->output,
+                    "Write the result: .png, .hdr or .exr (default skygraph.png, when the graph has a Present image "
+                    "or --readback names one)");
     cmd->add_option("--readback", o.readback,
                     "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)");
     cmd->add_flag("!--no-fit-environment", o.fitEnvironmentToView,

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <optional>
 
-namespace skygraph {
+namespace skygraph::app {
 
 /// Face sizes of the environment cube and of the prefiltered cube's mip 0, in texels.
 struct EnvironmentSizes {
@@ -41,6 +41,12 @@ struct EnvironmentSizes {
 /// graph or a frame graph importing its products; resources it lacks are skipped), and
 /// rebuilds the environment graph's mip chain: graphs/ibl.json writes one CubemapMipPass per
 /// level of its declared cube; the first is copied once per level of the new size, in place.
+/// References and pointers into `graph.passes` are invalid afterwards.
 void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes);
 
-}  // namespace skygraph
+/// Sets the extent of `graph`'s `equirect` (the image a scene's environment file is loaded
+/// into) to `width` x `height`, so that the plan's subresources match the image. False when
+/// the graph has no such resource.
+bool setEquirectExtent(GraphDesc& graph, uint32_t width, uint32_t height);
+
+}  // namespace skygraph::app

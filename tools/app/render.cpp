@@ -1,9 +1,16 @@
 // `skygraph render`: compile a graph file and render it headless.
+#include "render.hpp"
+
+#include "environment_bake.hpp"
+#include "environment_graph.hpp"
+#include "shipped_names.hpp"
+
 #include <skygraph/compiler.hpp>
-#include <skygraph/environment_graph.hpp>
+#include <skygraph/device.hpp>
 #include <skygraph/hdr_image.hpp>
-#include <skygraph/executor.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/renderer.hpp>
 #include <skygraph/scene.hpp>
 
 #include <spdlog/spdlog.h>
@@ -14,27 +21,29 @@
 #include <set>
 #include <iostream>
 
-namespace skygraph {
+namespace skygraph::app {
 namespace {
 
-/// The graph resource that a loaded environment file becomes (graphs/raster.json, ibl.json).
-constexpr std::string_view kEnvironmentResource = "equirect";
+using namespace shipped;
 
-bool setEnvironmentExtent(GraphDesc& graph, const HdrImage& image) {
-    for (ResourceDesc& r : graph.resources) {
-        if (r.name != kEnvironmentResource) continue;
-        r.extent = Extent{false, 1, image.width, image.height};
-        return true;
-    }
-    return false;
+/// What runs when RenderOptions::passes is null: the built-in library's Generic alone, so that
+/// every pass type is recorded as Generic.
+const PassLibrary& genericOnly() {
+    static const PassLibrary library = [] {
+        const PassLibrary builtins = PassLibrary::withBuiltins();
+        PassLibrary generic;
+        generic.add(*builtins.registry().find("Generic"), *builtins.factory("Generic"));
+        return generic;
+    }();
+    return library;
 }
 
 /// graphs/ibl.json: RenderOptions::environmentGraph(Text), else ibl.json beside the graph file.
 std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, const PassRegistry& registry) {
     if (!options.environmentGraphText.empty())
-        return parseGraph(options.environmentGraphText, "<built-in ibl.json>", registry);
+        return parseGraph(options.environmentGraphText, std::string(kBuiltinEnvironmentGraphName), registry);
     std::filesystem::path file = options.environmentGraph;
-    if (file.empty() && !options.graph.empty()) file = options.graph.parent_path() / "ibl.json";
+    if (file.empty() && !options.graph.empty()) file = options.graph.parent_path() / kEnvironmentGraphFile;
     if (file.empty() || !std::filesystem::exists(file)) return std::nullopt;
     return loadGraphFile(file, registry);
 }
@@ -46,7 +55,7 @@ std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const G
     std::set<std::string, std::less<>> products;
     for (const PlannedResource& r : plan.resources) {
         const ResourceDesc& d = graph.resources[r.decl];
-        if (!d.external || d.name == kEnvironmentResource) continue;
+        if (!d.external || d.name == kEquirect) continue;
         const ResourceDesc* produced = environmentGraph ? environmentGraph->findResource(d.name) : nullptr;
         if (produced && produced->isExported()) {
             products.insert(d.name);
@@ -57,33 +66,32 @@ std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const G
     return products;
 }
 
-/// Runs the environment graph once on `equirect`, building only `products` (at `sizes` when
-/// given); the returned renderer owns them (share them with Renderer::shareImage()).
-std::unique_ptr<Renderer> bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
-                                          const std::set<std::string, std::less<>>& products,
-                                          const std::optional<EnvironmentSizes>& sizes, const PassLibrary* passes) {
-    if (!setEnvironmentExtent(graph, equirect))
-        throw ExecutorError("the environment graph '" + graph.name + "' has no resource 'equirect'");
+/// The environment graph, sized like the frame (`sizes`, when given), baked once on `equirect`
+/// for `products`; the returned renderer owns them (share them with Renderer::shareImage()).
+std::unique_ptr<Renderer> bakeForFrame(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                       const std::set<std::string, std::less<>>& products,
+                                       const std::optional<EnvironmentSizes>& sizes, const PassLibrary* passes) {
     if (sizes) resizeEnvironmentGraph(graph, *sizes);
-    CompileOptions co;
-    co.outputs = products;
-    Plan plan = compile(graph, co);
-    for (const auto& c : plan.culled) spdlog::info("environment: culled {}: {}", c.name, c.reason);
-    RendererOptions ro;
-    ro.framesInFlight = 1;
-    ro.passes = passes;
-    auto renderer = std::make_unique<Renderer>(device, graph, std::move(plan), ro);
-    ImageData pixels;
-    pixels.width = equirect.width;
-    pixels.height = equirect.height;
-    pixels.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    pixels.rgba = equirect.rgba;
-    renderer->setExternalImage(std::string(kEnvironmentResource), std::move(pixels));
-    renderer->renderFrame();
-    renderer->waitIdle();
-    for (const auto& t : renderer->lastTimings())
+    EnvironmentBake bake = bakeEnvironment(device, std::move(graph), equirect, products, passes);
+    for (const auto& c : bake.renderer->plan().culled) spdlog::info("environment: culled {}: {}", c.name, c.reason);
+    for (const auto& t : bake.renderer->lastTimings())
         spdlog::info("environment: pass {:<20} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
-    return renderer;
+    return std::move(bake.renderer);
+}
+
+/// The image `render` writes: `readback` if named, else the graph's Present image, else none.
+std::string outputTarget(const GraphDesc& graph, const std::string& readback) {
+    if (!readback.empty()) return readback;
+    for (const ResourceDesc& r : graph.resources)
+        if (r.final == ExternalState::Present) return r.name;
+    return {};
+}
+
+std::string imageNames(const GraphDesc& graph) {
+    std::string names;
+    for (const ResourceDesc& r : graph.resources)
+        if (r.isImage()) names += (names.empty() ? "" : ", ") + r.name;
+    return names.empty() ? "none" : names;
 }
 
 ImageData toImageData(HdrImage&& image) {
@@ -109,12 +117,13 @@ int renderCommand(const RenderOptions& options) {
         }
         const PassRegistry builtins = options.passes ? PassRegistry{} : PassRegistry::withBuiltins();
         const PassRegistry& registry = options.passes ? options.passes->registry() : builtins;
+        const PassLibrary* passes = options.passes ? options.passes : &genericOnly();
         GraphDesc graph = options.graphText.empty()
                                     ? loadGraphFile(options.graph, registry)
-                                    : parseGraph(options.graphText, "<built-in raster.json>", registry);
+                                    : parseGraph(options.graphText, std::string(kBuiltinFrameGraphName), registry);
         std::optional<Scene> scene;
         if (!options.sceneText.empty())
-            scene = parseScene(options.sceneText, "<built-in default scene>", std::filesystem::current_path());
+            scene = parseScene(options.sceneText, std::string(kBuiltinSceneName), std::filesystem::current_path());
         else if (!options.scene.empty())
             scene = loadSceneFile(options.scene);
         // A file environment is loaded before compiling: its size is the extent of the graph's
@@ -124,9 +133,9 @@ int renderCommand(const RenderOptions& options) {
             environment = loadHdrImage(scene->environment->file);
             spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
                          environment->height);
-            if (!setEnvironmentExtent(graph, *environment))
-                spdlog::warn("graph '{}' has no resource 'equirect': the environment file is not used",
-                             graph.name);
+            if (!setEquirectExtent(graph, environment->width, environment->height))
+                spdlog::warn("graph '{}' has no resource '{}': the environment file is not used", graph.name,
+                             kEquirect);
         }
         // No more environment than the view can show: both graphs get the same sizes, so the
         // frame imports exactly what the environment graph exports.
@@ -153,11 +162,27 @@ int renderCommand(const RenderOptions& options) {
             for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
         }
         for (const auto& [name, on] : options.features) co.features[name] = on;
+        // Headless: the swapchain target is an image of our own, read back instead of presented.
         co.presentReplacement = ExternalState::TransferSrc;
-        if (!options.readback.empty()) co.exports[options.readback] = ExternalState::TransferSrc;
+        std::filesystem::path output = options.output;
+        const std::string target = outputTarget(graph, options.readback);
+        if (target.empty()) {
+            if (!output.empty()) {
+                std::cerr << "skygraph render: nothing to write to " << output.string() << ": graph '" << graph.name
+                          << "' has no Present image; add --readback NAME with one of its images: "
+                          << imageNames(graph) << "\n";
+                return 1;
+            }
+            spdlog::info("graph '{}' has no Present image: no file is written (-o FILE --readback NAME writes one)",
+                         graph.name);
+        } else {
+            if (output.empty()) output = "skygraph.png";
+            co.readbacks = {target};
+        }
         co.outputWidth = options.width;
         co.outputHeight = options.height;
-        Plan plan = compile(graph, co);
+        CompiledGraph compiled(graph, co);
+        const Plan& plan = compiled.plan();
         for (const auto& c : plan.culled) spdlog::info("culled {}: {}", c.name, c.reason);
 
         DeviceOptions dopts;
@@ -172,20 +197,17 @@ int renderCommand(const RenderOptions& options) {
             const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, registry);
             products = environmentProducts(plan, graph, envGraph ? &*envGraph : nullptr);
             if (!products.empty())
-                environmentRenderer = bakeEnvironment(*device, *envGraph, *environment, products, environmentSizes,
-                                                      options.passes);
+                environmentRenderer = bakeForFrame(*device, *envGraph, *environment, products, environmentSizes,
+                                                   passes);
         }
         RendererOptions ropts;
-        ropts.width = options.width;
-        ropts.height = options.height;
         ropts.framesInFlight = options.framesInFlight;
-        ropts.passes = options.passes;
-        ropts.readback = options.readback;
-        Renderer renderer(*device, graph, std::move(plan), ropts);
+        ropts.passes = passes;
+        Renderer renderer(*device, std::move(compiled), ropts);
         if (scene) renderer.frameData().set(*scene);
         for (const auto& name : products) renderer.importImage(name, environmentRenderer->shareImage(name));
-        if (environment && renderer.plan().resourceIndex(kEnvironmentResource) >= 0)
-            renderer.setExternalImage(std::string(kEnvironmentResource), toImageData(std::move(*environment)));
+        if (environment && renderer.plan().resourceIndex(kEquirect) >= 0)
+            renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*environment)));
         for (uint32_t i = 0; i < options.frames; ++i) {
             renderer.renderFrame();
             if (options.onFrameSubmitted) options.onFrameSubmitted(i + 1, options.frames);
@@ -194,15 +216,15 @@ int renderCommand(const RenderOptions& options) {
         for (const auto& t : renderer.lastTimings()) {
             spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
         }
-        if (!options.output.empty()) {
-            const ImageData image = renderer.readback();
-            const auto ext = options.output.extension().string();
+        if (!target.empty()) {
+            const ImageData image = renderer.readback(target);
+            const auto ext = output.extension().string();
             if (ext == ".hdr" || ext == ".exr") {
-                writeHdr(options.output, image);
+                writeHdr(output, image);
             } else {
-                writePng(options.output, image);
+                writePng(output, image);
             }
-            spdlog::info("wrote {}", options.output.string());
+            spdlog::info("wrote {}", output.string());
         }
         if (device->validationEnabled() && device->messageCount() > 0) {
             std::cerr << "skygraph render: validation reported " << device->messageCount()
@@ -219,4 +241,4 @@ int renderCommand(const RenderOptions& options) {
     }
 }
 
-}  // namespace skygraph
+}  // namespace skygraph::app

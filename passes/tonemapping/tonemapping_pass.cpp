@@ -15,7 +15,7 @@ int operatorIndex(const std::string& name) {
     if (name == "aces_hill") return 1;
     if (name == "khronos_pbr_neutral") return 2;
     if (name == "passthrough") return 3;
-    return 0;  // aces_narkowicz, the seed's default
+    return 0;  // aces_narkowicz, the default
 }
 
 int operatorIndex(Tonemapper t) {
@@ -75,8 +75,7 @@ public:
         recipe.pushConstantBytes = sizeof(Push);
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
-        // An *_SRGB attachment encodes in hardware (the seed's design); anything else needs
-        // the shader to encode.
+        // An *_SRGB attachment encodes in hardware; anything else needs the shader to encode.
         encodeSrgb_ = output && !isSrgb(output->format);
     }
 

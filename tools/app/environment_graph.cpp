@@ -1,5 +1,7 @@
-// Sizing the environment pipeline's graphs: see include/skygraph/environment_graph.hpp.
-#include <skygraph/environment_graph.hpp>
+// Sizing the environment pipeline's graphs: see environment_graph.hpp.
+#include "environment_graph.hpp"
+
+#include "shipped_names.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -8,8 +10,10 @@
 #include <string>
 #include <vector>
 
-namespace skygraph {
+namespace skygraph::app {
 namespace {
+
+using namespace shipped;
 
 ResourceDesc* findCube(GraphDesc& graph, std::string_view name) {
     for (ResourceDesc& r : graph.resources)
@@ -37,13 +41,13 @@ uint32_t viewEnvironmentFaceSize(uint32_t outputHeight, double fovYDeg, uint32_t
 
 std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph, uint32_t outputHeight,
                                                      double fovYDeg, uint32_t equirectWidth) {
-    const ResourceDesc* environment = frameGraph.findResource("environment");
+    const ResourceDesc* environment = frameGraph.findResource(kEnvironment);
     if (!environment || environment->type != ResourceType::Cube || environment->extent.relativeToOutput)
         return std::nullopt;
     EnvironmentSizes sizes;
     sizes.environment = viewEnvironmentFaceSize(outputHeight, fovYDeg, equirectWidth, environment->extent.width);
     sizes.prefiltered = sizes.environment / 2;
-    if (const ResourceDesc* prefiltered = frameGraph.findResource("prefiltered");
+    if (const ResourceDesc* prefiltered = frameGraph.findResource(kPrefiltered);
         prefiltered && !prefiltered->extent.relativeToOutput) {
         const uint32_t levels = std::max(prefiltered->mips, 1u);  // "full" (0) needs one texel only
         const uint32_t smallest = levels >= 32 ? (1u << 31) : (1u << (levels - 1));
@@ -54,10 +58,10 @@ std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph
 }
 
 void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes) {
-    if (ResourceDesc* r = findCube(graph, "environment")) r->extent = Extent{false, 1, sizes.environment, sizes.environment};
-    if (ResourceDesc* r = findCube(graph, "prefiltered")) r->extent = Extent{false, 1, sizes.prefiltered, sizes.prefiltered};
+    if (ResourceDesc* r = findCube(graph, kEnvironment)) r->extent = Extent{false, 1, sizes.environment, sizes.environment};
+    if (ResourceDesc* r = findCube(graph, kPrefiltered)) r->extent = Extent{false, 1, sizes.prefiltered, sizes.prefiltered};
 
-    const auto isMip = [](const PassDesc& p) { return p.type == "CubemapMipPass"; };
+    const auto isMip = [](const PassDesc& p) { return p.type == kCubemapMipPass; };
     const auto first = std::find_if(graph.passes.begin(), graph.passes.end(), isMip);
     if (first == graph.passes.end()) return;
     const PassDesc model = *first;
@@ -69,11 +73,20 @@ void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes) {
         pass.name = "environment_mip" + std::to_string(mip);
         for (UsageDecl& use : pass.uses) {
             if (!use.usage.range) continue;
-            use.usage.range->baseMip = graph.slotName(use.slot) == "source" ? mip - 1 : mip;
+            use.usage.range->baseMip = graph.slotName(use.slot) == kCubemapMipSourceSlot ? mip - 1 : mip;
         }
         chain.push_back(std::move(pass));
     }
     graph.passes.insert(graph.passes.begin() + at, chain.begin(), chain.end());
 }
 
-}  // namespace skygraph
+bool setEquirectExtent(GraphDesc& graph, uint32_t width, uint32_t height) {
+    for (ResourceDesc& r : graph.resources) {
+        if (r.name != kEquirect) continue;
+        r.extent = Extent{false, 1, width, height};
+        return true;
+    }
+    return false;
+}
+
+}  // namespace skygraph::app

@@ -1,6 +1,9 @@
 #include "generic_program.hpp"
 
-#include <skygraph/executor.hpp>
+#include "pass_error.hpp"
+#include "texel_encoding.hpp"
+
+#include <skygraph/device.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -9,7 +12,11 @@
 #include <cstring>
 #include <sstream>
 
-namespace skygraph {
+namespace skygraph::passes {
+
+using detail::passError;
+using detail::scalarPrefix;
+
 namespace {
 
 std::string glslStorageFormat(VkFormat f) {
@@ -37,21 +44,6 @@ std::string glslStorageFormat(VkFormat f) {
         case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return "rgb10_a2";
         default: return {};
     }
-}
-
-uint16_t toHalf(float f) {
-    uint32_t x;
-    std::memcpy(&x, &f, 4);
-    const uint32_t sign = (x >> 16) & 0x8000u;
-    int32_t exp = static_cast<int32_t>((x >> 23) & 0xffu) - 127 + 15;
-    uint32_t mant = x & 0x7fffffu;
-    if (exp <= 0) return static_cast<uint16_t>(sign);
-    if (exp >= 31) return static_cast<uint16_t>(sign | 0x7c00u);
-    return static_cast<uint16_t>(sign | (static_cast<uint32_t>(exp) << 10) | (mant >> 13));
-}
-
-uint8_t unorm8(float v) {
-    return static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
 }
 
 /// The GLSL name of level `level` of a storage-image binding: `iN`, or `iN[level]` for an
@@ -185,79 +177,9 @@ std::string vec4Literal(const std::array<float, 4>& c) {
 
 }  // namespace
 
-std::string scalarPrefix(VkFormat format) {
-    switch (format) {
-        case VK_FORMAT_R8_UINT: case VK_FORMAT_R8G8_UINT: case VK_FORMAT_R8G8B8A8_UINT:
-        case VK_FORMAT_R16_UINT: case VK_FORMAT_R16G16_UINT: case VK_FORMAT_R16G16B16A16_UINT:
-        case VK_FORMAT_R32_UINT: case VK_FORMAT_R32G32_UINT: case VK_FORMAT_R32G32B32A32_UINT:
-        case VK_FORMAT_A2B10G10R10_UINT_PACK32:
-            return "u";
-        case VK_FORMAT_R8_SINT: case VK_FORMAT_R8G8_SINT: case VK_FORMAT_R8G8B8A8_SINT:
-        case VK_FORMAT_R16_SINT: case VK_FORMAT_R16G16_SINT: case VK_FORMAT_R16G16B16A16_SINT:
-        case VK_FORMAT_R32_SINT: case VK_FORMAT_R32G32_SINT: case VK_FORMAT_R32G32B32A32_SINT:
-            return "i";
-        default:
-            return "";
-    }
-}
-
-std::vector<uint8_t> encodeTexel(VkFormat format, uint32_t texelBytes,
-                                 const std::array<float, 4>& c) {
-    std::vector<uint8_t> out(texelBytes, 0);
-    auto put = [&](const void* p, size_t n) {
-        std::memcpy(out.data(), p, std::min<size_t>(n, out.size()));
-    };
-    switch (format) {
-        case VK_FORMAT_R8G8B8A8_UNORM:
-        case VK_FORMAT_R8G8B8A8_SRGB: {
-            const uint8_t b[4] = {unorm8(c[0]), unorm8(c[1]), unorm8(c[2]), unorm8(c[3])};
-            put(b, 4);
-            break;
-        }
-        case VK_FORMAT_B8G8R8A8_UNORM:
-        case VK_FORMAT_B8G8R8A8_SRGB: {
-            const uint8_t b[4] = {unorm8(c[2]), unorm8(c[1]), unorm8(c[0]), unorm8(c[3])};
-            put(b, 4);
-            break;
-        }
-        case VK_FORMAT_R8_UNORM: {
-            const uint8_t b = unorm8(c[0]);
-            put(&b, 1);
-            break;
-        }
-        case VK_FORMAT_R16G16B16A16_SFLOAT:
-        case VK_FORMAT_R16G16_SFLOAT:
-        case VK_FORMAT_R16_SFLOAT: {
-            const uint16_t h[4] = {toHalf(c[0]), toHalf(c[1]), toHalf(c[2]), toHalf(c[3])};
-            put(h, 8);
-            break;
-        }
-        case VK_FORMAT_R32G32B32A32_SFLOAT:
-        case VK_FORMAT_R32G32_SFLOAT:
-        case VK_FORMAT_R32_SFLOAT:
-            put(c.data(), 16);
-            break;
-        case VK_FORMAT_D32_SFLOAT:
-        case VK_FORMAT_D32_SFLOAT_S8_UINT: {
-            const float d = std::clamp(c[0], 0.0f, 1.0f);
-            put(&d, 4);
-            break;
-        }
-        case VK_FORMAT_D16_UNORM: {
-            const auto d = static_cast<uint16_t>(std::lround(std::clamp(c[0], 0.0f, 1.0f) * 65535.0f));
-            put(&d, 2);
-            break;
-        }
-        default:
-            break;
-    }
-    return out;
-}
-
-GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
-                                   const PlannedPass& pass, const nlohmann::json& params,
-                                   bool strictParams, bool layeredRendering) {
-    GenericProgram p;
+GenericParams parseGenericParams(const PassDesc& desc, bool strict) {
+    GenericParams out;
+    const nlohmann::json& params = desc.params;
     // params: { "color": [r, g, b, a], "depth": d }
     if (params.is_object()) {
         if (auto it = params.find("color"); it != params.end()) {
@@ -265,39 +187,46 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                             std::all_of(it->begin(), it->end(),
                                         [](const nlohmann::json& v) { return v.is_number(); });
             if (ok) {
-                for (size_t i = 0; i < 4; ++i) p.color[i] = (*it)[i].get<float>();
-            } else if (strictParams) {
-                throw ExecutorError(detail::passError(pass, "", "params.color must be an array of 4 numbers"));
+                for (size_t i = 0; i < 4; ++i) out.color[i] = (*it)[i].get<float>();
+            } else if (strict) {
+                throw ExecutorError(passError(desc.name, "", "params.color must be an array of 4 numbers"));
             }
         }
         if (auto it = params.find("depth"); it != params.end()) {
             if (it->is_number() && it->get<double>() >= 0.0 && it->get<double>() <= 1.0) {
-                p.depthValue = it->get<float>();
-            } else if (strictParams) {
-                throw ExecutorError(detail::passError(pass, "", "params.depth must be a number in [0, 1]"));
+                out.depth = it->get<float>();
+            } else if (strict) {
+                throw ExecutorError(passError(desc.name, "", "params.depth must be a number in [0, 1]"));
             }
         }
     }
+    return out;
+}
+
+GenericProgram buildGenericProgram(const PlannedPass& pass, std::span<const BoundResource> resources,
+                                   const GenericParams& params, bool layeredRendering) {
+    GenericProgram p;
+    p.color = params.color;
+    p.depthValue = params.depth;
+    if (resources.size() != pass.usages.size())
+        throw ExecutorError(passError(pass, "", "the bound resources are not parallel to the usages"));
 
     uint32_t nextBinding = 0;
     for (uint32_t i = 0; i < pass.usages.size(); ++i) {
         const PlannedUsage& u = pass.usages[i];
-        if (u.resource >= plan.resources.size()) {
-            throw ExecutorError(detail::passError(pass, "", "usage refers to unknown plan resource"));
-        }
-        const ResourceDesc& r = graph.resources.at(plan.resources[u.resource].decl);
+        const ResourceDesc& r = *resources[i].desc;
         switch (u.usage.stage) {
             case Stage::ColorAttachment:
                 if (!r.isImage() || r.format.isDepthStencil())
-                    throw ExecutorError(detail::passError(pass, r.name, "is not a color image"));
+                    throw ExecutorError(passError(pass, r.name, "is not a color image"));
                 p.colors.push_back(i);
                 p.graphics = true;
                 break;
             case Stage::DepthAttachment:
                 if (!r.isImage() || !r.format.isDepthStencil())
-                    throw ExecutorError(detail::passError(pass, r.name, "is not a depth/stencil image"));
+                    throw ExecutorError(passError(pass, r.name, "is not a depth/stencil image"));
                 if (p.depth >= 0)
-                    throw ExecutorError(detail::passError(pass, r.name, "a pass can have one depth attachment"));
+                    throw ExecutorError(passError(pass, r.name, "a pass can have one depth attachment"));
                 p.depth = static_cast<int32_t>(i);
                 p.graphics = true;
                 break;
@@ -305,10 +234,10 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                 p.transfers.push_back(i);
                 break;
             case Stage::VertexInput:
-                if (r.isImage()) throw ExecutorError(detail::passError(pass, r.name, "VertexInput needs a buffer"));
+                if (r.isImage()) throw ExecutorError(passError(pass, r.name, "VertexInput needs a buffer"));
                 if (u.usage.as == BindAs::Index) {
                     if (p.indexBuffer >= 0)
-                        throw ExecutorError(detail::passError(pass, r.name, "a pass can have one index buffer"));
+                        throw ExecutorError(passError(pass, r.name, "a pass can have one index buffer"));
                     p.indexBuffer = static_cast<int32_t>(i);
                 } else {
                     p.vertexBuffers.push_back(i);
@@ -316,9 +245,9 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                 p.graphics = true;
                 break;
             case Stage::Indirect:
-                if (r.isImage()) throw ExecutorError(detail::passError(pass, r.name, "Indirect needs a buffer"));
+                if (r.isImage()) throw ExecutorError(passError(pass, r.name, "Indirect needs a buffer"));
                 if (p.indirectBuffer >= 0)
-                    throw ExecutorError(detail::passError(pass, r.name, "a pass can have one indirect buffer"));
+                    throw ExecutorError(passError(pass, r.name, "a pass can have one indirect buffer"));
                 p.indirectBuffer = static_cast<int32_t>(i);
                 p.graphics = true;
                 break;
@@ -351,13 +280,13 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                                          : VK_IMAGE_VIEW_TYPE_2D;
                         b.glslFormat = glslStorageFormat(r.format.format);
                         if (b.read && b.glslFormat.empty()) {
-                            throw ExecutorError(detail::passError(pass, r.name,
+                            throw ExecutorError(passError(pass, r.name,
                                                     "format " + std::string(r.format.name) +
                                                         " cannot be read as a storage image"));
                         }
                         if (!b.read) b.glslFormat.clear();  // write-only: no qualifier needed
                     } else {
-                        throw ExecutorError(detail::passError(pass, r.name, "an image cannot be a uniform buffer"));
+                        throw ExecutorError(passError(pass, r.name, "an image cannot be a uniform buffer"));
                     }
                 } else {
                     if (as == BindAs::Uniform) {
@@ -368,7 +297,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
                         b.kind = BindKind::StorageBuffer;
                     }
                     if (r.sizeBytes < 4)
-                        throw ExecutorError(detail::passError(pass, r.name, "buffer is smaller than 4 bytes"));
+                        throw ExecutorError(passError(pass, r.name, "buffer is smaller than 4 bytes"));
                 }
                 if (b.stage == VK_SHADER_STAGE_COMPUTE_BIT) {
                     p.computeBindings.push_back(b);
@@ -385,7 +314,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
     if (p.depth >= 0)
         p.attachmentLayers = std::max(p.attachmentLayers, pass.usages[size_t(p.depth)].range.layerCount);
     if (p.attachmentLayers > 1 && !layeredRendering) {
-        throw ExecutorError(detail::passError(pass, "", "rendering to several layers needs shaderOutputLayer"));
+        throw ExecutorError(passError(pass, "", "rendering to several layers needs shaderOutputLayer"));
     }
 
     const std::string header =
@@ -422,8 +351,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
         for (const auto& b : p.graphicsBindings)
             if (b.stage == VK_SHADER_STAGE_FRAGMENT_BIT) fs << declare(b);
         for (size_t c = 0; c < p.colors.size(); ++c) {
-            const ResourceDesc& r =
-                graph.resources[plan.resources[pass.usages[p.colors[c]].resource].decl];
+            const ResourceDesc& r = *resources[p.colors[c]].desc;
             fs << "layout(location = " << c << ") out " << scalarPrefix(r.format.format)
                << "vec4 o" << c << ";\n";
         }
@@ -434,8 +362,7 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
            << "    uint li = uint(xy.y) * pc.extent.x + uint(xy.x);\n"
            << body(p.graphicsBindings, VK_SHADER_STAGE_FRAGMENT_BIT);
         for (size_t c = 0; c < p.colors.size(); ++c) {
-            const ResourceDesc& r =
-                graph.resources[plan.resources[pass.usages[p.colors[c]].resource].decl];
+            const ResourceDesc& r = *resources[p.colors[c]].desc;
             fs << "    o" << c << " = " << scalarPrefix(r.format.format) << "vec4(genericOutput(acc));\n";
         }
         fs << "}\n";
@@ -456,4 +383,4 @@ GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
     return p;
 }
 
-}  // namespace skygraph
+}  // namespace skygraph::passes

@@ -1,6 +1,6 @@
-// SkyboxPass: the seed's design (fullscreen triangle at the reverse-Z far plane, depth test
-// GREATER_OR_EQUAL without writes, LOAD of the HDR target) with the two departures the issue
-// asks for: rays from the camera rotation alone, and cubemap or direct equirect sampling.
+// SkyboxPass: a fullscreen triangle at the reverse-Z far plane, depth test GREATER_OR_EQUAL
+// without writes, LOAD of the HDR target; rays from the camera rotation alone (exact at any
+// distance from the origin), and cubemap or direct equirect sampling (docs/conventions.md).
 #include "builtin_passes.hpp"
 #include <skygraph/pipeline_builder.hpp>
 #include "scene_camera.hpp"

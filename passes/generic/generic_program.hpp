@@ -2,16 +2,18 @@
 #pragma once
 
 #include <skygraph/graph.hpp>
+#include <skygraph/pass.hpp>
 #include <skygraph/plan.hpp>
 
 #include <vulkan/vulkan_core.h>
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
-namespace skygraph {
+namespace skygraph::passes {
 
 enum class BindKind : uint8_t { SampledImage, StorageImage, StorageBuffer, UniformBuffer };
 
@@ -29,7 +31,7 @@ struct ShaderBinding {
     uint32_t uniformVec4s = 1;  ///< Uniform buffers: array length of uvec4.
     /// Storage images: the usage's mip count. A storage view addresses one level, so the
     /// binding is an array of one view per level and the shader reads and writes every one
-    /// (contract: every declared access is really performed, which synchronization
+    /// (docs/executor.md: every declared access is really performed, which synchronization
     /// validation can only check for subresources a bound view covers).
     uint32_t levels = 1;
 };
@@ -55,30 +57,19 @@ struct GenericProgram {
     std::string computeSource;
 };
 
-/// Analyzes `pass` of `plan` and generates its shaders. `params` are the pass's params
-/// (color, depth); `strictParams` makes malformed ones an error (Generic) instead of being
-/// ignored (other pass types run as Generic). Throws ExecutorError naming the pass.
-[[nodiscard]] GenericProgram buildGenericProgram(const GraphDesc& graph, const Plan& plan,
-                                                 const PlannedPass& pass,
-                                                 const nlohmann::json& params, bool strictParams,
-                                                 bool layeredRendering);
+/// A Generic pass's params: { "color": [r, g, b, a], "depth": d }.
+struct GenericParams {
+    std::array<float, 4> color{0.25f, 0.5f, 0.75f, 1.0f};
+    float depth = 0.5f;
+};
 
-/// Whether a format stores unsigned ("u") or signed ("i") integers, else "".
-[[nodiscard]] std::string scalarPrefix(VkFormat format);
+/// `desc`'s params; `strict` makes malformed ones an error (the type Generic) instead of
+/// being ignored (other pass types run as Generic). Throws ExecutorError naming the pass.
+[[nodiscard]] GenericParams parseGenericParams(const PassDesc& desc, bool strict);
 
-/// Bytes of one texel of `format` filled with `color` (depth formats take color.x), for the
-/// transfer writes of the Generic pass. Unknown encodings yield zero bytes.
-[[nodiscard]] std::vector<uint8_t> encodeTexel(VkFormat format, uint32_t texelBytes,
-                                               const std::array<float, 4>& color);
+/// Analyzes `pass`, whose usages bind `resources` (parallel to them), and generates its
+/// shaders. Throws ExecutorError naming the pass and the resource.
+[[nodiscard]] GenericProgram buildGenericProgram(const PlannedPass& pass, std::span<const BoundResource> resources,
+                                                 const GenericParams& params, bool layeredRendering);
 
-namespace detail {
-/// "pass 'P', resource 'R': what" (", resource" only when `resource` is set): how the
-/// executor's errors name what they are about.
-inline std::string passError(const PlannedPass& pass, const std::string& resource, const std::string& what) {
-    std::string s = "pass '" + std::string(pass.name) + "'";
-    if (!resource.empty()) s += ", resource '" + resource + "'";
-    return s + ": " + what;
-}
-}  // namespace detail
-
-}  // namespace skygraph
+}  // namespace skygraph::passes

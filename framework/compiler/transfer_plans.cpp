@@ -1,0 +1,263 @@
+// planSetup and planImageRead: short plans around a frame's, built step by step with the
+// synchronizer's own per-subresource rules (barrier_rules.hpp). Each resource's steps touch
+// only that resource, so one state per resource is enough: every step covers the whole
+// resource or a part of it that the previous step wrote as a whole.
+#include "barrier_rules.hpp"
+#include "plan_builder.hpp"
+#include "vulkan_state.hpp"
+
+#include <skygraph/diagnostics.hpp>
+#include <skygraph/transfer_plans.hpp>
+
+#include <memory>
+
+namespace skygraph {
+namespace {
+
+using namespace sync;
+
+constexpr Usage kTransferWrite{Access::Write, Stage::Transfer, BindAs::Default, std::nullopt};
+constexpr Usage kTransferRead{Access::Read, Stage::Transfer, BindAs::Default, std::nullopt};
+
+/// Collects steps, then lays them out in a Plan's storage in one go (its spans view arrays
+/// that must not move once set).
+class StepListBuilder {
+public:
+    explicit StepListBuilder(const Plan& frame) {
+        plan_.graph = frame.graph;
+        plan_.features = frame.features;
+        plan_.outputWidth = frame.outputWidth;
+        plan_.outputHeight = frame.outputHeight;
+        detail::PlanBuilder::shareNames(plan_, frame);
+    }
+
+    /// Adds `frameResource` of `frame` to the plan, starting in `initialLayout`; returns its
+    /// index here.
+    uint32_t addResource(const PlannedResource& frameResource, VkImageLayout initialLayout) {
+        PlannedResource r = frameResource;
+        r.firstPass = static_cast<uint32_t>(steps_.size());
+        r.initialLayout = initialLayout;
+        plan_.resources.push_back(r);
+        return static_cast<uint32_t>(plan_.resources.size() - 1);
+    }
+
+    /// Adds a step of `type` named "<verb><resource name>" that performs `usage` on `range` of
+    /// resource `r`, with the barrier (if any) that `state` says it needs, and advances the state.
+    void addStep(std::string_view verb, std::string_view type, uint32_t r, const ResourceDesc& desc,
+                 const Usage& usage, const SubresourceRange& range, SubresourceState& state) {
+        Step step;
+        step.nameOffset = text_.size();
+        text_ += verb;
+        text_ += plan_.resources[r].name;
+        step.nameLength = text_.size() - step.nameOffset;
+        step.type = type;
+        const VulkanScope need = vulkanScope(desc, usage);
+        const bool write = writesContents(usage.access);
+        PlannedUsage& u = step.usage;
+        u.stages = need.stages;
+        u.access = need.access;
+        u.range = range;
+        u.resource = r;
+        u.layout = need.layout;
+        u.usage = usage.mode();
+        Barrier b;
+        if (barrierInto(b, state, need, need.layout, write, usage.access == Access::Write,
+                        [&] { return StageAccess{need.stages, need.access}; })) {
+            b.resource = r;
+            b.kind = desc.isImage() ? BarrierKind::Image : BarrierKind::Buffer;
+            b.range = range;
+            step.barrier = b;
+        }
+        recordAccess(state, write, need.layout, need);
+        plan_.resources[r].lastPass = static_cast<uint32_t>(steps_.size());
+        steps_.push_back(step);
+    }
+
+    /// The barrier that hands resource `r` from `state` to what comes after the plan: `target`
+    /// layout, visible to `scope`.
+    void addFinal(uint32_t r, const ResourceDesc& desc, SubresourceState& state, const VulkanScope& scope,
+                  VkImageLayout target, const SubresourceRange& whole) {
+        const bool nextUseWrites = writeBits(scope.access) != 0;
+        if (auto b = barrierFor(state, scope, target, nextUseWrites, false,
+                                [&] { return StageAccess{scope.stages, scope.access}; })) {
+            b->resource = r;
+            b->kind = desc.isImage() ? BarrierKind::Image : BarrierKind::Buffer;
+            b->range = whole;
+            plan_.finalBarriers.push_back(*b);
+        }
+        plan_.resources[r].finalLayout = desc.isImage() ? target : VK_IMAGE_LAYOUT_UNDEFINED;
+    }
+
+    /// The host reads what the steps copied out once the plan's fence has signalled.
+    void addHostRead(uint32_t r) {
+        Barrier b;
+        b.resource = r;
+        b.kind = BarrierKind::Memory;
+        b.srcStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+        b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
+        b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
+        plan_.finalBarriers.push_back(b);
+    }
+
+    Plan finish() && {
+        auto& usages = detail::PlanBuilder::usages(plan_);
+        auto& barriers = detail::PlanBuilder::barriers(plan_);
+        usages.reserve(steps_.size());
+        barriers.reserve(steps_.size());
+        auto names = std::make_shared<const std::string>(std::move(text_));
+        for (const Step& step : steps_) {
+            PlannedPass& p = plan_.passes.emplace_back();
+            p.name = std::string_view(*names).substr(step.nameOffset, step.nameLength);
+            p.type = step.type;
+            usages.push_back(step.usage);
+            p.usages = {&usages.back(), 1};
+            if (step.barrier) {
+                barriers.push_back(*step.barrier);
+                p.barriers = {&barriers.back(), 1};
+            }
+        }
+        detail::PlanBuilder::keepNames(plan_, std::move(names));
+        return std::move(plan_);
+    }
+
+private:
+    struct Step {
+        size_t nameOffset = 0, nameLength = 0;
+        std::string_view type;  // a literal
+        PlannedUsage usage;
+        std::optional<Barrier> barrier;
+    };
+    Plan plan_;
+    std::string text_;
+    std::vector<Step> steps_;
+};
+
+SubresourceRange wholeOf(const ResourceDesc& d, const Plan& frame) {
+    if (!d.isImage()) return {};
+    return {0, std::max(1u, d.mipCount(frame.outputWidth, frame.outputHeight)), 0, std::max(1u, d.layers)};
+}
+
+/// Where the frame's first pass that uses resource `r` uses it.
+VulkanScope firstUseScope(const Plan& frame, uint32_t r) {
+    VulkanScope scope;
+    for (const PlannedUsage& u : frame.passes.at(frame.resources[r].firstPass).usages)
+        if (u.resource == r) {
+            scope.stages |= u.stages;
+            scope.access |= u.access;
+        }
+    return scope;
+}
+
+/// The state the frame takes `d` to arrive in: its `initial`, unless that is Present and the
+/// plan was compiled to replace Present (CompileOptions::presentReplacement), as its layout says.
+ExternalState arrivesIn(const PlannedResource& res, const ResourceDesc& d) {
+    if (d.initial != ExternalState::Present || res.initialLayout == VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) return d.initial;
+    switch (res.initialLayout) {
+        case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return ExternalState::TransferSrc;
+        case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL: return ExternalState::ShaderRead;
+        case VK_IMAGE_LAYOUT_GENERAL: return ExternalState::General;
+        default: return ExternalState::None;
+    }
+}
+
+/// What the frame expects of an external resource when it starts: the documented scope of its
+/// `initial` state, or, where that names no stages (a buffer that arrives in no particular
+/// state, or General, the graph's own state), its first use.
+VulkanScope frameStartScope(const Plan& frame, uint32_t r, const ResourceDesc& d) {
+    VulkanScope scope = externalScope(d, arrivesIn(frame.resources[r], d));
+    if (scope.stages == 0 || d.initial == ExternalState::General) {
+        const VulkanScope first = firstUseScope(frame, r);
+        scope.stages = first.stages;
+        scope.access = first.access;
+    }
+    scope.layout = frame.resources[r].initialLayout;
+    return scope;
+}
+
+void checkUploads(const GraphDesc& graph, const SetupOptions& options) {
+    Diagnostics diags;
+    for (const std::string& name : options.uploads) {
+        const ResourceDesc* d = graph.findResource(name);
+        std::string problem;
+        if (!d) problem = "no such resource";
+        else if (!d->external) problem = "it is not external: the graph itself writes it";
+        else if (!d->isImage()) problem = "it is a buffer; uploads fill images";
+        else if (d->initial == ExternalState::None)
+            problem = "its `initial` state is None, so every frame discards its contents";
+        else if (options.imports.count(name)) problem = "it is imported from another renderer";
+        if (!problem.empty())
+            diags.add({graph.file, d ? d->jsonPath() : "resources", "", name, "cannot upload '" + name + "': " + problem});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+}
+
+}  // namespace
+
+Plan planSetup(const GraphDesc& graph, const Plan& frame, const SetupOptions& options) {
+    checkUploads(graph, options);
+    StepListBuilder steps(frame);
+    for (uint32_t fr = 0; fr < frame.resources.size(); ++fr) {
+        const PlannedResource& res = frame.resources[fr];
+        const ResourceDesc& d = graph.resources.at(res.decl);
+        if (!d.external || options.imports.count(d.name)) continue;
+        // The frame discards such an image's contents; and a swapchain image comes from the
+        // presentation engine.
+        if (d.isImage() && (res.initialLayout == VK_IMAGE_LAYOUT_UNDEFINED ||
+                            res.initialLayout == VK_IMAGE_LAYOUT_PRESENT_SRC_KHR))
+            continue;
+        const uint32_t r = steps.addResource(res, VK_IMAGE_LAYOUT_UNDEFINED);
+        const SubresourceRange whole = wholeOf(d, frame);
+        SubresourceState state{};
+        if (!d.isImage()) {
+            steps.addStep("initialize ", "Upload", r, d, kTransferWrite, whole, state);
+        } else {
+            const bool upload = options.uploads.count(d.name) != 0;
+            const SubresourceRange first{0, 1, 0, whole.layerCount};
+            if (!upload || first != whole) steps.addStep("initialize ", "Clear", r, d, kTransferWrite, whole, state);
+            if (upload) steps.addStep("upload ", "Upload", r, d, kTransferWrite, first, state);
+        }
+        const VulkanScope start = frameStartScope(frame, fr, d);
+        steps.addFinal(r, d, state, start, start.layout, whole);
+    }
+    return std::move(steps).finish();
+}
+
+Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view resource) {
+    const int32_t fr = frame.resourceIndex(resource);
+    const ResourceDesc* d = graph.findResource(resource);
+    std::string problem;
+    if (!d) problem = "no such resource";
+    else if (!d->isImage()) problem = "it is a buffer";
+    else if (fr < 0 || frame.resources[size_t(fr)].finalLayout == VK_IMAGE_LAYOUT_UNDEFINED)
+        problem = "no pass of the plan leaves it written";
+    if (!problem.empty()) {
+        Diagnostics diags;
+        diags.add({graph.file, d ? d->jsonPath() : "resources", "", std::string(resource),
+                   "cannot read '" + std::string(resource) + "': " + problem});
+        throw GraphError(std::move(diags));
+    }
+    const PlannedResource& res = frame.resources[size_t(fr)];
+    StepListBuilder steps(frame);
+    const uint32_t r = steps.addResource(res, res.finalLayout);
+    const SubresourceRange whole = wholeOf(*d, frame);
+    // The frames have finished (a fence): their writes are available, and the barrier before
+    // the copy makes them visible to it, as for contents that arrive from outside a frame.
+    SubresourceState state{};
+    state.layout = res.finalLayout;
+    state.fromOutside = true;
+    steps.addStep("read back ", "Readback", r, *d, kTransferRead, whole, state);
+    // Back to the layout the frame left it in, which is what the executor and the next frame
+    // take it to be in. An external image that the next frame finds as it was left must be
+    // visible where the frame expects its `initial` contents.
+    VulkanScope next{0, 0, res.finalLayout};
+    if (d->external && res.initialLayout == res.finalLayout) {
+        next = externalScope(*d, arrivesIn(res, *d));
+        next.layout = res.finalLayout;
+    }
+    steps.addFinal(r, *d, state, next, next.layout, whole);
+    steps.addHostRead(r);
+    return std::move(steps).finish();
+}
+
+}  // namespace skygraph

@@ -1,0 +1,116 @@
+// Recording one frame of a plan into a CommandSink: the plan's barrier batch before each step,
+// the step's work, the final barriers. Needs no device: a test records into a CommandLog.
+#include "renderer_impl.hpp"
+
+#include <cstring>
+
+namespace skygraph::detail {
+namespace {
+
+void recordClear(CommandSink& sink, const PlanState& s, const PassState& ps, uint32_t slot) {
+    for (const PlannedUsage& u : ps.pass->usages) {
+        const ResourceState& r = s.resources[u.resource];
+        const VkImageSubresourceRange range{r.aspect, u.range.baseMip, u.range.mipCount, u.range.baseLayer,
+                                            u.range.layerCount};
+        const VkImage image = r.images[r.copyFor(slot)].image;
+        if (r.desc->format.isDepthStencil()) {
+            sink.clearDepthStencil(image, u.layout, {r.desc->clear->depth, r.desc->clear->stencil}, range);
+        } else {
+            VkClearColorValue v{};
+            std::memcpy(v.float32, r.desc->clear->color.data(), 16);
+            sink.clearColor(image, u.layout, v, range);
+        }
+    }
+}
+
+/// A Readback step: the first mip and layer of its image into this slot's host buffer.
+void recordReadback(CommandSink& sink, const PlanState& s, uint32_t step, uint32_t slot) {
+    const PlannedUsage& u = s.plan.passes[step].usages[0];
+    const ResourceState& r = s.resources[u.resource];
+    const ReadbackTarget* target = s.readbackOf(u.resource);
+    VkBufferImageCopy c{};
+    c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, 1};
+    c.imageExtent = {r.width, r.height, 1};
+    sink.copyImageToBuffer(r.images[r.copyFor(slot)].image, u.layout, target->perSlot[slot].buffer.get(), {&c, 1});
+}
+
+VkRenderPassBeginInfo renderPassBegin(const PassState& ps, const PassSlot& sl) {
+    VkRenderPassBeginInfo rbi{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    rbi.renderPass = ps.renderPass.get();
+    rbi.framebuffer = sl.framebuffer.get();
+    rbi.renderArea = {{0, 0}, sl.extent};
+    rbi.clearValueCount = static_cast<uint32_t>(ps.clearValues.size());
+    rbi.pClearValues = ps.clearValues.data();
+    return rbi;
+}
+
+void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecording& r) {
+    PassState& ps = s.passes[step];
+    switch (ps.kind) {
+        case StepKind::Clear: return recordClear(sink, s, ps, r.slot);
+        case StepKind::Readback: return recordReadback(sink, s, step, r.slot);
+        case StepKind::Upload: throw ExecutorError(passError(*ps.pass, "", "an Upload step belongs to a setup plan"));
+        case StepKind::Pass: break;
+    }
+    PassSlot& sl = ps.slots[r.slot];
+    const bool graphics = ps.attachments.any();
+    RecordContext rc;
+    rc.pass = ps.pass;
+    rc.desc = ps.desc;
+    rc.resources = sl.bound;
+    rc.frameSlot = r.slot;
+    rc.renderArea = graphics ? sl.extent : VkExtent2D{0, 0};
+    rc.linearSampler = r.linearSampler;
+    rc.repeatSampler = r.repeatSampler;
+    rc.frame = r.frameData;
+    rc.frameIndex = r.frameIndex;
+    rc.recordInPassBarriers = [&] {
+        if (!sl.inPass.empty()) sink.barriers(sl.inPass);
+    };
+    if (graphics) {
+        sink.recordPassBeforeRenderPass(*ps.implementation, rc);
+        sink.beginRenderPass(renderPassBegin(ps, sl));
+    }
+    sink.recordPass(*ps.implementation, rc);
+    if (graphics) sink.endRenderPass();
+}
+
+}  // namespace
+
+StepKind stepKindOf(const PlannedPass& pass) {
+    if (pass.declIndex >= 0) return StepKind::Pass;
+    return pass.type == "Clear" ? StepKind::Clear : pass.type == "Readback" ? StepKind::Readback : StepKind::Upload;
+}
+
+void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot) {
+    PassSlot& sl = ps.slots.at(slot);
+    const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
+    sl.before = BarrierBatch(ps.pass->barriers, target);
+    std::vector<Barrier> inPass;
+    for (const InPassBarrier& ib : s.plan.inPassBarriers)
+        if (&s.plan.passes[ib.pass] == ps.pass) inPass.push_back(ib.barrier);
+    sl.inPass = BarrierBatch(inPass, target);
+}
+
+void translateFinalBarriers(PlanState& s, uint32_t slots) {
+    s.finals.clear();
+    for (uint32_t slot = 0; slot < slots; ++slot)
+        s.finals.emplace_back(s.plan.finalBarriers, [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); });
+}
+
+void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r) {
+    const auto passCount = static_cast<uint32_t>(s.passes.size());
+    if (r.queries) sink.resetQueries(r.queries, r.queryCount);
+    for (uint32_t i = 0; i < passCount; ++i) {
+        PassState& ps = s.passes[i];
+        if (r.labels) sink.beginLabel(ps.label.c_str());
+        if (!ps.slots[r.slot].before.empty()) sink.barriers(ps.slots[r.slot].before);
+        if (r.queries) sink.timestamp(VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, r.queries, 2 * i);
+        recordStep(sink, s, i, r);
+        if (r.queries) sink.timestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, r.queries, 2 * i + 1);
+        if (r.labels) sink.endLabel();
+    }
+    if (!s.finals[r.slot].empty()) sink.barriers(s.finals[r.slot]);
+}
+
+}  // namespace skygraph::detail

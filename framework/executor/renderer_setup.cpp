@@ -1,0 +1,138 @@
+// Renderer::Impl: the plans around a frame. The setup plan gives external resources their first
+// contents before the first frame; both it and image read-backs are recorded step by step with
+// the compiler's barriers, like a frame, and submitted on their own.
+#include "renderer_impl.hpp"
+
+#include <skygraph/transfer_plans.hpp>
+
+#include <cstring>
+
+namespace skygraph {
+
+using namespace detail;
+
+void Renderer::Impl::submitAndWait(const std::function<void(CommandSink&)>& record) {
+    VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pci.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    pci.queueFamilyIndex = dev.queueFamily;
+    VkCommandPool rawPool;
+    vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &rawPool), "vkCreateCommandPool");
+    vk::CommandPool pool(vkd, rawPool);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = rawPool;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    vk::check(vkAllocateCommandBuffers(vkd, &ai, &cmd), "vkAllocateCommandBuffers");
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    vk::check(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
+    VulkanCommands sink(cmd, commandFunctions());
+    record(sink);
+    vk::check(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    cbi.commandBuffer = cmd;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &cbi;
+    vk::check(vkQueueSubmit2(dev.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit2");
+    vk::check(vkQueueWaitIdle(dev.queue), "vkQueueWaitIdle");
+}
+
+namespace {
+
+/// What an external image holds before anything is uploaded: its clear value, else mid grey
+/// (depth: 1, the far plane of a forward-Z buffer).
+void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image, const PlannedUsage& u) {
+    const VkImageSubresourceRange range{r.aspect, u.range.baseMip, u.range.mipCount, u.range.baseLayer,
+                                        u.range.layerCount};
+    const std::optional<ClearValue>& clear = r.desc->clear;
+    if (r.desc->format.isDepthStencil()) {
+        sink.clearDepthStencil(image, u.layout, {clear ? clear->depth : 1.0f, clear ? clear->stencil : 0u}, range);
+        return;
+    }
+    const std::array<float, 4> grey{0.5f, 0.5f, 0.5f, 1.0f};
+    const std::array<float, 4>& c = clear ? clear->color : grey;
+    VkClearColorValue v{};
+    if (scalarPrefix(r.format).empty()) std::memcpy(v.float32, c.data(), 16);
+    else
+        for (size_t k = 0; k < 4; ++k) v.uint32[k] = static_cast<uint32_t>(c[k]);
+    sink.clearColor(image, u.layout, v, range);
+}
+
+}  // namespace
+
+void Renderer::Impl::runSetup(PlanState& s) {
+    SetupOptions o;
+    for (const auto& [name, image] : imports) o.imports.insert(name);
+    for (const auto& [name, pixels] : uploads)
+        if (s.plan.resourceIndex(name) >= 0 && !imports.count(name)) o.uploads.insert(name);
+    try {
+        s.setup = planSetup(s.graph, s.plan, o);
+    } catch (const GraphError& e) {
+        throw ExecutorError(e.what());
+    }
+    const Plan& setup = s.setup;
+    if (setup.passes.empty()) return;
+    // Each setup resource is a frame resource of the same name; a per-slot one is set up once
+    // per copy.
+    std::vector<uint32_t> frameResource;
+    for (const PlannedResource& r : setup.resources) frameResource.push_back(uint32_t(s.plan.resourceIndex(r.name)));
+    auto copiesOf = [&](uint32_t setupResource) {
+        const ResourceState& r = s.resources[frameResource[setupResource]];
+        return r.isImage ? r.images.size() : r.buffers.size();
+    };
+    // Host contents of the Upload steps, written before the submission (which makes host writes
+    // visible to it): one staging buffer per step, shared by the copies.
+    std::vector<OwnedBuffer> staging(setup.passes.size());
+    for (size_t i = 0; i < setup.passes.size(); ++i) {
+        if (setup.passes[i].type != "Upload") continue;
+        const ResourceState& r = s.resources[frameResource[setup.passes[i].usages[0].resource]];
+        if (!r.isImage) {
+            staging[i] = makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+            fillBufferPattern(static_cast<uint8_t*>(staging[i].mapped), r.size, 0.5f);
+            continue;
+        }
+        const ImageData& px = uploads.at(r.desc->name);
+        const uint32_t texel = copyTexelBytes(r.desc->format);
+        const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
+        staging[i] = makeBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+        auto* dst = static_cast<uint8_t*>(staging[i].mapped);
+        for (uint32_t l = 0; l < r.layers; ++l)
+            for (size_t p = 0; p < size_t(r.width) * r.height; ++p) {
+                const std::array<float, 4> c{px.rgba[p * 4], px.rgba[p * 4 + 1], px.rgba[p * 4 + 2], px.rgba[p * 4 + 3]};
+                const auto t = encodeTexel(r.format, texel, c);
+                std::memcpy(dst + l * layerBytes + p * texel, t.data(), texel);
+            }
+    }
+    submitAndWait([&](CommandSink& sink) {
+        const size_t copies = options.framesInFlight;
+        for (uint32_t c = 0; c < copies; ++c) {
+            const auto target = [&](uint32_t r) { return s.resources[frameResource[r]].barrierTarget(c); };
+            for (size_t i = 0; i < setup.passes.size(); ++i) {
+                const PlannedPass& step = setup.passes[i];
+                const PlannedUsage& u = step.usages[0];
+                if (c >= copiesOf(u.resource)) continue;
+                const ResourceState& r = s.resources[frameResource[u.resource]];
+                if (const BarrierBatch before(step.barriers, target); !before.empty()) sink.barriers(before);
+                if (step.type == "Clear") {
+                    recordInitialClear(sink, r, r.images[c].image, u);
+                } else if (!r.isImage) {
+                    const VkBufferCopy region{0, 0, r.size};
+                    sink.copyBuffer(staging[i].buffer.get(), r.buffers[c].buffer.get(), {&region, 1});
+                } else {
+                    VkBufferImageCopy region{};
+                    region.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, r.layers};
+                    region.imageExtent = {r.width, r.height, 1};
+                    sink.copyBufferToImage(staging[i].buffer.get(), r.images[c].image, u.layout, {&region, 1});
+                }
+            }
+            std::vector<Barrier> finals;
+            for (const Barrier& b : setup.finalBarriers)
+                if (c < copiesOf(b.resource)) finals.push_back(b);
+            if (const BarrierBatch after(finals, target); !after.empty()) sink.barriers(after);
+        }
+    });
+}
+
+}  // namespace skygraph

@@ -1,0 +1,37 @@
+// Contents the executor writes itself, laid out as the device reads them: texels of a format
+// (uploads, the first contents of externals), the buffer pattern, and the layout of copies
+// between buffers and images. Pass implementations that copy or fill resources use the same
+// rules, so that what they write matches what the executor writes.
+#pragma once
+
+#include <skygraph/format.hpp>
+
+#include <vulkan/vulkan_core.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace skygraph::detail {
+
+/// Aspect for buffer<->image copies: one aspect only (depth for depth formats).
+[[nodiscard]] VkImageAspectFlags copyAspectOf(const FormatInfo& format);
+
+/// Bytes of one texel in a buffer<->image copy of `format` (its copied aspect only).
+[[nodiscard]] uint32_t copyTexelBytes(const FormatInfo& format);
+
+/// Whether a format stores unsigned ("u") or signed ("i") integers, else "": the GLSL prefix
+/// of its sampler, image and output types.
+[[nodiscard]] std::string scalarPrefix(VkFormat format);
+
+/// Bytes of one texel of `format` filled with `color` (depth formats take color.x). Unknown
+/// encodings yield zero bytes.
+[[nodiscard]] std::vector<uint8_t> encodeTexel(VkFormat format, uint32_t texelBytes, const std::array<float, 4>& color);
+
+/// The buffer pattern: {3, 1, 0, 0, 0, 0, 0, 0, floatBits(value), ...} in 32-bit words, a valid
+/// draw-indirect and indexed-indirect command and the index list {3, 1, 0}, with `value` from
+/// element 8 on: what a buffer holds before anything writes it (docs/executor.md).
+void fillBufferPattern(uint8_t* dst, uint64_t bytes, float value);
+
+}  // namespace skygraph::detail

@@ -1,0 +1,45 @@
+// A graph together with the options it is compiled with and the plan they give: what a
+// Renderer runs. One value, so that what runs can be compiled again the same way, at another
+// output size or from an edited file, and never drifts from the plan it was given.
+#pragma once
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/graph.hpp>
+#include <skygraph/plan.hpp>
+
+#include <cstdint>
+
+namespace skygraph {
+
+namespace detail {
+struct CompiledGraphAccess;  // tests: run a plan they weakened on purpose
+}
+
+/// Owns its graph, options and plan; copies are independent.
+class CompiledGraph {
+public:
+    /// Compiles `graph` with `options`, whose output size the plan is valid for. Throws
+    /// GraphError as compile() does.
+    CompiledGraph(GraphDesc graph, CompileOptions options);
+
+    [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
+    [[nodiscard]] const CompileOptions& options() const noexcept { return options_; }
+    /// Valid as long as this CompiledGraph (or a copy of the plan) lives.
+    [[nodiscard]] const Plan& plan() const noexcept { return plan_; }
+    [[nodiscard]] uint32_t outputWidth() const noexcept { return options_.outputWidth; }
+    [[nodiscard]] uint32_t outputHeight() const noexcept { return options_.outputHeight; }
+
+    /// The same graph and options compiled for another output size. Throws GraphError (e.g. a
+    /// mip range that the new size's chain does not have); this one is unchanged then.
+    [[nodiscard]] CompiledGraph resized(uint32_t width, uint32_t height) const;
+    /// Another graph (an edited file) compiled with the same options. Throws GraphError.
+    [[nodiscard]] CompiledGraph withGraph(GraphDesc graph) const;
+
+private:
+    friend struct detail::CompiledGraphAccess;
+    GraphDesc graph_;
+    CompileOptions options_;
+    Plan plan_;
+};
+
+}  // namespace skygraph

@@ -1,0 +1,89 @@
+// The Vulkan device a Renderer runs on: instance, physical and logical device, one queue,
+// and the validation messages counted while it lives.
+#pragma once
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph {
+
+/// Thrown for Vulkan failures and for plans or graphs the executor cannot run. The message
+/// names the pass and resource involved where there is one.
+class ExecutorError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct DeviceOptions {
+    /// Physical device by index ("0") or case-insensitive name substring ("llvmpipe").
+    /// Empty: a discrete GPU, else an integrated one, else any, else the CPU (lavapipe).
+    std::string device;
+    /// Khronos validation with synchronization validation (including QUEUE_SUBMIT checks).
+    /// Also switched on by the environment variable SKYGRAPH_VALIDATION=1.
+    bool validation = false;
+    /// Log every validation message through spdlog as it arrives (they are always counted).
+    bool logMessages = true;
+};
+
+/// One validation / debug-utils message that was counted. A plain value; copies own their text.
+struct ValidationMessage {
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity{};
+    std::string idName;   ///< e.g. "SYNC-HAZARD-READ-AFTER-WRITE"
+    std::string message;
+};
+
+/// Instance, physical device, logical device and one graphics+compute queue. Owns every
+/// handle it creates and destroys them with itself; not copyable or movable (renderers keep a
+/// reference). Must outlive every Renderer made from it and every SharedImage of theirs.
+/// Validation messages may arrive on any thread: the message accessors are thread-safe,
+/// the rest is for the thread that uses the device.
+class Device {
+public:
+    /// Creates the instance and device; the caller owns the result. Throws ExecutorError
+    /// when no device qualifies, naming the devices there are.
+    static std::unique_ptr<Device> create(const DeviceOptions& options = {});
+    ~Device();
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    /// The handles are owned by this Device and valid while it lives; do not destroy them.
+    [[nodiscard]] VkInstance instance() const noexcept;
+    [[nodiscard]] VkPhysicalDevice physicalDevice() const noexcept;
+    [[nodiscard]] VkDevice device() const noexcept;
+    /// The one queue (graphics and compute) every renderer on this device submits to.
+    [[nodiscard]] VkQueue queue() const noexcept;
+    [[nodiscard]] uint32_t queueFamily() const noexcept;
+    /// The physical device's name; the reference is valid while this Device lives.
+    [[nodiscard]] const std::string& name() const noexcept;
+    [[nodiscard]] bool validationEnabled() const noexcept;
+    /// Nanoseconds per timestamp tick.
+    [[nodiscard]] float timestampPeriodNs() const noexcept;
+
+    /// Number of warning and error messages received since creation or the last clear.
+    [[nodiscard]] uint32_t messageCount() const;
+    /// A copy of the counted messages (the first 256 are kept), owned by the caller.
+    [[nodiscard]] std::vector<ValidationMessage> messages() const;
+    /// True if a counted message's id name or text contains `needle`.
+    [[nodiscard]] bool hasMessage(std::string_view needle) const;
+    /// Forgets the counted messages: messageCount() is 0 again.
+    void clearMessages();
+
+    /// Lists "index: name (type)" for every physical device, for --device help. Makes and
+    /// destroys an instance of its own; needs no Device.
+    [[nodiscard]] static std::vector<std::string> listDevices();
+
+    struct Impl;
+
+private:
+    friend struct DeviceAccess;  // the executor's own sources (framework/executor)
+    explicit Device(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace skygraph

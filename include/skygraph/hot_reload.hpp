@@ -1,0 +1,51 @@
+// Hot reload: recompiling a graph file and rebuilding shaders when they change on disk.
+#pragma once
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/pass_registry.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace skygraph {
+
+class Renderer;
+
+/// Hot reload: watches a graph file and a shader directory and, on a change, recompiles and
+/// hands the result to a Renderer. A failed rebuild logs the compiler's message as a warning
+/// and leaves the last good plan and pipelines running. Borrows the renderer (and the
+/// registry), which must outlive it; owns its copies of the paths.
+class HotReloader {
+public:
+    enum class Result : uint8_t { Unchanged, Reloaded, Failed };
+
+    /// Reads the watched files once, as the state later changes are measured against.
+    /// `shaderDir` empty: ShaderCompiler::defaultIncludeDir(). `registry` (borrowed; null:
+    /// PassRegistry::withBuiltins()) parses the reloaded graph, e.g. `PassLibrary::registry()`
+    /// when the renderer runs pass implementations. A reloaded graph compiles with the options
+    /// the renderer's current graph was compiled with (Renderer::compiled()).
+    HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
+                const PassRegistry* registry = nullptr);
+
+    /// Checks the watched files (by content) and reloads what changed: a changed graph is
+    /// recompiled and handed to Renderer::setGraph(), a change to the shaders alone goes to
+    /// Renderer::reloadShaders(). Either rebuilds the renderer's plan state, so references
+    /// from its plan() and graph() are invalid after a Reloaded. Cheap when nothing changed.
+    Result poll();
+    /// The message of the last failed reload; empty after a success. The reference is valid
+    /// until the next poll().
+    [[nodiscard]] const std::string& lastError() const noexcept { return lastError_; }
+
+private:
+    Renderer& renderer_;
+    std::filesystem::path graphFile_;
+    std::filesystem::path shaderDir_;
+    const PassRegistry* registry_ = nullptr;
+    size_t graphHash_ = 0;
+    size_t shaderHash_ = 0;
+    std::string lastError_;
+};
+
+}  // namespace skygraph

@@ -1,0 +1,37 @@
+// Pixels on the host: what a Renderer reads back (readback(), readImage()) and uploads
+// (setExternalImage()), and writing them to PNG, Radiance .hdr or OpenEXR files.
+#pragma once
+
+#include <vulkan/vulkan_core.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace skygraph {
+
+/// Pixels of one image, converted to linear-agnostic float RGBA (values as stored; sRGB
+/// bytes are returned as byte/255, BGRA swizzled to RGBA). A plain value that owns its pixels.
+struct ImageData {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    std::vector<float> rgba;  ///< width*height*4
+
+    /// The pixel at (x, y), copied; x < width and y < height.
+    [[nodiscard]] std::array<float, 4> pixel(uint32_t x, uint32_t y) const {
+        const size_t i = (size_t(y) * width + x) * 4;
+        return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
+    }
+};
+
+/// Writes 8-bit RGBA PNG (values clamped to [0,1]). Throws ExecutorError (device.hpp) on I/O
+/// failure or for an empty or malformed image.
+void writePng(const std::filesystem::path& path, const ImageData& image);
+/// Writes an HDR file by extension: Radiance .hdr or OpenEXR .exr (half float). Throws
+/// ExecutorError (device.hpp) on I/O failure or for an empty or malformed image.
+void writeHdr(const std::filesystem::path& path, const ImageData& image);
+
+}  // namespace skygraph

@@ -1,0 +1,134 @@
+// The Renderer: runs a compiled graph on a Device. It records exactly the plan's barriers and
+// derives no synchronization of its own.
+#pragma once
+
+#include <skygraph/compiled_graph.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/graph.hpp>
+#include <skygraph/image_data.hpp>
+#include <skygraph/plan.hpp>
+#include <skygraph/shared_image.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph {
+
+class PassLibrary;  // skygraph/pass.hpp: pass implementations
+class FrameData;    // skygraph/pass.hpp: per-frame values for pass implementations
+
+/// How a Renderer runs; what it runs (graph, options, output size) is the CompiledGraph.
+struct RendererOptions {
+    uint32_t framesInFlight = 2;
+    /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
+    std::filesystem::path shaderDir;
+    /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
+    /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
+    const PassLibrary* passes = nullptr;
+};
+
+/// GPU time of one pass in the last completed frame of a slot.
+struct PassTiming {
+    std::string pass;
+    double milliseconds = 0.0;
+};
+
+/// Runs one compiled graph. Owns all images, buffers, pipelines and command buffers it
+/// creates, and its CompiledGraph; borrows `device` (which must outlive it). Not copyable.
+/// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt by
+/// setGraph(), resize(), reloadShaders() and importImage() when they succeed: references
+/// returned by compiled(), graph() and plan() are invalid afterwards, and images shared before
+/// are no longer written by this renderer. A failed call keeps the old state. Use from one
+/// thread at a time.
+class Renderer {
+public:
+    /// Takes `compiled`; creates resources, pipelines and per-frame state at its output size
+    /// and runs its plan's setup (planSetup). Throws ExecutorError (e.g. a pass type without
+    /// recording code, a format the device cannot use as the plan requires).
+    Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
+    /// Waits for the device to be idle, then destroys what the renderer owns.
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
+    /// otherwise: up to framesInFlight frames run at once.
+    void renderFrame();
+    /// Waits until every submitted frame has finished.
+    void waitIdle();
+    /// Waits for the most recent frame and returns a copy, owned by the caller, of what its one
+    /// Readback step copied (the plan was compiled with one name in CompileOptions::readbacks).
+    /// Throws ExecutorError when the plan reads back no image or several, or before the first
+    /// frame.
+    [[nodiscard]] ImageData readback();
+    /// The same for the read-back of `resource`, one of CompileOptions::readbacks.
+    [[nodiscard]] ImageData readback(std::string_view resource);
+    /// Waits for every submitted frame, then copies every mip and layer of the image
+    /// `resource` to the host (element mip * layers + layer), e.g. an environment cube and
+    /// its mip chain; the caller owns the copies. The steps and their barriers are the plan of
+    /// planImageRead. The image is left in its end-of-frame layout (the plan's final layout).
+    /// Throws ExecutorError for an unknown name, a buffer, or an image no frame has written.
+    [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
+    /// Compiles the graph again at a new output extent (CompiledGraph::resized) and rebuilds
+    /// the plan state. Throws ExecutorError when the graph does not compile at that size or
+    /// the device cannot hold it; the old plan keeps running then.
+    void resize(uint32_t width, uint32_t height);
+    /// Takes `compiled` in place of what runs (e.g. after a hot reload). On failure throws
+    /// ExecutorError and keeps the old one running.
+    void setGraph(CompiledGraph compiled);
+    /// Drops every cached shader and rebuilds the plan state from the shader directory (after
+    /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
+    /// running.
+    void reloadShaders();
+    /// Imports a loaded texture: `pixels` (float RGBA, as stored; the renderer keeps them)
+    /// become the contents of mip 0 (every layer) of the external image `resource`, by an Upload
+    /// step of the plan's setup, now and whenever the plan is re-installed. Waits for the GPU.
+    /// Throws ExecutorError for a wrong name, size or format.
+    void setExternalImage(const std::string& resource, ImageData pixels);
+    /// Shares the image of `resource`, an external image this plan exports (`final` set),
+    /// with another renderer on the same Device. It holds this frame's contents once the
+    /// frames that write it have finished (waitIdle()), in the layout of its `final` state.
+    /// The handle keeps the image alive after this renderer rebuilds or is destroyed, but only
+    /// the current plan state's image is written: share again after a rebuild. Throws
+    /// ExecutorError for a resource that is not an exported image of the current plan.
+    [[nodiscard]] SharedImage shareImage(const std::string& resource) const;
+    /// Makes the external image `resource` use `image` instead of creating its own, now and
+    /// whenever the plan is re-installed, and keeps a share of it. The graph must only read
+    /// it, its format, extent, mips and layers must match, and it must arrive in the layout
+    /// the producer leaves it in (`initial` here = `final` there). The caller orders the two
+    /// renderers' work: the producer's frames must have finished (its waitIdle()) before
+    /// this renderer's next frame. Rebuilds the plan state. Throws ExecutorError on any
+    /// mismatch, keeping the old plan.
+    void importImage(const std::string& resource, SharedImage image);
+    /// Values handed to pass implementations while recording (camera, exposure, ...). Owned
+    /// by the renderer; the reference is valid, and the values kept, for its whole life.
+    [[nodiscard]] FrameData& frameData() noexcept;
+    /// What runs: the graph, its compile options and the plan. Valid until the plan state is
+    /// rebuilt (see the class comment).
+    [[nodiscard]] const CompiledGraph& compiled() const noexcept;
+    /// compiled().graph(): the graph the current plan was compiled from.
+    [[nodiscard]] const GraphDesc& graph() const noexcept;
+    /// Per-pass GPU times of the most recently completed frame (waits for it), copied.
+    [[nodiscard]] std::vector<PassTiming> lastTimings();
+
+    /// compiled().plan(): the current plan. Valid until the plan state is rebuilt.
+    [[nodiscard]] const Plan& plan() const noexcept;
+    /// The setup that ran before the current plan's first frame (planSetup of plan(), with
+    /// this renderer's uploads and imports). Valid until the plan state is rebuilt or
+    /// setExternalImage() runs it again.
+    [[nodiscard]] const Plan& setupPlan() const noexcept;
+    /// Frames submitted since construction.
+    [[nodiscard]] uint64_t frameCount() const noexcept;
+
+    struct Impl;
+
+private:
+    friend struct RendererAccess;  // the executor's own sources (framework/executor)
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace skygraph

@@ -1,0 +1,45 @@
+// Plans for the transfers around a frame's plan: the setup that gives external resources their
+// first contents before the first frame, and the copy of an image to the host after frames
+// have run. Like compile(), these are pure: every barrier they hold follows the same rules
+// (docs/barriers.md), and the executor records them as it records a frame.
+#pragma once
+
+#include <skygraph/graph.hpp>
+#include <skygraph/plan.hpp>
+
+#include <functional>
+#include <set>
+#include <string>
+#include <string_view>
+
+namespace skygraph {
+
+struct SetupOptions {
+    /// External images whose first mip (every layer) the application provides; the rest of
+    /// the image is cleared first. An unknown name, a buffer, or an image whose `initial`
+    /// state is None (every frame discards its contents) is an error.
+    std::set<std::string, std::less<>> uploads;
+    /// External images that another renderer provides (Renderer::importImage): no setup.
+    std::set<std::string, std::less<>> imports;
+};
+
+/// The steps that run once when `frame` (compiled from `graph`) is installed, before its first
+/// frame: each external resource that the frame finds in an `initial` state gets defined
+/// contents, as steps of type Clear (an image: its `clear` value, else mid grey; depth: its
+/// clear depth, else 1) and Upload (an image's first mip from the application; a buffer: the
+/// executor's fill pattern), and the final barriers leave each resource in the layout the frame
+/// expects it to arrive in, visible to the frame's first use. Images whose `initial` is None
+/// need nothing: the frame discards their contents. Returns a plan of the same graph whose
+/// resources are a subset of the frame's (by name and `decl`). Throws GraphError for a bad
+/// `uploads` name, naming the file and resource. The result views `frame`'s name tables and
+/// holds its own share of them: it stays valid on its own.
+[[nodiscard]] Plan planSetup(const GraphDesc& graph, const Plan& frame, const SetupOptions& options = {});
+
+/// The steps that copy every mip and layer of image `resource` to the host once the frames of
+/// `frame` have finished: one step of type Readback, the barrier into TRANSFER_SRC_OPTIMAL
+/// before it, and final barriers that return an external image to the layout the next frame
+/// expects and make the copy visible to the host. Throws GraphError when `resource` is not an
+/// image that `frame` leaves written (a buffer, unknown, or unused by the plan).
+[[nodiscard]] Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view resource);
+
+}  // namespace skygraph

@@ -1,0 +1,24 @@
+// Declarations of the built-in pass types (slots, params), one function per type, each
+// defined beside its pass's recording code (forward/forward_type.cpp, ...).
+// registerBuiltinPassTypes() (builtin_pass_types.cpp) adds them all.
+#pragma once
+
+#include <skygraph/pass_registry.hpp>
+
+namespace skygraph::passes {
+
+/// Any usages, no slots; recorded by the executor itself (framework/executor/renderer_generic.cpp).
+[[nodiscard]] PassTypeInfo genericPassType();
+[[nodiscard]] PassTypeInfo forwardPassType();
+[[nodiscard]] PassTypeInfo skyboxPassType();
+[[nodiscard]] PassTypeInfo tonemappingPassType();
+[[nodiscard]] PassTypeInfo tonemappingComputePassType();
+[[nodiscard]] PassTypeInfo pathTracePassType();
+// The environment pipeline (ibl/environment_types.cpp).
+[[nodiscard]] PassTypeInfo equirectToCubemapPassType();
+[[nodiscard]] PassTypeInfo cubemapMipPassType();
+[[nodiscard]] PassTypeInfo irradiancePassType();
+[[nodiscard]] PassTypeInfo prefilterPassType();
+[[nodiscard]] PassTypeInfo brdfLutPassType();
+
+}  // namespace skygraph::passes

@@ -1,0 +1,23 @@
+// ForwardPass's declaration: its slots and params (recording code: forward_pass.cpp).
+#include "builtin_pass_types.hpp"
+#include "param_rules.hpp"
+
+namespace skygraph::passes {
+
+PassTypeInfo forwardPassType() {
+    return {"ForwardPass",
+            {slot("color", Stage::ColorAttachment, {Access::Write, Access::ReadWrite}, BindAs::Default,
+                  "HDR target the objects shade into"),
+             slot("depth", Stage::DepthAttachment, {Access::Write, Access::ReadWrite}, BindAs::Default,
+                  "reverse-Z depth, cleared to 0"),
+             slot("environment", Stage::Fragment, {Access::Read}, BindAs::Sampled, "environment cubemap", true),
+             slot("irradiance", Stage::Fragment, {Access::Read}, BindAs::Sampled, "diffuse IBL", true),
+             slot("prefiltered", Stage::Fragment, {Access::Read}, BindAs::Sampled,
+                  "specular IBL, one roughness per mip", true),
+             slot("brdf_lut", Stage::Fragment, {Access::Read}, BindAs::Sampled, "split-sum BRDF table", true)},
+            false,
+            rules({{"debug_view", oneOf({"none", "normal", "metallic", "roughness", "ao"})}}),
+            "Metal/rough GGX shading of the scene's objects."};
+}
+
+}  // namespace skygraph::passes

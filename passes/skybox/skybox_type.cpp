@@ -1,0 +1,22 @@
+// SkyboxPass's declaration: its slots and params (recording code: skybox_pass.cpp).
+#include "builtin_pass_types.hpp"
+#include "param_rules.hpp"
+
+namespace skygraph::passes {
+
+PassTypeInfo skyboxPassType() {
+    return {"SkyboxPass",
+            {slot("depth", Stage::DepthAttachment, {Access::Read}, BindAs::Default,
+                  "rejects covered pixels (GREATER_OR_EQUAL)"),
+             slot("color", Stage::ColorAttachment, {Access::ReadWrite}, BindAs::Default,
+                  "HDR target; sky fills uncovered pixels"),
+             slot("environment", Stage::Fragment, {Access::Read}, BindAs::Sampled, "cubemap or equirect environment",
+                  true)},
+            false,
+            rules({{"sampling", oneOf({"cubemap", "equirect"})},
+                   {"rotation_deg", numberIn(-360.0, 360.0)},
+                   {"output", oneOf({"radiance", "direction"})}}),
+            "Fullscreen-triangle sky at the reverse-Z far plane."};
+}
+
+}  // namespace skygraph::passes

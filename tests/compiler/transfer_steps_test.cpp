@@ -1,0 +1,232 @@
+// The steps the compiler adds around a frame's passes: per-frame read-backs, the in-pass barrier
+// of a ReadWrite transfer, the setup before the first frame, reading an image back on request,
+// and which resources need a copy per frame in flight. Each expectation was checked against the
+// Vulkan spec's memory model: a host read after a device write needs a memory dependency into
+// the host domain (dstStage HOST, HOST_READ); a write after a read in one pass only an
+// execution dependency.
+#include <skygraph/compiler.hpp>
+#include <skygraph/transfer_plans.hpp>
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+namespace {
+
+const PassRegistry& registry() {
+    static const PassRegistry r = PassRegistry::withBuiltins();
+    return r;
+}
+
+GraphDesc graphOf(const std::string& resources, const std::string& passes) {
+    return parseGraph(R"({"version": 1, "name": "t", "resources": {)" + resources + R"(}, "passes": [)" + passes + "]}",
+                      "steps.json", registry());
+}
+
+constexpr const char* kColor = R"("color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16]})";
+constexpr const char* kOut = R"("out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true, "final": "TransferSrc"})";
+constexpr const char* kTexture = R"("tex": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "mips": "full", "external": true})";
+constexpr const char* kVertices = R"("verts": {"type": "buffer", "size": 64, "external": true})";
+
+std::string messageOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const GraphError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Readback, IsAStepAfterTheLastPassWithAHostBarrierAtTheEnd) {
+    const GraphDesc g = graphOf(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "blit", "type": "Generic", "uses": {"color": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    CompileOptions o;
+    o.readbacks = {"out"};
+    const Plan plan = compile(g, o);
+    ASSERT_EQ(plan.passes.size(), 3u);
+    const PlannedPass& step = plan.passes[2];
+    EXPECT_EQ(step.name, "read back out");
+    EXPECT_EQ(step.type, "Readback");
+    EXPECT_EQ(step.declIndex, -1);
+    ASSERT_EQ(step.usages.size(), 1u);
+    EXPECT_EQ(step.usages[0].layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(step.usages[0].range, (SubresourceRange{0, 1, 0, 1}));
+    // RAW after `blit`'s attachment write: a memory dependency, and the layout transition.
+    ASSERT_EQ(step.barriers.size(), 1u);
+    EXPECT_EQ(step.barriers[0].srcStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+    EXPECT_EQ(step.barriers[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    EXPECT_EQ(step.barriers[0].dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(step.barriers[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+    EXPECT_EQ(step.barriers[0].oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(step.barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    bool host = false;
+    for (const Barrier& b : plan.finalBarriers)
+        host = host || (b.kind == BarrierKind::Memory && b.srcStages == VK_PIPELINE_STAGE_2_TRANSFER_BIT &&
+                        b.srcAccess == VK_ACCESS_2_TRANSFER_WRITE_BIT && b.dstStages == VK_PIPELINE_STAGE_2_HOST_BIT &&
+                        b.dstAccess == VK_ACCESS_2_HOST_READ_BIT);
+    EXPECT_TRUE(host) << "the copy must be made available to the host";
+}
+
+TEST(Readback, JoinsTheReadRunOfTheImageItCopies) {
+    const GraphDesc g = graphOf(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "blit", "type": "Generic", "uses": {"color": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    CompileOptions o;
+    o.readbacks = {"color"};
+    const Plan plan = compile(g, o);
+    // Rule 4: the sampled read and the copy read one layout that serves both, made visible to
+    // both by the one barrier before `blit`.
+    EXPECT_EQ(plan.passes[2].usages[0].layout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_TRUE(plan.passes[2].barriers.empty());
+    bool visibleToCopy = false;
+    for (const Barrier& b : plan.passes[1].barriers)
+        visibleToCopy = visibleToCopy || (plan.resources[b.resource].name == "color" &&
+                                          (b.dstAccess & VK_ACCESS_2_TRANSFER_READ_BIT) != 0);
+    EXPECT_TRUE(visibleToCopy);
+}
+
+TEST(Readback, KeepsItsWritersFromBeingCulled) {
+    const GraphDesc g = graphOf(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "other", "type": "Generic", "uses": {"out": "Write@ColorAttachment"}})");
+    ASSERT_EQ(compile(g).passes.size(), 1u) << "without a read-back, `draw` feeds nothing";
+    CompileOptions o;
+    o.readbacks = {"color"};
+    EXPECT_EQ(compile(g, o).passes.size(), 3u);
+}
+
+TEST(Readback, BadNamesAreErrorsNamingTheResource) {
+    const GraphDesc g = graphOf(std::string(kColor) + "," + kOut + R"(, "buf": {"type": "buffer", "size": 64})", R"(
+        {"name": "draw", "type": "Generic", "uses": {"out": "Write@ColorAttachment", "buf": "Write@Compute"}})");
+    CompileOptions o;
+    o.readbacks = {"nope"};
+    EXPECT_NE(messageOf([&] { (void)compile(g, o); }).find("cannot read back 'nope': no such resource"), std::string::npos);
+    o.readbacks = {"buf"};
+    EXPECT_NE(messageOf([&] { (void)compile(g, o); }).find("'buf': it is a buffer"), std::string::npos);
+    o.readbacks = {"color"};
+    EXPECT_NE(messageOf([&] { (void)compile(g, o); }).find("cannot read back 'color': no pass that runs writes it"),
+              std::string::npos);
+}
+
+TEST(InPassBarrier, OrdersAReadWriteTransfersCopyInAfterItsCopyOut) {
+    const GraphDesc g = graphOf(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "edit", "type": "Generic", "uses": {"color": "ReadWrite@Transfer", "out": "Write@Transfer"}})");
+    CompileOptions o;
+    o.cull = false;
+    const Plan plan = compile(g, o);
+    ASSERT_EQ(plan.inPassBarriers.size(), 1u);
+    const InPassBarrier& ib = plan.inPassBarriers[0];
+    EXPECT_EQ(plan.passes[ib.pass].name, "edit");
+    EXPECT_EQ(plan.resources[plan.passes[ib.pass].usages[ib.usage].resource].name, "color");
+    EXPECT_EQ(ib.barrier.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(ib.barrier.srcAccess, 0u) << "write-after-read: execution only";
+    EXPECT_EQ(ib.barrier.dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(ib.barrier.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    EXPECT_EQ(ib.barrier.oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(ib.barrier.newLayout, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+TEST(Setup, EveryExternalThatArrivesInAStateIsSetUpAndNothingElse) {
+    const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut + "," + kColor + "," + kVertices, R"(
+        {"name": "draw", "type": "Generic", "uses": {"tex": "Read@Fragment", "verts": "Read@VertexInput", "color": "Write@ColorAttachment"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}})");
+    const Plan frame = compile(g);
+    const Plan setup = planSetup(g, frame, SetupOptions{{"tex"}, {}});
+    std::vector<std::string> names;
+    for (const PlannedPass& p : setup.passes) names.emplace_back(std::string(p.name) + ":" + std::string(p.type));
+    EXPECT_EQ(names, (std::vector<std::string>{"initialize tex:Clear", "upload tex:Upload", "initialize verts:Upload",
+                                               "initialize out:Clear"}));
+    // tex: cleared (UNDEFINED -> TRANSFER_DST), then its first mip uploaded over the clear (WAW).
+    ASSERT_EQ(setup.passes[1].barriers.size(), 1u);
+    const Barrier& waw = setup.passes[1].barriers[0];
+    EXPECT_EQ(waw.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(waw.srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    EXPECT_EQ(waw.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    EXPECT_EQ(waw.range, (SubresourceRange{0, 1, 0, 1}));
+    EXPECT_EQ(waw.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    // A buffer's first write needs no barrier; its final one makes the fill visible where its
+    // `initial` state (ShaderRead by default) says.
+    EXPECT_TRUE(setup.passes[2].barriers.empty());
+    bool sawTex = false, sawVerts = false;
+    for (const Barrier& b : setup.finalBarriers) {
+        const std::string_view name = setup.resources[b.resource].name;
+        if (name == "tex") {
+            sawTex = true;
+            EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            EXPECT_EQ(b.range.mipCount, 5u) << "the whole 16x16 chain";
+            EXPECT_EQ(b.dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+            EXPECT_EQ(b.dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        }
+        if (name == "verts") {
+            sawVerts = true;
+            EXPECT_EQ(b.kind, BarrierKind::Buffer);
+            EXPECT_EQ(b.srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            EXPECT_EQ(b.dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+            EXPECT_EQ(b.dstAccess, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        }
+    }
+    EXPECT_TRUE(sawTex && sawVerts);
+    // An imported image is another renderer's to set up.
+    EXPECT_EQ(planSetup(g, frame, SetupOptions{{}, {"tex"}}).passes.size(), 2u);
+}
+
+TEST(Setup, BadUploadsAreErrorsNamingTheResource) {
+    const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut + "," + kColor + "," + kVertices, R"(
+        {"name": "draw", "type": "Generic", "uses": {"tex": "Read@Fragment", "verts": "Read@VertexInput", "out": "Write@ColorAttachment", "color": "Write@ColorAttachment"}})");
+    const Plan frame = compile(g);
+    EXPECT_NE(messageOf([&] { (void)planSetup(g, frame, {{"nope"}, {}}); }).find("cannot upload 'nope': no such resource"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { (void)planSetup(g, frame, {{"color"}, {}}); }).find("'color': it is not external"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { (void)planSetup(g, frame, {{"verts"}, {}}); }).find("'verts': it is a buffer"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { (void)planSetup(g, frame, {{"tex"}, {"tex"}}); }).find("imported"), std::string::npos);
+}
+
+TEST(ImageRead, CopiesEveryLevelAndReturnsTheImageToTheLayoutTheFrameLeftIt) {
+    const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"tex": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    const Plan frame = compile(g);
+    const Plan read = planImageRead(g, frame, "tex");
+    ASSERT_EQ(read.passes.size(), 1u);
+    EXPECT_EQ(read.passes[0].type, "Readback");
+    EXPECT_EQ(read.passes[0].usages[0].range, (SubresourceRange{0, 5, 0, 1}));
+    ASSERT_EQ(read.passes[0].barriers.size(), 1u);
+    EXPECT_EQ(read.passes[0].barriers[0].oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(read.passes[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(read.passes[0].barriers[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+    ASSERT_EQ(read.finalBarriers.size(), 2u);
+    EXPECT_EQ(read.finalBarriers[0].oldLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(read.finalBarriers[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(read.finalBarriers[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    EXPECT_EQ(read.finalBarriers[1].kind, BarrierKind::Memory);
+    EXPECT_EQ(read.finalBarriers[1].dstStages, VK_PIPELINE_STAGE_2_HOST_BIT);
+    EXPECT_NE(messageOf([&] { (void)planImageRead(g, frame, "nope"); }).find("cannot read 'nope'"), std::string::npos);
+}
+
+TEST(Copies, EachResourceSaysWhyItHasOneCopyOrOnePerFrameInFlight) {
+    const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut + "," + kColor +
+                                    R"(, "scratch": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true},
+                                        "screen": {"type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true, "final": "Present"})",
+                                R"(
+        {"name": "draw", "type": "Generic", "uses": {"tex": "Read@Fragment", "color": "Write@ColorAttachment", "scratch": "Write@ColorAttachment"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer", "screen": "Write@Transfer"}})");
+    CompileOptions o;
+    o.cull = false;
+    const Plan plan = compile(g, o);
+    auto copies = [&](const char* name) { return plan.resources.at(size_t(plan.resourceIndex(name))).copies; };
+    EXPECT_EQ(copies("color"), ResourceCopies::PerFrameTransient);
+    EXPECT_EQ(copies("screen"), ResourceCopies::PerFramePresented);
+    EXPECT_EQ(copies("scratch"), ResourceCopies::PerFrameWrittenNotExported);
+    EXPECT_EQ(copies("out"), ResourceCopies::SharedExported);
+    EXPECT_EQ(copies("tex"), ResourceCopies::SharedReadOnly);
+}
+
+}  // namespace
+}  // namespace skygraph

@@ -1,0 +1,125 @@
+// bakeEnvironment: graphs/ibl.json compiled for the products asked for (the compiler culls the
+// passes of the others), run once on the equirect image. bakeAndReadBack: the cubemap
+// command's sizes, formats and sample counts applied to the graph first, and every level of
+// the products read back afterwards.
+#include "environment_bake.hpp"
+
+#include "environment_graph.hpp"
+#include "shipped_names.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/format.hpp>
+#include <skygraph/pass.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+namespace skygraph::app {
+namespace {
+
+using namespace shipped;
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double, std::milli>(to - from).count();
+}
+double msSince(Clock::time_point t) { return msBetween(t, Clock::now()); }
+
+ResourceDesc& resource(GraphDesc& graph, std::string_view name) {
+    for (auto& r : graph.resources)
+        if (r.name == name) return r;
+    throw std::invalid_argument("the environment graph has no resource '" + std::string(name) + "'");
+}
+
+void setFormat(ResourceDesc& r, VkFormat format) { r.format = *findFormat(format); }
+
+/// Sizes, formats and sample counts of graphs/ibl.json for this bake; returns the products to
+/// build: the environment cube and those asked for.
+std::set<std::string, std::less<>> configure(GraphDesc& graph, const BakeOptions& o) {
+    static const std::vector<std::string_view> known{kIrradiance, kPrefiltered, kBrdfLut};
+    std::set<std::string, std::less<>> products{std::string(kEnvironment)};
+    for (const auto& p : o.products) {
+        if (std::find(known.begin(), known.end(), p) == known.end())
+            throw std::invalid_argument("unknown product '" + p + "'; expected " + std::string(kIrradiance) + ", " +
+                                        std::string(kPrefiltered) + ", " + std::string(kBrdfLut));
+        products.insert(p);
+    }
+    // Mip 0 of the prefiltered cube is the mirror; half the environment's size is the
+    // shipped graph's choice (a quarter of the texels to convolve at the sharpest rough mips).
+    const uint32_t prefiltered = o.prefilteredSize ? o.prefilteredSize : std::max(o.size / 2, 32u);
+    resource(graph, kEnvironment);  // both must exist: the error names the one missing
+    resource(graph, kPrefiltered);
+    resizeEnvironmentGraph(graph, EnvironmentSizes{o.size, prefiltered});
+    const VkFormat colour = o.float32 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R16G16B16A16_SFLOAT;
+    for (std::string_view name : {kEnvironment, kIrradiance, kPrefiltered}) setFormat(resource(graph, name), colour);
+    setFormat(resource(graph, kBrdfLut), o.float32 ? VK_FORMAT_R32G32_SFLOAT : VK_FORMAT_R16G16_SFLOAT);
+    for (auto& pass : graph.passes)
+        if (pass.type == kIrradiancePass || pass.type == kPrefilterPass) pass.params[std::string(kSamplesParam)] = o.samples;
+        else if (pass.type == kEquirectToCubemapPass) pass.params[std::string(kSupersampleParam)] = o.supersample;
+    return products;
+}
+
+ImageData toImageData(const HdrImage& image) {
+    ImageData data;
+    data.width = image.width;
+    data.height = image.height;
+    data.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    data.rgba = image.rgba;
+    return data;
+}
+
+}  // namespace
+
+EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
+                                const BakeStepCallback& onStep) {
+    const auto step = [&](const char* name) {
+        if (onStep) onStep(name);
+    };
+    const auto start = Clock::now();
+    if (!setEquirectExtent(graph, equirect.width, equirect.height))
+        throw ExecutorError("the environment graph '" + graph.name + "' has no resource '" + std::string(kEquirect) +
+                            "'");
+    CompileOptions co;
+    co.outputs = products;
+    CompiledGraph compiled(std::move(graph), co);
+    step("compile");
+    RendererOptions ro;
+    ro.framesInFlight = 1;
+    ro.passes = passes;
+    EnvironmentBake bake;
+    bake.renderer = std::make_unique<Renderer>(device, std::move(compiled), ro);
+    bake.renderer->setExternalImage(std::string(kEquirect), toImageData(equirect));
+    step("upload");
+    bake.setupMs = msSince(start);
+    const auto gpuStart = Clock::now();
+    bake.renderer->renderFrame();
+    bake.renderer->waitIdle();
+    bake.gpuMs = msSince(gpuStart);
+    step("passes");
+    return bake;
+}
+
+BakeResult bakeAndReadBack(const HdrImage& equirect, const BakeOptions& options) {
+    const auto start = Clock::now();
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    GraphDesc graph = parseGraph(options.graphText, std::string(kCubemapGraphName), library.registry());
+    const std::set<std::string, std::less<>> products = configure(graph, options);
+    DeviceOptions deviceOptions;
+    deviceOptions.device = options.device;
+    deviceOptions.validation = options.validate;
+    auto device = Device::create(deviceOptions);
+    const auto bakeStart = Clock::now();
+    EnvironmentBake bake = bakeEnvironment(*device, std::move(graph), equirect, products, &library, options.onStep);
+    BakeResult result;
+    result.setupMs = msBetween(start, bakeStart) + bake.setupMs;
+    result.gpuMs = bake.gpuMs;
+    result.passTimings = bake.renderer->lastTimings();
+    for (const auto& name : products) result.products[name] = bake.renderer->readImage(name);
+    result.validationMessages = device->messageCount();
+    if (options.onStep) options.onStep("read back");
+    return result;
+}
+
+}  // namespace skygraph::app

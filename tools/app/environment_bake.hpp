@@ -1,0 +1,83 @@
+// Runs the environment pipeline (graphs/ibl.json) headless on one equirect image: the one bake
+// path of the application. `skygraph render` bakes the products its frame graph imports and
+// shares them with the frame's renderer; `skygraph cubemap` bakes the products asked for on a
+// device of its own and reads them back (what bench/ibl_compare.sh measures).
+#pragma once
+
+#include <skygraph/device.hpp>
+#include <skygraph/graph.hpp>
+#include <skygraph/hdr_image.hpp>
+#include <skygraph/image_data.hpp>
+#include <skygraph/renderer.hpp>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+class PassLibrary;
+}
+
+namespace skygraph::app {
+
+/// Called as a bake's steps finish ("compile", "upload", "passes", "read back"), e.g. for a
+/// progress bar. May be empty.
+using BakeStepCallback = std::function<void(const std::string& step)>;
+
+/// One run of the environment graph. Owns the renderer, which owns the products.
+struct EnvironmentBake {
+    /// Holds the products: share them (Renderer::shareImage()) or read them back
+    /// (Renderer::readImage()). Must not outlive the Device it was baked on.
+    std::unique_ptr<Renderer> renderer;
+    double setupMs = 0.0;  ///< compile, pipelines, upload
+    double gpuMs = 0.0;    ///< the passes, submit to fence (wall clock)
+};
+
+/// Runs `graph` (graphs/ibl.json, sized and configured by the caller) once on `equirect`,
+/// building only `products`: they are the compile's outputs (CompileOptions::outputs), so the
+/// passes of the graph's other exports are culled. `equirect` sets the extent of the graph's
+/// `equirect` and is uploaded to it (the renderer keeps its own copy). `passes` (the recording
+/// code, e.g. PassLibrary::withBuiltins()) is borrowed for the renderer's life; `device` must
+/// outlive the result. Throws GraphError / ExecutorError naming what is wrong, e.g. a product the graph
+/// does not export.
+[[nodiscard]] EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                              const std::set<std::string, std::less<>>& products,
+                                              const PassLibrary* passes, const BakeStepCallback& onStep = {});
+
+/// What `skygraph cubemap` bakes. Sizes are face sizes in texels. A plain value.
+struct BakeOptions {
+    std::string graphText;         ///< graphs/ibl.json's text.
+    uint32_t size = 256;           ///< environment cube (full mip chain)
+    uint32_t prefilteredSize = 0;  ///< prefiltered mip 0 (6 levels); 0: max(size / 2, 32)
+    uint32_t supersample = 2;      ///< EquirectToCubemapPass taps per texel: N x N
+    uint32_t samples = 1024;       ///< IrradiancePass and PrefilterPass samples per texel
+    bool float32 = false;          ///< RGBA32F (and RG32F) products instead of 16-bit floats
+    /// Products besides "environment": any of "irradiance", "prefiltered", "brdf_lut". Passes
+    /// of products not asked for are culled, so they cost nothing.
+    std::vector<std::string> products{"irradiance", "prefiltered", "brdf_lut"};
+    std::string device;            ///< DeviceOptions::device
+    bool validate = false;
+    /// Called as the steps finish (load, compile, GPU, read back), e.g. for a progress bar.
+    BakeStepCallback onStep;
+};
+
+/// Each product's levels, mip-major and face-minor (Renderer::readImage), plus timings. Owns
+/// everything it holds: the device and renderer of the bake are gone.
+struct BakeResult {
+    std::map<std::string, std::vector<ImageData>> products;  ///< by resource name
+    double setupMs = 0.0;  ///< device, compile, pipelines, upload
+    double gpuMs = 0.0;    ///< the passes, submit to fence (wall clock)
+    uint32_t validationMessages = 0;
+    std::vector<PassTiming> passTimings;  ///< GPU timestamps per pass
+};
+
+/// Bakes `equirect` with the built-in passes on a device of its own (bakeEnvironment()) and
+/// reads every level of the environment cube and of each product back. Throws GraphError /
+/// ExecutorError / std::invalid_argument with a message naming what is wrong (e.g. an
+/// unknown product).
+[[nodiscard]] BakeResult bakeAndReadBack(const HdrImage& equirect, const BakeOptions& options);
+
+}  // namespace skygraph::app

@@ -1,0 +1,63 @@
+// `skygraph render` as one call: compile a graph file, bake the environment it imports (graphs/
+// ibl.json, once), render headless and write the swapchain target (or another resource).
+// Application code: the command line links it, and so do the tests that render through it.
+#pragma once
+
+#include <skygraph/condition.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace skygraph {
+class PassLibrary;
+}
+
+namespace skygraph::app {
+
+/// `skygraph render`: options as parsed by the command line. A plain value; it borrows only
+/// `passes`.
+struct RenderOptions {
+    std::filesystem::path graph;     ///< Required unless `graphText` is given.
+    /// A graph in memory (the built-in default); used instead of `graph` when not empty.
+    std::string graphText;
+    /// A scene file (scenes/*.json). It decides the features (no objects: no forward pass;
+    /// no environment: no skybox) and is handed to the passes; `features` still override.
+    std::filesystem::path scene;
+    std::string sceneText;           ///< A scene in memory; used instead of `scene` when not empty.
+    /// The environment pipeline (graphs/ibl.json), run once when the scene's environment is a
+    /// file, for the products the plan imports by name (`environment`, `irradiance`, ...).
+    /// Empty: `environmentGraphText`, else ibl.json beside `graph`.
+    std::filesystem::path environmentGraph;
+    std::string environmentGraphText;  ///< A graph in memory (the built-in one).
+    /// Size the environment cube and the prefiltered cube for the view (output height and
+    /// the scene camera's field of view, environment_graph.hpp), the graph's declared extents
+    /// being the largest allowed. false: build them at the declared extents.
+    bool fitEnvironmentToView = true;
+    FeatureValues features;          ///< Overrides of the graph's defaults.
+    uint32_t width = 256;
+    uint32_t height = 256;
+    uint32_t frames = 3;
+    uint32_t framesInFlight = 2;
+    /// .png, .hdr or .exr. Empty: skygraph.png when there is an image to write, else no file.
+    std::filesystem::path output;
+    /// Resource to write instead of the swapchain target, e.g. "hdr_color" as .exr
+    /// (CompileOptions::readbacks). A graph with neither writes no file.
+    std::string readback;
+    bool validate = false;           ///< Validation + sync validation; fail on any message.
+    std::string device;
+    /// Pass implementations (e.g. PassLibrary::withBuiltins() from skygraph_passes); borrowed
+    /// for the call. Null: the built-in declarations, every pass recorded as Generic.
+    const PassLibrary* passes = nullptr;
+    /// Called after each frame is submitted with (frames submitted so far, `frames`), e.g. to
+    /// draw a progress bar. May be empty.
+    std::function<void(uint32_t submitted, uint32_t total)> onFrameSubmitted;
+};
+
+/// Compiles and renders a graph file, writing the swapchain target. Returns the command
+/// line's exit status (0 ok, 1 user error with a message on stderr). Never throws. Everything
+/// it creates (device, renderers) is gone when it returns; only the output file remains.
+int renderCommand(const RenderOptions& options);
+
+}  // namespace skygraph::app
