@@ -1,6 +1,8 @@
 // A Plan keeps every usage and barrier in two arrays that its passes view through spans, and
 // its names in shared tables that they view (include/skygraph/plan.hpp): copies must stand
 // alone, names must outlive the graph, and edits must keep every view right.
+#include "plan_editor.hpp"
+
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 
@@ -138,12 +140,12 @@ TEST(PlanStorage, EditsStayInTheirPlanAndKeepLaterPassesIntact) {
 
     Plan plan = base;
     const VkPipelineStageFlags2 before = base.passes[e].barriers[0].srcStages;
-    plan.barriersOf(e)[0].srcStages = before ^ VK_PIPELINE_STAGE_2_HOST_BIT;
+    detail::PlanEditor::barriersOf(plan, e)[0].srcStages = before ^ VK_PIPELINE_STAGE_2_HOST_BIT;
     EXPECT_EQ(plan.passes[e].barriers[0].srcStages, before ^ VK_PIPELINE_STAGE_2_HOST_BIT);
     EXPECT_EQ(base.passes[e].barriers[0].srcStages, before) << "the copy was edited, not the base";
 
     const Barrier second = plan.passes[e].barriers[1];
-    plan.eraseBarrier(e, 0);
+    detail::PlanEditor::eraseBarrier(plan, e, 0);
     ASSERT_EQ(plan.passes[e].barriers.size(), base.passes[e].barriers.size() - 1);
     EXPECT_EQ(plan.passes[e].barriers[0], second);
     for (size_t p = 0; p < plan.passes.size(); ++p) {
@@ -152,10 +154,10 @@ TEST(PlanStorage, EditsStayInTheirPlanAndKeepLaterPassesIntact) {
         for (size_t i = 0; i < plan.passes[p].barriers.size(); ++i)
             EXPECT_EQ(plan.passes[p].barriers[i], base.passes[p].barriers[i]) << plan.passes[p].name << " #" << i;
     }
-    EXPECT_THROW(plan.eraseBarrier(e, plan.passes[e].barriers.size()), std::out_of_range);
+    EXPECT_THROW(detail::PlanEditor::eraseBarrier(plan, e, plan.passes[e].barriers.size()), std::out_of_range);
 
     // Emptying a batch leaves an empty view, and copying the edited plan keeps the edit.
-    while (!plan.passes[e].barriers.empty()) plan.eraseBarrier(e, 0);
+    while (!plan.passes[e].barriers.empty()) detail::PlanEditor::eraseBarrier(plan, e, 0);
     const Plan again = plan;
     EXPECT_TRUE(again.passes[e].barriers.empty());
     EXPECT_EQ(planToJson(again).dump(1), planToJson(plan).dump(1));

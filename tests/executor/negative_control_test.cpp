@@ -4,6 +4,7 @@
 #include "executor_test_util.hpp"
 
 #include "compiled_graph_access.hpp"
+#include "plan_editor.hpp"
 
 #include <algorithm>
 
@@ -31,13 +32,13 @@ std::pair<size_t, size_t> findBarrier(const Plan& plan, const std::string& pass,
 /// The barrier itself, editable; nullptr (and a failure) when there is none.
 Barrier* barrierOf(Plan& plan, const std::string& pass, const std::string& resource) {
     const auto [p, i] = findBarrier(plan, pass, resource);
-    return p < plan.passes.size() ? &plan.barriersOf(p)[i] : nullptr;
+    return p < plan.passes.size() ? &detail::PlanEditor::barriersOf(plan, p)[i] : nullptr;
 }
 
 void dropBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
     const auto [p, i] = findBarrier(plan, pass, resource);
     ASSERT_LT(p, plan.passes.size());
-    plan.eraseBarrier(p, i);
+    detail::PlanEditor::eraseBarrier(plan, p, i);
 }
 
 /// "draw" writes tex as a color attachment, "sample" reads it in the fragment shader: the
@@ -102,10 +103,10 @@ TEST_F(NegativeControl, DroppedBarrierOfAnUpperMipOfAStorageReadIsReadAfterWrite
     bool dropped = false;
     for (size_t p = 0; p < broken.passes.size() && !dropped; ++p) {
         if (broken.passes[p].name != "consume") continue;
-        const auto barriers = broken.barriersOf(p);
+        const auto barriers = detail::PlanEditor::barriersOf(broken, p);
         for (size_t i = 0; i < barriers.size(); ++i)
             if (int32_t(barriers[i].resource) == chain && barriers[i].range.baseMip == 1) {
-                broken.eraseBarrier(p, i);
+                detail::PlanEditor::eraseBarrier(broken, p, i);
                 dropped = true;
                 break;
             }
