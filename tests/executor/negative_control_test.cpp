@@ -19,25 +19,25 @@ std::string graph(const std::string& resources, const std::string& passes) {
 /// batch); fails the test when there is none.
 std::pair<size_t, size_t> findBarrier(const Plan& plan, const std::string& pass, const std::string& resource) {
     const int32_t r = plan.resourceIndex(resource);
-    for (size_t p = 0; p < plan.passes.size(); ++p) {
-        if (plan.passes[p].name != pass) continue;
-        for (size_t i = 0; i < plan.passes[p].barriers.size(); ++i)
-            if (static_cast<int32_t>(plan.passes[p].barriers[i].resource) == r) return {p, i};
+    for (size_t p = 0; p < plan.passes().size(); ++p) {
+        if (plan.passes()[p].name != pass) continue;
+        for (size_t i = 0; i < plan.passes()[p].barriers.size(); ++i)
+            if (static_cast<int32_t>(plan.passes()[p].barriers[i].resource) == r) return {p, i};
     }
     ADD_FAILURE() << "no barrier before '" << pass << "' for '" << resource << "'\n"
                   << planToText(plan);
-    return {plan.passes.size(), 0};
+    return {plan.passes().size(), 0};
 }
 
 /// The barrier itself, editable; nullptr (and a failure) when there is none.
 Barrier* barrierOf(Plan& plan, const std::string& pass, const std::string& resource) {
     const auto [p, i] = findBarrier(plan, pass, resource);
-    return p < plan.passes.size() ? &detail::PlanEditor::barriersOf(plan, p)[i] : nullptr;
+    return p < plan.passes().size() ? &detail::PlanEditor::barriersOf(plan, p)[i] : nullptr;
 }
 
 void dropBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
     const auto [p, i] = findBarrier(plan, pass, resource);
-    ASSERT_LT(p, plan.passes.size());
+    ASSERT_LT(p, plan.passes().size());
     detail::PlanEditor::eraseBarrier(plan, p, i);
 }
 
@@ -101,8 +101,8 @@ TEST_F(NegativeControl, DroppedBarrierOfAnUpperMipOfAStorageReadIsReadAfterWrite
     Plan broken = c.plan();
     const int32_t chain = broken.resourceIndex("chain");
     bool dropped = false;
-    for (size_t p = 0; p < broken.passes.size() && !dropped; ++p) {
-        if (broken.passes[p].name != "consume") continue;
+    for (size_t p = 0; p < broken.passes().size() && !dropped; ++p) {
+        if (broken.passes()[p].name != "consume") continue;
         const auto barriers = detail::PlanEditor::barriersOf(broken, p);
         for (size_t i = 0; i < barriers.size(); ++i)
             if (int32_t(barriers[i].resource) == chain && barriers[i].range.baseMip == 1) {
