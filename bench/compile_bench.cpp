@@ -165,12 +165,12 @@ void compileBench(benchmark::State& state, bool sharedRead) {
     const Case& c = graphFor(static_cast<int>(state.range(0)), sharedRead);
     {
         const Plan plan = compile(c.graph);
-        if (!plan.culled.empty() || plan.passes.size() < c.graph.passes.size()) {
+        if (!plan.culled().empty() || plan.passes().size() < c.graph.passes.size()) {
             state.SkipWithError("the synthetic graph lost passes to culling");
             return;
         }
-        size_t barriers = plan.finalBarriers.size();
-        for (const auto& p : plan.passes) barriers += p.barriers.size();
+        size_t barriers = plan.finalBarriers().size();
+        for (const auto& p : plan.passes()) barriers += p.barriers.size();
         state.counters["barriers"] = static_cast<double>(barriers);
     }
     for (auto _ : state) {

@@ -65,7 +65,7 @@ struct Fixture {
         co.outputWidth = 64;
         co.outputHeight = 64;
         CompiledGraph compiled(std::move(graph), co);
-        for (const auto& p : compiled.plan().passes) names.emplace_back(p.name);
+        for (const auto& p : compiled.plan().passes()) names.emplace_back(p.name);
         RendererOptions ro;
         ro.framesInFlight = 2;
         ro.passes = &library;

@@ -31,7 +31,7 @@ double bytesOfPass(const PlannedPass& pass, const Plan& plan, const GraphDesc& g
                    uint32_t height) {
     double bytes = 0;
     for (const PlannedUsage& u : pass.usages) {
-        const ResourceDesc& r = graph.resources[plan.resources[u.resource].decl];
+        const ResourceDesc& r = graph.resources[plan.resources()[u.resource].decl];
         double size = 0;
         if (r.isImage()) {
             const auto [w, h] = r.extent.resolve(width, height);
@@ -56,7 +56,7 @@ std::string attachmentOps(const PlannedPass& pass, const Plan& plan, const Graph
     std::string text;
     for (const PlannedUsage& u : pass.usages) {
         if (!isAttachmentStage(u.usage.stage)) continue;
-        const ResourceDesc& r = graph.resources[plan.resources[u.resource].decl];
+        const ResourceDesc& r = graph.resources[plan.resources()[u.resource].decl];
         if (!text.empty()) text += "; ";
         text += r.name + " " + std::string(r.format.name) + " " + kLoad[int(u.load)] + "/" + kStore[int(u.store)];
     }
@@ -129,7 +129,7 @@ public:
         if (!image_) return;
         GraphDesc ibl = loadGraphFile(graphFile.parent_path() / "ibl.json", library.registry());
         std::set<std::string, std::less<>> products;
-        for (const PlannedResource& r : renderer.plan().resources) {
+        for (const PlannedResource& r : renderer.plan().resources()) {
             const ResourceDesc& d = graph.resources[r.decl];
             const ResourceDesc* produced = ibl.findResource(d.name);
             if (d.external && d.name != "equirect" && produced && produced->isExported()) products.insert(d.name);
@@ -197,10 +197,10 @@ FrameResult measureFrames(Device& device, const FrameCase& c) {
     }
     const Plan& plan = compiled.plan();
     FrameResult result;
-    for (const auto& culled : plan.culled) result.culled.push_back(culled.name + ": " + culled.reason);
+    for (const auto& culled : plan.culled()) result.culled.push_back(culled.name + ": " + culled.reason);
     std::map<std::string, PassResult> byName;
     std::vector<std::string> order;
-    for (const PlannedPass& p : plan.passes) {
+    for (const PlannedPass& p : plan.passes()) {
         byName[std::string(p.name)] = {std::string(p.name), std::string(p.type), bytesOfPass(p, plan, graph, c.width, c.height),
                           attachmentOps(p, plan, graph), 0, 0, 0};
         order.emplace_back(p.name);

@@ -63,8 +63,11 @@ int run(const char* outputPng) {
 
     const int mismatches = countMismatches(image);
     const uint32_t messages = device->messageCount();
-    std::printf("embed_vignette: %ux%u on %s, shaders from %s: %d mismatching pixels, %u validation messages\n",
-                image.width, image.height, device->name().c_str(), SKYGRAPH_PACKAGE_SHADER_DIR, mismatches, messages);
+    const size_t steps = renderer.plan().passes().size();  // the plan is read through const accessors
+    std::printf("embed_vignette: %ux%u on %s, shaders from %s, %zu plan steps: %d mismatching pixels, "
+                "%u validation messages\n",
+                image.width, image.height, device->name().c_str(), SKYGRAPH_PACKAGE_SHADER_DIR, steps, mismatches,
+                messages);
     for (const auto& m : device->messages()) std::fprintf(stderr, "%s: %s\n", m.idName.c_str(), m.message.c_str());
     return mismatches == 0 && messages == 0 && image.width == kSize ? 0 : 1;
 }

@@ -1,3 +1,4 @@
+#include "plan_builder.hpp"
 #include "scheduler.hpp"
 #include "synchronizer.hpp"
 #include "validation.hpp"
@@ -42,10 +43,9 @@ Plan compileExported(const GraphDesc& graph, const CompileOptions& options) {
     Schedule schedule = schedulePasses(index, features, options.cull);
     checkReadbacksHaveSources(index, schedule, options);
     Plan plan = synchronize(index, schedule, options);
-    plan.features = std::move(features);
-    plan.outputWidth = options.outputWidth;
-    plan.outputHeight = options.outputHeight;
-    plan.culled = std::move(schedule.culled);
+    detail::PlanBuilder::features(plan) = std::move(features);
+    detail::PlanBuilder::setOutputExtent(plan, options.outputWidth, options.outputHeight);
+    detail::PlanBuilder::culled(plan) = std::move(schedule.culled);
     return plan;
 }
 

@@ -1,17 +1,49 @@
-// The compiler's access to a Plan's storage (see include/skygraph/plan.hpp): the synchronizer
-// fills the usage and barrier arrays and hands over the name tables, then points each pass into them.
+// The compiler's write access to a Plan (include/skygraph/plan.hpp), which is read-only to
+// everyone else: compile() (the synchronizer, then compiler.cpp) and planSetup /
+// planImageRead (transfer_plans.cpp) fill a plan through these functions and nothing else.
+//
+// Storage: a Plan keeps all usages of all passes in one array and all pass barriers in
+// another; each PlannedPass views its part of them through spans, and names (of passes, pass
+// types, resources and slots) are views into string tables that copies of a plan share (they
+// are never modified): the text of every name in the graph, culled passes' and unused
+// resources' included, and the compiler's own (slots, inserted clears). So compiling makes a
+// handful of allocations instead of one or more per pass and name. The spans point into the
+// Plan that holds the pass: copying a Plan rebases them by their offset into those arrays
+// (plan.cpp), so code that writes a plan keeps every non-empty span viewing that plan's own
+// usages() and barriers(), and reserves those arrays before it points spans into them (they
+// must not move afterwards). Moving a Plan keeps them valid.
 #pragma once
 
 #include <skygraph/plan.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace skygraph::detail {
 
+// A plan holds one PlannedUsage per usage, and the compiler writes and reads them all: its
+// members are ordered to pack into one 64-byte cache line.
+static_assert(sizeof(PlannedUsage) == 64, "PlannedUsage: keep it one cache line");
+
 struct PlanBuilder {
+    static std::string& graph(Plan& p) noexcept { return p.graph_; }
+    static FeatureValues& features(Plan& p) noexcept { return p.features_; }
+    static void setOutputExtent(Plan& p, uint32_t width, uint32_t height) noexcept {
+        p.outputWidth_ = width;
+        p.outputHeight_ = height;
+    }
+    static std::vector<PlannedResource>& resources(Plan& p) noexcept { return p.resources_; }
+    /// Each pass's spans view usages(p) and barriers(p) of the same plan.
+    static std::vector<PlannedPass>& passes(Plan& p) noexcept { return p.passes_; }
+    static std::vector<Barrier>& finalBarriers(Plan& p) noexcept { return p.finalBarriers_; }
+    static std::vector<InPassBarrier>& inPassBarriers(Plan& p) noexcept { return p.inPassBarriers_; }
+    static std::vector<CulledPass>& culled(Plan& p) noexcept { return p.culled_; }
+
+    /// Every pass's usages, pass after pass: what PlannedPass::usages views.
     static std::vector<PlannedUsage>& usages(Plan& p) noexcept { return p.usages_; }
+    /// Every pass's barrier batch, pass after pass: what PlannedPass::barriers views.
     static std::vector<Barrier>& barriers(Plan& p) noexcept { return p.barriers_; }
     /// Keeps `names` alive as long as the plan (and its copies): the plan's names view it.
     static void keepNames(Plan& p, std::shared_ptr<const std::string> names) {

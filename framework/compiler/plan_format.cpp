@@ -134,7 +134,7 @@ const char* copiesReason(ResourceCopies c) {
 }
 
 json barrierJson(const Plan& plan, const Barrier& b) {
-    json j = {{"resource", plan.resources[b.resource].name},
+    json j = {{"resource", plan.resources()[b.resource].name},
               {"kind", kindName(b.kind)},
               {"srcStageMask", stageMaskNames(b.srcStages)},
               {"srcAccessMask", accessMaskNames(b.srcAccess)},
@@ -153,7 +153,7 @@ json barrierJson(const Plan& plan, const Barrier& b) {
 
 std::string barrierText(const Plan& plan, const Barrier& b) {
     std::ostringstream o;
-    o << "    " << kindName(b.kind) << " " << plan.resources[b.resource].name;
+    o << "    " << kindName(b.kind) << " " << plan.resources()[b.resource].name;
     if (b.kind == BarrierKind::Image)
         o << " mips[" << b.range.baseMip << "+" << b.range.mipCount << "] layers["
           << b.range.baseLayer << "+" << b.range.layerCount << "]";
@@ -212,18 +212,18 @@ std::string layoutName(VkImageLayout layout) {
 
 json planToJson(const Plan& plan) {
     json j;
-    j["graph"] = plan.graph;
+    j["graph"] = plan.graph();
     j["features"] = json::object();
-    for (const auto& [name, on] : plan.features) j["features"][name] = on;
-    j["output"] = {plan.outputWidth, plan.outputHeight};
+    for (const auto& [name, on] : plan.features()) j["features"][name] = on;
+    j["output"] = {plan.outputWidth(), plan.outputHeight()};
     j["passes"] = json::array();
-    for (const auto& p : plan.passes) {
+    for (const auto& p : plan.passes()) {
         json pass = {{"name", p.name}, {"type", p.type}, {"barriers", json::array()}};
         for (const auto& b : p.barriers) pass["barriers"].push_back(barrierJson(plan, b));
         // Extension: how the pass uses each resource once barriers have run.
         pass["usages"] = json::array();
         for (const auto& u : p.usages) {
-            json ju = {{"resource", plan.resources[u.resource].name},
+            json ju = {{"resource", plan.resources()[u.resource].name},
                        {"usage", toString(u.usage)},
                        {"stageMask", stageMaskNames(u.stages)},
                        {"accessMask", accessMaskNames(u.access)}};
@@ -239,19 +239,19 @@ json planToJson(const Plan& plan) {
             }
             pass["usages"].push_back(std::move(ju));
         }
-        for (const InPassBarrier& ib : plan.inPassBarriers) {
-            if (&plan.passes[ib.pass] != &p) continue;
+        for (const InPassBarrier& ib : plan.inPassBarriers()) {
+            if (&plan.passes()[ib.pass] != &p) continue;
             pass["inPassBarriers"].push_back({{"beforeWriteOfUsage", ib.usage}, {"barrier", barrierJson(plan, ib.barrier)}});
         }
         j["passes"].push_back(std::move(pass));
     }
     j["final"] = json::array();
-    for (const auto& b : plan.finalBarriers) j["final"].push_back(barrierJson(plan, b));
+    for (const auto& b : plan.finalBarriers()) j["final"].push_back(barrierJson(plan, b));
     j["culled"] = json::array();
-    for (const auto& c : plan.culled) j["culled"].push_back({{"pass", c.name}, {"reason", c.reason}});
+    for (const auto& c : plan.culled()) j["culled"].push_back({{"pass", c.name}, {"reason", c.reason}});
     // Extension: resource lifetimes as indices into "passes".
     j["resources"] = json::array();
-    for (const auto& r : plan.resources)
+    for (const auto& r : plan.resources())
         j["resources"].push_back({{"name", r.name},
                                   {"firstPass", r.firstPass},
                                   {"lastPass", r.lastPass},
@@ -264,30 +264,30 @@ json planToJson(const Plan& plan) {
 
 std::string planToText(const Plan& plan) {
     std::ostringstream o;
-    o << "graph " << plan.graph << "\nfeatures:";
-    for (const auto& [name, on] : plan.features) o << " " << name << "=" << (on ? "on" : "off");
-    o << "\noutput: " << plan.outputWidth << "x" << plan.outputHeight << "\n\n";
-    for (size_t i = 0; i < plan.passes.size(); ++i) {
-        const auto& p = plan.passes[i];
+    o << "graph " << plan.graph() << "\nfeatures:";
+    for (const auto& [name, on] : plan.features()) o << " " << name << "=" << (on ? "on" : "off");
+    o << "\noutput: " << plan.outputWidth() << "x" << plan.outputHeight() << "\n\n";
+    for (size_t i = 0; i < plan.passes().size(); ++i) {
+        const auto& p = plan.passes()[i];
         o << "[" << i << "] " << p.name << " (" << p.type << ")\n";
         for (const auto& b : p.barriers) o << barrierText(plan, b);
         for (const auto& u : p.usages) {
-            o << "    uses " << plan.resources[u.resource].name << " " << toString(u.usage);
+            o << "    uses " << plan.resources()[u.resource].name << " " << toString(u.usage);
             if (u.layout != VK_IMAGE_LAYOUT_UNDEFINED) o << " in " << shortLayout(u.layout);
             if (isAttachmentStage(u.usage.stage))
                 o << " load=" << loadName(u.load) << " store=" << storeName(u.store);
             o << "\n";
         }
-        for (const InPassBarrier& ib : plan.inPassBarriers)
+        for (const InPassBarrier& ib : plan.inPassBarriers())
             if (ib.pass == i) o << "  between the copy out and the copy in of usage " << ib.usage << ":\n"
                                 << barrierText(plan, ib.barrier);
     }
     o << "final:\n";
-    for (const auto& b : plan.finalBarriers) o << barrierText(plan, b);
+    for (const auto& b : plan.finalBarriers()) o << barrierText(plan, b);
     o << "culled:\n";
-    for (const auto& c : plan.culled) o << "    " << c.name << ": " << c.reason << "\n";
+    for (const auto& c : plan.culled()) o << "    " << c.name << ": " << c.reason << "\n";
     o << "lifetimes:\n";
-    for (const auto& r : plan.resources)
+    for (const auto& r : plan.resources())
         o << "    " << r.name << ": passes " << r.firstPass << ".." << r.lastPass << ", "
           << (perFrameInFlight(r.copies) ? "a copy per frame in flight" : "one copy") << " ("
           << copiesReason(r.copies) << ")\n";
@@ -296,42 +296,42 @@ std::string planToText(const Plan& plan) {
 
 std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setup) {
     std::ostringstream o;
-    o << "digraph \"" << dotEscape(plan.graph) << "\" {\n  rankdir=LR;\n"
+    o << "digraph \"" << dotEscape(plan.graph()) << "\" {\n  rankdir=LR;\n"
       << "  node [fontname=\"Helvetica\", fontsize=10];\n  edge [fontname=\"Helvetica\", fontsize=8];\n";
-    if (setup && !setup->passes.empty()) {
+    if (setup && !setup->passes().empty()) {
         // What runs once before the first frame, in a box of its own beside the frame.
         o << "  subgraph \"cluster_setup\" {\n    label=\"setup, once before the first frame\";\n"
           << "    style=dashed;\n    color=\"#888888\";\n";
-        for (size_t i = 0; i < setup->passes.size(); ++i) {
-            const auto& p = setup->passes[i];
+        for (size_t i = 0; i < setup->passes().size(); ++i) {
+            const auto& p = setup->passes()[i];
             o << "    \"setup:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "
               << "fillcolor=\"#e4f2dc\", label=\"" << dotEscape(p.name) << "\\n(" << dotEscape(p.type) << ")\\n"
               << p.barriers.size() << " barrier(s)\"];\n";
         }
         o << "  }\n";
-        for (const auto& p : setup->passes)
+        for (const auto& p : setup->passes())
             for (const auto& u : p.usages)
-                o << "  \"setup:" << dotEscape(p.name) << "\" -> \"res:" << dotEscape(setup->resources[u.resource].name)
+                o << "  \"setup:" << dotEscape(p.name) << "\" -> \"res:" << dotEscape(setup->resources()[u.resource].name)
                   << "\" [style=dashed, color=\"#5a9a3a\", label=\"" << toString(u.usage.stage) << "\"];\n";
     }
-    for (size_t i = 0; i < plan.passes.size(); ++i) {
-        const auto& p = plan.passes[i];
+    for (size_t i = 0; i < plan.passes().size(); ++i) {
+        const auto& p = plan.passes()[i];
         o << "  \"pass:" << dotEscape(p.name) << "\" [shape=box, style=\"rounded,filled\", "
           << "fillcolor=\"#cfe3ff\", label=\"" << i << ": " << dotEscape(p.name) << "\\n("
           << dotEscape(p.type) << ")\\n" << p.barriers.size() << " barrier(s)\"];\n";
     }
-    for (const auto& r : plan.resources)
+    for (const auto& r : plan.resources())
         o << "  \"res:" << dotEscape(r.name) << "\" [shape=ellipse, label=\"" << dotEscape(r.name)
           << "\"];\n";
-    for (const auto& p : plan.passes)
+    for (const auto& p : plan.passes())
         for (const auto& u : p.usages) {
-            const std::string res = "\"res:" + dotEscape(plan.resources[u.resource].name) + "\"";
+            const std::string res = "\"res:" + dotEscape(plan.resources()[u.resource].name) + "\"";
             const std::string pass = "\"pass:" + dotEscape(p.name) + "\"";
             const std::string label = " [label=\"" + std::string(toString(u.usage.stage)) + "\"]";
             if (readsContents(u.usage.access)) o << "  " << res << " -> " << pass << label << ";\n";
             if (writesContents(u.usage.access)) o << "  " << pass << " -> " << res << label << ";\n";
         }
-    for (const auto& c : plan.culled) {
+    for (const auto& c : plan.culled()) {
         o << "  \"pass:" << dotEscape(c.name) << "\" [shape=box, style=\"rounded,dashed,filled\", "
           << "fillcolor=\"#eeeeee\", fontcolor=\"#888888\", color=\"#aaaaaa\", label=\""
           << dotEscape(c.name) << "\\nculled: " << dotEscape(c.reason) << "\"];\n";

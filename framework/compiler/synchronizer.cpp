@@ -35,7 +35,7 @@ constexpr uint32_t kNone = ~0u;
 /// access in the per-resource tables, which it reaches in no useful order (a cache miss each).
 /// Trivially constructible: addAccess writes every field into an array it does not zero first.
 struct AccessRecord {
-    uint32_t step;        ///< Index into Plan::passes.
+    uint32_t step;        ///< Index into Plan::passes().
     uint32_t next;        ///< The same resource's next access, or kNone.
     /// Index of its first entry in Synchronizer::runScope_; only for resources with more
     /// than one subresource (see runScopeFrom).
@@ -68,7 +68,7 @@ public:
         : graph_(index.graph()), index_(index), options_(o) {}
 
     Plan run(const Schedule& schedule) {
-        plan_.graph = graph_.name;
+        detail::PlanBuilder::graph(plan_) = graph_.name;
         usages_ = &detail::PlanBuilder::usages(plan_);
         for (const std::string& name : options_.readbacks)  // compile() checked the names
             readbacks_.push_back(static_cast<uint32_t>(graph_.findResource(name) - graph_.resources.data()));
@@ -93,7 +93,13 @@ private:
         bool readback = false;
     };
 
-    const ResourceDesc& decl(uint32_t planResource) const { return graph_.resources[plan_.resources[planResource].decl]; }
+    // The plan's arrays, written through the compiler's access to it (plan_builder.hpp).
+    std::vector<PlannedResource>& planResources() noexcept { return detail::PlanBuilder::resources(plan_); }
+    std::vector<PlannedPass>& planPasses() noexcept { return detail::PlanBuilder::passes(plan_); }
+
+    const ResourceDesc& decl(uint32_t planResource) const {
+        return graph_.resources[plan_.resources()[planResource].decl];
+    }
     bool isImage(uint32_t planResource) const { return facts_[planResource].image; }
     ExternalState replaced(ExternalState s) const {
         return s == ExternalState::Present ? options_.presentReplacement : s;
@@ -105,7 +111,7 @@ private:
         // Every scheduled pass and usage, and an inserted Clear (one access) at most per
         // `clear` resource: at its first use only.
         steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size());
-        plan_.resources.reserve(graph_.resources.size());
+        planResources().reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
         const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size();
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
@@ -166,14 +172,14 @@ private:
     /// (emitSteps).
     void nameInsertedStep(std::string_view verb, uint32_t r) {
         const uint32_t at = addOwnText(verb);
-        addOwnText(plan_.resources[r].name);
+        addOwnText(planResources()[r].name);
         insertedNameAt_.push_back({currentStep_, at, static_cast<uint32_t>(ownText_.size() - at)});
     }
 
     // Both run once per usage or resource, from planAccesses' loop: inlined there (GCC 12 stops
     // inlining them once they have three callers, which costs 5% of a large compile).
     [[gnu::always_inline]] uint32_t addResource(uint32_t declIndex) {
-        PlannedResource& res = plan_.resources.emplace_back();
+        PlannedResource& res = planResources().emplace_back();
         res.decl = declIndex;
         res.name = index_.resourceName(declIndex);
         const SubresourceGrid& grid = index_.grid(declIndex);
@@ -184,10 +190,10 @@ private:
         facts_.push_back({kNone, kNone, grid, cellCount_, scopeRow(index_.aspects(declIndex)),
                           index_.aspects(declIndex).image, index_.exported(declIndex), index_.external(declIndex)});
 #endif
-        if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
-        if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(plan_.resources.size() - 1));
+        if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(planResources().size() - 1));
+        if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
-        return static_cast<uint32_t>(plan_.resources.size() - 1);
+        return static_cast<uint32_t>(planResources().size() - 1);
     }
 
     // A `clear` resource is cleared by its first use: through the load op when that use is an
@@ -279,13 +285,13 @@ private:
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
             a.firstOfResource = true;
-            plan_.resources[r].firstPass = a.step;
-            plan_.resources[r].firstStages = scope.stages;
+            planResources()[r].firstPass = a.step;
+            planResources()[r].firstStages = scope.stages;
         } else {
             accesses_[f.lastAccess].next = k;
             if (accesses_[f.lastAccess].step == a.step) {
                 steps_.back().mayMerge = true;
-                if (plan_.resources[r].firstPass == a.step) plan_.resources[r].firstStages |= scope.stages;
+                if (planResources()[r].firstPass == a.step) planResources()[r].firstStages |= scope.stages;
             }
         }
         if (cells(range) > 1) steps_.back().mayMerge = true;
@@ -350,7 +356,7 @@ private:
         // Each plan pass is written once, whole, here (an inserted Clear's name comes at the
         // end): built in planAccesses, its record would have left the cache by the time its
         // spans are known.
-        plan_.passes.reserve(steps_.size());
+        planPasses().reserve(steps_.size());
         for (uint32_t s = 0; s < steps_.size(); ++s) {
             const size_t batch = barriers.size();
             const Step& step = steps_[s];
@@ -367,9 +373,9 @@ private:
                                           : step.readback      ? kReadbackType
                                                                : kClearType;
 #if __cpp_aggregate_paren_init >= 201902L
-            plan_.passes.emplace_back(name, type, step.declIndex, batchView, usesView);
+            planPasses().emplace_back(name, type, step.declIndex, batchView, usesView);
 #else  // clang before 16 (the sanitizer build): no aggregate initialisation from parentheses
-            plan_.passes.push_back(PlannedPass{name, type, step.declIndex, batchView, usesView});
+            planPasses().push_back(PlannedPass{name, type, step.declIndex, batchView, usesView});
 #endif
         }
         if (barriers.capacity() != room) throw std::logic_error("synchronizer: the barrier bound was exceeded");
@@ -380,7 +386,7 @@ private:
             auto own = std::make_shared<const std::string>(std::move(ownText_));
             const std::string_view text = *own;
             for (const NameAt& n : slotAt_) usages[n.item].slot = text.substr(n.offset, n.length);
-            for (const NameAt& n : insertedNameAt_) plan_.passes[n.item].name = text.substr(n.offset, n.length);
+            for (const NameAt& n : insertedNameAt_) planPasses()[n.item].name = text.substr(n.offset, n.length);
             detail::PlanBuilder::keepNames(plan_, std::move(own));
         }
     }
@@ -407,7 +413,7 @@ private:
     /// Stages and accesses of resource r's uses in its first pass.
     VulkanScope firstPassScope(uint32_t r) const {
         VulkanScope scope;
-        const uint32_t first = plan_.resources[r].firstPass;
+        const uint32_t first = plan_.resources()[r].firstPass;
         for (uint32_t k = facts_[r].firstAccess; k != kNone && accesses_[k].step == first; k = accesses_[k].next) {
             scope.stages |= (*usages_)[k].stages;
             scope.access |= (*usages_)[k].access;
@@ -448,7 +454,7 @@ private:
             states[i].visibleAccess = scope.access;
             states[i].fromOutside = true;
         }
-        plan_.resources[r].initialLayout = scope.layout;
+        planResources()[r].initialLayout = scope.layout;
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[facts_[r].firstCell]; }
     /// Calls f(flat index into the per-subresource arrays) for every subresource of `range`
@@ -507,7 +513,7 @@ private:
         // barrier changes it (finishResources). Set here, while the resource's record is in
         // cache from its first access a few passes back, rather than in a sweep of its own.
         if (a.next == kNone) {
-            PlannedResource& res = plan_.resources[r];
+            PlannedResource& res = planResources()[r];
             res.lastPass = a.step;
             res.finalLayout = stateOf(r)->layout;
         }
@@ -525,14 +531,14 @@ private:
         b.dstAccess = writeBits(pu.access);
         b.oldLayout = b.newLayout = pu.layout;
         b.range = pu.range;
-        plan_.inPassBarriers.push_back({step, k - steps_[step].firstAccess, b});
+        detail::PlanBuilder::inPassBarriers(plan_).push_back({step, k - steps_[step].firstAccess, b});
     }
 
     /// The final barriers of exported resources, and their final layouts, once every pass
     /// is emitted.
     void finishResources() {
         for (const uint32_t r : exported_) {
-            auto& res = plan_.resources[r];
+            auto& res = planResources()[r];
             SubresourceState* states = stateOf(r);
             const auto& d = decl(r);
             const VulkanScope scope = boundaryScope(r, replaced(d.final));
@@ -554,7 +560,7 @@ private:
                                              [&] { return StageAccess{scope.stages, scope.access}; }));
             });
             merger_.emitMerged(r, isImage(r) ? BarrierKind::Image : BarrierKind::Buffer, grid.whole(), perSub_,
-                               plan_.finalBarriers);
+                               detail::PlanBuilder::finalBarriers(plan_));
             res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         }
         // Each read-back's copy lands in host memory the executor reads after the frame's
@@ -567,7 +573,7 @@ private:
             b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
             b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
             b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
-            plan_.finalBarriers.push_back(b);
+            detail::PlanBuilder::finalBarriers(plan_).push_back(b);
         }
     }
 
@@ -578,7 +584,7 @@ private:
     void decideCopies() {
         for (const uint32_t r : external_) {
             const ResourceFacts& f = facts_[r];
-            PlannedResource& res = plan_.resources[r];
+            PlannedResource& res = planResources()[r];
             if (decl(r).final == ExternalState::Present) {
                 res.copies = ResourceCopies::PerFramePresented;
             } else if (f.exported) {

@@ -10,6 +10,8 @@
 #include <skygraph/transfer_plans.hpp>
 
 #include <memory>
+#include <span>
+#include <stdexcept>
 
 namespace skygraph {
 namespace {
@@ -24,10 +26,9 @@ constexpr Usage kTransferRead{Access::Read, Stage::Transfer, BindAs::Default, st
 class StepListBuilder {
 public:
     explicit StepListBuilder(const Plan& frame) {
-        plan_.graph = frame.graph;
-        plan_.features = frame.features;
-        plan_.outputWidth = frame.outputWidth;
-        plan_.outputHeight = frame.outputHeight;
+        detail::PlanBuilder::graph(plan_) = frame.graph();
+        detail::PlanBuilder::features(plan_) = frame.features();
+        detail::PlanBuilder::setOutputExtent(plan_, frame.outputWidth(), frame.outputHeight());
         detail::PlanBuilder::shareNames(plan_, frame);
     }
 
@@ -37,8 +38,8 @@ public:
         PlannedResource r = frameResource;
         r.firstPass = static_cast<uint32_t>(steps_.size());
         r.initialLayout = initialLayout;
-        plan_.resources.push_back(r);
-        return static_cast<uint32_t>(plan_.resources.size() - 1);
+        resources().push_back(r);
+        return static_cast<uint32_t>(resources().size() - 1);
     }
 
     /// Adds a step of `type` named "<verb><resource name>" that performs `usage` on `range` of
@@ -48,7 +49,7 @@ public:
         Step step;
         step.nameOffset = text_.size();
         text_ += verb;
-        text_ += plan_.resources[r].name;
+        text_ += resources()[r].name;
         step.nameLength = text_.size() - step.nameOffset;
         step.type = type;
         const VulkanScope need = vulkanScope(desc, usage);
@@ -69,7 +70,7 @@ public:
             step.barrier = b;
         }
         recordAccess(state, write, need.layout, need);
-        plan_.resources[r].lastPass = static_cast<uint32_t>(steps_.size());
+        resources()[r].lastPass = static_cast<uint32_t>(steps_.size());
         steps_.push_back(step);
     }
 
@@ -83,9 +84,9 @@ public:
             b->resource = r;
             b->kind = desc.isImage() ? BarrierKind::Image : BarrierKind::Buffer;
             b->range = whole;
-            plan_.finalBarriers.push_back(*b);
+            detail::PlanBuilder::finalBarriers(plan_).push_back(*b);
         }
-        plan_.resources[r].finalLayout = desc.isImage() ? target : VK_IMAGE_LAYOUT_UNDEFINED;
+        resources()[r].finalLayout = desc.isImage() ? target : VK_IMAGE_LAYOUT_UNDEFINED;
     }
 
     /// The host reads what the steps copied out once the plan's fence has signalled.
@@ -97,17 +98,19 @@ public:
         b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
         b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
         b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
-        plan_.finalBarriers.push_back(b);
+        detail::PlanBuilder::finalBarriers(plan_).push_back(b);
     }
 
     Plan finish() && {
         auto& usages = detail::PlanBuilder::usages(plan_);
         auto& barriers = detail::PlanBuilder::barriers(plan_);
+        auto& passes = detail::PlanBuilder::passes(plan_);
         usages.reserve(steps_.size());
         barriers.reserve(steps_.size());
+        passes.reserve(steps_.size());
         auto names = std::make_shared<const std::string>(std::move(text_));
         for (const Step& step : steps_) {
-            PlannedPass& p = plan_.passes.emplace_back();
+            PlannedPass& p = passes.emplace_back();
             p.name = std::string_view(*names).substr(step.nameOffset, step.nameLength);
             p.type = step.type;
             usages.push_back(step.usage);
@@ -122,6 +125,8 @@ public:
     }
 
 private:
+    std::vector<PlannedResource>& resources() noexcept { return detail::PlanBuilder::resources(plan_); }
+
     struct Step {
         size_t nameOffset = 0, nameLength = 0;
         std::string_view type;  // a literal
@@ -135,13 +140,16 @@ private:
 
 SubresourceRange wholeOf(const ResourceDesc& d, const Plan& frame) {
     if (!d.isImage()) return {};
-    return {0, std::max(1u, d.mipCount(frame.outputWidth, frame.outputHeight)), 0, std::max(1u, d.layers)};
+    return {0, std::max(1u, d.mipCount(frame.outputWidth(), frame.outputHeight())), 0, std::max(1u, d.layers)};
 }
 
 /// Where the frame's first pass that uses resource `r` uses it.
 VulkanScope firstUseScope(const Plan& frame, uint32_t r) {
     VulkanScope scope;
-    for (const PlannedUsage& u : frame.passes.at(frame.resources[r].firstPass).usages)
+    const std::span<const PlannedPass> passes = frame.passes();
+    const uint32_t first = frame.resources()[r].firstPass;
+    if (first >= passes.size()) throw std::out_of_range("a plan resource's first pass is not in the plan");
+    for (const PlannedUsage& u : passes[first].usages)
         if (u.resource == r) {
             scope.stages |= u.stages;
             scope.access |= u.access;
@@ -165,13 +173,13 @@ ExternalState arrivesIn(const PlannedResource& res, const ResourceDesc& d) {
 /// `initial` state, or, where that names no stages (a buffer that arrives in no particular
 /// state, or General, the graph's own state), its first use.
 VulkanScope frameStartScope(const Plan& frame, uint32_t r, const ResourceDesc& d) {
-    VulkanScope scope = externalScope(d, arrivesIn(frame.resources[r], d));
+    VulkanScope scope = externalScope(d, arrivesIn(frame.resources()[r], d));
     if (scope.stages == 0 || d.initial == ExternalState::General) {
         const VulkanScope first = firstUseScope(frame, r);
         scope.stages = first.stages;
         scope.access = first.access;
     }
-    scope.layout = frame.resources[r].initialLayout;
+    scope.layout = frame.resources()[r].initialLayout;
     return scope;
 }
 
@@ -197,8 +205,8 @@ void checkUploads(const GraphDesc& graph, const SetupOptions& options) {
 Plan planSetup(const GraphDesc& graph, const Plan& frame, const SetupOptions& options) {
     checkUploads(graph, options);
     StepListBuilder steps(frame);
-    for (uint32_t fr = 0; fr < frame.resources.size(); ++fr) {
-        const PlannedResource& res = frame.resources[fr];
+    for (uint32_t fr = 0; fr < frame.resources().size(); ++fr) {
+        const PlannedResource& res = frame.resources()[fr];
         const ResourceDesc& d = graph.resources.at(res.decl);
         if (!d.external || options.imports.count(d.name)) continue;
         // The frame discards such an image's contents; and a swapchain image comes from the
@@ -229,7 +237,7 @@ Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view r
     std::string problem;
     if (!d) problem = "no such resource";
     else if (!d->isImage()) problem = "it is a buffer";
-    else if (fr < 0 || frame.resources[size_t(fr)].finalLayout == VK_IMAGE_LAYOUT_UNDEFINED)
+    else if (fr < 0 || frame.resources()[size_t(fr)].finalLayout == VK_IMAGE_LAYOUT_UNDEFINED)
         problem = "no pass of the plan leaves it written";
     if (!problem.empty()) {
         Diagnostics diags;
@@ -237,7 +245,7 @@ Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view r
                    "cannot read '" + std::string(resource) + "': " + problem});
         throw GraphError(std::move(diags));
     }
-    const PlannedResource& res = frame.resources[size_t(fr)];
+    const PlannedResource& res = frame.resources()[size_t(fr)];
     StepListBuilder steps(frame);
     const uint32_t r = steps.addResource(res, res.finalLayout);
     const SubresourceRange whole = wholeOf(*d, frame);

@@ -11,7 +11,7 @@ namespace skygraph::detail {
 
 struct CompiledGraphAccess {
     /// `compiled` running `edited` instead of its own plan. `edited` must be a copy of
-    /// compiled.plan() changed in place (barriersOf / eraseBarrier), so that it describes the
+    /// compiled.plan() changed in place (detail::PlanEditor), so that it describes the
     /// same graph. A resize() compiles the graph again and drops the edit.
     [[nodiscard]] static CompiledGraph withPlan(CompiledGraph compiled, Plan edited) {
         compiled.plan_ = std::move(edited);

@@ -25,7 +25,7 @@ void recordClear(CommandSink& sink, const PlanState& s, const PassState& ps, uin
 
 /// A Readback step: the first mip and layer of its image into this slot's host buffer.
 void recordReadback(CommandSink& sink, const PlanState& s, uint32_t step, uint32_t slot) {
-    const PlannedUsage& u = s.plan.passes[step].usages[0];
+    const PlannedUsage& u = s.plan.passes()[step].usages[0];
     const ResourceState& r = s.resources[u.resource];
     const ReadbackTarget* target = s.readbackOf(u.resource);
     VkBufferImageCopy c{};
@@ -87,15 +87,16 @@ void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot) {
     const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
     sl.before = BarrierBatch(ps.pass->barriers, target);
     std::vector<Barrier> inPass;
-    for (const InPassBarrier& ib : s.plan.inPassBarriers)
-        if (&s.plan.passes[ib.pass] == ps.pass) inPass.push_back(ib.barrier);
+    for (const InPassBarrier& ib : s.plan.inPassBarriers())
+        if (&s.plan.passes()[ib.pass] == ps.pass) inPass.push_back(ib.barrier);
     sl.inPass = BarrierBatch(inPass, target);
 }
 
 void translateFinalBarriers(PlanState& s, uint32_t slots) {
     s.finals.clear();
     for (uint32_t slot = 0; slot < slots; ++slot)
-        s.finals.emplace_back(s.plan.finalBarriers, [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); });
+        s.finals.emplace_back(s.plan.finalBarriers(),
+                              [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); });
 }
 
 void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r) {

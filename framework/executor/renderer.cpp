@@ -18,7 +18,7 @@ std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
         throw ExecutorError("output extent must be at least 1x1");
     auto s = std::make_unique<PlanState>(std::move(compiled));
     describeResources(*s);
-    for (size_t i = 0; i < s->plan.passes.size(); ++i) buildPassStatic(*s, i);
+    for (size_t i = 0; i < s->plan.passes().size(); ++i) buildPassStatic(*s, i);
     buildSized(*s);
     createPipelines(*s);
     return s;
@@ -151,7 +151,7 @@ ImageData Renderer::readback() {
                                 ? "no read-back: the plan copies no image to the host (CompileOptions::readbacks)"
                                 : "the plan reads back " + std::to_string(s.readbacks.size()) +
                                       " images; name one (readback(name))");
-    return readback(s.plan.resources[s.readbacks[0].resource].name);
+    return readback(s.plan.resources()[s.readbacks[0].resource].name);
 }
 
 ImageData Renderer::readback(std::string_view resource) {
@@ -196,10 +196,10 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     OwnedBuffer host = d.makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     d.submitAndWait([&](CommandSink& sink) {
         const auto target = [&](uint32_t) { return r.barrierTarget(slot); };  // the plan's one resource
-        const PlannedPass& step = read.passes.at(0);
+        const PlannedPass& step = read.passes().front();  // an image-read plan is one step
         if (const BarrierBatch before(step.barriers, target); !before.empty()) sink.barriers(before);
         sink.copyImageToBuffer(r.images[r.copyFor(slot)].image, step.usages[0].layout, host.buffer.get(), copies);
-        if (const BarrierBatch after(read.finalBarriers, target); !after.empty()) sink.barriers(after);
+        if (const BarrierBatch after(read.finalBarriers(), target); !after.empty()) sink.barriers(after);
     });
     std::vector<ImageData> levels;
     for (uint32_t m = 0; m < r.mips; ++m)
@@ -269,7 +269,7 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
     impl->mips = r.mips;
     impl->layers = r.layers;
     impl->usage = r.imageUsage;
-    impl->layout = d.state->plan.resources[size_t(index)].finalLayout;
+    impl->layout = d.state->plan.resources()[size_t(index)].finalLayout;
     impl->origin = "graph '" + d.state->graph.name + "', resource '" + resource + "'";
     SharedImage shared;
     shared.impl_ = std::move(impl);

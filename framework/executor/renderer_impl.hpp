@@ -134,8 +134,8 @@ struct PassState {
 
 /// Host memory that a Readback step of the frame copies its image into, one per frame slot.
 struct ReadbackTarget {
-    uint32_t step = 0;      ///< Index into Plan::passes.
-    uint32_t resource = 0;  ///< Index into Plan::resources.
+    uint32_t step = 0;      ///< Index into Plan::passes().
+    uint32_t resource = 0;  ///< Index into Plan::resources().
     std::vector<OwnedBuffer> perSlot;
 };
 
@@ -150,8 +150,8 @@ struct PlanState {
     const Plan& plan;        ///< compiled's
     [[nodiscard]] uint32_t outputWidth() const noexcept { return compiled.outputWidth(); }
     [[nodiscard]] uint32_t outputHeight() const noexcept { return compiled.outputHeight(); }
-    std::vector<ResourceState> resources;  ///< Parallel to plan.resources.
-    std::vector<PassState> passes;         ///< Parallel to plan.passes.
+    std::vector<ResourceState> resources;  ///< Parallel to plan.resources().
+    std::vector<PassState> passes;         ///< Parallel to plan.passes().
     std::vector<BarrierBatch> finals;      ///< Per slot.
     std::vector<ReadbackTarget> readbacks; ///< One per Readback step of the plan.
     Plan setup;  ///< planSetup of `plan`: what ran before the first frame.

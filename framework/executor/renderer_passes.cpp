@@ -67,7 +67,7 @@ std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const Plann
 }
 
 void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
-    const PlannedPass& pass = s.plan.passes[index];
+    const PlannedPass& pass = s.plan.passes()[index];
     PassState ps;
     ps.pass = &pass;
     ps.label = pass.name;

@@ -129,9 +129,9 @@ VkImageView Renderer::Impl::view(ResourceState& r, uint32_t copy, VkImageViewTyp
 
 void Renderer::Impl::describeResources(PlanState& s) {
     const uint32_t slots = options.framesInFlight;
-    s.resources.resize(s.plan.resources.size());
-    for (size_t i = 0; i < s.plan.resources.size(); ++i) {
-        const PlannedResource& pr = s.plan.resources[i];
+    s.resources.resize(s.plan.resources().size());
+    for (size_t i = 0; i < s.plan.resources().size(); ++i) {
+        const PlannedResource& pr = s.plan.resources()[i];
         if (pr.decl >= s.graph.resources.size())
             throw ExecutorError("plan resource '" + std::string(pr.name) + "' is not in the graph");
         ResourceState& r = s.resources[i];
@@ -154,13 +154,13 @@ void Renderer::Impl::describeResources(PlanState& s) {
     }
     // Layouts the resource arrives in or is left in need their usage flags too (an
     // environment map exported as ShaderRead is sampled by the next graph).
-    for (size_t i = 0; i < s.plan.resources.size(); ++i) {
-        for (const VkImageLayout l : {s.plan.resources[i].initialLayout, s.plan.resources[i].finalLayout}) {
+    for (size_t i = 0; i < s.plan.resources().size(); ++i) {
+        for (const VkImageLayout l : {s.plan.resources()[i].initialLayout, s.plan.resources()[i].finalLayout}) {
             if (l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
             if (l == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
         }
     }
-    for (const PlannedPass& pass : s.plan.passes) {
+    for (const PlannedPass& pass : s.plan.passes()) {
         for (const PlannedUsage& u : pass.usages) {
             if (u.resource >= s.resources.size())
                 throw ExecutorError(passError(pass, "", "usage refers to an unknown resource"));
@@ -278,11 +278,11 @@ void Renderer::Impl::buildSized(PlanState& s) {
 
 void Renderer::Impl::createReadbackTargets(PlanState& s) {
     s.readbacks.clear();
-    for (uint32_t step = 0; step < s.plan.passes.size(); ++step) {
+    for (uint32_t step = 0; step < s.plan.passes().size(); ++step) {
         if (s.passes[step].kind != StepKind::Readback) continue;
         ReadbackTarget t;
         t.step = step;
-        t.resource = s.plan.passes[step].usages[0].resource;
+        t.resource = s.plan.passes()[step].usages[0].resource;
         const ResourceState& r = s.resources[t.resource];
         const VkDeviceSize bytes = VkDeviceSize(r.width) * r.height * copyTexelBytes(r.desc->format);
         for (uint32_t slot = 0; slot < options.framesInFlight; ++slot)
@@ -305,14 +305,14 @@ ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const Sh
                             " mips, " + std::to_string(r.layers) + " layers of format " + std::to_string(r.format));
     }
     if ((r.imageUsage & ~from.usage) != 0) throw ExecutorError(what + "the image lacks usages this plan needs");
-    for (const PlannedPass& pass : s.plan.passes)
+    for (const PlannedPass& pass : s.plan.passes())
         for (const PlannedUsage& u : pass.usages)
             if (u.resource == index && writesContents(u.usage.access))
                 throw ExecutorError(what + "pass '" + std::string(pass.name) + "' writes it; an imported image is read-only");
-    if (s.plan.resources[index].initialLayout != from.layout)
+    if (s.plan.resources()[index].initialLayout != from.layout)
         throw ExecutorError(what + "the producer leaves it in layout " + std::to_string(from.layout) +
                             ", this plan expects it to arrive in " +
-                            std::to_string(s.plan.resources[index].initialLayout) + " (its `initial` state)");
+                            std::to_string(s.plan.resources()[index].initialLayout) + " (its `initial` state)");
     ImageCopy copy;
     copy.storage = from.storage;
     copy.image = from.storage->image.get();

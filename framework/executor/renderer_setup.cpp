@@ -73,21 +73,21 @@ void Renderer::Impl::runSetup(PlanState& s) {
         throw ExecutorError(e.what());
     }
     const Plan& setup = s.setup;
-    if (setup.passes.empty()) return;
+    if (setup.passes().empty()) return;
     // Each setup resource is a frame resource of the same name; a per-slot one is set up once
     // per copy.
     std::vector<uint32_t> frameResource;
-    for (const PlannedResource& r : setup.resources) frameResource.push_back(uint32_t(s.plan.resourceIndex(r.name)));
+    for (const PlannedResource& r : setup.resources()) frameResource.push_back(uint32_t(s.plan.resourceIndex(r.name)));
     auto copiesOf = [&](uint32_t setupResource) {
         const ResourceState& r = s.resources[frameResource[setupResource]];
         return r.isImage ? r.images.size() : r.buffers.size();
     };
     // Host contents of the Upload steps, written before the submission (which makes host writes
     // visible to it): one staging buffer per step, shared by the copies.
-    std::vector<OwnedBuffer> staging(setup.passes.size());
-    for (size_t i = 0; i < setup.passes.size(); ++i) {
-        if (setup.passes[i].type != "Upload") continue;
-        const ResourceState& r = s.resources[frameResource[setup.passes[i].usages[0].resource]];
+    std::vector<OwnedBuffer> staging(setup.passes().size());
+    for (size_t i = 0; i < setup.passes().size(); ++i) {
+        if (setup.passes()[i].type != "Upload") continue;
+        const ResourceState& r = s.resources[frameResource[setup.passes()[i].usages[0].resource]];
         if (!r.isImage) {
             staging[i] = makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
             fillBufferPattern(static_cast<uint8_t*>(staging[i].mapped), r.size, 0.5f);
@@ -109,8 +109,8 @@ void Renderer::Impl::runSetup(PlanState& s) {
         const size_t copies = options.framesInFlight;
         for (uint32_t c = 0; c < copies; ++c) {
             const auto target = [&](uint32_t r) { return s.resources[frameResource[r]].barrierTarget(c); };
-            for (size_t i = 0; i < setup.passes.size(); ++i) {
-                const PlannedPass& step = setup.passes[i];
+            for (size_t i = 0; i < setup.passes().size(); ++i) {
+                const PlannedPass& step = setup.passes()[i];
                 const PlannedUsage& u = step.usages[0];
                 if (c >= copiesOf(u.resource)) continue;
                 const ResourceState& r = s.resources[frameResource[u.resource]];
@@ -128,7 +128,7 @@ void Renderer::Impl::runSetup(PlanState& s) {
                 }
             }
             std::vector<Barrier> finals;
-            for (const Barrier& b : setup.finalBarriers)
+            for (const Barrier& b : setup.finalBarriers())
                 if (c < copiesOf(b.resource)) finals.push_back(b);
             if (const BarrierBatch after(finals, target); !after.empty()) sink.barriers(after);
         }

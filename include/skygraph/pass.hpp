@@ -100,7 +100,7 @@ struct RecordContext {
     VkSampler repeatSampler = VK_NULL_HANDLE;  ///< Trilinear, repeat in U, clamp in V (equirect).
     const FrameData* frame = nullptr;
     uint64_t frameIndex = 0;
-    /// Records the plan's in-pass barriers of this pass (Plan::inPassBarriers). A pass with a
+    /// Records the plan's in-pass barriers of this pass (Plan::inPassBarriers()). A pass with a
     /// ReadWrite transfer calls it once, between its copies out and its copies in; it is the
     /// only barrier a pass may record, and the executor provides it.
     std::function<void()> recordInPassBarriers;

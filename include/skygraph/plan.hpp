@@ -1,18 +1,19 @@
 // The compiler's output: what runs, in which order, and every barrier between.
 // The executor records exactly this and derives no synchronization of its own.
 //
-// Storage: a Plan keeps all usages of all passes in one array and all pass barriers in
-// another; each PlannedPass views its part of them through spans, and names (of passes, pass
-// types, resources and slots) are views into string tables that copies of a plan share (they
-// are never modified): the text of every name in the graph, culled passes' and unused
-// resources' included, and the compiler's own (slots, inserted clears). So compiling makes a
-// handful of allocations instead of one or more per pass and name. The spans point into the
-// Plan that holds the pass: copying a Plan rebases them onto the copy (each copy is valid on
-// its own, whatever happens to the original); moving a Plan keeps them valid. A PlannedPass
-// or PlannedUsage copied out of its Plan is valid only while that Plan lives unchanged. Code
-// that edits a plan keeps every non-empty span viewing that plan's own arrays (reorder or
-// drop `passes` freely; change barriers through barriersOf/eraseBarrier): a copy rebases
-// views by their offset into those arrays.
+// A Plan is read-only to its users: compile() (and planSetup / planImageRead) write it, and
+// everything else reads it through const accessors. Ownership and validity, for every view
+// that a Plan hands out:
+// - The arrays (passes(), resources(), finalBarriers(), inPassBarriers(), culled()) and each
+//   PlannedPass's `barriers` and `usages` view storage that the Plan owns: valid while that
+//   Plan lives and is not assigned to. Moving a Plan keeps them valid (they then belong to
+//   the Plan moved to); copying a Plan gives the copy views of its own, valid whatever
+//   happens to the original.
+// - Names (PlannedPass::name and ::type, PlannedResource::name, PlannedUsage::slot) view text
+//   that the Plan shares with its copies and never modifies: valid while the Plan or any copy
+//   of it lives, even after the GraphDesc it was compiled from is gone.
+// - A PlannedPass, PlannedUsage or PlannedResource copied out of its Plan holds these views,
+//   not the data: it is valid only as long as the views it holds are.
 #pragma once
 
 #include <skygraph/condition.hpp>
@@ -34,7 +35,7 @@ enum class BarrierKind : uint8_t { Image, Buffer, Memory };
 
 /// One VkImageMemoryBarrier2 / VkBufferMemoryBarrier2 / VkMemoryBarrier2.
 struct Barrier {
-    uint32_t resource = 0;  ///< Index into Plan::resources.
+    uint32_t resource = 0;  ///< Index into Plan::resources().
     BarrierKind kind = BarrierKind::Image;
     VkPipelineStageFlags2 srcStages = 0;
     VkAccessFlags2 srcAccess = 0;
@@ -51,16 +52,15 @@ struct Barrier {
 enum class LoadOp : uint8_t { Load, Clear, DontCare };
 enum class StoreOp : uint8_t { Store, DontCare, None };
 
-/// A usage with everything Vulkan needs to perform it. (Members are ordered to pack into one
-/// 64-byte cache line: a plan holds one per usage, and the compiler writes and reads them all.)
+/// A usage with everything Vulkan needs to perform it.
 struct PlannedUsage {
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access = 0;
     /// The pass type's slot this usage fills; empty for Generic passes and inserted clears.
-    /// Views the plan's shared name tables: valid while any copy of the plan lives.
+    /// Views the plan's names: valid while the plan or any copy of it lives.
     std::string_view slot;
     SubresourceRange range;  ///< Resolved: the usage's range, or the whole resource.
-    uint32_t resource = 0;   ///< Index into Plan::resources.
+    uint32_t resource = 0;   ///< Index into Plan::resources().
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< Layout during the pass.
     UsageMode usage;         ///< As written; its range, resolved, is `range`.
     /// Attachments only. Clear when this is the first use of a `clear` resource.
@@ -68,19 +68,17 @@ struct PlannedUsage {
     /// Attachments only: Store when a later pass or the export reads the result.
     StoreOp store = StoreOp::Store;
 };
-static_assert(sizeof(PlannedUsage) == 64, "PlannedUsage: keep it one cache line");
 
-/// A pass that runs. Its names view the plan's shared name tables (valid while any copy of
-/// the plan lives). A plan cannot take text of its own: code that renames a pass keeps the new
-/// text alive as long as the plan and every copy of it.
+/// A pass that runs. Its names view the plan's names (valid while the plan or any copy of it
+/// lives); its barriers and usages view the plan's own arrays (valid while the plan that holds
+/// this pass lives and is not assigned to).
 struct PlannedPass {
     std::string_view name;
     std::string_view type;   ///< Pass type; "Clear" for a clear inserted by the compiler.
     int32_t declIndex = -1;  ///< Index into GraphDesc::passes; -1 for inserted passes.
-    /// One vkCmdPipelineBarrier2 batch, before the pass. Views the plan's barrier array;
-    /// edit through Plan::barriersOf / Plan::eraseBarrier.
+    /// One vkCmdPipelineBarrier2 batch, before the pass.
     std::span<const Barrier> barriers;
-    std::span<const PlannedUsage> usages;  ///< Views the plan's usage array.
+    std::span<const PlannedUsage> usages;  ///< In the order the pass declares them.
 };
 
 /// How many copies of a resource the executor keeps, and why. Frames in flight overlap on
@@ -102,11 +100,11 @@ enum class ResourceCopies : uint8_t {
 
 /// A resource that at least one scheduled pass uses. Unused resources are not listed.
 struct PlannedResource {
-    std::string_view name;    ///< Views the plan's shared name tables, like PlannedPass::name.
+    std::string_view name;    ///< Views the plan's names, like PlannedPass::name.
     /// The stages that the frame's first access waits in (for semaphores at the frame's start).
     VkPipelineStageFlags2 firstStages = 0;
     uint32_t decl = 0;        ///< Index into GraphDesc::resources.
-    uint32_t firstPass = 0;   ///< Indices into Plan::passes: the lifetime.
+    uint32_t firstPass = 0;   ///< Indices into Plan::passes(): the lifetime.
     uint32_t lastPass = 0;
     /// Layout the resource must be in when the frame starts (external resources).
     VkImageLayout initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
@@ -118,7 +116,7 @@ struct PlannedResource {
 /// A barrier between two commands of one pass. A ReadWrite transfer is a copy out of the
 /// subresources and then a copy into them; the copy in waits for the copy out.
 struct InPassBarrier {
-    uint32_t pass = 0;   ///< Index into Plan::passes.
+    uint32_t pass = 0;   ///< Index into Plan::passes().
     uint32_t usage = 0;  ///< Index into that pass's usages: the ReadWrite transfer.
     Barrier barrier;
 };
@@ -129,45 +127,80 @@ struct CulledPass {
 };
 
 namespace detail {
-struct PlanBuilder;  // the compiler's way of filling a plan's storage
+struct PlanBuilder;  // the compiler's way of writing a plan
+struct PlanEditor;   // tests: weaken a plan on purpose
 }
 
-struct Plan {
-    std::string graph;
-    FeatureValues features;
-    /// The output extent the plan was compiled for: `"output"` extents and `"mips": "full"`
-    /// chains resolve against it, so the plan is valid at this size only.
-    uint32_t outputWidth = 0;
-    uint32_t outputHeight = 0;
-    std::vector<PlannedResource> resources;
-    std::vector<PlannedPass> passes;
-    std::vector<Barrier> finalBarriers;
-    /// In pass order; empty unless a pass performs a ReadWrite transfer.
-    std::vector<InPassBarrier> inPassBarriers;
-    std::vector<CulledPass> culled;
-
-    /// Index into `resources` for a graph resource, or -1 when no scheduled pass uses it.
-    [[nodiscard]] int32_t resourceIndex(std::string_view name) const noexcept;
-
-    /// Pass `pass`'s barriers, editable in place (tests weaken plans this way).
-    [[nodiscard]] std::span<Barrier> barriersOf(size_t pass);
-    /// Removes barrier `i` of pass `pass`; later passes' spans stay valid.
-    void eraseBarrier(size_t pass, size_t i);
-
+/// A compiled plan: read-only, see the top of this file for what its views point to and how
+/// long they are valid. Copies are deep and independent; moves keep every view valid.
+class Plan {
+public:
+    /// An empty plan: no passes, no resources, the empty graph name and a 0x0 output.
     Plan() = default;
-    Plan(const Plan& other);  ///< Deep copy, with every span rebased onto the copy.
+    /// A deep copy whose views point into the copy's own arrays (its names are shared, as
+    /// they are never modified). The copy is valid on its own, whatever happens to `other`.
+    Plan(const Plan& other);
+    /// As the copy constructor. Arrays and spans obtained from this plan before are invalid
+    /// afterwards (names stay valid while another copy of the plan they came from lives);
+    /// views into `other` are not affected.
     Plan& operator=(const Plan& other);
-    Plan(Plan&&) noexcept = default;  ///< Moved arrays keep their addresses: spans stay valid.
+    /// The arrays move with their storage: views obtained from `other` stay valid and now
+    /// view this plan. `other` is left valid but unspecified (assign to it or destroy it).
+    Plan(Plan&&) noexcept = default;
+    /// As the move constructor; arrays and spans obtained from this plan before are invalid
+    /// afterwards, as after a copy assignment.
     Plan& operator=(Plan&&) noexcept = default;
     ~Plan() = default;
 
+    /// The graph's name (GraphDesc::name). Owned by this plan: valid while it lives and is
+    /// not assigned to.
+    [[nodiscard]] const std::string& graph() const noexcept { return graph_; }
+    /// The feature values the plan was compiled with, every feature of the graph included.
+    /// Owned by this plan: valid while it lives and is not assigned to.
+    [[nodiscard]] const FeatureValues& features() const noexcept { return features_; }
+    /// The output extent the plan was compiled for: `"output"` extents and `"mips": "full"`
+    /// chains resolve against it, so the plan is valid at this size only.
+    [[nodiscard]] uint32_t outputWidth() const noexcept { return outputWidth_; }
+    [[nodiscard]] uint32_t outputHeight() const noexcept { return outputHeight_; }
+
+    /// The resources that at least one scheduled pass uses, in order of first use; unused
+    /// resources are not listed. Views this plan's array: valid while the plan lives and is
+    /// not assigned to (a move keeps it valid).
+    [[nodiscard]] std::span<const PlannedResource> resources() const noexcept { return resources_; }
+    /// The passes that run, in order, inserted ones (clears, read-backs) included. Views this
+    /// plan's array, and each pass views this plan's barriers and usages: valid while the plan
+    /// lives and is not assigned to (a move keeps them valid).
+    [[nodiscard]] std::span<const PlannedPass> passes() const noexcept { return passes_; }
+    /// The barriers after the last pass, which hand resources to what follows the plan (an
+    /// export's final state, a read-back's host read). Views this plan's array; valid as
+    /// passes().
+    [[nodiscard]] std::span<const Barrier> finalBarriers() const noexcept { return finalBarriers_; }
+    /// In pass order; empty unless a pass performs a ReadWrite transfer. Views this plan's
+    /// array; valid as passes().
+    [[nodiscard]] std::span<const InPassBarrier> inPassBarriers() const noexcept { return inPassBarriers_; }
+    /// The passes that do not run, in file order, and why. Views this plan's array; valid as
+    /// passes().
+    [[nodiscard]] std::span<const CulledPass> culled() const noexcept { return culled_; }
+
+    /// Index into resources() for a graph resource, or -1 when no scheduled pass uses it.
+    /// Compares names; `name` need not outlive the call.
+    [[nodiscard]] int32_t resourceIndex(std::string_view name) const noexcept;
+
 private:
     friend struct detail::PlanBuilder;
+    friend struct detail::PlanEditor;
+    std::string graph_;
+    FeatureValues features_;
+    uint32_t outputWidth_ = 0;
+    uint32_t outputHeight_ = 0;
+    std::vector<PlannedResource> resources_;
+    std::vector<PlannedPass> passes_;
+    std::vector<Barrier> finalBarriers_;
+    std::vector<InPassBarrier> inPassBarriers_;
+    std::vector<CulledPass> culled_;
     std::vector<PlannedUsage> usages_;   // every pass's usages, pass after pass
     std::vector<Barrier> barriers_;      // every pass's barrier batch, pass after pass
-    /// What the names of passes, resources and slots view: the graph's names, copied once
-    /// by the compiler's index walk, and the compiler's own (slots, inserted clears).
-    std::vector<std::shared_ptr<const std::string>> nameTables_;
+    std::vector<std::shared_ptr<const std::string>> nameTables_;  // what the names view
 };
 
 }  // namespace skygraph

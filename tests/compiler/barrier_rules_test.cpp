@@ -26,7 +26,7 @@ Plan compileGraph(const std::string& resources, const std::string& passes,
 }
 
 const PlannedPass& pass(const Plan& plan, const std::string& name) {
-    for (const auto& p : plan.passes)
+    for (const auto& p : plan.passes())
         if (p.name == name) return p;
     throw std::runtime_error("no scheduled pass " + name);
 }
@@ -41,7 +41,7 @@ CompileOptions noCulling() {
 std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
     std::vector<Barrier> out;
     for (const auto& b : pass(plan, passName).barriers)
-        if (plan.resources[b.resource].name == resource) out.push_back(b);
+        if (plan.resources()[b.resource].name == resource) out.push_back(b);
     return out;
 }
 
@@ -116,7 +116,7 @@ TEST(BarrierRules, ReadRunAcrossStagesSharesOneLayoutAndOneBarrier) {
     EXPECT_EQ(first[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
     EXPECT_EQ(first[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     EXPECT_EQ(first[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-    for (const auto& b : pass(plan, "copy").barriers) EXPECT_NE(plan.resources[b.resource].name, "color");
+    for (const auto& b : pass(plan, "copy").barriers) EXPECT_NE(plan.resources()[b.resource].name, "color");
     // The next writer waits for every reader of the run, with no memory dependency.
     const auto next = barriersOf(plan, "rewrite", "color");
     ASSERT_EQ(next.size(), 1u);
@@ -168,7 +168,7 @@ TEST(BarrierRules, ClearByAttachmentLoadOp) {
     const auto& u = pass(plan, "blend").usages[0];
     EXPECT_EQ(u.load, LoadOp::Clear);
     EXPECT_EQ(u.store, StoreOp::Store);
-    ASSERT_EQ(plan.passes.size(), 2u) << "no Clear pass when the load op clears";
+    ASSERT_EQ(plan.passes().size(), 2u) << "no Clear pass when the load op clears";
 }
 
 TEST(BarrierRules, ClearBeforeANonAttachmentFirstUseIsAClearPass) {
@@ -176,11 +176,11 @@ TEST(BarrierRules, ClearBeforeANonAttachmentFirstUseIsAClearPass) {
         R"("color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "clear": {"color": [1,0,0,1]}},)" +
             std::string(kOut),
         R"({"name": "show", "type": "Generic", "uses": {"color": "Read@Fragment", "out": "Write@ColorAttachment"}})");
-    ASSERT_EQ(plan.passes.size(), 2u);
-    EXPECT_EQ(plan.passes[0].type, "Clear");
-    ASSERT_EQ(plan.passes[0].barriers.size(), 1u);
-    EXPECT_EQ(plan.passes[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    const auto& b = plan.passes[1].barriers;
+    ASSERT_EQ(plan.passes().size(), 2u);
+    EXPECT_EQ(plan.passes()[0].type, "Clear");
+    ASSERT_EQ(plan.passes()[0].barriers.size(), 1u);
+    EXPECT_EQ(plan.passes()[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const auto& b = plan.passes()[1].barriers;
     ASSERT_GE(b.size(), 1u);
     EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -207,14 +207,14 @@ TEST(BarrierRules, ExportedResourcesEndInTheirFinalState) {
     const Plan plan = compileGraph(
         R"("sc": {"type": "image2d", "format": "B8G8R8A8_SRGB", "extent": [16, 16], "external": true, "final": "Present"})",
         R"({"name": "p", "type": "Generic", "uses": {"sc": "Write@ColorAttachment"}})");
-    ASSERT_EQ(plan.passes[0].barriers.size(), 1u);
-    const auto& first = plan.passes[0].barriers[0];
+    ASSERT_EQ(plan.passes()[0].barriers.size(), 1u);
+    const auto& first = plan.passes()[0].barriers[0];
     EXPECT_EQ(first.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
     // Chains with the acquire semaphore, which waits in the first use's stage.
     EXPECT_EQ(first.srcStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
     EXPECT_EQ(first.srcAccess, 0u);
-    ASSERT_EQ(plan.finalBarriers.size(), 1u);
-    const auto& fin = plan.finalBarriers[0];
+    ASSERT_EQ(plan.finalBarriers().size(), 1u);
+    const auto& fin = plan.finalBarriers()[0];
     EXPECT_EQ(fin.newLayout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     EXPECT_EQ(fin.srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     EXPECT_EQ(fin.dstStages, 0u);
@@ -225,24 +225,24 @@ TEST(BarrierRules, ExportedResourcesEndInTheirFinalState) {
     const Plan h = compileGraph(
         R"("sc": {"type": "image2d", "format": "B8G8R8A8_SRGB", "extent": [16, 16], "external": true, "final": "Present"})",
         R"({"name": "p", "type": "Generic", "uses": {"sc": "Write@ColorAttachment"}})", headless);
-    ASSERT_EQ(h.finalBarriers.size(), 1u);
-    EXPECT_EQ(h.finalBarriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    EXPECT_EQ(h.finalBarriers[0].dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
-    EXPECT_EQ(h.finalBarriers[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+    ASSERT_EQ(h.finalBarriers().size(), 1u);
+    EXPECT_EQ(h.finalBarriers()[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(h.finalBarriers()[0].dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(h.finalBarriers()[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
     // Next frame: the readback copy read it last, so the first write waits for transfer (WAR).
-    EXPECT_EQ(h.passes[0].barriers[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(h.passes()[0].barriers[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
 }
 
 TEST(BarrierRules, PersistentAccumulationChainsAcrossFrames) {
     const Plan plan = compileGraph(
         R"("acc": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [16, 16], "external": true, "final": "General"})",
         R"({"name": "trace", "type": "Generic", "uses": {"acc": "ReadWrite@Compute"}})");
-    EXPECT_TRUE(plan.passes[0].barriers.empty())
+    EXPECT_TRUE(plan.passes()[0].barriers.empty())
         << "last frame's final barrier already made the writes visible to this use";
-    ASSERT_EQ(plan.finalBarriers.size(), 1u);
-    EXPECT_EQ(plan.finalBarriers[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-    EXPECT_EQ(plan.finalBarriers[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    EXPECT_EQ(plan.finalBarriers[0].dstAccess,
+    ASSERT_EQ(plan.finalBarriers().size(), 1u);
+    EXPECT_EQ(plan.finalBarriers()[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(plan.finalBarriers()[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(plan.finalBarriers()[0].dstAccess,
               VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
@@ -254,8 +254,8 @@ TEST(BarrierRules, PersistentFinalBarrierWaitsForThisFramesReaders) {
         R"({"name": "trace", "type": "Generic", "uses": {"acc": "ReadWrite@Compute"}},
            {"name": "show", "type": "Generic", "uses": {"acc": "Read@Fragment", "out": "Write@ColorAttachment"}})");
     std::vector<Barrier> fin;
-    for (const auto& b : plan.finalBarriers)
-        if (plan.resources[b.resource].name == "acc") fin.push_back(b);
+    for (const auto& b : plan.finalBarriers())
+        if (plan.resources()[b.resource].name == "acc") fin.push_back(b);
     ASSERT_EQ(fin.size(), 1u);
     EXPECT_EQ(fin[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
     EXPECT_EQ(fin[0].srcAccess, 0u) << "the compute write was made available before the read";
@@ -273,9 +273,9 @@ TEST(BarrierRules, MipChainWrittenOneLevelAtATime) {
     const Plan plan = compileGraph(
         R"("chain": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": 4, "external": true, "final": "ShaderRead"})",
         passes);
-    ASSERT_EQ(plan.passes.size(), 4u);
+    ASSERT_EQ(plan.passes().size(), 4u);
     for (int m = 1; m < 4; ++m) {
-        const auto& b = plan.passes[m].barriers;
+        const auto& b = plan.passes()[m].barriers;
         ASSERT_EQ(b.size(), 2u) << "mip" << m;
         EXPECT_EQ(b[0].range.baseMip, uint32_t(m - 1));
         EXPECT_EQ(b[0].range.mipCount, 1u);
@@ -288,12 +288,12 @@ TEST(BarrierRules, MipChainWrittenOneLevelAtATime) {
     }
     // Final: mips 0-2 are already SHADER_READ_ONLY (visible to compute only); mip 3 is
     // GENERAL. The two groups cannot merge, so there are exactly two final barriers.
-    ASSERT_EQ(plan.finalBarriers.size(), 2u);
-    EXPECT_EQ(plan.finalBarriers[0].range.baseMip, 0u);
-    EXPECT_EQ(plan.finalBarriers[0].range.mipCount, 3u);
-    EXPECT_EQ(plan.finalBarriers[0].oldLayout, plan.finalBarriers[0].newLayout);
-    EXPECT_EQ(plan.finalBarriers[1].range.baseMip, 3u);
-    EXPECT_EQ(plan.finalBarriers[1].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    ASSERT_EQ(plan.finalBarriers().size(), 2u);
+    EXPECT_EQ(plan.finalBarriers()[0].range.baseMip, 0u);
+    EXPECT_EQ(plan.finalBarriers()[0].range.mipCount, 3u);
+    EXPECT_EQ(plan.finalBarriers()[0].oldLayout, plan.finalBarriers()[0].newLayout);
+    EXPECT_EQ(plan.finalBarriers()[1].range.baseMip, 3u);
+    EXPECT_EQ(plan.finalBarriers()[1].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 TEST(BarrierRules, SubresourceRangesMergeWhenTheyAgree) {
@@ -303,9 +303,9 @@ TEST(BarrierRules, SubresourceRangesMergeWhenTheyAgree) {
              {"resource": "cube", "access": "Write", "stage": "Compute", "mips": [0, 1], "layers": [0, 3]},
              {"resource": "cube", "access": "Write", "stage": "Compute", "mips": [0, 1], "layers": [3, 3]},
              {"resource": "cube", "access": "Write", "stage": "Compute", "mips": [1, 1]}]})");
-    ASSERT_EQ(plan.passes[0].barriers.size(), 1u) << "three usages, one rectangle of 2 mips x 6 layers";
-    EXPECT_EQ(plan.passes[0].barriers[0].range, (SubresourceRange{0, 2, 0, 6}));
-    ASSERT_EQ(plan.finalBarriers.size(), 1u);
+    ASSERT_EQ(plan.passes()[0].barriers.size(), 1u) << "three usages, one rectangle of 2 mips x 6 layers";
+    EXPECT_EQ(plan.passes()[0].barriers[0].range, (SubresourceRange{0, 2, 0, 6}));
+    ASSERT_EQ(plan.finalBarriers().size(), 1u);
 }
 
 TEST(Culling, ReasonsForEveryRemovedPass) {
@@ -319,23 +319,23 @@ TEST(Culling, ReasonsForEveryRemovedPass) {
         {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}},
         {"name": "sidefx", "type": "Generic", "never_cull": true, "uses": {"buf": "Write@Compute"}})",
         options, R"({"fx": true, "other": false})");
-    ASSERT_EQ(plan.culled.size(), 3u);
-    EXPECT_EQ(plan.culled[0].name, "unused");
-    EXPECT_NE(plan.culled[0].reason.find("no later pass reads 'buf'"), std::string::npos) << plan.culled[0].reason;
-    EXPECT_EQ(plan.culled[1].name, "fx");
-    EXPECT_EQ(plan.culled[1].reason, "feature 'fx' is off");
-    EXPECT_EQ(plan.culled[2].name, "both");
-    EXPECT_EQ(plan.culled[2].reason, "condition 'fx && !other' is false (fx=off, other=off)");
-    ASSERT_EQ(plan.passes.size(), 3u);
-    EXPECT_EQ(plan.passes[2].name, "sidefx") << "never_cull keeps a pass with side effects";
+    ASSERT_EQ(plan.culled().size(), 3u);
+    EXPECT_EQ(plan.culled()[0].name, "unused");
+    EXPECT_NE(plan.culled()[0].reason.find("no later pass reads 'buf'"), std::string::npos) << plan.culled()[0].reason;
+    EXPECT_EQ(plan.culled()[1].name, "fx");
+    EXPECT_EQ(plan.culled()[1].reason, "feature 'fx' is off");
+    EXPECT_EQ(plan.culled()[2].name, "both");
+    EXPECT_EQ(plan.culled()[2].reason, "condition 'fx && !other' is false (fx=off, other=off)");
+    ASSERT_EQ(plan.passes().size(), 3u);
+    EXPECT_EQ(plan.passes()[2].name, "sidefx") << "never_cull keeps a pass with side effects";
 
     options.cull = false;
     const Plan all = compileGraph(std::string(kColor) + "," + kOut + "," + kBuf,
                                   R"({"name": "unused", "type": "Generic", "uses": {"buf": "Write@Compute"}},
                                      {"name": "fx", "type": "Generic", "if": "fx", "uses": {"buf": "Write@Compute"}})",
                                   options, R"({"fx": true})");
-    ASSERT_EQ(all.passes.size(), 1u) << "culling off still honours `if`";
-    ASSERT_EQ(all.culled.size(), 1u);
+    ASSERT_EQ(all.passes().size(), 1u) << "culling off still honours `if`";
+    ASSERT_EQ(all.culled().size(), 1u);
 }
 
 TEST(Culling, ExportingAnIntermediateKeepsItsWriterAndEndsInTheExportedState) {
@@ -345,10 +345,10 @@ TEST(Culling, ExportingAnIntermediateKeepsItsWriterAndEndsInTheExportedState) {
         {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
         {"name": "copy", "type": "Generic", "uses": {"color": "Read@Fragment", "out": "Write@ColorAttachment"}})",
                                    options);
-    ASSERT_EQ(plan.passes.size(), 2u);
+    ASSERT_EQ(plan.passes().size(), 2u);
     bool found = false;
-    for (const auto& b : plan.finalBarriers)
-        if (plan.resources[b.resource].name == "color") {
+    for (const auto& b : plan.finalBarriers())
+        if (plan.resources()[b.resource].name == "color") {
             found = true;
             EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
             EXPECT_EQ(b.srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << "waits for the sampling read";
@@ -364,8 +364,8 @@ TEST(Culling, ExportingAnIntermediateKeepsItsWriterAndEndsInTheExportedState) {
 TEST(Culling, UnusedResourcesAreNeverCreated) {
     const Plan plan = compileGraph(std::string(kColor) + "," + kOut + "," + kBuf,
                                    R"({"name": "p", "type": "Generic", "uses": {"out": "Write@ColorAttachment"}})");
-    ASSERT_EQ(plan.resources.size(), 1u);
-    EXPECT_EQ(plan.resources[0].name, "out");
+    ASSERT_EQ(plan.resources().size(), 1u);
+    EXPECT_EQ(plan.resources()[0].name, "out");
     EXPECT_EQ(plan.resourceIndex("buf"), -1);
 }
 
@@ -378,16 +378,16 @@ TEST(Reordering, SkyboxAfterTonemappingIsCulledWithItsReason) {
         {"name": "forward", "type": "ForwardPass", "uses": {"depth": "Write@DepthAttachment", "hdr_color": "Write@ColorAttachment"}},
         {"name": "tonemap", "type": "TonemappingPass", "uses": {"hdr_color": "Read@Fragment", "swapchain": "Write@ColorAttachment"}},
         {"name": "skybox", "type": "SkyboxPass", "uses": {"depth": "Read@DepthAttachment", "hdr_color": "ReadWrite@ColorAttachment"}})");
-    ASSERT_EQ(plan.culled.size(), 1u);
-    EXPECT_EQ(plan.culled[0].name, "skybox");
-    EXPECT_EQ(plan.culled[0].reason,
+    ASSERT_EQ(plan.culled().size(), 1u);
+    EXPECT_EQ(plan.culled()[0].name, "skybox");
+    EXPECT_EQ(plan.culled()[0].reason,
               "nothing reads what it writes: no later pass reads 'hdr_color' and none of it is exported");
-    ASSERT_EQ(plan.passes.size(), 2u);
+    ASSERT_EQ(plan.passes().size(), 2u);
     // Forward's depth is now read by nobody: its store is dropped.
-    EXPECT_EQ(plan.passes[0].usages[0].store, StoreOp::DontCare);
+    EXPECT_EQ(plan.passes()[0].usages[0].store, StoreOp::DontCare);
     // The tonemap barrier now comes from forward's write.
-    const auto& b = plan.passes[1].barriers[0];
-    EXPECT_EQ(plan.resources[b.resource].name, "hdr_color");
+    const auto& b = plan.passes()[1].barriers[0];
+    EXPECT_EQ(plan.resources()[b.resource].name, "hdr_color");
     EXPECT_EQ(b.srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
 }
 
@@ -404,7 +404,7 @@ TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
                                         PassRegistry::withBuiltins());
     auto culledNames = [](const Plan& p) {
         std::set<std::string> names;
-        for (const auto& c : p.culled) names.insert(c.name);
+        for (const auto& c : p.culled()) names.insert(c.name);
         return names;
     };
     CompileOptions cubeOnly;
@@ -413,13 +413,13 @@ TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
     EXPECT_EQ(culledNames(sky), (std::set<std::string>{"irradiance", "prefilter", "brdf_lut"}));
     EXPECT_EQ(sky.resourceIndex("irradiance"), -1) << "an unused product is never created";
     ASSERT_GE(sky.resourceIndex("environment"), 0);
-    for (const auto& b : sky.finalBarriers) EXPECT_EQ(sky.resources[b.resource].name, "environment");
+    for (const auto& b : sky.finalBarriers()) EXPECT_EQ(sky.resources()[b.resource].name, "environment");
 
     const Plan all = compile(ibl);
-    EXPECT_TRUE(all.culled.empty());
+    EXPECT_TRUE(all.culled().empty());
     CompileOptions none;
     none.outputs = std::set<std::string, std::less<>>{};
-    EXPECT_EQ(compile(ibl, none).passes.size(), 0u) << "nothing asked for, nothing runs";
+    EXPECT_EQ(compile(ibl, none).passes().size(), 0u) << "nothing asked for, nothing runs";
     CompileOptions unknown;
     unknown.outputs = std::set<std::string, std::less<>>{"enviroment"};
     EXPECT_THROW((void)compile(ibl, unknown), GraphError);
@@ -550,8 +550,8 @@ TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
         auto& uses = g.passes[1].uses;
         uses.insert(writeFirst ? uses.begin() : uses.begin() + 1, write);
         const Plan plan = compile(g);
-        ASSERT_EQ(plan.passes.size(), 2u) << "writeFirst=" << writeFirst;
-        EXPECT_EQ(plan.passes[0].name, "w") << "writeFirst=" << writeFirst;
+        ASSERT_EQ(plan.passes().size(), 2u) << "writeFirst=" << writeFirst;
+        EXPECT_EQ(plan.passes()[0].name, "w") << "writeFirst=" << writeFirst;
     }
 }
 

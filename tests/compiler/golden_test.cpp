@@ -97,7 +97,7 @@ class Golden : public ::testing::TestWithParam<GoldenCase> {};
 nlohmann::ordered_json frameAndSetup(const GraphDesc& g, const Plan& frame, const SetupOptions& setup = {}) {
     nlohmann::ordered_json j = planToJson(frame);
     const Plan before = planSetup(g, frame, setup);
-    if (!before.passes.empty()) j["setup"] = planToJson(before);
+    if (!before.passes().empty()) j["setup"] = planToJson(before);
     return j;
 }
 
@@ -162,9 +162,9 @@ TEST_P(Golden, MasksAreNeverWiderThanTheAccesses) {
     };
     const Plan setup = planSetup(loadGraphFile(c.graph, PassRegistry::withBuiltins()), plan);
     for (const Plan* steps : {&plan, &setup}) {
-        for (const auto& p : steps->passes)
+        for (const auto& p : steps->passes())
             for (const auto& b : p.barriers) check(b);
-        for (const auto& b : steps->finalBarriers) check(b);
+        for (const auto& b : steps->finalBarriers()) check(b);
     }
 }
 

@@ -714,7 +714,7 @@ TEST(LoaderErrors, LayersOnlyRangeCoversEveryMipOfAFullChain) {
     const int32_t sky = plan.resourceIndex("fullsky");
     ASSERT_GE(sky, 0);
     bool seen = false;
-    for (const auto& p : plan.passes)
+    for (const auto& p : plan.passes())
         for (const auto& u : p.usages)
             if (p.name == "w" && u.resource == static_cast<uint32_t>(sky)) {
                 seen = true;

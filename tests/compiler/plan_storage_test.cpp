@@ -1,6 +1,9 @@
 // A Plan keeps every usage and barrier in two arrays that its passes view through spans, and
-// its names in shared tables that they view (include/skygraph/plan.hpp): copies must stand
-// alone, names must outlive the graph, and edits must keep every view right.
+// its names in shared tables that they view (framework/compiler/plan_builder.hpp): copies
+// must stand alone, names must outlive the graph, and edits (PlanEditor) must keep every view
+// right.
+#include "plan_editor.hpp"
+
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 
@@ -23,18 +26,18 @@ TEST(PlanStorage, CopyStandsAloneAfterTheOriginalIsGone) {
     auto original = std::make_unique<Plan>(rasterPlan());
     const std::string expected = planToJson(*original).dump(1);
     bool hasSlot = false;
-    for (const auto& p : original->passes)
+    for (const auto& p : original->passes())
         for (const auto& u : p.usages) hasSlot |= !u.slot.empty();
     ASSERT_TRUE(hasSlot) << "the graph must exercise slot names";
 
     Plan copy = *original;
-    for (size_t i = 0; i < copy.passes.size(); ++i) {
+    for (size_t i = 0; i < copy.passes().size(); ++i) {
         // No view of the copy may point into the original's arrays.
-        if (!copy.passes[i].usages.empty()) {
-            EXPECT_NE(copy.passes[i].usages.data(), original->passes[i].usages.data()) << copy.passes[i].name;
+        if (!copy.passes()[i].usages.empty()) {
+            EXPECT_NE(copy.passes()[i].usages.data(), original->passes()[i].usages.data()) << copy.passes()[i].name;
         }
-        if (!copy.passes[i].barriers.empty()) {
-            EXPECT_NE(copy.passes[i].barriers.data(), original->passes[i].barriers.data()) << copy.passes[i].name;
+        if (!copy.passes()[i].barriers.empty()) {
+            EXPECT_NE(copy.passes()[i].barriers.data(), original->passes()[i].barriers.data()) << copy.passes()[i].name;
         }
     }
     original.reset();
@@ -70,19 +73,19 @@ TEST(PlanStorage, NamesOutliveTheGraphAndEveryOtherCopy) {
     }
     const Plan copy = *plan;
     plan.reset();
-    ASSERT_EQ(copy.passes.size(), 3u);
-    EXPECT_EQ(copy.passes[0].name, "clear accumulation_of_every_sample");
-    EXPECT_EQ(copy.passes[0].type, "Clear");
-    EXPECT_EQ(copy.passes[1].name, "trace_one_more_sample_per_pixel");
-    EXPECT_EQ(copy.passes[1].type, "Generic");
-    EXPECT_EQ(copy.passes[2].name, "show_the_average");
-    EXPECT_EQ(copy.passes[2].type, "TonemappingPass");
-    ASSERT_EQ(copy.passes[2].usages.size(), 2u);
-    EXPECT_EQ(copy.passes[2].usages[0].slot, "hdr");
-    EXPECT_EQ(copy.passes[2].usages[1].slot, "output");  // the unique slot it fits
-    ASSERT_EQ(copy.resources.size(), 2u);
-    EXPECT_EQ(copy.resources[0].name, "accumulation_of_every_sample");
-    EXPECT_EQ(copy.resources[1].name, "presented_image");
+    ASSERT_EQ(copy.passes().size(), 3u);
+    EXPECT_EQ(copy.passes()[0].name, "clear accumulation_of_every_sample");
+    EXPECT_EQ(copy.passes()[0].type, "Clear");
+    EXPECT_EQ(copy.passes()[1].name, "trace_one_more_sample_per_pixel");
+    EXPECT_EQ(copy.passes()[1].type, "Generic");
+    EXPECT_EQ(copy.passes()[2].name, "show_the_average");
+    EXPECT_EQ(copy.passes()[2].type, "TonemappingPass");
+    ASSERT_EQ(copy.passes()[2].usages.size(), 2u);
+    EXPECT_EQ(copy.passes()[2].usages[0].slot, "hdr");
+    EXPECT_EQ(copy.passes()[2].usages[1].slot, "output");  // the unique slot it fits
+    ASSERT_EQ(copy.resources().size(), 2u);
+    EXPECT_EQ(copy.resources()[0].name, "accumulation_of_every_sample");
+    EXPECT_EQ(copy.resources()[1].name, "presented_image");
 }
 
 // No slots and no inserted clears: the names view the graph's table alone.
@@ -97,12 +100,12 @@ TEST(PlanStorage, NamesOfAPlanWithoutSlotsOrClearsOutliveTheGraph) {
                                        "plain.json", PassRegistry::withBuiltins());
         plan = compile(g);
     }
-    ASSERT_EQ(plan->passes.size(), 1u);
-    EXPECT_EQ(plan->passes[0].name, "a_pass_with_a_name_past_the_small_string_size");
-    EXPECT_EQ(plan->passes[0].type, "Generic");
-    EXPECT_TRUE(plan->passes[0].usages[0].slot.empty());
-    ASSERT_EQ(plan->resources.size(), 1u);
-    EXPECT_EQ(plan->resources[0].name, "an_image_with_a_name_past_the_small_string_size");
+    ASSERT_EQ(plan->passes().size(), 1u);
+    EXPECT_EQ(plan->passes()[0].name, "a_pass_with_a_name_past_the_small_string_size");
+    EXPECT_EQ(plan->passes()[0].type, "Generic");
+    EXPECT_TRUE(plan->passes()[0].usages[0].slot.empty());
+    ASSERT_EQ(plan->resources().size(), 1u);
+    EXPECT_EQ(plan->resources()[0].name, "an_image_with_a_name_past_the_small_string_size");
 }
 
 // The most accesses a plan can have: every scheduled usage and a Clear per `clear` resource,
@@ -119,45 +122,45 @@ TEST(PlanStorage, AClearResourceUsedTwiceInItsFirstPassGetsOneClear) {
           {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]}]})",
                                    "twice.json", PassRegistry::withBuiltins());
     const Plan plan = compile(g);
-    ASSERT_EQ(plan.passes.size(), 2u);
-    EXPECT_EQ(plan.passes[0].type, "Clear");
-    EXPECT_EQ(plan.passes[0].name, "clear lut");
-    ASSERT_EQ(plan.passes[0].usages.size(), 1u);
-    EXPECT_EQ(plan.passes[1].name, "p");
-    EXPECT_EQ(plan.passes[1].usages.size(), 3u);
+    ASSERT_EQ(plan.passes().size(), 2u);
+    EXPECT_EQ(plan.passes()[0].type, "Clear");
+    EXPECT_EQ(plan.passes()[0].name, "clear lut");
+    ASSERT_EQ(plan.passes()[0].usages.size(), 1u);
+    EXPECT_EQ(plan.passes()[1].name, "p");
+    EXPECT_EQ(plan.passes()[1].usages.size(), 3u);
 }
 
 TEST(PlanStorage, EditsStayInTheirPlanAndKeepLaterPassesIntact) {
     const Plan base = rasterPlan();
     // The first pass with at least two barriers, and some later pass with barriers.
     std::optional<size_t> edited;
-    for (size_t p = 0; p < base.passes.size() && !edited; ++p)
-        if (base.passes[p].barriers.size() >= 2) edited = p;
+    for (size_t p = 0; p < base.passes().size() && !edited; ++p)
+        if (base.passes()[p].barriers.size() >= 2) edited = p;
     ASSERT_TRUE(edited);
     const size_t e = *edited;
 
     Plan plan = base;
-    const VkPipelineStageFlags2 before = base.passes[e].barriers[0].srcStages;
-    plan.barriersOf(e)[0].srcStages = before ^ VK_PIPELINE_STAGE_2_HOST_BIT;
-    EXPECT_EQ(plan.passes[e].barriers[0].srcStages, before ^ VK_PIPELINE_STAGE_2_HOST_BIT);
-    EXPECT_EQ(base.passes[e].barriers[0].srcStages, before) << "the copy was edited, not the base";
+    const VkPipelineStageFlags2 before = base.passes()[e].barriers[0].srcStages;
+    detail::PlanEditor::barriersOf(plan, e)[0].srcStages = before ^ VK_PIPELINE_STAGE_2_HOST_BIT;
+    EXPECT_EQ(plan.passes()[e].barriers[0].srcStages, before ^ VK_PIPELINE_STAGE_2_HOST_BIT);
+    EXPECT_EQ(base.passes()[e].barriers[0].srcStages, before) << "the copy was edited, not the base";
 
-    const Barrier second = plan.passes[e].barriers[1];
-    plan.eraseBarrier(e, 0);
-    ASSERT_EQ(plan.passes[e].barriers.size(), base.passes[e].barriers.size() - 1);
-    EXPECT_EQ(plan.passes[e].barriers[0], second);
-    for (size_t p = 0; p < plan.passes.size(); ++p) {
+    const Barrier second = plan.passes()[e].barriers[1];
+    detail::PlanEditor::eraseBarrier(plan, e, 0);
+    ASSERT_EQ(plan.passes()[e].barriers.size(), base.passes()[e].barriers.size() - 1);
+    EXPECT_EQ(plan.passes()[e].barriers[0], second);
+    for (size_t p = 0; p < plan.passes().size(); ++p) {
         if (p == e) continue;
-        ASSERT_EQ(plan.passes[p].barriers.size(), base.passes[p].barriers.size()) << plan.passes[p].name;
-        for (size_t i = 0; i < plan.passes[p].barriers.size(); ++i)
-            EXPECT_EQ(plan.passes[p].barriers[i], base.passes[p].barriers[i]) << plan.passes[p].name << " #" << i;
+        ASSERT_EQ(plan.passes()[p].barriers.size(), base.passes()[p].barriers.size()) << plan.passes()[p].name;
+        for (size_t i = 0; i < plan.passes()[p].barriers.size(); ++i)
+            EXPECT_EQ(plan.passes()[p].barriers[i], base.passes()[p].barriers[i]) << plan.passes()[p].name << " #" << i;
     }
-    EXPECT_THROW(plan.eraseBarrier(e, plan.passes[e].barriers.size()), std::out_of_range);
+    EXPECT_THROW(detail::PlanEditor::eraseBarrier(plan, e, plan.passes()[e].barriers.size()), std::out_of_range);
 
     // Emptying a batch leaves an empty view, and copying the edited plan keeps the edit.
-    while (!plan.passes[e].barriers.empty()) plan.eraseBarrier(e, 0);
+    while (!plan.passes()[e].barriers.empty()) detail::PlanEditor::eraseBarrier(plan, e, 0);
     const Plan again = plan;
-    EXPECT_TRUE(again.passes[e].barriers.empty());
+    EXPECT_TRUE(again.passes()[e].barriers.empty());
     EXPECT_EQ(planToJson(again).dump(1), planToJson(plan).dump(1));
 }
 

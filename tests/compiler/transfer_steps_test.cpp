@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -47,8 +48,8 @@ TEST(Readback, IsAStepAfterTheLastPassWithAHostBarrierAtTheEnd) {
     CompileOptions o;
     o.readbacks = {"out"};
     const Plan plan = compile(g, o);
-    ASSERT_EQ(plan.passes.size(), 3u);
-    const PlannedPass& step = plan.passes[2];
+    ASSERT_EQ(plan.passes().size(), 3u);
+    const PlannedPass& step = plan.passes()[2];
     EXPECT_EQ(step.name, "read back out");
     EXPECT_EQ(step.type, "Readback");
     EXPECT_EQ(step.declIndex, -1);
@@ -64,7 +65,7 @@ TEST(Readback, IsAStepAfterTheLastPassWithAHostBarrierAtTheEnd) {
     EXPECT_EQ(step.barriers[0].oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     EXPECT_EQ(step.barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
     bool host = false;
-    for (const Barrier& b : plan.finalBarriers)
+    for (const Barrier& b : plan.finalBarriers())
         host = host || (b.kind == BarrierKind::Memory && b.srcStages == VK_PIPELINE_STAGE_2_TRANSFER_BIT &&
                         b.srcAccess == VK_ACCESS_2_TRANSFER_WRITE_BIT && b.dstStages == VK_PIPELINE_STAGE_2_HOST_BIT &&
                         b.dstAccess == VK_ACCESS_2_HOST_READ_BIT);
@@ -80,11 +81,11 @@ TEST(Readback, JoinsTheReadRunOfTheImageItCopies) {
     const Plan plan = compile(g, o);
     // Rule 4: the sampled read and the copy read one layout that serves both, made visible to
     // both by the one barrier before `blit`.
-    EXPECT_EQ(plan.passes[2].usages[0].layout, VK_IMAGE_LAYOUT_GENERAL);
-    EXPECT_TRUE(plan.passes[2].barriers.empty());
+    EXPECT_EQ(plan.passes()[2].usages[0].layout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_TRUE(plan.passes()[2].barriers.empty());
     bool visibleToCopy = false;
-    for (const Barrier& b : plan.passes[1].barriers)
-        visibleToCopy = visibleToCopy || (plan.resources[b.resource].name == "color" &&
+    for (const Barrier& b : plan.passes()[1].barriers)
+        visibleToCopy = visibleToCopy || (plan.resources()[b.resource].name == "color" &&
                                           (b.dstAccess & VK_ACCESS_2_TRANSFER_READ_BIT) != 0);
     EXPECT_TRUE(visibleToCopy);
 }
@@ -93,10 +94,10 @@ TEST(Readback, KeepsItsWritersFromBeingCulled) {
     const GraphDesc g = graphOf(std::string(kColor) + "," + kOut, R"(
         {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
         {"name": "other", "type": "Generic", "uses": {"out": "Write@ColorAttachment"}})");
-    ASSERT_EQ(compile(g).passes.size(), 1u) << "without a read-back, `draw` feeds nothing";
+    ASSERT_EQ(compile(g).passes().size(), 1u) << "without a read-back, `draw` feeds nothing";
     CompileOptions o;
     o.readbacks = {"color"};
-    EXPECT_EQ(compile(g, o).passes.size(), 3u);
+    EXPECT_EQ(compile(g, o).passes().size(), 3u);
 }
 
 TEST(Readback, BadNamesAreErrorsNamingTheResource) {
@@ -119,10 +120,10 @@ TEST(InPassBarrier, OrdersAReadWriteTransfersCopyInAfterItsCopyOut) {
     CompileOptions o;
     o.cull = false;
     const Plan plan = compile(g, o);
-    ASSERT_EQ(plan.inPassBarriers.size(), 1u);
-    const InPassBarrier& ib = plan.inPassBarriers[0];
-    EXPECT_EQ(plan.passes[ib.pass].name, "edit");
-    EXPECT_EQ(plan.resources[plan.passes[ib.pass].usages[ib.usage].resource].name, "color");
+    ASSERT_EQ(plan.inPassBarriers().size(), 1u);
+    const InPassBarrier& ib = plan.inPassBarriers()[0];
+    EXPECT_EQ(plan.passes()[ib.pass].name, "edit");
+    EXPECT_EQ(plan.resources()[plan.passes()[ib.pass].usages[ib.usage].resource].name, "color");
     EXPECT_EQ(ib.barrier.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     EXPECT_EQ(ib.barrier.srcAccess, 0u) << "write-after-read: execution only";
     EXPECT_EQ(ib.barrier.dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
@@ -138,12 +139,12 @@ TEST(Setup, EveryExternalThatArrivesInAStateIsSetUpAndNothingElse) {
     const Plan frame = compile(g);
     const Plan setup = planSetup(g, frame, SetupOptions{{"tex"}, {}});
     std::vector<std::string> names;
-    for (const PlannedPass& p : setup.passes) names.emplace_back(std::string(p.name) + ":" + std::string(p.type));
+    for (const PlannedPass& p : setup.passes()) names.emplace_back(std::string(p.name) + ":" + std::string(p.type));
     EXPECT_EQ(names, (std::vector<std::string>{"initialize tex:Clear", "upload tex:Upload", "initialize verts:Upload",
                                                "initialize out:Clear"}));
     // tex: cleared (UNDEFINED -> TRANSFER_DST), then its first mip uploaded over the clear (WAW).
-    ASSERT_EQ(setup.passes[1].barriers.size(), 1u);
-    const Barrier& waw = setup.passes[1].barriers[0];
+    ASSERT_EQ(setup.passes()[1].barriers.size(), 1u);
+    const Barrier& waw = setup.passes()[1].barriers[0];
     EXPECT_EQ(waw.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
     EXPECT_EQ(waw.srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     EXPECT_EQ(waw.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
@@ -151,10 +152,10 @@ TEST(Setup, EveryExternalThatArrivesInAStateIsSetUpAndNothingElse) {
     EXPECT_EQ(waw.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     // A buffer's first write needs no barrier; its final one makes the fill visible where its
     // `initial` state (ShaderRead by default) says.
-    EXPECT_TRUE(setup.passes[2].barriers.empty());
+    EXPECT_TRUE(setup.passes()[2].barriers.empty());
     bool sawTex = false, sawVerts = false;
-    for (const Barrier& b : setup.finalBarriers) {
-        const std::string_view name = setup.resources[b.resource].name;
+    for (const Barrier& b : setup.finalBarriers()) {
+        const std::string_view name = setup.resources()[b.resource].name;
         if (name == "tex") {
             sawTex = true;
             EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
@@ -173,7 +174,7 @@ TEST(Setup, EveryExternalThatArrivesInAStateIsSetUpAndNothingElse) {
     }
     EXPECT_TRUE(sawTex && sawVerts);
     // An imported image is another renderer's to set up.
-    EXPECT_EQ(planSetup(g, frame, SetupOptions{{}, {"tex"}}).passes.size(), 2u);
+    EXPECT_EQ(planSetup(g, frame, SetupOptions{{}, {"tex"}}).passes().size(), 2u);
 }
 
 TEST(Setup, BadUploadsAreErrorsNamingTheResource) {
@@ -194,19 +195,19 @@ TEST(ImageRead, CopiesEveryLevelAndReturnsTheImageToTheLayoutTheFrameLeftIt) {
         {"name": "draw", "type": "Generic", "uses": {"tex": "Read@Fragment", "out": "Write@ColorAttachment"}})");
     const Plan frame = compile(g);
     const Plan read = planImageRead(g, frame, "tex");
-    ASSERT_EQ(read.passes.size(), 1u);
-    EXPECT_EQ(read.passes[0].type, "Readback");
-    EXPECT_EQ(read.passes[0].usages[0].range, (SubresourceRange{0, 5, 0, 1}));
-    ASSERT_EQ(read.passes[0].barriers.size(), 1u);
-    EXPECT_EQ(read.passes[0].barriers[0].oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    EXPECT_EQ(read.passes[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    EXPECT_EQ(read.passes[0].barriers[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
-    ASSERT_EQ(read.finalBarriers.size(), 2u);
-    EXPECT_EQ(read.finalBarriers[0].oldLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    EXPECT_EQ(read.finalBarriers[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    EXPECT_EQ(read.finalBarriers[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    EXPECT_EQ(read.finalBarriers[1].kind, BarrierKind::Memory);
-    EXPECT_EQ(read.finalBarriers[1].dstStages, VK_PIPELINE_STAGE_2_HOST_BIT);
+    ASSERT_EQ(read.passes().size(), 1u);
+    EXPECT_EQ(read.passes()[0].type, "Readback");
+    EXPECT_EQ(read.passes()[0].usages[0].range, (SubresourceRange{0, 5, 0, 1}));
+    ASSERT_EQ(read.passes()[0].barriers.size(), 1u);
+    EXPECT_EQ(read.passes()[0].barriers[0].oldLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(read.passes()[0].barriers[0].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(read.passes()[0].barriers[0].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+    ASSERT_EQ(read.finalBarriers().size(), 2u);
+    EXPECT_EQ(read.finalBarriers()[0].oldLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(read.finalBarriers()[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(read.finalBarriers()[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    EXPECT_EQ(read.finalBarriers()[1].kind, BarrierKind::Memory);
+    EXPECT_EQ(read.finalBarriers()[1].dstStages, VK_PIPELINE_STAGE_2_HOST_BIT);
     EXPECT_NE(messageOf([&] { (void)planImageRead(g, frame, "nope"); }).find("cannot read 'nope'"), std::string::npos);
 }
 
@@ -220,7 +221,11 @@ TEST(Copies, EachResourceSaysWhyItHasOneCopyOrOnePerFrameInFlight) {
     CompileOptions o;
     o.cull = false;
     const Plan plan = compile(g, o);
-    auto copies = [&](const char* name) { return plan.resources.at(size_t(plan.resourceIndex(name))).copies; };
+    auto copies = [&](const char* name) {
+        const int32_t i = plan.resourceIndex(name);
+        if (i < 0) throw std::out_of_range(std::string("no plan resource ") + name);
+        return plan.resources()[size_t(i)].copies;
+    };
     EXPECT_EQ(copies("color"), ResourceCopies::PerFrameTransient);
     EXPECT_EQ(copies("screen"), ResourceCopies::PerFramePresented);
     EXPECT_EQ(copies("scratch"), ResourceCopies::PerFrameWrittenNotExported);

@@ -51,19 +51,19 @@ private:
 struct StandIn {
     explicit StandIn(CompiledGraph compiled) : state(std::move(compiled)) {
         const Plan& plan = state.plan;
-        for (uint32_t i = 0; i < plan.resources.size(); ++i) {
+        for (uint32_t i = 0; i < plan.resources().size(); ++i) {
             ResourceState r;
-            r.desc = &state.graph.resources[plan.resources[i].decl];
+            r.desc = &state.graph.resources[plan.resources()[i].decl];
             r.isImage = r.desc->isImage();
-            r.perSlot = perFrameInFlight(plan.resources[i].copies);
+            r.perSlot = perFrameInFlight(plan.resources()[i].copies);
             r.aspect = r.isImage ? aspectOf(r.desc->format) : 0;
             r.format = r.desc->format.format;
-            const auto [w, h] = r.desc->extent.resolve(plan.outputWidth, plan.outputHeight);
+            const auto [w, h] = r.desc->extent.resolve(plan.outputWidth(), plan.outputHeight());
             r.width = w;
             r.height = h;
             for (uint32_t c = 0; c < (r.perSlot ? kSlots : 1); ++c) {
                 const uint64_t handle = 0x1000 * (uint64_t(i) + 1) + c;
-                names[handle] = std::string(plan.resources[i].name) + "#" + std::to_string(c);
+                names[handle] = std::string(plan.resources()[i].name) + "#" + std::to_string(c);
                 if (r.isImage) {
                     ImageCopy copy;
                     copy.image = reinterpret_cast<VkImage>(handle);
@@ -76,7 +76,7 @@ struct StandIn {
             }
             state.resources.push_back(std::move(r));
         }
-        for (const PlannedPass& pass : plan.passes) {
+        for (const PlannedPass& pass : plan.passes()) {
             PassState ps;
             ps.pass = &pass;
             ps.label = pass.name;
@@ -93,11 +93,11 @@ struct StandIn {
             state.passes.push_back(std::move(ps));
         }
         translateFinalBarriers(state, kSlots);
-        for (uint32_t step = 0; step < plan.passes.size(); ++step) {
+        for (uint32_t step = 0; step < plan.passes().size(); ++step) {
             if (state.passes[step].kind != StepKind::Readback) continue;
             ReadbackTarget t;
             t.step = step;
-            t.resource = plan.passes[step].usages[0].resource;
+            t.resource = plan.passes()[step].usages[0].resource;
             for (uint32_t slot = 0; slot < kSlots; ++slot) {
                 const uint64_t handle = 0x900000 + 0x10 * step + slot;
                 names[handle] = "host#" + std::to_string(slot);
@@ -127,7 +127,7 @@ struct StandIn {
             for (const Barrier& b : batch) {
                 if (b.kind != kind) continue;
                 const ResourceState& r = state.resources[b.resource];
-                const std::string name = std::string(state.plan.resources[b.resource].name) + "#" +
+                const std::string name = std::string(state.plan.resources()[b.resource].name) + "#" +
                                          std::to_string(r.perSlot ? slot : 0);
                 const VkImageSubresourceRange range{r.aspect, b.range.baseMip, b.range.mipCount, b.range.baseLayer,
                                                     b.range.layerCount};
@@ -156,14 +156,14 @@ std::vector<std::string> barrierLines(const std::vector<std::string>& log) {
 std::vector<std::string> planBarriers(const StandIn& s, uint32_t slot) {
     std::vector<std::string> out;
     const Plan& plan = s.state.plan;
-    for (uint32_t i = 0; i < plan.passes.size(); ++i) {
-        for (const std::string& l : s.expected(plan.passes[i].barriers, slot)) out.push_back(l);
+    for (uint32_t i = 0; i < plan.passes().size(); ++i) {
+        for (const std::string& l : s.expected(plan.passes()[i].barriers, slot)) out.push_back(l);
         std::vector<Barrier> inPass;
-        for (const InPassBarrier& ib : plan.inPassBarriers)
+        for (const InPassBarrier& ib : plan.inPassBarriers())
             if (ib.pass == i) inPass.push_back(ib.barrier);
         for (const std::string& l : s.expected(inPass, slot)) out.push_back(l);
     }
-    for (const std::string& l : s.expected(plan.finalBarriers, slot)) out.push_back(l);
+    for (const std::string& l : s.expected(plan.finalBarriers(), slot)) out.push_back(l);
     return out;
 }
 

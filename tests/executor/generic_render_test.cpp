@@ -222,7 +222,7 @@ TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
     EXPECT_EQ(img.width, 24u);
     EXPECT_EQ(img.height, 8u);
     EXPECT_PIXEL_NEAR(img, 23, 7, 0.25, 1.0, 0.75, 1.0);
-    EXPECT_EQ(r.plan().outputWidth, 24u) << "resize compiles the graph again at the new size";
+    EXPECT_EQ(r.plan().outputWidth(), 24u) << "resize compiles the graph again at the new size";
     const auto timings = r.lastTimings();
     ASSERT_EQ(timings.size(), 3u) << "a, b and the read-back step";
     EXPECT_EQ(timings[0].pass, "a");

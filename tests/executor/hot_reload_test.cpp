@@ -56,7 +56,7 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     // Fixed: the new plan runs.
     write(graphFile, graphWithColor("[0, 1, 0, 1]"));
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
-    EXPECT_EQ(r.plan().outputWidth, 16u) << "the reloaded graph compiles with the renderer's options";
+    EXPECT_EQ(r.plan().outputWidth(), 16u) << "the reloaded graph compiles with the renderer's options";
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
 

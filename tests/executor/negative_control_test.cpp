@@ -4,6 +4,7 @@
 #include "executor_test_util.hpp"
 
 #include "compiled_graph_access.hpp"
+#include "plan_editor.hpp"
 
 #include <algorithm>
 
@@ -18,26 +19,26 @@ std::string graph(const std::string& resources, const std::string& passes) {
 /// batch); fails the test when there is none.
 std::pair<size_t, size_t> findBarrier(const Plan& plan, const std::string& pass, const std::string& resource) {
     const int32_t r = plan.resourceIndex(resource);
-    for (size_t p = 0; p < plan.passes.size(); ++p) {
-        if (plan.passes[p].name != pass) continue;
-        for (size_t i = 0; i < plan.passes[p].barriers.size(); ++i)
-            if (static_cast<int32_t>(plan.passes[p].barriers[i].resource) == r) return {p, i};
+    for (size_t p = 0; p < plan.passes().size(); ++p) {
+        if (plan.passes()[p].name != pass) continue;
+        for (size_t i = 0; i < plan.passes()[p].barriers.size(); ++i)
+            if (static_cast<int32_t>(plan.passes()[p].barriers[i].resource) == r) return {p, i};
     }
     ADD_FAILURE() << "no barrier before '" << pass << "' for '" << resource << "'\n"
                   << planToText(plan);
-    return {plan.passes.size(), 0};
+    return {plan.passes().size(), 0};
 }
 
 /// The barrier itself, editable; nullptr (and a failure) when there is none.
 Barrier* barrierOf(Plan& plan, const std::string& pass, const std::string& resource) {
     const auto [p, i] = findBarrier(plan, pass, resource);
-    return p < plan.passes.size() ? &plan.barriersOf(p)[i] : nullptr;
+    return p < plan.passes().size() ? &detail::PlanEditor::barriersOf(plan, p)[i] : nullptr;
 }
 
 void dropBarrier(Plan& plan, const std::string& pass, const std::string& resource) {
     const auto [p, i] = findBarrier(plan, pass, resource);
-    ASSERT_LT(p, plan.passes.size());
-    plan.eraseBarrier(p, i);
+    ASSERT_LT(p, plan.passes().size());
+    detail::PlanEditor::eraseBarrier(plan, p, i);
 }
 
 /// "draw" writes tex as a color attachment, "sample" reads it in the fragment shader: the
@@ -100,12 +101,12 @@ TEST_F(NegativeControl, DroppedBarrierOfAnUpperMipOfAStorageReadIsReadAfterWrite
     Plan broken = c.plan();
     const int32_t chain = broken.resourceIndex("chain");
     bool dropped = false;
-    for (size_t p = 0; p < broken.passes.size() && !dropped; ++p) {
-        if (broken.passes[p].name != "consume") continue;
-        const auto barriers = broken.barriersOf(p);
+    for (size_t p = 0; p < broken.passes().size() && !dropped; ++p) {
+        if (broken.passes()[p].name != "consume") continue;
+        const auto barriers = detail::PlanEditor::barriersOf(broken, p);
         for (size_t i = 0; i < barriers.size(); ++i)
             if (int32_t(barriers[i].resource) == chain && barriers[i].range.baseMip == 1) {
-                broken.eraseBarrier(p, i);
+                detail::PlanEditor::eraseBarrier(broken, p, i);
                 dropped = true;
                 break;
             }

@@ -4,6 +4,7 @@
 #include "compiled_graph_access.hpp"
 #include "generic_passes.hpp"
 #include "headless_options.hpp"
+#include "plan_editor.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
@@ -11,6 +12,7 @@
 
 #include <bit>
 #include <span>
+#include <stdexcept>
 #include <string>
 
 namespace skygraph::test {
@@ -39,7 +41,10 @@ void forEachBit(uint64_t mask, F&& f) {
     }
 }
 
-std::string nameOf(const Plan& plan, const Barrier& b) { return std::string(plan.resources.at(b.resource).name); }
+std::string nameOf(const Plan& plan, const Barrier& b) {
+    if (b.resource >= plan.resources().size()) throw std::out_of_range("a barrier of no plan resource");
+    return std::string(plan.resources()[b.resource].name);
+}
 
 /// Adds every weakening of `list[i]` (list is a barrier batch of `base`; `locate` finds the
 /// same batch in a copy, editable, and `drop(copy, i)` removes its barrier i).
@@ -120,13 +125,18 @@ uint32_t messagesFor(Device& device, const CompiledGraph& compiled, const Plan& 
 
 std::vector<BarrierMutation> weakenedPlans(const Plan& plan) {
     std::vector<BarrierMutation> out;
-    for (size_t p = 0; p < plan.passes.size(); ++p)
-        weakenBatch(plan, plan.passes[p].barriers, "before " + std::string(plan.passes[p].name),
-                    [p](Plan& x) { return x.barriersOf(p); }, [p](Plan& x, size_t i) { x.eraseBarrier(p, i); },
-                    out);
-    weakenBatch(plan, plan.finalBarriers, "final", [](Plan& x) { return std::span<Barrier>(x.finalBarriers); },
-                [](Plan& x, size_t i) { x.finalBarriers.erase(x.finalBarriers.begin() + static_cast<std::ptrdiff_t>(i)); },
-                out);
+    for (size_t p = 0; p < plan.passes().size(); ++p)
+        weakenBatch(plan, plan.passes()[p].barriers, "before " + std::string(plan.passes()[p].name),
+                    [p](Plan& x) { return detail::PlanEditor::barriersOf(x, p); },
+                    [p](Plan& x, size_t i) { detail::PlanEditor::eraseBarrier(x, p, i); }, out);
+    weakenBatch(
+        plan, plan.finalBarriers(), "final",
+        [](Plan& x) { return std::span<Barrier>(detail::PlanEditor::finalBarriers(x)); },
+        [](Plan& x, size_t i) {
+            std::vector<Barrier>& final = detail::PlanEditor::finalBarriers(x);
+            final.erase(final.begin() + static_cast<std::ptrdiff_t>(i));
+        },
+        out);
     return out;
 }
 

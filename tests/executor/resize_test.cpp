@@ -30,8 +30,9 @@ TEST_F(Resize, AnOutputSizedFullMipChainIsRecompiledAtEverySize) {
     for (const Size size : {Size{64, 64, 7}, Size{200, 120, 8}, Size{37, 19, 6}}) {
         if (size.width != r.compiled().outputWidth() || size.height != r.compiled().outputHeight())
             r.resize(size.width, size.height);
-        EXPECT_EQ(r.plan().outputWidth, size.width);
-        const PlannedUsage& fill = r.plan().passes.at(0).usages[0];
+        EXPECT_EQ(r.plan().outputWidth(), size.width);
+        ASSERT_FALSE(r.plan().passes().empty());
+        const PlannedUsage& fill = r.plan().passes().front().usages[0];
         EXPECT_EQ(fill.range.mipCount, size.mips) << "at " << size.width << "x" << size.height;
         for (int frame = 0; frame < 3; ++frame) r.renderFrame();
         const ImageData shown = r.readback();
@@ -56,7 +57,8 @@ TEST_F(Resize, APlanCompiledForAnotherSizeIsCaughtByValidation) {
     o.outputHeight = 64;
     const CompiledGraph at64(parseGraph(kChainGraph, "chain.json", PassRegistry::withBuiltins()), o);
     const CompiledGraph at37 = at64.resized(37, 19);
-    ASSERT_EQ(at37.plan().passes.at(0).usages[0].range.mipCount, 6u);
+    ASSERT_FALSE(at37.plan().passes().empty());
+    ASSERT_EQ(at37.plan().passes().front().usages[0].range.mipCount, 6u);
     try {
         Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(at37, at64.plan()), genericOptions());
         for (int frame = 0; frame < 3; ++frame) r.renderFrame();
@@ -90,7 +92,7 @@ TEST_F(Resize, ASizeTheGraphCannotTakeKeepsTheOldPlanRunning) {
         EXPECT_NE(std::string(e.what()).find("resize to 16x16"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("mip level"), std::string::npos) << e.what();
     }
-    EXPECT_EQ(r.plan().outputWidth, 64u);
+    EXPECT_EQ(r.plan().outputWidth(), 64u);
     r.renderFrame();
     EXPECT_EQ(r.readback().width, 64u);
     r.waitIdle();

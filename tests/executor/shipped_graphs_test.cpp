@@ -82,7 +82,7 @@ TEST_P(ShippedGraph, RunsThreeFramesCleanly) {
         EXPECT_GT(px[0] + px[1] + px[2], 0.0f);
     }
     r.waitIdle();
-    EXPECT_EQ(r.lastTimings().size(), r.plan().passes.size()) << "a timing per pass and read-back step";
+    EXPECT_EQ(r.lastTimings().size(), r.plan().passes().size()) << "a timing per pass and read-back step";
 }
 
 INSTANTIATE_TEST_SUITE_P(Graphs, ShippedGraph, ::testing::ValuesIn(shippedCases()),

@@ -70,7 +70,7 @@ protected:
     static uint32_t extentOf(const Plan& plan, const GraphDesc& graph, std::string_view name) {
         const int32_t i = plan.resourceIndex(name);
         if (i < 0) return 0;
-        return graph.resources[plan.resources[size_t(i)].decl].extent.width;
+        return graph.resources[plan.resources()[size_t(i)].decl].extent.width;
     }
 };
 
@@ -110,7 +110,7 @@ TEST_F(ShippedGraphs, ResizedGraphsCompileAndAgreeOnTheProducts) {
         }
         // One mip pass per level below the base, each writing the level under its source.
         uint32_t mipPasses = 0;
-        for (const PlannedPass& p : environmentPlan.passes)
+        for (const PlannedPass& p : environmentPlan.passes())
             if (p.type == "CubemapMipPass") ++mipPasses;
         EXPECT_EQ(mipPasses, uint32_t(std::bit_width(sizes.environment)) - 1);
     }

@@ -53,7 +53,7 @@ std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, cons
 std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const GraphDesc& graph,
                                                        const GraphDesc* environmentGraph) {
     std::set<std::string, std::less<>> products;
-    for (const PlannedResource& r : plan.resources) {
+    for (const PlannedResource& r : plan.resources()) {
         const ResourceDesc& d = graph.resources[r.decl];
         if (!d.external || d.name == kEquirect) continue;
         const ResourceDesc* produced = environmentGraph ? environmentGraph->findResource(d.name) : nullptr;
@@ -73,7 +73,7 @@ std::unique_ptr<Renderer> bakeForFrame(Device& device, GraphDesc graph, const Hd
                                        const std::optional<EnvironmentSizes>& sizes, const PassLibrary* passes) {
     if (sizes) resizeEnvironmentGraph(graph, *sizes);
     EnvironmentBake bake = bakeEnvironment(device, std::move(graph), equirect, products, passes);
-    for (const auto& c : bake.renderer->plan().culled) spdlog::info("environment: culled {}: {}", c.name, c.reason);
+    for (const auto& c : bake.renderer->plan().culled()) spdlog::info("environment: culled {}: {}", c.name, c.reason);
     for (const auto& t : bake.renderer->lastTimings())
         spdlog::info("environment: pass {:<20} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
     return std::move(bake.renderer);
@@ -183,7 +183,7 @@ int renderCommand(const RenderOptions& options) {
         co.outputHeight = options.height;
         CompiledGraph compiled(graph, co);
         const Plan& plan = compiled.plan();
-        for (const auto& c : plan.culled) spdlog::info("culled {}: {}", c.name, c.reason);
+        for (const auto& c : plan.culled()) spdlog::info("culled {}: {}", c.name, c.reason);
 
         DeviceOptions dopts;
         dopts.device = options.device;

@@ -48,16 +48,16 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
     options.cull = !args.noCull;
     const Plan plan = compile(graph, options);
     spdlog::debug("{}: {} passes and {} resources -> {} passes run, {} culled, in {:.2f} ms", args.graph,
-                  graph.passes.size(), graph.resources.size(), plan.passes.size(), plan.culled.size(),
+                  graph.passes.size(), graph.resources.size(), plan.passes().size(), plan.culled().size(),
                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     // What runs once before the first frame belongs to the plan as much as the frame does.
     const Plan setup = planSetup(graph, plan);
     CompiledPlan out;
     out.text = planToText(plan);
-    if (!setup.passes.empty()) out.text += "\nsetup, once before the first frame:\n" + planToText(setup);
+    if (!setup.passes().empty()) out.text += "\nsetup, once before the first frame:\n" + planToText(setup);
     if (args.format == "json") {
         auto j = planToJson(plan);
-        if (!setup.passes.empty()) j["setup"] = planToJson(setup);
+        if (!setup.passes().empty()) j["setup"] = planToJson(setup);
         out.formatted = j.dump(2) + "\n";
     }
     else if (args.format == "dot") out.formatted = planToDot(plan, graph, &setup);

@@ -1,0 +1,50 @@
+// Test-only: weakens a plan on purpose, for negative controls (a dropped or narrowed barrier
+// that synchronization validation or the plan verifier must catch). Plans are read-only to
+// everyone else (include/skygraph/plan.hpp); this header is not installed, and only test and
+// benchmark targets have framework/compiler on their include path.
+//
+// Every edit keeps each pass's spans viewing the plan's own barrier array (plan_builder.hpp),
+// so that copying the edited plan rebases them as it does for a compiled one.
+#pragma once
+
+#include <skygraph/plan.hpp>
+
+#include <cstddef>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+namespace skygraph::detail {
+
+struct PlanEditor {
+    /// Pass `pass`'s barriers, editable in place. Views `plan`'s barrier array: valid until
+    /// the next eraseBarrier on `plan`, or while `plan` lives and is not assigned to
+    /// otherwise. Throws std::out_of_range for no such pass.
+    [[nodiscard]] static std::span<Barrier> barriersOf(Plan& plan, size_t pass) {
+        const std::span<const Barrier> b = plan.passes_.at(pass).barriers;
+        if (b.empty()) return {};
+        return {plan.barriers_.data() + (b.data() - plan.barriers_.data()), b.size()};
+    }
+
+    /// Removes barrier `i` of pass `pass`; the other passes' barriers stay as they are, and
+    /// their spans (earlier passes' unchanged, later ones' moved down with their barriers)
+    /// stay valid. Throws std::out_of_range for no such pass or barrier.
+    static void eraseBarrier(Plan& plan, size_t pass, size_t i) {
+        std::vector<PlannedPass>& passes = plan.passes_;
+        const std::span<const Barrier> b = passes.at(pass).barriers;
+        if (i >= b.size()) throw std::out_of_range("PlanEditor::eraseBarrier: no such barrier");
+        const auto at = b.data() - plan.barriers_.data() + static_cast<std::ptrdiff_t>(i);
+        plan.barriers_.erase(plan.barriers_.begin() + at);  // no reallocation: earlier views stay put
+        passes[pass].barriers =
+            b.size() == 1 ? std::span<const Barrier>{} : std::span<const Barrier>(b.data(), b.size() - 1);
+        for (size_t p = pass + 1; p < passes.size(); ++p)
+            if (!passes[p].barriers.empty())
+                passes[p].barriers = {passes[p].barriers.data() - 1, passes[p].barriers.size()};
+    }
+
+    /// The barriers after the last pass, editable (no span views them: erase freely). Valid
+    /// while `plan` lives and is not assigned to.
+    [[nodiscard]] static std::vector<Barrier>& finalBarriers(Plan& plan) noexcept { return plan.finalBarriers_; }
+};
+
+}  // namespace skygraph::detail
