@@ -158,7 +158,7 @@ std::optional<Condition> Condition::parse(const std::string& text, std::string& 
     return c;
 }
 
-bool Condition::evaluate(const FeatureValues& values) const {
+bool Condition::evaluate(const FeatureValues& values) const noexcept {
     // The always-true condition of a pass with no `if` (the only one without text) needs no
     // walk of its tree: the compiler evaluates every pass's condition on every compile.
     return text_.empty() || eval(*root_, values);

@@ -37,7 +37,7 @@ void PassRegistry::add(PassTypeInfo info) {
     types_.emplace(std::move(name), std::move(info));
 }
 
-const PassTypeInfo* PassRegistry::find(std::string_view name) const {
+const PassTypeInfo* PassRegistry::find(std::string_view name) const noexcept {
     auto it = types_.find(name);
     return it == types_.end() ? nullptr : &it->second;
 }

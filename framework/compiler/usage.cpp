@@ -1,3 +1,6 @@
+// The header defines isShaderStage(), isAttachmentStage(), readsContents() and
+// writesContents() inline (constexpr) because the compiler asks them several times per usage
+// in every sweep; the name tables below are looked up only when loading and printing.
 #include <skygraph/usage.hpp>
 
 #include <array>

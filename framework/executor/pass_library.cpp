@@ -14,12 +14,12 @@ void PassLibrary::add(PassTypeInfo info, PassFactory factory) {
     factories_.emplace(name, std::move(factory));
 }
 
-const PassFactory* PassLibrary::factory(std::string_view type) const {
+const PassFactory* PassLibrary::factory(std::string_view type) const noexcept {
     auto it = factories_.find(type);
     return it == factories_.end() ? nullptr : &it->second;
 }
 
-const BoundResource* RecordContext::slot(std::string_view name, size_t nth) const {
+const BoundResource* RecordContext::slot(std::string_view name, size_t nth) const noexcept {
     for (const BoundResource& r : resources) {
         if (r.usage && r.usage->slot == name) {
             if (nth == 0) return &r;

@@ -150,7 +150,7 @@ ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineReci
     return out;
 }
 
-void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent) {
+void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent) noexcept {
     const VkViewport viewport{0.0f, 0.0f, float(extent.width), float(extent.height), 0.0f, 1.0f};
     const VkRect2D scissor{{0, 0}, extent};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
@@ -164,7 +164,7 @@ PFN_vkCmdPushDescriptorSetKHR pushDescriptorFunction(VkDevice device) {
     return fn;
 }
 
-VkWriteDescriptorSet sampledImageWrite(uint32_t binding, const VkDescriptorImageInfo* info) {
+VkWriteDescriptorSet sampledImageWrite(uint32_t binding, const VkDescriptorImageInfo* info) noexcept {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     w.dstBinding = binding;
     w.descriptorCount = 1;

@@ -40,7 +40,7 @@ std::vector<std::string> explainSceneFeatures(const Scene& scene) {
     return lines;
 }
 
-Tonemapper effectiveTonemapper(const Scene& scene) {
+Tonemapper effectiveTonemapper(const Scene& scene) noexcept {
     return scene.debugView != DebugView::None ? Tonemapper::Passthrough : scene.tonemapper;
 }
 

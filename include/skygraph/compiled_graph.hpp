@@ -15,22 +15,24 @@ namespace detail {
 struct CompiledGraphAccess;  // tests: run a plan they weakened on purpose
 }
 
-/// Owns its graph, options and plan; copies are independent.
+/// Owns its graph, options and plan; copies are independent. The references the accessors
+/// return are valid while this CompiledGraph lives and is not assigned to; the names a plan
+/// views stay valid while any copy of that plan lives (plan.hpp).
 class CompiledGraph {
 public:
-    /// Compiles `graph` with `options`, whose output size the plan is valid for. Throws
-    /// GraphError as compile() does.
+    /// Takes `graph` and `options` and compiles them; the options' output size is the one the
+    /// plan is valid for. Throws GraphError as compile() does.
     CompiledGraph(GraphDesc graph, CompileOptions options);
 
     [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
     [[nodiscard]] const CompileOptions& options() const noexcept { return options_; }
-    /// Valid as long as this CompiledGraph (or a copy of the plan) lives.
     [[nodiscard]] const Plan& plan() const noexcept { return plan_; }
     [[nodiscard]] uint32_t outputWidth() const noexcept { return options_.outputWidth; }
     [[nodiscard]] uint32_t outputHeight() const noexcept { return options_.outputHeight; }
 
-    /// The same graph and options compiled for another output size. Throws GraphError (e.g. a
-    /// mip range that the new size's chain does not have); this one is unchanged then.
+    /// The same graph and options (copied) compiled for another output size. Throws GraphError
+    /// (e.g. a zero size, or a mip range that the new size's chain does not have); this one is
+    /// unchanged then.
     [[nodiscard]] CompiledGraph resized(uint32_t width, uint32_t height) const;
     /// Another graph (an edited file) compiled with the same options. Throws GraphError.
     [[nodiscard]] CompiledGraph withGraph(GraphDesc graph) const;

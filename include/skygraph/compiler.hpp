@@ -1,4 +1,5 @@
-// Graph file -> plan. Pure: reads files and data, never touches a device.
+// Graph file -> plan. Pure: reads files and data, never touches a device. No state is shared
+// between calls, so any thread may load and compile while no one modifies the arguments.
 #pragma once
 
 #include <skygraph/condition.hpp>
@@ -15,13 +16,16 @@
 
 namespace skygraph {
 
-/// Reads and validates a graph file against `registry`. Throws GraphError listing every
-/// problem in the file at once, each with the file, JSON path, pass and resource. What can
-/// only be checked at an output size is compile()'s.
+/// Reads and validates a graph file against `registry`. The caller owns the result; it names
+/// pass types and keeps nothing of `registry`, which is read during the call only. Throws
+/// GraphError listing every problem in the file at once (or that it cannot be opened), each
+/// with the file, JSON path, pass and resource. What can only be checked at an output size is
+/// compile()'s.
 [[nodiscard]] GraphDesc loadGraphFile(const std::filesystem::path& path,
                                       const PassRegistry& registry);
 
-/// As loadGraphFile, for text already in memory; `fileName` is used in messages only.
+/// As loadGraphFile, for text already in memory (read during the call only); `fileName` is
+/// used in messages only.
 [[nodiscard]] GraphDesc parseGraph(std::string_view text, const std::string& fileName,
                                    const PassRegistry& registry);
 
@@ -60,7 +64,8 @@ struct CompileOptions {
 /// output-sized "full" chain that no pass writes), and for what only a GraphDesc
 /// built in code can hold: a usage naming a resource index past `resources`, an empty range,
 /// or more subresources than 32-bit indices can number. Every error names what it can of the
-/// file, JSON path, pass and resource.
+/// file, JSON path, pass and resource. The plan owns copies of the names it holds (shared with
+/// its own copies): it views nothing of `graph` or `options`.
 [[nodiscard]] Plan compile(const GraphDesc& graph, const CompileOptions& options = {});
 
 }  // namespace skygraph

@@ -13,17 +13,20 @@ namespace skygraph {
 using FeatureValues = std::map<std::string, bool>;
 
 /// A parsed boolean expression over feature names with `!`, `&&`, `||` and parentheses.
-/// Immutable and cheap to copy (the tree is shared).
+/// Immutable and cheap to copy (the tree is shared). References from text() and features()
+/// are valid while this Condition lives and is not assigned to.
 class Condition {
 public:
     /// The always-true condition of a pass with no `if`.
     Condition();
 
-    /// Parses `text`. On failure returns nullopt and sets `error` to a message that names the
-    /// column. Names are not checked here; see `features()`.
-    static std::optional<Condition> parse(const std::string& text, std::string& error);
+    /// Parses `text` (the result keeps its own copy). On failure returns nullopt and sets
+    /// `error` to a message that names the column; on success `error` is cleared. Bad text does
+    /// not throw. Names are not checked here; see `features()`.
+    [[nodiscard]] static std::optional<Condition> parse(const std::string& text, std::string& error);
 
-    [[nodiscard]] bool evaluate(const FeatureValues& values) const;
+    /// A feature that `values` does not name counts as off.
+    [[nodiscard]] bool evaluate(const FeatureValues& values) const noexcept;
     /// The source text, or empty for the always-true condition.
     [[nodiscard]] const std::string& text() const noexcept { return text_; }
     /// Every feature name the expression mentions, in order of appearance, without repeats.

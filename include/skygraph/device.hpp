@@ -46,7 +46,8 @@ struct ValidationMessage {
 class Device {
 public:
     /// Creates the instance and device; the caller owns the result. Throws ExecutorError
-    /// when no device qualifies, naming the devices there are.
+    /// when no device qualifies, naming the devices there are, or when validation is asked
+    /// for and the Khronos validation layer is not installed.
     static std::unique_ptr<Device> create(const DeviceOptions& options = {});
     ~Device();
     Device(const Device&) = delete;
@@ -75,7 +76,7 @@ public:
     void clearMessages();
 
     /// Lists "index: name (type)" for every physical device, for --device help. Makes and
-    /// destroys an instance of its own; needs no Device.
+    /// destroys an instance of its own; needs no Device. Empty when Vulkan cannot start.
     [[nodiscard]] static std::vector<std::string> listDevices();
 
     struct Impl;

@@ -28,6 +28,7 @@ public:
     void add(Diagnostic d) { items_.push_back(std::move(d)); }
     [[nodiscard]] bool empty() const noexcept { return items_.empty(); }
     [[nodiscard]] size_t size() const noexcept { return items_.size(); }
+    /// Valid until the next add() or until this is destroyed or assigned to.
     [[nodiscard]] const std::vector<Diagnostic>& items() const noexcept { return items_; }
     /// One formatted line per diagnostic.
     [[nodiscard]] std::string format() const;
@@ -39,7 +40,9 @@ private:
 /// Thrown by the loader and the compiler when a graph cannot be used. Carries all diagnostics.
 class GraphError : public std::runtime_error {
 public:
+    /// Keeps `d`; what() is its format(), one line per diagnostic.
     explicit GraphError(Diagnostics d);
+    /// Valid while this exception object lives.
     [[nodiscard]] const Diagnostics& diagnostics() const noexcept { return diagnostics_; }
 
 private:

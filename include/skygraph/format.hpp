@@ -11,7 +11,9 @@ namespace skygraph {
 
 /// Static facts about a VkFormat that the compiler needs to check usages without a device.
 struct FormatInfo {
-    std::string_view name;  ///< Graph-file spelling: the VkFormat name without "VK_FORMAT_".
+    /// Graph-file spelling: the VkFormat name without "VK_FORMAT_". Static storage in every
+    /// FormatInfo that findFormat() and knownFormats() give.
+    std::string_view name;
     VkFormat format = VK_FORMAT_UNDEFINED;
     uint32_t bytesPerTexel = 0;
     bool hasDepth = false;
@@ -24,8 +26,10 @@ struct FormatInfo {
 };
 
 /// nullopt for names skygraph does not know; `knownFormats()` lists the ones it does.
+/// Returns a copy; `name` is read during the call only.
 [[nodiscard]] std::optional<FormatInfo> findFormat(std::string_view name) noexcept;
 [[nodiscard]] std::optional<FormatInfo> findFormat(VkFormat format) noexcept;
+/// A view of a static table: valid for the whole program.
 [[nodiscard]] std::span<const FormatInfo> knownFormats() noexcept;
 
 }  // namespace skygraph

@@ -26,8 +26,9 @@ struct HdrImage {
     uint32_t height = 0;
     std::vector<float> rgba;  ///< width * height * 4 floats
 
-    /// The pixel at (x, y); no bounds check.
-    [[nodiscard]] const float* pixel(uint32_t x, uint32_t y) const {
+    /// The pixel at (x, y); no bounds check. Points into `rgba`: valid until it is resized or
+    /// destroyed.
+    [[nodiscard]] const float* pixel(uint32_t x, uint32_t y) const noexcept {
         return rgba.data() + (size_t(y) * width + x) * 4;
     }
 };
@@ -36,7 +37,7 @@ struct HdrImage {
 class ImageError : public std::runtime_error {
 public:
     ImageError(const std::filesystem::path& file, const std::string& reason);
-    /// The file the error is about.
+    /// The file the error is about; valid while this exception object lives.
     [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
 
 private:

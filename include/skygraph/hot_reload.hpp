@@ -16,23 +16,26 @@ class Renderer;
 /// Hot reload: watches a graph file and a shader directory and, on a change, recompiles and
 /// hands the result to a Renderer. A failed rebuild logs the compiler's message as a warning
 /// and leaves the last good plan and pipelines running. Borrows the renderer (and the
-/// registry), which must outlive it; owns its copies of the paths.
+/// registry), which must outlive it; owns its copies of the paths. Use it on the renderer's
+/// thread: poll() rebuilds the renderer.
 class HotReloader {
 public:
     enum class Result : uint8_t { Unchanged, Reloaded, Failed };
 
     /// Reads the watched files once, as the state later changes are measured against.
-    /// `shaderDir` empty: ShaderCompiler::defaultIncludeDir(). `registry` (borrowed; null:
+    /// `shaderDir` empty: ShaderCompiler::defaultIncludeDir(), so pass the renderer's
+    /// RendererOptions::shaderDir when it set one. `registry` (borrowed; null:
     /// PassRegistry::withBuiltins()) parses the reloaded graph, e.g. `PassLibrary::registry()`
     /// when the renderer runs pass implementations. A reloaded graph compiles with the options
     /// the renderer's current graph was compiled with (Renderer::compiled()).
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
                 const PassRegistry* registry = nullptr);
 
-    /// Checks the watched files (by content) and reloads what changed: a changed graph is
-    /// recompiled and handed to Renderer::setGraph(), a change to the shaders alone goes to
-    /// Renderer::reloadShaders(). Either rebuilds the renderer's plan state, so references
-    /// from its plan() and graph() are invalid after a Reloaded. Cheap when nothing changed.
+    /// Checks the watched files (by content: it reads them all on every call) and reloads what
+    /// changed: a changed graph is recompiled and handed to Renderer::setGraph(), a change to
+    /// the shaders alone goes to Renderer::reloadShaders(). Either rebuilds the renderer's plan
+    /// state, so references from its compiled(), plan() and graph() are invalid after a
+    /// Reloaded. A failed reload does not throw: it returns Failed and sets lastError().
     Result poll();
     /// The message of the last failed reload; empty after a success. The reference is valid
     /// until the next poll().

@@ -21,17 +21,19 @@ struct ImageData {
     std::vector<float> rgba;  ///< width*height*4
 
     /// The pixel at (x, y), copied; x < width and y < height.
-    [[nodiscard]] std::array<float, 4> pixel(uint32_t x, uint32_t y) const {
+    [[nodiscard]] std::array<float, 4> pixel(uint32_t x, uint32_t y) const noexcept {
         const size_t i = (size_t(y) * width + x) * 4;
         return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
     }
 };
 
-/// Writes 8-bit RGBA PNG (values clamped to [0,1]). Throws ExecutorError (device.hpp) on I/O
-/// failure or for an empty or malformed image.
+/// Writes 8-bit RGBA PNG (values clamped to [0,1]), through a temporary file renamed over
+/// `path`, so a failure never leaves half a file there. Throws ExecutorError (device.hpp) on
+/// I/O failure or for an empty or malformed image.
 void writePng(const std::filesystem::path& path, const ImageData& image);
-/// Writes an HDR file by extension: Radiance .hdr or OpenEXR .exr (half float). Throws
-/// ExecutorError (device.hpp) on I/O failure or for an empty or malformed image.
+/// Writes an HDR file by extension: Radiance .hdr or OpenEXR .exr (half float), as atomically
+/// as writePng. Throws ExecutorError (device.hpp) on I/O failure, for another extension, or
+/// for an empty or malformed image.
 void writeHdr(const std::filesystem::path& path, const ImageData& image);
 
 }  // namespace skygraph

@@ -29,7 +29,8 @@ namespace skygraph {
 class ShaderCompiler;
 
 /// Values the application hands to passes for one frame (a camera, an exposure, a scene...),
-/// stored by type. The renderer owns it; passes read it while recording.
+/// stored by type. The renderer owns it; passes read it while renderFrame() records, so a value
+/// set between frames applies from the next one. Not synchronized: use the renderer's thread.
 class FrameData {
 public:
     /// Stores (replaces) the value of type T; the FrameData owns the copy.
@@ -50,8 +51,8 @@ private:
 };
 
 /// One resource as a pass sees it through one of its usages. The renderer owns the handles and
-/// the plan and graph the pointers point into; see PipelineContext and RecordContext for how
-/// long they are valid.
+/// the plan and graph the pointers point into; they stay valid for as long as the renderer may
+/// call the pass implementation given them (do not destroy them).
 struct BoundResource {
     const PlannedUsage* usage = nullptr;
     const ResourceDesc* desc = nullptr;
@@ -66,7 +67,9 @@ struct BoundResource {
     VkExtent2D extent{0, 0};  ///< Of the usage's base mip.
 };
 
-/// What a pass may use while creating pipelines. Valid only during the call.
+/// What a pass may use while creating pipelines. The struct and its spans are valid only
+/// during the call; what they point to (pass, desc, the BoundResources, shaders) stays valid
+/// for as long as the renderer may call the implementation, so it may keep those pointers.
 struct PipelineContext {
     VkDevice device = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
@@ -88,7 +91,9 @@ struct PipelineContext {
     ShaderCompiler* shaders = nullptr;
 };
 
-/// What a pass may use while recording. Valid only during the call.
+/// What a pass may use while recording. The struct, `cmd`, its spans and recordInPassBarriers
+/// are valid only during the call; the pointers and handles are the renderer's, as in
+/// PipelineContext (`frame` is the renderer's FrameData).
 struct RecordContext {
     VkCommandBuffer cmd = VK_NULL_HANDLE;
     const PlannedPass* pass = nullptr;
@@ -107,12 +112,13 @@ struct RecordContext {
 
     /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which. The
     /// pointer is into `resources`: valid during the call only.
-    [[nodiscard]] const BoundResource* slot(std::string_view name, size_t nth = 0) const;
+    [[nodiscard]] const BoundResource* slot(std::string_view name, size_t nth = 0) const noexcept;
 };
 
 /// The recording code of one pass instance. Created once per pass of a plan and owned by the
-/// renderer, which destroys it with the plan state (a new plan, a resize, a shader reload);
-/// not copyable. Vulkan objects it creates are its own to destroy.
+/// renderer, which destroys it with the plan state (a new plan, a resize, a shader reload, an
+/// import), only once the GPU has finished with what it recorded; not copyable. Vulkan objects
+/// it creates are its own to destroy. Called on the thread that calls the renderer.
 class PassImplementation {
 public:
     PassImplementation() = default;
@@ -120,12 +126,14 @@ public:
     PassImplementation(const PassImplementation&) = delete;
     PassImplementation& operator=(const PassImplementation&) = delete;
 
-    /// Builds pipelines. Called when the plan is installed and again on shader hot reload;
-    /// throwing keeps the previous pipelines of every pass running.
+    /// Builds pipelines: called once, after construction and before any record (a rebuild
+    /// makes new implementations). Throwing fails that build, so the previous plan state keeps
+    /// running; a std::exception other than ExecutorError comes out as one naming the pass.
     virtual void createPipelines(const PipelineContext& context) = 0;
 
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
-    /// and, for graphics passes, begun the render pass; it ends it afterwards.
+    /// and, for graphics passes, begun the render pass; it ends it afterwards. What this throws
+    /// comes out of renderFrame() as it is, and that frame is not submitted.
     virtual void record(const RecordContext& context) = 0;
 
     /// Graphics passes only: records what Vulkan does not allow inside a render pass (copies,
@@ -134,6 +142,9 @@ public:
     virtual void recordBeforeRenderPass(const RecordContext& context) { (void)context; }
 };
 
+/// Makes the recording code of one pass whenever a renderer builds its plan state; it must not
+/// return null (the renderer throws ExecutorError). `desc` is the pass in the renderer's
+/// CompiledGraph: valid for the whole life of the implementation.
 using PassFactory = std::function<std::unique_ptr<PassImplementation>(const PassDesc&)>;
 
 /// Pass types with both halves: the declaration the compiler checks graphs against, and the
@@ -141,11 +152,13 @@ using PassFactory = std::function<std::unique_ptr<PassImplementation>(const Pass
 class PassLibrary {
 public:
     /// Generic and the built-in passes (docs/graph-format.md, "Built-in pass types"), each
-    /// with its recording code; Generic's performs exactly the declared accesses. Defined by
-    /// the built-in passes' library (skygraph_passes, passes/): link it to call this.
+    /// with its recording code; Generic's performs exactly the declared accesses. A new library
+    /// the caller owns. Defined by the built-in passes' library (skygraph_passes, passes/): link
+    /// it to call this.
     [[nodiscard]] static PassLibrary withBuiltins();
 
-    /// Registers a pass type. Throws std::invalid_argument when the name is taken.
+    /// Registers a pass type; the library keeps both. Throws std::invalid_argument, registering
+    /// nothing, when `factory` is empty, the name is taken, or PassRegistry::add rejects `info`.
     void add(PassTypeInfo info, PassFactory factory);
 
     /// The declarations, for loadGraphFile / parseGraph. The reference is valid while the
@@ -154,7 +167,7 @@ public:
     /// nullptr when the type has no recording code (a renderer then runs it with the
     /// library's "Generic"). The pointer is valid while the library lives (and is not assigned
     /// to).
-    [[nodiscard]] const PassFactory* factory(std::string_view type) const;
+    [[nodiscard]] const PassFactory* factory(std::string_view type) const noexcept;
 
 private:
     PassRegistry registry_;

@@ -54,19 +54,21 @@ public:
     /// An empty registry. Most callers want `withBuiltins()`.
     PassRegistry() = default;
 
-    /// Generic plus the built-in passes (forward, skybox, tonemapping, environment pipeline).
-    /// Defined by the pass types' library (skygraph_pass_types, passes/): link it to call this.
+    /// Generic plus the built-in passes (forward, skybox, tonemapping, environment pipeline),
+    /// in a new registry the caller owns. Defined by the pass types' library
+    /// (skygraph_pass_types, passes/): link it to call this.
     [[nodiscard]] static PassRegistry withBuiltins();
 
-    /// Registers a type. Throws std::invalid_argument if the name is taken or a slot is
-    /// malformed (no accesses, duplicate names, `as` on a non-shader stage).
+    /// Registers a type (the registry keeps `info`). Throws std::invalid_argument, registering
+    /// nothing, if the name is empty or taken or a slot is malformed (no accesses, duplicate
+    /// names, `as` on a non-shader stage).
     void add(PassTypeInfo info);
 
-    /// nullptr when unknown. The pointer stays valid until the registry is destroyed or
-    /// another type is added.
-    [[nodiscard]] const PassTypeInfo* find(std::string_view name) const;
+    /// nullptr when unknown. The pointer stays valid until the registry is destroyed,
+    /// assigned to, or another type is added.
+    [[nodiscard]] const PassTypeInfo* find(std::string_view name) const noexcept;
 
-    /// Registered names, sorted, for "unknown type" messages.
+    /// Registered names, sorted, for "unknown type" messages; a copy.
     [[nodiscard]] std::vector<std::string> names() const;
 
 private:
@@ -74,6 +76,8 @@ private:
 };
 
 /// Adds the built-in pass types; `withBuiltins()` calls it. Defined in skygraph_pass_types.
+/// Throws std::invalid_argument when `registry` already has one of them; those added before
+/// it stay.
 void registerBuiltinPassTypes(PassRegistry& registry);
 
 }  // namespace skygraph

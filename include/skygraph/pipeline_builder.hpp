@@ -5,9 +5,10 @@
 //
 // Ownership: the create functions return RAII owners (vk_handles.hpp) of every object they
 // make; the caller keeps them for as long as the pipeline is in use and must not destroy them
-// while submitted work still uses them. Shader modules are temporary and destroyed before the
-// create function returns. The recipes only borrow what they point to (the render pass).
-// Every function throws ExecutorError on failure and then leaves nothing behind.
+// while submitted work still uses them, and `device` must outlive them. Shader modules are
+// temporary and destroyed before the create function returns. The recipes only borrow what
+// they point to (the render pass), during the call. Every function that can fail throws
+// ExecutorError and then leaves nothing behind.
 #pragma once
 
 #include <skygraph/device.hpp>
@@ -24,8 +25,9 @@
 namespace skygraph {
 
 /// SPIR-V for shaders/<relativePath> (relative to `compiler.includeDir()`) with
-/// `#define NAME VALUE` lines inserted after the #version and #extension lines. Throws
-/// ExecutorError with glslang's log.
+/// `#define NAME VALUE` lines inserted after the #version and #extension lines; a copy the
+/// caller owns. Reads the file on every call. Throws ExecutorError when it cannot be read or
+/// does not compile (with glslang's log).
 [[nodiscard]] std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagBits stage,
                                                   const std::string& relativePath,
                                                   const std::vector<std::pair<std::string, std::string>>& defines = {});
@@ -77,14 +79,14 @@ struct ComputePipelineRecipe {
 [[nodiscard]] ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineRecipe& recipe);
 
 /// Full-render-area viewport (depth 0..1) and scissor, for the dynamic state of the recipes.
-void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent);
+void setViewportAndScissor(VkCommandBuffer cmd, VkExtent2D extent) noexcept;
 
-/// vkCmdPushDescriptorSetKHR of `device`; look it up once (e.g. when creating pipelines).
-/// Throws ExecutorError when VK_KHR_push_descriptor is not enabled.
+/// vkCmdPushDescriptorSetKHR of `device`, valid while the device lives; look it up once (e.g.
+/// when creating pipelines). Throws ExecutorError when VK_KHR_push_descriptor is not enabled.
 [[nodiscard]] PFN_vkCmdPushDescriptorSetKHR pushDescriptorFunction(VkDevice device);
 
 /// A combined image sampler write for binding `binding` of set 0; `info` is borrowed and must
 /// stay valid until the write is pushed.
-[[nodiscard]] VkWriteDescriptorSet sampledImageWrite(uint32_t binding, const VkDescriptorImageInfo* info);
+[[nodiscard]] VkWriteDescriptorSet sampledImageWrite(uint32_t binding, const VkDescriptorImageInfo* info) noexcept;
 
 }  // namespace skygraph

@@ -1,5 +1,6 @@
 // Printing plans: JSON (docs/graph-format.md, "Compiled plan"), a readable text listing, and
-// graphviz DOT.
+// graphviz DOT. Every function returns a new value the caller owns (no views into the plan)
+// and reads its arguments during the call only.
 #pragma once
 
 #include <skygraph/graph.hpp>
@@ -14,10 +15,12 @@ namespace skygraph {
 [[nodiscard]] nlohmann::ordered_json planToJson(const Plan& plan);
 [[nodiscard]] std::string planToText(const Plan& plan);
 /// Scheduled passes as boxes, culled ones greyed with their reason, resources as ellipses;
-/// with `setup` (planSetup of `plan`), its steps in a box of their own.
+/// with `setup` (planSetup of `plan`; may be null), its steps in a box of their own. `graph`
+/// must be the graph `plan` was compiled from.
 [[nodiscard]] std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setup = nullptr);
 
-/// Full Vulkan names: "VK_PIPELINE_STAGE_2_COPY_BIT", one entry per set bit.
+/// Full Vulkan names: "VK_PIPELINE_STAGE_2_COPY_BIT", one entry per set bit (in hex for bits
+/// skygraph does not name).
 [[nodiscard]] std::vector<std::string> stageMaskNames(VkPipelineStageFlags2 mask);
 [[nodiscard]] std::vector<std::string> accessMaskNames(VkAccessFlags2 mask);
 [[nodiscard]] std::string layoutName(VkImageLayout layout);

@@ -23,8 +23,10 @@ class FrameData;    // skygraph/pass.hpp: per-frame values for pass implementati
 
 /// How a Renderer runs; what it runs (graph, options, output size) is the CompiledGraph.
 struct RendererOptions {
+    /// 1 to 8; the constructor throws otherwise.
     uint32_t framesInFlight = 2;
-    /// Directory with the GLSL includes (shaders/); empty: the source tree's shaders/.
+    /// Directory with the GLSL includes (shaders/); empty: ShaderCompiler::defaultIncludeDir().
+    /// Compiled SPIR-V is also kept on disk between runs (docs/executor.md).
     std::filesystem::path shaderDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
@@ -42,13 +44,15 @@ struct PassTiming {
 /// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt by
 /// setGraph(), resize(), reloadShaders() and importImage() when they succeed: references
 /// returned by compiled(), graph() and plan() are invalid afterwards, and images shared before
-/// are no longer written by this renderer. A failed call keeps the old state. Use from one
-/// thread at a time.
+/// are no longer written by this renderer. A failed call keeps the old state. Names passed in
+/// are read during the call only. Use from one thread at a time; renderers on one Device share
+/// its queue, which Vulkan lets one thread use at a time, so use them all from one thread.
 class Renderer {
 public:
     /// Takes `compiled`; creates resources, pipelines and per-frame state at its output size
-    /// and runs its plan's setup (planSetup). Throws ExecutorError (e.g. a pass type without
-    /// recording code, a format the device cannot use as the plan requires).
+    /// and runs its plan's setup (planSetup), waiting for it. Throws ExecutorError (e.g.
+    /// framesInFlight outside 1..8, a pass type without recording code, a format the device
+    /// cannot use as the plan requires, a pass's createPipelines failing).
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
     /// Waits for the device to be idle, then destroys what the renderer owns.
     ~Renderer();
@@ -56,14 +60,16 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
-    /// otherwise: up to framesInFlight frames run at once.
+    /// otherwise: up to framesInFlight frames run at once. Throws ExecutorError for a Vulkan
+    /// failure; what a pass implementation throws comes out as it is, and that frame is not
+    /// submitted.
     void renderFrame();
     /// Waits until every submitted frame has finished.
     void waitIdle();
     /// Waits for the most recent frame and returns a copy, owned by the caller, of what its one
     /// Readback step copied (the plan was compiled with one name in CompileOptions::readbacks).
-    /// Throws ExecutorError when the plan reads back no image or several, or before the first
-    /// frame.
+    /// Throws ExecutorError when the plan reads back no image or several, or when no frame has
+    /// been rendered since the plan state was built or setExternalImage() last ran.
     [[nodiscard]] ImageData readback();
     /// The same for the read-back of `resource`, one of CompileOptions::readbacks.
     [[nodiscard]] ImageData readback(std::string_view resource);
@@ -71,14 +77,15 @@ public:
     /// `resource` to the host (element mip * layers + layer), e.g. an environment cube and
     /// its mip chain; the caller owns the copies. The steps and their barriers are the plan of
     /// planImageRead. The image is left in its end-of-frame layout (the plan's final layout).
-    /// Throws ExecutorError for an unknown name, a buffer, or an image no frame has written.
+    /// Throws ExecutorError for an unknown name, a buffer, an image no frame has written, or
+    /// when no frame has been rendered since the plan state was built or setExternalImage().
     [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
     /// Compiles the graph again at a new output extent (CompiledGraph::resized) and rebuilds
     /// the plan state. Throws ExecutorError when the graph does not compile at that size or
     /// the device cannot hold it; the old plan keeps running then.
     void resize(uint32_t width, uint32_t height);
-    /// Takes `compiled` in place of what runs (e.g. after a hot reload). On failure throws
-    /// ExecutorError and keeps the old one running.
+    /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
+    /// frame has finished. On failure throws ExecutorError and keeps the old one running.
     void setGraph(CompiledGraph compiled);
     /// Drops every cached shader and rebuilds the plan state from the shader directory (after
     /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
@@ -86,33 +93,36 @@ public:
     void reloadShaders();
     /// Imports a loaded texture: `pixels` (float RGBA, as stored; the renderer keeps them)
     /// become the contents of mip 0 (every layer) of the external image `resource`, by an Upload
-    /// step of the plan's setup, now and whenever the plan is re-installed. Waits for the GPU.
-    /// Throws ExecutorError for a wrong name, size or format.
+    /// step of the plan's setup, now and whenever the plan is re-installed. Waits for the GPU,
+    /// then runs the whole setup again, so every external resource it covers gets its first
+    /// contents back. Throws ExecutorError for a wrong name, size or format.
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// Shares the image of `resource`, an external image this plan exports (`final` set),
     /// with another renderer on the same Device. It holds this frame's contents once the
     /// frames that write it have finished (waitIdle()), in the layout of its `final` state.
     /// The handle keeps the image alive after this renderer rebuilds or is destroyed, but only
     /// the current plan state's image is written: share again after a rebuild. Throws
-    /// ExecutorError for a resource that is not an exported image of the current plan.
+    /// ExecutorError for a resource that is not an exported external image of the current plan.
     [[nodiscard]] SharedImage shareImage(const std::string& resource) const;
     /// Makes the external image `resource` use `image` instead of creating its own, now and
     /// whenever the plan is re-installed, and keeps a share of it. The graph must only read
     /// it, its format, extent, mips and layers must match, and it must arrive in the layout
     /// the producer leaves it in (`initial` here = `final` there). The caller orders the two
     /// renderers' work: the producer's frames must have finished (its waitIdle()) before
-    /// this renderer's next frame. Rebuilds the plan state. Throws ExecutorError on any
-    /// mismatch, keeping the old plan.
+    /// this renderer's next frame. Rebuilds the plan state. Throws ExecutorError for an empty
+    /// handle or on any mismatch, keeping the old plan.
     void importImage(const std::string& resource, SharedImage image);
     /// Values handed to pass implementations while recording (camera, exposure, ...). Owned
-    /// by the renderer; the reference is valid, and the values kept, for its whole life.
+    /// by the renderer; the reference is valid, and the values kept, for its whole life,
+    /// rebuilds included.
     [[nodiscard]] FrameData& frameData() noexcept;
     /// What runs: the graph, its compile options and the plan. Valid until the plan state is
     /// rebuilt (see the class comment).
     [[nodiscard]] const CompiledGraph& compiled() const noexcept;
     /// compiled().graph(): the graph the current plan was compiled from.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
-    /// Per-pass GPU times of the most recently completed frame (waits for it), copied.
+    /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
+    /// before the first frame; after a rebuild, the old plan's until a new frame completes.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
 
     /// compiled().plan(): the current plan. Valid until the plan state is rebuilt.
@@ -121,7 +131,7 @@ public:
     /// this renderer's uploads and imports). Valid until the plan state is rebuilt or
     /// setExternalImage() runs it again.
     [[nodiscard]] const Plan& setupPlan() const noexcept;
-    /// Frames submitted since construction.
+    /// Frames submitted since construction, rebuilds included.
     [[nodiscard]] uint64_t frameCount() const noexcept;
 
     struct Impl;

@@ -94,8 +94,8 @@ public:
 /// unknown keys, wrong types, non-finite numbers, values out of range.
 [[nodiscard]] Scene loadSceneFile(const std::filesystem::path& path);
 
-/// As loadSceneFile() for text in memory. `fileName` is used in messages; relative environment
-/// files are resolved against `baseDir`.
+/// As loadSceneFile() for text in memory (read during the call only). `fileName` is used in
+/// messages; relative environment files are resolved against `baseDir`.
 [[nodiscard]] Scene parseScene(std::string_view text, const std::string& fileName,
                                const std::filesystem::path& baseDir);
 
@@ -113,7 +113,7 @@ public:
 
 /// The operator the tonemapping pass must use: Passthrough whenever a debug view is on (the
 /// debug values are already in [0, 1]), otherwise the scene's tonemapper.
-[[nodiscard]] Tonemapper effectiveTonemapper(const Scene& scene);
+[[nodiscard]] Tonemapper effectiveTonemapper(const Scene& scene) noexcept;
 
 /// The scene-file spellings: "aces_narkowicz", "cubemap", "normal", ... Returned views point
 /// to static storage.

@@ -13,17 +13,20 @@
 namespace skygraph {
 
 /// Compiles GLSL at run time. Results are cached in memory by (stage, source) and, when a
-/// cache directory is given, on disk as .spv files. Thread-safe.
+/// cache directory is given, on disk as .spv files. compile(), compileFile() and clear() may be
+/// called from several threads at once (compilations then run one at a time).
 class ShaderCompiler {
 public:
-    /// `includeDir` is searched for `#include "..."`; `cacheDir` may be empty (memory only).
+    /// `includeDir` is searched for `#include "..."` (empty: defaultIncludeDir()); `cacheDir`
+    /// may be empty (memory only). Disk cache failures are misses, never errors.
     explicit ShaderCompiler(std::filesystem::path includeDir, std::filesystem::path cacheDir = {});
     ~ShaderCompiler();
     ShaderCompiler(const ShaderCompiler&) = delete;
     ShaderCompiler& operator=(const ShaderCompiler&) = delete;
 
-    /// SPIR-V for `source`. Throws ExecutorError with glslang's log (prefixed with `name`)
-    /// when the source does not compile.
+    /// SPIR-V for `source`, a copy the caller owns. Throws ExecutorError with glslang's log
+    /// (prefixed with `name`) when the source does not compile, or for a stage other than
+    /// vertex, fragment, compute or geometry.
     [[nodiscard]] std::vector<uint32_t> compile(VkShaderStageFlagBits stage,
                                                 const std::string& source,
                                                 const std::string& name);
@@ -34,12 +37,15 @@ public:
     [[nodiscard]] std::vector<uint32_t> compileFile(VkShaderStageFlagBits stage,
                                                     const std::filesystem::path& relativePath);
 
-    /// Forgets every cached result (memory only), e.g. after an included file changed.
+    /// Forgets every cached result (memory only), e.g. after an included file changed: the
+    /// memory cache's key does not cover included files (the disk cache checks them).
     void clear();
 
+    /// Fixed at construction; the reference is valid while this compiler lives.
     [[nodiscard]] const std::filesystem::path& includeDir() const noexcept { return includeDir_; }
 
-    /// Number of compilations that actually ran glslang (cache misses).
+    /// Number of compilations that actually ran glslang (cache misses). Not synchronized with
+    /// compile(): read it while no other thread compiles.
     [[nodiscard]] uint32_t compilations() const noexcept { return compilations_; }
 
     /// The shaders/ directory of the built-in passes, used when no include directory is given:

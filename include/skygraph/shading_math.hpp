@@ -5,6 +5,8 @@
 //     yaw turns left (about +Y), pitch looks up (about +X), roll turns about the view axis;
 //   - clip: Vulkan, NDC +Y down (the projection flips Y, so viewports stay positive);
 //   - depth: reverse-Z with an infinite far plane: 1 at the near plane, 0 at infinity.
+// Every function is pure: it returns a value computed from its arguments, keeps no state and
+// throws nothing.
 #pragma once
 
 #include <glm/glm.hpp>

@@ -1,7 +1,8 @@
 // Plans for the transfers around a frame's plan: the setup that gives external resources their
 // first contents before the first frame, and the copy of an image to the host after frames
 // have run. Like compile(), these are pure: every barrier they hold follows the same rules
-// (docs/barriers.md), and the executor records them as it records a frame.
+// (docs/barriers.md), and the executor records them as it records a frame. `graph` must be the
+// graph `frame` was compiled from; both are read during the call only.
 #pragma once
 
 #include <skygraph/graph.hpp>
@@ -16,8 +17,9 @@ namespace skygraph {
 
 struct SetupOptions {
     /// External images whose first mip (every layer) the application provides; the rest of
-    /// the image is cleared first. An unknown name, a buffer, or an image whose `initial`
-    /// state is None (every frame discards its contents) is an error.
+    /// the image is cleared first. An unknown name, a resource that is not external, a buffer,
+    /// an image whose `initial` state is None (every frame discards its contents), or one that
+    /// is also in `imports` is an error.
     std::set<std::string, std::less<>> uploads;
     /// External images that another renderer provides (Renderer::importImage): no setup.
     std::set<std::string, std::less<>> imports;
@@ -39,7 +41,8 @@ struct SetupOptions {
 /// `frame` have finished: one step of type Readback, the barrier into TRANSFER_SRC_OPTIMAL
 /// before it, and final barriers that return an external image to the layout the next frame
 /// expects and make the copy visible to the host. Throws GraphError when `resource` is not an
-/// image that `frame` leaves written (a buffer, unknown, or unused by the plan).
+/// image that `frame` leaves written (a buffer, unknown, or unused by the plan). Like
+/// planSetup's, the result holds its own share of `frame`'s name tables.
 [[nodiscard]] Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view resource);
 
 }  // namespace skygraph

@@ -66,7 +66,6 @@ struct Usage {
     [[nodiscard]] constexpr UsageMode mode() const noexcept { return {access, stage, as}; }
 };
 
-// Inline: the compiler asks these several times per usage in every sweep.
 [[nodiscard]] constexpr bool isShaderStage(Stage s) noexcept {
     return s == Stage::Vertex || s == Stage::Fragment || s == Stage::Compute;
 }
@@ -76,9 +75,13 @@ struct Usage {
 [[nodiscard]] constexpr bool readsContents(Access a) noexcept { return a != Access::Write; }  ///< Read or ReadWrite
 [[nodiscard]] constexpr bool writesContents(Access a) noexcept { return a != Access::Read; }  ///< Write or ReadWrite
 
+/// The graph-file spellings ("ReadWrite", "ColorAttachment", "sampled"); the views point to
+/// static storage. A value outside the enum gives "?".
 [[nodiscard]] std::string_view toString(Access a) noexcept;
 [[nodiscard]] std::string_view toString(Stage s) noexcept;
 [[nodiscard]] std::string_view toString(BindAs a) noexcept;
+/// The inverse of toString; nullopt for an unknown name. `s` is read during the call only.
+/// parseBindAs() also gives nullopt for "default", which files cannot spell.
 [[nodiscard]] std::optional<Access> parseAccess(std::string_view s) noexcept;
 [[nodiscard]] std::optional<Stage> parseStage(std::string_view s) noexcept;
 [[nodiscard]] std::optional<BindAs> parseBindAs(std::string_view s) noexcept;

@@ -16,6 +16,7 @@ template <typename T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)
 class Owned {
 public:
     Owned() = default;
+    /// Takes ownership of `handle`, which was created on `device`.
     Owned(VkDevice device, T handle) noexcept : device_(device), handle_(handle) {}
     ~Owned() { reset(); }
     Owned(const Owned&) = delete;
@@ -34,6 +35,7 @@ public:
         if (handle_ != VK_NULL_HANDLE) Destroy(device_, handle_, nullptr);
         handle_ = VK_NULL_HANDLE;
     }
+    /// The handle, still owned here: valid until this owner is reset, reassigned or destroyed.
     [[nodiscard]] T get() const noexcept { return handle_; }
     /// Gives up ownership: the handle is returned and no longer destroyed here.
     [[nodiscard]] T release() noexcept { return std::exchange(handle_, T(VK_NULL_HANDLE)); }
