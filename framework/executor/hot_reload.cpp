@@ -60,6 +60,7 @@ HotReloader::Result HotReloader::poll() {
     const size_t s = hashDir(shaderDir_);
     if (g == graphHash_ && s == shaderHash_) return Result::Unchanged;
     const bool graphChanged = g != graphHash_;
+    const bool shadersChanged = s != shaderHash_;
     graphHash_ = g;
     shaderHash_ = s;
     if (graphChanged && g == kMissing) {
@@ -75,11 +76,12 @@ HotReloader::Result HotReloader::poll() {
             GraphDesc graph = registry_ ? loadGraphFile(graphFile_, *registry_)
                                         : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
             renderer_.setGraph(renderer_.compiled().withGraph(std::move(graph)));
-        } else {
-            renderer_.reloadShaders();
         }
+        // setGraph reuses cached SPIR-V, which an edited include makes stale.
+        if (shadersChanged) renderer_.reloadShaders();
         lastError_.clear();
-        spdlog::info("hot reload: {} reloaded", graphChanged ? graphFile_.string() : shaderDir_.string());
+        spdlog::info("hot reload: {}{}{} reloaded", graphChanged ? graphFile_.string() : "",
+                     graphChanged && shadersChanged ? " and " : "", shadersChanged ? shaderDir_.string() : "");
         return Result::Reloaded;
     } catch (const GraphError& e) {
         lastError_ = e.diagnostics().format();

@@ -230,6 +230,7 @@ void Renderer::setGraph(CompiledGraph compiled) {
     vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     d.state = std::move(next);
     d.lastSlot = -1;
+    d.timings.clear();  // they name the old plan's passes
 }
 
 std::vector<PassTiming> Renderer::lastTimings() {
@@ -333,6 +334,7 @@ void Renderer::reloadShaders() {
     vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     d.state = std::move(next);
     d.lastSlot = -1;
+    d.timings.clear();  // they name the old plan's passes
 }
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 

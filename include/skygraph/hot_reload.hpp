@@ -33,7 +33,8 @@ public:
 
     /// Checks the watched files (by content: it reads them all on every call) and reloads what
     /// changed: a changed graph is recompiled and handed to Renderer::setGraph(), a change to
-    /// the shaders alone goes to Renderer::reloadShaders(). Either rebuilds the renderer's plan
+    /// the shaders goes to Renderer::reloadShaders() (after setGraph when both changed). Either
+    /// rebuilds the renderer's plan
     /// state, so references from its compiled(), plan() and graph() are invalid after a
     /// Reloaded. A failed reload does not throw: it returns Failed and sets lastError().
     Result poll();

@@ -122,7 +122,7 @@ public:
     /// compiled().graph(): the graph the current plan was compiled from.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
-    /// before the first frame; after a rebuild, the old plan's until a new frame completes.
+    /// before the first frame of the current plan state.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
 
     /// compiled().plan(): the current plan. Valid until the plan state is rebuilt.

@@ -1,6 +1,7 @@
 // Run-time GLSL -> SPIR-V with glslang, with #include from a shader directory and a cache.
 #pragma once
 
+#include <atomic>
 #include <vulkan/vulkan_core.h>
 
 #include <cstdint>
@@ -44,9 +45,8 @@ public:
     /// Fixed at construction; the reference is valid while this compiler lives.
     [[nodiscard]] const std::filesystem::path& includeDir() const noexcept { return includeDir_; }
 
-    /// Number of compilations that actually ran glslang (cache misses). Not synchronized with
-    /// compile(): read it while no other thread compiles.
-    [[nodiscard]] uint32_t compilations() const noexcept { return compilations_; }
+    /// Number of compilations that actually ran glslang (cache misses) so far.
+    [[nodiscard]] uint32_t compilations() const noexcept { return compilations_.load(std::memory_order_relaxed); }
 
     /// The shaders/ directory of the built-in passes, used when no include directory is given:
     /// $SKYGRAPH_SHADER_DIR if set; else share/skygraph/shaders beside the running executable's
@@ -60,7 +60,7 @@ private:
     std::filesystem::path cacheDir_;
     std::mutex mutex_;
     std::unordered_map<std::string, std::vector<uint32_t>> cache_;
-    uint32_t compilations_ = 0;
+    std::atomic<uint32_t> compilations_{0};
 };
 
 }  // namespace skygraph

@@ -85,6 +85,13 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 0.5, 0.0, 1.0, 1.0);  // red and blue swapped
+
+    // The graph and an included shader edited between two polls: both edits take effect.
+    write(shader, good);
+    write(graphFile, graphWithColor("[1, 0, 0.25, 1]"));
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 1.0, 0.0, 0.25, 1.0);  // the shader edit is not lost to the graph's
     r.waitIdle();
     std::filesystem::remove_all(dir);
 }

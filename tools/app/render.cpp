@@ -182,8 +182,7 @@ int renderCommand(const RenderOptions& options) {
         co.outputWidth = options.width;
         co.outputHeight = options.height;
         CompiledGraph compiled(graph, co);
-        const Plan& plan = compiled.plan();
-        for (const auto& c : plan.culled()) spdlog::info("culled {}: {}", c.name, c.reason);
+        for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
 
         DeviceOptions dopts;
         dopts.device = options.device;
@@ -195,7 +194,7 @@ int renderCommand(const RenderOptions& options) {
         std::set<std::string, std::less<>> products;
         if (environment) {
             const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, registry);
-            products = environmentProducts(plan, graph, envGraph ? &*envGraph : nullptr);
+            products = environmentProducts(compiled.plan(), graph, envGraph ? &*envGraph : nullptr);
             if (!products.empty())
                 environmentRenderer = bakeForFrame(*device, *envGraph, *environment, products, environmentSizes,
                                                    passes);
