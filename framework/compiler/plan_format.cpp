@@ -249,6 +249,14 @@ json planToJson(const Plan& plan) {
     for (const auto& b : plan.finalBarriers()) j["final"].push_back(barrierJson(plan, b));
     j["culled"] = json::array();
     for (const auto& c : plan.culled()) j["culled"].push_back({{"pass", c.name}, {"reason", c.reason}});
+    // Extension: the semaphore stages of a presented frame.
+    if (!plan.presentations().empty()) {
+        j["present"] = json::array();
+        for (const Presentation& pr : plan.presentations())
+            j["present"].push_back({{"resource", plan.resources()[pr.resource].name},
+                                    {"acquireWaitStageMask", stageMaskNames(pr.acquireWaitStages)},
+                                    {"renderCompleteStageMask", stageMaskNames(pr.renderCompleteStages)}});
+    }
     // Extension: resource lifetimes as indices into "passes".
     j["resources"] = json::array();
     for (const auto& r : plan.resources())
@@ -286,6 +294,10 @@ std::string planToText(const Plan& plan) {
     for (const auto& b : plan.finalBarriers()) o << barrierText(plan, b);
     o << "culled:\n";
     for (const auto& c : plan.culled()) o << "    " << c.name << ": " << c.reason << "\n";
+    for (const Presentation& pr : plan.presentations())
+        o << "present " << plan.resources()[pr.resource].name << ": the submit waits on its acquire at "
+          << joined(stageMaskNames(pr.acquireWaitStages), "VK_PIPELINE_STAGE_2_") << " and signals render-complete at "
+          << joined(stageMaskNames(pr.renderCompleteStages), "VK_PIPELINE_STAGE_2_") << "\n";
     o << "lifetimes:\n";
     for (const auto& r : plan.resources())
         o << "    " << r.name << ": passes " << r.firstPass << ".." << r.lastPass << ", "
@@ -320,9 +332,15 @@ std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setu
           << "fillcolor=\"#cfe3ff\", label=\"" << i << ": " << dotEscape(p.name) << "\\n("
           << dotEscape(p.type) << ")\\n" << p.barriers.size() << " barrier(s)\"];\n";
     }
-    for (const auto& r : plan.resources())
-        o << "  \"res:" << dotEscape(r.name) << "\" [shape=ellipse, label=\"" << dotEscape(r.name)
-          << "\"];\n";
+    for (size_t i = 0; i < plan.resources().size(); ++i) {
+        const PlannedResource& r = plan.resources()[i];
+        o << "  \"res:" << dotEscape(r.name) << "\" [shape=ellipse, label=\"" << dotEscape(r.name);
+        for (const Presentation& pr : plan.presentations())
+            if (pr.resource == i)
+                o << "\\npresented: acquire waited at "
+                  << joined(stageMaskNames(pr.acquireWaitStages), "VK_PIPELINE_STAGE_2_");
+        o << "\"];\n";
+    }
     for (const auto& p : plan.passes())
         for (const auto& u : p.usages) {
             const std::string res = "\"res:" + dotEscape(plan.resources()[u.resource].name) + "\"";

@@ -587,6 +587,7 @@ private:
             PlannedResource& res = planResources()[r];
             if (decl(r).final == ExternalState::Present) {
                 res.copies = ResourceCopies::PerFramePresented;
+                if (replaced(ExternalState::Present) == ExternalState::Present) presentation(r);
             } else if (f.exported) {
                 res.copies = ResourceCopies::SharedExported;
             } else {
@@ -595,6 +596,22 @@ private:
                 res.copies = written ? ResourceCopies::PerFrameWrittenNotExported : ResourceCopies::SharedReadOnly;
             }
         }
+    }
+
+    /// A presented image (not read back instead) meets the swapchain's semaphores. The
+    /// frame's first use (its first barrier, from UNDEFINED, waits in those stages) waits on
+    /// the acquire. The final barrier to PRESENT_SRC_KHR gets the last use's stages as its
+    /// destination, and the render-complete signal is in them: the signal chains with the
+    /// barrier, so it follows the layout transition. (With destination NONE only an
+    /// ALL_COMMANDS signal would, and validation layers before 1.3.278 report that as a hazard.)
+    void presentation(uint32_t r) {
+        VkPipelineStageFlags2 lastStages = 0;
+        for (Barrier& b : detail::PlanBuilder::finalBarriers(plan_))
+            if (b.resource == r && b.newLayout == VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) {
+                b.dstStages = b.srcStages;
+                lastStages |= b.srcStages;
+            }
+        detail::PlanBuilder::presentations(plan_).push_back({r, planResources()[r].firstStages, lastStages});
     }
 
     const GraphDesc& graph_;

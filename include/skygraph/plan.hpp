@@ -121,6 +121,23 @@ struct InPassBarrier {
     Barrier barrier;
 };
 
+/// How a frame whose plan ends in a presented image (`final: Present`) meets the swapchain.
+/// The frame's submit waits on the semaphore that acquired the image and signals the one that
+/// vkQueuePresentKHR waits on. A plan compiled with Present replaced (headless) has none.
+struct Presentation {
+    uint32_t resource = 0;  ///< Index into Plan::resources(): the presented image.
+    /// Where the submit waits on the acquire semaphore: the stages of the image's first use,
+    /// which its first barrier (from UNDEFINED) waits in. Waiting later would let that layout
+    /// transition race the presentation engine's read of the image.
+    VkPipelineStageFlags2 acquireWaitStages = 0;
+    /// Where the submit signals the render-complete semaphore: the stages of the image's last
+    /// use, which are the destination of its final barrier to PRESENT_SRC_KHR, so the signal
+    /// follows that layout transition.
+    VkPipelineStageFlags2 renderCompleteStages = 0;
+
+    friend bool operator==(const Presentation&, const Presentation&) = default;
+};
+
 struct CulledPass {
     std::string name;
     std::string reason;
@@ -181,6 +198,9 @@ public:
     /// The passes that do not run, in file order, and why. Views this plan's array; valid as
     /// passes().
     [[nodiscard]] std::span<const CulledPass> culled() const noexcept { return culled_; }
+    /// The presented images' semaphore stages, in resources() order; empty unless the plan
+    /// keeps a `final: Present` image. Views this plan's array; valid as passes().
+    [[nodiscard]] std::span<const Presentation> presentations() const noexcept { return presentations_; }
 
     /// Index into resources() for a graph resource, or -1 when no scheduled pass uses it.
     /// Compares names; `name` need not outlive the call.
@@ -198,6 +218,7 @@ private:
     std::vector<Barrier> finalBarriers_;
     std::vector<InPassBarrier> inPassBarriers_;
     std::vector<CulledPass> culled_;
+    std::vector<Presentation> presentations_;
     std::vector<PlannedUsage> usages_;   // every pass's usages, pass after pass
     std::vector<Barrier> barriers_;      // every pass's barrier batch, pass after pass
     std::vector<std::shared_ptr<const std::string>> nameTables_;  // what the names view

@@ -217,7 +217,8 @@ TEST(BarrierRules, ExportedResourcesEndInTheirFinalState) {
     const auto& fin = plan.finalBarriers()[0];
     EXPECT_EQ(fin.newLayout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
     EXPECT_EQ(fin.srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
-    EXPECT_EQ(fin.dstStages, 0u);
+    // Chains with the render-complete signal, which is in the last use's stages (rule 15).
+    EXPECT_EQ(fin.dstStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
     EXPECT_EQ(fin.dstAccess, 0u);
 
     CompileOptions headless;
