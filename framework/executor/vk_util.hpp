@@ -44,6 +44,7 @@ struct Device::Impl {
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
+    VkSurfaceKHR surface = VK_NULL_HANDLE;  ///< DeviceOptions::presentation's; destroyed before the instance.
     uint32_t queueFamily = 0;
     std::string name;
     bool validation = false;
