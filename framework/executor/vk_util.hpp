@@ -57,6 +57,10 @@ struct Device::Impl {
     mutable std::mutex mutex;
     uint32_t count = 0;
     std::vector<ValidationMessage> kept;
+    /// Messages of a known defect of the installed layer (device.cpp), kept apart.
+    uint32_t defectCount = 0;
+    std::vector<ValidationMessage> defects;
+    uint32_t layerVersion = 0;  ///< The validation layer's specVersion; 0 without validation.
 
     ~Impl();
 };
