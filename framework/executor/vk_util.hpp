@@ -30,6 +30,9 @@ struct DeviceFunctions {
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
 };
 
+using Semaphore = Owned<VkSemaphore, vkDestroySemaphore>;
+using Swapchain = Owned<VkSwapchainKHR, vkDestroySwapchainKHR>;
+
 /// Index of a memory type with `required` properties among `typeBits`; throws if none.
 [[nodiscard]] uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,
                                       VkMemoryPropertyFlags required);
