@@ -9,6 +9,8 @@ packages=(
   glslang-dev glslang-tools spirv-tools libglm-dev
   libstb-dev libopenexr-dev blender-data
   graphviz python3-jsonschema libdtl-dev
+  libglfw3-dev libimgui-dev  # `skygraph view`'s window (GLFW)
+  xvfb xauth x11-apps xdotool imagemagick  # tests/present: a virtual X server, window control, screenshots
   liblcms2-dev python3-matplotlib  # bench/study: CIEDE2000, the Pareto plot (docs/tradeoffs.md)
   libopencolorio-dev  # the reference ACES RRT + ODT (bench/aces_reference.hpp, math_tests, study)
   clang-14 libclang-rt-14-dev llvm-14  # libFuzzer, ASan/UBSan runtimes, llvm-symbolizer (docs/reliability.md)

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <string_view>
 
 namespace skygraph::vk {
 
@@ -31,6 +32,10 @@ const char* resultName(VkResult r) noexcept {
         SG_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
         SG_CASE(VK_ERROR_TOO_MANY_OBJECTS)
         SG_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        SG_CASE(VK_ERROR_SURFACE_LOST_KHR)
+        SG_CASE(VK_ERROR_NATIVE_WINDOW_IN_USE_KHR)
+        SG_CASE(VK_SUBOPTIMAL_KHR)
+        SG_CASE(VK_ERROR_OUT_OF_DATE_KHR)
 #undef SG_CASE
         default:
             return "VkResult error";
@@ -69,7 +74,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
     // TRANSFER_SRC_OPTIMAL instead of GENERAL" for a pass that both reads and writes by
     // transfer) is logged but not counted: it is not a correctness problem.
     const bool performanceOnly = types == VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    const bool counted = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT && !performanceOnly;
+    const bool warning = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT && !performanceOnly;
+    const bool counted = warning;
     if (counted) {
         std::lock_guard lock(impl->mutex);
         ++impl->count;
@@ -87,13 +93,15 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
     return VK_FALSE;
 }
 
-bool layerAvailable(const char* name) {
+/// The layer's specVersion, or 0 when it is not installed.
+uint32_t layerVersion(const char* name) {
     uint32_t n = 0;
     vkEnumerateInstanceLayerProperties(&n, nullptr);
     std::vector<VkLayerProperties> layers(n);
     vkEnumerateInstanceLayerProperties(&n, layers.data());
-    return std::any_of(layers.begin(), layers.end(),
-                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+    for (const VkLayerProperties& l : layers)
+        if (std::strcmp(l.layerName, name) == 0) return l.specVersion;
+    return 0;
 }
 
 bool instanceExtensionAvailable(const char* name) {
@@ -142,8 +150,9 @@ int typeRank(VkPhysicalDeviceType t) {
     }
 }
 
-/// Why `pd` cannot run skygraph, or empty when it can; sets `family`.
-std::string unsuitable(VkPhysicalDevice pd, uint32_t& family) {
+/// Why `pd` cannot run skygraph, or empty when it can; sets `family`. With a `surface`, the
+/// family must also present to it and the device must have VK_KHR_swapchain.
+std::string unsuitable(VkPhysicalDevice pd, VkSurfaceKHR surface, uint32_t& family) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(pd, &props);
     if (props.apiVersion < VK_API_VERSION_1_3) return "does not support Vulkan 1.3";
@@ -154,18 +163,37 @@ std::string unsuitable(VkPhysicalDevice pd, uint32_t& family) {
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
     vkGetPhysicalDeviceFeatures2(pd, &f2);
     if (!f13.synchronization2) return "lacks synchronization2";
+    if (surface && !deviceExtensionAvailable(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+        return "cannot present: it lacks VK_KHR_swapchain";
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> fams(n);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, fams.data());
+    bool renders = false;
     for (uint32_t i = 0; i < n; ++i) {
         const auto need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((fams[i].queueFlags & need) == need && fams[i].timestampValidBits > 0) {
+        if ((fams[i].queueFlags & need) != need || fams[i].timestampValidBits == 0) continue;
+        renders = true;
+        VkBool32 presents = VK_TRUE;
+        if (surface && vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &presents) != VK_SUCCESS) presents = VK_FALSE;
+        if (presents) {
             family = i;
             return {};
         }
     }
+    if (renders) return "cannot present to the surface: no graphics+compute queue family of it presents there";
     return "has no graphics+compute queue with timestamps";
+}
+
+/// The presentation's instance extensions, each checked to be available.
+std::vector<const char*> presentationExtensions(const PresentationOptions& presentation) {
+    std::vector<const char*> names;
+    for (const std::string& e : presentation.instanceExtensions) {
+        if (!instanceExtensionAvailable(e.c_str()))
+            throw ExecutorError("presenting needs the instance extension " + e + ", which this Vulkan installation lacks");
+        names.push_back(e.c_str());
+    }
+    return names;
 }
 
 std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
@@ -188,6 +216,7 @@ Device::Impl::~Impl() {
         vkDeviceWaitIdle(device);
         vkDestroyDevice(device, nullptr);
     }
+    if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
     if (messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
@@ -203,8 +232,10 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     auto impl = std::make_unique<Impl>();
     impl->logMessages = options.logMessages;
     impl->validation = options.validation || envFlag("SKYGRAPH_VALIDATION");
-    if (impl->validation && !layerAvailable(kValidationLayer)) {
-        throw ExecutorError("validation requested but VK_LAYER_KHRONOS_validation is not installed");
+    if (impl->validation) {
+        impl->layerVersion = layerVersion(kValidationLayer);
+        if (impl->layerVersion == 0)
+            throw ExecutorError("validation requested but VK_LAYER_KHRONOS_validation is not installed");
     }
     const bool debugUtils = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
@@ -232,6 +263,11 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     std::vector<const char*> exts;
     if (impl->validation) layers.push_back(kValidationLayer);
     if (debugUtils) exts.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    if (options.presentation) {
+        for (const char* e : presentationExtensions(*options.presentation))
+            if (std::none_of(exts.begin(), exts.end(), [&](const char* have) { return std::strcmp(have, e) == 0; }))
+                exts.push_back(e);
+    }
 
     VkValidationFeatureEnableEXT enables[] = {
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
@@ -271,6 +307,17 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
         }
     }
 
+    if (options.presentation) {
+        if (!options.presentation->createSurface)
+            throw ExecutorError("DeviceOptions::presentation has no createSurface");
+        try {
+            impl->surface = options.presentation->createSurface(impl->instance);
+        } catch (const std::exception& e) {
+            throw ExecutorError(std::string("creating the window's surface: ") + e.what());
+        }
+        if (!impl->surface) throw ExecutorError("DeviceOptions::presentation.createSurface returned no surface");
+    }
+
     // Pick the physical device.
     const auto pds = physicalDevices(impl->instance);
     if (pds.empty()) throw ExecutorError("no Vulkan physical devices found");
@@ -290,7 +337,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
             continue;
         }
         uint32_t family = 0;
-        if (auto why = unsuitable(pds[i], family); !why.empty()) {
+        if (auto why = unsuitable(pds[i], impl->surface, family); !why.empty()) {
             reasons += "\n  " + std::to_string(i) + ": " + props.deviceName + " " + why;
             continue;
         }
@@ -347,13 +394,14 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     qci.queueFamilyIndex = chosenFamily;
     qci.queueCount = 1;
     qci.pQueuePriorities = &priority;
-    const char* devExts[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> devExts{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (impl->surface) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f2;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
-    dci.enabledExtensionCount = 1;
-    dci.ppEnabledExtensionNames = devExts;
+    dci.enabledExtensionCount = static_cast<uint32_t>(devExts.size());
+    dci.ppEnabledExtensionNames = devExts.data();
     vk::check(vkCreateDevice(chosen, &dci, nullptr, &impl->device), "vkCreateDevice");
     vkGetDeviceQueue(impl->device, chosenFamily, 0, &impl->queue);
 
@@ -368,8 +416,9 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
         impl->fn.setObjectName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
             vkGetInstanceProcAddr(impl->instance, "vkSetDebugUtilsObjectNameEXT"));
     }
-    spdlog::info("skygraph: using device '{}'{}", impl->name,
-                 impl->validation ? " with validation + synchronization validation" : "");
+    spdlog::info("skygraph: using device '{}'{}{}", impl->name,
+                 impl->validation ? " with validation + synchronization validation" : "",
+                 impl->surface ? ", presenting" : "");
     return std::unique_ptr<Device>(new Device(std::move(impl)));
 }
 
@@ -396,6 +445,7 @@ VkInstance Device::instance() const noexcept { return impl_->instance; }
 VkPhysicalDevice Device::physicalDevice() const noexcept { return impl_->physical; }
 VkDevice Device::device() const noexcept { return impl_->device; }
 VkQueue Device::queue() const noexcept { return impl_->queue; }
+VkSurfaceKHR Device::surface() const noexcept { return impl_->surface; }
 uint32_t Device::queueFamily() const noexcept { return impl_->queueFamily; }
 const std::string& Device::name() const noexcept { return impl_->name; }
 bool Device::validationEnabled() const noexcept { return impl_->validation; }

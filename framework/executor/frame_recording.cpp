@@ -31,7 +31,8 @@ void recordReadback(CommandSink& sink, const PlanState& s, uint32_t step, uint32
     VkBufferImageCopy c{};
     c.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, 1};
     c.imageExtent = {r.width, r.height, 1};
-    sink.copyImageToBuffer(r.images[r.copyFor(slot)].image, u.layout, target->perSlot[slot].buffer.get(), {&c, 1});
+    const uint32_t frameSlot = slot / s.presentImages;
+    sink.copyImageToBuffer(r.images[r.copyFor(slot)].image, u.layout, target->perSlot[frameSlot].buffer.get(), {&c, 1});
 }
 
 VkRenderPassBeginInfo renderPassBegin(const PassState& ps, const PassSlot& sl) {

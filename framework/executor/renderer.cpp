@@ -142,6 +142,10 @@ Renderer::~Renderer() {
 }
 
 void Renderer::renderFrame() { impl_->renderFrame(); }
+PresentStatus Renderer::renderFrame(Swapchain& swapchain) { return impl_->renderFrame(swapchain); }
+void Renderer::renderFrame(const PresentTarget& target) { impl_->renderFrame(target); }
+void Renderer::setPresentImages(PresentImages images) { impl_->bindPresentImages(std::move(images), nullptr); }
+uint32_t Renderer::waitForFrameSlot() { return impl_->waitForFrameSlot(); }
 void Renderer::waitIdle() { impl_->waitIdle(); }
 
 ImageData Renderer::readback() {
@@ -181,7 +185,9 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     }
     const uint32_t index = uint32_t(s.plan.resourceIndex(resource));
     const ResourceState& r = s.resources[index];
-    const uint32_t slot = uint32_t(d.lastSlot);
+    if (r.presented)
+        throw ExecutorError("cannot read '" + resource + "': it is the presented image, the presentation engine's");
+    const uint32_t slot = d.lastBinding;
     const uint32_t texel = copyTexelBytes(r.desc->format);
     std::vector<VkBufferImageCopy> copies;
     VkDeviceSize bytes = 0;
@@ -259,7 +265,7 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
     const int32_t index = d.state->plan.resourceIndex(resource);
     if (index < 0) throw ExecutorError("shareImage: no resource '" + resource + "' in the current plan");
     const ResourceState& r = d.state->resources[size_t(index)];
-    if (!r.isImage || !r.desc->external || !r.desc->isExported() || r.perSlot || r.images.size() != 1)
+    if (!r.isImage || !r.desc->external || !r.desc->isExported() || r.perSlot || r.presented || r.images.size() != 1)
         throw ExecutorError("shareImage: '" + resource + "' is not an exported external image (set `final`)");
     auto impl = std::make_shared<SharedImage::Impl>();
     impl->storage = r.images[0].storage;
@@ -340,14 +346,22 @@ uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 
 void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {
     Renderer::Impl& d = *renderer.impl_;
-    if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
+    if (slot >= d.frames.size() * d.state->presentImages) throw ExecutorError("frame slot out of range");
     d.recordFrame(cmd, slot, nullptr);
+}
+
+void RendererAccess::overrideAcquireWait(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages) {
+    renderer.impl_->acquireWaitOverride = stages;
+}
+
+void RendererAccess::overrideRenderCompleteSignal(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages) {
+    renderer.impl_->signalOverride = stages;
 }
 
 HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
     Renderer::Impl& d = *renderer.impl_;
     PlanState& s = *d.state;
-    if (slot >= d.frames.size()) throw ExecutorError("frame slot out of range");
+    if (slot >= d.frames.size() * s.presentImages) throw ExecutorError("frame slot out of range");
     HandFrame f;
     for (PassState& ps : s.passes) {
         if (ps.kind != StepKind::Pass)

@@ -1,12 +1,14 @@
 // Internal: what benchmarks reach inside a Renderer: recording its plan into their own command
 // buffer, and the handles it records with, for the benchmark's hand-written recording of the
-// same commands. Not part of the public API (bench/ includes it from framework/executor).
+// same commands; and what the presentation tests weaken on purpose. Not part of the public API
+// (bench/ and tests/ include it from framework/executor).
 #pragma once
 
 #include <skygraph/renderer.hpp>
 
 #include <vulkan/vulkan_core.h>
 
+#include <optional>
 #include <vector>
 
 namespace skygraph {
@@ -43,6 +45,14 @@ struct RendererAccess {
     /// not resized. Throws ExecutorError for plans with steps the compiler inserted (clears,
     /// read-backs), which the hand recording does not cover.
     static HandFrame handFrame(Renderer& renderer, uint32_t slot);
+
+    /// Test-only, for negative controls of presentation: the stages the next presented frames
+    /// wait for the acquire semaphore in, in place of the plan's (acquireWaitStages); 0 leaves
+    /// the wait out. std::nullopt: the plan's again.
+    static void overrideAcquireWait(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages);
+    /// Test-only: the stages the next presented frames signal the render-complete semaphore in,
+    /// in place of presentSignalStages. std::nullopt: presentSignalStages again.
+    static void overrideRenderCompleteSignal(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages);
 };
 
 }  // namespace skygraph

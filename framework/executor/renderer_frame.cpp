@@ -1,6 +1,7 @@
 // Renderer::Impl: frame slots (command buffers, fences, timestamp queries), recording a frame
 // pass by pass, submission and timings.
 #include "renderer_impl.hpp"
+#include "swapchain.hpp"
 
 namespace skygraph {
 
@@ -91,8 +92,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     }
 }
 
-void Renderer::Impl::renderFrame() {
-    const auto slot = static_cast<uint32_t>(frameIndex % frames.size());
+void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target) {
     FrameSlot& f = frames[slot];
     waitSlot(f);
     const VkFence fence = f.fence.get();
@@ -101,18 +101,54 @@ void Renderer::Impl::renderFrame() {
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     vk::check(vkBeginCommandBuffer(f.cmd, &bi), "vkBeginCommandBuffer");
-    recordFrame(f.cmd, slot, &f);
+    recordFrame(f.cmd, binding, &f);
     vk::check(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
     VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
     cbi.commandBuffer = f.cmd;
     VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     si.commandBufferInfoCount = 1;
     si.pCommandBufferInfos = &cbi;
-    vk::check(vkQueueSubmit2(dev.queue, 1, &si, f.fence.get()), "vkQueueSubmit2");
+    // Presenting: the frame waits for the acquire where the plan first uses the image, and
+    // signals the image's render-complete semaphore for the present.
+    VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    if (target) {
+        const Plan& plan = state->plan;
+        const auto resource = uint32_t(state->presentResource);
+        wait.semaphore = target->acquired;
+        wait.stageMask = acquireWaitOverride.value_or(acquireWaitStages(plan, resource));
+        signal.semaphore = target->renderComplete;
+        signal.stageMask = signalOverride.value_or(presentSignalStages(plan, resource));
+        si.waitSemaphoreInfoCount = 1;
+        si.pWaitSemaphoreInfos = &wait;
+        si.signalSemaphoreInfoCount = 1;
+        si.pSignalSemaphoreInfos = &signal;
+    }
+    // The test hook's "no wait" (stages 0) still consumes the acquire semaphore, in a batch of
+    // its own after the frame's, so that only the frame's ordering is missing.
+    VkSubmitInfo2 batches[2] = {si, {VK_STRUCTURE_TYPE_SUBMIT_INFO_2}};
+    uint32_t batchCount = 1;
+    if (target && wait.stageMask == 0) {
+        wait.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        batches[0].waitSemaphoreInfoCount = 0;
+        batches[1].waitSemaphoreInfoCount = 1;
+        batches[1].pWaitSemaphoreInfos = &wait;
+        batchCount = 2;
+    }
+    vk::check(vkQueueSubmit2(dev.queue, batchCount, batches, f.fence.get()), "vkQueueSubmit2");
     f.submitted = true;
     f.timingsPending = true;
     lastSlot = slot;
+    lastBinding = binding;
     ++frameIndex;
+}
+
+void Renderer::Impl::renderFrame() {
+    if (present)
+        throw ExecutorError("this renderer presents: render with renderFrame(Swapchain&) or "
+                            "renderFrame(const PresentTarget&)");
+    const auto slot = static_cast<uint32_t>(frameIndex % frames.size());
+    submitFrame(slot, slot, nullptr);  // headless: the binding slot is the frame slot
 }
 
 void Renderer::Impl::waitIdle() {

@@ -5,6 +5,7 @@
 //   renderer_passes.cpp     each pass's recording code, render pass, framebuffers, barriers
 //   renderer_frame.cpp      frame slots, submission, timestamps
 //   renderer_setup.cpp      the setup plan before the first frame, and reading images back
+//   renderer_present.cpp    frames into presentable images: a Swapchain's or the application's
 //   frame_recording.cpp     recording a plan's steps into a CommandSink (no device needed)
 #pragma once
 
@@ -18,6 +19,7 @@
 
 #include <skygraph/renderer.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/swapchain.hpp>
 #include <skygraph/pipeline_builder.hpp>
 #include <skygraph/shader_compiler.hpp>
 
@@ -27,6 +29,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -65,11 +68,18 @@ struct ImageCopy {
     std::map<std::tuple<int, uint32_t, uint32_t, uint32_t, uint32_t>, vk::ImageView> views;
 };
 
-/// One plan resource: its description and one or N (per frame slot) Vulkan copies.
+/// One plan resource: its description and one or N (per frame slot) Vulkan copies, or, for the
+/// Present resource of a presenting renderer, the present images.
+///
+/// Per-slot state (PassSlot, the final barriers) is kept per *binding slot*: frame slot f with
+/// present image i is binding slot f * presentImages + i. Headless there is one present image
+/// and the binding slot is the frame slot.
 struct ResourceState {
     const ResourceDesc* desc = nullptr;
     bool isImage = false;
     bool perSlot = false;  ///< The plan's PlannedResource::copies, with more than one slot.
+    bool presented = false;  ///< The present images (PresentImages), not images of our own.
+    uint32_t presentImages = 1;  ///< PlanState::presentImages.
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkImageAspectFlags aspect = 0;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
@@ -80,8 +90,11 @@ struct ResourceState {
     std::vector<ImageCopy> images;
     std::vector<OwnedBuffer> buffers;
 
-    [[nodiscard]] uint32_t copyFor(uint32_t slot) const { return perSlot ? slot : 0; }
-    /// What a barrier on this resource names in frame slot `slot`.
+    /// The copy that binding slot `slot` uses.
+    [[nodiscard]] uint32_t copyFor(uint32_t slot) const {
+        return presented ? slot % presentImages : perSlot ? slot / presentImages : 0;
+    }
+    /// What a barrier on this resource names in binding slot `slot`.
     [[nodiscard]] BarrierTarget barrierTarget(uint32_t slot) const {
         const uint32_t c = copyFor(slot);
         if (isImage) return {images.at(c).image, VK_NULL_HANDLE, aspect};
@@ -132,7 +145,8 @@ struct PassState {
     std::vector<PassSlot> slots;
 };
 
-/// Host memory that a Readback step of the frame copies its image into, one per frame slot.
+/// Host memory that a Readback step of the frame copies its image into, one per frame slot
+/// (not per binding slot).
 struct ReadbackTarget {
     uint32_t step = 0;      ///< Index into Plan::passes().
     uint32_t resource = 0;  ///< Index into Plan::resources().
@@ -155,6 +169,10 @@ struct PlanState {
     std::vector<BarrierBatch> finals;      ///< Per slot.
     std::vector<ReadbackTarget> readbacks; ///< One per Readback step of the plan.
     Plan setup;  ///< planSetup of `plan`: what ran before the first frame.
+    /// Presenting: the plan's Present resource (index into plan.resources()) and the number of
+    /// present images; headless: -1 and 1.
+    int32_t presentResource = -1;
+    uint32_t presentImages = 1;
 
     [[nodiscard]] const ReadbackTarget* readbackOf(uint32_t resource) const {
         for (const ReadbackTarget& t : readbacks)
@@ -165,7 +183,7 @@ struct PlanState {
 
 /// What recording one frame needs besides the plan's state.
 struct FrameRecording {
-    uint32_t slot = 0;
+    uint32_t slot = 0;  ///< The binding slot.
     uint64_t frameIndex = 0;
     VkSampler linearSampler = VK_NULL_HANDLE;
     VkSampler repeatSampler = VK_NULL_HANDLE;
@@ -175,16 +193,24 @@ struct FrameRecording {
     bool labels = false;  ///< A debug label around each pass.
 };
 
-/// Records frame `r.slot` of `s` into `sink`: each pass's barrier batch and work (inserted
+/// The usage flags that planned usage `u` needs of its resource, added to `image` / `buffer`.
+void addUsageFlags(const PlannedUsage& u, bool isImage, VkImageUsageFlags& image, VkBufferUsageFlags& buffer) noexcept;
+/// The image usage a layout the resource arrives in or is left in needs.
+[[nodiscard]] VkImageUsageFlags layoutUsage(VkImageLayout layout) noexcept;
+/// Every image usage plan resource `resource` needs: its usages' (transfers included), its
+/// initial and final layouts'.
+[[nodiscard]] VkImageUsageFlags planImageUsage(const Plan& plan, uint32_t resource);
+
+/// Records binding slot `r.slot` of `s` into `sink`: each pass's barrier batch and work (inserted
 /// clears and read-backs included), then the final barriers.
 void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r);
 
 /// What the executor does for plan step `pass`.
 [[nodiscard]] StepKind stepKindOf(const PlannedPass& pass);
-/// The plan's barriers of pass `ps` (before it, and in it) for frame slot `slot`, in Vulkan's
+/// The plan's barriers of pass `ps` (before it, and in it) for binding slot `slot`, in Vulkan's
 /// form, naming the slot's copies of `s`'s resources.
 void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot);
-/// The plan's final barriers, per frame slot (`slots` of them).
+/// The plan's final barriers, per binding slot (`slots` of them).
 void translateFinalBarriers(PlanState& s, uint32_t slots);
 
 struct FrameSlot {
@@ -229,7 +255,20 @@ struct Renderer::Impl {
     std::vector<detail::FrameSlot> frames;
     uint64_t frameIndex = 0;
     int64_t lastSlot = -1;
+    uint32_t lastBinding = 0;  ///< The binding slot of the last frame (lastSlot's, headless).
     std::vector<PassTiming> timings;
+
+    /// Presenting: the images the plan's Present resource is, and where they came from.
+    struct PresentBinding {
+        PresentImages images;
+        const Swapchain::Impl* swapchain = nullptr;  ///< Null: the application's own images.
+        uint64_t generation = 0;                     ///< The swapchain's, when bound.
+    };
+    std::optional<PresentBinding> present;
+    /// Test hooks (RendererAccess): stages in place of the plan's acquire wait (0: no wait) and
+    /// of presentSignalStages.
+    std::optional<VkPipelineStageFlags2> acquireWaitOverride;
+    std::optional<VkPipelineStageFlags2> signalOverride;
 
     Impl(Device& d, RendererOptions o)
         : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
@@ -283,8 +322,22 @@ struct Renderer::Impl {
     /// Records the current plan's frame for `slot` into `cmd` (begun by the caller); with
     /// `frame`, timestamps and labels too.
     void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame);
+    /// Records the current plan into frame slot `slot` (its fence waited for) with binding
+    /// slot `binding` and submits it; with `target`, waiting for its acquire semaphore and
+    /// signalling its render-complete semaphore.
+    void submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target);
     void renderFrame();
     void waitIdle();
+
+    // --- renderer_present.cpp: presenting -----------------------------------------------------
+    /// Makes `images` the plan's Present resource and rebuilds the plan state (compiled again at
+    /// their extent when it differs). On failure throws and keeps the old state and binding.
+    void bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain);
+    /// The checks of the binding against a plan state being built; sets presentResource.
+    void describePresent(detail::PlanState& s) const;
+    [[nodiscard]] uint32_t waitForFrameSlot();
+    void renderFrame(const PresentTarget& target);
+    PresentStatus renderFrame(Swapchain& swapchain);
 };
 
 }  // namespace skygraph

@@ -35,7 +35,7 @@ void refuseOversizedResources(const PlanState& s, VkPhysicalDevice physical, uin
     VkDeviceSize total = 0;
     for (const ResourceState& r : s.resources) {
         const ResourceDesc& d = *r.desc;
-        const uint32_t copies = r.perSlot ? slots : 1;
+        const uint32_t copies = r.presented ? 0 : r.perSlot ? slots : 1;  // present images are not ours
         VkDeviceSize bytes = 0;
         if (!r.isImage) {
             const bool storage = r.bufferUsage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -76,6 +76,52 @@ void refuseOversizedResources(const PlanState& s, VkPhysicalDevice physical, uin
 }
 
 }  // namespace
+
+namespace detail {
+
+VkImageUsageFlags layoutUsage(VkImageLayout layout) noexcept {
+    if (layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) return VK_IMAGE_USAGE_SAMPLED_BIT;
+    if (layout == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) return VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    return 0;
+}
+
+void addUsageFlags(const PlannedUsage& u, bool isImage, VkImageUsageFlags& image, VkBufferUsageFlags& buffer) noexcept {
+    const BindAs as = resolvedBinding(u.usage, isImage);
+    switch (u.usage.stage) {
+        case Stage::ColorAttachment: image |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT; break;
+        case Stage::DepthAttachment: image |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT; break;
+        case Stage::Vertex: case Stage::Fragment: case Stage::Compute:
+            if (as == BindAs::Sampled) image |= VK_IMAGE_USAGE_SAMPLED_BIT;
+            else if (as == BindAs::Uniform) buffer |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+            else {
+                image |= VK_IMAGE_USAGE_STORAGE_BIT;
+                buffer |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            }
+            break;
+        case Stage::VertexInput:
+            buffer |= as == BindAs::Index ? VK_BUFFER_USAGE_INDEX_BUFFER_BIT : VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+            break;
+        case Stage::Indirect: buffer |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; break;
+        case Stage::Transfer:
+            // Images the executor makes can always be copied (ResourceState::imageUsage);
+            // images it is given must say so.
+            if (readsContents(u.usage.access)) image |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+            if (writesContents(u.usage.access)) image |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+            break;
+    }
+}
+
+VkImageUsageFlags planImageUsage(const Plan& plan, uint32_t resource) {
+    const PlannedResource& res = plan.resources().at(resource);
+    VkImageUsageFlags image = layoutUsage(res.initialLayout) | layoutUsage(res.finalLayout);
+    VkBufferUsageFlags buffer = 0;
+    for (const PlannedPass& pass : plan.passes())
+        for (const PlannedUsage& u : pass.usages)
+            if (u.resource == resource) addUsageFlags(u, true, image, buffer);
+    return image;
+}
+
+}  // namespace detail
 
 OwnedBuffer Renderer::Impl::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
     OwnedBuffer b;
@@ -129,6 +175,7 @@ VkImageView Renderer::Impl::view(ResourceState& r, uint32_t copy, VkImageViewTyp
 
 void Renderer::Impl::describeResources(PlanState& s) {
     const uint32_t slots = options.framesInFlight;
+    describePresent(s);
     s.resources.resize(s.plan.resources().size());
     for (size_t i = 0; i < s.plan.resources().size(); ++i) {
         const PlannedResource& pr = s.plan.resources()[i];
@@ -137,7 +184,9 @@ void Renderer::Impl::describeResources(PlanState& s) {
         ResourceState& r = s.resources[i];
         r.desc = &s.graph.resources[pr.decl];
         r.isImage = r.desc->isImage();
-        r.perSlot = perFrameInFlight(pr.copies) && slots > 1;
+        r.presented = int32_t(i) == s.presentResource;
+        r.perSlot = perFrameInFlight(pr.copies) && slots > 1 && !r.presented;
+        r.presentImages = s.presentImages;
         if (pr.copies == ResourceCopies::PerFrameWrittenNotExported && r.isImage &&
             pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
             pr.finalLayout != pr.initialLayout) {
@@ -155,35 +204,15 @@ void Renderer::Impl::describeResources(PlanState& s) {
     // Layouts the resource arrives in or is left in need their usage flags too (an
     // environment map exported as ShaderRead is sampled by the next graph).
     for (size_t i = 0; i < s.plan.resources().size(); ++i) {
-        for (const VkImageLayout l : {s.plan.resources()[i].initialLayout, s.plan.resources()[i].finalLayout}) {
-            if (l == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
-            if (l == VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) s.resources[i].imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
-        }
+        for (const VkImageLayout l : {s.plan.resources()[i].initialLayout, s.plan.resources()[i].finalLayout})
+            s.resources[i].imageUsage |= layoutUsage(l);
     }
     for (const PlannedPass& pass : s.plan.passes()) {
         for (const PlannedUsage& u : pass.usages) {
             if (u.resource >= s.resources.size())
                 throw ExecutorError(passError(pass, "", "usage refers to an unknown resource"));
             ResourceState& r = s.resources[u.resource];
-            const BindAs as = resolvedBinding(u.usage, r.desc->isImage());
-            switch (u.usage.stage) {
-                case Stage::ColorAttachment: r.imageUsage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT; break;
-                case Stage::DepthAttachment: r.imageUsage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT; break;
-                case Stage::Vertex: case Stage::Fragment: case Stage::Compute:
-                    if (as == BindAs::Sampled) r.imageUsage |= VK_IMAGE_USAGE_SAMPLED_BIT;
-                    else if (as == BindAs::Uniform) r.bufferUsage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
-                    else {
-                        r.imageUsage |= VK_IMAGE_USAGE_STORAGE_BIT;
-                        r.bufferUsage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-                    }
-                    break;
-                case Stage::VertexInput:
-                    r.bufferUsage |= as == BindAs::Index ? VK_BUFFER_USAGE_INDEX_BUFFER_BIT
-                                                         : VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
-                    break;
-                case Stage::Indirect: r.bufferUsage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; break;
-                case Stage::Transfer: break;
-            }
+            addUsageFlags(u, r.desc->isImage(), r.imageUsage, r.bufferUsage);
         }
     }
     refuseOversizedResources(s, dev.physical, s.outputWidth(), s.outputHeight(), options.framesInFlight);
@@ -207,6 +236,15 @@ void Renderer::Impl::createResources(PlanState& s) {
         r.height = ext[1];
         r.mips = std::max(1u, d.mipCount(s.outputWidth(), s.outputHeight()));
         r.layers = std::max(1u, d.layers);
+        if (r.presented) {
+            // The present images: checked against the plan by describePresent.
+            for (const VkImage image : present->images.images) {
+                ImageCopy img;
+                img.image = image;
+                r.images.push_back(std::move(img));
+            }
+            continue;
+        }
         VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         ci.flags = d.type == ResourceType::Cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
         ci.imageType = VK_IMAGE_TYPE_2D;
@@ -264,7 +302,7 @@ void Renderer::Impl::createResources(PlanState& s) {
 }
 
 void Renderer::Impl::buildSized(PlanState& s) {
-    const uint32_t slots = options.framesInFlight;
+    const uint32_t slots = options.framesInFlight * s.presentImages;  // binding slots
     createResources(s);
     for (PassState& ps : s.passes) {
         ps.slots.clear();

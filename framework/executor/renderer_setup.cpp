@@ -108,7 +108,9 @@ void Renderer::Impl::runSetup(PlanState& s) {
     submitAndWait([&](CommandSink& sink) {
         const size_t copies = options.framesInFlight;
         for (uint32_t c = 0; c < copies; ++c) {
-            const auto target = [&](uint32_t r) { return s.resources[frameResource[r]].barrierTarget(c); };
+            // Copy c of a per-slot resource is frame slot c's, whose first binding slot is this.
+            const uint32_t binding = c * s.presentImages;
+            const auto target = [&](uint32_t r) { return s.resources[frameResource[r]].barrierTarget(binding); };
             for (size_t i = 0; i < setup.passes().size(); ++i) {
                 const PlannedPass& step = setup.passes()[i];
                 const PlannedUsage& u = step.usages[0];

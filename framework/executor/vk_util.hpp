@@ -30,6 +30,9 @@ struct DeviceFunctions {
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
 };
 
+using Semaphore = Owned<VkSemaphore, vkDestroySemaphore>;
+using Swapchain = Owned<VkSwapchainKHR, vkDestroySwapchainKHR>;
+
 /// Index of a memory type with `required` properties among `typeBits`; throws if none.
 [[nodiscard]] uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,
                                       VkMemoryPropertyFlags required);
@@ -44,6 +47,7 @@ struct Device::Impl {
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
+    VkSurfaceKHR surface = VK_NULL_HANDLE;  ///< DeviceOptions::presentation's; destroyed before the instance.
     uint32_t queueFamily = 0;
     std::string name;
     bool validation = false;
@@ -56,6 +60,7 @@ struct Device::Impl {
     mutable std::mutex mutex;
     uint32_t count = 0;
     std::vector<ValidationMessage> kept;
+    uint32_t layerVersion = 0;  ///< The validation layer's specVersion; 0 without validation.
 
     ~Impl();
 };

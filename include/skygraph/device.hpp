@@ -5,7 +5,9 @@
 #include <vulkan/vulkan_core.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -20,6 +22,19 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// What presenting to a window needs of the Device. Both halves come from the application's
+/// window library (GLFW: glfwGetRequiredInstanceExtensions and glfwCreateWindowSurface); the
+/// library itself depends on no window system.
+struct PresentationOptions {
+    /// Instance extensions the window system needs: VK_KHR_surface and the platform's (e.g.
+    /// VK_KHR_xcb_surface). Each must be available, or Device::create throws naming it.
+    std::vector<std::string> instanceExtensions;
+    /// Makes the window's surface once the instance exists; called once, during
+    /// Device::create. The Device owns what it returns and destroys it before the instance.
+    /// Returning VK_NULL_HANDLE (or throwing) makes Device::create throw ExecutorError.
+    std::function<VkSurfaceKHR(VkInstance)> createSurface;
+};
+
 struct DeviceOptions {
     /// Physical device by index ("0") or case-insensitive name substring ("llvmpipe").
     /// Empty: a discrete GPU, else an integrated one, else any, else the CPU (lavapipe).
@@ -29,6 +44,11 @@ struct DeviceOptions {
     bool validation = false;
     /// Log every validation message through spdlog as it arrives (they are always counted).
     bool logMessages = true;
+    /// Set to present to a window: the instance gets these extensions, the surface is made
+    /// with it, and only a device with a graphics+compute queue that presents to that surface
+    /// qualifies (VK_KHR_swapchain is then enabled). Empty: headless, no surface, no
+    /// VK_KHR_swapchain.
+    std::optional<PresentationOptions> presentation;
 };
 
 /// One validation / debug-utils message that was counted. A plain value; copies own their text.
@@ -38,15 +58,17 @@ struct ValidationMessage {
     std::string message;
 };
 
-/// Instance, physical device, logical device and one graphics+compute queue. Owns every
+/// Instance, physical device, logical device and one graphics+compute queue (which also
+/// presents, when DeviceOptions::presentation is set), and the surface then. Owns every
 /// handle it creates and destroys them with itself; not copyable or movable (renderers keep a
 /// reference). Must outlive every Renderer made from it and every SharedImage of theirs.
 /// Validation messages may arrive on any thread: the message accessors are thread-safe,
 /// the rest is for the thread that uses the device.
 class Device {
 public:
-    /// Creates the instance and device; the caller owns the result. Throws ExecutorError
-    /// when no device qualifies, naming the devices there are, or when validation is asked
+    /// Creates the instance and device (and the surface, when presenting); the caller owns the
+    /// result. Throws ExecutorError when no device qualifies, naming the devices there are and
+    /// why each does not (e.g. "cannot present to the surface"), or when validation is asked
     /// for and the Khronos validation layer is not installed.
     static std::unique_ptr<Device> create(const DeviceOptions& options = {});
     ~Device();
@@ -57,7 +79,11 @@ public:
     [[nodiscard]] VkInstance instance() const noexcept;
     [[nodiscard]] VkPhysicalDevice physicalDevice() const noexcept;
     [[nodiscard]] VkDevice device() const noexcept;
-    /// The one queue (graphics and compute) every renderer on this device submits to.
+    /// The surface made by DeviceOptions::presentation, owned by this Device and valid while it
+    /// lives; VK_NULL_HANDLE when headless.
+    [[nodiscard]] VkSurfaceKHR surface() const noexcept;
+    /// The one queue (graphics and compute, and present when there is a surface) every
+    /// renderer on this device submits to.
     [[nodiscard]] VkQueue queue() const noexcept;
     [[nodiscard]] uint32_t queueFamily() const noexcept;
     /// The physical device's name; the reference is valid while this Device lives.

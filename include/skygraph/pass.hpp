@@ -81,8 +81,9 @@ struct PipelineContext {
     const PlannedPass* pass = nullptr;
     const PassDesc* desc = nullptr;
     std::span<const BoundResource> resources;  ///< Parallel to pass->usages (frame slot 0).
-    /// The resources of every frame slot (RendererOptions::framesInFlight of them), each
-    /// parallel to pass->usages; element 0 is `resources`. A slot's handles stay the same for
+    /// The resources of every frame slot (RendererOptions::framesInFlight of them; while the
+    /// renderer presents, one per frame slot and swapchain image, each used by that frame
+    /// slot's frames only), each parallel to pass->usages; element 0 is `resources`. A slot's handles stay the same for
     /// the pass implementation's whole life: `record` for frame slot s (RecordContext::frameSlot)
     /// gets exactly frameSlots[s], so what a pass prepares per slot here (views, descriptor
     /// writes, scratch buffers) stays valid. The spans are valid only during the call.

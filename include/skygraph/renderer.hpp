@@ -8,6 +8,7 @@
 #include <skygraph/image_data.hpp>
 #include <skygraph/plan.hpp>
 #include <skygraph/shared_image.hpp>
+#include <skygraph/swapchain.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -31,6 +32,14 @@ struct RendererOptions {
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
+};
+
+/// What renderFrame(Swapchain&) did.
+enum class PresentStatus : uint8_t {
+    Presented,  ///< A frame was rendered and queued for presentation.
+    /// Nothing was rendered: the window has no size (0x0, e.g. minimized), or the surface
+    /// kept going out of date while the swapchain was re-created for it.
+    Paused,
 };
 
 /// GPU time of one pass in the last completed frame of a slot.
@@ -61,9 +70,38 @@ public:
 
     /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
     /// otherwise: up to framesInFlight frames run at once. Throws ExecutorError for a Vulkan
-    /// failure; what a pass implementation throws comes out as it is, and that frame is not
-    /// submitted.
+    /// failure, and once the renderer presents (renderFrame(Swapchain&), setPresentImages);
+    /// what a pass implementation throws comes out as it is, and that frame is not submitted.
     void renderFrame();
+    /// Presents a frame through `swapchain` (made for this renderer's device and plan): waits
+    /// for the frame slot, acquires an image, records the plan into it, submits waiting for
+    /// the acquire at the stages of the plan's first use of the image and signalling the
+    /// image's render-complete semaphore, and presents. The plan's Present resource is the
+    /// acquired image (no copy of it is made). When the swapchain is out of date, suboptimal or
+    /// resized (Swapchain::resize), it is re-created first and the plan recompiled at its new
+    /// extent (as resize() does). Returns Paused, rendering nothing, while the window is 0x0.
+    /// The swapchain must outlive this renderer's use of it. Throws ExecutorError (e.g. the
+    /// plan does not compile at the new size: the old plan stays, and the next call tries again).
+    PresentStatus renderFrame(Swapchain& swapchain);
+    /// Presenting into images of the application's own (e.g. its own VkSwapchainKHR's): they
+    /// become the plan's Present resource, and the plan state is rebuilt, compiled again at
+    /// their extent if it differs. Their format must be the Present resource's and their usage
+    /// must include presentRequirements(compiled()).usage. Call it again after re-creating them.
+    /// The images are borrowed: keep them alive while this renderer renders into them. Throws
+    /// ExecutorError on a mismatch, keeping the old state.
+    void setPresentImages(PresentImages images);
+    /// Waits until the frame slot that the next frame records into is free (its previous frame
+    /// has finished) and returns its index, below framesInFlight. Semaphores that slot's last
+    /// frame waited for may then be reused: with images of your own, acquire with a semaphore
+    /// per frame slot after this call.
+    [[nodiscard]] uint32_t waitForFrameSlot();
+    /// Renders one frame into `target.image` of the images given to setPresentImages: waits
+    /// for `target.acquired` at the stages of the plan's first use of the image, records the
+    /// plan (its final barrier leaves the image in PRESENT_SRC_KHR) and signals
+    /// `target.renderComplete`; the caller presents (vkQueuePresentKHR waiting for it) on
+    /// Device::queue(). Throws ExecutorError without setPresentImages or for an index out of
+    /// range.
+    void renderFrame(const PresentTarget& target);
     /// Waits until every submitted frame has finished.
     void waitIdle();
     /// Waits for the most recent frame and returns a copy, owned by the caller, of what its one
@@ -82,7 +120,8 @@ public:
     [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
     /// Compiles the graph again at a new output extent (CompiledGraph::resized) and rebuilds
     /// the plan state. Throws ExecutorError when the graph does not compile at that size or
-    /// the device cannot hold it; the old plan keeps running then.
+    /// the device cannot hold it; the old plan keeps running then. A presenting renderer
+    /// follows its images' extent instead (a size other than theirs throws).
     void resize(uint32_t width, uint32_t height);
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
     /// frame has finished. On failure throws ExecutorError and keeps the old one running.

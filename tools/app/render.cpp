@@ -105,6 +105,81 @@ ImageData toImageData(HdrImage&& image) {
 
 }  // namespace
 
+FrameInputs loadFrameInputs(const RenderOptions& options) {
+    FrameInputs in;
+    in.registry = options.passes ? options.passes->registry() : PassRegistry::withBuiltins();
+    in.passes = options.passes ? options.passes : &genericOnly();
+    in.graph = options.graphText.empty()
+                   ? loadGraphFile(options.graph, in.registry)
+                   : parseGraph(options.graphText, std::string(kBuiltinFrameGraphName), in.registry);
+    GraphDesc& graph = in.graph;
+    std::optional<Scene>& scene = in.scene;
+    if (!options.sceneText.empty())
+        scene = parseScene(options.sceneText, std::string(kBuiltinSceneName), std::filesystem::current_path());
+    else if (!options.scene.empty())
+        scene = loadSceneFile(options.scene);
+    // A file environment is loaded before compiling: its size is the extent of the graph's
+    // `equirect` (data-driven, so the plan's subresources match the image).
+    std::optional<HdrImage>& environment = in.environment;
+    if (scene && scene->environment && !scene->environment->procedural) {
+        environment = loadHdrImage(scene->environment->file);
+        spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
+                     environment->height);
+        if (!setEquirectExtent(graph, environment->width, environment->height))
+            spdlog::warn("graph '{}' has no resource '{}': the environment file is not used", graph.name,
+                         kEquirect);
+    }
+    // No more environment than the view can show: both graphs get the same sizes, so the
+    // frame imports exactly what the environment graph exports.
+    if (environment && options.fitEnvironmentToView) {
+        in.environmentSizes = viewEnvironmentSizes(graph, options.height, scene->camera.fovYDeg, environment->width);
+        if (in.environmentSizes) {
+            resizeEnvironmentGraph(graph, *in.environmentSizes);
+            spdlog::info("environment: cube {}^2, prefiltered {}^2 for a {}-pixel-tall view at {} degrees "
+                         "(equirect {} wide)",
+                         in.environmentSizes->environment, in.environmentSizes->prefiltered, options.height,
+                         scene->camera.fovYDeg, environment->width);
+        }
+    }
+    CompileOptions& co = in.compile;
+    if (scene) {
+        // Only the scene features this graph declares: pathtrace.json has no skybox.
+        for (const auto& [name, on] : sceneFeatures(*scene)) {
+            const std::string& feature = name;  // clang 14 (CI's sanitizer build) cannot capture bindings
+            if (std::any_of(graph.features.begin(), graph.features.end(),
+                            [&](const FeatureDecl& f) { return f.name == feature; }))
+                co.features[name] = on;
+        }
+        for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
+    }
+    for (const auto& [name, on] : options.features) co.features[name] = on;
+    co.outputWidth = options.width;
+    co.outputHeight = options.height;
+    return in;
+}
+
+FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const FrameInputs& inputs,
+                                      const RenderOptions& options) {
+    // The environment pipeline runs once, now (the environment does not change during a
+    // run), and builds only the products this plan samples; its renderer keeps them alive.
+    FrameEnvironment env;
+    if (!inputs.environment) return env;
+    const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, inputs.registry);
+    env.products = environmentProducts(plan, inputs.graph, envGraph ? &*envGraph : nullptr);
+    if (!env.products.empty())
+        env.renderer = bakeForFrame(device, *envGraph, *inputs.environment, env.products, inputs.environmentSizes,
+                                    inputs.passes);
+    return env;
+}
+
+void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvironment& environment) {
+    if (inputs.scene) renderer.frameData().set(*inputs.scene);
+    for (const auto& name : environment.products)
+        renderer.importImage(name, environment.renderer->shareImage(name));
+    if (inputs.environment && renderer.plan().resourceIndex(kEquirect) >= 0)
+        renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*inputs.environment)));
+}
+
 int renderCommand(const RenderOptions& options) {
     try {
         if (options.graph.empty() && options.graphText.empty()) {
@@ -115,53 +190,9 @@ int renderCommand(const RenderOptions& options) {
             std::cerr << "skygraph render: --width, --height and --frames must be at least 1\n";
             return 1;
         }
-        const PassRegistry builtins = options.passes ? PassRegistry{} : PassRegistry::withBuiltins();
-        const PassRegistry& registry = options.passes ? options.passes->registry() : builtins;
-        const PassLibrary* passes = options.passes ? options.passes : &genericOnly();
-        GraphDesc graph = options.graphText.empty()
-                                    ? loadGraphFile(options.graph, registry)
-                                    : parseGraph(options.graphText, std::string(kBuiltinFrameGraphName), registry);
-        std::optional<Scene> scene;
-        if (!options.sceneText.empty())
-            scene = parseScene(options.sceneText, std::string(kBuiltinSceneName), std::filesystem::current_path());
-        else if (!options.scene.empty())
-            scene = loadSceneFile(options.scene);
-        // A file environment is loaded before compiling: its size is the extent of the graph's
-        // `equirect` (data-driven, so the plan's subresources match the image).
-        std::optional<HdrImage> environment;
-        if (scene && scene->environment && !scene->environment->procedural) {
-            environment = loadHdrImage(scene->environment->file);
-            spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
-                         environment->height);
-            if (!setEquirectExtent(graph, environment->width, environment->height))
-                spdlog::warn("graph '{}' has no resource '{}': the environment file is not used", graph.name,
-                             kEquirect);
-        }
-        // No more environment than the view can show: both graphs get the same sizes, so the
-        // frame imports exactly what the environment graph exports.
-        std::optional<EnvironmentSizes> environmentSizes;
-        if (environment && options.fitEnvironmentToView) {
-            environmentSizes = viewEnvironmentSizes(graph, options.height, scene->camera.fovYDeg, environment->width);
-            if (environmentSizes) {
-                resizeEnvironmentGraph(graph, *environmentSizes);
-                spdlog::info("environment: cube {}^2, prefiltered {}^2 for a {}-pixel-tall view at {} degrees "
-                             "(equirect {} wide)",
-                             environmentSizes->environment, environmentSizes->prefiltered, options.height,
-                             scene->camera.fovYDeg, environment->width);
-            }
-        }
-        CompileOptions co;
-        if (scene) {
-            // Only the scene features this graph declares: pathtrace.json has no skybox.
-            for (const auto& [name, on] : sceneFeatures(*scene)) {
-                const std::string& feature = name;  // clang 14 (CI's sanitizer build) cannot capture bindings
-                if (std::any_of(graph.features.begin(), graph.features.end(),
-                                [&](const FeatureDecl& f) { return f.name == feature; }))
-                    co.features[name] = on;
-            }
-            for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
-        }
-        for (const auto& [name, on] : options.features) co.features[name] = on;
+        FrameInputs inputs = loadFrameInputs(options);
+        const GraphDesc& graph = inputs.graph;
+        CompileOptions co = inputs.compile;
         // Headless: the swapchain target is an image of our own, read back instead of presented.
         co.presentReplacement = ExternalState::TransferSrc;
         std::filesystem::path output = options.output;
@@ -179,8 +210,6 @@ int renderCommand(const RenderOptions& options) {
             if (output.empty()) output = "skygraph.png";
             co.readbacks = {target};
         }
-        co.outputWidth = options.width;
-        co.outputHeight = options.height;
         CompiledGraph compiled(graph, co);
         for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
 
@@ -188,25 +217,12 @@ int renderCommand(const RenderOptions& options) {
         dopts.device = options.device;
         dopts.validation = options.validate;
         auto device = Device::create(dopts);
-        // The environment pipeline runs once, now (the environment does not change during a
-        // run), and builds only the products this plan samples; its renderer keeps them alive.
-        std::unique_ptr<Renderer> environmentRenderer;
-        std::set<std::string, std::less<>> products;
-        if (environment) {
-            const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, registry);
-            products = environmentProducts(compiled.plan(), graph, envGraph ? &*envGraph : nullptr);
-            if (!products.empty())
-                environmentRenderer = bakeForFrame(*device, *envGraph, *environment, products, environmentSizes,
-                                                   passes);
-        }
+        const FrameEnvironment environment = bakeFrameEnvironment(*device, compiled.plan(), inputs, options);
         RendererOptions ropts;
         ropts.framesInFlight = options.framesInFlight;
-        ropts.passes = passes;
+        ropts.passes = inputs.passes;
         Renderer renderer(*device, std::move(compiled), ropts);
-        if (scene) renderer.frameData().set(*scene);
-        for (const auto& name : products) renderer.importImage(name, environmentRenderer->shareImage(name));
-        if (environment && renderer.plan().resourceIndex(kEquirect) >= 0)
-            renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*environment)));
+        attachFrameInputs(renderer, inputs, environment);
         for (uint32_t i = 0; i < options.frames; ++i) {
             renderer.renderFrame();
             if (options.onFrameSubmitted) options.onFrameSubmitted(i + 1, options.frames);

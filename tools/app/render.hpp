@@ -3,15 +3,28 @@
 // Application code: the command line links it, and so do the tests that render through it.
 #pragma once
 
+#include "environment_graph.hpp"
+
+#include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
+#include <skygraph/graph.hpp>
+#include <skygraph/hdr_image.hpp>
+#include <skygraph/pass_registry.hpp>
+#include <skygraph/plan.hpp>
+#include <skygraph/scene.hpp>
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
+#include <optional>
+#include <set>
 #include <string>
 
 namespace skygraph {
+class Device;
 class PassLibrary;
+class Renderer;
 }
 
 namespace skygraph::app {
@@ -54,6 +67,41 @@ struct RenderOptions {
     /// draw a progress bar. May be empty.
     std::function<void(uint32_t submitted, uint32_t total)> onFrameSubmitted;
 };
+
+/// What `render` and `view` share before compiling: the graph and the scene loaded, the
+/// environment file read (and the environment sized for the view), and the compile options the
+/// scene, the features and the size give. A plain value; borrows RenderOptions::passes.
+struct FrameInputs {
+    PassRegistry registry;  ///< The declarations the graph was loaded with.
+    /// The recording code: RenderOptions::passes, else Generic for every pass type.
+    const PassLibrary* passes = nullptr;
+    GraphDesc graph;
+    std::optional<Scene> scene;
+    std::optional<HdrImage> environment;  ///< The scene's environment file, if it has one.
+    std::optional<EnvironmentSizes> environmentSizes;
+    /// Features and output size; the caller adds presentation or read-backs.
+    CompileOptions compile;
+};
+
+/// Loads what `options` names. Throws GraphError for graph and scene files, std::exception
+/// for others (an unreadable environment file).
+[[nodiscard]] FrameInputs loadFrameInputs(const RenderOptions& options);
+
+/// The environment a frame samples, baked once (graphs/ibl.json) for what `plan` imports.
+struct FrameEnvironment {
+    std::unique_ptr<Renderer> renderer;  ///< Owns the products; null when nothing was baked.
+    std::set<std::string, std::less<>> products;
+};
+
+/// Bakes the environment products `plan` (compiled from inputs.graph) samples, when the scene
+/// has an environment file; nothing otherwise. The result must outlive the frame renderer's
+/// use of the products.
+[[nodiscard]] FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const FrameInputs& inputs,
+                                                    const RenderOptions& options);
+
+/// Hands `renderer` the scene (FrameData), the baked products (importImage) and the
+/// environment file's pixels (setExternalImage; moved out of `inputs`).
+void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvironment& environment);
 
 /// Compiles and renders a graph file, writing the swapchain target. Returns the command
 /// line's exit status (0 ok, 1 user error with a message on stderr). Never throws. Everything

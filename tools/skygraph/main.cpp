@@ -7,6 +7,7 @@
 #if SKYGRAPH_HAS_EXECUTOR
 #include "render_command.hpp"
 #include "cubemap_command.hpp"
+#include "view_command.hpp"
 #endif
 
 #include <CLI/CLI.hpp>
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
 #if SKYGRAPH_HAS_EXECUTOR
         addRenderCommand(app),
         addCubemapCommand(app),
+        addViewCommand(app),
 #endif
     };
 

@@ -1,0 +1,125 @@
+// Renderer::Impl: frames into presentable images, a Swapchain's (acquire, render, present,
+// re-create) or the application's own.
+#include "renderer_impl.hpp"
+#include "swapchain.hpp"
+
+#include <optional>
+
+namespace skygraph {
+
+using namespace detail;
+
+namespace {
+
+std::string extentText(VkExtent2D e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
+
+}  // namespace
+
+void Renderer::Impl::describePresent(PlanState& s) const {
+    s.presentResource = -1;
+    s.presentImages = 1;
+    if (!present) return;
+    const PresentImages& p = present->images;
+    const int32_t index = presentResource(s.plan);
+    if (index < 0)
+        throw ExecutorError("graph '" + s.graph.name + "' presents nothing (no resource has `final: Present`), "
+                            "but the renderer renders into present images");
+    const PlannedResource& res = s.plan.resources()[size_t(index)];
+    const ResourceDesc& desc = s.graph.resources.at(res.decl);
+    const std::string what = "present resource '" + desc.name + "': ";
+    if (res.finalLayout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)
+        throw ExecutorError(what + "the plan was compiled with CompileOptions::presentReplacement, for rendering "
+                                   "headless; compile it to present");
+    if (p.format != desc.format.format)
+        throw ExecutorError(what + "its format is " + std::string(desc.format.name) + ", the present images' is " +
+                            (findFormat(p.format) ? std::string(findFormat(p.format)->name)
+                                                  : "VkFormat " + std::to_string(int(p.format))));
+    const auto ext = desc.extent.resolve(s.outputWidth(), s.outputHeight());
+    if (ext[0] != p.extent.width || ext[1] != p.extent.height || desc.layers > 1 ||
+        desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)
+        throw ExecutorError(what + "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
+                            ", the present images are " + extentText(p.extent) + " (one mip, one layer)");
+    const VkImageUsageFlags need = planImageUsage(s.plan, uint32_t(index));
+    if ((need & ~p.usage) != 0)
+        throw ExecutorError(what + "the plan needs image usage " + std::to_string(need) +
+                            ", the present images were created with " + std::to_string(p.usage));
+    s.presentResource = index;
+    s.presentImages = static_cast<uint32_t>(p.images.size());
+}
+
+void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain) {
+    if (images.images.empty()) throw ExecutorError("setPresentImages: no images");
+    if (images.extent.width == 0 || images.extent.height == 0) throw ExecutorError("setPresentImages: 0x0 images");
+    std::optional<CompiledGraph> next;
+    const CompiledGraph& running = state->compiled;
+    if (running.outputWidth() != images.extent.width || running.outputHeight() != images.extent.height) {
+        try {
+            next.emplace(running.resized(images.extent.width, images.extent.height));
+        } catch (const GraphError& e) {
+            throw ExecutorError("presenting at " + extentText(images.extent) + ": " + e.what());
+        }
+    } else {
+        next.emplace(running);
+    }
+    std::optional<PresentBinding> previous = std::move(present);
+    present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->generation : 0};
+    try {
+        waitIdle();
+        auto built = build(std::move(*next));  // throws: the old plan and binding stay
+        vk::check(vkDeviceWaitIdle(vkd), "vkDeviceWaitIdle");
+        state = std::move(built);
+        lastSlot = -1;
+    } catch (...) {
+        present = std::move(previous);
+        throw;
+    }
+}
+
+uint32_t Renderer::Impl::waitForFrameSlot() {
+    const auto slot = static_cast<uint32_t>(frameIndex % frames.size());
+    waitSlot(frames[slot]);
+    return slot;
+}
+
+void Renderer::Impl::renderFrame(const PresentTarget& target) {
+    if (!present) throw ExecutorError("renderFrame(PresentTarget): no present images (setPresentImages)");
+    if (target.image >= state->presentImages)
+        throw ExecutorError("renderFrame(PresentTarget): image " + std::to_string(target.image) + " of " +
+                            std::to_string(state->presentImages));
+    if (!target.acquired || !target.renderComplete)
+        throw ExecutorError("renderFrame(PresentTarget): both semaphores are needed");
+    const uint32_t slot = waitForFrameSlot();
+    submitFrame(slot, slot * state->presentImages + target.image, &target);
+}
+
+PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
+    Swapchain::Impl& sc = SwapchainAccess::impl(swapchain);
+    if (&sc.device != &device) throw ExecutorError("renderFrame: the swapchain was made for another device");
+    // An out-of-date acquire re-creates and tries again; the surface changing size faster
+    // than that is not presented this time.
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        const PresentRequirements need = presentRequirements(state->compiled);
+        if (sc.needsRecreate(need)) {
+            // Nothing may use the old images: every frame and every present is done.
+            waitIdle();
+            vk::check(vkQueueWaitIdle(dev.queue), "vkQueueWaitIdle");
+            sc.recreate(need);
+        }
+        if (sc.paused()) return PresentStatus::Paused;
+        if (!present || present->swapchain != &sc || present->generation != sc.generation) {
+            bindPresentImages(PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage}, &sc);
+            sc.releaseRetired();  // no view of its images is left
+        }
+        const uint32_t slot = waitForFrameSlot();
+        const VkSemaphore acquired = sc.acquireSemaphore(slot);
+        uint32_t image = 0;
+        if (sc.acquire(acquired, image) == VK_ERROR_OUT_OF_DATE_KHR) continue;
+        const PresentTarget target{image, acquired, sc.renderComplete.at(image).get()};
+        submitFrame(slot, slot * state->presentImages + image, &target);
+        sc.present(image);
+        return PresentStatus::Presented;
+    }
+    return PresentStatus::Paused;
+}
+
+}  // namespace skygraph

@@ -1,0 +1,79 @@
+// Private to the executor: a Swapchain's state, which Renderer::renderFrame(Swapchain&) drives
+// (acquire, present, re-create), and where the present semaphores' stages come from.
+#pragma once
+
+#include "vk_util.hpp"
+
+#include <skygraph/plan.hpp>
+#include <skygraph/swapchain.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace skygraph {
+
+namespace detail {
+
+/// The stages the frame waits for the acquire semaphore of its Present resource `resource`
+/// in, as the plan states them (Presentation::acquireWaitStages). Throws ExecutorError when
+/// the plan does not present it.
+[[nodiscard]] VkPipelineStageFlags2 acquireWaitStages(const Plan& plan, uint32_t resource);
+/// The stages the frame signals that image's render-complete semaphore in, as the plan
+/// states them (Presentation::renderCompleteStages).
+[[nodiscard]] VkPipelineStageFlags2 presentSignalStages(const Plan& plan, uint32_t resource);
+
+/// The Present resource of `plan` (index into its resources), or -1 when it presents nothing.
+/// Throws ExecutorError when it presents several.
+[[nodiscard]] int32_t presentResource(const Plan& plan);
+
+}  // namespace detail
+
+struct Swapchain::Impl {
+    Device& device;
+    Device::Impl& dev;
+    PresentRequirements requirements;
+    PresentMode requested = PresentMode::Fifo;
+    PresentMode mode = PresentMode::Fifo;
+    VkExtent2D wanted{0, 0};  ///< The window's size, from create() or resize().
+    VkExtent2D extent{0, 0};  ///< The images'.
+    vk::Swapchain swapchain;
+    /// The swapchain the last re-creation replaced: kept until the renderer no longer holds
+    /// views of its images (releaseRetired).
+    vk::Swapchain retired;
+    std::vector<VkImage> images;
+    std::vector<vk::Semaphore> renderComplete;  ///< One per image.
+    std::vector<vk::Semaphore> acquired;        ///< One per frame slot, made on first use.
+    uint64_t generation = 0;
+    bool stale = false;  ///< Out of date, suboptimal or resized: re-create before the next frame.
+    bool surfaceEmpty = false;  ///< The last re-creation found the surface 0x0.
+
+    Impl(Device& d, PresentRequirements r, const SwapchainOptions& o);
+    ~Impl();
+
+    /// Whether the next frame must re-create first (stale, resized, or other requirements).
+    [[nodiscard]] bool needsRecreate(const PresentRequirements& plan) const noexcept;
+    /// The window or the surface has no size: nothing can be presented.
+    [[nodiscard]] bool paused() const noexcept { return wanted.width == 0 || wanted.height == 0 || surfaceEmpty; }
+    /// (Re-)creates the swapchain for `plan`'s Present resource at the wanted extent (the
+    /// surface's current extent where it states one). Nothing submitted may still use the old
+    /// images: the caller has waited. The old swapchain is retired, not destroyed.
+    void recreate(const PresentRequirements& plan);
+    void releaseRetired() noexcept { retired.reset(); }
+    /// The acquire semaphore of frame slot `slot`. Its last wait must have completed (the
+    /// slot's fence).
+    [[nodiscard]] VkSemaphore acquireSemaphore(uint32_t slot);
+    /// vkAcquireNextImageKHR with `semaphore`: VK_SUCCESS, VK_SUBOPTIMAL_KHR (marks it stale;
+    /// the image is acquired) or VK_ERROR_OUT_OF_DATE_KHR (marks it stale; nothing acquired).
+    /// Throws ExecutorError for any other failure.
+    VkResult acquire(VkSemaphore semaphore, uint32_t& image);
+    /// vkQueuePresentKHR of `image`, waiting for its render-complete semaphore; out of date or
+    /// suboptimal marks it stale. Throws ExecutorError for any other failure.
+    void present(uint32_t image);
+};
+
+struct SwapchainAccess {
+    /// The swapchain's state; valid while `swapchain` lives.
+    [[nodiscard]] static Swapchain::Impl& impl(Swapchain& swapchain) noexcept { return *swapchain.impl_; }
+};
+
+}  // namespace skygraph
