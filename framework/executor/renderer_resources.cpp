@@ -112,7 +112,8 @@ void addUsageFlags(const PlannedUsage& u, bool isImage, VkImageUsageFlags& image
 }
 
 VkImageUsageFlags planImageUsage(const Plan& plan, uint32_t resource) {
-    const PlannedResource& res = plan.resources().at(resource);
+    if (resource >= plan.resources().size()) throw ExecutorError("plan resource " + std::to_string(resource) + " does not exist");
+    const PlannedResource& res = plan.resources()[resource];
     VkImageUsageFlags image = layoutUsage(res.initialLayout) | layoutUsage(res.finalLayout);
     VkBufferUsageFlags buffer = 0;
     for (const PlannedPass& pass : plan.passes())
