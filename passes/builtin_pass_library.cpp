@@ -26,4 +26,13 @@ PassLibrary PassLibrary::withBuiltins() {
     return library;
 }
 
+const PassLibrary& PassLibrary::genericOnly() {
+    static const PassLibrary library = [] {
+        PassLibrary generic;
+        generic.add(*PassRegistry::withBuiltins().find("Generic"), passes::makeGenericPass);
+        return generic;
+    }();
+    return library;
+}
+
 }  // namespace skygraph

@@ -157,6 +157,11 @@ public:
     /// the caller owns. Defined by the built-in passes' library (skygraph_passes, passes/): link
     /// it to call this.
     [[nodiscard]] static PassLibrary withBuiltins();
+    /// The built-in Generic alone: a renderer given it records every pass type, built-in ones
+    /// included, as Generic, performing exactly the declared accesses (what validating a
+    /// graph's barriers wants). Static storage, valid for the program's life; defined beside
+    /// withBuiltins().
+    [[nodiscard]] static const PassLibrary& genericOnly();
 
     /// Registers a pass type; the library keeps both. Throws std::invalid_argument, registering
     /// nothing, when `factory` is empty, the name is taken, or PassRegistry::add rejects `info`.

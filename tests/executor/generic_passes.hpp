@@ -10,15 +10,7 @@
 
 namespace skygraph::test {
 
-inline const PassLibrary& genericPasses() {
-    static const PassLibrary library = [] {
-        const PassLibrary builtins = PassLibrary::withBuiltins();
-        PassLibrary generic;
-        generic.add(*builtins.registry().find("Generic"), *builtins.factory("Generic"));
-        return generic;
-    }();
-    return library;
-}
+inline const PassLibrary& genericPasses() { return PassLibrary::genericOnly(); }
 
 /// RendererOptions that run every pass with genericPasses().
 inline RendererOptions genericOptions(uint32_t framesInFlight = 2) {

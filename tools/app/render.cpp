@@ -1,6 +1,8 @@
 // `skygraph render`: compile a graph file and render it headless.
 #include "render.hpp"
 
+#include "command_exit.hpp"
+
 #include "environment_bake.hpp"
 #include "environment_graph.hpp"
 #include "shipped_names.hpp"
@@ -25,18 +27,6 @@ namespace skygraph::app {
 namespace {
 
 using namespace shipped;
-
-/// What runs when RenderOptions::passes is null: the built-in library's Generic alone, so that
-/// every pass type is recorded as Generic.
-const PassLibrary& genericOnly() {
-    static const PassLibrary library = [] {
-        const PassLibrary builtins = PassLibrary::withBuiltins();
-        PassLibrary generic;
-        generic.add(*builtins.registry().find("Generic"), *builtins.factory("Generic"));
-        return generic;
-    }();
-    return library;
-}
 
 /// graphs/ibl.json: RenderOptions::environmentGraph(Text), else ibl.json beside the graph file.
 std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, const PassRegistry& registry) {
@@ -108,7 +98,8 @@ ImageData toImageData(HdrImage&& image) {
 FrameInputs loadFrameInputs(const RenderOptions& options) {
     FrameInputs in;
     in.registry = options.passes ? options.passes->registry() : PassRegistry::withBuiltins();
-    in.passes = options.passes ? options.passes : &genericOnly();
+    // Null: every pass type is recorded as Generic.
+    in.passes = options.passes ? options.passes : &PassLibrary::genericOnly();
     in.graph = options.graphText.empty()
                    ? loadGraphFile(options.graph, in.registry)
                    : parseGraph(options.graphText, std::string(kBuiltinFrameGraphName), in.registry);
@@ -241,18 +232,9 @@ int renderCommand(const RenderOptions& options) {
             }
             spdlog::info("wrote {}", output.string());
         }
-        if (device->validationEnabled() && device->messageCount() > 0) {
-            std::cerr << "skygraph render: validation reported " << device->messageCount()
-                      << " message(s)\n";
-            return 1;
-        }
-        return 0;
-    } catch (const GraphError& e) {
-        std::cerr << e.diagnostics().format() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "skygraph render: " << e.what() << "\n";
-        return 1;
+        return validationExit(*device, "skygraph render");
+    } catch (...) {
+        return exitForCurrentException("skygraph render");
     }
 }
 

@@ -1,6 +1,8 @@
 // `skygraph view`: the frame of `render`, presented in a GLFW window.
 #include "view.hpp"
 
+#include "command_exit.hpp"
+
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/device.hpp>
 #include <skygraph/pass.hpp>
@@ -227,17 +229,9 @@ int viewCommand(const ViewOptions& options) {
         } else
             std::cout << "off\n";
         std::cout.flush();
-        if (device->validationEnabled() && device->messageCount() > 0) {
-            std::cerr << "skygraph view: validation reported " << device->messageCount() << " message(s)\n";
-            return 1;
-        }
-        return 0;
-    } catch (const GraphError& e) {
-        std::cerr << e.diagnostics().format() << "\n";
-        return 1;
-    } catch (const std::exception& e) {
-        std::cerr << "skygraph view: " << e.what() << "\n";
-        return 1;
+        return validationExit(*device, "skygraph view");
+    } catch (...) {
+        return exitForCurrentException("skygraph view");
     }
 }
 
