@@ -14,6 +14,7 @@ PassLibrary PassLibrary::withBuiltins() {
         {"SkyboxPass", passes::makeSkyboxPass},
         {"ForwardPass", passes::makeForwardPass},
         {"PathTracePass", passes::makePathTracePass},
+        {"ImGuiPass", passes::makeImGuiPass},
         {"EquirectToCubemapPass", passes::makeEquirectToCubemapPass},
         {"CubemapMipPass", passes::makeCubemapMipPass},
         {"IrradiancePass", passes::makeIrradiancePass},

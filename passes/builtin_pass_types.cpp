@@ -12,6 +12,7 @@ void registerBuiltinPassTypes(PassRegistry& r) {
     r.add(passes::skyboxPassType());
     r.add(passes::tonemappingPassType());
     r.add(passes::tonemappingComputePassType());
+    r.add(passes::imguiPassType());
     r.add(passes::pathTracePassType());
     r.add(passes::equirectToCubemapPassType());
     r.add(passes::cubemapMipPassType());

@@ -14,6 +14,7 @@ namespace skygraph::passes {
 [[nodiscard]] PassTypeInfo tonemappingPassType();
 [[nodiscard]] PassTypeInfo tonemappingComputePassType();
 [[nodiscard]] PassTypeInfo pathTracePassType();
+[[nodiscard]] PassTypeInfo imguiPassType();
 // The environment pipeline (ibl/environment_types.cpp).
 [[nodiscard]] PassTypeInfo equirectToCubemapPassType();
 [[nodiscard]] PassTypeInfo cubemapMipPassType();

@@ -15,6 +15,8 @@ namespace skygraph::passes {
 [[nodiscard]] std::unique_ptr<PassImplementation> makeSkyboxPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeForwardPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makePathTracePass(const PassDesc& desc);
+/// Dear ImGui's draw data (passes/imgui/imgui_pass.cpp).
+[[nodiscard]] std::unique_ptr<PassImplementation> makeImGuiPass(const PassDesc& desc);
 // The environment pipeline (passes/ibl/environment_passes.cpp).
 [[nodiscard]] std::unique_ptr<PassImplementation> makeEquirectToCubemapPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeCubemapMipPass(const PassDesc& desc);

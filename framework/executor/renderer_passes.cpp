@@ -100,6 +100,9 @@ void Renderer::Impl::createPipelines(PlanState& s) {
         PipelineContext pc;
         pc.device = vkd;
         pc.physicalDevice = dev.physical;
+        pc.instance = dev.instance;
+        pc.queueFamily = dev.queueFamily;
+        pc.queue = dev.queue;
         pc.renderPass = ps.renderPass.get();
         pc.pass = ps.pass;
         pc.desc = ps.desc;

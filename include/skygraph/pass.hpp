@@ -73,6 +73,11 @@ struct BoundResource {
 struct PipelineContext {
     VkDevice device = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    /// The instance, and the queue family and queue the renderer submits to, for libraries
+    /// that are initialised with them (Dear ImGui's Vulkan backend). A pass submits nothing.
+    VkInstance instance = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    VkQueue queue = VK_NULL_HANDLE;
     /// For graphics passes (those with a ColorAttachment or DepthAttachment usage): the render
     /// pass the executor will begin around `record`, with one subpass whose colour attachments
     /// are the pass's ColorAttachment usages in usage order and whose depth attachment is its
