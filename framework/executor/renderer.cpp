@@ -245,6 +245,8 @@ std::vector<PassTiming> Renderer::lastTimings() {
     return d.timings;
 }
 
+const std::vector<PassTiming>& Renderer::completedTimings() const noexcept { return impl_->timings; }
+
 const Plan& Renderer::plan() const noexcept { return impl_->state->plan; }
 const GraphDesc& Renderer::graph() const noexcept { return impl_->state->graph; }
 const CompiledGraph& Renderer::compiled() const noexcept { return impl_->state->compiled; }

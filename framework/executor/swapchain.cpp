@@ -94,7 +94,7 @@ PresentRequirements presentRequirements(const CompiledGraph& compiled) {
 
 Swapchain::Impl::Impl(Device& d, PresentRequirements r, const SwapchainOptions& o)
     : device(d), dev(DeviceAccess::impl(d)), requirements(std::move(r)), requested(o.presentMode),
-      wanted{o.width, o.height} {}
+      wanted{o.width, o.height}, extraUsage(o.extraUsage) {}
 
 Swapchain::Impl::~Impl() {
     if (dev.queue) vkQueueWaitIdle(dev.queue);
@@ -137,9 +137,12 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
         throw ExecutorError("the surface cannot present " + formatName(plan.format) + ", the format of the plan's "
                             "Present resource '" + plan.resource + "'; it presents " + (have.empty() ? "none" : have));
     }
-    if ((plan.usage & ~caps.supportedUsageFlags) != 0)
+    if ((extraUsage & ~caps.supportedUsageFlags) != 0)
+        spdlog::warn("the surface's images cannot have usage {} besides the plan's", extraUsage & ~caps.supportedUsageFlags);
+    const VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
+    if ((usage & ~caps.supportedUsageFlags) != 0)
         throw ExecutorError("the surface's images cannot be used as the plan uses '" + plan.resource +
-                            "' (image usage " + std::to_string(plan.usage) + ", the surface allows " +
+                            "' (image usage " + std::to_string(usage) + ", the surface allows " +
                             std::to_string(caps.supportedUsageFlags) + ")");
 
     n = 0;
@@ -160,7 +163,7 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     ci.imageColorSpace = format->colorSpace;
     ci.imageExtent = e;
     ci.imageArrayLayers = 1;
-    ci.imageUsage = plan.usage;
+    ci.imageUsage = usage;
     ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
     ci.preTransform = caps.currentTransform;
     ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
@@ -185,6 +188,7 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
         renderComplete.emplace_back(dev.device, semaphore);
     }
     requirements = plan;
+    requirements.usage = usage;
     extent = e;
     stale = false;
     ++generation;

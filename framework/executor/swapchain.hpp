@@ -35,6 +35,7 @@ struct Swapchain::Impl {
     PresentMode requested = PresentMode::Fifo;
     PresentMode mode = PresentMode::Fifo;
     VkExtent2D wanted{0, 0};  ///< The window's size, from create() or resize().
+    VkImageUsageFlags extraUsage = 0;  ///< SwapchainOptions::extraUsage.
     VkExtent2D extent{0, 0};  ///< The images'.
     vk::Swapchain swapchain;
     /// The swapchain the last re-creation replaced: kept until the renderer no longer holds

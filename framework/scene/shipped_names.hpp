@@ -15,6 +15,8 @@ inline constexpr std::string_view kGeometryFeature = "geometry";
 inline constexpr std::string_view kSkyboxFeature = "skybox";
 inline constexpr std::string_view kEnvironmentFileFeature = "environment_file";
 inline constexpr std::string_view kSampleCubemapFeature = "sample_cubemap";
+/// The debug overlay (ImGuiPass), which `skygraph view` turns on.
+inline constexpr std::string_view kOverlayFeature = "ui";
 
 // Resources of graphs/ibl.json and of the frame graphs that import its products.
 /// The equirect image a scene's environment file is loaded into.

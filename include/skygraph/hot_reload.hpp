@@ -23,6 +23,8 @@ public:
     enum class Result : uint8_t { Unchanged, Reloaded, Failed };
 
     /// Reads the watched files once, as the state later changes are measured against.
+    /// `graphFile` empty: the shaders alone are watched (an application that reloads its
+    /// graph itself).
     /// `shaderDir` empty: ShaderCompiler::defaultIncludeDir(), so pass the renderer's
     /// RendererOptions::shaderDir when it set one. `registry` (borrowed; null:
     /// PassRegistry::withBuiltins()) parses the reloaded graph, e.g. `PassLibrary::registry()`

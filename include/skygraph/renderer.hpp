@@ -163,6 +163,10 @@ public:
     /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
     /// before the first frame of the current plan state.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
+    /// Per-pass GPU times of the latest frame seen finished, without waiting (up to frames
+    /// in flight behind: what a live overlay shows). The reference is valid until the next
+    /// frame or rebuild.
+    [[nodiscard]] const std::vector<PassTiming>& completedTimings() const noexcept;
 
     /// compiled().plan(): the current plan. Valid until the plan state is rebuilt.
     [[nodiscard]] const Plan& plan() const noexcept;

@@ -72,6 +72,11 @@ struct SwapchainOptions {
     uint32_t height = 0;
     /// Falls back to Fifo, with a warning in the log, when the surface lacks it.
     PresentMode presentMode = PresentMode::Fifo;
+    /// Usages the images get besides the plan's: VK_IMAGE_USAGE_TRANSFER_SRC_BIT lets a plan
+    /// compiled with the presented image in CompileOptions::readbacks (a screenshot) run on
+    /// these images without re-creating them. Those the surface does not allow are left out
+    /// (with a warning in the log).
+    VkImageUsageFlags extraUsage = 0;
 };
 
 /// A VkSwapchainKHR for the Device's surface (DeviceOptions::presentation), its images, an

@@ -109,6 +109,11 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         scene = parseScene(options.sceneText, std::string(kBuiltinSceneName), std::filesystem::current_path());
     else if (!options.scene.empty())
         scene = loadSceneFile(options.scene);
+    if (scene && options.environmentFile) {
+        SceneEnvironment& e = scene->environment ? *scene->environment : scene->environment.emplace();
+        e.procedural = options.environmentFile->empty();
+        e.file = e.procedural ? std::filesystem::path() : std::filesystem::absolute(*options.environmentFile);
+    }
     // A file environment is loaded before compiling: its size is the extent of the graph's
     // `equirect` (data-driven, so the plan's subresources match the image).
     std::optional<HdrImage>& environment = in.environment;

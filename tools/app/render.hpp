@@ -48,6 +48,9 @@ struct RenderOptions {
     /// the scene camera's field of view, environment_graph.hpp), the graph's declared extents
     /// being the largest allowed. false: build them at the declared extents.
     bool fitEnvironmentToView = true;
+    /// Replaces the scene's environment: an .hdr or .exr file, or, empty, the procedural sky.
+    /// Unset: the scene's own.
+    std::optional<std::filesystem::path> environmentFile;
     FeatureValues features;          ///< Overrides of the graph's defaults.
     uint32_t width = 256;
     uint32_t height = 256;

@@ -2,6 +2,10 @@
 #include "view.hpp"
 
 #include "command_exit.hpp"
+#include "view_overlay.hpp"
+#include "view_session.hpp"
+
+#include "shipped_names.hpp"
 
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/device.hpp>
@@ -15,6 +19,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <iostream>
@@ -23,9 +28,12 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace skygraph::app {
 namespace {
+
+using shipped::kOverlayFeature;
 
 std::string& glfwLastError() {
     static std::string text;
@@ -73,9 +81,13 @@ struct Orbit {
 /// What the window's callbacks reach (glfwSetWindowUserPointer).
 struct ViewState {
     Swapchain* swapchain = nullptr;
+    const ViewOverlay* overlay = nullptr;
     Scene* scene = nullptr;
     std::optional<Orbit> orbit;
     bool cameraMoved = false;
+    bool overlayVisible = false;
+    bool toggleOverlay = false;    // F1
+    bool screenshotWanted = false;  // F12
 };
 
 ViewState& stateOf(GLFWwindow* w) { return *static_cast<ViewState*>(glfwGetWindowUserPointer(w)); }
@@ -86,12 +98,17 @@ void onFramebufferSize(GLFWwindow* w, int width, int height) {
 }
 
 void onKey(GLFWwindow* w, int key, int, int action, int) {
-    if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(w, GLFW_TRUE);
+    if (action != GLFW_PRESS) return;
+    ViewState& s = stateOf(w);
+    if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(w, GLFW_TRUE);
+    if (key == GLFW_KEY_F1) s.toggleOverlay = true;
+    if (key == GLFW_KEY_F12) s.screenshotWanted = true;
 }
 
 void onMouseButton(GLFWwindow* w, int button, int action, int) {
     ViewState& s = stateOf(w);
     if (!s.orbit || button != GLFW_MOUSE_BUTTON_LEFT) return;
+    if (action == GLFW_PRESS && s.overlayVisible && s.overlay->wantsMouse()) return;
     s.orbit->dragging = action == GLFW_PRESS;
     glfwGetCursorPos(w, &s.orbit->lastX, &s.orbit->lastY);
 }
@@ -110,10 +127,21 @@ void onCursor(GLFWwindow* w, double x, double y) {
 
 void onScroll(GLFWwindow* w, double, double dy) {
     ViewState& s = stateOf(w);
-    if (!s.orbit) return;
+    if (!s.orbit || (s.overlayVisible && s.overlay->wantsMouse())) return;
     s.orbit->distance = std::clamp(s.orbit->distance * std::pow(0.9, dy), 0.2, 1000.0);
     s.orbit->place(s.scene->camera);
     s.cameraMoved = true;
+}
+
+/// Logs how long after the save that caused it the first frame of a reloaded plan was
+/// presented (docs/performance.md reports it).
+void reportReloadLatency(ViewSession& session) {
+    ViewSession::Reload& reload = session.lastReload();
+    if (!reload.pending) return;
+    reload.pending = false;
+    const auto latency = std::filesystem::file_time_type::clock::now() - reload.saved;
+    spdlog::info("reload: first frame of the new plan presented {:.1f} ms after the save",
+                 std::chrono::duration<double, std::milli>(latency).count());
 }
 
 }  // namespace
@@ -141,11 +169,10 @@ int viewCommand(const ViewOptions& options) {
                       << "); render to a file instead: skygraph render\n";
             return 1;
         }
-        FrameInputs inputs = loadFrameInputs(fo);
-
         glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
         glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
-        const std::string title = "skygraph view: " + inputs.graph.name;
+        const std::string title = "skygraph view: " + (fo.graph.empty() ? std::string("built-in raster graph")
+                                                                         : fo.graph.filename().string());
         glfw.window = glfwCreateWindow(int(fo.width), int(fo.height), title.c_str(), nullptr, nullptr);
         if (!glfw.window) {
             std::cerr << "skygraph view: cannot open a window (" << glfwLastError()
@@ -155,12 +182,6 @@ int viewCommand(const ViewOptions& options) {
         GLFWwindow* window = glfw.window;
         int fbw = 0, fbh = 0;
         glfwGetFramebufferSize(window, &fbw, &fbh);
-
-        CompileOptions co = inputs.compile;  // presented: the Present resource stays Present
-        co.outputWidth = uint32_t(std::max(fbw, 1));
-        co.outputHeight = uint32_t(std::max(fbh, 1));
-        CompiledGraph compiled(inputs.graph, co);
-        for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
 
         DeviceOptions dopts;
         dopts.device = fo.device;
@@ -178,52 +199,73 @@ int viewCommand(const ViewOptions& options) {
         dopts.presentation = std::move(presentation);
         auto device = Device::create(dopts);
 
-        SwapchainOptions so;
-        so.width = uint32_t(std::max(fbw, 0));
-        so.height = uint32_t(std::max(fbh, 0));
-        so.presentMode = options.presentMode;
-        const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, compiled, so);
-        const FrameEnvironment environment = bakeFrameEnvironment(*device, compiled.plan(), inputs, fo);
-        RendererOptions ropts;
-        ropts.framesInFlight = fo.framesInFlight;
-        ropts.passes = inputs.passes;
-        Renderer renderer(*device, std::move(compiled), ropts);
-        attachFrameInputs(renderer, inputs, environment);
-
+        // The window's callbacks first: the overlay's GLFW backend chains them.
         ViewState state;
-        state.swapchain = swapchain.get();
-        if (inputs.scene && options.orbit) {
-            state.scene = &*inputs.scene;
-            state.orbit.emplace(inputs.scene->camera);
-        }
         glfwSetWindowUserPointer(window, &state);
         glfwSetFramebufferSizeCallback(window, onFramebufferSize);
         glfwSetKeyCallback(window, onKey);
         glfwSetMouseButtonCallback(window, onMouseButton);
         glfwSetCursorPosCallback(window, onCursor);
         glfwSetScrollCallback(window, onScroll);
+        // The overlay's context exists before the renderers whose ImGuiPass draws it, and
+        // outlives them (declared first, destroyed last).
+        std::optional<ViewOverlay> overlay;
+        if (options.overlay) overlay.emplace(window);
+        state.overlay = overlay ? &*overlay : nullptr;
+        ViewSession session(*device, fo, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)), options.overlay);
+
+        SwapchainOptions so;
+        so.width = uint32_t(std::max(fbw, 0));
+        so.height = uint32_t(std::max(fbh, 0));
+        so.presentMode = options.presentMode;
+        so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
+        const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, session.renderer().compiled(), so);
+        state.swapchain = swapchain.get();
+        if (session.scene() && options.orbit) {
+            state.scene = session.scene();
+            state.orbit.emplace(state.scene->camera);
+        }
         stopRequested = 0;
         const auto previousInt = std::signal(SIGINT, onStopSignal);
         const auto previousTerm = std::signal(SIGTERM, onStopSignal);
 
         uint64_t presented = 0;
+        uint32_t screenshots = 0;
+        double frameMs = 0.0;
         while (!glfwWindowShouldClose(window) && !stopRequested) {
+            const auto start = std::chrono::steady_clock::now();
             if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
             else glfwPollEvents();
+            session.poll();
+            if (std::exchange(state.toggleOverlay, false) && overlay)
+                session.setFeature(std::string(kOverlayFeature), !session.feature(kOverlayFeature));
+            state.overlayVisible = overlay && session.feature(kOverlayFeature);
+            if (state.overlayVisible) overlay->frame(session, frameMs);
             if (state.cameraMoved) {
-                renderer.frameData().set(*inputs.scene);
+                session.sceneChanged();
                 state.cameraMoved = false;
             }
-            if (renderer.renderFrame(*swapchain) == PresentStatus::Presented) ++presented;
+            const bool screenshot = std::exchange(state.screenshotWanted, false) && session.beginScreenshot();
+            if (session.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
+                ++presented;
+                if (screenshot) session.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");
+                reportReloadLatency(session);
+            } else if (screenshot) {
+                session.finishScreenshot({});  // nothing presented: compiles the plan back
+            }
+            frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             if (options.frames != 0 && presented >= options.frames) break;
         }
+        Renderer& renderer = session.renderer();
         renderer.waitIdle();
         std::signal(SIGINT, previousInt);
         std::signal(SIGTERM, previousTerm);
         for (const auto& t : renderer.lastTimings()) spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
+        for (const auto& c : renderer.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
         const VkExtent2D e = swapchain->extent();
         std::cout << "skygraph view: " << presented << " frames presented, last at " << e.width << "x" << e.height
-                  << " (" << presentModeName(swapchain->presentMode()) << "); validation: ";
+                  << " (" << presentModeName(swapchain->presentMode()) << "), " << session.reloads()
+                  << " reload(s); validation: ";
         if (device->validationEnabled()) {
             std::cout << device->messageCount() << " message(s)\n";
         } else

@@ -23,6 +23,9 @@ struct ViewOptions {
     PresentMode presentMode = PresentMode::Fifo;
     /// Left-drag orbits the camera about the point it looks at, the wheel moves it closer.
     bool orbit = true;
+    /// The debug overlay (Dear ImGui, drawn by the graph's ImGuiPass): the graph's feature
+    /// `ui` is turned on unless `frame.features` sets it.
+    bool overlay = true;
 };
 
 /// Opens the window, renders into it and returns the command line's exit status: 0 when

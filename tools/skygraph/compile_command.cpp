@@ -73,7 +73,7 @@ void stopWatching(int) { gStopWatching = true; }
 int watch(const CompileArgs& args, const FeatureValues& features) {
     std::signal(SIGINT, stopWatching);
     std::signal(SIGTERM, stopWatching);
-    FileWatcher watcher(args.graph);
+    app::FileWatcher watcher(args.graph);
     std::optional<CompiledPlan> last;
     auto rebuild = [&] {
         try {

@@ -50,7 +50,8 @@ Command addViewCommand(CLI::App& parent) {
     app::ViewOptions& o = args->options;
     CLI::App* cmd = parent.add_subcommand(
         "view", "Present a graph in a window (GLFW) until it is closed. With no graph and no scene: the built-in "
-                "raster graph and default scene. Left-drag orbits the camera, the wheel zooms, Escape closes");
+                "raster graph and default scene. Left-drag orbits the camera, the wheel zooms, Escape closes. A saved "
+                "graph, scene or shader file reloads; a broken one shows its error and keeps the last good frame");
     cmd->add_option("graph", args->graph, "Graph file (default: the built-in graphs/raster.json)");
     cmd->add_option("--scene", args->scene, "Scene file (scenes/*.json); default with the built-in graph: "
                                             "the built-in scenes/default.json");
@@ -65,6 +66,7 @@ Command addViewCommand(CLI::App& parent) {
         ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}));
     cmd->add_flag("!--no-fit-environment", o.frame.fitEnvironmentToView,
                   "Build the environment cube and the prefiltered cube at the graph's declared sizes");
+    cmd->add_flag("!--no-ui", o.overlay, "Hide the debug overlay (the graph's feature ui off)");
     cmd->add_flag("--validate", o.frame.validate,
                   "Khronos validation with synchronization validation; any message fails");
     cmd->add_option("--device", o.frame.device, "Device by index or name");

@@ -1,11 +1,11 @@
-// Notices when a file is saved, for `skygraph compile --watch`.
+// Notices when a file is saved, for `skygraph compile --watch` and `skygraph view`.
 #pragma once
 
 #include <filesystem>
 #include <optional>
 #include <string>
 
-namespace skygraph::cli {
+namespace skygraph::app {
 
 /// Remembers a file's contents and reports when they differ. Compares contents rather than
 /// modification times so that editors which save by rename, and saves within one timestamp
@@ -29,4 +29,4 @@ private:
     std::optional<std::string> contents_;
 };
 
-}  // namespace skygraph::cli
+}  // namespace skygraph::app

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace skygraph::cli {
+namespace skygraph::app {
 
 FileWatcher::FileWatcher(std::filesystem::path file) : file_(std::move(file)), contents_(read()) {}
 
@@ -22,4 +22,4 @@ std::optional<std::string> FileWatcher::read() const {
     return s.str();
 }
 
-}  // namespace skygraph::cli
+}  // namespace skygraph::app

@@ -1,0 +1,137 @@
+// The debug overlay: Dear ImGui widgets, built each frame from the session.
+#include "view_overlay.hpp"
+
+#include <skygraph/plan.hpp>
+#include <skygraph/scene.hpp>
+
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <spdlog/spdlog.h>
+
+#include <cstring>
+#include <optional>
+#include <string>
+
+namespace skygraph::app {
+namespace {
+
+constexpr const char* kTonemappers[] = {"ACES (Narkowicz)", "ACES (Hill)", "Khronos PBR Neutral", "passthrough"};
+constexpr const char* kDebugViews[] = {"none", "normal", "metallic", "roughness", "ambient occlusion"};
+
+size_t barrierCount(const Plan& plan) {
+    size_t n = plan.finalBarriers().size() + plan.inPassBarriers().size();
+    for (const PlannedPass& p : plan.passes()) n += p.barriers.size();
+    return n;
+}
+
+/// A combo over `names`, editing an enum stored as its index.
+template <typename Enum, size_t N>
+bool enumCombo(const char* label, Enum& value, const char* const (&names)[N]) {
+    int index = static_cast<int>(value);
+    if (!ImGui::Combo(label, &index, names, int(N))) return false;
+    value = static_cast<Enum>(index);
+    return true;
+}
+
+}  // namespace
+
+ViewOverlay::ViewOverlay(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // the same layout every run (tests click on it)
+    ImGui::StyleColorsDark();
+    io.Fonts->Build();  // ImGui::NewFrame wants the atlas; the ImGuiPass uploads it
+    ImGui_ImplGlfw_InitForVulkan(window, true);
+}
+
+ViewOverlay::~ViewOverlay() {
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+bool ViewOverlay::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
+
+void ViewOverlay::frame(ViewSession& session, double frameMs) {
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(260, 0), ImVec2(420, 10000));
+    ImGui::Begin("skygraph", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
+    ImGui::TextUnformatted(session.renderer().graph().name.c_str());
+    if (!session.error().empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+        ImGui::PushTextWrapPos(400);
+        ImGui::TextUnformatted(session.error().c_str());
+        ImGui::PopTextWrapPos();
+        ImGui::PopStyleColor();
+    }
+    features(session);
+    sceneControls(session);
+    statistics(session, frameMs);
+    ImGui::End();
+    ImGui::Render();
+}
+
+void ViewOverlay::features(ViewSession& session) {
+    if (!ImGui::CollapsingHeader("Features", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    std::optional<std::pair<std::string, bool>> changed;
+    std::string layout;
+    for (auto [name, on] : session.features()) {
+        if (ImGui::Checkbox(name.c_str(), &on)) changed.emplace(name, on);
+        const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+        // The checkbox square is at the item's left; tests click its centre.
+        const float side = hi.y - lo.y;
+        layout += " " + name + "=" + std::to_string(int(lo.x + side / 2)) + "," + std::to_string(int(lo.y + side / 2));
+    }
+    if (layout != laidOut_) {
+        laidOut_ = layout;
+        spdlog::info("overlay: feature checkboxes at{}", layout);
+    }
+    if (changed) session.setFeature(changed->first, changed->second);
+}
+
+void ViewOverlay::sceneControls(ViewSession& session) {
+    Scene* scene = session.scene();
+    if (!scene || !ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    bool edited = false;
+    float ev = float(scene->exposureEv);
+    if (ImGui::SliderFloat("exposure (EV)", &ev, -10.0f, 10.0f, "%.2f")) {
+        scene->exposureEv = ev;
+        edited = true;
+    }
+    edited |= enumCombo("tonemapping", scene->tonemapper, kTonemappers);
+    edited |= enumCombo("debug view", scene->debugView, kDebugViews);
+    if (scene->environment) {
+        float rotation = float(scene->environment->rotationDeg);
+        if (ImGui::SliderFloat("sky rotation", &rotation, -180.0f, 180.0f, "%.1f deg")) {
+            scene->environment->rotationDeg = rotation;
+            edited = true;
+        }
+    }
+    if (edited) session.sceneChanged();
+    ImGui::InputText("environment", environmentFile_.data(), environmentFile_.size());
+    if (ImGui::Button("load file")) session.setEnvironmentFile(environmentFile_.data());
+    ImGui::SameLine();
+    if (ImGui::Button("procedural sky")) session.setEnvironmentFile({});
+}
+
+void ViewOverlay::statistics(ViewSession& session, double frameMs) {
+    if (!ImGui::CollapsingHeader("Plan", ImGuiTreeNodeFlags_DefaultOpen)) return;
+    const Plan& plan = session.renderer().plan();
+    ImGui::Text("%zu passes, %zu culled, %zu barriers; CPU %.2f ms/frame", plan.passes().size(),
+                plan.culled().size(), barrierCount(plan), frameMs);
+    if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_SizingFixedFit)) {
+        for (const auto& t : session.renderer().completedTimings()) {
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(t.pass.c_str());
+            ImGui::TableNextColumn();
+            ImGui::Text("%7.3f ms GPU", t.milliseconds);
+        }
+        ImGui::EndTable();
+    }
+    for (const CulledPass& c : plan.culled()) ImGui::TextDisabled("culled %s: %s", c.name.c_str(), c.reason.c_str());
+}
+
+}  // namespace skygraph::app

@@ -1,0 +1,41 @@
+// `skygraph view`'s debug overlay: Dear ImGui controls over the frame, drawn by the graph's
+// ImGuiPass. It edits the session (features, scene settings, the environment file) and
+// shows what runs (per-pass GPU times, culled passes and why, barrier count, errors).
+#pragma once
+
+#include "view_session.hpp"
+
+#include <array>
+#include <string>
+
+struct GLFWwindow;
+
+namespace skygraph::app {
+
+class ViewOverlay {
+public:
+    /// Makes the ImGui context (current from here on) and its GLFW backend on `window`, which
+    /// must outlive the overlay. The backend chains the window's callbacks, so set those first.
+    /// Make the overlay before the renderers: their ImGuiPass takes the current context.
+    explicit ViewOverlay(GLFWwindow* window);
+    /// Destroy after every renderer that draws the context.
+    ~ViewOverlay();
+    ViewOverlay(const ViewOverlay&) = delete;
+    ViewOverlay& operator=(const ViewOverlay&) = delete;
+
+    /// Builds this frame's controls and applies what the user changed to `session`. Call once
+    /// per frame before rendering it; `frameMs` is the CPU time of the last frame.
+    void frame(ViewSession& session, double frameMs);
+    /// Whether the pointer is over the overlay (the camera then ignores it).
+    [[nodiscard]] bool wantsMouse() const;
+
+private:
+    void features(ViewSession& session);
+    void sceneControls(ViewSession& session);
+    void statistics(ViewSession& session, double frameMs);
+
+    std::array<char, 1024> environmentFile_{};
+    std::string laidOut_;  // the controls' positions, logged once per layout
+};
+
+}  // namespace skygraph::app

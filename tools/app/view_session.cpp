@@ -1,0 +1,201 @@
+// `skygraph view`'s inputs and renderer, rebuilt on a change.
+#include "view_session.hpp"
+
+#include "shipped_names.hpp"
+
+#include <skygraph/compiled_graph.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/image_data.hpp>
+#include <skygraph/pass.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <exception>
+#include <utility>
+
+namespace skygraph::app {
+namespace {
+
+/// What the overlay edits survives a rebuild; the rest (objects, the environment) comes from
+/// the reloaded files.
+void keepViewSettings(const Scene& edited, Scene& loaded) {
+    loaded.camera = edited.camera;
+    loaded.exposureEv = edited.exposureEv;
+    loaded.tonemapper = edited.tonemapper;
+    loaded.debugView = edited.debugView;
+    if (edited.environment && loaded.environment) loaded.environment->rotationDeg = edited.environment->rotationDeg;
+}
+
+}  // namespace
+
+struct ViewSession::Built {
+    FrameEnvironment environment;  // outlives the renderer that imports its products
+    std::unique_ptr<Renderer> renderer;
+    std::optional<Scene> scene;
+};
+
+ViewSession::ViewSession(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay)
+    : device_(device), options_(std::move(options)), width_(width), height_(height), overlay_(overlay) {
+    built_ = build(options_);
+    renderer_ = built_->renderer.get();
+    scene_ = built_->scene;
+    if (!options_.graph.empty()) graphWatcher_.emplace(options_.graph);
+    if (!options_.scene.empty()) sceneWatcher_.emplace(options_.scene);
+    // No graph file: HotReloader watches the shaders alone.
+    shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
+}
+
+ViewSession::~ViewSession() {
+    if (renderer_) renderer_->waitIdle();
+}
+
+std::unique_ptr<ViewSession::Built> ViewSession::build(const RenderOptions& options) const {
+    auto b = std::make_unique<Built>();
+    FrameInputs inputs = loadFrameInputs(options);
+    const std::string ui(shipped::kOverlayFeature);
+    const auto& declared = inputs.graph.features;
+    if (!options.features.contains(ui) &&
+        std::any_of(declared.begin(), declared.end(), [&](const FeatureDecl& f) { return f.name == ui; }))
+        inputs.compile.features[ui] = overlay_;
+    if (inputs.scene && scene_) keepViewSettings(*scene_, *inputs.scene);
+    b->scene = inputs.scene;
+    CompileOptions co = inputs.compile;  // presented: the Present resource stays Present
+    co.outputWidth = width_;
+    co.outputHeight = height_;
+    CompiledGraph compiled(inputs.graph, co);
+    for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
+    b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options);
+    RendererOptions ro;
+    ro.framesInFlight = options.framesInFlight;
+    ro.passes = inputs.passes;
+    b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
+    attachFrameInputs(*b->renderer, inputs, b->environment);
+    return b;
+}
+
+bool ViewSession::rebuild(RenderOptions options) {
+    // The running renderer follows the window; the new one starts at its size.
+    width_ = renderer_->compiled().outputWidth();
+    height_ = renderer_->compiled().outputHeight();
+    std::unique_ptr<Built> next;
+    try {
+        next = build(options);
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        spdlog::warn("{}", error_);
+        return false;
+    }
+    renderer_->waitIdle();
+    shaderWatcher_.reset();
+    built_ = std::move(next);  // the old renderer is gone before the new one records
+    renderer_ = built_->renderer.get();
+    shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
+    if (built_->scene) scene_ = built_->scene;
+    options_ = std::move(options);
+    error_.clear();
+    ++reloads_;
+    return true;
+}
+
+void ViewSession::sceneChanged() {
+    if (scene_) renderer_->frameData().set(*scene_);
+}
+
+std::vector<std::pair<std::string, bool>> ViewSession::features() const {
+    std::vector<std::pair<std::string, bool>> out;
+    for (const FeatureDecl& f : renderer_->graph().features) out.emplace_back(f.name, feature(f.name));
+    return out;
+}
+
+bool ViewSession::feature(std::string_view name) const {
+    const FeatureValues& on = renderer_->plan().features();
+    const auto it = on.find(std::string(name));
+    return it != on.end() && it->second;
+}
+
+bool ViewSession::setFeature(const std::string& name, bool on) {
+    RenderOptions next = options_;
+    next.features[name] = on;
+    return rebuild(std::move(next));
+}
+
+bool ViewSession::setEnvironmentFile(const std::filesystem::path& file) {
+    RenderOptions next = options_;
+    next.environmentFile = file;
+    return rebuild(std::move(next));
+}
+
+bool ViewSession::poll() {
+    const bool graphSaved = graphWatcher_ && graphWatcher_->changed();
+    const bool sceneSaved = sceneWatcher_ && sceneWatcher_->changed();
+    if (graphSaved || sceneSaved) {
+        std::error_code ec;
+        const auto saved = std::filesystem::last_write_time(graphSaved ? options_.graph : options_.scene, ec);
+        std::optional<Scene> edited;
+        if (sceneSaved) edited = std::exchange(scene_, std::nullopt);  // the saved scene wins over the overlay
+        if (rebuild(options_)) lastReload_ = {saved, !ec};
+        else if (edited) scene_ = std::move(edited);
+        return true;
+    }
+    switch (shaderWatcher_->poll()) {
+        case HotReloader::Result::Unchanged: return false;
+        case HotReloader::Result::Reloaded:
+            error_.clear();
+            ++reloads_;
+            return true;
+        case HotReloader::Result::Failed:
+            error_ = shaderWatcher_->lastError();
+            return true;
+    }
+    return false;
+}
+
+std::string ViewSession::presentedResource() const {
+    const auto presentations = renderer_->plan().presentations();
+    return presentations.empty() ? std::string()
+                                 : std::string(renderer_->plan().resources()[presentations[0].resource].name);
+}
+
+bool ViewSession::beginScreenshot() {
+    const std::string target = presentedResource();
+    if (target.empty()) {
+        error_ = "screenshot: the plan presents no image";
+        return false;
+    }
+    CompileOptions co = renderer_->compiled().options();
+    co.readbacks.insert(target);
+    try {
+        renderer_->setGraph(CompiledGraph(renderer_->graph(), co));
+    } catch (const std::exception& e) {
+        error_ = std::string("screenshot: ") + e.what();
+        spdlog::warn("{}", error_);
+        return false;
+    }
+    return true;
+}
+
+bool ViewSession::finishScreenshot(const std::filesystem::path& png) {
+    bool written = false;
+    try {
+        if (!png.empty()) {
+            writePng(png, renderer_->readback());
+            spdlog::info("screenshot: {}", png.string());
+            written = true;
+        }
+    } catch (const std::exception& e) {
+        error_ = std::string("screenshot: ") + e.what();
+        spdlog::warn("{}", error_);
+    }
+    CompileOptions co = renderer_->compiled().options();
+    co.readbacks.clear();
+    try {
+        renderer_->setGraph(CompiledGraph(renderer_->graph(), co));
+    } catch (const std::exception& e) {
+        error_ = std::string("screenshot: ") + e.what();
+        return false;
+    }
+    return written;
+}
+
+}  // namespace skygraph::app

@@ -1,0 +1,93 @@
+// What `skygraph view` renders and what it may change while it runs: the inputs of `render`
+// (graph, scene, environment, features) and the frame renderer built from them. A change
+// that needs new inputs (a feature, the environment file, a saved graph or scene file)
+// rebuilds them all; one that fails keeps the last good renderer running and its message.
+#pragma once
+
+#include "file_watcher.hpp"
+#include "render.hpp"
+
+#include <skygraph/hot_reload.hpp>
+#include <skygraph/renderer.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace skygraph::app {
+
+class ViewSession {
+public:
+    /// Loads, compiles (presented, at width x height), bakes and builds what `options`
+    /// names on `device`, which must outlive the session. `overlay`: the graph's feature `ui`
+    /// (the ImGuiPass), unless `options.features` sets it. Throws like renderCommand's steps.
+    ViewSession(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay);
+    ~ViewSession();
+    ViewSession(const ViewSession&) = delete;
+    ViewSession& operator=(const ViewSession&) = delete;
+
+    /// The renderer that presents; replaced by a rebuild, so do not keep the reference
+    /// across setFeature, setEnvironmentFile or poll.
+    [[nodiscard]] Renderer& renderer() noexcept { return *renderer_; }
+    /// The scene the passes get, edited in place by the overlay (call sceneChanged()
+    /// after); null when the graph runs without one. Kept across rebuilds.
+    [[nodiscard]] Scene* scene() noexcept { return scene_ ? &*scene_ : nullptr; }
+    void sceneChanged();
+
+    /// The graph's features with the values the running plan was compiled with.
+    [[nodiscard]] std::vector<std::pair<std::string, bool>> features() const;
+    /// Whether the running plan has feature `name` on (false when the graph lacks it).
+    [[nodiscard]] bool feature(std::string_view name) const;
+    /// Rebuilds with `name` forced on or off. False (error() says why) keeps what ran.
+    bool setFeature(const std::string& name, bool on);
+    /// Rebuilds with another environment: a file, or empty for the procedural sky.
+    bool setEnvironmentFile(const std::filesystem::path& file);
+    /// Rebuilds after the graph or scene file was saved, reloads shaders after a shader
+    /// edit. True when something was reloaded (or failed: see error()).
+    bool poll();
+
+    /// Screenshots go through the plan: beginScreenshot() recompiles with the presented
+    /// image read back after each frame (CompileOptions::readbacks); after one frame has
+    /// been presented, finishScreenshot() writes it as a PNG (the overlay included) and
+    /// compiles the plan back. False (error() says why) when either step failed.
+    bool beginScreenshot();
+    bool finishScreenshot(const std::filesystem::path& png);
+    /// The plan's presented image, or empty.
+    [[nodiscard]] std::string presentedResource() const;
+
+    /// When the last rebuild after a saved file was installed, and the save it followed
+    /// (the file's modification time), for the latency from saving to the frame on screen.
+    struct Reload {
+        std::filesystem::file_time_type saved{};
+        bool pending = false;  // no frame of the new plan presented yet
+    };
+    [[nodiscard]] Reload& lastReload() noexcept { return lastReload_; }
+
+    /// The message of the last failed change or reload; empty once one succeeds.
+    [[nodiscard]] const std::string& error() const noexcept { return error_; }
+    /// How many rebuilds and reloads succeeded.
+    [[nodiscard]] uint32_t reloads() const noexcept { return reloads_; }
+
+private:
+    struct Built;
+    [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options) const;
+    bool rebuild(RenderOptions options);
+
+    Device& device_;
+    RenderOptions options_;
+    uint32_t width_, height_;
+    bool overlay_;
+    std::optional<Scene> scene_;
+    std::unique_ptr<Built> built_;
+    Renderer* renderer_ = nullptr;
+    std::optional<FileWatcher> graphWatcher_, sceneWatcher_;
+    std::unique_ptr<HotReloader> shaderWatcher_;
+    std::string error_;
+    uint32_t reloads_ = 0;
+    Reload lastReload_;
+};
+
+}  // namespace skygraph::app
