@@ -15,17 +15,21 @@ main_suite() {
     ctest --test-dir build --output-on-failure -j "$JOBS"
 }
 
-# Reuses the main build: installs it to a temporary prefix, builds examples/embed against the
-# installed package only (its own pass type, its own graph, validation on), and renders with
-# the installed `skygraph`, which must find the installed shaders.
+# Reuses the main build: installs it to a temporary prefix, builds examples/embed and
+# examples/window against the installed package only (their own pass types, their own graphs,
+# validation on; the window one presents on a virtual X server and checks screenshots), and
+# renders with the installed `skygraph`, which must find the installed shaders.
 installed_package() {
-    stage "install; examples/embed and skygraph render from the install tree"
+    stage "install; examples/embed, examples/window and skygraph render from the install tree"
     local prefix
     prefix="$(mktemp -d)"
     cmake --install build --prefix "$prefix" >/dev/null
     cmake -S examples/embed -B build/embed-example -G Ninja -DCMAKE_PREFIX_PATH="$prefix"
     cmake --build build/embed-example -j "$JOBS"
     ctest --test-dir build/embed-example --output-on-failure
+    cmake -S examples/window -B build/window-example -G Ninja -DCMAKE_PREFIX_PATH="$prefix"
+    cmake --build build/window-example -j "$JOBS"
+    ctest --test-dir build/window-example --output-on-failure
     "$prefix/bin/skygraph" -v render --width 32 --height 32 --frames 2 --validate \
         -o "$prefix/installed.png" 2>&1 | tee "$prefix/render.log"
     grep -q "shaders from $prefix/share/skygraph/shaders" "$prefix/render.log"

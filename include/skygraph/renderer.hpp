@@ -87,8 +87,10 @@ public:
     /// become the plan's Present resource, and the plan state is rebuilt, compiled again at
     /// their extent if it differs. Their format must be the Present resource's and their usage
     /// must include presentRequirements(compiled()).usage. Call it again after re-creating them.
-    /// The images are borrowed: keep them alive while this renderer renders into them. Throws
-    /// ExecutorError on a mismatch, keeping the old state.
+    /// The images are borrowed: keep them alive while this renderer renders into them. Waits
+    /// for every submitted frame first; once it returns, the renderer holds no view of the
+    /// images given before, which may then be destroyed (their presents done). Throws
+    /// ExecutorError on a mismatch, keeping the old state (and the old images in use).
     void setPresentImages(PresentImages images);
     /// Waits until the frame slot that the next frame records into is free (its previous frame
     /// has finished) and returns its index, below framesInFlight. Semaphores that slot's last
@@ -99,8 +101,10 @@ public:
     /// for `target.acquired` at the stages of the plan's first use of the image, records the
     /// plan (its final barrier leaves the image in PRESENT_SRC_KHR) and signals
     /// `target.renderComplete`; the caller presents (vkQueuePresentKHR waiting for it) on
-    /// Device::queue(). Throws ExecutorError without setPresentImages or for an index out of
-    /// range.
+    /// Device::queue(). The semaphores are borrowed for the submit: the caller owns them and
+    /// keeps them until that frame and its present are done (waitIdle(), then the queue's
+    /// vkQueueWaitIdle). Throws ExecutorError without setPresentImages, for an index out of
+    /// range or a null semaphore, submitting nothing.
     void renderFrame(const PresentTarget& target);
     /// Waits until every submitted frame has finished.
     void waitIdle();
