@@ -6,8 +6,15 @@
 #   resize       the same, the window resized twice mid-run (xdotool windowsize)
 #   mailbox      the same with --present-mode mailbox
 #   in_flight_K  the same with K frames in flight (1, 2, 3)
-#   pixels       a screenshot of the window (xwd) equals `skygraph render` of the same graph,
-#                scene and size within one code per channel; Escape then closes it, exit 0
+#   pixels       with --no-ui, a screenshot of the window (xwd) equals `skygraph render` of the
+#                same graph, scene and size within one code per channel; Escape closes it, exit 0
+#   ui_pixels    with the overlay: outside its rectangle the window equals `skygraph render`
+#                within one code, inside it most pixels differ
+#   click        a click on the overlay's skybox checkbox culls the skybox (the log says why)
+#                and the sky's pixels become the clear colour
+#   hot_reload   a broken graph edit keeps the last good frame and shows the message (the
+#                overlay's layout moves down for it); the fixed edit (no skybox pass) renders
+#   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
 #   no_display   without an X server: exit 1 and one line that suggests `skygraph render`
@@ -102,6 +109,51 @@ EOF
 
 view() { "$skygraph" view "$@" >view.out 2>view.err & pid=$!; }
 
+# The window's pixels as raw RGB in $2.
+capture() { xwd -silent -id "$1" | convert xwd:- -alpha off -depth 8 "rgb:$2" 2>/dev/null; }
+
+# compare.py A.rgb B.rgb WIDTH [X Y W H]: the largest difference outside the rectangle (the
+# whole image without one), and the fraction of pixels inside it that differ by more than 8,
+# into compare.txt.
+cat >compare.py <<'EOF'
+import sys
+a, b = open(sys.argv[1], "rb").read(), open(sys.argv[2], "rb").read()
+width = int(sys.argv[3])
+rect = [int(v) for v in sys.argv[4:8]] if len(sys.argv) > 4 else None
+if len(a) != len(b):
+    print("sizes differ")
+    sys.exit(2)
+outside, inside, changed = 0, 0, 0
+for i in range(0, len(a), 3):
+    x, y = (i // 3) % width, (i // 3) // width
+    d = max(abs(a[i + c] - b[i + c]) for c in range(3))
+    if rect and rect[0] <= x < rect[0] + rect[2] and rect[1] <= y < rect[1] + rect[3]:
+        inside += 1
+        changed += d > 8
+    else:
+        outside = max(outside, d)
+print(f"outside: {outside} codes at most; inside: {changed} of {inside} pixels differ")
+print(outside, changed / inside if inside else 0.0, file=open("compare.txt", "w"))
+EOF
+
+# "R G B" of pixel ($3, $4) of the raw image $1 of width $2.
+pixel() { python3 -c "d = open('$1', 'rb').read(); i = 3 * ($4 * $2 + $3); print(*d[i:i + 3])"; }
+
+# Waits (up to 60 s) until the log matches $1.
+wait_for_log() {
+    for _ in $(seq 600); do
+        grep -q -- "$1" view.err && return 0
+        kill -0 "$pid" 2>/dev/null || fail "ended before the log said '$1'"
+        sleep 0.1
+    done
+    fail "the log never said '$1'"
+}
+
+# The overlay's last logged rectangle as "X Y W H".
+overlay_rect() { grep "overlay: window at" view.err | tail -1 | sed -E 's/.* at ([0-9]+),([0-9]+) ([0-9]+)x([0-9]+).*/\1 \2 \3 \4/'; }
+# The centre of feature $1's checkbox, as last logged, as "X Y".
+checkbox_of() { grep "overlay: feature checkboxes" view.err | tail -1 | tr ' ' '\n' | grep "^$1=" | sed -E 's/.*=([0-9]+),([0-9]+)/\1 \2/'; }
+
 case "$case_name" in
     frames)
         view --validate --frames 120
@@ -131,7 +183,7 @@ case "$case_name" in
     pixels)
         "$skygraph" render --width 256 --height 256 -o render.png >render.log 2>&1 || fail "skygraph render failed"
         convert render.png -alpha off -depth 8 rgb:render.rgb
-        view --validate --width 256 --height 256
+        view --validate --no-ui --width 256 --height 256
         w="$(window_of)"
         # Frames before the first present show nothing yet: retry until one is on screen.
         matched=""
@@ -151,6 +203,111 @@ EOF
         done
         convert -size 256x256 -depth 8 rgb:view.rgb view.png 2>/dev/null || true
         [ -n "$matched" ] || fail "the window never showed what skygraph render writes (see $work/view.png, render.png)"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
+        ;;
+    ui_pixels)
+        "$skygraph" render --width 640 --height 480 -o render.png >render.log 2>&1 || fail "skygraph render failed"
+        convert render.png -alpha off -depth 8 rgb:render.rgb
+        view --validate --width 640 --height 480
+        w="$(window_of)"
+        wait_for_log "overlay: window at"
+        matched=""
+        for _ in $(seq 120); do
+            capture "$w" view.rgb || true
+            # shellcheck disable=SC2046
+            python3 compare.py render.rgb view.rgb 640 $(overlay_rect) || true
+            read -r outside inside <compare.txt || true
+            if [ "${outside:-99}" -le 1 ] && python3 -c "import sys; sys.exit(0 if ${inside:-0} > 0.5 else 1)"; then
+                matched=1
+                break
+            fi
+            sleep 0.5
+        done
+        convert -size 640x480 -depth 8 rgb:view.rgb view.png 2>/dev/null || true
+        [ -n "$matched" ] || fail "outside the overlay ($(overlay_rect)) the window is not the render, or no overlay (see $work/view.png)"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
+        ;;
+    click)
+        view --validate --width 640 --height 480
+        w="$(window_of)"
+        wait_for_log "overlay: feature checkboxes"
+        sleep 2
+        capture "$w" before.rgb
+        sky_before="$(pixel before.rgb 640 630 10)"
+        [ "$sky_before" != "0 0 0" ] || fail "no sky before the click"
+        read -r x y <<<"$(checkbox_of skybox)"
+        [ -n "$x" ] || fail "the overlay logged no skybox checkbox"
+        xdotool mousemove --window "$w" "$x" "$y" click 1
+        wait_for_log "culled skybox: "
+        sky=""
+        for _ in $(seq 60); do
+            capture "$w" after.rgb
+            sky="$(pixel after.rgb 640 630 10)"
+            [ "$sky" = "0 0 0" ] && break
+            sleep 0.5
+        done
+        [ "$sky" = "0 0 0" ] || fail "the sky pixel is $sky after the click, not the clear colour (was $sky_before)"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
+        grep -q "culled skybox: condition 'skybox && !environment_file' is false (skybox=off" view.err ||
+            fail "the log does not say why the skybox was culled"
+        echo "click: sky $sky_before -> $sky"
+        ;;
+    hot_reload)
+        cp "$root/graphs/raster.json" graph.json
+        view --validate --width 640 --height 480 graph.json --scene "$root/scenes/default.json"
+        w="$(window_of)"
+        wait_for_log "overlay: feature checkboxes"
+        sleep 2
+        capture "$w" good.rgb
+        sky_good="$(pixel good.rgb 640 630 10)"
+        read -r _ y_good <<<"$(checkbox_of skybox)"
+        printf '{ "version": 1, "passes": [ ' >graph.json  # a save cut short
+        y_broken="$y_good"
+        for _ in $(seq 60); do
+            read -r _ y_broken <<<"$(checkbox_of skybox)"
+            [ "$y_broken" -gt "$y_good" ] && break
+            sleep 0.5
+        done
+        [ "$y_broken" -gt "$y_good" ] || fail "the overlay shows no message (its controls did not move down)"
+        grep -q "warning: .*graph.json" view.err || fail "the log has no message naming graph.json"
+        capture "$w" broken.rgb
+        [ "$(pixel broken.rgb 640 630 10)" = "$sky_good" ] || fail "the last good frame is not on screen"
+        python3 - "$root/graphs/raster.json" <<'EOF'
+import json, sys
+g = json.load(open(sys.argv[1]))
+g["passes"] = [p for p in g["passes"] if p["type"] != "SkyboxPass"]
+json.dump(g, open("graph.json.tmp", "w"), indent=1)
+EOF
+        mv graph.json.tmp graph.json
+        wait_for_log "reload: first frame of the new plan presented"
+        sky=""
+        for _ in $(seq 60); do
+            capture "$w" fixed.rgb
+            sky="$(pixel fixed.rgb 640 630 10)"
+            [ "$sky" = "0 0 0" ] && break
+            sleep 0.5
+        done
+        [ "$sky" = "0 0 0" ] || fail "the fixed graph (no skybox pass) does not render: sky $sky"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
+        grep -q " 1 reload(s)" view.out || fail "not one reload"
+        grep "reload: first frame" view.err
+        ;;
+    screenshot)
+        view --validate --no-ui --width 320 --height 240
+        w="$(window_of)"
+        wait_for_swapchain 320x240
+        sleep 2
+        xdotool key --window "$w" F12
+        wait_for_log "screenshot: skygraph-view-1.png"
+        capture "$w" window.rgb
+        convert skygraph-view-1.png -alpha off -depth 8 rgb:shot.rgb
+        python3 compare.py window.rgb shot.rgb 320
+        read -r outside _ <compare.txt
+        [ "$outside" -le 1 ] || fail "the screenshot differs from the window by $outside codes"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
         ;;

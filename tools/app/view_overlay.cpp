@@ -69,6 +69,13 @@ void ViewOverlay::frame(ViewSession& session, double frameMs) {
     features(session);
     sceneControls(session);
     statistics(session, frameMs);
+    const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    const std::string rect = std::to_string(int(pos.x)) + "," + std::to_string(int(pos.y)) + " " +
+                             std::to_string(int(size.x)) + "x" + std::to_string(int(size.y));
+    if (rect != window_) {
+        window_ = rect;
+        spdlog::info("overlay: window at {}", rect);
+    }
     ImGui::End();
     ImGui::Render();
 }

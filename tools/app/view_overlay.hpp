@@ -36,6 +36,7 @@ private:
 
     std::array<char, 1024> environmentFile_{};
     std::string laidOut_;  // the controls' positions, logged once per layout
+    std::string window_;   // the overlay's rectangle, likewise
 };
 
 }  // namespace skygraph::app
