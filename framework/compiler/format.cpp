@@ -5,8 +5,9 @@
 namespace skygraph {
 namespace {
 
-// storageCapable follows the spec's table of formats with mandatory STORAGE_IMAGE support
-// (plus the widely available ones); sRGB and depth formats are never storage images.
+// storageCapable follows the spec's table of formats with mandatory STORAGE_IMAGE support,
+// plus the widely available ones (B8G8R8A8_UNORM: the storage swapchain format that surfaces
+// offer); sRGB and depth formats are never storage images. The executor asks the device.
 #define SG_FORMAT(name, bytes, depth, stencil, srgb, storage) \
     FormatInfo{#name, VK_FORMAT_##name, bytes, depth, stencil, srgb, storage}
 
@@ -16,7 +17,7 @@ constexpr std::array kFormats{
     SG_FORMAT(R8G8B8A8_UNORM, 4, false, false, false, true),
     SG_FORMAT(R8G8B8A8_SNORM, 4, false, false, false, true),
     SG_FORMAT(R8G8B8A8_SRGB, 4, false, false, true, false),
-    SG_FORMAT(B8G8R8A8_UNORM, 4, false, false, false, false),
+    SG_FORMAT(B8G8R8A8_UNORM, 4, false, false, false, true),
     SG_FORMAT(B8G8R8A8_SRGB, 4, false, false, true, false),
     SG_FORMAT(A2B10G10R10_UNORM_PACK32, 4, false, false, false, false),
     SG_FORMAT(B10G11R11_UFLOAT_PACK32, 4, false, false, false, false),

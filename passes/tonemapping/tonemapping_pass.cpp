@@ -106,20 +106,33 @@ private:
 };
 
 /// Storage images cannot be sRGB, so the compute pass always encodes sRGB in the shader and
-/// writes a UNORM or float image whose GLSL format qualifier is known.
-std::string storageQualifier(const PipelineContext& ctx, const BoundResource& output) {
+/// writes a UNORM or float image: through its GLSL format qualifier, or, for B8G8R8A8_UNORM
+/// (which has none; the storage swapchain format surfaces offer), through the view's format.
+std::vector<std::pair<std::string, std::string>> storageFormatDefines(const PipelineContext& ctx, const BoundResource& output) {
     switch (output.format) {
-        case VK_FORMAT_R8G8B8A8_UNORM: return "rgba8";
-        case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return "rgb10_a2";
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return "rgba16f";
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return "rgba32f";
+        case VK_FORMAT_R8G8B8A8_UNORM: return {{"OUT_FORMAT", "rgba8"}};
+        case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return {{"OUT_FORMAT", "rgb10_a2"}};
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return {{"OUT_FORMAT", "rgba16f"}};
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return {{"OUT_FORMAT", "rgba32f"}};
         default: break;
     }
+    const std::string where = "pass '" + ctx.desc->name + "', resource '" + (output.desc ? output.desc->name : "?") + "'";
+    if (output.format == VK_FORMAT_B8G8R8A8_UNORM) {
+        VkPhysicalDeviceFeatures features;
+        vkGetPhysicalDeviceFeatures(ctx.physicalDevice, &features);
+        VkFormatProperties3 props3{VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_3};
+        VkFormatProperties2 props{VK_STRUCTURE_TYPE_FORMAT_PROPERTIES_2, &props3};
+        vkGetPhysicalDeviceFormatProperties2(ctx.physicalDevice, output.format, &props);
+        if (features.shaderStorageImageWriteWithoutFormat &&
+            (props3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_STORAGE_WRITE_WITHOUT_FORMAT_BIT))
+            return {{"OUT_FORMAT_UNKNOWN", "1"}};
+        throw ExecutorError(where + ": this device cannot write B8G8R8A8_UNORM storage images without a format "
+                                    "qualifier (shaderStorageImageWriteWithoutFormat); use R8G8B8A8_UNORM");
+    }
     const auto info = findFormat(output.format);
-    throw ExecutorError("pass '" + ctx.desc->name + "', resource '" + (output.desc ? output.desc->name : "?") +
-                        "': TonemappingComputePass writes R8G8B8A8_UNORM, A2B10G10R10_UNORM_PACK32, "
-                        "R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT storage images (it encodes sRGB "
-                        "itself), not " + (info ? std::string(info->name) : std::to_string(output.format)));
+    throw ExecutorError(where + ": TonemappingComputePass writes R8G8B8A8_UNORM, B8G8R8A8_UNORM, "
+                        "A2B10G10R10_UNORM_PACK32, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT storage images "
+                        "(it encodes sRGB itself), not " + (info ? std::string(info->name) : std::to_string(output.format)));
 }
 
 class TonemappingComputePass final : public PassImplementation {
@@ -132,7 +145,7 @@ public:
         if (!output) throw ExecutorError("pass '" + ctx.desc->name + "': no resource bound to slot 'output'");
         ComputePipelineRecipe recipe;
         recipe.compute = compileShader(*ctx.shaders, VK_SHADER_STAGE_COMPUTE_BIT, "passes/tonemap.comp",
-                                       {{"OUT_FORMAT", storageQualifier(ctx, *output)}});
+                                       storageFormatDefines(ctx, *output));
         recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
                            {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
         recipe.pushConstantBytes = sizeof(Push);

@@ -14,7 +14,13 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 0) uniform sampler2D hdrInput;
+#ifdef OUT_FORMAT_UNKNOWN
+// A format without a GLSL qualifier (B8G8R8A8_UNORM): written through the view's format
+// (shaderStorageImageWriteWithoutFormat).
+layout(set = 0, binding = 1) uniform writeonly image2D outImage;
+#else
 layout(set = 0, binding = 1, OUT_FORMAT) uniform writeonly image2D outImage;
+#endif
 layout(push_constant) uniform Params {
     float exposureEv;
     int toneOperator;

@@ -8,6 +8,7 @@
 #   in_flight_K  the same with K frames in flight (1, 2, 3)
 #   pixels       with --no-ui, a screenshot of the window (xwd) equals `skygraph render` of the
 #                same graph, scene and size within one code per channel; Escape closes it, exit 0
+#   compute_pixels  the same with the compute tonemap writing the swapchain as a storage image
 #   ui_pixels    with the overlay: outside its rectangle the window equals `skygraph render`
 #                within one code, inside it most pixels differ
 #   click        a click on the overlay's skybox checkbox culls the skybox (the log says why)
@@ -180,10 +181,13 @@ case "$case_name" in
         expect_clean_end "$pid" 120
         grep -q "last at 200x300" view.out || fail "the last frames were not at 200x300"
         ;;
-    pixels)
-        "$skygraph" render --width 256 --height 256 -o render.png >render.log 2>&1 || fail "skygraph render failed"
+    pixels | compute_pixels)
+        features=()
+        [ "$case_name" = pixels ] || features=(--feature compute_tonemap=on)
+        "$skygraph" render "${features[@]}" --width 256 --height 256 -o render.png >render.log 2>&1 ||
+            fail "skygraph render failed"
         convert render.png -alpha off -depth 8 rgb:render.rgb
-        view --validate --no-ui --width 256 --height 256
+        view --validate --no-ui "${features[@]}" --width 256 --height 256
         w="$(window_of)"
         # Frames before the first present show nothing yet: retry until one is on screen.
         matched=""

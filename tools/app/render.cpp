@@ -69,11 +69,17 @@ std::unique_ptr<Renderer> bakeForFrame(Device& device, GraphDesc graph, const Hd
     return std::move(bake.renderer);
 }
 
-/// The image `render` writes: `readback` if named, else the graph's Present image, else none.
-std::string outputTarget(const GraphDesc& graph, const std::string& readback) {
+/// The image `render` writes: `readback` if named, else the graph's Present image that a pass
+/// of `plan` (compiled without read-backs) uses, so that with several (raster.json's
+/// swapchain and swapchain_storage) it is the one the features keep; else none.
+std::string outputTarget(const GraphDesc& graph, const Plan& plan, const std::string& readback) {
     if (!readback.empty()) return readback;
-    for (const ResourceDesc& r : graph.resources)
-        if (r.final == ExternalState::Present) return r.name;
+    for (const PlannedPass& p : plan.passes())
+        for (const PlannedUsage& u : p.usages) {
+            const std::string_view name = plan.resources()[u.resource].name;
+            const ResourceDesc* r = graph.findResource(name);
+            if (r && r->final == ExternalState::Present) return std::string(name);
+        }
     return {};
 }
 
@@ -192,7 +198,7 @@ int renderCommand(const RenderOptions& options) {
         // Headless: the swapchain target is an image of our own, read back instead of presented.
         co.presentReplacement = ExternalState::TransferSrc;
         std::filesystem::path output = options.output;
-        const std::string target = outputTarget(graph, options.readback);
+        const std::string target = outputTarget(graph, compile(graph, co), options.readback);
         if (target.empty()) {
             if (!output.empty()) {
                 std::cerr << "skygraph render: nothing to write to " << output.string() << ": graph '" << graph.name
