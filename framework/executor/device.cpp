@@ -210,12 +210,19 @@ bool envFlag(const char* name) {
 
 }  // namespace
 
-Device::Impl::~Impl() {
+void Device::Impl::finish() {
     if (device) {
         vkDeviceWaitIdle(device);
         vkDestroyDevice(device, nullptr);
+        device = VK_NULL_HANDLE;
+        queue = VK_NULL_HANDLE;
     }
     if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
+    surface = VK_NULL_HANDLE;
+}
+
+Device::Impl::~Impl() {
+    finish();
     if (messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
@@ -456,6 +463,8 @@ bool Device::hasMessage(std::string_view needle) const {
                m.message.find(needle) != std::string::npos;
     });
 }
+void Device::finish() { impl_->finish(); }
+
 void Device::clearMessages() {
     std::lock_guard lock(impl_->mutex);
     impl_->count = 0;

@@ -178,52 +178,61 @@ int viewCommand(const ViewOptions& options) {
         dopts.presentation = std::move(presentation);
         auto device = Device::create(dopts);
 
-        SwapchainOptions so;
-        so.width = uint32_t(std::max(fbw, 0));
-        so.height = uint32_t(std::max(fbh, 0));
-        so.presentMode = options.presentMode;
-        const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, compiled, so);
-        const FrameEnvironment environment = bakeFrameEnvironment(*device, compiled.plan(), inputs, fo);
-        RendererOptions ropts;
-        ropts.framesInFlight = fo.framesInFlight;
-        ropts.passes = inputs.passes;
-        Renderer renderer(*device, std::move(compiled), ropts);
-        attachFrameInputs(renderer, inputs, environment);
-
-        ViewState state;
-        state.swapchain = swapchain.get();
-        if (inputs.scene && options.orbit) {
-            state.scene = &*inputs.scene;
-            state.orbit.emplace(inputs.scene->camera);
-        }
-        glfwSetWindowUserPointer(window, &state);
-        glfwSetFramebufferSizeCallback(window, onFramebufferSize);
-        glfwSetKeyCallback(window, onKey);
-        glfwSetMouseButtonCallback(window, onMouseButton);
-        glfwSetCursorPosCallback(window, onCursor);
-        glfwSetScrollCallback(window, onScroll);
-        stopRequested = 0;
-        const auto previousInt = std::signal(SIGINT, onStopSignal);
-        const auto previousTerm = std::signal(SIGTERM, onStopSignal);
-
         uint64_t presented = 0;
-        while (!glfwWindowShouldClose(window) && !stopRequested) {
-            if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
-            else glfwPollEvents();
-            if (state.cameraMoved) {
-                renderer.frameData().set(*inputs.scene);
-                state.cameraMoved = false;
+        VkExtent2D lastExtent{};
+        PresentMode lastMode = options.presentMode;
+        {
+            SwapchainOptions so;
+            so.width = uint32_t(std::max(fbw, 0));
+            so.height = uint32_t(std::max(fbh, 0));
+            so.presentMode = options.presentMode;
+            const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, compiled, so);
+            const FrameEnvironment environment = bakeFrameEnvironment(*device, compiled.plan(), inputs, fo);
+            RendererOptions ropts;
+            ropts.framesInFlight = fo.framesInFlight;
+            ropts.passes = inputs.passes;
+            Renderer renderer(*device, std::move(compiled), ropts);
+            attachFrameInputs(renderer, inputs, environment);
+
+            ViewState state;
+            state.swapchain = swapchain.get();
+            if (inputs.scene && options.orbit) {
+                state.scene = &*inputs.scene;
+                state.orbit.emplace(inputs.scene->camera);
             }
-            if (renderer.renderFrame(*swapchain) == PresentStatus::Presented) ++presented;
-            if (options.frames != 0 && presented >= options.frames) break;
+            glfwSetWindowUserPointer(window, &state);
+            glfwSetFramebufferSizeCallback(window, onFramebufferSize);
+            glfwSetKeyCallback(window, onKey);
+            glfwSetMouseButtonCallback(window, onMouseButton);
+            glfwSetCursorPosCallback(window, onCursor);
+            glfwSetScrollCallback(window, onScroll);
+            stopRequested = 0;
+            const auto previousInt = std::signal(SIGINT, onStopSignal);
+            const auto previousTerm = std::signal(SIGTERM, onStopSignal);
+
+            while (!glfwWindowShouldClose(window) && !stopRequested) {
+                if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
+                else glfwPollEvents();
+                if (state.cameraMoved) {
+                    renderer.frameData().set(*inputs.scene);
+                    state.cameraMoved = false;
+                }
+                if (renderer.renderFrame(*swapchain) == PresentStatus::Presented) ++presented;
+                if (options.frames != 0 && presented >= options.frames) break;
+            }
+            renderer.waitIdle();
+            std::signal(SIGINT, previousInt);
+            std::signal(SIGTERM, previousTerm);
+            for (const auto& t : renderer.lastTimings()) spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
+            lastExtent = swapchain->extent();
+            lastMode = swapchain->presentMode();
+            glfwSetWindowUserPointer(window, nullptr);  // `state` ends here
         }
-        renderer.waitIdle();
-        std::signal(SIGINT, previousInt);
-        std::signal(SIGTERM, previousTerm);
-        for (const auto& t : renderer.lastTimings()) spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
-        const VkExtent2D e = swapchain->extent();
-        std::cout << "skygraph view: " << presented << " frames presented, last at " << e.width << "x" << e.height
-                  << " (" << presentModeName(swapchain->presentMode()) << "); validation: ";
+        // The renderer and the swapchain are gone: destroying the device now lets validation
+        // report (and count) any Vulkan object still alive, a leak, before the exit status.
+        device->finish();
+        std::cout << "skygraph view: " << presented << " frames presented, last at " << lastExtent.width << "x"
+                  << lastExtent.height << " (" << presentModeName(lastMode) << "); validation: ";
         if (device->validationEnabled()) {
             std::cout << device->messageCount() << " message(s)\n";
         } else
