@@ -55,7 +55,7 @@ sanitizers_and_fuzz() {
     cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYGRAPH_FUZZ=ON \
         -DCMAKE_CXX_COMPILER="$(command -v clang++-14 || command -v clang++)" -DSKYGRAPH_BUILD_BENCH=ON \
         "-DCMAKE_CXX_FLAGS=$flags"
-    cmake --build build-fuzz -j "$JOBS" --target "${SANITIZED_TARGETS[@]}"
+    cmake --build build-fuzz -j "$JOBS" --target "${SANITIZED_TARGETS[@]}" leak_control skygraph_keep_loaded
     stage "sanitizers: every test under ASan + UBSan on lavapipe"
     local lvp=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
     (
@@ -69,6 +69,8 @@ sanitizers_and_fuzz() {
             ASAN_OPTIONS=detect_leaks=1 "build-fuzz/tests/$t" --gtest_brief=1
         done
     )
+    stage "sanitizers: skygraph view closed mid-frame, leak detection on (and its negative control)"
+    tests/reliability/view_leak_check.sh build-fuzz
     stage "fuzz the loader and compiler for ${SKYGRAPH_FUZZ_SECONDS:-60} s"
     tools/fuzz.sh "${SKYGRAPH_FUZZ_SECONDS:-60}"
 }

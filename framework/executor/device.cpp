@@ -1,4 +1,5 @@
 // Device context: instance, validation with synchronization validation, device selection.
+#include "device_selection.hpp"
 #include "vk_util.hpp"
 
 #include <spdlog/spdlog.h>
@@ -150,39 +151,37 @@ int typeRank(VkPhysicalDeviceType t) {
     }
 }
 
-/// Why `pd` cannot run skygraph, or empty when it can; sets `family`. With a `surface`, the
-/// family must also present to it and the device must have VK_KHR_swapchain.
-std::string unsuitable(VkPhysicalDevice pd, VkSurfaceKHR surface, uint32_t& family) {
+/// What unsuitableReason (device_selection.hpp) needs to know of `pd`; with a `surface`,
+/// whether each graphics+compute family presents to it.
+detail::PhysicalDeviceFacts deviceFacts(VkPhysicalDevice pd, VkSurfaceKHR surface) {
+    detail::PhysicalDeviceFacts facts;
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(pd, &props);
-    if (props.apiVersion < VK_API_VERSION_1_3) return "does not support Vulkan 1.3";
-    if (!deviceExtensionAvailable(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
-        return "lacks VK_KHR_push_descriptor";
+    facts.apiVersion = props.apiVersion;
+    facts.pushDescriptor = deviceExtensionAvailable(pd, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    facts.swapchain = deviceExtensionAvailable(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    if (props.apiVersion >= VK_API_VERSION_1_3) {
+        VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+        vkGetPhysicalDeviceFeatures2(pd, &f2);
+        facts.synchronization2 = f13.synchronization2 == VK_TRUE;
     }
-    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
-    vkGetPhysicalDeviceFeatures2(pd, &f2);
-    if (!f13.synchronization2) return "lacks synchronization2";
-    if (surface && !deviceExtensionAvailable(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
-        return "cannot present: it lacks VK_KHR_swapchain";
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> fams(n);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, fams.data());
-    bool renders = false;
     for (uint32_t i = 0; i < n; ++i) {
         const auto need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((fams[i].queueFlags & need) != need || fams[i].timestampValidBits == 0) continue;
-        renders = true;
-        VkBool32 presents = VK_TRUE;
-        if (surface && vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &presents) != VK_SUCCESS) presents = VK_FALSE;
-        if (presents) {
-            family = i;
-            return {};
+        detail::QueueFamilyFacts f;
+        f.graphicsAndCompute = (fams[i].queueFlags & need) == need;
+        f.timestamps = fams[i].timestampValidBits != 0;
+        if (surface && f.graphicsAndCompute && facts.swapchain) {
+            VkBool32 presents = VK_FALSE;
+            f.presents = vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &presents) == VK_SUCCESS && presents;
         }
+        facts.families.push_back(f);
     }
-    if (renders) return "cannot present to the surface: no graphics+compute queue family of it presents there";
-    return "has no graphics+compute queue with timestamps";
+    return facts;
 }
 
 /// The presentation's instance extensions, each checked to be available.
@@ -211,12 +210,19 @@ bool envFlag(const char* name) {
 
 }  // namespace
 
-Device::Impl::~Impl() {
+void Device::Impl::finish() {
     if (device) {
         vkDeviceWaitIdle(device);
         vkDestroyDevice(device, nullptr);
+        device = VK_NULL_HANDLE;
+        queue = VK_NULL_HANDLE;
     }
     if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
+    surface = VK_NULL_HANDLE;
+}
+
+Device::Impl::~Impl() {
+    finish();
     if (messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
@@ -320,8 +326,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
 
     // Pick the physical device.
     const auto pds = physicalDevices(impl->instance);
-    if (pds.empty()) throw ExecutorError("no Vulkan physical devices found");
-    std::string reasons;
+    std::vector<detail::DeviceCandidate> candidates;
     VkPhysicalDevice chosen = VK_NULL_HANDLE;
     uint32_t chosenFamily = 0;
     const bool byIndex = !options.device.empty() &&
@@ -331,16 +336,16 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     for (size_t i = 0; i < pds.size(); ++i) {
         VkPhysicalDeviceProperties props;
         vkGetPhysicalDeviceProperties(pds[i], &props);
-        if (byIndex && std::to_string(i) != options.device) continue;
-        if (!byIndex && !options.device.empty() &&
-            lower(props.deviceName).find(lower(options.device)) == std::string::npos) {
-            continue;
-        }
+        detail::DeviceCandidate& c = candidates.emplace_back();
+        c.index = i;
+        c.name = props.deviceName;
+        c.type = typeName(props.deviceType);
+        c.matched = options.device.empty() || (byIndex ? std::to_string(i) == options.device
+                                                       : lower(c.name).find(lower(options.device)) != std::string::npos);
+        if (!c.matched) continue;
         uint32_t family = 0;
-        if (auto why = unsuitable(pds[i], impl->surface, family); !why.empty()) {
-            reasons += "\n  " + std::to_string(i) + ": " + props.deviceName + " " + why;
-            continue;
-        }
+        c.reason = detail::unsuitableReason(deviceFacts(pds[i], impl->surface), impl->surface != VK_NULL_HANDLE, family);
+        if (!c.reason.empty()) continue;
         const int rank = typeRank(props.deviceType);
         if (rank < bestRank) {
             bestRank = rank;
@@ -348,15 +353,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
             chosenFamily = family;
         }
     }
-    if (!chosen) {
-        std::string msg = options.device.empty()
-                              ? "no suitable Vulkan device"
-                              : "no suitable Vulkan device matches --device '" + options.device + "'";
-        msg += reasons.empty() ? "" : ":" + reasons;
-        msg += "\navailable devices:";
-        for (const auto& d : listDevices()) msg += "\n  " + d;
-        throw ExecutorError(msg);
-    }
+    if (!chosen) throw ExecutorError(detail::noDeviceMessage(options.device, impl->surface != VK_NULL_HANDLE, candidates));
     impl->physical = chosen;
     impl->queueFamily = chosenFamily;
     vkGetPhysicalDeviceProperties(chosen, &impl->properties);
@@ -466,6 +463,8 @@ bool Device::hasMessage(std::string_view needle) const {
                m.message.find(needle) != std::string::npos;
     });
 }
+void Device::finish() { impl_->finish(); }
+
 void Device::clearMessages() {
     std::lock_guard lock(impl_->mutex);
     impl_->count = 0;

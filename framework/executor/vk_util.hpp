@@ -62,6 +62,8 @@ struct Device::Impl {
     std::vector<ValidationMessage> kept;
     uint32_t layerVersion = 0;  ///< The validation layer's specVersion; 0 without validation.
 
+    /// Device::finish: waits, destroys the device and the surface (the messenger stays).
+    void finish();
     ~Impl();
 };
 

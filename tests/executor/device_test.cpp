@@ -56,6 +56,34 @@ TEST(DeviceSelection, ValidationByEnvironment) {
     EXPECT_EQ(d->messageCount(), 0u);
 }
 
+// finish() destroys the device while validation listens: a handle still alive then (here a
+// semaphore made and never destroyed, the negative control) is reported and counted, and a
+// device whose objects were all destroyed finishes silent. Twice is the same as once.
+TEST(DeviceFinish, AnObjectStillAliveIsCountedAndACleanDeviceIsSilent) {
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    o.validation = true;
+    o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
+    auto clean = Device::create(o);
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore destroyed = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateSemaphore(clean->device(), &sci, nullptr, &destroyed), VK_SUCCESS);
+    vkDestroySemaphore(clean->device(), destroyed, nullptr);
+    clean->finish();
+    EXPECT_EQ(clean->messageCount(), 0u);
+    EXPECT_EQ(clean->device(), VK_NULL_HANDLE);
+
+    auto leaking = Device::create(o);
+    VkSemaphore leaked = VK_NULL_HANDLE;
+    ASSERT_EQ(vkCreateSemaphore(leaking->device(), &sci, nullptr, &leaked), VK_SUCCESS);
+    EXPECT_EQ(leaking->messageCount(), 0u);
+    leaking->finish();
+    EXPECT_EQ(leaking->messageCount(), 1u);
+    EXPECT_TRUE(leaking->hasMessage("VUID-vkDestroyDevice-device-00378"));
+    leaking->finish();
+    EXPECT_EQ(leaking->messageCount(), 1u);
+}
+
 TEST(RenderCommand, WritesPngAndReportsUserErrors) {
     // Unique per process: ctest runs test binaries of several build trees in parallel.
     const auto dir = std::filesystem::temp_directory_path() /

@@ -199,72 +199,84 @@ int viewCommand(const ViewOptions& options) {
         dopts.presentation = std::move(presentation);
         auto device = Device::create(dopts);
 
-        // The window's callbacks first: the overlay's GLFW backend chains them.
-        ViewState state;
-        glfwSetWindowUserPointer(window, &state);
-        glfwSetFramebufferSizeCallback(window, onFramebufferSize);
-        glfwSetKeyCallback(window, onKey);
-        glfwSetMouseButtonCallback(window, onMouseButton);
-        glfwSetCursorPosCallback(window, onCursor);
-        glfwSetScrollCallback(window, onScroll);
-        // The overlay's context exists before the renderers whose ImGuiPass draws it, and
-        // outlives them (declared first, destroyed last).
-        std::optional<ViewOverlay> overlay;
-        if (options.overlay) overlay.emplace(window);
-        state.overlay = overlay ? &*overlay : nullptr;
-        ViewSession session(*device, fo, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)), options.overlay);
-
-        SwapchainOptions so;
-        so.width = uint32_t(std::max(fbw, 0));
-        so.height = uint32_t(std::max(fbh, 0));
-        so.presentMode = options.presentMode;
-        so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
-        const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, session.renderer().compiled(), so);
-        state.swapchain = swapchain.get();
-        if (session.scene() && options.orbit) {
-            state.scene = session.scene();
-            state.orbit.emplace(state.scene->camera);
-        }
-        stopRequested = 0;
-        const auto previousInt = std::signal(SIGINT, onStopSignal);
-        const auto previousTerm = std::signal(SIGTERM, onStopSignal);
-
         uint64_t presented = 0;
-        uint32_t screenshots = 0;
-        double frameMs = 0.0;
-        while (!glfwWindowShouldClose(window) && !stopRequested) {
-            const auto start = std::chrono::steady_clock::now();
-            if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
-            else glfwPollEvents();
-            session.poll();
-            if (std::exchange(state.toggleOverlay, false) && overlay)
-                session.setFeature(std::string(kOverlayFeature), !session.feature(kOverlayFeature));
-            state.overlayVisible = overlay && session.feature(kOverlayFeature);
-            if (state.overlayVisible) overlay->frame(session, frameMs);
-            if (state.cameraMoved) {
-                session.sceneChanged();
-                state.cameraMoved = false;
+        uint32_t reloads = 0;
+        VkExtent2D lastExtent{};
+        PresentMode lastMode = options.presentMode;
+        {
+            // The window's callbacks first: the overlay's GLFW backend chains them.
+            ViewState state;
+            glfwSetWindowUserPointer(window, &state);
+            glfwSetFramebufferSizeCallback(window, onFramebufferSize);
+            glfwSetKeyCallback(window, onKey);
+            glfwSetMouseButtonCallback(window, onMouseButton);
+            glfwSetCursorPosCallback(window, onCursor);
+            glfwSetScrollCallback(window, onScroll);
+            // The overlay's context exists before the renderers whose ImGuiPass draws it, and
+            // outlives them (declared first, destroyed last).
+            std::optional<ViewOverlay> overlay;
+            if (options.overlay) overlay.emplace(window);
+            state.overlay = overlay ? &*overlay : nullptr;
+            ViewSession session(*device, fo, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)), options.overlay);
+
+            SwapchainOptions so;
+            so.width = uint32_t(std::max(fbw, 0));
+            so.height = uint32_t(std::max(fbh, 0));
+            so.presentMode = options.presentMode;
+            so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
+            const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, session.renderer().compiled(), so);
+            state.swapchain = swapchain.get();
+            if (session.scene() && options.orbit) {
+                state.scene = session.scene();
+                state.orbit.emplace(state.scene->camera);
             }
-            const bool screenshot = std::exchange(state.screenshotWanted, false) && session.beginScreenshot();
-            if (session.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
-                ++presented;
-                if (screenshot) session.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");
-                reportReloadLatency(session);
-            } else if (screenshot) {
-                session.finishScreenshot({});  // nothing presented: compiles the plan back
+            stopRequested = 0;
+            const auto previousInt = std::signal(SIGINT, onStopSignal);
+            const auto previousTerm = std::signal(SIGTERM, onStopSignal);
+
+            uint32_t screenshots = 0;
+            double frameMs = 0.0;
+            while (!glfwWindowShouldClose(window) && !stopRequested) {
+                const auto start = std::chrono::steady_clock::now();
+                if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
+                else glfwPollEvents();
+                session.poll();
+                if (std::exchange(state.toggleOverlay, false) && overlay)
+                    session.setFeature(std::string(kOverlayFeature), !session.feature(kOverlayFeature));
+                state.overlayVisible = overlay && session.feature(kOverlayFeature);
+                if (state.overlayVisible) overlay->frame(session, frameMs);
+                if (state.cameraMoved) {
+                    session.sceneChanged();
+                    state.cameraMoved = false;
+                }
+                const bool screenshot = std::exchange(state.screenshotWanted, false) && session.beginScreenshot();
+                if (session.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
+                    ++presented;
+                    if (screenshot) session.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");
+                    reportReloadLatency(session);
+                } else if (screenshot) {
+                    session.finishScreenshot({});  // nothing presented: compiles the plan back
+                }
+                frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                if (options.frames != 0 && presented >= options.frames) break;
             }
-            frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            if (options.frames != 0 && presented >= options.frames) break;
+            Renderer& renderer = session.renderer();
+            renderer.waitIdle();
+            std::signal(SIGINT, previousInt);
+            std::signal(SIGTERM, previousTerm);
+            for (const auto& t : renderer.lastTimings()) spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
+            for (const auto& c : renderer.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
+            lastExtent = swapchain->extent();
+            lastMode = swapchain->presentMode();
+            reloads = session.reloads();
+            glfwSetWindowUserPointer(window, nullptr);  // `state` ends here
         }
-        Renderer& renderer = session.renderer();
-        renderer.waitIdle();
-        std::signal(SIGINT, previousInt);
-        std::signal(SIGTERM, previousTerm);
-        for (const auto& t : renderer.lastTimings()) spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
-        for (const auto& c : renderer.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
-        const VkExtent2D e = swapchain->extent();
-        std::cout << "skygraph view: " << presented << " frames presented, last at " << e.width << "x" << e.height
-                  << " (" << presentModeName(swapchain->presentMode()) << "), " << session.reloads()
+        // The renderers, the swapchain and the overlay are gone: destroying the device now
+        // lets validation report (and count) any Vulkan object still alive, a leak, before the
+        // exit status.
+        device->finish();
+        std::cout << "skygraph view: " << presented << " frames presented, last at " << lastExtent.width << "x"
+                  << lastExtent.height << " (" << presentModeName(lastMode) << "), " << reloads
                   << " reload(s); validation: ";
         if (device->validationEnabled()) {
             std::cout << device->messageCount() << " message(s)\n";

@@ -1,0 +1,46 @@
+// Device selection without Vulkan calls: what device.cpp gathered about each physical device
+// goes in; why one cannot run skygraph (or present to the window's surface), and the error
+// when none is chosen, come out. Pure, so that tests can reach every reason without a device.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph::detail {
+
+struct QueueFamilyFacts {
+    bool graphicsAndCompute = false;  ///< VK_QUEUE_GRAPHICS_BIT and VK_QUEUE_COMPUTE_BIT
+    bool timestamps = false;          ///< timestampValidBits > 0
+    bool presents = false;            ///< vkGetPhysicalDeviceSurfaceSupportKHR (with a surface)
+};
+
+struct PhysicalDeviceFacts {
+    uint32_t apiVersion = 0;
+    bool pushDescriptor = false;    ///< VK_KHR_push_descriptor
+    bool synchronization2 = false;  ///< the Vulkan 1.3 feature
+    bool swapchain = false;         ///< VK_KHR_swapchain
+    std::vector<QueueFamilyFacts> families;
+};
+
+/// Why a device with `facts` cannot run skygraph, or empty when it can; then `family` is the
+/// first graphics+compute family with timestamps (that also presents, when `presenting`).
+std::string unsuitableReason(const PhysicalDeviceFacts& facts, bool presenting, uint32_t& family);
+
+/// One physical device as Device::create saw it.
+struct DeviceCandidate {
+    size_t index = 0;
+    std::string name;      ///< VkPhysicalDeviceProperties::deviceName
+    std::string type;      ///< "CPU", "discrete GPU", ...
+    bool matched = false;  ///< DeviceOptions::device selects it (every device when empty)
+    std::string reason;    ///< unsuitableReason's; empty: usable
+};
+
+/// The ExecutorError message when no candidate was chosen. `filter` is DeviceOptions::device.
+/// No device matching the filter: one line listing the devices. One device selected (by the
+/// filter, or the only one): one line naming it (index and name) and why it cannot be used.
+/// Several: each with its reason, a line each.
+std::string noDeviceMessage(std::string_view filter, bool presenting, const std::vector<DeviceCandidate>& devices);
+
+}  // namespace skygraph::detail
