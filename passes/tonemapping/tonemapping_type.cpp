@@ -19,7 +19,7 @@ PassTypeInfo tonemappingComputePassType() {
     return {"TonemappingComputePass",
             {slot("hdr", Stage::Compute, {Access::Read}, BindAs::Sampled, "HDR input"),
              slot("output", Stage::Compute, {Access::Write}, BindAs::Storage,
-                  "display-referred output: R8G8B8A8_UNORM (or a float format), sRGB-encoded by the shader")},
+                  "display-referred output: R8G8B8A8_UNORM, B8G8R8A8_UNORM (or a float format), sRGB-encoded by the shader")},
             false,
             rules({{"operator", oneOf({"aces_narkowicz", "aces_hill", "khronos_pbr_neutral", "passthrough"})},
                    {"exposure_ev", numberIn(-64.0, 64.0)}}),

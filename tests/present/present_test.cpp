@@ -206,9 +206,17 @@ TEST_F(Present, HeadlessRenderFrameRefusesOncePresenting) {
 }
 
 TEST_F(Present, AFormatTheSurfaceLacksIsAClearError) {
-    // The compute tonemap presents R8G8B8A8_UNORM (a storage image); lavapipe's X11 surface
-    // offers B8G8R8A8 only.
-    const CompiledGraph compiled = raster(96, 64, {{"compute_tonemap", true}});
+    // The compute tonemap's target edited to R8G8B8A8_UNORM (a storage image): lavapipe's X11
+    // surface offers B8G8R8A8 only.
+    GraphDesc graph = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
+                                    PassRegistry::withBuiltins());
+    for (ResourceDesc& r : graph.resources)
+        if (r.name == "swapchain_storage") r.format = *findFormat(VK_FORMAT_R8G8B8A8_UNORM);
+    CompileOptions o;
+    o.outputWidth = 96;
+    o.outputHeight = 64;
+    o.features = {{"compute_tonemap", true}};
+    const CompiledGraph compiled(std::move(graph), o);
     EXPECT_EQ(presentRequirements(compiled).resource, "swapchain_storage");
     EXPECT_TRUE(presentRequirements(compiled).usage & VK_IMAGE_USAGE_STORAGE_BIT);
     try {
