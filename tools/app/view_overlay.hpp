@@ -1,9 +1,9 @@
 // `skygraph view`'s debug overlay: Dear ImGui controls over the frame, drawn by the graph's
-// ImGuiPass. It edits the session (features, scene settings, the environment file) and
+// ImGuiPass. It edits the running graph (features, scene settings, the environment file) and
 // shows what runs (per-pass GPU times, culled passes and why, barrier count, errors).
 #pragma once
 
-#include "view_session.hpp"
+#include "live_graph.hpp"
 
 #include <array>
 #include <string>
@@ -23,16 +23,16 @@ public:
     ViewOverlay(const ViewOverlay&) = delete;
     ViewOverlay& operator=(const ViewOverlay&) = delete;
 
-    /// Builds this frame's controls and applies what the user changed to `session`. Call once
+    /// Builds this frame's controls and applies what the user changed to `live`. Call once
     /// per frame before rendering it; `frameMs` is the CPU time of the last frame.
-    void frame(ViewSession& session, double frameMs);
+    void frame(LiveGraph& live, double frameMs);
     /// Whether the pointer is over the overlay (the camera then ignores it).
     [[nodiscard]] bool wantsMouse() const;
 
 private:
-    void features(ViewSession& session);
-    void sceneControls(ViewSession& session);
-    void statistics(ViewSession& session, double frameMs);
+    void features(LiveGraph& live);
+    void sceneControls(LiveGraph& live);
+    void statistics(LiveGraph& live, double frameMs);
 
     std::array<char, 1024> environmentFile_{};
     std::string laidOut_;  // the controls' positions, logged once per layout
