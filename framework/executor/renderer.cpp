@@ -2,6 +2,7 @@
 // of one plan.
 #include "renderer_impl.hpp"
 #include "renderer_access.hpp"
+#include "swapchain.hpp"
 
 #include <skygraph/transfer_plans.hpp>
 
@@ -132,6 +133,22 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.repeatSampler = vk::Sampler(d.vkd, sampler);
     d.createFrames();
+    if (Swapchain* presentTo = d.options.presentTo) {
+        const Swapchain::Impl& sc = SwapchainAccess::impl(*presentTo);
+        if (&sc.device != &device) throw ExecutorError("RendererOptions::presentTo: a swapchain of another device");
+        if (!sc.needsRecreate(presentRequirements(compiled)) && !sc.paused()) {
+            if (compiled.outputWidth() != sc.extent.width || compiled.outputHeight() != sc.extent.height) {
+                try {
+                    compiled = compiled.resized(sc.extent.width, sc.extent.height);
+                } catch (const GraphError& e) {
+                    throw ExecutorError("presenting at " + std::to_string(sc.extent.width) + "x" +
+                                        std::to_string(sc.extent.height) + ": " + e.what());
+                }
+            }
+            d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},
+                                             &sc, sc.generation};
+        }
+    }
     d.state = d.build(std::move(compiled));
 }
 

@@ -32,6 +32,10 @@ struct RendererOptions {
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
+    /// Borrowed: the renderer starts out bound to this swapchain's current images (when it
+    /// has them), so that its first renderFrame(*presentTo) builds nothing again; e.g. a new
+    /// renderer for a window that is already presenting. Null: bound at the first frame.
+    Swapchain* presentTo = nullptr;
 };
 
 /// What renderFrame(Swapchain&) did.

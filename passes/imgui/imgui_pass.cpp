@@ -3,10 +3,11 @@
 // overlay's attachment access is in the plan and under the validation layer like every other
 // graphics pass.
 //
-// The backend keeps one state per ImGui context and takes its render pass at initialisation.
-// A rebuilt plan makes the new implementation before it destroys the old one, so the backend
-// is initialised at the first record (the old one has shut it down by then), not in
-// createPipelines.
+// The backend keeps one state per ImGui context and takes a render pass at initialisation,
+// whose pipeline then works in every compatible render pass (same format, one sample). So
+// the passes of one context share one backend while their targets agree: a rebuilt plan
+// (an edit, a resize) reuses it, with its pipeline and font atlas, instead of initialising
+// again. The backend is taken at the first record, once the plan it replaces is gone.
 //
 // The one thing recorded that is not the plan's: the backend uploads its font atlas itself,
 // with its own two image barriers on its own font image, in the first frame, before the
@@ -21,84 +22,126 @@
 #include <imgui_impl_vulkan.h>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 
 namespace skygraph::passes {
 namespace {
 
-class ImGuiPass final : public PassImplementation {
+/// Dear ImGui's Vulkan backend, initialised for one context, device and target format; shut
+/// down when the last ImGuiPass using it is destroyed.
+class ImGuiBackend {
 public:
-    explicit ImGuiPass(const PassDesc& desc) : name_(desc.name) {}
+    struct Key {
+        ImGuiContext* context = nullptr;
+        VkDevice device = VK_NULL_HANDLE;
+        VkFormat format = VK_FORMAT_UNDEFINED;
+        uint32_t imageCount = 0;  // vertex/index buffers rotated over; a user may need fewer
+    };
 
-    ~ImGuiPass() override {
-        if (initialized_) {
-            ImGuiContext* current = ImGui::GetCurrentContext();
-            ImGui::SetCurrentContext(context_);
-            ImGui_ImplVulkan_Shutdown();
-            ImGui::SetCurrentContext(current);
+    /// The live backend when `key` fits it, else a new one, which uploads its font atlas in
+    /// `cmd`. Throws when another target format still holds the context.
+    static std::shared_ptr<ImGuiBackend> acquire(const Key& key, ImGui_ImplVulkan_InitInfo info,
+                                                 VkRenderPass renderPass, VkCommandBuffer cmd, const std::string& pass) {
+        static std::weak_ptr<ImGuiBackend> live;
+        if (std::shared_ptr<ImGuiBackend> b = live.lock()) {
+            const Key& k = b->key_;
+            if (k.context == key.context && k.device == key.device && k.format == key.format &&
+                k.imageCount >= key.imageCount)
+                return b;
+            throw ExecutorError("pass '" + pass + "': the Dear ImGui context is still drawn by an ImGuiPass with "
+                                "another target (one backend per context)");
         }
-        if (pool_) vkDestroyDescriptorPool(init_.Device, pool_, nullptr);
-    }
-
-    void createPipelines(const PipelineContext& ctx) override {
-        context_ = ImGui::GetCurrentContext();
-        if (!context_) return;  // nothing to draw: the target passes through
-        const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+        ImGui::SetCurrentContext(key.context);
+        if (ImGui::GetIO().BackendRendererUserData)
+            throw ExecutorError("pass '" + pass + "': the Dear ImGui context already has another renderer backend");
+        auto b = std::shared_ptr<ImGuiBackend>(new ImGuiBackend(key));
+        VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
         VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         pi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
         pi.maxSets = 1;
         pi.poolSizeCount = 1;
         pi.pPoolSizes = &size;
-        if (vkCreateDescriptorPool(ctx.device, &pi, nullptr, &pool_) != VK_SUCCESS)
-            throw ExecutorError("pass '" + name_ + "': vkCreateDescriptorPool failed");
+        if (vkCreateDescriptorPool(key.device, &pi, nullptr, &b->pool_) != VK_SUCCESS)
+            throw ExecutorError("pass '" + pass + "': vkCreateDescriptorPool failed");
+        info.DescriptorPool = b->pool_;
+        if (!ImGui_ImplVulkan_Init(&info, renderPass))
+            throw ExecutorError("pass '" + pass + "': ImGui_ImplVulkan_Init failed");
+        b->initialized_ = true;
+        if (!ImGui_ImplVulkan_CreateFontsTexture(cmd))
+            throw ExecutorError("pass '" + pass + "': ImGui_ImplVulkan_CreateFontsTexture failed");
+        live = b;
+        return b;
+    }
+
+    ~ImGuiBackend() {
+        if (initialized_) {
+            ImGuiContext* current = ImGui::GetCurrentContext();
+            ImGui::SetCurrentContext(key_.context);
+            ImGui_ImplVulkan_Shutdown();
+            ImGui::SetCurrentContext(current);
+        }
+        if (pool_) vkDestroyDescriptorPool(key_.device, pool_, nullptr);
+    }
+    ImGuiBackend(const ImGuiBackend&) = delete;
+    ImGuiBackend& operator=(const ImGuiBackend&) = delete;
+
+    void record(VkCommandBuffer cmd) const {
+        ImGui::SetCurrentContext(key_.context);
+        ImDrawData* data = ImGui::GetDrawData();
+        if (data && data->Valid && data->CmdListsCount > 0) ImGui_ImplVulkan_RenderDrawData(data, cmd);
+    }
+
+private:
+    explicit ImGuiBackend(const Key& key) : key_(key) {}
+    Key key_;
+    VkDescriptorPool pool_ = VK_NULL_HANDLE;
+    bool initialized_ = false;
+};
+
+void checkResult(VkResult result) {
+    if (result < 0) throw ExecutorError("Dear ImGui's Vulkan backend: VkResult " + std::to_string(int(result)));
+}
+
+class ImGuiPass final : public PassImplementation {
+public:
+    explicit ImGuiPass(const PassDesc& desc) : name_(desc.name) {}
+
+    void createPipelines(const PipelineContext& ctx) override {
+        key_.context = ImGui::GetCurrentContext();
+        if (!key_.context) return;  // nothing to draw: the target passes through
+        key_.device = ctx.device;
+        key_.format = ctx.resources.empty() ? VK_FORMAT_UNDEFINED : ctx.resources[0].format;
+        // The backend rotates its vertex and index buffers over ImageCount frames; a frame slot
+        // is reused only after its fence, so one buffer per slot is never overwritten in use.
+        key_.imageCount = std::max<uint32_t>(2, uint32_t(ctx.frameSlots.size()));
         init_.Instance = ctx.instance;
         init_.PhysicalDevice = ctx.physicalDevice;
         init_.Device = ctx.device;
         init_.QueueFamily = ctx.queueFamily;
         init_.Queue = ctx.queue;
-        init_.DescriptorPool = pool_;
         init_.Subpass = 0;
-        // The backend rotates its vertex and index buffers over ImageCount frames; a frame slot
-        // is reused only after its fence, so one buffer per slot is never overwritten in use.
         init_.MinImageCount = 2;
-        init_.ImageCount = std::max<uint32_t>(2, uint32_t(ctx.frameSlots.size()));
+        init_.ImageCount = key_.imageCount;
         init_.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
         init_.CheckVkResultFn = &checkResult;
         renderPass_ = ctx.renderPass;
     }
 
     void recordBeforeRenderPass(const RecordContext& ctx) override {
-        if (!context_ || initialized_) return;
-        ImGui::SetCurrentContext(context_);
-        if (ImGui::GetIO().BackendRendererUserData)
-            throw ExecutorError("pass '" + name_ +
-                                "': the Dear ImGui context already has a renderer backend (one ImGuiPass per "
-                                "context, and no other Vulkan backend on it)");
-        if (!ImGui_ImplVulkan_Init(&init_, renderPass_))
-            throw ExecutorError("pass '" + name_ + "': ImGui_ImplVulkan_Init failed");
-        initialized_ = true;
-        if (!ImGui_ImplVulkan_CreateFontsTexture(ctx.cmd))
-            throw ExecutorError("pass '" + name_ + "': ImGui_ImplVulkan_CreateFontsTexture failed");
+        if (key_.context && !backend_) backend_ = ImGuiBackend::acquire(key_, init_, renderPass_, ctx.cmd, name_);
     }
 
     void record(const RecordContext& ctx) override {
-        if (!initialized_) return;
-        ImGui::SetCurrentContext(context_);
-        ImDrawData* data = ImGui::GetDrawData();
-        if (data && data->Valid && data->CmdListsCount > 0) ImGui_ImplVulkan_RenderDrawData(data, ctx.cmd);
+        if (backend_) backend_->record(ctx.cmd);
     }
 
 private:
-    static void checkResult(VkResult result) {
-        if (result < 0) throw ExecutorError("Dear ImGui's Vulkan backend: VkResult " + std::to_string(int(result)));
-    }
-
     std::string name_;
-    ImGuiContext* context_ = nullptr;
+    ImGuiBackend::Key key_;
     ImGui_ImplVulkan_InitInfo init_{};
     VkRenderPass renderPass_ = VK_NULL_HANDLE;
-    VkDescriptorPool pool_ = VK_NULL_HANDLE;
-    bool initialized_ = false;
+    std::shared_ptr<ImGuiBackend> backend_;
 };
 
 }  // namespace

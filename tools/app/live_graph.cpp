@@ -1,5 +1,5 @@
 // `skygraph view`'s inputs and renderer, rebuilt on a change.
-#include "view_session.hpp"
+#include "live_graph.hpp"
 
 #include "shipped_names.hpp"
 
@@ -29,13 +29,13 @@ void keepViewSettings(const Scene& edited, Scene& loaded) {
 
 }  // namespace
 
-struct ViewSession::Built {
+struct LiveGraph::Built {
     FrameEnvironment environment;  // outlives the renderer that imports its products
     std::unique_ptr<Renderer> renderer;
     std::optional<Scene> scene;
 };
 
-ViewSession::ViewSession(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay)
+LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay)
     : device_(device), options_(std::move(options)), width_(width), height_(height), overlay_(overlay) {
     built_ = build(options_);
     renderer_ = built_->renderer.get();
@@ -46,11 +46,11 @@ ViewSession::ViewSession(Device& device, RenderOptions options, uint32_t width, 
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
 }
 
-ViewSession::~ViewSession() {
+LiveGraph::~LiveGraph() {
     if (renderer_) renderer_->waitIdle();
 }
 
-std::unique_ptr<ViewSession::Built> ViewSession::build(const RenderOptions& options) const {
+std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options) const {
     auto b = std::make_unique<Built>();
     FrameInputs inputs = loadFrameInputs(options);
     const std::string ui(shipped::kOverlayFeature);
@@ -69,12 +69,13 @@ std::unique_ptr<ViewSession::Built> ViewSession::build(const RenderOptions& opti
     RendererOptions ro;
     ro.framesInFlight = options.framesInFlight;
     ro.passes = inputs.passes;
+    ro.presentTo = swapchain_;
     b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
     attachFrameInputs(*b->renderer, inputs, b->environment);
     return b;
 }
 
-bool ViewSession::rebuild(RenderOptions options) {
+bool LiveGraph::rebuild(RenderOptions options) {
     // The running renderer follows the window; the new one starts at its size.
     width_ = renderer_->compiled().outputWidth();
     height_ = renderer_->compiled().outputHeight();
@@ -98,35 +99,35 @@ bool ViewSession::rebuild(RenderOptions options) {
     return true;
 }
 
-void ViewSession::sceneChanged() {
+void LiveGraph::sceneChanged() {
     if (scene_) renderer_->frameData().set(*scene_);
 }
 
-std::vector<std::pair<std::string, bool>> ViewSession::features() const {
+std::vector<std::pair<std::string, bool>> LiveGraph::features() const {
     std::vector<std::pair<std::string, bool>> out;
     for (const FeatureDecl& f : renderer_->graph().features) out.emplace_back(f.name, feature(f.name));
     return out;
 }
 
-bool ViewSession::feature(std::string_view name) const {
+bool LiveGraph::feature(std::string_view name) const {
     const FeatureValues& on = renderer_->plan().features();
     const auto it = on.find(std::string(name));
     return it != on.end() && it->second;
 }
 
-bool ViewSession::setFeature(const std::string& name, bool on) {
+bool LiveGraph::setFeature(const std::string& name, bool on) {
     RenderOptions next = options_;
     next.features[name] = on;
     return rebuild(std::move(next));
 }
 
-bool ViewSession::setEnvironmentFile(const std::filesystem::path& file) {
+bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
     RenderOptions next = options_;
     next.environmentFile = file;
     return rebuild(std::move(next));
 }
 
-bool ViewSession::poll() {
+bool LiveGraph::poll() {
     const bool graphSaved = graphWatcher_ && graphWatcher_->changed();
     const bool sceneSaved = sceneWatcher_ && sceneWatcher_->changed();
     if (graphSaved || sceneSaved) {
@@ -134,7 +135,8 @@ bool ViewSession::poll() {
         const auto saved = std::filesystem::last_write_time(graphSaved ? options_.graph : options_.scene, ec);
         std::optional<Scene> edited;
         if (sceneSaved) edited = std::exchange(scene_, std::nullopt);  // the saved scene wins over the overlay
-        if (rebuild(options_)) lastReload_ = {saved, !ec};
+        const auto noticed = std::filesystem::file_time_type::clock::now();
+        if (rebuild(options_)) lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), !ec};
         else if (edited) scene_ = std::move(edited);
         return true;
     }
@@ -151,13 +153,13 @@ bool ViewSession::poll() {
     return false;
 }
 
-std::string ViewSession::presentedResource() const {
+std::string LiveGraph::presentedResource() const {
     const auto presentations = renderer_->plan().presentations();
     return presentations.empty() ? std::string()
                                  : std::string(renderer_->plan().resources()[presentations[0].resource].name);
 }
 
-bool ViewSession::beginScreenshot() {
+bool LiveGraph::beginScreenshot() {
     const std::string target = presentedResource();
     if (target.empty()) {
         error_ = "screenshot: the plan presents no image";
@@ -175,7 +177,7 @@ bool ViewSession::beginScreenshot() {
     return true;
 }
 
-bool ViewSession::finishScreenshot(const std::filesystem::path& png) {
+bool LiveGraph::finishScreenshot(const std::filesystem::path& png) {
     bool written = false;
     try {
         if (!png.empty()) {

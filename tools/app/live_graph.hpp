@@ -19,15 +19,19 @@
 
 namespace skygraph::app {
 
-class ViewSession {
+class LiveGraph {
 public:
     /// Loads, compiles (presented, at width x height), bakes and builds what `options`
-    /// names on `device`, which must outlive the session. `overlay`: the graph's feature `ui`
+    /// names on `device`, which must outlive it. `overlay`: the graph's feature `ui`
     /// (the ImGuiPass), unless `options.features` sets it. Throws like renderCommand's steps.
-    ViewSession(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay);
-    ~ViewSession();
-    ViewSession(const ViewSession&) = delete;
-    ViewSession& operator=(const ViewSession&) = delete;
+    LiveGraph(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay);
+    ~LiveGraph();
+    LiveGraph(const LiveGraph&) = delete;
+    LiveGraph& operator=(const LiveGraph&) = delete;
+
+    /// Rebuilt renderers start out bound to `swapchain` (borrowed; it must outlive the
+    /// renderers), so their first frame builds nothing again.
+    void presentTo(Swapchain& swapchain) noexcept { swapchain_ = &swapchain; }
 
     /// The renderer that presents; replaced by a rebuild, so do not keep the reference
     /// across setFeature, setEnvironmentFile or poll.
@@ -61,7 +65,9 @@ public:
     /// When the last rebuild after a saved file was installed, and the save it followed
     /// (the file's modification time), for the latency from saving to the frame on screen.
     struct Reload {
-        std::filesystem::file_time_type saved{};
+        std::filesystem::file_time_type saved{};    // the file's modification time
+        std::filesystem::file_time_type noticed{};  // when poll() saw it
+        std::filesystem::file_time_type rebuilt{};  // when the new renderer was installed
         bool pending = false;  // no frame of the new plan presented yet
     };
     [[nodiscard]] Reload& lastReload() noexcept { return lastReload_; }
@@ -77,6 +83,7 @@ private:
     bool rebuild(RenderOptions options);
 
     Device& device_;
+    Swapchain* swapchain_ = nullptr;
     RenderOptions options_;
     uint32_t width_, height_;
     bool overlay_;

@@ -3,7 +3,7 @@
 
 #include "command_exit.hpp"
 #include "view_overlay.hpp"
-#include "view_session.hpp"
+#include "live_graph.hpp"
 
 #include "shipped_names.hpp"
 
@@ -135,13 +135,16 @@ void onScroll(GLFWwindow* w, double, double dy) {
 
 /// Logs how long after the save that caused it the first frame of a reloaded plan was
 /// presented (docs/performance.md reports it).
-void reportReloadLatency(ViewSession& session) {
-    ViewSession::Reload& reload = session.lastReload();
+void reportReloadLatency(LiveGraph& live) {
+    LiveGraph::Reload& reload = live.lastReload();
     if (!reload.pending) return;
     reload.pending = false;
-    const auto latency = std::filesystem::file_time_type::clock::now() - reload.saved;
-    spdlog::info("reload: first frame of the new plan presented {:.1f} ms after the save",
-                 std::chrono::duration<double, std::milli>(latency).count());
+    const auto ms = [](auto duration) { return std::chrono::duration<double, std::milli>(duration).count(); };
+    const auto presented = std::filesystem::file_time_type::clock::now();
+    spdlog::info("reload: first frame of the new plan presented {:.1f} ms after the save (noticed after {:.1f} ms, "
+                 "rebuilt in {:.1f} ms, its first frame submitted and presented {:.1f} ms later)",
+                 ms(presented - reload.saved), ms(reload.noticed - reload.saved), ms(reload.rebuilt - reload.noticed),
+                 ms(presented - reload.rebuilt));
 }
 
 }  // namespace
@@ -217,17 +220,18 @@ int viewCommand(const ViewOptions& options) {
             std::optional<ViewOverlay> overlay;
             if (options.overlay) overlay.emplace(window);
             state.overlay = overlay ? &*overlay : nullptr;
-            ViewSession session(*device, fo, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)), options.overlay);
+            LiveGraph live(*device, fo, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)), options.overlay);
 
             SwapchainOptions so;
             so.width = uint32_t(std::max(fbw, 0));
             so.height = uint32_t(std::max(fbh, 0));
             so.presentMode = options.presentMode;
             so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
-            const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, session.renderer().compiled(), so);
+            const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, live.renderer().compiled(), so);
             state.swapchain = swapchain.get();
-            if (session.scene() && options.orbit) {
-                state.scene = session.scene();
+            live.presentTo(*swapchain);
+            if (live.scene() && options.orbit) {
+                state.scene = live.scene();
                 state.orbit.emplace(state.scene->camera);
             }
             stopRequested = 0;
@@ -240,27 +244,27 @@ int viewCommand(const ViewOptions& options) {
                 const auto start = std::chrono::steady_clock::now();
                 if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
                 else glfwPollEvents();
-                session.poll();
+                live.poll();
                 if (std::exchange(state.toggleOverlay, false) && overlay)
-                    session.setFeature(std::string(kOverlayFeature), !session.feature(kOverlayFeature));
-                state.overlayVisible = overlay && session.feature(kOverlayFeature);
-                if (state.overlayVisible) overlay->frame(session, frameMs);
+                    live.setFeature(std::string(kOverlayFeature), !live.feature(kOverlayFeature));
+                state.overlayVisible = overlay && live.feature(kOverlayFeature);
+                if (state.overlayVisible) overlay->frame(live, frameMs);
                 if (state.cameraMoved) {
-                    session.sceneChanged();
+                    live.sceneChanged();
                     state.cameraMoved = false;
                 }
-                const bool screenshot = std::exchange(state.screenshotWanted, false) && session.beginScreenshot();
-                if (session.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
+                const bool screenshot = std::exchange(state.screenshotWanted, false) && live.beginScreenshot();
+                if (live.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
                     ++presented;
-                    if (screenshot) session.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");
-                    reportReloadLatency(session);
+                    if (screenshot) live.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");
+                    reportReloadLatency(live);
                 } else if (screenshot) {
-                    session.finishScreenshot({});  // nothing presented: compiles the plan back
+                    live.finishScreenshot({});  // nothing presented: compiles the plan back
                 }
                 frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                 if (options.frames != 0 && presented >= options.frames) break;
             }
-            Renderer& renderer = session.renderer();
+            Renderer& renderer = live.renderer();
             renderer.waitIdle();
             std::signal(SIGINT, previousInt);
             std::signal(SIGTERM, previousTerm);
@@ -268,7 +272,7 @@ int viewCommand(const ViewOptions& options) {
             for (const auto& c : renderer.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
             lastExtent = swapchain->extent();
             lastMode = swapchain->presentMode();
-            reloads = session.reloads();
+            reloads = live.reloads();
             glfwSetWindowUserPointer(window, nullptr);  // `state` ends here
         }
         // The renderers, the swapchain and the overlay are gone: destroying the device now

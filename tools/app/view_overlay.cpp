@@ -1,4 +1,4 @@
-// The debug overlay: Dear ImGui widgets, built each frame from the session.
+// The debug overlay: Dear ImGui widgets, built each frame from the live.
 #include "view_overlay.hpp"
 
 #include <skygraph/plan.hpp>
@@ -52,23 +52,23 @@ ViewOverlay::~ViewOverlay() {
 
 bool ViewOverlay::wantsMouse() const { return ImGui::GetIO().WantCaptureMouse; }
 
-void ViewOverlay::frame(ViewSession& session, double frameMs) {
+void ViewOverlay::frame(LiveGraph& live, double frameMs) {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_Always);
     ImGui::SetNextWindowSizeConstraints(ImVec2(260, 0), ImVec2(420, 10000));
     ImGui::Begin("skygraph", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
-    ImGui::TextUnformatted(session.renderer().graph().name.c_str());
-    if (!session.error().empty()) {
+    ImGui::TextUnformatted(live.renderer().graph().name.c_str());
+    if (!live.error().empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
         ImGui::PushTextWrapPos(400);
-        ImGui::TextUnformatted(session.error().c_str());
+        ImGui::TextUnformatted(live.error().c_str());
         ImGui::PopTextWrapPos();
         ImGui::PopStyleColor();
     }
-    features(session);
-    sceneControls(session);
-    statistics(session, frameMs);
+    features(live);
+    sceneControls(live);
+    statistics(live, frameMs);
     const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
     const std::string rect = std::to_string(int(pos.x)) + "," + std::to_string(int(pos.y)) + " " +
                              std::to_string(int(size.x)) + "x" + std::to_string(int(size.y));
@@ -80,11 +80,11 @@ void ViewOverlay::frame(ViewSession& session, double frameMs) {
     ImGui::Render();
 }
 
-void ViewOverlay::features(ViewSession& session) {
+void ViewOverlay::features(LiveGraph& live) {
     if (!ImGui::CollapsingHeader("Features", ImGuiTreeNodeFlags_DefaultOpen)) return;
     std::optional<std::pair<std::string, bool>> changed;
     std::string layout;
-    for (auto [name, on] : session.features()) {
+    for (auto [name, on] : live.features()) {
         if (ImGui::Checkbox(name.c_str(), &on)) changed.emplace(name, on);
         const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
         // The checkbox square is at the item's left; tests click its centre.
@@ -95,11 +95,11 @@ void ViewOverlay::features(ViewSession& session) {
         laidOut_ = layout;
         spdlog::info("overlay: feature checkboxes at{}", layout);
     }
-    if (changed) session.setFeature(changed->first, changed->second);
+    if (changed) live.setFeature(changed->first, changed->second);
 }
 
-void ViewOverlay::sceneControls(ViewSession& session) {
-    Scene* scene = session.scene();
+void ViewOverlay::sceneControls(LiveGraph& live) {
+    Scene* scene = live.scene();
     if (!scene || !ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
     bool edited = false;
     float ev = float(scene->exposureEv);
@@ -116,20 +116,20 @@ void ViewOverlay::sceneControls(ViewSession& session) {
             edited = true;
         }
     }
-    if (edited) session.sceneChanged();
+    if (edited) live.sceneChanged();
     ImGui::InputText("environment", environmentFile_.data(), environmentFile_.size());
-    if (ImGui::Button("load file")) session.setEnvironmentFile(environmentFile_.data());
+    if (ImGui::Button("load file")) live.setEnvironmentFile(environmentFile_.data());
     ImGui::SameLine();
-    if (ImGui::Button("procedural sky")) session.setEnvironmentFile({});
+    if (ImGui::Button("procedural sky")) live.setEnvironmentFile({});
 }
 
-void ViewOverlay::statistics(ViewSession& session, double frameMs) {
+void ViewOverlay::statistics(LiveGraph& live, double frameMs) {
     if (!ImGui::CollapsingHeader("Plan", ImGuiTreeNodeFlags_DefaultOpen)) return;
-    const Plan& plan = session.renderer().plan();
+    const Plan& plan = live.renderer().plan();
     ImGui::Text("%zu passes, %zu culled, %zu barriers; CPU %.2f ms/frame", plan.passes().size(),
                 plan.culled().size(), barrierCount(plan), frameMs);
     if (ImGui::BeginTable("timings", 2, ImGuiTableFlags_SizingFixedFit)) {
-        for (const auto& t : session.renderer().completedTimings()) {
+        for (const auto& t : live.renderer().completedTimings()) {
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
             ImGui::TextUnformatted(t.pass.c_str());
