@@ -9,6 +9,7 @@
 #   pixels       with --no-ui, a screenshot of the window (xwd) equals `skygraph render` of the
 #                same graph, scene and size within one code per channel; Escape closes it, exit 0
 #   compute_pixels  the same with the compute tonemap writing the swapchain as a storage image
+#   compute_ui   60 frames with the overlay drawn after the compute tonemap: no message
 #   ui_pixels    with the overlay: outside its rectangle the window equals `skygraph render`
 #                within one code, inside it most pixels differ
 #   click        a click on the overlay's skybox checkbox culls the skybox (the log says why)
@@ -159,6 +160,11 @@ case "$case_name" in
     frames)
         view --validate --frames 120
         expect_clean_end "$pid" 120
+        ;;
+    compute_ui)
+        view --validate --frames 60 --feature compute_tonemap=on
+        expect_clean_end "$pid" 60
+        grep -q "pass ui_compute" view.err || fail "the overlay did not run after the compute tonemap"
         ;;
     mailbox)
         view --validate --frames 120 --present-mode mailbox
