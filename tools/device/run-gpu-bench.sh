@@ -16,7 +16,7 @@
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
 # random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone,
 # SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
-# (5) repetitions), TARGETS the targets built (default: all four).
+# (5) repetitions, interleaved when more than 5), TARGETS the targets built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
 #
@@ -141,9 +141,11 @@ if [ "${SKIP_EXECUTOR_BENCH:-0}" != 1 ]; then
 fi
 if [ "${SKIP_IMGUI_BENCH:-0}" != 1 ]; then
   reps=${IMGUI_REPS:-5}
+  interleave=()
+  [ "$reps" -gt 5 ] && interleave=(--benchmark_enable_random_interleaving=true)
   step "imgui_bench on $device at ${IMGUI_SIZE:-1920x1080}, $reps repetitions"
   ran "$bin_imgui" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_imgui" --size="${IMGUI_SIZE:-1920x1080}" \
-    --benchmark_repetitions="$reps" --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
+    --benchmark_repetitions="$reps" "${interleave[@]}" --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
     --benchmark_out="$out/imgui_bench.json" --benchmark_out_format=json)
 fi
 step "done"
