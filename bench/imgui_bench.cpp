@@ -14,8 +14,9 @@
 //              heavy case
 //
 // Counters (per repetition, the median over its frames): ui_ms (the `ui` pass), frame_ms (the
-// sum of every pass's time), and the draw data's vertices and indices. The iteration time
-// includes the wait for each frame and is not the figure to read.
+// sum of every pass's time), the draw data's vertices and indices, and triangle_px (its
+// triangles' area in pixels, overdraw counted). The iteration time includes the wait for each
+// frame and is not the figure to read.
 //
 // Flags: --size=WxH (repeatable; default 1920x1080). Environment: SKYGRAPH_BENCH_DEVICE picks
 // the device, SKYGRAPH_VALIDATION=1 runs under validation; the exit status is 1 when any
@@ -28,6 +29,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -166,6 +168,23 @@ void buildImGuiFrame(ImGuiFixture& f, Content content, double frameMs) {
     ImGui::Render();
 }
 
+/// The draw data's triangles' area in pixels: the fragments the pass shades before the
+/// scissor, overdraw counted (device-independent, so a GPU time divides by it).
+double trianglePixels(const ImDrawData* d) {
+    double area = 0.0;
+    if (!d) return area;
+    for (int l = 0; l < d->CmdListsCount; ++l) {
+        const ImDrawList* list = d->CmdLists[l];
+        for (int i = 0; i + 2 < list->IdxBuffer.Size; i += 3) {
+            const ImVec2 a = list->VtxBuffer[list->IdxBuffer[i]].pos;
+            const ImVec2 b = list->VtxBuffer[list->IdxBuffer[i + 1]].pos;
+            const ImVec2 c = list->VtxBuffer[list->IdxBuffer[i + 2]].pos;
+            area += 0.5 * std::abs(double(b.x - a.x) * double(c.y - a.y) - double(c.x - a.x) * double(b.y - a.y));
+        }
+    }
+    return area;
+}
+
 double median(std::vector<double> v) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
@@ -186,7 +205,7 @@ void uiFrame(benchmark::State& state, Size size, Content content) {
         (void)r.lastTimings();
     }
     std::vector<double> ui, frame;
-    double vertices = 0, indices = 0;
+    double vertices = 0, indices = 0, pixels = 0;
     for (auto _ : state) {
         buildImGuiFrame(f, content, 0.0);
         r.renderFrame();
@@ -201,10 +220,12 @@ void uiFrame(benchmark::State& state, Size size, Content content) {
         vertices = d ? d->TotalVtxCount : 0;
         indices = d ? d->TotalIdxCount : 0;
     }
+    pixels = trianglePixels(ImGui::GetDrawData());
     state.counters["ui_ms"] = median(ui);
     state.counters["frame_ms"] = median(frame);
     state.counters["vertices"] = vertices;
     state.counters["indices"] = indices;
+    state.counters["triangle_px"] = pixels;
     state.SetLabel(kContentNames[size_t(content)]);
 }
 
@@ -226,7 +247,8 @@ int main(int argc, char** argv) {
         for (Content c : {Content::Off, Content::Empty, Content::Overlay, Content::Demo})
             benchmark::RegisterBenchmark(
                 ("BM_UiFrame/" + std::string(kContentNames[size_t(c)]) + "/" + s.name()).c_str(), uiFrame, s, c)
-                ->Unit(benchmark::kMillisecond);
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();  // iterations wait for the GPU: min_time counts real time
     int status = 0;
     try {
         if (benchmark::RunSpecifiedBenchmarks() == 0 || failed) status = 1;
