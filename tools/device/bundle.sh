@@ -29,15 +29,20 @@ packages=(
   libdtl-dev liblcms2-dev liblcms2-2
   libopencolorio-dev libopencolorio2.1 libpystring0 libyaml-cpp0.7
   libglvnd0 libglx0 libegl1 libgl1 libopengl0
+  # `skygraph view`'s GLFW (configure needs its CMake files; linking `skygraph` needs libX11
+  # and what it loads) and Dear ImGui (the ImGuiPass, bench/imgui_bench)
+  libglfw3-dev libglfw3 libx11-6 libxcb1 libxau6 libxdmcp6 libbsd0 libmd0
+  libimgui-dev
 )
 # install-deps.sh packages the GPU machine does not need from us: it has its own toolchain,
 # runs no tests there (GoogleTest, validation layers, lavapipe, vulkaninfo, schema checks,
-# graphviz, the clang-14 fuzzing and sanitizer stages) and renders no scene with blender-data's HDRIs (the bench uses scenes/default.json).
+# graphviz, the clang-14 fuzzing and sanitizer stages, the X server of tests/present: it has no display) and renders no scene with blender-data's HDRIs (the bench uses scenes/default.json).
 # glslang-tools contributes two files below. Any other package of install-deps.sh missing from both lists fails the bundle,
 # so a new build dependency cannot be forgotten here.
 not_needed=(cmake ninja-build g++ pkg-config libgtest-dev libgmock-dev vulkan-validationlayers
   mesa-vulkan-drivers vulkan-tools glslang-tools blender-data graphviz python3-jsonschema
-  clang-14 libclang-rt-14-dev llvm-14 python3-matplotlib)
+  clang-14 libclang-rt-14-dev llvm-14 python3-matplotlib
+  xvfb xauth x11-apps xdotool imagemagick)  # tests/present's X server and window tools
 
 # Not needed to build or run: documentation, programs, Vulkan's C++ headers and XML registry,
 # the SPIR-V tools' shared library (glslang links the static ones).
@@ -60,7 +65,9 @@ done
 stage=$(mktemp -d)
 trap 'rm -rf "$stage"' EXIT
 mkdir -p "$out"
-grep -qx '/.devbundle/' .git/info/exclude 2>/dev/null || { mkdir -p .git/info; echo '/.devbundle/' >> .git/info/exclude; }
+# The repository's exclude file (in a linked worktree, .git is a file: ask git for the path).
+exclude=$(git rev-parse --git-path info/exclude)
+grep -qx '/.devbundle/' "$exclude" 2>/dev/null || { mkdir -p "$(dirname "$exclude")"; echo '/.devbundle/' >> "$exclude"; }
 
 manifest() {
   for p in "${packages[@]}"; do

@@ -14,7 +14,9 @@
 # timing, the default scene's last two pictures are compared with the first (pngdiff.py).
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
-# random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone.
+# random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone,
+# SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
+# (5) repetitions, interleaved when more than 5), TARGETS the targets built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
 #
@@ -83,12 +85,13 @@ else
   echo "no nvidia_icd.json found; the loader's default search applies"
 fi
 
-step "configure and build (-j$jobs)"
+targets=${TARGETS:-"gpu_frame_bench executor_bench skygraph imgui_bench"}
+step "configure and build (-j$jobs): $targets"
 build=/tmp/skygraph-build
 t0=$(date +%s)
 cmake -S "$src" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYGRAPH_BUILD_TESTS=OFF \
   -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_POLICY_VERSION_MINIMUM=3.5 > "$out/configure.log" 2>&1 \
-  && cmake --build "$build" -j"$jobs" --target gpu_frame_bench executor_bench skygraph -- -k 0 > "$out/build.log" 2>&1
+  && cmake --build "$build" -j"$jobs" --target $targets -- -k 0 > "$out/build.log" 2>&1
 rc=$?
 t1=$(date +%s)
 echo "build rc=$rc in $((t1 - t0)) s"
@@ -98,6 +101,7 @@ fi
 bin_bench=$build/bench/gpu_frame_bench
 bin_exec=$build/framework/executor/executor_bench
 bin_cli=$build/tools/skygraph
+bin_imgui=$build/bench/imgui_bench
 # A target that failed to build is reported and skipped; the others still run.
 ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
 
@@ -134,5 +138,14 @@ if [ "${SKIP_EXECUTOR_BENCH:-0}" != 1 ]; then
   ran "$bin_exec" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_exec" --benchmark_repetitions="$reps" "${interleave[@]}" \
     --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
     --benchmark_out="$out/executor_bench.json" --benchmark_out_format=json)
+fi
+if [ "${SKIP_IMGUI_BENCH:-0}" != 1 ]; then
+  reps=${IMGUI_REPS:-5}
+  interleave=()
+  [ "$reps" -gt 5 ] && interleave=(--benchmark_enable_random_interleaving=true)
+  step "imgui_bench on $device at ${IMGUI_SIZE:-1920x1080}, $reps repetitions"
+  ran "$bin_imgui" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_imgui" --size="${IMGUI_SIZE:-1920x1080}" \
+    --benchmark_repetitions="$reps" "${interleave[@]}" --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
+    --benchmark_out="$out/imgui_bench.json" --benchmark_out_format=json)
 fi
 step "done"
