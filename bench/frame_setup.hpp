@@ -10,7 +10,11 @@
 #include <skygraph/pass.hpp>
 #include <skygraph/renderer.hpp>
 
+#include <benchmark/benchmark.h>
+
 #include <cstdint>
+#include <exception>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -92,5 +96,30 @@ inline std::string benchDeviceName() {
     const char* name = std::getenv("SKYGRAPH_BENCH_DEVICE");
     return name ? name : "";
 }
+
+/// The benchmarks' fixtures, one per size, made on first use and kept for the run (the
+/// device, the window and the pipelines are not what is measured). A fixture that cannot be
+/// made skips the benchmark with its error and sets `failed` (the exit status is 1 then).
+template <typename Fixture>
+class Fixtures {
+public:
+    Fixture* get(benchmark::State& state, Size size) {
+        auto& f = made_[size.name()];
+        try {
+            if (!f) f = std::make_unique<Fixture>(size);
+        } catch (const std::exception& e) {
+            made_.erase(size.name());
+            failed = true;
+            state.SkipWithError(e.what());
+            return nullptr;
+        }
+        return f.get();
+    }
+    std::map<std::string, std::unique_ptr<Fixture>>& all() noexcept { return made_; }
+    bool failed = false;
+
+private:
+    std::map<std::string, std::unique_ptr<Fixture>> made_;
+};
 
 }  // namespace skygraph::bench

@@ -137,24 +137,9 @@ struct ImGuiFixture {
     ImGuiFixture& operator=(const ImGuiFixture&) = delete;
 };
 
-std::map<std::string, std::unique_ptr<ImGuiFixture>>& fixtures() {
-    static std::map<std::string, std::unique_ptr<ImGuiFixture>> f;
+Fixtures<ImGuiFixture>& fixtures() {
+    static Fixtures<ImGuiFixture> f;
     return f;
-}
-
-bool failed = false;
-
-ImGuiFixture* fixture(benchmark::State& state, Size size) {
-    auto& f = fixtures()[size.name()];
-    try {
-        if (!f) f = std::make_unique<ImGuiFixture>(size);
-    } catch (const std::exception& e) {
-        fixtures().erase(size.name());
-        failed = true;
-        state.SkipWithError(e.what());
-        return nullptr;
-    }
-    return f.get();
 }
 
 /// One ImGui frame of `content` at the fixture's size.
@@ -193,7 +178,7 @@ double median(std::vector<double> v) {
 }
 
 void uiFrame(benchmark::State& state, Size size, Content content) {
-    ImGuiFixture* fp = fixture(state, size);
+    ImGuiFixture* fp = fixtures().get(state, size);
     if (!fp) return;
     ImGuiFixture& f = *fp;
     Renderer& r = content == Content::Off ? *f.withoutUi->renderer : *f.withUi->renderer;
@@ -251,14 +236,14 @@ int main(int argc, char** argv) {
                 ->UseRealTime();  // iterations wait for the GPU: min_time counts real time
     int status = 0;
     try {
-        if (benchmark::RunSpecifiedBenchmarks() == 0 || failed) status = 1;
+        if (benchmark::RunSpecifiedBenchmarks() == 0 || fixtures().failed) status = 1;
         bool validated = false;
         uint32_t messages = 0;
-        for (auto& [name, f] : fixtures()) {
+        for (auto& [name, f] : fixtures().all()) {
             validated = validated || f->device->validationEnabled();
             messages += f->finish();
         }
-        fixtures().clear();
+        fixtures().all().clear();
         if (validated) {
             std::printf("imgui_bench: validation: %u message(s)\n", messages);
             if (messages) status = 1;

@@ -106,31 +106,15 @@ struct PresentFixture {
     PresentFixture& operator=(const PresentFixture&) = delete;
 };
 
-std::map<std::string, std::unique_ptr<PresentFixture>>& fixtures() {
-    static std::map<std::string, std::unique_ptr<PresentFixture>> f;
+Fixtures<PresentFixture>& fixtures() {
+    static Fixtures<PresentFixture> f;
     return f;
-}
-
-/// Set when a benchmark could not run as asked: the exit status is 1 then.
-bool failed = false;
-
-PresentFixture* fixture(benchmark::State& state, Size size) {
-    auto& f = fixtures()[size.name()];
-    try {
-        if (!f) f = std::make_unique<PresentFixture>(size);
-    } catch (const std::exception& e) {
-        fixtures().erase(size.name());
-        failed = true;
-        state.SkipWithError(e.what());
-        return nullptr;
-    }
-    return f.get();
 }
 
 constexpr int kWarmup = 3;
 
 void headlessFrame(benchmark::State& state, Size size) {
-    PresentFixture* fp = fixture(state, size);
+    PresentFixture* fp = fixtures().get(state, size);
     if (!fp) return;
     PresentFixture& f = *fp;
     Renderer& r = *f.headless->renderer;
@@ -142,7 +126,7 @@ void headlessFrame(benchmark::State& state, Size size) {
 }
 
 void presentedFrame(benchmark::State& state, Size size) {
-    PresentFixture* fp = fixture(state, size);
+    PresentFixture* fp = fixtures().get(state, size);
     if (!fp) return;
     PresentFixture& f = *fp;
     Renderer& r = *f.presented->renderer;
@@ -158,7 +142,7 @@ void presentedFrame(benchmark::State& state, Size size) {
     }
     r.waitIdle();
     if (paused) {
-        failed = true;
+        fixtures().failed = true;
         state.SkipWithError("frames not presented (the window has no size)");
     }
     state.SetLabel(presentModeName(f.swapchain->presentMode()));
@@ -190,14 +174,14 @@ int main(int argc, char** argv) {
     }
     int status = 0;
     try {
-        if (benchmark::RunSpecifiedBenchmarks() == 0 || failed) status = 1;
+        if (benchmark::RunSpecifiedBenchmarks() == 0 || fixtures().failed) status = 1;
         bool validated = false;
         uint32_t messages = 0;
-        for (auto& [name, f] : fixtures()) {
+        for (auto& [name, f] : fixtures().all()) {
             validated = validated || f->device->validationEnabled();
             messages += f->finish();
         }
-        fixtures().clear();
+        fixtures().all().clear();
         if (validated) {
             std::printf("present_bench: validation: %u message(s)\n", messages);
             if (messages) status = 1;
