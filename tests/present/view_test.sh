@@ -151,6 +151,19 @@ wait_for_log() {
     fail "the log never said '$1'"
 }
 
+# The sky pixel (630, 10) of 640-wide window $1, captured into $2 until it is the clear colour
+# (30 s at most); prints the last value.
+sky_until_clear() {
+    local sky=""
+    for _ in $(seq 60); do
+        capture "$1" "$2"
+        sky="$(pixel "$2" 640 630 10)"
+        [ "$sky" = "0 0 0" ] && break
+        sleep 0.5
+    done
+    echo "$sky"
+}
+
 # The overlay's last logged rectangle as "X Y W H".
 overlay_rect() { grep "overlay: window at" view.err | tail -1 | sed -E 's/.* at ([0-9]+),([0-9]+) ([0-9]+)x([0-9]+).*/\1 \2 \3 \4/'; }
 # The centre of feature $1's checkbox, as last logged, as "X Y".
@@ -251,13 +264,7 @@ EOF
         [ -n "$x" ] || fail "the overlay logged no skybox checkbox"
         xdotool mousemove --window "$w" "$x" "$y" click 1
         wait_for_log "culled skybox: "
-        sky=""
-        for _ in $(seq 60); do
-            capture "$w" after.rgb
-            sky="$(pixel after.rgb 640 630 10)"
-            [ "$sky" = "0 0 0" ] && break
-            sleep 0.5
-        done
+        sky="$(sky_until_clear "$w" after.rgb)"
         [ "$sky" = "0 0 0" ] || fail "the sky pixel is $sky after the click, not the clear colour (was $sky_before)"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
@@ -293,13 +300,7 @@ json.dump(g, open("graph.json.tmp", "w"), indent=1)
 EOF
         mv graph.json.tmp graph.json
         wait_for_log "reload: first frame of the new plan presented"
-        sky=""
-        for _ in $(seq 60); do
-            capture "$w" fixed.rgb
-            sky="$(pixel fixed.rgb 640 630 10)"
-            [ "$sky" = "0 0 0" ] && break
-            sleep 0.5
-        done
+        sky="$(sky_until_clear "$w" fixed.rgb)"
         [ "$sky" = "0 0 0" ] || fail "the fixed graph (no skybox pass) does not render: sky $sky"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
