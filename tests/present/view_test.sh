@@ -16,6 +16,8 @@
 #                and the sky's pixels become the clear colour
 #   hot_reload   a broken graph edit keeps the last good frame and shows the message (the
 #                overlay's layout moves down for it); the fixed edit (no skybox pass) renders
+#   shader_reload  a broken shader keeps the last good frame and shows glslang's message; the
+#                fixed one clears it
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
@@ -306,6 +308,39 @@ EOF
         expect_clean_end "$pid" ""
         grep -q " 1 reload(s)" view.out || fail "not one reload"
         grep "reload: first frame" view.err
+        ;;
+    shader_reload)
+        cp -r "$root/shaders" shaders
+        SKYGRAPH_SHADER_DIR="$PWD/shaders" view --validate --width 640 --height 480
+        w="$(window_of)"
+        wait_for_log "overlay: feature checkboxes"
+        sleep 2
+        capture "$w" good.rgb
+        sky_good="$(pixel good.rgb 640 630 10)"
+        read -r _ y_good <<<"$(checkbox_of skybox)"
+        cp shaders/passes/tonemap.frag tonemap.frag.good
+        echo "this is not GLSL" >>shaders/passes/tonemap.frag
+        y_broken="$y_good"
+        for _ in $(seq 60); do
+            read -r _ y_broken <<<"$(checkbox_of skybox)"
+            [ "$y_broken" -gt "$y_good" ] && break
+            sleep 0.5
+        done
+        [ "$y_broken" -gt "$y_good" ] || fail "the overlay shows no message for the broken shader"
+        grep -q "tonemap.frag. does not compile" view.err || fail "the log has no glslang message naming tonemap.frag"
+        capture "$w" broken.rgb
+        [ "$(pixel broken.rgb 640 630 10)" = "$sky_good" ] || fail "the last good frame is not on screen"
+        cp tonemap.frag.good shaders/passes/tonemap.frag
+        y_fixed="$y_broken"
+        for _ in $(seq 60); do
+            read -r _ y_fixed <<<"$(checkbox_of skybox)"
+            [ "$y_fixed" -eq "$y_good" ] && break
+            sleep 0.5
+        done
+        [ "$y_fixed" -eq "$y_good" ] || fail "the message stays after the shader was fixed"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
+        grep -q " 1 reload(s)" view.out || fail "not one reload"
         ;;
     screenshot)
         view --validate --no-ui --width 320 --height 240
