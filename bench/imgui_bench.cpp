@@ -32,6 +32,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -142,6 +143,24 @@ Fixtures<ImGuiFixture>& fixtures() {
     return f;
 }
 
+/// Validation over the fixtures finished so far.
+bool validated = false;
+uint32_t messages = 0;
+
+/// Finishes and destroys every fixture but the one of `keep` (all of them without one).
+void retireFixturesOtherThan(std::optional<Size> keep) {
+    auto& all = fixtures().all();
+    for (auto it = all.begin(); it != all.end();) {
+        if (keep && it->first == keep->name()) {
+            ++it;
+            continue;
+        }
+        validated = validated || (it->second->device && it->second->device->validationEnabled());
+        messages += it->second->finish();
+        it = all.erase(it);
+    }
+}
+
 /// One ImGui frame of `content` at the fixture's size.
 void buildImGuiFrame(ImGuiFixture& f, Content content, double frameMs) {
     ImGuiIO& io = ImGui::GetIO();
@@ -178,6 +197,8 @@ double median(std::vector<double> v) {
 }
 
 void uiFrame(benchmark::State& state, Size size, Content content) {
+    // One fixture at a time: the ImGui context's backend serves one device (and renderer).
+    retireFixturesOtherThan(size);
     ImGuiFixture* fp = fixtures().get(state, size);
     if (!fp) return;
     ImGuiFixture& f = *fp;
@@ -237,20 +258,20 @@ int main(int argc, char** argv) {
     int status = 0;
     try {
         if (benchmark::RunSpecifiedBenchmarks() == 0 || fixtures().failed) status = 1;
-        bool validated = false;
-        uint32_t messages = 0;
-        for (auto& [name, f] : fixtures().all()) {
-            validated = validated || f->device->validationEnabled();
-            messages += f->finish();
-        }
-        fixtures().all().clear();
-        if (validated) {
-            std::printf("imgui_bench: validation: %u message(s)\n", messages);
-            if (messages) status = 1;
-        }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "imgui_bench: %s\n", e.what());
         status = 1;
+    }
+    try {
+        retireFixturesOtherThan(std::nullopt);  // before the context their ImGuiPasses draw goes
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "imgui_bench: %s\n", e.what());
+        status = 1;
+    }
+    fixtures().all().clear();
+    if (validated) {
+        std::printf("imgui_bench: validation: %u message(s)\n", messages);
+        if (messages) status = 1;
     }
     ImGui::DestroyContext();
     benchmark::Shutdown();

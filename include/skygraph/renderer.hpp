@@ -32,9 +32,13 @@ struct RendererOptions {
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
-    /// Borrowed: the renderer starts out bound to this swapchain's current images (when it
-    /// has them), so that its first renderFrame(*presentTo) builds nothing again; e.g. a new
-    /// renderer for a window that is already presenting. Null: bound at the first frame.
+    /// Borrowed, and must outlive the renderer: the renderer starts out bound to this
+    /// swapchain's current images, so that its first renderFrame(*presentTo) builds nothing
+    /// again; e.g. a new renderer for a window that is already presenting. The constructor
+    /// then compiles the graph at the images' extent (compiled() has that size) and throws
+    /// ExecutorError when it does not compile there. When the swapchain has no fitting images
+    /// (paused, out of date, or made for another format or usage) nothing is bound and the
+    /// first frame binds, as with null.
     Swapchain* presentTo = nullptr;
 };
 
@@ -173,7 +177,8 @@ public:
     [[nodiscard]] std::vector<PassTiming> lastTimings();
     /// Per-pass GPU times of the latest frame seen finished, without waiting (up to frames
     /// in flight behind: what a live overlay shows). The reference is valid until the next
-    /// frame or rebuild.
+    /// call that waits for a frame (renderFrame, waitForFrameSlot, waitIdle, lastTimings,
+    /// readback) or rebuilds.
     [[nodiscard]] const std::vector<PassTiming>& completedTimings() const noexcept;
 
     /// compiled().plan(): the current plan. Valid until the plan state is rebuilt.

@@ -6,8 +6,11 @@
 // The backend keeps one state per ImGui context and takes a render pass at initialisation,
 // whose pipeline then works in every compatible render pass (same format, one sample). So
 // the passes of one context share one backend while their targets agree: a rebuilt plan
-// (an edit, a resize) reuses it, with its pipeline and font atlas, instead of initialising
-// again. The backend is taken at the first record, once the plan it replaces is gone.
+// (an edit, a resize) takes it from the plan it replaces while that still holds it, with its
+// pipeline and font atlas. Otherwise a backend is made at the first record, once the plan it
+// replaces is gone. The backend rotates its vertex buffers per draw with no fence of its
+// own, so one pass at a time records with it: a second one recording while the first lives
+// is an error.
 //
 // The one thing recorded that is not the plan's: the backend uploads its font atlas itself,
 // with its own two image barriers on its own font image, in the first frame, before the
@@ -39,19 +42,21 @@ public:
         uint32_t imageCount = 0;  // vertex/index buffers rotated over; a user may need fewer
     };
 
-    /// The live backend when `key` fits it, else a new one, which uploads its font atlas in
-    /// `cmd`. Throws when another target format still holds the context.
-    static std::shared_ptr<ImGuiBackend> acquire(const Key& key, ImGui_ImplVulkan_InitInfo info,
-                                                 VkRenderPass renderPass, VkCommandBuffer cmd, const std::string& pass) {
-        static std::weak_ptr<ImGuiBackend> live;
-        if (std::shared_ptr<ImGuiBackend> b = live.lock()) {
-            const Key& k = b->key_;
-            if (k.context == key.context && k.device == key.device && k.format == key.format &&
-                k.imageCount >= key.imageCount)
-                return b;
-            throw ExecutorError("pass '" + pass + "': the Dear ImGui context is still drawn by an ImGuiPass with "
-                                "another target (one backend per context)");
-        }
+    /// The live backend when `key` fits it, else null.
+    static std::shared_ptr<ImGuiBackend> share(const Key& key) {
+        std::shared_ptr<ImGuiBackend> b = live().lock();
+        const bool fits = b && b->key_.context == key.context && b->key_.device == key.device &&
+                          b->key_.format == key.format && b->key_.imageCount >= key.imageCount;
+        return fits ? b : nullptr;
+    }
+
+    /// A new backend, which uploads its font atlas in `cmd`. Throws when another ImGuiPass
+    /// still holds the context with a backend that does not fit `key`.
+    static std::shared_ptr<ImGuiBackend> make(const Key& key, ImGui_ImplVulkan_InitInfo info, VkRenderPass renderPass,
+                                              VkCommandBuffer cmd, const std::string& pass) {
+        if (!live().expired())
+            throw ExecutorError("pass '" + pass + "': the Dear ImGui context is still drawn by an ImGuiPass of "
+                                "another device, target format or frame count (one backend per context)");
         ImGui::SetCurrentContext(key.context);
         if (ImGui::GetIO().BackendRendererUserData)
             throw ExecutorError("pass '" + pass + "': the Dear ImGui context already has another renderer backend");
@@ -70,7 +75,7 @@ public:
         b->initialized_ = true;
         if (!ImGui_ImplVulkan_CreateFontsTexture(cmd))
             throw ExecutorError("pass '" + pass + "': ImGui_ImplVulkan_CreateFontsTexture failed");
-        live = b;
+        live() = b;
         return b;
     }
 
@@ -86,15 +91,30 @@ public:
     ImGuiBackend(const ImGuiBackend&) = delete;
     ImGuiBackend& operator=(const ImGuiBackend&) = delete;
 
-    void record(VkCommandBuffer cmd) const {
+    /// Records the context's draw data for `recorder`, which must be the only pass recording
+    /// with this backend while it lives (release() when it goes).
+    void record(VkCommandBuffer cmd, const void* recorder, const std::string& pass) {
+        if (recorder_ && recorder_ != recorder)
+            throw ExecutorError("pass '" + pass + "': another ImGuiPass records the same Dear ImGui context (one "
+                                "renderer at a time draws a context)");
+        recorder_ = recorder;
         ImGui::SetCurrentContext(key_.context);
         ImDrawData* data = ImGui::GetDrawData();
         if (data && data->Valid && data->CmdListsCount > 0) ImGui_ImplVulkan_RenderDrawData(data, cmd);
     }
 
+    void release(const void* recorder) noexcept {
+        if (recorder_ == recorder) recorder_ = nullptr;
+    }
+
 private:
     explicit ImGuiBackend(const Key& key) : key_(key) {}
+    static std::weak_ptr<ImGuiBackend>& live() {
+        static std::weak_ptr<ImGuiBackend> backend;
+        return backend;
+    }
     Key key_;
+    const void* recorder_ = nullptr;
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     bool initialized_ = false;
 };
@@ -106,6 +126,9 @@ void checkResult(VkResult result) {
 class ImGuiPass final : public PassImplementation {
 public:
     explicit ImGuiPass(const PassDesc& desc) : name_(desc.name) {}
+    ~ImGuiPass() override {
+        if (backend_) backend_->release(this);
+    }
 
     void createPipelines(const PipelineContext& ctx) override {
         key_.context = ImGui::GetCurrentContext();
@@ -126,14 +149,15 @@ public:
         init_.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
         init_.CheckVkResultFn = &checkResult;
         renderPass_ = ctx.renderPass;
+        backend_ = ImGuiBackend::share(key_);  // the plan this one replaces may still hold it
     }
 
     void recordBeforeRenderPass(const RecordContext& ctx) override {
-        if (key_.context && !backend_) backend_ = ImGuiBackend::acquire(key_, init_, renderPass_, ctx.cmd, name_);
+        if (key_.context && !backend_) backend_ = ImGuiBackend::make(key_, init_, renderPass_, ctx.cmd, name_);
     }
 
     void record(const RecordContext& ctx) override {
-        if (backend_) backend_->record(ctx.cmd);
+        if (backend_) backend_->record(ctx.cmd, this, name_);
     }
 
 private:

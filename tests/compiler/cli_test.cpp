@@ -446,7 +446,7 @@ TEST_F(Cli, RenderOfAGraphWithoutAPresentImageRendersValidatesAndExitsZero) {
     const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
     const CliRun r = run({"render", graph.string(), "--frames", "2", "--validate"});
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_NE(r.err.find("graph 'bake' has no Present image: no file is written"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("graph 'bake' has no Present image that a pass uses: no file is written"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
 
     const fs::path out = dir_ / "work" / "field.exr";
@@ -461,7 +461,7 @@ TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
     const fs::path out = dir_ / "work" / "out.png";
     const CliRun r = run({"render", graph.string(), "-o", out.string()});
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_NE(r.err.find("nothing to write to " + out.string() + ": graph 'bake' has no Present image; add "
+    EXPECT_NE(r.err.find("nothing to write to " + out.string() + ": graph 'bake' has no Present image that a pass uses; add "
                          "--readback NAME with one of its images: field"),
               std::string::npos)
         << r.err;

@@ -18,7 +18,7 @@
 #                overlay's layout moves down for it); the fixed edit (no skybox pass) renders
 #   shader_reload  a broken shader keeps the last good frame and shows glslang's message; the
 #                fixed one clears it
-#   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code
+#   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
 #   no_display   without an X server: exit 1 and one line that suggests `skygraph render`
@@ -354,6 +354,13 @@ EOF
         python3 compare.py window.rgb shot.rgb 320
         read -r outside _ <compare.txt
         [ "$outside" -le 1 ] || fail "the screenshot differs from the window by $outside codes"
+        # The plan is compiled back after the first: a second screenshot works the same.
+        xdotool key --window "$w" F12
+        wait_for_log "screenshot: skygraph-view-2.png"
+        convert skygraph-view-2.png -alpha off -depth 8 rgb:shot2.rgb
+        python3 compare.py window.rgb shot2.rgb 320
+        read -r outside _ <compare.txt
+        [ "$outside" -le 1 ] || fail "the second screenshot differs from the window by $outside codes"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
         ;;

@@ -109,6 +109,18 @@ std::vector<std::pair<std::string, bool>> LiveGraph::features() const {
     return out;
 }
 
+bool LiveGraph::declares(std::string_view name) const {
+    const auto& declared = renderer_->graph().features;
+    return std::any_of(declared.begin(), declared.end(), [&](const FeatureDecl& f) { return f.name == name; });
+}
+
+bool LiveGraph::sceneReplaced() noexcept { return std::exchange(sceneReplaced_, false); }
+
+std::string LiveGraph::error() const {
+    if (error_.empty() || shaderError_.empty()) return error_.empty() ? shaderError_ : error_;
+    return error_ + "\n" + shaderError_;
+}
+
 bool LiveGraph::feature(std::string_view name) const {
     const FeatureValues& on = renderer_->plan().features();
     const auto it = on.find(std::string(name));
@@ -136,18 +148,22 @@ bool LiveGraph::poll() {
         std::optional<Scene> edited;
         if (sceneSaved) edited = std::exchange(scene_, std::nullopt);  // the saved scene wins over the overlay
         const auto noticed = std::filesystem::file_time_type::clock::now();
-        if (rebuild(options_)) lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), !ec};
-        else if (edited) scene_ = std::move(edited);
+        if (rebuild(options_)) {
+            lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), !ec};
+            sceneReplaced_ = sceneReplaced_ || sceneSaved;
+        } else if (edited) {
+            scene_ = std::move(edited);
+        }
         return true;
     }
     switch (shaderWatcher_->poll()) {
         case HotReloader::Result::Unchanged: return false;
         case HotReloader::Result::Reloaded:
-            error_.clear();
+            shaderError_.clear();
             ++reloads_;
             return true;
         case HotReloader::Result::Failed:
-            error_ = shaderWatcher_->lastError();
+            shaderError_ = shaderWatcher_->lastError();
             return true;
     }
     return false;
@@ -190,7 +206,7 @@ bool LiveGraph::finishScreenshot(const std::filesystem::path& png) {
         spdlog::warn("{}", error_);
     }
     CompileOptions co = renderer_->compiled().options();
-    co.readbacks.clear();
+    co.readbacks.erase(presentedResource());
     try {
         renderer_->setGraph(CompiledGraph(renderer_->graph(), co));
     } catch (const std::exception& e) {

@@ -72,8 +72,13 @@ public:
     };
     [[nodiscard]] Reload& lastReload() noexcept { return lastReload_; }
 
-    /// The message of the last failed change or reload; empty once one succeeds.
-    [[nodiscard]] const std::string& error() const noexcept { return error_; }
+    /// The messages of the last failed change or reload of the inputs, and of the shaders;
+    /// each clears once its kind succeeds. Empty when all is well.
+    [[nodiscard]] std::string error() const;
+    /// Whether the graph declares feature `name`.
+    [[nodiscard]] bool declares(std::string_view name) const;
+    /// True once after a saved scene file replaced the scene (its camera included).
+    [[nodiscard]] bool sceneReplaced() noexcept;
     /// How many rebuilds and reloads succeeded.
     [[nodiscard]] uint32_t reloads() const noexcept { return reloads_; }
 
@@ -92,7 +97,8 @@ private:
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;
     std::unique_ptr<HotReloader> shaderWatcher_;
-    std::string error_;
+    std::string error_, shaderError_;
+    bool sceneReplaced_ = false;
     uint32_t reloads_ = 0;
     Reload lastReload_;
 };

@@ -202,11 +202,12 @@ int renderCommand(const RenderOptions& options) {
         if (target.empty()) {
             if (!output.empty()) {
                 std::cerr << "skygraph render: nothing to write to " << output.string() << ": graph '" << graph.name
-                          << "' has no Present image; add --readback NAME with one of its images: "
+                          << "' has no Present image that a pass uses; add --readback NAME with one of its images: "
                           << imageNames(graph) << "\n";
                 return 1;
             }
-            spdlog::info("graph '{}' has no Present image: no file is written (-o FILE --readback NAME writes one)",
+            spdlog::info("graph '{}' has no Present image that a pass uses: no file is written (-o FILE --readback NAME "
+                         "writes one)",
                          graph.name);
         } else {
             if (output.empty()) output = "skygraph.png";

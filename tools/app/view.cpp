@@ -220,6 +220,8 @@ int viewCommand(const ViewOptions& options) {
             std::optional<ViewOverlay> overlay;
             if (options.overlay) overlay.emplace(window);
             state.overlay = overlay ? &*overlay : nullptr;
+            // The swapchain outlives the renderers that render into it: declared before them.
+            std::unique_ptr<Swapchain> swapchain;
             LiveGraph live(*device, fo, uint32_t(std::max(fbw, 1)), uint32_t(std::max(fbh, 1)), options.overlay);
 
             SwapchainOptions so;
@@ -227,7 +229,7 @@ int viewCommand(const ViewOptions& options) {
             so.height = uint32_t(std::max(fbh, 0));
             so.presentMode = options.presentMode;
             so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
-            const std::unique_ptr<Swapchain> swapchain = Swapchain::create(*device, live.renderer().compiled(), so);
+            swapchain = Swapchain::create(*device, live.renderer().compiled(), so);
             state.swapchain = swapchain.get();
             live.presentTo(*swapchain);
             if (live.scene() && options.orbit) {
@@ -244,8 +246,8 @@ int viewCommand(const ViewOptions& options) {
                 const auto start = std::chrono::steady_clock::now();
                 if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
                 else glfwPollEvents();
-                live.poll();
-                if (std::exchange(state.toggleOverlay, false) && overlay)
+                if (live.poll() && live.sceneReplaced() && state.orbit) state.orbit.emplace(state.scene->camera);
+                if (std::exchange(state.toggleOverlay, false) && overlay && live.declares(kOverlayFeature))
                     live.setFeature(std::string(kOverlayFeature), !live.feature(kOverlayFeature));
                 state.overlayVisible = overlay && live.feature(kOverlayFeature);
                 if (state.overlayVisible) overlay->frame(live, frameMs);
@@ -253,7 +255,9 @@ int viewCommand(const ViewOptions& options) {
                     live.sceneChanged();
                     state.cameraMoved = false;
                 }
-                const bool screenshot = std::exchange(state.screenshotWanted, false) && live.beginScreenshot();
+                // A paused window presents nothing: the screenshot waits for a frame.
+                const bool screenshot = !swapchain->paused() && std::exchange(state.screenshotWanted, false) &&
+                                        live.beginScreenshot();
                 if (live.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
                     ++presented;
                     if (screenshot) live.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");

@@ -59,10 +59,10 @@ void ViewOverlay::frame(LiveGraph& live, double frameMs) {
     ImGui::SetNextWindowSizeConstraints(ImVec2(260, 0), ImVec2(420, 10000));
     ImGui::Begin("skygraph", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove);
     ImGui::TextUnformatted(live.renderer().graph().name.c_str());
-    if (!live.error().empty()) {
+    if (const std::string error = live.error(); !error.empty()) {
         ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
         ImGui::PushTextWrapPos(400);
-        ImGui::TextUnformatted(live.error().c_str());
+        ImGui::TextUnformatted(error.c_str());
         ImGui::PopTextWrapPos();
         ImGui::PopStyleColor();
     }
