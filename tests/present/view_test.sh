@@ -166,6 +166,18 @@ sky_until_clear() {
     echo "$sky"
 }
 
+# Waits (30 s at most) until the skybox checkbox's logged y compares to $2 by test operator $1
+# (-gt: the controls moved down for a message, -eq: back); prints the last y.
+checkbox_y_until() {
+    local y=""
+    for _ in $(seq 60); do
+        read -r _ y <<<"$(checkbox_of skybox)"
+        [ "$y" "$1" "$2" ] && break
+        sleep 0.5
+    done
+    echo "$y"
+}
+
 # The overlay's last logged rectangle as "X Y W H".
 overlay_rect() { grep "overlay: window at" view.err | tail -1 | sed -E 's/.* at ([0-9]+),([0-9]+) ([0-9]+)x([0-9]+).*/\1 \2 \3 \4/'; }
 # The centre of feature $1's checkbox, as last logged, as "X Y".
@@ -284,12 +296,7 @@ EOF
         sky_good="$(pixel good.rgb 640 630 10)"
         read -r _ y_good <<<"$(checkbox_of skybox)"
         printf '{ "version": 1, "passes": [ ' >graph.json  # a save cut short
-        y_broken="$y_good"
-        for _ in $(seq 60); do
-            read -r _ y_broken <<<"$(checkbox_of skybox)"
-            [ "$y_broken" -gt "$y_good" ] && break
-            sleep 0.5
-        done
+        y_broken="$(checkbox_y_until -gt "$y_good")"
         [ "$y_broken" -gt "$y_good" ] || fail "the overlay shows no message (its controls did not move down)"
         grep -q "warning: .*graph.json" view.err || fail "the log has no message naming graph.json"
         capture "$w" broken.rgb
@@ -320,23 +327,13 @@ EOF
         read -r _ y_good <<<"$(checkbox_of skybox)"
         cp shaders/passes/tonemap.frag tonemap.frag.good
         echo "this is not GLSL" >>shaders/passes/tonemap.frag
-        y_broken="$y_good"
-        for _ in $(seq 60); do
-            read -r _ y_broken <<<"$(checkbox_of skybox)"
-            [ "$y_broken" -gt "$y_good" ] && break
-            sleep 0.5
-        done
+        y_broken="$(checkbox_y_until -gt "$y_good")"
         [ "$y_broken" -gt "$y_good" ] || fail "the overlay shows no message for the broken shader"
         grep -q "tonemap.frag. does not compile" view.err || fail "the log has no glslang message naming tonemap.frag"
         capture "$w" broken.rgb
         [ "$(pixel broken.rgb 640 630 10)" = "$sky_good" ] || fail "the last good frame is not on screen"
         cp tonemap.frag.good shaders/passes/tonemap.frag
-        y_fixed="$y_broken"
-        for _ in $(seq 60); do
-            read -r _ y_fixed <<<"$(checkbox_of skybox)"
-            [ "$y_fixed" -eq "$y_good" ] && break
-            sleep 0.5
-        done
+        y_fixed="$(checkbox_y_until -eq "$y_good")"
         [ "$y_fixed" -eq "$y_good" ] || fail "the message stays after the shader was fixed"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
