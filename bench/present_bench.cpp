@@ -18,6 +18,8 @@
 // validation message was counted (the ctest smoke run, bench/CMakeLists.txt).
 #include "frame_setup.hpp"
 
+#include "app/glfw_presentation.hpp"
+
 #include <skygraph/swapchain.hpp>
 
 #define GLFW_INCLUDE_VULKAN
@@ -59,18 +61,7 @@ struct PresentFixture {
 
         DeviceOptions dopts;
         dopts.device = benchDeviceName();
-        PresentationOptions presentation;
-        uint32_t count = 0;
-        const char** extensions = glfwGetRequiredInstanceExtensions(&count);
-        for (uint32_t i = 0; i < count; ++i) presentation.instanceExtensions.emplace_back(extensions[i]);
-        GLFWwindow* w = window;
-        presentation.createSurface = [w](VkInstance instance) {
-            VkSurfaceKHR surface = VK_NULL_HANDLE;
-            if (glfwCreateWindowSurface(instance, w, nullptr, &surface) != VK_SUCCESS)
-                throw std::runtime_error("glfwCreateWindowSurface failed");
-            return surface;
-        };
-        dopts.presentation = std::move(presentation);
+        dopts.presentation = app::glfwPresentation(window);
         device = Device::create(dopts);
 
         const Size fb{uint32_t(fbw), uint32_t(fbh)};

@@ -2,6 +2,7 @@
 #include "view.hpp"
 
 #include "command_exit.hpp"
+#include "glfw_presentation.hpp"
 #include "view_overlay.hpp"
 #include "live_graph.hpp"
 
@@ -26,7 +27,6 @@
 #include <memory>
 #include <numbers>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -189,17 +189,7 @@ int viewCommand(const ViewOptions& options) {
         DeviceOptions dopts;
         dopts.device = fo.device;
         dopts.validation = fo.validate;
-        PresentationOptions presentation;
-        uint32_t extensionCount = 0;
-        const char** extensions = glfwGetRequiredInstanceExtensions(&extensionCount);
-        for (uint32_t i = 0; i < extensionCount; ++i) presentation.instanceExtensions.emplace_back(extensions[i]);
-        presentation.createSurface = [window](VkInstance instance) {
-            VkSurfaceKHR surface = VK_NULL_HANDLE;
-            if (glfwCreateWindowSurface(instance, window, nullptr, &surface) != VK_SUCCESS)
-                throw std::runtime_error("glfwCreateWindowSurface: " + glfwLastError());
-            return surface;
-        };
-        dopts.presentation = std::move(presentation);
+        dopts.presentation = glfwPresentation(window);
         auto device = Device::create(dopts);
 
         uint64_t presented = 0;
