@@ -20,7 +20,7 @@ namespace skygraph::sync {
 /// cost more than the comparison.
 inline bool sameParams(const Barrier& a, const Barrier& b) {
     static_assert(sizeof(Barrier) == 64, "a new Barrier member must join this comparison");
-    return a.resource == b.resource && a.kind == b.kind && a.srcStages == b.srcStages &&
+    return a.resource == b.resource && a.kind == b.kind && a.aliasing == b.aliasing && a.srcStages == b.srcStages &&
            a.srcAccess == b.srcAccess && a.dstStages == b.dstStages && a.dstAccess == b.dstAccess &&
            a.oldLayout == b.oldLayout && a.newLayout == b.newLayout;
 }
@@ -97,9 +97,17 @@ inline void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
                                         a.range.layerCount == b.range.layerCount;
                 const bool sameMips = a.range.baseMip == b.range.baseMip &&
                                       a.range.mipCount == b.range.mipCount;
+                // Either may come first: a whole-resource aliasing barrier is completed by one
+                // over what the first use left out, which can lie below or above it (rule 16).
                 if (sameLayers && a.range.baseMip + a.range.mipCount == b.range.baseMip) {
                     a.range.mipCount += b.range.mipCount;
+                } else if (sameLayers && b.range.baseMip + b.range.mipCount == a.range.baseMip) {
+                    a.range.baseMip = b.range.baseMip;
+                    a.range.mipCount += b.range.mipCount;
                 } else if (sameMips && a.range.baseLayer + a.range.layerCount == b.range.baseLayer) {
+                    a.range.layerCount += b.range.layerCount;
+                } else if (sameMips && b.range.baseLayer + b.range.layerCount == a.range.baseLayer) {
+                    a.range.baseLayer = b.range.baseLayer;
                     a.range.layerCount += b.range.layerCount;
                 } else {
                     continue;

@@ -21,6 +21,10 @@ struct SubresourceState {
     /// Contents came from outside the frame; a barrier needing a source stage chains with
     /// the semaphore wait at the first use's stages. (Beside the layout: 48 bytes, not 56.)
     bool fromOutside;
+    /// The memory was last used by other resources (the resource's MemoryPlacement::aliases):
+    /// `writeStages` and `writeAccess` are their last uses, and a barrier from them is an
+    /// aliasing barrier (rule 16).
+    bool aliased;
     VkPipelineStageFlags2 writeStages;    ///< Stages of the last write (or the outside).
     /// Write accesses of that write. A barrier whose source is `writeStages` always repeats
     /// them: an earlier availability operation only counts for barriers that chain after the
@@ -54,6 +58,7 @@ template <typename VisibleAfter>
 bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkImageLayout target,
                  bool write, bool discard, VisibleAfter&& visibleAfter) {
     const bool layoutChange = st.layout != target;
+    b.aliasing = st.aliased;
     b.dstStages = need.stages;
     b.dstAccess = need.access;
     b.oldLayout = discard && layoutChange ? VK_IMAGE_LAYOUT_UNDEFINED : st.layout;
@@ -96,6 +101,7 @@ bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkIm
     // What the barrier achieved.
     st.layout = target;
     st.fromOutside = st.fromOutside && !write;
+    st.aliased = false;
     if (!write) {
         // A transition rewrites the memory: only this barrier's scope sees the result.
         st.visibleStages = (layoutChange ? 0 : st.visibleStages) | b.dstStages;

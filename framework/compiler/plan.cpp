@@ -25,7 +25,7 @@ Plan::Plan(const Plan& other)
     : graph_(other.graph_), features_(other.features_), outputWidth_(other.outputWidth_),
       outputHeight_(other.outputHeight_), resources_(other.resources_), passes_(other.passes_),
       finalBarriers_(other.finalBarriers_), inPassBarriers_(other.inPassBarriers_), culled_(other.culled_),
-      presentations_(other.presentations_),
+      presentations_(other.presentations_), memory_(other.memory_),
       usages_(other.usages_), barriers_(other.barriers_), nameTables_(other.nameTables_) {
     for (PlannedPass& p : passes_) {
         p.usages = rebased(p.usages, other.usages_, usages_);

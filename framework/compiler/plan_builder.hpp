@@ -41,6 +41,7 @@ struct PlanBuilder {
     static std::vector<InPassBarrier>& inPassBarriers(Plan& p) noexcept { return p.inPassBarriers_; }
     static std::vector<CulledPass>& culled(Plan& p) noexcept { return p.culled_; }
     static std::vector<Presentation>& presentations(Plan& p) noexcept { return p.presentations_; }
+    static MemoryLayout& memory(Plan& p) noexcept { return p.memory_; }
 
     /// Every pass's usages, pass after pass: what PlannedPass::usages views.
     static std::vector<PlannedUsage>& usages(Plan& p) noexcept { return p.usages_; }

@@ -133,6 +133,15 @@ const char* copiesReason(ResourceCopies c) {
     return "?";
 }
 
+/// The resources whose memory an aliasing barrier's resource takes over.
+std::vector<std::string_view> aliasNames(const Plan& plan, uint32_t resource) {
+    std::vector<std::string_view> names;
+    const uint32_t p = plan.resources()[resource].placement;
+    if (p == PlannedResource::kNoPlacement) return names;
+    for (const uint32_t a : plan.memory().placements[p].aliases) names.push_back(plan.resources()[a].name);
+    return names;
+}
+
 json barrierJson(const Plan& plan, const Barrier& b) {
     json j = {{"resource", plan.resources()[b.resource].name},
               {"kind", kindName(b.kind)},
@@ -148,7 +157,64 @@ json barrierJson(const Plan& plan, const Barrier& b) {
         j["baseArrayLayer"] = b.range.baseLayer;
         j["layerCount"] = b.range.layerCount;
     }
+    if (b.aliasing) j["aliases"] = aliasNames(plan, b.resource);
     return j;
+}
+
+std::string mib(uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f MiB", static_cast<double>(bytes) / double(1 << 20));
+    return text;
+}
+
+json memoryJson(const Plan& plan) {
+    const MemoryLayout& m = plan.memory();
+    json j = {{"model", m.model}, {"strategy", toString(m.strategy)}, {"granularity", m.granularity}};
+    j["heaps"] = json::array();
+    for (const MemoryHeap& h : m.heaps)
+        j["heaps"].push_back({{"bytes", h.bytes}, {"memoryTypeBits", h.memoryTypeBits}, {"granular", h.granular}});
+    j["placements"] = json::array();
+    for (const MemoryPlacement& p : m.placements) {
+        json jp = {{"resource", plan.resources()[p.resource].name},
+                   {"heap", p.heap},
+                   {"offset", p.offset},
+                   {"bytes", p.bytes},
+                   {"alignment", p.requirements.alignment},
+                   {"aliasable", p.aliasable},
+                   {"aliases", json::array()}};
+        for (const uint32_t a : p.aliases) jp["aliases"].push_back(plan.resources()[a].name);
+        j["placements"].push_back(std::move(jp));
+    }
+    j["heapBytes"] = m.heapBytes();
+    j["unaliasedBytes"] = m.unaliasedBytes;
+    j["peakLiveBytes"] = m.peakLiveBytes;
+    return j;
+}
+
+std::string memoryText(const Plan& plan) {
+    const MemoryLayout& m = plan.memory();
+    std::ostringstream o;
+    o << "memory: " << m.placements.size() << " transient(s) in " << m.heaps.size() << " heap(s) of "
+      << mib(m.heapBytes()) << " per frame in flight (" << toString(m.strategy) << ", requirements: " << m.model
+      << "); unaliased " << mib(m.unaliasedBytes) << ", peak live " << mib(m.peakLiveBytes) << "\n";
+    for (size_t h = 0; h < m.heaps.size(); ++h) {
+        o << "    heap " << h << ": " << mib(m.heaps[h].bytes) << ", memory types 0x" << std::hex
+          << m.heaps[h].memoryTypeBits << std::dec;
+        if (m.heaps[h].granular) o << ", placed on the buffer-image granularity (" << m.granularity << " bytes)";
+        o << "\n";
+        for (const MemoryPlacement& p : m.placements) {
+            if (p.heap != h) continue;
+            o << "      [" << p.offset << ", " << p.offset + p.bytes << ") " << plan.resources()[p.resource].name << " ("
+              << mib(p.bytes) << ")";
+            if (!p.aliasable) o << " not shared";
+            if (!p.aliases.empty()) {
+                o << " after";
+                for (const std::string_view n : aliasNames(plan, p.resource)) o << " " << n;
+            }
+            o << "\n";
+        }
+    }
+    return o.str();
 }
 
 std::string barrierText(const Plan& plan, const Barrier& b) {
@@ -157,6 +223,10 @@ std::string barrierText(const Plan& plan, const Barrier& b) {
     if (b.kind == BarrierKind::Image)
         o << " mips[" << b.range.baseMip << "+" << b.range.mipCount << "] layers["
           << b.range.baseLayer << "+" << b.range.layerCount << "]";
+    if (b.aliasing) {
+        o << " aliasing, after";
+        for (const std::string_view n : aliasNames(plan, b.resource)) o << " " << n;
+    }
     o << "\n      " << joined(stageMaskNames(b.srcStages), "VK_PIPELINE_STAGE_2_") << " / "
       << joined(accessMaskNames(b.srcAccess), "VK_ACCESS_2_") << "  ->  "
       << joined(stageMaskNames(b.dstStages), "VK_PIPELINE_STAGE_2_") << " / "
@@ -267,6 +337,8 @@ json planToJson(const Plan& plan) {
                                   {"finalLayout", layoutName(r.finalLayout)},
                                   {"copies", perFrameInFlight(r.copies) ? "perFrameInFlight" : "one"},
                                   {"copiesWhy", copiesReason(r.copies)}});
+    // Extension: where the transient resources live (plans of compile() only).
+    if (!plan.memory().model.empty()) j["memory"] = memoryJson(plan);
     return j;
 }
 
@@ -303,6 +375,7 @@ std::string planToText(const Plan& plan) {
         o << "    " << r.name << ": passes " << r.firstPass << ".." << r.lastPass << ", "
           << (perFrameInFlight(r.copies) ? "a copy per frame in flight" : "one copy") << " ("
           << copiesReason(r.copies) << ")\n";
+    if (!plan.memory().model.empty()) o << memoryText(plan);
     return o.str();
 }
 

@@ -8,8 +8,8 @@
 namespace skygraph {
 namespace {
 
-constexpr Keys<11> kResourceKeys{"type",     "format",   "extent",  "mips",  "layers",     "size",
-                                 "clear",    "external", "initial", "final", "description"};
+constexpr Keys<12> kResourceKeys{"type",     "format",   "extent",  "mips",  "layers",      "size",
+                                 "clear",    "external", "initial", "final", "description", "alias"};
 constexpr Keys<3> kClearKeys{"color", "depth", "stencil"};
 using ResourceFields = JsonFields<kResourceKeys.size()>;
 
@@ -19,6 +19,7 @@ constexpr size_t type = keyIndex(kResourceKeys, "type"), format = keyIndex(kReso
                  layers = keyIndex(kResourceKeys, "layers"), size = keyIndex(kResourceKeys, "size"),
                  clear = keyIndex(kResourceKeys, "clear"), external = keyIndex(kResourceKeys, "external"),
                  initial = keyIndex(kResourceKeys, "initial"), final = keyIndex(kResourceKeys, "final"),
+                 alias = keyIndex(kResourceKeys, "alias"),
                  color = keyIndex(kClearKeys, "color"), depth = keyIndex(kClearKeys, "depth"),
                  stencil = keyIndex(kClearKeys, "stencil");
 }  // namespace key
@@ -188,6 +189,12 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
     if (r.external && r.initial == ExternalState::None)
         r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;
     if (r.external && r.clear) fail("clear", "an external resource arrives with contents; it is not cleared");
+    if (const JsonValue alias = f[key::alias]) {
+        if (!alias.isBoolean()) fail("alias", "expected true or false");
+        else r.alias = alias.boolean();
+        if (r.external)
+            fail("alias", "an external resource has memory of its own; only transient resources share memory");
+    }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "barrier_merge.hpp"
 #include "barrier_rules.hpp"
+#include "memory_planner.hpp"
 #include "plan_builder.hpp"
 #include "read_runs.hpp"
 #include "subresources.hpp"
@@ -73,6 +74,7 @@ public:
         for (const std::string& name : options_.readbacks)  // compile() checked the names
             readbacks_.push_back(static_cast<uint32_t>(graph_.findResource(name) - graph_.resources.data()));
         planAccesses(schedule);
+        planMemory();
         computeRunScopes();
         emitSteps();
         finishResources();
@@ -350,7 +352,7 @@ private:
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         // Room for the most barriers there can be (one per subresource an access touches), so
         // the array never moves and each pass's spans are set as its batch is done.
-        barriers.reserve(accessCount_ - multiCellAccesses_.size() + runScopeCount_);
+        barriers.reserve(accessCount_ - multiCellAccesses_.size() + runScopeCount_ + aliasedCells_);
         const Barrier* const base = barriers.data();
         const size_t room = barriers.capacity();
         // Each plan pass is written once, whole, here (an inserted Clear's name comes at the
@@ -362,7 +364,8 @@ private:
             const Step& step = steps_[s];
             const uint32_t first = step.firstAccess, end = stepEnd(s);
             for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
-            if (step.mayMerge) mergeAdjacent(barriers, batch);
+            const bool aliasingAdded = !aliasedHere_.empty() && finishAliasing(barriers);
+            if (step.mayMerge || aliasingAdded) mergeAdjacent(barriers, batch);
             const std::span<const Barrier> batchView =
                 barriers.size() > batch ? std::span<const Barrier>(base + batch, barriers.size() - batch)
                                         : std::span<const Barrier>();
@@ -445,7 +448,10 @@ private:
         const size_t cells = facts.grid.size();
         if (cells == 1) *states = SubresourceState{};  // most resources; fill_n's loop costs more
         else std::fill_n(states, cells, SubresourceState{});
-        if (!facts_[r].external) return;
+        if (!facts_[r].external) {
+            if (!plan_.memory().placements.empty()) startAliased(r, states, cells);
+            return;
+        }
         const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
         for (size_t i = 0; i < facts_[r].grid.size(); ++i) {
             states[i].layout = scope.layout;
@@ -614,6 +620,123 @@ private:
         detail::PlanBuilder::presentations(plan_).push_back({r, planResources()[r].firstStages, lastStages});
     }
 
+    /// Where each transient resource lives (rule 16 of docs/barriers.md): the plan's memory
+    /// layout, from the lifetimes planAccesses found and the requirements of options_.memory.
+    void planMemory() {
+        const MemoryModel& model = options_.memory ? *options_.memory : *estimatedMemory();
+        std::vector<TransientResource> transients;
+        const auto& usages = *usages_;
+        for (uint32_t r = 0; r < facts_.size(); ++r) {
+            const ResourceFacts& f = facts_[r];
+            if (f.external || f.exported) continue;
+            const ResourceDesc& d = decl(r);
+            MemoryQuery q;
+            q.resource = &d;
+            if (f.image) {
+                const auto [w, h] = d.extent.resolve(options_.outputWidth, options_.outputHeight);
+                q.width = w;
+                q.height = h;
+                q.mips = f.grid.mips;
+                q.layers = f.grid.layers;
+                q.imageUsage = kAlwaysUsable.image;
+            } else {
+                q.bufferUsage = kAlwaysUsable.buffer;
+            }
+            for (uint32_t k = f.firstAccess; k != kNone; k = accesses_[k].next) {
+                const UsageFlags u = usageFlags(usages[k].usage, f.image);
+                q.imageUsage |= f.image ? u.image : 0;
+                q.bufferUsage |= f.image ? 0 : u.buffer;
+            }
+            transients.push_back({r, accesses_[f.firstAccess].step, accesses_[f.lastAccess].step,
+                                  model.requirements(q), !f.image, d.alias});
+        }
+        MemoryLayout& layout = detail::PlanBuilder::memory(plan_);
+        layout = placeTransients(transients, static_cast<uint32_t>(steps_.size()), model.bufferImageGranularity(),
+                                 options_.placement, options_.aliasing);
+        layout.model = model.name();
+        for (uint32_t p = 0; p < layout.placements.size(); ++p) {
+            const uint32_t r = layout.placements[p].resource;
+            planResources()[r].placement = p;
+            if (!layout.placements[p].aliases.empty() && facts_[r].grid.size() > 1)
+                aliasedCells_ += static_cast<uint32_t>(facts_[r].grid.size());
+        }
+    }
+
+    /// The memory that resource r takes over was last used by its placement's `aliases`
+    /// (rule 16): every subresource of r starts as if they had written it, their last uses
+    /// standing for the write. Where they read last, waiting for the reads orders the writes
+    /// before them too (rule 2); writes nothing read are waited for with a memory dependency.
+    /// Returns false when r takes over no memory.
+    bool startAliased(uint32_t r, SubresourceState* states, size_t cells) {
+        const uint32_t p = plan_.resources()[r].placement;
+        if (p == PlannedResource::kNoPlacement) return false;
+        StageAccess last;
+        for (const uint32_t a : plan_.memory().placements[p].aliases) {
+            const SubresourceState* before = stateOf(a);
+            for (size_t c = 0; c < facts_[a].grid.size(); ++c) {
+                if (before[c].readStages) {
+                    last.stages |= before[c].readStages;
+                } else {
+                    last.stages |= before[c].writeStages;
+                    last.access |= before[c].writeAccess;
+                }
+            }
+        }
+        if (!last.stages) return false;
+        for (size_t c = 0; c < cells; ++c) {
+            states[c].aliased = true;
+            states[c].writeStages = last.stages;
+            states[c].writeAccess = last.access;
+        }
+        aliasedHere_.push_back(r);
+        return true;
+    }
+
+    /// After the first step of each resource that takes over memory (aliasedHere_): the
+    /// subresources that step did not touch get their aliasing barrier too, into the layout
+    /// of its first use, so that the step's batch covers the whole resource (the spec's
+    /// "Memory Aliasing": the barrier must contain every subresource that overlaps). Returns
+    /// whether it added any.
+    bool finishAliasing(std::vector<Barrier>& batch) {
+        bool added = false;
+        for (const uint32_t r : aliasedHere_) {
+            SubresourceState* states = stateOf(r);
+            const SubresourceGrid& grid = facts_[r].grid;
+            const VulkanScope first = firstPassScope(r);
+            const VkImageLayout layout = (*usages_)[facts_[r].firstAccess].layout;
+            perSub_.clear();
+            bool any = false;
+            grid.forEach(grid.whole(), [&](size_t sub) {
+                SubresourceState& st = states[sub];
+                if (!st.aliased) {
+                    perSub_.emplace_back();
+                    return;
+                }
+                Barrier b;
+                b.aliasing = true;
+                b.srcStages = st.writeStages;
+                b.srcAccess = st.writeAccess;
+                b.dstStages = first.stages;
+                b.dstAccess = first.access;
+                b.newLayout = layout;
+                perSub_.push_back(b);
+                // The transition wrote it: visible to the first step's scope (a later use
+                // inside that scope needs no barrier, rule 8's reasoning), nothing else.
+                st = SubresourceState{};
+                st.layout = layout;
+                st.fromOutside = true;
+                st.writeStages = first.stages;
+                st.visibleStages = first.stages;
+                st.visibleAccess = first.access;
+                any = true;
+            });
+            if (any) merger_.emitMerged(r, BarrierKind::Image, grid.whole(), perSub_, batch);
+            added |= any;
+        }
+        aliasedHere_.clear();
+        return added;
+    }
+
     const GraphDesc& graph_;
     const GraphIndex& index_;
     const CompileOptions& options_;
@@ -646,6 +769,10 @@ private:
     // Scratch, reused across usages.
     std::vector<std::optional<Barrier>> perSub_;
     BarrierMerger merger_;
+    // Rule 16: resources whose first step is being emitted and that take over memory, and
+    // room for their aliasing barriers beyond the usages' own.
+    std::vector<uint32_t> aliasedHere_;
+    uint32_t aliasedCells_ = 0;
 };
 
 }  // namespace

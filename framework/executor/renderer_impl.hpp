@@ -84,9 +84,8 @@ struct ResourceState {
     VkImageAspectFlags aspect = 0;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;
     VkDeviceSize size = 0;
-    VkImageUsageFlags imageUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    VkBufferUsageFlags bufferUsage =
-        VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    VkImageUsageFlags imageUsage = kAlwaysUsable.image;
+    VkBufferUsageFlags bufferUsage = kAlwaysUsable.buffer;
     std::vector<ImageCopy> images;
     std::vector<OwnedBuffer> buffers;
 

@@ -86,29 +86,9 @@ VkImageUsageFlags layoutUsage(VkImageLayout layout) noexcept {
 }
 
 void addUsageFlags(const PlannedUsage& u, bool isImage, VkImageUsageFlags& image, VkBufferUsageFlags& buffer) noexcept {
-    const BindAs as = resolvedBinding(u.usage, isImage);
-    switch (u.usage.stage) {
-        case Stage::ColorAttachment: image |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT; break;
-        case Stage::DepthAttachment: image |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT; break;
-        case Stage::Vertex: case Stage::Fragment: case Stage::Compute:
-            if (as == BindAs::Sampled) image |= VK_IMAGE_USAGE_SAMPLED_BIT;
-            else if (as == BindAs::Uniform) buffer |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
-            else {
-                image |= VK_IMAGE_USAGE_STORAGE_BIT;
-                buffer |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-            }
-            break;
-        case Stage::VertexInput:
-            buffer |= as == BindAs::Index ? VK_BUFFER_USAGE_INDEX_BUFFER_BIT : VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
-            break;
-        case Stage::Indirect: buffer |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; break;
-        case Stage::Transfer:
-            // Images the executor makes can always be copied (ResourceState::imageUsage);
-            // images it is given must say so.
-            if (readsContents(u.usage.access)) image |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-            if (writesContents(u.usage.access)) image |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-            break;
-    }
+    const UsageFlags f = usageFlags(u.usage, isImage);
+    image |= f.image;
+    buffer |= f.buffer;
 }
 
 VkImageUsageFlags planImageUsage(const Plan& plan, uint32_t resource) {

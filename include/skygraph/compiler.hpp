@@ -5,6 +5,7 @@
 #include <skygraph/condition.hpp>
 #include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
+#include <skygraph/memory.hpp>
 #include <skygraph/pass_registry.hpp>
 #include <skygraph/plan.hpp>
 
@@ -56,6 +57,20 @@ struct CompileOptions {
     /// to the host. Each is kept as an output, exported as TransferSrc unless the file exports
     /// it. An unknown name, a buffer, or an image that nothing writes is an error.
     std::set<std::string, std::less<>> readbacks;
+    /// Transient resources (not external, not exported) share memory where their lifetimes
+    /// allow, and the plan orders each one's first use after the last uses of the memory it
+    /// takes over (aliasing barriers). false: each gets a range of its own (`--no-alias`).
+    bool aliasing = true;
+    /// How they are placed when they share (docs/memory.md, "Placement").
+    MemoryStrategy placement = MemoryStrategy::BestFitBySize;
+    /// Where memory requirements come from: the executor passes its device's
+    /// (Device::memoryModel()). Null: estimatedMemory().
+    std::shared_ptr<const MemoryModel> memory;
+    /// Every transient resource's first use that discards its contents (a Write) finds them
+    /// poisoned instead, NaN where the format can hold it, by a Clobber step inserted before
+    /// it; that use then keeps what it does not write (it loads). A frame that renders the
+    /// same with and without this reads nothing it did not write (`--clobber-transients`).
+    bool clobberTransients = false;
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the

@@ -54,6 +54,8 @@ struct ResourceDesc {
     bool external = false;
     ExternalState initial = ExternalState::None;  ///< Meaningful for external resources.
     ExternalState final = ExternalState::None;    ///< None: not exported.
+    /// Whether a transient resource may share memory with others (`"alias": false` says not).
+    bool alias = true;
 
     /// Where a graph file declares it, for messages: "resources.<name>".
     [[nodiscard]] std::string jsonPath() const { return "resources." + name; }

@@ -18,6 +18,7 @@
 
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
+#include <skygraph/memory.hpp>
 #include <skygraph/usage.hpp>
 
 #include <vulkan/vulkan_core.h>
@@ -37,6 +38,9 @@ enum class BarrierKind : uint8_t { Image, Buffer, Memory };
 struct Barrier {
     uint32_t resource = 0;  ///< Index into Plan::resources().
     BarrierKind kind = BarrierKind::Image;
+    /// An aliasing barrier: the resource takes over memory that others used earlier in the
+    /// frame (its MemoryPlacement::aliases), and the source scope is their last uses.
+    bool aliasing = false;
     VkPipelineStageFlags2 srcStages = 0;
     VkAccessFlags2 srcAccess = 0;
     VkPipelineStageFlags2 dstStages = 0;
@@ -111,6 +115,10 @@ struct PlannedResource {
     /// Layout after the final barriers; the next frame's `initialLayout` for externals.
     VkImageLayout finalLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     ResourceCopies copies = ResourceCopies::PerFrameTransient;
+    /// Index into Plan::memory().placements for a transient resource; kNoPlacement for the
+    /// rest, which the executor gives memory of their own.
+    uint32_t placement = kNoPlacement;
+    static constexpr uint32_t kNoPlacement = ~0u;
 };
 
 /// A barrier between two commands of one pass. A ReadWrite transfer is a copy out of the
@@ -201,6 +209,9 @@ public:
     /// The presented images' semaphore stages, in resources() order; empty unless the plan
     /// keeps a `final: Present` image. Views this plan's array; valid as passes().
     [[nodiscard]] std::span<const Presentation> presentations() const noexcept { return presentations_; }
+    /// Where the transient resources live, and how much memory they need with and without
+    /// sharing it. Owned by this plan: valid while it lives and is not assigned to.
+    [[nodiscard]] const MemoryLayout& memory() const noexcept { return memory_; }
 
     /// Index into resources() for a graph resource, or -1 when no scheduled pass uses it.
     /// Compares names; `name` need not outlive the call.
@@ -219,6 +230,7 @@ private:
     std::vector<InPassBarrier> inPassBarriers_;
     std::vector<CulledPass> culled_;
     std::vector<Presentation> presentations_;
+    MemoryLayout memory_;
     std::vector<PlannedUsage> usages_;   // every pass's usages, pass after pass
     std::vector<Barrier> barriers_;      // every pass's barrier batch, pass after pass
     std::vector<std::shared_ptr<const std::string>> nameTables_;  // what the names view

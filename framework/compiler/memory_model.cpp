@@ -1,0 +1,79 @@
+// The device-free memory estimate, and the usage flags both the compiler and the executor
+// derive from a plan's usages.
+#include <skygraph/memory.hpp>
+
+#include <algorithm>
+
+namespace skygraph {
+namespace {
+
+constexpr uint64_t kImageGranule = 64 * 1024;  // a common GPU page: images are placed in them
+constexpr uint64_t kBufferAlignment = 256;     // the largest minStorageBufferOffsetAlignment seen
+constexpr uint64_t kGranularity = 1024;        // bufferImageGranularity of current desktop GPUs
+
+uint64_t roundUp(uint64_t v, uint64_t to) { return (v + to - 1) / to * to; }
+
+class EstimatedMemory final : public MemoryModel {
+public:
+    MemoryRequirements requirements(const MemoryQuery& q) const override {
+        const ResourceDesc& d = *q.resource;
+        if (!d.isImage()) return {roundUp(std::max<uint64_t>(d.sizeBytes, 4), 4), kBufferAlignment, 1u};
+        uint64_t bytes = 0;
+        const uint64_t texel = std::max(1u, d.format.bytesPerTexel);
+        for (uint32_t m = 0; m < q.mips; ++m)
+            bytes += uint64_t(std::max(1u, q.width >> m)) * std::max(1u, q.height >> m) * texel;
+        return {roundUp(bytes * std::max(1u, q.layers), kImageGranule), kImageGranule, 1u};
+    }
+    uint64_t bufferImageGranularity() const override { return kGranularity; }
+    std::string name() const override { return "estimate"; }
+};
+
+}  // namespace
+
+std::shared_ptr<const MemoryModel> estimatedMemory() {
+    static const auto model = std::make_shared<const EstimatedMemory>();
+    return model;
+}
+
+UsageFlags usageFlags(const UsageMode& u, bool image) noexcept {
+    UsageFlags f;
+    const BindAs as = resolvedBinding(u, image);
+    switch (u.stage) {
+        case Stage::ColorAttachment: f.image = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT; break;
+        case Stage::DepthAttachment: f.image = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT; break;
+        case Stage::Vertex:
+        case Stage::Fragment:
+        case Stage::Compute:
+            if (as == BindAs::Sampled) {
+                f.image = VK_IMAGE_USAGE_SAMPLED_BIT;
+            } else if (as == BindAs::Uniform) {
+                f.buffer = VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
+            } else {
+                f.image = VK_IMAGE_USAGE_STORAGE_BIT;
+                f.buffer = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+            }
+            break;
+        case Stage::VertexInput:
+            f.buffer = as == BindAs::Index ? VK_BUFFER_USAGE_INDEX_BUFFER_BIT : VK_BUFFER_USAGE_VERTEX_BUFFER_BIT;
+            break;
+        case Stage::Indirect: f.buffer = VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT; break;
+        case Stage::Transfer:
+            // Images the executor makes can always be copied (kAlwaysUsable); images it is
+            // given must say so.
+            if (readsContents(u.access)) f.image |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+            if (writesContents(u.access)) f.image |= VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+            break;
+    }
+    return f;
+}
+
+const char* toString(MemoryStrategy s) noexcept {
+    switch (s) {
+        case MemoryStrategy::BestFitBySize: return "bestFitBySize";
+        case MemoryStrategy::FirstUseOrder: return "firstUseOrder";
+        case MemoryStrategy::Unaliased: return "unaliased";
+    }
+    return "?";
+}
+
+}  // namespace skygraph
