@@ -25,6 +25,9 @@ struct SubresourceState {
     /// `writeStages` and `writeAccess` are their last uses, and a barrier from them is an
     /// aliasing barrier (rule 16).
     bool aliased;
+    /// A Clobber step filled it with poison (CompileOptions::clobberTransients) and nothing has
+    /// written it since: the next write that would discard it keeps what it does not write.
+    bool poisoned;
     VkPipelineStageFlags2 writeStages;    ///< Stages of the last write (or the outside).
     /// Write accesses of that write. A barrier whose source is `writeStages` always repeats
     /// them: an earlier availability operation only counts for barriers that chain after the

@@ -91,8 +91,9 @@ private:
         /// Whether two of its barriers can be for one resource (a resource used twice, or a
         /// range of several subresources): only then can mergeAdjacent find anything.
         bool mayMerge = false;
-        /// For an inserted step (declIndex < 0): a Readback rather than a Clear.
+        /// For an inserted step (declIndex < 0): a Readback or a Clobber rather than a Clear.
         bool readback = false;
+        bool clobber = false;
     };
 
     // The plan's arrays, written through the compiler's access to it (plan_builder.hpp).
@@ -111,31 +112,40 @@ private:
     void planAccesses(const Schedule& schedule) {
         std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
         // Every scheduled pass and usage, and an inserted Clear (one access) at most per
-        // `clear` resource: at its first use only.
-        steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size());
+        // `clear` resource: at its first use only; when clobbering, a Clobber at most per other
+        // resource.
+        const size_t clobberRoom = options_.clobberTransients ? graph_.resources.size() : 0;
+        steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size() + clobberRoom);
         planResources().reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size();
+        const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size() + clobberRoom;
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
         usages_->reserve(accessRoom);
         readRuns_.allocate(accessRoom, index_.cells());  // the plan's resources are fewer
-        std::vector<uint32_t> clearsBefore;  // resources that a Clear before this pass clears
+        std::vector<uint32_t> clearsBefore;    // resources that a Clear before this pass clears
+        std::vector<uint32_t> clobbersBefore;  // transients that a Clobber before this pass poisons
         for (size_t s = 0; s < schedule.passes.size(); ++s) {
             const uint32_t p = schedule.passes[s];
             const auto uses = index_.usesOf(p);
             clearsBefore.clear();
+            clobbersBefore.clear();
             for (const IndexedUsage& u : uses) {
                 const uint32_t d = u.resource;
                 if (planIndex[d] != kNone) continue;
                 planIndex[d] = addResource(d);
-                if (index_.clear(d) && !clearsThroughLoadOp(u)) clearsBefore.push_back(planIndex[d]);
+                if (index_.clear(d)) {
+                    if (!clearsThroughLoadOp(u)) clearsBefore.push_back(planIndex[d]);
+                } else if (clobberRoom && !index_.external(d) && !index_.exported(d)) {
+                    clobbersBefore.push_back(planIndex[d]);
+                }
             }
             // The bound above holds by construction; checked once per pass all the same, as the
             // records are written without bounds checks.
-            if (accessCount_ + clearsBefore.size() + uses.size() > accessRoom)
+            if (accessCount_ + clearsBefore.size() + clobbersBefore.size() + uses.size() > accessRoom)
                 throw std::logic_error("synchronizer: the access bound was exceeded");
             for (uint32_t r : clearsBefore) addClearStep(r);
+            for (uint32_t r : clobbersBefore) addClobberStep(r);
             steps_.push_back({accessCount_, static_cast<int32_t>(p)});
             currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
             for (const IndexedUsage& u : uses) {
@@ -161,6 +171,15 @@ private:
             nameInsertedStep("read back ", r);
             addAccess(r, kReadbackUsage, SubresourceRange{0, 1, 0, 1}, false);
         }
+    }
+
+    /// Fills transient r with poison before its first use (CompileOptions::clobberTransients):
+    /// a transfer write of the whole resource, like a Clear, that the first use then keeps.
+    void addClobberStep(uint32_t r) {
+        steps_.push_back({accessCount_, kInsertedPass, false, false, true});
+        currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
+        nameInsertedStep("clobber ", r);
+        addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
     }
 
     void addClearStep(uint32_t r) {
@@ -210,6 +229,7 @@ private:
     static constexpr int32_t kInsertedPass = -1;  // a Step's declIndex for an inserted step
     static constexpr std::string_view kClearType = "Clear";
     static constexpr std::string_view kReadbackType = "Readback";
+    static constexpr std::string_view kClobberType = "Clobber";
     static constexpr UsageMode kClearUsage{Access::Write, Stage::Transfer, BindAs::Default};
     static constexpr UsageMode kReadbackUsage{Access::Read, Stage::Transfer, BindAs::Default};
 
@@ -374,6 +394,7 @@ private:
             const std::string_view name = step.declIndex < 0 ? std::string_view() : index_.passName(step.declIndex);
             const std::string_view type = step.declIndex >= 0 ? index_.passType(step.declIndex)
                                           : step.readback      ? kReadbackType
+                                          : step.clobber       ? kClobberType
                                                                : kClearType;
 #if __cpp_aggregate_paren_init >= 201902L
             planPasses().emplace_back(name, type, step.declIndex, batchView, usesView);
@@ -463,6 +484,12 @@ private:
         planResources()[r].initialLayout = scope.layout;
     }
     SubresourceState* stateOf(uint32_t r) { return &state_[facts_[r].firstCell]; }
+    /// Whether any subresource of `range` of resource r still holds a Clobber step's poison.
+    bool poisoned(uint32_t r, const SubresourceRange& range) const {
+        bool any = false;
+        forEachCell(r, range, [&](size_t c) { any |= state_[c].poisoned; });
+        return any;
+    }
     /// Calls f(flat index into the per-subresource arrays) for every subresource of `range`
     /// of resource r.
     template <typename F>
@@ -481,7 +508,18 @@ private:
         // Here, not in a loop of its own: the first pass's usages it reads are in cache now.
         if (a.firstOfResource) startState(r);
         if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
-        const bool discard = pu.usage.access == Access::Write;  // a load-op clear only turns Read into ReadWrite
+        bool discard = pu.usage.access == Access::Write;  // a load-op clear only turns Read into ReadWrite
+        // Poison from a Clobber step stays where a discarding write does not write: no
+        // transition from UNDEFINED, and an attachment loads it.
+        bool loadsPoison = false;
+        if (discard && options_.clobberTransients && poisoned(r, pu.range)) {
+            discard = false;
+            if (isAttachmentStage(pu.usage.stage)) {
+                loadsPoison = true;
+                pu.access |= pu.usage.stage == Stage::ColorAttachment ? VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT
+                                                                      : VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+            }
+        }
         const VulkanScope need{pu.stages, pu.access, pu.layout};
         const VkImageLayout target = image ? pu.layout : VK_IMAGE_LAYOUT_UNDEFINED;
         if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
@@ -509,10 +547,11 @@ private:
             merger_.emitMerged(r, image ? BarrierKind::Image : BarrierKind::Buffer, pu.range, perSub_, batch);
         }
 
+        if (steps_[a.step].clobber) forEachCell(r, pu.range, [&](size_t c) { state_[c].poisoned = true; });
         if (pu.usage.stage == Stage::Transfer && pu.usage.access == Access::ReadWrite) addInPassBarrier(pu, k);
         if (isAttachmentStage(pu.usage.stage)) {
             if (pu.load != LoadOp::Clear)
-                pu.load = pu.usage.access == Access::Write ? LoadOp::DontCare : LoadOp::Load;
+                pu.load = pu.usage.access == Access::Write && !loadsPoison ? LoadOp::DontCare : LoadOp::Load;
             pu.store = !write ? StoreOp::None : readLater(k, pu.range) ? StoreOp::Store : StoreOp::DontCare;
         }
         // Its last access: the lifetime ends, and the layout is final unless an export's final

@@ -1,0 +1,196 @@
+// Rule 16 of docs/barriers.md, aliasing barriers, and clobbering, on graphs written here. Each
+// expectation was checked against the spec's "Memory Aliasing" section (a use of memory that
+// another resource wrote must be separated from it by a memory dependency, a read by an
+// execution dependency; the barrier must contain every subresource that overlaps; an image
+// whose memory an alias wrote starts from UNDEFINED) and its chapter on synchronization.
+#include <skygraph/compiler.hpp>
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace skygraph {
+namespace {
+
+const PassRegistry& registry() {
+    static const PassRegistry r = PassRegistry::withBuiltins();
+    return r;
+}
+
+Plan compileGraph(const std::string& resources, const std::string& passes, CompileOptions options = {}) {
+    const std::string text = R"({"version": 1, "name": "t", "resources": {)" + resources + R"(}, "passes": [)" +
+                             passes + "]}";
+    return compile(parseGraph(text, "aliasing.json", registry()), options);
+}
+
+const PlannedPass& pass(const Plan& plan, const std::string& name) {
+    for (const auto& p : plan.passes())
+        if (p.name == name) return p;
+    throw std::runtime_error("no scheduled pass " + name);
+}
+
+std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
+    std::vector<Barrier> out;
+    for (const auto& b : pass(plan, passName).barriers)
+        if (plan.resources()[b.resource].name == resource) out.push_back(b);
+    return out;
+}
+
+const MemoryPlacement& placementOf(const Plan& plan, const std::string& resource) {
+    const int32_t r = plan.resourceIndex(resource);
+    if (r < 0 || plan.resources()[r].placement == PlannedResource::kNoPlacement)
+        throw std::runtime_error("no placement for " + resource);
+    return plan.memory().placements[plan.resources()[r].placement];
+}
+
+// Two same-sized transients with disjoint lifetimes: `a` is written by compute and sampled by
+// a fragment shader, then `b` is written as a color attachment into the same memory.
+constexpr const char* kTwo = R"(
+    "a": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64]},
+    "b": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64]},
+    "mid": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+    "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})";
+constexpr const char* kTwoPasses = R"(
+    {"name": "make_a", "type": "Generic", "uses": {"a": "Write@Compute"}},
+    {"name": "use_a", "type": "Generic", "uses": {"a": "Read@Fragment", "mid": "Write@ColorAttachment"}},
+    {"name": "make_b", "type": "Generic", "uses": {"mid": "Read@Fragment", "b": "Write@ColorAttachment"}},
+    {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "Write@ColorAttachment"}})";
+
+TEST(AliasingRules, ATakenOverResourceWaitsForTheReadsOfItsPredecessorOnly) {
+    const Plan plan = compileGraph(kTwo, kTwoPasses);
+    ASSERT_EQ(placementOf(plan, "b").aliases, std::vector<uint32_t>{uint32_t(plan.resourceIndex("a"))});
+    EXPECT_EQ(placementOf(plan, "a").offset, placementOf(plan, "b").offset);
+    const auto b = barriersOf(plan, "make_b", "b");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_TRUE(b[0].aliasing);
+    // a's last use read it after a barrier made its write available: an execution dependency
+    // on that read orders the write too (rule 2).
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, 0u);
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
+    EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    // Without aliasing, b's first use needs nothing before it (rule 6).
+    CompileOptions off;
+    off.aliasing = false;
+    const Plan apart = compileGraph(kTwo, kTwoPasses, off);
+    const auto first = barriersOf(apart, "make_b", "b");
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_FALSE(first[0].aliasing);
+    EXPECT_EQ(first[0].srcStages, 0u);
+    EXPECT_EQ(apart.memory().heapBytes(), apart.memory().unaliasedBytes);
+    EXPECT_LT(plan.memory().heapBytes(), plan.memory().unaliasedBytes);
+}
+
+TEST(AliasingRules, AnUnreadWriteOfThePredecessorIsAMemoryDependency) {
+    // `a` is written last by a pass that also writes `mid` (which is read), and nothing reads
+    // that write of `a`: its availability is this barrier's to perform.
+    const Plan plan = compileGraph(kTwo, R"(
+        {"name": "make_a", "type": "Generic", "uses": {"a": "Write@Compute"}},
+        {"name": "use_a", "type": "Generic", "uses": {"a": "ReadWrite@Compute", "mid": "Write@Compute"}},
+        {"name": "make_b", "type": "Generic", "uses": {"mid": "Read@Fragment", "b": "Write@ColorAttachment"}},
+        {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    const auto b = barriersOf(plan, "make_b", "b");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_TRUE(b[0].aliasing);
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+}
+
+TEST(AliasingRules, TheAliasingBarrierCoversEverySubresource) {
+    // `chain` takes over `a`'s memory, and its first pass writes only mip 0: that pass's batch
+    // still transitions all its mips (one barrier, merged), so that it contains every
+    // subresource that overlaps. The later mips then need no barrier before their writes: the
+    // transition was ordered before every compute shader after it.
+    const Plan plan = compileGraph(R"(
+        "a": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64]},
+        "mid": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "chain": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "mips": 3},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})",
+                                   R"(
+        {"name": "make_a", "type": "Generic", "uses": {"a": "Write@Compute"}},
+        {"name": "use_a", "type": "Generic", "uses": {"a": "Read@Compute", "mid": "Write@Compute"}},
+        {"name": "mip0", "type": "Generic", "uses": [{"resource": "mid", "access": "Read", "stage": "Compute"},
+                                                     {"resource": "chain", "access": "Write", "stage": "Compute", "mips": [0, 1]}]},
+        {"name": "mip1", "type": "Generic", "uses": [{"resource": "chain", "access": "Read", "stage": "Compute", "mips": [0, 1]},
+                                                     {"resource": "chain", "access": "Write", "stage": "Compute", "mips": [1, 1]}]},
+        {"name": "mip2", "type": "Generic", "uses": [{"resource": "chain", "access": "Read", "stage": "Compute", "mips": [1, 1]},
+                                                     {"resource": "chain", "access": "Write", "stage": "Compute", "mips": [2, 1]}]},
+        {"name": "use", "type": "Generic", "uses": [{"resource": "chain", "access": "Read", "stage": "Fragment"},
+                                                    {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]})");
+    ASSERT_EQ(placementOf(plan, "chain").aliases, std::vector<uint32_t>{uint32_t(plan.resourceIndex("a"))});
+    const auto first = barriersOf(plan, "mip0", "chain");
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_TRUE(first[0].aliasing);
+    EXPECT_EQ(first[0].range, (SubresourceRange{0, 3, 0, 1}));
+    EXPECT_EQ(first[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(first[0].srcAccess, 0u);
+    EXPECT_EQ(first[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(first[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(first[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(first[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    const auto second = barriersOf(plan, "mip1", "chain");
+    ASSERT_EQ(second.size(), 1u) << "only mip 0's read: mip 1 was transitioned for compute writes already";
+    EXPECT_FALSE(second[0].aliasing);
+    EXPECT_EQ(second[0].range, (SubresourceRange{0, 1, 0, 1}));
+}
+
+TEST(AliasingRules, AliasFalseAndExternalsNeverShare) {
+    const std::string resources = std::string(kTwo).replace(std::string(kTwo).find("\"extent\": [64, 64]},"), 20,
+                                                             "\"extent\": [64, 64], \"alias\": false},");
+    const Plan plan = compileGraph(resources, kTwoPasses);
+    EXPECT_FALSE(placementOf(plan, "a").aliasable);
+    EXPECT_TRUE(placementOf(plan, "b").aliases.empty());
+    EXPECT_NE(placementOf(plan, "a").offset, placementOf(plan, "b").offset);
+    for (const auto& b : barriersOf(plan, "make_b", "b")) EXPECT_FALSE(b.aliasing);
+    EXPECT_EQ(plan.resources()[plan.resourceIndex("out")].placement, PlannedResource::kNoPlacement);
+    EXPECT_THROW(compileGraph(R"("x": {"type": "buffer", "size": 16, "external": true, "alias": false})",
+                              R"({"name": "p", "type": "Generic", "uses": {"x": "Read@Compute"}})"),
+                 GraphError);
+}
+
+TEST(Clobbering, EveryTransientIsPoisonedAndItsFirstWriteKeepsWhatItDoesNotWrite) {
+    CompileOptions o;
+    o.clobberTransients = true;
+    const Plan plan = compileGraph(kTwo, kTwoPasses, o);
+    std::vector<std::string> clobbered;
+    for (const PlannedPass& p : plan.passes())
+        if (p.type == "Clobber") {
+            ASSERT_EQ(p.usages.size(), 1u);
+            EXPECT_EQ(p.declIndex, -1);
+            EXPECT_EQ(toString(p.usages[0].usage), "Write@Transfer");
+            EXPECT_EQ(p.usages[0].layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            clobbered.emplace_back(p.name);
+        }
+    EXPECT_EQ(clobbered, (std::vector<std::string>{"clobber a", "clobber mid", "clobber b"}))
+        << "transients only: `out` is external";
+    // make_b's color write now loads the poison and keeps it where it draws nothing.
+    const PlannedUsage* target = nullptr;
+    for (const PlannedUsage& u : pass(plan, "make_b").usages)
+        if (plan.resources()[u.resource].name == "b") target = &u;
+    ASSERT_NE(target, nullptr);
+    EXPECT_EQ(target->load, LoadOp::Load);
+    EXPECT_TRUE(target->access & VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+    const auto b = barriersOf(plan, "make_b", "b");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL) << "not UNDEFINED, which could drop the poison";
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    // The aliasing barrier moved to the clobber, the resource's first use now.
+    const auto aliasing = barriersOf(plan, "clobber b", "b");
+    ASSERT_EQ(aliasing.size(), 1u);
+    EXPECT_TRUE(aliasing[0].aliasing);
+    EXPECT_EQ(aliasing[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(aliasing[0].dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    // Without clobbering, the same write discards (rule 6).
+    const Plan plain = compileGraph(kTwo, kTwoPasses);
+    for (const PlannedUsage& u : pass(plain, "make_b").usages)
+        if (plain.resources()[u.resource].name == "b") EXPECT_EQ(u.load, LoadOp::DontCare);
+}
+
+}  // namespace
+}  // namespace skygraph

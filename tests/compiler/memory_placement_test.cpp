@@ -1,0 +1,210 @@
+// Placement of transient resources (framework/compiler/memory_planner.cpp), on inputs written
+// here: what shares memory and what never may, heaps, granularity, the figures, and which
+// earlier resources each one takes memory over from. A seeded property test checks every
+// strategy's layouts against the definitions by brute force.
+#include "memory_planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+#include <set>
+#include <vector>
+
+namespace skygraph {
+namespace {
+
+TransientResource image(uint32_t r, uint32_t first, uint32_t last, uint64_t size, uint64_t alignment = 256) {
+    return {r, first, last, {size, alignment, 1u}, false, true};
+}
+
+bool overlapsInMemory(const MemoryPlacement& a, const MemoryPlacement& b) {
+    return a.heap == b.heap && a.offset < b.offset + b.bytes && b.offset < a.offset + a.bytes;
+}
+
+bool overlapsInTime(const TransientResource& a, const TransientResource& b) {
+    return a.firstStep <= b.lastStep && b.firstStep <= a.lastStep;
+}
+
+constexpr MemoryStrategy kSharing[] = {MemoryStrategy::BestFitBySize, MemoryStrategy::FirstUseOrder};
+
+TEST(MemoryPlacement, DisjointLifetimesShareAndTheLaterTakesOverFromTheEarlier) {
+    const std::vector<TransientResource> in = {image(0, 0, 1, 1024), image(1, 2, 3, 1024)};
+    for (const MemoryStrategy s : kSharing) {
+        const MemoryLayout m = placeTransients(in, 4, 1024, s, true);
+        ASSERT_EQ(m.placements.size(), 2u);
+        EXPECT_EQ(m.placements[0].offset, m.placements[1].offset) << toString(s);
+        EXPECT_EQ(m.heapBytes(), 1024u);
+        EXPECT_EQ(m.unaliasedBytes, 2048u);
+        EXPECT_EQ(m.peakLiveBytes, 1024u);
+        EXPECT_TRUE(m.placements[0].aliases.empty());
+        EXPECT_EQ(m.placements[1].aliases, std::vector<uint32_t>{0});
+    }
+}
+
+TEST(MemoryPlacement, OverlappingLifetimesNeverShare) {
+    // Lifetimes are inclusive: a resource last used in step 2 and one first used there overlap.
+    const std::vector<TransientResource> in = {image(0, 0, 2, 1024), image(1, 2, 3, 1024)};
+    for (const MemoryStrategy s : kSharing) {
+        const MemoryLayout m = placeTransients(in, 4, 1024, s, true);
+        EXPECT_FALSE(overlapsInMemory(m.placements[0], m.placements[1])) << toString(s);
+        EXPECT_EQ(m.heapBytes(), 2048u);
+        EXPECT_EQ(m.peakLiveBytes, 2048u);
+        EXPECT_TRUE(m.placements[1].aliases.empty());
+    }
+}
+
+TEST(MemoryPlacement, NoAliasingAndNotAliasableResourcesGetRangesOfTheirOwn) {
+    std::vector<TransientResource> in = {image(0, 0, 0, 1000), image(1, 1, 1, 1000), image(2, 2, 2, 1000)};
+    const MemoryLayout off = placeTransients(in, 3, 1024, MemoryStrategy::BestFitBySize, false);
+    EXPECT_EQ(off.strategy, MemoryStrategy::Unaliased);
+    EXPECT_EQ(off.heapBytes(), 1024u + 1024u + 1000u);  // each aligned after the last
+    for (const MemoryPlacement& p : off.placements) {
+        EXPECT_TRUE(p.aliases.empty());
+        EXPECT_FALSE(p.aliasable);
+    }
+    EXPECT_EQ(off.peakLiveBytes, 1000u) << "the lower bound does not depend on the strategy";
+
+    in[1].aliasable = false;  // "alias": false
+    for (const MemoryStrategy s : kSharing) {
+        const MemoryLayout m = placeTransients(in, 3, 1024, s, true);
+        EXPECT_FALSE(overlapsInMemory(m.placements[0], m.placements[1])) << toString(s);
+        EXPECT_FALSE(overlapsInMemory(m.placements[2], m.placements[1])) << toString(s);
+        EXPECT_TRUE(overlapsInMemory(m.placements[0], m.placements[2])) << toString(s);
+        EXPECT_EQ(m.placements[2].aliases, std::vector<uint32_t>{0});
+        EXPECT_EQ(m.peakLiveBytes, 2000u) << "a resource that may not share holds memory all frame";
+    }
+}
+
+TEST(MemoryPlacement, BuffersAndImagesTogetherArePlacedOnTheGranularity) {
+    std::vector<TransientResource> in = {image(0, 0, 0, 1000, 256), image(1, 1, 1, 3000, 512)};
+    in.push_back({2, 2, 2, {100, 16, 1u}, true, true});  // a buffer: the spec's linear resource
+    for (const MemoryStrategy s : kSharing) {
+        const MemoryLayout m = placeTransients(in, 3, 4096, s, true);
+        ASSERT_EQ(m.heaps.size(), 1u);
+        EXPECT_TRUE(m.heaps[0].granular);
+        for (const MemoryPlacement& p : m.placements) {
+            EXPECT_EQ(p.offset % 4096, 0u) << toString(s);
+            EXPECT_EQ(p.bytes % 4096, 0u) << toString(s);
+        }
+    }
+    in.pop_back();
+    const MemoryLayout images = placeTransients(in, 3, 4096, MemoryStrategy::BestFitBySize, true);
+    EXPECT_FALSE(images.heaps[0].granular) << "optimal images alone alias on their own alignment";
+    EXPECT_EQ(images.placements[1].bytes, 3000u);
+}
+
+TEST(MemoryPlacement, ResourcesGoToHeapsOfMemoryTypesTheyCanLiveIn) {
+    std::vector<TransientResource> in = {image(0, 0, 0, 1024), image(1, 1, 1, 1024), image(2, 2, 2, 1024)};
+    in[0].requirements.memoryTypeBits = 0b0011;
+    in[1].requirements.memoryTypeBits = 0b0100;  // no type in common with the first
+    in[2].requirements.memoryTypeBits = 0b0010;
+    const MemoryLayout m = placeTransients(in, 3, 1024, MemoryStrategy::BestFitBySize, true);
+    ASSERT_EQ(m.heaps.size(), 2u);
+    EXPECT_EQ(m.placements[0].heap, 0u);
+    EXPECT_EQ(m.placements[1].heap, 1u);
+    EXPECT_EQ(m.placements[2].heap, 0u);
+    EXPECT_EQ(m.heaps[0].memoryTypeBits, 0b0010u) << "the types both of its resources can live in";
+    EXPECT_EQ(m.placements[2].aliases, std::vector<uint32_t>{0});
+}
+
+TEST(MemoryPlacement, AliasesAreTheLastHoldersOfEachByte) {
+    // 0 and 1 side by side, then 2 over both, then 3 over the first half of 2 only.
+    const std::vector<TransientResource> in = {image(0, 0, 0, 1024), image(1, 0, 0, 1024), image(2, 1, 1, 2048),
+                                               image(3, 2, 2, 1024)};
+    const MemoryLayout m = placeTransients(in, 3, 1024, MemoryStrategy::BestFitBySize, true);
+    EXPECT_EQ(m.placements[2].aliases, (std::vector<uint32_t>{0, 1}));
+    EXPECT_EQ(m.placements[3].aliases, std::vector<uint32_t>{2}) << "0 and 1 are ordered before it through 2";
+}
+
+TEST(MemoryPlacement, BestFitFillsAGapBeforeGrowingTheHeap) {
+    // p lives in steps 0-1, r in step 0 above it, q in 1-2 above p too; s (step 2) fits in
+    // the gap p leaves below q, where the top of the heap would grow it. (Inputs come in
+    // order of first use.)
+    const std::vector<TransientResource> in = {image(0, 0, 1, 4096), image(1, 0, 0, 1024), image(2, 1, 2, 2048),
+                                               image(3, 2, 2, 1024)};
+    const MemoryLayout m = placeTransients(in, 3, 1024, MemoryStrategy::BestFitBySize, true);
+    EXPECT_EQ(m.placements[2].offset, 4096u);
+    EXPECT_EQ(m.placements[3].offset, 0u);
+    EXPECT_EQ(m.heapBytes(), 6144u);
+    EXPECT_EQ(m.placements[3].aliases, std::vector<uint32_t>{0});
+}
+
+TEST(MemoryPlacement, EmptyInput) {
+    const MemoryLayout m = placeTransients({}, 0, 1024, MemoryStrategy::BestFitBySize, true);
+    EXPECT_TRUE(m.heaps.empty());
+    EXPECT_EQ(m.heapBytes(), 0u);
+}
+
+/// The definitions, checked by brute force on one layout.
+void expectValid(const std::vector<TransientResource>& in, uint32_t steps, const MemoryLayout& m,
+                 uint64_t granularity, const std::string& what) {
+    ASSERT_EQ(m.placements.size(), in.size()) << what;
+    uint64_t peak = 0;
+    for (uint32_t s = 0; s < steps; ++s) {
+        uint64_t live = 0;
+        for (size_t i = 0; i < in.size(); ++i)
+            if ((in[i].aliasable ? in[i].firstStep : 0) <= s && s <= (in[i].aliasable ? in[i].lastStep : steps - 1))
+                live += m.placements[i].bytes;
+        peak = std::max(peak, live);
+    }
+    EXPECT_EQ(m.peakLiveBytes, peak) << what;
+    EXPECT_GE(m.heapBytes(), m.peakLiveBytes) << what;
+    for (size_t i = 0; i < in.size(); ++i) {
+        const MemoryPlacement& p = m.placements[i];
+        EXPECT_EQ(p.offset % in[i].requirements.alignment, 0u) << what;
+        EXPECT_GE(p.bytes, in[i].requirements.size) << what;
+        EXPECT_LE(p.offset + p.bytes, m.heaps[p.heap].bytes) << what;
+        if (m.heaps[p.heap].granular) EXPECT_EQ(p.offset % granularity, 0u) << what;
+        std::vector<uint32_t> expectedAliases;
+        for (size_t j = 0; j < in.size(); ++j) {
+            if (i == j || !overlapsInMemory(p, m.placements[j])) continue;
+            ASSERT_FALSE(overlapsInTime(in[i], in[j])) << what << ": " << i << " and " << j << " share while live";
+            ASSERT_TRUE(in[i].aliasable && in[j].aliasable) << what;
+            // j is an alias of i if it held a byte of i's last before i's first use.
+            if (in[j].lastStep >= in[i].firstStep) continue;
+            bool lastHolder = false;
+            for (uint64_t b = std::max(p.offset, m.placements[j].offset);
+                 b < std::min(p.offset + p.bytes, m.placements[j].offset + m.placements[j].bytes) && !lastHolder; b += 64) {
+                bool later = false;
+                for (size_t k = 0; k < in.size() && !later; ++k)
+                    later = k != i && k != j && m.placements[k].heap == p.heap && m.placements[k].offset <= b &&
+                            b < m.placements[k].offset + m.placements[k].bytes && in[k].firstStep > in[j].lastStep &&
+                            in[k].lastStep < in[i].firstStep;
+                lastHolder = !later;
+            }
+            if (lastHolder) expectedAliases.push_back(in[j].resource);
+        }
+        std::sort(expectedAliases.begin(), expectedAliases.end());
+        EXPECT_EQ(p.aliases, expectedAliases) << what << ": resource " << i;
+    }
+}
+
+TEST(MemoryPlacement, RandomInputsMeetTheDefinitionsUnderEveryStrategy) {
+    for (uint32_t seed = 1; seed <= 300; ++seed) {
+        std::mt19937 rng(seed);
+        const uint32_t steps = 1 + rng() % 12;
+        std::vector<TransientResource> in;
+        const uint32_t count = 1 + rng() % 14;
+        for (uint32_t i = 0; i < count; ++i) {
+            uint32_t a = rng() % steps, b = rng() % steps;
+            if (a > b) std::swap(a, b);
+            TransientResource t = image(i, a, b, 64 * (1 + rng() % 64), 64u << (rng() % 4));
+            t.linear = rng() % 5 == 0;
+            t.aliasable = rng() % 7 != 0;
+            t.requirements.memoryTypeBits = rng() % 6 == 0 ? 2u : 3u;
+            in.push_back(t);
+        }
+        std::stable_sort(in.begin(), in.end(), [](const auto& x, const auto& y) { return x.firstStep < y.firstStep; });
+        for (uint32_t i = 0; i < in.size(); ++i) in[i].resource = i;
+        for (const MemoryStrategy s : {MemoryStrategy::BestFitBySize, MemoryStrategy::FirstUseOrder,
+                                       MemoryStrategy::Unaliased}) {
+            const MemoryLayout m = placeTransients(in, steps, 256, s, true);
+            expectValid(in, steps, m, 256, "seed " + std::to_string(seed) + " " + toString(s));
+            EXPECT_EQ(m, placeTransients(in, steps, 256, s, true)) << "deterministic";
+        }
+    }
+}
+
+}  // namespace
+}  // namespace skygraph
