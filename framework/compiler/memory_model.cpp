@@ -1,5 +1,7 @@
 // The device-free memory estimate, and the usage flags both the compiler and the executor
 // derive from a plan's usages.
+#include "memory_planner.hpp"
+
 #include <skygraph/memory.hpp>
 
 #include <algorithm>
@@ -15,20 +17,22 @@ uint64_t roundUp(uint64_t v, uint64_t to) { return (v + to - 1) / to * to; }
 
 class EstimatedMemory final : public MemoryModel {
 public:
-    MemoryRequirements requirements(const MemoryQuery& q) const override {
-        const ResourceDesc& d = *q.resource;
-        if (!d.isImage()) return {roundUp(std::max<uint64_t>(d.sizeBytes, 4), 4), kBufferAlignment, 1u};
-        uint64_t bytes = 0;
-        const uint64_t texel = std::max(1u, d.format.bytesPerTexel);
-        for (uint32_t m = 0; m < q.mips; ++m)
-            bytes += uint64_t(std::max(1u, q.width >> m)) * std::max(1u, q.height >> m) * texel;
-        return {roundUp(bytes * std::max(1u, q.layers), kImageGranule), kImageGranule, 1u};
-    }
+    MemoryRequirements requirements(const MemoryQuery& q) const override { return estimatedRequirements(q); }
     uint64_t bufferImageGranularity() const override { return kGranularity; }
     std::string name() const override { return "estimate"; }
 };
 
 }  // namespace
+
+MemoryRequirements estimatedRequirements(const MemoryQuery& q) noexcept {
+    const ResourceDesc& d = *q.resource;
+    if (!d.isImage()) return {roundUp(std::max<uint64_t>(d.sizeBytes, 4), 4), kBufferAlignment, 1u};
+    uint64_t bytes = 0;
+    const uint64_t texel = std::max(1u, d.format.bytesPerTexel);
+    for (uint32_t m = 0; m < q.mips; ++m)
+        bytes += uint64_t(std::max(1u, q.width >> m)) * std::max(1u, q.height >> m) * texel;
+    return {roundUp(bytes * std::max(1u, q.layers), kImageGranule), kImageGranule, 1u};
+}
 
 std::shared_ptr<const MemoryModel> estimatedMemory() {
     static const auto model = std::make_shared<const EstimatedMemory>();
@@ -65,6 +69,32 @@ UsageFlags usageFlags(const UsageMode& u, bool image) noexcept {
             break;
     }
     return f;
+}
+
+MemoryLayout::MemoryLayout(const MemoryLayout& other)
+    : heaps(other.heaps), placements(other.placements), strategy(other.strategy), model(other.model),
+      granularity(other.granularity), unaliasedBytes(other.unaliasedBytes), peakLiveBytes(other.peakLiveBytes),
+      aliasStorage_(other.aliasStorage_) {
+    for (MemoryPlacement& p : placements)
+        if (!p.aliases.empty())
+            p.aliases = {aliasStorage_.data() + (p.aliases.data() - other.aliasStorage_.data()), p.aliases.size()};
+}
+
+MemoryLayout& MemoryLayout::operator=(const MemoryLayout& other) {
+    if (this != &other) *this = MemoryLayout(other);
+    return *this;
+}
+
+bool operator==(const MemoryLayout& a, const MemoryLayout& b) {
+    const auto samePlacement = [](const MemoryPlacement& x, const MemoryPlacement& y) {
+        return x.resource == y.resource && x.heap == y.heap && x.offset == y.offset && x.bytes == y.bytes &&
+               x.requirements == y.requirements && x.aliasable == y.aliasable &&
+               std::equal(x.aliases.begin(), x.aliases.end(), y.aliases.begin(), y.aliases.end());
+    };
+    return a.heaps == b.heaps && a.strategy == b.strategy && a.model == b.model && a.granularity == b.granularity &&
+           a.unaliasedBytes == b.unaliasedBytes && a.peakLiveBytes == b.peakLiveBytes &&
+           std::equal(a.placements.begin(), a.placements.end(), b.placements.begin(), b.placements.end(),
+                      samePlacement);
 }
 
 const char* toString(MemoryStrategy s) noexcept {

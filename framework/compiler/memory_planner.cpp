@@ -1,9 +1,10 @@
 // Placement of transient resources (docs/memory.md): heaps by memory type, then one of the
-// strategies, then which earlier resources each one takes memory over from.
+// strategies, then which earlier resources each one takes memory over from. A 10,000-pass
+// frame has some 15,000 transients and its whole compile takes a few milliseconds, so every
+// phase here is linear or close to it, and allocates up front.
 #include "memory_planner.hpp"
 
 #include <algorithm>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -17,11 +18,11 @@ uint64_t alignUp(uint64_t v, uint64_t a) { return (v + a - 1) & ~(a - 1); }
 /// One input, as the strategies see it: in its heap, with the size and alignment it is placed
 /// with, and the steps it holds its memory for.
 struct Item {
-    uint32_t heap = 0;
     uint64_t bytes = 0;
     uint64_t alignment = 1;
-    uint32_t first = 0, last = 0;  ///< Held; the whole frame when it may not share.
     uint64_t offset = 0;
+    uint32_t heap = 0;
+    uint32_t first = 0, last = 0;  ///< Held; the whole frame when it may not share.
 };
 
 /// Resources go to the first heap whose memory types they can live in too; the heap keeps the
@@ -32,7 +33,8 @@ std::vector<Item> assignHeaps(std::span<const TransientResource> in, uint32_t st
     std::vector<Item> items(in.size());
     std::vector<uint8_t> kinds;  // per heap: bit 0 linear, bit 1 optimal
     for (size_t i = 0; i < in.size(); ++i) {
-        const uint32_t bits = in[i].requirements.memoryTypeBits;
+        const TransientResource& t = in[i];
+        const uint32_t bits = t.requirements.memoryTypeBits;
         uint32_t h = 0;
         while (h < heaps.size() && (heaps[h].memoryTypeBits & bits) == 0) ++h;
         if (h == heaps.size()) {
@@ -40,21 +42,19 @@ std::vector<Item> assignHeaps(std::span<const TransientResource> in, uint32_t st
             kinds.push_back(0);
         }
         heaps[h].memoryTypeBits &= bits;
-        kinds[h] |= static_cast<uint8_t>(in[i].linear ? 1 : 2);
-        Item& it = items[i];
-        it.heap = h;
-        it.bytes = in[i].requirements.size;
-        it.alignment = std::max<uint64_t>(1, in[i].requirements.alignment);
-        const bool shares = aliasing && in[i].aliasable;
-        it.first = shares ? in[i].firstStep : 0;
-        it.last = shares ? in[i].lastStep : steps - 1;
+        kinds[h] |= static_cast<uint8_t>(t.linear ? 1 : 2);
+        const bool shares = aliasing && t.aliasable;
+        items[i] = {t.requirements.size, std::max<uint64_t>(1, t.requirements.alignment), 0, h,
+                    shares ? t.firstStep : 0, shares ? t.lastStep : steps - 1};
     }
-    for (size_t h = 0; h < heaps.size(); ++h) heaps[h].granular = kinds[h] == 3 && granularity > 1;
-    for (Item& it : items)
-        if (heaps[it.heap].granular) {
-            it.alignment = std::max(it.alignment, granularity);
-            it.bytes = alignUp(it.bytes, granularity);
-        }
+    bool anyGranular = false;
+    for (size_t h = 0; h < heaps.size(); ++h) anyGranular |= heaps[h].granular = kinds[h] == 3 && granularity > 1;
+    if (anyGranular)
+        for (Item& it : items)
+            if (heaps[it.heap].granular) {
+                it.alignment = std::max(it.alignment, granularity);
+                it.bytes = alignUp(it.bytes, granularity);
+            }
     return items;
 }
 
@@ -66,38 +66,78 @@ void placeUnaliased(std::vector<Item>& items, std::vector<MemoryHeap>& heaps) {
     }
 }
 
-/// Largest first; each goes into the smallest gap that fits between the resources already
-/// placed in its heap that hold memory during any step it does (above them all if none fits).
-void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps, uint32_t steps) {
+/// Item indices by size, largest first, then in order of first use. Frames have few distinct
+/// sizes (the same formats at the same fractions of the output), so items are counted into
+/// one bucket per size; a frame with many falls back to sorting.
+std::vector<uint32_t> largestFirst(const std::vector<Item>& items) {
+    constexpr size_t kMostBuckets = 32;
+    std::vector<uint64_t> sizes;
+    std::vector<uint32_t> count;
+    std::vector<uint8_t> bucketOf(items.size());
+    size_t last = 0;
+    for (size_t i = 0; i < items.size(); ++i) {
+        const uint64_t b = items[i].bytes;
+        if (last >= sizes.size() || sizes[last] != b) {
+            last = std::find(sizes.begin(), sizes.end(), b) - sizes.begin();
+            if (last == sizes.size()) {
+                if (sizes.size() == kMostBuckets) {
+                    std::vector<uint32_t> order(items.size());
+                    for (uint32_t j = 0; j < order.size(); ++j) order[j] = j;
+                    std::stable_sort(order.begin(), order.end(),
+                                     [&](uint32_t x, uint32_t y) { return items[x].bytes > items[y].bytes; });
+                    return order;
+                }
+                sizes.push_back(b);
+                count.push_back(0);
+            }
+        }
+        bucketOf[i] = static_cast<uint8_t>(last);
+        ++count[last];
+    }
+    std::vector<uint32_t> rank(sizes.size());
+    for (uint32_t j = 0; j < rank.size(); ++j) rank[j] = j;
+    std::sort(rank.begin(), rank.end(), [&](uint32_t x, uint32_t y) { return sizes[x] > sizes[y]; });
+    std::vector<uint32_t> start(sizes.size());
+    uint32_t at = 0;
+    for (const uint32_t r : rank) {
+        start[r] = at;
+        at += count[r];
+    }
     std::vector<uint32_t> order(items.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        if (items[a].bytes != items[b].bytes) return items[a].bytes > items[b].bytes;
-        return a < b;  // inputs come in order of first use
-    });
-    // The placed items holding memory at each step, as linked lists in one array.
+    for (uint32_t i = 0; i < items.size(); ++i) order[start[bucketOf[i]]++] = i;
+    return order;
+}
+
+/// Largest first; each goes into the smallest gap that fits between the resources already
+/// placed in its heap that hold memory during any step it does (above them all if none fits),
+/// as AMD's Render Pipeline Shaders place theirs.
+void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps, uint32_t steps) {
+    // The placed items holding memory at each step, as linked lists in one array sized up
+    // front. An item holding several steps is met several times when gathering; that only
+    // repeats an interval, which the gap search does not mind.
     struct Node {
-        uint32_t item, next;
+        uint64_t begin, end;
+        uint32_t heap, next;
     };
+    size_t nodeCount = 0;
+    for (const Item& it : items) nodeCount += it.last - it.first + 1;
+    std::vector<Node> nodes(nodeCount);
     std::vector<uint32_t> head(steps, kNone);
-    std::vector<Node> nodes;
-    std::vector<uint32_t> seen(items.size(), kNone);
+    uint32_t used = 0;
     struct Busy {
         uint64_t begin, end;
     };
     std::vector<Busy> busy;
-    for (const uint32_t i : order) {
+    for (const uint32_t i : largestFirst(items)) {
         Item& it = items[i];
         busy.clear();
         for (uint32_t s = it.first; s <= it.last; ++s)
-            for (uint32_t n = head[s]; n != kNone; n = nodes[n].next) {
-                const uint32_t j = nodes[n].item;
-                if (seen[j] == i || items[j].heap != it.heap) continue;
-                seen[j] = i;
-                busy.push_back({items[j].offset, items[j].offset + items[j].bytes});
-            }
-        std::sort(busy.begin(), busy.end(), [](const Busy& a, const Busy& b) { return a.begin < b.begin; });
-        uint64_t free = 0, best = kNone, bestGap = ~uint64_t(0);
+            for (uint32_t n = head[s]; n != kNone; n = nodes[n].next)
+                if (nodes[n].heap == it.heap) busy.push_back({nodes[n].begin, nodes[n].end});
+        // Few intervals live at once: insertion sort beats a call into std::sort.
+        for (size_t a = 1; a < busy.size(); ++a)
+            for (size_t b = a; b > 0 && busy[b].begin < busy[b - 1].begin; --b) std::swap(busy[b], busy[b - 1]);
+        uint64_t free = 0, best = ~uint64_t(0), bestGap = ~uint64_t(0);
         for (const Busy& b : busy) {
             const uint64_t start = alignUp(free, it.alignment);
             if (start + it.bytes <= b.begin && b.begin - start < bestGap) {
@@ -106,11 +146,11 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
             }
             free = std::max(free, b.end);
         }
-        it.offset = best != kNone ? best : alignUp(free, it.alignment);
+        it.offset = bestGap != ~uint64_t(0) ? best : alignUp(free, it.alignment);
         heaps[it.heap].bytes = std::max(heaps[it.heap].bytes, it.offset + it.bytes);
         for (uint32_t s = it.first; s <= it.last; ++s) {
-            nodes.push_back({i, head[s]});
-            head[s] = static_cast<uint32_t>(nodes.size() - 1);
+            nodes[used] = {it.offset, it.offset + it.bytes, it.heap, head[s]};
+            head[s] = used++;
         }
     }
 }
@@ -124,9 +164,8 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
     };
     std::vector<std::vector<Block>> freeBlocks(heaps.size());  // per heap, by offset, coalesced
     std::vector<uint32_t> endingAt(steps, kNone), nextEnding(items.size(), kNone);
-    const auto release = [&](const Item& it) {
-        auto& blocks = freeBlocks[it.heap];
-        Block b{it.offset, it.offset + it.bytes};
+    const auto release = [&](uint32_t heap, Block b) {
+        auto& blocks = freeBlocks[heap];
         auto at = std::lower_bound(blocks.begin(), blocks.end(), b.begin,
                                    [](const Block& x, uint64_t v) { return x.begin < v; });
         if (at != blocks.end() && at->begin == b.end) {
@@ -144,7 +183,8 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         Item& it = items[i];
         const bool shares = !(it.first == 0 && it.last == steps - 1);
         for (; released < it.first; ++released)
-            for (uint32_t j = endingAt[released]; j != kNone; j = nextEnding[j]) release(items[j]);
+            for (uint32_t j = endingAt[released]; j != kNone; j = nextEnding[j])
+                release(items[j].heap, {items[j].offset, items[j].offset + items[j].bytes});
         auto& blocks = freeBlocks[it.heap];
         size_t best = blocks.size();
         for (size_t b = 0; shares && b < blocks.size(); ++b) {
@@ -157,11 +197,18 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         if (best < blocks.size()) {
             const Block b = blocks[best];
             it.offset = alignUp(b.begin, it.alignment);
-            blocks.erase(blocks.begin() + static_cast<std::ptrdiff_t>(best));
-            std::vector<Block> rest;
-            if (b.begin < it.offset) rest.push_back({b.begin, it.offset});
-            if (it.offset + it.bytes < b.end) rest.push_back({it.offset + it.bytes, b.end});
-            blocks.insert(blocks.begin() + static_cast<std::ptrdiff_t>(best), rest.begin(), rest.end());
+            // What the resource leaves of the block, below and above it.
+            const Block below{b.begin, it.offset}, above{it.offset + it.bytes, b.end};
+            if (below.begin < below.end && above.begin < above.end) {
+                blocks[best] = below;
+                blocks.insert(blocks.begin() + static_cast<std::ptrdiff_t>(best) + 1, above);
+            } else if (below.begin < below.end) {
+                blocks[best] = below;
+            } else if (above.begin < above.end) {
+                blocks[best] = above;
+            } else {
+                blocks.erase(blocks.begin() + static_cast<std::ptrdiff_t>(best));
+            }
         } else if (shares && !blocks.empty() && blocks.back().end == top) {
             // The free block at the top grows into the space it needs.
             it.offset = alignUp(blocks.back().begin, it.alignment);
@@ -171,7 +218,7 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
             top = it.offset + it.bytes;
         } else {
             it.offset = alignUp(top, it.alignment);
-            if (shares && top < it.offset) release(Item{it.heap, it.offset - top, 1, 0, 0, top});
+            if (shares && top < it.offset) release(it.heap, {top, it.offset});
             top = it.offset + it.bytes;
         }
         if (shares) {
@@ -182,39 +229,59 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
 }
 
 /// For each resource in order of first use, the resources that last held each byte of its
-/// range: a sweep over each heap's bytes, kept as segments by their latest holder.
-void findAliases(std::span<const TransientResource> in, const std::vector<Item>& items, size_t heapCount,
-                 std::vector<MemoryPlacement>& placements) {
+/// range: a sweep over each heap's bytes, kept as segments by their latest holder. Appends
+/// them to `storage` and returns where each resource's start, and how many.
+std::vector<std::pair<uint32_t, uint32_t>> findAliases(std::span<const TransientResource> in,
+                                                       const std::vector<Item>& items, size_t heapCount,
+                                                       std::vector<uint32_t>& storage) {
     struct Segment {
         uint64_t begin, end;
         uint32_t holder;  // index into items
     };
     std::vector<std::vector<Segment>> heldBy(heapCount);
-    std::vector<Segment> replaced;
+    std::vector<std::pair<uint32_t, uint32_t>> spans(items.size());
     for (uint32_t i = 0; i < items.size(); ++i) {
         const Item& it = items[i];
         auto& segments = heldBy[it.heap];
         const uint64_t begin = it.offset, end = it.offset + it.bytes;
-        auto from = std::partition_point(segments.begin(), segments.end(), [&](const Segment& s) { return s.end <= begin; });
+        const auto from = std::partition_point(segments.begin(), segments.end(),
+                                               [&](const Segment& s) { return s.end <= begin; });
         auto to = from;
-        std::vector<uint32_t>& aliases = placements[i].aliases;
+        const auto first = static_cast<uint32_t>(storage.size());
         for (; to != segments.end() && to->begin < end; ++to) {
-            const uint32_t holder = to->holder;
             // Placement never lets two resources that live at the same time share a byte.
-            if (in[holder].lastStep >= in[i].firstStep)
-                throw std::logic_error("memory planner: '" + std::to_string(in[holder].resource) + "' and '" +
-                                       std::to_string(in[i].resource) + "' share memory while both live");
-            aliases.push_back(in[holder].resource);
+            if (in[to->holder].lastStep >= in[i].firstStep)
+                throw std::logic_error("memory planner: plan resources " + std::to_string(in[to->holder].resource) +
+                                       " and " + std::to_string(in[i].resource) + " share memory while both live");
+            storage.push_back(in[to->holder].resource);
         }
-        replaced.clear();
-        if (from != to && from->begin < begin) replaced.push_back({from->begin, begin, from->holder});
-        replaced.push_back({begin, end, i});
-        if (from != to && std::prev(to)->end > end) replaced.push_back({end, std::prev(to)->end, std::prev(to)->holder});
-        const auto at = segments.erase(from, to);
-        segments.insert(at, replaced.begin(), replaced.end());
-        std::sort(aliases.begin(), aliases.end());
-        aliases.erase(std::unique(aliases.begin(), aliases.end()), aliases.end());
+        std::sort(storage.begin() + first, storage.end());
+        storage.erase(std::unique(storage.begin() + first, storage.end()), storage.end());
+        spans[i] = {first, static_cast<uint32_t>(storage.size()) - first};
+        // The resource now holds [begin, end); what the segments it overlaps held outside it
+        // stays theirs.
+        if (to - from == 1 && from->begin == begin && from->end == end) {
+            from->holder = i;  // the common case: the same range as the last holder
+            continue;
+        }
+        Segment replacement[3];
+        size_t n = 0;
+        if (from != to && from->begin < begin) replacement[n++] = {from->begin, begin, from->holder};
+        replacement[n++] = {begin, end, i};
+        if (from != to && std::prev(to)->end > end) replacement[n++] = {end, std::prev(to)->end, std::prev(to)->holder};
+        const auto at = static_cast<size_t>(from - segments.begin());
+        const auto old = static_cast<size_t>(to - from);
+        if (n <= old) {
+            std::copy(replacement, replacement + n, segments.begin() + static_cast<std::ptrdiff_t>(at));
+            segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(at + n),
+                           segments.begin() + static_cast<std::ptrdiff_t>(at + old));
+        } else {
+            std::copy(replacement, replacement + old, segments.begin() + static_cast<std::ptrdiff_t>(at));
+            segments.insert(segments.begin() + static_cast<std::ptrdiff_t>(at + old), replacement + old,
+                            replacement + n);
+        }
     }
+    return spans;
 }
 
 }  // namespace
@@ -255,7 +322,13 @@ MemoryLayout placeTransients(std::span<const TransientResource> in, uint32_t ste
         live += liveChange[s];
         out.peakLiveBytes = std::max(out.peakLiveBytes, static_cast<uint64_t>(live));
     }
-    if (aliasing) findAliases(in, items, out.heaps.size(), out.placements);
+    if (aliasing) {
+        std::vector<uint32_t>& storage = detail::MemoryLayoutBuilder::aliasStorage(out);
+        storage.reserve(in.size());
+        const auto spans = findAliases(in, items, out.heaps.size(), storage);
+        for (size_t i = 0; i < in.size(); ++i)  // the storage no longer moves
+            out.placements[i].aliases = std::span<const uint32_t>(storage.data() + spans[i].first, spans[i].second);
+    }
     return out;
 }
 

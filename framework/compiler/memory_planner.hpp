@@ -23,8 +23,19 @@ struct TransientResource {
 /// Places `transients` (in order of first use) in heaps, for a frame of `steps` plan steps.
 /// Resources share bytes only when their lifetimes are disjoint; with `aliasing` off, or for a
 /// resource that is not aliasable, never. Deterministic: equal inputs give equal layouts.
-/// Fills everything in the result but `model` and `granularity`'s source, which it is given.
+/// Fills everything in the result but `model`.
 [[nodiscard]] MemoryLayout placeTransients(std::span<const TransientResource> transients, uint32_t steps,
                                            uint64_t granularity, MemoryStrategy strategy, bool aliasing);
+
+/// What estimatedMemory() answers, without the call through MemoryModel: the compiler's path
+/// when no model is given (it needs no usage flags).
+[[nodiscard]] MemoryRequirements estimatedRequirements(const MemoryQuery& query) noexcept;
+
+namespace detail {
+/// The planner's write access to a layout's alias storage.
+struct MemoryLayoutBuilder {
+    static std::vector<uint32_t>& aliasStorage(MemoryLayout& m) noexcept { return m.aliasStorage_; }
+};
+}  // namespace detail
 
 }  // namespace skygraph

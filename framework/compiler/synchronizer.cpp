@@ -547,7 +547,7 @@ private:
             merger_.emitMerged(r, image ? BarrierKind::Image : BarrierKind::Buffer, pu.range, perSub_, batch);
         }
 
-        if (steps_[a.step].clobber) forEachCell(r, pu.range, [&](size_t c) { state_[c].poisoned = true; });
+        if (options_.clobberTransients && steps_[a.step].clobber) forEachCell(r, pu.range, [&](size_t c) { state_[c].poisoned = true; });
         if (pu.usage.stage == Stage::Transfer && pu.usage.access == Access::ReadWrite) addInPassBarrier(pu, k);
         if (isAttachmentStage(pu.usage.stage)) {
             if (pu.load != LoadOp::Clear)
@@ -662,8 +662,10 @@ private:
     /// Where each transient resource lives (rule 16 of docs/barriers.md): the plan's memory
     /// layout, from the lifetimes planAccesses found and the requirements of options_.memory.
     void planMemory() {
-        const MemoryModel& model = options_.memory ? *options_.memory : *estimatedMemory();
+        // Without a model the estimate answers, and it needs no usage flags.
+        const MemoryModel* model = options_.memory.get();
         std::vector<TransientResource> transients;
+        transients.reserve(facts_.size());
         const auto& usages = *usages_;
         for (uint32_t r = 0; r < facts_.size(); ++r) {
             const ResourceFacts& f = facts_[r];
@@ -677,22 +679,24 @@ private:
                 q.height = h;
                 q.mips = f.grid.mips;
                 q.layers = f.grid.layers;
-                q.imageUsage = kAlwaysUsable.image;
-            } else {
-                q.bufferUsage = kAlwaysUsable.buffer;
             }
-            for (uint32_t k = f.firstAccess; k != kNone; k = accesses_[k].next) {
-                const UsageFlags u = usageFlags(usages[k].usage, f.image);
-                q.imageUsage |= f.image ? u.image : 0;
-                q.bufferUsage |= f.image ? 0 : u.buffer;
+            if (model) {
+                q.imageUsage = f.image ? kAlwaysUsable.image : 0;
+                q.bufferUsage = f.image ? 0 : kAlwaysUsable.buffer;
+                for (uint32_t k = f.firstAccess; k != kNone; k = accesses_[k].next) {
+                    const UsageFlags u = usageFlags(usages[k].usage, f.image);
+                    q.imageUsage |= f.image ? u.image : 0;
+                    q.bufferUsage |= f.image ? 0 : u.buffer;
+                }
             }
             transients.push_back({r, accesses_[f.firstAccess].step, accesses_[f.lastAccess].step,
-                                  model.requirements(q), !f.image, d.alias});
+                                  model ? model->requirements(q) : estimatedRequirements(q), !f.image, d.alias});
         }
+        const uint64_t granularity = model ? model->bufferImageGranularity() : estimatedMemory()->bufferImageGranularity();
         MemoryLayout& layout = detail::PlanBuilder::memory(plan_);
-        layout = placeTransients(transients, static_cast<uint32_t>(steps_.size()), model.bufferImageGranularity(),
-                                 options_.placement, options_.aliasing);
-        layout.model = model.name();
+        layout = placeTransients(transients, static_cast<uint32_t>(steps_.size()), granularity, options_.placement,
+                                 options_.aliasing);
+        layout.model = model ? model->name() : "estimate";
         for (uint32_t p = 0; p < layout.placements.size(); ++p) {
             const uint32_t r = layout.placements[p].resource;
             planResources()[r].placement = p;
@@ -709,8 +713,10 @@ private:
     bool startAliased(uint32_t r, SubresourceState* states, size_t cells) {
         const uint32_t p = plan_.resources()[r].placement;
         if (p == PlannedResource::kNoPlacement) return false;
+        const std::span<const uint32_t> aliases = plan_.memory().placements[p].aliases;
+        if (aliases.empty()) return false;
         StageAccess last;
-        for (const uint32_t a : plan_.memory().placements[p].aliases) {
+        for (const uint32_t a : aliases) {
             const SubresourceState* before = stateOf(a);
             for (size_t c = 0; c < facts_[a].grid.size(); ++c) {
                 if (before[c].readStages) {
@@ -727,7 +733,8 @@ private:
             states[c].writeStages = last.stages;
             states[c].writeAccess = last.access;
         }
-        aliasedHere_.push_back(r);
+        // A resource of one subresource is covered by its first access's own barrier.
+        if (cells > 1) aliasedHere_.push_back(r);
         return true;
     }
 

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -103,14 +104,26 @@ struct MemoryPlacement {
     bool aliasable = true;
     /// The resources whose memory it takes over: for every byte of its range, the last
     /// resource earlier in the frame that held it (indices into Plan::resources(), ascending).
-    /// Its first barriers wait for their last uses: the aliasing barriers.
-    std::vector<uint32_t> aliases;
-
-    friend bool operator==(const MemoryPlacement&, const MemoryPlacement&) = default;
+    /// Its first barriers wait for their last uses: the aliasing barriers. Views storage of
+    /// the MemoryLayout that holds this placement: valid while that layout lives and is not
+    /// assigned to (a move keeps it valid).
+    std::span<const uint32_t> aliases;
 };
 
+namespace detail {
+struct MemoryLayoutBuilder;  // the compiler's way of writing a layout
+}
+
 /// The plan's transient memory: heaps and placements, and the figures to judge them by.
+/// Copies are deep: a copy's placements view its own alias storage.
 struct MemoryLayout {
+    MemoryLayout() = default;
+    MemoryLayout(const MemoryLayout& other);
+    MemoryLayout& operator=(const MemoryLayout& other);
+    MemoryLayout(MemoryLayout&&) noexcept = default;
+    MemoryLayout& operator=(MemoryLayout&&) noexcept = default;
+    ~MemoryLayout() = default;
+
     std::vector<MemoryHeap> heaps;
     /// One per transient resource (not external, not exported), in Plan::resources() order.
     std::vector<MemoryPlacement> placements;
@@ -129,7 +142,12 @@ struct MemoryLayout {
         return sum;
     }
 
-    friend bool operator==(const MemoryLayout&, const MemoryLayout&) = default;
+    /// Equal heaps, placements (aliases compared by value) and figures.
+    friend bool operator==(const MemoryLayout& a, const MemoryLayout& b);
+
+private:
+    friend struct detail::MemoryLayoutBuilder;
+    std::vector<uint32_t> aliasStorage_;  // every placement's aliases, one after another
 };
 
 /// "bestFitBySize", "firstUseOrder", "unaliased".
