@@ -74,10 +74,15 @@ UsageFlags usageFlags(const UsageMode& u, bool image) noexcept {
 MemoryLayout::MemoryLayout(const MemoryLayout& other)
     : heaps(other.heaps), placements(other.placements), strategy(other.strategy), model(other.model),
       granularity(other.granularity), unaliasedBytes(other.unaliasedBytes), peakLiveBytes(other.peakLiveBytes),
-      aliasStorage_(other.aliasStorage_) {
-    for (MemoryPlacement& p : placements)
-        if (!p.aliases.empty())
-            p.aliases = {aliasStorage_.data() + (p.aliases.data() - other.aliasStorage_.data()), p.aliases.size()};
+      sharedAcrossFrames(other.sharedAcrossFrames), aliasStorage_(other.aliasStorage_) {
+    const auto rebased = [&](std::span<const uint32_t> v) -> std::span<const uint32_t> {
+        if (v.empty()) return {};
+        return {aliasStorage_.data() + (v.data() - other.aliasStorage_.data()), v.size()};
+    };
+    for (MemoryPlacement& p : placements) {
+        p.aliases = rebased(p.aliases);
+        p.previousFrameAliases = rebased(p.previousFrameAliases);
+    }
 }
 
 MemoryLayout& MemoryLayout::operator=(const MemoryLayout& other) {
@@ -89,10 +94,13 @@ bool operator==(const MemoryLayout& a, const MemoryLayout& b) {
     const auto samePlacement = [](const MemoryPlacement& x, const MemoryPlacement& y) {
         return x.resource == y.resource && x.heap == y.heap && x.offset == y.offset && x.bytes == y.bytes &&
                x.requirements == y.requirements && x.aliasable == y.aliasable &&
-               std::equal(x.aliases.begin(), x.aliases.end(), y.aliases.begin(), y.aliases.end());
+               std::equal(x.aliases.begin(), x.aliases.end(), y.aliases.begin(), y.aliases.end()) &&
+               std::equal(x.previousFrameAliases.begin(), x.previousFrameAliases.end(),
+                          y.previousFrameAliases.begin(), y.previousFrameAliases.end());
     };
     return a.heaps == b.heaps && a.strategy == b.strategy && a.model == b.model && a.granularity == b.granularity &&
            a.unaliasedBytes == b.unaliasedBytes && a.peakLiveBytes == b.peakLiveBytes &&
+           a.sharedAcrossFrames == b.sharedAcrossFrames &&
            std::equal(a.placements.begin(), a.placements.end(), b.placements.begin(), b.placements.end(),
                       samePlacement);
 }

@@ -228,68 +228,96 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
     }
 }
 
+/// Where a placement's aliases start in the layout's storage, and how many of each kind.
+struct AliasRun {
+    uint32_t first = 0;
+    uint32_t inFrame = 0;
+    uint32_t previousFrame = 0;
+};
+
 /// For each resource in order of first use, the resources that last held each byte of its
-/// range: a sweep over each heap's bytes, kept as segments by their latest holder. Appends
-/// them to `storage` and returns where each resource's start, and how many.
-std::vector<std::pair<uint32_t, uint32_t>> findAliases(std::span<const TransientResource> in,
-                                                       const std::vector<Item>& items, size_t heapCount,
-                                                       std::vector<uint32_t>& storage) {
+/// range: a sweep over each heap's bytes, kept as segments by their latest holder. With
+/// frames sharing the heaps, a first sweep leaves the segments as the previous frame ends,
+/// and the bytes a resource finds held by them name its previous-frame aliases. Appends them
+/// to `storage`, in-frame ones first, each kind sorted.
+std::vector<AliasRun> findAliases(std::span<const TransientResource> in, const std::vector<Item>& items,
+                                  size_t heapCount, bool acrossFrames, std::vector<uint32_t>& storage) {
+    constexpr uint32_t kPreviousFrame = 1u << 31;  // on a holder: it held the bytes in the last frame
     struct Segment {
         uint64_t begin, end;
         uint32_t holder;  // index into items
     };
     std::vector<std::vector<Segment>> heldBy(heapCount);
-    std::vector<std::pair<uint32_t, uint32_t>> spans(items.size());
-    for (uint32_t i = 0; i < items.size(); ++i) {
-        const Item& it = items[i];
-        auto& segments = heldBy[it.heap];
-        const uint64_t begin = it.offset, end = it.offset + it.bytes;
-        const auto from = std::partition_point(segments.begin(), segments.end(),
-                                               [&](const Segment& s) { return s.end <= begin; });
-        auto to = from;
-        const auto first = static_cast<uint32_t>(storage.size());
-        for (; to != segments.end() && to->begin < end; ++to) {
-            // Placement never lets two resources that live at the same time share a byte.
-            if (in[to->holder].lastStep >= in[i].firstStep)
-                throw std::logic_error("memory planner: plan resources " + std::to_string(in[to->holder].resource) +
-                                       " and " + std::to_string(in[i].resource) + " share memory while both live");
-            storage.push_back(in[to->holder].resource);
-        }
-        std::sort(storage.begin() + first, storage.end());
-        storage.erase(std::unique(storage.begin() + first, storage.end()), storage.end());
-        spans[i] = {first, static_cast<uint32_t>(storage.size()) - first};
-        // The resource now holds [begin, end); what the segments it overlaps held outside it
-        // stays theirs.
-        if (to - from == 1 && from->begin == begin && from->end == end) {
-            from->holder = i;  // the common case: the same range as the last holder
-            continue;
-        }
-        Segment replacement[3];
-        size_t n = 0;
-        if (from != to && from->begin < begin) replacement[n++] = {from->begin, begin, from->holder};
-        replacement[n++] = {begin, end, i};
-        if (from != to && std::prev(to)->end > end) replacement[n++] = {end, std::prev(to)->end, std::prev(to)->holder};
-        const auto at = static_cast<size_t>(from - segments.begin());
-        const auto old = static_cast<size_t>(to - from);
-        if (n <= old) {
-            std::copy(replacement, replacement + n, segments.begin() + static_cast<std::ptrdiff_t>(at));
-            segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(at + n),
-                           segments.begin() + static_cast<std::ptrdiff_t>(at + old));
-        } else {
-            std::copy(replacement, replacement + old, segments.begin() + static_cast<std::ptrdiff_t>(at));
-            segments.insert(segments.begin() + static_cast<std::ptrdiff_t>(at + old), replacement + old,
-                            replacement + n);
+    std::vector<AliasRun> runs(items.size());
+    std::vector<uint32_t> previous;
+    for (int sweep = acrossFrames ? 0 : 1; sweep < 2; ++sweep) {
+        if (sweep == 1)
+            for (auto& segments : heldBy)
+                for (Segment& seg : segments) seg.holder |= kPreviousFrame;
+        for (uint32_t i = 0; i < items.size(); ++i) {
+            const Item& it = items[i];
+            auto& segments = heldBy[it.heap];
+            const uint64_t begin = it.offset, end = it.offset + it.bytes;
+            const auto from = std::partition_point(segments.begin(), segments.end(),
+                                                   [&](const Segment& seg) { return seg.end <= begin; });
+            auto to = from;
+            const auto first = static_cast<uint32_t>(storage.size());
+            previous.clear();
+            for (; to != segments.end() && to->begin < end; ++to) {
+                if (to->holder & kPreviousFrame) {
+                    previous.push_back(in[to->holder & ~kPreviousFrame].resource);
+                    continue;
+                }
+                // Placement never lets two resources that live at the same time share a byte.
+                if (in[to->holder].lastStep >= in[i].firstStep)
+                    throw std::logic_error("memory planner: plan resources " + std::to_string(in[to->holder].resource) +
+                                           " and " + std::to_string(in[i].resource) + " share memory while both live");
+                if (sweep == 1) storage.push_back(in[to->holder].resource);
+            }
+            if (sweep == 1) {
+                std::sort(storage.begin() + first, storage.end());
+                storage.erase(std::unique(storage.begin() + first, storage.end()), storage.end());
+                const auto inFrame = static_cast<uint32_t>(storage.size()) - first;
+                std::sort(previous.begin(), previous.end());
+                previous.erase(std::unique(previous.begin(), previous.end()), previous.end());
+                storage.insert(storage.end(), previous.begin(), previous.end());
+                runs[i] = {first, inFrame, static_cast<uint32_t>(previous.size())};
+            }
+            // The resource now holds [begin, end); what the segments it overlaps held outside
+            // it stays theirs.
+            if (to - from == 1 && from->begin == begin && from->end == end) {
+                from->holder = i;  // the common case: the same range as the last holder
+                continue;
+            }
+            Segment replacement[3];
+            size_t n = 0;
+            if (from != to && from->begin < begin) replacement[n++] = {from->begin, begin, from->holder};
+            replacement[n++] = {begin, end, i};
+            if (from != to && std::prev(to)->end > end)
+                replacement[n++] = {end, std::prev(to)->end, std::prev(to)->holder};
+            const auto at = static_cast<size_t>(from - segments.begin());
+            const auto old = static_cast<size_t>(to - from);
+            if (n <= old) {
+                std::copy(replacement, replacement + n, segments.begin() + static_cast<std::ptrdiff_t>(at));
+                segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(at + n),
+                               segments.begin() + static_cast<std::ptrdiff_t>(at + old));
+            } else {
+                std::copy(replacement, replacement + old, segments.begin() + static_cast<std::ptrdiff_t>(at));
+                segments.insert(segments.begin() + static_cast<std::ptrdiff_t>(at + old), replacement + old,
+                                replacement + n);
+            }
         }
     }
-    return spans;
+    return runs;
 }
 
 }  // namespace
 
 MemoryLayout placeTransients(std::span<const TransientResource> in, uint32_t steps, uint64_t granularity,
-                             MemoryStrategy strategy, bool aliasing) {
+                             MemoryStrategy strategy, bool aliasing, bool acrossFrames) {
     MemoryLayout out;
     out.granularity = granularity;
+    out.sharedAcrossFrames = acrossFrames;
     if (!aliasing) strategy = MemoryStrategy::Unaliased;
     aliasing = strategy != MemoryStrategy::Unaliased;
     out.strategy = strategy;
@@ -322,12 +350,16 @@ MemoryLayout placeTransients(std::span<const TransientResource> in, uint32_t ste
         live += liveChange[s];
         out.peakLiveBytes = std::max(out.peakLiveBytes, static_cast<uint64_t>(live));
     }
-    if (aliasing) {
+    // Without aliasing, frames sharing the heaps still take over each other's bytes.
+    if (aliasing || acrossFrames) {
         std::vector<uint32_t>& storage = detail::MemoryLayoutBuilder::aliasStorage(out);
-        storage.reserve(in.size());
-        const auto spans = findAliases(in, items, out.heaps.size(), storage);
-        for (size_t i = 0; i < in.size(); ++i)  // the storage no longer moves
-            out.placements[i].aliases = std::span<const uint32_t>(storage.data() + spans[i].first, spans[i].second);
+        storage.reserve(in.size() * (acrossFrames ? 2 : 1));
+        const auto runs = findAliases(in, items, out.heaps.size(), acrossFrames, storage);
+        for (size_t i = 0; i < in.size(); ++i) {  // the storage no longer moves
+            const uint32_t* first = storage.data() + runs[i].first;
+            out.placements[i].aliases = {first, runs[i].inFrame};
+            out.placements[i].previousFrameAliases = {first + runs[i].inFrame, runs[i].previousFrame};
+        }
     }
     return out;
 }

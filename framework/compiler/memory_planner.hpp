@@ -22,10 +22,12 @@ struct TransientResource {
 
 /// Places `transients` (in order of first use) in heaps, for a frame of `steps` plan steps.
 /// Resources share bytes only when their lifetimes are disjoint; with `aliasing` off, or for a
-/// resource that is not aliasable, never. Deterministic: equal inputs give equal layouts.
-/// Fills everything in the result but `model`.
+/// resource that is not aliasable, never. With `acrossFrames`, consecutive frames use the same
+/// heaps, and each placement also names what the previous frame left in its bytes.
+/// Deterministic: equal inputs give equal layouts. Fills everything in the result but `model`.
 [[nodiscard]] MemoryLayout placeTransients(std::span<const TransientResource> transients, uint32_t steps,
-                                           uint64_t granularity, MemoryStrategy strategy, bool aliasing);
+                                           uint64_t granularity, MemoryStrategy strategy, bool aliasing,
+                                           bool acrossFrames = false);
 
 /// What estimatedMemory() answers, without the call through MemoryModel: the compiler's path
 /// when no model is given (it needs no usage flags).

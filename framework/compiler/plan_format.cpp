@@ -1,5 +1,6 @@
 #include <skygraph/plan_format.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <sstream>
@@ -125,6 +126,7 @@ const char* storeName(StoreOp op) {
 const char* copiesReason(ResourceCopies c) {
     switch (c) {
         case ResourceCopies::PerFrameTransient: return "transient";
+        case ResourceCopies::SharedTransient: return "sharedTransient";
         case ResourceCopies::PerFramePresented: return "presented";
         case ResourceCopies::PerFrameWrittenNotExported: return "writtenNotExported";
         case ResourceCopies::SharedExported: return "exported";
@@ -133,13 +135,26 @@ const char* copiesReason(ResourceCopies c) {
     return "?";
 }
 
-/// The resources whose memory an aliasing barrier's resource takes over.
-std::vector<std::string_view> aliasNames(const Plan& plan, uint32_t resource) {
+/// The resources whose memory an aliasing barrier's resource takes over, earlier in the frame
+/// or (`previousFrame`) in the frame before.
+std::vector<std::string_view> aliasNames(const Plan& plan, uint32_t resource, bool previousFrame = false) {
     std::vector<std::string_view> names;
     const uint32_t p = plan.resources()[resource].placement;
     if (p == PlannedResource::kNoPlacement) return names;
-    for (const uint32_t a : plan.memory().placements[p].aliases) names.push_back(plan.resources()[a].name);
+    const MemoryPlacement& placement = plan.memory().placements[p];
+    for (const uint32_t a : previousFrame ? placement.previousFrameAliases : placement.aliases)
+        names.push_back(plan.resources()[a].name);
     return names;
+}
+
+/// " after a b", " after a; the previous frame's c" or "", for text plans.
+std::string aliasText(const Plan& plan, uint32_t resource) {
+    std::string text;
+    for (const std::string_view n : aliasNames(plan, resource)) text += (text.empty() ? " after " : " ") + std::string(n);
+    const auto previous = aliasNames(plan, resource, true);
+    for (size_t i = 0; i < previous.size(); ++i)
+        text += (i ? " " : text.empty() ? " after the previous frame's " : "; the previous frame's ") + std::string(previous[i]);
+    return text;
 }
 
 json barrierJson(const Plan& plan, const Barrier& b) {
@@ -157,7 +172,10 @@ json barrierJson(const Plan& plan, const Barrier& b) {
         j["baseArrayLayer"] = b.range.baseLayer;
         j["layerCount"] = b.range.layerCount;
     }
-    if (b.aliasing) j["aliases"] = aliasNames(plan, b.resource);
+    if (b.aliasing) {
+        j["aliases"] = aliasNames(plan, b.resource);
+        if (plan.memory().sharedAcrossFrames) j["previousFrameAliases"] = aliasNames(plan, b.resource, true);
+    }
     return j;
 }
 
@@ -183,8 +201,13 @@ json memoryJson(const Plan& plan) {
                    {"aliasable", p.aliasable},
                    {"aliases", json::array()}};
         for (const uint32_t a : p.aliases) jp["aliases"].push_back(plan.resources()[a].name);
+        if (m.sharedAcrossFrames) {
+            jp["previousFrameAliases"] = json::array();
+            for (const uint32_t a : p.previousFrameAliases) jp["previousFrameAliases"].push_back(plan.resources()[a].name);
+        }
         j["placements"].push_back(std::move(jp));
     }
+    j["sharedAcrossFrames"] = m.sharedAcrossFrames;
     j["heapBytes"] = m.heapBytes();
     j["unaliasedBytes"] = m.unaliasedBytes;
     j["peakLiveBytes"] = m.peakLiveBytes;
@@ -195,7 +218,8 @@ std::string memoryText(const Plan& plan) {
     const MemoryLayout& m = plan.memory();
     std::ostringstream o;
     o << "memory: " << m.placements.size() << " transient(s) in " << m.heaps.size() << " heap(s) of "
-      << mib(m.heapBytes()) << " per frame in flight (" << toString(m.strategy) << ", requirements: " << m.model
+      << mib(m.heapBytes()) << (m.sharedAcrossFrames ? " shared by the frames in flight (" : " per frame in flight (")
+      << toString(m.strategy) << ", requirements: " << m.model
       << "); unaliased " << mib(m.unaliasedBytes) << ", peak live " << mib(m.peakLiveBytes) << "\n";
     for (size_t h = 0; h < m.heaps.size(); ++h) {
         o << "    heap " << h << ": " << mib(m.heaps[h].bytes) << ", memory types 0x" << std::hex
@@ -207,11 +231,7 @@ std::string memoryText(const Plan& plan) {
             o << "      [" << p.offset << ", " << p.offset + p.bytes << ") " << plan.resources()[p.resource].name << " ("
               << mib(p.bytes) << ")";
             if (!p.aliasable) o << " not shared";
-            if (!p.aliases.empty()) {
-                o << " after";
-                for (const std::string_view n : aliasNames(plan, p.resource)) o << " " << n;
-            }
-            o << "\n";
+            o << aliasText(plan, p.resource) << "\n";
         }
     }
     return o.str();
@@ -223,10 +243,7 @@ std::string barrierText(const Plan& plan, const Barrier& b) {
     if (b.kind == BarrierKind::Image)
         o << " mips[" << b.range.baseMip << "+" << b.range.mipCount << "] layers["
           << b.range.baseLayer << "+" << b.range.layerCount << "]";
-    if (b.aliasing) {
-        o << " aliasing, after";
-        for (const std::string_view n : aliasNames(plan, b.resource)) o << " " << n;
-    }
+    if (b.aliasing) o << " aliasing," << aliasText(plan, b.resource);
     o << "\n      " << joined(stageMaskNames(b.srcStages), "VK_PIPELINE_STAGE_2_") << " / "
       << joined(accessMaskNames(b.srcAccess), "VK_ACCESS_2_") << "  ->  "
       << joined(stageMaskNames(b.dstStages), "VK_PIPELINE_STAGE_2_") << " / "
@@ -248,6 +265,50 @@ std::string dotEscape(std::string_view s) {
         out += c;
     }
     return out;
+}
+
+/// "0", "512 B", "1.0 KiB", "16.00 MiB": small buffers stay readable next to large images.
+std::string byteText(uint64_t bytes) {
+    if (bytes >= (1u << 20)) return mib(bytes);
+    if (bytes >= 1024) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
+        return text;
+    }
+    return bytes == 0 ? "0" : std::to_string(bytes) + " B";
+}
+
+/// The memory layout for graphviz: a box per heap listing its placements in offset order,
+/// and a dashed edge from each resource to the one that takes over its memory. Edges do not
+/// constrain the ranks, so the passes and resources keep the places they have without them.
+std::string memoryDot(const Plan& plan) {
+    const MemoryLayout& m = plan.memory();
+    std::ostringstream o;
+    for (size_t h = 0; h < m.heaps.size(); ++h) {
+        std::vector<const MemoryPlacement*> inHeap;
+        for (const MemoryPlacement& p : m.placements)
+            if (p.heap == h) inHeap.push_back(&p);
+        std::stable_sort(inHeap.begin(), inHeap.end(),
+                         [](const MemoryPlacement* a, const MemoryPlacement* b) { return a->offset < b->offset; });
+        o << "  subgraph \"cluster_heap" << h << "\" {\n    label=\"heap " << h << ": " << mib(m.heaps[h].bytes)
+          << (m.sharedAcrossFrames ? " shared by the frames in flight (" : " per frame in flight (")
+          << toString(m.strategy) << ")\";\n    style=rounded;\n    color=\"#7a5cc6\";\n"
+          << "    \"heap:" << h << "\" [shape=box, style=filled, fillcolor=\"#f1ecfa\", fontname=\"Courier\", label=\"";
+        for (const MemoryPlacement* p : inHeap) {
+            o << "[" << byteText(p->offset) << ", " << byteText(p->offset + p->bytes) << ") "
+              << dotEscape(plan.resources()[p->resource].name);
+            if (!p->aliasable) o << " (not shared)";
+            o << "\\l";
+        }
+        if (inHeap.empty()) o << "(empty)\\l";
+        o << "\"];\n  }\n";
+    }
+    for (const MemoryPlacement& p : m.placements)
+        for (const uint32_t a : p.aliases)
+            o << "  \"res:" << dotEscape(plan.resources()[a].name) << "\" -> \"res:"
+              << dotEscape(plan.resources()[p.resource].name)
+              << "\" [style=dashed, color=\"#7a5cc6\", fontcolor=\"#7a5cc6\", label=\"memory\", constraint=false];\n";
+    return o.str();
 }
 
 }  // namespace
@@ -437,6 +498,7 @@ std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setu
             }
         }
     }
+    if (!plan.memory().model.empty()) o << memoryDot(plan);
     o << "}\n";
     return o.str();
 }

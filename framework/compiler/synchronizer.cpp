@@ -74,8 +74,8 @@ public:
         for (const std::string& name : options_.readbacks)  // compile() checked the names
             readbacks_.push_back(static_cast<uint32_t>(graph_.findResource(name) - graph_.resources.data()));
         planAccesses(schedule);
+        computeRunScopes();  // while planAccesses' usages are in cache
         planMemory();
-        computeRunScopes();
         emitSteps();
         finishResources();
         decideCopies();
@@ -384,7 +384,7 @@ private:
             const Step& step = steps_[s];
             const uint32_t first = step.firstAccess, end = stepEnd(s);
             for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
-            const bool aliasingAdded = !aliasedHere_.empty() && finishAliasing(barriers);
+            const bool aliasingAdded = !aliasedHere_.empty() && finishAliasing(barriers, s);
             if (step.mayMerge || aliasingAdded) mergeAdjacent(barriers, batch);
             const std::span<const Barrier> batchView =
                 barriers.size() > batch ? std::span<const Barrier>(base + batch, barriers.size() - batch)
@@ -561,6 +561,10 @@ private:
             PlannedResource& res = planResources()[r];
             res.lastPass = a.step;
             res.finalLayout = stateOf(r)->layout;
+            // What a resource taking over its memory later will wait for; kept now, while its
+            // state is in cache. (Subresources it never used have nothing to wait for unless
+            // aliased, which finishAliasing adds.)
+            if (res.placement != PlannedResource::kNoPlacement) lastUses_[r] = lastUses(stateOf(r), facts_[r].grid.size(), 0);
         }
     }
 
@@ -627,6 +631,9 @@ private:
     /// exported (its final barrier and the next frame's first use chain across frames). A
     /// resource that is not external keeps the default, PerFrameTransient.
     void decideCopies() {
+        if (options_.shareTransientsAcrossFrames)
+            for (const MemoryPlacement& p : plan_.memory().placements)
+                planResources()[p.resource].copies = ResourceCopies::SharedTransient;
         for (const uint32_t r : external_) {
             const ResourceFacts& f = facts_[r];
             PlannedResource& res = planResources()[r];
@@ -689,20 +696,73 @@ private:
                     q.bufferUsage |= f.image ? 0 : u.buffer;
                 }
             }
-            transients.push_back({r, accesses_[f.firstAccess].step, accesses_[f.lastAccess].step,
-                                  model ? model->requirements(q) : estimatedRequirements(q), !f.image, d.alias});
+            // Field by field, in place: a braced temporary copied in stalls on store forwarding.
+            TransientResource& t = transients.emplace_back();
+            t.resource = r;
+            t.firstStep = accesses_[f.firstAccess].step;
+            t.lastStep = accesses_[f.lastAccess].step;
+            t.requirements = model ? model->requirements(q) : estimatedRequirements(q);
+            t.linear = !f.image;
+            t.aliasable = d.alias;
         }
         const uint64_t granularity = model ? model->bufferImageGranularity() : estimatedMemory()->bufferImageGranularity();
         MemoryLayout& layout = detail::PlanBuilder::memory(plan_);
         layout = placeTransients(transients, static_cast<uint32_t>(steps_.size()), granularity, options_.placement,
-                                 options_.aliasing);
+                                 options_.aliasing, options_.shareTransientsAcrossFrames);
         layout.model = model ? model->name() : "estimate";
         for (uint32_t p = 0; p < layout.placements.size(); ++p) {
-            const uint32_t r = layout.placements[p].resource;
-            planResources()[r].placement = p;
-            if (!layout.placements[p].aliases.empty() && facts_[r].grid.size() > 1)
-                aliasedCells_ += static_cast<uint32_t>(facts_[r].grid.size());
+            const MemoryPlacement& placement = layout.placements[p];
+            planResources()[placement.resource].placement = p;
+            if (facts_[placement.resource].grid.size() > 1 &&
+                (!placement.aliases.empty() || !placement.previousFrameAliases.empty()))
+                aliasedCells_ += static_cast<uint32_t>(facts_[placement.resource].grid.size());
         }
+        if (!layout.placements.empty()) lastUses_.resize(facts_.size());
+        if (!options_.shareTransientsAcrossFrames) return;
+        previousFrameLastUses_.resize(layout.placements.size());
+        for (uint32_t p = 0; p < layout.placements.size(); ++p)
+            for (const uint32_t a : layout.placements[p].previousFrameAliases) {
+                const StageAccess last = lastUsesInFrame(a);
+                previousFrameLastUses_[p].stages |= last.stages;
+                previousFrameLastUses_[p].access |= last.access;
+            }
+    }
+
+    /// What a barrier after the last uses of subresources `states` waits for (rule 16): per
+    /// subresource, the reads since its last write (an execution dependency that orders the
+    /// write too, rule 2), or that write with its access when nothing read it. A subresource
+    /// never used counts as written in `untouched` (the stages of its aliasing transition).
+    static StageAccess lastUses(const SubresourceState* states, size_t cells, VkPipelineStageFlags2 untouched) {
+        StageAccess last;
+        for (size_t c = 0; c < cells; ++c) {
+            const SubresourceState& st = states[c];
+            if (st.readStages) {
+                last.stages |= st.readStages;
+            } else if (st.writeStages) {
+                last.stages |= st.writeStages;
+                last.access |= st.writeAccess;
+            } else {
+                last.stages |= untouched;
+            }
+        }
+        return last;
+    }
+
+    /// What a barrier after resource r's last uses in the frame waits for (rule 16): per
+    /// subresource, the reads since its last write, or that write with its access when nothing
+    /// read it. Replays r's accesses with rule 1-5's bookkeeping, before the frame's barriers
+    /// are written: the next frame's first uses of r's bytes need it at their start.
+    StageAccess lastUsesInFrame(uint32_t r) {
+        const auto& usages = *usages_;
+        const SubresourceGrid& grid = facts_[r].grid;
+        replay_.assign(grid.size(), SubresourceState{});
+        for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next) {
+            const VulkanScope scope{usages[k].stages, usages[k].access, VK_IMAGE_LAYOUT_UNDEFINED};
+            grid.forEach(usages[k].range,
+                         [&](size_t sub) { recordAccess(replay_[sub], accesses_[k].writes, scope.layout, scope); });
+        }
+        // A subresource never used was transitioned by the first step's aliasing barrier.
+        return lastUses(replay_.data(), replay_.size(), plan_.resources()[r].firstStages);
     }
 
     /// The memory that resource r takes over was last used by its placement's `aliases`
@@ -713,19 +773,13 @@ private:
     bool startAliased(uint32_t r, SubresourceState* states, size_t cells) {
         const uint32_t p = plan_.resources()[r].placement;
         if (p == PlannedResource::kNoPlacement) return false;
-        const std::span<const uint32_t> aliases = plan_.memory().placements[p].aliases;
-        if (aliases.empty()) return false;
-        StageAccess last;
+        const MemoryPlacement& placement = plan_.memory().placements[p];
+        const std::span<const uint32_t> aliases = placement.aliases;
+        if (aliases.empty() && placement.previousFrameAliases.empty()) return false;
+        StageAccess last = previousFrameLastUses_.empty() ? StageAccess{} : previousFrameLastUses_[p];
         for (const uint32_t a : aliases) {
-            const SubresourceState* before = stateOf(a);
-            for (size_t c = 0; c < facts_[a].grid.size(); ++c) {
-                if (before[c].readStages) {
-                    last.stages |= before[c].readStages;
-                } else {
-                    last.stages |= before[c].writeStages;
-                    last.access |= before[c].writeAccess;
-                }
-            }
+            last.stages |= lastUses_[a].stages;
+            last.access |= lastUses_[a].access;
         }
         if (!last.stages) return false;
         for (size_t c = 0; c < cells; ++c) {
@@ -743,7 +797,7 @@ private:
     /// of its first use, so that the step's batch covers the whole resource (the spec's
     /// "Memory Aliasing": the barrier must contain every subresource that overlaps). Returns
     /// whether it added any.
-    bool finishAliasing(std::vector<Barrier>& batch) {
+    bool finishAliasing(std::vector<Barrier>& batch, uint32_t step) {
         bool added = false;
         for (const uint32_t r : aliasedHere_) {
             SubresourceState* states = stateOf(r);
@@ -777,6 +831,7 @@ private:
                 any = true;
             });
             if (any) merger_.emitMerged(r, BarrierKind::Image, grid.whole(), perSub_, batch);
+            if (any && planResources()[r].lastPass == step) lastUses_[r].stages |= first.stages;
             added |= any;
         }
         aliasedHere_.clear();
@@ -819,6 +874,11 @@ private:
     // room for their aliasing barriers beyond the usages' own.
     std::vector<uint32_t> aliasedHere_;
     uint32_t aliasedCells_ = 0;
+    // With frames sharing the heaps: per placement, the previous frame's last uses of the bytes
+    // no earlier resource of the frame holds; and lastUsesInFrame's scratch.
+    std::vector<StageAccess> previousFrameLastUses_;
+    std::vector<StageAccess> lastUses_;  // per plan resource with a placement, from its last access
+    std::vector<SubresourceState> replay_;
 };
 
 }  // namespace

@@ -61,6 +61,11 @@ struct CompileOptions {
     /// allow, and the plan orders each one's first use after the last uses of the memory it
     /// takes over (aliasing barriers). false: each gets a range of its own (`--no-alias`).
     bool aliasing = true;
+    /// The frames in flight share the transients' memory instead of each having its own: one
+    /// copy of each heap. Frames run in order on one queue, so each frame's first use of a
+    /// byte waits, through the plan's aliasing barriers, for the previous frame's last use of
+    /// it (docs/memory.md, "Frames in flight").
+    bool shareTransientsAcrossFrames = false;
     /// How they are placed when they share (docs/memory.md, "Placement").
     MemoryStrategy placement = MemoryStrategy::BestFitBySize;
     /// Where memory requirements come from: the executor passes its device's

@@ -108,6 +108,11 @@ struct MemoryPlacement {
     /// the MemoryLayout that holds this placement: valid while that layout lives and is not
     /// assigned to (a move keeps it valid).
     std::span<const uint32_t> aliases;
+    /// With frames in flight sharing the heaps (CompileOptions::shareTransientsAcrossFrames):
+    /// for the bytes of its range that no earlier resource of the frame held, the resources
+    /// that held them last in the previous frame, itself included where it did. Its first
+    /// barriers wait for their last uses there too. Views storage as `aliases` does.
+    std::span<const uint32_t> previousFrameAliases;
 };
 
 namespace detail {
@@ -135,7 +140,12 @@ struct MemoryLayout {
     /// The most bytes of transients live during any one pass: no placement can use less.
     uint64_t peakLiveBytes = 0;
 
-    /// The sum of the heaps' bytes: what the executor allocates per frame in flight.
+    /// Whether the frames in flight share the heaps (CompileOptions::shareTransientsAcrossFrames):
+    /// the executor then allocates them once, not once per frame in flight.
+    bool sharedAcrossFrames = false;
+
+    /// The sum of the heaps' bytes: what the executor allocates (per frame in flight unless
+    /// sharedAcrossFrames).
     [[nodiscard]] uint64_t heapBytes() const noexcept {
         uint64_t sum = 0;
         for (const MemoryHeap& h : heaps) sum += h.bytes;

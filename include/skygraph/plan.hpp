@@ -90,6 +90,10 @@ struct PlannedPass {
 /// the next frame's; every other resource that a frame writes gets a copy per frame in flight.
 enum class ResourceCopies : uint8_t {
     PerFrameTransient,           ///< Not external: written anew by every frame.
+    /// Not external, in memory that the frames in flight share (CompileOptions::
+    /// shareTransientsAcrossFrames): one copy, and each frame's first uses of its bytes wait
+    /// for the previous frame's last uses of them (MemoryPlacement::previousFrameAliases).
+    SharedTransient,
     PerFramePresented,           ///< The swapchain target (`final: Present`), like swapchain images.
     PerFrameWrittenNotExported,  ///< External, written, not exported: nothing orders the frames.
     SharedExported,              ///< External and exported: its contents carry from frame to frame.

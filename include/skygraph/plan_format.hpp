@@ -16,8 +16,17 @@ namespace skygraph {
 [[nodiscard]] std::string planToText(const Plan& plan);
 /// Scheduled passes as boxes, culled ones greyed with their reason, resources as ellipses;
 /// with `setup` (planSetup of `plan`; may be null), its steps in a box of their own. `graph`
-/// must be the graph `plan` was compiled from.
+/// must be the graph `plan` was compiled from. The memory layout (Plan::memory()) is a box per
+/// heap listing its placements in offset order, and a dashed "memory" edge from each resource
+/// to the one that takes over its memory.
 [[nodiscard]] std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setup = nullptr);
+/// The memory layout as an SVG picture (UTF-8 XML): plan steps across, one column per pass;
+/// byte offsets down, the heaps stacked with their sizes; one rectangle per placement over its
+/// resource's lifetime (class "placement", coloured by the kind of resource, its name and size
+/// written in when they fit, all of it in a tooltip); a dashed line at the peak live bytes; a
+/// title with the heaps' bytes, the unaliased bytes and the peak. The same plan always gives the
+/// same text.
+[[nodiscard]] std::string planMemoryToSvg(const Plan& plan);
 
 /// Full Vulkan names: "VK_PIPELINE_STAGE_2_COPY_BIT", one entry per set bit (in hex for bits
 /// skygraph does not name).

@@ -154,6 +154,55 @@ TEST(AliasingRules, AliasFalseAndExternalsNeverShare) {
                  GraphError);
 }
 
+TEST(AliasingRules, FramesSharingTheHeapsWaitForThePreviousFramesLastUses) {
+    CompileOptions o;
+    o.shareTransientsAcrossFrames = true;
+    const Plan plan = compileGraph(kTwo, kTwoPasses, o);
+    EXPECT_TRUE(plan.memory().sharedAcrossFrames);
+    const uint32_t a = uint32_t(plan.resourceIndex("a")), b = uint32_t(plan.resourceIndex("b"));
+    const uint32_t mid = uint32_t(plan.resourceIndex("mid"));
+    for (const char* r : {"a", "b", "mid"})
+        EXPECT_EQ(plan.resources()[plan.resourceIndex(r)].copies, ResourceCopies::SharedTransient) << r;
+    EXPECT_EQ(plan.resources()[plan.resourceIndex("out")].copies, ResourceCopies::SharedExported);
+    // a and b share bytes, and b holds them when the frame ends: the next frame's a waits for
+    // b's last use (a fragment read); mid holds its own bytes across frames.
+    EXPECT_TRUE(placementOf(plan, "a").aliases.empty());
+    EXPECT_EQ(ids(placementOf(plan, "a").previousFrameAliases), std::vector<uint32_t>{b});
+    EXPECT_EQ(ids(placementOf(plan, "b").aliases), std::vector<uint32_t>{a});
+    EXPECT_TRUE(placementOf(plan, "b").previousFrameAliases.empty()) << "its bytes were a's earlier in the frame";
+    EXPECT_EQ(ids(placementOf(plan, "mid").previousFrameAliases), std::vector<uint32_t>{mid});
+    const auto first = barriersOf(plan, "make_a", "a");
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_TRUE(first[0].aliasing);
+    EXPECT_EQ(first[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(first[0].srcAccess, 0u);
+    EXPECT_EQ(first[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    // mid's last use in a frame is a fragment read (make_b), and its first a color write.
+    const auto midFirst = barriersOf(plan, "use_a", "mid");
+    ASSERT_EQ(midFirst.size(), 1u);
+    EXPECT_TRUE(midFirst[0].aliasing);
+    EXPECT_EQ(midFirst[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    // Without sharing, each frame has copies of its own and the frame's first uses wait for
+    // nothing of the previous frame.
+    const Plan apart = compileGraph(kTwo, kTwoPasses);
+    EXPECT_EQ(apart.resources()[apart.resourceIndex("a")].copies, ResourceCopies::PerFrameTransient);
+    EXPECT_EQ(barriersOf(apart, "make_a", "a")[0].srcStages, 0u);
+}
+
+TEST(AliasingRules, APredecessorsUnreadWriteInThePreviousFrameIsAMemoryDependency) {
+    // `a` is last written by a pass that also writes what the frame exports, and nothing
+    // reads that write: the next frame's first write of `a` waits for it with its access.
+    CompileOptions o;
+    o.shareTransientsAcrossFrames = true;
+    const Plan plan = compileGraph(kTwo, R"(
+        {"name": "make_a", "type": "Generic", "uses": {"a": "Write@Compute"}},
+        {"name": "last", "type": "Generic", "uses": {"a": "ReadWrite@Compute", "out": "Write@Compute"}})", o);
+    const auto first = barriersOf(plan, "make_a", "a");
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_EQ(first[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(first[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+}
+
 TEST(Clobbering, EveryTransientIsPoisonedAndItsFirstWriteKeepsWhatItDoesNotWrite) {
     CompileOptions o;
     o.clobberTransients = true;

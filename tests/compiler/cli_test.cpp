@@ -340,6 +340,149 @@ TEST_F(Cli, HelpExitsZero) {
     EXPECT_NE(r.out.find("--feature"), std::string::npos) << r.out;
 }
 
+// ---- compile: output size and transient memory -------------------------------------------
+
+/// The shipped deferred frame, whose 22 transient resources share memory.
+const fs::path kDeferred = kSource / "graphs" / "deferred.json";
+
+/// python3's XML parser on `svg`: "ok N" with N the <rect class="placement"> elements, or its error.
+std::string parseSvgWithPython(const fs::path& svg, const fs::path& scratch) {
+    const std::string cmd =
+        "python3 -c \"import sys, xml.etree.ElementTree as E\n"
+        "root = E.parse(sys.argv[1]).getroot()\n"
+        "assert root.tag == '{http://www.w3.org/2000/svg}svg', root.tag\n"
+        "print('ok', sum(1 for e in root.iter('{http://www.w3.org/2000/svg}rect') if e.get('class') == 'placement'))\" " +
+        quote(svg.string()) + " >" + quote(scratch.string()) + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::string printed = slurp(scratch);
+    while (!printed.empty() && printed.back() == '\n') printed.pop_back();
+    return status == 0 ? printed : "python3 failed: " + printed;
+}
+
+bool anyBarrierAliases(const nlohmann::json& plan) {
+    for (const auto& pass : plan["passes"])
+        for (const auto& b : pass["barriers"])
+            if (b.contains("aliases")) return true;
+    return false;
+}
+
+TEST_F(Cli, MemorySvgIsWrittenWhole) {
+    const fs::path svg = dir_ / "work" / "memory.svg";
+    const CliRun r = run({"compile", kDeferred.string(), "--format", "json", "--memory-svg", svg.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto plan = nlohmann::json::parse(r.out);  // the plan still goes to stdout
+    const size_t placements = plan["memory"]["placements"].size();
+    EXPECT_EQ(placements, 22u);
+    EXPECT_EQ(parseSvgWithPython(svg, dir_ / "python"), "ok " + std::to_string(placements));
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"memory.svg"});  // no temporary left
+    const std::string first = slurp(svg);
+    ASSERT_EQ(run({"compile", kDeferred.string(), "--memory-svg", svg.string()}).status, 0);
+    EXPECT_EQ(slurp(svg), first);  // the same plan draws the same picture, whatever the format
+}
+
+TEST_F(Cli, NoAliasAndPlacementChooseHowTransientsShareMemory) {
+    const CliRun shared = run({"compile", kDeferred.string(), "--format", "json"});
+    ASSERT_EQ(shared.status, 0) << shared.err;
+    const auto aliased = nlohmann::json::parse(shared.out)["memory"];
+    EXPECT_EQ(aliased["strategy"], "bestFitBySize");
+    EXPECT_LT(aliased["heapBytes"], aliased["unaliasedBytes"]) << aliased.dump(1);
+    EXPECT_TRUE(anyBarrierAliases(nlohmann::json::parse(shared.out)));
+
+    const CliRun own = run({"compile", kDeferred.string(), "--format", "json", "--no-alias"});
+    ASSERT_EQ(own.status, 0) << own.err;
+    const auto plan = nlohmann::json::parse(own.out);
+    EXPECT_EQ(plan["memory"]["strategy"], "unaliased");
+    EXPECT_EQ(plan["memory"]["heapBytes"], plan["memory"]["unaliasedBytes"]);
+    EXPECT_EQ(plan["memory"]["unaliasedBytes"], aliased["unaliasedBytes"]);
+    EXPECT_FALSE(anyBarrierAliases(plan));
+    for (const auto& p : plan["memory"]["placements"]) EXPECT_TRUE(p["aliases"].empty()) << p;
+
+    const CliRun firstUse = run({"compile", kDeferred.string(), "--format", "json", "--placement", "first-use"});
+    ASSERT_EQ(firstUse.status, 0) << firstUse.err;
+    EXPECT_EQ(nlohmann::json::parse(firstUse.out)["memory"]["strategy"], "firstUseOrder");
+}
+
+TEST_F(Cli, WidthAndHeightSetTheOutputSize) {
+    const CliRun small = run({"compile", kDeferred.string(), "--format", "json", "--width", "640", "--height", "360"});
+    ASSERT_EQ(small.status, 0) << small.err;
+    const auto plan = nlohmann::json::parse(small.out);
+    EXPECT_EQ(plan["output"], nlohmann::json::array({640, 360}));
+    const auto full = nlohmann::json::parse(run({"compile", kDeferred.string(), "--format", "json"}).out);
+    EXPECT_EQ(full["output"], nlohmann::json::array({1920, 1080}));
+    EXPECT_LT(plan["memory"]["unaliasedBytes"], full["memory"]["unaliasedBytes"]);
+}
+
+TEST_F(Cli, BadSizesAndMemoryFlagsAreMisuse) {
+    const std::string svg = (dir_ / "work" / "memory.svg").string();
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"--width", "0"}, "--width"},
+        {{"--height", "16385"}, "--height"},
+        {{"--width", "wide"}, "--width"},
+        {{"--width", "-5"}, "--width"},
+        {{"--placement", "worst-fit"}, "--placement"},
+        {{"--no-alias", "--placement", "first-use"}, "--placement"},
+        {{"--memory-svg"}, "--memory-svg"},
+    };
+    for (const auto& [flags, named] : cases) {
+        std::vector<std::string> args{"compile", kDeferred.string(), "-o", (dir_ / "work" / "plan.txt").string()};
+        if (flags != std::vector<std::string>{"--memory-svg"}) args.insert(args.end(), {"--memory-svg", svg});
+        args.insert(args.end(), flags.begin(), flags.end());
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 2) << flags[0] << ": " << r.err;
+        EXPECT_NE(r.err.find(named), std::string::npos) << flags[0] << ": " << r.err;
+        EXPECT_TRUE(workFiles().empty()) << flags[0];
+    }
+}
+
+TEST_F(Cli, UnwritableMemorySvgExitsOneAndWritesNothing) {
+    const fs::path plan = dir_ / "work" / "plan.json";
+    const fs::path missingDir = dir_ / "work" / "no_such_dir" / "memory.svg";
+    const CliRun r = run({"compile", kDeferred.string(), "--memory-svg", missingDir.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("memory.svg"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");  // nor the plan: nothing is written
+    EXPECT_TRUE(workFiles().empty());
+
+    // A folder where the file should go: the temporary written beside it is removed again.
+    fs::create_directories(dir_ / "work" / "taken.svg" / "inside");
+    const CliRun taken = run({"compile", kDeferred.string(), "--memory-svg", (dir_ / "work" / "taken.svg").string(),
+                              "-o", plan.string()});
+    EXPECT_EQ(taken.status, 1) << taken.err;
+    EXPECT_NE(taken.err.find("taken.svg"), std::string::npos) << taken.err;
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"taken.svg"});
+
+    // A graph that does not compile leaves an earlier picture as it was.
+    const fs::path svg = dir_ / "work" / "memory.svg";
+    std::ofstream(svg) << "earlier picture\n";
+    const CliRun bad = run({"compile", writeGraph("bad.json", kBadGraph).string(), "--memory-svg", svg.string()});
+    EXPECT_EQ(bad.status, 1);
+    EXPECT_EQ(slurp(svg), "earlier picture\n");
+}
+
+TEST_F(Cli, DotShowsTheHeapsAndWhoTakesOverWhoseMemory) {
+    const fs::path dot = dir_ / "work" / "plan.dot";
+    const CliRun r = run({"compile", kDeferred.string(), "--format", "dot", "-o", dot.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string text = slurp(dot);
+    EXPECT_NE(text.find("subgraph \"cluster_heap0\""), std::string::npos) << text;
+    // hdr_scene takes over shadow_map's memory (text plan: "hdr_scene ... after shadow_map").
+    EXPECT_NE(text.find("\"res:shadow_map\" -> \"res:hdr_scene\" [style=dashed, color=\"#7a5cc6\", fontcolor=\"#7a5cc6\", "
+                        "label=\"memory\""),
+              std::string::npos)
+        << text;
+    const auto plan = nlohmann::json::parse(run({"compile", kDeferred.string(), "--format", "json"}).out);
+    size_t aliases = 0;
+    for (const auto& p : plan["memory"]["placements"]) aliases += p["aliases"].size();
+    size_t memoryEdges = 0;
+    for (size_t at = text.find("label=\"memory\""); at != std::string::npos; at = text.find("label=\"memory\"", at + 1))
+        ++memoryEdges;
+    EXPECT_EQ(memoryEdges, aliases);
+    if (std::system("command -v dot >/dev/null 2>&1") == 0) {  // graphviz reads it
+        const std::string cmd = "dot -Tsvg " + quote(dot.string()) + " -o " + quote((dir_ / "dot.svg").string());
+        EXPECT_EQ(std::system(cmd.c_str()), 0);
+    }
+}
+
 // ---- Every subcommand documents itself; -v / -q; exit statuses across subcommands ----------
 
 /// Subcommand names from `skygraph --help` ("Subcommands:" then one "  name  description" each),
@@ -490,6 +633,22 @@ TEST_F(Cli, RenderDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
     // No bar (stderr is not a terminal) and no info lines (-q); lavapipe's own warning may remain.
     EXPECT_EQ(quiet.err.find("render ["), std::string::npos) << quiet.err;
     EXPECT_EQ(quiet.err.find("info:"), std::string::npos) << quiet.err;
+}
+
+// The memory options reach the compile of the frame: it renders under validation without
+// sharing memory, and `view` takes the same flags.
+TEST_F(Cli, RenderAndViewTakeTheMemoryOptions) {
+    const fs::path out = dir_ / "work" / "out.png";
+    const CliRun r = run({"render", "--width", "16", "--height", "16", "--frames", "2", "--validate", "--no-alias",
+                          "-o", out.string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out));
+    for (const char* command : {"render", "view"}) {
+        const CliRun help = run({command, "--help"});
+        ASSERT_EQ(help.status, 0) << help.err;
+        EXPECT_NE(help.out.find("--no-alias"), std::string::npos) << command << ": " << help.out;
+        EXPECT_NE(help.out.find("--clobber-transients"), std::string::npos) << command << ": " << help.out;
+    }
 }
 #endif
 

@@ -8,7 +8,8 @@ Usage: validate_schemas.py SOURCE_DIR SKYGRAPH_EXECUTABLE
   and params, usage stages, Vulkan names in plans), so the schemas cannot drift silently.
 - Every graphs/*.json validates, and its "$schema" resolves to schemas/graph.schema.json.
 - The JSON plan of every shipped graph, under every combination of its features (and with
-  --no-cull), validates against plan.schema.json.
+  --no-cull), validates against plan.schema.json, and so do those of graphs/deferred.json
+  (whose transients share memory) with --no-alias, --placement first-use and another size.
 - Mutated graphs: the schema and the loader (`skygraph compile`) must agree on each, so
   the schema is shown to reject what the loader rejects (unknown keys, a bad usage string,
   a bad format, ...) and to accept the extensions the loader accepts.
@@ -145,6 +146,11 @@ def check_drift(root, graph_schema, plan_schema):
         names = [prefix + n for n in re.findall(regex, plan_src)]
         check(names and pdefs[key]["enum"] == names, f"plan schema {key} names match plan_format.cpp",
               f"source: {names}\nschema: {pdefs[key]['enum']}")
+    model_src = (root / "framework/compiler/memory_model.cpp").read_text()
+    strategies = re.findall(r'case MemoryStrategy::\w+: return "(\w+)";', model_src)
+    schema_strategies = plan_schema["properties"]["memory"]["properties"]["strategy"]["enum"]
+    check(strategies and schema_strategies == strategies, "plan schema memory strategies match memory_model.cpp",
+          f"source: {strategies}\nschema: {schema_strategies}")
 
 
 def check_shipped_graphs(root, cli, gv, pv):
@@ -175,6 +181,35 @@ def check_shipped_graphs(root, cli, gv, pv):
             plan = json.loads(r.stdout)
             errs = errors(pv, plan)
             check(not errs, f"{rel} [{label}] plan validates against plan.schema.json", describe(errs))
+
+
+def check_memory_plans(root, cli, pv):
+    """The memory options on a graph whose transients share memory (its feature combinations are
+    among the shipped graphs'): the schema holds, and the names in "memory" and in aliasing
+    barriers are the plan's resources."""
+    graph = root / "graphs/deferred.json"
+    rel = graph.relative_to(root)
+    runs = [([], "defaults"), (["--no-alias"], "--no-alias"), (["--placement", "first-use"], "--placement first-use"),
+            (["--width", "640", "--height", "360"], "640x360")]
+    for flags, label in runs:
+        r = run_cli(cli, ["compile", graph, "--format", "json", *flags])
+        if r.returncode != 0:
+            check(False, f"{rel} [{label}] compiles", r.stderr)
+            continue
+        plan = json.loads(r.stdout)
+        errs = errors(pv, plan)
+        check(not errs, f"{rel} [{label}] plan validates against plan.schema.json", describe(errs))
+        resources = {res["name"] for res in plan["resources"]}
+        memory = plan.get("memory", {})
+        named = [p["resource"] for p in memory.get("placements", [])]
+        named += [a for p in memory.get("placements", []) for a in p["aliases"]]
+        barriers = [b for p in plan["passes"] for b in p["barriers"] if "aliases" in b]
+        named += [a for b in barriers for a in b["aliases"]]
+        check(memory and set(named) <= resources, f"{rel} [{label}] memory names the plan's resources",
+              sorted(set(named) - resources))
+        sharing = label != "--no-alias"
+        check(bool(barriers) == sharing, f"{rel} [{label}] {'has' if sharing else 'has no'} aliasing barriers",
+              f"{len(barriers)} aliasing barrier(s)")
 
 
 # ---------------------------------------------------------------------------------------
@@ -238,6 +273,8 @@ def raster_cases():
         ("initial on a non-external resource", lambda d: add(d, "resources", "hdr_color", "initial", value="ShaderRead"), False),
         ("unknown final state", lambda d: add(d, "resources", "swapchain", "final", value="PresentSrc"), False),
         ("external: \"yes\"", lambda d: add(d, "resources", "swapchain", "external", value="yes"), False),
+        ("alias: \"no\"", lambda d: add(d, "resources", "hdr_color", "alias", value="no"), False),
+        ("alias on an external resource", lambda d: add(d, "resources", "swapchain", "alias", value=False), False),
         ("non-boolean feature default", lambda d: add(d, "features", "skybox", value="on"), False),
         ("feature named \"true\"", lambda d: add(d, "features", "true", value=True), False),
         ("feature name with a space", lambda d: add(d, "features", "sky box", value=True), False),
@@ -269,6 +306,8 @@ def raster_cases():
             d, "passes", 0, "description", value="draws"), True),
         ("`if` expression with !, && and parentheses", lambda d: add(d, "passes", 2, "if", value="(skybox && !false) || skybox"), True),
         ("never_cull", lambda d: add(d, "passes", 0, "never_cull", value=True), True),
+        ("alias: false and alias: true on transients", lambda d: add(d, "resources", "hdr_color", "alias", value=False)
+            and add(d, "resources", "depth", "alias", value=True), True),
         ("extent \"output/2\" and mips \"full\"", lambda d: add(d, "resources", "bloom", value={
             "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output/2", "mips": "full"}), True),
         ("extent \"output/0004\"", lambda d: add(d, "resources", "hdr_color", "extent", value="output/0004") and add(
@@ -379,6 +418,14 @@ def check_plan_mutations(root, cli, pv):
         ("usage with a bad usage string", lambda p: p["passes"][0]["usages"][0].update(usage="Read@Nowhere")),
         ("usage with loadOp but no storeOp", lambda p: p["passes"][0]["usages"][0].pop("storeOp")),
         ("non-boolean feature value", lambda p: p["features"].update(skybox="on")),
+        ("memory without placements", lambda p: p["memory"].pop("placements")),
+        ("unknown memory strategy", lambda p: p["memory"].update(strategy="worstFit")),
+        ("unknown key in memory", lambda p: p["memory"].update(wastedBytes=0)),
+        ("placement with a negative offset", lambda p: p["memory"]["placements"][0].update(offset=-1)),
+        ("placement without aliases", lambda p: p["memory"]["placements"][0].pop("aliases")),
+        ("heap without memoryTypeBits", lambda p: p["memory"]["heaps"][0].pop("memoryTypeBits")),
+        ("barrier aliases as a string", lambda p: barrier(p).update(aliases="depth")),
+        ("barrier aliases naming a resource twice", lambda p: barrier(p).update(aliases=["depth", "depth"])),
     ]
     for name, fn in cases:
         errs = errors(pv, mutate(fn))
@@ -401,6 +448,7 @@ def main():
             tmp = Path(t)
             (tmp / "graphs").mkdir()
             check_mutations(root, cli, gv, tmp)
+        check_memory_plans(root, cli, pv)
         check_plan_mutations(root, cli, pv)
     print(f"{passed} passed, {failed} failed")
     return 0 if failed == 0 else 1

@@ -157,6 +157,8 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
     for (const auto& [name, on] : options.features) co.features[name] = on;
     co.outputWidth = options.width;
     co.outputHeight = options.height;
+    co.aliasing = options.aliasing;
+    co.clobberTransients = options.clobberTransients;
     return in;
 }
 

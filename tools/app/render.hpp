@@ -52,6 +52,10 @@ struct RenderOptions {
     /// Unset: the scene's own.
     std::optional<std::filesystem::path> environmentFile;
     FeatureValues features;          ///< Overrides of the graph's defaults.
+    /// CompileOptions::aliasing: false gives every transient resource memory of its own.
+    bool aliasing = true;
+    /// CompileOptions::clobberTransients: each transient is poisoned before its first use.
+    bool clobberTransients = false;
     uint32_t width = 256;
     uint32_t height = 256;
     uint32_t frames = 3;
@@ -73,7 +77,8 @@ struct RenderOptions {
 
 /// What `render` and `view` share before compiling: the graph and the scene loaded, the
 /// environment file read (and the environment sized for the view), and the compile options the
-/// scene, the features and the size give. A plain value; borrows RenderOptions::passes.
+/// scene, the features, the size and the memory options give. A plain value; borrows
+/// RenderOptions::passes.
 struct FrameInputs {
     PassRegistry registry;  ///< The declarations the graph was loaded with.
     /// The recording code: RenderOptions::passes, else Generic for every pass type.
@@ -82,7 +87,8 @@ struct FrameInputs {
     std::optional<Scene> scene;
     std::optional<HdrImage> environment;  ///< The scene's environment file, if it has one.
     std::optional<EnvironmentSizes> environmentSizes;
-    /// Features and output size; the caller adds presentation or read-backs.
+    /// Features, output size, aliasing and clobbering; the caller adds presentation or
+    /// read-backs.
     CompileOptions compile;
 };
 

@@ -28,25 +28,39 @@ struct CompileArgs {
     std::string format = "text";
     std::string output;
     bool noCull = false;
+    uint32_t width = 1920, height = 1080;  // the output size "output" extents resolve to
+    bool noAlias = false;
+    std::string placement = "best-fit";
+    std::string memorySvg;  // where to draw the memory layout; empty: nowhere
     bool watch = false;
     uint32_t watchIntervalMs = 250;
     uint32_t watchIterations = 0;  // 0: until interrupted
 };
 
-/// One successful compilation: the text listing (what --watch diffs) and the requested format.
+/// One successful compilation: the text listing (what --watch diffs), the requested format and,
+/// with --memory-svg, the memory layout's picture.
 struct CompiledPlan {
     std::string text;
     std::string formatted;
+    std::string memorySvg;
 };
+
+CompileOptions compileOptions(const CompileArgs& args, const FeatureValues& features) {
+    CompileOptions options;
+    options.features = features;
+    options.cull = !args.noCull;
+    options.outputWidth = args.width;
+    options.outputHeight = args.height;
+    options.aliasing = !args.noAlias;
+    options.placement = args.placement == "first-use" ? MemoryStrategy::FirstUseOrder : MemoryStrategy::BestFitBySize;
+    return options;
+}
 
 CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features) {
     const auto start = std::chrono::steady_clock::now();
     const PassRegistry registry = PassRegistry::withBuiltins();
     const GraphDesc graph = loadGraphFile(args.graph, registry);
-    CompileOptions options;
-    options.features = features;
-    options.cull = !args.noCull;
-    const Plan plan = compile(graph, options);
+    const Plan plan = compile(graph, compileOptions(args, features));
     spdlog::debug("{}: {} passes and {} resources -> {} passes run, {} culled, in {:.2f} ms", args.graph,
                   graph.passes.size(), graph.resources.size(), plan.passes().size(), plan.culled().size(),
                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
@@ -62,7 +76,15 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
     }
     else if (args.format == "dot") out.formatted = planToDot(plan, graph, &setup);
     else out.formatted = out.text;
+    if (!args.memorySvg.empty()) out.memorySvg = planMemoryToSvg(plan);
     return out;
+}
+
+/// The picture first: when it cannot be written, neither is the plan (exit 1, nothing written).
+void writeCompiled(const CompileArgs& args, const CompiledPlan& compiled, bool planToStdout) {
+    if (!args.memorySvg.empty()) writeOutput(args.memorySvg, compiled.memorySvg);
+    if (!args.output.empty()) writeOutput(args.output, compiled.formatted);
+    else if (planToStdout) writeOutput({}, compiled.formatted);
 }
 
 std::atomic<bool> gStopWatching{false};
@@ -78,14 +100,10 @@ int watch(const CompileArgs& args, const FeatureValues& features) {
     auto rebuild = [&] {
         try {
             CompiledPlan now = compileOnce(args, features);
-            if (!args.output.empty()) writeOutput(args.output, now.formatted);
-            if (!last) {
-                if (args.output.empty()) writeOutput({}, now.formatted);
-            } else if (const std::string diff = unifiedDiff(last->text, now.text, "plan (before)", "plan (now)");
-                       diff.empty()) {
-                std::cout << "plan unchanged\n" << std::flush;
-            } else {
-                std::cout << diff << std::flush;
+            writeCompiled(args, now, !last);
+            if (last) {
+                const std::string diff = unifiedDiff(last->text, now.text, "plan (before)", "plan (now)");
+                std::cout << (diff.empty() ? "plan unchanged\n" : diff) << std::flush;
             }
             last = std::move(now);
         } catch (...) {
@@ -108,7 +126,7 @@ int watch(const CompileArgs& args, const FeatureValues& features) {
 int run(const CompileArgs& args) {
     const FeatureValues features = parseFeatureFlags(args.features);
     if (args.watch) return watch(args, features);
-    writeOutput(args.output, compileOnce(args, features).formatted);
+    writeCompiled(args, compileOnce(args, features), true);
     return kExitOk;
 }
 
@@ -123,6 +141,19 @@ Command addCompileCommand(CLI::App& parent) {
         ->check(CLI::IsMember({"text", "json", "dot"}));
     cmd->add_option("-o,--output", args->output, "Write to FILE instead of stdout (never half-written)");
     cmd->add_flag("--no-cull", args->noCull, "Keep passes whose output nobody reads");
+    cmd->add_option("--width", args->width, "Output width that \"output\" extents resolve to (default 1920)")
+        ->check(CLI::Range(1u, 16384u));
+    cmd->add_option("--height", args->height, "Output height that \"output\" extents resolve to (default 1080)")
+        ->check(CLI::Range(1u, 16384u));
+    CLI::Option* noAlias = cmd->add_flag(
+        "--no-alias", args->noAlias, "Give every transient resource memory of its own (no aliasing barriers)");
+    cmd->add_option("--placement", args->placement,
+                    "How transient resources share memory: best-fit (largest first, into the tightest gap; the "
+                    "default) or first-use (in order of first use, like a frame-by-frame pool); docs/memory.md")
+        ->check(CLI::IsMember({"best-fit", "first-use"}))
+        ->excludes(noAlias);
+    cmd->add_option("--memory-svg", args->memorySvg,
+                    "Also draw the memory layout (passes across, byte offsets down) as SVG to FILE (never half-written)");
     cmd->add_flag("--watch", args->watch,
                   "Recompile whenever GRAPH is saved and print the text plan's diff (until Ctrl-C)");
     cmd->add_option("--watch-interval-ms", args->watchIntervalMs, "How often --watch looks at GRAPH")

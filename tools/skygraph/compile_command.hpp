@@ -1,5 +1,6 @@
-// `skygraph compile GRAPH`: print the plan (text, JSON or graphviz DOT), or with
-// --watch keep recompiling on every save and print how the plan changed.
+// `skygraph compile GRAPH`: print the plan (text, JSON or graphviz DOT) and, with --memory-svg,
+// draw its memory layout; or with --watch keep recompiling on every save and print how the plan
+// changed.
 #pragma once
 
 #include "cli_common.hpp"

@@ -71,6 +71,11 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_flag("!--no-fit-environment", o.fitEnvironmentToView,
                   "Build the environment cube and the prefiltered cube at the graph's declared sizes, not at "
                   "the sizes the view can show (output height, field of view, equirect width)");
+    cmd->add_flag("!--no-alias", o.aliasing,
+                  "Give every transient resource of the frame memory of its own (no aliasing barriers)");
+    cmd->add_flag("--clobber-transients", o.clobberTransients,
+                  "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
+                  "before its first use: a frame that then renders differently reads what it did not write");
     cmd->add_flag("--validate", o.validate, "Khronos validation with synchronization validation; any message fails");
     cmd->add_option("--device", o.device, "Device by index or name");
     return {cmd, [args] { return run(*args); }};

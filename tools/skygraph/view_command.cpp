@@ -66,6 +66,11 @@ Command addViewCommand(CLI::App& parent) {
         ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}));
     cmd->add_flag("!--no-fit-environment", o.frame.fitEnvironmentToView,
                   "Build the environment cube and the prefiltered cube at the graph's declared sizes");
+    cmd->add_flag("!--no-alias", o.frame.aliasing,
+                  "Give every transient resource of the frame memory of its own (no aliasing barriers)");
+    cmd->add_flag("--clobber-transients", o.frame.clobberTransients,
+                  "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
+                  "before its first use");
     cmd->add_flag("!--no-ui", o.overlay, "Hide the debug overlay (the graph's feature ui off)");
     cmd->add_flag("--validate", o.frame.validate,
                   "Khronos validation with synchronization validation; any message fails");
