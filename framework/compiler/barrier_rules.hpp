@@ -71,7 +71,9 @@ bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkIm
         // WAR: the reads since the last write chain after it, so waiting for them is an
         // execution dependency that also orders this write after that write.
         if (st.readStages) {
-            b.srcStages = st.readStages;
+            // Contents from outside the frame may still be read there, in the scope they
+            // arrived in (rule 8): those readers are waited for too.
+            b.srcStages = st.readStages | (st.fromOutside ? st.writeStages : 0);
             needed = true;
         } else if (st.writeStages && !(st.fromOutside && covers(st.visibleStages, st.visibleAccess, need))) {
             b.srcStages = st.writeStages;  // WAW: memory dependency
@@ -86,7 +88,7 @@ bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkIm
             // The transition writes, so it waits for earlier reads (WAR). Those reads chain
             // after the barrier that made the last write available, so they alone are the
             // source then; without reads, the write is (RAW, a memory dependency).
-            b.srcStages = st.readStages ? st.readStages : st.writeStages;
+            b.srcStages = st.readStages ? st.readStages | (st.fromOutside ? st.writeStages : 0) : st.writeStages;
             b.srcAccess = st.readStages ? 0 : st.writeAccess;
         } else if (!visible && (st.writeStages || st.fromOutside)) {
             b.srcStages = st.writeStages;  // RAW: memory dependency
@@ -109,6 +111,14 @@ bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkIm
         // A transition rewrites the memory: only this barrier's scope sees the result.
         st.visibleStages = (layoutChange ? 0 : st.visibleStages) | b.dstStages;
         st.visibleAccess = (layoutChange ? 0 : st.visibleAccess) | b.dstAccess;
+        if (layoutChange) {
+            // The transition wrote it last: a later barrier that sources from the last write
+            // (to make the contents visible elsewhere, or a WAW) must chain after the
+            // transition too, through this barrier's destination stages. The earlier write
+            // stays in the source, with its access, as rule 1 repeats it.
+            st.writeStages |= b.dstStages;
+            st.readStages = 0;
+        }
     }
     return true;
 }

@@ -42,9 +42,28 @@ struct PlanEditor {
                 passes[p].barriers = {passes[p].barriers.data() - 1, passes[p].barriers.size()};
     }
 
+    /// Pass `pass`'s usages, editable in place (their resource, range, layout, masks, load and
+    /// store). Views `plan`'s usage array: valid while `plan` lives and is not assigned to.
+    /// Throws std::out_of_range for no such pass.
+    [[nodiscard]] static std::span<PlannedUsage> usagesOf(Plan& plan, size_t pass) {
+        const std::span<const PlannedUsage> u = plan.passes_.at(pass).usages;
+        if (u.empty()) return {};
+        return {plan.usages_.data() + (u.data() - plan.usages_.data()), u.size()};
+    }
+
     /// The barriers after the last pass, editable (no span views them: erase freely). Valid
     /// while `plan` lives and is not assigned to.
     [[nodiscard]] static std::vector<Barrier>& finalBarriers(Plan& plan) noexcept { return plan.finalBarriers_; }
+    /// The in-pass barriers, editable (no span views them). Valid as finalBarriers.
+    [[nodiscard]] static std::vector<InPassBarrier>& inPassBarriers(Plan& plan) noexcept { return plan.inPassBarriers_; }
+    /// The resources (lifetimes, layouts, copies, placement indices), editable. Valid as
+    /// finalBarriers.
+    [[nodiscard]] static std::vector<PlannedResource>& resources(Plan& plan) noexcept { return plan.resources_; }
+    /// The transient memory layout (heaps, placements and their aliases), editable. Valid as
+    /// finalBarriers.
+    [[nodiscard]] static MemoryLayout& memory(Plan& plan) noexcept { return plan.memory_; }
+    /// The presentations' semaphore stages, editable. Valid as finalBarriers.
+    [[nodiscard]] static std::vector<Presentation>& presentations(Plan& plan) noexcept { return plan.presentations_; }
 };
 
 }  // namespace skygraph::detail

@@ -564,7 +564,7 @@ private:
             // What a resource taking over its memory later will wait for; kept now, while its
             // state is in cache. (Subresources it never used have nothing to wait for unless
             // aliased, which finishAliasing adds.)
-            if (res.placement != PlannedResource::kNoPlacement) lastUses_[r] = lastUses(stateOf(r), facts_[r].grid.size(), 0);
+            if (res.placement != PlannedResource::kNoPlacement) lastUses_[r] = lastUses(r, stateOf(r), 0);
         }
     }
 
@@ -728,22 +728,25 @@ private:
             }
     }
 
-    /// What a barrier after the last uses of subresources `states` waits for (rule 16): per
-    /// subresource, the reads since its last write (an execution dependency that orders the
-    /// write too, rule 2), or that write with its access when nothing read it. A subresource
-    /// never used counts as written in `untouched` (the stages of its aliasing transition).
-    static StageAccess lastUses(const SubresourceState* states, size_t cells, VkPipelineStageFlags2 untouched) {
+    /// What a barrier after resource r's uses in the frame waits for (rule 16), given the state
+    /// of its subresources `states` after them: every write of the frame to r, with its
+    /// access, and per subresource the reads since its last write (or, never used, the
+    /// `untouched` stages of its aliasing transition). The reads alone would order the writes
+    /// too (rule 2), but the barriers that made the writes available named only the
+    /// subresources they wrote, and the spec asks the barrier between aliases to contain every
+    /// subresource that overlaps: this one does, so it is the memory dependency itself.
+    StageAccess lastUses(uint32_t r, const SubresourceState* states, VkPipelineStageFlags2 untouched) const {
         StageAccess last;
-        for (size_t c = 0; c < cells; ++c) {
-            const SubresourceState& st = states[c];
-            if (st.readStages) {
-                last.stages |= st.readStages;
-            } else if (st.writeStages) {
-                last.stages |= st.writeStages;
-                last.access |= st.writeAccess;
-            } else {
-                last.stages |= untouched;
+        for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next)
+            if (accesses_[k].writes) {
+                last.stages |= (*usages_)[k].stages;
+                last.access |= writeBits((*usages_)[k].access);
             }
+        for (size_t c = 0; c < facts_[r].grid.size(); ++c) {
+            const SubresourceState& st = states[c];
+            last.stages |= st.readStages | st.writeStages;
+            last.access |= st.writeAccess;
+            if (!st.readStages && !st.writeStages) last.stages |= untouched;
         }
         return last;
     }
@@ -762,7 +765,7 @@ private:
                          [&](size_t sub) { recordAccess(replay_[sub], accesses_[k].writes, scope.layout, scope); });
         }
         // A subresource never used was transitioned by the first step's aliasing barrier.
-        return lastUses(replay_.data(), replay_.size(), plan_.resources()[r].firstStages);
+        return lastUses(r, replay_.data(), plan_.resources()[r].firstStages);
     }
 
     /// The memory that resource r takes over was last used by its placement's `aliases`

@@ -59,17 +59,18 @@ constexpr const char* kTwoPasses = R"(
     {"name": "make_b", "type": "Generic", "uses": {"mid": "Read@Fragment", "b": "Write@ColorAttachment"}},
     {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "Write@ColorAttachment"}})";
 
-TEST(AliasingRules, ATakenOverResourceWaitsForTheReadsOfItsPredecessorOnly) {
+TEST(AliasingRules, ATakenOverResourceWaitsForItsPredecessorsLastWriteAndReads) {
     const Plan plan = compileGraph(kTwo, kTwoPasses);
     ASSERT_EQ(ids(placementOf(plan, "b").aliases), std::vector<uint32_t>{uint32_t(plan.resourceIndex("a"))});
     EXPECT_EQ(placementOf(plan, "a").offset, placementOf(plan, "b").offset);
     const auto b = barriersOf(plan, "make_b", "b");
     ASSERT_EQ(b.size(), 1u);
     EXPECT_TRUE(b[0].aliasing);
-    // a's last use read it after a barrier made its write available: an execution dependency
-    // on that read orders the write too (rule 2).
-    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
-    EXPECT_EQ(b[0].srcAccess, 0u);
+    // a's last use read it after a barrier made its write available, but that barrier named
+    // a's subresources, not every one that overlaps b: this one repeats the write (stage and
+    // access) and waits for the read, so it is the whole memory dependency.
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT);
     EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
@@ -129,7 +130,7 @@ TEST(AliasingRules, TheAliasingBarrierCoversEverySubresource) {
     EXPECT_TRUE(first[0].aliasing);
     EXPECT_EQ(first[0].range, (SubresourceRange{0, 3, 0, 1}));
     EXPECT_EQ(first[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    EXPECT_EQ(first[0].srcAccess, 0u);
+    EXPECT_EQ(first[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT) << "a's write, repeated";
     EXPECT_EQ(first[0].dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     EXPECT_EQ(first[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(first[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
@@ -165,7 +166,8 @@ TEST(AliasingRules, FramesSharingTheHeapsWaitForThePreviousFramesLastUses) {
         EXPECT_EQ(plan.resources()[plan.resourceIndex(r)].copies, ResourceCopies::SharedTransient) << r;
     EXPECT_EQ(plan.resources()[plan.resourceIndex("out")].copies, ResourceCopies::SharedExported);
     // a and b share bytes, and b holds them when the frame ends: the next frame's a waits for
-    // b's last use (a fragment read); mid holds its own bytes across frames.
+    // b's last uses (its color write and the fragment read); mid holds its own bytes across
+    // frames.
     EXPECT_TRUE(placementOf(plan, "a").aliases.empty());
     EXPECT_EQ(ids(placementOf(plan, "a").previousFrameAliases), std::vector<uint32_t>{b});
     EXPECT_EQ(ids(placementOf(plan, "b").aliases), std::vector<uint32_t>{a});
@@ -174,14 +176,17 @@ TEST(AliasingRules, FramesSharingTheHeapsWaitForThePreviousFramesLastUses) {
     const auto first = barriersOf(plan, "make_a", "a");
     ASSERT_EQ(first.size(), 1u);
     EXPECT_TRUE(first[0].aliasing);
-    EXPECT_EQ(first[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
-    EXPECT_EQ(first[0].srcAccess, 0u);
+    constexpr VkPipelineStageFlags2 drawnThenSampled =
+        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    EXPECT_EQ(first[0].srcStages, drawnThenSampled);
+    EXPECT_EQ(first[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     EXPECT_EQ(first[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
-    // mid's last use in a frame is a fragment read (make_b), and its first a color write.
+    // mid is drawn (use_a) and sampled (make_b) every frame: the next frame's draw waits for both.
     const auto midFirst = barriersOf(plan, "use_a", "mid");
     ASSERT_EQ(midFirst.size(), 1u);
     EXPECT_TRUE(midFirst[0].aliasing);
-    EXPECT_EQ(midFirst[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(midFirst[0].srcStages, drawnThenSampled);
+    EXPECT_EQ(midFirst[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
     // Without sharing, each frame has copies of its own and the frame's first uses wait for
     // nothing of the previous frame.
     const Plan apart = compileGraph(kTwo, kTwoPasses);

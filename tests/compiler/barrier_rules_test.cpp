@@ -650,5 +650,46 @@ TEST(UsageModes, ADefaultBindingResolvesByResourceAndAccess) {
         << "only shader stages bind";
 }
 
+// Rule 8: an external resource arrives with readers outside the frame in its initial state's
+// scope (ShaderRead: fragment and compute shaders). A write after the frame's own reads must
+// wait for those outside readers too, not only for the frame's reads.
+TEST(BarrierRules, AWriteAfterTheFramesReadsStillWaitsForTheReadersOutside) {
+    const Plan plan = compileGraph(R"("buf": {"type": "buffer", "size": 256, "external": true, "final": "ShaderRead"},)" +
+                                       std::string(kOut),
+                                   R"(
+        {"name": "read", "type": "Generic", "uses": {"buf": "Read@Fragment", "out": "Write@ColorAttachment"}},
+        {"name": "write", "type": "Generic", "uses": {"buf": "Write@Compute"}})");
+    const auto b = barriersOf(plan, "write", "buf");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT)
+        << "the draw that read it, and whatever read it outside the frame";
+    EXPECT_EQ(b[0].srcAccess, 0u) << "write after read: an execution dependency";
+}
+
+// Rule 5: a layout transition made for a read is the last write. A final barrier that makes the
+// contents visible to more stages afterwards must chain after that transition (through the
+// stages it was made visible to), not only after the write before it.
+TEST(BarrierRules, AFinalBarrierAfterAReadsTransitionChainsAfterIt) {
+    const Plan plan = compileGraph(
+        R"("img": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "final": "ShaderRead"},)" +
+            std::string(kOut),
+        R"(
+        {"name": "write", "type": "Generic", "uses": {"img": "Write@Compute"}},
+        {"name": "sample", "type": "Generic", "uses": {"img": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    const auto sampled = barriersOf(plan, "sample", "img");
+    ASSERT_EQ(sampled.size(), 1u);
+    EXPECT_EQ(sampled[0].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(sampled[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(sampled[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    const Barrier* final = nullptr;
+    for (const Barrier& b : plan.finalBarriers())
+        if (plan.resources()[b.resource].name == "img") final = &b;
+    ASSERT_NE(final, nullptr);
+    EXPECT_TRUE(final->srcStages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) << "chains after the transition";
+    EXPECT_TRUE(final->srcStages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT) << "and repeats the write (rule 1)";
+    EXPECT_EQ(final->srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(final->dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+}
+
 }  // namespace
 }  // namespace skygraph

@@ -100,7 +100,11 @@ public:
             std::string pass = this->pass(p);
             if (!pass.empty()) g.passes.push_back(std::move(pass));
         }
-        g.present = present();
+        std::string last;  // the image the present pass reads; empty: any
+        std::string chainResources;
+        for (uint32_t c = 0; c < shape_.chains; ++c) last = chain(c, last, chainResources, g.passes);
+        g.resources += chainResources;
+        g.present = present(last);
         featureDecl_ = R"("features": { "f0": )" + std::string(features_[0] ? "true" : "false") +
                        R"(, "f1": )" + (features_[1] ? "true" : "false") + " }";
         g.resources = featureDecl_ + ",\n\"resources\": {\n" + g.resources + "}";
@@ -268,14 +272,71 @@ private:
         return p + R"(, "uses": [ )" + uses + " ] }";
     }
 
-    /// Reads one image (sampled, whole) and writes the swapchain, as an attachment or a copy.
-    std::string present() {
-        std::string uses;
+    /// An image of the graph before the chains (cleared or external, so always written), or
+    /// empty when it has none.
+    std::string anyImage() {
         std::vector<const Resource*> images;
         for (const auto& r : resources_)
             if (r.kind != Kind::Buffer) images.push_back(&r);
-        if (!images.empty())
-            uses = R"({ "resource": ")" + any(images)->name + R"(", "access": "Read", "stage": "Fragment" }, )";
+        return images.empty() ? std::string() : any(images)->name;
+    }
+
+    /// A read of `resource` in the fragment shader (of mip 0 alone when `firstMip`).
+    static std::string fragmentRead(const std::string& resource, bool firstMip = false) {
+        return R"({ "resource": ")" + resource + R"(", "access": "Read", "stage": "Fragment")" +
+               (firstMip ? R"(, "mips": [0, 1])" : "") + " }, ";
+    }
+
+    /// Chain `index`: two to four links, each a pass that reads the link before (the first:
+    /// `from`, or nothing) and writes a new transient, without `clear`, whole: images of mixed
+    /// formats and sizes, as attachments or storage, some with a second mip that nothing
+    /// writes or reads (it keeps its poison), and with `chainBuffers` now and then a buffer.
+    /// Those sharing memory are then described differently. Adds the transients' JSON to
+    /// `resources` and the passes to `passes`; returns the last link, an image of one mip.
+    std::string chain(uint32_t index, const std::string& from, std::string& resources,
+                      std::vector<std::string>& passes) {
+        static const std::vector<const char*> formats = {"R8G8B8A8_UNORM", "R16G16B16A16_SFLOAT", "R32_SFLOAT"};
+        std::string read = from;
+        bool readFirstMip = false;
+        const uint32_t links = 2 + pick(3);
+        for (uint32_t l = 0; l < links; ++l) {
+            const std::string name = "c" + std::to_string(index) + "_" + std::to_string(l);
+            std::string uses = read.empty() ? "" : fragmentRead(read, readFirstMip);
+            const bool last = l + 1 == links;
+            if (shape_.chainBuffers && !last && chance(4)) {
+                // A buffer link, written by compute, which the next link reads in its shader.
+                resources += ",\n\"" + name + R"(": { "type": "buffer", "size": )" + (chance(2) ? "256" : "4096") +
+                             " }";
+                passes.push_back(R"({ "name": ")" + name + R"(", "type": "Generic", "uses": [ )" + uses +
+                                 R"({ "resource": ")" + name + R"(", "access": "Write", "stage": "Compute" } ] })");
+                read = name;
+                readFirstMip = false;
+                continue;
+            }
+            // One draw from the generator per statement: the order of a graph's choices must not
+            // depend on how a compiler orders the operands of one expression.
+            const bool mips = !last && chance(4);
+            const std::string format = any(formats);
+            const bool half = !last && chance(3);
+            const bool attachment = chance(2);
+            resources += ",\n\"" + name + R"(": { "type": "image2d", "format": ")" + format + R"(", "extent": )" +
+                         (half ? R"("output/2")" : R"("output")") + (mips ? R"(, "mips": 2)" : "") + " }";
+            uses += R"({ "resource": ")" + name + R"(", "access": "Write", "stage": ")" +
+                    (attachment ? "ColorAttachment" : "Compute") + "\"" + (mips ? R"(, "mips": [0, 1])" : "") + " }";
+            passes.push_back(R"({ "name": ")" + name + R"(", "type": "Generic", "uses": [ )" + uses + " ] }");
+            read = name;
+            readFirstMip = mips;
+        }
+        return read;
+    }
+
+    /// Reads one image (sampled, whole; `image` when given) and writes the swapchain, as an
+    /// attachment or a copy.
+    std::string present(const std::string& image) {
+        std::string uses;
+        const std::string read = image.empty() ? anyImage() : image;
+        if (!read.empty())
+            uses = R"({ "resource": ")" + read + R"(", "access": "Read", "stage": "Fragment" }, )";
         uses += std::string(R"({ "resource": "swapchain", "access": "Write", "stage": ")") +
                 (chance(3) ? "Transfer" : "ColorAttachment") + R"(" })";
         return R"({ "name": "present", "type": "Generic", "uses": [ )" + uses + " ] }";

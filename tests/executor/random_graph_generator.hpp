@@ -18,6 +18,20 @@ struct RandomGraphShape {
     uint32_t maxUsagesPerPass = 3;
     /// The output size the renderer will use: attachment extents are matched against it.
     uint32_t outputSize = 16;
+    /// Chains of short-lived transients without `clear` after the random passes, which the
+    /// present pass depends on instead of an image of theirs: the first link reads nothing,
+    /// each link writes the next transient whole (an attachment or a storage image) from the
+    /// one before, and the present pass reads the last. The transients of the chains share
+    /// memory with each other and with the other passes' transients, and are clobbered when
+    /// clobbering is on, while the read-back depends on them alone: the random passes' own
+    /// results need not be deterministic (a Generic pass may read, clamped, texels another
+    /// invocation of it writes). Such a graph is valid in generation order only.
+    uint32_t chains = 0;
+    /// Chains may have buffer links too, so that buffers take over images' memory and images
+    /// buffers'. Off by default: Khronos validation 1.3.239 tracks buffers and optimal images
+    /// in separate address spaces, so a barrier on one does not reach the other's accesses
+    /// there, and it reports hazards that a chain through a buffer orders.
+    bool chainBuffers = false;
 };
 
 /// One generated graph. Every resource is cleared or external, so a read always has a
@@ -32,7 +46,8 @@ struct RandomGraph {
 
     /// The graph file with the passes in generation order.
     [[nodiscard]] std::string json() const;
-    /// The graph file with passes[order[i]] at position i (`order` is a permutation).
+    /// The graph file with passes[order[i]] at position i (`order` is a permutation; for a
+    /// graph with chains, only the generation order is valid).
     [[nodiscard]] std::string json(const std::vector<size_t>& order) const;
     /// A seeded permutation of the passes, for the reordering check.
     [[nodiscard]] std::vector<size_t> shuffledOrder(uint32_t salt) const;

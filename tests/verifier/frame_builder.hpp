@@ -1,0 +1,86 @@
+// The builder of the frame model (frame_model.hpp), split over files by what it records:
+// frame_model.cpp the frames and their memory objects, frame_commands.cpp what the queue
+// records (barrier batches and usages), frame_outside.cpp the agents outside the queue (the
+// presentation engine, the host, and readers of external and exported resources).
+#pragma once
+
+#include "frame_model.hpp"
+#include "frame_resources.hpp"
+
+#include <string>
+#include <vector>
+
+namespace skygraph::verifier {
+
+/// How an access is placed among the points, resolved once every point exists.
+struct PlaceSpec {
+    enum class Kind : uint8_t { Queue, Inside, WaitingFor, Signalling };
+    Kind kind = Kind::Queue;
+    QueuePlace queue;
+    PointId point = 0;
+    StageSet stages;
+};
+
+class FrameBuilder {
+public:
+    FrameBuilder(const Plan& plan, const GraphDesc& graph, const VerifyOptions& options, Reporter& reporter,
+                 FrameModel& model)
+        : plan_(plan), graph_(graph), options_(options), reporter_(reporter), model_(model) {}
+
+    void run();
+
+private:
+    /// A presented image of this frame: its Presentation and its memory object.
+    struct Presented {
+        const Presentation* presentation;
+        uint32_t object;
+    };
+    struct BatchEntry {
+        PointId point;
+        const Barrier* barrier;
+        uint32_t object;
+    };
+
+    // frame_model.cpp
+    void makeObjects();
+    void recordFrame(uint32_t f);
+    void resolvePlaces();
+    /// The object of plan resource `r` in frame `f`, or -1 (reported when `r` is out of range).
+    int32_t objectOf(uint32_t f, uint32_t r, const FindingSite& site);
+    void addAccess(ModelAccess a, PlaceSpec spec);
+    PointId addPoint(const SyncPoint& p, const BarrierMemory& memory);
+    /// Mask problems of one side of a barrier or usage (reported in the first frame only).
+    void checkMask(uint32_t f, const FindingSite& site, int64_t resource, const char* side,
+                   VkPipelineStageFlags2 stages, VkAccessFlags2 access);
+    void report(FindingKind kind, FindingSite site, std::string reason, int64_t resource = -1);
+    FindingSite stepSite(uint32_t frame, size_t step, std::string what) const;
+
+    // frame_commands.cpp
+    void recordBatch(uint32_t f, size_t step, const std::vector<const Barrier*>& barriers, int64_t inPassStep,
+                     const char* label, uint64_t position);
+    void markWholeObjects(const std::vector<BatchEntry>& entries);
+    /// The step's usages; returns the timeline items of the ReadWrite transfers' copies in,
+    /// which come after the in-pass barriers.
+    std::vector<TimelineItem> recordUsages(uint32_t f, size_t step, uint64_t position);
+    void recordInPassBatch(uint32_t f, size_t step, uint64_t position);
+    void recordReadbackCopy(uint32_t f, size_t step, size_t usage, const QueuePlace& q);
+
+    // frame_outside.cpp
+    std::vector<Presented> recordAcquires(uint32_t f);
+    void recordPresentsAndFence(uint32_t f, const std::vector<Presented>& presented);
+    void recordOutsideReadsBefore(uint32_t f);
+    void recordOutsideReadsAfter(uint32_t f);
+    void recordOutsideRead(uint32_t f, uint32_t r, const RequiredScope& scope, int64_t step, const char* what);
+
+    const Plan& plan_;
+    const GraphDesc& graph_;
+    const VerifyOptions& options_;
+    Reporter& reporter_;
+    FrameModel& model_;
+    std::vector<ResourceShape> shapes_;
+    std::vector<PlaceSpec> pending_;     // per access: how to place it once the points exist
+    std::vector<uint32_t> hostCopies_;   // this frame's read-back copies, which the host reads
+    uint64_t position_ = 0, batch_ = 0;  // submission order; batches, which never chain within
+};
+
+}  // namespace skygraph::verifier

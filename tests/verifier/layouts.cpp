@@ -1,0 +1,280 @@
+// Layouts and contents, walked in recording order (Vulkan 1.3 §7.6.2 "Image Layout
+// Transitions", §12.4 "Image Layouts", the render pass load and store operations, and the
+// Memory Aliasing section's "writes via one alias make the contents ... undefined").
+#include "checks.hpp"
+
+#include <skygraph/format.hpp>
+
+#include <algorithm>
+#include <initializer_list>
+#include <string>
+#include <vector>
+
+namespace skygraph::verifier {
+namespace {
+
+bool oneOf(VkImageLayout l, std::initializer_list<VkImageLayout> allowed) {
+    return std::find(allowed.begin(), allowed.end(), l) != allowed.end();
+}
+
+/// The layouts a usage (or one half of a ReadWrite transfer) may be performed in.
+bool layoutAllowed(const PlannedUsage& u, bool depthFormat, bool copyOut, bool copyIn, VkImageLayout l) {
+    const UsageMode& m = u.usage;
+    switch (m.stage) {
+        case skygraph::Stage::ColorAttachment:
+            return oneOf(l, {VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_ATTACHMENT_OPTIMAL,
+                             VK_IMAGE_LAYOUT_GENERAL});
+        case skygraph::Stage::DepthAttachment: {
+            const bool writable =
+                oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
+                          VK_IMAGE_LAYOUT_ATTACHMENT_OPTIMAL,
+                          VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_STENCIL_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL});
+            if (writable) return true;
+            // A depth attachment that is only read (no load-op clear) may use a read-only layout.
+            const bool writes = accessTypes(u.access).has(AccessType::DepthStencilAttachmentWrite);
+            return !writes && oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                                        VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL,
+                                        VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL});
+        }
+        case skygraph::Stage::Vertex:
+        case skygraph::Stage::Fragment:
+        case skygraph::Stage::Compute:
+            if (resolvedBinding(m, true) == BindAs::Sampled)
+                return oneOf(l, {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL,
+                                 VK_IMAGE_LAYOUT_GENERAL}) ||
+                       (depthFormat && oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                                                 VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
+                                                 VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL}));
+            return l == VK_IMAGE_LAYOUT_GENERAL;  // storage images
+        case skygraph::Stage::Transfer: {
+            const bool reads = copyOut || (!copyIn && m.access == Access::Read);
+            return oneOf(l, {reads ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_IMAGE_LAYOUT_GENERAL});
+        }
+        default: return false;  // vertex input and indirect reads are of buffers
+    }
+}
+
+struct CellState {
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    bool defined = false;
+    /// Another resource wrote the memory: this subresource must move from UNDEFINED before use.
+    bool takenOver = false;
+    std::string undefinedBecause = "it is never written in the frame";
+};
+
+class LayoutWalk {
+public:
+    LayoutWalk(const FrameModel& model, const Plan& plan, const GraphDesc& graph, Reporter& reporter)
+        : model_(model), plan_(plan), graph_(graph), reporter_(reporter) {
+        cells_.resize(model.memory.size());
+        used_.assign(model.memory.size(), false);
+        for (uint32_t o = 0; o < model.memory.size(); ++o) {
+            const MemoryObject& obj = model.memory.object(o);
+            CellState initial;
+            if (obj.resource >= 0) {
+                const PlannedResource& r = plan.resources()[static_cast<size_t>(obj.resource)];
+                const bool transient = r.copies == ResourceCopies::PerFrameTransient;
+                // Resources from outside the frame arrive in their initial layout, contents visible.
+                initial.layout = transient ? VK_IMAGE_LAYOUT_UNDEFINED : r.initialLayout;
+                initial.defined = !transient;
+            }
+            cells_[o].assign(obj.cellCount(), initial);
+        }
+    }
+
+    void run() {
+        for (const TimelineItem& t : model_.timeline) {
+            switch (t.kind) {
+                case TimelineItem::Kind::Barrier: barrier(t); break;
+                case TimelineItem::Kind::Usage: usage(t); break;
+                case TimelineItem::Kind::FrameEnd: frameEnd(t); break;
+                case TimelineItem::Kind::Present: present(t); break;
+            }
+        }
+    }
+
+private:
+    /// Findings of the second frame that its per-frame copies would repeat are left out.
+    bool reports(const TimelineItem& t) const { return t.frame == 1 || model_.memory.object(t.object).shared; }
+
+    void add(FindingKind kind, const TimelineItem& t, std::string reason) {
+        if (!reports(t)) return;
+        Finding f;
+        f.kind = kind;
+        const MemoryObject& o = model_.memory.object(t.object);
+        if (o.resource >= 0) f.resources.push_back(static_cast<uint32_t>(o.resource));
+        f.resourceNames.push_back(o.name);
+        f.earlier = t.site;
+        f.reason = std::move(reason);
+        reporter_.add(std::move(f));
+    }
+
+    template <class F>
+    void forCells(uint32_t object, const SubresourceRange& r, F&& f) {
+        const MemoryObject& o = model_.memory.object(object);
+        if (o.kind != MemoryObject::Kind::Image) {
+            f(cells_[object][0], 0u, 0u);
+            return;
+        }
+        for (uint32_t mip = r.baseMip; mip < r.baseMip + r.mipCount; ++mip)
+            for (uint32_t layer = r.baseLayer; layer < r.baseLayer + r.layerCount; ++layer)
+                f(cells_[object][o.cell(mip, layer)], mip, layer);
+    }
+
+    /// A write through `object` leaves what other resources kept in the memory it shares
+    /// with them undefined, and those must start again from UNDEFINED.
+    void wroteMemory(uint32_t object, const FindingSite& site) {
+        for (uint32_t other = 0; other < model_.memory.size(); ++other) {
+            if (other == object || !model_.memory.placementsOverlap(object, other)) continue;
+            for (CellState& c : cells_[other]) {
+                c.defined = false;
+                c.takenOver = true;
+                c.undefinedBecause =
+                    model_.memory.object(object).name + " wrote the memory they share at " + where(site);
+            }
+        }
+    }
+
+    static std::string where(const FindingSite& s) {
+        return (s.step >= 0 ? "[" + std::to_string(s.step) + "] " : "") + s.pass;
+    }
+
+    void barrier(const TimelineItem& t) {
+        const Barrier& b = *t.barrier;
+        bool badOld = false, notFromUndefined = false;
+        std::string current;
+        forCells(t.object, b.range, [&](CellState& c, uint32_t, uint32_t) {
+            if (b.oldLayout != VK_IMAGE_LAYOUT_UNDEFINED && b.oldLayout != c.layout && !badOld) {
+                badOld = true;
+                current = layoutNameShort(c.layout);
+            }
+            if (c.takenOver && b.oldLayout != VK_IMAGE_LAYOUT_UNDEFINED) notFromUndefined = true;
+            if (b.oldLayout == b.newLayout) return;
+            c.layout = b.newLayout;
+            if (b.oldLayout == VK_IMAGE_LAYOUT_UNDEFINED) {
+                c.defined = false;
+                c.takenOver = false;
+                c.undefinedBecause = "the transition from UNDEFINED at " + where(t.site) + " discarded them";
+            }
+        });
+        if (badOld)
+            add(FindingKind::BadOldLayout, t,
+                "oldLayout " + layoutNameShort(b.oldLayout) + " is neither UNDEFINED nor the current layout " +
+                    current);
+        if (notFromUndefined)
+            add(FindingKind::AliasNotInitialized, t,
+                "another resource wrote this memory since; its subresources must move from UNDEFINED, not " +
+                    layoutNameShort(b.oldLayout));
+        if (b.oldLayout != b.newLayout) wroteMemory(t.object, t.site);
+    }
+
+    void usage(const TimelineItem& t) {
+        const PlannedUsage& u = *t.usage;
+        const MemoryObject& o = model_.memory.object(t.object);
+        const bool image = o.kind == MemoryObject::Kind::Image;
+        if (image) checkLayout(t, u);
+        // Taking over memory: every subresource moves from UNDEFINED before the first use.
+        const bool first = !used_[t.object];
+        used_[t.object] = true;
+        const SubresourceRange range = image ? u.range : o.whole();
+        size_t notMoved = 0;
+        if (image)
+            forCells(t.object, first ? o.whole() : range,
+                     [&](CellState& c, uint32_t, uint32_t) { notMoved += c.takenOver; });
+        if (notMoved)
+            add(FindingKind::AliasNotInitialized, t,
+                std::to_string(notMoved) +
+                    " subresource(s) of memory another resource wrote were not moved from "
+                    "UNDEFINED before this use");
+        const bool attachment = isAttachmentStage(u.usage.stage);
+        const bool reads = t.copyOut || (!t.copyIn && readsContents(u.usage.access));
+        const bool writes = t.copyIn || (!t.copyOut && writesContents(u.usage.access));
+        if (attachment && u.load != LoadOp::Load)
+            forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) {
+                c.defined = u.load == LoadOp::Clear;
+                if (!c.defined) c.undefinedBecause = "its DONT_CARE load op discarded them";
+            });
+        if (reads) {
+            std::string why;
+            forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) {
+                if (!c.defined && why.empty()) why = c.undefinedBecause;
+            });
+            if (!why.empty()) add(FindingKind::UndefinedContents, t, "reads contents that are undefined: " + why);
+        }
+        if (writes || (attachment && u.load == LoadOp::Clear)) {
+            forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) { c.defined = true; });
+            wroteMemory(t.object, t.site);
+        }
+        if (attachment && u.store == StoreOp::DontCare)
+            forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) {
+                c.defined = false;
+                c.undefinedBecause = "the DONT_CARE store op at " + where(t.site) + " discarded them";
+            });
+    }
+
+    void checkLayout(const TimelineItem& t, const PlannedUsage& u) {
+        const MemoryObject& o = model_.memory.object(t.object);
+        const ResourceDesc& d = graph_.resources[plan_.resources()[static_cast<size_t>(o.resource)].decl];
+        if (!layoutAllowed(u, d.format.isDepthStencil(), t.copyOut, t.copyIn, u.layout))
+            add(FindingKind::LayoutNotAllowed, t,
+                "a " + toString(u.usage) + " usage cannot be in " + layoutNameShort(u.layout));
+        std::string mismatch;
+        forCells(t.object, u.range, [&](CellState& c, uint32_t mip, uint32_t layer) {
+            if (c.layout != u.layout && mismatch.empty())
+                mismatch = "mip " + std::to_string(mip) + " layer " + std::to_string(layer) + " is in " +
+                           layoutNameShort(c.layout);
+        });
+        if (!mismatch.empty())
+            add(FindingKind::LayoutMismatch, t, "the usage expects " + layoutNameShort(u.layout) + " but " + mismatch);
+    }
+
+    void frameEnd(const TimelineItem& t) {
+        const auto& objects = model_.objectOf.at(t.frame - 1);
+        for (size_t r = 0; r < objects.size(); ++r) {
+            if (objects[r] < 0) continue;
+            const PlannedResource& pr = plan_.resources()[r];
+            const auto object = static_cast<uint32_t>(objects[r]);
+            const MemoryObject& o = model_.memory.object(object);
+            if (o.kind != MemoryObject::Kind::Image || !o.handedOut) continue;
+            TimelineItem at = t;
+            at.object = object;
+            std::string wrong;
+            for (const CellState& c : cells_[object])
+                if (c.layout != pr.finalLayout && wrong.empty()) wrong = layoutNameShort(c.layout);
+            if (!wrong.empty())
+                add(FindingKind::FinalLayout, at,
+                    "the frame leaves it in " + wrong + ", the plan says " + layoutNameShort(pr.finalLayout));
+            if (!perFrameInFlight(pr.copies) && pr.finalLayout != pr.initialLayout && t.frame == 1)
+                add(FindingKind::FinalLayout, at,
+                    "shared across frames, it ends in " + layoutNameShort(pr.finalLayout) +
+                        " but the next frame expects " + layoutNameShort(pr.initialLayout));
+        }
+    }
+
+    void present(const TimelineItem& t) {
+        std::string wrong;
+        bool undefined = false;
+        for (const CellState& c : cells_[t.object]) {
+            if (c.layout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR && wrong.empty()) wrong = layoutNameShort(c.layout);
+            undefined |= !c.defined;
+        }
+        if (!wrong.empty()) add(FindingKind::PresentLayout, t, "presented in " + wrong + ", not PRESENT_SRC_KHR");
+        if (undefined) add(FindingKind::UndefinedContents, t, "presents contents that are undefined");
+    }
+
+    const FrameModel& model_;
+    const Plan& plan_;
+    const GraphDesc& graph_;
+    Reporter& reporter_;
+    std::vector<std::vector<CellState>> cells_;  // per object, per subresource
+    std::vector<bool> used_;                     // per object: a usage has been seen
+};
+
+}  // namespace
+
+void checkLayoutsAndContents(const FrameModel& model, const Plan& plan, const GraphDesc& graph, Reporter& reporter) {
+    LayoutWalk(model, plan, graph, reporter).run();
+}
+
+}  // namespace skygraph::verifier

@@ -1,0 +1,170 @@
+// The plan verifier: an independent check that a compiled Plan is free of data races, layout
+// errors and memory-aliasing errors under the Vulkan 1.3 memory model, from the plan alone.
+// docs/verifier.md is the long form of this comment.
+//
+// It is the project's own oracle where the Khronos validation layer is blind: hazards between
+// aliased images described differently, write-after-write between dispatches of storage
+// images, and (later) semaphores between queues. It shares no code with the compiler's
+// synchronizer: its stage and access tables are its own reading of the specification
+// (sync_tables.hpp), and it reads only the public headers.
+//
+// THE MODEL
+//
+// A frame as the executor records it. For each plan step in order: its barrier batch (one
+// vkCmdPipelineBarrier2; each Barrier is a dependency of its own, a Memory barrier is a global
+// VkMemoryBarrier2), then its accesses: each PlannedUsage accesses `range` of `resource` at
+// `stages` with `access` in `layout`, and writes if `access` has a write bit. A ReadWrite
+// usage at Stage::Transfer is two commands, a copy out (read) and a copy in (write), with the
+// step's in-pass barriers (Plan::inPassBarriers()) between them; the step's other accesses are
+// neither before nor after those barriers. After the last step come Plan::finalBarriers(),
+// then the submit's render-complete semaphore signal (Plan::presentations()) and its fence.
+// Inserted steps (Clear, Readback, Clobber) are ordinary accesses.
+//
+// Happens-before is a small graph of synchronization points (happens_before.hpp): every
+// barrier, semaphore wait or signal, and fence is a point with a first and a second
+// synchronization scope (stage sets, expanded by the pipelines' logical order) and a first and
+// a second access scope (never expanded). An access happens before a point when the point is
+// later on its queue and the access's stages are in the point's first scope; a point happens
+// before an access when the access is later and its stages are in the point's second scope.
+// Two points chain when they are on one queue in that order, in different batches, and the
+// earlier one's second scope meets the later one's first scope (or the later one's first
+// scope is ALL_COMMANDS, which includes the operations of earlier synchronization commands).
+// A semaphore signal reaches its wait, or an agent outside the queues, by an explicit edge.
+// Multiple queues add points on other queues and signal-to-wait edges between them; nothing
+// else changes.
+//
+// Memory dependencies. For every pair of accesses to overlapping memory where at least one
+// writes, the earlier must happen before the later. If the earlier writes, its write must be
+// made available by a point it happens before directly whose first access scope holds the
+// write's (stage, access type) pairs and whose memory covers it, and that availability must be
+// made visible to the later access by the same point or one chained after it, whose second
+// access scope holds the later access's pairs and whose memory covers it. A layout transition
+// is a write of every subresource it names, after its barrier's availability operation and
+// before its visibility operation; its writes are available at once, and available writes are
+// visible to it. Write-after-read needs only the execution dependency. A pair is left out when
+// layout transitions between the two rewrote all the memory they share: the pairs with those
+// transitions carry the order.
+//
+// Memory. A resource with a MemoryPlacement lives at [offset, offset + bytes) of its heap,
+// one heap per frame in flight; every other resource has memory of its own. Two accesses
+// overlap when they touch the same subresource of one resource, or any part of two placements
+// that overlap (every subresource of an image overlaps its whole placement; buffers are
+// linear, and a buffer and an image overlap within bufferImageGranularity). An image or buffer
+// barrier covers the subresources it names of its own resource. Between two different
+// resources that share memory the spec's Memory Aliasing section asks that the barrier
+// contain every overlapping subresource, so there a barrier covers only if it names every
+// subresource of its resource, alone or together with barriers of the same batch with the
+// same scopes. A Memory barrier, semaphore or fence covers all memory.
+//
+// Layouts and contents. Each image subresource's layout is tracked through barriers: a
+// barrier's oldLayout must be the current layout or UNDEFINED, each usage's layout must be the
+// current one and one its usage allows. A transition from UNDEFINED, a DONT_CARE load or store,
+// and a write through another resource sharing the memory make the contents undefined; reading
+// undefined contents is a finding. External resources start in their initialLayout with
+// contents visible: they come from outside the frame.
+//
+// Aliasing. A resource whose memory another resource used earlier in the frame must move each
+// of its subresources from UNDEFINED before its first use (the happens-before checks order
+// that after the other's last use), and two overlapping placements must never both be in use
+// at once.
+//
+// Outside the frame. The presentation engine reads a presented image before the acquire
+// semaphore is signalled (the submit waits on it at Presentation::acquireWaitStages) and after
+// the render-complete signal (at renderCompleteStages), which must follow the image's writes
+// and its transition to PRESENT_SRC_KHR. The host reads each read-back's copy after the
+// frame's fence, which makes device writes available but not visible to it: a barrier to
+// HOST / HOST_READ must. Whoever takes an exported resource after the frame reads it in its
+// final state's scope (ShaderRead: sampled, or storage reads of a buffer, in FRAGMENT_SHADER and
+// COMPUTE_SHADER; TransferSrc: transfer reads), and a shared external resource was last read
+// that way in its initial state before the first frame.
+//
+// Frames. Resources with one copy across frames (SharedExported, SharedReadOnly) carry their
+// state into the next frame, which the executor submits after this one on the same queue: the
+// verifier checks a second frame against the first for them. Every other resource, and every
+// heap, has a copy per frame in flight, ordered by the fence the host waits on before reusing
+// it, which is outside the model.
+#pragma once
+
+#include <skygraph/graph.hpp>
+#include <skygraph/plan.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph::verifier {
+
+enum class FindingKind : uint8_t {
+    MalformedPlan,        ///< An index out of range, an empty or oversized range, a bad barrier kind.
+    InvalidMask,          ///< An access type no stage of the mask performs, or an unmodelled bit.
+    UsageScope,           ///< A usage's stages or access miss what its usage (and load/store ops) does.
+    Unordered,            ///< No execution dependency chain between two conflicting accesses.
+    NotAvailable,         ///< A write that no barrier makes available before the later access.
+    NotVisible,           ///< A write made available but not visible to the later access.
+    PartialAliasBarrier,  ///< A dependency between resources sharing memory through a barrier naming part of a
+                          ///< resource.
+    LayoutMismatch,       ///< A usage's layout is not the subresource's current layout.
+    LayoutNotAllowed,     ///< A usage's layout is not one its usage may be performed in.
+    BadOldLayout,         ///< A barrier's oldLayout is neither the current layout nor UNDEFINED.
+    UndefinedContents,    ///< A read of contents that were never written or were discarded.
+    AliasNotInitialized,  ///< A resource taking over memory has a subresource not moved from UNDEFINED.
+    LiveOverlap,          ///< Two resources whose placements overlap are in use at the same time.
+    PlacementInvalid,     ///< A placement outside its heap, misaligned, or of a resource that must not have one.
+    PresentLayout,        ///< A presented image is not in PRESENT_SRC_KHR when presented.
+    FinalLayout,          ///< A resource's layout after the frame differs from PlannedResource::finalLayout.
+};
+[[nodiscard]] std::string_view toString(FindingKind kind) noexcept;
+
+/// One side of a finding: an access, a barrier or an agent outside the frame.
+struct FindingSite {
+    uint32_t frame = 1;  ///< 1, or 2 for the second frame of a shared resource.
+    /// Index into Plan::passes(); -1 before the first step (the presentation engine), and
+    /// passes().size() after the last (final barriers, the present, the host).
+    int64_t step = -1;
+    std::string pass;  ///< The step's name, or what stands there ("final barriers", "host").
+    std::string what;  ///< e.g. "usage 1 Write@Compute as storage", "barrier 0 (UNDEFINED -> GENERAL)".
+};
+
+struct Finding {
+    FindingKind kind = FindingKind::MalformedPlan;
+    std::vector<uint32_t> resources;  ///< Indices into Plan::resources() (one, or two for aliases).
+    std::vector<std::string> resourceNames;
+    FindingSite earlier;  ///< The first access; for single-site findings the site itself.
+    FindingSite later;    ///< The second access; empty `pass` for single-site findings.
+    /// Two accesses to one image: the subresources both touch (zero counts otherwise).
+    SubresourceRange subresources{0, 0, 0, 0};
+    std::string reason;  ///< One line.
+};
+
+struct VerifyOptions {
+    /// Also verify a second frame against the first for resources shared across frames.
+    bool consecutiveFrames = true;
+    /// Stop collecting after this many findings (VerificationReport::truncated says so).
+    size_t maxFindings = 200;
+};
+
+struct VerificationReport {
+    std::vector<Finding> findings;
+    bool truncated = false;
+    size_t accessesChecked = 0;  ///< Accesses (usages, transitions, outside agents) in the model.
+    size_t pairsChecked = 0;     ///< Pairs of accesses to overlapping memory, one of them writing.
+
+    [[nodiscard]] bool ok() const noexcept { return findings.empty(); }
+    [[nodiscard]] size_t count(FindingKind kind) const noexcept;
+    /// "ok: 41 accesses, 97 pairs" or one line per finding after a count.
+    [[nodiscard]] std::string summary() const;
+};
+
+/// One finding on one line: "NotVisible hdr (frame 1): [2] tonemap usage 0 ... after [1] ...: reason".
+[[nodiscard]] std::string format(const Finding& finding);
+
+/// Verifies `plan`, compiled from `graph` (PlannedResource::decl indexes graph.resources, whose
+/// shapes are resolved at plan.outputWidth() x plan.outputHeight()). Never throws for a bad
+/// plan: indices out of range and the like are findings of kind MalformedPlan, and the items
+/// they concern are left out of the rest of the checks.
+[[nodiscard]] VerificationReport verifyPlan(const Plan& plan, const GraphDesc& graph,
+                                            const VerifyOptions& options = {});
+
+}  // namespace skygraph::verifier
