@@ -175,17 +175,15 @@ private:
 
     /// Fills transient r with poison before its first use (CompileOptions::clobberTransients):
     /// a transfer write of the whole resource, like a Clear, that the first use then keeps.
-    void addClobberStep(uint32_t r) {
-        steps_.push_back({accessCount_, kInsertedPass, false, false, true});
+    void addClobberStep(uint32_t r) { addFillStep(r, true); }
+    void addClearStep(uint32_t r) { addFillStep(r, false); }
+    /// An inserted Clear or Clobber step: one transfer write of the whole resource.
+    void addFillStep(uint32_t r, bool clobber) {
+        Step& step = steps_.emplace_back();
+        step.firstAccess = accessCount_;
+        step.clobber = clobber;
         currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
-        nameInsertedStep("clobber ", r);
-        addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
-    }
-
-    void addClearStep(uint32_t r) {
-        steps_.push_back({accessCount_, kInsertedPass});
-        currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
-        nameInsertedStep("clear ", r);
+        nameInsertedStep(clobber ? "clobber " : "clear ", r);
         addAccess(r, kClearUsage, facts_[r].grid.whole(), false);
     }
 
@@ -445,14 +443,37 @@ private:
         return scope;
     }
 
+    /// Stages and accesses of the first use of each of resource r's subresources: where a
+    /// frame's accesses of them begin (different subresources may begin in different passes).
+    VulkanScope firstUsesScope(uint32_t r) const {
+        VulkanScope scope;
+        const SubresourceGrid& grid = facts_[r].grid;
+        std::vector<bool> seen(grid.size());
+        size_t left = grid.size();
+        for (uint32_t k = facts_[r].firstAccess; k != kNone && left; k = accesses_[k].next) {
+            bool first = false;
+            grid.forEach((*usages_)[k].range, [&](size_t sub) {
+                if (seen[sub]) return;
+                seen[sub] = true;
+                first = true;
+                --left;
+            });
+            if (!first) continue;
+            scope.stages |= (*usages_)[k].stages;
+            scope.access |= (*usages_)[k].access;
+        }
+        return scope;
+    }
+
     /// Where a persistent external resource's contents must be visible at the frame's start.
     /// For `General` (state the graph itself consumes next frame, e.g. accumulation) that is
-    /// exactly the first use's scope; otherwise the documented table in vulkan_state.cpp.
+    /// exactly where the frame's first uses of its subresources are; otherwise the documented
+    /// table in vulkan_state.cpp.
     VulkanScope boundaryScope(uint32_t r, ExternalState state) const {
         VulkanScope scope = externalScope(decl(r), state);
         if (state == ExternalState::General && decl(r).external) {
-            const VulkanScope firstUse = firstPassScope(r);
-            return {firstUse.stages, firstUse.access, scope.layout};
+            const VulkanScope firstUses = firstUsesScope(r);
+            return {firstUses.stages, firstUses.access, scope.layout};
         }
         return scope;
     }
@@ -470,7 +491,7 @@ private:
         if (cells == 1) *states = SubresourceState{};  // most resources; fill_n's loop costs more
         else std::fill_n(states, cells, SubresourceState{});
         if (!facts_[r].external) {
-            if (!plan_.memory().placements.empty()) startAliased(r, states, cells);
+            if (!takesOver_.empty() && takesOver_[r]) startAliased(r, states, cells);
             return;
         }
         const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
@@ -547,6 +568,12 @@ private:
             merger_.emitMerged(r, image ? BarrierKind::Image : BarrierKind::Buffer, pu.range, perSub_, batch);
         }
 
+        // Every write of a resource that others take over from: their aliasing barriers repeat
+        // them (rule 16), so they are gathered here, where the usage is at hand.
+        if (write && !predecessor_.empty() && predecessor_[r]) {
+            lastUses_[r].stages |= pu.stages;
+            lastUses_[r].access |= writeBits(pu.access);
+        }
         if (options_.clobberTransients && steps_[a.step].clobber) forEachCell(r, pu.range, [&](size_t c) { state_[c].poisoned = true; });
         if (pu.usage.stage == Stage::Transfer && pu.usage.access == Access::ReadWrite) addInPassBarrier(pu, k);
         if (isAttachmentStage(pu.usage.stage)) {
@@ -564,7 +591,7 @@ private:
             // What a resource taking over its memory later will wait for; kept now, while its
             // state is in cache. (Subresources it never used have nothing to wait for unless
             // aliased, which finishAliasing adds.)
-            if (res.placement != PlannedResource::kNoPlacement) lastUses_[r] = lastUses(r, stateOf(r), 0);
+            if (!lastUses_.empty() && predecessor_[r]) addLastUses(lastUses_[r], stateOf(r), facts_[r].grid.size(), 0);
         }
     }
 
@@ -717,55 +744,78 @@ private:
                 (!placement.aliases.empty() || !placement.previousFrameAliases.empty()))
                 aliasedCells_ += static_cast<uint32_t>(facts_[placement.resource].grid.size());
         }
-        if (!layout.placements.empty()) lastUses_.resize(facts_.size());
+        // Which resources take over memory (startAliased looks no further for the rest) and
+        // which are taken over from (their last uses are kept when they end).
+        for (const MemoryPlacement& placement : layout.placements) {
+            if (placement.aliases.empty() && placement.previousFrameAliases.empty()) continue;
+            if (takesOver_.empty()) {
+                takesOver_.resize(facts_.size());
+                predecessor_.resize(facts_.size());
+                lastUses_.resize(facts_.size());
+                earlierUses_.resize(facts_.size());
+            }
+            takesOver_[placement.resource] = 1;
+            for (const uint32_t a : placement.aliases) predecessor_[a] = 1;
+        }
         if (!options_.shareTransientsAcrossFrames) return;
+        // The previous frame's uses of each placement's bytes: its holders' last uses and what
+        // they waited for in that frame, as startAliased gathers them within one.
+        std::vector<StageAccess> last(layout.placements.size()), earlier(layout.placements.size());
+        for (uint32_t p = 0; p < layout.placements.size(); ++p) {
+            last[p] = lastUsesInFrame(layout.placements[p].resource);
+            for (const uint32_t a : layout.placements[p].aliases) {
+                const uint32_t q = plan_.resources()[a].placement;
+                earlier[p].stages |= last[q].stages | earlier[q].stages;
+                earlier[p].access |= last[q].access | earlier[q].access;
+            }
+        }
         previousFrameLastUses_.resize(layout.placements.size());
         for (uint32_t p = 0; p < layout.placements.size(); ++p)
             for (const uint32_t a : layout.placements[p].previousFrameAliases) {
-                const StageAccess last = lastUsesInFrame(a);
-                previousFrameLastUses_[p].stages |= last.stages;
-                previousFrameLastUses_[p].access |= last.access;
+                const uint32_t q = plan_.resources()[a].placement;
+                previousFrameLastUses_[p].stages |= last[q].stages | earlier[q].stages;
+                previousFrameLastUses_[p].access |= last[q].access | earlier[q].access;
             }
     }
 
-    /// What a barrier after resource r's uses in the frame waits for (rule 16), given the state
-    /// of its subresources `states` after them: every write of the frame to r, with its
-    /// access, and per subresource the reads since its last write (or, never used, the
-    /// `untouched` stages of its aliasing transition). The reads alone would order the writes
-    /// too (rule 2), but the barriers that made the writes available named only the
-    /// subresources they wrote, and the spec asks the barrier between aliases to contain every
-    /// subresource that overlaps: this one does, so it is the memory dependency itself.
-    StageAccess lastUses(uint32_t r, const SubresourceState* states, VkPipelineStageFlags2 untouched) const {
-        StageAccess last;
-        for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next)
-            if (accesses_[k].writes) {
-                last.stages |= (*usages_)[k].stages;
-                last.access |= writeBits((*usages_)[k].access);
-            }
-        for (size_t c = 0; c < facts_[r].grid.size(); ++c) {
+    /// Adds to `last` what a barrier after the uses of a resource in the frame waits for, given
+    /// the state of its subresources `states` after them (rule 16): per subresource, its last
+    /// write with its access and the reads since (or, never used, the `untouched` stages of
+    /// its aliasing transition). The caller adds every earlier write of the frame to it too:
+    /// the reads alone would order the writes (rule 2), but the barriers that made the writes
+    /// available named only the subresources they wrote, and the spec asks the barrier
+    /// between aliases to contain every subresource that overlaps. The aliasing barrier does,
+    /// so it is the memory dependency itself.
+    static void addLastUses(StageAccess& last, const SubresourceState* states, size_t cells,
+                            VkPipelineStageFlags2 untouched) {
+        for (size_t c = 0; c < cells; ++c) {
             const SubresourceState& st = states[c];
             last.stages |= st.readStages | st.writeStages;
             last.access |= st.writeAccess;
             if (!st.readStages && !st.writeStages) last.stages |= untouched;
         }
-        return last;
     }
 
-    /// What a barrier after resource r's last uses in the frame waits for (rule 16): per
-    /// subresource, the reads since its last write, or that write with its access when nothing
-    /// read it. Replays r's accesses with rule 1-5's bookkeeping, before the frame's barriers
-    /// are written: the next frame's first uses of r's bytes need it at their start.
+    /// What a barrier after resource r's uses in the frame waits for, as addLastUses: its
+    /// accesses replayed with rules 1-5's bookkeeping, before the frame's barriers are written
+    /// (the next frame's first uses of r's bytes need it at their start).
     StageAccess lastUsesInFrame(uint32_t r) {
         const auto& usages = *usages_;
         const SubresourceGrid& grid = facts_[r].grid;
         replay_.assign(grid.size(), SubresourceState{});
+        StageAccess last;
         for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next) {
             const VulkanScope scope{usages[k].stages, usages[k].access, VK_IMAGE_LAYOUT_UNDEFINED};
+            if (accesses_[k].writes) {
+                last.stages |= scope.stages;
+                last.access |= writeBits(scope.access);
+            }
             grid.forEach(usages[k].range,
                          [&](size_t sub) { recordAccess(replay_[sub], accesses_[k].writes, scope.layout, scope); });
         }
         // A subresource never used was transitioned by the first step's aliasing barrier.
-        return lastUses(r, replay_.data(), plan_.resources()[r].firstStages);
+        addLastUses(last, replay_.data(), replay_.size(), plan_.resources()[r].firstStages);
+        return last;
     }
 
     /// The memory that resource r takes over was last used by its placement's `aliases`
@@ -779,11 +829,16 @@ private:
         const MemoryPlacement& placement = plan_.memory().placements[p];
         const std::span<const uint32_t> aliases = placement.aliases;
         if (aliases.empty() && placement.previousFrameAliases.empty()) return false;
+        // Every earlier use of these bytes in the frame: the aliases' own and, through what each
+        // waited for, their predecessors'. The last holders alone would order the rest, but
+        // a barrier on them covers only their own bytes, and memory past a smaller alias's end
+        // keeps an older holder's writes (the validation layer reports exactly that).
         StageAccess last = previousFrameLastUses_.empty() ? StageAccess{} : previousFrameLastUses_[p];
         for (const uint32_t a : aliases) {
-            last.stages |= lastUses_[a].stages;
-            last.access |= lastUses_[a].access;
+            last.stages |= lastUses_[a].stages | earlierUses_[a].stages;
+            last.access |= lastUses_[a].access | earlierUses_[a].access;
         }
+        earlierUses_[r] = last;
         if (!last.stages) return false;
         for (size_t c = 0; c < cells; ++c) {
             states[c].aliased = true;
@@ -834,7 +889,7 @@ private:
                 any = true;
             });
             if (any) merger_.emitMerged(r, BarrierKind::Image, grid.whole(), perSub_, batch);
-            if (any && planResources()[r].lastPass == step) lastUses_[r].stages |= first.stages;
+            if (any && planResources()[r].lastPass == step && predecessor_[r]) lastUses_[r].stages |= first.stages;
             added |= any;
         }
         aliasedHere_.clear();
@@ -880,7 +935,10 @@ private:
     // With frames sharing the heaps: per placement, the previous frame's last uses of the bytes
     // no earlier resource of the frame holds; and lastUsesInFrame's scratch.
     std::vector<StageAccess> previousFrameLastUses_;
-    std::vector<StageAccess> lastUses_;  // per plan resource with a placement, from its last access
+    std::vector<StageAccess> lastUses_;   // per plan resource taken over from: its writes, then its last uses
+    std::vector<StageAccess> earlierUses_;  // per plan resource taking over: what its aliasing barrier waits for
+    std::vector<uint8_t> takesOver_;      // per plan resource: its placement has aliases
+    std::vector<uint8_t> predecessor_;    // per plan resource: some placement names it an alias
     std::vector<SubresourceState> replay_;
 };
 

@@ -141,6 +141,33 @@ TEST(AliasingRules, TheAliasingBarrierCoversEverySubresource) {
     EXPECT_EQ(second[0].range, (SubresourceRange{0, 1, 0, 1}));
 }
 
+TEST(AliasingRules, ATakenOverResourceWaitsForEveryEarlierUseOfItsBytes) {
+    // x is drawn and sampled, y takes over its bytes (compute), z takes over y's: z's barrier
+    // names y's uses and, through what y waited for, x's too. y alone would order x before z,
+    // but a barrier on y covers y's bytes only, and x's may reach past them.
+    const Plan plan = compileGraph(R"(
+        "x": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "y": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "z": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "m1": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "m2": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})",
+                                   R"(
+        {"name": "make_x", "type": "Generic", "uses": {"x": "Write@ColorAttachment"}},
+        {"name": "use_x", "type": "Generic", "uses": {"x": "Read@Fragment", "m1": "Write@ColorAttachment"}},
+        {"name": "make_y", "type": "Generic", "uses": {"m1": "Read@Compute", "y": "Write@Compute"}},
+        {"name": "use_y", "type": "Generic", "uses": {"y": "Read@Compute", "m2": "Write@Compute"}},
+        {"name": "make_z", "type": "Generic", "uses": {"m2": "Read@Transfer", "z": "Write@Transfer"}},
+        {"name": "use_z", "type": "Generic", "uses": {"z": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    ASSERT_EQ(ids(placementOf(plan, "y").aliases), std::vector<uint32_t>{uint32_t(plan.resourceIndex("x"))});
+    ASSERT_EQ(ids(placementOf(plan, "z").aliases), std::vector<uint32_t>{uint32_t(plan.resourceIndex("y"))});
+    const auto z = barriersOf(plan, "make_z", "z");
+    ASSERT_EQ(z.size(), 1u);
+    EXPECT_EQ(z[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT |
+                                  VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(z[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+}
+
 TEST(AliasingRules, AliasFalseAndExternalsNeverShare) {
     const std::string resources = std::string(kTwo).replace(std::string(kTwo).find("\"extent\": [64, 64]},"), 20,
                                                              "\"extent\": [64, 64], \"alias\": false},");
@@ -166,8 +193,8 @@ TEST(AliasingRules, FramesSharingTheHeapsWaitForThePreviousFramesLastUses) {
         EXPECT_EQ(plan.resources()[plan.resourceIndex(r)].copies, ResourceCopies::SharedTransient) << r;
     EXPECT_EQ(plan.resources()[plan.resourceIndex("out")].copies, ResourceCopies::SharedExported);
     // a and b share bytes, and b holds them when the frame ends: the next frame's a waits for
-    // b's last uses (its color write and the fragment read); mid holds its own bytes across
-    // frames.
+    // every use of them in the frame before, b's (its color write and the fragment read) and,
+    // through what b waited for, a's own compute write; mid holds its own bytes across frames.
     EXPECT_TRUE(placementOf(plan, "a").aliases.empty());
     EXPECT_EQ(ids(placementOf(plan, "a").previousFrameAliases), std::vector<uint32_t>{b});
     EXPECT_EQ(ids(placementOf(plan, "b").aliases), std::vector<uint32_t>{a});
@@ -178,8 +205,8 @@ TEST(AliasingRules, FramesSharingTheHeapsWaitForThePreviousFramesLastUses) {
     EXPECT_TRUE(first[0].aliasing);
     constexpr VkPipelineStageFlags2 drawnThenSampled =
         VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
-    EXPECT_EQ(first[0].srcStages, drawnThenSampled);
-    EXPECT_EQ(first[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+    EXPECT_EQ(first[0].srcStages, drawnThenSampled | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(first[0].srcAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     EXPECT_EQ(first[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
     // mid is drawn (use_a) and sampled (make_b) every frame: the next frame's draw waits for both.
     const auto midFirst = barriersOf(plan, "use_a", "mid");

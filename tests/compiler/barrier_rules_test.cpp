@@ -691,5 +691,29 @@ TEST(BarrierRules, AFinalBarrierAfterAReadsTransitionChainsAfterIt) {
     EXPECT_EQ(final->dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
+// Rule 8: a persistent external (`final: General`) hands each frame's contents to the next
+// frame's first uses: the final barrier's destination covers the first use of every
+// subresource, not only the first pass's (here mip 1 is first sampled two passes later).
+TEST(BarrierRules, APersistentResourceIsHandedToTheFirstUseOfEverySubresource) {
+    const Plan plan = compileGraph(
+        R"("state": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": 2, "external": true, "final": "General"},)" +
+            std::string(kOut),
+        R"(
+        {"name": "accumulate", "type": "Generic", "uses": [{"resource": "state", "access": "ReadWrite", "stage": "Compute", "mips": [0, 1]}]},
+        {"name": "downsample", "type": "Generic", "uses": [{"resource": "state", "access": "Read", "stage": "Compute", "mips": [0, 1]},
+                                                          {"resource": "out", "access": "Write", "stage": "Compute"}]},
+        {"name": "show", "type": "Generic", "uses": [{"resource": "state", "access": "Read", "stage": "Fragment", "mips": [1, 1]},
+                                                    {"resource": "out", "access": "ReadWrite", "stage": "ColorAttachment"}]})");
+    VkPipelineStageFlags2 finalDst = 0;
+    for (const Barrier& b : plan.finalBarriers())
+        if (plan.resources()[b.resource].name == "state") finalDst |= b.dstStages;
+    EXPECT_EQ(finalDst, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    // The next frame's first barrier of mip 1 sources from the same stages: the two chain.
+    const auto shown = barriersOf(plan, "show", "state");
+    ASSERT_EQ(shown.size(), 1u);
+    EXPECT_EQ(shown[0].range, (SubresourceRange{1, 1, 0, 1}));
+    EXPECT_TRUE(shown[0].srcStages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+}
+
 }  // namespace
 }  // namespace skygraph
