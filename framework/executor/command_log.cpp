@@ -24,6 +24,12 @@ std::string shortLayout(VkImageLayout l) {
     return n.starts_with("VK_IMAGE_LAYOUT_") ? n.substr(16) : n;
 }
 
+std::string hexWord(uint32_t w) {
+    char text[16];
+    std::snprintf(text, sizeof text, "0x%08x", w);
+    return text;
+}
+
 std::string rangeText(const VkImageSubresourceRange& r) {
     return "mips[" + std::to_string(r.baseMipLevel) + "+" + std::to_string(r.levelCount) + "] layers[" +
            std::to_string(r.baseArrayLayer) + "+" + std::to_string(r.layerCount) + "]";
@@ -75,14 +81,25 @@ void CommandLog::timestamp(VkPipelineStageFlags2 stage, VkQueryPool, uint32_t qu
                      shortNames(stageMaskNames(stage), "VK_PIPELINE_STAGE_2_"));
 }
 
-void CommandLog::clearColor(VkImage image, VkImageLayout layout, const VkClearColorValue&,
+void CommandLog::clearColor(VkImage image, VkImageLayout layout, const VkClearColorValue& value,
                             const VkImageSubresourceRange& range) {
-    lines_.push_back("clear color " + name(image) + " " + rangeText(range) + " in " + shortLayout(layout));
+    std::string words;
+    for (const uint32_t w : value.uint32) words += " " + hexWord(w);
+    lines_.push_back("clear color " + name(image) + " " + rangeText(range) + " in " + shortLayout(layout) + " to" +
+                     words);
 }
 
-void CommandLog::clearDepthStencil(VkImage image, VkImageLayout layout, const VkClearDepthStencilValue&,
+void CommandLog::clearDepthStencil(VkImage image, VkImageLayout layout, const VkClearDepthStencilValue& value,
                                    const VkImageSubresourceRange& range) {
-    lines_.push_back("clear depth " + name(image) + " " + rangeText(range) + " in " + shortLayout(layout));
+    char text[64];
+    std::snprintf(text, sizeof text, " to depth %g stencil 0x%x", static_cast<double>(value.depth), value.stencil);
+    lines_.push_back("clear depth " + name(image) + " " + rangeText(range) + " in " + shortLayout(layout) + text);
+}
+
+void CommandLog::fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) {
+    lines_.push_back("fill " + name(buffer) + " from " + std::to_string(offset) + " " +
+                     (size == VK_WHOLE_SIZE ? std::string("to the end") : std::to_string(size) + " bytes") + " with " +
+                     hexWord(word));
 }
 
 void CommandLog::copyBufferToImage(VkBuffer from, VkImage to, VkImageLayout layout,

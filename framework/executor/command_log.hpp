@@ -18,7 +18,8 @@ public:
     explicit CommandLog(std::map<uint64_t, std::string> names = {}) : names_(std::move(names)) {}
 
     /// Every command so far, one per line, in order. Barriers are "barrier " followed by
-    /// barrierLine()'s text, one line per barrier of a batch.
+    /// barrierLine()'s text, one line per barrier of a batch. Clears and fills end in the value
+    /// they write: colours as four 32-bit words in hex, "depth D stencil S", a fill's word.
     [[nodiscard]] const std::vector<std::string>& lines() const noexcept { return lines_; }
     /// How a barrier reads in the log, e.g. "image out mips[0+1] layers[0+1]
     /// COLOR_ATTACHMENT_OUTPUT/COLOR_ATTACHMENT_WRITE -> TRANSFER/TRANSFER_READ
@@ -42,6 +43,7 @@ public:
     void copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuffer to,
                            std::span<const VkBufferImageCopy> regions) override;
     void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) override;
+    void fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) override;
     void beginRenderPass(const VkRenderPassBeginInfo& info) override;
     void endRenderPass() override;
     /// Writes "record pass NAME" (NAME "before its render pass"), then lets `pass` record

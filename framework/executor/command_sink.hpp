@@ -11,6 +11,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <cstdint>
 #include <span>
 
 namespace skygraph::detail {
@@ -38,6 +39,8 @@ public:
     virtual void copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuffer to,
                                    std::span<const VkBufferImageCopy> regions) = 0;
     virtual void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) = 0;
+    /// vkCmdFillBuffer: `size` bytes from `offset` (VK_WHOLE_SIZE: to the end) with `word`.
+    virtual void fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) = 0;
 
     /// Begins a render pass over the whole framebuffer, with viewport and scissor to match.
     virtual void beginRenderPass(const VkRenderPassBeginInfo& info) = 0;
@@ -74,6 +77,7 @@ public:
     void copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuffer to,
                            std::span<const VkBufferImageCopy> regions) override;
     void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) override;
+    void fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) override;
     void beginRenderPass(const VkRenderPassBeginInfo& info) override;
     void endRenderPass() override;
     void recordPass(PassImplementation& pass, RecordContext& context) override;

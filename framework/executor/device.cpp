@@ -1,4 +1,5 @@
 // Device context: instance, validation with synchronization validation, device selection.
+#include "device_memory_model.hpp"
 #include "device_selection.hpp"
 #include "vk_util.hpp"
 
@@ -211,6 +212,7 @@ bool envFlag(const char* name) {
 }  // namespace
 
 void Device::Impl::finish() {
+    if (memoryModel) memoryModel->detach();
     if (device) {
         vkDeviceWaitIdle(device);
         vkDestroyDevice(device, nullptr);
@@ -401,6 +403,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     dci.ppEnabledExtensionNames = devExts.data();
     vk::check(vkCreateDevice(chosen, &dci, nullptr, &impl->device), "vkCreateDevice");
     vkGetDeviceQueue(impl->device, chosenFamily, 0, &impl->queue);
+    impl->memoryModel = std::make_shared<detail::DeviceMemoryModel>(impl->device, chosen, impl->name);
 
     impl->fn.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(impl->device, "vkCmdPushDescriptorSetKHR"));
@@ -447,6 +450,7 @@ uint32_t Device::queueFamily() const noexcept { return impl_->queueFamily; }
 const std::string& Device::name() const noexcept { return impl_->name; }
 bool Device::validationEnabled() const noexcept { return impl_->validation; }
 float Device::timestampPeriodNs() const noexcept { return impl_->timestampPeriod; }
+std::shared_ptr<const MemoryModel> Device::memoryModel() const noexcept { return impl_->memoryModel; }
 
 uint32_t Device::messageCount() const {
     std::lock_guard lock(impl_->mutex);

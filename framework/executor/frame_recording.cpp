@@ -1,5 +1,6 @@
 // Recording one frame of a plan into a CommandSink: the plan's barrier batch before each step,
 // the step's work, the final barriers. Needs no device: a test records into a CommandLog.
+#include "poison.hpp"
 #include "renderer_impl.hpp"
 
 #include <cstring>
@@ -20,6 +21,23 @@ void recordClear(CommandSink& sink, const PlanState& s, const PassState& ps, uin
             std::memcpy(v.float32, r.desc->clear->color.data(), 16);
             sink.clearColor(image, u.layout, v, range);
         }
+    }
+}
+
+/// A Clobber step: its one usage, the whole resource, filled with poison (poison.hpp).
+void recordClobber(CommandSink& sink, const PlanState& s, const PassState& ps, uint32_t slot) {
+    for (const PlannedUsage& u : ps.pass->usages) {
+        const ResourceState& r = s.resources[u.resource];
+        if (!r.isImage) {
+            sink.fillBuffer(r.buffers[r.copyFor(slot)].buffer.get(), 0, VK_WHOLE_SIZE, kPoisonBufferWord);
+            continue;
+        }
+        const VkImageSubresourceRange range{r.aspect, u.range.baseMip, u.range.mipCount, u.range.baseLayer,
+                                            u.range.layerCount};
+        const VkImage image = r.images[r.copyFor(slot)].image;
+        const VkClearValue poison = poisonFor(r.desc->format);
+        if (r.desc->format.isDepthStencil()) sink.clearDepthStencil(image, u.layout, poison.depthStencil, range);
+        else sink.clearColor(image, u.layout, poison.color, range);
     }
 }
 
@@ -49,6 +67,7 @@ void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecor
     PassState& ps = s.passes[step];
     switch (ps.kind) {
         case StepKind::Clear: return recordClear(sink, s, ps, r.slot);
+        case StepKind::Clobber: return recordClobber(sink, s, ps, r.slot);
         case StepKind::Readback: return recordReadback(sink, s, step, r.slot);
         case StepKind::Upload: throw ExecutorError(passError(*ps.pass, "", "an Upload step belongs to a setup plan"));
         case StepKind::Pass: break;
@@ -80,7 +99,9 @@ void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecor
 
 StepKind stepKindOf(const PlannedPass& pass) {
     if (pass.declIndex >= 0) return StepKind::Pass;
-    return pass.type == "Clear" ? StepKind::Clear : pass.type == "Readback" ? StepKind::Readback : StepKind::Upload;
+    if (pass.type == "Clear") return StepKind::Clear;
+    if (pass.type == "Clobber") return StepKind::Clobber;
+    return pass.type == "Readback" ? StepKind::Readback : StepKind::Upload;
 }
 
 void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot) {

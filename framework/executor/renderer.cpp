@@ -6,6 +6,7 @@
 
 #include <skygraph/transfer_plans.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <cstring>
@@ -17,7 +18,8 @@ using namespace detail;
 std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
     if (compiled.outputWidth() == 0 || compiled.outputHeight() == 0)
         throw ExecutorError("output extent must be at least 1x1");
-    auto s = std::make_unique<PlanState>(std::move(compiled));
+    // Placements are only as good as the requirements they were made with: this device's.
+    auto s = std::make_unique<PlanState>(withDeviceMemory(std::move(compiled)));
     describeResources(*s);
     for (size_t i = 0; i < s->plan.passes().size(); ++i) buildPassStatic(*s, i);
     buildSized(*s);
@@ -204,6 +206,12 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     const ResourceState& r = s.resources[index];
     if (r.presented)
         throw ExecutorError("cannot read '" + resource + "': it is the presented image, the presentation engine's");
+    // A transient whose memory a later resource of the frame takes over holds that one's
+    // contents after the frame, not its own.
+    for (const MemoryPlacement& p : s.plan.memory().placements)
+        if (std::find(p.aliases.begin(), p.aliases.end(), index) != p.aliases.end())
+            throw ExecutorError("cannot read '" + resource + "': '" + std::string(s.plan.resources()[p.resource].name) +
+                                "' takes over its memory later in the frame; export it, or give it \"alias\": false");
     const uint32_t slot = d.lastBinding;
     const uint32_t texel = copyTexelBytes(r.desc->format);
     std::vector<VkBufferImageCopy> copies;
@@ -216,7 +224,7 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
         copies.push_back(c);
         bytes += VkDeviceSize(r.mipWidth(m)) * r.mipHeight(m) * texel * r.layers;
     }
-    OwnedBuffer host = d.makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    OwnedBuffer host = d.makeHostBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
     d.submitAndWait([&](CommandSink& sink) {
         const auto target = [&](uint32_t) { return r.barrierTarget(slot); };  // the plan's one resource
         const PlannedPass& step = read.passes().front();  // an image-read plan is one step

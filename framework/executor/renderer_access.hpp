@@ -9,6 +9,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace skygraph {
@@ -36,6 +37,39 @@ struct HandFrame {
     std::vector<VkMemoryBarrier2> finalMemoryBarriers;
 };
 
+/// Where a renderer's plan resources live in device memory (RendererAccess::memory): the
+/// heaps its placed transients share and the memory of its other resources. Handles are the
+/// renderer's, valid while its plan state is not rebuilt.
+struct RendererMemory {
+    struct Allocation {
+        std::string name;  ///< "heap 0#1" (heap 0 of frame slot 1), or the resource copy's name.
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        VkDeviceSize bytes = 0;
+    };
+    /// A transient bound into a heap.
+    struct Placed {
+        std::string resource;
+        uint32_t copy = 0;  ///< The frame slot whose heap it is in.
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        VkDeviceSize offset = 0;
+        VkDeviceSize bytes = 0;  ///< What the device requires for it (vkGet*MemoryRequirements).
+    };
+    std::vector<Allocation> heaps;  ///< Every heap of every frame slot, slot after slot.
+    std::vector<Allocation> own;    ///< Resource copies with memory of their own (not present images).
+    std::vector<Placed> placed;
+
+    [[nodiscard]] VkDeviceSize heapBytes() const noexcept {
+        VkDeviceSize sum = 0;
+        for (const Allocation& a : heaps) sum += a.bytes;
+        return sum;
+    }
+    [[nodiscard]] VkDeviceSize ownBytes() const noexcept {
+        VkDeviceSize sum = 0;
+        for (const Allocation& a : own) sum += a.bytes;
+        return sum;
+    }
+};
+
 struct RendererAccess {
     /// Records `renderer`'s current plan for frame slot `slot` into `cmd` (begun by the
     /// caller), without labels or timestamps (its Readback steps included). For benchmarks that
@@ -53,6 +87,9 @@ struct RendererAccess {
     /// Test-only: the stages the next presented frames signal the render-complete semaphore in,
     /// in place of presentSignalStages. std::nullopt: presentSignalStages again.
     static void overrideRenderCompleteSignal(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages);
+
+    /// Test-only, and for memory measurements: the device memory of the current plan state.
+    [[nodiscard]] static RendererMemory memory(const Renderer& renderer);
 };
 
 }  // namespace skygraph

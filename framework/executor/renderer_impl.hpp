@@ -2,6 +2,7 @@
 // slots) and Renderer::Impl, whose members are defined by concept in
 //   renderer.cpp            the public Renderer API, building a plan, read-back, hand frames
 //   renderer_resources.cpp  images, buffers, views, per-slot copies, importing externals
+//   renderer_memory.cpp     device memory: resources' own, and the heaps transients are placed in
 //   renderer_passes.cpp     each pass's recording code, render pass, framebuffers, barriers
 //   renderer_frame.cpp      frame slots, submission, timestamps
 //   renderer_setup.cpp      the setup plan before the first frame, and reading images back
@@ -12,6 +13,7 @@
 #include "barrier_batch.hpp"
 #include "command_sink.hpp"
 #include "device_access.hpp"
+#include "device_memory.hpp"
 #include "pass_error.hpp"
 #include "spirv_cache.hpp"
 #include "texel_encoding.hpp"
@@ -47,19 +49,23 @@ inline VkImageAspectFlags aspectOf(const FormatInfo& f) {
     return a;
 }
 
-/// A buffer with its memory; mapped when host-visible.
+/// A buffer and the memory it is bound to (its own, or a heap it shares with other
+/// transients); mapped when host-visible. Declared before the buffer, the memory is released
+/// after it.
 struct OwnedBuffer {
+    SharedMemory memory;
     vk::Buffer buffer;
-    vk::Memory memory;
     void* mapped = nullptr;
     VkDeviceSize size = 0;
 };
 
-/// A Vulkan image and its memory. Shared so that another renderer on the same device can
-/// sample it (Renderer::importImage): it lives while any renderer or SharedImage holds it.
+/// A Vulkan image and the memory it is bound to (its own, or a heap it shares with other
+/// transients). Shared so that another renderer on the same device can sample it
+/// (Renderer::importImage): it lives while any renderer or SharedImage holds it. Declared
+/// before the image, the memory is released after it.
 struct ImageStorage {
+    SharedMemory memory;
     vk::Image image;
-    vk::Memory memory;
 };
 
 struct ImageCopy {
@@ -86,6 +92,9 @@ struct ResourceState {
     VkDeviceSize size = 0;
     VkImageUsageFlags imageUsage = kAlwaysUsable.image;
     VkBufferUsageFlags bufferUsage = kAlwaysUsable.buffer;
+    /// Index into Plan::memory().placements, or PlannedResource::kNoPlacement: a transient
+    /// bound into its frame slot's heap rather than memory of its own.
+    uint32_t placement = PlannedResource::kNoPlacement;
     std::vector<ImageCopy> images;
     std::vector<OwnedBuffer> buffers;
 
@@ -128,7 +137,7 @@ struct PassAttachments {
                                            const std::vector<ResourceState>& resources);
 
 /// What the executor does for a plan step: a pass's recording, or a step the compiler inserted.
-enum class StepKind : uint8_t { Pass, Clear, Readback, Upload };
+enum class StepKind : uint8_t { Pass, Clear, Readback, Upload, Clobber };
 
 struct PassState {
     const PlannedPass* pass = nullptr;
@@ -167,6 +176,10 @@ struct PlanState {
     std::vector<PassState> passes;         ///< Parallel to plan.passes().
     std::vector<BarrierBatch> finals;      ///< Per slot.
     std::vector<ReadbackTarget> readbacks; ///< One per Readback step of the plan.
+    /// The plan's heaps (Plan::memory().heaps), one allocation each per frame slot, or one
+    /// when the frames share them (MemoryLayout::sharedAcrossFrames): heaps[copy][heap]. The
+    /// placed resources' copy c is bound into heaps[c] (their one copy into heaps[0] when shared).
+    std::vector<std::vector<SharedMemory>> heaps;
     Plan setup;  ///< planSetup of `plan`: what ran before the first frame.
     /// Presenting: the plan's Present resource (index into plan.resources()) and the number of
     /// present images; headless: -1 and 1.
@@ -276,10 +289,30 @@ struct Renderer::Impl {
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);
 
+    // --- renderer_memory.cpp: device memory -------------------------------------------------
+    /// A memory object of `bytes` from a type among `typeBits` with `properties`, named `name`
+    /// for debug utils. Throws ExecutorError when there is no such type or allocation fails.
+    [[nodiscard]] detail::SharedMemory allocate(VkDeviceSize bytes, uint32_t typeBits,
+                                                VkMemoryPropertyFlags properties, const std::string& name);
+    /// Allocates the plan's heaps (s.heaps) for every frame slot, or once when the frames share
+    /// them, DEVICE_LOCAL, named "heap h#c".
+    void allocateHeaps(detail::PlanState& s);
+    /// Binds `image` (or `buffer`), copy `copy` of resource `r`: into its heap at its
+    /// placement's offset after checking that the device's requirements fit the placement,
+    /// else into memory of its own. Returns the memory it is bound to. Throws ExecutorError
+    /// naming the resource when the placement does not fit (a plan compiled with another
+    /// memory model).
+    detail::SharedMemory bindImage(const detail::PlanState& s, const detail::ResourceState& r, uint32_t copy, VkImage image);
+    detail::SharedMemory bindBuffer(const detail::PlanState& s, const detail::ResourceState& r, uint32_t copy, VkBuffer buffer);
+    /// `compiled` as the renderer runs it: compiled with this device's memory model, compiled
+    /// again with it when it was not (Renderer::compiled() then reports the recompiled one).
+    [[nodiscard]] CompiledGraph withDeviceMemory(CompiledGraph compiled) const;
+
     // --- renderer_resources.cpp: resources and their per-slot copies --------------------------
     /// Per-frame copies of the plan's read-backs: host-visible buffers.
     void createReadbackTargets(detail::PlanState& s);
-    detail::OwnedBuffer makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible);
+    /// A host-visible, coherent buffer of its own memory, mapped (staging and read-backs).
+    detail::OwnedBuffer makeHostBuffer(VkDeviceSize size, VkBufferUsageFlags usage);
     VkImageView view(detail::ResourceState& r, uint32_t copy, VkImageViewType type,
                      const SubresourceRange& range, bool attachment);
     void describeResources(detail::PlanState& s);

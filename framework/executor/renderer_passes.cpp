@@ -79,6 +79,9 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
                 throw ExecutorError(passError(pass, r.desc->name, "clear pass on a resource without `clear`"));
             if (ps.kind == StepKind::Readback && !r.isImage)
                 throw ExecutorError(passError(pass, r.desc->name, "a read-back of a buffer"));
+            // Poison would destroy contents that outlive the frame.
+            if (ps.kind == StepKind::Clobber && s.plan.resources()[u.resource].placement == PlannedResource::kNoPlacement)
+                throw ExecutorError(passError(pass, r.desc->name, "a clobber of a resource that is not transient"));
         }
         s.passes.push_back(std::move(ps));
         return;

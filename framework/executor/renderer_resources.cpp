@@ -1,8 +1,7 @@
 // Renderer::Impl: images, buffers and views of the plan's resources, their per-slot copies,
 // and the one-time import of external resources.
 #include "renderer_impl.hpp"
-
-#include <cstdio>
+#include "resource_creation.hpp"
 
 namespace skygraph {
 
@@ -10,68 +9,35 @@ using namespace detail;
 
 namespace {
 
-std::string gib(VkDeviceSize bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f GiB", static_cast<double>(bytes) / double(1ull << 30));
-    return text;
-}
-
 /// Refuses a plan whose resources the device cannot hold, before anything is allocated (so
 /// a resize or a reload to an absurd extent leaves the running plan untouched): each image
 /// within the device's dimension and layer limits, each buffer within its binding range,
-/// and all of them together within the memory cap, half of the largest device-local heap
-/// (docs/reliability.md: the other half is left to pipelines, staging and other programs).
-void refuseOversizedResources(const PlanState& s, VkPhysicalDevice physical, uint32_t outputWidth,
-                              uint32_t outputHeight, uint32_t slots) {
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(physical, &props);
-    VkPhysicalDeviceMemoryProperties mem;
-    vkGetPhysicalDeviceMemoryProperties(physical, &mem);
-    VkDeviceSize heap = 0;
-    for (uint32_t i = 0; i < mem.memoryHeapCount; ++i)
-        if (mem.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) heap = std::max(heap, mem.memoryHeaps[i].size);
-    const VkDeviceSize cap = heap / 2;
-    const VkPhysicalDeviceLimits& limits = props.limits;
+/// and all of them together within the memory cap (resource_creation.hpp). Transients placed
+/// in heaps count as the heaps they share, once per frame slot (once if the frames share
+/// them); the others as themselves, once per copy.
+void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity, uint32_t slots) {
+    const uint32_t outputWidth = s.outputWidth(), outputHeight = s.outputHeight();
+    const std::string at = " at output " + std::to_string(outputWidth) + "x" + std::to_string(outputHeight);
     VkDeviceSize total = 0;
     for (const ResourceState& r : s.resources) {
         const ResourceDesc& d = *r.desc;
         const uint32_t copies = r.presented ? 0 : r.perSlot ? slots : 1;  // present images are not ours
         VkDeviceSize bytes = 0;
         if (!r.isImage) {
-            const bool storage = r.bufferUsage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-            const bool uniform = r.bufferUsage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
-            if (storage && d.sizeBytes > limits.maxStorageBufferRange)
-                throw ExecutorError("resource '" + d.name + "': a storage buffer of " + std::to_string(d.sizeBytes) +
-                                    " bytes exceeds the device's maxStorageBufferRange (" +
-                                    std::to_string(limits.maxStorageBufferRange) + "); nothing was allocated");
-            if (uniform && d.sizeBytes > limits.maxUniformBufferRange)
-                throw ExecutorError("resource '" + d.name + "': a uniform buffer of " + std::to_string(d.sizeBytes) +
-                                    " bytes exceeds the device's maxUniformBufferRange (" +
-                                    std::to_string(limits.maxUniformBufferRange) + "); nothing was allocated");
-            bytes = d.sizeBytes;
+            refuseBufferBeyondLimits(capacity, d, r.bufferUsage);
+            bytes = bufferBytes(d);
         } else {
             const auto [w, h] = d.extent.resolve(outputWidth, outputHeight);
-            const bool cube = d.type == ResourceType::Cube;
-            const uint32_t most = cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D;
-            if (w > most || h > most)
-                throw ExecutorError("resource '" + d.name + "': " + std::to_string(w) + "x" + std::to_string(h) +
-                                    " exceeds the device's " + (cube ? "maxImageDimensionCube" : "maxImageDimension2D") +
-                                    " (" + std::to_string(most) + ") at output " + std::to_string(outputWidth) + "x" +
-                                    std::to_string(outputHeight) + "; nothing was allocated");
-            if (d.layers > limits.maxImageArrayLayers)
-                throw ExecutorError("resource '" + d.name + "': " + std::to_string(d.layers) +
-                                    " layers exceed the device's maxImageArrayLayers (" +
-                                    std::to_string(limits.maxImageArrayLayers) + "); nothing was allocated");
             const uint32_t mips = std::max(1u, d.mipCount(outputWidth, outputHeight));
-            const VkDeviceSize texel = std::max(1u, copyTexelBytes(d.format));
-            for (uint32_t m = 0; m < mips; ++m)
-                bytes += VkDeviceSize(std::max(1u, w >> m)) * std::max(1u, h >> m) * texel * std::max(1u, d.layers);
+            refuseImageBeyondLimits(capacity, d, w, h, mips, d.layers, at);
+            bytes = packedBytes(d, w, h, mips, d.layers);
         }
-        total += bytes * copies;
+        if (r.placement == PlannedResource::kNoPlacement) total += bytes * copies;
     }
-    if (cap != 0 && total > cap)
-        throw ExecutorError("the plan's resources need " + gib(total) + " at output " + std::to_string(outputWidth) +
-                            "x" + std::to_string(outputHeight) + ", over the memory cap of " + gib(cap) +
+    total += s.plan.memory().heapBytes() * (s.plan.memory().sharedAcrossFrames ? 1 : slots);
+    if (capacity.memoryCap != 0 && total > capacity.memoryCap)
+        throw ExecutorError("the plan's resources need " + gib(total) + at + ", over the memory cap of " +
+                            gib(capacity.memoryCap) +
                             " (half the device's largest device-local heap); nothing was allocated");
 }
 
@@ -104,7 +70,7 @@ VkImageUsageFlags planImageUsage(const Plan& plan, uint32_t resource) {
 
 }  // namespace detail
 
-OwnedBuffer Renderer::Impl::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+OwnedBuffer Renderer::Impl::makeHostBuffer(VkDeviceSize size, VkBufferUsageFlags usage) {
     OwnedBuffer b;
     b.size = std::max<VkDeviceSize>(size, 4);
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -115,17 +81,11 @@ OwnedBuffer Renderer::Impl::makeBuffer(VkDeviceSize size, VkBufferUsageFlags usa
     b.buffer = vk::Buffer(vkd, buffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(vkd, buffer, &req);
-    VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    mai.allocationSize = req.size;
-    mai.memoryTypeIndex = vk::findMemoryType(
-        dev.physical, req.memoryTypeBits,
-        hostVisible ? (VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT)
-                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory mem;
-    vk::check(vkAllocateMemory(vkd, &mai, nullptr, &mem), "vkAllocateMemory");
-    b.memory = vk::Memory(vkd, mem);
+    b.memory = allocate(req.size, req.memoryTypeBits,
+                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, "host buffer");
+    const VkDeviceMemory mem = b.memory->memory.get();
     vk::check(vkBindBufferMemory(vkd, buffer, mem, 0), "vkBindBufferMemory");
-    if (hostVisible) vk::check(vkMapMemory(vkd, mem, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
+    vk::check(vkMapMemory(vkd, mem, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
     return b;
 }
 
@@ -181,10 +141,27 @@ void Renderer::Impl::describeResources(PlanState& s) {
             if (r.format == VK_FORMAT_UNDEFINED)
                 throw ExecutorError("resource '" + r.desc->name + "' has no format");
         }
+        if (pr.placement != PlannedResource::kNoPlacement) {
+            const MemoryLayout& layout = s.plan.memory();
+            if (pr.placement >= layout.placements.size() || layout.placements[pr.placement].resource != i ||
+                layout.placements[pr.placement].heap >= layout.heaps.size())
+                throw ExecutorError("resource '" + r.desc->name + "': its placement is not in the plan's memory layout");
+            // Only transients live in heaps: a copy per frame slot in the slot's heaps, or one
+            // copy in heaps the frames share.
+            const ResourceCopies transient =
+                layout.sharedAcrossFrames ? ResourceCopies::SharedTransient : ResourceCopies::PerFrameTransient;
+            if (pr.copies != transient || r.presented)
+                throw ExecutorError("resource '" + r.desc->name + "': only a transient resource can be placed in a heap");
+            r.placement = pr.placement;
+        }
     }
     // Layouts the resource arrives in or is left in need their usage flags too (an
-    // environment map exported as ShaderRead is sampled by the next graph).
+    // environment map exported as ShaderRead is sampled by the next graph). Not for a placed
+    // transient: it is created with exactly the usage the compiler asked its memory
+    // requirements for (kAlwaysUsable and its usages'), which its layouts add nothing to, as
+    // it arrives UNDEFINED and ends in its last use's layout.
     for (size_t i = 0; i < s.plan.resources().size(); ++i) {
+        if (s.resources[i].placement != PlannedResource::kNoPlacement) continue;
         for (const VkImageLayout l : {s.plan.resources()[i].initialLayout, s.plan.resources()[i].finalLayout})
             s.resources[i].imageUsage |= layoutUsage(l);
     }
@@ -196,11 +173,12 @@ void Renderer::Impl::describeResources(PlanState& s) {
             addUsageFlags(u, r.desc->isImage(), r.imageUsage, r.bufferUsage);
         }
     }
-    refuseOversizedResources(s, dev.physical, s.outputWidth(), s.outputHeight(), options.framesInFlight);
+    refuseOversizedResources(s, DeviceCapacity::of(dev.physical), options.framesInFlight);
 }
 
 void Renderer::Impl::createResources(PlanState& s) {
     const uint32_t slots = options.framesInFlight;
+    allocateHeaps(s);
     for (ResourceState& r : s.resources) {
         const ResourceDesc& d = *r.desc;
         const uint32_t copies = r.perSlot ? slots : 1;
@@ -209,7 +187,16 @@ void Renderer::Impl::createResources(PlanState& s) {
         if (!r.isImage) {
             if (d.sizeBytes == 0) throw ExecutorError("buffer '" + d.name + "' has no size");
             r.size = d.sizeBytes;
-            for (uint32_t c = 0; c < copies; ++c) r.buffers.push_back(makeBuffer(r.size, r.bufferUsage, false));
+            const VkBufferCreateInfo ci = bufferCreateInfo(d, r.bufferUsage);
+            for (uint32_t c = 0; c < copies; ++c) {
+                OwnedBuffer b;
+                b.size = ci.size;
+                VkBuffer buffer;
+                vk::check(vkCreateBuffer(vkd, &ci, nullptr, &buffer), "vkCreateBuffer");
+                b.buffer = vk::Buffer(vkd, buffer);
+                b.memory = bindBuffer(s, r, c, buffer);
+                r.buffers.push_back(std::move(b));
+            }
             continue;
         }
         const auto ext = d.extent.resolve(s.outputWidth(), s.outputHeight());
@@ -226,27 +213,8 @@ void Renderer::Impl::createResources(PlanState& s) {
             }
             continue;
         }
-        VkImageCreateInfo ci{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-        ci.flags = d.type == ResourceType::Cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
-        ci.imageType = VK_IMAGE_TYPE_2D;
-        ci.format = r.format;
-        ci.extent = {r.width, r.height, 1};
-        ci.mipLevels = r.mips;
-        ci.arrayLayers = r.layers;
-        ci.samples = VK_SAMPLE_COUNT_1_BIT;
-        ci.tiling = VK_IMAGE_TILING_OPTIMAL;
-        ci.usage = r.imageUsage;
-        ci.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        VkImageFormatProperties fp;
-        if (vkGetPhysicalDeviceImageFormatProperties(dev.physical, ci.format, ci.imageType, ci.tiling,
-                                                     ci.usage, ci.flags, &fp) != VK_SUCCESS ||
-            fp.maxMipLevels < r.mips || fp.maxArrayLayers < r.layers ||
-            fp.maxExtent.width < r.width || fp.maxExtent.height < r.height) {
-            throw ExecutorError("resource '" + d.name + "': the device cannot create a " +
-                                std::string(d.format.name) + " image of " +
-                                std::to_string(r.width) + "x" + std::to_string(r.height) +
-                                " with the usages the plan needs");
-        }
+        const VkImageCreateInfo ci = imageCreateInfo(d, r.width, r.height, r.mips, r.layers, r.imageUsage);
+        refuseUnsupportedImage(dev.physical, d, ci);
         if (const auto it = imports.find(d.name); it != imports.end()) {
             r.images.push_back(adoptImport(s, size_t(&r - s.resources.data()), it->second));
             continue;
@@ -258,17 +226,8 @@ void Renderer::Impl::createResources(PlanState& s) {
             vk::check(vkCreateImage(vkd, &ci, nullptr, &image), "vkCreateImage");
             storage->image = vk::Image(vkd, image);
             img.image = image;
-            VkMemoryRequirements req;
-            vkGetImageMemoryRequirements(vkd, image, &req);
-            VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-            mai.allocationSize = req.size;
-            mai.memoryTypeIndex = vk::findMemoryType(dev.physical, req.memoryTypeBits,
-                                                     VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-            VkDeviceMemory mem;
-            vk::check(vkAllocateMemory(vkd, &mai, nullptr, &mem), "vkAllocateMemory");
-            storage->memory = vk::Memory(vkd, mem);
+            storage->memory = bindImage(s, r, c, image);
             img.storage = std::move(storage);
-            vk::check(vkBindImageMemory(vkd, image, mem, 0), "vkBindImageMemory");
             if (dev.fn.setObjectName) {
                 VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
                 ni.objectType = VK_OBJECT_TYPE_IMAGE;
@@ -305,7 +264,7 @@ void Renderer::Impl::createReadbackTargets(PlanState& s) {
         const ResourceState& r = s.resources[t.resource];
         const VkDeviceSize bytes = VkDeviceSize(r.width) * r.height * copyTexelBytes(r.desc->format);
         for (uint32_t slot = 0; slot < options.framesInFlight; ++slot)
-            t.perSlot.push_back(makeBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true));
+            t.perSlot.push_back(makeHostBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT));
         s.readbacks.push_back(std::move(t));
     }
 }

@@ -89,14 +89,14 @@ void Renderer::Impl::runSetup(PlanState& s) {
         if (setup.passes()[i].type != "Upload") continue;
         const ResourceState& r = s.resources[frameResource[setup.passes()[i].usages[0].resource]];
         if (!r.isImage) {
-            staging[i] = makeBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+            staging[i] = makeHostBuffer(r.size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
             fillBufferPattern(static_cast<uint8_t*>(staging[i].mapped), r.size, 0.5f);
             continue;
         }
         const ImageData& px = uploads.at(r.desc->name);
         const uint32_t texel = copyTexelBytes(r.desc->format);
         const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
-        staging[i] = makeBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+        staging[i] = makeHostBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
         auto* dst = static_cast<uint8_t*>(staging[i].mapped);
         for (uint32_t l = 0; l < r.layers; ++l)
             for (size_t p = 0; p < size_t(r.width) * r.height; ++p) {

@@ -6,8 +6,9 @@
 
 #include <vulkan/vulkan_core.h>
 
-#include <string>
+#include <memory>
 #include <mutex>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -41,6 +42,10 @@ using Swapchain = Owned<VkSwapchainKHR, vkDestroySwapchainKHR>;
 
 namespace skygraph {
 
+namespace detail {
+class DeviceMemoryModel;  // device_memory_model.hpp
+}
+
 struct Device::Impl {
     VkInstance instance = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
@@ -55,6 +60,8 @@ struct Device::Impl {
     float timestampPeriod = 1.0f;
     VkPhysicalDeviceProperties properties{};
     vk::DeviceFunctions fn;
+    /// Device::memoryModel(); detached by finish(), before the device goes.
+    std::shared_ptr<detail::DeviceMemoryModel> memoryModel;
 
     // Message counting; the callback may run on any thread.
     mutable std::mutex mutex;

@@ -50,6 +50,10 @@ void VulkanCommands::copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBu
     vkCmdCopyBuffer(cmd_, from, to, static_cast<uint32_t>(regions.size()), regions.data());
 }
 
+void VulkanCommands::fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) {
+    vkCmdFillBuffer(cmd_, buffer, offset, size, word);
+}
+
 void VulkanCommands::beginRenderPass(const VkRenderPassBeginInfo& info) {
     vkCmdBeginRenderPass(cmd_, &info, VK_SUBPASS_CONTENTS_INLINE);
     setViewportAndScissor(cmd_, info.renderArea.extent);

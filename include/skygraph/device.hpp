@@ -15,6 +15,8 @@
 
 namespace skygraph {
 
+class MemoryModel;  // skygraph/memory.hpp
+
 /// Thrown for Vulkan failures and for plans or graphs the executor cannot run. The message
 /// names the pass and resource involved where there is one.
 class ExecutorError : public std::runtime_error {
@@ -91,6 +93,14 @@ public:
     [[nodiscard]] bool validationEnabled() const noexcept;
     /// Nanoseconds per timestamp tick.
     [[nodiscard]] float timestampPeriodNs() const noexcept;
+    /// How much memory this device needs for each resource, for CompileOptions::memory: it
+    /// asks the device (vkGetDeviceImageMemoryRequirements, creating nothing) about exactly the
+    /// image or buffer a Renderer creates, keeps the DEVICE_LOCAL memory types, and its name()
+    /// is name(). A Renderer runs only plans compiled with it (it recompiles others). Shared:
+    /// the same model every call; safe to use from any thread. It may outlive this Device,
+    /// but once the device is destroyed (finish() or the destructor) its requirements() and
+    /// bufferImageGranularity() throw ExecutorError.
+    [[nodiscard]] std::shared_ptr<const MemoryModel> memoryModel() const noexcept;
 
     /// Number of warning and error messages received since creation or the last clear.
     [[nodiscard]] uint32_t messageCount() const;

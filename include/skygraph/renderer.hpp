@@ -58,6 +58,10 @@ struct PassTiming {
 
 /// Runs one compiled graph. Owns all images, buffers, pipelines and command buffers it
 /// creates, and its CompiledGraph; borrows `device` (which must outlive it). Not copyable.
+/// It runs only plans compiled with its device's memory model (Device::memoryModel()), since
+/// a plan places its transient resources in shared heaps by their memory requirements: a
+/// CompiledGraph compiled with other CompileOptions::memory (e.g. none, the estimate) is
+/// compiled again with the device's, and compiled() reports that one, the plan that runs.
 /// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt by
 /// setGraph(), resize(), reloadShaders() and importImage() when they succeed: references
 /// returned by compiled(), graph() and plan() are invalid afterwards, and images shared before
@@ -66,7 +70,8 @@ struct PassTiming {
 /// its queue, which Vulkan lets one thread use at a time, so use them all from one thread.
 class Renderer {
 public:
-    /// Takes `compiled`; creates resources, pipelines and per-frame state at its output size
+    /// Takes `compiled` (compiled again with the device's memory model unless it was: see the
+    /// class comment); creates resources, pipelines and per-frame state at its output size
     /// and runs its plan's setup (planSetup), waiting for it. Throws ExecutorError (e.g.
     /// framesInFlight outside 1..8, a pass type without recording code, a format the device
     /// cannot use as the plan requires, a pass's createPipelines failing).
@@ -127,16 +132,18 @@ public:
     /// `resource` to the host (element mip * layers + layer), e.g. an environment cube and
     /// its mip chain; the caller owns the copies. The steps and their barriers are the plan of
     /// planImageRead. The image is left in its end-of-frame layout (the plan's final layout).
-    /// Throws ExecutorError for an unknown name, a buffer, an image no frame has written, or
-    /// when no frame has been rendered since the plan state was built or setExternalImage().
+    /// Throws ExecutorError for an unknown name, a buffer, an image no frame has written, a
+    /// transient whose memory another resource takes over later in the frame, or when no
+    /// frame has been rendered since the plan state was built or setExternalImage().
     [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
-    /// Compiles the graph again at a new output extent (CompiledGraph::resized) and rebuilds
-    /// the plan state. Throws ExecutorError when the graph does not compile at that size or
+    /// Compiles the graph again at a new output extent (CompiledGraph::resized, with the running
+    /// options and so the device's memory model) and rebuilds the plan state. Throws ExecutorError when the graph does not compile at that size or
     /// the device cannot hold it; the old plan keeps running then. A presenting renderer
     /// follows its images' extent instead (a size other than theirs throws).
     void resize(uint32_t width, uint32_t height);
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
-    /// frame has finished. On failure throws ExecutorError and keeps the old one running.
+    /// frame has finished; compiled again with the device's memory model unless it was (the
+    /// class comment). On failure throws ExecutorError and keeps the old one running.
     void setGraph(CompiledGraph compiled);
     /// Drops every cached shader and rebuilds the plan state from the shader directory (after
     /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
@@ -167,8 +174,9 @@ public:
     /// by the renderer; the reference is valid, and the values kept, for its whole life,
     /// rebuilds included.
     [[nodiscard]] FrameData& frameData() noexcept;
-    /// What runs: the graph, its compile options and the plan. Valid until the plan state is
-    /// rebuilt (see the class comment).
+    /// What runs: the graph, its compile options and the plan, always compiled with the
+    /// device's memory model (so it may be a recompile of what was given). Valid until the plan
+    /// state is rebuilt (see the class comment).
     [[nodiscard]] const CompiledGraph& compiled() const noexcept;
     /// compiled().graph(): the graph the current plan was compiled from.
     [[nodiscard]] const GraphDesc& graph() const noexcept;

@@ -175,14 +175,14 @@ const PassRegistry& registry() {
 /// Every shipped graph under every feature combination, as it renders headless.
 std::vector<CompiledGraph> shippedCases() {
     std::vector<CompiledGraph> cases;
-    for (const char* file : {"raster.json", "pathtrace.json", "ibl.json"}) {
+    for (const char* file : {"raster.json", "pathtrace.json", "ibl.json", "deferred.json"}) {
         const GraphDesc g = loadGraphFile(fs::path(SKYGRAPH_SOURCE_DIR) / "graphs" / file, registry());
         for (size_t mask = 0; mask < (size_t(1) << g.features.size()); ++mask) {
             CompileOptions o;
             for (size_t f = 0; f < g.features.size(); ++f) o.features[g.features[f].name] = (mask >> f) & 1;
             o.presentReplacement = ExternalState::TransferSrc;
-            o.outputWidth = 64;
-            o.outputHeight = 48;
+            o.outputWidth = 128;  // deferred.json's output/2 chains have 6 levels
+            o.outputHeight = 96;
             if (g.findResource("swapchain")) o.readbacks = {"swapchain"};
             cases.emplace_back(g, o);
         }
@@ -207,7 +207,7 @@ TEST(CommandLog, EveryShippedPlanIsRecordedWithExactlyItsOwnBarriers) {
         }
         ++plans;
     }
-    EXPECT_EQ(plans, 64u + 2u + 1u);
+    EXPECT_EQ(plans, 64u + 2u + 1u + 16u);
     EXPECT_GT(barriers, 500u) << "the plans' barriers were all compared";
 }
 
@@ -236,7 +236,7 @@ TEST(CommandLog, AFramesStepsComeInPlanOrderWithTheirCommands) {
     // A pass's recording code gets the slot it records; a graphics pass records part of its work
     // before the render pass the executor begins for it, the rest inside.
     EXPECT_EQ(commands, (std::vector<std::string>{
-                            "clear color color#1 mips[0+1] layers[0+1] in TRANSFER_DST_OPTIMAL",
+                            "clear color color#1 mips[0+1] layers[0+1] in TRANSFER_DST_OPTIMAL to 0x00000000 0x00000000 0x00000000 0x3f800000",
                             "record pass edit",
                             "edit (slot 1): copy out",
                             "edit (slot 1): copy in",
@@ -265,6 +265,72 @@ TEST(CommandLog, AFramesStepsComeInPlanOrderWithTheirCommands) {
         ASSERT_NE(copyOut, lines.end());
         EXPECT_EQ(*(copyOut + 1), std::string(pass) + " (slot 1): copy in");
     }
+}
+
+// Clobbering: each transient without `clear` is filled with its format's poison (poison.hpp) by
+// a Clobber step before the pass that first writes it, in the frame slot's copy, and the
+// frame's barriers are still exactly the plan's.
+TEST(CommandLog, ClobberStepsFillEachTransientWithItsPoison) {
+    const GraphDesc g = parseGraph(R"({"version": 1, "name": "poison", "resources": {
+        "hdr": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8]},
+        "ldr": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "mips": 2},
+        "ids": {"type": "image2d", "format": "R32_UINT", "extent": [8, 8]},
+        "depth": {"type": "image2d", "format": "D24_UNORM_S8_UINT", "extent": [8, 8]},
+        "buf": {"type": "buffer", "size": 64},
+        "kept": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "clear": {"color": [0, 0, 0, 1]}},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true, "final": "TransferSrc"}},
+      "passes": [
+        {"name": "draw", "type": "Generic", "uses": {"hdr": "Write@ColorAttachment", "depth": "Write@DepthAttachment"}},
+        {"name": "compute", "type": "Generic", "uses": [
+            {"resource": "hdr", "access": "Read", "stage": "Compute"},
+            {"resource": "ldr", "access": "Write", "stage": "Compute", "mips": [0, 1]},
+            {"resource": "ids", "access": "Write", "stage": "Compute"},
+            {"resource": "buf", "access": "Write", "stage": "Compute"},
+            {"resource": "kept", "access": "ReadWrite", "stage": "Compute"}]},
+        {"name": "show", "type": "Generic", "uses": [
+            {"resource": "ldr", "access": "Read", "stage": "Fragment", "mips": [0, 1]},
+            {"resource": "ids", "access": "Read", "stage": "Fragment"},
+            {"resource": "buf", "access": "Read", "stage": "Fragment"},
+            {"resource": "depth", "access": "Read", "stage": "Fragment"},
+            {"resource": "kept", "access": "Read", "stage": "Fragment"},
+            {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]}]})",
+                                   "poison.json", registry());
+    CompileOptions o;
+    o.clobberTransients = true;
+    StandIn s(CompiledGraph(g, o));
+    CommandLog log(s.names);
+    s.log = &log;
+    FrameRecording r;
+    r.slot = 1;
+    recordFrame(log, s.state, r);
+    EXPECT_EQ(barrierLines(log.lines()), planBarriers(s, 1));
+    const auto& lines = log.lines();
+    const auto at = [&](const std::string& line) {
+        const auto it = std::find(lines.begin(), lines.end(), line);
+        EXPECT_NE(it, lines.end()) << "no line '" << line << "' in\n" << ::testing::PrintToString(lines);
+        return it - lines.begin();
+    };
+    const std::string nan = " to 0x7fc00000 0x7fc00000 0x7fc00000 0x7fc00000";
+    const auto draw = at("record pass draw"), compute = at("record pass compute");
+    EXPECT_LT(at("clear color hdr#1 mips[0+1] layers[0+1] in TRANSFER_DST_OPTIMAL" + nan), draw);
+    EXPECT_LT(at("clear depth depth#1 mips[0+1] layers[0+1] in TRANSFER_DST_OPTIMAL to depth 0.5 stencil 0x5a"), draw);
+    // Every mip, though the first write covers one: a later read of the other would show it.
+    EXPECT_LT(at("clear color ldr#1 mips[0+2] layers[0+1] in TRANSFER_DST_OPTIMAL to 0x3f800000 0x00000000 "
+                 "0x3f800000 0x3f800000"),
+              compute);
+    EXPECT_LT(at("clear color ids#1 mips[0+1] layers[0+1] in TRANSFER_DST_OPTIMAL to 0xdeadbeef 0xdeadbeef "
+                 "0xdeadbeef 0xdeadbeef"),
+              compute);
+    EXPECT_LT(at("fill buf#1 from 0 to the end with 0x7fc00000"), compute);
+    // A cleared transient gets its clear, not poison; the external output neither.
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(), [](const std::string& l) {
+                  return l.starts_with("clear color kept#1") &&
+                         l.ends_with("0x00000000 0x00000000 0x00000000 0x3f800000");
+              }),
+              1);
+    EXPECT_EQ(std::count_if(lines.begin(), lines.end(),
+                            [](const std::string& l) { return l.starts_with("clear color out#"); }),
+              0);
 }
 
 }  // namespace

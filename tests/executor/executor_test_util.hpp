@@ -63,11 +63,13 @@ inline std::string graphWithSwapchain(const std::string& name, const std::string
            R"(}, "passes": [)" + passes + "] }";
 }
 
-/// A graph in memory compiled for headless rendering at 16x16.
+/// A graph in memory compiled for headless rendering at 16x16, with the shared device's
+/// memory model: what a renderer on it runs as given (negative controls edit this plan).
 inline CompiledGraph compileText(const std::string& json, FeatureValues features = {}) {
     GraphDesc graph = parseGraph(json, "<test>", PassRegistry::withBuiltins());
     CompileOptions o = sizedOptions();
     o.features = std::move(features);
+    o.memory = sharedDevice().memoryModel();
     o = headless(graph, std::move(o));
     return CompiledGraph(std::move(graph), std::move(o));
 }

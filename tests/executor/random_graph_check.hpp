@@ -47,8 +47,10 @@ struct BarrierMutation {
 };
 
 /// Every way to weaken one barrier of `plan`: drop it; clear one source or destination
-/// stage bit; clear one source or destination access bit; keep the layout (newLayout =
-/// oldLayout) where it changes. Each must cause a validation message if the plan is minimal.
+/// stage bit; clear one source or destination access bit (not the source scope of an
+/// aliasing barrier, whose hazards are between differently described images sharing memory,
+/// which the layer cannot see: the plan verifier's); keep the layout (newLayout = oldLayout)
+/// where it changes. Each must cause a validation message if the plan is minimal.
 [[nodiscard]] std::vector<BarrierMutation> weakenedPlans(const Plan& plan);
 
 /// The mutations that produced no message: barriers (or bits of them) that are not needed,

@@ -55,6 +55,7 @@ TEST_F(Resize, APlanCompiledForAnotherSizeIsCaughtByValidation) {
     o.readbacks = {"swapchain"};
     o.outputWidth = 64;
     o.outputHeight = 64;
+    o.memory = sharedDevice().memoryModel();  // the renderer runs such a plan as given
     const CompiledGraph at64(parseGraph(kChainGraph, "chain.json", PassRegistry::withBuiltins()), o);
     const CompiledGraph at37 = at64.resized(37, 19);
     ASSERT_FALSE(at37.plan().passes().empty());

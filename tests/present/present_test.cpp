@@ -360,8 +360,14 @@ uint32_t validationLayerVersion() {
 
 /// `compiled` with its final barrier to PRESENT_SRC_KHR given destination stages `dst`, or
 /// dropped when `dst` is nullopt.
-CompiledGraph withPresentBarrier(const CompiledGraph& compiled, std::optional<VkPipelineStageFlags2> dst) {
-    Plan plan = compiled.plan();
+CompiledGraph withPresentBarrier(const Device& device, const CompiledGraph& compiled,
+                                 std::optional<VkPipelineStageFlags2> dst) {
+    // Compiled with the device's memory model: a renderer recompiles any other plan, which
+    // would drop the edit.
+    CompileOptions options = compiled.options();
+    options.memory = device.memoryModel();
+    const CompiledGraph onDevice(compiled.graph(), options);
+    Plan plan = onDevice.plan();
     auto& finals = detail::PlanEditor::finalBarriers(plan);
     for (auto it = finals.begin(); it != finals.end(); ++it) {
         if (it->newLayout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) continue;
@@ -369,7 +375,7 @@ CompiledGraph withPresentBarrier(const CompiledGraph& compiled, std::optional<Vk
         else finals.erase(it);
         break;
     }
-    return detail::CompiledGraphAccess::withPlan(compiled, std::move(plan));
+    return detail::CompiledGraphAccess::withPlan(onDevice, std::move(plan));
 }
 
 /// Presents 6 frames of `compiled`; the device's messages are left to read.
@@ -391,7 +397,7 @@ TEST_F(Present, TheFinalBarrierChainsWithTheRenderCompleteSignal) {
     // transitions out of a signal's scope and report it: the reason the plan gives one.
     if (validationLayerVersion() < VK_MAKE_API_VERSION(0, 1, 3, 278)) {
         device_->clearMessages();
-        presentFrames(*device_, withPresentBarrier(compiled, VK_PIPELINE_STAGE_2_NONE));
+        presentFrames(*device_, withPresentBarrier(*device_, compiled, VK_PIPELINE_STAGE_2_NONE));
         EXPECT_TRUE(reported(device_->messages(), "SYNC-HAZARD-PRESENT-AFTER-WRITE", "")) << formatMessages(*device_);
         device_->clearMessages();
     }
@@ -399,7 +405,7 @@ TEST_F(Present, TheFinalBarrierChainsWithTheRenderCompleteSignal) {
 
 TEST_F(Present, NegativeControlNoPresentBarrierIsReported) {
     // Without the final barrier the image is presented in COLOR_ATTACHMENT_OPTIMAL.
-    presentFrames(*device_, withPresentBarrier(raster(96, 64), std::nullopt));
+    presentFrames(*device_, withPresentBarrier(*device_, raster(96, 64), std::nullopt));
     EXPECT_TRUE(reported(device_->messages(), "VUID-VkPresentInfoKHR-pImageIndices-01296")) << formatMessages(*device_);
     device_->clearMessages();
 }

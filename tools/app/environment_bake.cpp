@@ -83,6 +83,7 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
                             "'");
     CompileOptions co;
     co.outputs = products;
+    co.memory = device.memoryModel();  // what the renderer compiles with: it would compile again
     CompiledGraph compiled(std::move(graph), co);
     step("compile");
     RendererOptions ro;

@@ -63,6 +63,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options)
     CompileOptions co = inputs.compile;  // presented: the Present resource stays Present
     co.outputWidth = width_;
     co.outputHeight = height_;
+    co.memory = device_.memoryModel();  // what the renderer compiles with: it would compile again
     CompiledGraph compiled(inputs.graph, co);
     for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
     b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options);

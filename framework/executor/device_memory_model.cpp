@@ -1,0 +1,74 @@
+#include "device_memory_model.hpp"
+
+#include <skygraph/device.hpp>
+
+#include <algorithm>
+
+namespace skygraph::detail {
+
+DeviceMemoryModel::DeviceMemoryModel(VkDevice device, VkPhysicalDevice physical, std::string name)
+    : physical_(physical), capacity_(DeviceCapacity::of(physical)), name_(std::move(name)), device_(device) {
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(physical, &mem);
+    for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
+        if (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) deviceLocalTypes_ |= 1u << i;
+}
+
+void DeviceMemoryModel::detach() noexcept {
+    std::lock_guard lock(mutex_);
+    device_ = VK_NULL_HANDLE;
+}
+
+uint64_t DeviceMemoryModel::bufferImageGranularity() const {
+    std::lock_guard lock(mutex_);
+    if (!device_)
+        throw ExecutorError("the memory model of device '" + name_ + "' was asked after the device was destroyed");
+    return capacity_.limits.bufferImageGranularity;
+}
+
+MemoryRequirements DeviceMemoryModel::requirements(const MemoryQuery& q) const {
+    if (!q.resource) throw ExecutorError("a memory query without a resource");
+    const ResourceDesc& d = *q.resource;
+    const Key key = d.isImage() ? Key{true, uint32_t(d.type), d.format.format, q.width, q.height, q.mips, q.layers,
+                                      q.imageUsage, 0}
+                                : Key{false, 0, VK_FORMAT_UNDEFINED, 0, 0, 0, 0, q.bufferUsage, bufferBytes(d)};
+    std::lock_guard lock(mutex_);
+    if (!device_)
+        throw ExecutorError("resource '" + d.name + "': the memory model of device '" + name_ +
+                            "' was asked after the device was destroyed");
+    if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
+    const MemoryRequirements answer = ask(q);
+    cache_.emplace(key, answer);
+    return answer;
+}
+
+MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
+    const ResourceDesc& d = *q.resource;
+    VkMemoryRequirements2 req{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
+    if (d.isImage()) {
+        // Refused first: asking about an image the device cannot create is invalid usage.
+        refuseImageBeyondLimits(capacity_, d, q.width, q.height, q.mips, q.layers, "");
+        const VkImageCreateInfo ci = imageCreateInfo(d, q.width, q.height, q.mips, q.layers, q.imageUsage);
+        refuseUnsupportedImage(physical_, d, ci);
+        VkDeviceImageMemoryRequirements info{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
+        info.pCreateInfo = &ci;
+        vkGetDeviceImageMemoryRequirements(device_, &info, &req);
+    } else {
+        refuseBufferBeyondLimits(capacity_, d, q.bufferUsage);
+        const VkBufferCreateInfo ci = bufferCreateInfo(d, q.bufferUsage);
+        VkDeviceBufferMemoryRequirements info{VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS};
+        info.pCreateInfo = &ci;
+        vkGetDeviceBufferMemoryRequirements(device_, &info, &req);
+    }
+    const VkMemoryRequirements& r = req.memoryRequirements;
+    const uint32_t types = r.memoryTypeBits & deviceLocalTypes_;
+    // A driver that cannot make the resource answers with nothing (lavapipe: size 0).
+    if (r.size == 0 || types == 0)
+        throw ExecutorError("resource '" + d.name + "': device '" + name_ + "' reports " +
+                            (r.size == 0 ? std::string("no memory requirements for it")
+                                         : "no DEVICE_LOCAL memory type for it") +
+                            "; nothing was allocated");
+    return {r.size, std::max<VkDeviceSize>(r.alignment, 1), types};
+}
+
+}  // namespace skygraph::detail

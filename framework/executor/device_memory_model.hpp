@@ -1,0 +1,66 @@
+// The device's answer to "how much memory does this resource need": what Device::memoryModel()
+// gives the compiler, so that a plan's placements are made with the requirements of exactly
+// the images and buffers the Renderer creates (resource_creation.hpp).
+#pragma once
+
+#include "resource_creation.hpp"
+
+#include <skygraph/memory.hpp>
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <tuple>
+
+namespace skygraph::detail {
+
+/// Asks the device with vkGetDeviceImageMemoryRequirements / vkGetDeviceBufferMemoryRequirements
+/// (Vulkan 1.3; nothing is created to ask) about the create info the Renderer would use for a
+/// query, after refusing what the device cannot create (resource_creation.hpp's checks, so
+/// the driver is never asked about an invalid image). memoryTypeBits keep only the
+/// DEVICE_LOCAL types, the ones the Renderer allocates from. Answers are cached per query.
+///
+/// Thread-safe: every call locks one mutex, which the driver call runs under, so detach()
+/// cannot destroy the device during a call. The Device owns it and calls detach() before it
+/// destroys its VkDevice; compile options may share it beyond that, and requirements() and
+/// bufferImageGranularity() then throw ExecutorError. Not copyable.
+class DeviceMemoryModel final : public MemoryModel {
+public:
+    /// Borrows `device`, valid until detach(). Reads the physical device's limits and memory
+    /// types once.
+    DeviceMemoryModel(VkDevice device, VkPhysicalDevice physical, std::string name);
+    DeviceMemoryModel(const DeviceMemoryModel&) = delete;
+    DeviceMemoryModel& operator=(const DeviceMemoryModel&) = delete;
+
+    /// Throws ExecutorError naming the resource when the device cannot create it (as
+    /// refuseImageBeyondLimits / refuseUnsupportedImage / refuseBufferBeyondLimits say), when
+    /// none of its memory types is DEVICE_LOCAL, or once the device is gone.
+    [[nodiscard]] MemoryRequirements requirements(const MemoryQuery& query) const override;
+    /// The device's bufferImageGranularity. Throws ExecutorError once the device is gone.
+    [[nodiscard]] uint64_t bufferImageGranularity() const override;
+    /// The device's name; answered after the device is gone too, for messages.
+    [[nodiscard]] std::string name() const override { return name_; }
+
+    /// The memory types transients are allocated from: those with DEVICE_LOCAL.
+    [[nodiscard]] uint32_t deviceLocalTypes() const noexcept { return deviceLocalTypes_; }
+    /// The device is about to be destroyed: nothing calls into it after this returns.
+    void detach() noexcept;
+
+private:
+    /// Everything of a query that the create info depends on.
+    using Key = std::tuple<bool, uint32_t, VkFormat, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint64_t>;
+    [[nodiscard]] MemoryRequirements ask(const MemoryQuery& query) const;  // under mutex_
+
+    const VkPhysicalDevice physical_;
+    const DeviceCapacity capacity_;
+    const std::string name_;
+    uint32_t deviceLocalTypes_ = 0;
+    mutable std::mutex mutex_;
+    VkDevice device_;  ///< Guarded by mutex_; VK_NULL_HANDLE once detached.
+    mutable std::map<Key, MemoryRequirements> cache_;  ///< Guarded by mutex_.
+};
+
+}  // namespace skygraph::detail
