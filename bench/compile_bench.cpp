@@ -161,10 +161,10 @@ void setCounters(benchmark::State& state, const Case& c) {
         benchmark::Counter(c.usages, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void compileBench(benchmark::State& state, bool sharedRead) {
+void compileBench(benchmark::State& state, bool sharedRead, const CompileOptions& options = {}) {
     const Case& c = graphFor(static_cast<int>(state.range(0)), sharedRead);
     {
-        const Plan plan = compile(c.graph);
+        const Plan plan = compile(c.graph, options);
         if (!plan.culled().empty() || plan.passes().size() < c.graph.passes.size()) {
             state.SkipWithError("the synthetic graph lost passes to culling");
             return;
@@ -174,13 +174,23 @@ void compileBench(benchmark::State& state, bool sharedRead) {
         state.counters["barriers"] = static_cast<double>(barriers);
     }
     for (auto _ : state) {
-        Plan plan = compile(c.graph);
+        Plan plan = compile(c.graph, options);
         benchmark::DoNotOptimize(plan);
     }
     setCounters(state, c);
 }
 
 void BM_Compile(benchmark::State& state) { compileBench(state, false); }
+
+// The memory planning knob (docs/memory.md, "Placement"), side by side with BM_Compile's
+// default (best fit by size): the online first-use allocator, and no sharing at all.
+CompileOptions placedBy(MemoryStrategy s) {
+    CompileOptions o;
+    o.placement = s;
+    return o;
+}
+void BM_CompileFirstUse(benchmark::State& state) { compileBench(state, false, placedBy(MemoryStrategy::FirstUseOrder)); }
+void BM_CompileUnaliased(benchmark::State& state) { compileBench(state, false, placedBy(MemoryStrategy::Unaliased)); }
 
 // The floor under compile(): copying the finished plan allocates and writes what compile()
 // must produce (per pass its name and type, the plan's one usage array and one barrier array,
@@ -253,6 +263,8 @@ void BM_CopyGraph(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Compile)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompileFirstUse)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompileUnaliased)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CopyPlan)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Parse)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_JsonSax)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);

@@ -80,7 +80,8 @@ bool barrierInto(Barrier& b, SubresourceState& st, const VulkanScope& need, VkIm
             b.srcAccess = st.writeAccess;
             needed = true;
         } else if (layoutChange && st.fromOutside) {
-            b.srcStages = st.writeStages;
+            b.srcStages = st.writeStages;  // the transition waits for the outside's last writes
+            b.srcAccess = st.writeAccess;
         }
     } else {
         const bool visible = covers(st.visibleStages, st.visibleAccess, need);

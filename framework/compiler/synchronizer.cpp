@@ -495,9 +495,21 @@ private:
             return;
         }
         const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
+        // A persistent resource's last writer is the previous frame, in the scope its final
+        // barrier handed the contents to: a barrier that sources from it repeats those writes'
+        // accesses (rule 1), as it would for a writer in the frame. Synchronization validation
+        // asks for exactly that before a layout transition of such a subresource.
+        const VkAccessFlags2 outsideWrites = writeBits(scope.access);
+        // The previous frame's last write of each subresource, when this frame's is the
+        // previous one's (`final: General` carries the contents over): the barrier repeats it
+        // too, so that it covers that write directly and not only through the final barrier
+        // (the validation layer follows no chain into a layout transition without it).
+        const bool persistent = decl(r).final == ExternalState::General && replaced(decl(r).initial) == ExternalState::General;
+        if (persistent) replayAccesses(r);
         for (size_t i = 0; i < facts_[r].grid.size(); ++i) {
             states[i].layout = scope.layout;
-            states[i].writeStages = scope.stages;
+            states[i].writeStages = scope.stages | (persistent ? replay_[i].writeStages : 0);
+            states[i].writeAccess = outsideWrites | (persistent ? replay_[i].writeAccess : 0);
             states[i].visibleStages = scope.stages;
             states[i].visibleAccess = scope.access;
             states[i].fromOutside = true;
@@ -800,22 +812,31 @@ private:
     /// accesses replayed with rules 1-5's bookkeeping, before the frame's barriers are written
     /// (the next frame's first uses of r's bytes need it at their start).
     StageAccess lastUsesInFrame(uint32_t r) {
+        const StageAccess writes = replayAccesses(r);
+        StageAccess last = writes;
+        // A subresource never used was transitioned by the first step's aliasing barrier.
+        addLastUses(last, replay_.data(), replay_.size(), plan_.resources()[r].firstStages);
+        return last;
+    }
+
+    /// Resource r's accesses in the frame replayed with rules 1-5's bookkeeping into replay_
+    /// (per subresource, what the frame leaves), before the frame's barriers are written;
+    /// returns every write's stages and access.
+    StageAccess replayAccesses(uint32_t r) {
         const auto& usages = *usages_;
         const SubresourceGrid& grid = facts_[r].grid;
         replay_.assign(grid.size(), SubresourceState{});
-        StageAccess last;
+        StageAccess writes;
         for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next) {
             const VulkanScope scope{usages[k].stages, usages[k].access, VK_IMAGE_LAYOUT_UNDEFINED};
             if (accesses_[k].writes) {
-                last.stages |= scope.stages;
-                last.access |= writeBits(scope.access);
+                writes.stages |= scope.stages;
+                writes.access |= writeBits(scope.access);
             }
             grid.forEach(usages[k].range,
                          [&](size_t sub) { recordAccess(replay_[sub], accesses_[k].writes, scope.layout, scope); });
         }
-        // A subresource never used was transitioned by the first step's aliasing barrier.
-        addLastUses(last, replay_.data(), replay_.size(), plan_.resources()[r].firstStages);
-        return last;
+        return writes;
     }
 
     /// The memory that resource r takes over was last used by its placement's `aliases`

@@ -15,7 +15,8 @@
 # Environment: FRAMES (200), SIZES ("1920x1080 3840x2160"), DEVICE (nvidia), JOBS (16),
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
 # random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone,
-# SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
+# MEMORY_BENCH=1 to run memory_gpu_bench (MEMORY_FRAMES, MEMORY_ROUNDS, MEMORY_SEEDS,
+# MEMORY_COMPARE_SIZE), SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
 # (5) repetitions, interleaved when more than 5), TARGETS the targets built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
@@ -147,5 +148,16 @@ if [ "${SKIP_IMGUI_BENCH:-0}" != 1 ]; then
   ran "$bin_imgui" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_imgui" --size="${IMGUI_SIZE:-1920x1080}" \
     --benchmark_repetitions="$reps" "${interleave[@]}" --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true \
     --benchmark_out="$out/imgui_bench.json" --benchmark_out_format=json)
+fi
+if [ "${MEMORY_BENCH:-0}" = 1 ]; then
+  # Transient memory (docs/performance.md, "Transient memory"): the device's heap bytes, frame
+  # time with and without aliasing, and aliased+clobbered images against unaliased ones.
+  bin_mem=$build/bench/memory_gpu_bench
+  step "memory_gpu_bench on $device"
+  ran "$bin_mem" && (cd "$src" && "$bin_mem" --device "$device" memory graphs/*.json \
+    && "$bin_mem" --device "$device" time --size 1920x1080 --size 3840x2160 --frames "${MEMORY_FRAMES:-40}" \
+         --rounds "${MEMORY_ROUNDS:-9}" graphs/deferred.json \
+    && "$bin_mem" --device "$device" compare --size "${MEMORY_COMPARE_SIZE:-256x256}" --seeds "${MEMORY_SEEDS:-64}" \
+         graphs/*.json) | tee "$out/memory_gpu_bench.txt"
 fi
 step "done"
