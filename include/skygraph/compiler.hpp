@@ -64,8 +64,9 @@ struct CompileOptions {
     /// The frames in flight share the transients' memory instead of each having its own: one
     /// copy of each heap. Frames run in order on one queue, so each frame's first use of a
     /// byte waits, through the plan's aliasing barriers, for the previous frame's last use of
-    /// it (docs/memory.md, "Frames in flight").
-    bool shareTransientsAcrossFrames = false;
+    /// it (docs/memory.md, "Frames in flight": it halves transient memory with two frames in
+    /// flight at no measured frame time). false: a copy per frame in flight (`--heaps-per-frame`).
+    bool shareTransientsAcrossFrames = true;
     /// How they are placed when they share (docs/memory.md, "Placement").
     MemoryStrategy placement = MemoryStrategy::BestFitBySize;
     /// Where memory requirements come from: the executor passes its device's

@@ -20,7 +20,15 @@ const PassRegistry& registry() {
     return r;
 }
 
-Plan compileGraph(const std::string& resources, const std::string& passes, CompileOptions options = {}) {
+/// Options for one frame on its own: each frame in flight with heaps of its own, so that a
+/// resource's first barrier shows what it takes over within the frame alone.
+CompileOptions oneFrame() {
+    CompileOptions o;
+    o.shareTransientsAcrossFrames = false;
+    return o;
+}
+
+Plan compileGraph(const std::string& resources, const std::string& passes, CompileOptions options = oneFrame()) {
     const std::string text = R"({"version": 1, "name": "t", "resources": {)" + resources + R"(}, "passes": [)" +
                              passes + "]}";
     return compile(parseGraph(text, "aliasing.json", registry()), options);
@@ -76,7 +84,7 @@ TEST(AliasingRules, ATakenOverResourceWaitsForItsPredecessorsLastWriteAndReads) 
     EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
     EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     // Without aliasing, b's first use needs nothing before it (rule 6).
-    CompileOptions off;
+    CompileOptions off = oneFrame();
     off.aliasing = false;
     const Plan apart = compileGraph(kTwo, kTwoPasses, off);
     const auto first = barriersOf(apart, "make_b", "b");
@@ -236,7 +244,7 @@ TEST(AliasingRules, APredecessorsUnreadWriteInThePreviousFrameIsAMemoryDependenc
 }
 
 TEST(Clobbering, EveryTransientIsPoisonedAndItsFirstWriteKeepsWhatItDoesNotWrite) {
-    CompileOptions o;
+    CompileOptions o = oneFrame();
     o.clobberTransients = true;
     const Plan plan = compileGraph(kTwo, kTwoPasses, o);
     std::vector<std::string> clobbered;

@@ -20,6 +20,9 @@ const PassRegistry& registry() {
 /// Builds a graph file from resources and passes JSON fragments, then compiles it.
 Plan compileGraph(const std::string& resources, const std::string& passes,
                   CompileOptions options = {}, const std::string& features = "{}") {
+    // The rules are stated for one frame; what frames sharing the heaps add is rule 16's, in
+    // aliasing_rules_test.cpp.
+    options.shareTransientsAcrossFrames = false;
     const std::string text = R"({"version": 1, "name": "t", "features": )" + features +
                              R"(, "resources": {)" + resources + R"(}, "passes": [)" + passes + "]}";
     return compile(parseGraph(text, "rules.json", registry()), options);

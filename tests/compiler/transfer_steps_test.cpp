@@ -226,7 +226,9 @@ TEST(Copies, EachResourceSaysWhyItHasOneCopyOrOnePerFrameInFlight) {
         if (i < 0) throw std::out_of_range(std::string("no plan resource ") + name);
         return plan.resources()[size_t(i)].copies;
     };
-    EXPECT_EQ(copies("color"), ResourceCopies::PerFrameTransient);
+    EXPECT_EQ(copies("color"), ResourceCopies::SharedTransient) << "the frames share the transients' heaps";
+    o.shareTransientsAcrossFrames = false;
+    EXPECT_EQ(compile(g, o).resources()[size_t(plan.resourceIndex("color"))].copies, ResourceCopies::PerFrameTransient);
     EXPECT_EQ(copies("screen"), ResourceCopies::PerFramePresented);
     EXPECT_EQ(copies("scratch"), ResourceCopies::PerFrameWrittenNotExported);
     EXPECT_EQ(copies("out"), ResourceCopies::SharedExported);

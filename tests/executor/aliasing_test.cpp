@@ -41,7 +41,9 @@ using Aliasing = ExecutorTest;
 // synchronization validation (QUEUE_SUBMIT included), with each slot's heaps smaller than the
 // transients' memory laid end to end.
 TEST_F(Aliasing, TheDeferredFrameRendersInHeapsSmallerThanItsTransients) {
-    const CompiledGraph c = deferred(64);
+    CompileOptions perFrame;
+    perFrame.shareTransientsAcrossFrames = false;  // a copy of the heaps per frame slot, counted below
+    const CompiledGraph c = deferred(64, perFrame);
     const MemoryLayout& layout = c.plan().memory();
     EXPECT_EQ(layout.model, sharedDevice().name());
     ASSERT_FALSE(layout.heaps.empty());
@@ -84,7 +86,7 @@ TEST_F(Aliasing, TheDeferredFrameRendersInHeapsSmallerThanItsTransients) {
         EXPECT_TRUE(own.name.starts_with("taa_history") || own.name.starts_with("swapchain")) << own.name;
 }
 
-// With CompileOptions::shareTransientsAcrossFrames the frames in flight share one set of heaps:
+// With CompileOptions::shareTransientsAcrossFrames (the default) the frames in flight share one set of heaps:
 // one allocation per heap, one copy of each transient, and each frame's first uses of the bytes
 // wait for the previous frame's last uses (the plan's barriers), silently under validation.
 TEST_F(Aliasing, TheFramesInFlightCanShareOneSetOfHeaps) {

@@ -223,6 +223,7 @@ TEST(CommandLog, AFramesStepsComeInPlanOrderWithTheirCommands) {
                                    "log.json", registry());
     CompileOptions o;
     o.readbacks = {"out"};
+    o.shareTransientsAcrossFrames = false;  // slot 1 records its own copies (#1)
     StandIn s(CompiledGraph(g, o));
     CommandLog log(s.names);
     s.log = &log;
@@ -297,6 +298,7 @@ TEST(CommandLog, ClobberStepsFillEachTransientWithItsPoison) {
                                    "poison.json", registry());
     CompileOptions o;
     o.clobberTransients = true;
+    o.shareTransientsAcrossFrames = false;  // slot 1 records its own copies (#1)
     StandIn s(CompiledGraph(g, o));
     CommandLog log(s.names);
     s.log = &log;

@@ -65,7 +65,14 @@ struct Compiled {
 };
 /// Parses `json` (a graph file's text) and compiles it; the output is 16x16 unless `options`
 /// says otherwise.
-[[nodiscard]] Compiled compileText(const std::string& json, CompileOptions options = {});
+/// Options for a fixture: one frame's aliasing alone, each frame in flight with heaps of its
+/// own (the frames-sharing-heaps case has tests of its own).
+[[nodiscard]] inline CompileOptions perFrameHeaps() {
+    CompileOptions o;
+    o.shareTransientsAcrossFrames = false;
+    return o;
+}
+[[nodiscard]] Compiled compileText(const std::string& json, CompileOptions options = perFrameHeaps());
 /// Loads graphs/NAME and compiles it.
 [[nodiscard]] Compiled compileShipped(const std::string& name, CompileOptions options = {});
 /// The index of the step called `name`; throws std::out_of_range when there is none.

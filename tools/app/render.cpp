@@ -158,6 +158,7 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
     co.outputWidth = options.width;
     co.outputHeight = options.height;
     co.aliasing = options.aliasing;
+    co.shareTransientsAcrossFrames = options.shareHeapsAcrossFrames;
     co.clobberTransients = options.clobberTransients;
     return in;
 }

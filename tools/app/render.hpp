@@ -54,6 +54,8 @@ struct RenderOptions {
     FeatureValues features;          ///< Overrides of the graph's defaults.
     /// CompileOptions::aliasing: false gives every transient resource memory of its own.
     bool aliasing = true;
+    /// CompileOptions::shareTransientsAcrossFrames: false gives each frame in flight heaps of its own.
+    bool shareHeapsAcrossFrames = true;
     /// CompileOptions::clobberTransients: each transient is poisoned before its first use.
     bool clobberTransients = false;
     uint32_t width = 256;

@@ -30,6 +30,7 @@ struct CompileArgs {
     bool noCull = false;
     uint32_t width = 1920, height = 1080;  // the output size "output" extents resolve to
     bool noAlias = false;
+    bool heapsPerFrame = false;
     std::string placement = "best-fit";
     std::string memorySvg;  // where to draw the memory layout; empty: nowhere
     bool watch = false;
@@ -52,6 +53,7 @@ CompileOptions compileOptions(const CompileArgs& args, const FeatureValues& feat
     options.outputWidth = args.width;
     options.outputHeight = args.height;
     options.aliasing = !args.noAlias;
+    options.shareTransientsAcrossFrames = !args.heapsPerFrame;
     options.placement = args.placement == "first-use" ? MemoryStrategy::FirstUseOrder : MemoryStrategy::BestFitBySize;
     return options;
 }
@@ -147,6 +149,8 @@ Command addCompileCommand(CLI::App& parent) {
         ->check(CLI::Range(1u, 16384u));
     CLI::Option* noAlias = cmd->add_flag(
         "--no-alias", args->noAlias, "Give every transient resource memory of its own (no aliasing barriers)");
+    cmd->add_flag("--heaps-per-frame", args->heapsPerFrame,
+                  "A copy of the transients' heaps per frame in flight, instead of one the frames share");
     cmd->add_option("--placement", args->placement,
                     "How transient resources share memory: best-fit (largest first, into the tightest gap; the "
                     "default) or first-use (in order of first use, like a frame-by-frame pool); docs/memory.md")

@@ -73,6 +73,8 @@ Command addRenderCommand(CLI::App& parent) {
                   "the sizes the view can show (output height, field of view, equirect width)");
     cmd->add_flag("!--no-alias", o.aliasing,
                   "Give every transient resource of the frame memory of its own (no aliasing barriers)");
+    cmd->add_flag("!--heaps-per-frame", o.shareHeapsAcrossFrames,
+                  "A copy of the transients' heaps per frame in flight, instead of one the frames share");
     cmd->add_flag("--clobber-transients", o.clobberTransients,
                   "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
                   "before its first use: a frame that then renders differently reads what it did not write");

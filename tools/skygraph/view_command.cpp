@@ -68,6 +68,8 @@ Command addViewCommand(CLI::App& parent) {
                   "Build the environment cube and the prefiltered cube at the graph's declared sizes");
     cmd->add_flag("!--no-alias", o.frame.aliasing,
                   "Give every transient resource of the frame memory of its own (no aliasing barriers)");
+    cmd->add_flag("!--heaps-per-frame", o.frame.shareHeapsAcrossFrames,
+                  "A copy of the transients' heaps per frame in flight, instead of one the frames share");
     cmd->add_flag("--clobber-transients", o.frame.clobberTransients,
                   "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
                   "before its first use");
