@@ -208,5 +208,33 @@ TEST(MemoryPlacement, RandomInputsMeetTheDefinitionsUnderEveryStrategy) {
     }
 }
 
+// The device-free estimate (docs/memory.md, "Requirements"), on the sizes the shipped graphs use.
+TEST(MemoryEstimate, ImagesArePackedTexelsInPagesAndBuffersTheirSize) {
+    const auto model = estimatedMemory();
+    ResourceDesc hdr;
+    hdr.format = *findFormat("R16G16B16A16_SFLOAT");
+    MemoryQuery q;
+    q.resource = &hdr;
+    q.width = 1920;
+    q.height = 1080;
+    EXPECT_EQ(model->requirements(q), (MemoryRequirements{16646144, 65536, 1u})) << "1920 x 1080 x 8 bytes, in 64 KiB";
+    ResourceDesc cube;
+    cube.type = ResourceType::Cube;
+    cube.format = *findFormat("R16G16B16A16_SFLOAT");
+    q.resource = &cube;
+    q.width = q.height = 256;
+    q.mips = 9;
+    q.layers = 6;
+    // 6 faces of 256^2 + 128^2 + ... + 1 texels of 8 bytes: 6 x 699048 bytes, in 64 KiB pages.
+    EXPECT_EQ(model->requirements(q).size, 4194304u);
+    ResourceDesc buffer;
+    buffer.type = ResourceType::Buffer;
+    buffer.sizeBytes = 100;
+    q.resource = &buffer;
+    EXPECT_EQ(model->requirements(q), (MemoryRequirements{100, 256, 1u}));
+    EXPECT_EQ(model->bufferImageGranularity(), 1024u);
+    EXPECT_EQ(model->name(), "estimate");
+}
+
 }  // namespace
 }  // namespace skygraph
