@@ -1,7 +1,8 @@
 // Placement of transient resources (docs/memory.md): heaps by memory type, then one of the
 // strategies, then which earlier resources each one takes memory over from. A 10,000-pass
 // frame has some 15,000 transients and its whole compile takes a few milliseconds, so every
-// phase here is linear or close to it, and allocates up front.
+// phase costs in proportion to the resources and the steps each holds memory for (best fit
+// also to the resources live beside each), and allocates up front.
 #include "memory_planner.hpp"
 
 #include <algorithm>
@@ -119,9 +120,13 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         uint64_t begin, end;
         uint32_t heap, next;
     };
+    // Items that hold memory all frame are kept once, apart from the steps' lists, which would
+    // otherwise hold a node per step for each.
+    const auto wholeFrame = [&](const Item& it) { return it.first == 0 && it.last == steps - 1; };
     size_t nodeCount = 0;
-    for (const Item& it : items) nodeCount += it.last - it.first + 1;
+    for (const Item& it : items) nodeCount += wholeFrame(it) ? 0 : it.last - it.first + 1;
     std::vector<Node> nodes(nodeCount);
+    std::vector<Node> always;
     std::vector<uint32_t> head(steps, kNone);
     uint32_t used = 0;
     struct Busy {
@@ -131,6 +136,8 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
     for (const uint32_t i : largestFirst(items)) {
         Item& it = items[i];
         busy.clear();
+        for (const Node& n : always)
+            if (n.heap == it.heap) busy.push_back({n.begin, n.end});
         for (uint32_t s = it.first; s <= it.last; ++s)
             for (uint32_t n = head[s]; n != kNone; n = nodes[n].next)
                 if (nodes[n].heap == it.heap) busy.push_back({nodes[n].begin, nodes[n].end});
@@ -148,6 +155,10 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         }
         it.offset = bestGap != ~uint64_t(0) ? best : alignUp(free, it.alignment);
         heaps[it.heap].bytes = std::max(heaps[it.heap].bytes, it.offset + it.bytes);
+        if (wholeFrame(it)) {
+            always.push_back({it.offset, it.offset + it.bytes, it.heap, kNone});
+            continue;
+        }
         for (uint32_t s = it.first; s <= it.last; ++s) {
             nodes[used] = {it.offset, it.offset + it.bytes, it.heap, head[s]};
             head[s] = used++;

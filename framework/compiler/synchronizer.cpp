@@ -705,6 +705,24 @@ private:
         detail::PlanBuilder::presentations(plan_).push_back({r, planResources()[r].firstStages, lastStages});
     }
 
+    /// A model's answer the planner can place: a size, a power-of-two alignment, a memory type,
+    /// and a size that stays far from overflowing the heap's offsets. An embedder's model that
+    /// answers otherwise is named with the resource it answered for.
+    void checkRequirements(const MemoryRequirements& m, const ResourceDesc& d, const MemoryModel& model) const {
+        constexpr uint64_t kLargest = uint64_t(1) << 52;  // a petabyte: offsets add far below 2^64
+        std::string problem;
+        if (m.size == 0 || m.size > kLargest) problem = "a size of " + std::to_string(m.size) + " bytes";
+        else if (m.alignment == 0 || (m.alignment & (m.alignment - 1)) != 0 || m.alignment > kLargest)
+            problem = "an alignment of " + std::to_string(m.alignment) + ", not a power of two";
+        else if (m.memoryTypeBits == 0) problem = "no memory type";
+        if (problem.empty()) return;
+        Diagnostics diags;
+        diags.add({graph_.file, d.jsonPath(), "", d.name,
+                   "the memory model '" + model.name() + "' answered " + problem + " for '" + d.name +
+                       "', which cannot be placed"});
+        throw GraphError(std::move(diags));
+    }
+
     /// Where each transient resource lives (rule 16 of docs/barriers.md): the plan's memory
     /// layout, from the lifetimes planAccesses found and the requirements of options_.memory.
     void planMemory() {
@@ -741,10 +759,26 @@ private:
             t.firstStep = accesses_[f.firstAccess].step;
             t.lastStep = accesses_[f.lastAccess].step;
             t.requirements = model ? model->requirements(q) : estimatedRequirements(q);
+            if (model) checkRequirements(t.requirements, d, *model);
             t.linear = !f.image;
             t.aliasable = d.alias;
         }
+        // Resources are numbered as the schedule meets them, but a Clear or Clobber before a
+        // pass is the first use of the resource it fills: the planner wants first-use order.
+        const auto byFirstStep = [](const TransientResource& x, const TransientResource& y) {
+            return x.firstStep < y.firstStep;
+        };
+        if (!std::is_sorted(transients.begin(), transients.end(), byFirstStep))
+            std::stable_sort(transients.begin(), transients.end(), byFirstStep);
         const uint64_t granularity = model ? model->bufferImageGranularity() : estimatedMemory()->bufferImageGranularity();
+        if (granularity == 0 || (granularity & (granularity - 1)) != 0) {
+            Diagnostics diags;
+            diags.add({graph_.file, "", "", "",
+                       "the memory model '" + (model ? model->name() : std::string("estimate")) +
+                           "' answered a bufferImageGranularity of " + std::to_string(granularity) +
+                           ", not a power of two"});
+            throw GraphError(std::move(diags));
+        }
         MemoryLayout& layout = detail::PlanBuilder::memory(plan_);
         layout = placeTransients(transients, static_cast<uint32_t>(steps_.size()), granularity, options_.placement,
                                  options_.aliasing, options_.shareTransientsAcrossFrames);

@@ -48,12 +48,16 @@ uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,
                         VkMemoryPropertyFlags required) {
     VkPhysicalDeviceMemoryProperties props;
     vkGetPhysicalDeviceMemoryProperties(physical, &props);
-    for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
-        if ((typeBits & (1u << i)) &&
-            (props.memoryTypes[i].propertyFlags & required) == required) {
-            return i;
+    // Device-local memory that the host can also map (resizable BAR) is scarcer than plain
+    // device-local memory: take it only when it is asked for or nothing else fits.
+    const VkMemoryPropertyFlags avoided = required & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT
+                                              ? 0u
+                                              : VkMemoryPropertyFlags(VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT);
+    for (const VkMemoryPropertyFlags unwanted : {avoided, VkMemoryPropertyFlags(0)})
+        for (uint32_t i = 0; i < props.memoryTypeCount; ++i) {
+            const VkMemoryPropertyFlags flags = props.memoryTypes[i].propertyFlags;
+            if ((typeBits & (1u << i)) && (flags & required) == required && (flags & unwanted) == 0) return i;
         }
-    }
     throw ExecutorError("no memory type with the required properties");
 }
 

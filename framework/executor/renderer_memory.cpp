@@ -63,7 +63,9 @@ SharedMemory Renderer::Impl::allocate(VkDeviceSize bytes, uint32_t typeBits, VkM
     mai.allocationSize = bytes;
     mai.memoryTypeIndex = memory->type;
     VkDeviceMemory raw;
-    vk::check(vkAllocateMemory(vkd, &mai, nullptr, &raw), "vkAllocateMemory");
+    if (const VkResult result = vkAllocateMemory(vkd, &mai, nullptr, &raw); result != VK_SUCCESS)
+        throw ExecutorError(name + ": vkAllocateMemory of " + std::to_string(bytes) + " bytes in memory type " +
+                            std::to_string(memory->type) + " failed: " + vk::resultName(result));
     memory->memory = vk::Memory(vkd, raw);
     if (dev.fn.setObjectName) {
         VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
@@ -106,10 +108,17 @@ SharedMemory bindResource(Renderer::Impl& d, const PlanState& s, const ResourceS
     const MemoryLayout& layout = s.plan.memory();
     const MemoryPlacement& p = layout.placements[r.placement];
     const SharedMemory& heap = s.heaps.at(copy).at(p.heap);
-    if (const std::string why = placementMismatch(req, p, layout.heaps[p.heap], heap->type); !why.empty())
+    if (const std::string why = placementMismatch(req, p, layout.heaps[p.heap], heap->type); !why.empty()) {
+        // withDeviceMemory recompiles a plan placed with another model, so with the device's
+        // own the model and vkGet*MemoryRequirements disagree: a defect, not a user's error.
+        const bool ownModel = layout.model == d.device.memoryModel()->name();
         throw ExecutorError("resource '" + r.desc->name + "' does not fit its place in heap " + std::to_string(p.heap) +
                             " at offset " + std::to_string(p.offset) + ": " + why + ". The plan was placed with the " +
-                            "memory model '" + layout.model + "'; run plans compiled with Device::memoryModel()");
+                            "memory model '" + layout.model + "'" +
+                            (ownModel ? ", the device's own, which answered differently from the resource created: "
+                                        "a skygraph defect, please report it with this message"
+                                      : "; run plans compiled with Device::memoryModel()"));
+    }
     bind(heap->memory.get(), p.offset);
     return heap;
 }

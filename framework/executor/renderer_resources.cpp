@@ -12,7 +12,8 @@ namespace {
 /// Refuses a plan whose resources the device cannot hold, before anything is allocated (so
 /// a resize or a reload to an absurd extent leaves the running plan untouched): each image
 /// within the device's dimension and layer limits, each buffer within its binding range,
-/// and all of them together within the memory cap (resource_creation.hpp). Transients placed
+/// each heap within one allocation's limit, and all of them together within the memory cap
+/// (resource_creation.hpp). Transients placed
 /// in heaps count as the heaps they share, once per frame slot (once if the frames share
 /// them); the others as themselves, once per copy.
 void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity, uint32_t slots) {
@@ -34,6 +35,12 @@ void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity
         }
         if (r.placement == PlannedResource::kNoPlacement) total += bytes * copies;
     }
+    const std::vector<MemoryHeap>& heaps = s.plan.memory().heaps;
+    for (size_t h = 0; h < heaps.size(); ++h)
+        if (capacity.maxAllocation != 0 && heaps[h].bytes > capacity.maxAllocation)
+            throw ExecutorError("heap " + std::to_string(h) + " of the plan's transients needs " + gib(heaps[h].bytes) +
+                                at + ", over the " + gib(capacity.maxAllocation) +
+                                " one allocation of the device may have (maxMemoryAllocationSize); nothing was allocated");
     total += s.plan.memory().heapBytes() * (s.plan.memory().sharedAcrossFrames ? 1 : slots);
     if (capacity.memoryCap != 0 && total > capacity.memoryCap)
         throw ExecutorError("the plan's resources need " + gib(total) + at + ", over the memory cap of " +

@@ -54,9 +54,12 @@ std::string gib(VkDeviceSize bytes) {
 
 DeviceCapacity DeviceCapacity::of(VkPhysicalDevice physical) {
     DeviceCapacity c;
-    VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(physical, &props);
-    c.limits = props.limits;
+    VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &maintenance3;
+    vkGetPhysicalDeviceProperties2(physical, &props);
+    c.limits = props.properties.limits;
+    c.maxAllocation = maintenance3.maxMemoryAllocationSize;
     VkPhysicalDeviceMemoryProperties mem;
     vkGetPhysicalDeviceMemoryProperties(physical, &mem);
     VkDeviceSize heap = 0;

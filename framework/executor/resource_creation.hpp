@@ -32,6 +32,8 @@ struct DeviceCapacity {
     /// Half the largest device-local heap (docs/reliability.md: the other half is left to
     /// pipelines, staging and other programs); 0 when the device reports none.
     VkDeviceSize memoryCap = 0;
+    /// The most one vkAllocateMemory may ask for (maxMemoryAllocationSize); 0 when unknown.
+    VkDeviceSize maxAllocation = 0;
     [[nodiscard]] static DeviceCapacity of(VkPhysicalDevice physical);
 };
 

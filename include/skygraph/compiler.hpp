@@ -72,10 +72,11 @@ struct CompileOptions {
     /// Where memory requirements come from: the executor passes its device's
     /// (Device::memoryModel()). Null: estimatedMemory().
     std::shared_ptr<const MemoryModel> memory;
-    /// Every transient resource's first use that discards its contents (a Write) finds them
-    /// poisoned instead, NaN where the format can hold it, by a Clobber step inserted before
-    /// it; that use then keeps what it does not write (it loads). A frame that renders the
-    /// same with and without this reads nothing it did not write (`--clobber-transients`).
+    /// Every transient resource that is not `clear`ed is poisoned (NaN where the format can
+    /// hold it) by a Clobber step inserted before its first use, and the first write of each
+    /// subresource after it keeps what it does not write (no transition from UNDEFINED;
+    /// attachments load). A frame that renders the same with and without this reads nothing
+    /// it did not write (`--clobber-transients`).
     bool clobberTransients = false;
 };
 
@@ -84,7 +85,9 @@ struct CompileOptions {
 /// on the output size (a mip range past the resolved chain, a read of levels of an
 /// output-sized "full" chain that no pass writes), and for what only a GraphDesc
 /// built in code can hold: a usage naming a resource index past `resources`, an empty range,
-/// or more subresources than 32-bit indices can number. Every error names what it can of the
+/// or more subresources than 32-bit indices can number; and when `options.memory` answers
+/// what cannot be placed (no memory type, a zero size, an alignment or granularity that is not
+/// a power of two). What the model itself throws passes through. Every error names what it can of the
 /// file, JSON path, pass and resource. The plan owns copies of the names it holds (shared with
 /// its own copies): it views nothing of `graph` or `options`.
 [[nodiscard]] Plan compile(const GraphDesc& graph, const CompileOptions& options = {});

@@ -80,7 +80,8 @@ enum class MemoryStrategy : uint8_t {
     Unaliased,
 };
 
-/// One block of memory of the executor's: a VkDeviceMemory per frame in flight.
+/// One block of memory of the executor's: one VkDeviceMemory that the frames in flight share,
+/// or one per frame in flight (MemoryLayout::sharedAcrossFrames).
 struct MemoryHeap {
     uint64_t bytes = 0;
     /// The memory types every resource in it can live in.

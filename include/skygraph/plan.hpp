@@ -38,8 +38,10 @@ enum class BarrierKind : uint8_t { Image, Buffer, Memory };
 struct Barrier {
     uint32_t resource = 0;  ///< Index into Plan::resources().
     BarrierKind kind = BarrierKind::Image;
-    /// An aliasing barrier: the resource takes over memory that others used earlier in the
-    /// frame (its MemoryPlacement::aliases), and the source scope is their last uses.
+    /// An aliasing barrier: the resource takes over memory that other resources used earlier
+    /// in the frame, or that the previous frame used (itself included, when the frames share
+    /// the heaps): its MemoryPlacement's aliases and previousFrameAliases. The source scope is
+    /// every earlier use of those bytes, and images start from UNDEFINED.
     bool aliasing = false;
     VkPipelineStageFlags2 srcStages = 0;
     VkAccessFlags2 srcAccess = 0;
@@ -86,8 +88,11 @@ struct PlannedPass {
 };
 
 /// How many copies of a resource the executor keeps, and why. Frames in flight overlap on
-/// the GPU, and only an exported resource's final barrier orders one frame's accesses before
-/// the next frame's; every other resource that a frame writes gets a copy per frame in flight.
+/// the GPU; what orders one frame's accesses before the next frame's is an exported resource's
+/// final barrier, or, for transients in heaps the frames share, the next frame's aliasing
+/// barriers. Every other resource that a frame writes gets a copy per frame in flight. Plans
+/// that share transients between frames assume the frames run in submission order on one
+/// queue, as the executor submits them.
 enum class ResourceCopies : uint8_t {
     PerFrameTransient,           ///< Not external: written anew by every frame.
     /// Not external, in memory that the frames in flight share (CompileOptions::

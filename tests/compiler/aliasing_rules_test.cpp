@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -281,6 +282,52 @@ TEST(Clobbering, EveryTransientIsPoisonedAndItsFirstWriteKeepsWhatItDoesNotWrite
     const Plan plain = compileGraph(kTwo, kTwoPasses);
     for (const PlannedUsage& u : pass(plain, "make_b").usages)
         if (plain.resources()[u.resource].name == "b") EXPECT_EQ(u.load, LoadOp::DontCare);
+}
+
+/// A model an embedder might get wrong: answers `answer` for every resource.
+class FixedModel : public MemoryModel {
+public:
+    FixedModel(MemoryRequirements answer, uint64_t granularity) : answer_(answer), granularity_(granularity) {}
+    MemoryRequirements requirements(const MemoryQuery&) const override { return answer_; }
+    uint64_t bufferImageGranularity() const override { return granularity_; }
+    std::string name() const override { return "fixed"; }
+
+private:
+    MemoryRequirements answer_;
+    uint64_t granularity_;
+};
+
+TEST(MemoryModelAnswers, ThatCannotBePlacedAreErrorsNamingTheModelAndTheResource) {
+    const auto compileWith = [](MemoryRequirements answer, uint64_t granularity) {
+        CompileOptions o = oneFrame();
+        o.memory = std::make_shared<FixedModel>(answer, granularity);
+        return compileGraph(kTwo, kTwoPasses, o);
+    };
+    EXPECT_NO_THROW(compileWith({65536, 4096, 1u}, 1024)) << "the control: a placeable answer";
+    const struct {
+        MemoryRequirements answer;
+        uint64_t granularity;
+        const char* says;
+    } bad[] = {
+        {{0, 4096, 1u}, 1024, "a size of 0 bytes"},
+        {{uint64_t(1) << 60, 4096, 1u}, 1024, "a size of 1152921504606846976 bytes"},
+        {{65536, 0, 1u}, 1024, "an alignment of 0, not a power of two"},
+        {{65536, 96, 1u}, 1024, "an alignment of 96, not a power of two"},
+        {{65536, 4096, 0u}, 1024, "no memory type"},
+        {{65536, 4096, 1u}, 1000, "a bufferImageGranularity of 1000, not a power of two"},
+    };
+    for (const auto& c : bad) {
+        try {
+            (void)compileWith(c.answer, c.granularity);
+            ADD_FAILURE() << "accepted: " << c.says;
+        } catch (const GraphError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find("aliasing.json"), std::string::npos) << what;
+            EXPECT_NE(what.find("memory model 'fixed'"), std::string::npos) << what;
+            EXPECT_NE(what.find(c.says), std::string::npos) << what;
+            if (c.granularity == 1024) EXPECT_NE(what.find("resources.a"), std::string::npos) << what;
+        }
+    }
 }
 
 }  // namespace

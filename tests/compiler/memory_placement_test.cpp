@@ -179,6 +179,28 @@ void expectValid(const std::vector<TransientResource>& in, uint32_t steps, const
         }
         std::sort(expectedAliases.begin(), expectedAliases.end());
         EXPECT_EQ(ids(p.aliases), expectedAliases) << what << ": resource " << i;
+        if (!m.sharedAcrossFrames) {
+            EXPECT_TRUE(p.previousFrameAliases.empty()) << what;
+            continue;
+        }
+        // With frames sharing the heaps, a byte no earlier resource of the frame held was last
+        // held, in the previous frame, by the last resource (in first-use order) that holds it.
+        std::set<uint32_t> previous;
+        for (uint64_t b = p.offset; b < p.offset + p.bytes; b += 64) {
+            bool heldInFrame = false;
+            for (size_t j = 0; j < i && !heldInFrame; ++j)
+                heldInFrame = m.placements[j].heap == p.heap && m.placements[j].offset <= b &&
+                              b < m.placements[j].offset + m.placements[j].bytes;
+            if (heldInFrame) continue;
+            for (size_t j = in.size(); j-- > 0;)
+                if (m.placements[j].heap == p.heap && m.placements[j].offset <= b &&
+                    b < m.placements[j].offset + m.placements[j].bytes) {
+                    previous.insert(in[j].resource);
+                    break;
+                }
+        }
+        EXPECT_EQ(ids(p.previousFrameAliases), std::vector<uint32_t>(previous.begin(), previous.end()))
+            << what << ": resource " << i << ", previous frame";
     }
 }
 
@@ -201,9 +223,12 @@ TEST(MemoryPlacement, RandomInputsMeetTheDefinitionsUnderEveryStrategy) {
         for (uint32_t i = 0; i < in.size(); ++i) in[i].resource = i;
         for (const MemoryStrategy s : {MemoryStrategy::BestFitBySize, MemoryStrategy::FirstUseOrder,
                                        MemoryStrategy::Unaliased}) {
-            const MemoryLayout m = placeTransients(in, steps, 256, s, true);
-            expectValid(in, steps, m, 256, "seed " + std::to_string(seed) + " " + toString(s));
-            EXPECT_EQ(m, placeTransients(in, steps, 256, s, true)) << "deterministic";
+            for (const bool acrossFrames : {false, true}) {
+                const MemoryLayout m = placeTransients(in, steps, 256, s, true, acrossFrames);
+                expectValid(in, steps, m, 256,
+                            "seed " + std::to_string(seed) + " " + toString(s) + (acrossFrames ? " shared" : ""));
+                EXPECT_EQ(m, placeTransients(in, steps, 256, s, true, acrossFrames)) << "deterministic";
+            }
         }
     }
 }

@@ -3,7 +3,8 @@
 // aliased and clobbered (poisoned before the first use that discards them) as with each in
 // memory of its own. What is compared is every image the plan exports, the read-back target
 // included, with all its mips and layers, after three frames with two in flight (for random
-// graphs the read-back, which their chains of transients decide, with one frame in flight). A
+// graphs the read-back, which their chains of transients decide, with one frame in flight, or
+// two with the heaps shared between them or one set each). A
 // pass that read what it had not written, or a transient bound over another that lives, would
 // change the bytes.
 #include "executor_test_util.hpp"
@@ -23,6 +24,7 @@ struct MemoryVariant {
     bool aliasing = false;
     bool clobber = false;
     MemoryStrategy strategy = MemoryStrategy::BestFitBySize;
+    bool heapsShared = true;  ///< by the frames in flight, as by default
 };
 
 using Images = std::map<std::string, std::vector<ImageData>>;
@@ -54,12 +56,14 @@ CompiledGraph compileWith(const GraphDesc& graph, CompileOptions o, const Memory
     o.aliasing = v.aliasing;
     o.clobberTransients = v.clobber;
     o.placement = v.strategy;
+    o.shareTransientsAcrossFrames = v.heapsShared;
     o = headless(graph, std::move(o));
     return CompiledGraph(graph, std::move(o));
 }
 
 /// Empty when `a` and `b` hold the same bytes; else where they first differ.
 std::string difference(const Images& a, const Images& b) {
+    if (a.empty()) return "no image was compared";
     if (a.size() != b.size()) return "different images were exported";
     for (const auto& [name, levels] : a) {
         const std::vector<ImageData>& other = b.at(name);
@@ -110,9 +114,11 @@ INSTANTIATE_TEST_SUITE_P(Graphs, AliasedShippedGraph, ::testing::ValuesIn(shippe
 struct RandomCase {
     uint32_t seed = 0;
     /// One, as the random-graph suite (frame copies change no barrier); two for the seeds
-    /// whose frames once raced each other (a persistent resource's final barrier, or an alias
-    /// that did not wait for every earlier holder of its bytes).
+    /// whose frames can race each other without rule 16 and the persistent final barrier (an
+    /// alias that must wait for every earlier holder of its bytes).
     uint32_t framesInFlight = 1;
+    /// Frames in flight share the transients' heaps (the default) or each has its own.
+    bool heapsShared = true;
 };
 
 class AliasedRandomGraph : public ExecutorTest, public ::testing::WithParamInterface<RandomCase> {};
@@ -127,7 +133,9 @@ TEST_P(AliasedRandomGraph, RendersTheSameBytesAsUnaliased) {
     o.features = g.features;
     const CompiledGraph unaliased = compileWith(graph, o, {});
     const CompiledGraph aliased =
-        compileWith(graph, o, {true, true, seed % 2 ? MemoryStrategy::BestFitBySize : MemoryStrategy::FirstUseOrder});
+        compileWith(graph, o,
+                    {true, true, seed % 2 ? MemoryStrategy::BestFitBySize : MemoryStrategy::FirstUseOrder,
+                     GetParam().heapsShared});
     const Plan& plan = aliased.plan();
     EXPECT_TRUE(std::any_of(plan.memory().placements.begin(), plan.memory().placements.end(),
                             [](const MemoryPlacement& p) { return !p.aliases.empty(); }))
@@ -147,14 +155,18 @@ TEST_P(AliasedRandomGraph, RendersTheSameBytesAsUnaliased) {
 std::vector<RandomCase> randomCases() {
     std::vector<RandomCase> cases;
     for (uint32_t seed = 1; seed <= 32; ++seed) cases.push_back({seed, 1});
-    for (const uint32_t seed : {12u, 36u, 47u, 50u, 60u, 72u, 94u, 105u, 107u, 112u, 115u}) cases.push_back({seed, 2});
+    for (const uint32_t seed : {12u, 36u, 47u, 50u, 60u, 72u, 94u, 105u, 107u, 112u, 115u}) {
+        cases.push_back({seed, 2, true});
+        cases.push_back({seed, 2, false});
+    }
     return cases;
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, AliasedRandomGraph, ::testing::ValuesIn(randomCases()),
                          [](const ::testing::TestParamInfo<RandomCase>& p) {
                              return "seed" + std::to_string(p.param.seed) + "_" +
-                                    std::to_string(p.param.framesInFlight) + "InFlight";
+                                    std::to_string(p.param.framesInFlight) + "InFlight" +
+                                    (p.param.heapsShared ? "" : "_HeapsPerFrame");
                          });
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Compiled plans the verifier once found wrong, as the smallest graphs that showed each, and the
-// compiler rules that fixed them (docs/barriers.md: rule 16, rule 8, rule 5).
+// Regression graphs for hazards the verifier catches: the smallest graph that shows each, and
+// the compiler rule that keeps it covered (docs/barriers.md: rule 16, rule 8, rule 5).
 //
 // PartialAliasBarrier: `a` (two mips) has mip 0 written by a dispatch and then sampled; the
 // barrier between names mip 0 alone. `b` then takes over a's memory, and its aliasing barrier
