@@ -2,7 +2,7 @@
 // and their feature combinations, and verifying one random graph.
 #pragma once
 
-#include "plan_verifier.hpp"
+#include <skygraph/verifier.hpp>
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/pass_registry.hpp>

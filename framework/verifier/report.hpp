@@ -2,7 +2,7 @@
 // subresources or frames show it.
 #pragma once
 
-#include "plan_verifier.hpp"
+#include <skygraph/verifier.hpp>
 
 #include <set>
 #include <string>

@@ -6,7 +6,7 @@
 
 #include "happens_before.hpp"
 #include "memory_map.hpp"
-#include "plan_verifier.hpp"
+#include <skygraph/verifier.hpp>
 #include "report.hpp"
 
 #include <optional>
