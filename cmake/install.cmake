@@ -4,7 +4,7 @@
 # Users link one target, skygraph::skygraph: an umbrella over the compiler, the built-in pass
 # types' declarations, the scene and image libraries and, when the executor is built, the
 # executor and the built-in passes' recording code. The pieces are exported too
-# (skygraph::compiler, skygraph::verifier and skygraph::pass_types are device-free, for tools
+# (skygraph::compiler, skygraph::verifier, skygraph::golden and skygraph::pass_types are device-free, for tools
 # that only compile and check graphs).
 # The same names work after add_subdirectory(skygraph).
 include(GNUInstallDirs)
@@ -17,17 +17,18 @@ set(SKYGRAPH_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/skygraph)
 add_library(skygraph_all INTERFACE)
 add_library(skygraph::skygraph ALIAS skygraph_all)
 set_target_properties(skygraph_all PROPERTIES EXPORT_NAME skygraph)
-target_link_libraries(skygraph_all INTERFACE skygraph_compiler skygraph_verifier skygraph_pass_types skygraph_scene
-                      skygraph_image)
+target_link_libraries(skygraph_all INTERFACE skygraph_compiler skygraph_verifier skygraph_golden skygraph_pass_types
+                      skygraph_scene skygraph_image)
 # In the build tree (add_subdirectory) the macro names the source tree's shaders; the installed
 # config file points it at the installed copy.
 target_compile_definitions(skygraph_all INTERFACE
   $<BUILD_INTERFACE:SKYGRAPH_PACKAGE_SHADER_DIR="${PROJECT_SOURCE_DIR}/shaders">)
 
-set(_skygraph_exported skygraph_all skygraph_compiler skygraph_verifier skygraph_pass_types skygraph_scene skygraph_image skygraph_math
+set(_skygraph_exported skygraph_all skygraph_compiler skygraph_verifier skygraph_golden skygraph_pass_types skygraph_scene skygraph_image skygraph_math
     skygraph_warnings)
 set_target_properties(skygraph_compiler PROPERTIES EXPORT_NAME compiler)
 set_target_properties(skygraph_verifier PROPERTIES EXPORT_NAME verifier)
+set_target_properties(skygraph_golden PROPERTIES EXPORT_NAME golden)
 set_target_properties(skygraph_pass_types PROPERTIES EXPORT_NAME pass_types)
 set_target_properties(skygraph_scene PROPERTIES EXPORT_NAME scene)
 set_target_properties(skygraph_image PROPERTIES EXPORT_NAME image)

@@ -76,16 +76,16 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
     auto* impl = static_cast<Device::Impl*>(user);
     const char* id = data->pMessageIdName ? data->pMessageIdName : "";
     const char* text = data->pMessage ? data->pMessage : "";
-    // Validation and general warnings and errors are counted. Performance advice (e.g. "use
-    // TRANSFER_SRC_OPTIMAL instead of GENERAL" for a pass that both reads and writes by
-    // transfer) is logged but not counted: it is not a correctness problem.
+    // Performance advice (e.g. "use TRANSFER_SRC_OPTIMAL instead of GENERAL" for a pass that
+    // both reads and writes by transfer) is counted apart: it is not a correctness problem,
+    // but `skygraph check` reports it and can treat it as one.
     const bool performanceOnly = types == VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    const bool warning = severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT && !performanceOnly;
-    const bool counted = warning;
-    if (counted) {
+    if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
         std::lock_guard lock(impl->mutex);
-        ++impl->count;
-        if (impl->kept.size() < kKeptMessages) impl->kept.push_back({severity, id, text});
+        uint32_t& count = performanceOnly ? impl->performanceCount : impl->count;
+        std::vector<ValidationMessage>& kept = performanceOnly ? impl->performanceKept : impl->kept;
+        ++count;
+        if (kept.size() < kKeptMessages) kept.push_back({severity, id, text});
     }
     if (impl->logMessages) {
         if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
@@ -473,10 +473,21 @@ bool Device::hasMessage(std::string_view needle) const {
 }
 void Device::finish() { impl_->finish(); }
 
+uint32_t Device::performanceWarningCount() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->performanceCount;
+}
+std::vector<ValidationMessage> Device::performanceWarnings() const {
+    std::lock_guard lock(impl_->mutex);
+    return impl_->performanceKept;
+}
+
 void Device::clearMessages() {
     std::lock_guard lock(impl_->mutex);
     impl_->count = 0;
     impl_->kept.clear();
+    impl_->performanceCount = 0;
+    impl_->performanceKept.clear();
 }
 
 }  // namespace skygraph

@@ -67,6 +67,8 @@ struct Device::Impl {
     mutable std::mutex mutex;
     uint32_t count = 0;
     std::vector<ValidationMessage> kept;
+    uint32_t performanceCount = 0;
+    std::vector<ValidationMessage> performanceKept;
     uint32_t layerVersion = 0;  ///< The validation layer's specVersion; 0 without validation.
 
     /// Device::finish: waits, destroys the device and the surface (the messenger stays).

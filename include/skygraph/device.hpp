@@ -102,13 +102,19 @@ public:
     /// bufferImageGranularity() throw ExecutorError.
     [[nodiscard]] std::shared_ptr<const MemoryModel> memoryModel() const noexcept;
 
-    /// Number of warning and error messages received since creation or the last clear.
+    /// Number of warning and error messages received since creation or the last clear,
+    /// performance warnings left out.
     [[nodiscard]] uint32_t messageCount() const;
     /// A copy of the counted messages (the first 256 are kept), owned by the caller.
     [[nodiscard]] std::vector<ValidationMessage> messages() const;
     /// True if a counted message's id name or text contains `needle`.
     [[nodiscard]] bool hasMessage(std::string_view needle) const;
-    /// Forgets the counted messages: messageCount() is 0 again.
+    /// Number of performance warnings (messages of type PERFORMANCE only, such as a layout
+    /// that is valid but not the optimal one) since creation or the last clear.
+    [[nodiscard]] uint32_t performanceWarningCount() const;
+    /// A copy of those warnings (the first 256 are kept), owned by the caller.
+    [[nodiscard]] std::vector<ValidationMessage> performanceWarnings() const;
+    /// Forgets the counted messages and performance warnings: both counts are 0 again.
     void clearMessages();
 
     /// Waits for the queue, then destroys the logical device and the surface while validation

@@ -185,6 +185,22 @@ void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvir
         renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*inputs.environment)));
 }
 
+RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs& inputs, const RenderOptions& options) {
+    RenderedFrames out;
+    out.environment = bakeFrameEnvironment(device, compiled.plan(), inputs, options);
+    RendererOptions ropts;
+    ropts.framesInFlight = options.framesInFlight;
+    ropts.passes = inputs.passes;
+    out.renderer = std::make_unique<Renderer>(device, std::move(compiled), ropts);
+    attachFrameInputs(*out.renderer, inputs, out.environment);
+    for (uint32_t i = 0; i < options.frames; ++i) {
+        out.renderer->renderFrame();
+        if (options.onFrameSubmitted) options.onFrameSubmitted(i + 1, options.frames);
+    }
+    out.renderer->waitIdle();
+    return out;
+}
+
 int renderCommand(const RenderOptions& options) {
     try {
         if (options.graph.empty() && options.graphText.empty()) {
@@ -223,17 +239,8 @@ int renderCommand(const RenderOptions& options) {
         dopts.device = options.device;
         dopts.validation = options.validate;
         auto device = Device::create(dopts);
-        const FrameEnvironment environment = bakeFrameEnvironment(*device, compiled.plan(), inputs, options);
-        RendererOptions ropts;
-        ropts.framesInFlight = options.framesInFlight;
-        ropts.passes = inputs.passes;
-        Renderer renderer(*device, std::move(compiled), ropts);
-        attachFrameInputs(renderer, inputs, environment);
-        for (uint32_t i = 0; i < options.frames; ++i) {
-            renderer.renderFrame();
-            if (options.onFrameSubmitted) options.onFrameSubmitted(i + 1, options.frames);
-        }
-        renderer.waitIdle();
+        const RenderedFrames frames = renderFrames(*device, std::move(compiled), inputs, options);
+        Renderer& renderer = *frames.renderer;
         for (const auto& t : renderer.lastTimings()) {
             spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
         }

@@ -5,6 +5,7 @@
 
 #include "environment_graph.hpp"
 
+#include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
@@ -113,6 +114,19 @@ struct FrameEnvironment {
 /// Hands `renderer` the scene (FrameData), the baked products (importImage) and the
 /// environment file's pixels (setExternalImage; moved out of `inputs`).
 void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvironment& environment);
+
+/// A headless run: the environment baked for it and the frame's renderer, idle. Destroying it
+/// destroys the renderer before the environment whose products it imported.
+struct RenderedFrames {
+    FrameEnvironment environment;
+    std::unique_ptr<Renderer> renderer;
+};
+
+/// Renders options.frames frames of `compiled` (compiled from inputs.graph, headless) on
+/// `device` with what `inputs` holds (the scene, the environment), options.framesInFlight in
+/// flight, and waits for them. Throws what the executor throws.
+[[nodiscard]] RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs& inputs,
+                                          const RenderOptions& options);
 
 /// Compiles and renders a graph file, writing the swapchain target. Returns the command
 /// line's exit status (0 ok, 1 user error with a message on stderr). Never throws. Everything

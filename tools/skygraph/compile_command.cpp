@@ -1,10 +1,10 @@
 #include "compile_command.hpp"
 
 #include "file_watcher.hpp"
-#include "text_diff.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
+#include <skygraph/golden.hpp>
 #include <skygraph/plan_format.hpp>
 #include <skygraph/transfer_plans.hpp>
 

@@ -6,6 +6,7 @@
 #include "progress_bar.hpp"
 #if SKYGRAPH_HAS_EXECUTOR
 #include "render_command.hpp"
+#include "check_command.hpp"
 #include "cubemap_command.hpp"
 #include "view_command.hpp"
 #endif
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
         addCompileCommand(app),
 #if SKYGRAPH_HAS_EXECUTOR
         addRenderCommand(app),
+        addCheckCommand(app),
         addCubemapCommand(app),
         addViewCommand(app),
 #endif

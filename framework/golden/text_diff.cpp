@@ -1,11 +1,12 @@
-#include "text_diff.hpp"
+// The line diff of golden plans and `compile --watch`: Debian's header-only dtl.
+#include <skygraph/golden.hpp>
 
 #include <dtl/dtl.hpp>
 
 #include <sstream>
 #include <vector>
 
-namespace skygraph::cli {
+namespace skygraph {
 namespace {
 
 std::vector<std::string> splitLines(const std::string& text) {
@@ -30,4 +31,4 @@ std::string unifiedDiff(const std::string& before, const std::string& after, std
     return out.str();
 }
 
-}  // namespace skygraph::cli
+}  // namespace skygraph

@@ -1,0 +1,103 @@
+#include <skygraph/golden.hpp>
+#include <skygraph/plan_format.hpp>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+
+namespace skygraph {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kHeaderPrefix = "# skygraph golden plan, format ";
+
+std::string headerLine(uint32_t version) { return std::string(kHeaderPrefix) + std::to_string(version); }
+
+}  // namespace
+
+std::string goldenText(const Plan& plan) { return headerLine(kGoldenFormatVersion) + "\n" + planToText(plan); }
+
+std::string goldenFileName(const GraphDesc& graph, const FeatureValues& features) {
+    std::string name = graph.file.empty() || graph.file.front() == '<' ? graph.name : fs::path(graph.file).stem().string();
+    for (const FeatureDecl& f : graph.features) {
+        const auto it = features.find(f.name);
+        const bool on = it != features.end() ? it->second : f.defaultValue;
+        name += "." + f.name + (on ? "-on" : "-off");
+    }
+    return name + ".plan.txt";
+}
+
+std::string_view toString(GoldenStatus status) noexcept {
+    switch (status) {
+        case GoldenStatus::Matches: return "matches";
+        case GoldenStatus::Differs: return "differs";
+        case GoldenStatus::Missing: return "missing";
+        case GoldenStatus::OtherVersion: return "other version";
+        case GoldenStatus::Unreadable: return "unreadable";
+    }
+    return "unknown";
+}
+
+GoldenComparison compareWithGolden(const Plan& plan, const fs::path& golden) {
+    GoldenComparison result;
+    result.file = golden;
+    std::error_code ec;
+    if (!fs::exists(golden, ec)) {
+        result.status = GoldenStatus::Missing;
+        result.message = "no golden plan " + golden.string() +
+                         (fs::exists(golden.parent_path(), ec) ? "" : " (its directory does not exist)") +
+                         "; write it with --update (or SKYGRAPH_UPDATE_GOLDEN=1) and review it";
+        return result;
+    }
+    std::ifstream in(golden, std::ios::binary);
+    std::ostringstream text;
+    if (in.is_open() && !fs::is_directory(golden, ec)) text << in.rdbuf();
+    if (!in.is_open() || fs::is_directory(golden, ec) || (!in.good() && !in.eof())) {
+        result.status = GoldenStatus::Unreadable;
+        result.message = "cannot read the golden plan " + golden.string();
+        return result;
+    }
+    const std::string expected = text.str();
+    const std::string firstLine = expected.substr(0, expected.find('\n'));
+    if (firstLine != headerLine(kGoldenFormatVersion)) {
+        result.status = GoldenStatus::OtherVersion;
+        result.message = golden.string() + " was not written by this version's golden format (" +
+                         headerLine(kGoldenFormatVersion).substr(2) + "): its first line is '" + firstLine.substr(0, 80) +
+                         "'; rewrite it with --update and review the change";
+        return result;
+    }
+    const std::string actual = goldenText(plan);
+    if (expected == actual) {
+        result.status = GoldenStatus::Matches;
+        return result;
+    }
+    result.status = GoldenStatus::Differs;
+    result.diff = unifiedDiff(expected, actual, golden.string(), "compiled");
+    result.message = "the compiled plan differs from " + golden.string();
+    return result;
+}
+
+void writeGolden(const Plan& plan, const fs::path& golden) {
+    std::error_code ec;
+    if (golden.has_parent_path()) fs::create_directories(golden.parent_path(), ec);
+    if (ec) throw std::runtime_error("cannot create the directory of " + golden.string() + ": " + ec.message());
+    const fs::path temporary = golden.string() + ".tmp";
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << goldenText(plan);
+        out.close();
+        if (!out) {
+            fs::remove(temporary, ec);
+            throw std::runtime_error("cannot write the golden plan " + golden.string());
+        }
+    }
+    fs::rename(temporary, golden, ec);
+    if (ec) {
+        fs::remove(temporary, ec);
+        throw std::runtime_error("cannot write the golden plan " + golden.string() + ": " + ec.message());
+    }
+}
+
+}  // namespace skygraph

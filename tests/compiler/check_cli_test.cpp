@@ -1,0 +1,179 @@
+// `skygraph check` as users call it: the shipped graphs under every feature combination,
+// goldens written, edited and compared, a compute-only graph, a combination that cannot
+// compile, a device that does not exist, JUnit XML read back by an independent parser.
+#include "cli_fixture.hpp"
+
+#include <gtest/gtest.h>
+
+#include <regex>
+
+namespace {
+
+using namespace skygraph::cli_test;
+namespace fs = std::filesystem;
+
+#if SKYGRAPH_CLI_HAS_RENDER
+
+/// Rows of the table whose last column is `result` ("pass" or "FAIL").
+size_t rows(const std::string& table, const std::string& result) {
+    size_t n = 0;
+    std::istringstream in(table);
+    for (std::string line; std::getline(in, line);)
+        if (line.size() > result.size() && line.ends_with("  " + result)) ++n;
+    return n;
+}
+
+/// A graph of two compute passes and no image to present: it runs, and nothing is written.
+const char* kComputeOnly = R"({
+  "version": 1, "name": "compute_only",
+  "resources": {
+    "field": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [32, 32] },
+    "result": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [32, 32],
+                "external": true, "final": "ShaderRead" }
+  },
+  "passes": [
+    { "name": "fill", "type": "Generic", "uses": { "field": "Write@Compute" } },
+    { "name": "blur", "type": "Generic", "uses": { "field": "Read@Compute", "result": "Write@Compute" } }
+  ]
+})";
+
+/// With `producer` off, `consume` reads what nothing wrote: that combination cannot compile.
+const char* kOneBadCombination = R"({
+  "version": 1, "name": "one_bad", "features": { "producer": true },
+  "resources": {
+    "t": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16] },
+    "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16],
+             "external": true, "final": "ShaderRead" }
+  },
+  "passes": [
+    { "name": "produce", "type": "Generic", "if": "producer", "uses": { "t": "Write@Compute" } },
+    { "name": "consume", "type": "Generic", "uses": { "t": "Read@Compute", "out": "Write@Compute" } }
+  ]
+})";
+
+TEST_F(Cli, CheckPassesEveryShippedGraphAndCombinationWithJUnit) {
+    const fs::path junit = dir_ / "work" / "check.xml";
+    const CliRun r = run({"check", "graphs/deferred.json", "graphs/ibl.json", "graphs/pathtrace.json",
+                          "graphs/raster.json", "--frames", "2", "--junit", junit.string()});
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    // 16 + 1 + 2 + 64 combinations, each compiled, verified and run without a message.
+    EXPECT_EQ(rows(r.out, "pass"), 83u) << r.out;
+    EXPECT_EQ(rows(r.out, "FAIL"), 0u) << r.out;
+    EXPECT_NE(r.out.find("83 case(s): 83 passed, 0 failed"), std::string::npos) << r.out;
+    // Read back by Python's XML parser: a suite per file, a case per combination, none failing.
+    const std::string script =
+        "import sys, xml.etree.ElementTree as E\n"
+        "root = E.parse(sys.argv[1]).getroot()\n"
+        "suites = root.findall('testsuite')\n"
+        "print(root.get('tests'), root.get('failures'), len(suites), len(root.findall('.//testcase')),"
+        " len(root.findall('.//failure')))\n";
+    std::ofstream(dir_ / "junit.py") << script;
+    const std::string cmd = "python3 " + quote((dir_ / "junit.py").string()) + " " + quote(junit.string()) + " > " +
+                            quote((dir_ / "parsed").string());
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    EXPECT_EQ(slurp(dir_ / "parsed"), "83 0 4 83 0\n");
+}
+
+TEST_F(Cli, CheckShowsTheDiffOfAGoldenWithOneBarrierEdited) {
+    const fs::path golden = dir_ / "golden";
+    const CliRun update = run({"check", "graphs/pathtrace.json", "--golden", golden.string(), "--update", "--no-run"});
+    ASSERT_EQ(update.status, 0) << update.out << update.err;
+    EXPECT_NE(update.out.find("review them"), std::string::npos) << update.out;
+    const fs::path file = golden / "pathtrace.environment_file-off.plan.txt";
+    ASSERT_TRUE(fs::exists(file));
+    EXPECT_EQ(run({"check", "graphs/pathtrace.json", "--golden", golden.string(), "--no-run"}).status, 0);
+
+    // Held back: the golden expects a write the compiled plan's barrier does not wait for.
+    std::string text = slurp(file);
+    const std::string from = "COMPUTE_SHADER / SHADER_STORAGE_WRITE  ->";
+    const size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << text;
+    text.replace(at, from.size(), "COMPUTE_SHADER / NONE  ->");
+    std::ofstream(file, std::ios::binary) << text;
+    const CliRun r = run({"check", "graphs/pathtrace.json", "--golden", golden.string(), "--no-run"});
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find("--- " + file.string()), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("+++ compiled"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("-      COMPUTE_SHADER / NONE  ->"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("+      COMPUTE_SHADER / SHADER_STORAGE_WRITE  ->"), std::string::npos) << r.out;
+    EXPECT_EQ(rows(r.out, "FAIL"), 1u) << r.out;  // the other combination's golden still matches
+    EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
+}
+
+TEST_F(Cli, CheckReportsGoldensOfAnotherVersionAndMissingDirectories) {
+    const fs::path golden = dir_ / "golden";
+    ASSERT_EQ(run({"check", "graphs/ibl.json", "--golden", golden.string(), "--update", "--no-run"}).status, 0);
+    const fs::path file = golden / "ibl.plan.txt";
+    std::string text = slurp(file);
+    text.replace(0, text.find('\n'), "# skygraph golden plan, format 0");
+    std::ofstream(file, std::ios::binary) << text;
+    const CliRun old = run({"check", "graphs/ibl.json", "--golden", golden.string(), "--no-run"});
+    EXPECT_EQ(old.status, 1);
+    EXPECT_NE(old.out.find("golden other version: " + file.string() + " was not written by this version"),
+              std::string::npos) << old.out;
+    const CliRun missing = run({"check", "graphs/ibl.json", "--golden", (dir_ / "nowhere").string(), "--no-run"});
+    EXPECT_EQ(missing.status, 1);
+    EXPECT_NE(missing.out.find("(its directory does not exist)"), std::string::npos) << missing.out;
+}
+
+TEST_F(Cli, CheckRunsAComputeOnlyGraphAndRenderExitsZeroOnIt) {
+    const fs::path graph = writeGraph("compute_only.json", kComputeOnly);
+    const CliRun r = run({"check", graph.string(), "--frames", "2"});
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(compute_only\s+defaults\s+2\s+0\s+\d+\s+0\s+0\s+-\s+ok)"))) << r.out;
+    const CliRun render = run({"render", graph.string(), "--frames", "2", "--validate"});
+    EXPECT_EQ(render.status, 0) << render.err;
+}
+
+TEST_F(Cli, CheckGoesOnPastACombinationThatCannotCompile) {
+    const fs::path graph = writeGraph("one_bad.json", kOneBadCombination);
+    const CliRun r = run({"check", graph.string(), "--frames", "1"});
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_EQ(rows(r.out, "FAIL"), 1u) << r.out;
+    EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
+    EXPECT_NE(r.out.find("[producer=off]\n  does not compile: " + graph.string()), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, CheckNamesADeviceThatCannotRunTheGraphAndStillVerifies) {
+    const CliRun r = run({"check", "graphs/pathtrace.json", "--device", "no-such-device"});
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(rows(r.out, "FAIL"), 2u) << r.out;
+    EXPECT_NE(r.out.find("cannot run: no device: "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("no-such-device"), std::string::npos) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n') > 3, true);
+}
+
+TEST_F(Cli, CheckCountsPerformanceWarningsAndCanFailOnThem) {
+    // The deferred frame's history copy reads an image kept in GENERAL, which the layer
+    // reports as a performance warning (it suggests TRANSFER_SRC_OPTIMAL).
+    const std::vector<std::string> args{"check", "graphs/deferred.json", "--features",
+                                        "bloom=off,dof=off,ssao=off,ssr=off", "--frames", "2"};
+    const CliRun lenient = run(args);
+    EXPECT_EQ(lenient.status, 0) << lenient.out;
+    EXPECT_TRUE(std::regex_search(lenient.out, std::regex(R"(performance warning\(s\))"))) << lenient.out;
+    EXPECT_NE(lenient.out.find("WARN graphs/deferred.json"), std::string::npos) << lenient.out;
+    std::vector<std::string> strict = args;
+    strict.push_back("--warnings-as-errors");
+    const CliRun r = run(strict);
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find("errors by --warnings-as-errors"), std::string::npos) << r.out;
+}
+
+TEST_F(Cli, CheckFeatureSelection) {
+    const CliRun one = run({"check", "graphs/raster.json", "--features", "skybox=off,ui=on", "--no-run"});
+    EXPECT_EQ(one.status, 0) << one.out;
+    EXPECT_EQ(rows(one.out, "pass"), 1u) << one.out;
+    EXPECT_NE(one.out.find("skybox=off ui=on"), std::string::npos) << one.out;
+    const CliRun pairwise = run({"check", "graphs/raster.json", "--features", "pairwise", "--no-run"});
+    EXPECT_EQ(pairwise.status, 0);
+    EXPECT_GE(rows(pairwise.out, "pass"), 4u);
+    EXPECT_LT(rows(pairwise.out, "pass"), 16u) << pairwise.out;
+    EXPECT_EQ(run({"check", "graphs/raster.json", "--features", "nosuch=on", "--no-run"}).status, 1);
+    EXPECT_EQ(run({"check", "graphs/raster.json", "--size", "64by64", "--no-run"}).status, 2);
+    EXPECT_EQ(run({"check", "graphs/raster.json", "--update", "--no-run"}).status, 2);  // needs --golden
+}
+
+#endif
+
+}  // namespace

@@ -1,0 +1,218 @@
+// `skygraph check`: compile, compare with the golden, verify, run; case by case.
+#include "check.hpp"
+
+#include "render.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/diagnostics.hpp>
+#include <skygraph/feature_combinations.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/renderer.hpp>
+#include <skygraph/verifier.hpp>
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+namespace skygraph::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr size_t kKeptMessages = 5;
+constexpr size_t kAllUpTo = 8;  // features; beyond, FeatureCoverage::Automatic checks pairwise
+
+std::string describe(const FeatureValues& features, const GraphDesc& graph) {
+    std::string text;
+    for (const FeatureDecl& f : graph.features) {
+        const auto it = features.find(f.name);
+        text += (text.empty() ? "" : " ") + f.name + ((it != features.end() ? it->second : f.defaultValue) ? "=on" : "=off");
+    }
+    return text.empty() ? "defaults" : text;
+}
+
+std::vector<FeatureValues> combinations(const GraphDesc& graph, const CheckOptions& options) {
+    switch (options.coverage) {
+        case FeatureCoverage::All: return allFeatureCombinations(graph);
+        case FeatureCoverage::Pairwise: return pairwiseFeatureCombinations(graph);
+        case FeatureCoverage::Given: {
+            FeatureValues values = graph.defaultFeatures();
+            for (const auto& [name, on] : options.features) values[name] = on;
+            return {values};
+        }
+        case FeatureCoverage::Automatic: break;
+    }
+    return graph.features.size() <= kAllUpTo ? allFeatureCombinations(graph) : pairwiseFeatureCombinations(graph);
+}
+
+std::string errorText(const std::exception& e) {
+    if (const auto* g = dynamic_cast<const GraphError*>(&e)) return g->diagnostics().format();
+    return e.what();
+}
+
+size_t barrierCount(const Plan& plan) {
+    size_t n = plan.finalBarriers().size() + plan.inPassBarriers().size();
+    for (const PlannedPass& p : plan.passes()) n += p.barriers.size();
+    return n;
+}
+
+/// Compile, golden and verifier: device-free, so cases run on several threads.
+void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions& options) {
+    CompileOptions co;
+    co.features = c.features;
+    co.outputWidth = options.planWidth;
+    co.outputHeight = options.planHeight;
+    Plan plan;
+    try {
+        plan = compile(graph, co);
+    } catch (const std::exception& e) {
+        c.compileError = errorText(e);
+        return;
+    }
+    c.passes = plan.passes().size();
+    c.culled = plan.culled().size();
+    c.barriers = barrierCount(plan);
+    if (options.goldenDir) {
+        const fs::path golden = *options.goldenDir / goldenFileName(graph, c.features);
+        if (options.updateGoldens) {
+            try {
+                writeGolden(plan, golden);
+                c.goldenWritten = true;
+            } catch (const std::exception& e) {
+                GoldenComparison failed;
+                failed.status = GoldenStatus::Unreadable;
+                failed.file = golden;
+                failed.message = e.what();
+                c.golden = failed;
+            }
+        } else {
+            c.golden = compareWithGolden(plan, golden);
+        }
+    }
+    const verifier::VerificationReport report = verifier::verifyPlan(plan, graph);
+    c.verifierFindings = report.findings.size();
+    for (const verifier::Finding& f : report.findings) c.verifierReport += verifier::format(f) + "\n";
+}
+
+/// Runs the case on `device` as `skygraph render` would, headless, with validation counting.
+void runOnDevice(CheckCase& c, Device& device, const CheckOptions& options) {
+    RenderOptions ro;
+    ro.graph = c.file;
+    ro.sceneText = options.sceneText;
+    ro.features = c.features;
+    ro.width = options.runWidth;
+    ro.height = options.runHeight;
+    ro.frames = options.frames;
+    ro.framesInFlight = options.framesInFlight;
+    ro.validate = true;
+    ro.passes = options.passes;
+    device.clearMessages();
+    try {
+        FrameInputs inputs = loadFrameInputs(ro);
+        CompileOptions co = inputs.compile;
+        co.presentReplacement = ExternalState::TransferSrc;
+        const RenderedFrames frames = renderFrames(device, CompiledGraph(inputs.graph, co), inputs, ro);
+        c.ran = true;
+    } catch (const std::exception& e) {
+        c.runError = errorText(e);
+    }
+    c.validationMessages = device.messageCount();
+    c.performanceWarnings = device.performanceWarningCount();
+    for (const std::vector<ValidationMessage>& list : {device.messages(), device.performanceWarnings()})
+        for (const ValidationMessage& m : list)
+            if (c.messages.size() < kKeptMessages) {
+                // The layer's text repeats the id and handles before " | "; the sentence is last.
+                const size_t bar = m.message.rfind(" | ");
+                c.messages.push_back(m.idName + ": " + (bar == std::string::npos ? m.message : m.message.substr(bar + 3)));
+            }
+    device.clearMessages();
+}
+
+}  // namespace
+
+bool CheckCase::failed(bool warningsAsErrors) const { return !failures(warningsAsErrors).empty(); }
+
+std::vector<std::string> CheckCase::failures(bool warningsAsErrors) const {
+    std::vector<std::string> out;
+    if (!compileError.empty()) out.push_back("does not compile: " + compileError);
+    if (golden && !golden->ok()) out.push_back("golden " + std::string(toString(golden->status)) + ": " + golden->message);
+    if (verifierFindings) out.push_back(std::to_string(verifierFindings) + " plan verifier finding(s)");
+    if (!runError.empty()) out.push_back("cannot run: " + runError);
+    if (validationMessages) out.push_back(std::to_string(validationMessages) + " validation message(s)");
+    if (warningsAsErrors && performanceWarnings)
+        out.push_back(std::to_string(performanceWarnings) + " performance warning(s), errors by --warnings-as-errors");
+    return out;
+}
+
+std::vector<CheckCase> runCheck(const CheckOptions& options) {
+    const PassRegistry registry = options.passes ? options.passes->registry() : PassRegistry::withBuiltins();
+    std::vector<CheckCase> cases;
+    std::vector<std::shared_ptr<const GraphDesc>> graphOf;  // per case; null when it did not load
+    for (const fs::path& file : options.graphs) {
+        try {
+            auto graph = std::make_shared<const GraphDesc>(loadGraphFile(file, registry));
+            for (FeatureValues& values : combinations(*graph, options)) {
+                CheckCase& c = cases.emplace_back();
+                c.file = file;
+                c.graph = graph->name;
+                c.combination = describe(values, *graph);
+                c.features = std::move(values);
+                graphOf.push_back(graph);
+            }
+        } catch (const std::exception& e) {
+            CheckCase& c = cases.emplace_back();
+            c.file = file;
+            c.graph = file.string();
+            c.combination = "-";
+            c.compileError = errorText(e);
+            graphOf.push_back(nullptr);
+        }
+    }
+    const size_t total = cases.size();
+    std::atomic<size_t> next{0};
+    std::vector<double> compileSeconds(total, 0.0);
+    const auto work = [&] {
+        for (size_t i = next++; i < total; i = next++) {
+            if (!graphOf[i]) continue;
+            const auto start = Clock::now();
+            compileAndCompare(cases[i], *graphOf[i], options);
+            compileSeconds[i] = std::chrono::duration<double>(Clock::now() - start).count();
+        }
+    };
+    std::vector<std::jthread> threads;
+    for (unsigned t = 1; t < std::max(1u, options.jobs); ++t) threads.emplace_back(work);
+    work();
+    threads.clear();
+
+    std::unique_ptr<Device> device;
+    std::string deviceError;
+    for (size_t i = 0; i < total; ++i) {
+        CheckCase& c = cases[i];
+        c.seconds = compileSeconds[i];
+        if (options.run && graphOf[i] && c.compileError.empty()) {
+            const auto start = Clock::now();
+            if (!device && deviceError.empty()) {
+                try {
+                    DeviceOptions dopts;
+                    dopts.device = options.device;
+                    dopts.validation = true;
+                    dopts.logMessages = false;  // counted and reported per case instead
+                    device = Device::create(dopts);
+                } catch (const std::exception& e) {
+                    deviceError = std::string("no device: ") + e.what();
+                }
+            }
+            if (device) runOnDevice(c, *device, options);
+            else c.runError = deviceError;
+            c.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+        }
+        if (options.onCaseDone) options.onCaseDone(i + 1, total);
+    }
+    return cases;
+}
+
+}  // namespace skygraph::app

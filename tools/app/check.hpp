@@ -1,0 +1,84 @@
+// `skygraph check`: a graph file under each combination of its features, compiled and compared
+// with its reviewed golden plan, verified by the plan verifier, and run for a few frames under
+// validation. Application code: the command line links it, and so do its tests.
+#pragma once
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/condition.hpp>
+#include <skygraph/golden.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace skygraph {
+class PassLibrary;
+}
+
+namespace skygraph::app {
+
+/// Which feature combinations of each graph are checked.
+enum class FeatureCoverage : uint8_t {
+    Automatic,  ///< All of them up to 8 features (256 combinations), pairwise beyond.
+    All,        ///< Every combination (at most 16 features).
+    Pairwise,   ///< A set covering every pair of features with each pair of values.
+    Given,      ///< One combination: the graph's defaults with CheckOptions::features.
+};
+
+/// What `check` does. A plain value; it borrows `passes`.
+struct CheckOptions {
+    std::vector<std::filesystem::path> graphs;
+    /// Where the goldens are (goldenFileName()); unset: no golden comparison.
+    std::optional<std::filesystem::path> goldenDir;
+    bool updateGoldens = false;  ///< Write the goldens instead of comparing.
+    FeatureCoverage coverage = FeatureCoverage::Automatic;
+    FeatureValues features;  ///< For FeatureCoverage::Given.
+    /// Goldens and verification use the plan at this size (what a reviewer reads)...
+    uint32_t planWidth = 1920, planHeight = 1080;
+    /// ...runs use a small one.
+    uint32_t runWidth = 64, runHeight = 64;
+    uint32_t frames = 3;
+    uint32_t framesInFlight = 2;
+    bool run = true;  ///< false: compile, compare and verify only (no device).
+    std::string device;
+    std::string sceneText;  ///< The scene the runs use (the passes' inputs); empty: none.
+    /// Threads that compile, compare and verify; runs share one device, one at a time.
+    unsigned jobs = 1;
+    const PassLibrary* passes = nullptr;  ///< Recording code; null: every pass Generic.
+    /// Called after each case is done, with (cases done, cases in all). May be empty.
+    std::function<void(size_t done, size_t total)> onCaseDone;
+};
+
+/// One graph under one feature combination.
+struct CheckCase {
+    std::filesystem::path file;
+    std::string graph;        ///< The graph's name, or the file when it does not load.
+    FeatureValues features;
+    std::string combination;  ///< "skybox=on ui=off", or "defaults" for a graph without features.
+    std::string compileError; ///< Empty when it compiled (or when the graph did not load).
+    size_t passes = 0, culled = 0, barriers = 0;
+    std::optional<GoldenComparison> golden;  ///< Unset without --golden.
+    bool goldenWritten = false;
+    size_t verifierFindings = 0;
+    std::string verifierReport;  ///< One line per finding.
+    bool ran = false;
+    std::string runError;  ///< The device could not run it.
+    uint32_t validationMessages = 0, performanceWarnings = 0;
+    std::vector<std::string> messages;  ///< The first few of either kind, one line each.
+    double seconds = 0;
+
+    /// Whether this case fails the check: any error, finding, message or golden difference
+    /// (and, with `warningsAsErrors`, performance warnings).
+    [[nodiscard]] bool failed(bool warningsAsErrors) const;
+    /// The reasons it fails, one line each; empty when it passes.
+    [[nodiscard]] std::vector<std::string> failures(bool warningsAsErrors) const;
+};
+
+/// Every case, graph by graph and combination by combination. Never throws for bad graphs,
+/// goldens or devices: each case says what went wrong, and the others still run.
+[[nodiscard]] std::vector<CheckCase> runCheck(const CheckOptions& options);
+
+}  // namespace skygraph::app

@@ -1,0 +1,144 @@
+#include "check_report.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+namespace skygraph::app {
+namespace {
+
+std::string seconds(double s) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", s);
+    return text;
+}
+
+std::string goldenCell(const CheckCase& c) {
+    if (c.goldenWritten) return "written";
+    if (!c.golden) return "-";
+    return std::string(toString(c.golden->status));
+}
+
+std::string pad(const std::string& s, size_t width) { return s.size() >= width ? s : s + std::string(width - s.size(), ' '); }
+
+std::string xmlEscape(const std::string& s) {
+    std::string out;
+    for (const char ch : s) {
+        switch (ch) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default:
+                // XML 1.0 has no other control characters.
+                if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t' && ch != '\r') out += '?';
+                else out += ch;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsErrors) {
+    const std::vector<std::string> header{"graph", "features", "passes", "culled", "barriers", "validation",
+                                          "perf warnings", "golden", "verifier", "time s", "result"};
+    std::vector<std::vector<std::string>> rows;
+    size_t failed = 0, warnings = 0;
+    for (const CheckCase& c : cases) {
+        const bool bad = c.failed(warningsAsErrors);
+        failed += bad;
+        warnings += c.performanceWarnings;
+        const bool compiled = c.compileError.empty();
+        rows.push_back({c.graph, c.combination, compiled ? std::to_string(c.passes) : "-",
+                        compiled ? std::to_string(c.culled) : "-", compiled ? std::to_string(c.barriers) : "-",
+                        c.ran ? std::to_string(c.validationMessages) : "-",
+                        c.ran ? std::to_string(c.performanceWarnings) : "-", goldenCell(c),
+                        compiled ? (c.verifierFindings ? std::to_string(c.verifierFindings) + " findings" : "ok") : "-",
+                        seconds(c.seconds), bad ? "FAIL" : "pass"});
+    }
+    std::vector<size_t> width(header.size());
+    for (size_t i = 0; i < header.size(); ++i) width[i] = header[i].size();
+    for (const auto& row : rows)
+        for (size_t i = 0; i < row.size(); ++i) width[i] = std::max(width[i], row[i].size());
+    std::ostringstream out;
+    const auto line = [&](const std::vector<std::string>& cells) {
+        std::string text;
+        for (size_t i = 0; i < cells.size(); ++i) text += (i ? "  " : "") + pad(cells[i], i + 1 < cells.size() ? width[i] : 0);
+        out << text << "\n";
+    };
+    line(header);
+    for (const auto& row : rows) line(row);
+    for (const CheckCase& c : cases) {
+        const std::vector<std::string> reasons = c.failures(warningsAsErrors);
+        if (reasons.empty() && c.messages.empty()) continue;
+        out << "\n" << (reasons.empty() ? "WARN " : "FAIL ") << c.file.string() << " [" << c.combination << "]\n";
+        for (const std::string& r : reasons) out << "  " << r << "\n";
+        if (!c.verifierReport.empty()) out << c.verifierReport;
+        if (c.golden && !c.golden->diff.empty()) out << c.golden->diff;
+        for (const std::string& m : c.messages) out << "  " << m << "\n";
+    }
+    out << "\n" << cases.size() << " case(s): " << cases.size() - failed << " passed, " << failed << " failed";
+    if (warnings) out << "; " << warnings << " performance warning(s)" << (warningsAsErrors ? " (errors)" : "");
+    if (std::any_of(cases.begin(), cases.end(), [](const CheckCase& c) { return c.goldenWritten; }))
+        out << "; goldens written: review them (git diff) before committing them";
+    out << "\n";
+    return out.str();
+}
+
+std::string checkJUnit(const std::vector<CheckCase>& cases, bool warningsAsErrors) {
+    std::map<std::string, std::vector<const CheckCase*>> byFile;
+    std::vector<std::string> order;
+    for (const CheckCase& c : cases) {
+        const std::string file = c.file.string();
+        if (!byFile.count(file)) order.push_back(file);
+        byFile[file].push_back(&c);
+    }
+    size_t failures = 0;
+    double total = 0;
+    for (const CheckCase& c : cases) {
+        failures += c.failed(warningsAsErrors);
+        total += c.seconds;
+    }
+    std::ostringstream out;
+    out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+    out << "<testsuites name=\"skygraph check\" tests=\"" << cases.size() << "\" failures=\"" << failures
+        << "\" time=\"" << seconds(total) << "\">\n";
+    for (const std::string& file : order) {
+        const auto& list = byFile[file];
+        size_t suiteFailures = 0;
+        double suiteTime = 0;
+        for (const CheckCase* c : list) {
+            suiteFailures += c->failed(warningsAsErrors);
+            suiteTime += c->seconds;
+        }
+        out << "  <testsuite name=\"" << xmlEscape(file) << "\" tests=\"" << list.size() << "\" failures=\""
+            << suiteFailures << "\" time=\"" << seconds(suiteTime) << "\">\n";
+        for (const CheckCase* c : list) {
+            out << "    <testcase classname=\"" << xmlEscape(c->graph) << "\" name=\"" << xmlEscape(c->combination)
+                << "\" time=\"" << seconds(c->seconds) << "\">\n";
+            const std::vector<std::string> reasons = c->failures(warningsAsErrors);
+            if (!reasons.empty()) {
+                std::string body;
+                for (const std::string& r : reasons) body += r + "\n";
+                body += c->verifierReport;
+                if (c->golden) body += c->golden->diff;
+                out << "      <failure message=\"" << xmlEscape(reasons.front().substr(0, 200)) << "\">"
+                    << xmlEscape(body) << "</failure>\n";
+            }
+            std::string system = "passes " + std::to_string(c->passes) + ", culled " + std::to_string(c->culled) +
+                                 ", barriers " + std::to_string(c->barriers) + ", validation messages " +
+                                 std::to_string(c->validationMessages) + ", performance warnings " +
+                                 std::to_string(c->performanceWarnings) + "\n";
+            for (const std::string& m : c->messages) system += m + "\n";
+            out << "      <system-out>" << xmlEscape(system) << "</system-out>\n";
+            out << "    </testcase>\n";
+        }
+        out << "  </testsuite>\n";
+    }
+    out << "</testsuites>\n";
+    return out.str();
+}
+
+}  // namespace skygraph::app

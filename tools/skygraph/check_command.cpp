@@ -1,0 +1,110 @@
+#include "check_command.hpp"
+
+#include "builtin_defaults.hpp"
+#include "progress_bar.hpp"
+
+#include "app/check.hpp"
+#include "app/check_report.hpp"
+
+#include <skygraph/pass.hpp>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+namespace skygraph::cli {
+namespace {
+
+struct CheckArgs {
+    app::CheckOptions options;
+    std::vector<std::string> graphs;
+    std::string golden, features = "auto", size = "64x64", junit;
+    bool warningsAsErrors = false, noRun = false;
+};
+
+/// --features: auto, all, pairwise, or NAME=on,NAME=off (one combination).
+void parseCoverage(const std::string& text, app::CheckOptions& o) {
+    if (text == "auto") o.coverage = app::FeatureCoverage::Automatic;
+    else if (text == "all") o.coverage = app::FeatureCoverage::All;
+    else if (text == "pairwise") o.coverage = app::FeatureCoverage::Pairwise;
+    else {
+        std::vector<std::string> flags;
+        std::istringstream in(text);
+        for (std::string flag; std::getline(in, flag, ',');) flags.push_back(flag);
+        o.coverage = app::FeatureCoverage::Given;
+        o.features = parseFeatureFlags(flags);
+    }
+}
+
+void parseSize(const std::string& text, app::CheckOptions& o) {
+    unsigned w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 ||
+        h > 16384)
+        throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 64x64)");
+    o.runWidth = w;
+    o.runHeight = h;
+}
+
+int run(CheckArgs& args) {
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    app::CheckOptions o = args.options;
+    for (const std::string& g : args.graphs) o.graphs.emplace_back(g);
+    if (!args.golden.empty()) o.goldenDir = args.golden;
+    if (o.updateGoldens && !o.goldenDir) throw UsageError("--update needs --golden DIR");
+    parseCoverage(args.features, o);
+    parseSize(args.size, o);
+    o.run = !args.noRun;
+    o.passes = &library;
+    o.sceneText = kDefaultScene;
+    // Each run would log how the scene sets features; the table says what matters (-v shows it).
+    if (spdlog::get_level() == spdlog::level::info) spdlog::set_level(spdlog::level::warn);
+    std::optional<ProgressBar> bar;
+    o.onCaseDone = [&](size_t done, size_t total) {
+        if (!bar) bar.emplace("check", total, "cases");
+        bar->advance(done - bar->done());
+        if (done == total) bar->finish();
+    };
+    const std::vector<app::CheckCase> cases = app::runCheck(o);
+    if (bar) bar->finish();
+    std::cout << app::checkTable(cases, args.warningsAsErrors) << std::flush;
+    if (!args.junit.empty()) writeOutput(args.junit, app::checkJUnit(cases, args.warningsAsErrors));
+    for (const app::CheckCase& c : cases)
+        if (c.failed(args.warningsAsErrors)) return kExitUserError;
+    return kExitOk;
+}
+
+}  // namespace
+
+Command addCheckCommand(CLI::App& parent) {
+    auto args = std::make_shared<CheckArgs>();
+    app::CheckOptions& o = args->options;
+    CLI::App* cmd = parent.add_subcommand(
+        "check", "Check graphs under every feature combination: compile, compare with reviewed golden plans, verify "
+                 "with the plan verifier, and run under validation with synchronization validation. Exit 0 only "
+                 "when every case passes");
+    cmd->add_option("graphs", args->graphs, "Graph files")->required();
+    cmd->add_option("--golden", args->golden,
+                    "Directory of golden plans (<graph>.<feature>-on|off....plan.txt) to compare with");
+    cmd->add_flag("--update", o.updateGoldens, "Write the golden plans instead of comparing (then review them)");
+    cmd->add_option("--features", args->features,
+                    "Which combinations: auto (all up to 8 features, else pairwise; the default), all, pairwise, "
+                    "or one: NAME=on,NAME=off,... (the others at their defaults)");
+    cmd->add_option("--frames", o.frames, "Frames to run each combination")->check(CLI::Range(1u, 1000u));
+    cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
+    cmd->add_option("--size", args->size, "Output size of the runs, WIDTHxHEIGHT (goldens and the verifier use "
+                                          "1920x1080)");
+    cmd->add_option("--device", o.device, "Device by index or name (default: a GPU, else lavapipe)");
+    cmd->add_flag("--no-run", args->noRun, "Compile, compare and verify only; no device");
+    cmd->add_option("--junit", args->junit, "Also write JUnit XML to FILE (never half-written)");
+    cmd->add_option("--jobs", o.jobs, "Threads that compile, compare and verify (runs take turns on one device)")
+        ->check(CLI::Range(1u, 256u));
+    cmd->add_flag("--warnings-as-errors", args->warningsAsErrors, "Fail cases with validation performance warnings");
+    return {cmd, [args] { return run(*args); }};
+}
+
+}  // namespace skygraph::cli
