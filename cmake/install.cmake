@@ -60,6 +60,11 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/graphs ${PROJECT_SOURCE_DIR}/scenes ${PR
   DESTINATION ${SKYGRAPH_INSTALL_DATADIR})
 
 install(EXPORT skygraphTargets NAMESPACE skygraph:: DESTINATION ${SKYGRAPH_INSTALL_CMAKEDIR})
+# skygraph::testing links GoogleTest: a set of its own, loaded when the user's project has GTest.
+if(TARGET skygraph_testing)
+  install(TARGETS skygraph_testing EXPORT skygraphTestingTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(EXPORT skygraphTestingTargets NAMESPACE skygraph:: DESTINATION ${SKYGRAPH_INSTALL_CMAKEDIR})
+endif()
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/skygraphConfig.cmake.in
   ${PROJECT_BINARY_DIR}/skygraphConfig.cmake
   INSTALL_DESTINATION ${SKYGRAPH_INSTALL_CMAKEDIR}
