@@ -1,0 +1,60 @@
+// The example's own graph under skygraph::testing, as an engine's CI would test it: the plan
+// against its reviewed golden (golden/), the barrier a reviewer cares about, the plan verifier,
+// and three frames under validation.
+#include "vignette_pass.hpp"
+
+#include <skygraph/compiled_graph.hpp>
+#include <skygraph/compiler.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/golden.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/testing/assertions.hpp>
+#include <skygraph/testing/barrier_matchers.hpp>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+
+using namespace skygraph;
+using namespace skygraph::testing;
+
+struct VignetteGraph {
+    PassLibrary library = [] {
+        PassLibrary l = PassLibrary::withBuiltins();
+        l.add(embed::vignettePassType(), embed::makeVignettePass);
+        return l;
+    }();
+    GraphDesc graph = loadGraphFile(EMBED_DATA_DIR "/vignette.json", library.registry());
+};
+
+TEST(VignettePlan, MatchesItsReviewedGolden) {
+    const VignetteGraph v;
+    const Plan plan = compile(v.graph);
+    EXPECT_TRUE(matchesGolden(plan, EMBED_DATA_DIR "/golden/" + goldenFileName(v.graph, plan.features())));
+}
+
+TEST(VignettePlan, TheVignetteSamplesWhatTheClearWrote) {
+    const VignetteGraph v;
+    const Plan plan = compile(v.graph);
+    EXPECT_THAT(barriersBefore(plan, "vignette"),
+                ::testing::Contains(barrier("hdr_color").readAfterWrite().from(Stage::Transfer).to(Stage::Fragment).into(
+                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)));
+    EXPECT_TRUE(verifies(plan, v.graph));
+}
+
+TEST(VignettePlan, RendersWithoutValidationMessages) {
+    const VignetteGraph v;
+    DeviceOptions options;
+    options.validation = true;
+    const auto device = Device::create(options);
+    CompileOptions co;
+    co.outputWidth = co.outputHeight = 64;
+    co.presentReplacement = ExternalState::TransferSrc;  // headless
+    RendererOptions ro;
+    ro.passes = &v.library;
+    ro.shaderDir = SKYGRAPH_PACKAGE_SHADER_DIR;
+    EXPECT_TRUE(rendersWithoutValidationMessages(*device, CompiledGraph(v.graph, co), ro));
+}
+
+}  // namespace
