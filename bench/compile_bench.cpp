@@ -121,10 +121,27 @@ std::string sharedReadGraph(int n) {
     return g;
 }
 
+/// Like syntheticGraph, plus a copy of every fourth target right after it is sampled: pass i
+/// with i%4 == 1 also reads c<i-2> in the transfer stage, which pass i-1 sampled. Those runs of
+/// reads want two layouts (the layouts knob, docs/barriers.md rule 4): FewestBarriers keeps
+/// them in GENERAL, Optimal transitions between the sample and the copy.
+std::string mixedReadGraph(int n) {
+    std::string g = syntheticGraph(n);
+    size_t at = 0;
+    for (int i = 5; i < n; i += 4) {
+        const std::string marker = "\"p" + std::to_string(i) + R"(", "type": "Generic", "uses": [ )";
+        at = g.find(marker, at) + marker.size();
+        g.insert(at, R"({ "resource": "c)" + std::to_string(i - 2) + R"(", "access": "Read", "stage": "Transfer" }, )");
+    }
+    return g;
+}
+
 const PassRegistry& registry() {
     static const PassRegistry r = PassRegistry::withBuiltins();
     return r;
 }
+
+enum class Shape { Synthetic, SharedRead, MixedReads };
 
 struct Case {
     std::string text;
@@ -132,12 +149,14 @@ struct Case {
     double usages = 0;
 };
 
-/// Graphs are generated and parsed once per size, outside the timed loops.
-const Case& graphFor(int n, bool sharedRead) {
-    static std::map<std::pair<int, bool>, Case> cache;
-    auto [it, fresh] = cache.try_emplace({n, sharedRead});
+/// Graphs are generated and parsed once per size and shape, outside the timed loops.
+const Case& graphFor(int n, Shape shape = Shape::Synthetic) {
+    static std::map<std::pair<int, Shape>, Case> cache;
+    auto [it, fresh] = cache.try_emplace({n, shape});
     if (fresh) {
-        it->second.text = sharedRead ? sharedReadGraph(n) : syntheticGraph(n);
+        it->second.text = shape == Shape::SharedRead   ? sharedReadGraph(n)
+                          : shape == Shape::MixedReads ? mixedReadGraph(n)
+                                                       : syntheticGraph(n);
         it->second.graph = parseGraph(it->second.text, "synthetic.json", registry());
         for (const auto& p : it->second.graph.passes) it->second.usages += static_cast<double>(p.uses.size());
     }
@@ -161,8 +180,8 @@ void setCounters(benchmark::State& state, const Case& c) {
         benchmark::Counter(c.usages, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void compileBench(benchmark::State& state, bool sharedRead, const CompileOptions& options = {}) {
-    const Case& c = graphFor(static_cast<int>(state.range(0)), sharedRead);
+void compileBench(benchmark::State& state, Shape shape, const CompileOptions& options = {}) {
+    const Case& c = graphFor(static_cast<int>(state.range(0)), shape);
     {
         const Plan plan = compile(c.graph, options);
         if (!plan.culled().empty() || plan.passes().size() < c.graph.passes.size()) {
@@ -180,7 +199,7 @@ void compileBench(benchmark::State& state, bool sharedRead, const CompileOptions
     setCounters(state, c);
 }
 
-void BM_Compile(benchmark::State& state) { compileBench(state, false); }
+void BM_Compile(benchmark::State& state) { compileBench(state, Shape::Synthetic); }
 
 // The memory planning knob (docs/memory.md, "Placement"), side by side with BM_Compile's
 // default (best fit by size): the online first-use allocator, and no sharing at all.
@@ -189,14 +208,23 @@ CompileOptions placedBy(MemoryStrategy s) {
     o.placement = s;
     return o;
 }
-void BM_CompileFirstUse(benchmark::State& state) { compileBench(state, false, placedBy(MemoryStrategy::FirstUseOrder)); }
-void BM_CompileUnaliased(benchmark::State& state) { compileBench(state, false, placedBy(MemoryStrategy::Unaliased)); }
+void BM_CompileFirstUse(benchmark::State& state) { compileBench(state, Shape::Synthetic, placedBy(MemoryStrategy::FirstUseOrder)); }
+void BM_CompileUnaliased(benchmark::State& state) { compileBench(state, Shape::Synthetic, placedBy(MemoryStrategy::Unaliased)); }
+
+// The layouts knob (docs/barriers.md, rule 4) on reads that want different layouts: the
+// second argument is 0 for FewestBarriers, 1 for Optimal; `barriers` shows what each costs the
+// frame, the time what it costs the compiler.
+void BM_CompileMixedReads(benchmark::State& state) {
+    CompileOptions o;
+    o.layouts = state.range(1) ? LayoutPolicy::Optimal : LayoutPolicy::FewestBarriers;
+    compileBench(state, Shape::MixedReads, o);
+}
 
 // The floor under compile(): copying the finished plan allocates and writes what compile()
 // must produce (per pass its name and type, the plan's one usage array and one barrier array,
 // each pass's spans rebased onto the copy), with none of the work.
 void BM_CopyPlan(benchmark::State& state) {
-    const Case& c = graphFor(static_cast<int>(state.range(0)), false);
+    const Case& c = graphFor(static_cast<int>(state.range(0)));
     const Plan plan = compile(c.graph);
     for (auto _ : state) {
         Plan copy = plan;
@@ -204,11 +232,11 @@ void BM_CopyPlan(benchmark::State& state) {
     }
     setCounters(state, c);
 }
-void BM_CompileSharedRead(benchmark::State& state) { compileBench(state, true); }
+void BM_CompileSharedRead(benchmark::State& state) { compileBench(state, Shape::SharedRead); }
 
 // `bytes_per_second`: MB/s of graph text; `page_faults`: per load.
 void BM_Parse(benchmark::State& state) {
-    const Case& c = graphFor(static_cast<int>(state.range(0)), false);
+    const Case& c = graphFor(static_cast<int>(state.range(0)));
     const double faultsBefore = pageFaults();
     for (auto _ : state) {
         GraphDesc g = parseGraph(c.text, "synthetic.json", registry());
@@ -238,7 +266,7 @@ struct DroppedEvents : nlohmann::json_sax<nlohmann::json> {
 };
 
 void BM_JsonSax(benchmark::State& state) {
-    const Case& c = graphFor(static_cast<int>(state.range(0)), false);
+    const Case& c = graphFor(static_cast<int>(state.range(0)));
     for (auto _ : state) {
         DroppedEvents events;
         const bool ok = nlohmann::json::sax_parse(c.text, &events);
@@ -251,7 +279,7 @@ void BM_JsonSax(benchmark::State& state) {
 // The floor under parseGraph(), as BM_CopyPlan is under compile(): copying the loaded graph
 // allocates and writes what loading must produce (every pass, usage array and resource).
 void BM_CopyGraph(benchmark::State& state) {
-    const Case& c = graphFor(static_cast<int>(state.range(0)), false);
+    const Case& c = graphFor(static_cast<int>(state.range(0)));
     const double faultsBefore = pageFaults();
     for (auto _ : state) {
         GraphDesc copy = c.graph;
@@ -265,6 +293,7 @@ void BM_CopyGraph(benchmark::State& state) {
 BENCHMARK(BM_Compile)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileFirstUse)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileUnaliased)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompileMixedReads)->ArgsProduct({{1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CopyPlan)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Parse)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_JsonSax)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);

@@ -11,7 +11,8 @@
 //       aliased with heaps per frame in flight, aliased in heaps the frames share. Per way,
 //       interleaved over R rounds: the GPU time of a frame waited for alone, and the wall
 //       time per frame of N frames submitted back to back (the frames overlap unless a
-//       barrier orders them); medians
+//       barrier orders them); medians. With --layouts, two ways instead, both aliased in shared
+//       heaps: runs of reads in one layout (fewest barriers) and in each reader's optimal one
 //   memory_gpu_bench [--device D] compare [--size WxH] [--seeds N] GRAPH...
 //       every feature combination of each graph, and N random Generic graphs whose read-back
 //       depends on chains of transients: the read-back of 3 frames rendered with aliasing and
@@ -108,19 +109,39 @@ void reportMemory(const Device& device, const std::vector<std::string>& graphs, 
     }
 }
 
-void reportTime(Device& device, const std::string& file, Size size, uint32_t frames, uint32_t rounds) {
+/// One way to compile the graph for `time`: a placement, and how runs of reads are laid out.
+struct Way {
+    std::string name;
+    Placement placement;
+    LayoutPolicy layouts = LayoutPolicy::FewestBarriers;
+};
+
+size_t barrierCount(const Plan& plan) {
+    size_t n = plan.finalBarriers().size() + plan.inPassBarriers().size();
+    for (const PlannedPass& p : plan.passes()) n += p.barriers.size();
+    return n;
+}
+
+void reportTime(Device& device, const std::string& file, Size size, uint32_t frames, uint32_t rounds, bool layouts) {
     const GraphDesc graph = loadGraphFile(file, PassRegistry::withBuiltins());
-    const Placement ways[] = {kUnaliased, kPerFrame, kShared};
+    std::vector<Way> ways;
+    if (layouts) {
+        ways = {{"fewest barriers", kShared, LayoutPolicy::FewestBarriers},
+                {"optimal layouts", kShared, LayoutPolicy::Optimal}};
+    } else {
+        for (const Placement& p : {kUnaliased, kPerFrame, kShared}) ways.push_back({p.name, p});
+    }
     std::vector<std::unique_ptr<Renderer>> renderers;
-    for (const Placement& p : ways) {
-        renderers.push_back(std::make_unique<Renderer>(device, CompiledGraph(graph, options(device, graph, size, p)),
-                                                       test::genericOptions(2)));
+    for (const Way& w : ways) {
+        CompileOptions o = options(device, graph, size, w.placement);
+        o.layouts = w.layouts;
+        renderers.push_back(std::make_unique<Renderer>(device, CompiledGraph(graph, o), test::genericOptions(2)));
         for (int i = 0; i < 5; ++i) renderers.back()->renderFrame();  // pipelines and caches warm
         renderers.back()->waitIdle();
     }
-    std::vector<std::vector<double>> gpu(std::size(ways)), wall(std::size(ways));
+    std::vector<std::vector<double>> gpu(ways.size()), wall(ways.size());
     for (uint32_t round = 0; round < rounds; ++round)
-        for (size_t w = 0; w < std::size(ways); ++w) {
+        for (size_t w = 0; w < ways.size(); ++w) {
             Renderer& r = *renderers[w];
             r.renderFrame();
             r.waitIdle();
@@ -134,12 +155,13 @@ void reportTime(Device& device, const std::string& file, Size size, uint32_t fra
         }
     std::printf("%s at %ux%u on %s, 2 frames in flight, every pass as Generic; medians of %u rounds:\n",
                 graph.name.c_str(), size.width, size.height, device.name().c_str(), rounds);
-    for (size_t w = 0; w < std::size(ways); ++w) {
+    for (size_t w = 0; w < ways.size(); ++w) {
         const MemoryLayout& m = renderers[w]->plan().memory();
         const uint64_t allocated = m.heapBytes() * (m.sharedAcrossFrames ? 1 : 2);
-        std::printf("  %-26s transients %8.2f MiB allocated: frame alone %8.3f ms (GPU, passes), "
+        std::printf("  %-26s %3zu barriers, transients %8.2f MiB allocated: frame alone %8.3f ms (GPU, passes), "
                     "%u back to back %8.3f ms per frame (wall)\n",
-                    ways[w].name, mib(allocated), median(gpu[w]), frames, median(wall[w]));
+                    ways[w].name.c_str(), barrierCount(renderers[w]->plan()), mib(allocated), median(gpu[w]), frames,
+                    median(wall[w]));
     }
 }
 
@@ -216,7 +238,7 @@ int compareImages(Device& device, const std::vector<std::string>& graphs, Size s
 
 int usage() {
     std::fprintf(stderr, "usage: memory_gpu_bench [--device D] memory [--size WxH]... GRAPH...\n"
-                         "       memory_gpu_bench [--device D] time --size WxH [--frames N] [--rounds R] GRAPH\n"
+                         "       memory_gpu_bench [--device D] time --size WxH [--frames N] [--rounds R] [--layouts] GRAPH\n"
                          "       memory_gpu_bench [--device D] compare [--size WxH] [--seeds N] GRAPH...\n");
     return 2;
 }
@@ -230,12 +252,14 @@ int main(int argc, char** argv) {
     std::vector<std::string> graphs;
     std::vector<Size> sizes;
     uint32_t frames = 20, rounds = 9, seeds = 0;
+    bool layouts = false;
     for (int i = 1; i < argc; ++i) {
         const bool more = i + 1 < argc;
         if (!std::strcmp(argv[i], "--device") && more) d.device = argv[++i];
         else if (!std::strcmp(argv[i], "--size") && more) sizes.push_back(parseSize(argv[++i]));
         else if (!std::strcmp(argv[i], "--frames") && more) frames = std::max(1, std::atoi(argv[++i]));
         else if (!std::strcmp(argv[i], "--rounds") && more) rounds = std::max(1, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--layouts")) layouts = true;
         else if (!std::strcmp(argv[i], "--seeds") && more) seeds = static_cast<uint32_t>(std::atoi(argv[++i]));
         else if (mode.empty()) mode = argv[i];
         else graphs.emplace_back(argv[i]);
@@ -251,7 +275,7 @@ int main(int argc, char** argv) {
         }
         if (mode == "time") {
             if (sizes.empty()) return usage();
-            for (const Size s : sizes) reportTime(*device, graphs.front(), s, frames, rounds);
+            for (const Size s : sizes) reportTime(*device, graphs.front(), s, frames, rounds, layouts);
             return 0;
         }
         return compareImages(*device, graphs, sizes.empty() ? Size{64, 64} : sizes.front(), seeds);

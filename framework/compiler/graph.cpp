@@ -46,6 +46,16 @@ nlohmann::json& PassParams::operator[](std::string_view key) { return edit()[std
 
 bool PassParams::empty() const noexcept { return !object_ || object_->empty(); }
 
+std::string_view toString(LayoutPolicy policy) noexcept {
+    return policy == LayoutPolicy::Optimal ? "optimal" : "fewest-barriers";
+}
+
+std::optional<LayoutPolicy> parseLayoutPolicy(std::string_view s) noexcept {
+    if (s == "fewest-barriers") return LayoutPolicy::FewestBarriers;
+    if (s == "optimal") return LayoutPolicy::Optimal;
+    return std::nullopt;
+}
+
 std::array<uint32_t, 2> Extent::resolve(uint32_t outputWidth,
                                         uint32_t outputHeight) const noexcept {
     if (!relativeToOutput) return {width, height};

@@ -32,15 +32,15 @@ std::string joinNames(const std::vector<std::string>& names) {
 /// A value as nlohmann prints it, for messages: strings quoted and escaped.
 std::string dumpString(std::string_view s) { return nlohmann::json(std::string(s)).dump(); }
 
-constexpr Keys<7> kRootKeys{"$schema", "version", "name", "description", "features", "resources", "passes"};
+constexpr Keys<8> kRootKeys{"$schema", "version", "name", "description", "features", "layouts", "resources", "passes"};
 constexpr Keys<7> kPassKeys{"name", "type", "if", "uses", "params", "never_cull", "description"};
 constexpr Keys<7> kUsageKeys{"resource", "access", "stage", "as", "mips", "layers", "slot"};
 
 // Each entry's keys by name, for JsonFields.
 namespace rootKey {
 constexpr size_t version = keyIndex(kRootKeys, "version"), name = keyIndex(kRootKeys, "name"),
-                 features = keyIndex(kRootKeys, "features"), resources = keyIndex(kRootKeys, "resources"),
-                 passes = keyIndex(kRootKeys, "passes");
+                 features = keyIndex(kRootKeys, "features"), layouts = keyIndex(kRootKeys, "layouts"),
+                 resources = keyIndex(kRootKeys, "resources"), passes = keyIndex(kRootKeys, "passes");
 }
 namespace passKey {
 constexpr size_t name = keyIndex(kPassKeys, "name"), type = keyIndex(kPassKeys, "type"),
@@ -190,6 +190,11 @@ private:
             graph_.name = name.string();
         else
             error("name", "", "", "missing or not a string");
+        if (const JsonValue layouts = f[rootKey::layouts]) {
+            const auto policy = layouts.isString() ? parseLayoutPolicy(layouts.string()) : std::nullopt;
+            if (policy) graph_.layouts = *policy;
+            else error("layouts", "", "", "expected \"fewest-barriers\" or \"optimal\", got " + layouts.dump());
+        }
         if (!featuresSeen_)
             if (const JsonValue features = f[rootKey::features]) loadFeatures(features);
         if (!resourcesSeen_) loadResources(f[rootKey::resources]);

@@ -23,7 +23,7 @@ std::span<T> rebased(std::span<T> view, const std::vector<U>& from, std::vector<
 
 Plan::Plan(const Plan& other)
     : graph_(other.graph_), features_(other.features_), outputWidth_(other.outputWidth_),
-      outputHeight_(other.outputHeight_), resources_(other.resources_), passes_(other.passes_),
+      outputHeight_(other.outputHeight_), layouts_(other.layouts_), resources_(other.resources_), passes_(other.passes_),
       finalBarriers_(other.finalBarriers_), inPassBarriers_(other.inPassBarriers_), culled_(other.culled_),
       presentations_(other.presentations_), memory_(other.memory_),
       usages_(other.usages_), barriers_(other.barriers_), nameTables_(other.nameTables_) {

@@ -34,6 +34,7 @@ struct PlanBuilder {
         p.outputWidth_ = width;
         p.outputHeight_ = height;
     }
+    static LayoutPolicy& layouts(Plan& p) noexcept { return p.layouts_; }
     static std::vector<PlannedResource>& resources(Plan& p) noexcept { return p.resources_; }
     /// Each pass's spans view usages(p) and barriers(p) of the same plan.
     static std::vector<PlannedPass>& passes(Plan& p) noexcept { return p.passes_; }

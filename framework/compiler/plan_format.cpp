@@ -347,6 +347,8 @@ json planToJson(const Plan& plan) {
     j["features"] = json::object();
     for (const auto& [name, on] : plan.features()) j["features"][name] = on;
     j["output"] = {plan.outputWidth(), plan.outputHeight()};
+    // Only when not the default, so that the default's plans read as they always have.
+    if (plan.layouts() != LayoutPolicy::FewestBarriers) j["layouts"] = toString(plan.layouts());
     j["passes"] = json::array();
     for (const auto& p : plan.passes()) {
         json pass = {{"name", p.name}, {"type", p.type}, {"barriers", json::array()}};
@@ -407,7 +409,9 @@ std::string planToText(const Plan& plan) {
     std::ostringstream o;
     o << "graph " << plan.graph() << "\nfeatures:";
     for (const auto& [name, on] : plan.features()) o << " " << name << "=" << (on ? "on" : "off");
-    o << "\noutput: " << plan.outputWidth() << "x" << plan.outputHeight() << "\n\n";
+    o << "\noutput: " << plan.outputWidth() << "x" << plan.outputHeight() << "\n";
+    if (plan.layouts() != LayoutPolicy::FewestBarriers) o << "layouts: " << toString(plan.layouts()) << "\n";
+    o << "\n";
     for (size_t i = 0; i < plan.passes().size(); ++i) {
         const auto& p = plan.passes()[i];
         o << "[" << i << "] " << p.name << " (" << p.type << ")\n";

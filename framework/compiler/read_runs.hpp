@@ -2,6 +2,7 @@
 // synchronizer (synchronizer.cpp), which adds every access of the plan in order.
 #pragma once
 
+#include "subresources.hpp"
 #include "vulkan_state.hpp"
 
 #include <cstddef>
@@ -17,6 +18,12 @@ namespace skygraph::sync {
 /// read bringing its own layout; when two runs join, so do their layouts. commonReadLayout
 /// is commutative and associative, so the order of joining does not matter: once every
 /// access is in, a read's run layout is final.
+///
+/// Under LayoutPolicy::Optimal a read joins the open run of a subresource only when one
+/// layout is optimal for both (optimalCommonReadLayout); otherwise it opens a run of its own
+/// there, and the synchronizer transitions the subresource between the two. Every run's
+/// layout is then optimal for each of its readers, and which runs join depends on plan order
+/// only, which is fixed.
 class ReadRuns {
 public:
     /// Room for `accesses` accesses (no more may be added: add() does not check) over
@@ -26,13 +33,22 @@ public:
         open_.assign(subresources, kNoRun);
     }
     /// Adds access k, the next (`own`: the layout of an image read, UNDEFINED otherwise). An
-    /// image's access then visits each subresource it touches (`sub`: flat index).
+    /// image's access then visits each subresource it touches (`sub`: flat index), with
+    /// visit() under LayoutPolicy::FewestBarriers and visitOptimal() under Optimal: the same
+    /// for every access of a plan. (Two functions rather than a test of the policy per read,
+    /// which costs FewestBarriers half a percent of a compile.)
     void add(uint32_t k, VkImageLayout own) { nodes_[k] = {k, own}; }
     void visit(uint32_t k, size_t sub, bool read) {
         uint32_t& open = open_[sub];
         if (read && open != kNoRun) unite(open, k);
         open = read ? k : kNoRun;  // a write ends the run
     }
+    /// visitOptimal() of every subresource of `range` of a resource whose grid is `grid` and
+    /// whose subresources start at flat index `firstCell`. Out of line (read_runs.cpp): inlined
+    /// beside visit(), it changes how the compiler builds FewestBarriers' sweep, at a cost of
+    /// half a percent of a compile.
+    void visitOptimal(uint32_t k, size_t firstCell, const SubresourceGrid& grid, const SubresourceRange& range,
+                      bool read);
     /// The layout of read k's run, once every access is added.
     VkImageLayout layout(uint32_t k) { return nodes_[find(k)].layout; }
 
@@ -54,6 +70,13 @@ private:
         l = l == VK_IMAGE_LAYOUT_UNDEFINED ? joined
             : joined == VK_IMAGE_LAYOUT_UNDEFINED ? l
                                                   : commonReadLayout(l, joined);
+    }
+
+    /// Whether the runs of accesses a and b have a layout optimal for the readers of both.
+    bool haveOptimalCommonLayout(uint32_t a, uint32_t b) {
+        const VkImageLayout la = nodes_[find(a)].layout, lb = nodes_[find(b)].layout;
+        return la == VK_IMAGE_LAYOUT_UNDEFINED || lb == VK_IMAGE_LAYOUT_UNDEFINED ||
+               optimalCommonReadLayout(la, lb) != VK_IMAGE_LAYOUT_UNDEFINED;
     }
 
     struct Node {

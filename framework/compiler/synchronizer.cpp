@@ -21,6 +21,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 
 namespace skygraph {
 namespace {
@@ -38,8 +39,8 @@ constexpr uint32_t kNone = ~0u;
 struct AccessRecord {
     uint32_t step;        ///< Index into Plan::passes().
     uint32_t next;        ///< The same resource's next access, or kNone.
-    /// Index of its first entry in Synchronizer::runScope_; only for resources with more
-    /// than one subresource (see runScopeFrom).
+    /// Index of its first entry in Synchronizer::runScope_, or kNone where runScopeFrom walks
+    /// the chain instead: a resource of one subresource under LayoutPolicy::FewestBarriers.
     uint32_t runScopes;
     uint32_t cell;        ///< Flat index of its range's first subresource.
     bool writes;          ///< Of the effective usage (a load-op clear writes).
@@ -66,14 +67,16 @@ struct ResourceFacts {
 class Synchronizer {
 public:
     Synchronizer(const GraphIndex& index, const CompileOptions& o)
-        : graph_(index.graph()), index_(index), options_(o) {}
+        : graph_(index.graph()), index_(index), options_(o), layouts_(o.layouts.value_or(graph_.layouts)) {}
 
     Plan run(const Schedule& schedule) {
         detail::PlanBuilder::graph(plan_) = graph_.name;
+        detail::PlanBuilder::layouts(plan_) = layouts_;
         usages_ = &detail::PlanBuilder::usages(plan_);
         for (const std::string& name : options_.readbacks)  // compile() checked the names
             readbacks_.push_back(static_cast<uint32_t>(graph_.findResource(name) - graph_.resources.data()));
         planAccesses(schedule);
+        if (layouts_ == LayoutPolicy::Optimal) joinReadRunsOptimally();
         computeRunScopes();  // while planAccesses' usages are in cache
         planMemory();
         emitSteps();
@@ -250,7 +253,9 @@ private:
     }
 
     /// Records the next usage in plan order (of the step last added): its Vulkan scope, its
-    /// place in its resource's chain of accesses and in its read run (rule 4).
+    /// place in its resource's chain of accesses and in its read run (rule 4, as
+    /// LayoutPolicy::FewestBarriers joins them; joinReadRunsOptimally joins them anew for
+    /// Optimal).
     [[gnu::always_inline]] void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range,
                                           bool loadOpClear) {
         const uint32_t k = accessCount_++;
@@ -285,12 +290,12 @@ private:
         a.image = facts.image;
         a.firstOfResource = false;
         a.cell = facts.firstCell;  // of a resource of one subresource, every range compile() accepts
-        a.runScopes = 0;
+        a.runScopes = kNone;
         if (facts.grid.size() > 1) {
             a.cell += static_cast<uint32_t>(facts.grid.index(range.baseMip, range.baseLayer));
             a.runScopes = runScopeCount_;
             runScopeCount_ += static_cast<uint32_t>(cells(range));
-            multiCellAccesses_.push_back(k);
+            runScopeAccesses_.push_back(k);
         }
         readRuns_.add(k, !a.writes && a.image ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED);
         if (a.image) {
@@ -318,16 +323,19 @@ private:
         f.lastAccess = k;
     }
 
-    /// What a barrier before read `k` (of resource `r`) makes visible in the `cell`-th
-    /// subresource of its range: the union of the scopes of the reads of that subresource
-    /// from this one up to the next write. They all belong to one run (rule 4 in
-    /// docs/barriers.md), and only the run's first read that needs a barrier asks (the
-    /// barrier makes the rest visible). For a resource of one subresource every later access
-    /// touches it, so walking its chain to the next write costs no more than the run; for
-    /// one of several, a walk would step over the accesses of other subresources again for
-    /// each (quadratic for a layer-per-pass array), so those come from computeRunScopes().
-    StageAccess runScopeFrom(uint32_t k, uint32_t r, size_t cell) const {
-        if (facts_[r].grid.size() > 1) return runScope_[accesses_[k].runScopes + cell];
+    /// What a barrier before read `k` makes visible in the `cell`-th subresource of its range:
+    /// the union of the scopes of the reads of that subresource from this one up to the next
+    /// write or, under LayoutPolicy::Optimal, up to the next read in another layout (whose
+    /// transition makes the contents visible to its own run: rule 5). They all belong to one
+    /// run (rule 4 in docs/barriers.md), and only the run's first read that needs a barrier
+    /// asks (the barrier makes the rest visible). For a resource of one subresource every
+    /// later access touches it, so walking its chain to the next write costs no more than the
+    /// run; for one of several, a walk would step over the accesses of other subresources
+    /// again for each (quadratic for a layer-per-pass array), so those come from
+    /// computeRunScopes(), and so do all under LayoutPolicy::Optimal (so that the walk needs
+    /// no test of the policy).
+    StageAccess runScopeFrom(uint32_t k, size_t cell) const {
+        if (accesses_[k].runScopes != kNone) return runScope_[accesses_[k].runScopes + cell];
         const auto& usages = *usages_;
         StageAccess scope{usages[k].stages, usages[k].access};
         for (uint32_t j = accesses_[k].next; j != kNone && !accesses_[j].writes; j = accesses_[j].next) {
@@ -337,13 +345,49 @@ private:
         return scope;
     }
 
-    /// runScopeFrom's answers for every read of a resource of several subresources, per
-    /// subresource of its range: one backward sweep over those resources' accesses.
+    /// LayoutPolicy::Optimal's read runs (rule 4), joined anew in place of those planAccesses
+    /// joined as FewestBarriers does (a sweep of its own, so that planAccesses tests no policy
+    /// per read), and every read's layout settled to its run's. A read's run scope then ends at
+    /// the first later read of the subresource in another layout, which runScopeFrom's walk
+    /// does not look for: every access gets its run scopes from computeRunScopes instead.
+    void joinReadRunsOptimally() {
+        auto& usages = *usages_;
+        readRuns_.allocate(accessCount_, index_.cells());
+        runScopeAccesses_.clear();
+        runScopeCount_ = 0;
+        for (uint32_t k = 0; k < accessCount_; ++k) {
+            AccessRecord& a = accesses_[k];
+            // Each usage's layout is still its own (scope.layout): emitSteps settles it.
+            readRuns_.add(k, a.image && !a.writes ? usages[k].layout : VK_IMAGE_LAYOUT_UNDEFINED);
+            if (a.image) {
+                const ResourceFacts& f = facts_[usages[k].resource];
+                readRuns_.visitOptimal(k, f.firstCell, f.grid, usages[k].range, !a.writes);
+            }
+            a.runScopes = runScopeCount_;
+            runScopeCount_ += static_cast<uint32_t>(cells(usages[k].range));
+            runScopeAccesses_.push_back(k);
+        }
+        for (uint32_t k = 0; k < accessCount_; ++k)
+            if (accesses_[k].image && !accesses_[k].writes) usages[k].layout = readRuns_.layout(k);
+    }
+
+    /// runScopeFrom's answers for every read of a resource of several subresources (of every
+    /// resource under LayoutPolicy::Optimal), per subresource of its range: one backward sweep
+    /// over those resources' accesses.
     void computeRunScopes() {
+        if (layouts_ == LayoutPolicy::Optimal) sweepRunScopes<true>();
+        else sweepRunScopes<false>();
+    }
+    /// computeRunScopes' sweep; `InLayout`: under LayoutPolicy::Optimal, where a run of a
+    /// subresource also ends at a read in another layout.
+    template <bool InLayout>
+    void sweepRunScopes() {
         const auto& usages = *usages_;
         runScope_.resize(runScopeCount_);
         std::vector<StageAccess> pending(cellCount_);  // per subresource
-        for (auto it = multiCellAccesses_.rbegin(); it != multiCellAccesses_.rend(); ++it) {
+        // Per subresource, the layout of the reads in `pending` (InLayout only).
+        std::vector<VkImageLayout> pendingLayout(InLayout ? cellCount_ : 0, VK_IMAGE_LAYOUT_UNDEFINED);
+        for (auto it = runScopeAccesses_.rbegin(); it != runScopeAccesses_.rend(); ++it) {
             const AccessRecord& a = accesses_[*it];
             const PlannedUsage& u = usages[*it];
             StageAccess* out = &runScope_[a.runScopes];
@@ -351,6 +395,8 @@ private:
                 if (a.writes) {
                     pending[sub] = {};
                 } else {
+                    if (InLayout && std::exchange(pendingLayout[sub], u.layout) != u.layout)
+                        pending[sub] = {};  // the reads after this one are another run's
                     pending[sub].stages |= u.stages;
                     pending[sub].access |= u.access;
                     *out = pending[sub];
@@ -370,7 +416,7 @@ private:
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         // Room for the most barriers there can be (one per subresource an access touches), so
         // the array never moves and each pass's spans are set as its batch is done.
-        barriers.reserve(accessCount_ - multiCellAccesses_.size() + runScopeCount_ + aliasedCells_);
+        barriers.reserve(accessCount_ - runScopeAccesses_.size() + runScopeCount_ + aliasedCells_);
         const Barrier* const base = barriers.data();
         const size_t room = barriers.capacity();
         // Each plan pass is written once, whole, here (an inserted Clear's name comes at the
@@ -558,7 +604,7 @@ private:
         if (cells(pu.range) == 1) {  // the common case: one barrier at most, nothing to merge
             SubresourceState& st = state_[a.cell];
             Barrier& b = batch.emplace_back();
-            const auto runScope = [&] { return runScopeFrom(k, r, 0); };
+            const auto runScope = [&] { return runScopeFrom(k, 0); };
             if (barrierInto(b, st, need, target, write, discard, runScope)) {
                 b.resource = r;
                 b.kind = image ? BarrierKind::Image : BarrierKind::Buffer;
@@ -573,7 +619,7 @@ private:
             perSub_.clear();
             size_t cell = 0;
             grid.forEach(pu.range, [&](size_t sub) {
-                const auto runScope = [&, c = cell++] { return runScopeFrom(k, r, c); };
+                const auto runScope = [&, c = cell++] { return runScopeFrom(k, c); };
                 perSub_.push_back(barrierFor(states[sub], need, target, write, discard, runScope));
                 recordAccess(states[sub], write, target, need);
             });
@@ -976,8 +1022,8 @@ private:
     std::vector<NameAt> slotAt_, insertedNameAt_;
     ReadRuns readRuns_;
     uint32_t runScopeCount_ = 0;
-    std::vector<StageAccess> runScope_;    // per access of a multi-subresource resource, per cell
-    std::vector<uint32_t> multiCellAccesses_;  // accesses whose run scopes runScope_ holds
+    std::vector<StageAccess> runScope_;    // per access of runScopeAccesses_, per cell of its range
+    std::vector<uint32_t> runScopeAccesses_;  // accesses whose run scopes runScope_ holds, in order
     // Per subresource of every resource.
     std::unique_ptr<SubresourceState[]> state_;  // each resource's set at its first access
     // Scratch, reused across usages.
@@ -995,6 +1041,7 @@ private:
     std::vector<uint8_t> takesOver_;      // per plan resource: its placement has aliases
     std::vector<uint8_t> predecessor_;    // per plan resource: some placement names it an alias
     std::vector<SubresourceState> replay_;
+    const LayoutPolicy layouts_;  // the options', else the graph's
 };
 
 }  // namespace

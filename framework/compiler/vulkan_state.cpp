@@ -208,12 +208,26 @@ VulkanScope externalScope(const ResourceDesc& r, ExternalState state) {
     return s;
 }
 
-VkImageLayout commonReadLayout(VkImageLayout a, VkImageLayout b) {
+namespace {
+
+/// optimalCommonReadLayout's answer, inlined into commonReadLayout too: rule 4 asks that of
+/// every join of a read run under either policy.
+inline VkImageLayout sharedOptimalReadLayout(VkImageLayout a, VkImageLayout b) {
     if (a == b) return a;
-    // Depth read-only layouts also allow sampling, so they serve a sampled read too.
+    // Depth read-only layouts also allow sampling (§12.4 "Image Layouts"), so they serve a
+    // sampled read as well as SHADER_READ_ONLY_OPTIMAL would.
     if (isDepthReadOnly(a) && b == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) return a;
     if (isDepthReadOnly(b) && a == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) return b;
-    return VK_IMAGE_LAYOUT_GENERAL;
+    return VK_IMAGE_LAYOUT_UNDEFINED;
+}
+
+}  // namespace
+
+VkImageLayout optimalCommonReadLayout(VkImageLayout a, VkImageLayout b) { return sharedOptimalReadLayout(a, b); }
+
+VkImageLayout commonReadLayout(VkImageLayout a, VkImageLayout b) {
+    const VkImageLayout optimal = sharedOptimalReadLayout(a, b);
+    return optimal != VK_IMAGE_LAYOUT_UNDEFINED || a == b ? optimal : VK_IMAGE_LAYOUT_GENERAL;
 }
 
 }  // namespace skygraph

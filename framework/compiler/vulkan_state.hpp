@@ -66,6 +66,10 @@ enum class ScopeRow : uint8_t {};
 /// One layout that serves two reads of the same image, for runs of reads (GENERAL if no
 /// read-only layout serves both).
 [[nodiscard]] VkImageLayout commonReadLayout(VkImageLayout a, VkImageLayout b);
+/// One layout optimal for both of two reads of the same image, for runs of reads under
+/// LayoutPolicy::Optimal: their own when they agree, a depth read-only layout for a depth test
+/// and sampling; UNDEFINED when there is none (then commonReadLayout would be GENERAL).
+[[nodiscard]] VkImageLayout optimalCommonReadLayout(VkImageLayout a, VkImageLayout b);
 
 /// The write bits of an access mask: the part that needs making available.
 [[nodiscard]] VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept;

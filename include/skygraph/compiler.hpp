@@ -78,6 +78,11 @@ struct CompileOptions {
     /// attachments load). A frame that renders the same with and without this reads nothing
     /// it did not write (`--clobber-transients`).
     bool clobberTransients = false;
+    /// How runs of reads of an image are laid out (docs/barriers.md, rule 4): one layout
+    /// serving every reader, with the fewest barriers, or each reader's optimal layout, with a
+    /// transition wherever consecutive readers want different ones. Unset: the graph file's
+    /// `"layouts"` (GraphDesc::layouts), whose default is FewestBarriers.
+    std::optional<LayoutPolicy> layouts;
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the

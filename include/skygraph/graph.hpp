@@ -139,6 +139,23 @@ struct PassDesc {
     std::string jsonPath;  ///< "passes[i]"; empty for a pass built in code (its index is used)
 };
 
+/// How the compiler lays out a run of reads of an image, i.e. reads of overlapping subresources
+/// with no write between (docs/barriers.md, rule 4). The graph file's `"layouts"` spells them
+/// "fewest-barriers" and "optimal".
+enum class LayoutPolicy : uint8_t {
+    /// The run shares one layout that serves all its readers (GENERAL when no read-only layout
+    /// does), so it needs one barrier before its first read however its readers differ.
+    FewestBarriers,
+    /// Each read finds the image in a layout optimal for it (TRANSFER_SRC_OPTIMAL for a copy,
+    /// SHADER_READ_ONLY_OPTIMAL for sampling, GENERAL only for storage): reads share a run only
+    /// when one layout is optimal for all of them, and a layout transition separates runs.
+    Optimal,
+};
+/// "fewest-barriers" or "optimal", as graph files spell them.
+[[nodiscard]] std::string_view toString(LayoutPolicy policy) noexcept;
+/// The inverse of toString; nullopt for an unknown name. `s` is read during the call only.
+[[nodiscard]] std::optional<LayoutPolicy> parseLayoutPolicy(std::string_view s) noexcept;
+
 struct FeatureDecl {
     std::string name;
     bool defaultValue = false;
@@ -151,6 +168,8 @@ struct GraphDesc {
     std::vector<FeatureDecl> features;
     std::vector<ResourceDesc> resources;
     std::vector<PassDesc> passes;
+    /// The file's `"layouts"`; CompileOptions::layouts overrides it when set.
+    LayoutPolicy layouts = LayoutPolicy::FewestBarriers;
 
     /// Defaults from the file's `features`.
     [[nodiscard]] FeatureValues defaultFeatures() const;

@@ -196,6 +196,8 @@ public:
     /// chains resolve against it, so the plan is valid at this size only.
     [[nodiscard]] uint32_t outputWidth() const noexcept { return outputWidth_; }
     [[nodiscard]] uint32_t outputHeight() const noexcept { return outputHeight_; }
+    /// How runs of reads were laid out: CompileOptions::layouts, else the graph's `"layouts"`.
+    [[nodiscard]] LayoutPolicy layouts() const noexcept { return layouts_; }
 
     /// The resources that at least one scheduled pass uses, in order of first use; unused
     /// resources are not listed. Views this plan's array: valid while the plan lives and is
@@ -233,6 +235,7 @@ private:
     FeatureValues features_;
     uint32_t outputWidth_ = 0;
     uint32_t outputHeight_ = 0;
+    LayoutPolicy layouts_ = LayoutPolicy::FewestBarriers;
     std::vector<PlannedResource> resources_;
     std::vector<PlannedPass> passes_;
     std::vector<Barrier> finalBarriers_;

@@ -158,6 +158,18 @@ TEST_F(Cli, CheckCountsPerformanceWarningsAndCanFailOnThem) {
     const CliRun r = run(strict);
     EXPECT_EQ(r.status, 1) << r.out;
     EXPECT_NE(r.out.find("errors by --warnings-as-errors"), std::string::npos) << r.out;
+    // Each reader in its optimal layout: the copy finds TRANSFER_SRC_OPTIMAL, and the layer is
+    // satisfied even with warnings as errors.
+    strict.push_back("--layouts");
+    strict.push_back("optimal");
+    const CliRun optimal = run(strict);
+    EXPECT_EQ(optimal.status, 0) << optimal.out;
+    EXPECT_EQ(optimal.out.find("performance warning"), std::string::npos) << optimal.out;
+    const CliRun plan = run({"compile", "graphs/deferred.json", "--layouts", "optimal"});
+    EXPECT_EQ(plan.status, 0);
+    EXPECT_NE(plan.out.find("layouts: optimal"), std::string::npos);
+    EXPECT_NE(plan.out.find("uses taa_resolved Read@Transfer in TRANSFER_SRC_OPTIMAL"), std::string::npos) << plan.out;
+    EXPECT_EQ(run({"compile", "graphs/deferred.json", "--layouts", "fast"}).status, 2);
 }
 
 TEST_F(Cli, CheckFeatureSelection) {
@@ -172,6 +184,14 @@ TEST_F(Cli, CheckFeatureSelection) {
     EXPECT_EQ(run({"check", "graphs/raster.json", "--features", "nosuch=on", "--no-run"}).status, 1);
     EXPECT_EQ(run({"check", "graphs/raster.json", "--size", "64by64", "--no-run"}).status, 2);
     EXPECT_EQ(run({"check", "graphs/raster.json", "--update", "--no-run"}).status, 2);  // needs --golden
+}
+
+TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
+    const CliRun bar = run({"--progress", "always", "check", "graphs/pathtrace.json", "--frames", "1"});
+    EXPECT_EQ(bar.status, 0) << bar.out << bar.err;
+    EXPECT_NE(bar.err.find("check [##############################] 2/2 cases"), std::string::npos) << bar.err;
+    const CliRun plain = run({"check", "graphs/pathtrace.json", "--frames", "1"});
+    EXPECT_EQ(plain.err.find("check ["), std::string::npos) << plain.err;  // stderr is a file here
 }
 
 #endif

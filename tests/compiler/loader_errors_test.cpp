@@ -192,6 +192,21 @@ TEST(LoaderErrors, UnknownTopLevelKey) {
     EXPECT_EQ(ds.size(), 1u) << listAll(ds);
 }
 
+TEST(LoaderErrors, BadLayoutsSettingNamesTheAllowedValues) {
+    for (const Json& bad : {Json("fast"), Json("Optimal"), Json(true)}) {
+        Json g = baseGraph();
+        g["layouts"] = bad;
+        const auto ds = loadErrors(g);
+        EXPECT_TRUE(hasDiag(ds, "layouts", "", "", {"expected \"fewest-barriers\" or \"optimal\"", "got " + bad.dump()}));
+        EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    }
+    for (const char* good : {"optimal", "fewest-barriers"}) {
+        Json g = baseGraph();
+        g["layouts"] = good;
+        expectLoads(g);
+    }
+}
+
 TEST(LoaderErrors, UnknownResourceKey) {
     Json g = baseGraph();
     g["resources"]["hdr_color"]["fromat"] = "R8_UNORM";

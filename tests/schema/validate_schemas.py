@@ -138,6 +138,15 @@ def check_drift(root, graph_schema, plan_schema):
         check(schema_slots == slots, f"{name}: slots match the source",
               f"source: {slots}\nschema: {schema_slots}")
 
+    graph_src = (root / "framework/compiler/graph.cpp").read_text()
+    policies = re.findall(r'if \(s == "([\w-]+)"\) return LayoutPolicy::', graph_src)
+    check(policies and graph_schema["properties"]["layouts"]["enum"] == policies,
+          "layouts enum matches parseLayoutPolicy in graph.cpp",
+          f"graph.cpp: {policies}\nschema: {graph_schema['properties']['layouts']['enum']}")
+    check(plan_schema["properties"]["layouts"]["enum"] == [p for p in policies if p != "fewest-barriers"],
+          "plan layouts enum lists every policy but the default, which plans leave out",
+          plan_schema["properties"]["layouts"]["enum"])
+
     plan_src = (root / "framework/compiler/plan_format.cpp").read_text()
     pdefs = plan_schema["definitions"]
     for key, regex, prefix in (("stageBit", r"SG_BIT\(VK_PIPELINE_STAGE_2_, (\w+)\)", "VK_PIPELINE_STAGE_2_"),
@@ -256,6 +265,8 @@ def raster_cases():
         ("unknown format", lambda d: add(d, "resources", "hdr_color", "format", value="R16G16B16A16_FLOAT"), False),
         ("VK_FORMAT_ prefix in a format", lambda d: add(d, "resources", "hdr_color", "format", value="VK_FORMAT_R16G16B16A16_SFLOAT"), False),
         ("version 2", lambda d: add(d, "version", value=2), False),
+        ("layouts \"fast\"", lambda d: add(d, "layouts", value="fast"), False),
+        ("layouts true", lambda d: add(d, "layouts", value=True), False),
         ("missing version", lambda d: delete(d, "version"), False),
         ("missing name", lambda d: delete(d, "name"), False),
         ("unknown resource type", lambda d: add(d, "resources", "depth", "type", value="image3d"), False),
@@ -310,6 +321,8 @@ def raster_cases():
             d, "passes", 0, "description", value="draws"), True),
         ("`if` expression with !, && and parentheses", lambda d: add(d, "passes", 2, "if", value="(skybox && !false) || skybox"), True),
         ("never_cull", lambda d: add(d, "passes", 0, "never_cull", value=True), True),
+        ("layouts \"optimal\"", lambda d: add(d, "layouts", value="optimal"), True),
+        ("layouts \"fewest-barriers\"", lambda d: add(d, "layouts", value="fewest-barriers"), True),
         ("alias: false and alias: true on transients", lambda d: add(d, "resources", "hdr_color", "alias", value=False)
             and add(d, "resources", "depth", "alias", value=True), True),
         ("extent \"output/2\" and mips \"full\"", lambda d: add(d, "resources", "bloom", value={
@@ -396,6 +409,25 @@ def check_mutations(root, cli, gv, tmp):
               f"{name}: {verdict} by schema and loader", detail)
 
 
+def check_layouts_plans(root, cli, pv, tmp):
+    """A graph asking for optimal layouts: its plan says so and validates; the default's does
+    not name the policy."""
+    doc = json.loads((root / "graphs/deferred.json").read_text())
+    doc["layouts"] = "optimal"
+    path = tmp / "graphs" / "deferred_optimal.json"
+    path.write_text(json.dumps(doc, indent=1))
+    for graph, expected in ((path, "optimal"), (root / "graphs/deferred.json", None)):
+        r = run_cli(cli, ["compile", graph, "--format", "json"])
+        if r.returncode != 0:
+            check(False, f"{graph.name} compiles", r.stderr)
+            continue
+        plan = json.loads(r.stdout)
+        errs = errors(pv, plan)
+        check(not errs and plan.get("layouts") == expected,
+              f"{graph.name}: plan layouts is {expected} and validates against plan.schema.json",
+              f"layouts: {plan.get('layouts')}\n{describe(errs)}")
+
+
 def check_plan_mutations(root, cli, pv):
     r = run_cli(cli, ["compile", root / "graphs/raster.json", "--format", "json"])
     if r.returncode != 0:
@@ -422,6 +454,7 @@ def check_plan_mutations(root, cli, pv):
         ("usage with a bad usage string", lambda p: p["passes"][0]["usages"][0].update(usage="Read@Nowhere")),
         ("usage with loadOp but no storeOp", lambda p: p["passes"][0]["usages"][0].pop("storeOp")),
         ("non-boolean feature value", lambda p: p["features"].update(skybox="on")),
+        ("the default layouts policy spelled out", lambda p: p.update(layouts="fewest-barriers")),
         ("memory without placements", lambda p: p["memory"].pop("placements")),
         ("unknown memory strategy", lambda p: p["memory"].update(strategy="worstFit")),
         ("unknown key in memory", lambda p: p["memory"].update(wastedBytes=0)),
@@ -452,6 +485,7 @@ def main():
             tmp = Path(t)
             (tmp / "graphs").mkdir()
             check_mutations(root, cli, gv, tmp)
+            check_layouts_plans(root, cli, pv, tmp)
         check_memory_plans(root, cli, pv)
         check_plan_mutations(root, cli, pv)
     print(f"{passed} passed, {failed} failed")

@@ -1,7 +1,8 @@
 // Every shipped graph under every combination of its features verifies with no findings:
 // aliasing on, at the default output size and a small one, presenting and headless (the
 // Present target read back), with and without clobbered transients, best-fit and first-use
-// placement.
+// placement, and under both layouts policies (runs of reads in one layout, or each reader in
+// its optimal one with transitions between).
 #include "plan_editor.hpp"
 #include "verifier_test_util.hpp"
 
@@ -23,21 +24,25 @@ TEST(ShippedPlans, VerifyUnderEveryFeatureCombination) {
         for (const FeatureValues& features : test::featureCombinations(graph)) {
             for (const Size size : {Size{1920, 1080}, Size{64, 48}}) {
                 for (const bool headlessRun : {false, true}) {
-                    CompileOptions co;
-                    co.features = features;
-                    co.outputWidth = size.width;
-                    co.outputHeight = size.height;
-                    co.clobberTransients = headlessRun;
-                    co.placement = headlessRun ? MemoryStrategy::FirstUseOrder : MemoryStrategy::BestFitBySize;
-                    if (headlessRun) co = test::headless(graph, co);
-                    const Plan plan = compile(graph, co);
-                    const VerificationReport report = verifyPlan(plan, graph);
-                    std::string name = path.filename().string();
-                    for (const auto& [f, on] : features) name += " " + f + (on ? "=on" : "=off");
-                    EXPECT_TRUE(report.ok()) << name << " at " << size.width << "x" << size.height
-                                             << (headlessRun ? " headless" : "") << "\n"
-                                             << test::describe(report.findings);
-                    ++plans;
+                    for (const LayoutPolicy layouts : {LayoutPolicy::FewestBarriers, LayoutPolicy::Optimal}) {
+                        CompileOptions co;
+                        co.features = features;
+                        co.layouts = layouts;
+                        co.outputWidth = size.width;
+                        co.outputHeight = size.height;
+                        co.clobberTransients = headlessRun;
+                        co.placement = headlessRun ? MemoryStrategy::FirstUseOrder : MemoryStrategy::BestFitBySize;
+                        if (headlessRun) co = test::headless(graph, co);
+                        const Plan plan = compile(graph, co);
+                        const VerificationReport report = verifyPlan(plan, graph);
+                        std::string name = path.filename().string();
+                        for (const auto& [f, on] : features) name += " " + f + (on ? "=on" : "=off");
+                        EXPECT_TRUE(report.ok()) << name << " at " << size.width << "x" << size.height
+                                                 << (headlessRun ? " headless" : "") << ", layouts "
+                                                 << toString(layouts) << "\n"
+                                                 << test::describe(report.findings);
+                        ++plans;
+                    }
                 }
             }
         }
@@ -76,6 +81,34 @@ TEST(ShippedPlans, HeapsPerFrameVerifyAndSharedOnesCanFail) {
         }
     ASSERT_EQ(edited, 1u);
     EXPECT_FALSE(verifyPlan(c.plan, c.graph).ok());
+}
+
+/// Under LayoutPolicy::Optimal the deferred frame's TAA result is copied (TRANSFER_SRC_OPTIMAL)
+/// and then sampled (SHADER_READ_ONLY_OPTIMAL): the transition between the two reads is a
+/// write the loop above checks like any other. Without the copy in its source scope, it would
+/// rewrite the image under the copy's read, and without the sampler in its destination the
+/// sampler could read before the transition: the verifier reports both.
+TEST(ShippedPlans, OptimalLayoutTransitionsBetweenReadsAreChecked) {
+    CompileOptions co;
+    co.layouts = LayoutPolicy::Optimal;
+    co.features = {{"bloom", false}};
+    const test::Compiled c = test::compileShipped("deferred.json", co);
+    ASSERT_TRUE(verifyPlan(c.plan, c.graph).ok());
+    const size_t step = test::stepIndex(c.plan, "luminance_histogram");
+    const size_t at = test::barrierOn(c.plan, step, "taa_resolved");
+    const Barrier& transition = c.plan.passes()[step].barriers[at];
+    ASSERT_EQ(transition.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    ASSERT_EQ(transition.newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    ASSERT_EQ(transition.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+
+    Plan noWait = c.plan;
+    detail::PlanEditor::barriersOf(noWait, step)[at].srcStages = VK_PIPELINE_STAGE_2_NONE;
+    const VerificationReport unordered = verifyPlan(noWait, c.graph);
+    EXPECT_GT(unordered.count(FindingKind::Unordered), 0u) << unordered.summary();
+
+    Plan notToTheSampler = c.plan;
+    detail::PlanEditor::barriersOf(notToTheSampler, step)[at].dstStages = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    EXPECT_FALSE(verifyPlan(notToTheSampler, c.graph).ok()) << "the compute sampler is outside the destination";
 }
 
 /// The verifier sees the aliasing it is there for: the deferred frame shares memory.

@@ -66,6 +66,7 @@ void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions&
     co.features = c.features;
     co.outputWidth = options.planWidth;
     co.outputHeight = options.planHeight;
+    co.layouts = options.layouts;
     Plan plan;
     try {
         plan = compile(graph, co);
@@ -115,6 +116,7 @@ void runOnDevice(CheckCase& c, Device& device, const CheckOptions& options) {
         FrameInputs inputs = loadFrameInputs(ro);
         CompileOptions co = inputs.compile;
         co.presentReplacement = ExternalState::TransferSrc;
+        co.layouts = options.layouts;
         const RenderedFrames frames = renderFrames(device, CompiledGraph(inputs.graph, co), inputs, ro);
         c.ran = true;
     } catch (const std::exception& e) {

@@ -45,6 +45,7 @@ struct CheckOptions {
     bool run = true;  ///< false: compile, compare and verify only (no device).
     std::string device;
     std::string sceneText;  ///< The scene the runs use (the passes' inputs); empty: none.
+    std::optional<LayoutPolicy> layouts;  ///< Unset: each graph's own setting.
     /// Threads that compile, compare and verify; runs share one device, one at a time.
     unsigned jobs = 1;
     const PassLibrary* passes = nullptr;  ///< Recording code; null: every pass Generic.

@@ -16,7 +16,7 @@
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
 # random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone,
 # MEMORY_BENCH=1 to run memory_gpu_bench (MEMORY_FRAMES, MEMORY_ROUNDS, MEMORY_SEEDS,
-# MEMORY_COMPARE_SIZE), SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
+# MEMORY_COMPARE_SIZE), LAYOUTS_BENCH=1 to time the layouts knob on graphs/deferred.json, SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
 # (5) repetitions, interleaved when more than 5), TARGETS the targets built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
@@ -159,5 +159,13 @@ if [ "${MEMORY_BENCH:-0}" = 1 ]; then
          --rounds "${MEMORY_ROUNDS:-9}" graphs/deferred.json \
     && "$bin_mem" --device "$device" compare --size "${MEMORY_COMPARE_SIZE:-256x256}" --seeds "${MEMORY_SEEDS:-64}" \
          graphs/*.json) | tee "$out/memory_gpu_bench.txt"
+fi
+if [ "${LAYOUTS_BENCH:-0}" = 1 ]; then
+  # The layouts knob (docs/performance.md, "The layouts knob"): the deferred frame with runs of
+  # reads in one layout against each reader's optimal one, barrier counts and frame time.
+  bin_mem=$build/bench/memory_gpu_bench
+  step "memory_gpu_bench time --layouts on $device"
+  ran "$bin_mem" && (cd "$src" && "$bin_mem" --device "$device" time --layouts --size 1920x1080 --size 3840x2160 \
+    --frames "${MEMORY_FRAMES:-40}" --rounds "${MEMORY_ROUNDS:-9}" graphs/deferred.json) | tee "$out/layouts_bench.txt"
 fi
 step "done"

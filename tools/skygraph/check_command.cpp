@@ -22,7 +22,7 @@ namespace {
 struct CheckArgs {
     app::CheckOptions options;
     std::vector<std::string> graphs;
-    std::string golden, features = "auto", size = "64x64", junit;
+    std::string golden, features = "auto", size = "64x64", junit, layouts;
     bool warningsAsErrors = false, noRun = false;
 };
 
@@ -58,6 +58,7 @@ int run(CheckArgs& args) {
     if (o.updateGoldens && !o.goldenDir) throw UsageError("--update needs --golden DIR");
     parseCoverage(args.features, o);
     parseSize(args.size, o);
+    o.layouts = parseLayoutsFlag(args.layouts);
     o.run = !args.noRun;
     o.passes = &library;
     o.sceneText = kDefaultScene;
@@ -94,6 +95,9 @@ Command addCheckCommand(CLI::App& parent) {
     cmd->add_option("--features", args->features,
                     "Which combinations: auto (all up to 8 features, else pairwise; the default), all, pairwise, "
                     "or one: NAME=on,NAME=off,... (the others at their defaults)");
+    cmd->add_option("--layouts", args->layouts,
+                    "Compile and run with this layout policy (fewest-barriers, optimal) instead of the graph's")
+        ->check(CLI::IsMember({"fewest-barriers", "optimal"}));
     cmd->add_option("--frames", o.frames, "Frames to run each combination")->check(CLI::Range(1u, 1000u));
     cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
     cmd->add_option("--size", args->size, "Output size of the runs, WIDTHxHEIGHT (goldens and the verifier use "

@@ -12,6 +12,12 @@
 
 namespace skygraph::cli {
 
+std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    if (const auto policy = parseLayoutPolicy(text)) return policy;
+    throw UsageError("--layouts " + text + ": expected fewest-barriers or optimal");
+}
+
 FeatureValues parseFeatureFlags(const std::vector<std::string>& flags) {
     FeatureValues out;
     for (const auto& f : flags) {

@@ -9,8 +9,10 @@
 #pragma once
 
 #include <skygraph/condition.hpp>
+#include <skygraph/graph.hpp>
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +37,10 @@ struct Command {
     CLI::App* app = nullptr;
     std::function<int()> run;
 };
+
+/// --layouts: "fewest-barriers" or "optimal" -> the policy, "" (not given) -> unset (the graph
+/// file's setting). Throws UsageError for anything else.
+[[nodiscard]] std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text);
 
 /// "NAME=on|off" strings -> values. Throws UsageError on bad syntax.
 [[nodiscard]] FeatureValues parseFeatureFlags(const std::vector<std::string>& flags);

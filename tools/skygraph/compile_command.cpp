@@ -32,6 +32,7 @@ struct CompileArgs {
     bool noAlias = false;
     bool heapsPerFrame = false;
     std::string placement = "best-fit";
+    std::string layouts;  // empty: the graph file's setting
     std::string memorySvg;  // where to draw the memory layout; empty: nowhere
     bool watch = false;
     uint32_t watchIntervalMs = 250;
@@ -55,6 +56,7 @@ CompileOptions compileOptions(const CompileArgs& args, const FeatureValues& feat
     options.aliasing = !args.noAlias;
     options.shareTransientsAcrossFrames = !args.heapsPerFrame;
     options.placement = args.placement == "first-use" ? MemoryStrategy::FirstUseOrder : MemoryStrategy::BestFitBySize;
+    options.layouts = parseLayoutsFlag(args.layouts);
     return options;
 }
 
@@ -156,6 +158,11 @@ Command addCompileCommand(CLI::App& parent) {
                     "default) or first-use (in order of first use, like a frame-by-frame pool); docs/memory.md")
         ->check(CLI::IsMember({"best-fit", "first-use"}))
         ->excludes(noAlias);
+    cmd->add_option("--layouts", args->layouts,
+                    "How a run of reads of an image is laid out: fewest-barriers (one layout for every reader) or "
+                    "optimal (each reader's optimal layout, with transitions between); default: the graph's "
+                    "\"layouts\", else fewest-barriers")
+        ->check(CLI::IsMember({"fewest-barriers", "optimal"}));
     cmd->add_option("--memory-svg", args->memorySvg,
                     "Also draw the memory layout (passes across, byte offsets down) as SVG to FILE (never half-written)");
     cmd->add_flag("--watch", args->watch,
