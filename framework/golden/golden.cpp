@@ -5,6 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
+
+#include <unistd.h>
 
 namespace skygraph {
 namespace {
@@ -36,6 +39,7 @@ std::string_view toString(GoldenStatus status) noexcept {
         case GoldenStatus::Missing: return "missing";
         case GoldenStatus::OtherVersion: return "other version";
         case GoldenStatus::Unreadable: return "unreadable";
+        case GoldenStatus::Unwritable: return "unwritable";
     }
     return "unknown";
 }
@@ -59,7 +63,13 @@ GoldenComparison compareWithGolden(const Plan& plan, const fs::path& golden) {
         result.message = "cannot read the golden plan " + golden.string();
         return result;
     }
-    const std::string expected = text.str();
+    std::string expected = text.str();
+    if (expected.find('\r') != std::string::npos) {
+        std::string lf;
+        for (size_t i = 0; i < expected.size(); ++i)
+            if (!(expected[i] == '\r' && i + 1 < expected.size() && expected[i + 1] == '\n')) lf += expected[i];
+        expected = std::move(lf);
+    }
     const std::string firstLine = expected.substr(0, expected.find('\n'));
     if (firstLine != headerLine(kGoldenFormatVersion)) {
         result.status = GoldenStatus::OtherVersion;
@@ -83,7 +93,8 @@ void writeGolden(const Plan& plan, const fs::path& golden) {
     std::error_code ec;
     if (golden.has_parent_path()) fs::create_directories(golden.parent_path(), ec);
     if (ec) throw std::runtime_error("cannot create the directory of " + golden.string() + ": " + ec.message());
-    const fs::path temporary = golden.string() + ".tmp";
+    const fs::path temporary = golden.string() + ".tmp" + std::to_string(::getpid()) + "-" +
+                               std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         out << goldenText(plan);

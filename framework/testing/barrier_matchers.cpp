@@ -7,8 +7,8 @@ namespace skygraph::testing {
 namespace {
 
 // The kit's own reading of which pipeline stages a graph stage runs in: a barrier "from" a
-// stage has at least one of these in its source scope.
-VkPipelineStageFlags2 stagesOf(Stage stage) {
+// stage has all of these in its source scope (after the umbrella stages are expanded).
+constexpr VkPipelineStageFlags2 stagesOf(Stage stage) {
     switch (stage) {
         case Stage::ColorAttachment: return VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
         case Stage::DepthAttachment:
@@ -16,15 +16,40 @@ VkPipelineStageFlags2 stagesOf(Stage stage) {
         case Stage::Vertex: return VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT;
         case Stage::Fragment: return VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
         case Stage::Compute: return VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-        case Stage::Transfer:
-            return VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT |
-                   VK_PIPELINE_STAGE_2_CLEAR_BIT | VK_PIPELINE_STAGE_2_RESOLVE_BIT;
+        case Stage::Transfer:  // a graph's Transfer usage may be a copy, a blit, a clear or a resolve
+            return VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_BLIT_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT |
+                   VK_PIPELINE_STAGE_2_RESOLVE_BIT;
         case Stage::VertexInput:
-            return VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
-                   VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT;
+            return VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT;
         case Stage::Indirect: return VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
     }
     return 0;
+}
+
+/// `mask` with its umbrella stages replaced by what they stand for (the spec's "Pipeline
+/// Stages": ALL_COMMANDS, ALL_GRAPHICS, ALL_TRANSFER, VERTEX_INPUT, PRE_RASTERIZATION_SHADERS).
+VkPipelineStageFlags2 expanded(VkPipelineStageFlags2 mask) {
+    constexpr VkPipelineStageFlags2 kVertexInput =
+        VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT | VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT;
+    constexpr VkPipelineStageFlags2 kPreRasterization =
+        VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_2_TESSELLATION_CONTROL_SHADER_BIT |
+        VK_PIPELINE_STAGE_2_TESSELLATION_EVALUATION_SHADER_BIT | VK_PIPELINE_STAGE_2_GEOMETRY_SHADER_BIT;
+    constexpr VkPipelineStageFlags2 kTransfer = stagesOf(Stage::Transfer);
+    constexpr VkPipelineStageFlags2 kGraphics =
+        VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | kVertexInput | kPreRasterization |
+        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+        VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    if (mask & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) return ~VkPipelineStageFlags2(0);
+    if (mask & VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT) mask |= kGraphics;
+    if (mask & VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT) mask |= kTransfer;
+    if (mask & VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT) mask |= kVertexInput;
+    if (mask & VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT) mask |= kPreRasterization;
+    return mask;
+}
+
+bool covers(VkPipelineStageFlags2 mask, Stage stage) {
+    const VkPipelineStageFlags2 needed = stagesOf(stage);
+    return (expanded(mask) & needed) == needed;
 }
 
 const char* stageName(Stage stage) {
@@ -55,6 +80,9 @@ const char* hazardName(Hazard h) {
     return "?";
 }
 
+/// Whether the barrier orders that hazard. A write-after-read needs only an execution
+/// dependency (its source stages are checked by from()), so its source access does not matter:
+/// a barrier after a read and a write resolves both.
 bool resolves(const Barrier& b, Hazard h) {
     const bool srcWrites = (b.srcAccess & kWrites) != 0;
     const bool dstReads = (b.dstAccess & ~kWrites) != 0;
@@ -62,7 +90,7 @@ bool resolves(const Barrier& b, Hazard h) {
     switch (h) {
         case Hazard::ReadAfterWrite: return srcWrites && dstReads;
         case Hazard::WriteAfterWrite: return srcWrites && dstWrites;
-        case Hazard::WriteAfterRead: return !srcWrites && dstWrites;
+        case Hazard::WriteAfterRead: return dstWrites;
     }
     return false;
 }
@@ -117,9 +145,9 @@ public:
         if (b.resource != e_.resource_) return miss("it is on " + (b.resource.empty() ? "memory" : b.resource));
         if (e_.hazard_ && !resolves(b.barrier, *e_.hazard_))
             return miss(std::string("it is not a ") + hazardName(*e_.hazard_) + ": " + masks(b.barrier));
-        if (e_.from_ && !(b.barrier.srcStages & stagesOf(*e_.from_)))
+        if (e_.from_ && !covers(b.barrier.srcStages, *e_.from_))
             return miss(std::string("it does not wait for ") + stageName(*e_.from_) + ": " + masks(b.barrier));
-        if (e_.to_ && !(b.barrier.dstStages & stagesOf(*e_.to_)))
+        if (e_.to_ && !covers(b.barrier.dstStages, *e_.to_))
             return miss(std::string("it does not block ") + stageName(*e_.to_) + ": " + masks(b.barrier));
         if (e_.oldLayout_ && b.barrier.oldLayout != *e_.oldLayout_)
             return miss("it transitions from " + layoutName(b.barrier.oldLayout));

@@ -9,6 +9,7 @@ namespace skygraph::testing {
     if (!device.validationEnabled())
         return ::testing::AssertionFailure() << "device '" << device.name()
                                              << "' was created without validation: nothing would be seen";
+    if (frames == 0) return ::testing::AssertionFailure() << "no frame to render: frames is 0";
     device.clearMessages();
     try {
         Renderer renderer(device, compiled, options);

@@ -36,6 +36,7 @@ enum class GoldenStatus : uint8_t {
     Missing,       ///< No such file (or no such directory).
     OtherVersion,  ///< Its header names another kGoldenFormatVersion, or none.
     Unreadable,    ///< It exists but could not be read.
+    Unwritable,    ///< Writing it failed (`skygraph check --update`); the message says why.
 };
 [[nodiscard]] std::string_view toString(GoldenStatus status) noexcept;
 
@@ -49,12 +50,14 @@ struct GoldenComparison {
     [[nodiscard]] bool ok() const noexcept { return status == GoldenStatus::Matches; }
 };
 
-/// Compares `plan` with the golden file `golden`. Never throws for a missing, unreadable or
-/// foreign file: the status says which.
+/// Compares `plan` with the golden file `golden`, read with CRLF line ends taken as LF (a
+/// checkout that converted them). Never throws for a missing, unreadable or foreign file: the
+/// status says which.
 [[nodiscard]] GoldenComparison compareWithGolden(const Plan& plan, const std::filesystem::path& golden);
 
-/// Writes goldenText(plan) to `golden` whole or not at all (a temporary file renamed over it);
-/// creates missing directories. Throws std::runtime_error naming the file when it cannot.
+/// Writes goldenText(plan) to `golden` whole or not at all (a temporary file of this process
+/// and thread, renamed over it); creates missing directories. Throws std::runtime_error naming
+/// the file when it cannot. Writing different goldens from several threads is safe.
 void writeGolden(const Plan& plan, const std::filesystem::path& golden);
 
 /// A unified diff ("--- beforeName", "+++ afterName", "@@ -a,b +c,d @@" hunks with three lines

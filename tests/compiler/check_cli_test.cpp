@@ -141,7 +141,60 @@ TEST_F(Cli, CheckNamesADeviceThatCannotRunTheGraphAndStillVerifies) {
     EXPECT_EQ(rows(r.out, "FAIL"), 2u) << r.out;
     EXPECT_NE(r.out.find("cannot run: no device: "), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("no-such-device"), std::string::npos) << r.out;
-    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n') > 3, true);
+    // Compiled and verified all the same: each row has its barriers and the verifier's "ok".
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(environment_file=off\s+2\s+1\s+4\s+0\s+0\s+-\s+ok)"))) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(environment_file=on\s+2\s+1\s+4\s+0\s+0\s+-\s+ok)"))) << r.out;
+}
+
+TEST_F(Cli, CheckJUnitOfFailuresIsValidXmlWithTheDiff) {
+    const fs::path golden = dir_ / "golden";
+    ASSERT_EQ(run({"check", "graphs/pathtrace.json", "--golden", golden.string(), "--update", "--no-run"}).status, 0);
+    // A golden line with markup and text that is not ASCII: the diff quotes it into the XML.
+    const fs::path file = golden / "pathtrace.environment_file-on.plan.txt";
+    std::string text = slurp(file);
+    text.insert(text.find('\n') + 1, "<b> & \"caf\xc3\xa9\" \xff\n");
+    std::ofstream(file, std::ios::binary) << text;
+    const fs::path junit = dir_ / "work" / "failing.xml";
+    const CliRun r = run({"check", "graphs/pathtrace.json", "--golden", golden.string(), "--no-run", "--junit",
+                          junit.string()});
+    EXPECT_EQ(r.status, 1);
+    const std::string script =
+        "import sys, xml.etree.ElementTree as E\n"
+        "root = E.parse(sys.argv[1]).getroot()\n"
+        "f = root.findall('.//failure')\n"
+        "print(root.get('failures'), len(f), f[0].get('message').startswith('golden differs'),"
+        " '-<b> & \"caf\u00e9\" ?' in f[0].text)\n";
+    std::ofstream(dir_ / "junit.py") << script;
+    const std::string cmd = "python3 " + quote((dir_ / "junit.py").string()) + " " + quote(junit.string()) + " > " +
+                            quote((dir_ / "parsed").string()) + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(dir_ / "parsed");
+    EXPECT_EQ(slurp(dir_ / "parsed"), "1 1 True True\n") << slurp(junit);
+}
+
+TEST_F(Cli, CheckGivesTheSameTableOnSeveralThreads) {
+    const auto withoutTimes = [](std::string table) {
+        return std::regex_replace(table, std::regex(R"(\s+\d+\.\d\d\s+(pass|FAIL))"), " $1");
+    };
+    const CliRun one = run({"check", "graphs/raster.json", "graphs/deferred.json", "--no-run", "--jobs", "1"});
+    const CliRun four = run({"check", "graphs/raster.json", "graphs/deferred.json", "--no-run", "--jobs", "4"});
+    EXPECT_EQ(one.status, 0);
+    EXPECT_EQ(four.status, 0);
+    EXPECT_EQ(rows(four.out, "pass"), 80u);
+    EXPECT_EQ(withoutTimes(one.out), withoutTimes(four.out));
+}
+
+TEST_F(Cli, CheckRefusesTwoCasesWithOneGoldenAndNamesTheLayoutsItForces) {
+    const fs::path golden = dir_ / "golden";
+    const CliRun twice = run({"check", "graphs/ibl.json", "graphs/ibl.json", "--golden", golden.string(), "--update",
+                              "--no-run"});
+    EXPECT_EQ(twice.status, 1);
+    EXPECT_EQ(rows(twice.out, "pass"), 1u) << twice.out;
+    EXPECT_NE(twice.out.find("its golden " + (golden / "ibl.plan.txt").string() + " is also graphs/ibl.json's"),
+              std::string::npos) << twice.out;
+    const CliRun optimal = run({"check", "graphs/ibl.json", "--golden", golden.string(), "--update", "--no-run",
+                                "--layouts", "optimal"});
+    EXPECT_EQ(optimal.status, 0);
+    EXPECT_TRUE(fs::exists(golden / "ibl.layouts-optimal.plan.txt"));
 }
 
 TEST_F(Cli, CheckCountsPerformanceWarningsAndCanFailOnThem) {

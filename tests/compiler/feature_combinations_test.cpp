@@ -27,9 +27,11 @@ TEST(FeatureCombinations, AllCountsInBinaryWithTheFirstFeatureMostSignificant) {
 }
 
 TEST(FeatureCombinations, PairwiseCoversEveryPairOfValuesAndStartsFromTheDefaults) {
-    for (size_t n = 1; n <= 14; ++n) {
-        const GraphDesc g = graphWith(n, true);
+    for (size_t n = 1; n <= 14; ++n)
+    for (const bool defaultsOn : {true, false}) {
+        const GraphDesc g = graphWith(n, defaultsOn);
         const auto rows = pairwiseFeatureCombinations(g);
+        EXPECT_EQ(rows, pairwiseFeatureCombinations(g)) << n << ": not deterministic";
         EXPECT_EQ(rows.front(), g.defaultFeatures()) << n;
         std::set<FeatureValues> distinct(rows.begin(), rows.end());
         EXPECT_EQ(distinct.size(), rows.size()) << n;

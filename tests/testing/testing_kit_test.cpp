@@ -18,6 +18,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <string>
 #include <unistd.h>
 
 namespace skygraph {
@@ -34,6 +36,8 @@ struct Raster {
     GraphDesc graph = loadGraphFile(kSource / "graphs" / "raster.json", PassRegistry::withBuiltins());
     Plan plan = compile(graph);
 };
+
+bool matches(const ::testing::Matcher<const NamedBarrier&>& m, const NamedBarrier& b) { return m.Matches(b); }
 
 std::string explain(const ::testing::Matcher<const NamedBarrier&>& m, const NamedBarrier& b) {
     ::testing::StringMatchResultListener listener;
@@ -55,6 +59,34 @@ TEST(BarrierMatchers, TheTonemapBarrierIsAReadAfterWriteIntoShaderReadOnly) {
     EXPECT_THAT(before, Not(Contains(barrier("hdr_color").to(Stage::Compute))));
 }
 
+TEST(BarrierMatchers, StagesMustBeCoveredWholeAndWriteAfterReadIgnoresTheSourceAccess) {
+    NamedBarrier b{"depth", {}};
+    b.barrier.srcStages = VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT;  // half of a depth test
+    b.barrier.dstStages = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    b.barrier.srcAccess = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    b.barrier.dstAccess = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT;
+    const ::testing::Matcher<const NamedBarrier&> fromDepth = barrier("depth").from(Stage::DepthAttachment);
+    EXPECT_THAT(explain(fromDepth, b), ::testing::StartsWith("it does not wait for DepthAttachment"));
+    b.barrier.srcStages |= VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+    EXPECT_TRUE(fromDepth.Matches(b));
+    b.barrier.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;  // umbrella stages count as what they hold
+    EXPECT_TRUE(fromDepth.Matches(b));
+    b.barrier.srcStages = VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT;
+    EXPECT_TRUE(fromDepth.Matches(b));
+    EXPECT_FALSE(matches(barrier("depth").from(Stage::Compute), b));
+
+    // After a sampled read and a write, a clear's transition resolves both.
+    NamedBarrier clear{"hdr", {}};
+    clear.barrier.srcStages = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    clear.barrier.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    clear.barrier.dstStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    clear.barrier.dstAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    clear.barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    EXPECT_TRUE(matches(barrier("hdr").writeAfterRead().from(Stage::Fragment).to(Stage::Transfer), clear));
+    EXPECT_TRUE(matches(barrier("hdr").writeAfterWrite().from(Stage::Transfer), clear));
+    EXPECT_FALSE(matches(barrier("hdr").readAfterWrite(), clear));
+}
+
 TEST(BarrierMatchers, MismatchesSayWhichPartDiffers) {
     const Raster r;
     const auto before = barriersBefore(r.plan, "tonemap");
@@ -63,8 +95,15 @@ TEST(BarrierMatchers, MismatchesSayWhichPartDiffers) {
         if (b.resource == "hdr_color") hdr = &b;
     ASSERT_NE(hdr, nullptr);
     EXPECT_EQ(explain(barrier("depth"), *hdr), "it is on hdr_color");
-    EXPECT_THAT(explain(barrier("hdr_color").writeAfterRead(), *hdr),
-                ::testing::StartsWith("it is not a write-after-read: VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT"));
+    const NamedBarrier* swapchain = nullptr;
+    for (const NamedBarrier& b : before)
+        if (b.resource == "swapchain") swapchain = &b;
+    ASSERT_NE(swapchain, nullptr);
+    EXPECT_EQ(explain(barrier("swapchain").readAfterWrite(), *swapchain),
+              "it is not a read-after-write: VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT / NONE -> "
+              "VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT / VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, "
+              "VK_IMAGE_LAYOUT_UNDEFINED -> VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL");
+    EXPECT_THAT(explain(barrier("hdr_color").from(Stage::Compute), *hdr), ::testing::StartsWith("it does not wait for Compute"));
     EXPECT_THAT(explain(barrier("hdr_color").to(Stage::Compute), *hdr), ::testing::StartsWith("it does not block Compute"));
     EXPECT_EQ(explain(barrier("hdr_color").into(VK_IMAGE_LAYOUT_GENERAL), *hdr),
               "it leaves the image in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL");
@@ -82,13 +121,20 @@ TEST(BarrierMatchers, MismatchesSayWhichPartDiffers) {
 
 class GoldenAssertion : public ::testing::Test {
 protected:
+    // The test sets SKYGRAPH_UPDATE_GOLDEN itself; whatever the caller had is put back.
     void SetUp() override {
+        if (const char* before = std::getenv("SKYGRAPH_UPDATE_GOLDEN")) saved_ = before;
+        ::unsetenv("SKYGRAPH_UPDATE_GOLDEN");
         dir_ = fs::temp_directory_path() / ("skygraph_kit_" + std::to_string(::getpid()) + "_" +
                                             ::testing::UnitTest::GetInstance()->current_test_info()->name());
         fs::remove_all(dir_);
     }
-    void TearDown() override { fs::remove_all(dir_); }
+    void TearDown() override {
+        fs::remove_all(dir_);
+        if (saved_) ::setenv("SKYGRAPH_UPDATE_GOLDEN", saved_->c_str(), 1);
+    }
     fs::path dir_;
+    std::optional<std::string> saved_;
 };
 
 TEST_F(GoldenAssertion, WritesWhenAskedThenMatchesThenShowsTheDiff) {

@@ -13,6 +13,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -60,6 +61,17 @@ size_t barrierCount(const Plan& plan) {
     return n;
 }
 
+/// The golden file of case `c`: goldenFileName(), with the layouts policy in it when --layouts
+/// overrides the graph's (so that --update under one policy never overwrites the other's).
+fs::path goldenOf(const CheckCase& c, const GraphDesc& graph, const CheckOptions& options) {
+    std::string name = goldenFileName(graph, c.features);
+    if (options.layouts) {
+        constexpr std::string_view kSuffix = ".plan.txt";
+        name.insert(name.size() - kSuffix.size(), ".layouts-" + std::string(toString(*options.layouts)));
+    }
+    return *options.goldenDir / name;
+}
+
 /// Compile, golden and verifier: device-free, so cases run on several threads.
 void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions& options) {
     CompileOptions co;
@@ -77,26 +89,31 @@ void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions&
     c.passes = plan.passes().size();
     c.culled = plan.culled().size();
     c.barriers = barrierCount(plan);
-    if (options.goldenDir) {
-        const fs::path golden = *options.goldenDir / goldenFileName(graph, c.features);
-        if (options.updateGoldens) {
-            try {
-                writeGolden(plan, golden);
-                c.goldenWritten = true;
-            } catch (const std::exception& e) {
-                GoldenComparison failed;
-                failed.status = GoldenStatus::Unreadable;
-                failed.file = golden;
-                failed.message = e.what();
-                c.golden = failed;
-            }
-        } else {
-            c.golden = compareWithGolden(plan, golden);
-        }
-    }
     const verifier::VerificationReport report = verifier::verifyPlan(plan, graph);
     c.verifierFindings = report.findings.size();
     for (const verifier::Finding& f : report.findings) c.verifierReport += verifier::format(f) + "\n";
+    if (!options.goldenDir) return;
+    const fs::path golden = goldenOf(c, graph, options);
+    if (!options.updateGoldens) {
+        c.golden = compareWithGolden(plan, golden);
+        return;
+    }
+    // A plan the verifier faults is no golden to review: it stays unwritten.
+    GoldenComparison unwritten;
+    unwritten.status = GoldenStatus::Unwritable;
+    unwritten.file = golden;
+    if (c.verifierFindings) {
+        unwritten.message = "not written: the plan verifier found problems in this plan";
+        c.golden = unwritten;
+        return;
+    }
+    try {
+        writeGolden(plan, golden);
+        c.goldenWritten = true;
+    } catch (const std::exception& e) {
+        unwritten.message = e.what();
+        c.golden = unwritten;
+    }
 }
 
 /// Runs the case on `device` as `skygraph render` would, headless, with validation counting.
@@ -174,6 +191,20 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
             graphOf.push_back(nullptr);
         }
     }
+    // Two cases with one golden file (the same graph twice, or two graphs of one file name)
+    // would overwrite or compare against each other's: the later ones fail instead.
+    if (options.goldenDir) {
+        std::map<fs::path, size_t> firstWith;
+        for (size_t i = 0; i < cases.size(); ++i) {
+            if (!graphOf[i]) continue;
+            const fs::path golden = goldenOf(cases[i], *graphOf[i], options);
+            const auto [it, fresh] = firstWith.emplace(golden, i);
+            if (fresh) continue;
+            cases[i].compileError = "its golden " + golden.string() + " is also " + cases[it->second].file.string() +
+                                    "'s: check graphs of one file name with different --golden directories";
+            graphOf[i] = nullptr;
+        }
+    }
     const size_t total = cases.size();
     std::atomic<size_t> next{0};
     std::vector<double> compileSeconds(total, 0.0);
@@ -181,7 +212,11 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
         for (size_t i = next++; i < total; i = next++) {
             if (!graphOf[i]) continue;
             const auto start = Clock::now();
-            compileAndCompare(cases[i], *graphOf[i], options);
+            try {
+                compileAndCompare(cases[i], *graphOf[i], options);
+            } catch (const std::exception& e) {  // out of memory, say: this case fails, the rest go on
+                cases[i].compileError = std::string("could not be checked: ") + e.what();
+            }
             compileSeconds[i] = std::chrono::duration<double>(Clock::now() - start).count();
         }
     };
@@ -196,6 +231,7 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
         CheckCase& c = cases[i];
         c.seconds = compileSeconds[i];
         if (options.run && graphOf[i] && c.compileError.empty()) {
+            c.runAttempted = true;
             const auto start = Clock::now();
             if (!device && deviceError.empty()) {
                 try {
@@ -208,8 +244,13 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
                     deviceError = std::string("no device: ") + e.what();
                 }
             }
-            if (device) runOnDevice(c, *device, options);
-            else c.runError = deviceError;
+            if (device) {
+                runOnDevice(c, *device, options);
+                // A run that threw may have lost the device: the next case gets a fresh one.
+                if (!c.runError.empty()) device.reset();
+            } else {
+                c.runError = deviceError;
+            }
             c.seconds += std::chrono::duration<double>(Clock::now() - start).count();
         }
         if (options.onCaseDone) options.onCaseDone(i + 1, total);

@@ -65,7 +65,8 @@ struct CheckCase {
     bool goldenWritten = false;
     size_t verifierFindings = 0;
     std::string verifierReport;  ///< One line per finding.
-    bool ran = false;
+    bool runAttempted = false;  ///< A run was tried (it may have failed: runError).
+    bool ran = false;           ///< It rendered every frame.
     std::string runError;  ///< The device could not run it.
     uint32_t validationMessages = 0, performanceWarnings = 0;
     std::vector<std::string> messages;  ///< The first few of either kind, one line each.

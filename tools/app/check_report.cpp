@@ -22,21 +22,54 @@ std::string goldenCell(const CheckCase& c) {
 
 std::string pad(const std::string& s, size_t width) { return s.size() >= width ? s : s + std::string(width - s.size(), ' '); }
 
-std::string xmlEscape(const std::string& s) {
+/// The length of the valid UTF-8 sequence at s[i], or 0.
+size_t utf8Length(const std::string& s, size_t i) {
+    const auto byte = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned char b = byte(i);
+    const size_t n = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xE ? 3 : (b >> 3) == 0x1E ? 4 : 0;
+    if (n == 0 || i + n > s.size()) return 0;
+    for (size_t k = 1; k < n; ++k)
+        if ((byte(i + k) & 0xC0) != 0x80) return 0;
+    return n;
+}
+
+/// Text for XML 1.0: markup escaped, line ends kept as character references in attributes,
+/// control characters and bytes that are not UTF-8 (a message can quote anything) as '?'.
+std::string xmlEscape(const std::string& s, bool attribute = false) {
     std::string out;
-    for (const char ch : s) {
+    for (size_t i = 0; i < s.size();) {
+        const char ch = s[i];
+        const size_t n = utf8Length(s, i);
+        if (n == 0) {
+            out += '?';
+            ++i;
+            continue;
+        }
+        if (n > 1) {
+            out.append(s, i, n);
+            i += n;
+            continue;
+        }
         switch (ch) {
             case '&': out += "&amp;"; break;
             case '<': out += "&lt;"; break;
             case '>': out += "&gt;"; break;
             case '"': out += "&quot;"; break;
-            default:
-                // XML 1.0 has no other control characters.
-                if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n' && ch != '\t' && ch != '\r') out += '?';
-                else out += ch;
+            case '\n': out += attribute ? "&#10;" : "\n"; break;
+            case '\t': out += attribute ? "&#9;" : "\t"; break;
+            default: out += static_cast<unsigned char>(ch) < 0x20 ? '?' : ch;
         }
+        ++i;
     }
     return out;
+}
+
+/// At most `most` bytes of `s`, not cutting a UTF-8 sequence.
+std::string prefix(const std::string& s, size_t most) {
+    if (s.size() <= most) return s;
+    size_t end = most;
+    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80) --end;
+    return s.substr(0, end);
 }
 
 }  // namespace
@@ -53,8 +86,8 @@ std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsError
         const bool compiled = c.compileError.empty();
         rows.push_back({c.graph, c.combination, compiled ? std::to_string(c.passes) : "-",
                         compiled ? std::to_string(c.culled) : "-", compiled ? std::to_string(c.barriers) : "-",
-                        c.ran ? std::to_string(c.validationMessages) : "-",
-                        c.ran ? std::to_string(c.performanceWarnings) : "-", goldenCell(c),
+                        c.runAttempted ? std::to_string(c.validationMessages) : "-",
+                        c.runAttempted ? std::to_string(c.performanceWarnings) : "-", goldenCell(c),
                         compiled ? (c.verifierFindings ? std::to_string(c.verifierFindings) + " findings" : "ok") : "-",
                         seconds(c.seconds), bad ? "FAIL" : "pass"});
     }
@@ -113,10 +146,10 @@ std::string checkJUnit(const std::vector<CheckCase>& cases, bool warningsAsError
             suiteFailures += c->failed(warningsAsErrors);
             suiteTime += c->seconds;
         }
-        out << "  <testsuite name=\"" << xmlEscape(file) << "\" tests=\"" << list.size() << "\" failures=\""
+        out << "  <testsuite name=\"" << xmlEscape(file, true) << "\" tests=\"" << list.size() << "\" failures=\""
             << suiteFailures << "\" time=\"" << seconds(suiteTime) << "\">\n";
         for (const CheckCase* c : list) {
-            out << "    <testcase classname=\"" << xmlEscape(c->graph) << "\" name=\"" << xmlEscape(c->combination)
+            out << "    <testcase classname=\"" << xmlEscape(c->graph, true) << "\" name=\"" << xmlEscape(c->combination, true)
                 << "\" time=\"" << seconds(c->seconds) << "\">\n";
             const std::vector<std::string> reasons = c->failures(warningsAsErrors);
             if (!reasons.empty()) {
@@ -124,7 +157,7 @@ std::string checkJUnit(const std::vector<CheckCase>& cases, bool warningsAsError
                 for (const std::string& r : reasons) body += r + "\n";
                 body += c->verifierReport;
                 if (c->golden) body += c->golden->diff;
-                out << "      <failure message=\"" << xmlEscape(reasons.front().substr(0, 200)) << "\">"
+                out << "      <failure message=\"" << xmlEscape(prefix(reasons.front(), 200), true) << "\">"
                     << xmlEscape(body) << "</failure>\n";
             }
             std::string system = "passes " + std::to_string(c->passes) + ", culled " + std::to_string(c->culled) +

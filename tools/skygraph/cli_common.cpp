@@ -24,7 +24,7 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags) {
         const auto eq = f.find('=');
         const std::string value = eq == std::string::npos ? "" : f.substr(eq + 1);
         if (eq == 0 || eq == std::string::npos || (value != "on" && value != "off"))
-            throw UsageError("--feature expects NAME=on or NAME=off, got '" + f + "'");
+            throw UsageError("a feature is NAME=on or NAME=off, not '" + f + "'");
         out[f.substr(0, eq)] = value == "on";
     }
     return out;

@@ -33,10 +33,13 @@ namespace skygraph::testing {
 /// from `graph`; otherwise one line per finding.
 [[nodiscard]] ::testing::AssertionResult verifies(const Plan& plan, const GraphDesc& graph);
 
-/// Renders `frames` frames of `compiled` on `device`, which must have been created with
-/// validation on, and waits for them; success when the validation layer counted no message
-/// (performance warnings left out), otherwise the messages. The device's messages are cleared
-/// first and left as the frames left them. What the renderer throws is a failure too.
+/// Renders `frames` (at least 1) frames of `compiled` on `device`, which must have been
+/// created with validation on, and waits for them; success when the validation layer counted
+/// no message (performance warnings left out), otherwise the messages. The device's messages
+/// are cleared first and left as the frames left them. What the renderer throws is a failure
+/// too. The Renderer runs what it would run in the application: a plan compiled without the
+/// device's memory model (CompileOptions::memory = device.memoryModel()) is compiled again
+/// with it. Needs the executor (a package built with it).
 [[nodiscard]] ::testing::AssertionResult rendersWithoutValidationMessages(Device& device, const CompiledGraph& compiled,
                                                                           const RendererOptions& options = {},
                                                                           uint32_t frames = 3);

@@ -35,31 +35,46 @@ void PrintTo(const NamedBarrier& b, std::ostream* os);
 /// The barriers after the last step (Plan::finalBarriers()).
 [[nodiscard]] std::vector<NamedBarrier> finalBarriers(const Plan& plan);
 
-/// The hazard a barrier resolves, from its access masks: a write made visible to a read, to a
-/// write, or (no source access) an execution dependency before a write or transition.
+/// The hazard a barrier resolves, from its masks: a write made visible to a read
+/// (ReadAfterWrite: a write in the source access, a read in the destination access), or to a
+/// write or layout transition (WriteAfterWrite); or a write or transition ordered after
+/// earlier reads (WriteAfterRead: an execution dependency, whatever the source access).
 enum class Hazard : uint8_t { ReadAfterWrite, WriteAfterWrite, WriteAfterRead };
 
-/// What a barrier must be; every part left unset matches anything. Converts to a matcher of
-/// NamedBarrier whose description and mismatch explanation name each part.
+/// What a barrier must be; every part left unset matches anything. Each setter returns a new
+/// expectation (a value: nothing dangles). Converts to a matcher of NamedBarrier whose
+/// description and mismatch explanation name each part.
 class BarrierExpectation {
 public:
     explicit BarrierExpectation(std::string resource) : resource_(std::move(resource)) {}
-    BarrierExpectation& readAfterWrite() { hazard_ = Hazard::ReadAfterWrite; return *this; }
-    BarrierExpectation& writeAfterWrite() { hazard_ = Hazard::WriteAfterWrite; return *this; }
-    BarrierExpectation& writeAfterRead() { hazard_ = Hazard::WriteAfterRead; return *this; }
-    /// Its source stages include those of `stage` (the usage's stage in the graph file).
-    BarrierExpectation& from(Stage stage) { from_ = stage; return *this; }
-    /// Its destination stages include those of `stage`.
-    BarrierExpectation& to(Stage stage) { to_ = stage; return *this; }
+    [[nodiscard]] BarrierExpectation readAfterWrite() const { return with(&BarrierExpectation::hazard_, Hazard::ReadAfterWrite); }
+    [[nodiscard]] BarrierExpectation writeAfterWrite() const { return with(&BarrierExpectation::hazard_, Hazard::WriteAfterWrite); }
+    [[nodiscard]] BarrierExpectation writeAfterRead() const { return with(&BarrierExpectation::hazard_, Hazard::WriteAfterRead); }
+    /// Its source stages include every pipeline stage of `stage` (the usage's stage in the
+    /// graph file: both fragment test stages for DepthAttachment, COPY, BLIT, CLEAR and RESOLVE
+    /// for Transfer), umbrella stages such as ALL_COMMANDS expanded.
+    [[nodiscard]] BarrierExpectation from(Stage stage) const { return with(&BarrierExpectation::from_, stage); }
+    /// Its destination stages include every pipeline stage of `stage`, as from().
+    [[nodiscard]] BarrierExpectation to(Stage stage) const { return with(&BarrierExpectation::to_, stage); }
     /// It transitions from `layout`.
-    BarrierExpectation& fromLayout(VkImageLayout layout) { oldLayout_ = layout; return *this; }
+    [[nodiscard]] BarrierExpectation fromLayout(VkImageLayout layout) const {
+        return with(&BarrierExpectation::oldLayout_, layout);
+    }
     /// It leaves the image in `layout` (a transition, or a barrier that keeps that layout).
-    BarrierExpectation& into(VkImageLayout layout) { newLayout_ = layout; return *this; }
+    [[nodiscard]] BarrierExpectation into(VkImageLayout layout) const {
+        return with(&BarrierExpectation::newLayout_, layout);
+    }
 
     operator ::testing::Matcher<const NamedBarrier&>() const;  // NOLINT(google-explicit-constructor)
 
 private:
     friend class BarrierMatcher;
+    template <typename Member, typename Value>
+    BarrierExpectation with(Member member, Value value) const {
+        BarrierExpectation copy = *this;
+        copy.*member = value;
+        return copy;
+    }
     std::string resource_;
     std::optional<Hazard> hazard_;
     std::optional<Stage> from_, to_;
