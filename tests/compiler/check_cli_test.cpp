@@ -235,6 +235,10 @@ TEST_F(Cli, CheckFeatureSelection) {
     EXPECT_GE(rows(pairwise.out, "pass"), 4u);
     EXPECT_LT(rows(pairwise.out, "pass"), 16u) << pairwise.out;
     EXPECT_EQ(run({"check", "graphs/raster.json", "--features", "nosuch=on", "--no-run"}).status, 1);
+    const CliRun badValue = run({"check", "graphs/raster.json", "--features", "skybox=maybe", "--no-run"});
+    EXPECT_EQ(badValue.status, 2);
+    EXPECT_NE(badValue.err.find("--features expects NAME=on or NAME=off, got 'skybox=maybe'"), std::string::npos)
+        << badValue.err;
     EXPECT_EQ(run({"check", "graphs/raster.json", "--size", "64by64", "--no-run"}).status, 2);
     EXPECT_EQ(run({"check", "graphs/raster.json", "--update", "--no-run"}).status, 2);  // needs --golden
 }

@@ -91,6 +91,12 @@ void weakenBatch(const Plan& base, std::span<const Barrier> list, const std::str
 
 }  // namespace
 
+RunSettings settingsForSeed(uint32_t seed) {
+    RunSettings settings;
+    if (seed % 2 == 1) settings.layouts = LayoutPolicy::Optimal;
+    return settings;
+}
+
 GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& features,
                   const RunSettings& settings) {
     GraphRun run;
@@ -98,6 +104,7 @@ GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& 
         GraphDesc graph = parseGraph(json, "<random>", PassRegistry::withBuiltins());
         CompileOptions o = sizedOptions(settings.size, settings.size);
         o.features = features;
+        o.layouts = settings.layouts;
         // The renderer runs plans placed with its device's memory requirements (it compiles
         // others again), and the oracle's weakened copies must be of the plan that runs.
         o.memory = device.memoryModel();

@@ -19,7 +19,13 @@ struct RunSettings {
     uint32_t size = 16;           ///< Output width and height (the generator's outputSize).
     uint32_t frames = 2;          ///< Two frames: the second meets the first's final state.
     uint32_t framesInFlight = 1;  ///< Frame copies do not change the plan's barriers.
+    /// CompileOptions::layouts; unset: the graph's (fewest barriers).
+    std::optional<LayoutPolicy> layouts;
 };
+
+/// How the random-graph suites run seed `seed`: odd seeds with each reader of an image in its
+/// optimal layout (transitions between reads), even ones with the fewest barriers.
+[[nodiscard]] RunSettings settingsForSeed(uint32_t seed);
 
 /// The outcome of one graph. `passed()` is the suite's verdict.
 struct GraphRun {

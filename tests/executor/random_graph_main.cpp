@@ -38,12 +38,12 @@ int main(int argc, char** argv) {
     };
     for (uint32_t seed = first; seed < first + count; ++seed) {
         const RandomGraph g = generateRandomGraph(seed);
-        const GraphRun run = runGraph(*device, g.json(), g.features);
+        const GraphRun run = runGraph(*device, g.json(), g.features, settingsForSeed(seed));
         ++graphs;
         run.passed() ? void(++passed) : report(seed, "", run.detail, g.json());
         if (seed % 4 == 0) {
             const std::string reordered = g.json(g.shuffledOrder(1));
-            const GraphRun again = runGraph(*device, reordered, g.features);
+            const GraphRun again = runGraph(*device, reordered, g.features, settingsForSeed(seed));
             ++graphs;
             again.passed() ? void(++passed) : report(seed, "reordered", again.detail, reordered);
         }

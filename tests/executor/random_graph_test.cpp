@@ -1,8 +1,9 @@
 // Random Generic graphs (random_graph_generator.hpp): every stage, access, resource type,
 // subresource range, feature condition and pass order. Each graph is valid by construction,
 // so it must compile, and its plan must run with synchronization validation silent. Seeds
-// are fixed so failures reproduce; a failing seed prints its graph and plan. 200 graphs
-// here; tools/random-graphs.sh runs 10,000+ with the same check.
+// are fixed so failures reproduce; a failing seed prints its graph and plan. Odd seeds are
+// compiled with optimal layouts (settingsForSeed). 200 graphs here; tools/random-graphs.sh
+// runs 10,000+ with the same check.
 #include "executor_test_util.hpp"
 #include "random_graph_check.hpp"
 
@@ -17,12 +18,12 @@ class RandomGraphs : public ExecutorTest, public ::testing::WithParamInterface<u
 TEST_P(RandomGraphs, CompileAndRunWithSyncValidationSilent) {
     for (uint32_t seed = GetParam() * kSeedsPerChunk + 1; seed <= (GetParam() + 1) * kSeedsPerChunk; ++seed) {
         const RandomGraph g = generateRandomGraph(seed);
-        const GraphRun run = runGraph(sharedDevice(), g.json(), g.features);
+        const GraphRun run = runGraph(sharedDevice(), g.json(), g.features, settingsForSeed(seed));
         EXPECT_TRUE(run.passed()) << "seed " << seed << ":\n" << run.detail << "\n" << g.json();
         // Reordering: the same passes in another order are another valid frame.
         if (seed % 4 == 0) {
             const std::string reordered = g.json(g.shuffledOrder(1));
-            const GraphRun again = runGraph(sharedDevice(), reordered, g.features);
+            const GraphRun again = runGraph(sharedDevice(), reordered, g.features, settingsForSeed(seed));
             EXPECT_TRUE(again.passed()) << "seed " << seed << " reordered:\n" << again.detail << "\n" << reordered;
         }
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <optional>
 #include <stdexcept>
 
 namespace skygraph::test {
@@ -55,7 +56,8 @@ std::string describe(const std::vector<verifier::Finding>& findings) {
 namespace {
 
 void verifyOne(uint32_t seed, const std::string& variant, const std::string& json, const FeatureValues& features,
-               bool headlessRun, MemoryStrategy placement, bool clobber, RandomResult& result, bool shareFrames = true) {
+               bool headlessRun, MemoryStrategy placement, bool clobber, RandomResult& result, bool shareFrames = true,
+               std::optional<LayoutPolicy> layouts = std::nullopt) {
     try {
         const GraphDesc graph = parseGraph(json, "random" + std::to_string(seed) + ".json", registry());
         CompileOptions co;
@@ -64,6 +66,7 @@ void verifyOne(uint32_t seed, const std::string& variant, const std::string& jso
         co.placement = placement;
         co.clobberTransients = clobber;
         co.shareTransientsAcrossFrames = shareFrames;
+        co.layouts = layouts;
         if (headlessRun) co = headless(graph, co);
         const Plan plan = compile(graph, co);
         const verifier::VerificationReport report = verifier::verifyPlan(plan, graph);
@@ -93,7 +96,11 @@ void verifyRandomGraph(uint32_t seed, RandomResult& result) {
               MemoryStrategy::BestFitBySize, seed % 3 == 0, result, seed % 2 == 1);
     const RandomGraph g = generateRandomGraph(seed);
     const bool clobber = seed % 2 == 1;
-    verifyOne(seed, "presenting", g.json(), g.features, false, MemoryStrategy::BestFitBySize, false, result);
+    // Odd seeds present with each reader of an image in its optimal layout.
+    const bool optimal = seed % 2 == 1;
+    verifyOne(seed, optimal ? "presenting, optimal layouts" : "presenting", g.json(), g.features, false,
+              MemoryStrategy::BestFitBySize, false, result, true,
+              optimal ? std::optional(LayoutPolicy::Optimal) : std::nullopt);
     verifyOne(seed, clobber ? "headless, first-use placement, clobbered" : "headless, first-use placement", g.json(),
               g.features, true, MemoryStrategy::FirstUseOrder, clobber, result);
     if (seed % 4 == 0)

@@ -36,7 +36,7 @@ void parseCoverage(const std::string& text, app::CheckOptions& o) {
         std::istringstream in(text);
         for (std::string flag; std::getline(in, flag, ',');) flags.push_back(flag);
         o.coverage = app::FeatureCoverage::Given;
-        o.features = parseFeatureFlags(flags);
+        o.features = parseFeatureFlags(flags, "--features");
     }
 }
 

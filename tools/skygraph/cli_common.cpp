@@ -18,13 +18,13 @@ std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text) {
     throw UsageError("--layouts " + text + ": expected fewest-barriers or optimal");
 }
 
-FeatureValues parseFeatureFlags(const std::vector<std::string>& flags) {
+FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::string_view option) {
     FeatureValues out;
     for (const auto& f : flags) {
         const auto eq = f.find('=');
         const std::string value = eq == std::string::npos ? "" : f.substr(eq + 1);
         if (eq == 0 || eq == std::string::npos || (value != "on" && value != "off"))
-            throw UsageError("a feature is NAME=on or NAME=off, not '" + f + "'");
+            throw UsageError(std::string(option) + " expects NAME=on or NAME=off, got '" + f + "'");
         out[f.substr(0, eq)] = value == "on";
     }
     return out;

@@ -15,6 +15,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace CLI {
@@ -42,8 +43,9 @@ struct Command {
 /// file's setting). Throws UsageError for anything else.
 [[nodiscard]] std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text);
 
-/// "NAME=on|off" strings -> values. Throws UsageError on bad syntax.
-[[nodiscard]] FeatureValues parseFeatureFlags(const std::vector<std::string>& flags);
+/// "NAME=on|off" strings -> values. Throws UsageError on bad syntax, naming `option`.
+[[nodiscard]] FeatureValues parseFeatureFlags(const std::vector<std::string>& flags,
+                                              std::string_view option = "--feature");
 
 /// Writes `text` to `path` (stdout when empty) through a temporary file and a rename, so a
 /// failure never leaves half a file behind.
