@@ -40,6 +40,11 @@ TEST(VignettePlan, TheVignetteSamplesWhatTheClearWrote) {
     EXPECT_THAT(barriersBefore(plan, "vignette"),
                 ::testing::Contains(barrier("hdr_color").readAfterWrite().from(Stage::Transfer).to(Stage::Fragment).into(
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)));
+    // The clear takes over hdr_color's bytes from the previous frame, which the vignette
+    // sampled and the clear wrote: one barrier orders both.
+    EXPECT_THAT(barriersBefore(plan, "clear hdr_color"),
+                ::testing::Contains(barrier("hdr_color").writeAfterRead().from(Stage::Fragment).to(Stage::Transfer).into(
+                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)));
     EXPECT_TRUE(verifies(plan, v.graph));
 }
 
