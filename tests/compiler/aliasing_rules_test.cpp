@@ -5,6 +5,8 @@
 // whose memory an alias wrote starts from UNDEFINED) and its chapter on synchronization.
 #include <skygraph/compiler.hpp>
 
+#include "plan_queries.hpp"
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -13,6 +15,9 @@
 
 namespace skygraph {
 namespace {
+
+using test::barriersOf;
+using test::pass;
 
 std::vector<uint32_t> ids(std::span<const uint32_t> aliases) { return {aliases.begin(), aliases.end()}; }
 
@@ -33,19 +38,6 @@ Plan compileGraph(const std::string& resources, const std::string& passes, Compi
     const std::string text = R"({"version": 1, "name": "t", "resources": {)" + resources + R"(}, "passes": [)" +
                              passes + "]}";
     return compile(parseGraph(text, "aliasing.json", registry()), options);
-}
-
-const PlannedPass& pass(const Plan& plan, const std::string& name) {
-    for (const auto& p : plan.passes())
-        if (p.name == name) return p;
-    throw std::runtime_error("no scheduled pass " + name);
-}
-
-std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
-    std::vector<Barrier> out;
-    for (const auto& b : pass(plan, passName).barriers)
-        if (plan.resources()[b.resource].name == resource) out.push_back(b);
-    return out;
 }
 
 const MemoryPlacement& placementOf(const Plan& plan, const std::string& resource) {

@@ -4,6 +4,8 @@
 // layout transition is itself a write ordered by the barrier that performs it.
 #include <skygraph/compiler.hpp>
 
+#include "plan_queries.hpp"
+
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -11,6 +13,9 @@
 
 namespace skygraph {
 namespace {
+
+using test::barriersOf;
+using test::pass;
 
 const PassRegistry& registry() {
     static const PassRegistry r = PassRegistry::withBuiltins();
@@ -28,24 +33,10 @@ Plan compileGraph(const std::string& resources, const std::string& passes,
     return compile(parseGraph(text, "rules.json", registry()), options);
 }
 
-const PlannedPass& pass(const Plan& plan, const std::string& name) {
-    for (const auto& p : plan.passes())
-        if (p.name == name) return p;
-    throw std::runtime_error("no scheduled pass " + name);
-}
-
 CompileOptions noCulling() {
     CompileOptions o;
     o.cull = false;
     return o;
-}
-
-/// The barriers of one pass that touch one resource, in batch order.
-std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
-    std::vector<Barrier> out;
-    for (const auto& b : pass(plan, passName).barriers)
-        if (plan.resources()[b.resource].name == resource) out.push_back(b);
-    return out;
 }
 
 constexpr const char* kColor = R"("color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16]})";

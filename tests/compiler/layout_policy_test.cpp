@@ -14,6 +14,8 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 
+#include "plan_queries.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,6 +28,9 @@
 
 namespace skygraph {
 namespace {
+
+using test::barriersOf;
+using test::pass;
 
 const PassRegistry& registry() {
     static const PassRegistry r = PassRegistry::withBuiltins();
@@ -46,19 +51,6 @@ Plan compileWith(const std::string& text, std::optional<LayoutPolicy> policy) {
     options.shareTransientsAcrossFrames = false;
     options.layouts = policy;
     return compile(parseGraph(text, "layouts.json", registry()), options);
-}
-
-const PlannedPass& pass(const Plan& plan, const std::string& name) {
-    for (const auto& p : plan.passes())
-        if (p.name == name) return p;
-    throw std::runtime_error("no scheduled pass " + name);
-}
-
-std::vector<Barrier> barriersOf(const Plan& plan, const std::string& passName, const std::string& resource) {
-    std::vector<Barrier> out;
-    for (const auto& b : pass(plan, passName).barriers)
-        if (plan.resources()[b.resource].name == resource) out.push_back(b);
-    return out;
 }
 
 VkImageLayout layoutIn(const Plan& plan, const std::string& passName, const std::string& resource) {
