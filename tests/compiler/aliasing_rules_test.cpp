@@ -18,13 +18,9 @@ namespace {
 
 using test::barriersOf;
 using test::pass;
+using test::registry;
 
 std::vector<uint32_t> ids(std::span<const uint32_t> aliases) { return {aliases.begin(), aliases.end()}; }
-
-const PassRegistry& registry() {
-    static const PassRegistry r = PassRegistry::withBuiltins();
-    return r;
-}
 
 /// Options for one frame on its own: each frame in flight with heaps of its own, so that a
 /// resource's first barrier shows what it takes over within the frame alone.

@@ -16,11 +16,7 @@ namespace {
 
 using test::barriersOf;
 using test::pass;
-
-const PassRegistry& registry() {
-    static const PassRegistry r = PassRegistry::withBuiltins();
-    return r;
-}
+using test::registry;
 
 /// Builds a graph file from resources and passes JSON fragments, then compiles it.
 Plan compileGraph(const std::string& resources, const std::string& passes,

@@ -31,11 +31,7 @@ namespace {
 
 using test::barriersOf;
 using test::pass;
-
-const PassRegistry& registry() {
-    static const PassRegistry r = PassRegistry::withBuiltins();
-    return r;
-}
+using test::registry;
 
 /// A graph file of these resources and passes, with `top` (e.g. R"("layouts": "optimal",)")
 /// among the root's keys.

@@ -1,7 +1,8 @@
-// What the compiler's rule tests ask of a plan: a scheduled pass by name, and the barriers
-// before it on one resource.
+// What the compiler's rule tests share: the built-in pass types to load graphs with, a
+// scheduled pass by name, and the barriers before it on one resource.
 #pragma once
 
+#include <skygraph/pass_registry.hpp>
 #include <skygraph/plan.hpp>
 
 #include <stdexcept>
@@ -9,6 +10,12 @@
 #include <vector>
 
 namespace skygraph::test {
+
+/// The built-in pass types, made once.
+inline const PassRegistry& registry() {
+    static const PassRegistry r = PassRegistry::withBuiltins();
+    return r;
+}
 
 /// The scheduled pass called `name`; throws std::runtime_error when there is none.
 inline const PlannedPass& pass(const Plan& plan, const std::string& name) {
