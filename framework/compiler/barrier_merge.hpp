@@ -22,7 +22,8 @@ inline bool sameParams(const Barrier& a, const Barrier& b) {
     static_assert(sizeof(Barrier) == 64, "a new Barrier member must join this comparison");
     return a.resource == b.resource && a.kind == b.kind && a.aliasing == b.aliasing && a.srcStages == b.srcStages &&
            a.srcAccess == b.srcAccess && a.dstStages == b.dstStages && a.dstAccess == b.dstAccess &&
-           a.oldLayout == b.oldLayout && a.newLayout == b.newLayout;
+           a.oldLayout == b.oldLayout && a.newLayout == b.newLayout && a.srcQueue == b.srcQueue &&
+           a.dstQueue == b.dstQueue;
 }
 
 /// Merges the barriers of one resource's range as they are emitted. Keeps its scratch

@@ -1,4 +1,5 @@
 #include "plan_builder.hpp"
+#include "queue_planner.hpp"
 #include "scheduler.hpp"
 #include "synchronizer.hpp"
 #include "validation.hpp"
@@ -43,6 +44,7 @@ Plan compileExported(const GraphDesc& graph, const CompileOptions& options) {
     Schedule schedule = schedulePasses(index, features, options.cull);
     checkReadbacksHaveSources(index, schedule, options);
     Plan plan = synchronize(index, schedule, options);
+    planQueues(index, options, plan);
     detail::PlanBuilder::features(plan) = std::move(features);
     detail::PlanBuilder::setOutputExtent(plan, options.outputWidth, options.outputHeight);
     detail::PlanBuilder::culled(plan) = std::move(schedule.culled);

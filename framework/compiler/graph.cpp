@@ -56,6 +56,38 @@ std::optional<LayoutPolicy> parseLayoutPolicy(std::string_view s) noexcept {
     return std::nullopt;
 }
 
+std::string_view toString(QueueKind queue) noexcept {
+    switch (queue) {
+        case QueueKind::Compute: return "compute";
+        case QueueKind::Transfer: return "transfer";
+        case QueueKind::Graphics: break;
+    }
+    return "graphics";
+}
+
+std::optional<QueueKind> parseQueueKind(std::string_view s) noexcept {
+    if (s == "graphics") return QueueKind::Graphics;
+    if (s == "compute") return QueueKind::Compute;
+    if (s == "transfer") return QueueKind::Transfer;
+    return std::nullopt;
+}
+
+std::string_view toString(Sharing sharing) noexcept {
+    switch (sharing) {
+        case Sharing::Exclusive: return "exclusive";
+        case Sharing::Concurrent: return "concurrent";
+        case Sharing::Auto: break;
+    }
+    return "auto";
+}
+
+std::optional<Sharing> parseSharing(std::string_view s) noexcept {
+    if (s == "auto") return Sharing::Auto;
+    if (s == "exclusive") return Sharing::Exclusive;
+    if (s == "concurrent") return Sharing::Concurrent;
+    return std::nullopt;
+}
+
 std::array<uint32_t, 2> Extent::resolve(uint32_t outputWidth,
                                         uint32_t outputHeight) const noexcept {
     if (!relativeToOutput) return {width, height};

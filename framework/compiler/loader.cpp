@@ -33,7 +33,7 @@ std::string joinNames(const std::vector<std::string>& names) {
 std::string dumpString(std::string_view s) { return nlohmann::json(std::string(s)).dump(); }
 
 constexpr Keys<8> kRootKeys{"$schema", "version", "name", "description", "features", "layouts", "resources", "passes"};
-constexpr Keys<7> kPassKeys{"name", "type", "if", "uses", "params", "never_cull", "description"};
+constexpr Keys<8> kPassKeys{"name", "type", "if", "uses", "params", "never_cull", "queue", "description"};
 constexpr Keys<7> kUsageKeys{"resource", "access", "stage", "as", "mips", "layers", "slot"};
 
 // Each entry's keys by name, for JsonFields.
@@ -45,7 +45,8 @@ constexpr size_t version = keyIndex(kRootKeys, "version"), name = keyIndex(kRoot
 namespace passKey {
 constexpr size_t name = keyIndex(kPassKeys, "name"), type = keyIndex(kPassKeys, "type"),
                  condition = keyIndex(kPassKeys, "if"), uses = keyIndex(kPassKeys, "uses"),
-                 params = keyIndex(kPassKeys, "params"), neverCull = keyIndex(kPassKeys, "never_cull");
+                 params = keyIndex(kPassKeys, "params"), neverCull = keyIndex(kPassKeys, "never_cull"),
+                 queue = keyIndex(kPassKeys, "queue");
 }
 namespace usageKey {
 constexpr size_t resource = keyIndex(kUsageKeys, "resource"), access = keyIndex(kUsageKeys, "access"),
@@ -286,6 +287,11 @@ private:
             if (nc.isBoolean()) p.neverCull = nc.boolean();
             else error(path + ".never_cull", p.name, "", "expected true or false");
         }
+        if (const JsonValue q = f[passKey::queue]) {
+            const auto queue = q.isString() ? parseQueueKind(q.string()) : std::nullopt;
+            if (queue) p.queue = *queue;
+            else error(path + ".queue", p.name, "", "expected \"graphics\", \"compute\" or \"transfer\", got " + q.dump());
+        }
         if (const JsonValue params = f[passKey::params]) {
             if (!params.isObject()) error(path + ".params", p.name, "", "expected an object");
             else if (params.size() != 0) p.params = PassParams(params.toJson());
@@ -296,6 +302,7 @@ private:
         if (const JsonValue uses = f[passKey::uses]) loadUses(p, uses);
         else error(path + ".uses", p.name, "", "missing; a pass that uses nothing does nothing");
         if (type) bindSlots(p, *type);
+        if (type) checkQueue(p, *type);
         checkOverlaps(p);
     }
 
@@ -505,6 +512,30 @@ private:
     std::string usePath(const PassDesc& p, size_t i) const {
         if (p.usesByName) return p.jsonPath + ".uses." + graph_.resources[p.uses[i].resource].name;
         return p.jsonPath + ".uses[" + std::to_string(useIndices_[i]) + "]";
+    }
+
+    /// A pass runs only on a queue that its type allows and whose kind supports every stage it
+    /// uses.
+    void checkQueue(const PassDesc& p, const PassTypeInfo& type) {
+        const std::string where = p.jsonPath + ".queue";
+        const std::string on = "runs on the " + std::string(toString(p.queue)) + " queue";
+        if (!type.queues.empty() && std::find(type.queues.begin(), type.queues.end(), p.queue) == type.queues.end()) {
+            std::string allowed;
+            for (QueueKind q : type.queues) allowed += (allowed.empty() ? "" : ", ") + std::string(toString(q));
+            error(where, p.name, "", on + ", but pass type " + p.type + " records only on: " + allowed);
+            return;
+        }
+        for (size_t i = 0; i < p.uses.size(); ++i) {
+            const Usage& u = p.uses[i].usage;
+            if (queueSupports(p.queue, u.stage)) continue;
+            const std::string& resource = graph_.resources[p.uses[i].resource].name;
+            error(where, p.name, resource,
+                  on + ", but its use of '" + resource + "' (" + toString(u) + ") needs the " +
+                      std::string(toString(queueSupports(QueueKind::Compute, u.stage) ? QueueKind::Compute
+                                                                                      : QueueKind::Graphics)) +
+                      " queue" + (queueSupports(QueueKind::Compute, u.stage) ? " or the graphics queue" : ""));
+            return;
+        }
     }
 
     void bindSlots(PassDesc& p, const PassTypeInfo& type) {

@@ -43,6 +43,23 @@ struct PlanBuilder {
     static std::vector<CulledPass>& culled(Plan& p) noexcept { return p.culled_; }
     static std::vector<Presentation>& presentations(Plan& p) noexcept { return p.presentations_; }
     static MemoryLayout& memory(Plan& p) noexcept { return p.memory_; }
+    static std::vector<Submit>& submits(Plan& p) noexcept { return p.submits_; }
+    static std::vector<QueueKind>& passQueues(Plan& p) noexcept { return p.passQueues_; }
+    static std::array<uint32_t, kQueueKinds>& queueFamilies(Plan& p) noexcept { return p.queueFamilies_; }
+    static std::vector<uint8_t>& concurrent(Plan& p) noexcept { return p.concurrent_; }
+    /// What Submit's spans view: call pointSubmits once they are complete.
+    static std::vector<uint32_t>& submitPasses(Plan& p) noexcept { return p.submitPasses_; }
+    static std::vector<SemaphoreOp>& semaphoreOps(Plan& p) noexcept { return p.semaphoreOps_; }
+    static std::vector<Barrier>& releases(Plan& p) noexcept { return p.releases_; }
+    /// Every pass in one graphics submit, without semaphores: a plan on one queue.
+    static void singleSubmit(Plan& p) {
+        p.passQueues_.assign(p.passes_.size(), QueueKind::Graphics);
+        p.submitPasses_.resize(p.passes_.size());
+        for (size_t i = 0; i < p.passes_.size(); ++i) p.submitPasses_[i] = static_cast<uint32_t>(i);
+        p.submits_.assign(1, Submit{});
+        p.submits_[0].passes = p.submitPasses_;
+        p.submits_[0].waitsForAcquire = !p.presentations_.empty();
+    }
 
     /// Every pass's usages, pass after pass: what PlannedPass::usages views.
     static std::vector<PlannedUsage>& usages(Plan& p) noexcept { return p.usages_; }

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace skygraph::detail {
@@ -64,6 +65,59 @@ struct PlanEditor {
     [[nodiscard]] static MemoryLayout& memory(Plan& plan) noexcept { return plan.memory_; }
     /// The presentations' semaphore stages, editable. Valid as finalBarriers.
     [[nodiscard]] static std::vector<Presentation>& presentations(Plan& plan) noexcept { return plan.presentations_; }
+
+    /// A submit as vectors, to edit freely.
+    struct EditableSubmit {
+        QueueKind queue = QueueKind::Graphics;
+        std::vector<uint32_t> passes;
+        std::vector<SemaphoreOp> waits;
+        std::vector<Barrier> releases;
+        std::vector<SemaphoreOp> signals;
+        bool waitsForAcquire = false;
+    };
+    /// The submits as vectors; setSubmits puts edited ones back.
+    [[nodiscard]] static std::vector<EditableSubmit> submits(const Plan& plan) {
+        std::vector<EditableSubmit> out;
+        for (const Submit& s : plan.submits_)
+            out.push_back({s.queue, {s.passes.begin(), s.passes.end()}, {s.waits.begin(), s.waits.end()},
+                           {s.releases.begin(), s.releases.end()}, {s.signals.begin(), s.signals.end()},
+                           s.waitsForAcquire});
+        return out;
+    }
+    /// Replaces the plan's submits (the queue of each pass follows its submit).
+    static void setSubmits(Plan& plan, const std::vector<EditableSubmit>& submits) {
+        plan.submits_.clear();
+        plan.submitPasses_.clear();
+        plan.semaphoreOps_.clear();
+        plan.releases_.clear();
+        size_t passes = 0, ops = 0, releases = 0;
+        for (const EditableSubmit& s : submits) {
+            passes += s.passes.size();
+            ops += s.waits.size() + s.signals.size();
+            releases += s.releases.size();
+        }
+        plan.submitPasses_.reserve(passes);  // no reallocation below: the spans stay put
+        plan.semaphoreOps_.reserve(ops);
+        plan.releases_.reserve(releases);
+        auto place = [](auto& into, const auto& from) {
+            using T = typename std::remove_reference_t<decltype(into)>::value_type;
+            const size_t at = into.size();
+            into.insert(into.end(), from.begin(), from.end());
+            return from.empty() ? std::span<const T>{} : std::span<const T>(into.data() + at, from.size());
+        };
+        for (const EditableSubmit& s : submits) {
+            Submit out;
+            out.queue = s.queue;
+            out.waitsForAcquire = s.waitsForAcquire;
+            out.passes = place(plan.submitPasses_, s.passes);
+            out.waits = place(plan.semaphoreOps_, s.waits);
+            out.releases = place(plan.releases_, s.releases);
+            out.signals = place(plan.semaphoreOps_, s.signals);
+            plan.submits_.push_back(out);
+            for (uint32_t p : s.passes)
+                if (p < plan.passQueues_.size()) plan.passQueues_[p] = s.queue;
+        }
+    }
 };
 
 }  // namespace skygraph::detail

@@ -176,6 +176,39 @@ json barrierJson(const Plan& plan, const Barrier& b) {
         j["aliases"] = aliasNames(plan, b.resource);
         if (plan.memory().sharedAcrossFrames) j["previousFrameAliases"] = aliasNames(plan, b.resource, true);
     }
+    if (b.transfersOwnership()) {
+        j["srcQueue"] = toString(b.srcQueue);
+        j["dstQueue"] = toString(b.dstQueue);
+    }
+    return j;
+}
+
+bool onSeveralQueues(const Plan& plan) { return plan.submits().size() > 1; }
+
+std::string semaphoreText(const SemaphoreOp& op) {
+    return std::string(toString(op.semaphore)) + "=" + std::to_string(op.value) + " at " +
+           joined(stageMaskNames(op.stages), "VK_PIPELINE_STAGE_2_");
+}
+
+json semaphoresJson(std::span<const SemaphoreOp> ops) {
+    json j = json::array();
+    for (const SemaphoreOp& op : ops)
+        j.push_back({{"semaphore", toString(op.semaphore)}, {"value", op.value}, {"stage", stageMaskNames(op.stages)}});
+    return j;
+}
+
+json submitsJson(const Plan& plan) {
+    json j = json::array();
+    for (const Submit& s : plan.submits()) {
+        json js = {{"queue", toString(s.queue)}, {"passes", json::array()}};
+        for (uint32_t p : s.passes) js["passes"].push_back(plan.passes()[p].name);
+        js["waits"] = semaphoresJson(s.waits);
+        js["signals"] = semaphoresJson(s.signals);
+        js["releases"] = json::array();
+        for (const Barrier& b : s.releases) js["releases"].push_back(barrierJson(plan, b));
+        if (s.waitsForAcquire) js["waitsForAcquire"] = true;
+        j.push_back(std::move(js));
+    }
     return j;
 }
 
@@ -244,6 +277,7 @@ std::string barrierText(const Plan& plan, const Barrier& b) {
         o << " mips[" << b.range.baseMip << "+" << b.range.mipCount << "] layers["
           << b.range.baseLayer << "+" << b.range.layerCount << "]";
     if (b.aliasing) o << " aliasing," << aliasText(plan, b.resource);
+    if (b.transfersOwnership()) o << " ownership " << toString(b.srcQueue) << " -> " << toString(b.dstQueue);
     o << "\n      " << joined(stageMaskNames(b.srcStages), "VK_PIPELINE_STAGE_2_") << " / "
       << joined(accessMaskNames(b.srcAccess), "VK_ACCESS_2_") << "  ->  "
       << joined(stageMaskNames(b.dstStages), "VK_PIPELINE_STAGE_2_") << " / "
@@ -352,6 +386,7 @@ json planToJson(const Plan& plan) {
     j["passes"] = json::array();
     for (const auto& p : plan.passes()) {
         json pass = {{"name", p.name}, {"type", p.type}, {"barriers", json::array()}};
+        if (onSeveralQueues(plan)) pass["queue"] = toString(plan.queueOf(static_cast<uint32_t>(&p - plan.passes().data())));
         for (const auto& b : p.barriers) pass["barriers"].push_back(barrierJson(plan, b));
         // Extension: how the pass uses each resource once barriers have run.
         pass["usages"] = json::array();
@@ -380,6 +415,8 @@ json planToJson(const Plan& plan) {
     }
     j["final"] = json::array();
     for (const auto& b : plan.finalBarriers()) j["final"].push_back(barrierJson(plan, b));
+    // Only for plans on several queues: one submit holding every pass goes without saying.
+    if (onSeveralQueues(plan)) j["submits"] = submitsJson(plan);
     j["culled"] = json::array();
     for (const auto& c : plan.culled()) j["culled"].push_back({{"pass", c.name}, {"reason", c.reason}});
     // Extension: the semaphore stages of a presented frame.
@@ -400,6 +437,8 @@ json planToJson(const Plan& plan) {
                                   {"finalLayout", layoutName(r.finalLayout)},
                                   {"copies", perFrameInFlight(r.copies) ? "perFrameInFlight" : "one"},
                                   {"copiesWhy", copiesReason(r.copies)}});
+    for (size_t r = 0; r < plan.resources().size(); ++r)
+        if (plan.concurrent(static_cast<uint32_t>(r))) j["resources"][r]["sharing"] = "concurrent";
     // Extension: where the transient resources live (plans of compile() only).
     if (!plan.memory().model.empty()) j["memory"] = memoryJson(plan);
     return j;
@@ -414,7 +453,9 @@ std::string planToText(const Plan& plan) {
     o << "\n";
     for (size_t i = 0; i < plan.passes().size(); ++i) {
         const auto& p = plan.passes()[i];
-        o << "[" << i << "] " << p.name << " (" << p.type << ")\n";
+        o << "[" << i << "] " << p.name << " (" << p.type << ")";
+        if (onSeveralQueues(plan)) o << " on " << toString(plan.queueOf(static_cast<uint32_t>(i)));
+        o << "\n";
         for (const auto& b : p.barriers) o << barrierText(plan, b);
         for (const auto& u : p.usages) {
             o << "    uses " << plan.resources()[u.resource].name << " " << toString(u.usage);
@@ -429,6 +470,28 @@ std::string planToText(const Plan& plan) {
     }
     o << "final:\n";
     for (const auto& b : plan.finalBarriers()) o << barrierText(plan, b);
+    if (onSeveralQueues(plan)) {
+        o << "submits:\n";
+        for (size_t k = 0; k < plan.submits().size(); ++k) {
+            const Submit& sub = plan.submits()[k];
+            o << "    " << k << ": " << toString(sub.queue) << " [";
+            for (size_t n = 0; n < sub.passes.size(); ++n) o << (n ? " " : "") << sub.passes[n];
+            o << "]";
+            if (sub.waitsForAcquire) o << " waits for the swapchain acquire";
+            o << "\n";
+            for (const SemaphoreOp& w : sub.waits) o << "      wait " << semaphoreText(w) << "\n";
+            for (const Barrier& b : sub.releases) o << "      release" << barrierText(plan, b).substr(3);
+            for (const SemaphoreOp& sg : sub.signals) o << "      signal " << semaphoreText(sg) << "\n";
+        }
+        o << "sharing:";
+        bool any = false;
+        for (size_t r = 0; r < plan.resources().size(); ++r)
+            if (plan.concurrent(static_cast<uint32_t>(r))) {
+                o << " " << plan.resources()[r].name;
+                any = true;
+            }
+        o << (any ? " concurrent; the rest exclusive\n" : " every resource exclusive\n");
+    }
     o << "culled:\n";
     for (const auto& c : plan.culled()) o << "    " << c.name << ": " << c.reason << "\n";
     for (const Presentation& pr : plan.presentations())
@@ -441,6 +504,33 @@ std::string planToText(const Plan& plan) {
           << (perFrameInFlight(r.copies) ? "a copy per frame in flight" : "one copy") << " ("
           << copiesReason(r.copies) << ")\n";
     if (!plan.memory().model.empty()) o << memoryText(plan);
+    return o.str();
+}
+
+/// One lane per queue holding its passes, and an edge per semaphore wait from the last pass
+/// of the submit it waits for (the frame's start, when that submit has no passes).
+std::string queueLanesDot(const Plan& plan) {
+    std::ostringstream o;
+    for (size_t q = 0; q < kQueueKinds; ++q) {
+        const auto kind = static_cast<QueueKind>(q);
+        o << "  subgraph \"cluster_queue_" << toString(kind) << "\" {\n    label=\"" << toString(kind)
+          << " queue\";\n    style=dashed;\n";
+        for (size_t i = 0; i < plan.passes().size(); ++i)
+            if (plan.queueOf(static_cast<uint32_t>(i)) == kind) o << "    \"pass:" << dotEscape(plan.passes()[i].name) << "\";\n";
+        if (kind == QueueKind::Graphics) o << "    \"frame start\" [shape=point];\n    \"frame end\" [shape=point];\n";
+        o << "  }\n";
+    }
+    auto endOf = [&](const Submit& s, bool signalling) {
+        if (s.passes.empty()) return std::string(signalling ? "\"frame start\"" : "\"frame end\"");
+        return "\"pass:" + dotEscape(plan.passes()[signalling ? s.passes.back() : s.passes.front()].name) + "\"";
+    };
+    for (const Submit& waiter : plan.submits())
+        for (const SemaphoreOp& w : waiter.waits)
+            for (const Submit& signaller : plan.submits())
+                for (const SemaphoreOp& sg : signaller.signals)
+                    if (sg.semaphore == w.semaphore && sg.value == w.value)
+                        o << "  " << endOf(signaller, true) << " -> " << endOf(waiter, false)
+                          << " [style=bold, color=\"#c03030\", label=\"" << dotEscape(semaphoreText(w)) << "\"];\n";
     return o.str();
 }
 
@@ -470,6 +560,7 @@ std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setu
           << "fillcolor=\"#cfe3ff\", label=\"" << i << ": " << dotEscape(p.name) << "\\n("
           << dotEscape(p.type) << ")\\n" << p.barriers.size() << " barrier(s)\"];\n";
     }
+    if (onSeveralQueues(plan)) o << queueLanesDot(plan);
     for (size_t i = 0; i < plan.resources().size(); ++i) {
         const PlannedResource& r = plan.resources()[i];
         o << "  \"res:" << dotEscape(r.name) << "\" [shape=ellipse, label=\"" << dotEscape(r.name);

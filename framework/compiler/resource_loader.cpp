@@ -8,8 +8,8 @@
 namespace skygraph {
 namespace {
 
-constexpr Keys<12> kResourceKeys{"type",     "format",   "extent",  "mips",  "layers",      "size",
-                                 "clear",    "external", "initial", "final", "description", "alias"};
+constexpr Keys<13> kResourceKeys{"type",     "format",   "extent",  "mips",        "layers", "size",   "clear",
+                                 "external", "initial", "final",   "description", "alias",  "sharing"};
 constexpr Keys<3> kClearKeys{"color", "depth", "stencil"};
 using ResourceFields = JsonFields<kResourceKeys.size()>;
 
@@ -19,7 +19,7 @@ constexpr size_t type = keyIndex(kResourceKeys, "type"), format = keyIndex(kReso
                  layers = keyIndex(kResourceKeys, "layers"), size = keyIndex(kResourceKeys, "size"),
                  clear = keyIndex(kResourceKeys, "clear"), external = keyIndex(kResourceKeys, "external"),
                  initial = keyIndex(kResourceKeys, "initial"), final = keyIndex(kResourceKeys, "final"),
-                 alias = keyIndex(kResourceKeys, "alias"),
+                 alias = keyIndex(kResourceKeys, "alias"), sharing = keyIndex(kResourceKeys, "sharing"),
                  color = keyIndex(kClearKeys, "color"), depth = keyIndex(kClearKeys, "depth"),
                  stencil = keyIndex(kClearKeys, "stencil");
 }  // namespace key
@@ -194,6 +194,11 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
         else r.alias = alias.boolean();
         if (r.external)
             fail("alias", "an external resource has memory of its own; only transient resources share memory");
+    }
+    if (const JsonValue sharing = f[key::sharing]) {
+        const auto mode = sharing.isString() ? parseSharing(sharing.string()) : std::nullopt;
+        if (mode) r.sharing = *mode;
+        else fail("sharing", "expected \"auto\", \"exclusive\" or \"concurrent\", got " + sharing.dump());
     }
 }
 

@@ -121,6 +121,7 @@ public:
             }
         }
         detail::PlanBuilder::keepNames(plan_, std::move(names));
+        detail::PlanBuilder::singleSubmit(plan_);
         return std::move(plan_);
     }
 

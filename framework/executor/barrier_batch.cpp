@@ -6,8 +6,19 @@
 
 namespace skygraph::detail {
 
-BarrierBatch::BarrierBatch(std::span<const Barrier> barriers, const std::function<BarrierTarget(uint32_t)>& target) {
+BarrierBatch::BarrierBatch(std::span<const Barrier> barriers, const std::function<BarrierTarget(uint32_t)>& target,
+                           const std::array<uint32_t, kQueueKinds>& families) {
     for (const Barrier& b : barriers) {
+        uint32_t srcFamily = VK_QUEUE_FAMILY_IGNORED, dstFamily = VK_QUEUE_FAMILY_IGNORED;
+        if (b.transfersOwnership()) {
+            srcFamily = families[static_cast<size_t>(b.srcQueue)];
+            dstFamily = families[static_cast<size_t>(b.dstQueue)];
+            if (srcFamily == dstFamily)
+                throw ExecutorError("plan resource " + std::to_string(b.resource) + ": an ownership transfer from the " +
+                                    std::string(toString(b.srcQueue)) + " to the " + std::string(toString(b.dstQueue)) +
+                                    " queue, which are one queue family here: the plan was compiled for other queue "
+                                    "families (CompileOptions::queueFamilies)");
+        }
         if (b.kind == BarrierKind::Memory) {
             VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
             mb.srcStageMask = b.srcStages;
@@ -27,7 +38,8 @@ BarrierBatch::BarrierBatch(std::span<const Barrier> barriers, const std::functio
             ib.dstAccessMask = b.dstAccess;
             ib.oldLayout = b.oldLayout;
             ib.newLayout = b.newLayout;
-            ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            ib.srcQueueFamilyIndex = srcFamily;
+            ib.dstQueueFamilyIndex = dstFamily;
             ib.image = t.image;
             ib.subresourceRange = {t.aspect, b.range.baseMip, b.range.mipCount, b.range.baseLayer, b.range.layerCount};
             images_.push_back(ib);
@@ -38,7 +50,8 @@ BarrierBatch::BarrierBatch(std::span<const Barrier> barriers, const std::functio
             bb.srcAccessMask = b.srcAccess;
             bb.dstStageMask = b.dstStages;
             bb.dstAccessMask = b.dstAccess;
-            bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            bb.srcQueueFamilyIndex = srcFamily;
+            bb.dstQueueFamilyIndex = dstFamily;
             bb.buffer = t.buffer;
             bb.offset = 0;
             bb.size = VK_WHOLE_SIZE;

@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <functional>
 #include <span>
 #include <vector>
@@ -25,9 +26,12 @@ struct BarrierTarget {
 class BarrierBatch {
 public:
     BarrierBatch() = default;
-    /// Translates `barriers`; `target(resource)` gives the handles of a barrier's plan resource.
-    /// Throws ExecutorError when a barrier's kind does not match its resource.
-    BarrierBatch(std::span<const Barrier> barriers, const std::function<BarrierTarget(uint32_t)>& target);
+    /// Translates `barriers`; `target(resource)` gives the handles of a barrier's plan resource,
+    /// `families` the queue family of each queue kind, for ownership transfers. Throws
+    /// ExecutorError when a barrier's kind does not match its resource, or when it transfers
+    /// ownership between kinds of one family (a plan compiled for other queue families).
+    BarrierBatch(std::span<const Barrier> barriers, const std::function<BarrierTarget(uint32_t)>& target,
+                 const std::array<uint32_t, kQueueKinds>& families);
 
     [[nodiscard]] bool empty() const noexcept { return images_.empty() && buffers_.empty() && memory_.empty(); }
     /// For vkCmdPipelineBarrier2; points into this batch, valid while it lives unchanged.

@@ -382,6 +382,9 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     // Depth-only layouts (DEPTH_ATTACHMENT_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL) in plans.
     if (!s12.separateDepthStencilLayouts) throw ExecutorError(impl->name + " lacks separateDepthStencilLayouts");
     f12.separateDepthStencilLayouts = VK_TRUE;
+    // Plans on several queues order their submits with a timeline semaphore per queue.
+    if (!s12.timelineSemaphore) throw ExecutorError(impl->name + " lacks timelineSemaphore");
+    f12.timelineSemaphore = VK_TRUE;
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
     f2.features.robustBufferAccess = supported.robustBufferAccess;
     f2.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
@@ -451,6 +454,9 @@ VkDevice Device::device() const noexcept { return impl_->device; }
 VkQueue Device::queue() const noexcept { return impl_->queue; }
 VkSurfaceKHR Device::surface() const noexcept { return impl_->surface; }
 uint32_t Device::queueFamily() const noexcept { return impl_->queueFamily; }
+std::array<uint32_t, kQueueKinds> Device::queueFamilies() const noexcept {
+    return {impl_->queueFamily, impl_->queueFamily, impl_->queueFamily};
+}
 const std::string& Device::name() const noexcept { return impl_->name; }
 bool Device::validationEnabled() const noexcept { return impl_->validation; }
 float Device::timestampPeriodNs() const noexcept { return impl_->timestampPeriod; }

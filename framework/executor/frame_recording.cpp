@@ -107,24 +107,28 @@ StepKind stepKindOf(const PlannedPass& pass) {
 void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot) {
     PassSlot& sl = ps.slots.at(slot);
     const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
-    sl.before = BarrierBatch(ps.pass->barriers, target);
+    sl.before = BarrierBatch(ps.pass->barriers, target, s.families());
     std::vector<Barrier> inPass;
     for (const InPassBarrier& ib : s.plan.inPassBarriers())
         if (&s.plan.passes()[ib.pass] == ps.pass) inPass.push_back(ib.barrier);
-    sl.inPass = BarrierBatch(inPass, target);
+    sl.inPass = BarrierBatch(inPass, target, s.families());
 }
 
 void translateFinalBarriers(PlanState& s, uint32_t slots) {
     s.finals.clear();
-    for (uint32_t slot = 0; slot < slots; ++slot)
-        s.finals.emplace_back(s.plan.finalBarriers(),
-                              [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); });
+    s.releases.clear();
+    for (uint32_t slot = 0; slot < slots; ++slot) {
+        const auto target = [&](uint32_t r) { return s.resources.at(r).barrierTarget(slot); };
+        s.finals.emplace_back(s.plan.finalBarriers(), target, s.families());
+        auto& releases = s.releases.emplace_back();
+        for (const Submit& submit : s.plan.submits()) releases.emplace_back(submit.releases, target, s.families());
+    }
 }
 
-void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r) {
-    const auto passCount = static_cast<uint32_t>(s.passes.size());
-    if (r.queries) sink.resetQueries(r.queries, r.queryCount);
-    for (uint32_t i = 0; i < passCount; ++i) {
+void recordSubmit(CommandSink& sink, PlanState& s, const FrameRecording& r, size_t submit) {
+    const Submit& sub = s.plan.submits()[submit];
+    if (r.queries && submit == 0) sink.resetQueries(r.queries, r.queryCount);
+    for (const uint32_t i : sub.passes) {
         PassState& ps = s.passes[i];
         if (r.labels) sink.beginLabel(ps.label.c_str());
         if (!ps.slots[r.slot].before.empty()) sink.barriers(ps.slots[r.slot].before);
@@ -133,7 +137,12 @@ void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r) {
         if (r.queries) sink.timestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, r.queries, 2 * i + 1);
         if (r.labels) sink.endLabel();
     }
-    if (!s.finals[r.slot].empty()) sink.barriers(s.finals[r.slot]);
+    if (!s.releases[r.slot][submit].empty()) sink.barriers(s.releases[r.slot][submit]);
+    if (submit + 1 == s.plan.submits().size() && !s.finals[r.slot].empty()) sink.barriers(s.finals[r.slot]);
+}
+
+void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r) {
+    for (size_t k = 0; k < s.plan.submits().size(); ++k) recordSubmit(sink, s, r, k);
 }
 
 }  // namespace skygraph::detail

@@ -19,7 +19,7 @@ std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
     if (compiled.outputWidth() == 0 || compiled.outputHeight() == 0)
         throw ExecutorError("output extent must be at least 1x1");
     // Placements are only as good as the requirements they were made with: this device's.
-    auto s = std::make_unique<PlanState>(withDeviceMemory(std::move(compiled)));
+    auto s = std::make_unique<PlanState>(forDevice(std::move(compiled)));
     describeResources(*s);
     for (size_t i = 0; i < s->plan.passes().size(); ++i) buildPassStatic(*s, i);
     buildSized(*s);
@@ -228,9 +228,9 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     d.submitAndWait([&](CommandSink& sink) {
         const auto target = [&](uint32_t) { return r.barrierTarget(slot); };  // the plan's one resource
         const PlannedPass& step = read.passes().front();  // an image-read plan is one step
-        if (const BarrierBatch before(step.barriers, target); !before.empty()) sink.barriers(before);
+        if (const BarrierBatch before(step.barriers, target, d.state->families()); !before.empty()) sink.barriers(before);
         sink.copyImageToBuffer(r.images[r.copyFor(slot)].image, step.usages[0].layout, host.buffer.get(), copies);
-        if (const BarrierBatch after(read.finalBarriers(), target); !after.empty()) sink.barriers(after);
+        if (const BarrierBatch after(read.finalBarriers(), target, d.state->families()); !after.empty()) sink.barriers(after);
     });
     std::vector<ImageData> levels;
     for (uint32_t m = 0; m < r.mips; ++m)
@@ -374,6 +374,8 @@ uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {
     Renderer::Impl& d = *renderer.impl_;
     if (slot >= d.frames.size() * d.state->presentImages) throw ExecutorError("frame slot out of range");
+    if (d.state->plan.submits().size() > 1)
+        throw ExecutorError("the plan runs on several queues: each of its submits needs a command buffer of its own");
     d.recordFrame(cmd, slot, nullptr);
 }
 

@@ -16,11 +16,6 @@ void Renderer::Impl::createFrames() {
         VkCommandPool pool;
         vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &pool), "vkCreateCommandPool");
         f.pool = vk::CommandPool(vkd, pool);
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        vk::check(vkAllocateCommandBuffers(vkd, &ai, &f.cmd), "vkAllocateCommandBuffers");
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         VkFence fence;
         vk::check(vkCreateFence(vkd, &fci, nullptr, &fence), "vkCreateFence");
@@ -69,7 +64,39 @@ VulkanCommands::Functions Renderer::Impl::commandFunctions() const {
     return {dev.fn.cmdBeginLabel, dev.fn.cmdEndLabel};
 }
 
-void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* frame) {
+void Renderer::Impl::ensureTimelines() {
+    if (timelines[0]) return;
+    for (auto& t : timelines) {
+        VkSemaphoreTypeCreateInfo type{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+        type.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, &type};
+        VkSemaphore raw;
+        vk::check(vkCreateSemaphore(vkd, &sci, nullptr, &raw), "vkCreateSemaphore");
+        t = vk::Semaphore(vkd, raw);
+    }
+}
+
+/// The submit before `waiter` that signals the value `wait` waits for (the plan orders each
+/// wait after its signal).
+size_t Renderer::Impl::signallerOf(std::span<const Submit> submits, const SemaphoreOp& wait, size_t waiter) {
+    for (size_t k = 0; k < waiter; ++k)
+        for (const SemaphoreOp& sg : submits[k].signals)
+            if (sg.semaphore == wait.semaphore && sg.value == wait.value) return k;
+    throw ExecutorError("submit " + std::to_string(waiter) + " waits for " + std::string(toString(wait.semaphore)) +
+                        " value " + std::to_string(wait.value) + ", which no earlier submit signals");
+}
+
+VkSemaphore Renderer::Impl::binarySemaphore(FrameSlot& f, size_t index) {
+    while (f.binaries.size() <= index) {
+        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        VkSemaphore raw;
+        vk::check(vkCreateSemaphore(vkd, &sci, nullptr, &raw), "vkCreateSemaphore");
+        f.binaries.emplace_back(vkd, raw);
+    }
+    return f.binaries[index].get();
+}
+
+void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* frame, std::optional<size_t> submit) {
     PlanState& s = *state;
     const auto passCount = static_cast<uint32_t>(s.passes.size());
     FrameRecording r;
@@ -85,8 +112,9 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
         r.labels = dev.fn.cmdBeginLabel != nullptr;
     }
     VulkanCommands sink(cmd, commandFunctions());
-    detail::recordFrame(sink, s, r);
-    if (frame) {
+    if (submit) detail::recordSubmit(sink, s, r, *submit);
+    else detail::recordFrame(sink, s, r);
+    if (frame && (!submit || *submit + 1 == s.plan.submits().size())) {
         frame->passNames.clear();
         for (const PassState& ps : s.passes) frame->passNames.push_back(ps.label);
     }
@@ -97,45 +125,110 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
     waitSlot(f);
     const VkFence fence = f.fence.get();
     vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");
-    vk::check(vkResetCommandBuffer(f.cmd, 0), "vkResetCommandBuffer");
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    vk::check(vkBeginCommandBuffer(f.cmd, &bi), "vkBeginCommandBuffer");
-    recordFrame(f.cmd, binding, &f);
-    vk::check(vkEndCommandBuffer(f.cmd), "vkEndCommandBuffer");
-    VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    cbi.commandBuffer = f.cmd;
-    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &cbi;
+    const Plan& plan = state->plan;
+    const std::span<const Submit> submits = plan.submits();
+    if (f.cmds.size() < submits.size()) {
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = f.pool.get();
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = static_cast<uint32_t>(submits.size() - f.cmds.size());
+        std::vector<VkCommandBuffer> more(ai.commandBufferCount);
+        vk::check(vkAllocateCommandBuffers(vkd, &ai, more.data()), "vkAllocateCommandBuffers");
+        f.cmds.insert(f.cmds.end(), more.begin(), more.end());
+    }
+    if (submits.size() > 1) ensureTimelines();
+    for (size_t k = 0; k < submits.size(); ++k) {
+        vk::check(vkResetCommandBuffer(f.cmds[k], 0), "vkResetCommandBuffer");
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        vk::check(vkBeginCommandBuffer(f.cmds[k], &bi), "vkBeginCommandBuffer");
+        recordFrame(f.cmds[k], binding, &f, k);
+        vk::check(vkEndCommandBuffer(f.cmds[k]), "vkEndCommandBuffer");
+    }
+    // The plan's semaphore values count within the frame; the frames before have used the
+    // values up to timelineValues.
+    std::array<uint64_t, kQueueKinds> signalled{};
+    std::vector<VkCommandBufferSubmitInfo> cbis(submits.size(), {VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO});
+    std::vector<std::vector<VkSemaphoreSubmitInfo>> waits(submits.size()), signals(submits.size());
+    std::vector<VkSubmitInfo2> batches(submits.size(), {VK_STRUCTURE_TYPE_SUBMIT_INFO_2});
+    auto semaphoreInfo = [&](const SemaphoreOp& op) {
+        VkSemaphoreSubmitInfo info{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+        const auto q = static_cast<size_t>(op.semaphore);
+        info.semaphore = timelines[q].get();
+        info.value = timelineValues[q] + op.value;
+        info.stageMask = op.stages;
+        return info;
+    };
     // Presenting: the frame waits for the acquire where the plan first uses the image, and
-    // signals the image's render-complete semaphore for the present.
-    VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-    VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    // its last submit signals the image's render-complete semaphore for the present.
+    VkSemaphoreSubmitInfo acquire{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    bool acquireInBatch = false;
     if (target) {
-        const Plan& plan = state->plan;
         const auto resource = uint32_t(state->presentResource);
-        wait.semaphore = target->acquired;
-        wait.stageMask = acquireWaitOverride.value_or(acquireWaitStages(plan, resource));
-        signal.semaphore = target->renderComplete;
-        signal.stageMask = signalOverride.value_or(presentSignalStages(plan, resource));
-        si.waitSemaphoreInfoCount = 1;
-        si.pWaitSemaphoreInfos = &wait;
-        si.signalSemaphoreInfoCount = 1;
-        si.pSignalSemaphoreInfos = &signal;
+        acquire.semaphore = target->acquired;
+        acquire.stageMask = acquireWaitOverride.value_or(acquireWaitStages(plan, resource));
+        acquireInBatch = acquire.stageMask != 0;
+    }
+    // Under validation each wait gets a binary semaphore of its own, signalled by the submit
+    // that signals the value it waits for: validation layer 1.3.239 pairs semaphore waits with
+    // signals as it does binary ones, one signal to one wait, ignoring timeline values
+    // (docs/queues.md, "What validation sees"). Same submits, same stages, same order.
+    const bool binary = device.validationEnabled() && submits.size() > 1;
+    size_t binaryCount = 0;
+    for (size_t k = 0; k < submits.size(); ++k) {
+        const Submit& sub = submits[k];
+        cbis[k].commandBuffer = f.cmds[k];
+        for (const SemaphoreOp& sg : sub.signals) {
+            if (!binary) signals[k].push_back(semaphoreInfo(sg));
+            auto& most = signalled[static_cast<size_t>(sg.semaphore)];
+            most = std::max<uint64_t>(most, sg.value);
+        }
+        for (const SemaphoreOp& w : sub.waits) {
+            if (!binary) {
+                waits[k].push_back(semaphoreInfo(w));
+                continue;
+            }
+            const size_t signaller = signallerOf(submits, w, k);
+            const VkSemaphore one = binarySemaphore(f, binaryCount++);
+            VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+            wait.semaphore = one;
+            wait.stageMask = w.stages;
+            waits[k].push_back(wait);
+            VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+            signal.semaphore = one;
+            for (const SemaphoreOp& sg : submits[signaller].signals)
+                if (sg.semaphore == w.semaphore) signal.stageMask = sg.stages;
+            signals[signaller].push_back(signal);
+        }
+        if (target && sub.waitsForAcquire && acquireInBatch) waits[k].push_back(acquire);
+        if (target && k + 1 == submits.size()) {
+            VkSemaphoreSubmitInfo done{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+            done.semaphore = target->renderComplete;
+            done.stageMask = signalOverride.value_or(presentSignalStages(plan, uint32_t(state->presentResource)));
+            signals[k].push_back(done);
+        }
+    }
+    for (size_t k = 0; k < submits.size(); ++k) {  // a later wait may add to an earlier submit's signals
+        batches[k].commandBufferInfoCount = 1;
+        batches[k].pCommandBufferInfos = &cbis[k];
+        batches[k].waitSemaphoreInfoCount = static_cast<uint32_t>(waits[k].size());
+        batches[k].pWaitSemaphoreInfos = waits[k].data();
+        batches[k].signalSemaphoreInfoCount = static_cast<uint32_t>(signals[k].size());
+        batches[k].pSignalSemaphoreInfos = signals[k].data();
     }
     // The test hook's "no wait" (stages 0) still consumes the acquire semaphore, in a batch of
     // its own after the frame's, so that only the frame's ordering is missing.
-    VkSubmitInfo2 batches[2] = {si, {VK_STRUCTURE_TYPE_SUBMIT_INFO_2}};
-    uint32_t batchCount = 1;
-    if (target && wait.stageMask == 0) {
-        wait.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        batches[0].waitSemaphoreInfoCount = 0;
-        batches[1].waitSemaphoreInfoCount = 1;
-        batches[1].pWaitSemaphoreInfos = &wait;
-        batchCount = 2;
+    if (target && !acquireInBatch) {
+        acquire.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        VkSubmitInfo2 consume{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+        consume.waitSemaphoreInfoCount = 1;
+        consume.pWaitSemaphoreInfos = &acquire;
+        batches.push_back(consume);
     }
-    vk::check(vkQueueSubmit2(dev.queue, batchCount, batches, f.fence.get()), "vkQueueSubmit2");
+    // Every queue kind is the device's one queue: the batches run there in submission order.
+    vk::check(vkQueueSubmit2(dev.queue, static_cast<uint32_t>(batches.size()), batches.data(), f.fence.get()),
+              "vkQueueSubmit2");
+    for (size_t q = 0; q < kQueueKinds; ++q) timelineValues[q] += signalled[q];
     f.submitted = true;
     f.timingsPending = true;
     lastSlot = slot;

@@ -175,6 +175,12 @@ struct PlanState {
     std::vector<ResourceState> resources;  ///< Parallel to plan.resources().
     std::vector<PassState> passes;         ///< Parallel to plan.passes().
     std::vector<BarrierBatch> finals;      ///< Per slot.
+    /// Each submit's releases (Submit::releases) per slot: releases[slot][submit].
+    std::vector<std::vector<BarrierBatch>> releases;
+    /// The queue family of each queue kind that the plan was compiled for.
+    [[nodiscard]] const std::array<uint32_t, kQueueKinds>& families() const noexcept {
+        return compiled.options().queueFamilies;
+    }
     std::vector<ReadbackTarget> readbacks; ///< One per Readback step of the plan.
     /// The plan's heaps (Plan::memory().heaps), one allocation each per frame slot, or one
     /// when the frames share them (MemoryLayout::sharedAcrossFrames): heaps[copy][heap]. The
@@ -213,8 +219,12 @@ void addUsageFlags(const PlannedUsage& u, bool isImage, VkImageUsageFlags& image
 /// initial and final layouts'.
 [[nodiscard]] VkImageUsageFlags planImageUsage(const Plan& plan, uint32_t resource);
 
-/// Records binding slot `r.slot` of `s` into `sink`: each pass's barrier batch and work (inserted
-/// clears and read-backs included), then the final barriers.
+/// Records submit `submit` of binding slot `r.slot` of `s` into `sink`: each of its passes'
+/// barrier batch and work (inserted clears and read-backs included), its releases, and in the
+/// last submit the final barriers. The first submit resets the timestamp queries.
+void recordSubmit(CommandSink& sink, PlanState& s, const FrameRecording& r, size_t submit);
+/// Every submit of binding slot `r.slot`, in submission order, into one sink (for a command
+/// log, and for a plan of one submit).
 void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r);
 
 /// What the executor does for plan step `pass`.
@@ -227,7 +237,9 @@ void translateFinalBarriers(PlanState& s, uint32_t slots);
 
 struct FrameSlot {
     vk::CommandPool pool;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    std::vector<VkCommandBuffer> cmds;  ///< One per submit of the plan, allocated as needed.
+    /// Under validation: a binary semaphore per semaphore wait of the frame (renderer_frame.cpp).
+    std::vector<vk::Semaphore> binaries;
     vk::Fence fence;
     vk::QueryPool queries;
     uint32_t queryCount = 0;
@@ -304,9 +316,10 @@ struct Renderer::Impl {
     /// memory model).
     detail::SharedMemory bindImage(const detail::PlanState& s, const detail::ResourceState& r, uint32_t copy, VkImage image);
     detail::SharedMemory bindBuffer(const detail::PlanState& s, const detail::ResourceState& r, uint32_t copy, VkBuffer buffer);
-    /// `compiled` as the renderer runs it: compiled with this device's memory model, compiled
-    /// again with it when it was not (Renderer::compiled() then reports the recompiled one).
-    [[nodiscard]] CompiledGraph withDeviceMemory(CompiledGraph compiled) const;
+    /// `compiled` as the renderer runs it: compiled with this device's memory model and queue
+    /// families, compiled again with them when it was not (Renderer::compiled() then reports
+    /// the recompiled one).
+    [[nodiscard]] CompiledGraph forDevice(CompiledGraph compiled) const;
 
     // --- renderer_resources.cpp: resources and their per-slot copies --------------------------
     /// Per-frame copies of the plan's read-backs: host-visible buffers.
@@ -353,7 +366,17 @@ struct Renderer::Impl {
     [[nodiscard]] detail::VulkanCommands::Functions commandFunctions() const;
     /// Records the current plan's frame for `slot` into `cmd` (begun by the caller); with
     /// `frame`, timestamps and labels too.
-    void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame);
+    /// Records submit `submit` of binding slot `slot` into `cmd` (every submit when it is
+    /// null: a hand-off of the whole frame into one command buffer).
+    void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame, std::optional<size_t> submit = {});
+    /// The timeline semaphore of each queue kind (docs/queues.md), made with the first plan of
+    /// several submits, and the value each has been signalled up to by submitted frames.
+    std::array<vk::Semaphore, kQueueKinds> timelines;
+    std::array<uint64_t, kQueueKinds> timelineValues{};
+    void ensureTimelines();
+    [[nodiscard]] static size_t signallerOf(std::span<const Submit> submits, const SemaphoreOp& wait, size_t waiter);
+    /// Frame slot f's binary semaphore `index`, made when first asked for.
+    VkSemaphore binarySemaphore(detail::FrameSlot& f, size_t index);
     /// Records the current plan into frame slot `slot` (its fence waited for) with binding
     /// slot `binding` and submits it; with `target`, waiting for its acquire semaphore and
     /// signalling its render-complete semaphore.

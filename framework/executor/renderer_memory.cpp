@@ -35,15 +35,20 @@ std::string placementMismatch(const VkMemoryRequirements& device, const MemoryPl
 
 }  // namespace detail
 
-CompiledGraph Renderer::Impl::withDeviceMemory(CompiledGraph compiled) const {
+CompiledGraph Renderer::Impl::forDevice(CompiledGraph compiled) const {
     std::shared_ptr<const MemoryModel> model = device.memoryModel();
-    if (compiled.options().memory == model) return compiled;
+    const auto families = device.queueFamilies();
+    // A plan whose passes all run on the graphics queue is the same for every queue family.
+    const bool familiesMatter = compiled.plan().submits().size() > 1;
+    if (compiled.options().memory == model && (!familiesMatter || compiled.options().queueFamilies == families))
+        return compiled;
     CompileOptions onDevice = compiled.options();
     onDevice.memory = std::move(model);
+    onDevice.queueFamilies = families;
     try {
         return CompiledGraph(compiled.graph(), std::move(onDevice));
     } catch (const GraphError& e) {
-        throw ExecutorError("graph '" + compiled.graph().name + "' with the memory requirements of device '" +
+        throw ExecutorError("graph '" + compiled.graph().name + "' with the memory requirements and queue families of device '" +
                             device.name() + "': " + e.what());
     }
 }
@@ -109,7 +114,7 @@ SharedMemory bindResource(Renderer::Impl& d, const PlanState& s, const ResourceS
     const MemoryPlacement& p = layout.placements[r.placement];
     const SharedMemory& heap = s.heaps.at(copy).at(p.heap);
     if (const std::string why = placementMismatch(req, p, layout.heaps[p.heap], heap->type); !why.empty()) {
-        // withDeviceMemory recompiles a plan placed with another model, so with the device's
+        // forDevice recompiles a plan placed with another model, so with the device's
         // own the model and vkGet*MemoryRequirements disagree: a defect, not a user's error.
         const bool ownModel = layout.model == d.device.memoryModel()->name();
         throw ExecutorError("resource '" + r.desc->name + "' does not fit its place in heap " + std::to_string(p.heap) +

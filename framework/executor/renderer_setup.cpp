@@ -116,7 +116,7 @@ void Renderer::Impl::runSetup(PlanState& s) {
                 const PlannedUsage& u = step.usages[0];
                 if (c >= copiesOf(u.resource)) continue;
                 const ResourceState& r = s.resources[frameResource[u.resource]];
-                if (const BarrierBatch before(step.barriers, target); !before.empty()) sink.barriers(before);
+                if (const BarrierBatch before(step.barriers, target, s.families()); !before.empty()) sink.barriers(before);
                 if (step.type == "Clear") {
                     recordInitialClear(sink, r, r.images[c].image, u);
                 } else if (!r.isImage) {
@@ -132,7 +132,7 @@ void Renderer::Impl::runSetup(PlanState& s) {
             std::vector<Barrier> finals;
             for (const Barrier& b : setup.finalBarriers())
                 if (c < copiesOf(b.resource)) finals.push_back(b);
-            if (const BarrierBatch after(finals, target); !after.empty()) sink.barriers(after);
+            if (const BarrierBatch after(finals, target, s.families()); !after.empty()) sink.barriers(after);
         }
     });
 }

@@ -44,6 +44,18 @@ private:
     // frame_model.cpp
     void makeObjects();
     void recordFrame(uint32_t f);
+    /// Submit `k` of frame f on its queue: its waits, passes, releases, (last) final barriers
+    /// and signal.
+    void recordSubmit(uint32_t f, size_t k);
+    void recordWaits(uint32_t f, size_t k);
+    void recordSignals(uint32_t f, size_t k);
+    /// Semaphore signal-to-wait edges of every frame, once all points exist.
+    void linkSemaphores();
+    /// Step i: its barrier batch, usages and in-pass barriers.
+    void recordStep(uint32_t f, size_t i);
+    FindingSite submitSite(uint32_t frame, size_t k, std::string what) const;
+    void checkQueueStages(uint32_t f, const FindingSite& site, const char* side, VkPipelineStageFlags2 stages,
+                          int64_t resource = -1);
     void resolvePlaces();
     /// The object of plan resource `r` in frame `f`, or -1 (reported when `r` is out of range).
     int32_t objectOf(uint32_t f, uint32_t r, const FindingSite& site);
@@ -56,8 +68,10 @@ private:
     FindingSite stepSite(uint32_t frame, size_t step, std::string what) const;
 
     // frame_commands.cpp
+    /// `releases`: the batch holds the release halves of ownership transfers, whose layout
+    /// transitions happen in their acquire halves.
     void recordBatch(uint32_t f, size_t step, const std::vector<const Barrier*>& barriers, int64_t inPassStep,
-                     const char* label, uint64_t position);
+                     const char* label, uint64_t position, bool releases = false);
     void markWholeObjects(const std::vector<BatchEntry>& entries);
     /// The step's usages; returns the timeline items of the ReadWrite transfers' copies in,
     /// which come after the in-pass barriers.
@@ -81,6 +95,16 @@ private:
     std::vector<PlaceSpec> pending_;     // per access: how to place it once the points exist
     std::vector<uint32_t> hostCopies_;   // this frame's read-back copies, which the host reads
     uint64_t position_ = 0, batch_ = 0;  // submission order; batches, which never chain within
+    QueueKind queue_ = QueueKind::Graphics;  // of the submit being recorded
+    /// Per frame, the semaphore operations recorded: signals and waits by semaphore and value.
+    struct SemaphorePoint {
+        uint32_t frame;
+        QueueKind semaphore;
+        uint32_t value;
+        PointId point;
+        size_t submit;
+    };
+    std::vector<SemaphorePoint> signals_, waits_;
 };
 
 }  // namespace skygraph::verifier

@@ -10,7 +10,7 @@
 namespace skygraph::verifier {
 
 void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const Barrier*>& barriers, int64_t inPassStep,
-                               const char* label, uint64_t position) {
+                               const char* label, uint64_t position, bool releases) {
     const uint64_t batch = ++batch_;
     std::vector<BatchEntry> entries;
     for (size_t k = 0; k < barriers.size(); ++k) {
@@ -52,30 +52,45 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
         const int64_t resource = b.kind == BarrierKind::Memory ? -1 : int64_t(b.resource);
         checkMask(f, site, resource, "source", b.srcStages, b.srcAccess);
         checkMask(f, site, resource, "destination", b.dstStages, b.dstAccess);
+        checkQueueStages(f, site, "source", b.srcStages, resource);
+        checkQueueStages(f, site, "destination", b.dstStages, resource);
+        if (f == 1 && b.transfersOwnership() && (releases ? b.srcQueue : b.dstQueue) != queue_)
+            report(FindingKind::Ownership, site,
+                   std::string(releases ? "a release" : "an acquire") + " of a transfer from the " +
+                       std::string(toString(b.srcQueue)) + " to the " + std::string(toString(b.dstQueue)) +
+                       " queue recorded on the " + std::string(toString(queue_)) + " queue",
+                   resource);
         const bool image = b.kind == BarrierKind::Image;
         if (image && (b.newLayout == VK_IMAGE_LAYOUT_UNDEFINED || b.newLayout == VK_IMAGE_LAYOUT_PREINITIALIZED) &&
             f == 1)
             report(FindingKind::MalformedPlan, site, "newLayout must not be UNDEFINED or PREINITIALIZED", resource);
         SyncPoint p;
+        p.queue = static_cast<uint32_t>(queue_);
         p.position = position;
         p.batch = batch;
         p.firstSync = synchronizationScope(b.srcStages, ScopeSide::First);
-        p.secondSync = synchronizationScope(b.dstStages, ScopeSide::Second);
+        // A release ends in its source stages, where a later signal of its queue takes it up
+        // (its destination scope is ignored); the acquire after the wait makes it visible.
+        p.secondSync = synchronizationScope(releases ? b.srcStages : b.dstStages, ScopeSide::Second);
         p.firstAccess = accessScope(b.srcStages, b.srcAccess);
         p.secondAccess = accessScope(b.dstStages, b.dstAccess);
         p.inPassStep = inPassStep;
         const PointId id = addPoint(p, memory);
         if (object < 0) continue;
         entries.push_back({id, &b, static_cast<uint32_t>(object)});
-        if (!image) continue;
+        if (!image && !b.transfersOwnership()) continue;  // buffers: only their ownership matters here
         TimelineItem item;
         item.kind = TimelineItem::Kind::Barrier;
         item.frame = f;
         item.object = static_cast<uint32_t>(object);
         item.barrier = &b;
         item.site = site;
+        item.queue = queue_;
+        item.release = releases;
         model_.timeline.push_back(item);
-        if (b.oldLayout != b.newLayout) {
+        // The transition of an ownership transfer happens once, between its release and its
+        // acquire: it is placed in the acquire.
+        if (b.oldLayout != b.newLayout && !releases) {
             ModelAccess t;
             t.kind = ModelAccess::Kind::Transition;
             t.object = static_cast<uint32_t>(object);
@@ -153,6 +168,7 @@ std::vector<TimelineItem> FrameBuilder::recordUsages(uint32_t f, size_t step, ui
         a.performs = accessScope(usage.stages | required.stages, usage.access | required.access);
         a.frame = f;
         QueuePlace q;
+        q.queue = static_cast<uint32_t>(queue_);
         q.position = position;
         q.step = static_cast<int64_t>(step);
         q.stages = accessScopeStages(usage.stages | required.stages);
@@ -161,6 +177,7 @@ std::vector<TimelineItem> FrameBuilder::recordUsages(uint32_t f, size_t step, ui
         item.frame = f;
         item.object = a.object;
         item.usage = &usage;
+        item.queue = queue_;
         const bool copyPair = usage.usage.stage == skygraph::Stage::Transfer && usage.usage.access == Access::ReadWrite;
         if (copyPair) {
             ModelAccess in = a;

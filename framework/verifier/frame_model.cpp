@@ -22,6 +22,7 @@ void FrameBuilder::run() {
     model_.frames = options_.consecutiveFrames && anyShared ? 2 : 1;
     makeObjects();
     for (uint32_t f = 1; f <= model_.frames; ++f) recordFrame(f);
+    linkSemaphores();
     model_.graph.finalize();
     resolvePlaces();
 }
@@ -57,23 +58,148 @@ void FrameBuilder::makeObjects() {
 
 void FrameBuilder::recordFrame(uint32_t f) {
     hostCopies_.clear();
+    queue_ = QueueKind::Graphics;
     recordOutsideReadsBefore(f);
     const std::vector<Presented> presented = recordAcquires(f);
-    const auto passes = plan_.passes();
-    for (size_t i = 0; i < passes.size(); ++i) {
-        recordBatch(f, i, pointers(passes[i].barriers), -1, "barrier", ++position_);
-        // The accesses, then the in-pass barriers, then the copies in of ReadWrite transfers.
-        const uint64_t usagesAt = ++position_;
-        position_ += 2;
-        const std::vector<TimelineItem> copyIns = recordUsages(f, i, usagesAt);
-        recordInPassBatch(f, i, usagesAt + 1);
-        model_.timeline.insert(model_.timeline.end(), copyIns.begin(), copyIns.end());
+    if (plan_.submits().empty()) {  // a plan built without submits: every step on one queue
+        for (size_t i = 0; i < plan_.passes().size(); ++i) recordStep(f, i);
+        recordBatch(f, plan_.passes().size(), pointers(plan_.finalBarriers()), -1, "final barrier", ++position_);
     }
-    recordBatch(f, passes.size(), pointers(plan_.finalBarriers()), -1, "final barrier", ++position_);
+    for (size_t k = 0; k < plan_.submits().size(); ++k) recordSubmit(f, k);
+    queue_ = QueueKind::Graphics;
+    const auto passes = plan_.passes();
     model_.timeline.push_back({TimelineItem::Kind::FrameEnd, f, 0, nullptr, nullptr, false, false,
                                stepSite(f, passes.size(), "end of frame")});
     recordOutsideReadsAfter(f);
     recordPresentsAndFence(f, presented);
+}
+
+void FrameBuilder::recordStep(uint32_t f, size_t i) {
+    const auto passes = plan_.passes();
+    recordBatch(f, i, pointers(passes[i].barriers), -1, "barrier", ++position_);
+    // The accesses, then the in-pass barriers, then the copies in of ReadWrite transfers.
+    const uint64_t usagesAt = ++position_;
+    position_ += 2;
+    const std::vector<TimelineItem> copyIns = recordUsages(f, i, usagesAt);
+    recordInPassBatch(f, i, usagesAt + 1);
+    model_.timeline.insert(model_.timeline.end(), copyIns.begin(), copyIns.end());
+}
+
+void FrameBuilder::recordSubmit(uint32_t f, size_t k) {
+    const Submit& s = plan_.submits()[k];
+    queue_ = s.queue;
+    recordWaits(f, k);
+    for (const uint32_t i : s.passes) {
+        if (i >= plan_.passes().size()) {
+            if (f == 1)
+                report(FindingKind::MalformedPlan, {1, -1, "submit " + std::to_string(k), ""},
+                       "pass " + std::to_string(i) + " does not exist");
+            continue;
+        }
+        if (plan_.queueOf(i) != s.queue && f == 1)
+            report(FindingKind::MalformedPlan, stepSite(f, i, "its submit"),
+                   "the pass runs on the " + std::string(toString(plan_.queueOf(i))) + " queue but submit " +
+                       std::to_string(k) + " is on the " + std::string(toString(s.queue)) + " queue");
+        recordStep(f, i);
+    }
+    if (!s.releases.empty()) {
+        const size_t at = s.passes.empty() ? plan_.passes().size() : s.passes.back();
+        recordBatch(f, at, pointers(s.releases), -1, "release", ++position_, true);
+    }
+    if (k + 1 == plan_.submits().size())
+        recordBatch(f, plan_.passes().size(), pointers(plan_.finalBarriers()), -1, "final barrier", ++position_);
+    recordSignals(f, k);
+}
+
+void FrameBuilder::recordWaits(uint32_t f, size_t k) {
+    const Submit& s = plan_.submits()[k];
+    if (s.waits.empty()) return;
+    const uint64_t batch = ++batch_;
+    for (const SemaphoreOp& w : s.waits) {
+        const FindingSite site = submitSite(f, k, "wait for " + std::string(toString(w.semaphore)) + "=" +
+                                                       std::to_string(w.value));
+        checkQueueStages(f, site, "wait", w.stages);
+        SyncPoint p;
+        p.kind = SyncPoint::Kind::SemaphoreWait;
+        p.queue = static_cast<uint32_t>(s.queue);
+        p.position = ++position_;
+        p.batch = batch;
+        p.secondSync = synchronizationScope(w.stages, ScopeSide::Second);
+        p.secondAccess = AccessScope::allDeviceAccess();
+        const PointId id = addPoint(p, BarrierMemory{true, 0, {}, true});
+        waits_.push_back({f, w.semaphore, w.value, id, k});
+    }
+}
+
+void FrameBuilder::recordSignals(uint32_t f, size_t k) {
+    const Submit& s = plan_.submits()[k];
+    if (s.signals.empty()) return;
+    const uint64_t batch = ++batch_;
+    for (const SemaphoreOp& sg : s.signals) {
+        const FindingSite site = submitSite(f, k, "signal of " + std::string(toString(sg.semaphore)) + "=" +
+                                                       std::to_string(sg.value));
+        checkQueueStages(f, site, "signal", sg.stages);
+        if (sg.semaphore != s.queue && f == 1)
+            report(FindingKind::Semaphore, site, "a queue signals its own semaphore only");
+        for (const SemaphorePoint& earlier : signals_)
+            if (earlier.frame == f && earlier.semaphore == sg.semaphore && earlier.value >= sg.value && f == 1)
+                report(FindingKind::Semaphore, site,
+                       "value " + std::to_string(sg.value) + " does not grow past the earlier signal of " +
+                           std::to_string(earlier.value));
+        SyncPoint p;
+        p.kind = SyncPoint::Kind::SemaphoreSignal;
+        p.queue = static_cast<uint32_t>(s.queue);
+        p.position = ++position_;
+        p.batch = batch;
+        p.firstSync = synchronizationScope(sg.stages, ScopeSide::First);
+        p.firstAccess = AccessScope::allDeviceAccess();
+        const PointId id = addPoint(p, BarrierMemory{true, 0, {}, true});
+        signals_.push_back({f, sg.semaphore, sg.value, id, k});
+    }
+}
+
+/// A timeline wait for value v is satisfied by the first signal of its semaphore that reaches
+/// v; signals of one semaphore come in order, so that one happens before the rest.
+void FrameBuilder::linkSemaphores() {
+    for (const SemaphorePoint& w : waits_) {
+        const SemaphorePoint* first = nullptr;
+        for (const SemaphorePoint& sg : signals_)
+            if (sg.frame == w.frame && sg.semaphore == w.semaphore && sg.value >= w.value &&
+                (!first || sg.value < first->value))
+                first = &sg;
+        if (!first) {
+            if (w.frame == 1)
+                report(FindingKind::Semaphore,
+                       submitSite(w.frame, w.submit,
+                                  "wait for " + std::string(toString(w.semaphore)) + "=" + std::to_string(w.value)),
+                       "no signal of the frame reaches this value: the wait never ends");
+            continue;
+        }
+        if (first->submit >= w.submit && w.frame == 1)
+            report(FindingKind::Semaphore, submitSite(w.frame, w.submit, "wait for " + std::string(toString(w.semaphore)) +
+                                                                     "=" + std::to_string(w.value)),
+                   "its signal comes in a later submit (" + std::to_string(first->submit) +
+                       "): on one queue the frame would never end");
+        model_.graph.addEdge(first->point, w.point);
+    }
+}
+
+FindingSite FrameBuilder::submitSite(uint32_t frame, size_t k, std::string what) const {
+    const Submit& s = plan_.submits()[k];
+    const int64_t step = s.passes.empty() ? (k == 0 ? -1 : static_cast<int64_t>(plan_.passes().size()))
+                                          : static_cast<int64_t>(s.passes.front());
+    return {frame, step, "submit " + std::to_string(k) + " (" + std::string(toString(s.queue)) + ")", std::move(what)};
+}
+
+/// A semaphore operation's or a barrier's stages must be ones its queue has.
+void FrameBuilder::checkQueueStages(uint32_t f, const FindingSite& site, const char* side, VkPipelineStageFlags2 stages,
+                                    int64_t resource) {
+    if (f != 1 || queue_ == QueueKind::Graphics) return;
+    if (const VkPipelineStageFlags2 extra = stages & ~stagesOfQueue(queue_))
+        report(FindingKind::InvalidMask, site,
+               std::string(side) + " stages " + stageNames(extra) + " are not supported on the " +
+                   std::string(toString(queue_)) + " queue",
+               resource);
 }
 
 void FrameBuilder::resolvePlaces() {

@@ -52,6 +52,10 @@ struct TimelineItem {
     /// Usage: which half of a ReadWrite transfer this is (neither for every other usage).
     bool copyOut = false, copyIn = false;
     FindingSite site;
+    /// The queue kind it is recorded on (Barrier and Usage).
+    QueueKind queue = QueueKind::Graphics;
+    /// Barrier: the release half of an ownership transfer (a submit's releases).
+    bool release = false;
 };
 
 struct FrameModel {

@@ -55,8 +55,15 @@ bool layoutAllowed(const PlannedUsage& u, bool depthFormat, bool copyOut, bool c
     }
 }
 
+constexpr uint8_t kNoQueue = 0xff;
+
 struct CellState {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    /// Exclusive resources used by several queue families: the queue kind whose family owns
+    /// it (kNoQueue: no family yet, its contents undefined), and a release's destination until
+    /// the acquire.
+    uint8_t owner = kNoQueue;
+    uint8_t releasedTo = kNoQueue;
     bool defined = false;
     /// Another resource wrote the memory: this subresource must move from UNDEFINED before use.
     bool takenOver = false;
@@ -78,8 +85,26 @@ public:
                 // Resources from outside the frame arrive in their initial layout, contents visible.
                 initial.layout = transient ? VK_IMAGE_LAYOUT_UNDEFINED : r.initialLayout;
                 initial.defined = !transient;
+                if (!transient) initial.owner = static_cast<uint8_t>(QueueKind::Graphics);
             }
             cells_[o].assign(obj.cellCount(), initial);
+        }
+        // Which resources one family owns at a time: exclusive ones used by several families.
+        std::vector<uint8_t> familiesOf(plan.resources().size(), 0);
+        for (size_t i = 0; i < plan.passes().size(); ++i)
+            for (const PlannedUsage& u : plan.passes()[i].usages)
+                if (u.resource < familiesOf.size())
+                    familiesOf[u.resource] |= uint8_t(1u << static_cast<size_t>(plan.queueOf(static_cast<uint32_t>(i))));
+        owned_.assign(model.memory.size(), false);
+        for (uint32_t o = 0; o < model.memory.size(); ++o) {
+            const int32_t r = model.memory.object(o).resource;
+            if (r < 0 || plan.concurrent(static_cast<uint32_t>(r))) continue;
+            bool several = false;
+            for (size_t a = 0; a < kQueueKinds; ++a)
+                for (size_t b = 0; b < kQueueKinds; ++b)
+                    several |= (familiesOf[size_t(r)] >> a & 1u) && (familiesOf[size_t(r)] >> b & 1u) &&
+                               plan.queueFamilies()[a] != plan.queueFamilies()[b];
+            owned_[o] = several;
         }
     }
 
@@ -140,8 +165,47 @@ private:
         return (s.step >= 0 ? "[" + std::to_string(s.step) + "] " : "") + s.pass;
     }
 
+    bool sameFamily(uint8_t a, QueueKind b) const {
+        return a != kNoQueue && plan_.queueFamilies()[a] == plan_.queueFamilies()[static_cast<size_t>(b)];
+    }
+
+    /// The ownership half of a barrier: a release marks the cells for their acquire, which
+    /// takes them over; a transition from UNDEFINED takes them over with their contents gone.
+    /// Returns false for a release, whose layout transition happens in its acquire.
+    bool ownership(const TimelineItem& t, const Barrier& b) {
+        if (!owned_[t.object]) return !t.release;
+        std::string problem;
+        forCells(t.object, b.range, [&](CellState& c, uint32_t, uint32_t) {
+            if (t.release) {
+                if (c.owner != kNoQueue && !sameFamily(c.owner, t.queue) && problem.empty())
+                    problem = "released by the " + std::string(toString(t.queue)) + " queue but owned by the " +
+                              std::string(toString(static_cast<QueueKind>(c.owner))) + " queue's family";
+                c.releasedTo = static_cast<uint8_t>(b.dstQueue);
+                return;
+            }
+            if (b.transfersOwnership()) {
+                if (c.releasedTo == kNoQueue || !sameFamily(c.releasedTo, t.queue)) {
+                    if (problem.empty())
+                        problem = "acquired by the " + std::string(toString(t.queue)) +
+                                  " queue with no release from the " + std::string(toString(b.srcQueue)) +
+                                  " queue before it";
+                }
+                c.owner = static_cast<uint8_t>(t.queue);
+                c.releasedTo = kNoQueue;
+                return;
+            }
+            if (b.oldLayout == VK_IMAGE_LAYOUT_UNDEFINED && b.oldLayout != b.newLayout) {
+                c.owner = static_cast<uint8_t>(t.queue);
+                c.releasedTo = kNoQueue;
+            }
+        });
+        if (!problem.empty()) add(FindingKind::Ownership, t, problem);
+        return !t.release;
+    }
+
     void barrier(const TimelineItem& t) {
         const Barrier& b = *t.barrier;
+        if (!ownership(t, b)) return;
         bool badOld = false, notFromUndefined = false;
         std::string current;
         forCells(t.object, b.range, [&](CellState& c, uint32_t, uint32_t) {
@@ -169,10 +233,25 @@ private:
         if (b.oldLayout != b.newLayout) wroteMemory(t.object, t.site);
     }
 
+    /// A use on a queue whose family does not own the contents it keeps.
+    void checkOwner(const TimelineItem& t, const SubresourceRange& range) {
+        if (!owned_[t.object]) return;
+        std::string problem;
+        forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) {
+            if (c.owner != kNoQueue && !sameFamily(c.owner, t.queue) && c.defined && problem.empty())
+                problem = "used on the " + std::string(toString(t.queue)) + " queue while the " +
+                          std::string(toString(static_cast<QueueKind>(c.owner))) +
+                          " queue's family owns it: no ownership transfer";
+            c.owner = static_cast<uint8_t>(t.queue);
+        });
+        if (!problem.empty()) add(FindingKind::Ownership, t, problem);
+    }
+
     void usage(const TimelineItem& t) {
         const PlannedUsage& u = *t.usage;
         const MemoryObject& o = model_.memory.object(t.object);
         const bool image = o.kind == MemoryObject::Kind::Image;
+        checkOwner(t, image ? u.range : o.whole());
         if (image) checkLayout(t, u);
         // Taking over memory: every subresource moves from UNDEFINED before the first use.
         const bool first = !used_[t.object];
@@ -269,6 +348,7 @@ private:
     Reporter& reporter_;
     std::vector<std::vector<CellState>> cells_;  // per object, per subresource
     std::vector<bool> used_;                     // per object: a usage has been seen
+    std::vector<bool> owned_;                    // per object: one family owns it at a time
 };
 
 }  // namespace

@@ -35,6 +35,8 @@ std::string_view toString(FindingKind kind) noexcept {
         case FindingKind::PlacementInvalid: return "PlacementInvalid";
         case FindingKind::PresentLayout: return "PresentLayout";
         case FindingKind::FinalLayout: return "FinalLayout";
+        case FindingKind::Ownership: return "Ownership";
+        case FindingKind::Semaphore: return "Semaphore";
     }
     return "?";
 }

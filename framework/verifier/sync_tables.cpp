@@ -351,4 +351,18 @@ std::string layoutNameShort(VkImageLayout layout) {
     return n;
 }
 
+VkPipelineStageFlags2 stagesOfQueue(QueueKind queue) noexcept {
+    constexpr VkPipelineStageFlags2 everyQueue = VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT | VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT |
+                                                 VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT |
+                                                 VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+    switch (queue) {
+        case QueueKind::Graphics: return ~VkPipelineStageFlags2(0);
+        case QueueKind::Compute:
+            return everyQueue | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
+                   VK_PIPELINE_STAGE_2_CLEAR_BIT;
+        case QueueKind::Transfer: return everyQueue;
+    }
+    return everyQueue;
+}
+
 }  // namespace skygraph::verifier

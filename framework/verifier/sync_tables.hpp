@@ -113,6 +113,10 @@ enum class ScopeSide : uint8_t { First, Second };
 [[nodiscard]] StageSet accessScopeStages(VkPipelineStageFlags2 mask) noexcept;
 /// Every stage a queue executes: ALL_COMMANDS.
 [[nodiscard]] StageSet allDeviceStages() noexcept;
+/// The stage bits a queue of this kind supports (Vulkan 1.3, "Supported pipeline stage
+/// flags"): every one on graphics; compute shaders, indirect reads, copies and clears on
+/// compute; copies on transfer; and the stages every queue has (top, bottom, host, all commands).
+[[nodiscard]] VkPipelineStageFlags2 stagesOfQueue(QueueKind queue) noexcept;
 
 /// The access types of a mask with its aliases broken up.
 [[nodiscard]] AccessSet accessTypes(VkAccessFlags2 mask) noexcept;

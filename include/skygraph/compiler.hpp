@@ -9,6 +9,7 @@
 #include <skygraph/pass_registry.hpp>
 #include <skygraph/plan.hpp>
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -83,6 +84,10 @@ struct CompileOptions {
     /// transition wherever consecutive readers want different ones. Unset: the graph file's
     /// `"layouts"` (GraphDesc::layouts), whose default is FewestBarriers.
     std::optional<LayoutPolicy> layouts;
+    /// Which queue kinds (indexed by QueueKind) share a queue family: kinds with equal numbers
+    /// do, and need no ownership transfers between them. The executor passes its device's
+    /// (Device::queueFamilies()); the default, three families, is the general case.
+    std::array<uint32_t, kQueueKinds> queueFamilies{0, 1, 2};
 };
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the

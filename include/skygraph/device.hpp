@@ -2,8 +2,11 @@
 // and the validation messages counted while it lives.
 #pragma once
 
+#include <skygraph/graph.hpp>
+
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -88,6 +91,10 @@ public:
     /// renderer on this device submits to.
     [[nodiscard]] VkQueue queue() const noexcept;
     [[nodiscard]] uint32_t queueFamily() const noexcept;
+    /// The queue family of each queue kind (indexed by QueueKind), for
+    /// CompileOptions::queueFamilies. Every kind is the one queue above: a plan's submits for
+    /// the compute and transfer queues run on it in submission order, with their semaphores.
+    [[nodiscard]] std::array<uint32_t, kQueueKinds> queueFamilies() const noexcept;
     /// The physical device's name; the reference is valid while this Device lives.
     [[nodiscard]] const std::string& name() const noexcept;
     [[nodiscard]] bool validationEnabled() const noexcept;

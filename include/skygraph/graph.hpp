@@ -23,6 +23,40 @@ enum class ResourceType : uint8_t { Image2D, Cube, Image2DArray, Buffer };
 /// "External, initial and final".
 enum class ExternalState : uint8_t { None, Present, TransferSrc, ShaderRead, General };
 
+/// The kind of queue a pass runs on (a pass's `"queue"`). The executor maps each kind to a
+/// queue of a family that supports it, and to fewer queues where the device has fewer.
+enum class QueueKind : uint8_t { Graphics, Compute, Transfer };
+inline constexpr size_t kQueueKinds = 3;
+/// "graphics", "compute" or "transfer", as graph files spell them.
+[[nodiscard]] std::string_view toString(QueueKind queue) noexcept;
+/// Whether a queue of this kind can perform a usage at `stage`: graphics every stage, compute
+/// compute shaders, indirect arguments and copies, transfer copies only.
+[[nodiscard]] constexpr bool queueSupports(QueueKind queue, Stage stage) noexcept {
+    switch (queue) {
+        case QueueKind::Graphics: return true;
+        case QueueKind::Compute: return stage == Stage::Compute || stage == Stage::Transfer || stage == Stage::Indirect;
+        case QueueKind::Transfer: return stage == Stage::Transfer;
+    }
+    return false;
+}
+/// The inverse of toString; nullopt for an unknown name. `s` is read during the call only.
+[[nodiscard]] std::optional<QueueKind> parseQueueKind(std::string_view s) noexcept;
+
+/// How a resource used on queues of different families is shared between them (a resource's
+/// `"sharing"`): docs/queues.md, "Ownership".
+enum class Sharing : uint8_t {
+    /// The compiler's choice: Concurrent for buffers, Exclusive for images.
+    Auto,
+    /// VK_SHARING_MODE_EXCLUSIVE: a queue family owns it, and the plan moves it between
+    /// families with release/acquire barrier pairs where its contents must survive.
+    Exclusive,
+    /// VK_SHARING_MODE_CONCURRENT over the families that use it: no ownership transfers.
+    Concurrent,
+};
+/// "auto", "exclusive" or "concurrent".
+[[nodiscard]] std::string_view toString(Sharing sharing) noexcept;
+[[nodiscard]] std::optional<Sharing> parseSharing(std::string_view s) noexcept;
+
 /// `"output"`, `"output/N"` or `[w, h]`.
 struct Extent {
     bool relativeToOutput = true;
@@ -56,6 +90,8 @@ struct ResourceDesc {
     ExternalState final = ExternalState::None;    ///< None: not exported.
     /// Whether a transient resource may share memory with others (`"alias": false` says not).
     bool alias = true;
+    /// How queues of different families share it (`"sharing"`).
+    Sharing sharing = Sharing::Auto;
 
     /// Where a graph file declares it, for messages: "resources.<name>".
     [[nodiscard]] std::string jsonPath() const { return "resources." + name; }
@@ -130,6 +166,8 @@ struct PassDesc {
     std::string name;
     std::string type;
     bool neverCull = false;
+    /// The queue it runs on (`"queue"`). The file's order stays the frame's order.
+    QueueKind queue = QueueKind::Graphics;
     /// Whether the file writes `uses` as an object keyed by resource name (each usage's JSON
     /// path ends in ".uses.<resource>") rather than an array (".uses[i]").
     bool usesByName = false;

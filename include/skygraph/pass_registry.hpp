@@ -2,6 +2,7 @@
 // against it without a device, and the executor later attaches recording code by type name.
 #pragma once
 
+#include <skygraph/graph.hpp>
 #include <skygraph/usage.hpp>
 
 #include <nlohmann/json_fwd.hpp>
@@ -46,6 +47,11 @@ struct PassTypeInfo {
     /// Optional; when empty, any params object is accepted.
     ParamValidator validateParams;
     std::string doc;
+    /// The queues its recording code can run on; empty: every queue whose kind supports the
+    /// stages of its usages (a pass with attachments or vertex/fragment work needs graphics,
+    /// compute shaders need graphics or compute, copies run anywhere). A type that records
+    /// more than its usages say (a blit needs graphics) lists its queues here.
+    std::vector<QueueKind> queues;
 };
 
 /// Pass types by name. Owns its entries; copyable because it is only data.

@@ -23,6 +23,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -43,6 +44,12 @@ struct Barrier {
     /// the heaps): its MemoryPlacement's aliases and previousFrameAliases. The source scope is
     /// every earlier use of those bytes, and images start from UNDEFINED.
     bool aliasing = false;
+    /// A queue family ownership transfer when the two differ (docs/queues.md, "Ownership"):
+    /// the release half is recorded on `srcQueue` (Submit::releases), the acquire half, this
+    /// same barrier, on `dstQueue` (a pass's batch or the final barriers). The executor turns
+    /// the kinds into the families of its queues. Equal (graphics) for every other barrier.
+    QueueKind srcQueue = QueueKind::Graphics;
+    QueueKind dstQueue = QueueKind::Graphics;
     VkPipelineStageFlags2 srcStages = 0;
     VkAccessFlags2 srcAccess = 0;
     VkPipelineStageFlags2 dstStages = 0;
@@ -51,7 +58,34 @@ struct Barrier {
     VkImageLayout newLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     SubresourceRange range;  ///< Images only; buffers are always whole.
 
+    [[nodiscard]] bool transfersOwnership() const noexcept { return srcQueue != dstQueue; }
     friend bool operator==(const Barrier&, const Barrier&) = default;
+};
+
+/// A wait for, or a signal of, a queue's timeline semaphore within one frame. Each queue kind
+/// that signals has one timeline semaphore; values count that queue's signals in the frame
+/// from 1 (the executor adds the frames before). Waiting for value v waits for every signal
+/// up to v of that queue.
+struct SemaphoreOp {
+    QueueKind semaphore = QueueKind::Graphics;  ///< Whose timeline.
+    uint32_t value = 0;
+    /// A wait's second synchronization scope, a signal's first (VkSemaphoreSubmitInfo::stageMask).
+    VkPipelineStageFlags2 stages = 0;
+
+    friend bool operator==(const SemaphoreOp&, const SemaphoreOp&) = default;
+};
+
+/// One VkSubmitInfo2: passes of one queue, in plan order, between its waits and its signals.
+/// Its command buffer holds, in order: each pass's barrier batch and the pass; then its
+/// releases; then, in the frame's last submit, the final barriers (and read-back copies).
+struct Submit {
+    QueueKind queue = QueueKind::Graphics;
+    std::span<const uint32_t> passes;        ///< Indices into Plan::passes(), ascending.
+    std::span<const SemaphoreOp> waits;      ///< At the start, before its first command.
+    std::span<const Barrier> releases;       ///< Release halves, after its last pass.
+    std::span<const SemaphoreOp> signals;    ///< At most one: this queue's next value.
+    /// Waits for the swapchain image's acquire semaphore (Presentation::acquireWaitStages).
+    bool waitsForAcquire = false;
 };
 
 /// What a render pass does with an attachment at its start and end.
@@ -223,6 +257,21 @@ public:
     /// Where the transient resources live, and how much memory they need with and without
     /// sharing it. Owned by this plan: valid while it lives and is not assigned to.
     [[nodiscard]] const MemoryLayout& memory() const noexcept { return memory_; }
+    /// The frame's submits in submission order (docs/queues.md). One graphics submit holding
+    /// every pass when all passes run on the graphics queue; the last submit is a graphics
+    /// submit, which records the final barriers, signals the render-complete semaphore and
+    /// the frame's fence. Views this plan's arrays; valid as passes().
+    [[nodiscard]] std::span<const Submit> submits() const noexcept { return submits_; }
+    /// The queue each pass runs on, by index into passes().
+    [[nodiscard]] QueueKind queueOf(uint32_t pass) const noexcept {
+        return pass < passQueues_.size() ? passQueues_[pass] : QueueKind::Graphics;
+    }
+    /// The queue family of each queue kind that the plan was compiled for
+    /// (CompileOptions::queueFamilies): ownership transfers are between different ones.
+    [[nodiscard]] const std::array<uint32_t, kQueueKinds>& queueFamilies() const noexcept { return queueFamilies_; }
+    /// Whether plan resource `r` is shared concurrently by the queue families that use it
+    /// (VK_SHARING_MODE_CONCURRENT) rather than owned by one at a time.
+    [[nodiscard]] bool concurrent(uint32_t r) const noexcept { return r < concurrent_.size() && concurrent_[r] != 0; }
 
     /// Index into resources() for a graph resource, or -1 when no scheduled pass uses it.
     /// Compares names; `name` need not outlive the call.
@@ -243,6 +292,13 @@ private:
     std::vector<CulledPass> culled_;
     std::vector<Presentation> presentations_;
     MemoryLayout memory_;
+    std::vector<Submit> submits_;
+    std::array<uint32_t, kQueueKinds> queueFamilies_{0, 1, 2};
+    std::vector<QueueKind> passQueues_;
+    std::vector<uint8_t> concurrent_;              // per resource
+    std::vector<uint32_t> submitPasses_;           // every submit's passes, submit after submit
+    std::vector<SemaphoreOp> semaphoreOps_;        // every submit's waits and signals
+    std::vector<Barrier> releases_;                // every submit's releases
     std::vector<PlannedUsage> usages_;   // every pass's usages, pass after pass
     std::vector<Barrier> barriers_;      // every pass's barrier batch, pass after pass
     std::vector<std::shared_ptr<const std::string>> nameTables_;  // what the names view

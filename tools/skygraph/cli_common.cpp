@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -16,6 +17,13 @@ std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text) {
     if (text.empty()) return std::nullopt;
     if (const auto policy = parseLayoutPolicy(text)) return policy;
     throw UsageError("--layouts " + text + ": expected fewest-barriers or optimal");
+}
+
+std::array<uint32_t, kQueueKinds> parseQueueFamiliesFlag(const std::string& text) {
+    if (text.empty()) return CompileOptions{}.queueFamilies;
+    if (text == "one") return {0, 0, 0};
+    if (text == "separate") return {0, 1, 2};
+    throw UsageError("--queue-families " + text + ": expected separate or one");
 }
 
 FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::string_view option) {

@@ -11,6 +11,7 @@
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -39,6 +40,9 @@ struct Command {
     std::function<int()> run;
 };
 
+/// --queue-families: "separate" (or not given): graphics, compute and transfer queues of three
+/// families; "one": every queue kind in one family (a device of one queue family).
+[[nodiscard]] std::array<uint32_t, kQueueKinds> parseQueueFamiliesFlag(const std::string& text);
 /// --layouts: "fewest-barriers" or "optimal" -> the policy, "" (not given) -> unset (the graph
 /// file's setting). Throws UsageError for anything else.
 [[nodiscard]] std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text);

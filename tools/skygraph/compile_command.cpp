@@ -33,6 +33,7 @@ struct CompileArgs {
     bool heapsPerFrame = false;
     std::string placement = "best-fit";
     std::string layouts;  // empty: the graph file's setting
+    std::string queueFamilies;
     std::string memorySvg;  // where to draw the memory layout; empty: nowhere
     bool watch = false;
     uint32_t watchIntervalMs = 250;
@@ -57,6 +58,7 @@ CompileOptions compileOptions(const CompileArgs& args, const FeatureValues& feat
     options.shareTransientsAcrossFrames = !args.heapsPerFrame;
     options.placement = args.placement == "first-use" ? MemoryStrategy::FirstUseOrder : MemoryStrategy::BestFitBySize;
     options.layouts = parseLayoutsFlag(args.layouts);
+    options.queueFamilies = parseQueueFamiliesFlag(args.queueFamilies);
     return options;
 }
 
@@ -158,6 +160,11 @@ Command addCompileCommand(CLI::App& parent) {
                     "default) or first-use (in order of first use, like a frame-by-frame pool); docs/memory.md")
         ->check(CLI::IsMember({"best-fit", "first-use"}))
         ->excludes(noAlias);
+    cmd->add_option("--queue-families", args->queueFamilies,
+                    "separate (default): the graphics, compute and transfer queues are of three queue families, "
+                    "so exclusive resources change owner between them; one: a device with one queue family "
+                    "(lavapipe), where only semaphores order the queues")
+        ->check(CLI::IsMember({"separate", "one"}));
     cmd->add_option("--layouts", args->layouts,
                     "How a run of reads of an image is laid out: fewest-barriers (one layout for every reader) or "
                     "optimal (each reader's optimal layout, with transitions between); default: the graph's "

@@ -1,0 +1,674 @@
+// Submits, semaphores and ownership transfers (docs/queues.md). One sweep over the plan's
+// passes in order keeps, per subresource, who last wrote it and who read it since, on which
+// queue, and which queue family owns it; a pass whose access meets an access of another queue
+// waits for that queue, and an exclusive resource that must keep its contents moves to the
+// pass's family through a release/acquire pair. Then the passes of each queue are cut into
+// submits: before a pass that waits, after a pass that another queue waits for.
+#include "queue_planner.hpp"
+
+#include "plan_builder.hpp"
+#include "vulkan_state.hpp"
+
+#include <skygraph/diagnostics.hpp>
+
+#include <algorithm>
+#include <array>
+#include <set>
+
+namespace skygraph {
+namespace {
+
+constexpr int32_t kFrameStart = -1;  // the frame's first submit, on the graphics queue
+constexpr int32_t kNever = -2;
+constexpr uint8_t kNoOwner = 0xff;
+constexpr size_t kGraphics = static_cast<size_t>(QueueKind::Graphics);
+
+size_t slot(QueueKind q) { return static_cast<size_t>(q); }
+QueueKind kindAt(size_t i) { return static_cast<QueueKind>(i); }
+
+/// The stages a queue of this kind has (Vulkan 1.3 "Supported pipeline stage flags").
+VkPipelineStageFlags2 queueStages(QueueKind q) {
+    constexpr VkPipelineStageFlags2 common = VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT |
+                                             VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT | VK_PIPELINE_STAGE_2_HOST_BIT |
+                                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT |
+                                             VK_PIPELINE_STAGE_2_COPY_BIT;
+    switch (q) {
+        case QueueKind::Graphics: return ~VkPipelineStageFlags2(0);
+        case QueueKind::Compute:
+            return common | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
+                   VK_PIPELINE_STAGE_2_CLEAR_BIT;
+        case QueueKind::Transfer: return common;
+    }
+    return common;
+}
+
+/// ALL_COMMANDS alone when it is there: the other stages add nothing to it.
+VkPipelineStageFlags2 simplified(VkPipelineStageFlags2 stages) {
+    return (stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT : stages;
+}
+
+/// The access types that `stages` can perform (all of them for ALL_COMMANDS).
+VkAccessFlags2 accessesOf(VkPipelineStageFlags2 stages) {
+    if (stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) return ~VkAccessFlags2(0);
+    VkAccessFlags2 a = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT)
+        a |= VK_ACCESS_2_UNIFORM_READ_BIT | VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
+             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT) a |= VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
+    if (stages & (VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT))
+        a |= VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_HOST_BIT) a |= VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT;
+    return a;
+}
+
+/// A barrier cut to the stages its queue has: on the source side the other queues' stages are
+/// reached through the semaphore wait instead; on the destination side they belong to reads
+/// of the same run on other queues, which have barriers of their own there.
+void keepToQueue(Barrier& b, QueueKind q) {
+    if (q == QueueKind::Graphics) return;
+    b.srcStages &= queueStages(q);
+    b.srcAccess &= accessesOf(b.srcStages);
+    b.dstStages &= queueStages(q);
+    b.dstAccess &= accessesOf(b.dstStages);
+}
+
+/// One subresource through the frame.
+struct Cell {
+    int32_t lastWrite = kNever;  // pass index (a usage's write or a layout transition)
+    uint8_t writeQueue = 0;
+    std::array<int32_t, kQueueKinds> readSince{kNever, kNever, kNever};  // since lastWrite
+    std::array<int32_t, kQueueKinds> lastUse{kNever, kNever, kNever};
+    std::array<VkPipelineStageFlags2, kQueueKinds> useStages{};  // of lastUse
+    std::array<VkAccessFlags2, kQueueKinds> useAccess{};
+    uint8_t owner = kNoOwner;  // the queue kind whose family owns it; kNoOwner: nothing to keep
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+};
+
+/// What one pass (or the frame's end) waits for, per queue: the last pass it needs there.
+struct Needs {
+    std::array<int32_t, kQueueKinds> source{kNever, kNever, kNever};
+    std::array<VkPipelineStageFlags2, kQueueKinds> stages{};
+    void add(size_t queue, int32_t pass, VkPipelineStageFlags2 at) {
+        source[queue] = std::max(source[queue], pass);
+        stages[queue] |= at;
+    }
+};
+
+struct PendingRelease {
+    int32_t source;  // the pass after which it is recorded
+    Barrier barrier;
+};
+
+class QueuePlanner {
+public:
+    QueuePlanner(const GraphIndex& index, const CompileOptions& options, Plan& plan)
+        : graph_(index.graph()), index_(index), options_(options), plan_(plan) {}
+
+    void run() {
+        detail::PlanBuilder::queueFamilies(plan_) = options_.queueFamilies;
+        assignQueues();
+        if (std::all_of(queues_.begin(), queues_.end(), [](QueueKind q) { return q == QueueKind::Graphics; })) {
+            detail::PlanBuilder::singleSubmit(plan_);
+            return;
+        }
+        chooseSharing();
+        startCells();
+        const auto& passes = plan_.passes();
+        batches_.resize(passes.size());
+        waits_.resize(passes.size());
+        signalStages_.assign(passes.size(), 0);
+        for (uint32_t i = 0; i < passes.size(); ++i) planPass(i);
+        planFrameEnd();
+        buildSubmits();
+    }
+
+private:
+    // ---- which queue, which sharing ----------------------------------------------------
+    void assignQueues() {
+        const auto& passes = plan_.passes();
+        queues_.resize(passes.size(), QueueKind::Graphics);
+        // Inserted steps run where the pass they serve runs, when that queue can record them:
+        // a clear or clobber before its first user (image clears need graphics or compute,
+        // depth clears graphics); read-backs at the end, on the graphics queue.
+        for (size_t i = passes.size(); i-- > 0;) {
+            const PlannedPass& p = passes[i];
+            if (p.declIndex >= 0) {
+                queues_[i] = graph_.passes[static_cast<size_t>(p.declIndex)].queue;
+                continue;
+            }
+            if (p.type == "Readback" || i + 1 == passes.size()) continue;
+            QueueKind next = queues_[i + 1];
+            const PlannedResource& r = plan_.resources()[p.usages[0].resource];
+            const ResourceDesc& d = graph_.resources[r.decl];
+            if (d.isImage() && next == QueueKind::Transfer) next = QueueKind::Compute;
+            if (d.isImage() && d.format.isDepthStencil()) next = QueueKind::Graphics;
+            queues_[i] = next;
+        }
+        for (const Presentation& pr : plan_.presentations())
+            for (size_t i = 0; i < passes.size(); ++i)
+                for (const PlannedUsage& u : passes[i].usages)
+                    if (u.resource == pr.resource && queues_[i] != QueueKind::Graphics) {
+                        const std::string name(plan_.resources()[pr.resource].name);
+                        Diagnostics d;
+                        d.add({graph_.file,
+                               passes[i].declIndex >= 0 ? graph_.passes[size_t(passes[i].declIndex)].jsonPath + ".queue" : "",
+                               std::string(passes[i].name), name,
+                               "uses the presented image '" + name + "' on the " + std::string(toString(queues_[i])) +
+                                   " queue; presented images are used on the graphics queue"});
+                        throw GraphError(std::move(d));
+                    }
+    }
+
+    uint32_t family(size_t queue) const { return options_.queueFamilies[queue]; }
+    bool sameFamily(size_t a, size_t b) const { return family(a) == family(b); }
+
+    /// Concurrent where the file says so; by default for buffers (they have no compression to
+    /// lose) and for images that two families read one after the other with no write between
+    /// (exclusive ownership would serialize those reads with a transfer); exclusive otherwise.
+    /// Only resources used by more than one family need either.
+    void chooseSharing() {
+        const auto& resources = plan_.resources();
+        std::vector<uint8_t> families(resources.size(), 0);  // bit per queue kind
+        std::vector<uint8_t> readBy(resources.size(), 0);    // families reading since the last write
+        std::vector<uint8_t> readsShared(resources.size(), 0);
+        for (size_t i = 0; i < plan_.passes().size(); ++i)
+            for (const PlannedUsage& u : plan_.passes()[i].usages) {
+                const size_t q = slot(queues_[i]);
+                families[u.resource] |= uint8_t(1u << q);
+                if (writeBits(u.access) != 0) {
+                    readBy[u.resource] = 0;
+                    continue;
+                }
+                for (size_t x = 0; x < kQueueKinds; ++x)
+                    if ((readBy[u.resource] >> x & 1u) && !sameFamily(x, q)) readsShared[u.resource] = 1;
+                readBy[u.resource] |= uint8_t(1u << q);
+            }
+        auto& concurrent = detail::PlanBuilder::concurrent(plan_);
+        concurrent.assign(resources.size(), 0);
+        exclusive_.assign(resources.size(), 0);
+        for (size_t r = 0; r < resources.size(); ++r) {
+            bool several = false;
+            for (size_t a = 0; a < kQueueKinds; ++a)
+                for (size_t b = 0; b < kQueueKinds; ++b)
+                    several |= (families[r] >> a & 1u) && (families[r] >> b & 1u) && !sameFamily(a, b);
+            const ResourceDesc& d = graph_.resources[resources[r].decl];
+            const Sharing s = d.sharing != Sharing::Auto                ? d.sharing
+                              : !d.isImage() || readsShared[r]            ? Sharing::Concurrent
+                                                                          : Sharing::Exclusive;
+            concurrent[r] = several && s == Sharing::Concurrent;
+            exclusive_[r] = several && s == Sharing::Exclusive;
+        }
+    }
+
+    void startCells() {
+        const auto& resources = plan_.resources();
+        firstCell_.resize(resources.size() + 1);
+        grids_.resize(resources.size());
+        for (size_t r = 0; r < resources.size(); ++r) {
+            grids_[r] = index_.grid(resources[r].decl);
+            firstCell_[r + 1] = firstCell_[r] + static_cast<uint32_t>(grids_[r].size());
+        }
+        cells_.resize(firstCell_.back());
+        lastUseOf_.assign(resources.size(), {kNever, kNever, kNever});
+        for (size_t r = 0; r < resources.size(); ++r) {
+            const bool external = graph_.resources[resources[r].decl].external;
+            for (uint32_t c = firstCell_[r]; c < firstCell_[r + 1]; ++c) {
+                cells_[c].layout = resources[r].initialLayout;
+                if (external) cells_[c].owner = static_cast<uint8_t>(kGraphics);
+            }
+        }
+    }
+
+    template <class F>
+    void forCells(uint32_t r, const SubresourceRange& range, F&& f) {
+        const SubresourceGrid& g = grids_[r];
+        if (!graph_.resources[plan_.resources()[r].decl].isImage()) return f(firstCell_[r], SubresourceRange{0, 1, 0, 1});
+        for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m)
+            for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l)
+                f(firstCell_[r] + static_cast<uint32_t>(g.index(m, l)), SubresourceRange{m, 1, l, 1});
+    }
+
+    bool isImage(uint32_t r) const { return graph_.resources[plan_.resources()[r].decl].isImage(); }
+
+    /// The queue kind whose family must hand `c` over to queue `q` before it is used with its
+    /// contents, or kNoOwner.
+    uint8_t handsOver(uint32_t r, const Cell& c, size_t q, bool contentsKept) const {
+        if (!exclusive_[r] || c.owner == kNoOwner || !contentsKept || sameFamily(c.owner, q)) return kNoOwner;
+        return c.owner;
+    }
+
+    // ---- one pass --------------------------------------------------------------------
+    void planPass(uint32_t i) {
+        const PlannedPass& pass = plan_.passes()[i];
+        const size_t q = slot(queues_[i]);
+        Needs needs;
+        if (q != kGraphics && !startedQueue_[q]) needs.add(kGraphics, kFrameStart, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+        startedQueue_[q] = true;
+        std::vector<Barrier>& batch = batches_[i];
+        for (const Barrier& b : pass.barriers) {
+            if (b.kind == BarrierKind::Memory) {
+                batch.push_back(b);
+                continue;
+            }
+            const bool kept = isImage(b.resource) ? b.oldLayout != VK_IMAGE_LAYOUT_UNDEFINED : true;
+            // One owner to take over from for the whole range, or none: the barrier stays one.
+            uint8_t from = kNoOwner;
+            bool uniform = true, first = true;
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+                const uint8_t o = handsOver(b.resource, cells_[c], q, kept);
+                if (!first && o != from) uniform = false;
+                from = first ? o : from;
+                first = false;
+            });
+            if (uniform) {
+                addBarrier(i, q, b, from, needs);
+                continue;
+            }
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange& one) {
+                Barrier piece = b;
+                piece.range = one;
+                addBarrier(i, q, piece, handsOver(b.resource, cells_[c], q, kept), needs);
+            });
+        }
+        for (const PlannedUsage& u : pass.usages) needUsage(i, q, u, needs);
+        for (const PlannedUsage& u : pass.usages) handOverForUse(i, q, u, needs);
+        // The pass's own accesses, once everything it waits for is known.
+        for (const Barrier& b : batch)
+            if (b.kind != BarrierKind::Memory && b.oldLayout != b.newLayout && isImage(b.resource))
+                forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { write(cells_[c], i, q); });
+        for (const PlannedUsage& u : pass.usages) recordUse(i, q, u);
+        addWaits(i, q, needs);
+        for (Barrier& b : batch) keepToQueue(b, queues_[i]);
+    }
+
+    /// Barrier `b` of pass i (on queue q): what it waits for on other queues, and, when `from`
+    /// is another family's queue, the acquire half of a transfer whose release goes there.
+    void addBarrier(uint32_t i, size_t q, Barrier b, uint8_t from, Needs& needs) {
+        const bool writes = b.oldLayout != b.newLayout || writeBits(b.dstAccess) != 0;
+        bool waits = false;
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            waits |= needSources(cells_[c], q, writes, b.dstStages, needs);
+        });
+        if (b.aliasing) {
+            const auto& placements = plan_.memory().placements;
+            const uint32_t p = plan_.resources()[b.resource].placement;
+            if (p != PlannedResource::kNoPlacement)
+                for (uint32_t a : placements[p].aliases)
+                    for (size_t x = 0; x < kQueueKinds; ++x)
+                        if (x != q && lastUseOf_[a][x] != kNever) {
+                            needs.add(x, lastUseOf_[a][x], b.dstStages);
+                            waits = true;
+                        }
+        }
+        if (from != kNoOwner) {
+            Barrier release = b;
+            release.srcQueue = kindAt(from);
+            release.dstQueue = kindAt(q);
+            release.dstStages = 0;
+            release.dstAccess = 0;
+            release.srcStages = 0;
+            release.srcAccess = 0;
+            int32_t source = kNever;
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+                const Cell& cell = cells_[c];
+                if (cell.lastUse[from] > source) source = cell.lastUse[from];
+                if (cell.lastUse[from] != kNever) {
+                    release.srcStages |= cell.useStages[from];
+                    release.srcAccess |= writeBits(cell.useAccess[from]);
+                }
+                cells_[c].owner = static_cast<uint8_t>(q);
+            });
+            if (source == kNever) {  // owned since the frame's start: released there
+                source = kFrameStart;
+                release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            }
+            releases_.push_back({source, release});
+            signals_[from].insert(source);
+            if (source >= 0) signalStages_[static_cast<size_t>(source)] |= release.srcStages;
+            needs.add(from, source, b.dstStages);
+            b.srcQueue = release.srcQueue;
+            b.dstQueue = release.dstQueue;
+            waits = true;
+        } else if (exclusive_[b.resource]) {
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { cells_[c].owner = static_cast<uint8_t>(q); });
+        }
+        // The layout transition waits for the semaphore: the wait's stages chain into it. The
+        // semaphore made the other queue's writes available; MEMORY_READ in the source access
+        // scope changes nothing for Vulkan (reads need no availability), and is what validation
+        // layer 1.3.239 needs to see the transition ordered after them (docs/queues.md).
+        if (waits) {
+            b.srcStages |= b.dstStages;
+            b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
+        }
+        if (isImage(b.resource))
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { cells_[c].layout = b.newLayout; });
+        batches_[i].push_back(b);
+    }
+
+    /// Adds the other queues' accesses that an access of `c` on q must wait for: the last
+    /// write, and when it writes, the reads since. Returns whether there were any.
+    bool needSources(const Cell& c, size_t q, bool writes, VkPipelineStageFlags2 at, Needs& needs) {
+        bool any = false;
+        if (c.lastWrite != kNever && c.writeQueue != q) {
+            needs.add(c.writeQueue, c.lastWrite, at);
+            any = true;
+        }
+        if (writes)
+            for (size_t x = 0; x < kQueueKinds; ++x)
+                if (x != q && c.readSince[x] != kNever) {
+                    needs.add(x, c.readSince[x], at);
+                    any = true;
+                }
+        return any;
+    }
+
+    void needUsage(uint32_t, size_t q, const PlannedUsage& u, Needs& needs) {
+        const bool writes = writeBits(u.access) != 0;
+        forCells(u.resource, u.range, [&](uint32_t c, const SubresourceRange&) { needSources(cells_[c], q, writes, u.stages, needs); });
+    }
+
+    /// A use of cells that another family owns and that no barrier of the pass took over (two
+    /// reads in one layout): an acquire without a layout change, and its release.
+    void handOverForUse(uint32_t i, size_t q, const PlannedUsage& u, Needs& needs) {
+        if (!exclusive_[u.resource]) return;
+        forCells(u.resource, u.range, [&](uint32_t c, const SubresourceRange& one) {
+            const Cell& cell = cells_[c];
+            const bool kept = isImage(u.resource) ? cell.layout != VK_IMAGE_LAYOUT_UNDEFINED : true;
+            const uint8_t from = handsOver(u.resource, cell, q, kept);
+            if (from == kNoOwner) return;
+            Barrier b;
+            b.resource = u.resource;
+            b.kind = isImage(u.resource) ? BarrierKind::Image : BarrierKind::Buffer;
+            b.range = isImage(u.resource) ? one : SubresourceRange{};
+            b.oldLayout = b.newLayout = isImage(u.resource) ? cell.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+            b.dstStages = u.stages;
+            b.dstAccess = u.access;
+            addBarrier(i, q, b, from, needs);
+        });
+    }
+
+    void write(Cell& c, int32_t pass, size_t q) {
+        c.lastWrite = pass;
+        c.writeQueue = static_cast<uint8_t>(q);
+        c.readSince = {kNever, kNever, kNever};
+    }
+
+    void recordUse(uint32_t i, size_t q, const PlannedUsage& u) {
+        const bool writes = writeBits(u.access) != 0;
+        const int32_t pass = static_cast<int32_t>(i);
+        lastUseOf_[u.resource][q] = pass;
+        forCells(u.resource, u.range, [&](uint32_t cell, const SubresourceRange&) {
+            Cell& c = cells_[cell];
+            if (writes) write(c, pass, q);
+            else c.readSince[q] = pass;
+            if (c.lastUse[q] != pass) c.useStages[q] = c.useAccess[q] = 0;
+            c.lastUse[q] = pass;
+            c.useStages[q] |= u.stages;
+            c.useAccess[q] |= u.access;
+            if (exclusive_[u.resource]) c.owner = static_cast<uint8_t>(q);
+        });
+    }
+
+    /// Keeps the needs that the queue's earlier waits do not already cover: a wait for a later
+    /// pass of the same queue at no fewer stages.
+    void addWaits(int32_t at, size_t q, const Needs& needs) {
+        for (size_t x = 0; x < kQueueKinds; ++x) {
+            if (x == q || needs.source[x] == kNever) continue;
+            const int32_t source = needs.source[x];
+            const VkPipelineStageFlags2 stages = needs.stages[x] & queueStages(kindAt(q));
+            auto& history = waited_[q][x];
+            const bool covered = std::any_of(history.begin(), history.end(), [&](const auto& w) {
+                return w.first >= source && ((w.second & stages) == stages ||
+                                             (w.second & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT));
+            });
+            if (covered) continue;
+            history.emplace_back(source, stages);
+            if (at >= 0) waits_[static_cast<size_t>(at)].push_back({x, source, stages});
+            else endWaits_.push_back({x, source, stages});
+            signals_[x].insert(source);
+            if (source >= 0) signalStages_[static_cast<size_t>(source)] |= passStages(static_cast<uint32_t>(source));
+        }
+    }
+
+    VkPipelineStageFlags2 passStages(uint32_t pass) const {
+        VkPipelineStageFlags2 s = 0;
+        for (const PlannedUsage& u : plan_.passes()[pass].usages) s |= u.stages;
+        return s;
+    }
+
+    // ---- the frame's end ----------------------------------------------------------------
+    /// The final barriers run in a last graphics submit that waits for every other queue's
+    /// last pass (the frame ends on one queue, as it starts), after exclusive resources that
+    /// outlive the frame came back to the graphics family.
+    void planFrameEnd() {
+        const size_t g = kGraphics;
+        Needs needs;
+        for (size_t i = 0; i < queues_.size(); ++i)
+            if (slot(queues_[i]) != g) needs.add(slot(queues_[i]), static_cast<int32_t>(i), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+        std::vector<Barrier> finals;
+        const auto& resources = plan_.resources();
+        std::vector<uint8_t> coveredByFinal(cells_.size(), 0);
+        for (const Barrier& b : plan_.finalBarriers()) {
+            if (b.kind == BarrierKind::Memory || !exclusive_[b.resource]) {
+                finals.push_back(b);
+                continue;
+            }
+            uint8_t from = kNoOwner;
+            bool uniform = true, first = true;
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+                coveredByFinal[c] = 1;
+                const uint8_t o = handsOver(b.resource, cells_[c], g, true);
+                if (!first && o != from) uniform = false;
+                from = first ? o : from;
+                first = false;
+            });
+            if (uniform) {
+                finals.push_back(from == kNoOwner ? b : acquireAtEnd(b, from));
+                continue;
+            }
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange& one) {
+                Barrier piece = b;
+                piece.range = one;
+                const uint8_t o = handsOver(b.resource, cells_[c], g, true);
+                finals.push_back(o == kNoOwner ? piece : acquireAtEnd(piece, o));
+            });
+        }
+        for (size_t r = 0; r < resources.size(); ++r) {
+            if (!exclusive_[r] || !graph_.resources[resources[r].decl].external) continue;
+            const auto res = static_cast<uint32_t>(r);
+            forCells(res, grids_[r].whole(), [&](uint32_t c, const SubresourceRange& one) {
+                if (coveredByFinal[c]) return;
+                const uint8_t from = handsOver(res, cells_[c], g, true);
+                if (from == kNoOwner) return;
+                Barrier b;
+                b.resource = res;
+                b.kind = isImage(res) ? BarrierKind::Image : BarrierKind::Buffer;
+                b.range = isImage(res) ? one : SubresourceRange{};
+                b.oldLayout = b.newLayout = cells_[c].layout;
+                finals.push_back(acquireAtEnd(b, from));
+            });
+        }
+        detail::PlanBuilder::finalBarriers(plan_) = std::move(finals);
+        addWaits(kNever, g, needs);
+        // The frame's last pass on each other queue signals at every stage: the end waits
+        // for all of its work, and the frame's fence with it.
+        for (size_t x = 0; x < kQueueKinds; ++x)
+            if (needs.source[x] >= 0) {
+                signals_[x].insert(needs.source[x]);
+                signalStages_[static_cast<size_t>(needs.source[x])] |= VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            }
+    }
+
+    /// Final barrier `b` as the acquire half of a transfer back to the graphics family; the
+    /// release goes after the last pass of the queue that owns it.
+    Barrier acquireAtEnd(Barrier b, uint8_t from) {
+        Barrier release = b;
+        release.srcQueue = kindAt(from);
+        release.dstQueue = QueueKind::Graphics;
+        release.srcStages = 0;
+        release.srcAccess = 0;
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            release.srcStages |= cells_[c].useStages[from];
+            release.srcAccess |= writeBits(cells_[c].useAccess[from]);
+        });
+        if (!release.srcStages) release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        release.dstStages = 0;
+        release.dstAccess = 0;
+        releases_.push_back({lastPassOn(from), release});
+        b.srcQueue = release.srcQueue;
+        b.dstQueue = QueueKind::Graphics;
+        if (!b.srcStages) b.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        return b;
+    }
+
+    int32_t lastPassOn(size_t queue) const {
+        for (size_t i = queues_.size(); i-- > 0;)
+            if (slot(queues_[i]) == queue) return static_cast<int32_t>(i);
+        return kFrameStart;
+    }
+
+    // ---- submits ------------------------------------------------------------------------
+    struct Wait {
+        size_t queue;
+        int32_t source;
+        VkPipelineStageFlags2 stages;
+    };
+
+    uint32_t valueOf(size_t queue, int32_t source) const {
+        const auto& s = signals_[queue];
+        return static_cast<uint32_t>(std::distance(s.begin(), s.find(source))) + 1;
+    }
+
+    void buildSubmits() {
+        auto& passes = detail::PlanBuilder::passes(plan_);
+        auto& barriers = detail::PlanBuilder::barriers(plan_);
+        barriers.clear();
+        size_t total = 0;
+        for (const auto& b : batches_) total += b.size();
+        barriers.reserve(total);
+        for (size_t i = 0; i < passes.size(); ++i) {
+            const size_t at = barriers.size();
+            barriers.insert(barriers.end(), batches_[i].begin(), batches_[i].end());
+            passes[i].barriers = batches_[i].empty() ? std::span<const Barrier>{}
+                                                     : std::span<const Barrier>(barriers.data() + at, batches_[i].size());
+        }
+        signals_[kGraphics].insert(kFrameStart);
+
+        // Each submit as indices first; spans once the arrays are complete.
+        struct Draft {
+            QueueKind queue;
+            std::vector<uint32_t> passes;
+            std::vector<SemaphoreOp> waits, signals;
+            std::vector<Barrier> releases;
+            bool acquire = false;
+        };
+        std::vector<Draft> drafts;
+        Draft start{QueueKind::Graphics, {}, {}, {}, {}};
+        start.signals.push_back({QueueKind::Graphics, valueOf(kGraphics, kFrameStart), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT});
+        for (const PendingRelease& r : releases_)
+            if (r.source == kFrameStart) start.releases.push_back(r.barrier);
+        std::array<int32_t, kQueueKinds> open{-1, -1, -1};  // each queue's open draft
+        std::vector<size_t> order;                          // drafts by first pass
+        auto toOps = [&](const std::vector<Wait>& ws) {
+            std::vector<SemaphoreOp> ops;
+            for (const Wait& w : ws) {
+                const uint32_t v = valueOf(w.queue, w.source);
+                auto it = std::find_if(ops.begin(), ops.end(), [&](const SemaphoreOp& o) { return o.semaphore == kindAt(w.queue); });
+                if (it == ops.end()) ops.push_back({kindAt(w.queue), v, w.stages});
+                else { it->value = std::max(it->value, v); it->stages |= w.stages; }
+            }
+            for (SemaphoreOp& op : ops) op.stages = simplified(op.stages);
+            return ops;
+        };
+        std::vector<uint8_t> presented(plan_.resources().size(), 0);
+        for (const Presentation& p : plan_.presentations()) presented[p.resource] = 1;
+        bool acquireSeen = false;
+        for (uint32_t i = 0; i < passes.size(); ++i) {
+            const size_t q = slot(queues_[i]);
+            if (open[q] >= 0 && !waits_[i].empty()) open[q] = -1;
+            if (open[q] < 0) {
+                drafts.push_back({queues_[i], {}, {}, {}, {}});
+                open[q] = static_cast<int32_t>(drafts.size() - 1);
+            }
+            Draft& d = drafts[static_cast<size_t>(open[q])];
+            if (d.passes.empty()) d.waits = toOps(waits_[i]);
+            d.passes.push_back(i);
+            if (!acquireSeen)
+                for (const PlannedUsage& u : passes[i].usages)
+                    if (presented[u.resource]) d.acquire = acquireSeen = true;
+            if (signals_[q].count(static_cast<int32_t>(i))) {
+                for (const PendingRelease& r : releases_)
+                    if (r.source == static_cast<int32_t>(i)) d.releases.push_back(r.barrier);
+                d.signals.push_back({queues_[i], valueOf(q, static_cast<int32_t>(i)), simplified(signalStages_[i])});
+                open[q] = -1;
+            }
+        }
+        Draft end{QueueKind::Graphics, {}, toOps(endWaits_), {}, {}};
+
+        auto& submits = detail::PlanBuilder::submits(plan_);
+        auto& indices = detail::PlanBuilder::submitPasses(plan_);
+        auto& ops = detail::PlanBuilder::semaphoreOps(plan_);
+        auto& releases = detail::PlanBuilder::releases(plan_);
+        submits.clear();
+        indices.clear();
+        ops.clear();
+        releases.clear();
+        std::vector<const Draft*> all{&start};
+        for (const Draft& d : drafts) all.push_back(&d);
+        all.push_back(&end);
+        size_t nIdx = 0, nOps = 0, nRel = 0;
+        for (const Draft* d : all) {
+            nIdx += d->passes.size();
+            nOps += d->waits.size() + d->signals.size();
+            nRel += d->releases.size();
+        }
+        indices.reserve(nIdx);
+        ops.reserve(nOps);
+        releases.reserve(nRel);
+        for (const Draft* d : all) {
+            Submit s;
+            s.queue = d->queue;
+            s.waitsForAcquire = d->acquire;
+            auto place = [](auto& into, const auto& from) {
+                const size_t at = into.size();
+                into.insert(into.end(), from.begin(), from.end());
+                using T = typename std::remove_reference_t<decltype(into)>::value_type;
+                return from.empty() ? std::span<const T>{} : std::span<const T>(into.data() + at, from.size());
+            };
+            s.passes = place(indices, d->passes);
+            s.waits = place(ops, d->waits);
+            s.releases = place(releases, d->releases);
+            s.signals = place(ops, d->signals);
+            submits.push_back(s);
+        }
+        detail::PlanBuilder::passQueues(plan_) = queues_;
+    }
+
+    const GraphDesc& graph_;
+    const GraphIndex& index_;
+    const CompileOptions& options_;
+    Plan& plan_;
+    std::vector<QueueKind> queues_;
+    std::vector<uint8_t> exclusive_;
+    std::vector<SubresourceGrid> grids_;
+    std::vector<uint32_t> firstCell_{0};
+    std::vector<Cell> cells_;
+    std::vector<std::array<int32_t, kQueueKinds>> lastUseOf_;  // per resource and queue
+    std::array<bool, kQueueKinds> startedQueue_{};
+    std::vector<std::vector<Barrier>> batches_;
+    std::vector<std::vector<Wait>> waits_;
+    std::vector<Wait> endWaits_;
+    std::vector<PendingRelease> releases_;
+    std::array<std::array<std::vector<std::pair<int32_t, VkPipelineStageFlags2>>, kQueueKinds>, kQueueKinds> waited_;
+    std::array<std::set<int32_t>, kQueueKinds> signals_;  // per queue: the passes it signals after
+    std::vector<VkPipelineStageFlags2> signalStages_;
+};
+
+}  // namespace
+
+void planQueues(const GraphIndex& index, const CompileOptions& options, Plan& plan) {
+    QueuePlanner(index, options, plan).run();
+}
+
+}  // namespace skygraph

@@ -1,0 +1,135 @@
+// Plans on several queues: the verifier follows happens-before through semaphore signals and
+// waits and through queue family ownership transfers, and catches each of them missing or
+// wrong: a dropped wait, a wait at the wrong stages or for a value too low or never signalled,
+// a dropped release, an acquire turned into a plain barrier.
+#include "plan_editor.hpp"
+#include "verifier_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace skygraph::verifier {
+namespace {
+
+using detail::PlanEditor;
+using test::hasFinding;
+using test::stepIndex;
+
+test::Compiled async(std::array<uint32_t, kQueueKinds> families = {0, 1, 2}) {
+    CompileOptions o;
+    o.queueFamilies = families;
+    return test::compileShipped("async.json", o);
+}
+
+/// The submit that holds step `step`.
+size_t submitOf(const Plan& plan, size_t step) {
+    for (size_t k = 0; k < plan.submits().size(); ++k)
+        for (uint32_t p : plan.submits()[k].passes)
+            if (p == step) return k;
+    throw std::out_of_range("no submit holds the step");
+}
+
+bool anyFinding(const VerificationReport& r, std::initializer_list<FindingKind> kinds, const char* resource) {
+    return std::any_of(kinds.begin(), kinds.end(), [&](FindingKind k) { return hasFinding(r, k, resource); });
+}
+
+TEST(Queues, AsyncFrameVerifiesWithSeparateFamiliesAndWithOne) {
+    for (const auto& families : {std::array<uint32_t, kQueueKinds>{0, 1, 2}, std::array<uint32_t, kQueueKinds>{0, 0, 0}}) {
+        const test::Compiled c = async(families);
+        ASSERT_GT(c.plan.submits().size(), 3u);
+        const VerificationReport r = verifyPlan(c.plan, c.graph);
+        EXPECT_TRUE(r.ok()) << r.summary();
+    }
+}
+
+TEST(Queues, DroppedWaitIsCaught) {
+    // sky (graphics) reads depth after ssao (compute) moved it to DEPTH_READ_ONLY.
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    auto& waits = submits.at(submitOf(c.plan, stepIndex(c.plan, "sky"))).waits;
+    ASSERT_EQ(waits.size(), 1u);
+    waits.clear();
+    PlanEditor::setSubmits(c.plan, submits);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "depth")) << r.summary();
+}
+
+TEST(Queues, WaitAtTheWrongStageIsCaught) {
+    // The graphics queue's waits at COLOR_ATTACHMENT_OUTPUT only: lighting's reads at
+    // FRAGMENT_SHADER, logically earlier, are not held back (a wait at EARLY_FRAGMENT_TESTS, as
+    // sky's, or VERTEX_SHADER would hold them: later stages wait too).
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    for (auto& s : submits)
+        if (s.queue == QueueKind::Graphics && !s.passes.empty())
+            for (SemaphoreOp& w : s.waits) w.stages = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    PlanEditor::setSubmits(c.plan, submits);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "ssao")) << r.summary();
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "lights")) << r.summary();
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "depth")) << r.summary();
+}
+
+TEST(Queues, WaitForTooLowAValueIsCaught) {
+    // tonemap waits for the histogram's signal (compute=2); compute=1 is ssao's.
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    auto& waits = submits.at(submitOf(c.plan, stepIndex(c.plan, "tonemap"))).waits;
+    ASSERT_EQ(waits.size(), 1u);
+    ASSERT_EQ(waits[0].value, 2u);
+    waits[0].value = 1;
+    PlanEditor::setSubmits(c.plan, submits);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "histogram")) << r.summary();
+}
+
+TEST(Queues, WaitForAValueNeverSignalledIsCaught) {
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    submits.at(submitOf(c.plan, stepIndex(c.plan, "tonemap"))).waits.at(0).value = 9;
+    PlanEditor::setSubmits(c.plan, submits);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_GE(r.count(FindingKind::Semaphore), 1u) << r.summary();
+}
+
+TEST(Queues, DroppedReleaseIsCaught) {
+    // ssao moves from the compute family to the graphics family for lighting.
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    auto& releases = submits.at(submitOf(c.plan, stepIndex(c.plan, "ssao"))).releases;
+    const auto before = releases.size();
+    releases.erase(std::remove_if(releases.begin(), releases.end(),
+                                  [&](const Barrier& b) { return c.plan.resources()[b.resource].name == "ssao"; }),
+                   releases.end());
+    ASSERT_EQ(releases.size() + 1, before);
+    PlanEditor::setSubmits(c.plan, submits);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "ssao")) << r.summary();
+}
+
+TEST(Queues, AcquireTurnedIntoAPlainBarrierIsCaught) {
+    // normals: written on graphics, read by ssao on compute through a transfer.
+    test::Compiled c = async();
+    const size_t step = stepIndex(c.plan, "ssao");
+    bool edited = false;
+    for (Barrier& b : PlanEditor::barriersOf(c.plan, step))
+        if (c.plan.resources()[b.resource].name == "normals" && b.transfersOwnership()) {
+            b.srcQueue = b.dstQueue;
+            edited = true;
+        }
+    ASSERT_TRUE(edited);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "normals")) << r.summary();
+}
+
+TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
+    test::Compiled c = async();
+    const size_t step = stepIndex(c.plan, "histogram");
+    PlanEditor::barriersOf(c.plan, step)[0].srcStages |= VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_GE(r.count(FindingKind::InvalidMask), 1u) << r.summary();
+}
+
+}  // namespace
+}  // namespace skygraph::verifier
