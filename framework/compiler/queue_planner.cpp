@@ -81,6 +81,9 @@ struct Cell {
     std::array<int32_t, kQueueKinds> lastUse{kNever, kNever, kNever};
     std::array<VkPipelineStageFlags2, kQueueKinds> useStages{};  // of lastUse
     std::array<VkAccessFlags2, kQueueKinds> useAccess{};
+    std::array<VkPipelineStageFlags2, kQueueKinds> frameStages{};  // of every use in the frame so far
+    std::array<VkAccessFlags2, kQueueKinds> frameAccess{};
+    bool touched = false;  // used in the frame so far, on any queue
     uint8_t owner = kNoOwner;  // the queue kind whose family owns it; kNoOwner: nothing to keep
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
@@ -333,6 +336,21 @@ private:
         } else if (exclusive_[b.resource]) {
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { cells_[c].owner = static_cast<uint8_t>(q); });
         }
+        // Sources on other queues are the semaphore's: where every source is this frame's, the
+        // barrier keeps only what its own queue did (on one VkQueue the other queue's stages would
+        // order the accesses by themselves and hide a missing wait).
+        bool thisFrame = waits && !b.aliasing;
+        VkPipelineStageFlags2 ownStages = 0;
+        VkAccessFlags2 ownAccess = 0;
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            thisFrame &= cells_[c].touched;
+            ownStages |= cells_[c].frameStages[q];
+            ownAccess |= cells_[c].frameAccess[q];
+        });
+        if (thisFrame) {
+            b.srcStages &= ownStages;
+            b.srcAccess &= ownAccess;
+        }
         // The layout transition waits for the semaphore: the wait's stages chain into it. The
         // semaphore made the other queue's writes available; MEMORY_READ in the source access
         // scope changes nothing for Vulkan (reads need no availability), and is what validation
@@ -406,6 +424,9 @@ private:
             c.lastUse[q] = pass;
             c.useStages[q] |= u.stages;
             c.useAccess[q] |= u.access;
+            c.frameStages[q] |= u.stages;
+            c.frameAccess[q] |= u.access;
+            c.touched = true;
             if (exclusive_[u.resource]) c.owner = static_cast<uint8_t>(q);
         });
     }

@@ -74,6 +74,57 @@ protected:
     }
 };
 
+/// A buffer written on the compute queue and read on the graphics queue, compiled for the shared
+/// device's queue families (so that the Renderer runs the plan as edited).
+CompiledGraph computeThenGraphics() {
+    GraphDesc g = parseGraph(graph(R"("buf": { "type": "buffer", "size": 256 })",
+                                   R"({ "name": "produce", "type": "Generic", "queue": "compute",
+                                        "uses": { "buf": "Write@Compute" } },
+                                      { "name": "consume", "type": "Generic",
+                                        "uses": { "buf": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"),
+                             "<test>", PassRegistry::withBuiltins());
+    CompileOptions o = sizedOptions();
+    o.memory = sharedDevice().memoryModel();
+    o.queueFamilies = sharedDevice().queueFamilies();
+    o = headless(g, std::move(o));
+    return CompiledGraph(std::move(g), std::move(o));
+}
+
+/// The waits of the submit that holds `pass`, edited by `edit`.
+template <class Edit>
+Plan withWaitsOf(const Plan& plan, const std::string& pass, Edit edit) {
+    Plan broken = plan;
+    auto submits = detail::PlanEditor::submits(broken);
+    for (auto& s : submits)
+        for (uint32_t p : s.passes)
+            if (plan.passes()[p].name == pass) edit(s.waits);
+    detail::PlanEditor::setSubmits(broken, submits);
+    return broken;
+}
+
+// Two queues (one VkQueue on lavapipe, in submission order): without the semaphore wait the
+// graphics queue's read races the compute queue's write.
+TEST_F(NegativeControl, DroppedSemaphoreWaitIsReadAfterWrite) {
+    const auto c = computeThenGraphics();
+    ASSERT_GT(c.plan().submits().size(), 2u);
+    const Plan broken = withWaitsOf(c.plan(), "consume", [](std::vector<SemaphoreOp>& waits) {
+        ASSERT_EQ(waits.size(), 1u);
+        waits.clear();
+    });
+    expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
+}
+
+// A wait at a stage after the read (COLOR_ATTACHMENT_OUTPUT, logically later than the fragment
+// shader) does not hold the read back.
+TEST_F(NegativeControl, SemaphoreWaitAtALaterStageIsReadAfterWrite) {
+    const auto c = computeThenGraphics();
+    const Plan broken = withWaitsOf(c.plan(), "consume", [](std::vector<SemaphoreOp>& waits) {
+        ASSERT_EQ(waits.size(), 1u);
+        waits[0].stages = VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT;
+    });
+    expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
+}
+
 // RAW: compute writes a storage buffer, the next compute pass reads it.
 TEST_F(NegativeControl, DroppedRawBarrierIsReadAfterWrite) {
     const auto c = compileText(graph(
