@@ -59,6 +59,22 @@ VkAccessFlags2 accessesOf(VkPipelineStageFlags2 stages) {
     if (stages & (VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT))
         a |= VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
     if (stages & VK_PIPELINE_STAGE_2_HOST_BIT) a |= VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT;
+    constexpr VkPipelineStageFlags2 shaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                                              VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT;
+    if (stages & shaders)
+        a |= VK_ACCESS_2_UNIFORM_READ_BIT | VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
+             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) a |= VK_ACCESS_2_INPUT_ATTACHMENT_READ_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT)
+        a |= VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
+    if (stages & (VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT))
+        a |= VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    if (stages & (VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
+                  VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT))
+        a |= VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT;
+    if (stages & VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT) return ~VkAccessFlags2(0);
     return a;
 }
 
@@ -77,7 +93,12 @@ void keepToQueue(Barrier& b, QueueKind q) {
 struct Cell {
     int32_t lastWrite = kNever;  // pass index (a usage's write or a layout transition)
     uint8_t writeQueue = 0;
+    VkPipelineStageFlags2 writeStages = 0;  // where that write happens
+    VkAccessFlags2 writeAccess = 0;
+    /// Per queue: the stages that barriers of that queue made the last write visible to.
+    std::array<VkPipelineStageFlags2, kQueueKinds> visibleStages{};
     std::array<int32_t, kQueueKinds> readSince{kNever, kNever, kNever};  // since lastWrite
+    std::array<VkPipelineStageFlags2, kQueueKinds> readStagesSince{};
     std::array<int32_t, kQueueKinds> lastUse{kNever, kNever, kNever};
     std::array<VkPipelineStageFlags2, kQueueKinds> useStages{};  // of lastUse
     std::array<VkAccessFlags2, kQueueKinds> useAccess{};
@@ -88,13 +109,16 @@ struct Cell {
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 
-/// What one pass (or the frame's end) waits for, per queue: the last pass it needs there.
+/// What one pass (or the frame's end) waits for, per queue: the last pass it needs there, the
+/// stages it waits at, and the stages of the accesses it waits for (which the signal must hold).
 struct Needs {
     std::array<int32_t, kQueueKinds> source{kNever, kNever, kNever};
     std::array<VkPipelineStageFlags2, kQueueKinds> stages{};
-    void add(size_t queue, int32_t pass, VkPipelineStageFlags2 at) {
+    std::array<VkPipelineStageFlags2, kQueueKinds> sourceStages{};
+    void add(size_t queue, int32_t pass, VkPipelineStageFlags2 at, VkPipelineStageFlags2 from) {
         source[queue] = std::max(source[queue], pass);
         stages[queue] |= at;
+        sourceStages[queue] |= from;
     }
 };
 
@@ -214,6 +238,7 @@ private:
         }
         cells_.resize(firstCell_.back());
         lastUseOf_.assign(resources.size(), {kNever, kNever, kNever});
+        useStagesOf_.assign(resources.size(), {});
         for (size_t r = 0; r < resources.size(); ++r) {
             const bool external = graph_.resources[resources[r].decl].external;
             for (uint32_t c = firstCell_[r]; c < firstCell_[r + 1]; ++c) {
@@ -246,7 +271,8 @@ private:
         const PlannedPass& pass = plan_.passes()[i];
         const size_t q = slot(queues_[i]);
         Needs needs;
-        if (q != kGraphics && !startedQueue_[q]) needs.add(kGraphics, kFrameStart, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+        if (q != kGraphics && !startedQueue_[q])
+            needs.add(kGraphics, kFrameStart, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
         startedQueue_[q] = true;
         std::vector<Barrier>& batch = batches_[i];
         for (const Barrier& b : pass.barriers) {
@@ -277,9 +303,16 @@ private:
         for (const PlannedUsage& u : pass.usages) needUsage(i, q, u, needs);
         for (const PlannedUsage& u : pass.usages) handOverForUse(i, q, u, needs);
         // The pass's own accesses, once everything it waits for is known.
-        for (const Barrier& b : batch)
-            if (b.kind != BarrierKind::Memory && b.oldLayout != b.newLayout && isImage(b.resource))
-                forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { write(cells_[c], i, q); });
+        for (const Barrier& b : batch) {
+            if (b.kind == BarrierKind::Memory) continue;
+            const VkPipelineStageFlags2 dst = b.dstStages & queueStages(queues_[i]);
+            const bool transition = b.oldLayout != b.newLayout && isImage(b.resource);
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+                if (transition) write(cells_[c], i, q, dst, 0);
+                cells_[c].visibleStages[q] |= dst;
+            });
+        }
+        for (const PlannedUsage& u : pass.usages) makeVisibleOnQueue(i, q, u);
         for (const PlannedUsage& u : pass.usages) recordUse(i, q, u);
         addWaits(i, q, needs);
         for (Barrier& b : batch) keepToQueue(b, queues_[i]);
@@ -300,7 +333,7 @@ private:
                 for (uint32_t a : placements[p].aliases)
                     for (size_t x = 0; x < kQueueKinds; ++x)
                         if (x != q && lastUseOf_[a][x] != kNever) {
-                            needs.add(x, lastUseOf_[a][x], b.dstStages);
+                            needs.add(x, lastUseOf_[a][x], b.dstStages, useStagesOf_[a][x]);
                             waits = true;
                         }
         }
@@ -329,7 +362,8 @@ private:
             releases_.push_back({source, release});
             signals_[from].insert(source);
             if (source >= 0) signalStages_[static_cast<size_t>(source)] |= release.srcStages;
-            needs.add(from, source, b.dstStages);
+            needs.add(from, source, b.dstStages,
+                      source == kFrameStart ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT : release.srcStages);
             b.srcQueue = release.srcQueue;
             b.dstQueue = release.dstQueue;
             waits = true;
@@ -349,7 +383,7 @@ private:
         });
         if (thisFrame) {
             b.srcStages &= ownStages;
-            b.srcAccess &= ownAccess;
+            b.srcAccess &= ownAccess & accessesOf(b.srcStages);
         }
         // The layout transition waits for the semaphore: the wait's stages chain into it. The
         // semaphore made the other queue's writes available; MEMORY_READ in the source access
@@ -369,13 +403,13 @@ private:
     bool needSources(const Cell& c, size_t q, bool writes, VkPipelineStageFlags2 at, Needs& needs) {
         bool any = false;
         if (c.lastWrite != kNever && c.writeQueue != q) {
-            needs.add(c.writeQueue, c.lastWrite, at);
+            needs.add(c.writeQueue, c.lastWrite, at, c.writeStages);
             any = true;
         }
         if (writes)
             for (size_t x = 0; x < kQueueKinds; ++x)
                 if (x != q && c.readSince[x] != kNever) {
-                    needs.add(x, c.readSince[x], at);
+                    needs.add(x, c.readSince[x], at, c.readStagesSince[x]);
                     any = true;
                 }
         return any;
@@ -406,20 +440,53 @@ private:
         });
     }
 
-    void write(Cell& c, int32_t pass, size_t q) {
+    void write(Cell& c, int32_t pass, size_t q, VkPipelineStageFlags2 stages, VkAccessFlags2 access) {
         c.lastWrite = pass;
         c.writeQueue = static_cast<uint8_t>(q);
+        c.writeStages = stages;
+        c.writeAccess = access;
         c.readSince = {kNever, kNever, kNever};
+        c.readStagesSince = {};
+        c.visibleStages = {};
+    }
+
+    /// A read run that spans queues has its barrier before its first reader, which may be on
+    /// another queue: a reader on the writer's own queue whose stages no barrier of that queue
+    /// made the write visible to gets a barrier of its own (without a layout change: the run
+    /// shares one layout).
+    void makeVisibleOnQueue(uint32_t i, size_t q, const PlannedUsage& u) {
+        const auto pass = static_cast<int32_t>(i);
+        forCells(u.resource, u.range, [&](uint32_t cell, const SubresourceRange& one) {
+            Cell& c = cells_[cell];
+            if (c.lastWrite == kNever || c.lastWrite == pass || c.writeQueue != q) return;
+            if ((u.stages & ~c.visibleStages[q]) == 0) return;
+            Barrier b;
+            b.resource = u.resource;
+            b.kind = isImage(u.resource) ? BarrierKind::Image : BarrierKind::Buffer;
+            b.range = isImage(u.resource) ? one : SubresourceRange{};
+            b.oldLayout = b.newLayout = isImage(u.resource) ? c.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+            b.srcStages = c.writeStages;
+            b.srcAccess = c.writeAccess & accessesOf(b.srcStages);
+            b.dstStages = u.stages;
+            b.dstAccess = u.access;
+            c.visibleStages[q] |= u.stages;
+            batches_[i].push_back(b);
+        });
     }
 
     void recordUse(uint32_t i, size_t q, const PlannedUsage& u) {
         const bool writes = writeBits(u.access) != 0;
         const int32_t pass = static_cast<int32_t>(i);
         lastUseOf_[u.resource][q] = pass;
+        useStagesOf_[u.resource][q] |= u.stages;
         forCells(u.resource, u.range, [&](uint32_t cell, const SubresourceRange&) {
             Cell& c = cells_[cell];
-            if (writes) write(c, pass, q);
-            else c.readSince[q] = pass;
+            if (writes) {
+                write(c, pass, q, u.stages, writeBits(u.access));
+            } else {
+                c.readSince[q] = pass;
+                c.readStagesSince[q] |= u.stages;
+            }
             if (c.lastUse[q] != pass) c.useStages[q] = c.useAccess[q] = 0;
             c.lastUse[q] = pass;
             c.useStages[q] |= u.stages;
@@ -439,23 +506,19 @@ private:
             const int32_t source = needs.source[x];
             const VkPipelineStageFlags2 stages = needs.stages[x] & queueStages(kindAt(q));
             auto& history = waited_[q][x];
-            const bool covered = std::any_of(history.begin(), history.end(), [&](const auto& w) {
+            const auto covering = std::find_if(history.begin(), history.end(), [&](const auto& w) {
                 return w.first >= source && ((w.second & stages) == stages ||
                                              (w.second & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT));
             });
-            if (covered) continue;
+            // The signal waited for holds the stages of every access it stands for.
+            const int32_t signaller = covering != history.end() ? covering->first : source;
+            if (signaller >= 0) signalStages_[static_cast<size_t>(signaller)] |= needs.sourceStages[x];
+            if (covering != history.end()) continue;
             history.emplace_back(source, stages);
             if (at >= 0) waits_[static_cast<size_t>(at)].push_back({x, source, stages});
             else endWaits_.push_back({x, source, stages});
             signals_[x].insert(source);
-            if (source >= 0) signalStages_[static_cast<size_t>(source)] |= passStages(static_cast<uint32_t>(source));
         }
-    }
-
-    VkPipelineStageFlags2 passStages(uint32_t pass) const {
-        VkPipelineStageFlags2 s = 0;
-        for (const PlannedUsage& u : plan_.passes()[pass].usages) s |= u.stages;
-        return s;
     }
 
     // ---- the frame's end ----------------------------------------------------------------
@@ -466,7 +529,9 @@ private:
         const size_t g = kGraphics;
         Needs needs;
         for (size_t i = 0; i < queues_.size(); ++i)
-            if (slot(queues_[i]) != g) needs.add(slot(queues_[i]), static_cast<int32_t>(i), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+            if (slot(queues_[i]) != g)
+                needs.add(slot(queues_[i]), static_cast<int32_t>(i), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
         std::vector<Barrier> finals;
         const auto& resources = plan_.resources();
         std::vector<uint8_t> coveredByFinal(cells_.size(), 0);
@@ -509,6 +574,17 @@ private:
                 b.oldLayout = b.newLayout = cells_[c].layout;
                 finals.push_back(acquireAtEnd(b, from));
             });
+        }
+        // The final barriers follow the join's wait: those of resources other queues used this
+        // frame continue it, with MEMORY_READ as every barrier after a wait (validation layer
+        // 1.3.239 needs it there too).
+        for (Barrier& b : finals) {
+            if (b.kind == BarrierKind::Memory) continue;
+            bool otherQueues = false;
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+                for (size_t x = 0; x < kQueueKinds; ++x) otherQueues |= x != g && cells_[c].frameStages[x] != 0;
+            });
+            if (otherQueues) b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
         }
         detail::PlanBuilder::finalBarriers(plan_) = std::move(finals);
         addWaits(kNever, g, needs);
@@ -621,7 +697,8 @@ private:
             if (signals_[q].count(static_cast<int32_t>(i))) {
                 for (const PendingRelease& r : releases_)
                     if (r.source == static_cast<int32_t>(i)) d.releases.push_back(r.barrier);
-                d.signals.push_back({queues_[i], valueOf(q, static_cast<int32_t>(i)), simplified(signalStages_[i])});
+                d.signals.push_back({queues_[i], valueOf(q, static_cast<int32_t>(i)),
+                                     simplified(signalStages_[i] & queueStages(queues_[i]))});
                 open[q] = -1;
             }
         }
@@ -676,6 +753,7 @@ private:
     std::vector<uint32_t> firstCell_{0};
     std::vector<Cell> cells_;
     std::vector<std::array<int32_t, kQueueKinds>> lastUseOf_;  // per resource and queue
+    std::vector<std::array<VkPipelineStageFlags2, kQueueKinds>> useStagesOf_;
     std::array<bool, kQueueKinds> startedQueue_{};
     std::vector<std::vector<Barrier>> batches_;
     std::vector<std::vector<Wait>> waits_;

@@ -108,6 +108,7 @@ GraphRun runGraph(Device& device, const std::string& json, const FeatureValues& 
         // The renderer runs plans placed with its device's memory requirements (it compiles
         // others again), and the oracle's weakened copies must be of the plan that runs.
         o.memory = device.memoryModel();
+        o.queueFamilies = device.queueFamilies();
         o = headless(graph, std::move(o));
         run.compiled.emplace(std::move(graph), std::move(o));
     } catch (const GraphError& e) {

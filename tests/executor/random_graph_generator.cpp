@@ -2,6 +2,8 @@
 // compile and run silently; a rejection is a generator or compiler bug, never noise.
 #include "random_graph_generator.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <array>
 #include <optional>
@@ -374,6 +376,43 @@ std::vector<size_t> RandomGraph::shuffledOrder(uint32_t salt) const {
 
 RandomGraph generateRandomGraph(uint32_t seed, const RandomGraphShape& shape) {
     return Generator(seed, shape).run(seed);
+}
+
+RandomGraph withRandomQueues(const RandomGraph& graph, uint32_t salt) {
+    RandomGraph out = graph;
+    const nlohmann::json resources = nlohmann::json::parse("{" + graph.resources + "}").at("resources");
+    auto depthImage = [&](const std::string& name) {
+        const auto& r = resources.at(name);
+        const std::string format = r.value("format", "");
+        return format.rfind("D", 0) == 0 || format.rfind("S8", 0) == 0;
+    };
+    std::mt19937 rng(graph.seed * 2246822519u + salt * 3266489917u + 1u);
+    for (std::string& text : out.passes) {
+        nlohmann::ordered_json pass = nlohmann::ordered_json::parse(text);
+        bool compute = true, transfer = true;
+        auto consider = [&](const std::string& resource, const std::string& stage) {
+            compute &= stage == "Compute" || stage == "Transfer" || stage == "Indirect";
+            transfer &= stage == "Transfer";
+            // Copies of depth or stencil need a graphics queue (vkCmdCopy*Image* on other queues).
+            if (stage == "Transfer" && depthImage(resource)) compute = transfer = false;
+        };
+        const auto& uses = pass.at("uses");
+        if (uses.is_object()) {
+            for (const auto& [resource, usage] : uses.items()) {
+                const std::string u = usage.get<std::string>();
+                consider(resource, u.substr(u.find('@') + 1));
+            }
+        } else {
+            for (const auto& u : uses) consider(u.at("resource").get<std::string>(), u.at("stage").get<std::string>());
+        }
+        std::vector<const char*> choices;
+        if (compute) choices.push_back("compute");
+        if (transfer) choices.push_back("transfer");
+        if (choices.empty() || rng() % 2 == 0) continue;
+        pass["queue"] = choices[rng() % choices.size()];
+        text = pass.dump();
+    }
+    return out;
 }
 
 }  // namespace skygraph::test

@@ -53,6 +53,12 @@ struct RandomGraph {
     [[nodiscard]] std::vector<size_t> shuffledOrder(uint32_t salt) const;
 };
 
+/// `graph` with each of its passes (not the present pass) put on a random queue that can run
+/// it (docs/queues.md): compute for passes of compute, indirect and copy usages, transfer for
+/// copies alone (of images without depth or stencil), else graphics; half of those that could
+/// leave the graphics queue do. Seeded by the graph's seed and `salt`.
+[[nodiscard]] RandomGraph withRandomQueues(const RandomGraph& graph, uint32_t salt = 0);
+
 /// The graph for `seed`: resources of every type (image2d color and depth/stencil, cube,
 /// image2d_array, buffer) with mips and layers, usages drawn from every stage, access and
 /// binding that the resource allows, on random subresource ranges; passes behind random

@@ -47,6 +47,12 @@ int main(int argc, char** argv) {
             ++graphs;
             again.passed() ? void(++passed) : report(seed, "reordered", again.detail, reordered);
         }
+        if (seed % 2 == 0) {
+            const RandomGraph q = withRandomQueues(g);
+            const GraphRun onQueues = runGraph(*device, q.json(), q.features, settingsForSeed(seed));
+            ++graphs;
+            onQueues.passed() ? void(++passed) : report(seed, "on queues", onQueues.detail, q.json());
+        }
         if (seed - first < minimality) {
             RandomGraphShape small;
             small.maxPasses = 3;

@@ -2,8 +2,9 @@
 // subresource range, feature condition and pass order. Each graph is valid by construction,
 // so it must compile, and its plan must run with synchronization validation silent. Seeds
 // are fixed so failures reproduce; a failing seed prints its graph and plan. Odd seeds are
-// compiled with optimal layouts (settingsForSeed). 200 graphs here; tools/random-graphs.sh
-// runs 10,000+ with the same check.
+// compiled with optimal layouts (settingsForSeed); even seeds also run with their passes on
+// random queues (withRandomQueues). 200 seeds here; tools/random-graphs.sh runs 10,000+ with
+// the same check.
 #include "executor_test_util.hpp"
 #include "random_graph_check.hpp"
 
@@ -25,6 +26,12 @@ TEST_P(RandomGraphs, CompileAndRunWithSyncValidationSilent) {
             const std::string reordered = g.json(g.shuffledOrder(1));
             const GraphRun again = runGraph(sharedDevice(), reordered, g.features, settingsForSeed(seed));
             EXPECT_TRUE(again.passed()) << "seed " << seed << " reordered:\n" << again.detail << "\n" << reordered;
+        }
+        // On several queues (one VkQueue here, in submission order, with the plan's semaphores).
+        if (seed % 2 == 0) {
+            const RandomGraph q = withRandomQueues(g);
+            const GraphRun onQueues = runGraph(sharedDevice(), q.json(), q.features, settingsForSeed(seed));
+            EXPECT_TRUE(onQueues.passed()) << "seed " << seed << " on queues:\n" << onQueues.detail << "\n" << q.json();
         }
     }
 }

@@ -57,7 +57,8 @@ namespace {
 
 void verifyOne(uint32_t seed, const std::string& variant, const std::string& json, const FeatureValues& features,
                bool headlessRun, MemoryStrategy placement, bool clobber, RandomResult& result, bool shareFrames = true,
-               std::optional<LayoutPolicy> layouts = std::nullopt) {
+               std::optional<LayoutPolicy> layouts = std::nullopt,
+               std::array<uint32_t, kQueueKinds> queueFamilies = CompileOptions{}.queueFamilies) {
     try {
         const GraphDesc graph = parseGraph(json, "random" + std::to_string(seed) + ".json", registry());
         CompileOptions co;
@@ -67,6 +68,7 @@ void verifyOne(uint32_t seed, const std::string& variant, const std::string& jso
         co.clobberTransients = clobber;
         co.shareTransientsAcrossFrames = shareFrames;
         co.layouts = layouts;
+        co.queueFamilies = queueFamilies;
         if (headlessRun) co = headless(graph, co);
         const Plan plan = compile(graph, co);
         const verifier::VerificationReport report = verifier::verifyPlan(plan, graph);
@@ -106,6 +108,17 @@ void verifyRandomGraph(uint32_t seed, RandomResult& result) {
     if (seed % 4 == 0)
         verifyOne(seed, "reordered", g.json(g.shuffledOrder(1)), g.features, false, MemoryStrategy::BestFitBySize,
                   false, result);
+    // On several queues: the random graph's passes and the chained one's, with three queue
+    // families (ownership transfers) for odd seeds and one family for even ones.
+    const std::array<uint32_t, kQueueKinds> families =
+        seed % 2 ? std::array<uint32_t, kQueueKinds>{0, 1, 2} : std::array<uint32_t, kQueueKinds>{0, 0, 0};
+    const char* familiesName = seed % 2 ? "three queue families" : "one queue family";
+    const RandomGraph q = withRandomQueues(g);
+    verifyOne(seed, std::string("queues, ") + familiesName, q.json(), q.features, seed % 3 == 0,
+              MemoryStrategy::BestFitBySize, false, result, true, std::nullopt, families);
+    const RandomGraph qc = withRandomQueues(c, 1);
+    verifyOne(seed, std::string("chains on queues, ") + familiesName, qc.json(), qc.features, true,
+              MemoryStrategy::BestFitBySize, seed % 3 == 0, result, seed % 2 == 1, std::nullopt, families);
 }
 
 }  // namespace skygraph::test
