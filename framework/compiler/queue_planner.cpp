@@ -83,10 +83,17 @@ VkAccessFlags2 accessesOf(VkPipelineStageFlags2 stages) {
 /// of the same run on other queues, which have barriers of their own there.
 void keepToQueue(Barrier& b, QueueKind q) {
     if (q == QueueKind::Graphics) return;
+    // Sources at stages this queue lacks ran elsewhere (another queue, or before the frame):
+    // the queue's waits order them, and the barrier continues those waits.
+    const bool elsewhere = (b.srcStages & ~queueStages(q)) != 0;
     b.srcStages &= queueStages(q);
     b.srcAccess &= accessesOf(b.srcStages);
     b.dstStages &= queueStages(q);
     b.dstAccess &= accessesOf(b.dstStages);
+    if (elsewhere && b.kind != BarrierKind::Memory) {
+        b.srcStages |= b.dstStages;
+        b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
+    }
 }
 
 /// One subresource through the frame.
