@@ -104,6 +104,11 @@ struct Cell {
     VkAccessFlags2 writeAccess = 0;
     /// Per queue: the stages that barriers of that queue made the last write visible to.
     std::array<VkPipelineStageFlags2, kQueueKinds> visibleStages{};
+    std::array<VkAccessFlags2, kQueueKinds> visibleAccess{};
+    /// Before the frame's first write: the source scope of the first barrier (on any queue),
+    /// which orders the cell's use after the previous frame's or the outside world's.
+    VkPipelineStageFlags2 initialSrcStages = 0;
+    VkAccessFlags2 initialSrcAccess = 0;
     std::array<int32_t, kQueueKinds> readSince{kNever, kNever, kNever};  // since lastWrite
     std::array<VkPipelineStageFlags2, kQueueKinds> readStagesSince{};
     std::array<int32_t, kQueueKinds> lastUse{kNever, kNever, kNever};
@@ -317,6 +322,7 @@ private:
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
                 if (transition) write(cells_[c], i, q, dst, 0);
                 cells_[c].visibleStages[q] |= dst;
+                cells_[c].visibleAccess[q] |= b.dstAccess & accessesOf(dst);
             });
         }
         for (const PlannedUsage& u : pass.usages) makeVisibleOnQueue(i, q, u);
@@ -329,6 +335,11 @@ private:
     /// is another family's queue, the acquire half of a transfer whose release goes there.
     void addBarrier(uint32_t i, size_t q, Barrier b, uint8_t from, Needs& needs) {
         const bool writes = b.oldLayout != b.newLayout || writeBits(b.dstAccess) != 0;
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            if (cells_[c].lastWrite != kNever) return;
+            cells_[c].initialSrcStages |= b.srcStages;
+            cells_[c].initialSrcAccess |= b.srcAccess;
+        });
         bool waits = false;
         forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
             waits |= needSources(cells_[c], q, writes, b.dstStages, needs);
@@ -455,6 +466,7 @@ private:
         c.readSince = {kNever, kNever, kNever};
         c.readStagesSince = {};
         c.visibleStages = {};
+        c.visibleAccess = {};
     }
 
     /// A read run that spans queues has its barrier before its first reader, which may be on
@@ -465,18 +477,23 @@ private:
         const auto pass = static_cast<int32_t>(i);
         forCells(u.resource, u.range, [&](uint32_t cell, const SubresourceRange& one) {
             Cell& c = cells_[cell];
-            if (c.lastWrite == kNever || c.lastWrite == pass || c.writeQueue != q) return;
-            if ((u.stages & ~c.visibleStages[q]) == 0) return;
+            // Sources: a write of this queue, or, before any write of the frame, what the run's
+            // first barrier (perhaps on another queue) waited for.
+            const bool ownWrite = c.lastWrite != kNever && c.lastWrite != pass && c.writeQueue == q;
+            const bool beforeFrameWrites = c.lastWrite == kNever && c.initialSrcStages != 0;
+            if (!ownWrite && !beforeFrameWrites) return;
+            if ((u.stages & ~c.visibleStages[q]) == 0 && (u.access & ~c.visibleAccess[q]) == 0) return;
             Barrier b;
             b.resource = u.resource;
             b.kind = isImage(u.resource) ? BarrierKind::Image : BarrierKind::Buffer;
             b.range = isImage(u.resource) ? one : SubresourceRange{};
             b.oldLayout = b.newLayout = isImage(u.resource) ? c.layout : VK_IMAGE_LAYOUT_UNDEFINED;
-            b.srcStages = c.writeStages;
-            b.srcAccess = c.writeAccess & accessesOf(b.srcStages);
+            b.srcStages = ownWrite ? c.writeStages : c.initialSrcStages;
+            b.srcAccess = (ownWrite ? c.writeAccess : c.initialSrcAccess) & accessesOf(b.srcStages);
             b.dstStages = u.stages;
             b.dstAccess = u.access;
             c.visibleStages[q] |= u.stages;
+            c.visibleAccess[q] |= u.access;
             batches_[i].push_back(b);
         });
     }
