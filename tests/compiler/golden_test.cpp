@@ -155,7 +155,9 @@ TEST_P(Golden, MasksAreNeverWiderThanTheAccesses) {
         // validation layer 1.3.239 needs (docs/queues.md): its source stages hold the wait's
         // (the final barriers follow a wait at ALL_COMMANDS, which every stage continues).
         const bool continuesWait = (b.srcAccess & VK_ACCESS_2_MEMORY_READ_BIT) != 0;
-        if (continuesWait && !final) EXPECT_EQ(b.srcStages & b.dstStages, b.dstStages);
+        if (continuesWait && !final) {
+            EXPECT_EQ(b.srcStages & b.dstStages, b.dstStages);
+        }
         const VkAccessFlags2 src = b.srcAccess & ~VK_ACCESS_2_MEMORY_READ_BIT;
         EXPECT_EQ(b.srcStages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0u);
         EXPECT_EQ(b.dstStages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0u);
