@@ -268,6 +268,15 @@ TEST(QueueRules, TheTransferQueueTakesCopiesOnly) {
     EXPECT_NE(d.message.find("needs the compute queue or the graphics queue"), std::string::npos) << d.message;
 }
 
+TEST(QueueRules, CopiesOfADepthImageOffTheGraphicsQueueAreRefused) {
+    const Diagnostic d = errorOf(graphText(
+        R"("depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": [16, 16], "external": true, "final": "TransferSrc"})",
+        R"({"name": "copy", "type": "Generic", "queue": "compute", "uses": {"depth": "ReadWrite@Transfer"}})"));
+    EXPECT_EQ(d.jsonPath, "passes[0].queue");
+    EXPECT_EQ(d.resource, "depth");
+    EXPECT_NE(d.message.find("need the graphics queue"), std::string::npos) << d.message;
+}
+
 TEST(QueueRules, AnUnknownQueueIsRefused) {
     const Diagnostic d = errorOf(graphText(R"("buf": {"type": "buffer", "size": 64})",
                                            R"({"name": "fill", "type": "Generic", "queue": "video", "never_cull": true,
