@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs COUNT random graphs (default 10000) from seed FIRST (default 1) on lavapipe with
 # validation and synchronization validation: each must compile and render with zero
-# messages (tests/executor/random_graph_check.hpp); every fourth is also run reordered.
+# messages (tests/executor/random_graph_check.hpp); every fourth is also run reordered, and
+# every even one also with its passes on random queues (docs/queues.md).
 # The first MINIMALITY seeds (default 50) also get the barrier-minimality oracle.
 #   tools/random-graphs.sh [COUNT] [FIRST] [MINIMALITY]
 # Shards over SKYGRAPH_CI_JOBS processes (default 2). Builds random_graphs in
