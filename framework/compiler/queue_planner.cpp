@@ -96,6 +96,15 @@ void keepToQueue(Barrier& b, QueueKind q) {
     }
 }
 
+/// On several queues, every layout transition's source access scope holds MEMORY_READ: nothing
+/// for Vulkan (reads need no availability), while validation layer 1.3.239, which merges the
+/// submits' histories at each semaphore wait, otherwise loses the execution chain that orders
+/// the transition after earlier writes (docs/queues.md).
+void readsIntoTransition(Barrier& b) {
+    if (b.kind == BarrierKind::Image && b.oldLayout != b.newLayout && b.srcStages != 0)
+        b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
+}
+
 /// One subresource through the frame.
 struct Cell {
     int32_t lastWrite = kNever;  // pass index (a usage's write or a layout transition)
@@ -328,7 +337,10 @@ private:
         for (const PlannedUsage& u : pass.usages) makeVisibleOnQueue(i, q, u);
         for (const PlannedUsage& u : pass.usages) recordUse(i, q, u);
         addWaits(i, q, needs);
-        for (Barrier& b : batch) keepToQueue(b, queues_[i]);
+        for (Barrier& b : batch) {
+            keepToQueue(b, queues_[i]);
+            readsIntoTransition(b);
+        }
     }
 
     /// Barrier `b` of pass i (on queue q): what it waits for on other queues, and, when `from`
@@ -609,6 +621,7 @@ private:
                 for (size_t x = 0; x < kQueueKinds; ++x) otherQueues |= x != g && cells_[c].frameStages[x] != 0;
             });
             if (otherQueues) b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
+            readsIntoTransition(b);
         }
         detail::PlanBuilder::finalBarriers(plan_) = std::move(finals);
         addWaits(kNever, g, needs);
