@@ -18,7 +18,9 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace skygraph::detail {
@@ -51,9 +53,52 @@ struct PlanBuilder {
     static std::vector<uint32_t>& submitPasses(Plan& p) noexcept { return p.submitPasses_; }
     static std::vector<SemaphoreOp>& semaphoreOps(Plan& p) noexcept { return p.semaphoreOps_; }
     static std::vector<Barrier>& releases(Plan& p) noexcept { return p.releases_; }
-    /// Every pass in one graphics submit, without semaphores: a plan on one queue.
+    /// A submit as vectors, before the plan's arrays hold it.
+    struct SubmitDraft {
+        QueueKind queue = QueueKind::Graphics;
+        std::vector<uint32_t> passes;
+        std::vector<SemaphoreOp> waits;
+        std::vector<Barrier> releases;
+        std::vector<SemaphoreOp> signals;
+        bool waitsForAcquire = false;
+    };
+    /// Replaces the plan's submits with `drafts`, laid out in its arrays (reserved first, so
+    /// that the spans stay put).
+    static void setSubmits(Plan& p, const std::vector<SubmitDraft>& drafts) {
+        p.submits_.clear();
+        p.submitPasses_.clear();
+        p.semaphoreOps_.clear();
+        p.releases_.clear();
+        size_t passes = 0, ops = 0, releases = 0;
+        for (const SubmitDraft& d : drafts) {
+            passes += d.passes.size();
+            ops += d.waits.size() + d.signals.size();
+            releases += d.releases.size();
+        }
+        p.submitPasses_.reserve(passes);
+        p.semaphoreOps_.reserve(ops);
+        p.releases_.reserve(releases);
+        auto place = [](auto& into, const auto& from) {
+            using T = typename std::remove_reference_t<decltype(into)>::value_type;
+            const size_t at = into.size();
+            into.insert(into.end(), from.begin(), from.end());
+            return from.empty() ? std::span<const T>{} : std::span<const T>(into.data() + at, from.size());
+        };
+        for (const SubmitDraft& d : drafts) {
+            Submit s;
+            s.queue = d.queue;
+            s.waitsForAcquire = d.waitsForAcquire;
+            s.passes = place(p.submitPasses_, d.passes);
+            s.waits = place(p.semaphoreOps_, d.waits);
+            s.releases = place(p.releases_, d.releases);
+            s.signals = place(p.semaphoreOps_, d.signals);
+            p.submits_.push_back(s);
+        }
+    }
+    /// Every pass in one graphics submit, without semaphores: a plan on one queue (whose
+    /// passes need no queue of their own: Plan::queueOf says graphics).
     static void singleSubmit(Plan& p) {
-        p.passQueues_.assign(p.passes_.size(), QueueKind::Graphics);
+        p.passQueues_.clear();
         p.submitPasses_.resize(p.passes_.size());
         for (size_t i = 0; i < p.passes_.size(); ++i) p.submitPasses_[i] = static_cast<uint32_t>(i);
         p.submits_.assign(1, Submit{});

@@ -7,12 +7,13 @@
 // so that copying the edited plan rebases them as it does for a compiled one.
 #pragma once
 
+#include "plan_builder.hpp"
+
 #include <skygraph/plan.hpp>
 
 #include <cstddef>
 #include <span>
 #include <stdexcept>
-#include <type_traits>
 #include <vector>
 
 namespace skygraph::detail {
@@ -67,14 +68,7 @@ struct PlanEditor {
     [[nodiscard]] static std::vector<Presentation>& presentations(Plan& plan) noexcept { return plan.presentations_; }
 
     /// A submit as vectors, to edit freely.
-    struct EditableSubmit {
-        QueueKind queue = QueueKind::Graphics;
-        std::vector<uint32_t> passes;
-        std::vector<SemaphoreOp> waits;
-        std::vector<Barrier> releases;
-        std::vector<SemaphoreOp> signals;
-        bool waitsForAcquire = false;
-    };
+    using EditableSubmit = PlanBuilder::SubmitDraft;
     /// The submits as vectors; setSubmits puts edited ones back.
     [[nodiscard]] static std::vector<EditableSubmit> submits(const Plan& plan) {
         std::vector<EditableSubmit> out;
@@ -86,37 +80,10 @@ struct PlanEditor {
     }
     /// Replaces the plan's submits (the queue of each pass follows its submit).
     static void setSubmits(Plan& plan, const std::vector<EditableSubmit>& submits) {
-        plan.submits_.clear();
-        plan.submitPasses_.clear();
-        plan.semaphoreOps_.clear();
-        plan.releases_.clear();
-        size_t passes = 0, ops = 0, releases = 0;
-        for (const EditableSubmit& s : submits) {
-            passes += s.passes.size();
-            ops += s.waits.size() + s.signals.size();
-            releases += s.releases.size();
-        }
-        plan.submitPasses_.reserve(passes);  // no reallocation below: the spans stay put
-        plan.semaphoreOps_.reserve(ops);
-        plan.releases_.reserve(releases);
-        auto place = [](auto& into, const auto& from) {
-            using T = typename std::remove_reference_t<decltype(into)>::value_type;
-            const size_t at = into.size();
-            into.insert(into.end(), from.begin(), from.end());
-            return from.empty() ? std::span<const T>{} : std::span<const T>(into.data() + at, from.size());
-        };
-        for (const EditableSubmit& s : submits) {
-            Submit out;
-            out.queue = s.queue;
-            out.waitsForAcquire = s.waitsForAcquire;
-            out.passes = place(plan.submitPasses_, s.passes);
-            out.waits = place(plan.semaphoreOps_, s.waits);
-            out.releases = place(plan.releases_, s.releases);
-            out.signals = place(plan.semaphoreOps_, s.signals);
-            plan.submits_.push_back(out);
+        PlanBuilder::setSubmits(plan, submits);
+        for (const EditableSubmit& s : submits)
             for (uint32_t p : s.passes)
                 if (p < plan.passQueues_.size()) plan.passQueues_[p] = s.queue;
-        }
     }
 };
 

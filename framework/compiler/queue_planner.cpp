@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <set>
 
 namespace skygraph {
@@ -160,6 +161,7 @@ public:
             detail::PlanBuilder::singleSubmit(plan_);
             return;
         }
+        checkPresentedOnGraphics();
         chooseSharing();
         startCells();
         const auto& passes = plan_.passes();
@@ -193,6 +195,11 @@ private:
             if (d.isImage() && d.format.isDepthStencil()) next = QueueKind::Graphics;
             queues_[i] = next;
         }
+    }
+
+    /// A presented image is the graphics queue's (its acquire and present are there).
+    void checkPresentedOnGraphics() const {
+        const auto& passes = plan_.passes();
         for (const Presentation& pr : plan_.presentations())
             for (size_t i = 0; i < passes.size(); ++i)
                 for (const PlannedUsage& u : passes[i].usages)
@@ -287,6 +294,19 @@ private:
         return c.owner;
     }
 
+    /// What every cell of `b`'s range hands over to queue q from (handsOver), when they all
+    /// agree; nullopt when they differ.
+    std::optional<uint8_t> commonHandOver(const Barrier& b, size_t q, bool kept) {
+        std::optional<uint8_t> from;
+        bool agree = true;
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            const uint8_t o = handsOver(b.resource, cells_[c], q, kept);
+            if (from && *from != o) agree = false;
+            from = o;
+        });
+        return agree ? from : std::nullopt;
+    }
+
     // ---- one pass --------------------------------------------------------------------
     void planPass(uint32_t i) {
         const PlannedPass& pass = plan_.passes()[i];
@@ -303,16 +323,8 @@ private:
             }
             const bool kept = isImage(b.resource) ? b.oldLayout != VK_IMAGE_LAYOUT_UNDEFINED : true;
             // One owner to take over from for the whole range, or none: the barrier stays one.
-            uint8_t from = kNoOwner;
-            bool uniform = true, first = true;
-            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
-                const uint8_t o = handsOver(b.resource, cells_[c], q, kept);
-                if (!first && o != from) uniform = false;
-                from = first ? o : from;
-                first = false;
-            });
-            if (uniform) {
-                addBarrier(i, q, b, from, needs);
+            if (const auto from = commonHandOver(b, q, kept)) {
+                addBarrier(i, q, b, *from, needs);
                 continue;
             }
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange& one) {
@@ -576,17 +588,9 @@ private:
                 finals.push_back(b);
                 continue;
             }
-            uint8_t from = kNoOwner;
-            bool uniform = true, first = true;
-            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
-                coveredByFinal[c] = 1;
-                const uint8_t o = handsOver(b.resource, cells_[c], g, true);
-                if (!first && o != from) uniform = false;
-                from = first ? o : from;
-                first = false;
-            });
-            if (uniform) {
-                finals.push_back(from == kNoOwner ? b : acquireAtEnd(b, from));
+            forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { coveredByFinal[c] = 1; });
+            if (const auto from = commonHandOver(b, g, true)) {
+                finals.push_back(*from == kNoOwner ? b : acquireAtEnd(b, *from));
                 continue;
             }
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange& one) {
@@ -689,21 +693,13 @@ private:
         }
         signals_[kGraphics].insert(kFrameStart);
 
-        // Each submit as indices first; spans once the arrays are complete.
-        struct Draft {
-            QueueKind queue;
-            std::vector<uint32_t> passes;
-            std::vector<SemaphoreOp> waits, signals;
-            std::vector<Barrier> releases;
-            bool acquire = false;
-        };
+        using Draft = detail::PlanBuilder::SubmitDraft;
         std::vector<Draft> drafts;
         Draft start{QueueKind::Graphics, {}, {}, {}, {}};
         start.signals.push_back({QueueKind::Graphics, valueOf(kGraphics, kFrameStart), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT});
         for (const PendingRelease& r : releases_)
             if (r.source == kFrameStart) start.releases.push_back(r.barrier);
         std::array<int32_t, kQueueKinds> open{-1, -1, -1};  // each queue's open draft
-        std::vector<size_t> order;                          // drafts by first pass
         auto toOps = [&](const std::vector<Wait>& ws) {
             std::vector<SemaphoreOp> ops;
             for (const Wait& w : ws) {
@@ -730,7 +726,7 @@ private:
             d.passes.push_back(i);
             if (!acquireSeen)
                 for (const PlannedUsage& u : passes[i].usages)
-                    if (presented[u.resource]) d.acquire = acquireSeen = true;
+                    if (presented[u.resource]) d.waitsForAcquire = acquireSeen = true;
             if (signals_[q].count(static_cast<int32_t>(i))) {
                 for (const PendingRelease& r : releases_)
                     if (r.source == static_cast<int32_t>(i)) d.releases.push_back(r.barrier);
@@ -741,42 +737,9 @@ private:
         }
         Draft end{QueueKind::Graphics, {}, toOps(endWaits_), {}, {}};
 
-        auto& submits = detail::PlanBuilder::submits(plan_);
-        auto& indices = detail::PlanBuilder::submitPasses(plan_);
-        auto& ops = detail::PlanBuilder::semaphoreOps(plan_);
-        auto& releases = detail::PlanBuilder::releases(plan_);
-        submits.clear();
-        indices.clear();
-        ops.clear();
-        releases.clear();
-        std::vector<const Draft*> all{&start};
-        for (const Draft& d : drafts) all.push_back(&d);
-        all.push_back(&end);
-        size_t nIdx = 0, nOps = 0, nRel = 0;
-        for (const Draft* d : all) {
-            nIdx += d->passes.size();
-            nOps += d->waits.size() + d->signals.size();
-            nRel += d->releases.size();
-        }
-        indices.reserve(nIdx);
-        ops.reserve(nOps);
-        releases.reserve(nRel);
-        for (const Draft* d : all) {
-            Submit s;
-            s.queue = d->queue;
-            s.waitsForAcquire = d->acquire;
-            auto place = [](auto& into, const auto& from) {
-                const size_t at = into.size();
-                into.insert(into.end(), from.begin(), from.end());
-                using T = typename std::remove_reference_t<decltype(into)>::value_type;
-                return from.empty() ? std::span<const T>{} : std::span<const T>(into.data() + at, from.size());
-            };
-            s.passes = place(indices, d->passes);
-            s.waits = place(ops, d->waits);
-            s.releases = place(releases, d->releases);
-            s.signals = place(ops, d->signals);
-            submits.push_back(s);
-        }
+        drafts.insert(drafts.begin(), std::move(start));
+        drafts.push_back(std::move(end));
+        detail::PlanBuilder::setSubmits(plan_, drafts);
         detail::PlanBuilder::passQueues(plan_) = queues_;
     }
 
