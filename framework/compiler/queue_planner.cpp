@@ -248,9 +248,14 @@ private:
                 for (size_t b = 0; b < kQueueKinds; ++b)
                     several |= (families[r] >> a & 1u) && (families[r] >> b & 1u) && !sameFamily(a, b);
             const ResourceDesc& d = graph_.resources[resources[r].decl];
-            const Sharing s = d.sharing != Sharing::Auto                ? d.sharing
-                              : !d.isImage() || readsShared[r]            ? Sharing::Concurrent
-                                                                          : Sharing::Exclusive;
+            // A resource that crosses renderers (external or exported) is created by one plan
+            // and used by another: exclusive, owned by graphics between frames, is what
+            // both keep without knowing each other's queues.
+            const bool crossesRenderers = d.external || d.isExported();
+            const Sharing s = d.sharing != Sharing::Auto                           ? d.sharing
+                              : crossesRenderers                                     ? Sharing::Exclusive
+                              : !d.isImage() || readsShared[r]                       ? Sharing::Concurrent
+                                                                                     : Sharing::Exclusive;
             concurrent[r] = several && s == Sharing::Concurrent;
             exclusive_[r] = several && s == Sharing::Exclusive;
         }

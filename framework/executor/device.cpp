@@ -180,6 +180,11 @@ detail::PhysicalDeviceFacts deviceFacts(VkPhysicalDevice pd, VkSurfaceKHR surfac
         detail::QueueFamilyFacts f;
         f.graphicsAndCompute = (fams[i].queueFlags & need) == need;
         f.timestamps = fams[i].timestampValidBits != 0;
+        f.compute = (fams[i].queueFlags & VK_QUEUE_COMPUTE_BIT) != 0;
+        const VkExtent3D g = fams[i].minImageTransferGranularity;
+        f.transfers = (fams[i].queueFlags & (VK_QUEUE_TRANSFER_BIT | VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) != 0 &&
+                      g.width == 1 && g.height == 1 && g.depth == 1;
+        f.queueCount = fams[i].queueCount;
         if (surface && f.graphicsAndCompute && facts.swapchain) {
             VkBool32 presents = VK_FALSE;
             f.presents = vkGetPhysicalDeviceSurfaceSupportKHR(pd, i, surface, &presents) == VK_SUCCESS && presents;
@@ -213,6 +218,12 @@ bool envFlag(const char* name) {
     return v && *v && std::strcmp(v, "0") != 0 && lower(v) != "off" && lower(v) != "false";
 }
 
+/// Whether the variable is set to 0, off or false.
+bool envFlagOff(const char* name) {
+    const char* v = std::getenv(name);
+    return v && *v && !envFlag(name);
+}
+
 }  // namespace
 
 void Device::Impl::finish() {
@@ -222,6 +233,7 @@ void Device::Impl::finish() {
         vkDestroyDevice(device, nullptr);
         device = VK_NULL_HANDLE;
         queue = VK_NULL_HANDLE;
+        queues = {};
     }
     if (surface) vkDestroySurfaceKHR(instance, surface, nullptr);
     surface = VK_NULL_HANDLE;
@@ -362,6 +374,9 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     if (!chosen) throw ExecutorError(detail::noDeviceMessage(options.device, impl->surface != VK_NULL_HANDLE, candidates));
     impl->physical = chosen;
     impl->queueFamily = chosenFamily;
+    const detail::PhysicalDeviceFacts chosenFacts = deviceFacts(chosen, impl->surface);
+    const auto queueChoices = detail::chooseQueues(chosenFacts.families, chosenFamily,
+                                                   options.separateQueues && !envFlagOff("SKYGRAPH_SEPARATE_QUEUES"));
     vkGetPhysicalDeviceProperties(chosen, &impl->properties);
     impl->name = impl->properties.deviceName;
     impl->timestampPeriod = impl->properties.limits.timestampPeriod;
@@ -385,6 +400,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     // Plans on several queues order their submits with a timeline semaphore per queue.
     if (!s12.timelineSemaphore) throw ExecutorError(impl->name + " lacks timelineSemaphore");
     f12.timelineSemaphore = VK_TRUE;
+    f12.hostQueryReset = s12.hostQueryReset;
+    impl->hostQueryReset = s12.hostQueryReset == VK_TRUE;
     VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
     f2.features.robustBufferAccess = supported.robustBufferAccess;
     f2.features.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
@@ -395,21 +412,35 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     // A pass may blend one colour attachment (ReadWrite) and overwrite another.
     f2.features.independentBlend = supported.independentBlend;
 
-    const float priority = 1.0f;
-    VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    qci.queueFamilyIndex = chosenFamily;
-    qci.queueCount = 1;
-    qci.pQueuePriorities = &priority;
+    // One create info per family used, with as many queues as its highest chosen index needs.
+    const std::array<float, kQueueKinds> priorities{1.0f, 1.0f, 1.0f};
+    std::vector<VkDeviceQueueCreateInfo> queueInfos;
+    for (const detail::QueueChoice& q : queueChoices) {
+        auto it = std::find_if(queueInfos.begin(), queueInfos.end(),
+                               [&](const VkDeviceQueueCreateInfo& c) { return c.queueFamilyIndex == q.family; });
+        if (it == queueInfos.end()) {
+            VkDeviceQueueCreateInfo& qci = queueInfos.emplace_back(VkDeviceQueueCreateInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO});
+            qci.queueFamilyIndex = q.family;
+            qci.pQueuePriorities = priorities.data();
+            it = queueInfos.end() - 1;
+        }
+        it->queueCount = std::max(it->queueCount, q.index + 1);
+    }
     std::vector<const char*> devExts{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (impl->surface) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f2;
-    dci.queueCreateInfoCount = 1;
-    dci.pQueueCreateInfos = &qci;
+    dci.queueCreateInfoCount = static_cast<uint32_t>(queueInfos.size());
+    dci.pQueueCreateInfos = queueInfos.data();
     dci.enabledExtensionCount = static_cast<uint32_t>(devExts.size());
     dci.ppEnabledExtensionNames = devExts.data();
     vk::check(vkCreateDevice(chosen, &dci, nullptr, &impl->device), "vkCreateDevice");
-    vkGetDeviceQueue(impl->device, chosenFamily, 0, &impl->queue);
+    for (size_t k = 0; k < kQueueKinds; ++k) {
+        vkGetDeviceQueue(impl->device, queueChoices[k].family, queueChoices[k].index, &impl->queues[k]);
+        impl->families[k] = queueChoices[k].family;
+        impl->timestamps[k] = chosenFacts.families[queueChoices[k].family].timestamps;
+    }
+    impl->queue = impl->queues[static_cast<size_t>(QueueKind::Graphics)];
     impl->memoryModel = std::make_shared<detail::DeviceMemoryModel>(impl->device, chosen, impl->name);
 
     impl->fn.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
@@ -454,9 +485,8 @@ VkDevice Device::device() const noexcept { return impl_->device; }
 VkQueue Device::queue() const noexcept { return impl_->queue; }
 VkSurfaceKHR Device::surface() const noexcept { return impl_->surface; }
 uint32_t Device::queueFamily() const noexcept { return impl_->queueFamily; }
-std::array<uint32_t, kQueueKinds> Device::queueFamilies() const noexcept {
-    return {impl_->queueFamily, impl_->queueFamily, impl_->queueFamily};
-}
+VkQueue Device::queue(QueueKind kind) const noexcept { return impl_->queues[static_cast<size_t>(kind)]; }
+std::array<uint32_t, kQueueKinds> Device::queueFamilies() const noexcept { return impl_->families; }
 const std::string& Device::name() const noexcept { return impl_->name; }
 bool Device::validationEnabled() const noexcept { return impl_->validation; }
 float Device::timestampPeriodNs() const noexcept { return impl_->timestampPeriod; }

@@ -4,6 +4,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace skygraph::detail {
 
@@ -24,6 +25,29 @@ std::string unsuitableReason(const PhysicalDeviceFacts& facts, bool presenting, 
     }
     if (renders) return "cannot present to the surface: no graphics+compute queue family of it presents there";
     return "has no graphics+compute queue with timestamps";
+}
+
+std::array<QueueChoice, kQueueKinds> chooseQueues(const std::vector<QueueFamilyFacts>& families,
+                                                  uint32_t graphicsFamily, bool separate) {
+    const QueueChoice graphics{graphicsFamily, 0};
+    std::array<QueueChoice, kQueueKinds> chosen{graphics, graphics, graphics};
+    if (!separate) return chosen;
+    const auto firstFamily = [&](auto&& suits) -> std::optional<uint32_t> {
+        for (uint32_t i = 0; i < families.size(); ++i)
+            if (i != graphicsFamily && suits(families[i])) return i;
+        return std::nullopt;
+    };
+    auto& compute = chosen[static_cast<size_t>(QueueKind::Compute)];
+    if (const auto f = firstFamily([](const QueueFamilyFacts& q) { return q.compute && !q.graphicsAndCompute; }))
+        compute = {*f, 0};
+    else if (families.at(graphicsFamily).queueCount > 1)
+        compute = {graphicsFamily, 1};
+    auto& transfer = chosen[static_cast<size_t>(QueueKind::Transfer)];
+    if (const auto f = firstFamily([](const QueueFamilyFacts& q) { return q.transfers && !q.compute; }))
+        transfer = {*f, 0};
+    else
+        transfer = compute;
+    return chosen;
 }
 
 namespace {

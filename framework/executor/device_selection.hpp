@@ -3,6 +3,9 @@
 // when none is chosen, come out. Pure, so that tests can reach every reason without a device.
 #pragma once
 
+#include <skygraph/graph.hpp>
+
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -14,6 +17,11 @@ struct QueueFamilyFacts {
     bool graphicsAndCompute = false;  ///< VK_QUEUE_GRAPHICS_BIT and VK_QUEUE_COMPUTE_BIT
     bool timestamps = false;          ///< timestampValidBits > 0
     bool presents = false;            ///< vkGetPhysicalDeviceSurfaceSupportKHR (with a surface)
+    bool compute = false;             ///< VK_QUEUE_COMPUTE_BIT
+    /// VK_QUEUE_TRANSFER_BIT and copies of any texel region (minImageTransferGranularity 1x1x1);
+    /// graphics and compute families transfer too.
+    bool transfers = false;
+    uint32_t queueCount = 1;
 };
 
 struct PhysicalDeviceFacts {
@@ -27,6 +35,21 @@ struct PhysicalDeviceFacts {
 /// Why a device with `facts` cannot run skygraph, or empty when it can; then `family` is the
 /// first graphics+compute family with timestamps (that also presents, when `presenting`).
 std::string unsuitableReason(const PhysicalDeviceFacts& facts, bool presenting, uint32_t& family);
+
+/// A queue of the device: its family and its index in the family.
+struct QueueChoice {
+    uint32_t family = 0;
+    uint32_t index = 0;
+    friend bool operator==(const QueueChoice&, const QueueChoice&) = default;
+};
+
+/// The queue each queue kind (indexed by QueueKind) submits to. Graphics is `graphicsFamily`'s
+/// first queue. With `separate`, compute prefers a family without graphics (dedicated async
+/// compute), then a second queue of the graphics family; transfer prefers a family with
+/// neither graphics nor compute (a DMA engine), then the compute queue. A kind that finds
+/// nothing shares the graphics queue, as every kind does without `separate`.
+std::array<QueueChoice, kQueueKinds> chooseQueues(const std::vector<QueueFamilyFacts>& families,
+                                                  uint32_t graphicsFamily, bool separate);
 
 /// One physical device as Device::create saw it.
 struct DeviceCandidate {

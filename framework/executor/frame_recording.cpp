@@ -127,14 +127,15 @@ void translateFinalBarriers(PlanState& s, uint32_t slots) {
 
 void recordSubmit(CommandSink& sink, PlanState& s, const FrameRecording& r, size_t submit) {
     const Submit& sub = s.plan.submits()[submit];
-    if (r.queries && submit == 0) sink.resetQueries(r.queries, r.queryCount);
+    if (r.queries && r.resetQueries && submit == 0) sink.resetQueries(r.queries, r.queryCount);
+    const bool timed = r.queries && r.timestamps[static_cast<size_t>(sub.queue)];
     for (const uint32_t i : sub.passes) {
         PassState& ps = s.passes[i];
         if (r.labels) sink.beginLabel(ps.label.c_str());
         if (!ps.slots[r.slot].before.empty()) sink.barriers(ps.slots[r.slot].before);
-        if (r.queries) sink.timestamp(VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, r.queries, 2 * i);
+        if (timed) sink.timestamp(VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, r.queries, 2 * i);
         recordStep(sink, s, i, r);
-        if (r.queries) sink.timestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, r.queries, 2 * i + 1);
+        if (timed) sink.timestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, r.queries, 2 * i + 1);
         if (r.labels) sink.endLabel();
     }
     if (!s.releases[r.slot][submit].empty()) sink.barriers(s.releases[r.slot][submit]);

@@ -10,12 +10,14 @@ using namespace detail;
 void Renderer::Impl::createFrames() {
     frames.resize(options.framesInFlight);
     for (FrameSlot& f : frames) {
-        VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-        pci.queueFamilyIndex = dev.queueFamily;
-        VkCommandPool pool;
-        vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &pool), "vkCreateCommandPool");
-        f.pool = vk::CommandPool(vkd, pool);
+        for (size_t k = 0; k < kQueueKinds; ++k) {
+            VkCommandPoolCreateInfo pci{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+            pci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+            pci.queueFamilyIndex = dev.families[k];
+            VkCommandPool pool;
+            vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &pool), "vkCreateCommandPool");
+            f.pools[k] = vk::CommandPool(vkd, pool);
+        }
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         VkFence fence;
         vk::check(vkCreateFence(vkd, &fci, nullptr, &fence), "vkCreateFence");
@@ -48,20 +50,43 @@ void Renderer::Impl::collectTimings(FrameSlot& f) {
     f.timingsPending = false;
     const auto n = static_cast<uint32_t>(f.passNames.size());
     if (n == 0) return;
-    std::vector<uint64_t> ts(size_t(n) * 2);
-    if (vkGetQueryPoolResults(vkd, f.queries.get(), 0, n * 2, ts.size() * 8, ts.data(), 8,
-                              VK_QUERY_RESULT_64_BIT) != VK_SUCCESS) {
-        return;
-    }
+    // Each query's value and availability: passes on a queue without timestamps wrote none.
+    std::vector<uint64_t> ts(size_t(n) * 4);
+    const VkResult got = vkGetQueryPoolResults(vkd, f.queries.get(), 0, n * 2, ts.size() * 8, ts.data(), 16,
+                                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+    if (got != VK_SUCCESS && got != VK_NOT_READY) return;
     timings.clear();
     for (uint32_t i = 0; i < n; ++i) {
-        const double ns = static_cast<double>(ts[2 * i + 1] - ts[2 * i]) * dev.timestampPeriod;
+        const uint64_t* begin = &ts[4 * i];
+        const uint64_t* end = &ts[4 * i + 2];
+        if (begin[1] == 0 || end[1] == 0) continue;
+        const double ns = static_cast<double>(end[0] - begin[0]) * dev.timestampPeriod;
         timings.push_back({f.passNames[i], ns / 1.0e6});
     }
 }
 
 VulkanCommands::Functions Renderer::Impl::commandFunctions() const {
     return {dev.fn.cmdBeginLabel, dev.fn.cmdEndLabel};
+}
+
+std::vector<VkCommandBuffer> Renderer::Impl::commandBuffers(detail::FrameSlot& f, std::span<const Submit> submits) {
+    std::array<size_t, kQueueKinds> used{};
+    std::vector<VkCommandBuffer> out;
+    for (const Submit& sub : submits) {
+        const auto k = static_cast<size_t>(sub.queue);
+        std::vector<VkCommandBuffer>& pool = f.cmds[k];
+        if (pool.size() == used[k]) {
+            VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+            ai.commandPool = f.pools[k].get();
+            ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+            ai.commandBufferCount = 1;
+            VkCommandBuffer cmd;
+            vk::check(vkAllocateCommandBuffers(vkd, &ai, &cmd), "vkAllocateCommandBuffers");
+            pool.push_back(cmd);
+        }
+        out.push_back(pool[used[k]++]);
+    }
+    return out;
 }
 
 void Renderer::Impl::ensureTimelines() {
@@ -109,6 +134,11 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
         ensureQueries(*frame, passCount * 2);
         r.queries = frame->queries.get();
         r.queryCount = frame->queryCount;
+        // Without host resets the first submit resets the queries, which orders them only
+        // before the writes of its own queue.
+        r.resetQueries = !dev.hostQueryReset;
+        for (size_t k = 0; k < kQueueKinds; ++k)
+            r.timestamps[k] = dev.timestamps[k] && (dev.hostQueryReset || dev.queues[k] == dev.queue);
         r.labels = dev.fn.cmdBeginLabel != nullptr;
     }
     VulkanCommands sink(cmd, commandFunctions());
@@ -127,24 +157,18 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
     vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");
     const Plan& plan = state->plan;
     const std::span<const Submit> submits = plan.submits();
-    if (f.cmds.size() < submits.size()) {
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = f.pool.get();
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = static_cast<uint32_t>(submits.size() - f.cmds.size());
-        std::vector<VkCommandBuffer> more(ai.commandBufferCount);
-        vk::check(vkAllocateCommandBuffers(vkd, &ai, more.data()), "vkAllocateCommandBuffers");
-        f.cmds.insert(f.cmds.end(), more.begin(), more.end());
-    }
+    const std::vector<VkCommandBuffer> cmds = commandBuffers(f, submits);
     if (submits.size() > 1) ensureTimelines();
     for (size_t k = 0; k < submits.size(); ++k) {
-        vk::check(vkResetCommandBuffer(f.cmds[k], 0), "vkResetCommandBuffer");
+        vk::check(vkResetCommandBuffer(cmds[k], 0), "vkResetCommandBuffer");
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vk::check(vkBeginCommandBuffer(f.cmds[k], &bi), "vkBeginCommandBuffer");
-        recordFrame(f.cmds[k], binding, &f, k);
-        vk::check(vkEndCommandBuffer(f.cmds[k]), "vkEndCommandBuffer");
+        vk::check(vkBeginCommandBuffer(cmds[k], &bi), "vkBeginCommandBuffer");
+        recordFrame(cmds[k], binding, &f, k);
+        vk::check(vkEndCommandBuffer(cmds[k]), "vkEndCommandBuffer");
     }
+    // The fence wait above finished every use of the queries.
+    if (dev.hostQueryReset && f.queries) vkResetQueryPool(vkd, f.queries.get(), 0, f.queryCount);
     // The plan's semaphore values count within the frame; the frames before have used the
     // values up to timelineValues.
     std::array<uint64_t, kQueueKinds> signalled{};
@@ -177,7 +201,7 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
     size_t binaryCount = 0;
     for (size_t k = 0; k < submits.size(); ++k) {
         const Submit& sub = submits[k];
-        cbis[k].commandBuffer = f.cmds[k];
+        cbis[k].commandBuffer = cmds[k];
         for (const SemaphoreOp& sg : sub.signals) {
             if (!binary) signals[k].push_back(semaphoreInfo(sg));
             auto& most = signalled[static_cast<size_t>(sg.semaphore)];
@@ -225,9 +249,20 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
         consume.pWaitSemaphoreInfos = &acquire;
         batches.push_back(consume);
     }
-    // Every queue kind is the device's one queue: the batches run there in submission order.
-    vk::check(vkQueueSubmit2(dev.queue, static_cast<uint32_t>(batches.size()), batches.data(), f.fence.get()),
-              "vkQueueSubmit2");
+    // Consecutive batches for one VkQueue go in one call, in the plan's order, which submits
+    // every signal before its wait. The frame ends on the graphics queue, after every other
+    // queue's work: the fence of that last call (with the acquire's consumer) covers them all.
+    for (size_t first = 0; first < submits.size();) {
+        const VkQueue queue = dev.queues[static_cast<size_t>(submits[first].queue)];
+        size_t end = first + 1;
+        while (end < submits.size() && dev.queues[static_cast<size_t>(submits[end].queue)] == queue) ++end;
+        const bool last = end == submits.size();
+        if (last) end = batches.size();
+        vk::check(vkQueueSubmit2(queue, static_cast<uint32_t>(end - first), &batches[first],
+                                 last ? f.fence.get() : VK_NULL_HANDLE),
+                  "vkQueueSubmit2");
+        first = end;
+    }
     for (size_t q = 0; q < kQueueKinds; ++q) timelineValues[q] += signalled[q];
     f.submitted = true;
     f.timingsPending = true;

@@ -66,6 +66,7 @@ struct OwnedBuffer {
 struct ImageStorage {
     SharedMemory memory;
     vk::Image image;
+    bool concurrent = false;  ///< Created VK_SHARING_MODE_CONCURRENT over the device's families.
 };
 
 struct ImageCopy {
@@ -208,6 +209,10 @@ struct FrameRecording {
     const FrameData* frameData = nullptr;
     VkQueryPool queries = VK_NULL_HANDLE;  ///< Two timestamps per pass; none when null.
     uint32_t queryCount = 0;
+    /// Per queue kind: whether its passes write timestamps (their queue family has valid bits).
+    std::array<bool, kQueueKinds> timestamps{true, true, true};
+    /// The first submit resets the queries; false when the host reset them (vkResetQueryPool).
+    bool resetQueries = true;
     bool labels = false;  ///< A debug label around each pass.
 };
 
@@ -221,7 +226,8 @@ void addUsageFlags(const PlannedUsage& u, bool isImage, VkImageUsageFlags& image
 
 /// Records submit `submit` of binding slot `r.slot` of `s` into `sink`: each of its passes'
 /// barrier batch and work (inserted clears and read-backs included), its releases, and in the
-/// last submit the final barriers. The first submit resets the timestamp queries.
+/// last submit the final barriers. The first submit resets the timestamp queries unless the
+/// host did.
 void recordSubmit(CommandSink& sink, PlanState& s, const FrameRecording& r, size_t submit);
 /// Every submit of binding slot `r.slot`, in submission order, into one sink (for a command
 /// log, and for a plan of one submit).
@@ -236,8 +242,10 @@ void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot);
 void translateFinalBarriers(PlanState& s, uint32_t slots);
 
 struct FrameSlot {
-    vk::CommandPool pool;
-    std::vector<VkCommandBuffer> cmds;  ///< One per submit of the plan, allocated as needed.
+    /// Per queue kind (indexed by QueueKind): a pool of its queue's family, and a command buffer
+    /// per submit of the plan on that queue, allocated as needed.
+    std::array<vk::CommandPool, kQueueKinds> pools;
+    std::array<std::vector<VkCommandBuffer>, kQueueKinds> cmds;
     /// Under validation: a binary semaphore per semaphore wait of the frame (renderer_frame.cpp).
     std::vector<vk::Semaphore> binaries;
     vk::Fence fence;
@@ -374,6 +382,8 @@ struct Renderer::Impl {
     std::array<vk::Semaphore, kQueueKinds> timelines;
     std::array<uint64_t, kQueueKinds> timelineValues{};
     void ensureTimelines();
+    /// A command buffer of `f` for each of `submits`, from the pool of its queue.
+    [[nodiscard]] std::vector<VkCommandBuffer> commandBuffers(detail::FrameSlot& f, std::span<const Submit> submits);
     [[nodiscard]] static size_t signallerOf(std::span<const Submit> submits, const SemaphoreOp& wait, size_t waiter);
     /// Frame slot f's binary semaphore `index`, made when first asked for.
     VkSemaphore binarySemaphore(detail::FrameSlot& f, size_t index);

@@ -186,15 +186,18 @@ void Renderer::Impl::describeResources(PlanState& s) {
 void Renderer::Impl::createResources(PlanState& s) {
     const uint32_t slots = options.framesInFlight;
     allocateHeaps(s);
+    const ConcurrentFamilies families = distinctFamilies(dev.families);
     for (ResourceState& r : s.resources) {
         const ResourceDesc& d = *r.desc;
+        const bool concurrent = s.plan.concurrent(static_cast<uint32_t>(&r - s.resources.data()));
         const uint32_t copies = r.perSlot ? slots : 1;
         r.images.clear();
         r.buffers.clear();
         if (!r.isImage) {
             if (d.sizeBytes == 0) throw ExecutorError("buffer '" + d.name + "' has no size");
             r.size = d.sizeBytes;
-            const VkBufferCreateInfo ci = bufferCreateInfo(d, r.bufferUsage);
+            VkBufferCreateInfo ci = bufferCreateInfo(d, r.bufferUsage);
+            if (concurrent) shareConcurrently(ci, families);
             for (uint32_t c = 0; c < copies; ++c) {
                 OwnedBuffer b;
                 b.size = ci.size;
@@ -220,7 +223,8 @@ void Renderer::Impl::createResources(PlanState& s) {
             }
             continue;
         }
-        const VkImageCreateInfo ci = imageCreateInfo(d, r.width, r.height, r.mips, r.layers, r.imageUsage);
+        VkImageCreateInfo ci = imageCreateInfo(d, r.width, r.height, r.mips, r.layers, r.imageUsage);
+        if (concurrent) shareConcurrently(ci, families);
         refuseUnsupportedImage(dev.physical, d, ci);
         if (const auto it = imports.find(d.name); it != imports.end()) {
             r.images.push_back(adoptImport(s, size_t(&r - s.resources.data()), it->second));
@@ -232,6 +236,7 @@ void Renderer::Impl::createResources(PlanState& s) {
             VkImage image;
             vk::check(vkCreateImage(vkd, &ci, nullptr, &image), "vkCreateImage");
             storage->image = vk::Image(vkd, image);
+            storage->concurrent = ci.sharingMode == VK_SHARING_MODE_CONCURRENT;
             img.image = image;
             storage->memory = bindImage(s, r, c, image);
             img.storage = std::move(storage);
@@ -298,6 +303,12 @@ ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const Sh
         throw ExecutorError(what + "the producer leaves it in layout " + std::to_string(from.layout) +
                             ", this plan expects it to arrive in " +
                             std::to_string(s.plan.resources()[index].initialLayout) + " (its `initial` state)");
+    const bool concurrentHere = s.plan.concurrent(static_cast<uint32_t>(index)) && distinctFamilies(dev.families).count > 1;
+    if (from.storage->concurrent != concurrentHere)
+        throw ExecutorError(what + "the producer created it " +
+                            (from.storage->concurrent ? "concurrent" : "exclusive") + ", this plan shares it " +
+                            (concurrentHere ? "concurrently" : "exclusively") +
+                            " between queue families; give it the same `sharing` in both graphs");
     ImageCopy copy;
     copy.storage = from.storage;
     copy.image = from.storage->image.get();

@@ -26,6 +26,14 @@ VkImageCreateInfo imageCreateInfo(const ResourceDesc& d, uint32_t width, uint32_
     return ci;
 }
 
+ConcurrentFamilies distinctFamilies(const std::array<uint32_t, kQueueKinds>& families) noexcept {
+    ConcurrentFamilies out;
+    for (const uint32_t f : families)
+        if (std::find(out.indices.begin(), out.indices.begin() + out.count, f) == out.indices.begin() + out.count)
+            out.indices[out.count++] = f;
+    return out;
+}
+
 VkDeviceSize bufferBytes(const ResourceDesc& d) noexcept { return std::max<VkDeviceSize>(d.sizeBytes, 4); }
 
 VkBufferCreateInfo bufferCreateInfo(const ResourceDesc& d, VkBufferUsageFlags usage) noexcept {

@@ -7,6 +7,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 
@@ -17,6 +18,22 @@ namespace skygraph::detail {
                                                 uint32_t mips, uint32_t layers, VkImageUsageFlags usage) noexcept;
 /// A plan buffer of `bufferBytes(d)`.
 [[nodiscard]] VkBufferCreateInfo bufferCreateInfo(const ResourceDesc& d, VkBufferUsageFlags usage) noexcept;
+/// The different queue families among `families` (Device::queueFamilies()), the list a
+/// concurrently shared resource is created with.
+struct ConcurrentFamilies {
+    std::array<uint32_t, kQueueKinds> indices{};
+    uint32_t count = 0;
+};
+[[nodiscard]] ConcurrentFamilies distinctFamilies(const std::array<uint32_t, kQueueKinds>& families) noexcept;
+/// Makes `ci` (an image or buffer create info) VK_SHARING_MODE_CONCURRENT over `families`
+/// when there are two or more; one family needs no sharing. `families` must outlive `ci`.
+template <typename CreateInfo>
+void shareConcurrently(CreateInfo& ci, const ConcurrentFamilies& families) noexcept {
+    if (families.count < 2) return;
+    ci.sharingMode = VK_SHARING_MODE_CONCURRENT;
+    ci.queueFamilyIndexCount = families.count;
+    ci.pQueueFamilyIndices = families.indices.data();
+}
 /// At least 4 bytes: a buffer cannot be empty, and vkCmdFillBuffer writes whole words.
 [[nodiscard]] VkDeviceSize bufferBytes(const ResourceDesc& d) noexcept;
 /// Every mip of every layer with its texels tightly packed: what is checked against the memory

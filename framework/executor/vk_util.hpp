@@ -6,6 +6,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -54,6 +55,14 @@ struct Device::Impl {
     VkQueue queue = VK_NULL_HANDLE;
     VkSurfaceKHR surface = VK_NULL_HANDLE;  ///< DeviceOptions::presentation's; destroyed before the instance.
     uint32_t queueFamily = 0;
+    /// The queue, its family, and whether it writes timestamps, per queue kind (indexed by
+    /// QueueKind); kinds without a queue of their own hold the graphics queue.
+    std::array<VkQueue, kQueueKinds> queues{};
+    std::array<uint32_t, kQueueKinds> families{};
+    std::array<bool, kQueueKinds> timestamps{};
+    /// vkResetQueryPool from the host (hostQueryReset): timestamp queries written on several
+    /// queues are reset before any of them runs, not by the first submit.
+    bool hostQueryReset = false;
     std::string name;
     bool validation = false;
     bool logMessages = true;

@@ -1,4 +1,4 @@
-// The Vulkan device a Renderer runs on: instance, physical and logical device, one queue,
+// The Vulkan device a Renderer runs on: instance, physical and logical device, its queues,
 // and the validation messages counted while it lives.
 #pragma once
 
@@ -54,6 +54,11 @@ struct DeviceOptions {
     /// qualifies (VK_KHR_swapchain is then enabled). Empty: headless, no surface, no
     /// VK_KHR_swapchain.
     std::optional<PresentationOptions> presentation;
+    /// Give the compute and transfer queue kinds queues of their own where the device has
+    /// them: a compute family without graphics (else a second graphics queue), a transfer
+    /// family without compute (else the compute queue). False, or the environment variable
+    /// SKYGRAPH_SEPARATE_QUEUES=0: every kind submits to the graphics queue.
+    bool separateQueues = true;
 };
 
 /// One validation / debug-utils message that was counted. A plain value; copies own their text.
@@ -63,8 +68,9 @@ struct ValidationMessage {
     std::string message;
 };
 
-/// Instance, physical device, logical device and one graphics+compute queue (which also
-/// presents, when DeviceOptions::presentation is set), and the surface then. Owns every
+/// Instance, physical device, logical device, a graphics+compute queue (which also presents,
+/// when DeviceOptions::presentation is set) and the compute and transfer queues, and the
+/// surface then. Owns every
 /// handle it creates and destroys them with itself; not copyable or movable (renderers keep a
 /// reference). Must outlive every Renderer made from it and every SharedImage of theirs.
 /// Validation messages may arrive on any thread: the message accessors are thread-safe,
@@ -87,13 +93,17 @@ public:
     /// The surface made by DeviceOptions::presentation, owned by this Device and valid while it
     /// lives; VK_NULL_HANDLE when headless.
     [[nodiscard]] VkSurfaceKHR surface() const noexcept;
-    /// The one queue (graphics and compute, and present when there is a surface) every
-    /// renderer on this device submits to.
+    /// The graphics queue (graphics and compute, and present when there is a surface): every
+    /// single-queue plan, setup work and presentation are submitted to it.
     [[nodiscard]] VkQueue queue() const noexcept;
     [[nodiscard]] uint32_t queueFamily() const noexcept;
+    /// The queue a plan's submits of `kind` go to: one of its own, or the graphics queue where
+    /// the device has none to spare or DeviceOptions::separateQueues is off. Kinds that share
+    /// one queue run there in submission order, with the plan's semaphores.
+    [[nodiscard]] VkQueue queue(QueueKind kind) const noexcept;
     /// The queue family of each queue kind (indexed by QueueKind), for
-    /// CompileOptions::queueFamilies. Every kind is the one queue above: a plan's submits for
-    /// the compute and transfer queues run on it in submission order, with their semaphores.
+    /// CompileOptions::queueFamilies: kinds of different families move exclusive resources
+    /// with the plan's ownership transfers.
     [[nodiscard]] std::array<uint32_t, kQueueKinds> queueFamilies() const noexcept;
     /// The physical device's name; the reference is valid while this Device lives.
     [[nodiscard]] const std::string& name() const noexcept;

@@ -181,7 +181,8 @@ public:
     /// compiled().graph(): the graph the current plan was compiled from.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
-    /// before the first frame of the current plan state.
+    /// before the first frame of the current plan state. Passes on a queue whose family has no
+    /// timestamps are left out.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
     /// Per-pass GPU times of the latest frame seen finished, without waiting (up to frames
     /// in flight behind: what a live overlay shows). The reference is valid until the next
