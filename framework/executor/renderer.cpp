@@ -166,6 +166,12 @@ void Renderer::renderFrame(const PresentTarget& target) { impl_->renderFrame(tar
 void Renderer::setPresentImages(PresentImages images) { impl_->bindPresentImages(std::move(images), nullptr); }
 uint32_t Renderer::waitForFrameSlot() { return impl_->waitForFrameSlot(); }
 void Renderer::waitIdle() { impl_->waitIdle(); }
+void Renderer::renderFrameInBackground() { impl_->renderFrame(true); }
+bool Renderer::finishBackgroundFrame() {
+    for (FrameSlot& f : impl_->frames)
+        if (!impl_->releaseHeld(f, false)) return false;
+    return true;
+}
 
 ImageData Renderer::readback() {
     const PlanState& s = *impl_->state;
@@ -294,6 +300,10 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
     const ResourceState& r = d.state->resources[size_t(index)];
     if (!r.isImage || !r.desc->external || !r.desc->isExported() || r.perSlot || r.presented || r.images.size() != 1)
         throw ExecutorError("shareImage: '" + resource + "' is not an exported external image (set `final`)");
+    for (const FrameSlot& f : d.frames)
+        if (f.held)
+            throw ExecutorError("shareImage: '" + resource + "': the background frame that writes it is not "
+                                "finished (call finishBackgroundFrame() until it returns true)");
     auto impl = std::make_shared<SharedImage::Impl>();
     impl->storage = r.images[0].storage;
     impl->device = d.vkd;
@@ -317,14 +327,10 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     if (!desc->external || !desc->isImage())
         throw ExecutorError("importImage: '" + resource + "' is not an external image");
     if (!image.impl_) throw ExecutorError("importImage: '" + resource + "': the SharedImage is empty");
-    auto previous = d.imports;
+    // A resource the plan culled is imported when a rebuild brings it back.
+    if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0)
+        d.swapImport(*d.state, static_cast<size_t>(index), image);
     d.imports[resource] = std::move(image);
-    try {
-        setGraph(d.state->compiled);  // re-creates the resources around the import
-    } catch (...) {
-        d.imports = std::move(previous);
-        throw;
-    }
 }
 
 void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {

@@ -39,10 +39,12 @@ void Renderer::Impl::ensureQueries(FrameSlot& f, uint32_t count) {
 
 void Renderer::Impl::waitSlot(FrameSlot& f) {
     if (!f.submitted) return;
+    releaseHeld(f, true);
     const VkFence fence = f.fence.get();
     vk::check(vkWaitForFences(vkd, 1, &fence, VK_TRUE, kWaitForever), "vkWaitForFences");
     f.submitted = false;
     collectTimings(f);
+    releaseRetired();
 }
 
 void Renderer::Impl::collectTimings(FrameSlot& f) {
@@ -150,7 +152,30 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     }
 }
 
-void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target) {
+bool Renderer::Impl::releaseHeld(FrameSlot& f, bool wait) {
+    if (!f.held) return true;
+    std::vector<VkFence> fences;
+    for (const vk::Fence& r : f.runFences) fences.push_back(r.get());
+    if (!fences.empty()) {
+        const VkResult done = vkWaitForFences(vkd, static_cast<uint32_t>(fences.size()), fences.data(), VK_TRUE,
+                                              wait ? kWaitForever : 0);
+        if (done == VK_TIMEOUT) return false;
+        vk::check(done, "vkWaitForFences");
+    }
+    FrameSlot::HeldSubmit& h = *f.held;
+    VkSubmitInfo2 batch{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    batch.commandBufferInfoCount = 1;
+    batch.pCommandBufferInfos = &h.cmd;
+    batch.waitSemaphoreInfoCount = static_cast<uint32_t>(h.waits.size());
+    batch.pWaitSemaphoreInfos = h.waits.data();
+    batch.signalSemaphoreInfoCount = static_cast<uint32_t>(h.signals.size());
+    batch.pSignalSemaphoreInfos = h.signals.data();
+    vk::check(vkQueueSubmit2(h.queue, 1, &batch, f.fence.get()), "vkQueueSubmit2");
+    f.held.reset();
+    return true;
+}
+
+void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target, bool background) {
     FrameSlot& f = frames[slot];
     waitSlot(f);
     const VkFence fence = f.fence.get();
@@ -252,17 +277,40 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
     // Consecutive batches for one VkQueue go in one call, in the plan's order, which submits
     // every signal before its wait. The frame ends on the graphics queue, after every other
     // queue's work: the fence of that last call (with the acquire's consumer) covers them all.
-    for (size_t first = 0; first < submits.size();) {
+    // A background frame submits all but its last submit now, each call with a fence of its
+    // own, and holds the last back: it waits for the other queues, and on the graphics queue
+    // that wait would hold up every frame submitted after it.
+    const bool hold = background && submits.size() > 1;
+    const size_t now = hold ? submits.size() - 1 : submits.size();
+    size_t calls = 0;
+    for (size_t first = 0; first < now;) {
         const VkQueue queue = dev.queues[static_cast<size_t>(submits[first].queue)];
         size_t end = first + 1;
-        while (end < submits.size() && dev.queues[static_cast<size_t>(submits[end].queue)] == queue) ++end;
+        while (end < now && dev.queues[static_cast<size_t>(submits[end].queue)] == queue) ++end;
         const bool last = end == submits.size();
         if (last) end = batches.size();
-        vk::check(vkQueueSubmit2(queue, static_cast<uint32_t>(end - first), &batches[first],
-                                 last ? f.fence.get() : VK_NULL_HANDLE),
-                  "vkQueueSubmit2");
+        VkFence fence = last ? f.fence.get() : VK_NULL_HANDLE;
+        if (hold) {
+            if (f.runFences.size() == calls) {
+                VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+                VkFence made;
+                vk::check(vkCreateFence(vkd, &fci, nullptr, &made), "vkCreateFence");
+                f.runFences.emplace_back(vkd, made);
+            }
+            fence = f.runFences[calls].get();
+            vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");
+        }
+        vk::check(vkQueueSubmit2(queue, static_cast<uint32_t>(end - first), &batches[first], fence), "vkQueueSubmit2");
+        ++calls;
         first = end;
     }
+    if (hold) {
+        f.runFences.resize(calls);
+        const size_t k = submits.size() - 1;
+        f.held = FrameSlot::HeldSubmit{cbis[k], std::move(waits[k]), std::move(signals[k]),
+                                       dev.queues[static_cast<size_t>(submits[k].queue)]};
+    }
+    f.frame = frameIndex;
     for (size_t q = 0; q < kQueueKinds; ++q) timelineValues[q] += signalled[q];
     f.submitted = true;
     f.timingsPending = true;
@@ -271,12 +319,12 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
     ++frameIndex;
 }
 
-void Renderer::Impl::renderFrame() {
+void Renderer::Impl::renderFrame(bool background) {
     if (present)
         throw ExecutorError("this renderer presents: render with renderFrame(Swapchain&) or "
                             "renderFrame(const PresentTarget&)");
     const auto slot = static_cast<uint32_t>(frameIndex % frames.size());
-    submitFrame(slot, slot, nullptr);  // headless: the binding slot is the frame slot
+    submitFrame(slot, slot, nullptr, background);  // headless: the binding slot is the frame slot
 }
 
 void Renderer::Impl::waitIdle() {

@@ -241,6 +241,15 @@ void translatePassBarriers(const PlanState& s, PassState& ps, uint32_t slot);
 /// The plan's final barriers, per binding slot (`slots` of them).
 void translateFinalBarriers(PlanState& s, uint32_t slots);
 
+/// What a swapped import leaves behind for the frames already submitted: the old image (and
+/// its views), and the framebuffers and recording code of the passes that used it.
+struct RetiredImport {
+    ImageCopy image;
+    std::vector<vk::Framebuffer> framebuffers;
+    std::vector<std::unique_ptr<PassImplementation>> implementations;
+    uint64_t untilFrame = 0;  ///< Frames submitted before this one may still use them.
+};
+
 struct FrameSlot {
     /// Per queue kind (indexed by QueueKind): a pool of its queue's family, and a command buffer
     /// per submit of the plan on that queue, allocated as needed.
@@ -249,6 +258,16 @@ struct FrameSlot {
     /// Under validation: a binary semaphore per semaphore wait of the frame (renderer_frame.cpp).
     std::vector<vk::Semaphore> binaries;
     vk::Fence fence;
+    uint64_t frame = 0;  ///< frameIndex of the frame last submitted in this slot.
+    /// A background frame (Renderer::renderFrameInBackground): a fence per vkQueueSubmit2
+    /// before its last submit, and that submit, held back until those fences signal.
+    std::vector<vk::Fence> runFences;
+    struct HeldSubmit {
+        VkCommandBufferSubmitInfo cmd{};
+        std::vector<VkSemaphoreSubmitInfo> waits, signals;
+        VkQueue queue = VK_NULL_HANDLE;
+    };
+    std::optional<HeldSubmit> held;
     vk::QueryPool queries;
     uint32_t queryCount = 0;
     bool submitted = false;
@@ -365,6 +384,17 @@ struct Renderer::Impl {
     void bindResources(detail::PlanState& s, detail::PassState& ps, uint32_t slot);
     /// createPipelines of every pass's recording code, with each frame slot's resources.
     void createPipelines(detail::PlanState& s);
+    void createPipelines(detail::PlanState& s, detail::PassState& ps);
+
+    // --- renderer_imports.cpp: swapping imported images between frames ------------------------
+    /// importImage on a running plan: `image` replaces the image of plan resource `index` for
+    /// the frames recorded from now on. The passes that use it get new recording code, views
+    /// and framebuffers; what the frames already submitted use is retired, not destroyed.
+    /// Checks everything (adoptImport) before changing anything.
+    void swapImport(detail::PlanState& s, size_t index, const SharedImage& image);
+    /// Destroys what swapImport retired once no submitted frame can use it any more.
+    void releaseRetired();
+    std::vector<detail::RetiredImport> retired;
 
     // --- renderer_frame.cpp: frames -----------------------------------------------------------
     void createFrames();
@@ -390,8 +420,12 @@ struct Renderer::Impl {
     /// Records the current plan into frame slot `slot` (its fence waited for) with binding
     /// slot `binding` and submits it; with `target`, waiting for its acquire semaphore and
     /// signalling its render-complete semaphore.
-    void submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target);
-    void renderFrame();
+    /// `background`: hold the last submit back (FrameSlot::held) until the others finish.
+    void submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target, bool background = false);
+    /// Submits `f`'s held last submit once every earlier submission of its frame has finished
+    /// (`wait`: waits for them). True when nothing is held any more.
+    bool releaseHeld(detail::FrameSlot& f, bool wait);
+    void renderFrame(bool background = false);
     void waitIdle();
 
     // --- renderer_present.cpp: presenting -----------------------------------------------------

@@ -96,8 +96,12 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
 }
 
 void Renderer::Impl::createPipelines(PlanState& s) {
-    for (PassState& ps : s.passes) {
-        if (!ps.implementation) continue;
+    for (PassState& ps : s.passes) createPipelines(s, ps);
+}
+
+void Renderer::Impl::createPipelines(PlanState& s, PassState& ps) {
+    {
+        if (!ps.implementation) return;
         std::vector<std::span<const BoundResource>> frameSlots;
         for (const PassSlot& sl : ps.slots) frameSlots.emplace_back(sl.bound);
         PipelineContext pc;

@@ -63,7 +63,7 @@ struct PassTiming {
 /// CompiledGraph compiled with other CompileOptions::memory (e.g. none, the estimate) is
 /// compiled again with the device's, and compiled() reports that one, the plan that runs.
 /// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt by
-/// setGraph(), resize(), reloadShaders() and importImage() when they succeed: references
+/// setGraph(), resize() and reloadShaders() when they succeed: references
 /// returned by compiled(), graph() and plan() are invalid afterwards, and images shared before
 /// are no longer written by this renderer. A failed call keeps the old state. Names passed in
 /// are read during the call only. Use from one thread at a time; renderers on one Device share
@@ -119,6 +119,20 @@ public:
     /// vkQueueWaitIdle). Throws ExecutorError without setPresentImages, for an index out of
     /// range or a null semaphore, submitting nothing.
     void renderFrame(const PresentTarget& target);
+    /// Renders one frame beside other renderers' frames, for work such as an environment
+    /// re-bake on the compute queue (docs/queues.md, "Background frames"): as renderFrame(),
+    /// but the frame's last submit, which on a plan of several queues waits on the graphics
+    /// queue for the others and would hold up every frame submitted there after it, is held
+    /// back. finishBackgroundFrame() submits it. Headless renderers only; throws ExecutorError
+    /// otherwise. A plan of one submit is submitted whole.
+    void renderFrameInBackground();
+    /// Never blocks. Submits the background frame's held submit once the rest of that frame
+    /// has finished on the GPU, and returns true then (and when nothing is held): work
+    /// submitted to Device::queue() afterwards, such as another renderer's next frame, is
+    /// ordered after the whole frame, and shareImage() may hand its images on. False while
+    /// the other queues still work. waitIdle() and every call that waits for a frame submit it
+    /// too, waiting.
+    [[nodiscard]] bool finishBackgroundFrame();
     /// Waits until every submitted frame has finished.
     void waitIdle();
     /// Waits for the most recent frame and returns a copy, owned by the caller, of what its one
@@ -162,13 +176,15 @@ public:
     /// the current plan state's image is written: share again after a rebuild. Throws
     /// ExecutorError for a resource that is not an exported external image of the current plan.
     [[nodiscard]] SharedImage shareImage(const std::string& resource) const;
-    /// Makes the external image `resource` use `image` instead of creating its own, now and
-    /// whenever the plan is re-installed, and keeps a share of it. The graph must only read
-    /// it, its format, extent, mips and layers must match, and it must arrive in the layout
-    /// the producer leaves it in (`initial` here = `final` there). The caller orders the two
-    /// renderers' work: the producer's frames must have finished (its waitIdle()) before
-    /// this renderer's next frame. Rebuilds the plan state. Throws ExecutorError for an empty
-    /// handle or on any mismatch, keeping the old plan.
+    /// Makes the external image `resource` use `image` instead of the one it uses now, from
+    /// the next frame on and whenever the plan is re-installed, and keeps a share of it. The
+    /// graph must only read it, its format, extent, mips, layers and sharing must match, and it
+    /// must arrive in the layout the producer leaves it in (`initial` here = `final` there).
+    /// The caller orders the two renderers' work: the producer's frames must have finished
+    /// (its waitIdle()), or its background frame been finished (finishBackgroundFrame()),
+    /// before this renderer's next frame. Neither waits nor rebuilds: frames already submitted
+    /// keep the image they were recorded with, which stays alive until they finish. Throws
+    /// ExecutorError for an empty handle or on any mismatch, keeping the old image.
     void importImage(const std::string& resource, SharedImage image);
     /// Values handed to pass implementations while recording (camera, exposure, ...). Owned
     /// by the renderer; the reference is valid, and the values kept, for its whole life,

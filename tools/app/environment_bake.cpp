@@ -71,9 +71,13 @@ ImageData toImageData(const HdrImage& image) {
 
 }  // namespace
 
-EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
-                                const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
-                                const BakeStepCallback& onStep) {
+namespace {
+
+/// Compiles `graph` for `products`, makes its renderer and uploads `equirect`: a bake ready
+/// to render its one frame.
+EnvironmentBake prepareBake(Device& device, GraphDesc graph, const HdrImage& equirect,
+                            const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
+                            const BakeStepCallback& onStep) {
     const auto step = [&](const char* name) {
         if (onStep) onStep(name);
     };
@@ -84,6 +88,7 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
     CompileOptions co;
     co.outputs = products;
     co.memory = device.memoryModel();  // what the renderer compiles with: it would compile again
+    co.queueFamilies = device.queueFamilies();
     CompiledGraph compiled(std::move(graph), co);
     step("compile");
     RendererOptions ro;
@@ -94,12 +99,35 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
     bake.renderer->setExternalImage(std::string(kEquirect), toImageData(equirect));
     step("upload");
     bake.setupMs = msSince(start);
+    return bake;
+}
+
+}  // namespace
+
+EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
+                                const BakeStepCallback& onStep) {
+    EnvironmentBake bake = prepareBake(device, std::move(graph), equirect, products, passes, onStep);
     const auto gpuStart = Clock::now();
     bake.renderer->renderFrame();
     bake.renderer->waitIdle();
     bake.gpuMs = msSince(gpuStart);
-    step("passes");
+    if (onStep) onStep("passes");
     return bake;
+}
+
+EnvironmentBake startBackgroundBake(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                    const std::set<std::string, std::less<>>& products, const PassLibrary* passes) {
+    for (PassDesc& pass : graph.passes) pass.queue = QueueKind::Compute;
+    EnvironmentBake bake = prepareBake(device, std::move(graph), equirect, products, passes, {});
+    bake.renderer->renderFrameInBackground();
+    return bake;
+}
+
+bool swapInWhenFinished(EnvironmentBake& bake, const std::set<std::string, std::less<>>& products, Renderer& frame) {
+    if (!bake.renderer->finishBackgroundFrame()) return false;
+    for (const auto& name : products) frame.importImage(name, bake.renderer->shareImage(name));
+    return true;
 }
 
 BakeResult bakeAndReadBack(const HdrImage& equirect, const BakeOptions& options) {

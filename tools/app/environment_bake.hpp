@@ -47,6 +47,25 @@ struct EnvironmentBake {
                                               const std::set<std::string, std::less<>>& products,
                                               const PassLibrary* passes, const BakeStepCallback& onStep = {});
 
+/// The same bake beside a frame renderer's frames (docs/queues.md, "Background frames"):
+/// every pass of `graph` on the compute queue, submitted as a background frame of the bake's
+/// renderer. Returns once submitted (the compile, the pipelines and the upload of `equirect`
+/// happen first, on this thread); the frames keep the products they import until
+/// swapInWhenFinished() hands them the new ones. Throws like bakeEnvironment().
+[[nodiscard]] EnvironmentBake startBackgroundBake(Device& device, GraphDesc graph, const HdrImage& equirect,
+                                                  const std::set<std::string, std::less<>>& products,
+                                                  const PassLibrary* passes);
+
+/// Between two frames of `frame`: once `bake` (startBackgroundBake()) has finished on the
+/// GPU, imports its `products` into `frame` (Renderer::importImage, which neither waits nor
+/// rebuilds) and returns true; false while it runs. Never blocks. Afterwards the bake's
+/// renderer owns the products that `frame` samples: keep it while `frame` renders, and the
+/// old bake's until `frame` has rendered once more (its images stay alive for the frames
+/// that still use them even when it goes earlier). Throws ExecutorError, as importImage
+/// does, naming a product that does not fit `frame`'s import of it.
+[[nodiscard]] bool swapInWhenFinished(EnvironmentBake& bake, const std::set<std::string, std::less<>>& products,
+                                      Renderer& frame);
+
 /// What `skygraph cubemap` bakes. Sizes are face sizes in texels. A plain value.
 struct BakeOptions {
     std::string graphText;         ///< graphs/ibl.json's text.
