@@ -155,9 +155,12 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
 }
 
 Renderer::~Renderer() {
-    if (impl_) {
-        vkDeviceWaitIdle(impl_->vkd);
-    }
+    if (!impl_) return;
+    // Its own frames are fenced; work it recorded into the application's command buffers
+    // is not, so then only an idle device is safe. Waiting for its frames alone leaves other
+    // renderers' frames running (a background bake that goes while frames render).
+    if (impl_->recordedElsewhere) vkDeviceWaitIdle(impl_->vkd);
+    else impl_->waitIdle();
 }
 
 void Renderer::renderFrame() { impl_->renderFrame(); }
@@ -382,6 +385,7 @@ void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_
     if (slot >= d.frames.size() * d.state->presentImages) throw ExecutorError("frame slot out of range");
     if (d.state->plan.submits().size() > 1)
         throw ExecutorError("the plan runs on several queues: each of its submits needs a command buffer of its own");
+    d.recordedElsewhere = true;
     d.recordFrame(cmd, slot, nullptr);
 }
 
@@ -397,6 +401,7 @@ HandFrame RendererAccess::handFrame(Renderer& renderer, uint32_t slot) {
     Renderer::Impl& d = *renderer.impl_;
     PlanState& s = *d.state;
     if (slot >= d.frames.size() * s.presentImages) throw ExecutorError("frame slot out of range");
+    d.recordedElsewhere = true;
     HandFrame f;
     for (PassState& ps : s.passes) {
         if (ps.kind != StepKind::Pass)

@@ -395,6 +395,8 @@ struct Renderer::Impl {
     /// Destroys what swapImport retired once no submitted frame can use it any more.
     void releaseRetired();
     std::vector<detail::RetiredImport> retired;
+    /// RendererAccess recorded its work into command buffers it does not fence.
+    bool recordedElsewhere = false;
 
     // --- renderer_frame.cpp: frames -----------------------------------------------------------
     void createFrames();

@@ -76,7 +76,9 @@ public:
     /// framesInFlight outside 1..8, a pass type without recording code, a format the device
     /// cannot use as the plan requires, a pass's createPipelines failing).
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
-    /// Waits for the device to be idle, then destroys what the renderer owns.
+    /// Waits for its frames to finish (for the whole device once it has recorded into command
+    /// buffers of the application's), then destroys what the renderer owns; images shared
+    /// with other renderers live on while they use them.
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;

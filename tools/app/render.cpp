@@ -56,12 +56,10 @@ std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const G
     return products;
 }
 
-/// The environment graph, sized like the frame (`sizes`, when given), baked once on `equirect`
+/// The environment graph (sized like the frame by the caller), baked once on `equirect`
 /// for `products`; the returned renderer owns them (share them with Renderer::shareImage()).
 std::unique_ptr<Renderer> bakeForFrame(Device& device, GraphDesc graph, const HdrImage& equirect,
-                                       const std::set<std::string, std::less<>>& products,
-                                       const std::optional<EnvironmentSizes>& sizes, const PassLibrary* passes) {
-    if (sizes) resizeEnvironmentGraph(graph, *sizes);
+                                       const std::set<std::string, std::less<>>& products, const PassLibrary* passes) {
     EnvironmentBake bake = bakeEnvironment(device, std::move(graph), equirect, products, passes);
     for (const auto& c : bake.renderer->plan().culled()) spdlog::info("environment: culled {}: {}", c.name, c.reason);
     for (const auto& t : bake.renderer->lastTimings())
@@ -171,9 +169,10 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     if (!inputs.environment) return env;
     const std::optional<GraphDesc> envGraph = loadEnvironmentGraph(options, inputs.registry);
     env.products = environmentProducts(plan, inputs.graph, envGraph ? &*envGraph : nullptr);
-    if (!env.products.empty())
-        env.renderer = bakeForFrame(device, *envGraph, *inputs.environment, env.products, inputs.environmentSizes,
-                                    inputs.passes);
+    if (env.products.empty()) return env;
+    env.graph = *envGraph;
+    if (inputs.environmentSizes) resizeEnvironmentGraph(*env.graph, *inputs.environmentSizes);
+    env.renderer = bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes);
     return env;
 }
 

@@ -103,6 +103,9 @@ struct FrameInputs {
 struct FrameEnvironment {
     std::unique_ptr<Renderer> renderer;  ///< Owns the products; null when nothing was baked.
     std::set<std::string, std::less<>> products;
+    /// The environment graph as baked, sized like the frame's imports: what a re-bake with
+    /// another equirect of the same width runs (startBackgroundBake). Empty with no bake.
+    std::optional<GraphDesc> graph;
 };
 
 /// Bakes the environment products `plan` (compiled from inputs.graph) samples, when the scene

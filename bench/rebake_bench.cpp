@@ -1,0 +1,226 @@
+// The longest frame while the environment changes: graphs/raster.json with a scene that has an
+// environment file (scenes/studio.json), rendered headless with two frames in flight, gets a
+// new environment (the same HDRI at half or double brightness, so every size stays) at frame
+// --change-at, re-baked one of two ways:
+//
+//   sync   bakeEnvironment on the graphics queue, waiting for it, then importImage
+//   async  startBackgroundBake on the compute queue beside the frames, swapped in by
+//          swapInWhenFinished between frames (docs/queues.md, "Background frames")
+//
+// Each frame's time is the wall-clock time between two renderFrame() returns (with two in
+// flight, renderFrame waits for the frame before last: the pace the GPU sets). Per run it
+// reports the median frame before the change, the worst frame from the change on, and the
+// bake's setup (compile, pipelines, upload) on the calling thread; runs alternate the two
+// modes, --reps of each, and the summary gives the medians over runs and their ratio.
+//
+//   rebake_bench [--scene FILE] [--size WxH] [--frames N] [--change-at K] [--reps R] [--csv FILE]
+//
+// Environment: SKYGRAPH_BENCH_DEVICE picks the device, SKYGRAPH_VALIDATION=1 runs under
+// validation; the exit status is 1 when a validation message was counted.
+#include "app/environment_bake.hpp"
+#include "app/render.hpp"
+
+#include <skygraph/compiled_graph.hpp>
+#include <skygraph/device.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/renderer.hpp>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace skygraph::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms(Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); }
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+struct RunResult {
+    std::string mode;
+    double steadyMs = 0.0;  ///< median frame before the change
+    double worstMs = 0.0;   ///< longest frame from the change on
+    double setupMs = 0.0;   ///< the bake's compile, pipelines and upload, on this thread
+    uint32_t framesToSwap = 0;
+};
+
+HdrImage scaled(const HdrImage& image, float factor) {
+    HdrImage out = image;
+    for (size_t i = 0; i < out.rgba.size(); ++i)
+        if (i % 4 != 3) out.rgba[i] *= factor;
+    return out;
+}
+
+class Bench {
+public:
+    Bench(Device& device, const app::RenderOptions& options) : device_(device) {
+        app::FrameInputs inputs = app::loadFrameInputs(options);
+        if (!inputs.environment) throw std::runtime_error("the scene has no environment file: nothing to re-bake");
+        equirect_ = *inputs.environment;
+        passes_ = inputs.passes;
+        CompileOptions co = inputs.compile;
+        co.presentReplacement = ExternalState::TransferSrc;
+        CompiledGraph compiled(inputs.graph, co);
+        environment_ = app::bakeFrameEnvironment(device, compiled.plan(), inputs, options);
+        if (!environment_.graph) throw std::runtime_error("the frame samples no environment product");
+        RendererOptions ro;
+        ro.framesInFlight = 2;
+        ro.passes = passes_;
+        frame_ = std::make_unique<Renderer>(device, std::move(compiled), ro);
+        app::attachFrameInputs(*frame_, inputs, environment_);
+    }
+
+    RunResult run(bool async, uint32_t frames, uint32_t changeAt, float brightness) {
+        RunResult r;
+        r.mode = async ? "async" : "sync";
+        const HdrImage next = scaled(equirect_, brightness);
+        std::vector<double> before, after;
+        std::unique_ptr<app::EnvironmentBake> pending;
+        bool swapped = false;
+        auto last = Clock::now();
+        for (uint32_t i = 0; i < frames; ++i) {
+            if (i == changeAt) {
+                const auto start = Clock::now();
+                if (async) {
+                    pending = std::make_unique<app::EnvironmentBake>(app::startBackgroundBake(
+                        device_, *environment_.graph, next, environment_.products, passes_));
+                    r.setupMs = ms(Clock::now() - start);
+                } else {
+                    app::EnvironmentBake bake =
+                        app::bakeEnvironment(device_, *environment_.graph, next, environment_.products, passes_);
+                    r.setupMs = bake.setupMs;
+                    for (const auto& name : environment_.products)
+                        frame_->importImage(name, bake.renderer->shareImage(name));
+                    retire(std::move(bake.renderer));
+                    swapped = true;
+                }
+            }
+            if (pending && app::swapInWhenFinished(*pending, environment_.products, *frame_)) {
+                retire(std::move(pending->renderer));
+                pending.reset();
+                swapped = true;
+                r.framesToSwap = i - changeAt;
+            }
+            frame_->renderFrame();
+            const auto now = Clock::now();
+            (i < changeAt ? before : after).push_back(ms(now - last));
+            last = now;
+        }
+        if (pending) {  // not finished within the run: finish it now, outside the figures
+            frame_->waitIdle();
+            pending->renderer->waitIdle();
+            (void)app::swapInWhenFinished(*pending, environment_.products, *frame_);
+            retire(std::move(pending->renderer));
+            r.framesToSwap = frames;
+        }
+        (void)swapped;
+        frame_->waitIdle();
+        r.steadyMs = median(before);
+        r.worstMs = after.empty() ? 0.0 : *std::max_element(after.begin(), after.end());
+        return r;
+    }
+
+private:
+    /// The bake renderer that now owns what the frames sample becomes the environment's; the
+    /// one before goes (it waits for its own frames only).
+    void retire(std::unique_ptr<Renderer> newest) { environment_.renderer = std::move(newest); }
+
+    Device& device_;
+    HdrImage equirect_;
+    const PassLibrary* passes_ = nullptr;
+    app::FrameEnvironment environment_;
+    std::unique_ptr<Renderer> frame_;
+};
+
+}  // namespace
+}  // namespace skygraph::bench
+
+int main(int argc, char** argv) {
+    using namespace skygraph;
+    CLI::App cli{"The longest frame during an environment change: synchronous against background re-bake"};
+    std::string scene = std::string(SKYGRAPH_SOURCE_DIR) + "/scenes/studio.json";
+    std::string size = "1920x1080", csv;
+    uint32_t frames = 60, changeAt = 20, reps = 5;
+    cli.add_option("--scene", scene, "A scene with an environment file");
+    cli.add_option("--size", size, "Output WIDTHxHEIGHT");
+    cli.add_option("--frames", frames, "Frames per run")->check(CLI::PositiveNumber);
+    cli.add_option("--change-at", changeAt, "The frame at which the environment changes");
+    cli.add_option("--reps", reps, "Runs of each mode, alternating")->check(CLI::PositiveNumber);
+    cli.add_option("--csv", csv, "Write every run to this CSV file");
+    CLI11_PARSE(cli, argc, argv);
+    uint32_t width = 0, height = 0;
+    if (std::sscanf(size.c_str(), "%ux%u", &width, &height) != 2 || width == 0 || height == 0) {
+        std::fprintf(stderr, "rebake_bench: --size wants WxH\n");
+        return 2;
+    }
+    if (changeAt >= frames) {
+        std::fprintf(stderr, "rebake_bench: --change-at must be below --frames\n");
+        return 2;
+    }
+    try {
+        static const PassLibrary library = PassLibrary::withBuiltins();
+        DeviceOptions dopts;
+        if (const char* d = std::getenv("SKYGRAPH_BENCH_DEVICE")) dopts.device = d;
+        auto device = Device::create(dopts);
+        const auto families = device->queueFamilies();
+        std::printf("device: %s; queue families graphics %u, compute %u, transfer %u\n", device->name().c_str(),
+                    families[0], families[1], families[2]);
+        app::RenderOptions options;
+        options.graph = std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json";
+        options.scene = scene;
+        options.width = width;
+        options.height = height;
+        options.framesInFlight = 2;
+        options.passes = &library;
+        bench::Bench bench(*device, options);
+        std::vector<bench::RunResult> runs;
+        for (uint32_t rep = 0; rep < reps; ++rep)
+            for (int k = 0; k < 2; ++k) {
+                const bool async = (rep + k) % 2 == 1;  // alternate which mode goes first
+                runs.push_back(bench.run(async, frames, changeAt, rep % 2 ? 2.0f : 0.5f));
+                const auto& r = runs.back();
+                std::printf("%-5s steady %7.3f ms  worst %8.3f ms  setup %8.3f ms  swap after %u frames\n",
+                            r.mode.c_str(), r.steadyMs, r.worstMs, r.setupMs, r.framesToSwap);
+            }
+        auto med = [&](const char* mode, double bench::RunResult::*field) {
+            std::vector<double> v;
+            for (const auto& r : runs)
+                if (r.mode == mode) v.push_back(r.*field);
+            return bench::median(v);
+        };
+        const double syncWorst = med("sync", &bench::RunResult::worstMs);
+        const double asyncWorst = med("async", &bench::RunResult::worstMs);
+        std::printf("median over %u runs each at %s: steady sync %.3f ms, async %.3f ms; worst frame sync %.3f ms, "
+                    "async %.3f ms (async/sync %.3f); setup sync %.3f ms, async %.3f ms\n",
+                    reps, size.c_str(), med("sync", &bench::RunResult::steadyMs),
+                    med("async", &bench::RunResult::steadyMs), syncWorst, asyncWorst,
+                    syncWorst > 0 ? asyncWorst / syncWorst : 0.0, med("sync", &bench::RunResult::setupMs),
+                    med("async", &bench::RunResult::setupMs));
+        if (!csv.empty()) {
+            std::ofstream out(csv);
+            out << "mode,steady_ms,worst_ms,setup_ms,frames_to_swap\n";
+            for (const auto& r : runs)
+                out << r.mode << ',' << r.steadyMs << ',' << r.worstMs << ',' << r.setupMs << ',' << r.framesToSwap
+                    << '\n';
+        }
+        const uint32_t messages = device->messageCount();
+        std::printf("rebake_bench: validation: %u message(s)\n", messages);
+        return messages == 0 ? 0 : 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rebake_bench: %s\n", e.what());
+        return 1;
+    }
+}
