@@ -163,7 +163,8 @@ int run(const Args& args) {
                 rows.push_back(r);
                 sum += p.medianMs;
             }
-            Row frame{"frame", spec, sizeText, "(whole frame)", "recordInto", 0, f.frameMedianMs, 0, 0, 0};
+            Row frame{"frame", spec, sizeText, "(whole frame)", f.hostTimed ? "host, queues" : "recordInto", 0,
+                      f.frameMedianMs, 0, 0, 0};
             printRow(frame);
             rows.push_back(frame);
             std::printf("  sum of pass medians: %.4f ms\n", sum);

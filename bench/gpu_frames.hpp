@@ -53,7 +53,9 @@ struct FrameResult {
     std::vector<PassResult> passes;
     /// The whole recorded plan (RendererAccess::recordInto) between two ALL_COMMANDS timestamps:
     /// passes and barriers (a Readback step only when a PNG is asked for), no per-pass timestamps.
+    /// A plan on several queues: host time from renderFrame() to the end of waitIdle().
     double frameMedianMs = 0;
+    bool hostTimed = false;  ///< frameMedianMs is the host time of a plan on several queues.
     uint32_t frames = 0;
     std::vector<std::string> culled;  ///< "name: reason"
     std::vector<std::string> proceduralExternals;  ///< Those of FrameCase's this graph has.

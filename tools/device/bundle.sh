@@ -10,7 +10,7 @@
 # working-tree versions of PATHs laid over it) and .devbundle/SOURCE_COMMIT, so the GPU
 # machine builds a known snapshot rather than a working tree that other work is editing.
 #
-# Output: .devbundle/deps.tar.xz (a usr/ tree, extracted on the GPU machine by
+# Output: .devbundle/layer.tar.xz (the validation layer), .devbundle/deps.tar.xz (a usr/ tree, extracted on the GPU machine by
 # tools/device/run-gpu-bench.sh; never into /, where it could break that system) and
 # .devbundle/MANIFEST (package versions). .devbundle/ is listed in .git/info/exclude and
 # travels with `carry: [".devbundle"]`.
@@ -110,6 +110,17 @@ fi
 
 mkdir -p "$out/data"
 for f in "${data_files[@]}"; do cp "$f" "$out/data/"; done
+
+# Debian's validation layer (vulkan-validationlayers), for runs under validation there:
+# .devbundle/layer.tar.xz holds its library and manifest; run-gpu-bench.sh points
+# VK_LAYER_PATH at them.
+layer_files=(/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so
+             /usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json)
+if [ ! -f "$out/layer.tar.xz" ] || [ "${layer_files[0]}" -nt "$out/layer.tar.xz" ]; then
+  mkdir -p "$stage/layer"
+  cp "${layer_files[@]}" "$stage/layer/"
+  tar -C "$stage/layer" -cJf "$out/layer.tar.xz" .
+fi
 
 # --source [PATH...]: HEAD (or the commit in $BASE, e.g. the last one that builds), with the
 # working-tree versions of PATHs (your own uncommitted files) laid over it through a

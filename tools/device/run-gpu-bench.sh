@@ -16,7 +16,9 @@
 # SKIP_EXECUTOR_BENCH=1 to skip executor_bench, EXECUTOR_REPS (5) its repetitions (run in
 # random interleaving when more than 5), SKIP_FRAME_BENCH=1 to run executor_bench alone,
 # MEMORY_BENCH=1 to run memory_gpu_bench (MEMORY_FRAMES, MEMORY_ROUNDS, MEMORY_SEEDS,
-# MEMORY_COMPARE_SIZE), LAYOUTS_BENCH=1 to time the layouts knob on graphs/deferred.json, SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
+# MEMORY_COMPARE_SIZE), LAYOUTS_BENCH=1 to time the layouts knob on graphs/deferred.json,
+# QUEUES_BENCH=1 to run graphs/async.json and rebake_bench under validation, then timed with
+# separate queues against one (REBAKE_FRAMES, REBAKE_REPS), SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
 # (5) repetitions, interleaved when more than 5), TARGETS the targets built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
@@ -86,6 +88,12 @@ else
   echo "no nvidia_icd.json found; the loader's default search applies"
 fi
 
+if [ -f .devbundle/layer.tar.xz ]; then
+  rm -rf /tmp/skygraph-layer && mkdir -p /tmp/skygraph-layer && tar -xJf .devbundle/layer.tar.xz -C /tmp/skygraph-layer
+  export VK_LAYER_PATH=/tmp/skygraph-layer
+  echo "validation layer: $(grep -o '"api_version": "[^"]*"' /tmp/skygraph-layer/*.json)"
+fi
+
 targets=${TARGETS:-"gpu_frame_bench executor_bench skygraph imgui_bench"}
 step "configure and build (-j$jobs): $targets"
 build=/tmp/skygraph-build
@@ -103,6 +111,7 @@ bin_bench=$build/bench/gpu_frame_bench
 bin_exec=$build/framework/executor/executor_bench
 bin_cli=$build/tools/skygraph
 bin_imgui=$build/bench/imgui_bench
+bin_rebake=$build/bench/rebake_bench
 # A target that failed to build is reported and skipped; the others still run.
 ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
 
@@ -167,5 +176,24 @@ if [ "${LAYOUTS_BENCH:-0}" = 1 ]; then
   step "memory_gpu_bench time --layouts on $device"
   ran "$bin_mem" && (cd "$src" && "$bin_mem" --device "$device" time --layouts --size 1920x1080 --size 3840x2160 \
     --frames "${MEMORY_FRAMES:-40}" --rounds "${MEMORY_ROUNDS:-9}" graphs/deferred.json) | tee "$out/layouts_bench.txt"
+fi
+if [ "${QUEUES_BENCH:-0}" = 1 ]; then
+  # Plans on several queues (docs/queues.md): graphs/async.json and the background re-bake
+  # under validation with the device's own queue families, then timed with separate queues
+  # (SKYGRAPH_SEPARATE_QUEUES=1) against every kind on the graphics queue (=0).
+  step "queues under validation on $device"
+  ran "$bin_cli" && (cd "$src" && "$bin_cli" render graphs/async.json --device "$device" --validate \
+    --width 640 --height 360 --frames 8 -o /tmp/async.png)
+  ran "$bin_rebake" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device SKYGRAPH_VALIDATION=1 "$bin_rebake" \
+    --scene /tmp/studio.json --size 640x360 --frames 16 --change-at 4 --reps 1)
+  for q in 1 0; do
+    step "graphs/async.json, SKYGRAPH_SEPARATE_QUEUES=$q, $frames frames"
+    ran "$bin_bench" && (cd "$src" && SKYGRAPH_SEPARATE_QUEUES=$q "$bin_bench" --device "$device" --run graphs/async.json \
+      --size 1920x1080 --size 3840x2160 --frames "$frames" --bandwidth-mib 0 --no-probes) | tee "$out/async-queues-$q.txt"
+    step "rebake_bench, SKYGRAPH_SEPARATE_QUEUES=$q"
+    ran "$bin_rebake" && (cd "$src" && SKYGRAPH_SEPARATE_QUEUES=$q SKYGRAPH_BENCH_DEVICE=$device "$bin_rebake" \
+      --scene /tmp/studio.json --size 1920x1080 --frames "${REBAKE_FRAMES:-60}" --change-at 20 \
+      --reps "${REBAKE_REPS:-5}" --csv "$out/rebake-queues-$q.csv") | tee "$out/rebake-queues-$q.txt"
+  done
 fi
 step "done"
