@@ -22,6 +22,7 @@
 
 #include <skygraph/swapchain.hpp>
 
+#define GLFW_INCLUDE_NONE  // no OpenGL header: the window only gets a Vulkan surface
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 #include <benchmark/benchmark.h>

@@ -1,17 +1,19 @@
 // The longest frame while the environment changes: graphs/raster.json with a scene that has an
 // environment file (scenes/studio.json), rendered headless with two frames in flight, gets a
 // new environment (the same HDRI at half or double brightness, so every size stays) at frame
-// --change-at, re-baked one of two ways:
+// --change-at, re-baked by an EnvironmentBaker (two renderers of graphs/ibl.json made once,
+// taking turns) one of two ways:
 //
-//   sync   bakeEnvironment on the graphics queue, waiting for it, then importImage
-//   async  startBackgroundBake on the compute queue beside the frames, swapped in by
-//          swapInWhenFinished between frames (docs/queues.md, "Background frames")
+//   sync   the passes on the graphics queue; start() renders the bake and waits for it
+//   async  the passes on the compute queue, a background frame beside the frames, swapped in
+//          by swapInWhenFinished between frames (docs/queues.md, "Background frames")
 //
 // Each frame's time is the wall-clock time between two renderFrame() returns (with two in
 // flight, renderFrame waits for the frame before last: the pace the GPU sets). Per run it
-// reports the median frame before the change, the worst frame from the change on, and the
-// bake's setup (compile, pipelines, upload) on the calling thread; runs alternate the two
-// modes, --reps of each, and the summary gives the medians over runs and their ratio.
+// reports the median frame before the change, the worst frame from the change on, and
+// start()'s time on the calling thread (the equirect's upload and the submits; sync: the bake
+// too); runs alternate the two modes, --reps of each, and the summary gives the medians over
+// runs and their ratio.
 //
 //   rebake_bench [--scene FILE] [--size WxH] [--frames N] [--change-at K] [--reps R] [--csv FILE]
 //
@@ -53,7 +55,7 @@ struct RunResult {
     std::string mode;
     double steadyMs = 0.0;  ///< median frame before the change
     double worstMs = 0.0;   ///< longest frame from the change on
-    double setupMs = 0.0;   ///< the bake's compile, pipelines and upload, on this thread
+    double setupMs = 0.0;   ///< EnvironmentBaker::start() on this thread
     uint32_t framesToSwap = 0;
 };
 
@@ -66,11 +68,10 @@ HdrImage scaled(const HdrImage& image, float factor) {
 
 class Bench {
 public:
-    Bench(Device& device, const app::RenderOptions& options) : device_(device) {
+    Bench(Device& device, const app::RenderOptions& options) {
         app::FrameInputs inputs = app::loadFrameInputs(options);
         if (!inputs.environment) throw std::runtime_error("the scene has no environment file: nothing to re-bake");
         equirect_ = *inputs.environment;
-        passes_ = inputs.passes;
         CompileOptions co = inputs.compile;
         co.presentReplacement = ExternalState::TransferSrc;
         CompiledGraph compiled(inputs.graph, co);
@@ -78,55 +79,39 @@ public:
         if (!environment_.graph) throw std::runtime_error("the frame samples no environment product");
         RendererOptions ro;
         ro.framesInFlight = 2;
-        ro.passes = passes_;
+        ro.passes = inputs.passes;
         frame_ = std::make_unique<Renderer>(device, std::move(compiled), ro);
         app::attachFrameInputs(*frame_, inputs, environment_);
+        for (bool background : {false, true})
+            bakers_[background] = std::make_unique<app::EnvironmentBaker>(
+                device, *environment_.graph, equirect_.width, equirect_.height, environment_.products, inputs.passes,
+                background);
     }
 
     RunResult run(bool async, uint32_t frames, uint32_t changeAt, float brightness) {
         RunResult r;
         r.mode = async ? "async" : "sync";
+        app::EnvironmentBaker& baker = *bakers_[async];
         const HdrImage next = scaled(equirect_, brightness);
         std::vector<double> before, after;
-        std::unique_ptr<app::EnvironmentBake> pending;
-        bool swapped = false;
         auto last = Clock::now();
         for (uint32_t i = 0; i < frames; ++i) {
             if (i == changeAt) {
-                const auto start = Clock::now();
-                if (async) {
-                    pending = std::make_unique<app::EnvironmentBake>(app::startBackgroundBake(
-                        device_, *environment_.graph, next, environment_.products, passes_));
-                    r.setupMs = ms(Clock::now() - start);
-                } else {
-                    app::EnvironmentBake bake =
-                        app::bakeEnvironment(device_, *environment_.graph, next, environment_.products, passes_);
-                    r.setupMs = bake.setupMs;
-                    for (const auto& name : environment_.products)
-                        frame_->importImage(name, bake.renderer->shareImage(name));
-                    retire(std::move(bake.renderer));
-                    swapped = true;
-                }
+                if (!baker.start(next)) throw std::runtime_error("the previous bake is still pending");
+                r.setupMs = baker.lastStartMs();
             }
-            if (pending && app::swapInWhenFinished(*pending, environment_.products, *frame_)) {
-                retire(std::move(pending->renderer));
-                pending.reset();
-                swapped = true;
-                r.framesToSwap = i - changeAt;
-            }
+            if (baker.swapInWhenFinished(*frame_)) r.framesToSwap = i - changeAt;
             frame_->renderFrame();
             const auto now = Clock::now();
             (i < changeAt ? before : after).push_back(ms(now - last));
             last = now;
         }
-        if (pending) {  // not finished within the run: finish it now, outside the figures
+        if (baker.pending()) {  // not finished within the run: finish it outside the figures
             frame_->waitIdle();
-            pending->renderer->waitIdle();
-            (void)app::swapInWhenFinished(*pending, environment_.products, *frame_);
-            retire(std::move(pending->renderer));
+            while (!baker.swapInWhenFinished(*frame_)) {
+            }
             r.framesToSwap = frames;
         }
-        (void)swapped;
         frame_->waitIdle();
         r.steadyMs = median(before);
         r.worstMs = after.empty() ? 0.0 : *std::max_element(after.begin(), after.end());
@@ -134,14 +119,9 @@ public:
     }
 
 private:
-    /// The bake renderer that now owns what the frames sample becomes the environment's; the
-    /// one before goes (it waits for its own frames only).
-    void retire(std::unique_ptr<Renderer> newest) { environment_.renderer = std::move(newest); }
-
-    Device& device_;
     HdrImage equirect_;
-    const PassLibrary* passes_ = nullptr;
-    app::FrameEnvironment environment_;
+    app::FrameEnvironment environment_;  // the first products, until the first swap
+    std::unique_ptr<app::EnvironmentBaker> bakers_[2];  // [background]
     std::unique_ptr<Renderer> frame_;
 };
 
@@ -192,7 +172,7 @@ int main(int argc, char** argv) {
                 const bool async = (rep + k) % 2 == 1;  // alternate which mode goes first
                 runs.push_back(bench.run(async, frames, changeAt, rep % 2 ? 2.0f : 0.5f));
                 const auto& r = runs.back();
-                std::printf("%-5s steady %7.3f ms  worst %8.3f ms  setup %8.3f ms  swap after %u frames\n",
+                std::printf("%-5s steady %7.3f ms  worst %8.3f ms  start %8.3f ms  swap after %u frames\n",
                             r.mode.c_str(), r.steadyMs, r.worstMs, r.setupMs, r.framesToSwap);
             }
         auto med = [&](const char* mode, double bench::RunResult::*field) {
@@ -204,14 +184,14 @@ int main(int argc, char** argv) {
         const double syncWorst = med("sync", &bench::RunResult::worstMs);
         const double asyncWorst = med("async", &bench::RunResult::worstMs);
         std::printf("median over %u runs each at %s: steady sync %.3f ms, async %.3f ms; worst frame sync %.3f ms, "
-                    "async %.3f ms (async/sync %.3f); setup sync %.3f ms, async %.3f ms\n",
+                    "async %.3f ms (async/sync %.3f); start sync %.3f ms, async %.3f ms\n",
                     reps, size.c_str(), med("sync", &bench::RunResult::steadyMs),
                     med("async", &bench::RunResult::steadyMs), syncWorst, asyncWorst,
                     syncWorst > 0 ? asyncWorst / syncWorst : 0.0, med("sync", &bench::RunResult::setupMs),
                     med("async", &bench::RunResult::setupMs));
         if (!csv.empty()) {
             std::ofstream out(csv);
-            out << "mode,steady_ms,worst_ms,setup_ms,frames_to_swap\n";
+            out << "mode,steady_ms,worst_ms,start_ms,frames_to_swap\n";
             for (const auto& r : runs)
                 out << r.mode << ',' << r.steadyMs << ',' << r.worstMs << ',' << r.setupMs << ',' << r.framesToSwap
                     << '\n';

@@ -13,6 +13,7 @@
 #include <skygraph/executor.hpp>
 #include <skygraph/pass.hpp>
 
+#define GLFW_INCLUDE_NONE    // no OpenGL header
 #define GLFW_INCLUDE_VULKAN  // glfwCreateWindowSurface and glfwGetRequiredInstanceExtensions
 #include <GLFW/glfw3.h>
 

@@ -336,24 +336,32 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     d.imports[resource] = std::move(image);
 }
 
-void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
-    Impl& d = *impl_;
-    const ResourceDesc* desc = d.state->graph.findResource(resource);
-    if (!desc) throw ExecutorError("setExternalImage: no resource '" + resource + "' in the graph");
-    if (!desc->external || !desc->isImage())
-        throw ExecutorError("setExternalImage: '" + resource + "' is not an external image");
-    const auto ext = desc->extent.resolve(d.state->outputWidth(), d.state->outputHeight());
+namespace {
+
+/// Why `pixels` cannot become the contents of external image `resource`, naming `call`.
+void refuseExternalPixels(const char* call, const PlanState& s, const std::string& resource, const ImageData& pixels) {
+    const ResourceDesc* desc = s.graph.findResource(resource);
+    const std::string what = std::string(call) + ": ";
+    if (!desc) throw ExecutorError(what + "no resource '" + resource + "' in the graph");
+    if (!desc->external || !desc->isImage()) throw ExecutorError(what + "'" + resource + "' is not an external image");
+    const auto ext = desc->extent.resolve(s.outputWidth(), s.outputHeight());
     if (pixels.width != ext[0] || pixels.height != ext[1] ||
         pixels.rgba.size() != size_t(pixels.width) * pixels.height * 4) {
-        throw ExecutorError("setExternalImage: '" + resource + "' is " + std::to_string(ext[0]) + "x" +
-                            std::to_string(ext[1]) + ", the pixels are " + std::to_string(pixels.width) +
-                            "x" + std::to_string(pixels.height));
+        throw ExecutorError(what + "'" + resource + "' is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
+                            ", the pixels are " + std::to_string(pixels.width) + "x" + std::to_string(pixels.height));
     }
     const uint32_t texel = findFormat(desc->format.format) ? desc->format.bytesPerTexel : 0;
     std::array<float, 4> probe{1, 1, 1, 1};
     const auto encoded = encodeTexel(desc->format.format, texel, probe);
     if (texel == 0 || std::all_of(encoded.begin(), encoded.end(), [](uint8_t b) { return b == 0; }))
-        throw ExecutorError("setExternalImage: cannot upload pixels to format " + std::string(desc->format.name));
+        throw ExecutorError(what + "cannot upload pixels to format " + std::string(desc->format.name));
+}
+
+}  // namespace
+
+void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
+    Impl& d = *impl_;
+    refuseExternalPixels("setExternalImage", *d.state, resource, pixels);
     auto previous = d.uploads;
     d.uploads[resource] = std::move(pixels);
     try {
@@ -362,6 +370,22 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
         d.waitIdle();
         d.runSetup(*d.state);
         d.lastSlot = -1;
+    } catch (...) {
+        d.uploads = std::move(previous);
+        throw;
+    }
+}
+
+void Renderer::updateExternalImage(const std::string& resource, ImageData pixels) {
+    Impl& d = *impl_;
+    refuseExternalPixels("updateExternalImage", *d.state, resource, pixels);
+    if (!d.uploads.contains(resource))
+        throw ExecutorError("updateExternalImage: '" + resource + "' has no pixels yet (setExternalImage first)");
+    auto previous = d.uploads;
+    d.uploads[resource] = std::move(pixels);
+    try {
+        d.waitIdle();
+        d.runSetup(*d.state, resource);
     } catch (...) {
         d.uploads = std::move(previous);
         throw;

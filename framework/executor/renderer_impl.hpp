@@ -365,7 +365,8 @@ struct Renderer::Impl {
     /// Runs the plan's setup (planSetup): every external resource gets defined contents (the
     /// uploaded pixels, its clear value, or grey) and the state the frame expects it in. Runs
     /// outside any frame and waits.
-    void runSetup(detail::PlanState& s);
+    /// `only`: that external resource alone (updateExternalImage); the others keep theirs.
+    void runSetup(detail::PlanState& s, std::string_view only = {});
     /// Records `steps` (a setup or image-read plan over resources of `s`) with `record` for
     /// each step, submits once and waits. `copy` picks the per-slot copy of each resource.
     void submitAndWait(const std::function<void(detail::CommandSink&)>& record);

@@ -35,8 +35,14 @@ void Renderer::Impl::submitAndWait(const std::function<void(CommandSink&)>& reco
     VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     si.commandBufferInfoCount = 1;
     si.pCommandBufferInfos = &cbi;
-    vk::check(vkQueueSubmit2(dev.queue, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit2");
-    vk::check(vkQueueWaitIdle(dev.queue), "vkQueueWaitIdle");
+    // A fence of its own: waiting for the queue to be idle would also wait for every frame
+    // that other renderers have in flight there.
+    VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence rawFence;
+    vk::check(vkCreateFence(vkd, &fci, nullptr, &rawFence), "vkCreateFence");
+    vk::Fence fence(vkd, rawFence);
+    vk::check(vkQueueSubmit2(dev.queue, 1, &si, rawFence), "vkQueueSubmit2");
+    vk::check(vkWaitForFences(vkd, 1, &rawFence, VK_TRUE, kWaitForever), "vkWaitForFences");
 }
 
 namespace {
@@ -62,11 +68,17 @@ void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image
 
 }  // namespace
 
-void Renderer::Impl::runSetup(PlanState& s) {
+void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
     SetupOptions o;
     for (const auto& [name, image] : imports) o.imports.insert(name);
     for (const auto& [name, pixels] : uploads)
         if (s.plan.resourceIndex(name) >= 0 && !imports.count(name)) o.uploads.insert(name);
+    if (!only.empty()) {
+        // Every other external resource keeps its contents: to the setup, it is provided.
+        for (const PlannedResource& r : s.plan.resources())
+            if (r.name != only && s.graph.resources[r.decl].external) o.imports.insert(std::string(r.name));
+        std::erase_if(o.uploads, [&](const std::string& name) { return name != only; });
+    }
     try {
         s.setup = planSetup(s.graph, s.plan, o);
     } catch (const GraphError& e) {

@@ -171,6 +171,12 @@ public:
     /// then runs the whole setup again, so every external resource it covers gets its first
     /// contents back. Throws ExecutorError for a wrong name, size or format.
     void setExternalImage(const std::string& resource, ImageData pixels);
+    /// New pixels for external image `resource`, which setExternalImage() gave pixels before:
+    /// one Upload step of the setup and its barriers, every other resource left as it is (so
+    /// images this renderer shares keep their contents). Waits for this renderer's frames and
+    /// for the upload, not for other renderers' frames. Throws ExecutorError as
+    /// setExternalImage() does, and for a resource without pixels yet.
+    void updateExternalImage(const std::string& resource, ImageData pixels);
     /// Shares the image of `resource`, an external image this plan exports (`final` set),
     /// with another renderer on the same Device. It holds this frame's contents once the
     /// frames that write it have finished (waitIdle()), in the layout of its `final` state.

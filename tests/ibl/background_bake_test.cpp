@@ -121,38 +121,51 @@ TEST_F(BackgroundBake, FramesSampleTheOldCubeUntilTheSwapThenTheNewOne) {
     frame->renderFrame();
     for (float red : faceReds(frame->readback())) EXPECT_NEAR(red, 1.0f, 1e-3f);
 
-    app::EnvironmentBake second = app::startBackgroundBake(sharedDevice(), iblGraph_, uniformSky(0, 0, 1), products_, &library_);
-    // The frames go on with the old cube while the bake runs; lavapipe's one queue runs
-    // them in submission order, so at least the first comes before the swap.
-    // Each swap attempt comes with a frame still in flight: the swap must keep the old cube's
-    // views and the probe's old recording code alive for it.
-    uint32_t framesDuringBake = 0;
-    do {
+    app::EnvironmentBaker baker(sharedDevice(), iblGraph_, 64, 32, products_, &library_);
+    // Three changes: the baker's two renderers take turns, the third bake reusing the first's
+    // renderer while frames that sampled its cube may still be in flight.
+    const float reds[] = {0.0f, 0.5f, 0.25f};
+    for (float want : reds) {
+        ASSERT_TRUE(baker.start(uniformSky(want, 0, 1)));
+        EXPECT_FALSE(baker.start(uniformSky(1, 1, 1))) << "a second bake while the first is pending";
+        // The frames go on with the old cube while the bake runs; lavapipe's one queue runs
+        // them in submission order. Each swap attempt comes with a frame still in flight: the
+        // swap must keep the old cube's views and the probe's old recording code alive for it.
+        uint32_t framesDuringBake = 0;
+        float before = faceReds(frame->readback())[0];
+        do {
+            frame->renderFrame();
+            ++framesDuringBake;
+            for (float red : faceReds(frame->readback())) EXPECT_NEAR(red, before, 1e-3f) << "frame " << framesDuringBake;
+            frame->renderFrame();
+        } while (!baker.swapInWhenFinished(*frame));
+        EXPECT_GE(framesDuringBake, 1u);
+        // The first bake may go at once: the frames that sampled its cube keep it alive.
+        first.renderer.reset();
         frame->renderFrame();
-        ++framesDuringBake;
-        for (float red : faceReds(frame->readback())) EXPECT_NEAR(red, 1.0f, 1e-3f) << "frame " << framesDuringBake;
-        frame->renderFrame();
-    } while (!app::swapInWhenFinished(second, products_, *frame));
-    EXPECT_GE(framesDuringBake, 1u);
-
-    // The old bake may go at once: the frames that sampled its cube keep it alive.
-    first.renderer.reset();
-    frame->renderFrame();
-    for (float red : faceReds(frame->readback())) EXPECT_NEAR(red, 0.0f, 1e-3f);
+        for (float red : faceReds(frame->readback())) EXPECT_NEAR(red, want, 2e-3f);
+    }
     frame->waitIdle();
 }
 
 TEST_F(BackgroundBake, ProductsAreNotSharedBeforeTheBackgroundFrameIsFinished) {
-    app::EnvironmentBake bake = app::startBackgroundBake(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
+    app::EnvironmentBake bake = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
+    bake.renderer->renderFrameInBackground();  // one submit on the graphics queue: submitted whole
+    EXPECT_TRUE(bake.renderer->finishBackgroundFrame());
+
+    GraphDesc onCompute = iblGraph_;
+    for (PassDesc& pass : onCompute.passes) pass.queue = QueueKind::Compute;
+    app::EnvironmentBake background = app::bakeEnvironment(sharedDevice(), onCompute, uniformSky(0, 1, 0), products_, &library_);
+    background.renderer->renderFrameInBackground();
     try {
-        (void)bake.renderer->shareImage("environment");
+        (void)background.renderer->shareImage("environment");
         ADD_FAILURE() << "shared an image whose background frame was not finished";
     } catch (const ExecutorError& e) {
         EXPECT_NE(std::string(e.what()).find("finishBackgroundFrame"), std::string::npos) << e.what();
     }
-    bake.renderer->waitIdle();  // submits the held submit, waiting
-    EXPECT_TRUE(bake.renderer->finishBackgroundFrame());
-    (void)bake.renderer->shareImage("environment");
+    background.renderer->waitIdle();  // submits the held submit, waiting
+    EXPECT_TRUE(background.renderer->finishBackgroundFrame());
+    (void)background.renderer->shareImage("environment");
 }
 
 }  // namespace

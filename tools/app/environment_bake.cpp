@@ -116,17 +116,56 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
     return bake;
 }
 
-EnvironmentBake startBackgroundBake(Device& device, GraphDesc graph, const HdrImage& equirect,
-                                    const std::set<std::string, std::less<>>& products, const PassLibrary* passes) {
-    for (PassDesc& pass : graph.passes) pass.queue = QueueKind::Compute;
-    EnvironmentBake bake = prepareBake(device, std::move(graph), equirect, products, passes, {});
-    bake.renderer->renderFrameInBackground();
-    return bake;
+EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
+                                   std::set<std::string, std::less<>> products, const PassLibrary* passes,
+                                   bool background)
+    : products_(std::move(products)), background_(background) {
+    if (!setEquirectExtent(graph, width, height))
+        throw ExecutorError("the environment graph '" + graph.name + "' has no resource '" + std::string(kEquirect) +
+                            "'");
+    if (background)
+        for (PassDesc& pass : graph.passes) pass.queue = QueueKind::Compute;
+    CompileOptions co;
+    co.outputs = products_;
+    co.memory = device.memoryModel();
+    co.queueFamilies = device.queueFamilies();
+    const CompiledGraph compiled(std::move(graph), co);
+    RendererOptions ro;
+    ro.framesInFlight = 1;
+    ro.passes = passes;
+    for (auto& r : renderers_) r = std::make_unique<Renderer>(device, compiled, ro);
 }
 
-bool swapInWhenFinished(EnvironmentBake& bake, const std::set<std::string, std::less<>>& products, Renderer& frame) {
-    if (!bake.renderer->finishBackgroundFrame()) return false;
-    for (const auto& name : products) frame.importImage(name, bake.renderer->shareImage(name));
+bool EnvironmentBaker::start(const HdrImage& equirect) {
+    if (pending_) return false;
+    const auto begin = Clock::now();
+    Renderer& r = *renderers_[next_];
+    // Its products were last sampled by frames before the previous swap; the bake's first
+    // submit, on the graphics queue, orders its writes after all of them.
+    if (uploaded_[next_]) {
+        r.updateExternalImage(std::string(kEquirect), toImageData(equirect));
+    } else {
+        r.setExternalImage(std::string(kEquirect), toImageData(equirect));
+        uploaded_[next_] = true;
+    }
+    if (background_) {
+        r.renderFrameInBackground();
+    } else {
+        r.renderFrame();
+        r.waitIdle();
+    }
+    pending_ = true;
+    lastStartMs_ = msSince(begin);
+    return true;
+}
+
+bool EnvironmentBaker::swapInWhenFinished(Renderer& frame) {
+    if (!pending_) return false;
+    Renderer& r = *renderers_[next_];
+    if (!r.finishBackgroundFrame()) return false;
+    for (const auto& name : products_) frame.importImage(name, r.shareImage(name));
+    pending_ = false;
+    next_ = 1 - next_;
     return true;
 }
 

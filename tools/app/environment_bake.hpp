@@ -10,6 +10,7 @@
 #include <skygraph/image_data.hpp>
 #include <skygraph/renderer.hpp>
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -47,24 +48,45 @@ struct EnvironmentBake {
                                               const std::set<std::string, std::less<>>& products,
                                               const PassLibrary* passes, const BakeStepCallback& onStep = {});
 
-/// The same bake beside a frame renderer's frames (docs/queues.md, "Background frames"):
-/// every pass of `graph` on the compute queue, submitted as a background frame of the bake's
-/// renderer. Returns once submitted (the compile, the pipelines and the upload of `equirect`
-/// happen first, on this thread); the frames keep the products they import until
-/// swapInWhenFinished() hands them the new ones. Throws like bakeEnvironment().
-[[nodiscard]] EnvironmentBake startBackgroundBake(Device& device, GraphDesc graph, const HdrImage& equirect,
-                                                  const std::set<std::string, std::less<>>& products,
-                                                  const PassLibrary* passes);
+/// Re-bakes the environment a frame renderer imports beside its frames, again and again
+/// (docs/queues.md, "Background frames"). Two renderers of `graph`, with every pass on the
+/// compute queue, are made once and take turns: a change costs the upload of the new
+/// equirect and a submit, not a compile. Each bake is a background frame; the frames keep the
+/// products they import until swapInWhenFinished() hands them the new ones. Owns both
+/// renderers (and so the products the frames sample after a swap); `device` and `passes`
+/// must outlive it, and it must outlive the frames' use of its products. Not copyable.
+class EnvironmentBaker {
+public:
+    /// Compiles `graph` for `products` with an equirect of `width` x `height` and makes both
+    /// renderers. `background` false: the passes stay on the graphics queue and start() waits
+    /// for the bake (the synchronous way, for comparison). Throws like bakeEnvironment().
+    EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
+                     std::set<std::string, std::less<>> products, const PassLibrary* passes, bool background = true);
+    EnvironmentBaker(const EnvironmentBaker&) = delete;
+    EnvironmentBaker& operator=(const EnvironmentBaker&) = delete;
 
-/// Between two frames of `frame`: once `bake` (startBackgroundBake()) has finished on the
-/// GPU, imports its `products` into `frame` (Renderer::importImage, which neither waits nor
-/// rebuilds) and returns true; false while it runs. Never blocks. Afterwards the bake's
-/// renderer owns the products that `frame` samples: keep it while `frame` renders, and the
-/// old bake's until `frame` has rendered once more (its images stay alive for the frames
-/// that still use them even when it goes earlier). Throws ExecutorError, as importImage
-/// does, naming a product that does not fit `frame`'s import of it.
-[[nodiscard]] bool swapInWhenFinished(EnvironmentBake& bake, const std::set<std::string, std::less<>>& products,
-                                      Renderer& frame);
+    /// Starts baking `equirect` (of the size given at construction) with the renderer whose
+    /// products the frames do not sample; waits only for that renderer's last bake and for
+    /// the upload. False, starting nothing, while the previous bake is not swapped in yet.
+    /// Throws ExecutorError for an equirect of another size.
+    bool start(const HdrImage& equirect);
+    /// Between two frames of `frame`: once the bake has finished on the GPU, imports its
+    /// products into `frame` (Renderer::importImage, which neither waits nor rebuilds) and
+    /// returns true; false while it runs or when none was started. Never blocks.
+    bool swapInWhenFinished(Renderer& frame);
+    [[nodiscard]] bool pending() const noexcept { return pending_; }
+    /// Host time of the last start(): the upload and the submits.
+    [[nodiscard]] double lastStartMs() const noexcept { return lastStartMs_; }
+
+private:
+    std::array<std::unique_ptr<Renderer>, 2> renderers_;
+    std::set<std::string, std::less<>> products_;
+    bool background_ = true;
+    size_t next_ = 0;  ///< The renderer the next bake uses.
+    bool pending_ = false;
+    bool uploaded_[2] = {false, false};
+    double lastStartMs_ = 0.0;
+};
 
 /// What `skygraph cubemap` bakes. Sizes are face sizes in texels. A plain value.
 struct BakeOptions {

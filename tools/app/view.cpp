@@ -15,6 +15,7 @@
 #include <skygraph/scene.hpp>
 #include <skygraph/swapchain.hpp>
 
+#define GLFW_INCLUDE_NONE  // no OpenGL header: the window only gets a Vulkan surface
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
 #include <spdlog/spdlog.h>

@@ -90,6 +90,9 @@ fi
 
 if [ -f .devbundle/layer.tar.xz ]; then
   rm -rf /tmp/skygraph-layer && mkdir -p /tmp/skygraph-layer && tar -xJf .devbundle/layer.tar.xz -C /tmp/skygraph-layer
+  # Debian's manifest names the library bare (found through the library path); a path with a
+  # slash is taken relative to the manifest.
+  sed -i 's|"library_path": "libVkLayer|"library_path": "./libVkLayer|' /tmp/skygraph-layer/*.json
   export VK_LAYER_PATH=/tmp/skygraph-layer
   echo "validation layer: $(grep -o '"api_version": "[^"]*"' /tmp/skygraph-layer/*.json)"
 fi
