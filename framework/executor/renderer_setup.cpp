@@ -110,7 +110,10 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
         const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
         staging[i] = makeHostBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
         auto* dst = static_cast<uint8_t*>(staging[i].mapped);
-        for (uint32_t l = 0; l < r.layers; ++l)
+        // Float RGBA is what the pixels are already (an HDRI): copied as it is.
+        const bool asIs = r.format == VK_FORMAT_R32G32B32A32_SFLOAT && texel == 16;
+        for (uint32_t l = 0; l < r.layers && asIs; ++l) std::memcpy(dst + l * layerBytes, px.rgba.data(), layerBytes);
+        for (uint32_t l = 0; l < r.layers && !asIs; ++l)
             for (size_t p = 0; p < size_t(r.width) * r.height; ++p) {
                 const std::array<float, 4> c{px.rgba[p * 4], px.rgba[p * 4 + 1], px.rgba[p * 4 + 2], px.rgba[p * 4 + 3]};
                 const auto t = encodeTexel(r.format, texel, c);
