@@ -92,12 +92,12 @@ public:
         RunResult r;
         r.mode = async ? "async" : "sync";
         app::EnvironmentBaker& baker = *bakers_[async];
-        const HdrImage next = scaled(equirect_, brightness);
+        HdrImage next = scaled(equirect_, brightness);
         std::vector<double> before, after;
         auto last = Clock::now();
         for (uint32_t i = 0; i < frames; ++i) {
             if (i == changeAt) {
-                if (!baker.start(next)) throw std::runtime_error("the previous bake is still pending");
+                if (!baker.start(std::move(next))) throw std::runtime_error("the previous bake is still pending");
                 r.setupMs = baker.lastStartMs();
             }
             if (baker.swapInWhenFinished(*frame_)) r.framesToSwap = i - changeAt;

@@ -379,15 +379,15 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
 void Renderer::updateExternalImage(const std::string& resource, ImageData pixels) {
     Impl& d = *impl_;
     refuseExternalPixels("updateExternalImage", *d.state, resource, pixels);
-    if (!d.uploads.contains(resource))
+    const auto it = d.uploads.find(resource);
+    if (it == d.uploads.end())
         throw ExecutorError("updateExternalImage: '" + resource + "' has no pixels yet (setExternalImage first)");
-    auto previous = d.uploads;
-    d.uploads[resource] = std::move(pixels);
+    ImageData previous = std::exchange(it->second, std::move(pixels));
     try {
         d.waitIdle();
         d.runSetup(*d.state, resource);
     } catch (...) {
-        d.uploads = std::move(previous);
+        it->second = std::move(previous);
         throw;
     }
 }

@@ -60,12 +60,12 @@ std::set<std::string, std::less<>> configure(GraphDesc& graph, const BakeOptions
     return products;
 }
 
-ImageData toImageData(const HdrImage& image) {
+ImageData toImageData(HdrImage image) {
     ImageData data;
     data.width = image.width;
     data.height = image.height;
     data.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    data.rgba = image.rgba;
+    data.rgba = std::move(image.rgba);
     return data;
 }
 
@@ -136,16 +136,16 @@ EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t wid
     for (auto& r : renderers_) r = std::make_unique<Renderer>(device, compiled, ro);
 }
 
-bool EnvironmentBaker::start(const HdrImage& equirect) {
+bool EnvironmentBaker::start(HdrImage equirect) {
     if (pending_) return false;
     const auto begin = Clock::now();
     Renderer& r = *renderers_[next_];
     // Its products were last sampled by frames before the previous swap; the bake's first
     // submit, on the graphics queue, orders its writes after all of them.
     if (uploaded_[next_]) {
-        r.updateExternalImage(std::string(kEquirect), toImageData(equirect));
+        r.updateExternalImage(std::string(kEquirect), toImageData(std::move(equirect)));
     } else {
-        r.setExternalImage(std::string(kEquirect), toImageData(equirect));
+        r.setExternalImage(std::string(kEquirect), toImageData(std::move(equirect)));
         uploaded_[next_] = true;
     }
     if (background_) {

@@ -69,7 +69,7 @@ public:
     /// products the frames do not sample; waits only for that renderer's last bake and for
     /// the upload. False, starting nothing, while the previous bake is not swapped in yet.
     /// Throws ExecutorError for an equirect of another size.
-    bool start(const HdrImage& equirect);
+    bool start(HdrImage equirect);
     /// Between two frames of `frame`: once the bake has finished on the GPU, imports its
     /// products into `frame` (Renderer::importImage, which neither waits nor rebuilds) and
     /// returns true; false while it runs or when none was started. Never blocks.
