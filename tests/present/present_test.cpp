@@ -9,9 +9,13 @@
 
 #include "generic_passes.hpp"
 
+#include "app/live_graph.hpp"
+
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
 #include <skygraph/device.hpp>
+#include <skygraph/pass.hpp>
+#include <skygraph/scene.hpp>
 #include <skygraph/renderer.hpp>
 #include <skygraph/swapchain.hpp>
 
@@ -408,6 +412,45 @@ TEST_F(Present, NegativeControlNoPresentBarrierIsReported) {
     presentFrames(*device_, withPresentBarrier(*device_, raster(96, 64), std::nullopt));
     EXPECT_TRUE(reported(device_->messages(), "VUID-VkPresentInfoKHR-pImageIndices-01296")) << formatMessages(*device_);
     device_->clearMessages();
+}
+
+// `skygraph view`'s environment change (LiveGraph::setEnvironmentFile): a file of the running
+// one's size is re-baked on the compute queue beside the presented frames and swapped in
+// between two of them, with no rebuild and no validation message.
+TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
+    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    app::RenderOptions o;
+    o.graph = root / "graphs/raster.json";
+    o.scene = root / "scenes/studio.json";
+    o.framesInFlight = 2;
+    o.passes = &library;
+    app::LiveGraph live(*device_, o, 96, 64, false);
+    auto swapchain = Swapchain::create(*device_, live.renderer().compiled(), {96, 64, PresentMode::Fifo});
+    live.presentTo(*swapchain);
+    const auto frame = [&] {
+        glfwPollEvents();
+        live.poll();
+        EXPECT_EQ(live.renderer().renderFrame(*swapchain), PresentStatus::Presented);
+    };
+    for (int i = 0; i < 3; ++i) frame();
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+    const std::filesystem::path file = loadSceneFile(o.scene).environment->file;
+    ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
+    EXPECT_TRUE(live.rebaking());
+    int frames = 0;
+    while (live.rebaking() && frames < 100) {
+        frame();
+        ++frames;
+    }
+    EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
+    EXPECT_GE(frames, 1);
+    EXPECT_EQ(&live.renderer(), running) << "the change rebuilt the renderer";
+    EXPECT_EQ(live.reloads(), reloads + 1);
+    for (int i = 0; i < 3; ++i) frame();
+    live.renderer().waitIdle();
+    expectSilent();
 }
 
 }  // namespace

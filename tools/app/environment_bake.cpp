@@ -60,6 +60,8 @@ std::set<std::string, std::less<>> configure(GraphDesc& graph, const BakeOptions
     return products;
 }
 
+}  // namespace
+
 ImageData toImageData(HdrImage image) {
     ImageData data;
     data.width = image.width;
@@ -68,8 +70,6 @@ ImageData toImageData(HdrImage image) {
     data.rgba = std::move(image.rgba);
     return data;
 }
-
-}  // namespace
 
 namespace {
 

@@ -28,6 +28,9 @@ namespace skygraph::app {
 /// progress bar. May be empty.
 using BakeStepCallback = std::function<void(const std::string& step)>;
 
+/// An HDRI's pixels as the float RGBA image the graph's `equirect` is uploaded from.
+[[nodiscard]] ImageData toImageData(HdrImage image);
+
 /// One run of the environment graph. Owns the renderer, which owns the products.
 struct EnvironmentBake {
     /// Holds the products: share them (Renderer::shareImage()) or read them back

@@ -91,6 +91,8 @@ bool LiveGraph::rebuild(RenderOptions options) {
     renderer_->waitIdle();
     shaderWatcher_.reset();
     built_ = std::move(next);  // the old renderer is gone before the new one records
+    baker_.reset();            // the new build baked its own environment
+    rebakeEquirect_.reset();
     renderer_ = built_->renderer.get();
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
     if (built_->scene) scene_ = built_->scene;
@@ -137,10 +139,48 @@ bool LiveGraph::setFeature(const std::string& name, bool on) {
 bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
     RenderOptions next = options_;
     next.environmentFile = file;
+    try {
+        if (rebakeInPlace(file)) {
+            options_ = std::move(next);
+            error_.clear();
+            return true;
+        }
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        spdlog::warn("{}", error_);
+        return false;
+    }
     return rebuild(std::move(next));
 }
 
+bool LiveGraph::rebakeInPlace(const std::filesystem::path& file) {
+    const FrameEnvironment& running = built_->environment;
+    // The running file's size is the frame graph's `equirect` (loadFrameInputs sets it).
+    const ResourceDesc* equirect = renderer_->graph().findResource(shipped::kEquirect);
+    if (file.empty() || !running.graph || !equirect || rebaking()) return false;
+    HdrImage pixels = loadHdrImage(file);
+    const auto extent = equirect->extent.resolve(width_, height_);
+    if (pixels.width != extent[0] || pixels.height != extent[1]) return false;  // another size: rebuild
+    if (!baker_)
+        baker_ = std::make_unique<EnvironmentBaker>(device_, *running.graph, pixels.width, pixels.height,
+                                                    running.products,
+                                                    options_.passes ? options_.passes : &PassLibrary::genericOnly());
+    if (renderer_->plan().resourceIndex(shipped::kEquirect) >= 0) rebakeEquirect_ = pixels;
+    spdlog::info("environment: re-baking {} beside the frames", file.string());
+    return baker_->start(std::move(pixels));
+}
+
+void LiveGraph::swapRebake() {
+    if (!baker_ || !baker_->swapInWhenFinished(*renderer_)) return;
+    // The frame's own equirect (a skybox that samples it): uploaded at the swap, so that the
+    // sky and the lighting change together; this waits for the frames in flight.
+    if (rebakeEquirect_)
+        renderer_->updateExternalImage(std::string(shipped::kEquirect), toImageData(*std::exchange(rebakeEquirect_, std::nullopt)));
+    ++reloads_;
+}
+
 bool LiveGraph::poll() {
+    swapRebake();
     const bool graphSaved = graphWatcher_ && graphWatcher_->changed();
     const bool sceneSaved = sceneWatcher_ && sceneWatcher_->changed();
     if (graphSaved || sceneSaved) {

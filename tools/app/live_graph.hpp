@@ -4,6 +4,7 @@
 // rebuilds them all; one that fails keeps the last good renderer running and its message.
 #pragma once
 
+#include "environment_bake.hpp"
 #include "file_watcher.hpp"
 #include "render.hpp"
 
@@ -47,10 +48,15 @@ public:
     [[nodiscard]] bool feature(std::string_view name) const;
     /// Rebuilds with `name` forced on or off. False (error() says why) keeps what ran.
     bool setFeature(const std::string& name, bool on);
-    /// Rebuilds with another environment: a file, or empty for the procedural sky.
+    /// Another environment: a file, or empty for the procedural sky. A file of the running
+    /// one's size is re-baked beside the frames (EnvironmentBaker) and swapped in by a later
+    /// poll(), the frames going on with the old environment meanwhile; anything else rebuilds.
+    /// False (error() says why) keeps what ran.
     bool setEnvironmentFile(const std::filesystem::path& file);
-    /// Rebuilds after the graph or scene file was saved, reloads shaders after a shader
-    /// edit. True when something was reloaded (or failed: see error()).
+    /// Whether a re-bake started by setEnvironmentFile is not swapped in yet.
+    [[nodiscard]] bool rebaking() const noexcept { return baker_ && baker_->pending(); }
+    /// Swaps in a finished re-bake; rebuilds after the graph or scene file was saved, reloads
+    /// shaders after a shader edit. True when something was reloaded (or failed: see error()).
     bool poll();
 
     /// Screenshots go through the plan: beginScreenshot() recompiles with the presented
@@ -86,6 +92,9 @@ private:
     struct Built;
     [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options) const;
     bool rebuild(RenderOptions options);
+    /// setEnvironmentFile's re-bake beside the frames; false when `file` needs a rebuild.
+    bool rebakeInPlace(const std::filesystem::path& file);
+    void swapRebake();
 
     Device& device_;
     Swapchain* swapchain_ = nullptr;
@@ -93,6 +102,10 @@ private:
     uint32_t width_, height_;
     bool overlay_;
     std::optional<Scene> scene_;
+    /// Re-bakes of the running environment graph; made at the first, dropped by a rebuild.
+    /// Declared before built_: the frames that sample its products go first.
+    std::unique_ptr<EnvironmentBaker> baker_;
+    std::optional<HdrImage> rebakeEquirect_;  ///< The pixels being re-baked, for the frame's own equirect.
     std::unique_ptr<Built> built_;
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;

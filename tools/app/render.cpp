@@ -88,15 +88,6 @@ std::string imageNames(const GraphDesc& graph) {
     return names.empty() ? "none" : names;
 }
 
-ImageData toImageData(HdrImage&& image) {
-    ImageData d;
-    d.width = image.width;
-    d.height = image.height;
-    d.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    d.rgba = std::move(image.rgba);
-    return d;
-}
-
 }  // namespace
 
 FrameInputs loadFrameInputs(const RenderOptions& options) {
