@@ -376,7 +376,7 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     }
 }
 
-void Renderer::updateExternalImage(const std::string& resource, ImageData pixels) {
+void Renderer::updateExternalImage(const std::string& resource, ImageData pixels, UploadTiming timing) {
     Impl& d = *impl_;
     refuseExternalPixels("updateExternalImage", *d.state, resource, pixels);
     const auto it = d.uploads.find(resource);
@@ -385,7 +385,7 @@ void Renderer::updateExternalImage(const std::string& resource, ImageData pixels
     ImageData previous = std::exchange(it->second, std::move(pixels));
     try {
         d.waitIdle();
-        d.runSetup(*d.state, resource);
+        d.runSetup(*d.state, resource, timing == UploadTiming::WithNextFrame);
     } catch (...) {
         it->second = std::move(previous);
         throw;

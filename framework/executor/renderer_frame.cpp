@@ -43,6 +43,7 @@ void Renderer::Impl::waitSlot(FrameSlot& f) {
     const VkFence fence = f.fence.get();
     vk::check(vkWaitForFences(vkd, 1, &fence, VK_TRUE, kWaitForever), "vkWaitForFences");
     f.submitted = false;
+    f.setupKeep.reset();
     collectTimings(f);
     releaseRetired();
 }
@@ -189,6 +190,14 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         vk::check(vkBeginCommandBuffer(cmds[k], &bi), "vkBeginCommandBuffer");
+        if (k == 0 && pendingSetup) {
+            if (pendingSetup->state == state.get()) {
+                VulkanCommands sink(cmds[k], commandFunctions());
+                pendingSetup->record(sink);
+                f.setupKeep = std::move(pendingSetup->keep);
+            }
+            pendingSetup.reset();
+        }
         recordFrame(cmds[k], binding, &f, k);
         vk::check(vkEndCommandBuffer(cmds[k]), "vkEndCommandBuffer");
     }

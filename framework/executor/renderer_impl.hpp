@@ -259,6 +259,7 @@ struct FrameSlot {
     std::vector<vk::Semaphore> binaries;
     vk::Fence fence;
     uint64_t frame = 0;  ///< frameIndex of the frame last submitted in this slot.
+    std::shared_ptr<void> setupKeep;  ///< A pending setup's staging, until this slot's frame finishes.
     /// A background frame (Renderer::renderFrameInBackground): a fence per vkQueueSubmit2
     /// before its last submit, and that submit, held back until those fences signal.
     std::vector<vk::Fence> runFences;
@@ -366,7 +367,17 @@ struct Renderer::Impl {
     /// uploaded pixels, its clear value, or grey) and the state the frame expects it in. Runs
     /// outside any frame and waits.
     /// `only`: that external resource alone (updateExternalImage); the others keep theirs.
-    void runSetup(detail::PlanState& s, std::string_view only = {});
+    /// `withNextFrame`: when every resource it sets up has one copy, the steps are recorded
+    /// at the start of the next frame's first submit instead (pendingSetup), and nothing waits.
+    void runSetup(detail::PlanState& s, std::string_view only = {}, bool withNextFrame = false);
+    /// Setup steps for the next frame to record before its passes, with what they need kept
+    /// alive (the staging buffers) until that frame has finished.
+    struct PendingSetup {
+        const detail::PlanState* state = nullptr;  ///< Dropped if the plan state is rebuilt first.
+        std::function<void(detail::CommandSink&)> record;
+        std::shared_ptr<void> keep;
+    };
+    std::optional<PendingSetup> pendingSetup;
     /// Records `steps` (a setup or image-read plan over resources of `s`) with `record` for
     /// each step, submits once and waits. `copy` picks the per-slot copy of each resource.
     void submitAndWait(const std::function<void(detail::CommandSink&)>& record);

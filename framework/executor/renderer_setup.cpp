@@ -68,7 +68,7 @@ void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image
 
 }  // namespace
 
-void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
+void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNextFrame) {
     SetupOptions o;
     for (const auto& [name, image] : imports) o.imports.insert(name);
     for (const auto& [name, pixels] : uploads)
@@ -79,12 +79,16 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
             if (r.name != only && s.graph.resources[r.decl].external) o.imports.insert(std::string(r.name));
         std::erase_if(o.uploads, [&](const std::string& name) { return name != only; });
     }
+    // A setup of one resource is the renderer's own business: setupPlan() stays the one that
+    // ran before the first frame.
+    auto planned = std::make_shared<Plan>();
     try {
-        s.setup = planSetup(s.graph, s.plan, o);
+        *planned = planSetup(s.graph, s.plan, o);
     } catch (const GraphError& e) {
         throw ExecutorError(e.what());
     }
-    const Plan& setup = s.setup;
+    if (only.empty()) s.setup = *planned;
+    const Plan& setup = *planned;
     if (setup.passes().empty()) return;
     // Each setup resource is a frame resource of the same name; a per-slot one is set up once
     // per copy.
@@ -96,7 +100,8 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
     };
     // Host contents of the Upload steps, written before the submission (which makes host writes
     // visible to it): one staging buffer per step, shared by the copies.
-    std::vector<OwnedBuffer> staging(setup.passes().size());
+    auto stagingOwned = std::make_shared<std::vector<OwnedBuffer>>(setup.passes().size());
+    std::vector<OwnedBuffer>& staging = *stagingOwned;
     for (size_t i = 0; i < setup.passes().size(); ++i) {
         if (setup.passes()[i].type != "Upload") continue;
         const ResourceState& r = s.resources[frameResource[setup.passes()[i].usages[0].resource]];
@@ -120,7 +125,13 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
                 std::memcpy(dst + l * layerBytes + p * texel, t.data(), texel);
             }
     }
-    submitAndWait([&](CommandSink& sink) {
+    auto record = [this, &s, planned, stagingOwned, frameResource](CommandSink& sink) {
+        const Plan& setup = *planned;
+        const std::vector<OwnedBuffer>& staging = *stagingOwned;
+        auto copiesOf = [&](uint32_t setupResource) {
+            const ResourceState& r = s.resources[frameResource[setupResource]];
+            return r.isImage ? r.images.size() : r.buffers.size();
+        };
         const size_t copies = options.framesInFlight;
         for (uint32_t c = 0; c < copies; ++c) {
             // Copy c of a per-slot resource is frame slot c's, whose first binding slot is this.
@@ -149,7 +160,16 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only) {
                 if (c < copiesOf(b.resource)) finals.push_back(b);
             if (const BarrierBatch after(finals, target, s.families()); !after.empty()) sink.barriers(after);
         }
-    });
+    };
+    // One copy of each resource: the next frame records the steps before its passes and
+    // nothing waits. A resource with a copy per frame slot may be in use by frames in flight.
+    bool singleCopies = true;
+    for (const PlannedPass& step : setup.passes()) singleCopies &= copiesOf(step.usages[0].resource) == 1;
+    if (withNextFrame && singleCopies) {
+        pendingSetup = PendingSetup{&s, std::move(record), std::move(stagingOwned)};
+        return;
+    }
+    submitAndWait(record);
 }
 
 }  // namespace skygraph

@@ -50,6 +50,12 @@ enum class PresentStatus : uint8_t {
     Paused,
 };
 
+/// When Renderer::updateExternalImage() copies new pixels into the image.
+enum class UploadTiming : uint8_t {
+    Now,            ///< Submitted and waited for before the call returns.
+    WithNextFrame,  ///< Recorded at the start of the next frame; nothing waits.
+};
+
 /// GPU time of one pass in the last completed frame of a slot.
 struct PassTiming {
     std::string pass;
@@ -173,10 +179,13 @@ public:
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// New pixels for external image `resource`, which setExternalImage() gave pixels before:
     /// one Upload step of the setup and its barriers, every other resource left as it is (so
-    /// images this renderer shares keep their contents). Waits for this renderer's frames and
-    /// for the upload, not for other renderers' frames. Throws ExecutorError as
-    /// setExternalImage() does, and for a resource without pixels yet.
-    void updateExternalImage(const std::string& resource, ImageData pixels);
+    /// images this renderer shares keep their contents). Waits for this renderer's frames, not
+    /// for other renderers'. The pixels go to a staging buffer now; with UploadTiming::Now the
+    /// copy is submitted and waited for, with WithNextFrame it is recorded at the start of the
+    /// next frame's first submit, before its passes, and nothing waits (an image with a copy
+    /// per frame slot is uploaded now all the same). Throws ExecutorError as setExternalImage()
+    /// does, and for a resource without pixels yet.
+    void updateExternalImage(const std::string& resource, ImageData pixels, UploadTiming timing = UploadTiming::Now);
     /// Shares the image of `resource`, an external image this plan exports (`final` set),
     /// with another renderer on the same Device. It holds this frame's contents once the
     /// frames that write it have finished (waitIdle()), in the layout of its `final` state.

@@ -143,7 +143,7 @@ bool EnvironmentBaker::start(HdrImage equirect) {
     // Its products were last sampled by frames before the previous swap; the bake's first
     // submit, on the graphics queue, orders its writes after all of them.
     if (uploaded_[next_]) {
-        r.updateExternalImage(std::string(kEquirect), toImageData(std::move(equirect)));
+        r.updateExternalImage(std::string(kEquirect), toImageData(std::move(equirect)), UploadTiming::WithNextFrame);
     } else {
         r.setExternalImage(std::string(kEquirect), toImageData(std::move(equirect)));
         uploaded_[next_] = true;
