@@ -378,6 +378,10 @@ struct Renderer::Impl {
         std::shared_ptr<void> keep;
     };
     std::optional<PendingSetup> pendingSetup;
+    /// The staging buffers of the last upload that rode with a frame, to be reused.
+    std::shared_ptr<std::vector<detail::OwnedBuffer>> lastStaging;
+    /// A host-visible staging buffer of `bytes`: one of lastStaging's once its frame is done.
+    [[nodiscard]] detail::OwnedBuffer spareStaging(VkDeviceSize bytes);
     /// Records `steps` (a setup or image-read plan over resources of `s`) with `record` for
     /// each step, submits once and waits. `copy` picks the per-slot copy of each resource.
     void submitAndWait(const std::function<void(detail::CommandSink&)>& record);

@@ -113,7 +113,7 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
         const ImageData& px = uploads.at(r.desc->name);
         const uint32_t texel = copyTexelBytes(r.desc->format);
         const VkDeviceSize layerBytes = VkDeviceSize(r.width) * r.height * texel;
-        staging[i] = makeHostBuffer(layerBytes * r.layers, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+        staging[i] = spareStaging(layerBytes * r.layers);
         auto* dst = static_cast<uint8_t*>(staging[i].mapped);
         // Float RGBA is what the pixels are already (an HDRI): copied as it is.
         const bool asIs = r.format == VK_FORMAT_R32G32B32A32_SFLOAT && texel == 16;
@@ -166,10 +166,20 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
     bool singleCopies = true;
     for (const PlannedPass& step : setup.passes()) singleCopies &= copiesOf(step.usages[0].resource) == 1;
     if (withNextFrame && singleCopies) {
+        lastStaging = stagingOwned;
         pendingSetup = PendingSetup{&s, std::move(record), std::move(stagingOwned)};
         return;
     }
     submitAndWait(record);
+}
+
+OwnedBuffer Renderer::Impl::spareStaging(VkDeviceSize bytes) {
+    // A buffer kept from an upload before whose frame has finished (nothing else holds the
+    // list): re-uploading the same image again and again allocates nothing.
+    if (lastStaging && lastStaging.use_count() == 1)
+        for (OwnedBuffer& b : *lastStaging)
+            if (b.buffer && b.size == bytes) return std::move(b);
+    return makeHostBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
 }
 
 }  // namespace skygraph
