@@ -57,6 +57,7 @@ struct RunResult {
     double worstMs = 0.0;   ///< longest frame from the change on
     double setupMs = 0.0;   ///< EnvironmentBaker::start() on this thread
     uint32_t framesToSwap = 0;
+    uint32_t worstAt = 0;  ///< frames after the change at which the worst frame came
 };
 
 HdrImage scaled(const HdrImage& image, float factor) {
@@ -114,7 +115,9 @@ public:
         }
         frame_->waitIdle();
         r.steadyMs = median(before);
-        r.worstMs = after.empty() ? 0.0 : *std::max_element(after.begin(), after.end());
+        const auto worst = std::max_element(after.begin(), after.end());
+        r.worstMs = after.empty() ? 0.0 : *worst;
+        r.worstAt = static_cast<uint32_t>(worst - after.begin());
         return r;
     }
 
@@ -172,8 +175,8 @@ int main(int argc, char** argv) {
                 const bool async = (rep + k) % 2 == 1;  // alternate which mode goes first
                 runs.push_back(bench.run(async, frames, changeAt, rep % 2 ? 2.0f : 0.5f));
                 const auto& r = runs.back();
-                std::printf("%-5s steady %7.3f ms  worst %8.3f ms  start %8.3f ms  swap after %u frames\n",
-                            r.mode.c_str(), r.steadyMs, r.worstMs, r.setupMs, r.framesToSwap);
+                std::printf("%-5s steady %7.3f ms  worst %8.3f ms (frame +%u)  start %8.3f ms  swap after %u frames\n",
+                            r.mode.c_str(), r.steadyMs, r.worstMs, r.worstAt, r.setupMs, r.framesToSwap);
             }
         auto med = [&](const char* mode, double bench::RunResult::*field) {
             std::vector<double> v;
@@ -191,9 +194,10 @@ int main(int argc, char** argv) {
                     med("async", &bench::RunResult::setupMs));
         if (!csv.empty()) {
             std::ofstream out(csv);
-            out << "mode,steady_ms,worst_ms,start_ms,frames_to_swap\n";
+            out << "mode,steady_ms,worst_ms,worst_at,start_ms,frames_to_swap\n";
             for (const auto& r : runs)
-                out << r.mode << ',' << r.steadyMs << ',' << r.worstMs << ',' << r.setupMs << ',' << r.framesToSwap
+                out << r.mode << ',' << r.steadyMs << ',' << r.worstMs << ',' << r.worstAt << ',' << r.setupMs << ','
+                    << r.framesToSwap
                     << '\n';
         }
         const uint32_t messages = device->messageCount();
