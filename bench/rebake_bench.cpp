@@ -58,6 +58,7 @@ struct RunResult {
     double setupMs = 0.0;   ///< EnvironmentBaker::start() on this thread
     uint32_t framesToSwap = 0;
     uint32_t worstAt = 0;  ///< frames after the change at which the worst frame came
+    double swapMs = 0.0;   ///< the swapInWhenFinished() call that swapped the products in
 };
 
 HdrImage scaled(const HdrImage& image, float factor) {
@@ -101,7 +102,11 @@ public:
                 if (!baker.start(std::move(next))) throw std::runtime_error("the previous bake is still pending");
                 r.setupMs = baker.lastStartMs();
             }
-            if (baker.swapInWhenFinished(*frame_)) r.framesToSwap = i - changeAt;
+            const auto swapStart = Clock::now();
+            if (baker.swapInWhenFinished(*frame_)) {
+                r.framesToSwap = i - changeAt;
+                r.swapMs = ms(Clock::now() - swapStart);
+            }
             frame_->renderFrame();
             const auto now = Clock::now();
             (i < changeAt ? before : after).push_back(ms(now - last));
@@ -175,8 +180,8 @@ int main(int argc, char** argv) {
                 const bool async = (rep + k) % 2 == 1;  // alternate which mode goes first
                 runs.push_back(bench.run(async, frames, changeAt, rep % 2 ? 2.0f : 0.5f));
                 const auto& r = runs.back();
-                std::printf("%-5s steady %7.3f ms  worst %8.3f ms (frame +%u)  start %8.3f ms  swap after %u frames\n",
-                            r.mode.c_str(), r.steadyMs, r.worstMs, r.worstAt, r.setupMs, r.framesToSwap);
+                std::printf("%-5s steady %7.3f ms  worst %8.3f ms (frame +%u)  start %8.3f ms  swap %7.3f ms after %u frames\n",
+                            r.mode.c_str(), r.steadyMs, r.worstMs, r.worstAt, r.setupMs, r.swapMs, r.framesToSwap);
             }
         auto med = [&](const char* mode, double bench::RunResult::*field) {
             std::vector<double> v;
@@ -194,10 +199,10 @@ int main(int argc, char** argv) {
                     med("async", &bench::RunResult::setupMs));
         if (!csv.empty()) {
             std::ofstream out(csv);
-            out << "mode,steady_ms,worst_ms,worst_at,start_ms,frames_to_swap\n";
+            out << "mode,steady_ms,worst_ms,worst_at,start_ms,swap_ms,frames_to_swap\n";
             for (const auto& r : runs)
                 out << r.mode << ',' << r.steadyMs << ',' << r.worstMs << ',' << r.worstAt << ',' << r.setupMs << ','
-                    << r.framesToSwap
+                    << r.swapMs << ',' << r.framesToSwap
                     << '\n';
         }
         const uint32_t messages = device->messageCount();
