@@ -5,6 +5,7 @@
 // validation: the frames, the bake's submits and semaphores, the swap and the old bake's
 // destruction while frames that sampled it may still run all report nothing.
 #include "analytic_environment.hpp"
+#include "cube_probe.hpp"
 #include "executor_test_util.hpp"
 
 #include "app/environment_bake.hpp"
@@ -12,51 +13,10 @@
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/pass.hpp>
-#include <skygraph/pipeline_builder.hpp>
 
-#include <sstream>
 
 namespace skygraph::test {
 namespace {
-
-/// Test-only pass: samples `environment` (a cube) at the six face centres into `probe`.
-class FaceProbe final : public PassImplementation {
-public:
-    void createPipelines(const PipelineContext& ctx) override {
-        const char* src = R"(#version 450
-layout(local_size_x = 1) in;
-layout(set = 0, binding = 0) uniform samplerCube environment;
-layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D probe;
-const vec3 dirs[6] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1), vec3(0, 0, -1));
-void main() {
-  int i = int(gl_GlobalInvocationID.x);
-  imageStore(probe, ivec2(i, 0), textureLod(environment, dirs[i], 0.0));
-}
-)";
-        ComputePipelineRecipe recipe;
-        recipe.compute = ctx.shaders->compile(VK_SHADER_STAGE_COMPUTE_BIT, src, "face_probe.comp");
-        recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-                           {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-        pipeline_ = createComputePipeline(ctx.device, recipe);
-        push_ = pushDescriptorFunction(ctx.device);
-    }
-
-    void record(const RecordContext& ctx) override {
-        const BoundResource* env = ctx.slot("environment");
-        const BoundResource* out = ctx.slot("probe");
-        VkDescriptorImageInfo images[2] = {{ctx.linearSampler, env->view, env->usage->layout},
-                                           {VK_NULL_HANDLE, out->view, out->usage->layout}};
-        VkWriteDescriptorSet writes[2] = {sampledImageWrite(0, &images[0]), sampledImageWrite(1, &images[1])};
-        writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
-        push_(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, 2, writes);
-        vkCmdDispatch(ctx.cmd, 6, 1, 1);
-    }
-
-private:
-    ComputePipeline pipeline_;
-    PFN_vkCmdPushDescriptorSetKHR push_ = nullptr;
-};
 
 constexpr uint32_t kCube = 32;
 
@@ -82,11 +42,11 @@ HdrImage uniformSky(float r, float g, float b) {
 class BackgroundBake : public ExecutorTest {
 protected:
     BackgroundBake() {
-        library_.add({"FaceProbe",
-                      {SlotDecl{"environment", Stage::Compute, {Access::Read}, BindAs::Sampled, false, false, "cube"},
-                       SlotDecl{"probe", Stage::Compute, {Access::Write}, BindAs::Storage, false, false, "values"}},
-                      false, {}, "samples a cube at its face centres"},
-                     [](const PassDesc&) { return std::make_unique<FaceProbe>(); });
+        // The six face centres, in Vulkan's face order.
+        library_.add(CubeProbe::typeInfo("FaceProbe"), [](const PassDesc&) {
+            return std::make_unique<CubeProbe>(
+                std::vector<Dir>{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
+        });
         iblGraph_ = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json", library_.registry());
         app::resizeEnvironmentGraph(iblGraph_, {kCube, kCube / 2});
     }

@@ -3,13 +3,12 @@
 // known directions (face centres, edges, corners, near-edge and generic directions). A face
 // in the wrong slot or with a flipped axis moves the value by O(1). Lavapipe, validation on.
 #include "analytic_environment.hpp"
+#include "cube_probe.hpp"
 #include "executor_test_util.hpp"
 
 #include <skygraph/pass.hpp>
-#include <skygraph/pipeline_builder.hpp>
 
 #include <cstdio>
-#include <sstream>
 
 namespace skygraph::test {
 namespace {
@@ -27,47 +26,6 @@ std::vector<Dir> probeDirections() {
     for (auto& d : dirs) d = glm::normalize(d);
     return dirs;
 }
-
-/// Test-only pass: samples `environment` (a cube) at fixed directions into row 0 of `probe`.
-class CubeProbe final : public PassImplementation {
-public:
-    explicit CubeProbe(std::vector<Dir> dirs) : dirs_(std::move(dirs)) {}
-
-    void createPipelines(const PipelineContext& ctx) override {
-        std::ostringstream src;
-        src << "#version 450\nlayout(local_size_x = 1) in;\n"
-               "layout(set = 0, binding = 0) uniform samplerCube environment;\n"
-               "layout(set = 0, binding = 1, rgba32f) uniform writeonly image2D probe;\n"
-            << "const vec3 dirs[" << dirs_.size() << "] = vec3[](";
-        for (size_t i = 0; i < dirs_.size(); ++i)
-            src << (i ? ", " : "") << "vec3(" << dirs_[i].x << ", " << dirs_[i].y << ", " << dirs_[i].z << ")";
-        src << ");\nvoid main() {\n  int i = int(gl_GlobalInvocationID.x);\n"
-               "  imageStore(probe, ivec2(i, 0), textureLod(environment, dirs[i], 0.0));\n}\n";
-        ComputePipelineRecipe recipe;
-        recipe.compute = ctx.shaders->compile(VK_SHADER_STAGE_COMPUTE_BIT, src.str(), "cube_probe.comp");
-        recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-                           {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
-        pipeline_ = createComputePipeline(ctx.device, recipe);
-        push_ = pushDescriptorFunction(ctx.device);
-    }
-
-    void record(const RecordContext& ctx) override {
-        const BoundResource* env = ctx.slot("environment");
-        const BoundResource* out = ctx.slot("probe");
-        VkDescriptorImageInfo images[2] = {{ctx.linearSampler, env->view, env->usage->layout},
-                                           {VK_NULL_HANDLE, out->view, out->usage->layout}};
-        VkWriteDescriptorSet writes[2] = {sampledImageWrite(0, &images[0]), sampledImageWrite(1, &images[1])};
-        writes[1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
-        push_(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, 2, writes);
-        vkCmdDispatch(ctx.cmd, uint32_t(dirs_.size()), 1, 1);
-    }
-
-private:
-    std::vector<Dir> dirs_;
-    ComputePipeline pipeline_;
-    PFN_vkCmdPushDescriptorSetKHR push_ = nullptr;
-};
 
 std::string probeGraph(uint32_t probes, uint32_t faceSize, int supersample) {
     char text[2048];
@@ -96,11 +54,7 @@ class CubeSampling : public ExecutorTest {};
 TEST_F(CubeSampling, FacesFollowVulkanSelectionAtCentresEdgesAndCorners) {
     const std::vector<Dir> dirs = probeDirections();
     PassLibrary library = PassLibrary::withBuiltins();
-    library.add({"CubeProbe",
-                 {SlotDecl{"environment", Stage::Compute, {Access::Read}, BindAs::Sampled, false, false, "cube"},
-                  SlotDecl{"probe", Stage::Compute, {Access::Write}, BindAs::Storage, false, false, "values"}},
-                 false, {}, "samples a cube at fixed directions"},
-                [&](const PassDesc&) { return std::make_unique<CubeProbe>(dirs); });
+    library.add(CubeProbe::typeInfo("CubeProbe"), [&](const PassDesc&) { return std::make_unique<CubeProbe>(dirs); });
     const uint32_t size = 64;
     const GraphDesc graph = parseGraph(probeGraph(uint32_t(dirs.size()), size, 4), "<probe>", library.registry());
     CompileOptions co;
