@@ -20,7 +20,7 @@ namespace {
 
 std::string formatMessages(const Device& d) {
     std::string s;
-    for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message.substr(0, 800) + "\n";
+    for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message + "\n";
     return s;
 }
 

@@ -242,5 +242,40 @@ TEST_F(SemaphoreValidation, ATransitionAfterAWaitNeedsAReadInItsSourceAccessForT
     EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
 }
 
+// Why random graphs on queues can be reported with write-after-write on lavapipe (docs/queues.md,
+// docs/reliability.md): B waits for the clear at the copy's stage, which by vkQueueSubmit2's
+// rules also orders every later command of the queue at that stage, so C's transition (source:
+// the copy's stage) follows the clear, and C needs no wait of its own. Layer 1.3.239 agrees;
+// but give C a further, redundant wait for the clear at a stage the transition is not in, and
+// it reports the transition. It imports the clear twice, through C's wait and through B, and
+// when it merges two states of one write it keeps the first one's dependency chain only
+// (ResourceAccessState::Resolve; layers from 1.3.264 merge the chains). An extra wait can only
+// add ordering, so the second report is the layer's.
+TEST_F(SemaphoreValidation, ARedundantWaitHidesAnEarlierWaitFromTheLayer) {
+    const std::pair transition{kCopy, VkAccessFlags2(VK_ACCESS_2_MEMORY_READ_BIT)};
+    for (const bool redundantWait : {false, true}) {
+        TwoSubmits t(sharedDevice());
+        t.recordClear();
+        t.recordNothing(1);
+        t.recordCopy(2, transition);
+        const VkSemaphore forB = t.semaphore(false);
+        const VkSemaphore forC = t.semaphore(false);
+        std::vector<VkSemaphoreSubmitInfo> signals{op(forB, 0, kClear)};
+        if (redundantWait) signals.push_back(op(forC, 0, kClear));
+        t.submit(0, {}, signals);
+        t.submit(1, {op(forB, 0, kCopy)}, {});
+        std::vector<VkSemaphoreSubmitInfo> waitsOfC;
+        if (redundantWait) waitsOfC.push_back(op(forC, 0, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT));
+        t.submit(2, waitsOfC, {});
+        vkQueueWaitIdle(sharedDevice().queue());
+        if (redundantWait) {
+            EXPECT_TRUE(sharedDevice().hasMessage(kWaw)) << formatMessages(sharedDevice());
+        } else {
+            EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+        }
+        sharedDevice().clearMessages();
+    }
+}
+
 }  // namespace
 }  // namespace skygraph::test
