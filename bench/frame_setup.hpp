@@ -68,8 +68,8 @@ inline app::RenderOptions rasterOptions(Size size, bool ui, const PassLibrary& p
     return o;
 }
 
-/// One renderer of raster.json and the environment it samples (baked once, as `render` does;
-/// nothing for the default scene's procedural sky). Headless: the swapchain target is an image
+/// One renderer of raster.json and the environment it samples (baked once, as `render` does,
+/// the default scene's procedural sky included). Headless: the swapchain target is an image
 /// of the renderer's own (CompileOptions::presentReplacement), as in `skygraph render` without
 /// a read-back; presented: the Present resource stays Present, as in `skygraph view`.
 struct FrameRenderer {

@@ -8,6 +8,7 @@
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -110,21 +111,38 @@ GraphDesc loadGraph(const FrameCase& c, const PassRegistry& registry) {
     return parseGraph(graph.dump(2), c.graph.string() + "@unorm-swapchain", registry);
 }
 
-/// A scene's environment file, as `skygraph render` uses it (framework/executor/render_command.cpp):
-/// the graph's "equirect" takes the file's extent and pixels, and graphs/ibl.json beside the
+/// The procedural sky at 1024x512, texel centres: `skygraph render` bakes the same sky
+/// (tools/app/procedural_environment.cpp) with its sun's texels supersampled, which changes
+/// no pass's cost.
+HdrImage proceduralSkyImage() {
+    HdrImage image;
+    image.width = 1024;
+    image.height = 512;
+    image.rgba.reserve(size_t(image.width) * image.height * 4);
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x) {
+            const auto c = math::proceduralSky(
+                math::equirectToDirection(glm::dvec2((x + 0.5) / image.width, (y + 0.5) / image.height)));
+            image.rgba.insert(image.rgba.end(), {float(c.x), float(c.y), float(c.z), 1.0f});
+        }
+    return image;
+}
+
+/// A scene's environment, as `skygraph render` uses it (tools/app/render.cpp): its file, or
+/// the procedural sky as an equirect; the graph's "equirect" takes the image's extent and pixels, and graphs/ibl.json beside the
 /// graph bakes, once and untimed, the products the plan imports (environment, irradiance,
 /// prefiltered, brdf_lut), which the measured renderer then samples.
 class EnvironmentFile {
 public:
     EnvironmentFile(const Scene* scene, GraphDesc& graph) {
-        if (!scene || !scene->environment || scene->environment->procedural) return;
-        image_ = loadHdrImage(scene->environment->file);
+        if (!scene || !scene->environment) return;
+        image_ = scene->environment->procedural ? proceduralSkyImage() : loadHdrImage(scene->environment->file);
         for (ResourceDesc& r : graph.resources)
             if (r.name == "equirect") r.extent = Extent{false, 1, image_->width, image_->height};
     }
 
     /// Bakes the products `plan` imports with `library`'s passes and hands them and the
-    /// equirect image to `renderer`. Does nothing for procedural environments.
+    /// equirect image to `renderer`. Does nothing without an environment.
     void install(Device& device, const std::filesystem::path& graphFile, const GraphDesc& graph,
                  const PassLibrary& library, Renderer& renderer) {
         if (!image_) return;
@@ -151,7 +169,7 @@ public:
         for (const auto& name : products) renderer.importImage(name, baker_->shareImage(name));
     }
 
-    /// Whether the environment file fills the graph resource `name`.
+    /// Whether the environment image fills the graph resource `name`.
     [[nodiscard]] bool provides(const std::string& name) const { return image_ && name == "equirect"; }
 
 private:

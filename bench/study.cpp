@@ -155,14 +155,29 @@ RasterFrame timeRasterFrames(Renderer& renderer, int frames) {
     return f;
 }
 
-/// graphs/raster.json with hdr_color in `hdrFormat`, rendering `frames` timed frames.
-RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, VkFormat hdrFormat, int frames) {
-    const PassLibrary library = PassLibrary::withBuiltins();
+/// The recording code of every renderer here; lives as long as the program.
+const PassLibrary& builtinPasses() {
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    return library;
+}
+
+/// Hands `renderer` the environment products its plan imports, from `baker`.
+void importProducts(Renderer& renderer, Renderer& baker) {
+    for (const char* product : {"environment", "irradiance", "prefiltered", "brdf_lut"})
+        if (renderer.plan().resourceIndex(product) >= 0) renderer.importImage(product, baker.shareImage(product));
+}
+
+/// graphs/raster.json with hdr_color in `hdrFormat`, lit by `environment`'s products,
+/// rendering `frames` timed frames.
+RasterFrame renderRaster(Device& device, const Options& o, const Scene& scene, VkFormat hdrFormat, int frames,
+                         Renderer& environment) {
+    const PassLibrary& library = builtinPasses();
     GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
     for (auto& r : graph.resources)
         if (r.name == "hdr_color") r.format = *findFormat(hdrFormat);
     Renderer renderer(device, CompiledGraph(std::move(graph), rasterCompileOptions(o, scene)), rendererOptions(library));
     renderer.frameData().set(scene);
+    importProducts(renderer, environment);
     return timeRasterFrames(renderer, frames);
 }
 
@@ -188,10 +203,10 @@ struct EnvironmentKnobs {
 };
 
 /// graphs/ibl.json baked with `k` (cube faces of k.faceSize, the mip passes beyond its chain
-/// dropped), then graphs/raster.json (fp32 target) lit and backed by its products.
-RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene, const ImageData& map,
-                                  const EnvironmentKnobs& k, double& bakeMs) {
-    const PassLibrary library = PassLibrary::withBuiltins();
+/// dropped) on `map`; the returned renderer holds the products.
+std::unique_ptr<Renderer> bakeStudyEnvironment(Device& device, const ImageData& map, const EnvironmentKnobs& k,
+                                               double& bakeMs) {
+    const PassLibrary& library = builtinPasses();
     GraphDesc ibl = loadGraphFile(kSource / "graphs/ibl.json", library.registry());
     uint32_t levels = 1;
     while ((k.faceSize >> levels) > 0) ++levels;
@@ -209,13 +224,20 @@ RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene,
     RendererOptions bo;
     bo.framesInFlight = 1;
     bo.passes = &library;
-    Renderer baker(device, CompiledGraph(std::move(ibl), CompileOptions{}), bo);
-    baker.setExternalImage("equirect", map);
+    auto baker = std::make_unique<Renderer>(device, CompiledGraph(std::move(ibl), CompileOptions{}), bo);
+    baker->setExternalImage("equirect", map);
     const auto start = std::chrono::steady_clock::now();
-    baker.renderFrame();
-    baker.waitIdle();
+    baker->renderFrame();
+    baker->waitIdle();
     bakeMs = msSince(start);
+    return baker;
+}
 
+/// `map` baked with `k`, then graphs/raster.json (fp32 target) lit and backed by its products.
+RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene, const ImageData& map,
+                                  const EnvironmentKnobs& k, double& bakeMs) {
+    const PassLibrary& library = builtinPasses();
+    const std::unique_ptr<Renderer> baker = bakeStudyEnvironment(device, map, k, bakeMs);
     scene.environment = SceneEnvironment{false, "study-sky.hdr", 0.0,
                                          k.cubemap ? EnvironmentSampling::Cubemap : EnvironmentSampling::Equirect};
     GraphDesc graph = loadGraphFile(kSource / "graphs/raster.json", library.registry());
@@ -226,8 +248,7 @@ RasterFrame renderWithEnvironment(Device& device, const Options& o, Scene scene,
     }
     Renderer renderer(device, CompiledGraph(std::move(graph), rasterCompileOptions(o, scene)), rendererOptions(library));
     renderer.frameData().set(scene);
-    for (const char* product : {"environment", "irradiance", "prefiltered", "brdf_lut"})
-        if (renderer.plan().resourceIndex(product) >= 0) renderer.importImage(product, baker.shareImage(product));
+    importProducts(renderer, *baker);
     if (renderer.plan().resourceIndex("equirect") >= 0) renderer.setExternalImage("equirect", map);
     return timeRasterFrames(renderer, 4);
 }
@@ -366,12 +387,15 @@ int run(int argc, char** argv) {
     std::vector<Point> points;
 
     // The HDR target and each operator: the fp32 frame tonemapped in double is the reference.
-    const RasterFrame reference = renderRaster(*device, o, scene, VK_FORMAT_R32G32B32A32_SFLOAT, 1);
+    // The procedural sky lights the scene through the shipped bake, as in `skygraph render`.
+    double skyBake = 0;
+    const std::unique_ptr<Renderer> sky = bakeStudyEnvironment(*device, skyEquirect(1024, 512), {}, skyBake);
+    const RasterFrame reference = renderRaster(*device, o, scene, VK_FORMAT_R32G32B32A32_SFLOAT, 1, *sky);
     for (const VkFormat format : {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT})
         for (const Tonemapper op : {Tonemapper::AcesNarkowicz, Tonemapper::AcesHill, Tonemapper::KhronosPbrNeutral,
                                     Tonemapper::Passthrough}) {
             scene.tonemapper = op;
-            const RasterFrame f = renderRaster(*device, o, scene, format, 8);
+            const RasterFrame f = renderRaster(*device, o, scene, format, 8, *sky);
             Point p{"raster hdr target + operator",
                     std::string(format == VK_FORMAT_R16G16B16A16_SFLOAT ? "fp16 " : "fp32 ") +
                         std::string(toString(op))};

@@ -162,12 +162,18 @@ Vec3<T> cubeToDirection(int face, const Vec2<T>& st) {
     }
 }
 
+/// The unit direction towards the procedural sky's sun (0.6 degrees in radius).
+template <typename T>
+Vec3<T> proceduralSunDirection() {
+    return glm::normalize(Vec3<T>(T(0.35), T(0.45), T(-0.82)));
+}
+
 /// The built-in procedural sky: a gradient from horizon to zenith, a darker ground, and a
 /// sun disc with a soft glow. Radiance in linear HDR units; smooth except at the disc edge.
 template <typename T>
 Vec3<T> proceduralSky(const Vec3<T>& dirIn) {
     const Vec3<T> d = glm::normalize(dirIn);
-    const Vec3<T> sunDir = glm::normalize(Vec3<T>(T(0.35), T(0.45), T(-0.82)));
+    const Vec3<T> sunDir = proceduralSunDirection<T>();
     const Vec3<T> zenith(T(0.16), T(0.34), T(0.82)), horizon(T(0.75), T(0.85), T(1.0));
     const Vec3<T> ground(T(0.18), T(0.16), T(0.14));
     const T up = d.y;

@@ -58,7 +58,7 @@ TEST_F(Cli, CompileRasterAsJson) {
         EXPECT_TRUE(p["type"].is_string());
         EXPECT_TRUE(p["barriers"].is_array());
     }
-    EXPECT_EQ(names, (std::vector<std::string>{"forward", "skybox", "tonemap"}));
+    EXPECT_EQ(names, (std::vector<std::string>{"forward_ibl", "skybox", "tonemap"}));
     ASSERT_TRUE(plan["culled"].is_array());
     for (const auto& c : plan["culled"]) {
         EXPECT_TRUE(c["pass"].is_string()) << c;

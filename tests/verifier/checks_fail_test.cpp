@@ -140,7 +140,7 @@ TEST(HappensBeforeGraph, SemaphoreEdgesJoinQueues) {
 
 TEST(ChecksFail, MalformedPlanIsReportedNotCrashed) {
     test::Compiled c = test::compileShipped("raster.json");
-    const size_t forward = stepIndex(c.plan, "forward");
+    const size_t forward = stepIndex(c.plan, "forward_ibl");
     PlanEditor::usagesOf(c.plan, forward)[0].resource = 999;
     PlanEditor::barriersOf(c.plan, forward)[0].resource = 999;
     PlanEditor::usagesOf(c.plan, stepIndex(c.plan, "tonemap"))[0].range = {7, 1, 0, 1};
@@ -256,8 +256,8 @@ TEST(ChecksFail, BadOldLayout) {
 
 TEST(ChecksFail, UndefinedContents) {
     test::Compiled c = test::compileShipped("raster.json");
-    // forward's colour is loaded by skybox: a DONT_CARE store would throw it away.
-    const size_t step = stepIndex(c.plan, "forward");
+    // forward_ibl's colour is loaded by skybox: a DONT_CARE store would throw it away.
+    const size_t step = stepIndex(c.plan, "forward_ibl");
     PlanEditor::usagesOf(c.plan, step)[usageOf(c.plan, step, "hdr_color")].store = StoreOp::DontCare;
     const VerificationReport r = verifyPlan(c.plan, c.graph);
     EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "hdr_color")) << r.summary();

@@ -5,6 +5,7 @@
 
 #include "environment_bake.hpp"
 #include "environment_graph.hpp"
+#include "procedural_environment.hpp"
 #include "shipped_names.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -43,9 +44,16 @@ std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, cons
 std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const GraphDesc& graph,
                                                        const GraphDesc* environmentGraph) {
     std::set<std::string, std::less<>> products;
-    for (const PlannedResource& r : plan.resources()) {
+    std::set<size_t> written;
+    for (const PlannedPass& p : plan.passes())
+        for (const PlannedUsage& u : p.usages)
+            if (writesContents(u.usage.access)) written.insert(u.resource);
+    for (size_t i = 0; i < plan.resources().size(); ++i) {
+        const PlannedResource& r = plan.resources()[i];
         const ResourceDesc& d = graph.resources[r.decl];
-        if (!d.external || d.name == kEquirect) continue;
+        // What the plan only reads: a graph that writes an external (graphs/ibl.json itself)
+        // produces it.
+        if (!d.external || d.name == kEquirect || written.count(i)) continue;
         const ResourceDesc* produced = environmentGraph ? environmentGraph->findResource(d.name) : nullptr;
         if (produced && produced->isExported()) {
             products.insert(d.name);
@@ -109,14 +117,20 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         e.procedural = options.environmentFile->empty();
         e.file = e.procedural ? std::filesystem::path() : std::filesystem::absolute(*options.environmentFile);
     }
-    // A file environment is loaded before compiling: its size is the extent of the graph's
-    // `equirect` (data-driven, so the plan's subresources match the image).
+    // The environment image is made before compiling: its size is the extent of the graph's
+    // `equirect` (data-driven, so the plan's subresources match the image). The procedural
+    // sky is rendered to one, so that it lights the scene through the same bake as a file.
     std::optional<HdrImage>& environment = in.environment;
-    if (scene && scene->environment && !scene->environment->procedural) {
-        environment = loadHdrImage(scene->environment->file);
-        spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
-                     environment->height);
-        if (!setEquirectExtent(graph, environment->width, environment->height))
+    if (scene && scene->environment) {
+        if (scene->environment->procedural) {
+            environment = proceduralSkyEquirect();
+            spdlog::info("environment: the procedural sky ({}x{})", environment->width, environment->height);
+        } else {
+            environment = loadHdrImage(scene->environment->file);
+            spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
+                         environment->height);
+        }
+        if (!setEquirectExtent(graph, environment->width, environment->height) && !scene->environment->procedural)
             spdlog::warn("graph '{}' has no resource '{}': the environment file is not used", graph.name,
                          kEquirect);
     }

@@ -88,7 +88,7 @@ struct FrameInputs {
     const PassLibrary* passes = nullptr;
     GraphDesc graph;
     std::optional<Scene> scene;
-    std::optional<HdrImage> environment;  ///< The scene's environment file, if it has one.
+    std::optional<HdrImage> environment;  ///< The scene's environment: its file, or the procedural sky rendered to an equirect.
     std::optional<EnvironmentSizes> environmentSizes;
     /// Features, output size, aliasing and clobbering; the caller adds presentation or
     /// read-backs.

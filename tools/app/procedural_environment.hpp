@@ -1,0 +1,22 @@
+// The procedural sky as an environment image, so that it lights the scene through the same
+// pipeline as a file (graphs/ibl.json: cube, irradiance, prefiltered specular, BRDF LUT).
+#pragma once
+
+#include <skygraph/hdr_image.hpp>
+
+#include <cstdint>
+
+namespace skygraph::app {
+
+/// The equirect size the procedural sky is rendered at: 1024 x 512 (0.35 degrees a texel),
+/// enough for the largest environment cube that graphs/raster.json imports (256 texels a
+/// face: viewEnvironmentFaceSize() allows a cube of width / pi texels).
+inline constexpr uint32_t kProceduralEquirectWidth = 1024;
+
+/// math::proceduralSky() (the function the skybox and the path tracer evaluate) as a
+/// `width` x (width / 2) equirect. Each texel is the mean over its footprint: texels the sun's
+/// disc may touch are averaged over 16 x 16 samples, so the disc's power survives at any
+/// width; the rest of the sky is smooth enough for the texel centre. Width at least 2.
+[[nodiscard]] HdrImage proceduralSkyEquirect(uint32_t width = kProceduralEquirectWidth);
+
+}  // namespace skygraph::app
