@@ -72,7 +72,7 @@ sanitizers_and_fuzz() {
     )
     stage "sanitizers: skygraph view closed mid-frame, leak detection on (and its negative control)"
     tests/reliability/view_leak_check.sh build-fuzz
-    stage "fuzz the loader and compiler for ${SKYGRAPH_FUZZ_SECONDS:-60} s"
+    stage "fuzz the graph loader and compiler, and the glTF loader, for ${SKYGRAPH_FUZZ_SECONDS:-60} s each"
     tools/fuzz.sh "${SKYGRAPH_FUZZ_SECONDS:-60}"
 }
 

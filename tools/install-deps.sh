@@ -10,6 +10,7 @@ packages=(
   libstb-dev libopenexr-dev blender-data
   graphviz python3-jsonschema libdtl-dev
   libglfw3-dev libimgui-dev  # `skygraph view`'s window (GLFW)
+  libtinygltf-dev assimp-testmodels  # glTF scene objects; the test models (tests/scene, tests/passes)
   xvfb xauth x11-apps xdotool imagemagick  # tests/present: a virtual X server, window control, screenshots
   liblcms2-dev python3-matplotlib  # bench/study: CIEDE2000, the Pareto plot (docs/tradeoffs.md)
   libopencolorio-dev  # the reference ACES RRT + ODT (bench/aces_reference.hpp, math_tests, study)

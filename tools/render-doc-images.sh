@@ -31,6 +31,7 @@ gallery -o docs/images/gallery-default.png
 gallery graphs/raster.json --scene scenes/default.json --feature skybox=off -o docs/images/gallery-no-skybox.png
 gallery graphs/raster.json --scene scenes/sky_only.json -o docs/images/gallery-sky-only.png
 gallery graphs/raster.json --scene scenes/studio.json -o docs/images/gallery-studio.png
+gallery graphs/raster.json --scene scenes/engine.json -o docs/images/gallery-engine.png
 for view in normal roughness; do
     gallery graphs/raster.json --scene "$(variant debug_view "$view")" -o "docs/images/gallery-debug-$view.png"
 done

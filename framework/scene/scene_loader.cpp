@@ -3,6 +3,7 @@
 #include "json_positions.hpp"
 
 #include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -117,7 +118,11 @@ private:
                              "debug_view", "objects"});
         if (auto it = root.find("description"); it != root.end() && !it->is_string())
             error("description", "must be a string");
-        if (auto it = root.find("camera"); it != root.end()) loadCamera(*it);
+        bool gltfCamera = false;
+        if (auto it = root.find("camera"); it != root.end()) {
+            if (it->is_string() && it->get<std::string>() == "gltf") gltfCamera = true;
+            else loadCamera(*it);
+        }
         if (auto it = root.find("environment"); it != root.end() && !it->is_null()) loadEnvironment(*it);
         optionalNumber(root, "", "exposure_ev", Range{-64.0, 64.0}, scene_.exposureEv);
         enumeration(root, "", "tonemapper",
@@ -138,6 +143,28 @@ private:
                                      std::to_string(kMaxSceneObjects) + " are allowed");
             for (size_t i = 0; i < it->size(); ++i) loadObject((*it)[i], "objects[" + std::to_string(i) + "]");
         }
+        if (gltfCamera) cameraFromGltf();
+    }
+
+    /// `"camera": "gltf"`: the first camera of the first glTF object that has one.
+    void cameraFromGltf() {
+        for (const SceneObject& o : scene_.objects) {
+            const auto* model = std::get_if<GltfModel>(&o.shape);
+            if (!model || !model->mesh->camera) continue;
+            const MeshCamera& c = *model->mesh->camera;
+            SceneCamera& cam = scene_.camera;
+            cam.position = c.position;
+            const math::Vec3<double> f(c.forward[0], c.forward[1], c.forward[2]), u(c.up[0], c.up[1], c.up[2]);
+            // Inverts math::cameraRotation (R = Ry(yaw) Rx(pitch) Rz(roll)): forward is R (0, 0, -1).
+            cam.pitchDeg = glm::degrees(std::asin(std::clamp(f.y, -1.0, 1.0)));
+            cam.yawDeg = glm::degrees(std::atan2(-f.x, -f.z));
+            const math::Vec3<double> rolled = glm::transpose(math::cameraRotation(cam.yawDeg, cam.pitchDeg, 0.0)) * u;
+            cam.rollDeg = glm::degrees(std::atan2(-rolled.x, rolled.y));
+            cam.fovYDeg = c.fovYDeg;
+            cam.near = c.near;
+            return;
+        }
+        if (diags_.empty()) error("camera", "is \"gltf\", but no glTF object of the scene has a perspective camera");
     }
 
     void loadCamera(const json& c) {
@@ -204,11 +231,49 @@ private:
             if (o.contains("half_extent") && number(o["half_extent"], path + ".half_extent", kPositive, half))
                 p.halfExtent = half;
             obj.shape = p;
+        } else if (t == "gltf") {
+            checkKeys(o, path, {"type", "file", "transform"});
+            return loadGltfObject(o, path);
         } else {
-            return error(path + ".type", "expected \"sphere\" or \"plane\", got " +
+            return error(path + ".type", "expected \"sphere\", \"plane\" or \"gltf\", got " +
                                              (type == o.end() ? std::string("nothing") : type->dump()));
         }
         if (auto it = o.find("material"); it != o.end()) loadMaterial(*it, path + ".material", obj.material);
+        scene_.objects.push_back(std::move(obj));
+    }
+
+    void loadGltfObject(const json& o, const std::string& path) {
+        GltfModel model;
+        if (auto it = o.find("transform"); it != o.end()) {
+            const std::string tpath = path + ".transform";
+            if (!it->is_object()) return error(tpath, "must be an object {translation, rotation_deg, scale}");
+            checkKeys(*it, tpath, {"translation", "rotation_deg", "scale"});
+            if (auto t = it->find("translation"); t != it->end()) vec3(*t, tpath + ".translation", kAny, model.transform.translation);
+            if (auto r = it->find("rotation_deg"); r != it->end()) vec3(*r, tpath + ".rotation_deg", kAny, model.transform.rotationDeg);
+            if (auto sc = it->find("scale"); sc != it->end()) {
+                if (sc->is_number()) {
+                    double uniform = 1.0;
+                    if (number(*sc, tpath + ".scale", kPositive, uniform)) model.transform.scale = {uniform, uniform, uniform};
+                } else {
+                    vec3(*sc, tpath + ".scale", kPositive, model.transform.scale);
+                }
+            }
+        }
+        auto file = o.find("file");
+        if (file == o.end() || !file->is_string() || file->get<std::string>().empty())
+            return error(path + ".file", "missing; expected a .gltf or .glb path");
+        const std::filesystem::path resolved = (baseDir_ / file->get<std::string>()).lexically_normal();
+        Diagnostics problems;
+        std::optional<TriangleMesh> mesh = loadGltf(resolved, model.transform, problems);
+        if (!mesh) {
+            error(path + ".file", "'" + resolved.string() + "' cannot be drawn: " + std::to_string(problems.size()) +
+                                      (problems.size() == 1 ? " problem" : " problems") + " follow");
+            for (const Diagnostic& d : problems.items()) diags_.add(d);
+            return;
+        }
+        model.mesh = std::make_shared<const TriangleMesh>(std::move(*mesh));
+        SceneObject obj;
+        obj.shape = std::move(model);
         scene_.objects.push_back(std::move(obj));
     }
 

@@ -1,6 +1,7 @@
 // Scene files (scenes/*.json, schema schemas/scene.schema.json): the camera, the environment,
-// exposure and tonemapping, a debug view, and analytic objects. The scene also decides which
-// features of graphs/raster.json are on (see sceneFeatures()).
+// exposure and tonemapping, a debug view, and objects: analytic spheres and planes, and glTF
+// files. The scene also decides which features of graphs/raster.json are on (see
+// sceneFeatures()).
 //
 // Units: positions in world units (Y up), angles in degrees. The camera uses reverse-Z with an
 // infinite far plane, so only `near` bounds depth.
@@ -8,9 +9,11 @@
 
 #include <skygraph/condition.hpp>
 #include <skygraph/diagnostics.hpp>
+#include <skygraph/triangle_mesh.hpp>
 
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -66,8 +69,15 @@ struct Plane {
     std::optional<double> halfExtent;  ///< > 0
 };
 
+/// A glTF 2.0 file's default scene, flattened to world space (loadGltf()). Its primitives
+/// carry their own materials; the object's `material` is not used.
+struct GltfModel {
+    std::shared_ptr<const TriangleMesh> mesh;  ///< never null in a loaded scene
+    MeshTransform transform;
+};
+
 struct SceneObject {
-    std::variant<Sphere, Plane> shape;
+    std::variant<Sphere, Plane, GltfModel> shape;
     Material material;
 };
 
@@ -91,7 +101,9 @@ public:
 /// Reads and validates the scene at `path`; returns a Scene the caller owns. Relative
 /// environment files are resolved against the scene file's folder and must exist.
 /// Throws SceneError listing all problems: unreadable file, malformed JSON, duplicate or
-/// unknown keys, wrong types, non-finite numbers, values out of range.
+/// unknown keys, wrong types, non-finite numbers, values out of range, and every problem of
+/// its glTF files (each naming that file and its JSON path: loadGltf()). Relative glTF files
+/// are resolved like environment files.
 [[nodiscard]] Scene loadSceneFile(const std::filesystem::path& path);
 
 /// As loadSceneFile() for text in memory (read during the call only). `fileName` is used in

@@ -1,5 +1,5 @@
-// ForwardPass: the scene's spheres and planes, metal/rough GGX, into hdr_color and a
-// reverse-Z depth buffer (GREATER test, cleared to 0 by the graph).
+// ForwardPass: the scene's spheres, planes and glTF meshes, metal/rough GGX, into hdr_color
+// and a reverse-Z depth buffer (GREATER test, cleared to 0 by the graph).
 #include "builtin_passes.hpp"
 #include "scene_camera.hpp"
 #include "vk_util.hpp"
@@ -14,10 +14,7 @@
 namespace skygraph::passes {
 namespace {
 
-struct Vertex {
-    float position[3];
-    float normal[3];
-};
+using Vertex = MeshVertex;  // glTF meshes are drawn from their loaded vertices as they are
 
 /// A unit UV sphere followed by a unit square in the XZ plane (normal +Y).
 struct Meshes {
@@ -99,7 +96,9 @@ public:
                                    {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
         recipe.pushConstantBytes = sizeof(Push);
         GraphicsPipeline pipeline = createGraphicsPipeline(ctx.device, recipe);
-        if (!vertexBuffer_) createMeshBuffer(ctx);
+        device_ = ctx.device;
+        physicalDevice_ = ctx.physicalDevice;
+        if (!vertexBuffer_) createMeshBuffer();
         pipeline_ = std::move(pipeline);
     }
 
@@ -141,6 +140,10 @@ public:
             push.aoViewKind[0] = float(mat.ao);
             push.aoViewKind[1] = float(debugViewIndex(scene->debugView));
             push.aoViewKind[3] = rotation;
+            if (const auto* model = std::get_if<GltfModel>(&object.shape)) {
+                drawModel(ctx, *model, push, view.position);
+                continue;
+            }
             uint32_t first = 0, count = meshes_.sphereIndexCount;
             if (const auto* sphere = std::get_if<Sphere>(&object.shape)) {
                 for (int i = 0; i < 3; ++i) push.originAndScale[i] = float(sphere->center[i] - view.position[i]);
@@ -165,9 +168,72 @@ public:
                                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
             vkCmdDrawIndexed(ctx.cmd, count, 1, first, 0, 0);
         }
+        releaseUnusedModels(ctx.frameIndex);
     }
 
 private:
+    /// A glTF model's vertices and indices on the device, made on its first draw. Holding the
+    /// mesh keeps its address from being reused by another while the entry exists.
+    struct ModelBuffers {
+        std::shared_ptr<const TriangleMesh> mesh;
+        vk::Memory vertexMemory, indexMemory;
+        vk::Buffer vertexBuffer, indexBuffer;
+        uint64_t lastFrame = 0;
+    };
+
+    struct Push;
+
+    void drawModel(const RecordContext& ctx, const GltfModel& model, Push push, const math::Vec3<double>& eye) {
+        ModelBuffers& buffers = modelBuffers(*model.mesh, model.mesh, ctx.frameIndex);
+        const VkDeviceSize offset = 0;
+        const VkBuffer vb = buffers.vertexBuffer.get();
+        vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(ctx.cmd, buffers.indexBuffer.get(), 0, VK_INDEX_TYPE_UINT32);
+        // World-space vertices, placed camera-relative by the shader's origin (-eye, in double
+        // here): kind 2, emissive where planes keep their normal.
+        for (int i = 0; i < 3; ++i) push.originAndScale[i] = float(-eye[i]);
+        push.originAndScale[3] = 1.0f;
+        push.aoViewKind[0] = 1.0f;
+        push.aoViewKind[2] = 2.0f;
+        for (const MeshPrimitive& primitive : model.mesh->primitives) {
+            const MeshMaterial& m = primitive.material;
+            for (int i = 0; i < 3; ++i) {
+                push.baseColorMetallic[i] = float(m.baseColor[size_t(i)]);
+                push.planeNormalRoughness[i] = float(m.emissive[size_t(i)]);
+            }
+            push.baseColorMetallic[3] = float(m.metallic);
+            push.planeNormalRoughness[3] = float(m.roughness);
+            vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(),
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
+            vkCmdDrawIndexed(ctx.cmd, primitive.indexCount, 1, primitive.firstIndex, 0, 0);
+        }
+        // The next analytic object binds the built-in meshes again.
+        const VkBuffer builtin = vertexBuffer_.get();
+        vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &builtin, &offset);
+        vkCmdBindIndexBuffer(ctx.cmd, indexBuffer_.get(), 0, VK_INDEX_TYPE_UINT32);
+    }
+
+    ModelBuffers& modelBuffers(const TriangleMesh& mesh, const std::shared_ptr<const TriangleMesh>& owner, uint64_t frame) {
+        for (ModelBuffers& b : models_)
+            if (b.mesh.get() == &mesh) return b.lastFrame = frame, b;
+        ModelBuffers b;
+        b.mesh = owner;
+        b.lastFrame = frame;
+        hostBuffer(mesh.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, b.vertexBuffer,
+                   b.vertexMemory, mesh.vertices.data());
+        hostBuffer(mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, b.indexBuffer,
+                   b.indexMemory, mesh.indices.data());
+        models_.push_back(std::move(b));
+        return models_.back();
+    }
+
+    /// Models the scene no longer draws are freed once no frame in flight can still read
+    /// them: a frame slot is recorded again only after its previous frame finished, and there
+    /// are at most 8 slots.
+    void releaseUnusedModels(uint64_t frame) {
+        std::erase_if(models_, [&](const ModelBuffers& b) { return frame > b.lastFrame + 16; });
+    }
+
     struct Push {  // matches `Draw` in shaders/passes/forward.{vert,frag}
         float viewProjection[4][4];
         float originAndScale[4];
@@ -177,45 +243,49 @@ private:
     };
     static_assert(sizeof(Push) == 128, "the push constant budget every device guarantees");
 
-    // Static geometry in host-visible memory: written once, before any frame reads it.
-    void createMeshBuffer(const PipelineContext& ctx) {
+    // Geometry in host-visible memory, written before any frame that reads it is submitted
+    // (the submit makes host writes visible to the device).
+    void hostBuffer(VkDeviceSize size, VkBufferUsageFlags usage, vk::Buffer& buffer, vk::Memory& memory,
+                    const void* data) {
+        VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+        bi.size = size;
+        bi.usage = usage;
+        VkBuffer b;
+        vk::check(vkCreateBuffer(device_, &bi, nullptr, &b), "vkCreateBuffer");
+        buffer = vk::Buffer(device_, b);
+        VkMemoryRequirements req;
+        vkGetBufferMemoryRequirements(device_, b, &req);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex = vk::findMemoryType(physicalDevice_, req.memoryTypeBits,
+                                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+        VkDeviceMemory mem;
+        vk::check(vkAllocateMemory(device_, &ai, nullptr, &mem), "vkAllocateMemory");
+        memory = vk::Memory(device_, mem);
+        vk::check(vkBindBufferMemory(device_, b, mem, 0), "vkBindBufferMemory");
+        void* mapped;
+        vk::check(vkMapMemory(device_, mem, 0, size, 0, &mapped), "vkMapMemory");
+        std::memcpy(mapped, data, size);
+        vkUnmapMemory(device_, mem);
+    }
+
+    void createMeshBuffer() {
         meshes_ = buildMeshes();
-        auto make = [&](VkDeviceSize size, VkBufferUsageFlags usage, vk::Buffer& buffer, vk::Memory& memory,
-                        const void* data) {
-            VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-            bi.size = size;
-            bi.usage = usage;
-            VkBuffer b;
-            vk::check(vkCreateBuffer(ctx.device, &bi, nullptr, &b), "vkCreateBuffer");
-            buffer = vk::Buffer(ctx.device, b);
-            VkMemoryRequirements req;
-            vkGetBufferMemoryRequirements(ctx.device, b, &req);
-            VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-            ai.allocationSize = req.size;
-            ai.memoryTypeIndex = vk::findMemoryType(ctx.physicalDevice, req.memoryTypeBits,
-                                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                                        VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-            VkDeviceMemory mem;
-            vk::check(vkAllocateMemory(ctx.device, &ai, nullptr, &mem), "vkAllocateMemory");
-            memory = vk::Memory(ctx.device, mem);
-            vk::check(vkBindBufferMemory(ctx.device, b, mem, 0), "vkBindBufferMemory");
-            void* mapped;
-            vk::check(vkMapMemory(ctx.device, mem, 0, size, 0, &mapped), "vkMapMemory");
-            std::memcpy(mapped, data, size);
-            vkUnmapMemory(ctx.device, mem);
-        };
-        make(meshes_.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertexBuffer_,
-             vertexMemory_, meshes_.vertices.data());
-        make(meshes_.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, indexBuffer_,
-             indexMemory_, meshes_.indices.data());
+        hostBuffer(meshes_.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertexBuffer_,
+                   vertexMemory_, meshes_.vertices.data());
+        hostBuffer(meshes_.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, indexBuffer_,
+                   indexMemory_, meshes_.indices.data());
     }
 
     static constexpr const char* kIblSlots[3] = {"irradiance", "prefiltered", "brdf_lut"};
     bool ibl_ = false;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     Meshes meshes_;
     vk::Memory vertexMemory_, indexMemory_;
     vk::Buffer vertexBuffer_, indexBuffer_;
+    std::vector<ModelBuffers> models_;
     GraphicsPipeline pipeline_;
 };
 

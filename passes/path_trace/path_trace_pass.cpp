@@ -46,6 +46,8 @@ std::vector<double> sceneKey(const Scene* scene, VkExtent2D extent) {
     for (const SceneObject& o : scene->objects) {
         if (const auto* s = std::get_if<Sphere>(&o.shape)) {
             k.insert(k.end(), {0.0, s->center[0], s->center[1], s->center[2], s->radius});
+        } else if (const auto* model = std::get_if<GltfModel>(&o.shape)) {
+            k.push_back(double(reinterpret_cast<uintptr_t>(model->mesh.get())));
         } else {
             const auto& p = std::get<Plane>(o.shape);
             k.insert(k.end(), {1.0, p.point[0], p.point[1], p.point[2], p.normal[0], p.normal[1], p.normal[2],
@@ -180,7 +182,12 @@ private:
             if (scene->objects.size() > kMaxObjects)
                 throw ExecutorError("PathTracePass: the scene has " + std::to_string(scene->objects.size()) +
                                     " objects, more than the " + std::to_string(kMaxObjects) + " it traces");
-            for (const SceneObject& o : scene->objects) {
+            for (size_t index = 0; index < scene->objects.size(); ++index) {
+                const SceneObject& o = scene->objects[index];
+                if (const auto* model = std::get_if<GltfModel>(&o.shape))
+                    throw ExecutorError("PathTracePass: " + scene->file + ": objects[" + std::to_string(index) +
+                                        "] is a glTF model (" + model->mesh->file.string() +
+                                        "); the path tracer traces spheres and planes only");
                 GpuObject g{};
                 if (const auto* s = std::get_if<Sphere>(&o.shape)) {
                     for (int i = 0; i < 3; ++i) g.originSize[i] = float(s->center[i] - view.position[i]);

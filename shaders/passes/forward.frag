@@ -66,5 +66,6 @@ void main() {
     vec3 ambient = mix(vec3(0.18, 0.16, 0.14), vec3(0.45, 0.6, 0.9), n.y * 0.5 + 0.5) * 0.6;
     vec3 color = direct + ambient * (diffuseColor + f0 * 0.25) * ao;
 #endif
+    if (draw.aoViewKind.z > 1.5) color += draw.planeNormalRoughness.rgb;  // a glTF mesh's emissive
     outColor = vec4(color, 1.0);
 }

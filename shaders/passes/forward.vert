@@ -1,7 +1,8 @@
 #version 450
 // ForwardPass: objects are meshes in their own frame, placed camera-relative. The CPU
 // subtracts the camera position in double precision, so a camera at 1e7 loses nothing.
-// Spheres use a unit sphere mesh; planes a unit square in their tangent frame.
+// Spheres use a unit sphere mesh; planes a unit square in their tangent frame; glTF meshes
+// come in world space (scale 1, origin = -camera position).
 layout(location = 0) in vec3 inPosition;  // object-local
 layout(location = 1) in vec3 inNormal;
 
@@ -9,8 +10,8 @@ layout(push_constant) uniform Draw {
     mat4 viewProjection;        // rotation-only view (camera at the origin) times projection
     vec4 originAndScale;        // xyz: object origin minus camera position; w: size
     vec4 baseColorMetallic;
-    vec4 planeNormalRoughness;  // xyz: the plane's normal (planes only); w: roughness
-    vec4 aoViewKind;            // x: ao, y: debug view (0 none, 1..4), z: 0 sphere, 1 plane, w: environment rotation (rad)
+    vec4 planeNormalRoughness;  // xyz: the plane's normal (planes), emissive (meshes); w: roughness
+    vec4 aoViewKind;            // x: ao, y: debug view (0 none, 1..4), z: 0 sphere, 1 plane, 2 mesh, w: environment rotation (rad)
 } draw;
 
 layout(location = 0) out vec3 outRelativePosition;
@@ -19,7 +20,7 @@ layout(location = 1) out vec3 outNormal;
 void main() {
     vec3 local = inPosition;
     vec3 normal = inNormal;
-    if (draw.aoViewKind.z > 0.5) {
+    if (draw.aoViewKind.z > 0.5 && draw.aoViewKind.z < 1.5) {
         vec3 n = draw.planeNormalRoughness.xyz;
         vec3 t = normalize(cross(abs(n.y) < 0.9 ? vec3(0, 1, 0) : vec3(1, 0, 0), n));
         vec3 b = cross(n, t);

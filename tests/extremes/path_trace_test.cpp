@@ -196,5 +196,26 @@ TEST_F(PathTrace, ShippedGraphTracesTheEnvironmentFileWhenBound) {
         }
 }
 
+// The tracer does not trace glTF meshes: a scene with one fails, naming it, rather than
+// rendering a picture without it.
+TEST_F(PathTrace, AGltfObjectIsRefusedNamingIt) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    const GraphDesc graph = loadGraphFile(kSource / "graphs/pathtrace.json", library.registry());
+    const Scene scene = loadSceneFile(kSource / "scenes/engine.json");
+    CompileOptions co;
+    co.presentReplacement = ExternalState::TransferSrc;
+    Renderer renderer = rendererAt(graph, library, co, 16, 12);
+    renderer.frameData().set(scene);
+    try {
+        renderer.renderFrame();
+        FAIL() << "a glTF object must not be skipped silently";
+    } catch (const ExecutorError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("objects[0] is a glTF model"), std::string::npos) << what;
+        EXPECT_NE(what.find("2CylinderEngine.glb"), std::string::npos) << what;
+    }
+    renderer.waitIdle();
+}
+
 }  // namespace
 }  // namespace skygraph::test

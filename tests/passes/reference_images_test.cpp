@@ -37,9 +37,10 @@ RgbaImage readPng(const fs::path& path) {
 }
 
 struct Case {
-    std::string name;   ///< reference/<name>.png
-    std::string scene;  ///< scenes/<scene>.json
-    std::string sampling;  ///< "": as in the file; else the environment's sampling is replaced
+    std::string name;       ///< the output's name
+    std::string scene;      ///< <scene>.json, relative to the source tree
+    std::string sampling;   ///< "": as in the file; else the environment's sampling is replaced
+    std::string reference;  ///< reference/<reference>.png; empty: <name>
 };
 
 class ReferenceImages : public ::testing::TestWithParam<Case> {};
@@ -48,7 +49,7 @@ TEST_P(ReferenceImages, MatchTheReviewedFrame) {
     const Case& c = GetParam();
     const fs::path out = fs::path(SKYGRAPH_BINARY_DIR) / "reference-out";
     fs::create_directories(out);
-    fs::path scene = kSource / "scenes" / (c.scene + ".json");
+    fs::path scene = kSource / (c.scene + ".json");
     if (!c.sampling.empty()) {  // the same scene, sampled the other way
         std::ifstream in(scene);
         std::string text((std::istreambuf_iterator<char>(in)), {});
@@ -70,7 +71,7 @@ TEST_P(ReferenceImages, MatchTheReviewedFrame) {
     o.passes = &library;
     ASSERT_EQ(app::renderCommand(o), 0) << "render failed or validation reported messages";
 
-    const fs::path reference = kSource / "tests/passes/reference" / (c.name + ".png");
+    const fs::path reference = kSource / "tests/passes/reference" / ((c.reference.empty() ? c.name : c.reference) + ".png");
     if (std::getenv("SKYGRAPH_UPDATE_REFERENCE")) fs::copy_file(o.output, reference, fs::copy_options::overwrite_existing);
     const RgbaImage want = readPng(reference), got = readPng(o.output);
     ASSERT_GT(want.width, 0) << "no reference image " << reference;
@@ -102,10 +103,16 @@ TEST_P(ReferenceImages, MatchTheReviewedFrame) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
-                         ::testing::Values(Case{"default", "default", ""},
-                                           Case{"sky_only", "sky_only", ""},
-                                           Case{"studio_equirect", "studio", ""},
-                                           Case{"studio_cubemap", "studio", "cubemap"}),
+                         ::testing::Values(Case{"default", "scenes/default", "", ""},
+                                           Case{"sky_only", "scenes/sky_only", "", ""},
+                                           Case{"studio_equirect", "scenes/studio", "", ""},
+                                           Case{"studio_cubemap", "scenes/studio", "cubemap", ""},
+                                           // glTF from Debian's assimp-testmodels: one box, three containers
+                                           Case{"box_textured_gltf", "tests/passes/scenes/box_textured_gltf", "", "box_textured"},
+                                           Case{"box_textured_glb", "tests/passes/scenes/box_textured_glb", "", "box_textured"},
+                                           Case{"box_textured_embedded", "tests/passes/scenes/box_textured_embedded", "", "box_textured"},
+                                           Case{"clearcoat", "tests/passes/scenes/clearcoat", "", ""},
+                                           Case{"engine", "scenes/engine", "", ""}),
                          [](const ::testing::TestParamInfo<Case>& p) { return p.param.name; });
 
 }  // namespace

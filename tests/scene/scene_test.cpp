@@ -213,7 +213,7 @@ TEST(SceneErrors, Environment) {
 TEST(SceneErrors, Objects) {
     expectError(R"({"objects": {}})", "objects", "must be an array");
     expectError(R"({"objects": [3]})", "objects[0]", "must be an object");
-    expectError(R"({"objects": [{"center": [0,0,0]}]})", "objects[0].type", "expected \"sphere\" or \"plane\"");
+    expectError(R"({"objects": [{"center": [0,0,0]}]})", "objects[0].type", "expected \"sphere\", \"plane\" or \"gltf\"");
     expectError(R"({"objects": [{"type": "cube"}]})", "objects[0].type", "got \"cube\"");
     expectError(R"({"objects": [{"type": "sphere", "radius": 1}]})", "objects[0].center", "missing");
     expectError(R"({"objects": [{"type": "sphere", "center": [0,0,0]}]})", "objects[0].radius", "missing");

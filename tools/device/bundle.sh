@@ -33,6 +33,8 @@ packages=(
   # and what it loads) and Dear ImGui (the ImGuiPass, bench/imgui_bench)
   libglfw3-dev libglfw3 libx11-6 libxcb1 libxau6 libxdmcp6 libbsd0 libmd0
   libimgui-dev
+  # glTF scene objects (framework/scene)
+  libtinygltf-dev libtinygltf2d
 )
 # install-deps.sh packages the GPU machine does not need from us: it has its own toolchain,
 # runs no tests there (GoogleTest, validation layers, lavapipe, vulkaninfo, schema checks,
@@ -40,7 +42,7 @@ packages=(
 # glslang-tools contributes two files below. Any other package of install-deps.sh missing from both lists fails the bundle,
 # so a new build dependency cannot be forgotten here.
 not_needed=(cmake ninja-build g++ pkg-config libgtest-dev libgmock-dev vulkan-validationlayers
-  mesa-vulkan-drivers vulkan-tools glslang-tools blender-data graphviz python3-jsonschema
+  mesa-vulkan-drivers vulkan-tools glslang-tools blender-data assimp-testmodels graphviz python3-jsonschema
   clang-14 libclang-rt-14-dev llvm-14 python3-matplotlib
   xvfb xauth x11-apps xdotool imagemagick)  # tests/present's X server and window tools
 

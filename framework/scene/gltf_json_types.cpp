@@ -1,0 +1,137 @@
+// checkGltfJsonTypes: see gltf_json_types.hpp. The rules follow the property names of the
+// glTF 2.0 schema, which mean the same wherever they appear, with the few that mean two things
+// (`nodes`, `scale`, `target`) accepting both.
+#include "gltf_json_types.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <set>
+
+namespace skygraph {
+namespace {
+
+using nlohmann::json;
+
+const std::set<std::string, std::less<>> kIndexKeys{
+    "scene", "mesh", "camera", "skin", "material", "indices", "bufferView", "buffer", "byteOffset", "byteLength",
+    "byteStride", "count", "componentType", "mode", "texCoord", "source", "sampler", "input", "output", "node",
+    "index", "magFilter", "minFilter", "wrapS", "wrapT", "inverseBindMatrices"};
+const std::set<std::string, std::less<>> kNumberKeys{"strength", "alphaCutoff", "metallicFactor", "roughnessFactor",
+                                                     "yfov", "znear", "zfar", "aspectRatio", "xmag", "ymag"};
+const std::set<std::string, std::less<>> kNumberArrayKeys{"baseColorFactor", "emissiveFactor", "matrix", "rotation",
+                                                          "translation", "min", "max", "weights"};
+const std::set<std::string, std::less<>> kObjectKeys{
+    "pbrMetallicRoughness", "normalTexture", "occlusionTexture", "emissiveTexture", "baseColorTexture",
+    "metallicRoughnessTexture", "attributes", "perspective", "orthographic", "sparse", "asset", "values"};
+const std::set<std::string, std::less<>> kStringKeys{"name", "uri", "mimeType", "type", "alphaMode", "version",
+                                                     "generator", "minVersion", "copyright", "interpolation", "path"};
+const std::set<std::string, std::less<>> kTopLevelArrays{
+    "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews", "buffers", "textures", "images",
+    "samplers", "cameras", "skins", "animations"};
+
+class TypeChecker {
+public:
+    TypeChecker(std::string file, Diagnostics& diagnostics) : file_(std::move(file)), diagnostics_(diagnostics) {}
+
+    bool check(const json& root) {
+        if (!root.is_object()) return error("", "a glTF file must be a JSON object"), false;
+        for (const auto& [key, value] : root.items()) {
+            if (kTopLevelArrays.count(key)) {
+                if (!value.is_array()) { error(key, "must be an array of objects, got " + kind(value)); continue; }
+                for (size_t i = 0; i < value.size(); ++i) object(value[i], key + "[" + std::to_string(i) + "]");
+            } else if (key == "extensionsUsed" || key == "extensionsRequired") {
+                if (!value.is_array()) error(key, "must be an array of strings, got " + kind(value));
+                else for (size_t i = 0; i < value.size(); ++i)
+                    if (!value[i].is_string()) error(key + "[" + std::to_string(i) + "]", "must be a string, got " + kind(value[i]));
+            } else {
+                property(key, value, key);
+            }
+        }
+        return ok_;
+    }
+
+private:
+    void error(const std::string& path, const std::string& message) {
+        diagnostics_.add(Diagnostic{file_, path, "", "", message});
+        ok_ = false;
+    }
+
+    static std::string kind(const json& v) {
+        const std::string text = v.dump();
+        return std::string(v.type_name()) + " " + (text.size() > 40 ? text.substr(0, 40) + "..." : text);
+    }
+
+    void object(const json& v, const std::string& path) {
+        if (!v.is_object()) return error(path, "must be an object, got " + kind(v));
+        for (const auto& [key, value] : v.items()) property(key, value, path + "." + key);
+    }
+
+    void indexArray(const json& v, const std::string& path) {
+        if (!v.is_array()) return error(path, "must be an array of indices, got " + kind(v));
+        for (size_t i = 0; i < v.size(); ++i)
+            if (!v[i].is_number_unsigned()) error(path + "[" + std::to_string(i) + "]", "must be an index (an integer >= 0), got " + kind(v[i]));
+    }
+
+    void property(const std::string& key, const json& v, const std::string& path) {
+        if (key == "extras") return;  // anything
+        if (key == "extensions") {
+            if (!v.is_object()) return error(path, "must be an object, got " + kind(v));
+            for (const auto& [name, ext] : v.items())
+                if (!ext.is_object()) error(path + "." + name, "an extension must be an object, got " + kind(ext));
+            return;
+        }
+        if (kIndexKeys.count(key)) {
+            if (!v.is_number_unsigned()) error(path, "must be an integer >= 0, got " + kind(v));
+        } else if (kNumberKeys.count(key)) {
+            if (!v.is_number()) error(path, "must be a number, got " + kind(v));
+        } else if (kNumberArrayKeys.count(key)) {
+            if (!v.is_array()) return error(path, "must be an array of numbers, got " + kind(v));
+            for (size_t i = 0; i < v.size(); ++i)
+                if (!v[i].is_number()) error(path + "[" + std::to_string(i) + "]", "must be a number, got " + kind(v[i]));
+        } else if (kStringKeys.count(key)) {
+            if (!v.is_string()) error(path, "must be a string, got " + kind(v));
+        } else if (key == "scale") {  // a texture's factor, or a node's three
+            if (v.is_array()) property("translation", v, path);
+            else if (!v.is_number()) error(path, "must be a number or an array of numbers, got " + kind(v));
+        } else if (key == "target") {  // a buffer view's binding, or an animation channel's object
+            if (v.is_object()) object(v, path);
+            else if (!v.is_number_unsigned()) error(path, "must be an integer >= 0 or an object, got " + kind(v));
+        } else if (key == "nodes" || key == "children" || key == "joints") {
+            indexArray(v, path);
+        } else if (key == "primitives" || key == "targets" || key == "channels") {
+            if (!v.is_array()) return error(path, "must be an array of objects, got " + kind(v));
+            for (size_t i = 0; i < v.size(); ++i) object(v[i], path + "[" + std::to_string(i) + "]");
+        } else if (key == "attributes") {
+            if (!v.is_object()) return error(path, "must be an object of accessor indices, got " + kind(v));
+            for (const auto& [name, index] : v.items())
+                if (!index.is_number_unsigned()) error(path + "." + name, "must be an accessor index (an integer >= 0), got " + kind(index));
+        } else if (kObjectKeys.count(key)) {
+            object(v, path);
+        }
+    }
+
+    std::string file_;
+    Diagnostics& diagnostics_;
+    bool ok_ = true;
+};
+
+}  // namespace
+
+std::optional<std::string> glbJsonChunk(std::string_view data) {
+    // GLB: a 12-byte header, then the JSON chunk (length, "JSON", text).
+    if (data.size() < 20 || data.compare(0, 4, "glTF") != 0 || data.compare(16, 4, "JSON") != 0) return std::nullopt;
+    uint32_t length = 0;
+    std::memcpy(&length, data.data() + 12, 4);
+    if (length > data.size() - 20) return std::nullopt;
+    return std::string(data.substr(20, length));
+}
+
+bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, Diagnostics& diagnostics) {
+    const json root = json::parse(jsonText, nullptr, false);
+    if (root.is_discarded()) return true;  // tinygltf reports malformed JSON with its position
+    return TypeChecker(file, diagnostics).check(root);
+}
+
+}  // namespace skygraph

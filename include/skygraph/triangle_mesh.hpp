@@ -1,0 +1,90 @@
+// Triangle meshes from glTF 2.0 files (.gltf and .glb, read with tinygltf): what a scene's
+// `{"type": "gltf"}` object holds. The loader flattens the file's default scene: every mesh
+// instance is placed in world space (its node hierarchy and the scene object's transform
+// applied), so drawing needs no per-node matrices.
+#pragma once
+
+#include <skygraph/diagnostics.hpp>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skygraph {
+
+struct MeshVertex {
+    float position[3];  ///< world space
+    float normal[3];    ///< world space, unit length
+};
+
+/// The metallic-roughness factors of a glTF material (its textures are not sampled yet).
+struct MeshMaterial {
+    std::array<double, 4> baseColor{1.0, 1.0, 1.0, 1.0};  ///< linear RGBA, each in [0, 1]
+    double metallic = 1.0;                                ///< [0, 1]
+    double roughness = 1.0;                               ///< [0, 1]
+    std::array<double, 3> emissive{0.0, 0.0, 0.0};        ///< linear, >= 0
+};
+
+/// One draw: a run of `indices` with one material.
+struct MeshPrimitive {
+    uint32_t firstIndex = 0;
+    uint32_t indexCount = 0;  ///< a multiple of 3
+    MeshMaterial material;
+    std::string name;  ///< "meshes[m].primitives[p]", for messages
+};
+
+/// A camera of the file, placed by its node.
+struct MeshCamera {
+    std::array<double, 3> position{0.0, 0.0, 0.0};
+    std::array<double, 3> forward{0.0, 0.0, -1.0};  ///< unit
+    std::array<double, 3> up{0.0, 1.0, 0.0};        ///< unit, orthogonal to forward
+    double fovYDeg = 60.0;
+    double near = 0.1;
+};
+
+/// Everything drawn from one file. A plain value; the scene shares it (shared_ptr), since
+/// it can be large.
+struct TriangleMesh {
+    std::filesystem::path file;
+    std::vector<MeshVertex> vertices;
+    std::vector<uint32_t> indices;  ///< every index < vertices.size()
+    std::vector<MeshPrimitive> primitives;
+    std::array<double, 3> boundsMin{0.0, 0.0, 0.0}, boundsMax{0.0, 0.0, 0.0};
+    std::optional<MeshCamera> camera;  ///< the first camera of the default scene
+};
+
+/// Where a file's scene lands in the world: scaled, then rotated about X, then Y, then Z,
+/// then translated. Angles in degrees.
+struct MeshTransform {
+    std::array<double, 3> translation{0.0, 0.0, 0.0};
+    std::array<double, 3> rotationDeg{0.0, 0.0, 0.0};
+    std::array<double, 3> scale{1.0, 1.0, 1.0};  ///< each > 0
+};
+
+/// Most vertices and indices one file may bring (a bad count must not exhaust memory).
+inline constexpr size_t kMaxMeshVertices = size_t(1) << 24;
+inline constexpr size_t kMaxMeshIndices = size_t(3) << 24;
+
+/// Reads the glTF file at `path` and flattens its default scene (or scene 0). Appends every
+/// problem to `diagnostics`, each naming `path` and the JSON path in the file (an accessor,
+/// node, primitive or material), and returns nullopt when there is any: nothing is drawn of a
+/// file that is partly wrong. Refused: unreadable or malformed files, missing buffers, a file
+/// without a scene or whose scene has no nodes, node cycles, accessors out of their buffers,
+/// indices past the vertices, non-finite or zero-length data, primitives that are not
+/// triangle lists, sparse or normalized position data, required extensions, sizes beyond the
+/// limits above.
+[[nodiscard]] std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,
+                                                   Diagnostics& diagnostics);
+
+/// As loadGltf() for a file's bytes in memory (read during the call only): .glb when they
+/// start with its magic, else .gltf text. `name` stands for the file in messages; buffers and
+/// images with relative URIs are read from `baseDir`. Never throws for bad bytes.
+[[nodiscard]] std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std::string& name,
+                                                             const std::filesystem::path& baseDir,
+                                                             const MeshTransform& transform, Diagnostics& diagnostics);
+
+}  // namespace skygraph

@@ -1,0 +1,257 @@
+// glTF files through loadGltf() and through scene files: Debian's assimp-testmodels (good and
+// bad), and small files written here for what those do not cover.
+#include <skygraph/scene.hpp>
+#include <skygraph/triangle_mesh.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace skygraph {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kModels = "/usr/share/assimp/models/glTF2";
+
+std::string messages(const Diagnostics& d) {
+    std::string s;
+    for (const Diagnostic& x : d.items()) s += x.format() + "\n";
+    return s;
+}
+
+struct BadFile {
+    std::string file;     ///< under kModels
+    std::string path;     ///< the JSON path the first diagnostic names
+    std::string message;  ///< part of its message
+};
+
+class BadGltf : public ::testing::TestWithParam<BadFile> {};
+
+TEST_P(BadGltf, IsRefusedNamingTheFileAndThePlace) {
+    const BadFile& b = GetParam();
+    Diagnostics d;
+    const auto mesh = loadGltf(kModels / b.file, {}, d);
+    EXPECT_FALSE(mesh) << "nothing is drawn of a file with a problem";
+    ASSERT_FALSE(d.empty());
+    const Diagnostic& first = d.items().front();
+    EXPECT_EQ(first.file, (kModels / b.file).string());
+    EXPECT_EQ(first.jsonPath, b.path) << messages(d);
+    EXPECT_NE(first.message.find(b.message), std::string::npos) << messages(d);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AssimpTestModels, BadGltf,
+    ::testing::Values(
+        BadFile{"IndexOutOfRange/IndexOutOfRange.gltf", "accessors[0] (indices of meshes[0].primitives[0])",
+                "index 0 is 255, past the primitive's 24 vertices"},
+        BadFile{"IndexOutOfRange/AllIndicesOutOfRange.gltf", "accessors[0] (indices of meshes[0].primitives[0])",
+                "is 65535, past"},
+        BadFile{"wrongTypes/badArray.gltf", "meshes[0].primitives", "must be an array of objects"},
+        BadFile{"wrongTypes/badExtension.gltf",
+                "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_transform",
+                "an extension must be an object"},
+        BadFile{"wrongTypes/badNumber.gltf", "materials[0].normalTexture.scale", "must be a number"},
+        BadFile{"wrongTypes/badObject.gltf", "materials[0].pbrMetallicRoughness", "must be an object"},
+        BadFile{"wrongTypes/badString.gltf", "scenes[0].name", "must be a string, got number 42"},
+        BadFile{"wrongTypes/badUint.gltf", "materials[0].pbrMetallicRoughness.baseColorTexture.index",
+                "must be an integer >= 0, got number -1"},
+        BadFile{"MissingBin/BoxTextured.gltf", "", "BoxTextured0.bin"},
+        BadFile{"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "accessors[2] (POSITION of meshes[0].primitives[0])",
+                "element 0 is not finite"},
+        BadFile{"BoxBadNormals-glTF-Binary/BoxBadNormals.glb", "accessors[1] (NORMAL of meshes[0].primitives[0])",
+                "normal 0 has length 0"},
+        BadFile{"RecursiveNodes/RecursiveNodes.gltf", "nodes[1].children[0]", "node 0 is its own ancestor"},
+        BadFile{"SchemaFailures/sceneWrongType.gltf", "scene", "must be an integer >= 0, got string \"hello\""},
+        BadFile{"TestNoRootNode/NoScene.gltf", "scenes", "no scene"},
+        BadFile{"TestNoRootNode/SceneWithoutNodes.gltf", "scenes[0].nodes", "no nodes"},
+        BadFile{"IncorrectVertexArrays/Cube.gltf", "meshes[1].primitives[0]", "35 indices do not make whole triangles"},
+        BadFile{"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf", "meshes[0].primitives[0].mode",
+                "draws points or lines"},
+        BadFile{"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "extensionsRequired", "KHR_technique_webgl"}),
+    [](const ::testing::TestParamInfo<BadFile>& p) {
+        std::string n = p.param.file.substr(p.param.file.rfind('/') + 1);
+        for (char& c : n)
+            if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+        return n + "_" + std::to_string(p.index);
+    });
+
+TEST(Gltf, TheBoxIsTheSameInEachContainer) {
+    Diagnostics d;
+    const auto gltf = loadGltf(kModels / "BoxTextured-glTF/BoxTextured.gltf", {}, d);
+    const auto glb = loadGltf(kModels / "BoxTextured-glTF-Binary/BoxTextured.glb", {}, d);
+    const auto embedded = loadGltf(kModels / "BoxTextured-glTF-Embedded/BoxTextured.gltf", {}, d);
+    ASSERT_TRUE(gltf && glb && embedded) << messages(d);
+    EXPECT_EQ(gltf->vertices.size(), 24u);
+    EXPECT_EQ(gltf->indices.size(), 36u);
+    ASSERT_EQ(gltf->primitives.size(), 1u);
+    EXPECT_EQ(gltf->primitives[0].material.metallic, 0.0);  // the file's factor
+    for (const auto* other : {&*glb, &*embedded}) {
+        EXPECT_EQ(other->indices, gltf->indices);
+        ASSERT_EQ(other->vertices.size(), gltf->vertices.size());
+        for (size_t i = 0; i < gltf->vertices.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_EQ(other->vertices[i].position[c], gltf->vertices[i].position[c]);
+                EXPECT_EQ(other->vertices[i].normal[c], gltf->vertices[i].normal[c]);
+            }
+    }
+    // The box is a unit cube about the origin: its node's rotation turns it but keeps it there.
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(gltf->boundsMin[size_t(c)], -0.5, 1e-6);
+        EXPECT_NEAR(gltf->boundsMax[size_t(c)], 0.5, 1e-6);
+    }
+}
+
+TEST(Gltf, TheSceneObjectsTransformPlacesTheModel) {
+    Diagnostics d;
+    MeshTransform t;
+    t.translation = {10.0, 0.0, 0.0};
+    t.scale = {2.0, 2.0, 2.0};
+    const auto moved = loadGltf(kModels / "BoxTextured-glTF/BoxTextured.gltf", t, d);
+    ASSERT_TRUE(moved) << messages(d);
+    EXPECT_NEAR(moved->boundsMin[0], 9.0, 1e-6);
+    EXPECT_NEAR(moved->boundsMax[0], 11.0, 1e-6);
+    EXPECT_NEAR(moved->boundsMax[1], 1.0, 1e-6);
+    for (const MeshVertex& v : moved->vertices)
+        EXPECT_NEAR(std::hypot(v.normal[0], v.normal[1], v.normal[2]), 1.0, 1e-6) << "normals stay unit";
+}
+
+TEST(Gltf, TheEnginesHierarchyAndCamera) {
+    Diagnostics d;
+    const auto engine = loadGltf(kModels / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb", {}, d);
+    ASSERT_TRUE(engine) << messages(d);
+    EXPECT_EQ(engine->primitives.size(), 115u);  // 34 primitives of 29 meshes, instanced by 82 nodes
+    EXPECT_EQ(engine->indices.size(), 364488u);
+    ASSERT_TRUE(engine->camera);
+    EXPECT_NEAR(engine->camera->fovYDeg, 0.3143463730812073 * 180.0 / M_PI, 1e-9);
+    const auto& f = engine->camera->forward;
+    EXPECT_NEAR(std::hypot(f[0], f[1], f[2]), 1.0, 1e-12);
+}
+
+TEST(Gltf, StripsAndFansBecomeTriangleLists) {
+    Diagnostics d;
+    const fs::path dir = kModels / "glTF-Asset-Generator/Mesh_PrimitiveMode";
+    const auto list = loadGltf(dir / "Mesh_PrimitiveMode_04.gltf", {}, d);   // triangles
+    const auto strip = loadGltf(dir / "Mesh_PrimitiveMode_05.gltf", {}, d);  // strip
+    const auto fan = loadGltf(dir / "Mesh_PrimitiveMode_06.gltf", {}, d);    // fan
+    ASSERT_TRUE(list && strip && fan) << messages(d);
+    // The same square each way: two triangles, facing the same side.
+    for (const auto* m : {&*list, &*strip, &*fan}) {
+        ASSERT_EQ(m->indices.size(), 6u);
+        for (size_t t = 0; t < 6; t += 3) {
+            const auto p = [&](size_t k) { return m->vertices[m->indices[t + k]].position; };
+            const double ax = p(1)[0] - p(0)[0], ay = p(1)[1] - p(0)[1], bx = p(2)[0] - p(0)[0], by = p(2)[1] - p(0)[1];
+            EXPECT_GT(ax * by - ay * bx, 0.0) << "counter-clockwise seen from +Z";
+        }
+    }
+}
+
+/// A file written here: one triangle whose buffer is a data URI, with `accessorCount` and
+/// `normals` as asked.
+fs::path writeTriangle(const std::string& name, int accessorCount, bool normals) {
+    // Three float3 positions (0,0,0) (1,0,0) (0,1,0), base64.
+    const std::string positions = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+    std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0)";
+    json += normals ? R"(, "NORMAL": 0}}]}],)" : R"(}}]}],)";
+    json += R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + std::to_string(accessorCount) +
+            R"(, "type": "VEC3"}], "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" + positions + R"("}]})";
+    const fs::path file = fs::temp_directory_path() / ("skygraph-" + name + ".gltf");
+    std::ofstream(file) << json;
+    return file;
+}
+
+TEST(Gltf, WithoutNormalsTrianglesAreFlat) {
+    Diagnostics d;
+    const auto mesh = loadGltf(writeTriangle("flat", 3, false), {}, d);
+    ASSERT_TRUE(mesh) << messages(d);
+    ASSERT_EQ(mesh->vertices.size(), 3u);
+    for (const MeshVertex& v : mesh->vertices) {
+        EXPECT_FLOAT_EQ(v.normal[2], 1.0f);
+        EXPECT_EQ(mesh->primitives[0].material.metallic, 1.0) << "glTF's default material";
+    }
+}
+
+TEST(Gltf, AnAccessorPastItsBufferViewIsRefused) {
+    Diagnostics d;
+    const fs::path file = writeTriangle("overrun", 1000000, false);
+    EXPECT_FALSE(loadGltf(file, {}, d));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d.items()[0].jsonPath, "accessors[0] (POSITION of meshes[0].primitives[0])") << messages(d);
+    EXPECT_NE(d.items()[0].message.find("1000000 elements need"), std::string::npos) << messages(d);
+}
+
+TEST(Gltf, ZeroLengthNormalsAreRefused) {
+    Diagnostics d;
+    // NORMAL reads the positions: (0, 0, 0) is a zero normal.
+    EXPECT_FALSE(loadGltf(writeTriangle("zero-normal", 3, true), {}, d));
+    EXPECT_NE(messages(d).find("normal 0 has length 0"), std::string::npos) << messages(d);
+}
+
+TEST(Gltf, NotAGltfFile) {
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(fs::path(SKYGRAPH_SOURCE_DIR) / "scenes/default.json", {}, d));
+    EXPECT_NE(messages(d).find("neither a .gltf nor a .glb"), std::string::npos);
+    Diagnostics e;
+    EXPECT_FALSE(loadGltf("/nonexistent/model.glb", {}, e));
+    EXPECT_NE(messages(e).find("does not exist"), std::string::npos);
+}
+
+// ---- through scene files ----
+
+Scene parse(const std::string& text) { return parseScene(text, "test.json", fs::path("/")); }
+
+TEST(GltfScene, AModelAndItsCamera) {
+    const Scene s = parse(R"({"camera": "gltf", "objects": [{"type": "gltf",
+        "file": ")" + (kModels / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string() + R"("}]})");
+    ASSERT_EQ(s.objects.size(), 1u);
+    const auto& model = std::get<GltfModel>(s.objects[0].shape);
+    ASSERT_TRUE(model.mesh && model.mesh->camera);
+    const MeshCamera& c = *model.mesh->camera;
+    EXPECT_EQ(s.camera.position, c.position);
+    EXPECT_NEAR(s.camera.fovYDeg, c.fovYDeg, 1e-12);
+    // The yaw and pitch the loader derived give the file's view direction back.
+    const Vec3 forward = cameraForward(s.camera);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(forward[size_t(i)], c.forward[size_t(i)], 1e-9);
+}
+
+TEST(GltfScene, AGltfCameraNeedsAModelWithOne) {
+    try {
+        (void)parse(R"({"camera": "gltf", "objects": [{"type": "gltf",
+            "file": ")" + (kModels / "BoxTextured-glTF/BoxTextured.gltf").string() + R"("}]})");
+        FAIL() << "no camera in the box";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("camera: is \"gltf\", but no glTF object"), std::string::npos) << e.what();
+    }
+}
+
+TEST(GltfScene, TheSceneNamesItsObjectAndTheFileItsProblem) {
+    const std::string bad = (kModels / "IndexOutOfRange/IndexOutOfRange.gltf").string();
+    try {
+        (void)parse(R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
+                                    {"type": "gltf", "file": ")" + bad + R"(", "transform": {"scale": 2}}]})");
+        FAIL() << "a bad glTF file must fail the scene";
+    } catch (const SceneError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("test.json: objects[1].file: '" + bad + "' cannot be drawn"), std::string::npos) << what;
+        EXPECT_NE(what.find(bad + ": accessors[0] (indices of meshes[0].primitives[0])"), std::string::npos) << what;
+    }
+}
+
+TEST(GltfScene, TransformAndKeysAreChecked) {
+    const std::string box = (kModels / "BoxTextured-glTF/BoxTextured.gltf").string();
+    try {
+        (void)parse(R"({"objects": [{"type": "gltf", "file": ")" + box +
+                    R"(", "material": {}, "transform": {"scale": [1, 0, 1], "spin": 1}}]})");
+        FAIL();
+    } catch (const SceneError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("objects[0].material: unknown key"), std::string::npos) << what;
+        EXPECT_NE(what.find("objects[0].transform.spin: unknown key"), std::string::npos) << what;
+        EXPECT_NE(what.find("objects[0].transform.scale[1]: must be > 0"), std::string::npos) << what;
+    }
+}
+
+}  // namespace
+}  // namespace skygraph
