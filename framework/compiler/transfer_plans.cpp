@@ -12,6 +12,8 @@
 #include <memory>
 #include <span>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace skygraph {
 namespace {
@@ -42,36 +44,47 @@ public:
         return static_cast<uint32_t>(resources().size() - 1);
     }
 
-    /// Adds a step of `type` named "<verb><resource name>" that performs `usage` on `range` of
-    /// resource `r`, with the barrier (if any) that `state` says it needs, and advances the state.
+    /// What a step does to one part of a resource, and that part's state, which it advances.
+    struct StepAccess {
+        const Usage& usage;
+        SubresourceRange range;
+        SubresourceState& state;
+    };
+
+    /// Adds a step of `type` named "<verb><resource name><suffix>" that performs `accesses` on
+    /// resource `r` (the first is what the step writes, for the executor), with the barrier
+    /// each needs.
     void addStep(std::string_view verb, std::string_view type, uint32_t r, const ResourceDesc& desc,
-                 const Usage& usage, const SubresourceRange& range, SubresourceState& state) {
+                 std::initializer_list<StepAccess> accesses, std::string_view suffix = {}) {
         Step step;
         step.nameOffset = text_.size();
         text_ += verb;
         text_ += resources()[r].name;
+        text_ += suffix;
         step.nameLength = text_.size() - step.nameOffset;
         step.type = type;
-        const VulkanScope need = vulkanScope(desc, usage);
-        const bool write = writesContents(usage.access);
-        PlannedUsage& u = step.usage;
-        u.stages = need.stages;
-        u.access = need.access;
-        u.range = range;
-        u.resource = r;
-        u.layout = need.layout;
-        u.usage = usage.mode();
-        Barrier b;
-        if (barrierInto(b, state, need, need.layout, write, usage.access == Access::Write,
-                        [&] { return StageAccess{need.stages, need.access}; })) {
-            b.resource = r;
-            b.kind = desc.isImage() ? BarrierKind::Image : BarrierKind::Buffer;
-            b.range = range;
-            step.barrier = b;
+        for (const StepAccess& a : accesses) {
+            const VulkanScope need = vulkanScope(desc, a.usage);
+            const bool write = writesContents(a.usage.access);
+            PlannedUsage& u = step.usages.emplace_back();
+            u.stages = need.stages;
+            u.access = need.access;
+            u.range = a.range;
+            u.resource = r;
+            u.layout = need.layout;
+            u.usage = a.usage.mode();
+            Barrier b;
+            if (barrierInto(b, a.state, need, need.layout, write, a.usage.access == Access::Write,
+                            [&] { return StageAccess{need.stages, need.access}; })) {
+                b.resource = r;
+                b.kind = desc.isImage() ? BarrierKind::Image : BarrierKind::Buffer;
+                b.range = a.range;
+                step.barriers.push_back(b);
+            }
+            recordAccess(a.state, write, need.layout, need);
         }
-        recordAccess(state, write, need.layout, need);
         resources()[r].lastPass = static_cast<uint32_t>(steps_.size());
-        steps_.push_back(step);
+        steps_.push_back(std::move(step));
     }
 
     /// The barrier that hands resource `r` from `state` to what comes after the plan: `target`
@@ -105,19 +118,25 @@ public:
         auto& usages = detail::PlanBuilder::usages(plan_);
         auto& barriers = detail::PlanBuilder::barriers(plan_);
         auto& passes = detail::PlanBuilder::passes(plan_);
-        usages.reserve(steps_.size());
-        barriers.reserve(steps_.size());
+        size_t usageCount = 0, barrierCount = 0;
+        for (const Step& step : steps_) {
+            usageCount += step.usages.size();
+            barrierCount += step.barriers.size();
+        }
+        usages.reserve(usageCount);  // the spans below must not move
+        barriers.reserve(barrierCount);
         passes.reserve(steps_.size());
         auto names = std::make_shared<const std::string>(std::move(text_));
         for (const Step& step : steps_) {
             PlannedPass& p = passes.emplace_back();
             p.name = std::string_view(*names).substr(step.nameOffset, step.nameLength);
             p.type = step.type;
-            usages.push_back(step.usage);
-            p.usages = {&usages.back(), 1};
-            if (step.barrier) {
-                barriers.push_back(*step.barrier);
-                p.barriers = {&barriers.back(), 1};
+            const size_t firstUsage = usages.size(), firstBarrier = barriers.size();
+            usages.insert(usages.end(), step.usages.begin(), step.usages.end());
+            p.usages = {usages.data() + firstUsage, step.usages.size()};
+            if (!step.barriers.empty()) {
+                barriers.insert(barriers.end(), step.barriers.begin(), step.barriers.end());
+                p.barriers = {barriers.data() + firstBarrier, step.barriers.size()};
             }
         }
         detail::PlanBuilder::keepNames(plan_, std::move(names));
@@ -131,8 +150,8 @@ private:
     struct Step {
         size_t nameOffset = 0, nameLength = 0;
         std::string_view type;  // a literal
-        PlannedUsage usage;
-        std::optional<Barrier> barrier;
+        std::vector<PlannedUsage> usages;
+        std::vector<Barrier> barriers;
     };
     Plan plan_;
     std::string text_;
@@ -217,16 +236,25 @@ Plan planSetup(const GraphDesc& graph, const Plan& frame, const SetupOptions& op
             continue;
         const uint32_t r = steps.addResource(res, VK_IMAGE_LAYOUT_UNDEFINED);
         const SubresourceRange whole = wholeOf(d, frame);
+        const VulkanScope start = frameStartScope(frame, fr, d);
         SubresourceState state{};
         if (!d.isImage()) {
-            steps.addStep("initialize ", "Upload", r, d, kTransferWrite, whole, state);
+            steps.addStep("initialize ", "Upload", r, d, {{kTransferWrite, whole, state}});
+        } else if (options.uploads.count(d.name) == 0) {
+            steps.addStep("initialize ", "Clear", r, d, {{kTransferWrite, whole, state}});
         } else {
-            const bool upload = options.uploads.count(d.name) != 0;
-            const SubresourceRange first{0, 1, 0, whole.layerCount};
-            if (!upload || first != whole) steps.addStep("initialize ", "Clear", r, d, kTransferWrite, whole, state);
-            if (upload) steps.addStep("upload ", "Upload", r, d, kTransferWrite, first, state);
+            // The upload fills mip 0; each further level is the level above, downsampled by a
+            // linear blit (a 2x2 box), so an uploaded image always has its whole mip chain.
+            std::vector<SubresourceState> levels(whole.mipCount, SubresourceState{});
+            const auto level = [&](uint32_t m) { return SubresourceRange{m, 1, 0, whole.layerCount}; };
+            steps.addStep("upload ", "Upload", r, d, {{kTransferWrite, level(0), levels[0]}});
+            for (uint32_t m = 1; m < whole.mipCount; ++m)
+                steps.addStep("downsample ", "Downsample", r, d,
+                              {{kTransferWrite, level(m), levels[m]}, {kTransferRead, level(m - 1), levels[m - 1]}},
+                              " to mip " + std::to_string(m));
+            for (uint32_t m = 0; m < whole.mipCount; ++m) steps.addFinal(r, d, levels[m], start, start.layout, level(m));
+            continue;
         }
-        const VulkanScope start = frameStartScope(frame, fr, d);
         steps.addFinal(r, d, state, start, start.layout, whole);
     }
     return std::move(steps).finish();
@@ -255,7 +283,7 @@ Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view r
     SubresourceState state{};
     state.layout = res.finalLayout;
     state.fromOutside = true;
-    steps.addStep("read back ", "Readback", r, *d, kTransferRead, whole, state);
+    steps.addStep("read back ", "Readback", r, *d, {{kTransferRead, whole, state}});
     // Back to the layout the frame left it in, which is what the executor and the next frame
     // take it to be in. An external image that the next frame finds as it was left must be
     // visible where the frame expects its `initial` contents.

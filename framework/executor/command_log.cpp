@@ -118,6 +118,12 @@ void CommandLog::copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBuffer
     lines_.push_back("copy " + name(from) + " -> " + name(to) + ", " + std::to_string(regions.size()) + " region(s)");
 }
 
+void CommandLog::blitImage(VkImage image, VkImageLayout fromLayout, VkImageLayout toLayout, const VkImageBlit& region) {
+    lines_.push_back("blit " + name(image) + " mip " + std::to_string(region.srcSubresource.mipLevel) + " in " +
+                     shortLayout(fromLayout) + " -> mip " + std::to_string(region.dstSubresource.mipLevel) + " in " +
+                     shortLayout(toLayout) + ", linear");
+}
+
 void CommandLog::beginRenderPass(const VkRenderPassBeginInfo& info) {
     lines_.push_back("begin render pass " + std::to_string(info.renderArea.extent.width) + "x" +
                      std::to_string(info.renderArea.extent.height));

@@ -43,6 +43,7 @@ public:
     void copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuffer to,
                            std::span<const VkBufferImageCopy> regions) override;
     void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) override;
+    void blitImage(VkImage image, VkImageLayout fromLayout, VkImageLayout toLayout, const VkImageBlit& region) override;
     void fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) override;
     void beginRenderPass(const VkRenderPassBeginInfo& info) override;
     void endRenderPass() override;

@@ -39,6 +39,8 @@ public:
     virtual void copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuffer to,
                                    std::span<const VkBufferImageCopy> regions) = 0;
     virtual void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) = 0;
+    /// vkCmdBlitImage within one image, linear filter (a setup plan's Downsample step).
+    virtual void blitImage(VkImage image, VkImageLayout fromLayout, VkImageLayout toLayout, const VkImageBlit& region) = 0;
     /// vkCmdFillBuffer: `size` bytes from `offset` (VK_WHOLE_SIZE: to the end) with `word`.
     virtual void fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) = 0;
 
@@ -77,6 +79,7 @@ public:
     void copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuffer to,
                            std::span<const VkBufferImageCopy> regions) override;
     void copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) override;
+    void blitImage(VkImage image, VkImageLayout fromLayout, VkImageLayout toLayout, const VkImageBlit& region) override;
     void fillBuffer(VkBuffer buffer, VkDeviceSize offset, VkDeviceSize size, uint32_t word) override;
     void beginRenderPass(const VkRenderPassBeginInfo& info) override;
     void endRenderPass() override;

@@ -413,6 +413,10 @@ void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_
     d.recordFrame(cmd, slot, nullptr);
 }
 
+void RendererAccess::editSetupPlans(Renderer& renderer, std::function<void(Plan&)> edit) {
+    renderer.impl_->setupPlanEdit = std::move(edit);
+}
+
 void RendererAccess::overrideAcquireWait(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages) {
     renderer.impl_->acquireWaitOverride = stages;
 }

@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +88,10 @@ struct RendererAccess {
     /// Test-only: the stages the next presented frames signal the render-complete semaphore in,
     /// in place of presentSignalStages. std::nullopt: presentSignalStages again.
     static void overrideRenderCompleteSignal(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages);
+    /// Test-only, for negative controls of setup plans (uploads and their mip chains): `edit`
+    /// changes each setup plan after the compiler made it and before it is recorded. Empty:
+    /// none again.
+    static void editSetupPlans(Renderer& renderer, std::function<void(Plan&)> edit);
 
     /// Test-only, and for memory measurements: the device memory of the current plan state.
     [[nodiscard]] static RendererMemory memory(const Renderer& renderer);

@@ -320,6 +320,7 @@ struct Renderer::Impl {
     /// Test hooks (RendererAccess): stages in place of the plan's acquire wait (0: no wait) and
     /// of presentSignalStages.
     std::optional<VkPipelineStageFlags2> acquireWaitOverride;
+    std::function<void(Plan&)> setupPlanEdit;  ///< RendererAccess::editSetupPlans
     std::optional<VkPipelineStageFlags2> signalOverride;
 
     Impl(Device& d, RendererOptions o)

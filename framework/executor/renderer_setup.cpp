@@ -3,6 +3,7 @@
 // the compiler's barriers, like a frame, and submitted on their own.
 #include "renderer_impl.hpp"
 
+#include <algorithm>
 #include <skygraph/transfer_plans.hpp>
 
 #include <cstring>
@@ -66,6 +67,19 @@ void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image
     sink.clearColor(image, u.layout, v, range);
 }
 
+/// A Downsample step's blit: the whole of level `from` onto the whole of level `to`.
+VkImageBlit downsampleRegion(const ResourceState& r, const SubresourceRange& from, const SubresourceRange& to) {
+    const auto extent = [&](uint32_t mip) {
+        return VkOffset3D{int32_t(std::max(r.width >> mip, 1u)), int32_t(std::max(r.height >> mip, 1u)), 1};
+    };
+    VkImageBlit region{};
+    region.srcSubresource = {r.aspect, from.baseMip, from.baseLayer, from.layerCount};
+    region.srcOffsets[1] = extent(from.baseMip);
+    region.dstSubresource = {r.aspect, to.baseMip, to.baseLayer, to.layerCount};
+    region.dstOffsets[1] = extent(to.baseMip);
+    return region;
+}
+
 }  // namespace
 
 void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNextFrame) {
@@ -84,6 +98,7 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
     auto planned = std::make_shared<Plan>();
     try {
         *planned = planSetup(s.graph, s.plan, o);
+        if (setupPlanEdit) setupPlanEdit(*planned);
     } catch (const GraphError& e) {
         throw ExecutorError(e.what());
     }
@@ -145,6 +160,9 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
                 if (const BarrierBatch before(step.barriers, target, s.families()); !before.empty()) sink.barriers(before);
                 if (step.type == "Clear") {
                     recordInitialClear(sink, r, r.images[c].image, u);
+                } else if (step.type == "Downsample") {
+                    sink.blitImage(r.images[c].image, step.usages[1].layout, u.layout,
+                                   downsampleRegion(r, step.usages[1].range, u.range));
                 } else if (!r.isImage) {
                     const VkBufferCopy region{0, 0, r.size};
                     sink.copyBuffer(staging[i].buffer.get(), r.buffers[c].buffer.get(), {&region, 1});

@@ -46,6 +46,11 @@ void VulkanCommands::copyImageToBuffer(VkImage from, VkImageLayout layout, VkBuf
     vkCmdCopyImageToBuffer(cmd_, from, layout, to, static_cast<uint32_t>(regions.size()), regions.data());
 }
 
+void VulkanCommands::blitImage(VkImage image, VkImageLayout fromLayout, VkImageLayout toLayout,
+                               const VkImageBlit& region) {
+    vkCmdBlitImage(cmd_, image, fromLayout, image, toLayout, 1, &region, VK_FILTER_LINEAR);
+}
+
 void VulkanCommands::copyBuffer(VkBuffer from, VkBuffer to, std::span<const VkBufferCopy> regions) {
     vkCmdCopyBuffer(cmd_, from, to, static_cast<uint32_t>(regions.size()), regions.data());
 }

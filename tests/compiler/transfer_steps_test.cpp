@@ -140,27 +140,53 @@ TEST(Setup, EveryExternalThatArrivesInAStateIsSetUpAndNothingElse) {
     const Plan setup = planSetup(g, frame, SetupOptions{{"tex"}, {}});
     std::vector<std::string> names;
     for (const PlannedPass& p : setup.passes()) names.emplace_back(std::string(p.name) + ":" + std::string(p.type));
-    EXPECT_EQ(names, (std::vector<std::string>{"initialize tex:Clear", "upload tex:Upload", "initialize verts:Upload",
+    EXPECT_EQ(names, (std::vector<std::string>{"upload tex:Upload", "downsample tex to mip 1:Downsample",
+                                               "downsample tex to mip 2:Downsample", "downsample tex to mip 3:Downsample",
+                                               "downsample tex to mip 4:Downsample", "initialize verts:Upload",
                                                "initialize out:Clear"}));
-    // tex: cleared (UNDEFINED -> TRANSFER_DST), then its first mip uploaded over the clear (WAW).
-    ASSERT_EQ(setup.passes()[1].barriers.size(), 1u);
-    const Barrier& waw = setup.passes()[1].barriers[0];
-    EXPECT_EQ(waw.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
-    EXPECT_EQ(waw.srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    EXPECT_EQ(waw.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-    EXPECT_EQ(waw.range, (SubresourceRange{0, 1, 0, 1}));
-    EXPECT_EQ(waw.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    // tex (16x16, 5 mips): mip 0 uploaded from UNDEFINED; each downsample step writes level m
+    // (UNDEFINED -> TRANSFER_DST, nothing to wait for) and reads level m - 1, which the step
+    // before wrote (read-after-write, TRANSFER_DST -> TRANSFER_SRC).
+    ASSERT_EQ(setup.passes()[0].barriers.size(), 1u);
+    EXPECT_EQ(setup.passes()[0].barriers[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(setup.passes()[0].barriers[0].range, (SubresourceRange{0, 1, 0, 1}));
+    for (uint32_t m = 1; m < 5; ++m) {
+        const PlannedPass& step = setup.passes()[m];
+        ASSERT_EQ(step.usages.size(), 2u);
+        EXPECT_EQ(step.usages[0].range, (SubresourceRange{m, 1, 0, 1}));
+        EXPECT_EQ(step.usages[1].range, (SubresourceRange{m - 1, 1, 0, 1}));
+        ASSERT_EQ(step.barriers.size(), 2u) << step.name;
+        const Barrier& into = step.barriers[0];
+        EXPECT_EQ(into.range, (SubresourceRange{m, 1, 0, 1}));
+        EXPECT_EQ(into.srcStages, 0u);
+        EXPECT_EQ(into.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+        EXPECT_EQ(into.newLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        EXPECT_EQ(into.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        const Barrier& raw = step.barriers[1];
+        EXPECT_EQ(raw.range, (SubresourceRange{m - 1, 1, 0, 1}));
+        EXPECT_EQ(raw.srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        EXPECT_EQ(raw.srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        EXPECT_EQ(raw.dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+        EXPECT_EQ(raw.dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+        EXPECT_EQ(raw.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        EXPECT_EQ(raw.newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    }
     // A buffer's first write needs no barrier; its final one makes the fill visible where its
     // `initial` state (ShaderRead by default) says.
-    EXPECT_TRUE(setup.passes()[2].barriers.empty());
+    EXPECT_TRUE(setup.passes()[5].barriers.empty());
     bool sawTex = false, sawVerts = false;
     for (const Barrier& b : setup.finalBarriers()) {
         const std::string_view name = setup.resources()[b.resource].name;
         if (name == "tex") {
-            sawTex = true;
-            EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+            // One per level: the last was written (TRANSFER_DST, its write made visible), the
+            // others were last read (TRANSFER_SRC, execution only: their writes were made
+            // available by the barrier before that read).
+            const bool last = b.range.baseMip == 4;
+            sawTex = sawTex || last;
+            EXPECT_EQ(b.range.mipCount, 1u);
+            EXPECT_EQ(b.oldLayout, last ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+            EXPECT_EQ(b.srcAccess, last ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_NONE);
             EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            EXPECT_EQ(b.range.mipCount, 5u) << "the whole 16x16 chain";
             EXPECT_EQ(b.dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
             EXPECT_EQ(b.dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
         }

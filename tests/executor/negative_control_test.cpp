@@ -5,6 +5,7 @@
 
 #include "compiled_graph_access.hpp"
 #include "plan_editor.hpp"
+#include "renderer_access.hpp"
 
 #include <algorithm>
 
@@ -218,6 +219,42 @@ TEST_F(NegativeControl, DroppedWarTransitionIsWriteAfterRead) {
     Plan broken = c.plan();
     dropBarrier(broken, "redraw", "tex");
     expectHazard(c, broken, "SYNC-HAZARD-WRITE-AFTER-READ");
+}
+
+// The setup's mip chain: an uploaded 16x16 texture's levels are downsampled from one another
+// by blits. Each blit reads the level the one before wrote; without the barrier between
+// (here: the layout transition kept, its source scope emptied) the layer sees the race.
+TEST_F(NegativeControl, UnscopedBarrierBetweenTwoDownsamplesIsCaught) {
+    const CompiledGraph c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": "full",
+                    "external": true, "initial": "ShaderRead" })",
+        R"({ "name": "sample", "type": "Generic", "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    ImageData pixels;
+    pixels.width = pixels.height = 16;
+    pixels.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    pixels.rgba.assign(16 * 16 * 4, 0.25f);
+    const auto run = [&](bool weaken) {
+        Renderer r(sharedDevice(), c, genericOptions());
+        if (weaken)
+            RendererAccess::editSetupPlans(r, [](Plan& setup) {
+                for (size_t p = 0; p < setup.passes().size(); ++p)
+                    if (setup.passes()[p].name == "downsample tex to mip 2") {
+                        Barrier& raw = detail::PlanEditor::barriersOf(setup, p)[1];  // mip 1, written just before
+                        raw.srcStages = VK_PIPELINE_STAGE_2_NONE;
+                        raw.srcAccess = VK_ACCESS_2_NONE;
+                    }
+            });
+        r.setExternalImage("tex", pixels);
+        r.renderFrame();
+        r.waitIdle();
+        EXPECT_EQ(r.setupPlan().passes().size() > 4, true) << "upload and four downsamples";
+    };
+    run(false);
+    ASSERT_EQ(sharedDevice().messageCount(), 0u) << "the intact setup must be clean:\n" << formatMessages(sharedDevice());
+    allowMessages();
+    run(true);
+    EXPECT_TRUE(sharedDevice().hasMessage("SYNC-HAZARD-WRITE-AFTER-WRITE"))
+        << "expected the transition to race the blit that wrote mip 1; got:\n" << formatMessages(sharedDevice());
 }
 
 }  // namespace
