@@ -181,8 +181,8 @@ private:
 
     void loadEnvironment(const json& e) {
         if (!e.is_object())
-            return error("environment", "must be an object {file, rotation_deg, sampling} or null for none");
-        checkKeys(e, "environment", {"file", "rotation_deg", "sampling"});
+            return error("environment", "must be an object {file, rotation_deg, sampling, sun_direction} or null for none");
+        checkKeys(e, "environment", {"file", "rotation_deg", "sampling", "sun_direction"});
         SceneEnvironment env;
         optionalNumber(e, "environment", "rotation_deg", kAny, env.rotationDeg);
         enumeration(e, "environment", "sampling",
@@ -193,6 +193,17 @@ private:
         if (file == e.end() || !file->is_string() || file->get<std::string>().empty())
             return error("environment.file", "missing; expected \"procedural\" or a .hdr/.exr path");
         const std::string name = file->get<std::string>();
+        if (auto sun = e.find("sun_direction"); sun != e.end()) {
+            Vec3 v{};
+            vec3(*sun, "environment.sun_direction", kAny, v);
+            const double len = std::hypot(v[0], v[1], v[2]);
+            if (name != "procedural")
+                error("environment.sun_direction", "only the procedural sky has a sun; this environment is a file");
+            else if (!(len > 1e-12))
+                error("environment.sun_direction", "must not be the zero vector");
+            else
+                for (size_t i = 0; i < 3; ++i) env.sunDirection[i] = v[i] / len;
+        }
         if (name != "procedural") {
             env.procedural = false;
             env.file = (baseDir_ / name).lexically_normal();  // an absolute name replaces baseDir_

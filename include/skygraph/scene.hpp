@@ -45,6 +45,9 @@ struct SceneEnvironment {
     std::filesystem::path file;  ///< .hdr or .exr, absolute (resolved against the scene's folder)
     double rotationDeg = 0.0;    ///< about +Y
     EnvironmentSampling sampling = EnvironmentSampling::Cubemap;
+    /// The procedural sky's sun: a unit vector towards it (math::proceduralSunDirection by
+    /// default). A change re-bakes the sky's lighting. Unused for a file.
+    Vec3 sunDirection{0.35045588917675863, 0.45058614322726115, -0.8210680832141203};  // (0.35, 0.45, -0.82), normalised
 };
 
 enum class Tonemapper { AcesNarkowicz, AcesHill, KhronosPbrNeutral, Passthrough };

@@ -162,18 +162,19 @@ Vec3<T> cubeToDirection(int face, const Vec2<T>& st) {
     }
 }
 
-/// The unit direction towards the procedural sky's sun (0.6 degrees in radius).
+/// The unit direction towards the procedural sky's sun (0.6 degrees in radius) unless a scene
+/// says otherwise (SceneEnvironment::sunDirection).
 template <typename T>
 Vec3<T> proceduralSunDirection() {
     return glm::normalize(Vec3<T>(T(0.35), T(0.45), T(-0.82)));
 }
 
 /// The built-in procedural sky: a gradient from horizon to zenith, a darker ground, and a
-/// sun disc with a soft glow. Radiance in linear HDR units; smooth except at the disc edge.
+/// sun disc with a soft glow towards the unit `sunDir`. Radiance in linear HDR units; smooth
+/// except at the disc edge.
 template <typename T>
-Vec3<T> proceduralSky(const Vec3<T>& dirIn) {
+Vec3<T> proceduralSky(const Vec3<T>& dirIn, const Vec3<T>& sunDir) {
     const Vec3<T> d = glm::normalize(dirIn);
-    const Vec3<T> sunDir = proceduralSunDirection<T>();
     const Vec3<T> zenith(T(0.16), T(0.34), T(0.82)), horizon(T(0.75), T(0.85), T(1.0));
     const Vec3<T> ground(T(0.18), T(0.16), T(0.14));
     const T up = d.y;
@@ -183,6 +184,12 @@ Vec3<T> proceduralSky(const Vec3<T>& dirIn) {
     const T glow = std::pow(std::max(cosSun, T(0)), T(64)) * T(2);
     const T disc = cosSun > std::cos(radians(T(0.6))) ? T(400) : T(0);
     return sky + Vec3<T>(T(1), T(0.9), T(0.7)) * (glow + disc);
+}
+
+/// The procedural sky with its default sun.
+template <typename T>
+Vec3<T> proceduralSky(const Vec3<T>& dirIn) {
+    return proceduralSky(dirIn, proceduralSunDirection<T>());
 }
 
 // ---- tone mapping ---------------------------------------------------------------------------

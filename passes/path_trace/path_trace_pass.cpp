@@ -42,7 +42,10 @@ std::vector<double> sceneKey(const Scene* scene, VkExtent2D extent) {
     const auto& c = scene->camera;
     k.insert(k.end(), {c.position[0], c.position[1], c.position[2], c.yawDeg, c.pitchDeg, c.rollDeg, c.fovYDeg});
     k.push_back(scene->environment ? 1.0 + scene->environment->rotationDeg : -1.0);
-    if (scene->environment) k.push_back(scene->environment->procedural ? 1.0 : 0.0);
+    if (scene->environment) {
+        k.push_back(scene->environment->procedural ? 1.0 : 0.0);
+        k.insert(k.end(), scene->environment->sunDirection.begin(), scene->environment->sunDirection.end());
+    }
     for (const SceneObject& o : scene->objects) {
         if (const auto* s = std::get_if<Sphere>(&o.shape)) {
             k.insert(k.end(), {0.0, s->center[0], s->center[1], s->center[2], s->radius});
@@ -111,6 +114,9 @@ public:
         push.frame[1] = samplesPerFrame_;
         push.frame[2] = maxBounces_;
         push.frame[3] = int32_t(seed_);
+        const auto sun = scene && scene->environment ? scene->environment->sunDirection
+                                                     : SceneEnvironment{}.sunDirection;
+        for (int i = 0; i < 3; ++i) push.sun[i] = float(sun[size_t(i)]);
 
         vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
         const VkDescriptorImageInfo image{VK_NULL_HANDLE, accumulation->view, accumulation->usage->layout};
@@ -143,6 +149,7 @@ private:
         float cameraToWorld[3][4];
         float projection[4];
         int32_t frame[4];
+        float sun[4];
     };
     struct RingBuffer {
         vk::Memory memory;

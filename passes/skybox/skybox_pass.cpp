@@ -57,6 +57,9 @@ public:
         push.projection[2] = float(std::sin(rotation));
         push.projection[3] = float(std::cos(rotation));
         push.mode[0] = mode_;
+        const auto sun = scene && scene->environment ? scene->environment->sunDirection
+                                                     : SceneEnvironment{}.sunDirection;
+        for (int i = 0; i < 3; ++i) push.sun[i] = float(sun[size_t(i)]);
         vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
         if (mode_ != 0) {
             const BoundResource* env = ctx.slot("environment");
@@ -78,6 +81,7 @@ private:
         float projection[4];
         int32_t mode[4];
         float environment[4];
+        float sun[4];
     };
     double rotationDeg_;
     bool outputDirection_;

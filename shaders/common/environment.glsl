@@ -24,9 +24,9 @@ float equirectLod(vec3 dir, float mapHeight) {
 }
 #endif
 
-vec3 proceduralSky(vec3 dirIn) {
+// `sunDir`: unit, towards the sun (the scene's; math::proceduralSunDirection by default).
+vec3 proceduralSky(vec3 dirIn, vec3 sunDir) {
     vec3 d = normalize(dirIn);
-    const vec3 sunDir = normalize(vec3(0.35, 0.45, -0.82));
     const vec3 zenith = vec3(0.16, 0.34, 0.82), horizon = vec3(0.75, 0.85, 1.0);
     const vec3 ground = vec3(0.18, 0.16, 0.14);
     float up = d.y;

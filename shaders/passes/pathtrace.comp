@@ -39,6 +39,7 @@ layout(push_constant) uniform Params {
     vec4 cameraToWorld[3];  // columns of the camera rotation
     vec4 projection;        // x: aspect * tan(fovY/2), y: tan(fovY/2), z: sin, w: cos of the environment rotation
     ivec4 frame;            // x: samples already accumulated (0: start over), y: samples this frame, z: max bounces, w: seed
+    vec4 sun;               // xyz: towards the procedural sky's sun
 } params;
 
 // PCG hash (Jarzynski & Olano 2020): decorrelated streams per pixel and sample.
@@ -58,7 +59,7 @@ vec3 environment(vec3 d) {
 #if ENV_EQUIRECT
     return textureLod(environmentMap, directionToEquirect(d), 0.0).rgb;
 #else
-    return proceduralSky(d);
+    return proceduralSky(d, params.sun.xyz);
 #endif
 }
 

@@ -16,6 +16,7 @@ layout(push_constant) uniform Sky {
     vec4 projection;   // x: aspect * tan(fovY/2), y: tan(fovY/2), z: sin, w: cos of rotation
     ivec4 mode;
     vec4 environment;  // x: equirect height in texels
+    vec4 sun;          // xyz: towards the procedural sky's sun
 } sky;
 
 #if SKY_MODE == 1
@@ -38,7 +39,7 @@ void main() {
 #elif SKY_MODE == 2
     vec3 c = textureLod(environmentMap, directionToEquirect(d), equirectLod(d, sky.environment.x)).rgb;
 #else
-    vec3 c = proceduralSky(d);
+    vec3 c = proceduralSky(d, sky.sun.xyz);
 #endif
     outColor = vec4(c, 1.0);
 }

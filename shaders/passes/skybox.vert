@@ -8,6 +8,7 @@ layout(push_constant) uniform Sky {
     vec4 projection;        // x: aspect * tan(fovY/2), y: tan(fovY/2), z: sin, w: cos of rotation
     ivec4 mode;             // x: 0 procedural, 1 cubemap, 2 equirect
     vec4 environment;       // x: equirect height in texels
+    vec4 sun;               // xyz: towards the procedural sky's sun
 } sky;
 
 layout(location = 0) out vec3 outDirection;

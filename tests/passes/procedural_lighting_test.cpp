@@ -24,7 +24,7 @@ using math::Vec3;
 constexpr uint32_t kSize = 160;
 constexpr const char* kMirrorScene = R"({
   "camera": { "position": [0.0, 0.0, 4.0], "fov_y_deg": 35.0, "near": 0.05 },
-  "environment": { "file": "procedural" },
+  "environment": { "file": "procedural", "sun_direction": SUN },
   "objects": [ { "type": "sphere", "center": [0.0, 0.0, 0.0], "radius": 1.0,
                  "material": { "base_color": [1.0, 1.0, 1.0], "metallic": 1.0, "roughness": 0.0 } } ]
 })";
@@ -44,11 +44,15 @@ struct Errors {
 /// compares every pixel whose reflected ray is away from the sun (its disc and glow are
 /// sharper than the prefiltered cube's texels), from the horizon (where the model steps), and
 /// from the silhouette (grazing normals).
-Errors mirrorSphereErrors(const std::string& name, const FeatureValues& features = {}) {
+Errors mirrorSphereErrors(const std::string& name, const FeatureValues& features = {},
+                          const Vec3<double>& sunIn = math::proceduralSunDirection<double>()) {
+    std::string text = kMirrorScene;
+    text.replace(text.find("SUN"), 3,
+                 "[" + std::to_string(sunIn.x) + ", " + std::to_string(sunIn.y) + ", " + std::to_string(sunIn.z) + "]");
     const fs::path out = fs::path(SKYGRAPH_BINARY_DIR) / "procedural-lighting";
     fs::create_directories(out);
     const fs::path sceneFile = out / (name + ".scene.json");
-    std::ofstream(sceneFile) << kMirrorScene;
+    std::ofstream(sceneFile) << text;
     static const PassLibrary library = PassLibrary::withBuiltins();
     app::RenderOptions o;
     o.graph = fs::path(SKYGRAPH_SOURCE_DIR) / "graphs/raster.json";
@@ -61,10 +65,12 @@ Errors mirrorSphereErrors(const std::string& name, const FeatureValues& features
     o.features = features;
     EXPECT_EQ(app::renderCommand(o), 0) << "render failed or validation reported messages";
     const HdrImage frame = loadHdrImage(o.output);
-    const Scene scene = parseScene(kMirrorScene, "mirror.json", out);
+    const Scene scene = parseScene(text, "mirror.json", out);
     const ImageData rays = renderSkyRays(scene, kSize, kSize);
 
-    const Vec3<double> eye(0.0, 0.0, 4.0), sun = math::proceduralSunDirection<double>();
+    const Vec3<double> eye(0.0, 0.0, 4.0);
+    const Vec3<double> sun(scene.environment->sunDirection[0], scene.environment->sunDirection[1],
+                           scene.environment->sunDirection[2]);
     const auto luminance = [](const Vec3<double>& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
     Errors errors;
     for (uint32_t y = 0; y < kSize; ++y)
@@ -78,7 +84,7 @@ Errors mirrorSphereErrors(const std::string& name, const FeatureValues& features
             const Vec3<double> reflected = glm::reflect(d, n);
             if (std::abs(reflected.y) < 0.08 || glm::dot(reflected, sun) > std::cos(math::radians(12.0))) continue;
             const float* p = frame.pixel(x, y);
-            const double want = luminance(math::proceduralSky(reflected));
+            const double want = luminance(math::proceduralSky(reflected, sun));
             const double got = luminance(Vec3<double>(p[0], p[1], p[2]));
             errors.relative.push_back(std::abs(got - want) / want);
         }
@@ -94,6 +100,17 @@ TEST(ProceduralSkyLighting, AMirrorSphereReflectsTheSkyInTheReflectedDirection) 
     // gradient, just above the horizon, through the prefiltered cube's 128-texel faces).
     EXPECT_LT(e.quantile(0.5), 0.01) << "median";
     EXPECT_LT(e.quantile(0.95), 0.05) << "95th percentile";
+    EXPECT_LT(e.quantile(1.0), 0.15) << "worst";
+}
+
+// The scene's sun is the one baked: moved to the other side of the sky, the reflection
+// follows it (its glow, well outside the excluded 12 degrees, would be off otherwise).
+TEST(ProceduralSkyLighting, AMovedSunIsTheOneTheReflectionShows) {
+    const Errors e = mirrorSphereErrors("mirror-sun", {}, glm::normalize(Vec3<double>(-0.6, 0.5, 0.62)));
+    ASSERT_GT(e.relative.size(), 5000u);
+    EXPECT_LT(e.quantile(0.5), 0.01) << "median";
+    EXPECT_LT(e.quantile(0.95), 0.05) << "95th percentile";
+    EXPECT_LT(e.quantile(1.0), 0.15) << "worst: a sun baked elsewhere would show its glow and disc here";
 }
 
 // The test can fail: with no environment (skybox off) the same sphere is lit by the fixed sun

@@ -453,5 +453,43 @@ TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
     expectSilent();
 }
 
+// Moving the procedural sky's sun re-bakes its lighting beside the frames as a file change
+// does; a second move while the first bake runs is baked after it, and nothing rebuilds.
+TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {
+    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    app::RenderOptions o;
+    o.graph = root / "graphs/raster.json";
+    o.scene = root / "scenes/default.json";
+    o.framesInFlight = 2;
+    o.passes = &library;
+    app::LiveGraph live(*device_, o, 96, 64, false);
+    auto swapchain = Swapchain::create(*device_, live.renderer().compiled(), {96, 64, PresentMode::Fifo});
+    live.presentTo(*swapchain);
+    const auto frame = [&] {
+        glfwPollEvents();
+        live.poll();
+        EXPECT_EQ(live.renderer().renderFrame(*swapchain), PresentStatus::Presented);
+    };
+    for (int i = 0; i < 3; ++i) frame();
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+    ASSERT_TRUE(live.setSunDirection({0.0, 1.0, 0.0})) << live.error();
+    EXPECT_TRUE(live.rebaking());
+    ASSERT_TRUE(live.setSunDirection({0.6, 0.8, 0.0})) << "queued behind the running bake";
+    EXPECT_EQ(live.scene()->environment->sunDirection, (Vec3{0.6, 0.8, 0.0})) << "the skybox's sun moves at once";
+    int frames = 0;
+    while ((live.rebaking() || live.reloads() < reloads + 2) && frames < 200) {
+        frame();
+        ++frames;
+    }
+    EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
+    EXPECT_EQ(live.reloads(), reloads + 2) << "two bakes: the first move, then the latest";
+    EXPECT_EQ(&live.renderer(), running) << "moving the sun rebuilt the renderer";
+    for (int i = 0; i < 3; ++i) frame();
+    live.renderer().waitIdle();
+    expectSilent();
+}
+
 }  // namespace
 }  // namespace skygraph::test

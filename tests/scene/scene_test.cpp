@@ -1,6 +1,7 @@
 // skygraph_scene: the shipped scenes, every class of error with its JSON path, and the mapping
 // from a scene to the features of graphs/raster.json.
 #include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <gtest/gtest.h>
 
@@ -132,6 +133,18 @@ TEST(SceneLoader, RelativeEnvironmentFilesResolveAgainstTheSceneFolder) {
     EXPECT_EQ(s.environment->rotationDeg, -45.0);
     EXPECT_EQ(s.environment->sampling, EnvironmentSampling::Cubemap);
     fs::remove_all(dir);
+}
+
+TEST(SceneLoader, TheSunDirectionIsNormalisedAndOnlyForTheProceduralSky) {
+    const Scene s = parse(R"({"environment": {"file": "procedural", "sun_direction": [0, 2, 0]}})");
+    EXPECT_EQ(s.environment->sunDirection, (Vec3{0.0, 1.0, 0.0}));
+    const Scene d = parse(R"({"environment": {"file": "procedural"}})");
+    const auto def = math::proceduralSunDirection<double>();
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(d.environment->sunDirection[size_t(i)], def[i], 1e-12) << "the shaders' default";
+    expectError(R"({"environment": {"file": "procedural", "sun_direction": [0, 0, 0]}})", "environment.sun_direction",
+                "must not be the zero vector");
+    expectError(R"({"environment": {"file": "sky.hdr", "sun_direction": [0, 1, 0]}})", "environment.sun_direction",
+                "only the procedural sky has a sun");
 }
 
 TEST(SceneErrors, FileAndSyntax) {

@@ -1,6 +1,8 @@
 // `skygraph view`'s inputs and renderer, rebuilt on a change.
 #include "live_graph.hpp"
 
+#include "procedural_environment.hpp"
+
 #include "shipped_names.hpp"
 
 #include <skygraph/compiled_graph.hpp>
@@ -25,6 +27,8 @@ void keepViewSettings(const Scene& edited, Scene& loaded) {
     loaded.tonemapper = edited.tonemapper;
     loaded.debugView = edited.debugView;
     if (edited.environment && loaded.environment) loaded.environment->rotationDeg = edited.environment->rotationDeg;
+    if (edited.environment && loaded.environment && edited.environment->procedural && loaded.environment->procedural)
+        loaded.environment->sunDirection = edited.environment->sunDirection;
 }
 
 }  // namespace
@@ -154,20 +158,47 @@ bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
 }
 
 bool LiveGraph::rebakeInPlace(const std::filesystem::path& file) {
+    if (file.empty() || !canRebake()) return false;
+    return rebake(loadHdrImage(file), file.string());
+}
+
+bool LiveGraph::canRebake() const {
+    return built_->environment.graph && renderer_->graph().findResource(shipped::kEquirect) && !rebaking();
+}
+
+bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
     const FrameEnvironment& running = built_->environment;
-    // The running file's size is the frame graph's `equirect` (loadFrameInputs sets it).
-    const ResourceDesc* equirect = renderer_->graph().findResource(shipped::kEquirect);
-    if (file.empty() || !running.graph || !equirect || rebaking()) return false;
-    HdrImage pixels = loadHdrImage(file);
-    const auto extent = equirect->extent.resolve(width_, height_);
+    // The running image's size is the frame graph's `equirect` (loadFrameInputs sets it).
+    const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
     if (pixels.width != extent[0] || pixels.height != extent[1]) return false;  // another size: rebuild
     if (!baker_)
         baker_ = std::make_unique<EnvironmentBaker>(device_, *running.graph, pixels.width, pixels.height,
                                                     running.products,
                                                     options_.passes ? options_.passes : &PassLibrary::genericOnly());
     if (renderer_->plan().resourceIndex(shipped::kEquirect) >= 0) rebakeEquirect_ = pixels;
-    spdlog::info("environment: re-baking {} beside the frames", file.string());
+    spdlog::info("environment: re-baking {} beside the frames", what);
     return baker_->start(std::move(pixels));
+}
+
+bool LiveGraph::setSunDirection(const Vec3& sun) {
+    if (!scene_ || !scene_->environment || !scene_->environment->procedural) return false;
+    scene_->environment->sunDirection = sun;
+    options_.sunDirection = sun;  // what a later rebuild bakes
+    sceneChanged();               // the skybox draws the new sun at once
+    pendingSun_ = sun;            // the lighting follows once a bake is free (poll)
+    startPendingSunBake();
+    return true;
+}
+
+void LiveGraph::startPendingSunBake() {
+    if (!pendingSun_ || !canRebake()) return;
+    try {
+        if (rebake(proceduralSkyEquirect(*pendingSun_), "the procedural sky")) pendingSun_.reset();
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        spdlog::warn("{}", error_);
+        pendingSun_.reset();
+    }
 }
 
 void LiveGraph::swapRebake() {
@@ -181,6 +212,7 @@ void LiveGraph::swapRebake() {
 
 bool LiveGraph::poll() {
     swapRebake();
+    startPendingSunBake();
     const bool graphSaved = graphWatcher_ && graphWatcher_->changed();
     const bool sceneSaved = sceneWatcher_ && sceneWatcher_->changed();
     if (graphSaved || sceneSaved) {

@@ -53,6 +53,11 @@ public:
     /// poll(), the frames going on with the old environment meanwhile; anything else rebuilds.
     /// False (error() says why) keeps what ran.
     bool setEnvironmentFile(const std::filesystem::path& file);
+    /// Moves the procedural sky's sun (unit `sun`): the skybox shows it at once, and the
+    /// lighting is re-baked beside the frames and swapped in by a later poll(); a change while
+    /// a bake runs is baked after it (only the latest). False when the scene's environment is
+    /// not the procedural sky.
+    bool setSunDirection(const Vec3& sun);
     /// Whether a re-bake started by setEnvironmentFile is not swapped in yet.
     [[nodiscard]] bool rebaking() const noexcept { return baker_ && baker_->pending(); }
     /// Swaps in a finished re-bake; rebuilds after the graph or scene file was saved, reloads
@@ -94,6 +99,13 @@ private:
     bool rebuild(RenderOptions options);
     /// setEnvironmentFile's re-bake beside the frames; false when `file` needs a rebuild.
     bool rebakeInPlace(const std::filesystem::path& file);
+    /// Whether a re-bake beside the frames is possible now (an environment is baked, the frame
+    /// graph has an equirect, no bake is pending).
+    [[nodiscard]] bool canRebake() const;
+    /// Starts re-baking `pixels` (named `what` in the log); false when they are of another
+    /// size than the running equirect.
+    bool rebake(HdrImage pixels, const std::string& what);
+    void startPendingSunBake();
     void swapRebake();
 
     Device& device_;
@@ -106,6 +118,7 @@ private:
     /// Declared before built_: the frames that sample its products go first.
     std::unique_ptr<EnvironmentBaker> baker_;
     std::optional<HdrImage> rebakeEquirect_;  ///< The pixels being re-baked, for the frame's own equirect.
+    std::optional<Vec3> pendingSun_;           ///< A sun direction not baked yet.
     std::unique_ptr<Built> built_;
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;

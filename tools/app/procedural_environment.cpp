@@ -8,7 +8,7 @@
 
 namespace skygraph::app {
 
-HdrImage proceduralSkyEquirect(uint32_t width) {
+HdrImage proceduralSkyEquirect(const std::array<double, 3>& sunDirection, uint32_t width) {
     using namespace math;
     width = std::max(width, 2u);
     HdrImage image;
@@ -21,7 +21,7 @@ HdrImage proceduralSkyEquirect(uint32_t width) {
     const double texelAngle = std::sqrt(2.0) * kPi<double> / image.height;
     const double discRadius = radians(0.6);
     const double cosReach = std::cos(std::min(discRadius + texelAngle, kPi<double>));
-    const Vec3<double> sun = proceduralSunDirection<double>();
+    const Vec3<double> sun = glm::normalize(Vec3<double>(sunDirection[0], sunDirection[1], sunDirection[2]));
     constexpr int kDiscSamples = 16;
     for (uint32_t y = 0; y < image.height; ++y)
         for (uint32_t x = 0; x < image.width; ++x) {
@@ -31,7 +31,7 @@ HdrImage proceduralSkyEquirect(uint32_t width) {
             const Vec3<double> centre = at(x + 0.5, y + 0.5);
             Vec3<double> radiance(0.0);
             if (glm::dot(centre, sun) < cosReach) {
-                radiance = proceduralSky(centre);
+                radiance = proceduralSky(centre, sun);
             } else {
                 // Equal-area weights (sin theta) make this the footprint's mean radiance.
                 double weights = 0.0;
@@ -39,7 +39,7 @@ HdrImage proceduralSkyEquirect(uint32_t width) {
                     for (int i = 0; i < kDiscSamples; ++i) {
                         const Vec3<double> d = at(x + (i + 0.5) / kDiscSamples, y + (j + 0.5) / kDiscSamples);
                         const double w = std::sqrt(std::max(0.0, 1.0 - d.y * d.y));
-                        radiance += proceduralSky(d) * w;
+                        radiance += proceduralSky(d, sun) * w;
                         weights += w;
                     }
                 radiance /= std::max(weights, 1e-12);

@@ -4,6 +4,7 @@
 
 #include <skygraph/hdr_image.hpp>
 
+#include <array>
 #include <cstdint>
 
 namespace skygraph::app {
@@ -13,10 +14,11 @@ namespace skygraph::app {
 /// face: viewEnvironmentFaceSize() allows a cube of width / pi texels).
 inline constexpr uint32_t kProceduralEquirectWidth = 1024;
 
-/// math::proceduralSky() (the function the skybox and the path tracer evaluate) as a
-/// `width` x (width / 2) equirect. Each texel is the mean over its footprint: texels the sun's
+/// math::proceduralSky() (the function the skybox and the path tracer evaluate) with its sun
+/// towards the unit `sunDirection`, as a `width` x (width / 2) equirect. Each texel is the mean over its footprint: texels the sun's
 /// disc may touch are averaged over 16 x 16 samples, so the disc's power survives at any
 /// width; the rest of the sky is smooth enough for the texel centre. Width at least 2.
-[[nodiscard]] HdrImage proceduralSkyEquirect(uint32_t width = kProceduralEquirectWidth);
+[[nodiscard]] HdrImage proceduralSkyEquirect(const std::array<double, 3>& sunDirection,
+                                             uint32_t width = kProceduralEquirectWidth);
 
 }  // namespace skygraph::app

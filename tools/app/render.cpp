@@ -117,13 +117,15 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         e.procedural = options.environmentFile->empty();
         e.file = e.procedural ? std::filesystem::path() : std::filesystem::absolute(*options.environmentFile);
     }
+    if (scene && scene->environment && scene->environment->procedural && options.sunDirection)
+        scene->environment->sunDirection = *options.sunDirection;
     // The environment image is made before compiling: its size is the extent of the graph's
     // `equirect` (data-driven, so the plan's subresources match the image). The procedural
     // sky is rendered to one, so that it lights the scene through the same bake as a file.
     std::optional<HdrImage>& environment = in.environment;
     if (scene && scene->environment) {
         if (scene->environment->procedural) {
-            environment = proceduralSkyEquirect();
+            environment = proceduralSkyEquirect(scene->environment->sunDirection);
             spdlog::info("environment: the procedural sky ({}x{})", environment->width, environment->height);
         } else {
             environment = loadHdrImage(scene->environment->file);

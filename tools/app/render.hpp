@@ -5,6 +5,7 @@
 
 #include "environment_graph.hpp"
 
+#include <array>
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
 #include <skygraph/condition.hpp>
@@ -52,6 +53,8 @@ struct RenderOptions {
     /// Replaces the scene's environment: an .hdr or .exr file, or, empty, the procedural sky.
     /// Unset: the scene's own.
     std::optional<std::filesystem::path> environmentFile;
+    /// Replaces the procedural sky's sun direction (unit) of the scene; ignored for a file.
+    std::optional<std::array<double, 3>> sunDirection;
     FeatureValues features;          ///< Overrides of the graph's defaults.
     /// CompileOptions::aliasing: false gives every transient resource memory of its own.
     bool aliasing = true;

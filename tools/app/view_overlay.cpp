@@ -4,10 +4,13 @@
 #include <skygraph/plan.hpp>
 #include <skygraph/scene.hpp>
 
+#include <glm/glm.hpp>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <optional>
 #include <string>
@@ -115,12 +118,25 @@ void ViewOverlay::sceneControls(LiveGraph& live) {
             scene->environment->rotationDeg = rotation;
             edited = true;
         }
+        if (scene->environment->procedural) sunControls(live, scene->environment->sunDirection);
     }
     if (edited) live.sceneChanged();
     ImGui::InputText("environment", environmentFile_.data(), environmentFile_.size());
     if (ImGui::Button("load file")) live.setEnvironmentFile(environmentFile_.data());
     ImGui::SameLine();
     if (ImGui::Button("procedural sky")) live.setEnvironmentFile({});
+}
+
+void ViewOverlay::sunControls(LiveGraph& live, const Vec3& sun) {
+    // Azimuth as the camera's yaw (0 looks down -Z, positive turns left), elevation above the
+    // horizon: the direction is (-sin az cos el, sin el, -cos az cos el).
+    float elevation = float(glm::degrees(std::asin(std::clamp(sun[1], -1.0, 1.0))));
+    float azimuth = float(glm::degrees(std::atan2(-sun[0], -sun[2])));
+    bool moved = ImGui::SliderFloat("sun azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
+    moved |= ImGui::SliderFloat("sun elevation", &elevation, -10.0f, 90.0f, "%.1f deg");
+    if (!moved) return;
+    const double az = glm::radians(double(azimuth)), el = glm::radians(double(elevation));
+    live.setSunDirection({-std::sin(az) * std::cos(el), std::sin(el), -std::cos(az) * std::cos(el)});
 }
 
 void ViewOverlay::statistics(LiveGraph& live, double frameMs) {

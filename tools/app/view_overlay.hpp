@@ -32,6 +32,7 @@ public:
 private:
     void features(LiveGraph& live);
     void sceneControls(LiveGraph& live);
+    void sunControls(LiveGraph& live, const Vec3& sun);
     void statistics(LiveGraph& live, double frameMs);
 
     std::array<char, 1024> environmentFile_{};
