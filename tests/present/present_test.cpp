@@ -417,38 +417,53 @@ TEST_F(Present, NegativeControlNoPresentBarrierIsReported) {
 // `skygraph view`'s environment change (LiveGraph::setEnvironmentFile): a file of the running
 // one's size is re-baked on the compute queue beside the presented frames and swapped in
 // between two of them, with no rebuild and no validation message.
-TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
-    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
-    static const PassLibrary library = PassLibrary::withBuiltins();
-    app::RenderOptions o;
-    o.graph = root / "graphs/raster.json";
-    o.scene = root / "scenes/studio.json";
-    o.framesInFlight = 2;
-    o.passes = &library;
-    app::LiveGraph live(*device_, o, 96, 64, false);
-    auto swapchain = Swapchain::create(*device_, live.renderer().compiled(), {96, 64, PresentMode::Fifo});
-    live.presentTo(*swapchain);
-    const auto frame = [&] {
+/// `skygraph view`'s LiveGraph of graphs/raster.json with `scene`, presenting to a 96x64
+/// window, two frames in flight; frame() polls and presents one frame.
+struct LiveWindow {
+    LiveWindow(Device& device, const std::string& scene)
+        : live(device, options(scene), 96, 64, false),
+          swapchain(Swapchain::create(device, live.renderer().compiled(), {96, 64, PresentMode::Fifo})) {
+        live.presentTo(*swapchain);
+    }
+    static app::RenderOptions options(const std::string& scene) {
+        static const PassLibrary library = PassLibrary::withBuiltins();
+        const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
+        app::RenderOptions o;
+        o.graph = root / "graphs/raster.json";
+        o.scene = root / scene;
+        o.framesInFlight = 2;
+        o.passes = &library;
+        return o;
+    }
+    void frame() {
         glfwPollEvents();
         live.poll();
         EXPECT_EQ(live.renderer().renderFrame(*swapchain), PresentStatus::Presented);
-    };
-    for (int i = 0; i < 3; ++i) frame();
+    }
+    app::LiveGraph live;
+    std::unique_ptr<Swapchain> swapchain;
+};
+
+TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
+    LiveWindow w(*device_, "scenes/studio.json");
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
     const Renderer* running = &live.renderer();
     const uint32_t reloads = live.reloads();
-    const std::filesystem::path file = loadSceneFile(o.scene).environment->file;
+    const std::filesystem::path file =
+        loadSceneFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "scenes/studio.json").environment->file;
     ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
     EXPECT_TRUE(live.rebaking());
     int frames = 0;
     while (live.rebaking() && frames < 100) {
-        frame();
+        w.frame();
         ++frames;
     }
     EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
     EXPECT_GE(frames, 1);
     EXPECT_EQ(&live.renderer(), running) << "the change rebuilt the renderer";
     EXPECT_EQ(live.reloads(), reloads + 1);
-    for (int i = 0; i < 3; ++i) frame();
+    for (int i = 0; i < 3; ++i) w.frame();
     live.renderer().waitIdle();
     expectSilent();
 }
@@ -456,22 +471,9 @@ TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
 // Moving the procedural sky's sun re-bakes its lighting beside the frames as a file change
 // does; a second move while the first bake runs is baked after it, and nothing rebuilds.
 TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {
-    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
-    static const PassLibrary library = PassLibrary::withBuiltins();
-    app::RenderOptions o;
-    o.graph = root / "graphs/raster.json";
-    o.scene = root / "scenes/default.json";
-    o.framesInFlight = 2;
-    o.passes = &library;
-    app::LiveGraph live(*device_, o, 96, 64, false);
-    auto swapchain = Swapchain::create(*device_, live.renderer().compiled(), {96, 64, PresentMode::Fifo});
-    live.presentTo(*swapchain);
-    const auto frame = [&] {
-        glfwPollEvents();
-        live.poll();
-        EXPECT_EQ(live.renderer().renderFrame(*swapchain), PresentStatus::Presented);
-    };
-    for (int i = 0; i < 3; ++i) frame();
+    LiveWindow w(*device_, "scenes/default.json");
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
     const Renderer* running = &live.renderer();
     const uint32_t reloads = live.reloads();
     ASSERT_TRUE(live.setSunDirection({0.0, 1.0, 0.0})) << live.error();
@@ -480,13 +482,13 @@ TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {
     EXPECT_EQ(live.scene()->environment->sunDirection, (Vec3{0.6, 0.8, 0.0})) << "the skybox's sun moves at once";
     int frames = 0;
     while ((live.rebaking() || live.reloads() < reloads + 2) && frames < 200) {
-        frame();
+        w.frame();
         ++frames;
     }
     EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
     EXPECT_EQ(live.reloads(), reloads + 2) << "two bakes: the first move, then the latest";
     EXPECT_EQ(&live.renderer(), running) << "moving the sun rebuilt the renderer";
-    for (int i = 0; i < 3; ++i) frame();
+    for (int i = 0; i < 3; ++i) w.frame();
     live.renderer().waitIdle();
     expectSilent();
 }
