@@ -1,10 +1,11 @@
-// loadGltf: tinygltf reads and parses the file (and decodes its images, so a corrupt one is
-// reported); this file checks what tinygltf leaves to the caller (accessor bounds, index
+// loadGltf: tinygltf reads and parses the file; this file checks what tinygltf leaves to the
+// caller (accessor bounds, index
 // ranges, finite data, the node hierarchy) and flattens the default scene into world space.
 #include <skygraph/triangle_mesh.hpp>
 
 #include "gltf_json_types.hpp"
 
+#include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
 #include <glm/glm.hpp>
@@ -341,6 +342,28 @@ private:
     bool failed_ = false;
 };
 
+/// tinygltf's image callback: the textures are not sampled yet, so an image is only checked
+/// (stb reads its header: a known format, a sane size) and never decoded, which keeps a large
+/// or hostile image from costing time and memory.
+bool checkImageHeader(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+    int width = 0, height = 0, components = 0;
+    const std::string where = "images[" + std::to_string(index) + "]";
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
+        *error += where + ": not an image stb can read (" + std::string(stbi_failure_reason()) + ")\n";
+        return false;
+    }
+    if (width > int(kMaxMeshTextureSide) || height > int(kMaxMeshTextureSide)) {
+        *error += where + ": " + std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
+                  std::to_string(kMaxMeshTextureSide) + " texels a side\n";
+        return false;
+    }
+    image->width = width;
+    image->height = height;
+    image->component = components;
+    return true;
+}
+
 dmat4 transformMatrix(const MeshTransform& t) {
     dmat4 m = glm::translate(dmat4(1.0), dvec3(t.translation[0], t.translation[1], t.translation[2]));
     m = glm::rotate(m, glm::radians(t.rotationDeg[2]), dvec3(0, 0, 1));
@@ -364,6 +387,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         text && !checkGltfJsonTypes(*text, name, diagnostics))
         return std::nullopt;
     tinygltf::TinyGLTF reader;
+    reader.SetImageLoader(checkImageHeader, nullptr);
     tinygltf::Model model;
     std::string error, warning;
     bool read = false;

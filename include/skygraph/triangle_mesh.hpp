@@ -68,14 +68,17 @@ struct MeshTransform {
 /// Most vertices and indices one file may bring (a bad count must not exhaust memory).
 inline constexpr size_t kMaxMeshVertices = size_t(1) << 24;
 inline constexpr size_t kMaxMeshIndices = size_t(3) << 24;
+/// Largest image side a file may bring, in texels.
+inline constexpr size_t kMaxMeshTextureSide = 16384;
 
 /// Reads the glTF file at `path` and flattens its default scene (or scene 0). Appends every
 /// problem to `diagnostics`, each naming `path` and the JSON path in the file (an accessor,
 /// node, primitive or material), and returns nullopt when there is any: nothing is drawn of a
 /// file that is partly wrong. Refused: unreadable or malformed files, missing buffers, a file
 /// without a scene or whose scene has no nodes, node cycles, accessors out of their buffers,
-/// indices past the vertices, non-finite or zero-length data, primitives that are not
-/// triangle lists, sparse or normalized position data, required extensions, sizes beyond the
+/// indices past the vertices, non-finite or zero-length data, primitives of points or lines,
+/// sparse or normalized position data, required extensions, images that are not
+/// PNG, JPEG or another format stb reads (only their headers are read), sizes beyond the
 /// limits above.
 [[nodiscard]] std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,
                                                    Diagnostics& diagnostics);

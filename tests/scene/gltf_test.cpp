@@ -189,6 +189,18 @@ TEST(Gltf, ZeroLengthNormalsAreRefused) {
     EXPECT_NE(messages(d).find("normal 0 has length 0"), std::string::npos) << messages(d);
 }
 
+TEST(Gltf, ACorruptImageIsRefused) {
+    // The triangle file with an image that claims to be a PNG and is not.
+    fs::path file = writeTriangle("bad-image", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text.insert(text.rfind('}'), R"(, "images": [{"uri": "data:image/png;base64,iVBORw0KGgoAAAAAAAAAAAAAAAAAAAAA"}])");
+    std::ofstream(file) << text;
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(file, {}, d));
+    EXPECT_NE(messages(d).find("images[0]: not an image stb can read"), std::string::npos) << messages(d);
+}
+
 TEST(Gltf, NotAGltfFile) {
     Diagnostics d;
     EXPECT_FALSE(loadGltf(fs::path(SKYGRAPH_SOURCE_DIR) / "scenes/default.json", {}, d));
