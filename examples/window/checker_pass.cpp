@@ -50,6 +50,7 @@ public:
                                                "checker.frag");
         recipe.renderPass = ctx.renderPass;
         recipe.pushConstantBytes = sizeof(CheckerParams);
+        recipe.cache = ctx.pipelineCache;
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
     }
 
