@@ -36,7 +36,6 @@ public:
         recipe.renderPass = ctx.renderPass;
         recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
         recipe.pushConstantBytes = sizeof(float);
-        recipe.cache = ctx.pipelineCache;
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
     }

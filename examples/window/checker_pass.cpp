@@ -50,7 +50,6 @@ public:
                                                "checker.frag");
         recipe.renderPass = ctx.renderPass;
         recipe.pushConstantBytes = sizeof(CheckerParams);
-        recipe.cache = ctx.pipelineCache;
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
     }
 

@@ -128,7 +128,7 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     gi.layout = layout;
     gi.renderPass = recipe.renderPass;
     VkPipeline pipeline;
-    vk::check(vkCreateGraphicsPipelines(device, recipe.cache, 1, &gi, nullptr, &pipeline),
+    vk::check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gi, nullptr, &pipeline),
               "vkCreateGraphicsPipelines");
     out.pipeline = vk::Pipeline(device, pipeline);
     return out;
@@ -144,7 +144,7 @@ ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineReci
                 VK_SHADER_STAGE_COMPUTE_BIT, cs.get(), "main", nullptr};
     ci.layout = out.layout.get();
     VkPipeline pipeline;
-    vk::check(vkCreateComputePipelines(device, recipe.cache, 1, &ci, nullptr, &pipeline),
+    vk::check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
               "vkCreateComputePipelines");
     out.pipeline = vk::Pipeline(device, pipeline);
     return out;

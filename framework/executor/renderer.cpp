@@ -131,10 +131,6 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
     VkSampler sampler;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.linearSampler = vk::Sampler(d.vkd, sampler);
-    const VkPipelineCacheCreateInfo pci{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
-    VkPipelineCache cache;
-    vk::check(vkCreatePipelineCache(d.vkd, &pci, nullptr, &cache), "vkCreatePipelineCache");
-    d.pipelineCache = vk::PipelineCache(d.vkd, cache);
     sci.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
     d.repeatSampler = vk::Sampler(d.vkd, sampler);

@@ -297,9 +297,6 @@ struct Renderer::Impl {
     RendererOptions options;
     ShaderCompiler shaders;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
-    /// For the passes' pipelines: a pass rebuilt with the same pipelines (importImage swaps an
-    /// image it reads) finds them here.
-    vk::PipelineCache pipelineCache;
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
     /// Pixels given to setExternalImage, by resource name; uploaded on every import.

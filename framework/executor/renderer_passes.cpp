@@ -117,7 +117,6 @@ void Renderer::Impl::createPipelines(PlanState& s, PassState& ps) {
         pc.frameSlots = frameSlots;
         pc.outputExtent = {s.outputWidth(), s.outputHeight()};
         pc.shaders = &shaders;
-        pc.pipelineCache = pipelineCache.get();
         try {
             ps.implementation->createPipelines(pc);
         } catch (const ExecutorError&) {

@@ -95,9 +95,6 @@ struct PipelineContext {
     std::span<const std::span<const BoundResource>> frameSlots;
     VkExtent2D outputExtent{0, 0};  ///< The plan's output extent.
     ShaderCompiler* shaders = nullptr;
-    /// The renderer's pipeline cache, for the recipes' `cache` (pipeline_builder.hpp); it lives
-    /// as long as the renderer.
-    VkPipelineCache pipelineCache = VK_NULL_HANDLE;
 };
 
 /// What a pass may use while recording. The struct, `cmd`, its spans and recordInPassBarriers

@@ -54,9 +54,6 @@ struct GraphicsPipelineRecipe {
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     /// Push constants for the vertex and fragment stages; none when 0.
     uint32_t pushConstantBytes = 0;
-    /// Borrowed; PipelineContext::pipelineCache, so that making the same pipeline again (a
-    /// pass rebuilt around a swapped image) costs a cache lookup. May be VK_NULL_HANDLE.
-    VkPipelineCache cache = VK_NULL_HANDLE;
 };
 
 /// The objects one pipeline needs, owned. Returned only once every step succeeded, so a
@@ -77,7 +74,6 @@ struct ComputePipelineRecipe {
     std::vector<uint32_t> compute;  ///< SPIR-V; entry point "main".
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     uint32_t pushConstantBytes = 0;
-    VkPipelineCache cache = VK_NULL_HANDLE;  ///< As GraphicsPipelineRecipe::cache.
 };
 
 [[nodiscard]] ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineRecipe& recipe);

@@ -55,7 +55,6 @@ using Sampler = Owned<VkSampler, vkDestroySampler>;
 using RenderPass = Owned<VkRenderPass, vkDestroyRenderPass>;
 using Framebuffer = Owned<VkFramebuffer, vkDestroyFramebuffer>;
 using Pipeline = Owned<VkPipeline, vkDestroyPipeline>;
-using PipelineCache = Owned<VkPipelineCache, vkDestroyPipelineCache>;
 using PipelineLayout = Owned<VkPipelineLayout, vkDestroyPipelineLayout>;
 using SetLayout = Owned<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
 using ShaderModule = Owned<VkShaderModule, vkDestroyShaderModule>;

@@ -95,7 +95,6 @@ public:
         recipe.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
                                    {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
         recipe.pushConstantBytes = sizeof(Push);
-        recipe.cache = ctx.pipelineCache;
         GraphicsPipeline pipeline = createGraphicsPipeline(ctx.device, recipe);
         device_ = ctx.device;
         physicalDevice_ = ctx.physicalDevice;

@@ -200,7 +200,6 @@ GraphicsPipeline graphicsPipeline(const PipelineContext& ctx, const GenericProgr
         recipe.blends.push_back(b);
     }
     recipe.colorAttachments = static_cast<uint32_t>(recipe.blends.size());
-    recipe.cache = ctx.pipelineCache;
     return createGraphicsPipeline(ctx.device, recipe);
 }
 
@@ -209,7 +208,6 @@ ComputePipeline computePipeline(const PipelineContext& ctx, const GenericProgram
     recipe.bindings = layoutBindings(p.computeBindings);
     recipe.pushConstantBytes = 16;
     recipe.compute = ctx.shaders->compile(VK_SHADER_STAGE_COMPUTE_BIT, p.computeSource, std::string(ctx.pass->name) + ".comp");
-    recipe.cache = ctx.pipelineCache;
     return createComputePipeline(ctx.device, recipe);
 }
 

@@ -33,7 +33,6 @@ void IblComputeProgram::create(const PipelineContext& ctx, const std::string& sh
     recipe.bindings.push_back({hasSampledInput ? 1u : 0u, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
                                VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
     recipe.pushConstantBytes = pushBytes;
-    recipe.cache = ctx.pipelineCache;
     pipeline_ = createComputePipeline(ctx.device, recipe);  // replaces the old one only on success
     pushDescriptors_ = pushDescriptorFunction(ctx.device);
     hasSampledInput_ = hasSampledInput;

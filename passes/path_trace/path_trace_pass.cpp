@@ -80,7 +80,6 @@ public:
         if (environmentBound)
             recipe.bindings.push_back({2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
         recipe.pushConstantBytes = sizeof(Push);
-        recipe.cache = ctx.pipelineCache;
         ComputePipeline pipeline = createComputePipeline(ctx.device, recipe);  // throws before anything changes
         pipeline_ = std::move(pipeline);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);

@@ -38,7 +38,6 @@ public:
         if (mode != 0)
             recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
         recipe.pushConstantBytes = sizeof(Push);
-        recipe.cache = ctx.pipelineCache;
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
         mode_ = mode;

@@ -73,7 +73,6 @@ public:
         recipe.renderPass = ctx.renderPass;
         recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
         recipe.pushConstantBytes = sizeof(Push);
-        recipe.cache = ctx.pipelineCache;
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
         // An *_SRGB attachment encodes in hardware; anything else needs the shader to encode.
@@ -150,7 +149,6 @@ public:
         recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
                            {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
         recipe.pushConstantBytes = sizeof(Push);
-        recipe.cache = ctx.pipelineCache;
         pipeline_ = createComputePipeline(ctx.device, recipe);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
     }
