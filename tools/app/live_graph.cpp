@@ -193,7 +193,9 @@ bool LiveGraph::setSunDirection(const Vec3& sun) {
 void LiveGraph::startPendingSunBake() {
     if (!pendingSun_ || !canRebake()) return;
     try {
-        if (rebake(proceduralSkyEquirect(*pendingSun_), "the procedural sky")) pendingSun_.reset();
+        // Of another size than the running equirect (not the sky's): a rebuild bakes the sun.
+        if (!rebake(proceduralSkyEquirect(*pendingSun_), "the procedural sky")) rebuild(options_);
+        pendingSun_.reset();
     } catch (const std::exception& e) {
         error_ = e.what();
         spdlog::warn("{}", error_);
@@ -219,7 +221,11 @@ bool LiveGraph::poll() {
         std::error_code ec;
         const auto saved = std::filesystem::last_write_time(graphSaved ? options_.graph : options_.scene, ec);
         std::optional<Scene> edited;
-        if (sceneSaved) edited = std::exchange(scene_, std::nullopt);  // the saved scene wins over the overlay
+        if (sceneSaved) {  // the saved scene wins over the overlay, its sun included
+            edited = std::exchange(scene_, std::nullopt);
+            options_.sunDirection.reset();
+            pendingSun_.reset();
+        }
         const auto noticed = std::filesystem::file_time_type::clock::now();
         if (rebuild(options_)) {
             lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), !ec};
