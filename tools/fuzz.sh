@@ -34,7 +34,14 @@ run() {  # NAME CORPUS SEED_DIR... [-- LIBFUZZER_FLAGS...]
     "$BUILD/tests/fuzz/$name" "$corpus" "$@" -max_total_time="$SECONDS_BOX" -timeout=2 -rss_limit_mb=1024 \
       -malloc_limit_mb=512 -artifact_prefix="$BUILD/" -print_final_stats=1 \
       2>&1 | tee "$BUILD/$name.log" | grep -E "^#|ERROR|SUMMARY|crash|leak|timeout|Done" | tail -40
-    [ "${PIPESTATUS[0]}" -eq 0 ] || status=1
+    if [ "${PIPESTATUS[0]}" -ne 0 ]; then
+        status=1
+        # The whole report and the input, so that a failure on a CI machine can be replayed here.
+        sed -n '/^==[0-9]*==ERROR\|runtime error\|exception escaped\|GraphError without/,/^SUMMARY/p' "$BUILD/$name.log" | head -80
+        for f in "$BUILD"/crash-* "$BUILD"/leak-* "$BUILD"/timeout-* "$BUILD"/oom-*; do
+            [ -f "$f" ] && { echo "reproducer $f, base64:"; base64 -w 0 "$f"; echo; }
+        done
+    fi
 }
 for t in "${targets[@]}"; do
     case $t in

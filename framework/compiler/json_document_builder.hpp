@@ -46,9 +46,10 @@ public:
     /// `s`, copied to the document's decoded strings.
     uint64_t decoded(std::string_view s) {
         // Decoded strings are never longer than their text, and all of them are in the text
-        // after the last event's end: room for that much, made once, keeps the buffer (and
-        // views of its strings) in place while it is filled.
-        if (doc_.decoded_.capacity() == 0) doc_.decoded_.reserve(doc_.text_.size() - position_);
+        // after the last event's end: room for that much, made before the first, keeps the
+        // buffer (and views of its strings) in place while it is filled. (Not capacity() == 0:
+        // an empty std::string already has room for a few bytes in itself.)
+        if (doc_.decoded_.empty()) doc_.decoded_.reserve(doc_.text_.size() - position_);
         const size_t offset = doc_.text_.size() + doc_.decoded_.size();
         doc_.decoded_.append(s);
         return offset | (uint64_t(s.size()) << 32);

@@ -167,6 +167,36 @@ TEST(JsonDocument, AListenerOfAMalformedTextIsToldOfItsStartOnly) {
                                                   "element 1 2 ends 15", "member items []"}));
 }
 
+/// Keeps the views of the streamed elements' strings, as the graph loader keeps pass names.
+struct ViewKeeper final : JsonListener {
+    std::vector<std::string_view> views;
+    std::vector<std::string> copies;
+    void rootMember(std::string_view, JsonValue) override {}
+    bool streamArray(std::string_view key, size_t) override { return key == "items"; }
+    void element(size_t, JsonValue value, size_t) override {
+        views.push_back(value.string());
+        copies.emplace_back(value.string());
+    }
+};
+
+TEST(JsonDocument, ViewsOfDecodedStringsStayInPlaceWhileLaterOnesAreDecoded) {
+    // Strings with escapes are decoded into one buffer; the first must not be moved by the
+    // later ones, though it alone fits in an empty std::string's own few bytes.
+    std::string text = R"({"items": ["\u0061b")";
+    for (int i = 0; i < 40; ++i) text += R"(, "escaped \"string\" number )" + std::to_string(i) + R"( is long enough")";
+    text += "]}";
+    ViewKeeper k;
+    const JsonRead read = readJson(text, &k);
+    ASSERT_EQ(read.error, "");
+    ASSERT_EQ(k.views.size(), 41u);
+    EXPECT_EQ(k.copies[0], "ab");
+    EXPECT_EQ(k.copies[40], R"(escaped "string" number 39 is long enough)");
+    // All views are in one buffer, end to end, in order: none was left behind by a move.
+    for (size_t i = 1; i < k.views.size(); ++i)
+        EXPECT_EQ(k.views[i].data(), k.views[i - 1].data() + k.views[i - 1].size()) << i;
+    for (size_t i = 0; i < k.views.size(); ++i) EXPECT_EQ(k.views[i], k.copies[i]) << i;
+}
+
 // ---- against nlohmann::json::parse ------------------------------------------------------
 
 /// Random texts, valid and broken, built from the pieces that test the builder: strings with
