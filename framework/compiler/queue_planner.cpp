@@ -2,11 +2,13 @@
 // passes in order keeps, per subresource, who last wrote it and who read it since, on which
 // queue, and which queue family owns it; a pass whose access meets an access of another queue
 // waits for that queue, and an exclusive resource that must keep its contents moves to the
-// pass's family through a release/acquire pair. Then the passes of each queue are cut into
-// submits: before a pass that waits, after a pass that another queue waits for.
+// pass's family through a release/acquire pair. queue_schedule.cpp cuts the schedule this
+// decides into submits: before a pass that waits, after a pass that another queue waits for.
 #include "queue_planner.hpp"
 
 #include "plan_builder.hpp"
+#include "queue_schedule.hpp"
+#include "queue_scopes.hpp"
 #include "vulkan_state.hpp"
 
 #include <skygraph/diagnostics.hpp>
@@ -19,92 +21,11 @@
 namespace skygraph {
 namespace {
 
-constexpr int32_t kFrameStart = -1;  // the frame's first submit, on the graphics queue
-constexpr int32_t kNever = -2;
 constexpr uint8_t kNoOwner = 0xff;
 constexpr size_t kGraphics = static_cast<size_t>(QueueKind::Graphics);
 
 size_t slot(QueueKind q) { return static_cast<size_t>(q); }
 QueueKind kindAt(size_t i) { return static_cast<QueueKind>(i); }
-
-/// The stages a queue of this kind has (Vulkan 1.3 "Supported pipeline stage flags").
-VkPipelineStageFlags2 queueStages(QueueKind q) {
-    constexpr VkPipelineStageFlags2 common = VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT |
-                                             VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT | VK_PIPELINE_STAGE_2_HOST_BIT |
-                                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT |
-                                             VK_PIPELINE_STAGE_2_COPY_BIT;
-    switch (q) {
-        case QueueKind::Graphics: return ~VkPipelineStageFlags2(0);
-        case QueueKind::Compute:
-            return common | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT |
-                   VK_PIPELINE_STAGE_2_CLEAR_BIT;
-        case QueueKind::Transfer: return common;
-    }
-    return common;
-}
-
-/// ALL_COMMANDS alone when it is there: the other stages add nothing to it.
-VkPipelineStageFlags2 simplified(VkPipelineStageFlags2 stages) {
-    return (stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT : stages;
-}
-
-/// The access types that `stages` can perform (all of them for ALL_COMMANDS).
-VkAccessFlags2 accessesOf(VkPipelineStageFlags2 stages) {
-    if (stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) return ~VkAccessFlags2(0);
-    VkAccessFlags2 a = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    if (stages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT)
-        a |= VK_ACCESS_2_UNIFORM_READ_BIT | VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
-             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    if (stages & VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT) a |= VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
-    if (stages & (VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT))
-        a |= VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    if (stages & VK_PIPELINE_STAGE_2_HOST_BIT) a |= VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_HOST_WRITE_BIT;
-    constexpr VkPipelineStageFlags2 shaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                                              VK_PIPELINE_STAGE_2_PRE_RASTERIZATION_SHADERS_BIT;
-    if (stages & shaders)
-        a |= VK_ACCESS_2_UNIFORM_READ_BIT | VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
-             VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-             VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-    if (stages & VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT) a |= VK_ACCESS_2_INPUT_ATTACHMENT_READ_BIT;
-    if (stages & VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT)
-        a |= VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT;
-    if (stages & (VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT))
-        a |= VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    if (stages & (VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_2_INDEX_INPUT_BIT |
-                  VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT))
-        a |= VK_ACCESS_2_INDEX_READ_BIT | VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT;
-    if (stages & VK_PIPELINE_STAGE_2_ALL_GRAPHICS_BIT) return ~VkAccessFlags2(0);
-    return a;
-}
-
-/// A barrier cut to the stages its queue has: on the source side the other queues' stages are
-/// reached through the semaphore wait instead; on the destination side they belong to reads
-/// of the same run on other queues, which have barriers of their own there.
-void keepToQueue(Barrier& b, QueueKind q) {
-    if (q == QueueKind::Graphics) return;
-    // Sources at stages this queue lacks ran elsewhere (another queue, or before the frame):
-    // the queue's waits order them, and the barrier continues those waits.
-    const bool elsewhere = (b.srcStages & ~queueStages(q)) != 0;
-    b.srcStages &= queueStages(q);
-    b.srcAccess &= accessesOf(b.srcStages);
-    b.dstStages &= queueStages(q);
-    b.dstAccess &= accessesOf(b.dstStages);
-    if (elsewhere && b.kind != BarrierKind::Memory) {
-        b.srcStages |= b.dstStages;
-        b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
-    }
-}
-
-/// On several queues, every layout transition's source access scope holds MEMORY_READ: nothing
-/// for Vulkan (reads need no availability), while validation layer 1.3.239, which merges the
-/// submits' histories at each semaphore wait, otherwise loses the execution chain that orders
-/// the transition after earlier writes (docs/queues.md).
-void readsIntoTransition(Barrier& b) {
-    if (b.kind == BarrierKind::Image && b.oldLayout != b.newLayout && b.srcStages != 0)
-        b.srcAccess |= VK_ACCESS_2_MEMORY_READ_BIT;
-}
 
 /// One subresource through the frame.
 struct Cell {
@@ -144,11 +65,6 @@ struct Needs {
     }
 };
 
-struct PendingRelease {
-    int32_t source;  // the pass after which it is recorded
-    Barrier barrier;
-};
-
 class QueuePlanner {
 public:
     QueuePlanner(const GraphIndex& index, const CompileOptions& options, Plan& plan)
@@ -157,7 +73,7 @@ public:
     void run() {
         detail::PlanBuilder::queueFamilies(plan_) = options_.queueFamilies;
         assignQueues();
-        if (std::all_of(queues_.begin(), queues_.end(), [](QueueKind q) { return q == QueueKind::Graphics; })) {
+        if (std::all_of(schedule_.queues.begin(), schedule_.queues.end(), [](QueueKind q) { return q == QueueKind::Graphics; })) {
             detail::PlanBuilder::singleSubmit(plan_);
             return;
         }
@@ -165,35 +81,35 @@ public:
         chooseSharing();
         startCells();
         const auto& passes = plan_.passes();
-        batches_.resize(passes.size());
-        waits_.resize(passes.size());
-        signalStages_.assign(passes.size(), 0);
+        schedule_.barriers.resize(passes.size());
+        schedule_.waits.resize(passes.size());
+        schedule_.signalStages.assign(passes.size(), 0);
         for (uint32_t i = 0; i < passes.size(); ++i) planPass(i);
         planFrameEnd();
-        buildSubmits();
+        writeSubmits(std::move(schedule_), plan_);
     }
 
 private:
     // ---- which queue, which sharing ----------------------------------------------------
     void assignQueues() {
         const auto& passes = plan_.passes();
-        queues_.resize(passes.size(), QueueKind::Graphics);
+        schedule_.queues.resize(passes.size(), QueueKind::Graphics);
         // Inserted steps run where the pass they serve runs, when that queue can record them:
         // a clear or clobber before its first user (image clears need graphics or compute,
         // depth clears graphics); read-backs at the end, on the graphics queue.
         for (size_t i = passes.size(); i-- > 0;) {
             const PlannedPass& p = passes[i];
             if (p.declIndex >= 0) {
-                queues_[i] = graph_.passes[static_cast<size_t>(p.declIndex)].queue;
+                schedule_.queues[i] = graph_.passes[static_cast<size_t>(p.declIndex)].queue;
                 continue;
             }
             if (p.type == "Readback" || i + 1 == passes.size()) continue;
-            QueueKind next = queues_[i + 1];
+            QueueKind next = schedule_.queues[i + 1];
             const PlannedResource& r = plan_.resources()[p.usages[0].resource];
             const ResourceDesc& d = graph_.resources[r.decl];
             if (d.isImage() && next == QueueKind::Transfer) next = QueueKind::Compute;
             if (d.isImage() && d.format.isDepthStencil()) next = QueueKind::Graphics;
-            queues_[i] = next;
+            schedule_.queues[i] = next;
         }
     }
 
@@ -203,13 +119,13 @@ private:
         for (const Presentation& pr : plan_.presentations())
             for (size_t i = 0; i < passes.size(); ++i)
                 for (const PlannedUsage& u : passes[i].usages)
-                    if (u.resource == pr.resource && queues_[i] != QueueKind::Graphics) {
+                    if (u.resource == pr.resource && schedule_.queues[i] != QueueKind::Graphics) {
                         const std::string name(plan_.resources()[pr.resource].name);
                         Diagnostics d;
                         d.add({graph_.file,
                                passes[i].declIndex >= 0 ? graph_.passes[size_t(passes[i].declIndex)].jsonPath + ".queue" : "",
                                std::string(passes[i].name), name,
-                               "uses the presented image '" + name + "' on the " + std::string(toString(queues_[i])) +
+                               "uses the presented image '" + name + "' on the " + std::string(toString(schedule_.queues[i])) +
                                    " queue; presented images are used on the graphics queue"});
                         throw GraphError(std::move(d));
                     }
@@ -229,7 +145,7 @@ private:
         std::vector<uint8_t> readsShared(resources.size(), 0);
         for (size_t i = 0; i < plan_.passes().size(); ++i)
             for (const PlannedUsage& u : plan_.passes()[i].usages) {
-                const size_t q = slot(queues_[i]);
+                const size_t q = slot(schedule_.queues[i]);
                 families[u.resource] |= uint8_t(1u << q);
                 if (writeBits(u.access) != 0) {
                     readBy[u.resource] = 0;
@@ -315,12 +231,12 @@ private:
     // ---- one pass --------------------------------------------------------------------
     void planPass(uint32_t i) {
         const PlannedPass& pass = plan_.passes()[i];
-        const size_t q = slot(queues_[i]);
+        const size_t q = slot(schedule_.queues[i]);
         Needs needs;
         if (q != kGraphics && !startedQueue_[q])
             needs.add(kGraphics, kFrameStart, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
         startedQueue_[q] = true;
-        std::vector<Barrier>& batch = batches_[i];
+        std::vector<Barrier>& batch = schedule_.barriers[i];
         for (const Barrier& b : pass.barriers) {
             if (b.kind == BarrierKind::Memory) {
                 batch.push_back(b);
@@ -343,7 +259,7 @@ private:
         // The pass's own accesses, once everything it waits for is known.
         for (const Barrier& b : batch) {
             if (b.kind == BarrierKind::Memory) continue;
-            const VkPipelineStageFlags2 dst = b.dstStages & queueStages(queues_[i]);
+            const VkPipelineStageFlags2 dst = b.dstStages & queueStages(schedule_.queues[i]);
             const bool transition = b.oldLayout != b.newLayout && isImage(b.resource);
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
                 if (transition) write(cells_[c], i, q, dst, 0);
@@ -355,7 +271,7 @@ private:
         for (const PlannedUsage& u : pass.usages) recordUse(i, q, u);
         addWaits(i, q, needs);
         for (Barrier& b : batch) {
-            keepToQueue(b, queues_[i]);
+            keepToQueue(b, schedule_.queues[i]);
             readsIntoTransition(b);
         }
     }
@@ -406,9 +322,9 @@ private:
                 source = kFrameStart;
                 release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
             }
-            releases_.push_back({source, release});
-            signals_[from].insert(source);
-            if (source >= 0) signalStages_[static_cast<size_t>(source)] |= release.srcStages;
+            schedule_.releases.push_back({source, release});
+            schedule_.signals[from].insert(source);
+            if (source >= 0) schedule_.signalStages[static_cast<size_t>(source)] |= release.srcStages;
             needs.add(from, source, b.dstStages,
                       source == kFrameStart ? VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT : release.srcStages);
             b.srcQueue = release.srcQueue;
@@ -442,7 +358,7 @@ private:
         }
         if (isImage(b.resource))
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { cells_[c].layout = b.newLayout; });
-        batches_[i].push_back(b);
+        schedule_.barriers[i].push_back(b);
     }
 
     /// Adds the other queues' accesses that an access of `c` on q must wait for: the last
@@ -523,7 +439,7 @@ private:
             b.dstAccess = u.access;
             c.visibleStages[q] |= u.stages;
             c.visibleAccess[q] |= u.access;
-            batches_[i].push_back(b);
+            schedule_.barriers[i].push_back(b);
         });
     }
 
@@ -565,12 +481,12 @@ private:
             });
             // The signal waited for holds the stages of every access it stands for.
             const int32_t signaller = covering != history.end() ? covering->first : source;
-            if (signaller >= 0) signalStages_[static_cast<size_t>(signaller)] |= needs.sourceStages[x];
+            if (signaller >= 0) schedule_.signalStages[static_cast<size_t>(signaller)] |= needs.sourceStages[x];
             if (covering != history.end()) continue;
             history.emplace_back(source, stages);
-            if (at >= 0) waits_[static_cast<size_t>(at)].push_back({x, source, stages});
-            else endWaits_.push_back({x, source, stages});
-            signals_[x].insert(source);
+            if (at >= 0) schedule_.waits[static_cast<size_t>(at)].push_back({x, source, stages});
+            else schedule_.endWaits.push_back({x, source, stages});
+            schedule_.signals[x].insert(source);
         }
     }
 
@@ -581,9 +497,9 @@ private:
     void planFrameEnd() {
         const size_t g = kGraphics;
         Needs needs;
-        for (size_t i = 0; i < queues_.size(); ++i)
-            if (slot(queues_[i]) != g)
-                needs.add(slot(queues_[i]), static_cast<int32_t>(i), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        for (size_t i = 0; i < schedule_.queues.size(); ++i)
+            if (slot(schedule_.queues[i]) != g)
+                needs.add(slot(schedule_.queues[i]), static_cast<int32_t>(i), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                           VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
         std::vector<Barrier> finals;
         const auto& resources = plan_.resources();
@@ -638,8 +554,8 @@ private:
         // for all of its work, and the frame's fence with it.
         for (size_t x = 0; x < kQueueKinds; ++x)
             if (needs.source[x] >= 0) {
-                signals_[x].insert(needs.source[x]);
-                signalStages_[static_cast<size_t>(needs.source[x])] |= VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+                schedule_.signals[x].insert(needs.source[x]);
+                schedule_.signalStages[static_cast<size_t>(needs.source[x])] |= VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
             }
     }
 
@@ -658,7 +574,7 @@ private:
         if (!release.srcStages) release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
         release.dstStages = 0;
         release.dstAccess = 0;
-        releases_.push_back({lastPassOn(from), release});
+        schedule_.releases.push_back({lastPassOn(from), release});
         b.srcQueue = release.srcQueue;
         b.dstQueue = QueueKind::Graphics;
         if (!b.srcStages) b.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
@@ -666,93 +582,16 @@ private:
     }
 
     int32_t lastPassOn(size_t queue) const {
-        for (size_t i = queues_.size(); i-- > 0;)
-            if (slot(queues_[i]) == queue) return static_cast<int32_t>(i);
+        for (size_t i = schedule_.queues.size(); i-- > 0;)
+            if (slot(schedule_.queues[i]) == queue) return static_cast<int32_t>(i);
         return kFrameStart;
-    }
-
-    // ---- submits ------------------------------------------------------------------------
-    struct Wait {
-        size_t queue;
-        int32_t source;
-        VkPipelineStageFlags2 stages;
-    };
-
-    uint32_t valueOf(size_t queue, int32_t source) const {
-        const auto& s = signals_[queue];
-        return static_cast<uint32_t>(std::distance(s.begin(), s.find(source))) + 1;
-    }
-
-    void buildSubmits() {
-        auto& passes = detail::PlanBuilder::passes(plan_);
-        auto& barriers = detail::PlanBuilder::barriers(plan_);
-        barriers.clear();
-        size_t total = 0;
-        for (const auto& b : batches_) total += b.size();
-        barriers.reserve(total);
-        for (size_t i = 0; i < passes.size(); ++i) {
-            const size_t at = barriers.size();
-            barriers.insert(barriers.end(), batches_[i].begin(), batches_[i].end());
-            passes[i].barriers = batches_[i].empty() ? std::span<const Barrier>{}
-                                                     : std::span<const Barrier>(barriers.data() + at, batches_[i].size());
-        }
-        signals_[kGraphics].insert(kFrameStart);
-
-        using Draft = detail::PlanBuilder::SubmitDraft;
-        std::vector<Draft> drafts;
-        Draft start{QueueKind::Graphics, {}, {}, {}, {}};
-        start.signals.push_back({QueueKind::Graphics, valueOf(kGraphics, kFrameStart), VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT});
-        for (const PendingRelease& r : releases_)
-            if (r.source == kFrameStart) start.releases.push_back(r.barrier);
-        std::array<int32_t, kQueueKinds> open{-1, -1, -1};  // each queue's open draft
-        auto toOps = [&](const std::vector<Wait>& ws) {
-            std::vector<SemaphoreOp> ops;
-            for (const Wait& w : ws) {
-                const uint32_t v = valueOf(w.queue, w.source);
-                auto it = std::find_if(ops.begin(), ops.end(), [&](const SemaphoreOp& o) { return o.semaphore == kindAt(w.queue); });
-                if (it == ops.end()) ops.push_back({kindAt(w.queue), v, w.stages});
-                else { it->value = std::max(it->value, v); it->stages |= w.stages; }
-            }
-            for (SemaphoreOp& op : ops) op.stages = simplified(op.stages);
-            return ops;
-        };
-        std::vector<uint8_t> presented(plan_.resources().size(), 0);
-        for (const Presentation& p : plan_.presentations()) presented[p.resource] = 1;
-        bool acquireSeen = false;
-        for (uint32_t i = 0; i < passes.size(); ++i) {
-            const size_t q = slot(queues_[i]);
-            if (open[q] >= 0 && !waits_[i].empty()) open[q] = -1;
-            if (open[q] < 0) {
-                drafts.push_back({queues_[i], {}, {}, {}, {}});
-                open[q] = static_cast<int32_t>(drafts.size() - 1);
-            }
-            Draft& d = drafts[static_cast<size_t>(open[q])];
-            if (d.passes.empty()) d.waits = toOps(waits_[i]);
-            d.passes.push_back(i);
-            if (!acquireSeen)
-                for (const PlannedUsage& u : passes[i].usages)
-                    if (presented[u.resource]) d.waitsForAcquire = acquireSeen = true;
-            if (signals_[q].count(static_cast<int32_t>(i))) {
-                for (const PendingRelease& r : releases_)
-                    if (r.source == static_cast<int32_t>(i)) d.releases.push_back(r.barrier);
-                d.signals.push_back({queues_[i], valueOf(q, static_cast<int32_t>(i)),
-                                     simplified(signalStages_[i] & queueStages(queues_[i]))});
-                open[q] = -1;
-            }
-        }
-        Draft end{QueueKind::Graphics, {}, toOps(endWaits_), {}, {}};
-
-        drafts.insert(drafts.begin(), std::move(start));
-        drafts.push_back(std::move(end));
-        detail::PlanBuilder::setSubmits(plan_, drafts);
-        detail::PlanBuilder::passQueues(plan_) = queues_;
     }
 
     const GraphDesc& graph_;
     const GraphIndex& index_;
     const CompileOptions& options_;
     Plan& plan_;
-    std::vector<QueueKind> queues_;
+    QueueSchedule schedule_;
     std::vector<uint8_t> exclusive_;
     std::vector<SubresourceGrid> grids_;
     std::vector<uint32_t> firstCell_{0};
@@ -760,13 +599,7 @@ private:
     std::vector<std::array<int32_t, kQueueKinds>> lastUseOf_;  // per resource and queue
     std::vector<std::array<VkPipelineStageFlags2, kQueueKinds>> useStagesOf_;
     std::array<bool, kQueueKinds> startedQueue_{};
-    std::vector<std::vector<Barrier>> batches_;
-    std::vector<std::vector<Wait>> waits_;
-    std::vector<Wait> endWaits_;
-    std::vector<PendingRelease> releases_;
     std::array<std::array<std::vector<std::pair<int32_t, VkPipelineStageFlags2>>, kQueueKinds>, kQueueKinds> waited_;
-    std::array<std::set<int32_t>, kQueueKinds> signals_;  // per queue: the passes it signals after
-    std::vector<VkPipelineStageFlags2> signalStages_;
 };
 
 }  // namespace
