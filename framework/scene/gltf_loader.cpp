@@ -1,11 +1,12 @@
 // loadGltf: tinygltf reads and parses the file; this file checks what tinygltf leaves to the
-// caller (accessor bounds, index
-// ranges, finite data, the node hierarchy) and flattens the default scene into world space.
+// caller (accessor bounds, index ranges, finite data, the node hierarchy) and flattens the
+// default scene into world space, tangents included, so that nothing is left to compute per
+// frame. Materials and their images: gltf_materials.cpp.
 #include <skygraph/triangle_mesh.hpp>
 
 #include "gltf_json_types.hpp"
+#include "gltf_materials.hpp"
 
-#include <stb/stb_image.h>
 #include <tiny_gltf.h>
 
 #include <glm/glm.hpp>
@@ -31,10 +32,70 @@ std::string at(const char* array, size_t i) { return std::string(array) + "[" + 
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+/// A vertex attribute as skygraph reads it: its accessor type and, for texture coordinates,
+/// the normalized integers glTF allows besides floats.
+struct AttributeFormat {
+    const char* name;
+    int type;
+    size_t components;
+    bool normalizedIntegers;
+    const char* expected;
+    const char* noun;  ///< one element, for messages
+};
+constexpr AttributeFormat kPosition{"POSITION", TINYGLTF_TYPE_VEC3, 3, false, "VEC3 of FLOAT (5126)", "position"};
+constexpr AttributeFormat kNormal{"NORMAL", TINYGLTF_TYPE_VEC3, 3, false, "VEC3 of FLOAT (5126)", "normal"};
+constexpr AttributeFormat kTexCoord{
+    "TEXCOORD_0", TINYGLTF_TYPE_VEC2, 2, true,
+    "VEC2 of FLOAT (5126), or of normalized UNSIGNED_BYTE (5121) or UNSIGNED_SHORT (5123)", "texture coordinate"};
+constexpr AttributeFormat kTangent{"TANGENT", TINYGLTF_TYPE_VEC4, 4, false, "VEC4 of FLOAT (5126)", "tangent"};
+
+std::vector<dvec3> vec3s(const std::vector<double>& values, size_t stride) {
+    std::vector<dvec3> out(values.size() / stride);
+    for (size_t i = 0; i < out.size(); ++i)
+        out[i] = dvec3(values[i * stride], values[i * stride + 1], values[i * stride + 2]);
+    return out;
+}
+
+/// What carries normals to world space: the inverse transpose of `linear`; for a transform
+/// without an inverse (a node scaled to 0 on an axis flattens its mesh), the cofactor matrix,
+/// which is the inverse transpose times the determinant where both exist.
+dmat3 normalMatrixOf(const dmat3& linear) {
+    const dmat3 inverseTranspose = glm::transpose(glm::inverse(linear));
+    bool invertible = true;
+    for (int c = 0; c < 3; ++c) invertible = invertible && finite(inverseTranspose[c]);
+    if (invertible) return inverseTranspose;
+    return dmat3(glm::cross(linear[1], linear[2]), glm::cross(linear[2], linear[0]), glm::cross(linear[0], linear[1]));
+}
+
+/// A unit vector orthogonal to unit `n`, for a tangent that nothing else defines.
+dvec3 orthogonalTo(const dvec3& n) {
+    const dvec3 axis = std::abs(n.x) < 0.9 ? dvec3(1.0, 0.0, 0.0) : dvec3(0.0, 1.0, 0.0);
+    return glm::normalize(axis - n * glm::dot(n, axis));
+}
+
+/// `t` made orthogonal to unit `n` and unit (Gram-Schmidt); any orthogonal direction where `t`
+/// is (nearly) parallel to `n`, zero or not finite.
+dvec3 tangentTo(const dvec3& n, const dvec3& t) {
+    const double largest = std::max({std::abs(t.x), std::abs(t.y), std::abs(t.z)});
+    if (!(largest > 0.0 && std::isfinite(largest))) return orthogonalTo(n);
+    const dvec3 scaled = t / largest;  // length in [1, 2]: no overflow below
+    const dvec3 orthogonal = scaled - n * glm::dot(n, scaled);
+    const double length = glm::length(orthogonal);
+    return length > 1e-6 ? orthogonal / length : orthogonalTo(n);
+}
+
+void setTangent(MeshVertex& v, const dvec3& t, double w) {
+    v.tangent[0] = float(t.x);
+    v.tangent[1] = float(t.y);
+    v.tangent[2] = float(t.z);
+    v.tangent[3] = w < 0.0 ? -1.0f : 1.0f;
+}
+
 class GltfFlattener {
 public:
     GltfFlattener(std::filesystem::path file, const tinygltf::Model& model, Diagnostics& diagnostics)
-        : model_(model), diagnostics_(diagnostics) {
+        : model_(model), diagnostics_(diagnostics),
+          materials_(model, [this](const std::string& path, const std::string& message) { error(path, message); }) {
         mesh_.file = std::move(file);
     }
 
@@ -129,26 +190,69 @@ private:
         return Span{buffer.data() + view.byteOffset + a.byteOffset, stride, a.count};
     }
 
-    std::vector<dvec3> readVec3(int index, const std::string& what) {
+    /// `index`'s elements as `format.components` doubles each; normalized integers become [0, 1]
+    /// (glTF 2.0, "Accessor data types"). Empty (with an error) for another type or a
+    /// non-finite element.
+    std::vector<double> readAttribute(int index, const AttributeFormat& format, const std::string& what) {
+        const std::string label = index >= 0 ? at("accessors", size_t(index)) + " (" + what + ")" : what;
+        size_t componentBytes = 4;
         if (index >= 0 && size_t(index) < model_.accessors.size()) {
             const tinygltf::Accessor& a = model_.accessors[size_t(index)];
-            if (a.type != TINYGLTF_TYPE_VEC3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.normalized) {
-                error(at("accessors", size_t(index)) + " (" + what + ")", "must be VEC3 of FLOAT (5126)");
-                return {};
-            }
+            const bool integers = format.normalizedIntegers && a.normalized;
+            componentBytes = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && !a.normalized ? 4
+                             : integers && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                             : integers && a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1
+                                                                                                    : 0;
+            if (a.type != format.type || componentBytes == 0)
+                return error(label, std::string("must be ") + format.expected), std::vector<double>{};
         }
-        const Span s = elements(index, 12, what);
-        std::vector<dvec3> out(s.count);
-        for (size_t i = 0; i < s.count; ++i) {
-            float f[3];
-            std::memcpy(f, s.data + i * s.stride, sizeof f);
-            out[i] = dvec3(f[0], f[1], f[2]);
-            if (!finite(out[i])) {
-                error(at("accessors", size_t(index)) + " (" + what + ")", "element " + std::to_string(i) + " is not finite");
-                return {};
+        const Span s = elements(index, format.components * componentBytes, what);
+        std::vector<double> out(s.count * format.components);
+        for (size_t i = 0; i < s.count; ++i)
+            for (size_t c = 0; c < format.components; ++c) {
+                const unsigned char* bytes = s.data + i * s.stride + c * componentBytes;
+                double& value = out[i * format.components + c];
+                if (componentBytes == 4) {
+                    float f = 0.0f;
+                    std::memcpy(&f, bytes, sizeof f);
+                    value = f;
+                } else if (componentBytes == 2) {
+                    uint16_t u = 0;
+                    std::memcpy(&u, bytes, sizeof u);
+                    value = u / 65535.0;
+                } else {
+                    value = *bytes / 255.0;
+                }
+                if (!std::isfinite(value))
+                    return error(label, "element " + std::to_string(i) + " is not finite"), std::vector<double>{};
             }
-        }
         return out;
+    }
+
+    /// The primitive's attribute `format.name`, one element per position; empty when it has none.
+    std::vector<double> attribute(const tinygltf::Primitive& prim, const AttributeFormat& format, size_t positions,
+                                  const std::string& path) {
+        const auto found = prim.attributes.find(format.name);
+        if (found == prim.attributes.end()) return {};
+        const std::string what = std::string(format.name) + " of " + path;
+        std::vector<double> values = readAttribute(found->second, format, what);
+        if (!failed_ && values.size() != positions * format.components)
+            error(at("accessors", size_t(found->second)) + " (" + what + ")",
+                  std::to_string(values.size() / format.components) + " " + format.noun + "s for " +
+                      std::to_string(positions) + " positions");
+        return values;
+    }
+
+    /// An error unless each of `vectors` (the primitive's NORMAL or TANGENT xyz) has a length.
+    void requireLengths(const std::vector<dvec3>& vectors, const tinygltf::Primitive& prim,
+                        const AttributeFormat& format, const std::string& path) {
+        for (size_t i = 0; i < vectors.size(); ++i)
+            if (!(glm::length(vectors[i]) > 1e-6))
+                return error(at("accessors", size_t(prim.attributes.at(format.name))) + " (" + format.name +
+                                 " of " + path + ")",
+                             std::string(format.noun) + " " + std::to_string(i) + " has length " +
+                                 std::to_string(glm::length(vectors[i])) + "; " + format.noun +
+                                 "s must be unit vectors");
     }
 
     std::vector<uint32_t> readIndices(int index, size_t vertexCount, const std::string& what) {
@@ -178,43 +282,6 @@ private:
         return out;
     }
 
-    MeshMaterial material(int index, const std::string& path, bool& hidden) {
-        MeshMaterial m;
-        if (index < 0) return m;  // glTF's default material
-        if (size_t(index) >= model_.materials.size())
-            return error(path, "material " + std::to_string(index) + " does not exist"), m;
-        const tinygltf::Material& mat = model_.materials[size_t(index)];
-        const std::string mpath = at("materials", size_t(index));
-        const auto& pbr = mat.pbrMetallicRoughness;
-        const auto unit = [&](double v, const std::string& key) {
-            if (!(v >= 0.0 && v <= 1.0)) error(mpath + "." + key, "must be in [0, 1], got " + std::to_string(v));
-            return std::clamp(std::isfinite(v) ? v : 0.0, 0.0, 1.0);
-        };
-        if (pbr.baseColorFactor.size() == 4)
-            for (int c = 0; c < 4; ++c)
-                m.baseColor[size_t(c)] = unit(pbr.baseColorFactor[size_t(c)], "pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]");
-        m.metallic = unit(pbr.metallicFactor, "pbrMetallicRoughness.metallicFactor");
-        m.roughness = unit(pbr.roughnessFactor, "pbrMetallicRoughness.roughnessFactor");
-        if (mat.emissiveFactor.size() == 3)
-            for (int c = 0; c < 3; ++c) {
-                const double e = mat.emissiveFactor[size_t(c)];
-                if (!(e >= 0.0) || !std::isfinite(e)) error(mpath + ".emissiveFactor", "must be finite and >= 0");
-                else m.emissive[size_t(c)] = e;
-            }
-        const auto texture = [&](int t, const std::string& key) {
-            if (t >= 0 && size_t(t) >= model_.textures.size())
-                error(mpath + "." + key + ".index", "texture " + std::to_string(t) + " does not exist");
-        };
-        texture(pbr.baseColorTexture.index, "pbrMetallicRoughness.baseColorTexture");
-        texture(pbr.metallicRoughnessTexture.index, "pbrMetallicRoughness.metallicRoughnessTexture");
-        texture(mat.normalTexture.index, "normalTexture");
-        texture(mat.occlusionTexture.index, "occlusionTexture");
-        texture(mat.emissiveTexture.index, "emissiveTexture");
-        // MASK: a primitive whose alpha is below the cutoff everywhere draws nothing.
-        hidden = mat.alphaMode == "MASK" && m.baseColor[3] < mat.alphaCutoff;
-        return m;
-    }
-
     /// A strip's or fan's triangles as a list, each wound as the first one (glTF 2.0,
     /// "Primitive"); fewer than three indices make none.
     static std::vector<uint32_t> triangleList(const std::vector<uint32_t>& in, bool strip) {
@@ -230,7 +297,7 @@ private:
         if (meshIndex >= model_.meshes.size())
             return error(reference, "mesh " + std::to_string(meshIndex) + " does not exist");
         const dmat3 linear(world);
-        const dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
+        const dmat3 normalMatrix = normalMatrixOf(linear);
         const bool mirrored = glm::determinant(linear) < 0.0;
         const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
         for (size_t p = 0; p < mesh.primitives.size() && !failed_; ++p) {
@@ -242,21 +309,16 @@ private:
                                                  " draws points or lines; expected triangles (4), a strip (5) or a fan (6)");
             const auto position = prim.attributes.find("POSITION");
             if (position == prim.attributes.end()) return error(path + ".attributes", "has no POSITION");
-            std::vector<dvec3> positions = readVec3(position->second, "POSITION of " + path);
+            const std::vector<dvec3> positions =
+                vec3s(readAttribute(position->second, kPosition, "POSITION of " + path), 3);
             if (failed_) return;
-            std::vector<dvec3> normals;
-            if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end()) {
-                normals = readVec3(n->second, "NORMAL of " + path);
-                if (failed_) return;
-                if (normals.size() != positions.size())
-                    return error(at("accessors", size_t(n->second)) + " (NORMAL of " + path + ")",
-                                 std::to_string(normals.size()) + " normals for " + std::to_string(positions.size()) + " positions");
-                for (size_t i = 0; i < normals.size(); ++i)
-                    if (!(glm::length(normals[i]) > 1e-6))
-                        return error(at("accessors", size_t(n->second)) + " (NORMAL of " + path + ")",
-                                     "normal " + std::to_string(i) + " has length " + std::to_string(glm::length(normals[i])) +
-                                         "; normals must be unit vectors");
-            }
+            const std::vector<dvec3> normals = vec3s(attribute(prim, kNormal, positions.size(), path), 3);
+            const std::vector<double> uvs = attribute(prim, kTexCoord, positions.size(), path);
+            const std::vector<double> tangents = attribute(prim, kTangent, positions.size(), path);
+            if (failed_) return;
+            requireLengths(normals, prim, kNormal, path);
+            requireLengths(vec3s(tangents, 4), prim, kTangent, path);
+            if (failed_) return;
             std::vector<uint32_t> indices;
             if (prim.indices >= 0) {
                 if (size_t(prim.indices) >= model_.accessors.size())
@@ -270,20 +332,41 @@ private:
             if (mode != TINYGLTF_MODE_TRIANGLES) indices = triangleList(indices, mode == TINYGLTF_MODE_TRIANGLE_STRIP);
             if (indices.size() % 3 != 0)
                 return error(path, std::to_string(indices.size()) + " indices do not make whole triangles");
-            bool hidden = false;
             MeshPrimitive out;
-            out.material = material(prim.material, path + ".material", hidden);
+            out.material = materials_.read(prim.material, path + ".material");
             out.name = path;
-            if (failed_ || hidden) continue;
+            if (failed_) return;
+            // MASK: a primitive whose alpha is below the cutoff everywhere draws nothing.
+            const MeshMaterial& material = out.material;
+            if (material.alphaMode == MeshAlphaMode::Mask && material.baseColor[3] < material.alphaCutoff) continue;
+            if (samplesTextures(material) && uvs.empty())
+                return error(path, "its material samples textures, but it has no TEXCOORD_0");
+            materials_.use(out.material, mesh_.images);
+            if (failed_) return;
             const size_t newVertices = normals.empty() ? indices.size() : positions.size();
             if (mesh_.vertices.size() + newVertices > kMaxMeshVertices || mesh_.indices.size() + indices.size() > kMaxMeshIndices)
                 return error(path, "the file has more than " + std::to_string(kMaxMeshVertices) + " vertices or " +
                                        std::to_string(kMaxMeshIndices) + " indices");
             const auto base = uint32_t(mesh_.vertices.size());
-            const auto place = [&](const dvec3& local, const dvec3& localNormal) {
-                const dvec3 wp = dvec3(world * glm::dvec4(local, 1.0));
-                const dvec3 wn = glm::normalize(normalMatrix * localNormal);
-                MeshVertex v{{float(wp.x), float(wp.y), float(wp.z)}, {float(wn.x), float(wn.y), float(wn.z)}};
+            const auto place = [&](size_t i, const dvec3& localNormal) {
+                const dvec3 wp = dvec3(world * glm::dvec4(positions[i], 1.0));
+                const dvec3 transformed = normalMatrix * localNormal;
+                // Zero where the transform flattens the surface edge-on, or to a line or a point:
+                // nothing of it shows, and any normal does.
+                const double length = glm::length(transformed);
+                const bool shows = length > 0.0 && std::isfinite(length);
+                const dvec3 wn = shows ? glm::normalize(transformed) : dvec3(0.0, 1.0, 0.0);
+                MeshVertex v{{float(wp.x), float(wp.y), float(wp.z)}, {float(wn.x), float(wn.y), float(wn.z)}, {}, {}};
+                if (!uvs.empty()) {
+                    v.uv[0] = float(uvs[2 * i]);
+                    v.uv[1] = float(uvs[2 * i + 1]);
+                }
+                // A tangent is a direction along the surface: the world matrix carries it as it does
+                // the positions, and mirroring turns the bitangent's handedness.
+                if (!tangents.empty()) {
+                    const dvec3 t = linear * dvec3(tangents[4 * i], tangents[4 * i + 1], tangents[4 * i + 2]);
+                    setTangent(v, tangentTo(wn, t), (tangents[4 * i + 3] < 0.0) != mirrored ? -1.0 : 1.0);
+                }
                 if (mesh_.vertices.empty() && mesh_.indices.empty()) mesh_.boundsMin = mesh_.boundsMax = {wp.x, wp.y, wp.z};
                 for (int c = 0; c < 3; ++c) {
                     mesh_.boundsMin[size_t(c)] = std::min(mesh_.boundsMin[size_t(c)], wp[c]);
@@ -298,16 +381,48 @@ private:
                     const dvec3 a = positions[indices[t]], b = positions[indices[t + 1]], c = positions[indices[t + 2]];
                     const dvec3 cross = glm::cross(b - a, c - a);
                     const dvec3 n = glm::length(cross) > 0.0 ? glm::normalize(cross) : dvec3(0.0, 1.0, 0.0);
-                    for (const dvec3& corner : {a, b, c}) place(corner, n);
+                    for (size_t k = 0; k < 3; ++k) place(indices[t + k], n);
                     for (uint32_t k = 0; k < 3; ++k) mesh_.indices.push_back(base + uint32_t(t) + (mirrored ? 2 - k : k));
                 }
             } else {
-                for (size_t i = 0; i < positions.size(); ++i) place(positions[i], normals[i]);
+                for (size_t i = 0; i < positions.size(); ++i) place(i, normals[i]);
                 for (size_t t = 0; t < indices.size(); t += 3)
                     for (uint32_t k = 0; k < 3; ++k) mesh_.indices.push_back(base + indices[t + (mirrored ? 2 - k : k)]);
             }
+            if (tangents.empty()) deriveTangents(base, out.firstIndex, !uvs.empty());
             out.indexCount = uint32_t(indices.size());
             mesh_.primitives.push_back(std::move(out));
+        }
+    }
+
+    /// Tangents for the vertices from `firstVertex` on, which the indices from `firstIndex` on
+    /// draw, from their world positions and UVs: each triangle's dP/du and dP/dv (Lengyel's
+    /// method), summed at its corners. glTF's bitangent points up the image, where v falls (the
+    /// first row is at v = 0), so w compares cross(n, t) with -dP/dv: MikkTSpace run on glTF's
+    /// UVs as they are gives the opposite sign of the TANGENTs that exporters write.
+    void deriveTangents(size_t firstVertex, size_t firstIndex, bool hasUvs) {
+        std::vector<MeshVertex>& vertices = mesh_.vertices;
+        std::vector<dvec3> alongU(vertices.size() - firstVertex), upTheImage(vertices.size() - firstVertex);
+        const auto position = [&](uint32_t i) {
+            return dvec3(vertices[i].position[0], vertices[i].position[1], vertices[i].position[2]);
+        };
+        const auto uv = [&](uint32_t i) { return glm::dvec2(vertices[i].uv[0], vertices[i].uv[1]); };
+        for (size_t t = firstIndex; hasUvs && t < mesh_.indices.size(); t += 3) {
+            const uint32_t a = mesh_.indices[t], b = mesh_.indices[t + 1], c = mesh_.indices[t + 2];
+            const dvec3 e1 = position(b) - position(a), e2 = position(c) - position(a);
+            const glm::dvec2 d1 = uv(b) - uv(a), d2 = uv(c) - uv(a);
+            const double det = d1.x * d2.y - d2.x * d1.y;
+            const dvec3 dPdu = (e1 * d2.y - e2 * d1.y) / det, dPdv = (e2 * d1.x - e1 * d2.x) / det;
+            if (!finite(dPdu) || !finite(dPdv)) continue;  // UVs that do not span the triangle (det = 0)
+            for (const uint32_t corner : {a, b, c}) {
+                alongU[corner - firstVertex] += dPdu;
+                upTheImage[corner - firstVertex] -= dPdv;
+            }
+        }
+        for (size_t i = firstVertex; i < vertices.size(); ++i) {
+            const dvec3 n = glm::normalize(dvec3(vertices[i].normal[0], vertices[i].normal[1], vertices[i].normal[2]));
+            const dvec3 t = tangentTo(n, alongU[i - firstVertex]);
+            setTangent(vertices[i], t, glm::dot(glm::cross(n, t), upTheImage[i - firstVertex]) < 0.0 ? -1.0 : 1.0);
         }
     }
 
@@ -337,32 +452,11 @@ private:
 
     const tinygltf::Model& model_;
     Diagnostics& diagnostics_;
+    GltfMaterials materials_;
     TriangleMesh mesh_;
     std::vector<bool> onPath_;
     bool failed_ = false;
 };
-
-/// tinygltf's image callback: the textures are not sampled yet, so an image is only checked
-/// (stb reads its header: a known format, a sane size) and never decoded, which keeps a large
-/// or hostile image from costing time and memory.
-bool checkImageHeader(tinygltf::Image* image, const int index, std::string* error, std::string*, int, int,
-                      const unsigned char* bytes, int size, void*) {
-    int width = 0, height = 0, components = 0;
-    const std::string where = "images[" + std::to_string(index) + "]";
-    if (!stbi_info_from_memory(bytes, size, &width, &height, &components)) {
-        *error += where + ": not an image stb can read (" + std::string(stbi_failure_reason()) + ")\n";
-        return false;
-    }
-    if (width > int(kMaxMeshTextureSide) || height > int(kMaxMeshTextureSide)) {
-        *error += where + ": " + std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
-                  std::to_string(kMaxMeshTextureSide) + " texels a side\n";
-        return false;
-    }
-    image->width = width;
-    image->height = height;
-    image->component = components;
-    return true;
-}
 
 dmat4 transformMatrix(const MeshTransform& t) {
     dmat4 m = glm::translate(dmat4(1.0), dvec3(t.translation[0], t.translation[1], t.translation[2]));
@@ -387,8 +481,9 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         text && !checkGltfJsonTypes(*text, name, diagnostics))
         return std::nullopt;
     tinygltf::TinyGLTF reader;
-    reader.SetImageLoader(checkImageHeader, nullptr);
     tinygltf::Model model;
+    ImageHeaderCheck headerCheck{&model, {}};
+    reader.SetImageLoader(checkImageHeader, &headerCheck);
     std::string error, warning;
     bool read = false;
     try {
@@ -405,8 +500,10 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         for (std::string line; std::getline(lines, line);)
             if (!line.empty()) diagnostics.add(Diagnostic{name, "", "", "", "glTF: " + line});
         if (diagnostics.size() == before) fail("glTF: tinygltf could not read it");
-        return std::nullopt;
     }
+    for (const auto& [index, problem] : headerCheck.problems)
+        diagnostics.add(Diagnostic{name, "images[" + std::to_string(index) + "]", "", "", problem});
+    if (!read || !error.empty() || !headerCheck.problems.empty()) return std::nullopt;
     return GltfFlattener(name, model, diagnostics).flatten(transformMatrix(transform));
 }
 

@@ -19,14 +19,51 @@ namespace skygraph {
 struct MeshVertex {
     float position[3];  ///< world space
     float normal[3];    ///< world space, unit length
+    float uv[2];        ///< TEXCOORD_0 as the file has it (0, 0 without)
+    /// World space, unit length and orthogonal to the normal; w (+1 or -1) is the bitangent's
+    /// sign: bitangent = w * cross(normal, tangent). The file's TANGENT, else derived from the
+    /// UVs, else any direction orthogonal to the normal.
+    float tangent[4];
 };
 
-/// The metallic-roughness factors of a glTF material (its textures are not sampled yet).
+/// An image that materials sample: decoded to 8-bit RGBA, mip 0 only (the renderer makes the
+/// rest of the chain).
+struct MeshImage {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> rgba;  ///< width * height * 4 bytes, the first row first
+    std::string name;           ///< "images[i]", for messages
+};
+
+/// How a texture repeats outside [0, 1] (glTF sampler wrapS / wrapT).
+enum class MeshWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+
+/// A material's use of an image.
+struct MeshTexture {
+    int32_t image = -1;  ///< index into TriangleMesh::images; -1: none
+    MeshWrap wrapS = MeshWrap::Repeat, wrapT = MeshWrap::Repeat;
+    [[nodiscard]] bool present() const noexcept { return image >= 0; }
+};
+
+enum class MeshAlphaMode : uint8_t { Opaque, Mask, Blend };
+
+/// A glTF metallic-roughness material: factors, and the textures that scale them. Base color
+/// and emissive images hold sRGB values; the others linear ones (glTF 2.0 section 3.9).
 struct MeshMaterial {
     std::array<double, 4> baseColor{1.0, 1.0, 1.0, 1.0};  ///< linear RGBA, each in [0, 1]
     double metallic = 1.0;                                ///< [0, 1]
     double roughness = 1.0;                               ///< [0, 1]
     std::array<double, 3> emissive{0.0, 0.0, 0.0};        ///< linear, >= 0
+    MeshTexture baseColorTexture;                         ///< sRGB RGB, linear alpha
+    MeshTexture metallicRoughnessTexture;                 ///< roughness in G, metallic in B
+    MeshTexture normalTexture;                            ///< tangent space
+    double normalScale = 1.0;
+    MeshTexture occlusionTexture;                         ///< R
+    double occlusionStrength = 1.0;                       ///< [0, 1]
+    MeshTexture emissiveTexture;                          ///< sRGB
+    /// Blend is drawn as Opaque: the forward pass has no sorted transparent pass.
+    MeshAlphaMode alphaMode = MeshAlphaMode::Opaque;
+    double alphaCutoff = 0.5;  ///< Mask: fragments with alpha below it are discarded
+    bool doubleSided = false;
 };
 
 /// One draw: a run of `indices` with one material.
@@ -53,6 +90,7 @@ struct TriangleMesh {
     std::vector<MeshVertex> vertices;
     std::vector<uint32_t> indices;  ///< every index < vertices.size()
     std::vector<MeshPrimitive> primitives;
+    std::vector<MeshImage> images;  ///< those that materials use; others are not decoded
     std::array<double, 3> boundsMin{0.0, 0.0, 0.0}, boundsMax{0.0, 0.0, 0.0};
     std::optional<MeshCamera> camera;  ///< the first camera of the default scene
 };
@@ -68,8 +106,9 @@ struct MeshTransform {
 /// Most vertices and indices one file may bring (a bad count must not exhaust memory).
 inline constexpr size_t kMaxMeshVertices = size_t(1) << 24;
 inline constexpr size_t kMaxMeshIndices = size_t(3) << 24;
-/// Largest image side a file may bring, in texels.
+/// Largest image side a file may bring, in texels, and most decoded image bytes in all.
 inline constexpr size_t kMaxMeshTextureSide = 16384;
+inline constexpr size_t kMaxMeshImageBytes = size_t(1) << 30;
 
 /// Reads the glTF file at `path` and flattens its default scene (or scene 0). Appends every
 /// problem to `diagnostics`, each naming `path` and the JSON path in the file (an accessor,
@@ -77,9 +116,10 @@ inline constexpr size_t kMaxMeshTextureSide = 16384;
 /// file that is partly wrong. Refused: unreadable or malformed files, missing buffers, a file
 /// without a scene or whose scene has no nodes, node cycles, accessors out of their buffers,
 /// indices past the vertices, non-finite or zero-length data, primitives of points or lines,
-/// sparse or normalized position data, required extensions, images that are not
-/// PNG, JPEG or another format stb reads (only their headers are read), sizes beyond the
-/// limits above.
+/// sparse or normalized position data, required extensions, textures that sample texture
+/// coordinates other than TEXCOORD_0, or that a primitive without TEXCOORD_0 uses, malformed
+/// texture coordinates or tangents, images that are not PNG,
+/// JPEG or another format stb decodes, sizes beyond the limits above.
 [[nodiscard]] std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,
                                                    Diagnostics& diagnostics);
 

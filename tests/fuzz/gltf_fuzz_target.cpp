@@ -1,6 +1,8 @@
 // The fuzz target over the glTF loader (tinygltf and the checks around it): any bytes must
-// end in a mesh whose indices and primitives are in range, or in diagnostics. Relative URIs
-// resolve in a folder that does not exist, so an input reads no file of the machine's.
+// end in a mesh whose indices, primitives and textures are in range, whose vertices are finite
+// with unit tangents orthogonal to their normals, and whose images hold the bytes their sizes
+// say; or in diagnostics. Relative URIs resolve in a folder that does not exist, so an input
+// reads no file of the machine's.
 #include "gltf_fuzz_target.hpp"
 
 #include <skygraph/triangle_mesh.hpp>
@@ -24,9 +26,31 @@ void checkMesh(const TriangleMesh& mesh) {
         if (i >= mesh.vertices.size()) broken("an index past the vertices");
     for (const MeshPrimitive& p : mesh.primitives)
         if (size_t(p.firstIndex) + p.indexCount > mesh.indices.size()) broken("a primitive past the indices");
-    for (const MeshVertex& v : mesh.vertices)
+    for (const MeshVertex& v : mesh.vertices) {
         for (int c = 0; c < 3; ++c)
             if (!std::isfinite(v.position[c]) || !std::isfinite(v.normal[c])) broken("a non-finite vertex");
+        if (!std::isfinite(v.uv[0]) || !std::isfinite(v.uv[1])) broken("a non-finite texture coordinate");
+        const double tx = v.tangent[0], ty = v.tangent[1], tz = v.tangent[2];
+        if (!std::isfinite(tx) || !std::isfinite(ty) || !std::isfinite(tz)) broken("a non-finite tangent");
+        if (std::abs(std::sqrt(tx * tx + ty * ty + tz * tz) - 1.0) > 1e-4) broken("a tangent that is not unit");
+        if (std::abs(tx * v.normal[0] + ty * v.normal[1] + tz * v.normal[2]) > 1e-3)
+            broken("a tangent not orthogonal to its normal");
+        if (v.tangent[3] != 1.0f && v.tangent[3] != -1.0f) broken("a bitangent sign that is not +1 or -1");
+    }
+    size_t imageBytes = 0;
+    for (const MeshImage& image : mesh.images) {
+        if (image.width == 0 || image.height == 0 || image.width > kMaxMeshTextureSide ||
+            image.height > kMaxMeshTextureSide || image.rgba.size() != size_t(image.width) * image.height * 4)
+            broken("an image whose size and bytes disagree");
+        imageBytes += image.rgba.size();
+    }
+    if (imageBytes > kMaxMeshImageBytes) broken("images past kMaxMeshImageBytes");
+    for (const MeshPrimitive& p : mesh.primitives) {
+        const MeshMaterial& m = p.material;
+        for (const MeshTexture* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
+                                     &m.occlusionTexture, &m.emissiveTexture})
+            if (t->image < -1 || t->image >= int64_t(mesh.images.size())) broken("a texture past the images");
+    }
 }
 
 }  // namespace

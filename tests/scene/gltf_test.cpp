@@ -1,24 +1,26 @@
 // glTF files through loadGltf() and through scene files: Debian's assimp-testmodels (good and
-// bad), and small files written here for what those do not cover.
+// bad), and small files written here for what those do not cover. Textures, texture
+// coordinates and tangents: gltf_materials_test.cpp.
+#include "gltf_test_util.hpp"
+
 #include <skygraph/scene.hpp>
 #include <skygraph/triangle_mesh.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <limits>
 
 namespace skygraph {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kModels = "/usr/share/assimp/models/glTF2";
-
-std::string messages(const Diagnostics& d) {
-    std::string s;
-    for (const Diagnostic& x : d.items()) s += x.format() + "\n";
-    return s;
-}
+using gltf_test::kModels;
+using gltf_test::messages;
 
 struct BadFile {
     std::string file;     ///< under kModels
@@ -68,7 +70,11 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"IncorrectVertexArrays/Cube.gltf", "meshes[1].primitives[0]", "35 indices do not make whole triangles"},
         BadFile{"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf", "meshes[0].primitives[0].mode",
                 "draws points or lines"},
-        BadFile{"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "extensionsRequired", "KHR_technique_webgl"}),
+        BadFile{"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "extensionsRequired", "KHR_technique_webgl"},
+        BadFile{"BoxTexcoords-glTF/boxTexcoords.gltf",
+                "materials[0].pbrMetallicRoughness.metallicRoughnessTexture.texCoord", "TEXCOORD_1 is not supported"},
+        BadFile{"issue_3269/texcoord_crash.gltf", "meshes[0].primitives[0]",
+                "its material samples textures, but it has no TEXCOORD_0"}),
     [](const ::testing::TestParamInfo<BadFile>& p) {
         std::string n = p.param.file.substr(p.param.file.rfind('/') + 1);
         for (char& c : n)
@@ -89,11 +95,11 @@ TEST(Gltf, TheBoxIsTheSameInEachContainer) {
     for (const auto* other : {&*glb, &*embedded}) {
         EXPECT_EQ(other->indices, gltf->indices);
         ASSERT_EQ(other->vertices.size(), gltf->vertices.size());
-        for (size_t i = 0; i < gltf->vertices.size(); ++i)
-            for (int c = 0; c < 3; ++c) {
-                EXPECT_EQ(other->vertices[i].position[c], gltf->vertices[i].position[c]);
-                EXPECT_EQ(other->vertices[i].normal[c], gltf->vertices[i].normal[c]);
-            }
+        const size_t vertexBytes = gltf->vertices.size() * sizeof(MeshVertex);
+        EXPECT_EQ(std::memcmp(other->vertices.data(), gltf->vertices.data(), vertexBytes), 0)
+            << "positions, normals, UVs and tangents";
+        ASSERT_EQ(other->images.size(), 1u);
+        EXPECT_EQ(other->images[0].rgba, gltf->images.at(0).rgba) << "a PNG file, a .glb's buffer view, a data URI";
     }
     // The box is a unit cube about the origin: its node's rotation turns it but keeps it there.
     for (int c = 0; c < 3; ++c) {
@@ -197,8 +203,27 @@ TEST(Gltf, ACorruptImageIsRefused) {
     text.insert(text.rfind('}'), R"(, "images": [{"uri": "data:image/png;base64,iVBORw0KGgoAAAAAAAAAAAAAAAAAAAAA"}])");
     std::ofstream(file) << text;
     Diagnostics d;
-    EXPECT_FALSE(loadGltf(file, {}, d));
+    EXPECT_FALSE(loadGltf(file, {}, d)) << "every image's header is read, sampled or not";
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d.items()[0].jsonPath, "images[0]") << messages(d);
     EXPECT_NE(messages(d).find("images[0]: not an image stb can read"), std::string::npos) << messages(d);
+}
+
+TEST(Gltf, AnImageOutsideItsBufferIsRefused) {
+    // The triangle file with an image in a buffer view that runs past the 36-byte buffer.
+    fs::path file = writeTriangle("image-past-buffer", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string view = R"({"buffer": 0, "byteLength": 36})";
+    text.replace(text.find(view), view.size(), view + R"(, {"buffer": 0, "byteOffset": 20, "byteLength": 1000})");
+    text.insert(text.rfind('}'), R"(, "images": [{"bufferView": 1, "mimeType": "image/png"}])");
+    std::ofstream(file) << text;
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(file, {}, d));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d.items()[0].jsonPath, "images[0]") << messages(d);
+    EXPECT_NE(d.items()[0].message.find("bufferViews[1], lies outside buffer 0 of 36 bytes"), std::string::npos)
+        << messages(d);
 }
 
 TEST(Gltf, NotAGltfFile) {
@@ -210,6 +235,9 @@ TEST(Gltf, NotAGltfFile) {
     EXPECT_NE(messages(e).find("does not exist"), std::string::npos);
 }
 
+// ---- textures, texture coordinates and tangents ----
+
+/// The width and height in a PNG file's IHDR chunk, read without stb.
 // ---- through scene files ----
 
 Scene parse(const std::string& text) { return parseScene(text, "test.json", fs::path("/")); }

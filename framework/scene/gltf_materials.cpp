@@ -1,0 +1,187 @@
+// GltfMaterials and checkImageHeader: see gltf_materials.hpp. stb decodes every image to 8-bit
+// RGBA whatever the file holds (16-bit PNGs included), since MeshImage has that one format.
+#include "gltf_materials.hpp"
+
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+namespace skygraph {
+namespace {
+
+constexpr int32_t kNotDecoded = -1;
+constexpr int32_t kUndecodable = -2;
+
+std::string at(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+
+std::string stbReason() {
+    const char* reason = stbi_failure_reason();
+    return reason ? reason : "no reason given";
+}
+
+}  // namespace
+
+bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, const int size, void* headerCheck) {
+    auto& check = *static_cast<ImageHeaderCheck*>(headerCheck);
+    const auto problem = [&](const std::string& message) {
+        check.problems.emplace(index, message);
+        return true;
+    };
+    if (image->bufferView >= 0) {  // tinygltf passes the view's bytes without checking them against the buffer
+        const tinygltf::BufferView& view = check.model->bufferViews[size_t(image->bufferView)];
+        const size_t bufferBytes = check.model->buffers[size_t(view.buffer)].data.size();
+        if (view.byteOffset > bufferBytes || view.byteLength > bufferBytes - view.byteOffset)
+            return problem("its buffer view, bufferViews[" + std::to_string(image->bufferView) +
+                           "], lies outside buffer " + std::to_string(view.buffer) + " of " +
+                           std::to_string(bufferBytes) + " bytes");
+    }
+    if (size <= 0) return problem("has no bytes, or more than 2 GiB");
+    int width = 0, height = 0, components = 0;
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &components))
+        return problem("not an image stb can read (" + stbReason() + ")");
+    if (width > int(kMaxMeshTextureSide) || height > int(kMaxMeshTextureSide))
+        return problem(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
+                       std::to_string(kMaxMeshTextureSide) + " texels a side");
+    image->width = width;
+    image->height = height;
+    image->component = components;
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;  // tinygltf's marker for bytes kept encoded
+    return true;
+}
+
+bool samplesTextures(const MeshMaterial& m) {
+    return m.baseColorTexture.present() || m.metallicRoughnessTexture.present() || m.normalTexture.present() ||
+           m.occlusionTexture.present() || m.emissiveTexture.present();
+}
+
+GltfMaterials::GltfMaterials(const tinygltf::Model& model, GltfError error)
+    : model_(model), error_(std::move(error)), meshImageOf_(model.images.size(), kNotDecoded) {}
+
+MeshMaterial GltfMaterials::read(int index, const std::string& reference) {
+    MeshMaterial m;
+    if (index < 0) return m;  // glTF's default material
+    if (size_t(index) >= model_.materials.size())
+        return error_(reference, "material " + std::to_string(index) + " does not exist"), m;
+    const tinygltf::Material& mat = model_.materials[size_t(index)];
+    const std::string mpath = at("materials", size_t(index));
+    const auto& pbr = mat.pbrMetallicRoughness;
+    const auto unit = [&](double v, const std::string& key) {
+        if (!(v >= 0.0 && v <= 1.0)) error_(mpath + "." + key, "must be in [0, 1], got " + std::to_string(v));
+        return std::clamp(std::isfinite(v) ? v : 0.0, 0.0, 1.0);
+    };
+    if (pbr.baseColorFactor.size() == 4)
+        for (int c = 0; c < 4; ++c)
+            m.baseColor[size_t(c)] =
+                unit(pbr.baseColorFactor[size_t(c)], "pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]");
+    m.metallic = unit(pbr.metallicFactor, "pbrMetallicRoughness.metallicFactor");
+    m.roughness = unit(pbr.roughnessFactor, "pbrMetallicRoughness.roughnessFactor");
+    if (mat.emissiveFactor.size() == 3)
+        for (int c = 0; c < 3; ++c) {
+            const double e = mat.emissiveFactor[size_t(c)];
+            if (!(e >= 0.0) || !std::isfinite(e)) error_(mpath + ".emissiveFactor", "must be finite and >= 0");
+            else m.emissive[size_t(c)] = e;
+        }
+    const auto textureOf = [&](const auto& info, const std::string& key) {
+        return texture(info.index, info.texCoord, mpath + key);
+    };
+    m.baseColorTexture = textureOf(pbr.baseColorTexture, ".pbrMetallicRoughness.baseColorTexture");
+    m.metallicRoughnessTexture =
+        textureOf(pbr.metallicRoughnessTexture, ".pbrMetallicRoughness.metallicRoughnessTexture");
+    m.normalTexture = textureOf(mat.normalTexture, ".normalTexture");
+    m.occlusionTexture = textureOf(mat.occlusionTexture, ".occlusionTexture");
+    m.emissiveTexture = textureOf(mat.emissiveTexture, ".emissiveTexture");
+    if (!std::isfinite(mat.normalTexture.scale)) error_(mpath + ".normalTexture.scale", "must be finite");
+    else m.normalScale = mat.normalTexture.scale;
+    m.occlusionStrength = unit(mat.occlusionTexture.strength, "occlusionTexture.strength");
+    if (mat.alphaMode == "OPAQUE") m.alphaMode = MeshAlphaMode::Opaque;
+    else if (mat.alphaMode == "MASK") m.alphaMode = MeshAlphaMode::Mask;
+    else if (mat.alphaMode == "BLEND") m.alphaMode = MeshAlphaMode::Blend;
+    else error_(mpath + ".alphaMode", "must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"" + mat.alphaMode + "\"");
+    if (!(mat.alphaCutoff >= 0.0) || !std::isfinite(mat.alphaCutoff))
+        error_(mpath + ".alphaCutoff", "must be finite and >= 0, got " + std::to_string(mat.alphaCutoff));
+    else m.alphaCutoff = mat.alphaCutoff;
+    m.doubleSided = mat.doubleSided;
+    return m;
+}
+
+MeshTexture GltfMaterials::texture(int index, int texCoord, const std::string& key) {
+    MeshTexture t;
+    if (index < 0) return t;
+    if (size_t(index) >= model_.textures.size())
+        return error_(key + ".index", "texture " + std::to_string(index) + " does not exist"), t;
+    if (texCoord != 0)
+        error_(key + ".texCoord",
+               "TEXCOORD_" + std::to_string(texCoord) + " is not supported: skygraph reads TEXCOORD_0 only");
+    const tinygltf::Texture& gltfTexture = model_.textures[size_t(index)];
+    const std::string path = at("textures", size_t(index));
+    if (gltfTexture.source < 0)
+        return error_(path + ".source", "is missing (" + key + " samples the texture); an image that only an "
+                                            "extension names is not supported"), t;
+    if (size_t(gltfTexture.source) >= model_.images.size())
+        return error_(path + ".source", "image " + std::to_string(gltfTexture.source) + " does not exist"), t;
+    if (const int s = gltfTexture.sampler; s >= 0) {  // else glTF's default: repeat both ways
+        if (size_t(s) >= model_.samplers.size())
+            return error_(path + ".sampler", "sampler " + std::to_string(s) + " does not exist"), t;
+        t.wrapS = wrap(model_.samplers[size_t(s)].wrapS, at("samplers", size_t(s)) + ".wrapS");
+        t.wrapT = wrap(model_.samplers[size_t(s)].wrapT, at("samplers", size_t(s)) + ".wrapT");
+    }
+    t.image = gltfTexture.source;
+    return t;
+}
+
+MeshWrap GltfMaterials::wrap(int mode, const std::string& path) {
+    switch (mode) {
+        case TINYGLTF_TEXTURE_WRAP_REPEAT: return MeshWrap::Repeat;
+        case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return MeshWrap::ClampToEdge;
+        case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return MeshWrap::MirroredRepeat;
+        default:
+            error_(path, "must be 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) or 33648 (MIRRORED_REPEAT), got " +
+                             std::to_string(mode));
+            return MeshWrap::Repeat;
+    }
+}
+
+void GltfMaterials::use(MeshMaterial& m, std::vector<MeshImage>& images) {
+    for (MeshTexture* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture, &m.occlusionTexture,
+                           &m.emissiveTexture})
+        if (t->present()) t->image = decode(size_t(t->image), images);
+}
+
+int32_t GltfMaterials::decode(size_t fileImage, std::vector<MeshImage>& images) {
+    int32_t& meshImage = meshImageOf_[fileImage];
+    if (meshImage != kNotDecoded) return std::max(meshImage, int32_t(-1));
+    meshImage = kUndecodable;  // until it is
+    const tinygltf::Image& image = model_.images[fileImage];
+    const std::string path = at("images", fileImage);
+    if (image.image.empty())  // tinygltf only warns when an image's file is missing
+        return error_(path, image.uri.empty() ? "has no data" : "'" + image.uri + "' cannot be read"), -1;
+    const size_t bytes = size_t(image.width) * size_t(image.height) * 4;
+    if (decodedBytes_ + bytes > kMaxMeshImageBytes)
+        return error_(path, "decoded, the file's images would take " + std::to_string(decodedBytes_ + bytes) +
+                                " bytes, more than " + std::to_string(kMaxMeshImageBytes)), -1;
+    int width = 0, height = 0, components = 0;
+    const std::unique_ptr<stbi_uc, void (*)(void*)> rgba(
+        stbi_load_from_memory(image.image.data(), int(image.image.size()), &width, &height, &components, 4),
+        stbi_image_free);
+    if (!rgba) return error_(path, "cannot be decoded (" + stbReason() + ")"), -1;
+    if (width != image.width || height != image.height) {  // the header promised otherwise: a hostile file
+        error_(path, "decodes to " + std::to_string(width) + "x" + std::to_string(height) + ", not the header's " +
+                         std::to_string(image.width) + "x" + std::to_string(image.height));
+        return -1;
+    }
+    MeshImage decoded;
+    decoded.width = uint32_t(width);
+    decoded.height = uint32_t(height);
+    decoded.rgba.assign(rgba.get(), rgba.get() + bytes);
+    decoded.name = path;
+    decodedBytes_ += bytes;
+    images.push_back(std::move(decoded));
+    meshImage = int32_t(images.size() - 1);
+    return meshImage;
+}
+
+}  // namespace skygraph
