@@ -3,9 +3,11 @@
 // only that resource, so one state per resource is enough: every step covers the whole
 // resource or a part of it that the previous step wrote as a whole.
 #include "barrier_rules.hpp"
+#include "graph_file.hpp"
 #include "plan_builder.hpp"
 #include "vulkan_state.hpp"
 
+#include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
 #include <skygraph/transfer_plans.hpp>
 
@@ -295,6 +297,60 @@ Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view r
     steps.addFinal(r, *d, state, next, next.layout, whole);
     steps.addHostRead(r);
     return std::move(steps).finish();
+}
+
+namespace {
+
+/// The graph that sampled image uploads are the setup of: the images, external and arriving
+/// ready to sample, and one pass that samples them all (so none is culled).
+GraphDesc sampledImagesGraph(std::span<const SampledImageShape> images) {
+    GraphDesc g;
+    g.file = "<sampled images>";
+    g.name = "sampled images";
+    Diagnostics diags;
+    const auto refuse = [&](const SampledImageShape& image, const std::string& problem) {
+        diags.add({g.file, "images." + image.name, "", image.name, "cannot upload '" + image.name + "': " + problem});
+    };
+    if (images.empty()) diags.add({g.file, "images", "", "", "no images to upload"});
+    PassDesc& sample = g.passes.emplace_back();
+    sample.name = "sample";
+    sample.type = "Generic";
+    sample.neverCull = true;
+    for (const SampledImageShape& image : images) {
+        if (image.name.empty()) refuse(image, "an image needs a name");
+        else if (g.findResource(image.name)) refuse(image, "another image has that name");
+        else if (image.format.format == VK_FORMAT_UNDEFINED || image.format.isDepthStencil())
+            refuse(image, "its format is not a colour format");
+        else if (image.width < 1 || image.height < 1 || image.width > kMaxImageExtent || image.height > kMaxImageExtent)
+            refuse(image, std::to_string(image.width) + "x" + std::to_string(image.height) + " is outside 1.." +
+                              std::to_string(kMaxImageExtent) + " a side");
+        if (diags.size() > 0) continue;
+        ResourceDesc& r = g.resources.emplace_back();
+        r.name = image.name;
+        r.format = image.format;
+        r.extent.relativeToOutput = false;
+        r.extent.width = image.width;
+        r.extent.height = image.height;
+        r.mips = 0;  // full
+        r.external = true;
+        r.initial = ExternalState::ShaderRead;
+        r.final = ExternalState::ShaderRead;
+        UsageDecl& use = sample.uses.emplace_back();
+        use.resource = static_cast<uint32_t>(g.resources.size() - 1);
+        use.usage = Usage{Access::Read, Stage::Fragment, BindAs::Sampled, std::nullopt};
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
+    return g;
+}
+
+}  // namespace
+
+Plan planSampledImageUploads(std::span<const SampledImageShape> images) {
+    const GraphDesc graph = sampledImagesGraph(images);
+    const Plan frame = compile(graph);
+    SetupOptions options;
+    for (const ResourceDesc& r : graph.resources) options.uploads.insert(r.name);
+    return planSetup(graph, frame, options);
 }
 
 }  // namespace skygraph

@@ -87,6 +87,9 @@ void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecor
     rc.recordInPassBarriers = [&] {
         if (!sl.inPass.empty()) sink.barriers(sl.inPass);
     };
+    rc.fillSampledImages = [&](std::span<const SampledImageFill> fills) {
+        recordSampledImageFills(sink, fills, s.families(), r.sampledImagePlanEdit);
+    };
     if (graphics) {
         sink.recordPassBeforeRenderPass(*ps.implementation, rc);
         sink.beginRenderPass(renderPassBegin(ps, sl));

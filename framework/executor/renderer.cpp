@@ -417,6 +417,10 @@ void RendererAccess::editSetupPlans(Renderer& renderer, std::function<void(Plan&
     renderer.impl_->setupPlanEdit = std::move(edit);
 }
 
+void RendererAccess::editSampledImagePlans(Renderer& renderer, std::function<void(Plan&)> edit) {
+    renderer.impl_->sampledImagePlanEdit = std::move(edit);
+}
+
 void RendererAccess::overrideAcquireWait(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages) {
     renderer.impl_->acquireWaitOverride = stages;
 }

@@ -92,6 +92,9 @@ struct RendererAccess {
     /// changes each setup plan after the compiler made it and before it is recorded. Empty:
     /// none again.
     static void editSetupPlans(Renderer& renderer, std::function<void(Plan&)> edit);
+    /// Test-only, the same for the plans that fill passes' sampled images
+    /// (RecordContext::fillSampledImages).
+    static void editSampledImagePlans(Renderer& renderer, std::function<void(Plan&)> edit);
 
     /// Test-only, and for memory measurements: the device memory of the current plan state.
     [[nodiscard]] static RendererMemory memory(const Renderer& renderer);

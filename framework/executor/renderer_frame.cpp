@@ -133,6 +133,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     r.linearSampler = linearSampler.get();
     r.repeatSampler = repeatSampler.get();
     r.frameData = &frameData;
+    r.sampledImagePlanEdit = &sampledImagePlanEdit;
     if (frame) {
         ensureQueries(*frame, passCount * 2);
         r.queries = frame->queries.get();

@@ -214,6 +214,8 @@ struct FrameRecording {
     /// The first submit resets the queries; false when the host reset them (vkResetQueryPool).
     bool resetQueries = true;
     bool labels = false;  ///< A debug label around each pass.
+    /// Test-only: changes the plans that fill passes' sampled images before they are recorded.
+    const std::function<void(Plan&)>* sampledImagePlanEdit = nullptr;
 };
 
 /// The usage flags that planned usage `u` needs of its resource, added to `image` / `buffer`.
@@ -232,6 +234,16 @@ void recordSubmit(CommandSink& sink, PlanState& s, const FrameRecording& r, size
 /// Every submit of binding slot `r.slot`, in submission order, into one sink (for a command
 /// log, and for a plan of one submit).
 void recordFrame(CommandSink& sink, PlanState& s, const FrameRecording& r);
+
+/// A Downsample step's blit: the whole of level `from` onto the whole of level `to`, of an
+/// image whose mip 0 is `width` x `height`.
+[[nodiscard]] VkImageBlit downsampleRegion(VkImageAspectFlags aspect, uint32_t width, uint32_t height,
+                                           const SubresourceRange& from, const SubresourceRange& to);
+/// Records the compiler's plan that fills `fills` (RecordContext::fillSampledImages).
+/// `edit`, when given and not empty, changes the plan first (a negative control).
+void recordSampledImageFills(CommandSink& sink, std::span<const SampledImageFill> fills,
+                             const std::array<uint32_t, kQueueKinds>& families,
+                             const std::function<void(Plan&)>* edit = nullptr);
 
 /// What the executor does for plan step `pass`.
 [[nodiscard]] StepKind stepKindOf(const PlannedPass& pass);
@@ -321,6 +333,7 @@ struct Renderer::Impl {
     /// of presentSignalStages.
     std::optional<VkPipelineStageFlags2> acquireWaitOverride;
     std::function<void(Plan&)> setupPlanEdit;  ///< RendererAccess::editSetupPlans
+    std::function<void(Plan&)> sampledImagePlanEdit;  ///< RendererAccess::editSampledImagePlans
     std::optional<VkPipelineStageFlags2> signalOverride;
 
     Impl(Device& d, RendererOptions o)

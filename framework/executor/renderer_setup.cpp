@@ -67,19 +67,6 @@ void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image
     sink.clearColor(image, u.layout, v, range);
 }
 
-/// A Downsample step's blit: the whole of level `from` onto the whole of level `to`.
-VkImageBlit downsampleRegion(const ResourceState& r, const SubresourceRange& from, const SubresourceRange& to) {
-    const auto extent = [&](uint32_t mip) {
-        return VkOffset3D{int32_t(std::max(r.width >> mip, 1u)), int32_t(std::max(r.height >> mip, 1u)), 1};
-    };
-    VkImageBlit region{};
-    region.srcSubresource = {r.aspect, from.baseMip, from.baseLayer, from.layerCount};
-    region.srcOffsets[1] = extent(from.baseMip);
-    region.dstSubresource = {r.aspect, to.baseMip, to.baseLayer, to.layerCount};
-    region.dstOffsets[1] = extent(to.baseMip);
-    return region;
-}
-
 }  // namespace
 
 void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNextFrame) {
@@ -162,7 +149,7 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
                     recordInitialClear(sink, r, r.images[c].image, u);
                 } else if (step.type == "Downsample") {
                     sink.blitImage(r.images[c].image, step.usages[1].layout, u.layout,
-                                   downsampleRegion(r, step.usages[1].range, u.range));
+                                   downsampleRegion(r.aspect, r.width, r.height, step.usages[1].range, u.range));
                 } else if (!r.isImage) {
                     const VkBufferCopy region{0, 0, r.size};
                     sink.copyBuffer(staging[i].buffer.get(), r.buffers[c].buffer.get(), {&region, 1});

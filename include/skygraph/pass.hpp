@@ -6,6 +6,7 @@
 #include <skygraph/graph.hpp>
 #include <skygraph/pass_registry.hpp>
 #include <skygraph/plan.hpp>
+#include <skygraph/transfer_plans.hpp>
 
 #include <vulkan/vulkan_core.h>
 
@@ -97,6 +98,18 @@ struct PipelineContext {
     ShaderCompiler* shaders = nullptr;
 };
 
+/// A sampled image that a pass owns (a model's texture, say), to be filled from the host:
+/// RecordContext::fillSampledImages.
+struct SampledImageFill {
+    SampledImageShape shape;
+    /// 2D, one layer, the full mip chain of `shape`, with TRANSFER_SRC, TRANSFER_DST and
+    /// SAMPLED usage; never used before (its contents are discarded).
+    VkImage image = VK_NULL_HANDLE;
+    /// Mip 0's texels, rows tightly packed; read when the frame runs, so it must live (and not
+    /// change) until the frame has finished.
+    VkBuffer staging = VK_NULL_HANDLE;
+};
+
 /// What a pass may use while recording. The struct, `cmd`, its spans and recordInPassBarriers
 /// are valid only during the call; the pointers and handles are the renderer's, as in
 /// PipelineContext (`frame` is the renderer's FrameData).
@@ -111,6 +124,13 @@ struct RecordContext {
     VkSampler repeatSampler = VK_NULL_HANDLE;  ///< Trilinear, repeat in U, clamp in V (equirect).
     const FrameData* frame = nullptr;
     uint64_t frameIndex = 0;
+    /// Records, outside any render pass (a graphics pass calls it from recordBeforeRenderPass),
+    /// the compiler's plan for filling sampled images (planSampledImageUploads): each image's
+    /// mip 0 copied from its staging buffer, the rest of its chain blitted down, and the
+    /// barriers that leave it in SHADER_READ_ONLY_OPTIMAL, visible to the fragment and compute
+    /// shaders of this frame and of later ones. A pass records no barrier of its own. Throws
+    /// ExecutorError for shapes that plan refuses.
+    std::function<void(std::span<const SampledImageFill>)> fillSampledImages;
     /// Records the plan's in-pass barriers of this pass (Plan::inPassBarriers()). A pass with a
     /// ReadWrite transfer calls it once, between its copies out and its copies in; it is the
     /// only barrier a pass may record, and the executor provides it.

@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -44,5 +45,21 @@ struct SetupOptions {
 /// image that `frame` leaves written (a buffer, unknown, or unused by the plan). Like
 /// planSetup's, the result holds its own share of `frame`'s name tables.
 [[nodiscard]] Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view resource);
+
+/// An image that the application fills from the host once and then samples, e.g. a model's
+/// texture: 2D, one layer, a full mip chain.
+struct SampledImageShape {
+    std::string name;  ///< unique among the images of one call; names the steps
+    FormatInfo format;
+    uint32_t width = 0, height = 0;
+};
+
+/// The steps that fill sampled images outside any frame's graph: per image, an Upload of mip 0
+/// (every image arrives UNDEFINED), a Downsample of each further mip from the one above, and
+/// final barriers that leave every mip in SHADER_READ_ONLY_OPTIMAL, visible to the sampled
+/// reads of later fragment and compute shaders (the ShaderRead external state). The plan's graph is made for it (one external image per
+/// shape, in order). Throws GraphError for an empty list, a repeated or bad name, a format the
+/// executor cannot fill from RGBA (depth, stencil) or a zero or too large size.
+[[nodiscard]] Plan planSampledImageUploads(std::span<const SampledImageShape> images);
 
 }  // namespace skygraph

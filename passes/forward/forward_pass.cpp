@@ -1,6 +1,7 @@
 // ForwardPass: the scene's spheres, planes and glTF meshes, metal/rough GGX, into hdr_color
 // and a reverse-Z depth buffer (GREATER test, cleared to 0 by the graph).
 #include "builtin_passes.hpp"
+#include "model_resources.hpp"
 #include "scene_camera.hpp"
 #include "vk_util.hpp"
 
@@ -32,7 +33,9 @@ Meshes buildMeshes() {
             const double phi = 2.0 * math::kPi<double> * j / kSlices;
             const float x = float(std::sin(theta) * std::cos(phi)), y = float(std::cos(theta)),
                         z = float(std::sin(theta) * std::sin(phi));
-            m.vertices.push_back({{x, y, z}, {x, y, z}});
+            // Untextured: the UVs and tangents are never sampled, only well-formed.
+            const float tx = float(-std::sin(phi)), tz = float(std::cos(phi));
+            m.vertices.push_back({{x, y, z}, {x, y, z}, {float(j) / kSlices, float(i) / kStacks}, {tx, 0, tz, 1}});
         }
     }
     for (uint32_t i = 0; i < kStacks; ++i)
@@ -44,7 +47,7 @@ Meshes buildMeshes() {
     m.planeFirstIndex = m.sphereIndexCount;
     const auto base = static_cast<uint32_t>(m.vertices.size());
     for (float x : {-1.0f, 1.0f})
-        for (float z : {-1.0f, 1.0f}) m.vertices.push_back({{x, 0, z}, {0, 1, 0}});
+        for (float z : {-1.0f, 1.0f}) m.vertices.push_back({{x, 0, z}, {0, 1, 0}, {0, 0}, {1, 0, 0, 1}});
     m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base + 1, base + 3, base + 2});
     m.planeIndexCount = 6;
     return m;
@@ -82,24 +85,38 @@ public:
         }
         recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/forward.frag",
                                         {{"FORWARD_IBL", ibl_ ? "1" : "0"}});
-        if (ibl_) {
-            for (uint32_t b = 0; b < 3; ++b)
-                recipe.bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-            pushDescriptors_ = pushDescriptorFunction(ctx.device);
-        }
+        // Bindings 0-2: the IBL products; 3-7: a material's textures (TextureSlot).
+        for (uint32_t b = ibl_ ? 0 : kFirstTextureBinding; b < kFirstTextureBinding + kTextureSlots; ++b)
+            recipe.bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+        pushDescriptors_ = pushDescriptorFunction(ctx.device);
         recipe.renderPass = ctx.renderPass;
         recipe.depthTest = true;
         recipe.depthWrite = true;
         recipe.depthCompare = VK_COMPARE_OP_GREATER;  // reverse-Z: nearer is larger
         recipe.vertexBindings = {{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX}};
         recipe.vertexAttributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
-                                   {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)}};
+                                   {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+                                   {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+                                   {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}};
         recipe.pushConstantBytes = sizeof(Push);
         GraphicsPipeline pipeline = createGraphicsPipeline(ctx.device, recipe);
         device_ = ctx.device;
         physicalDevice_ = ctx.physicalDevice;
-        if (!vertexBuffer_) createMeshBuffer();
+        if (!vertices_.buffer) createMeshBuffer();
+        if (!models_) models_ = std::make_unique<ModelResources>(ctx.device, ctx.physicalDevice);
         pipeline_ = std::move(pipeline);
+    }
+
+    /// The textures of models drawn for the first time, filled by the compiler's upload steps
+    /// before the render pass begins.
+    void recordBeforeRenderPass(const RecordContext& ctx) override {
+        std::vector<SampledImageFill> fills;
+        models_->prepareDefault(fills);
+        if (const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr)
+            for (const SceneObject& object : scene->objects)
+                if (const auto* model = std::get_if<GltfModel>(&object.shape))
+                    models_->prepare(model->mesh, ctx.frameIndex, fills);
+        if (!fills.empty()) ctx.fillSampledImages(fills);
     }
 
     void record(const RecordContext& ctx) override {
@@ -114,9 +131,9 @@ public:
         vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
         setViewportAndScissor(ctx.cmd, ctx.renderArea);
         const VkDeviceSize offset = 0;
-        const VkBuffer vb = vertexBuffer_.get();
+        const VkBuffer vb = vertices_.buffer.get();
         vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &vb, &offset);
-        vkCmdBindIndexBuffer(ctx.cmd, indexBuffer_.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdBindIndexBuffer(ctx.cmd, indices_.buffer.get(), 0, VK_INDEX_TYPE_UINT32);
         if (ibl_) {
             VkDescriptorImageInfo images[3];
             VkWriteDescriptorSet writes[3];
@@ -127,6 +144,7 @@ public:
             }
             pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), 0, 3, writes);
         }
+        bindMaterialTextures(ctx, nullptr, nullptr);  // the analytic objects: white, flat
         // The environment's rotation about +Y, as the skybox applies it (radians).
         const float rotation = scene->environment ? float(math::radians(scene->environment->rotationDeg)) : 0.0f;
         for (const SceneObject& object : scene->objects) {
@@ -138,10 +156,11 @@ public:
             push.baseColorMetallic[3] = float(mat.metallic);
             push.planeNormalRoughness[3] = float(mat.roughness);
             push.aoViewKind[0] = float(mat.ao);
-            push.aoViewKind[1] = float(debugViewIndex(scene->debugView));
+            push.aoViewKind[1] = kNeverDiscard;
+            push.aoViewKind[2] = kindAndView(0, scene->debugView);
             push.aoViewKind[3] = rotation;
             if (const auto* model = std::get_if<GltfModel>(&object.shape)) {
-                drawModel(ctx, *model, push, view.position);
+                drawModel(ctx, *model, push, view.position, scene->debugView);
                 continue;
             }
             uint32_t first = 0, count = meshes_.sphereIndexCount;
@@ -160,7 +179,7 @@ public:
                     push.planeNormalRoughness[i] = float(n[i]);
                 }
                 push.originAndScale[3] = float(plane.halfExtent.value_or(kInfinitePlaneHalfSize));
-                push.aoViewKind[2] = 1.0f;
+                push.aoViewKind[2] = kindAndView(1, scene->debugView);
                 first = meshes_.planeFirstIndex;
                 count = meshes_.planeIndexCount;
             }
@@ -168,33 +187,48 @@ public:
                                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
             vkCmdDrawIndexed(ctx.cmd, count, 1, first, 0, 0);
         }
-        releaseUnusedModels(ctx.frameIndex);
+        models_->releaseUnused(ctx.frameIndex);
     }
 
 private:
-    /// A glTF model's vertices and indices on the device, made on its first draw. Holding the
-    /// mesh keeps its address from being reused by another while the entry exists.
-    struct ModelBuffers {
-        std::shared_ptr<const TriangleMesh> mesh;
-        vk::Memory vertexMemory, indexMemory;
-        vk::Buffer vertexBuffer, indexBuffer;
-        uint64_t lastFrame = 0;
-    };
-
     struct Push;
 
-    void drawModel(const RecordContext& ctx, const GltfModel& model, Push push, const math::Vec3<double>& eye) {
-        ModelBuffers& buffers = modelBuffers(*model.mesh, model.mesh, ctx.frameIndex);
+    /// Alpha-mask threshold that no texel's alpha falls below.
+    static constexpr float kNeverDiscard = -1.0f;
+    static constexpr uint32_t kFirstTextureBinding = 3;
+
+    /// The shader's object kind (0 sphere, 1 plane, 2 mesh) and debug view in one float.
+    static float kindAndView(int kind, DebugView view) { return float(kind + 8 * debugViewIndex(view)); }
+
+    /// Pushes bindings 3-7: `material`'s textures of `model`, or white for each it lacks.
+    void bindMaterialTextures(const RecordContext& ctx, const ModelResources::Model* model, const MeshMaterial* material) {
+        VkDescriptorImageInfo images[kTextureSlots];
+        if (!material) {
+            for (auto& image : images) image = models_->defaultBinding();
+        } else {
+            images[BaseColor] = models_->binding(model, material->baseColorTexture, true);
+            images[MetallicRoughness] = models_->binding(model, material->metallicRoughnessTexture, false);
+            images[Normal] = models_->binding(model, material->normalTexture, false);
+            images[Occlusion] = models_->binding(model, material->occlusionTexture, false);
+            images[Emissive] = models_->binding(model, material->emissiveTexture, true);
+        }
+        VkWriteDescriptorSet writes[kTextureSlots];
+        for (uint32_t t = 0; t < kTextureSlots; ++t) writes[t] = sampledImageWrite(kFirstTextureBinding + t, &images[t]);
+        pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), 0, kTextureSlots, writes);
+    }
+
+    void drawModel(const RecordContext& ctx, const GltfModel& model, Push push, const math::Vec3<double>& eye,
+                   DebugView debugView) {
+        const ModelResources::Model* gpu = models_->find(*model.mesh);
+        if (!gpu) return;  // recordBeforeRenderPass prepares every model of the scene
         const VkDeviceSize offset = 0;
-        const VkBuffer vb = buffers.vertexBuffer.get();
+        const VkBuffer vb = gpu->vertices.buffer.get();
         vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &vb, &offset);
-        vkCmdBindIndexBuffer(ctx.cmd, buffers.indexBuffer.get(), 0, VK_INDEX_TYPE_UINT32);
+        vkCmdBindIndexBuffer(ctx.cmd, gpu->indices.buffer.get(), 0, VK_INDEX_TYPE_UINT32);
         // World-space vertices, placed camera-relative by the shader's origin (-eye, in double
-        // here): kind 2, emissive where planes keep their normal.
+        // here). Kind 2 reads the push constants its own way (shaders/passes/forward.frag).
         for (int i = 0; i < 3; ++i) push.originAndScale[i] = float(-eye[i]);
-        push.originAndScale[3] = 1.0f;
-        push.aoViewKind[0] = 1.0f;
-        push.aoViewKind[2] = 2.0f;
+        push.aoViewKind[2] = kindAndView(2, debugView);
         for (const MeshPrimitive& primitive : model.mesh->primitives) {
             const MeshMaterial& m = primitive.material;
             for (int i = 0; i < 3; ++i) {
@@ -203,35 +237,23 @@ private:
             }
             push.baseColorMetallic[3] = float(m.metallic);
             push.planeNormalRoughness[3] = float(m.roughness);
+            // Without a normal texture the white default must not tilt the normal: scale 0.
+            push.originAndScale[3] = m.normalTexture.present() ? float(m.normalScale) : 0.0f;
+            push.aoViewKind[0] = float(m.occlusionStrength);
+            // Mask: discard where texture alpha * factor alpha < cutoff.
+            push.aoViewKind[1] = m.alphaMode != MeshAlphaMode::Mask ? kNeverDiscard
+                                 : m.baseColor[3] > 0.0 ? float(m.alphaCutoff / m.baseColor[3])
+                                                        : 2.0f;  // above every alpha: all discarded
+            bindMaterialTextures(ctx, gpu, &m);
             vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(),
                                VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(push), &push);
             vkCmdDrawIndexed(ctx.cmd, primitive.indexCount, 1, primitive.firstIndex, 0, 0);
         }
-        // The next analytic object binds the built-in meshes again.
-        const VkBuffer builtin = vertexBuffer_.get();
+        // The next analytic object binds the built-in meshes and the default textures again.
+        const VkBuffer builtin = vertices_.buffer.get();
         vkCmdBindVertexBuffers(ctx.cmd, 0, 1, &builtin, &offset);
-        vkCmdBindIndexBuffer(ctx.cmd, indexBuffer_.get(), 0, VK_INDEX_TYPE_UINT32);
-    }
-
-    ModelBuffers& modelBuffers(const TriangleMesh& mesh, const std::shared_ptr<const TriangleMesh>& owner, uint64_t frame) {
-        for (ModelBuffers& b : models_)
-            if (b.mesh.get() == &mesh) return b.lastFrame = frame, b;
-        ModelBuffers b;
-        b.mesh = owner;
-        b.lastFrame = frame;
-        hostBuffer(mesh.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, b.vertexBuffer,
-                   b.vertexMemory, mesh.vertices.data());
-        hostBuffer(mesh.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, b.indexBuffer,
-                   b.indexMemory, mesh.indices.data());
-        models_.push_back(std::move(b));
-        return models_.back();
-    }
-
-    /// Models the scene no longer draws are freed once no frame in flight can still read
-    /// them: a frame slot is recorded again only after its previous frame finished, and there
-    /// are at most 8 slots.
-    void releaseUnusedModels(uint64_t frame) {
-        std::erase_if(models_, [&](const ModelBuffers& b) { return frame > b.lastFrame + 16; });
+        vkCmdBindIndexBuffer(ctx.cmd, indices_.buffer.get(), 0, VK_INDEX_TYPE_UINT32);
+        bindMaterialTextures(ctx, nullptr, nullptr);
     }
 
     struct Push {  // matches `Draw` in shaders/passes/forward.{vert,frag}
@@ -243,38 +265,12 @@ private:
     };
     static_assert(sizeof(Push) == 128, "the push constant budget every device guarantees");
 
-    // Geometry in host-visible memory, written before any frame that reads it is submitted
-    // (the submit makes host writes visible to the device).
-    void hostBuffer(VkDeviceSize size, VkBufferUsageFlags usage, vk::Buffer& buffer, vk::Memory& memory,
-                    const void* data) {
-        VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
-        bi.size = size;
-        bi.usage = usage;
-        VkBuffer b;
-        vk::check(vkCreateBuffer(device_, &bi, nullptr, &b), "vkCreateBuffer");
-        buffer = vk::Buffer(device_, b);
-        VkMemoryRequirements req;
-        vkGetBufferMemoryRequirements(device_, b, &req);
-        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-        ai.allocationSize = req.size;
-        ai.memoryTypeIndex = vk::findMemoryType(physicalDevice_, req.memoryTypeBits,
-                                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-        VkDeviceMemory mem;
-        vk::check(vkAllocateMemory(device_, &ai, nullptr, &mem), "vkAllocateMemory");
-        memory = vk::Memory(device_, mem);
-        vk::check(vkBindBufferMemory(device_, b, mem, 0), "vkBindBufferMemory");
-        void* mapped;
-        vk::check(vkMapMemory(device_, mem, 0, size, 0, &mapped), "vkMapMemory");
-        std::memcpy(mapped, data, size);
-        vkUnmapMemory(device_, mem);
-    }
-
     void createMeshBuffer() {
         meshes_ = buildMeshes();
-        hostBuffer(meshes_.vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, vertexBuffer_,
-                   vertexMemory_, meshes_.vertices.data());
-        hostBuffer(meshes_.indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, indexBuffer_,
-                   indexMemory_, meshes_.indices.data());
+        vertices_ = makeHostBuffer(device_, physicalDevice_, meshes_.vertices.size() * sizeof(Vertex),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, meshes_.vertices.data());
+        indices_ = makeHostBuffer(device_, physicalDevice_, meshes_.indices.size() * sizeof(uint32_t),
+                                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, meshes_.indices.data());
     }
 
     static constexpr const char* kIblSlots[3] = {"irradiance", "prefiltered", "brdf_lut"};
@@ -283,9 +279,8 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
     Meshes meshes_;
-    vk::Memory vertexMemory_, indexMemory_;
-    vk::Buffer vertexBuffer_, indexBuffer_;
-    std::vector<ModelBuffers> models_;
+    HostBuffer vertices_, indices_;  ///< the built-in meshes
+    std::unique_ptr<ModelResources> models_;
     GraphicsPipeline pipeline_;
 };
 

@@ -22,23 +22,50 @@ layout(set = 0, binding = 0) uniform samplerCube irradianceMap;
 layout(set = 0, binding = 1) uniform samplerCube prefilteredMap;
 layout(set = 0, binding = 2) uniform sampler2D brdfLut;
 #endif
+// A glTF material's textures; white (and a normal scale of 0) where it has none.
+layout(set = 0, binding = 3) uniform sampler2D baseColorTexture;         // sRGB view
+layout(set = 0, binding = 4) uniform sampler2D metallicRoughnessTexture; // G roughness, B metallic
+layout(set = 0, binding = 5) uniform sampler2D normalTexture;            // tangent space
+layout(set = 0, binding = 6) uniform sampler2D occlusionTexture;         // R
+layout(set = 0, binding = 7) uniform sampler2D emissiveTexture;          // sRGB view
 
 layout(location = 0) in vec3 inRelativePosition;
 layout(location = 1) in vec3 inNormal;
+layout(location = 2) in vec2 inUv;
+layout(location = 3) in vec4 inTangent;
 layout(location = 0) out vec4 outColor;
 
 void main() {
     vec3 n = normalize(inNormal);
     vec3 v = normalize(-inRelativePosition);
-    if (dot(n, v) < 0.0) n = -n;  // planes are two-sided
+    if (dot(n, v) < 0.0) n = -n;  // planes and double-sided meshes show both faces
     vec3 baseColor = draw.baseColorMetallic.rgb;
     float metallic = draw.baseColorMetallic.a;
-    float roughness = clamp(draw.planeNormalRoughness.w, 0.045, 1.0);
+    float perceptualRoughness = draw.planeNormalRoughness.w;
     float ao = draw.aoViewKind.x;
-    int view = int(draw.aoViewKind.y + 0.5);
+    vec3 emissive = vec3(0.0);
+    int kindAndView = int(draw.aoViewKind.z + 0.5);
+    int kind = kindAndView % 8, view = kindAndView / 8;
+    if (kind == 2) {
+        // glTF 2.0 metallic-roughness: each texture scales its factor.
+        vec4 base = texture(baseColorTexture, inUv);
+        if (base.a < draw.aoViewKind.y) discard;  // alpha mask: cutoff / the factor's alpha
+        baseColor *= base.rgb;
+        vec4 mr = texture(metallicRoughnessTexture, inUv);
+        perceptualRoughness *= mr.g;
+        metallic *= mr.b;
+        vec3 tn = texture(normalTexture, inUv).xyz * 2.0 - 1.0;
+        tn.xy *= draw.originAndScale.w;
+        vec3 t = normalize(inTangent.xyz - n * dot(n, inTangent.xyz));
+        vec3 b = cross(n, t) * (inTangent.w < 0.0 ? -1.0 : 1.0);
+        n = normalize(t * tn.x + b * tn.y + n * max(tn.z, 1e-3));
+        ao = 1.0 + ao * (texture(occlusionTexture, inUv).r - 1.0);
+        emissive = draw.planeNormalRoughness.rgb * texture(emissiveTexture, inUv).rgb;
+    }
+    float roughness = clamp(perceptualRoughness, 0.045, 1.0);
     if (view == 1) { outColor = vec4(n * 0.5 + 0.5, 1.0); return; }
     if (view == 2) { outColor = vec4(vec3(metallic), 1.0); return; }
-    if (view == 3) { outColor = vec4(vec3(draw.planeNormalRoughness.w), 1.0); return; }
+    if (view == 3) { outColor = vec4(vec3(perceptualRoughness), 1.0); return; }
     if (view == 4) { outColor = vec4(vec3(ao), 1.0); return; }
 
     float alpha = roughness * roughness;
@@ -66,6 +93,5 @@ void main() {
     vec3 ambient = mix(vec3(0.18, 0.16, 0.14), vec3(0.45, 0.6, 0.9), n.y * 0.5 + 0.5) * 0.6;
     vec3 color = direct + ambient * (diffuseColor + f0 * 0.25) * ao;
 #endif
-    if (draw.aoViewKind.z > 1.5) color += draw.planeNormalRoughness.rgb;  // a glTF mesh's emissive
-    outColor = vec4(color, 1.0);
+    outColor = vec4(color + emissive, 1.0);
 }

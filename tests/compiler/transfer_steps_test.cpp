@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -214,6 +215,73 @@ TEST(Setup, BadUploadsAreErrorsNamingTheResource) {
     EXPECT_NE(messageOf([&] { (void)planSetup(g, frame, {{"verts"}, {}}); }).find("'verts': it is a buffer"),
               std::string::npos);
     EXPECT_NE(messageOf([&] { (void)planSetup(g, frame, {{"tex"}, {"tex"}}); }).find("imported"), std::string::npos);
+}
+
+TEST(SampledImageUploads, UploadMipZeroDownsampleTheRestAndLeaveEveryMipReadyToSample) {
+    const SampledImageShape shapes[] = {{"albedo", *findFormat("R8G8B8A8_SRGB"), 4, 2},
+                                        {"one", *findFormat("R8G8B8A8_UNORM"), 1, 1}};
+    const Plan plan = planSampledImageUploads(shapes);
+    std::vector<std::string> names;
+    for (const PlannedPass& p : plan.passes()) names.emplace_back(std::string(p.name) + ":" + std::string(p.type));
+    // albedo: 4x2, 2x1, 1x1. one: a single level, nothing to downsample.
+    EXPECT_EQ(names, (std::vector<std::string>{"upload albedo:Upload", "downsample albedo to mip 1:Downsample",
+                                               "downsample albedo to mip 2:Downsample", "upload one:Upload"}));
+    ASSERT_EQ(plan.resources().size(), 2u);
+    EXPECT_EQ(plan.resources()[0].name, "albedo");
+    // Each upload: UNDEFINED -> TRANSFER_DST of mip 0 alone, nothing before it to wait for.
+    for (const size_t i : {size_t(0), size_t(3)}) {
+        ASSERT_EQ(plan.passes()[i].barriers.size(), 1u);
+        const Barrier& b = plan.passes()[i].barriers[0];
+        EXPECT_EQ(b.srcStages, 0u);
+        EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+        EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        EXPECT_EQ(b.dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);  // ALL_TRANSFER: copies and blits
+        EXPECT_EQ(b.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        EXPECT_EQ(b.range, (SubresourceRange{0, 1, 0, 1}));
+    }
+    // Downsample to mip m: m becomes TRANSFER_DST from UNDEFINED; m - 1, just written, becomes
+    // TRANSFER_SRC after that write (read-after-write).
+    for (uint32_t m = 1; m < 3; ++m) {
+        const PlannedPass& step = plan.passes()[m];
+        ASSERT_EQ(step.barriers.size(), 2u);
+        EXPECT_EQ(step.barriers[0].range, (SubresourceRange{m, 1, 0, 1}));
+        EXPECT_EQ(step.barriers[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+        EXPECT_EQ(step.barriers[1].range, (SubresourceRange{m - 1, 1, 0, 1}));
+        EXPECT_EQ(step.barriers[1].srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        EXPECT_EQ(step.barriers[1].dstAccess, VK_ACCESS_2_TRANSFER_READ_BIT);
+        EXPECT_EQ(step.barriers[1].newLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    }
+    // The finals: every level of both images to SHADER_READ_ONLY for fragment and compute
+    // sampling; the levels last written make that write visible, those last read (the blits'
+    // sources) need only the execution dependency.
+    std::vector<std::pair<std::string, uint32_t>> finals;
+    for (const Barrier& b : plan.finalBarriers()) {
+        const std::string name(plan.resources()[b.resource].name);
+        finals.emplace_back(name, b.range.baseMip);
+        const bool written = name == "one" || b.range.baseMip == 2;
+        EXPECT_EQ(b.range.mipCount, 1u);
+        EXPECT_EQ(b.oldLayout, written ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        EXPECT_EQ(b.srcAccess, written ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_NONE);
+        EXPECT_NE(b.srcStages & VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0u);
+        EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        EXPECT_EQ(b.dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        EXPECT_EQ(b.dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    }
+    std::sort(finals.begin(), finals.end());
+    EXPECT_EQ(finals, (std::vector<std::pair<std::string, uint32_t>>{{"albedo", 0}, {"albedo", 1}, {"albedo", 2}, {"one", 0}}));
+}
+
+TEST(SampledImageUploads, BadShapesAreErrorsNamingTheImage) {
+    const FormatInfo rgba = *findFormat("R8G8B8A8_UNORM");
+    const auto problem = [&](std::vector<SampledImageShape> shapes) {
+        return messageOf([&] { (void)planSampledImageUploads(shapes); });
+    };
+    EXPECT_NE(problem({}).find("no images"), std::string::npos);
+    EXPECT_NE(problem({{"a", rgba, 2, 2}, {"a", rgba, 2, 2}}).find("'a': another image has that name"), std::string::npos);
+    EXPECT_NE(problem({{"d", *findFormat("D32_SFLOAT"), 2, 2}}).find("'d': its format is not a colour format"),
+              std::string::npos);
+    EXPECT_NE(problem({{"z", rgba, 0, 2}}).find("'z': 0x2 is outside 1..16384"), std::string::npos);
+    EXPECT_NE(problem({{"big", rgba, 16385, 1}}).find("'big': 16385x1"), std::string::npos);
 }
 
 TEST(ImageRead, CopiesEveryLevelAndReturnsTheImageToTheLayoutTheFrameLeftIt) {

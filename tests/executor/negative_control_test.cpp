@@ -7,6 +7,8 @@
 #include "plan_editor.hpp"
 #include "renderer_access.hpp"
 
+#include <skygraph/scene.hpp>
+
 #include <algorithm>
 
 namespace skygraph::test {
@@ -251,6 +253,44 @@ TEST_F(NegativeControl, UnscopedBarrierBetweenTwoDownsamplesIsCaught) {
     };
     run(false);
     ASSERT_EQ(sharedDevice().messageCount(), 0u) << "the intact setup must be clean:\n" << formatMessages(sharedDevice());
+    allowMessages();
+    run(true);
+    EXPECT_TRUE(sharedDevice().hasMessage("SYNC-HAZARD-WRITE-AFTER-WRITE"))
+        << "expected the transition to race the blit that wrote mip 1; got:\n" << formatMessages(sharedDevice());
+}
+
+TEST_F(NegativeControl, UnscopedBarrierInAModelTexturesMipChainIsCaught) {
+    // The forward pass fills a glTF model's textures with the compiler's steps
+    // (planSampledImageUploads) in the frame that first draws it.
+    const PassLibrary library = PassLibrary::withBuiltins();
+    const Scene scene = loadSceneFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "tests/passes/scenes/box_textured_gltf.json");
+    GraphDesc g = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs/raster.json", library.registry());
+    CompileOptions co = sizedOptions();
+    co.features = sceneFeatures(scene);
+    co = headless(g, std::move(co));
+    const CompiledGraph c(std::move(g), std::move(co));
+    const auto run = [&](bool weaken) {
+        RendererOptions ro;
+        ro.passes = &library;
+        Renderer r(sharedDevice(), c, ro);
+        bool edited = false;
+        if (weaken)
+            RendererAccess::editSampledImagePlans(r, [&](Plan& fill) {
+                for (size_t p = 0; p < fill.passes().size(); ++p)
+                    if (fill.passes()[p].name.find("to mip 2") != std::string_view::npos && !edited) {
+                        Barrier& raw = detail::PlanEditor::barriersOf(fill, p)[1];  // mip 1, written just before
+                        raw.srcStages = VK_PIPELINE_STAGE_2_NONE;
+                        raw.srcAccess = VK_ACCESS_2_NONE;
+                        edited = true;
+                    }
+            });
+        r.frameData().set(scene);
+        r.renderFrame();
+        r.waitIdle();
+        EXPECT_EQ(edited, weaken) << "a texture with at least three mips";
+    };
+    run(false);
+    ASSERT_EQ(sharedDevice().messageCount(), 0u) << "the intact fill must be clean:\n" << formatMessages(sharedDevice());
     allowMessages();
     run(true);
     EXPECT_TRUE(sharedDevice().hasMessage("SYNC-HAZARD-WRITE-AFTER-WRITE"))

@@ -108,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
                                            Case{"studio_equirect", "scenes/studio", "", ""},
                                            Case{"studio_cubemap", "scenes/studio", "cubemap", ""},
                                            // glTF from Debian's assimp-testmodels: one box, three containers
-                                           Case{"box_textured_gltf", "tests/passes/scenes/box_textured_gltf", "", "box_textured"},
+                                           Case{"box_textured_gltf", "tests/passes/scenes/box_textured_gltf", "", ""},
                                            Case{"box_textured_glb", "tests/passes/scenes/box_textured_glb", "", "box_textured"},
                                            Case{"box_textured_embedded", "tests/passes/scenes/box_textured_embedded", "", "box_textured"},
                                            Case{"clearcoat", "tests/passes/scenes/clearcoat", "", ""},
