@@ -5,12 +5,13 @@
 // Writes a CSV; bench/study_plot.py draws the Pareto plot; docs/tradeoffs.md reads both.
 //
 //   study [--size 128x96] [--out study.csv] [--device llvmpipe] [--pt-reference-spp 2048]
-//         [--environment on|off] [--validate on|off]
+//         [--environment on|off] [--validate on|off] [--gltf-scene tests/passes/scenes/box_textured_glb.json]
 //
 // Knobs swept here: the HDR target (fp16 / fp32), each tonemap operator, cube face size and
 // supersampling, IBL sample counts, cubemap against direct equirect sampling of the sky (an
 // HDR equirect of the procedural sky, baked through graphs/ibl.json per point), path-tracer
-// samples per pixel. References: raster points against the fp32 frame tonemapped in double
+// samples per pixel; and, on a glTF model (BoxTextured, textured), the raster IBL frame against
+// the path tracer. References: raster points against the fp32 frame tonemapped in double
 // precision (include/skygraph/shading_math.hpp); environment points against the richest bake
 // (256 faces, 4x4 supersampling, 4096 samples); path-tracer points against the same tracer
 // at --pt-reference-spp with an independent sample stream. Also printed: sRGB encode vs pow(1/2.2) and the two ACES fits against
@@ -50,6 +51,8 @@ struct Options {
     uint32_t ptReferenceSpp = 2048;
     bool environment = true;  ///< --environment off: skip the bakes (smoke runs)
     bool validate = false;    ///< --validate on: validation + sync validation; any message fails the run
+    /// The glTF scene of the "glTF model" point, relative to the source tree.
+    std::filesystem::path gltfScene = "tests/passes/scenes/box_textured_glb.json";
 };
 
 struct Point {
@@ -367,6 +370,8 @@ Options parse(int argc, char** argv) {
             o.validate = v == "on";
         } else if (k == "--environment") {
             o.environment = v != "off";
+        } else if (k == "--gltf-scene") {
+            o.gltfScene = v;
         } else if (k == "--pt-reference-spp") {
             o.ptReferenceSpp = uint32_t(std::stoul(v));
         } else {
@@ -451,6 +456,24 @@ int run(int argc, char** argv) {
         std::tie(p.deMean, p.deMax) = deltaE.compare(rgbOf(envReference.ldr), displayOf(truth, scene.tonemapper, scene.exposureEv));
         points.push_back(p);
         std::printf("path-traced truth with the map: %u spp in %.0f ms wall\n", o.ptReferenceSpp, truthMs);
+
+        // The same comparison on a real model: glTF BoxTextured, its texture sampled by both.
+        Scene model = loadSceneFile(kSource / o.gltfScene);
+        model.tonemapper = scene.tonemapper;
+        double modelBake = 0, modelTruthMs = 0;
+        const RasterFrame modelRaster = renderWithEnvironment(*device, o, model, map, {256, 4, 4096, true}, modelBake);
+        const ImageData modelTruth = pathTracedTruth(*device, o, model, map, o.ptReferenceSpp, modelTruthMs);
+        Point g{"glTF model: raster IBL vs path-traced truth",
+                o.gltfScene.filename().string() + ": cube 256 ss4 n4096 vs " + std::to_string(o.ptReferenceSpp) + " spp"};
+        g.wallMs = modelRaster.wallMs;
+        g.gpuMs = modelRaster.gpuMs;
+        g.bakeMs = modelBake;
+        hdrError(modelRaster.hdr, modelTruth, g);
+        std::tie(g.deMean, g.deMax) =
+            deltaE.compare(rgbOf(modelRaster.ldr), displayOf(modelTruth, model.tonemapper, model.exposureEv));
+        points.push_back(g);
+        std::printf("path-traced truth of %s: %u spp in %.0f ms wall\n", o.gltfScene.string().c_str(),
+                    o.ptReferenceSpp, modelTruthMs);
     }
 
     // Path-tracer samples per pixel against the same tracer at the reference count.

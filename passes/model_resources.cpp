@@ -63,7 +63,7 @@ HostBuffer makeHostBuffer(VkDevice device, VkPhysicalDevice physicalDevice, VkDe
     vk::check(vkBindBufferMemory(device, b, mem, 0), "vkBindBufferMemory");
     void* mapped;
     vk::check(vkMapMemory(device, mem, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
-    std::memcpy(mapped, data, size);
+    if (size > 0) std::memcpy(mapped, data, size);
     vkUnmapMemory(device, mem);
     return h;
 }

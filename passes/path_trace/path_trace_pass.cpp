@@ -1,10 +1,14 @@
 // PathTracePass: progressive path tracing into the `accumulation` image (rgb: the running
-// mean, alpha: the sample count), see shaders/passes/pathtrace.comp. The scene's objects go
-// to the shader through a small host-visible storage buffer, one per frame in a ring so that
-// no frame in flight reads a buffer the host is rewriting. Accumulation starts over whenever
-// the scene, the output extent or the plan changes.
+// mean, alpha: the sample count), see shaders/passes/pathtrace.comp. The scene's analytic
+// objects go to the shader through a small host-visible storage buffer, one per frame in a
+// ring so that no frame in flight reads a buffer the host is rewriting; its glTF models as one
+// BVH over their triangles and their textures' texels (trace_geometry.hpp), built once per
+// set of models. Accumulation starts over whenever the scene, the output
+// extent or the plan changes.
 #include "builtin_passes.hpp"
+#include "model_resources.hpp"  // makeHostBuffer
 #include "scene_camera.hpp"
+#include "trace_geometry.hpp"
 #include "vk_util.hpp"
 
 #include <skygraph/pipeline_builder.hpp>
@@ -79,12 +83,21 @@ public:
                            {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
         if (environmentBound)
             recipe.bindings.push_back({2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+        // 3-8: the meshes' BVH nodes, triangles, vertices, materials, texture table and texels.
+        for (uint32_t b = kNodesBinding; b < kNodesBinding + kMeshBuffers; ++b)
+            recipe.bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
         recipe.pushConstantBytes = sizeof(Push);
         ComputePipeline pipeline = createComputePipeline(ctx.device, recipe);  // throws before anything changes
         pipeline_ = std::move(pipeline);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
         environmentBound_ = environmentBound;
+        device_ = ctx.device;
+        physicalDevice_ = ctx.physicalDevice;
         if (ring_.empty()) createRing(ctx);
+        if (!noMeshes_.buffer) {
+            const uint8_t zeros[64] = {};
+            noMeshes_ = makeHostBuffer(ctx.device, ctx.physicalDevice, sizeof zeros, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, zeros);
+        }
         samplesSoFar_ = 0;  // a new plan or new shaders: start over
     }
 
@@ -100,6 +113,7 @@ public:
         const CameraView view = cameraView(scene, extent);
         RingBuffer& objects = ring_[ctx.frameIndex % kRingSize];
         const uint32_t count = writeObjects(scene, view, objects);
+        const MeshBuffers* meshes = meshBuffersOf(scene, ctx.frameIndex);
 
         Push push{};
         for (int c = 0; c < 3; ++c)
@@ -117,11 +131,14 @@ public:
         const auto sun = scene && scene->environment ? scene->environment->sunDirection
                                                      : SceneEnvironment{}.sunDirection;
         for (int i = 0; i < 3; ++i) push.sun[i] = float(sun[size_t(i)]);
+        // Meshes are in world space: the shader moves its camera-relative rays there.
+        for (int i = 0; i < 3; ++i) push.cameraPosition[i] = float(view.position[i]);
+        push.cameraPosition[3] = meshes && !meshes->geometry.nodes.empty() ? 1.0f : 0.0f;
 
         vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.pipeline.get());
         const VkDescriptorImageInfo image{VK_NULL_HANDLE, accumulation->view, accumulation->usage->layout};
         const VkDescriptorBufferInfo buffer{objects.buffer.get(), 0, bufferBytes()};
-        VkWriteDescriptorSet writes[3]{};
+        VkWriteDescriptorSet writes[3 + kMeshBuffers]{};
         writes[0] = sampledImageWrite(0, &image);
         writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
         writes[1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -134,23 +151,72 @@ public:
         if (environmentBound_) {
             const BoundResource* e = ctx.slot("environment");
             env = {ctx.repeatSampler, e->view, e->usage->layout};
-            writes[2] = sampledImageWrite(2, &env);
-            writeCount = 3;
+            writes[writeCount++] = sampledImageWrite(2, &env);
+        }
+        VkDescriptorBufferInfo meshInfos[kMeshBuffers];
+        for (uint32_t b = 0; b < kMeshBuffers; ++b) {
+            meshInfos[b] = {meshes ? meshes->buffers[b].buffer.get() : noMeshes_.buffer.get(), 0, VK_WHOLE_SIZE};
+            VkWriteDescriptorSet& w = writes[writeCount++];
+            w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstBinding = kNodesBinding + b;
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            w.pBufferInfo = &meshInfos[b];
         }
         pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.layout.get(), 0, writeCount, writes);
         vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         vkCmdDispatch(ctx.cmd, (extent.width + 7) / 8, (extent.height + 7) / 8, 1);
         samplesSoFar_ += uint32_t(samplesPerFrame_);
         (void)count;
+        std::erase_if(meshBuffers_, [&](const auto& m) { return ctx.frameIndex > m->lastFrame + 16; });
     }
 
 private:
+    static constexpr uint32_t kNodesBinding = 3, kMeshBuffers = 6;
+
     struct Push {  // matches `Params` in pathtrace.comp
         float cameraToWorld[3][4];
         float projection[4];
         int32_t frame[4];
         float sun[4];
+        float cameraPosition[4];
     };
+
+    /// The scene's models on the device, for as long as a frame in flight may read them.
+    struct MeshBuffers {
+        TraceGeometry geometry;
+        std::array<HostBuffer, kMeshBuffers> buffers;  ///< bindings 3-8, in order
+        uint64_t lastFrame = 0;
+    };
+
+    /// The geometry of the scene's glTF models, built when their set changes; nullptr when
+    /// the scene has none.
+    const MeshBuffers* meshBuffersOf(const Scene* scene, uint64_t frame) {
+        std::vector<std::shared_ptr<const TriangleMesh>> models;
+        if (scene)
+            for (const SceneObject& o : scene->objects)
+                if (const auto* model = std::get_if<GltfModel>(&o.shape)) models.push_back(model->mesh);
+        if (models.empty()) return nullptr;
+        for (auto& b : meshBuffers_)
+            if (b->geometry.models == models) return b->lastFrame = frame, b.get();
+        auto b = std::make_unique<MeshBuffers>();
+        try {
+            b->geometry = buildTraceGeometry(std::move(models));
+        } catch (const std::length_error& e) {
+            throw ExecutorError(std::string("PathTracePass: ") + e.what());
+        }
+        const auto buffer = [&](const auto& v) {
+            return makeHostBuffer(device_, physicalDevice_, v.size() * sizeof(v[0]), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  v.data());
+        };
+        const TraceGeometry& g = b->geometry;
+        b->buffers = {buffer(g.nodes), buffer(g.triangles), buffer(g.vertices), buffer(g.materials),
+                      buffer(g.textures), buffer(g.texels)};
+        b->lastFrame = frame;
+        meshBuffers_.push_back(std::move(b));
+        return meshBuffers_.back().get();
+    }
+
     struct RingBuffer {
         vk::Memory memory;
         vk::Buffer buffer;
@@ -191,10 +257,7 @@ private:
                                     " objects, more than the " + std::to_string(kMaxObjects) + " it traces");
             for (size_t index = 0; index < scene->objects.size(); ++index) {
                 const SceneObject& o = scene->objects[index];
-                if (const auto* model = std::get_if<GltfModel>(&o.shape))
-                    throw ExecutorError("PathTracePass: " + scene->file + ": objects[" + std::to_string(index) +
-                                        "] is a glTF model (" + model->mesh->file.string() +
-                                        "); the path tracer traces spheres and planes only");
+                if (std::holds_alternative<GltfModel>(o.shape)) continue;  // traced through the BVH
                 GpuObject g{};
                 if (const auto* s = std::get_if<Sphere>(&o.shape)) {
                     for (int i = 0; i < 3; ++i) g.originSize[i] = float(s->center[i] - view.position[i]);
@@ -237,6 +300,10 @@ private:
     uint32_t samplesSoFar_ = 0;
     std::vector<double> lastKey_;
     std::vector<RingBuffer> ring_;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+    HostBuffer noMeshes_;  ///< bound in place of the mesh buffers when the scene has no models
+    std::vector<std::unique_ptr<MeshBuffers>> meshBuffers_;
     ComputePipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors_ = nullptr;
 };
