@@ -14,6 +14,7 @@
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
 #include <skygraph/device.hpp>
+#include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/renderer.hpp>
@@ -465,6 +466,38 @@ TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
     EXPECT_EQ(live.reloads(), reloads + 1);
     for (int i = 0; i < 3; ++i) w.frame();
     live.renderer().waitIdle();
+    expectSilent();
+}
+
+// A file of another size than the running equirect is resampled to it and re-baked beside
+// the frames too: no rebuild, no hitch, no validation message.
+TEST_F(Present, AnEnvironmentFileOfAnotherSizeIsResampledAndRebakedBesideTheFrames) {
+    LiveWindow w(*device_, "scenes/studio.json");
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+    const auto equirect = live.renderer().graph().findResource("equirect")->extent.resolve(96, 64);
+    ImageData other;
+    other.width = equirect[0] / 2 + 3;  // neither the running size nor a multiple of it
+    other.height = equirect[1] / 2 + 1;
+    other.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    for (uint32_t i = 0; i < other.width * other.height; ++i) other.rgba.insert(other.rgba.end(), {0.5f, 1.0f, 2.0f, 1.0f});
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "skygraph-other-size.hdr";
+    writeHdr(file, other);
+    ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
+    EXPECT_TRUE(live.rebaking()) << "re-baked beside the frames, not rebuilt";
+    int frames = 0;
+    while (live.rebaking() && frames < 100) {
+        w.frame();
+        ++frames;
+    }
+    EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
+    EXPECT_EQ(&live.renderer(), running) << "the change rebuilt the renderer";
+    EXPECT_EQ(live.reloads(), reloads + 1);
+    for (int i = 0; i < 3; ++i) w.frame();
+    live.renderer().waitIdle();
+    std::filesystem::remove(file);
     expectSilent();
 }
 

@@ -1,6 +1,8 @@
 // `skygraph view`'s inputs and renderer, rebuilt on a change.
 #include "live_graph.hpp"
 
+#include "equirect_resample.hpp"
+
 #include "procedural_environment.hpp"
 
 #include "shipped_names.hpp"
@@ -170,7 +172,13 @@ bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
     const FrameEnvironment& running = built_->environment;
     // The running image's size is the frame graph's `equirect` (loadFrameInputs sets it).
     const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
-    if (pixels.width != extent[0] || pixels.height != extent[1]) return false;  // another size: rebuild
+    if (pixels.width != extent[0] || pixels.height != extent[1]) {
+        // The running equirect and products keep their sizes, so the bake stays beside the
+        // frames; a rebuild (a graph or scene edit) bakes the file at its own size.
+        spdlog::info("environment: {} is {}x{}; resampled to the running {}x{} for a bake beside the frames", what,
+                     pixels.width, pixels.height, extent[0], extent[1]);
+        pixels = resampleEquirect(pixels, extent[0], extent[1]);
+    }
     if (!baker_)
         baker_ = std::make_unique<EnvironmentBaker>(device_, *running.graph, pixels.width, pixels.height,
                                                     running.products,
@@ -193,7 +201,7 @@ bool LiveGraph::setSunDirection(const Vec3& sun) {
 void LiveGraph::startPendingSunBake() {
     if (!pendingSun_ || !canRebake()) return;
     try {
-        // Of another size than the running equirect (not the sky's): a rebuild bakes the sun.
+        // A bake that cannot start beside the frames: a rebuild bakes the sun.
         if (!rebake(proceduralSkyEquirect(*pendingSun_), "the procedural sky")) rebuild(options_);
         pendingSun_.reset();
     } catch (const std::exception& e) {

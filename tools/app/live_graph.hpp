@@ -48,10 +48,12 @@ public:
     [[nodiscard]] bool feature(std::string_view name) const;
     /// Rebuilds with `name` forced on or off. False (error() says why) keeps what ran.
     bool setFeature(const std::string& name, bool on);
-    /// Another environment: a file, or empty for the procedural sky. A file of the running
-    /// one's size is re-baked beside the frames (EnvironmentBaker) and swapped in by a later
-    /// poll(), the frames going on with the old environment meanwhile; anything else rebuilds.
-    /// False (error() says why) keeps what ran.
+    /// Another environment: a file, or empty for the procedural sky. A file is re-baked
+    /// beside the frames (EnvironmentBaker) and swapped in by a later poll(), the frames going
+    /// on with the old environment meanwhile; one of another size than the running equirect is
+    /// resampled to it first (resampleEquirect), and baked at its own size by the next
+    /// rebuild. While a bake runs, or without a baked environment, it rebuilds. False
+    /// (error() says why) keeps what ran.
     bool setEnvironmentFile(const std::filesystem::path& file);
     /// Moves the procedural sky's sun (unit `sun`): the skybox shows it at once, and the
     /// lighting is re-baked beside the frames and swapped in by a later poll(); a change while
@@ -97,13 +99,13 @@ private:
     struct Built;
     [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options) const;
     bool rebuild(RenderOptions options);
-    /// setEnvironmentFile's re-bake beside the frames; false when `file` needs a rebuild.
+    /// setEnvironmentFile's re-bake beside the frames; false when it needs a rebuild.
     bool rebakeInPlace(const std::filesystem::path& file);
     /// Whether a re-bake beside the frames is possible now (an environment is baked, the frame
     /// graph has an equirect, no bake is pending).
     [[nodiscard]] bool canRebake() const;
-    /// Starts re-baking `pixels` (named `what` in the log); false when they are of another
-    /// size than the running equirect.
+    /// Starts re-baking `pixels` (named `what` in the log), resampled to the running
+    /// equirect's size when they differ; false when the baker cannot start one now.
     bool rebake(HdrImage pixels, const std::string& what);
     void startPendingSunBake();
     void swapRebake();

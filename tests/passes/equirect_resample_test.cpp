@@ -1,0 +1,67 @@
+// resampleEquirect, which lets `skygraph view` bake a file of another size beside its frames:
+// shrinking keeps the map's integral (a sun's power), growing interpolates and wraps around
+// in longitude.
+#include "app/equirect_resample.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <random>
+
+namespace skygraph::test {
+namespace {
+
+HdrImage randomMap(uint32_t w, uint32_t h, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::exponential_distribution<float> radiance(0.5f);
+    HdrImage m{w, h, std::vector<float>(size_t(w) * h * 4)};
+    for (size_t i = 0; i < m.rgba.size(); ++i) m.rgba[i] = i % 4 == 3 ? 1.0f : radiance(rng);
+    return m;
+}
+
+double meanOf(const HdrImage& m, int channel) {
+    double sum = 0.0;
+    for (size_t i = size_t(channel); i < m.rgba.size(); i += 4) sum += m.rgba[i];
+    return sum / (double(m.width) * m.height);
+}
+
+TEST(EquirectResample, ShrinkingKeepsTheMeanAndASunsPower) {
+    // 1000 x 500 to 640 x 320: footprints of 1.5625 texels, partly covered ones included.
+    HdrImage map = randomMap(1000, 500, 5);
+    map.rgba[(size_t(123) * 1000 + 777) * 4] = 50000.0f;  // a one-texel sun
+    const HdrImage small = app::resampleEquirect(map, 640, 320);
+    ASSERT_EQ(small.rgba.size(), size_t(640) * 320 * 4);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(meanOf(small, c), meanOf(map, c), 1e-5 * meanOf(map, c)) << c;
+    EXPECT_NEAR(meanOf(small, 3), 1.0, 1e-6) << "alpha stays 1";
+    // The sun spreads over the texels its footprint touches, with its power intact.
+    double sun = 0.0;
+    for (uint32_t y = 75; y < 82; ++y)
+        for (uint32_t x = 494; x < 501; ++x) sun += small.pixel(x, y)[0] - meanOf(map, 0);
+    EXPECT_NEAR(sun * (1000.0 * 500.0) / (640.0 * 320.0), 50000.0, 50000.0 * 0.01);
+}
+
+TEST(EquirectResample, GrowingInterpolatesAndWrapsInLongitudeOnly) {
+    HdrImage map{2, 2, std::vector<float>(16, 1.0f)};
+    // Columns 0 and 1 hold 0 and 4 in red; rows are equal.
+    for (uint32_t y = 0; y < 2; ++y) {
+        map.rgba[(size_t(y) * 2 + 0) * 4] = 0.0f;
+        map.rgba[(size_t(y) * 2 + 1) * 4] = 4.0f;
+    }
+    const HdrImage big = app::resampleEquirect(map, 8, 4);
+    // Output texel x has its centre at input (x + 0.5) / 4 - 0.5: x = 0 at -0.375, between
+    // column 1 (wrapped around, at -1: weight 0.375) and column 0; x = 2 at 0.125; x = 7 at
+    // 1.375, between column 1 and column 0 wrapped around (at 2: weight 0.375).
+    EXPECT_FLOAT_EQ(big.pixel(0, 0)[0], 4.0f * 0.375f);
+    EXPECT_FLOAT_EQ(big.pixel(2, 0)[0], 4.0f * 0.125f);
+    EXPECT_FLOAT_EQ(big.pixel(7, 0)[0], 4.0f * 0.625f) << "the last column blends back towards column 0";
+    for (uint32_t y = 0; y < 4; ++y) EXPECT_FLOAT_EQ(big.pixel(3, y)[0], big.pixel(3, 0)[0]) << "clamped at the poles";
+}
+
+TEST(EquirectResample, TheSameSizeIsACopy) {
+    const HdrImage map = randomMap(64, 32, 9);
+    EXPECT_EQ(app::resampleEquirect(map, 64, 32).rgba, map.rgba);
+}
+
+}  // namespace
+}  // namespace skygraph::test
