@@ -50,8 +50,10 @@ not_needed=(cmake ninja-build g++ pkg-config libgtest-dev libgmock-dev vulkan-va
 # the SPIR-V tools' shared library (glslang links the static ones).
 skip='^/usr/share/(doc|man|lintian|bug|vulkan/registry|pkgconfig)/|^/usr/bin/|^/usr/include/vulkan/.*\.(hpp|cppm)$|/libSPIRV-Tools-shared\.so|/libSPIRV-Tools-(diff|lint|reduce)\.a$|^/usr/share/(glm|nlohmann)/.*\.(md|txt)$'
 
-# Data the measured scenes read: scenes/studio.json's HDRI (blender-data), as .devbundle/data/.
+# Data the measured scenes read: scenes/studio.json's HDRI (blender-data), as .devbundle/data/,
+# and the glTF models of the reference scenes (assimp-testmodels), as .devbundle/data/gltf/.
 data_files=(/usr/share/blender/datafiles/studiolights/world/studio.exr)
+gltf_dirs=(BoxTextured-glTF-Binary ClearCoat-glTF 2CylinderEngine-glTF-Binary)
 
 # Files that other packages' CMake files check for at configure time (glslang-targets.cmake
 # imports glslang::glslangValidator and glslang::spirv-remap from glslang-tools).
@@ -112,6 +114,8 @@ fi
 
 mkdir -p "$out/data"
 for f in "${data_files[@]}"; do cp "$f" "$out/data/"; done
+mkdir -p "$out/data/gltf"
+for d in "${gltf_dirs[@]}"; do cp -r "/usr/share/assimp/models/glTF2/$d" "$out/data/gltf/"; done
 
 # Debian's validation layer (vulkan-validationlayers), for runs under validation there:
 # .devbundle/layer.tar.xz holds its library and manifest; run-gpu-bench.sh points

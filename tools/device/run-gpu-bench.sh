@@ -19,7 +19,9 @@
 # MEMORY_COMPARE_SIZE), LAYOUTS_BENCH=1 to time the layouts knob on graphs/deferred.json,
 # QUEUES_BENCH=1 to run graphs/async.json and rebake_bench under validation, then timed with
 # separate queues against one (REBAKE_FRAMES, REBAKE_REPS), SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
-# (5) repetitions, interleaved when more than 5), TARGETS the targets built (default: all four).
+# (5) repetitions, interleaved when more than 5), GLTF_CHECK=1 to render the glTF reference
+# scenes raster and path traced under validation (models from .devbundle/data/gltf/), TARGETS
+# the targets built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
 #
@@ -197,6 +199,21 @@ if [ "${QUEUES_BENCH:-0}" = 1 ]; then
     ran "$bin_rebake" && (cd "$src" && SKYGRAPH_SEPARATE_QUEUES=$q SKYGRAPH_BENCH_DEVICE=$device "$bin_rebake" \
       --scene /tmp/studio.json --size 1920x1080 --frames "${REBAKE_FRAMES:-60}" --change-at 20 \
       --reps "${REBAKE_REPS:-5}" --csv "$out/rebake-queues-$q.csv") | tee "$out/rebake-queues-$q.txt"
+  done
+fi
+if [ "${GLTF_CHECK:-0}" = 1 ]; then
+  # The glTF reference scenes (their models carried in .devbundle/data/gltf/ from Debian's
+  # assimp-testmodels) through raster.json and pathtrace.json under validation; the pictures
+  # land in $out for a look beside lavapipe's.
+  for scene in tests/passes/scenes/box_textured_glb.json tests/passes/scenes/clearcoat.json scenes/engine.json; do
+    name=$(basename "$scene" .json)
+    sed "s|/usr/share/assimp/models/glTF2|$here/.devbundle/data/gltf|" "$src/$scene" > "/tmp/$name.json"
+    step "glTF check: $name, raster and path traced (64 spp) under validation"
+    ran "$bin_cli" && (cd "$src" && "$bin_cli" render --device "$device" --validate --scene "/tmp/$name.json" \
+      --width 480 --height 320 --frames 3 -o "$out/$name-raster.png" \
+      && "$bin_cli" render graphs/pathtrace.json --device "$device" --validate --scene "/tmp/$name.json" \
+      --width 480 --height 320 --frames 64 -o "$out/$name-pathtrace.png")
+    echo "$name: rc=$?"
   done
 fi
 step "done"
