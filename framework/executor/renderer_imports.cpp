@@ -24,8 +24,10 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
             continue;
         }
         // A pass implementation may keep its slots' handles for its whole life
-        // (PipelineContext::frameSlots): one that used the old image is replaced.
-        if (ps.implementation) {
+        // (PipelineContext::frameSlots): one that does is replaced. One that reads them while
+        // recording keeps its pipelines, which depend on formats and sizes, not images.
+        const bool remake = ps.implementation && ps.implementation->keepsSlotHandles();
+        if (remake) {
             old.implementations.push_back(std::move(ps.implementation));
             ps.implementation = implementationOf(*ps.pass, *ps.desc);
         }
@@ -33,7 +35,7 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
             if (ps.slots[slot].framebuffer) old.framebuffers.push_back(std::move(ps.slots[slot].framebuffer));
             buildPassSlot(s, ps, slot);
         }
-        createPipelines(s, ps);
+        if (remake) createPipelines(s, ps);
     }
     translateFinalBarriers(s, static_cast<uint32_t>(s.finals.size()));
     retired.push_back(std::move(old));

@@ -167,6 +167,13 @@ public:
     /// dispatches) before the executor begins it; `record` follows inside the render pass with
     /// the same context. The plan's barrier batch is already recorded. By default nothing.
     virtual void recordBeforeRenderPass(const RecordContext& context) { (void)context; }
+
+    /// Whether the implementation keeps image or buffer handles from createPipelines (its
+    /// PipelineContext::frameSlots, say in descriptor sets) rather than reading them from the
+    /// RecordContext each time it records. One that keeps them is made again when
+    /// Renderer::importImage swaps an image it uses; one that does not is kept, pipelines and
+    /// all, and only its framebuffers change. By default true, the safe answer.
+    [[nodiscard]] virtual bool keepsSlotHandles() const noexcept { return true; }
 };
 
 /// Makes the recording code of one pass whenever a renderer builds its plan state; it must not

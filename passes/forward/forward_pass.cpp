@@ -119,6 +119,10 @@ public:
         if (!fills.empty()) ctx.fillSampledImages(fills);
     }
 
+    /// Every handle comes from the RecordContext (push descriptors): an imported image's swap
+    /// keeps this implementation.
+    [[nodiscard]] bool keepsSlotHandles() const noexcept override { return false; }
+
     void record(const RecordContext& ctx) override {
         const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
         if (!scene) return;  // nothing to draw; the render pass still clears

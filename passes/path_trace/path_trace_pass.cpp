@@ -101,6 +101,10 @@ public:
         samplesSoFar_ = 0;  // a new plan or new shaders: start over
     }
 
+    /// Every handle comes from the RecordContext (push descriptors): an imported image's swap
+    /// keeps this implementation.
+    [[nodiscard]] bool keepsSlotHandles() const noexcept override { return false; }
+
     void record(const RecordContext& ctx) override {
         const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
         const BoundResource* accumulation = ctx.slot("accumulation");

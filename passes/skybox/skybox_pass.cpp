@@ -43,6 +43,10 @@ public:
         mode_ = mode;
     }
 
+    /// Every handle comes from the RecordContext (push descriptors): an imported image's swap
+    /// keeps this implementation.
+    [[nodiscard]] bool keepsSlotHandles() const noexcept override { return false; }
+
     void record(const RecordContext& ctx) override {
         const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
         const CameraView view = cameraView(scene, ctx.renderArea);

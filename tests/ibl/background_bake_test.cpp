@@ -108,6 +108,40 @@ TEST_F(BackgroundBake, FramesSampleTheOldCubeUntilTheSwapThenTheNewOne) {
     frame->waitIdle();
 }
 
+// A pass that reads its handles while recording (keepsSlotHandles() false) is kept across an
+// import swap, pipelines and all, and still samples the new cube; one that may keep them is
+// made again.
+TEST_F(BackgroundBake, ASwapKeepsAPassThatReadsItsHandlesWhileRecording) {
+    for (const bool keeps : {false, true}) {
+        int made = 0;
+        library_.add(CubeProbe::typeInfo(keeps ? "KeepingProbe" : "ReadingProbe"), [&made, keeps](const PassDesc&) {
+            ++made;
+            return std::make_unique<CubeProbe>(std::vector<Dir>{{1, 0, 0}}, keeps);
+        });
+        std::string graph = kFrameGraph;
+        graph.replace(graph.find("FaceProbe"), 9, keeps ? "KeepingProbe" : "ReadingProbe");
+        CompileOptions co;
+        co.readbacks = {"probe"};
+        co.outputWidth = co.outputHeight = 16;
+        RendererOptions ro;
+        ro.passes = &library_;
+        ro.framesInFlight = 2;
+        Renderer frame(sharedDevice(), CompiledGraph(parseGraph(graph, "<probe_frame>", library_.registry()), co), ro);
+        app::EnvironmentBake red = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(1, 0, 0), products_, &library_);
+        app::EnvironmentBake blue = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 0, 1), products_, &library_);
+        frame.importImage("environment", red.renderer->shareImage("environment"));
+        frame.renderFrame();
+        EXPECT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f);
+        const int before = made;
+        frame.importImage("environment", blue.renderer->shareImage("environment"));
+        frame.renderFrame();
+        frame.renderFrame();
+        EXPECT_NEAR(frame.readback().rgba[0], 0.0f, 1e-3f) << "the new cube, keeps " << keeps;
+        EXPECT_EQ(made, keeps ? before + 1 : before) << "keeps " << keeps;
+        frame.waitIdle();
+    }
+}
+
 TEST_F(BackgroundBake, ProductsAreNotSharedBeforeTheBackgroundFrameIsFinished) {
     app::EnvironmentBake bake = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
     bake.renderer->renderFrameInBackground();  // one submit on the graphics queue: submitted whole

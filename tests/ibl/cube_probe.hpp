@@ -15,7 +15,12 @@ namespace skygraph::test {
 
 class CubeProbe final : public PassImplementation {
 public:
-    explicit CubeProbe(std::vector<Dir> dirs) : dirs_(std::move(dirs)) {}
+    /// `keepsHandles`: what keepsSlotHandles() says (the probe reads them while recording,
+    /// so either answer is true of it; false lets an import swap keep it).
+    explicit CubeProbe(std::vector<Dir> dirs, bool keepsHandles = true)
+        : dirs_(std::move(dirs)), keepsHandles_(keepsHandles) {}
+
+    [[nodiscard]] bool keepsSlotHandles() const noexcept override { return keepsHandles_; }
 
     void createPipelines(const PipelineContext& ctx) override {
         std::ostringstream src;
@@ -56,6 +61,7 @@ public:
     }
 
 private:
+    bool keepsHandles_ = true;
     std::vector<Dir> dirs_;
     ComputePipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR push_ = nullptr;
