@@ -142,9 +142,9 @@ struct RecordContext {
 };
 
 /// The recording code of one pass instance. Created once per pass of a plan and owned by the
-/// renderer, which destroys it with the plan state (a new plan, a resize, a shader reload) or
-/// when importImage swaps an image it uses, only once the GPU has finished with what it
-/// recorded; not copyable. Vulkan objects
+/// renderer, which destroys it with the plan state (a new plan, a resize, a shader reload) or,
+/// if keepsSlotHandles(), when importImage swaps an image it uses, only once the GPU has
+/// finished with what it recorded; not copyable. Vulkan objects
 /// it creates are its own to destroy. Called on the thread that calls the renderer.
 class PassImplementation {
 public:
