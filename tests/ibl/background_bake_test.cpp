@@ -51,7 +51,8 @@ protected:
         app::resizeEnvironmentGraph(iblGraph_, {kCube, kCube / 2});
     }
 
-    std::unique_ptr<Renderer> frameRenderer() {
+    /// The probe frame of `graph` (kFrameGraph, or a copy probing with another pass type).
+    std::unique_ptr<Renderer> frameRenderer(const std::string& graph = kFrameGraph) {
         CompileOptions co;
         co.readbacks = {"probe"};
         co.outputWidth = co.outputHeight = 16;
@@ -59,7 +60,7 @@ protected:
         ro.passes = &library_;
         ro.framesInFlight = 2;
         return std::make_unique<Renderer>(
-            sharedDevice(), CompiledGraph(parseGraph(kFrameGraph, "<probe_frame>", library_.registry()), co), ro);
+            sharedDevice(), CompiledGraph(parseGraph(graph, "<probe_frame>", library_.registry()), co), ro);
     }
 
     /// The red channel of every face centre of the frame's last read-back.
@@ -120,13 +121,8 @@ TEST_F(BackgroundBake, ASwapKeepsAPassThatReadsItsHandlesWhileRecording) {
         });
         std::string graph = kFrameGraph;
         graph.replace(graph.find("FaceProbe"), 9, keeps ? "KeepingProbe" : "ReadingProbe");
-        CompileOptions co;
-        co.readbacks = {"probe"};
-        co.outputWidth = co.outputHeight = 16;
-        RendererOptions ro;
-        ro.passes = &library_;
-        ro.framesInFlight = 2;
-        Renderer frame(sharedDevice(), CompiledGraph(parseGraph(graph, "<probe_frame>", library_.registry()), co), ro);
+        const std::unique_ptr<Renderer> probeFrame = frameRenderer(graph);
+        Renderer& frame = *probeFrame;
         app::EnvironmentBake red = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(1, 0, 0), products_, &library_);
         app::EnvironmentBake blue = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 0, 1), products_, &library_);
         frame.importImage("environment", red.renderer->shareImage("environment"));
