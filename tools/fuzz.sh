@@ -37,7 +37,7 @@ run() {  # NAME CORPUS SEED_DIR... [-- LIBFUZZER_FLAGS...]
     if [ "${PIPESTATUS[0]}" -ne 0 ]; then
         status=1
         # The whole report and the input, so that a failure on a CI machine can be replayed here.
-        sed -n '/^==[0-9]*==ERROR\|runtime error\|exception escaped\|GraphError without/,/^SUMMARY/p' "$BUILD/$name.log" | head -80
+        sed -n '/^==[0-9]*== \?ERROR\|runtime error\|exception escaped\|GraphError without/,/^SUMMARY/p' "$BUILD/$name.log" | head -80
         for f in "$BUILD"/crash-* "$BUILD"/leak-* "$BUILD"/timeout-* "$BUILD"/oom-*; do
             [ -f "$f" ] && { echo "reproducer $f, base64:"; base64 -w 0 "$f"; echo; }
         done

@@ -93,9 +93,11 @@ void setTangent(MeshVertex& v, const dvec3& t, double w) {
 
 class GltfFlattener {
 public:
-    GltfFlattener(std::filesystem::path file, const tinygltf::Model& model, Diagnostics& diagnostics)
-        : model_(model), diagnostics_(diagnostics),
-          materials_(model, [this](const std::string& path, const std::string& message) { error(path, message); }) {
+    GltfFlattener(std::filesystem::path file, const tinygltf::Model& model, const GltfLimits& limits,
+                  Diagnostics& diagnostics)
+        : model_(model), limits_(limits), diagnostics_(diagnostics),
+          materials_(model, limits.maxImageBytes,
+                     [this](const std::string& path, const std::string& message) { error(path, message); }) {
         mesh_.file = std::move(file);
     }
 
@@ -344,9 +346,10 @@ private:
             materials_.use(out.material, mesh_.images);
             if (failed_) return;
             const size_t newVertices = normals.empty() ? indices.size() : positions.size();
-            if (mesh_.vertices.size() + newVertices > kMaxMeshVertices || mesh_.indices.size() + indices.size() > kMaxMeshIndices)
-                return error(path, "the file has more than " + std::to_string(kMaxMeshVertices) + " vertices or " +
-                                       std::to_string(kMaxMeshIndices) + " indices");
+            if (mesh_.vertices.size() + newVertices > limits_.maxVertices ||
+                mesh_.indices.size() + indices.size() > limits_.maxIndices)
+                return error(path, "the file has more than " + std::to_string(limits_.maxVertices) + " vertices or " +
+                                       std::to_string(limits_.maxIndices) + " indices");
             const auto base = uint32_t(mesh_.vertices.size());
             const auto place = [&](size_t i, const dvec3& localNormal) {
                 const dvec3 wp = dvec3(world * glm::dvec4(positions[i], 1.0));
@@ -451,6 +454,7 @@ private:
     }
 
     const tinygltf::Model& model_;
+    const GltfLimits limits_;
     Diagnostics& diagnostics_;
     GltfMaterials materials_;
     TriangleMesh mesh_;
@@ -470,7 +474,7 @@ dmat4 transformMatrix(const MeshTransform& t) {
 
 std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std::string& name,
                                                const std::filesystem::path& baseDir, const MeshTransform& transform,
-                                               Diagnostics& diagnostics) {
+                                               Diagnostics& diagnostics, const GltfLimits& limits) {
     const auto fail = [&](const std::string& message) {
         diagnostics.add(Diagnostic{name, "", "", "", message});
         return std::nullopt;
@@ -482,7 +486,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         return std::nullopt;
     tinygltf::TinyGLTF reader;
     tinygltf::Model model;
-    ImageHeaderCheck headerCheck{&model, {}};
+    ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
     std::string error, warning;
     bool read = false;
@@ -504,11 +508,11 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     for (const auto& [index, problem] : headerCheck.problems)
         diagnostics.add(Diagnostic{name, "images[" + std::to_string(index) + "]", "", "", problem});
     if (!read || !error.empty() || !headerCheck.problems.empty()) return std::nullopt;
-    return GltfFlattener(name, model, diagnostics).flatten(transformMatrix(transform));
+    return GltfFlattener(name, model, limits, diagnostics).flatten(transformMatrix(transform));
 }
 
 std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,
-                                     Diagnostics& diagnostics) {
+                                     Diagnostics& diagnostics, const GltfLimits& limits) {
     const auto fail = [&](const std::string& message) {
         diagnostics.add(Diagnostic{path.string(), "", "", "", message});
         return std::nullopt;
@@ -522,7 +526,8 @@ std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const Me
     std::ostringstream bytes;
     if (!(bytes << in.rdbuf())) return fail("cannot be read");
     std::optional<TriangleMesh> mesh = loadGltfFromMemory(bytes.str(), path.string(),
-                                                          std::filesystem::absolute(path, ec).parent_path(), transform, diagnostics);
+                                                          std::filesystem::absolute(path, ec).parent_path(), transform,
+                                                          diagnostics, limits);
     if (mesh) mesh->file = std::filesystem::absolute(path, ec);
     return mesh;
 }

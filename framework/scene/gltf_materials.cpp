@@ -42,9 +42,9 @@ bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std
     int width = 0, height = 0, components = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &components))
         return problem("not an image stb can read (" + stbReason() + ")");
-    if (width > int(kMaxMeshTextureSide) || height > int(kMaxMeshTextureSide))
+    if (size_t(width) > check.maxTextureSide || size_t(height) > check.maxTextureSide)
         return problem(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
-                       std::to_string(kMaxMeshTextureSide) + " texels a side");
+                       std::to_string(check.maxTextureSide) + " texels a side");
     image->width = width;
     image->height = height;
     image->component = components;
@@ -58,8 +58,11 @@ bool samplesTextures(const MeshMaterial& m) {
            m.occlusionTexture.present() || m.emissiveTexture.present();
 }
 
-GltfMaterials::GltfMaterials(const tinygltf::Model& model, GltfError error)
-    : model_(model), error_(std::move(error)), meshImageOf_(model.images.size(), kNotDecoded) {}
+GltfMaterials::GltfMaterials(const tinygltf::Model& model, size_t maxImageBytes, GltfError error)
+    : model_(model),
+      maxImageBytes_(maxImageBytes),
+      error_(std::move(error)),
+      meshImageOf_(model.images.size(), kNotDecoded) {}
 
 MeshMaterial GltfMaterials::read(int index, const std::string& reference) {
     MeshMaterial m;
@@ -160,9 +163,10 @@ int32_t GltfMaterials::decode(size_t fileImage, std::vector<MeshImage>& images) 
     if (image.image.empty())  // tinygltf only warns when an image's file is missing
         return error_(path, image.uri.empty() ? "has no data" : "'" + image.uri + "' cannot be read"), -1;
     const size_t bytes = size_t(image.width) * size_t(image.height) * 4;
-    if (decodedBytes_ + bytes > kMaxMeshImageBytes)
+    // Checked before stb runs: it takes a buffer of the header's size before reading any pixel.
+    if (decodedBytes_ + bytes > maxImageBytes_)
         return error_(path, "decoded, the file's images would take " + std::to_string(decodedBytes_ + bytes) +
-                                " bytes, more than " + std::to_string(kMaxMeshImageBytes)), -1;
+                                " bytes, more than " + std::to_string(maxImageBytes_)), -1;
     int width = 0, height = 0, components = 0;
     const std::unique_ptr<stbi_uc, void (*)(void*)> rgba(
         stbi_load_from_memory(image.image.data(), int(image.image.size()), &width, &height, &components, 4),

@@ -20,11 +20,12 @@ namespace skygraph {
 /// those with their JSON paths, which tinygltf's own error text would lack.
 struct ImageHeaderCheck {
     const tinygltf::Model* model = nullptr;
+    size_t maxTextureSide = 0;
     std::map<int, std::string> problems;
 };
 
 /// tinygltf's image callback (`headerCheck`: an ImageHeaderCheck). Checks the header with stb
-/// (a format stb decodes, at most kMaxMeshTextureSide texels a side) and an image's buffer view
+/// (a format stb decodes, at most `maxTextureSide` texels a side) and an image's buffer view
 /// against its buffer, which tinygltf leaves unchecked, then keeps the encoded bytes in
 /// `image->image` (`as_is`). A problem is recorded rather than returned, so that tinygltf
 /// reads on and every bad image is named.
@@ -37,7 +38,8 @@ using GltfError = std::function<void(const std::string& path, const std::string&
 /// The materials of one file's drawn primitives, each image decoded at most once.
 class GltfMaterials {
 public:
-    GltfMaterials(const tinygltf::Model& model, GltfError error);
+    /// Decodes images while their RGBA8 bytes stay within `maxImageBytes` in all.
+    GltfMaterials(const tinygltf::Model& model, size_t maxImageBytes, GltfError error);
 
     /// materials[index] (glTF's default material for -1), checked. Its textures' `image` are
     /// still the file's image indices: use() turns them into TriangleMesh::images indices, once
@@ -54,6 +56,7 @@ private:
     int32_t decode(size_t fileImage, std::vector<MeshImage>& images);
 
     const tinygltf::Model& model_;
+    size_t maxImageBytes_;
     GltfError error_;
     /// By the file's image index: where it is in TriangleMesh::images, or -1 (not decoded yet),
     /// or -2 (it could not be, and that was reported).

@@ -103,12 +103,14 @@ struct MeshTransform {
     std::array<double, 3> scale{1.0, 1.0, 1.0};  ///< each > 0
 };
 
-/// Most vertices and indices one file may bring (a bad count must not exhaust memory).
-inline constexpr size_t kMaxMeshVertices = size_t(1) << 24;
-inline constexpr size_t kMaxMeshIndices = size_t(3) << 24;
-/// Largest image side a file may bring, in texels, and most decoded image bytes in all.
-inline constexpr size_t kMaxMeshTextureSide = 16384;
-inline constexpr size_t kMaxMeshImageBytes = size_t(1) << 30;
+/// What one file may bring, so that a bad count or a forged image header cannot exhaust
+/// memory. A file past any limit is refused with a diagnostic before the memory is taken.
+struct GltfLimits {
+    size_t maxVertices = size_t(1) << 24;
+    size_t maxIndices = size_t(3) << 24;
+    size_t maxTextureSide = 16384;           ///< texels, either side of an image
+    size_t maxImageBytes = size_t(1) << 30;  ///< decoded RGBA8 bytes of all the file's images
+};
 
 /// Reads the glTF file at `path` and flattens its default scene (or scene 0). Appends every
 /// problem to `diagnostics`, each naming `path` and the JSON path in the file (an accessor,
@@ -119,15 +121,16 @@ inline constexpr size_t kMaxMeshImageBytes = size_t(1) << 30;
 /// sparse or normalized position data, required extensions, textures that sample texture
 /// coordinates other than TEXCOORD_0, or that a primitive without TEXCOORD_0 uses, malformed
 /// texture coordinates or tangents, images that are not PNG,
-/// JPEG or another format stb decodes, sizes beyond the limits above.
+/// JPEG or another format stb decodes, sizes beyond `limits`.
 [[nodiscard]] std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,
-                                                   Diagnostics& diagnostics);
+                                                   Diagnostics& diagnostics, const GltfLimits& limits = {});
 
 /// As loadGltf() for a file's bytes in memory (read during the call only): .glb when they
 /// start with its magic, else .gltf text. `name` stands for the file in messages; buffers and
 /// images with relative URIs are read from `baseDir`. Never throws for bad bytes.
 [[nodiscard]] std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std::string& name,
                                                              const std::filesystem::path& baseDir,
-                                                             const MeshTransform& transform, Diagnostics& diagnostics);
+                                                             const MeshTransform& transform, Diagnostics& diagnostics,
+                                                             const GltfLimits& limits = {});
 
 }  // namespace skygraph

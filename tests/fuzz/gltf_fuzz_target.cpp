@@ -20,8 +20,21 @@ namespace {
     std::abort();
 }
 
-void checkMesh(const TriangleMesh& mesh) {
+/// Smaller than the loader's defaults, so that what an input may take stays well inside
+/// libFuzzer's malloc limit (tools/fuzz.sh) while the limits themselves are still reached.
+GltfLimits fuzzLimits() {
+    GltfLimits limits;
+    limits.maxVertices = size_t(1) << 20;
+    limits.maxIndices = size_t(3) << 20;
+    limits.maxTextureSide = 4096;
+    limits.maxImageBytes = size_t(32) << 20;
+    return limits;
+}
+
+void checkMesh(const TriangleMesh& mesh, const GltfLimits& limits) {
     if (mesh.indices.empty() || mesh.indices.size() % 3 != 0) broken("a mesh without whole triangles");
+    if (mesh.vertices.size() > limits.maxVertices || mesh.indices.size() > limits.maxIndices)
+        broken("vertices or indices past the limits");
     for (uint32_t i : mesh.indices)
         if (i >= mesh.vertices.size()) broken("an index past the vertices");
     for (const MeshPrimitive& p : mesh.primitives)
@@ -39,12 +52,12 @@ void checkMesh(const TriangleMesh& mesh) {
     }
     size_t imageBytes = 0;
     for (const MeshImage& image : mesh.images) {
-        if (image.width == 0 || image.height == 0 || image.width > kMaxMeshTextureSide ||
-            image.height > kMaxMeshTextureSide || image.rgba.size() != size_t(image.width) * image.height * 4)
+        if (image.width == 0 || image.height == 0 || image.width > limits.maxTextureSide ||
+            image.height > limits.maxTextureSide || image.rgba.size() != size_t(image.width) * image.height * 4)
             broken("an image whose size and bytes disagree");
         imageBytes += image.rgba.size();
     }
-    if (imageBytes > kMaxMeshImageBytes) broken("images past kMaxMeshImageBytes");
+    if (imageBytes > limits.maxImageBytes) broken("images past maxImageBytes");
     for (const MeshPrimitive& p : mesh.primitives) {
         const MeshMaterial& m = p.material;
         for (const MeshTexture* t : {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.normalTexture,
@@ -58,8 +71,9 @@ void checkMesh(const TriangleMesh& mesh) {
 void runOneGltfInput(std::string_view bytes) {
     try {
         Diagnostics diagnostics;
-        const auto mesh = loadGltfFromMemory(bytes, "<fuzz>", "/nonexistent-skygraph-fuzz", {}, diagnostics);
-        if (mesh) checkMesh(*mesh);
+        const GltfLimits limits = fuzzLimits();
+        const auto mesh = loadGltfFromMemory(bytes, "<fuzz>", "/nonexistent-skygraph-fuzz", {}, diagnostics, limits);
+        if (mesh) checkMesh(*mesh, limits);
         else if (diagnostics.empty()) broken("no mesh and no diagnostic");
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glTF fuzz target: %s escaped\n", e.what());

@@ -277,6 +277,46 @@ TEST(GltfTextures, AnImageNothingSamplesIsNotDecoded) {
     EXPECT_TRUE(quad->images.empty());
 }
 
+/// A PNG of nothing but its signature and header, claiming `width` x `height` RGBA8 texels: a
+/// few bytes that would make a decoder take width * height * 4 bytes and more.
+std::string forgedPngHeader(uint32_t width, uint32_t height) {
+    std::string png = "\x89PNG\r\n\x1a\n";
+    const auto bigEndian = [&](uint32_t v) {
+        for (int shift = 24; shift >= 0; shift -= 8) png += char(v >> shift & 0xff);
+    };
+    bigEndian(13);
+    png += "IHDR";
+    bigEndian(width);
+    bigEndian(height);
+    png += std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, no filter, no interlace
+    bigEndian(0);                                        // stb does not check chunk CRCs
+    return png;
+}
+
+TEST(GltfTextures, ForgedImageSizesAreRefusedBeforeAnyPixelIsDecoded) {
+    struct Case {
+        std::string name;
+        uint32_t width, height;
+        GltfLimits limits;
+        std::string message;
+    };
+    GltfLimits fewBytes, narrow;
+    fewBytes.maxImageBytes = size_t(64) << 20;
+    narrow.maxTextureSide = 4096;
+    for (const Case& c : {Case{"wide", 16385, 1, {}, "16385x1 is larger than 16384 texels a side"},
+                          Case{"narrow-limit", 1, 4097, narrow, "1x4097 is larger than 4096 texels a side"},
+                          Case{"byte-limit", 8192, 8192, fewBytes,
+                               "the file's images would take 268435456 bytes, more than 67108864"}}) {
+        const std::string png = forgedPngHeader(c.width, c.height);
+        const fs::path file = writeTexturedQuad("forged-" + c.name, "forged.png", &png, true);
+        Diagnostics d;
+        EXPECT_FALSE(loadGltf(file, {}, d, c.limits)) << c.name;
+        ASSERT_FALSE(d.empty()) << c.name;
+        EXPECT_EQ(d.items()[0].jsonPath, "images[0]") << messages(d);
+        EXPECT_NE(d.items()[0].message.find(c.message), std::string::npos) << messages(d);
+    }
+}
+
 struct BadQuad {
     std::string name;
     Quad quad;
