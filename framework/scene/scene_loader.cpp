@@ -181,14 +181,17 @@ private:
 
     void loadEnvironment(const json& e) {
         if (!e.is_object())
-            return error("environment", "must be an object {file, rotation_deg, sampling, sun_direction} or null for none");
-        checkKeys(e, "environment", {"file", "rotation_deg", "sampling", "sun_direction"});
+            return error("environment",
+                         "must be an object {file or sequence, rotation_deg, sampling, sun_direction, fps} or null for none");
+        checkKeys(e, "environment", {"file", "sequence", "fps", "rotation_deg", "sampling", "sun_direction"});
         SceneEnvironment env;
         optionalNumber(e, "environment", "rotation_deg", kAny, env.rotationDeg);
         enumeration(e, "environment", "sampling",
                     std::map<std::string, EnvironmentSampling>{{"cubemap", EnvironmentSampling::Cubemap},
                                                                {"equirect", EnvironmentSampling::Equirect}},
                     env.sampling);
+        if (e.contains("sequence")) return loadSequence(e, std::move(env));
+        if (e.contains("fps")) error("environment.fps", "only a sequence has a frame rate; this environment has none");
         auto file = e.find("file");
         if (file == e.end() || !file->is_string() || file->get<std::string>().empty())
             return error("environment.file", "missing; expected \"procedural\" or a .hdr/.exr path");
@@ -215,6 +218,40 @@ private:
             else if (!std::filesystem::is_regular_file(env.file, ec))
                 error("environment.file", "'" + env.file.string() + "' does not exist or is not a file");
         }
+        scene_.environment = std::move(env);
+    }
+
+    void loadSequence(const json& e, SceneEnvironment env) {
+        if (e.contains("file")) error("environment.file", "a sequence's frames are its files: give file or sequence, not both");
+        if (e.contains("sun_direction"))
+            error("environment.sun_direction", "only the procedural sky has a sun; this environment is a sequence");
+        EnvironmentSequence sequence;
+        optionalNumber(e, "environment", "fps", Range{0.0, 1000.0, true, false}, sequence.fps);
+        const json& name = e.at("sequence");
+        if (!name.is_string() || name.get<std::string>().empty())
+            return error("environment.sequence", "must be a file pattern such as \"frames/%04d.exr\"");
+        const std::string text = name.get<std::string>();
+        if (const std::string problem = sequencePatternProblem(text); !problem.empty())
+            return error("environment.sequence", "'" + text + "' " + problem);
+        sequence.pattern = (baseDir_ / text).lexically_normal().string();
+        std::string ext = std::filesystem::path(text).extension().string();
+        for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        if (ext != ".hdr" && ext != ".exr")
+            return error("environment.sequence", "'" + text + "' names neither .hdr nor .exr files");
+        std::error_code ec;
+        const auto exists = [&](uint32_t number) {
+            return std::filesystem::is_regular_file(formatSequenceFrame(sequence.pattern, number), ec);
+        };
+        if (!exists(0) && !exists(1))
+            return error("environment.sequence", "no first frame: neither '" + formatSequenceFrame(sequence.pattern, 0) +
+                                                     "' nor '" + formatSequenceFrame(sequence.pattern, 1) + "' exists");
+        sequence.first = exists(0) ? 0 : 1;
+        while (sequence.count < kMaxSequenceFrames && exists(sequence.first + sequence.count)) ++sequence.count;
+        if (exists(sequence.first + sequence.count))
+            return error("environment.sequence", "more than " + std::to_string(kMaxSequenceFrames) + " frames");
+        env.procedural = false;
+        env.file = sequence.frame(0);
+        env.sequence = std::move(sequence);
         scene_.environment = std::move(env);
     }
 

@@ -40,14 +40,36 @@ struct SceneCamera {
 
 enum class EnvironmentSampling { Cubemap, Equirect };
 
+/// Equirect frames played as an animated sky, one file a frame, named by a pattern with one
+/// printf-style number: `%d`, or `%0Nd` for N digits with leading zeros (N from 1 to 9).
+/// The frames are numbered from 0 or 1 on, without a gap; playback loops.
+struct EnvironmentSequence {
+    std::string pattern;  ///< absolute (resolved against the scene's folder), e.g. /x/frames/%04d.exr
+    double fps = 24.0;    ///< in (0, 1000]
+    uint32_t first = 0;   ///< the first frame's number: 0 or 1, whichever file exists
+    uint32_t count = 0;   ///< the frames found from `first` on, at least 1
+    /// The file of the sequence's frame `index` (0 <= index < count): number first + index.
+    [[nodiscard]] std::filesystem::path frame(uint32_t index) const;
+};
+
+/// Most frames one sequence may have.
+inline constexpr uint32_t kMaxSequenceFrames = 1000000;
+
+/// What is wrong with `pattern` as an EnvironmentSequence pattern, or empty when nothing is.
+[[nodiscard]] std::string sequencePatternProblem(std::string_view pattern);
+/// `pattern` (sequencePatternProblem() is empty) with its number replaced by `number`.
+[[nodiscard]] std::string formatSequenceFrame(std::string_view pattern, uint32_t number);
+
 struct SceneEnvironment {
     bool procedural = true;      ///< the built-in analytic sky; `file` is empty then
-    std::filesystem::path file;  ///< .hdr or .exr, absolute (resolved against the scene's folder)
+    std::filesystem::path file;  ///< .hdr or .exr, absolute (resolved against the scene's folder);
+                                 ///< a sequence's first frame
     double rotationDeg = 0.0;    ///< about +Y
     EnvironmentSampling sampling = EnvironmentSampling::Cubemap;
     /// The procedural sky's sun: a unit vector towards it (math::proceduralSunDirection by
     /// default). A change re-bakes the sky's lighting. Unused for a file.
     Vec3 sunDirection{0.35045588917675863, 0.45058614322726115, -0.8210680832141203};  // (0.35, 0.45, -0.82), normalised
+    std::optional<EnvironmentSequence> sequence;  ///< an animated sky, or nullopt
 };
 
 enum class Tonemapper { AcesNarkowicz, AcesHill, KhronosPbrNeutral, Passthrough };

@@ -10,6 +10,7 @@
 #include "generic_passes.hpp"
 
 #include "app/live_graph.hpp"
+#include "app/procedural_environment.hpp"
 
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
@@ -24,7 +25,9 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -419,12 +422,17 @@ TEST_F(Present, NegativeControlNoPresentBarrierIsReported) {
 // one's size is re-baked on the compute queue beside the presented frames and swapped in
 // between two of them, with no rebuild and no validation message.
 /// `skygraph view`'s LiveGraph of graphs/raster.json with `scene`, presenting to a 96x64
-/// window, two frames in flight; frame() polls and presents one frame.
+/// window, two frames in flight, screenshots allowed; frame() polls and presents one frame.
 struct LiveWindow {
     LiveWindow(Device& device, const std::string& scene)
         : live(device, options(scene), 96, 64, false),
-          swapchain(Swapchain::create(device, live.renderer().compiled(), {96, 64, PresentMode::Fifo})) {
+          swapchain(Swapchain::create(device, live.renderer().compiled(), swapchainOptions())) {
         live.presentTo(*swapchain);
+    }
+    static SwapchainOptions swapchainOptions() {
+        SwapchainOptions o{96, 64, PresentMode::Fifo};
+        o.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back, as in the view
+        return o;
     }
     static app::RenderOptions options(const std::string& scene) {
         static const PassLibrary library = PassLibrary::withBuiltins();
@@ -523,6 +531,77 @@ TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {
     EXPECT_EQ(&live.renderer(), running) << "moving the sun rebuilt the renderer";
     for (int i = 0; i < 3; ++i) w.frame();
     live.renderer().waitIdle();
+    expectSilent();
+}
+
+// An environment sequence plays beside the frames: each frame due is decoded on the stream's
+// thread, baked beside the frames and swapped in, so the sky changes with it; over an
+// unreadable frame the sky holds the last one (never black), and playback loops. Nothing
+// rebuilds, and validation stays silent.
+TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadableFrame) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "skygraph-present-sequence";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string pattern = (dir / "sky_%02d.exr").string();
+    app::writeProceduralSkySequence(pattern, 4, 64);  // the sun circles the sky: frame 0 ahead, 1 to the right
+    std::ofstream(formatSequenceFrame(pattern, 2), std::ios::binary) << "not an EXR";
+    std::ofstream(dir / "scene.json") << R"({"environment": {"sequence": "sky_%02d.exr", "fps": 10}})";
+    LiveWindow w(*device_, (dir / "scene.json").string());
+    app::LiveGraph& live = w.live;
+    ASSERT_NE(live.sequence(), nullptr);
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+    const auto screen = [&] {
+        EXPECT_TRUE(live.beginScreenshot()) << live.error();
+        w.frame();
+        live.renderer().waitIdle();
+        ImageData image = live.renderer().readback();
+        (void)live.finishScreenshot({});  // writes nothing (false), compiles the plan back
+        EXPECT_EQ(live.error(), "");
+        return image;
+    };
+    const auto mean = [](const ImageData& image) {
+        double sum = 0.0;
+        for (size_t i = 0; i < image.rgba.size(); ++i) sum += i % 4 == 3 ? 0.0 : image.rgba[i];
+        return sum / (double(image.rgba.size()) * 0.75);
+    };
+    const auto difference = [](const ImageData& a, const ImageData& b) {
+        double most = 0.0;
+        for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i) most = std::max(most, double(std::abs(a.rgba[i] - b.rgba[i])));
+        return most;
+    };
+    /// Plays at `seconds` until `done` holds, for 300 frames at most.
+    const auto playUntil = [&](double seconds, auto done) {
+        for (int i = 0; i < 300 && !done(live.sequence()->stats()); ++i) {
+            w.frame();
+            live.playSequence(seconds);
+        }
+        EXPECT_TRUE(done(live.sequence()->stats())) << "at " << seconds << " s";
+    };
+    for (int i = 0; i < 3; ++i) w.frame();
+    const ImageData first = screen();
+
+    playUntil(0.1, [](const app::SequenceStats& s) { return s.current == 1u; });
+    const ImageData second = screen();
+    EXPECT_GT(mean(second), 0.05) << "a sky, not black";
+    EXPECT_GT(difference(first, second), 0.2) << "the sun left the view: the sky changed with the frame";
+
+    playUntil(0.2, [](const app::SequenceStats& s) { return s.failed == 1u; });
+    for (int i = 0; i < 3; ++i) w.frame();
+    EXPECT_EQ(live.sequence()->stats().current, 1u) << "the sky holds frame 1 over the unreadable frame 2";
+    EXPECT_EQ(difference(second, screen()), 0.0);
+
+    playUntil(0.3, [](const app::SequenceStats& s) { return s.current == 3u; });
+    playUntil(0.45, [](const app::SequenceStats& s) { return s.current == 0u && s.shown == 4u; });  // looped
+    EXPECT_LT(difference(first, screen()), 1e-6) << "frame 0 again, as at the start";
+    const app::SequenceStats stats = live.sequence()->stats();
+    EXPECT_EQ(stats.shown, 4u) << "frames 0, 1, 3 and 0 again";
+    EXPECT_EQ(stats.dropped, 1u);
+    EXPECT_EQ(stats.late, 0u) << "playback's clock waited for every bake";
+    EXPECT_EQ(&live.renderer(), running) << "playback rebuilt the renderer";
+    EXPECT_EQ(live.reloads(), reloads) << "a sequence's frames are not reloads";
+    live.renderer().waitIdle();
+    std::filesystem::remove_all(dir);
     expectSilent();
 }
 

@@ -147,6 +147,55 @@ TEST(SceneLoader, TheSunDirectionIsNormalisedAndOnlyForTheProceduralSky) {
                 "only the procedural sky has a sun");
 }
 
+TEST(SceneLoader, ASequenceFindsItsFramesFromZeroOrOneWithoutAGap) {
+    const fs::path dir = fs::temp_directory_path() / "skygraph_scene_test_sequence";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "frames");
+    for (int i : {1, 2, 3, 5}) std::ofstream(dir / "frames" / ("sky_" + std::string(i < 10 ? "00" : "0") + std::to_string(i) + ".exr")) << "x";
+    std::ofstream(dir / "s.json") << R"({"environment": {"sequence": "frames/sky_%03d.exr", "fps": 30}})";
+    const Scene s = loadSceneFile(dir / "s.json");
+    ASSERT_TRUE(s.environment && s.environment->sequence);
+    const EnvironmentSequence& q = *s.environment->sequence;
+    EXPECT_EQ(q.first, 1u) << "no frame 0";
+    EXPECT_EQ(q.count, 3u) << "frame 4 is missing: 5 is not part of it";
+    EXPECT_EQ(q.fps, 30.0);
+    EXPECT_EQ(q.frame(2), fs::absolute(dir / "frames" / "sky_003.exr"));
+    EXPECT_FALSE(s.environment->procedural);
+    EXPECT_EQ(s.environment->file, q.frame(0)) << "the first frame stands for the environment";
+    EXPECT_EQ(sceneFeatures(s).at("environment_file"), true);
+
+    std::ofstream(dir / "frames" / "sky_000.exr") << "x";
+    std::ofstream(dir / "t.json") << R"({"environment": {"sequence": "frames/sky_%03d.exr"}})";
+    const Scene t = loadSceneFile(dir / "t.json");
+    EXPECT_EQ(t.environment->sequence->first, 0u);
+    EXPECT_EQ(t.environment->sequence->count, 4u);
+    EXPECT_EQ(t.environment->sequence->fps, 24.0) << "the default";
+    fs::remove_all(dir);
+}
+
+TEST(SceneLoader, SequencePatternsHoldOneNumber) {
+    EXPECT_EQ(formatSequenceFrame("a/%d.exr", 12), "a/12.exr");
+    EXPECT_EQ(formatSequenceFrame("a/%04d.exr", 12), "a/0012.exr");
+    EXPECT_EQ(formatSequenceFrame("a/%02d.exr", 123), "a/123.exr") << "a width is a minimum";
+    EXPECT_EQ(sequencePatternProblem("f_%05d_x.hdr"), "");
+    for (const char* bad : {"f.exr", "f_%s.exr", "f_%5d.exr", "f_%00d.exr", "f_%d_%d.exr", "f_%d%%.exr", "f_%"})
+        EXPECT_NE(sequencePatternProblem(bad), "") << bad;
+}
+
+TEST(SceneErrors, Sequences) {
+    expectError(R"({"environment": {"sequence": "frames/%04d.png"}})", "environment.sequence", "neither .hdr nor .exr");
+    expectError(R"({"environment": {"sequence": "frames/0001.exr"}})", "environment.sequence", "must hold the frame number");
+    expectError(R"({"environment": {"sequence": 4}})", "environment.sequence", "must be a file pattern");
+    expectError(R"({"environment": {"sequence": "nothing_here/%04d.exr"}})", "environment.sequence",
+                "no first frame: neither '" + (kScenes / "nothing_here/0000.exr").string() + "' nor '" +
+                    (kScenes / "nothing_here/0001.exr").string() + "' exists");
+    expectError(R"({"environment": {"sequence": "f/%d.exr", "file": "sky.hdr"}})", "environment.file", "not both");
+    expectError(R"({"environment": {"sequence": "f/%d.exr", "fps": 0}})", "environment.fps", "must be in (0, 1000]");
+    expectError(R"({"environment": {"file": "procedural", "fps": 24}})", "environment.fps", "only a sequence");
+    expectError(R"({"environment": {"sequence": "f/%d.exr", "sun_direction": [0, 1, 0]}})",
+                "environment.sun_direction", "only the procedural sky has a sun");
+}
+
 TEST(SceneErrors, FileAndSyntax) {
     try {
         (void)loadSceneFile(kScenes / "no_such_scene.json");

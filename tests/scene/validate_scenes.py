@@ -29,7 +29,15 @@ bad = {
     "bad sampling": {"environment": {"file": "procedural", "sampling": "octahedral"}},
     "png environment": {"environment": {"file": "sky.png"}},
     "unknown tonemapper": {"tonemapper": "reinhard"},
+    "sequence without a number": {"environment": {"sequence": "frames/sky.exr"}},
+    "sequence and file": {"environment": {"sequence": "f/%04d.exr", "file": "sky.hdr"}},
+    "fps of a file": {"environment": {"file": "sky.hdr", "fps": 24}},
+    "fps 0": {"environment": {"sequence": "f/%04d.exr", "fps": 0}},
 }
+good = {"sequence": {"environment": {"sequence": "frames/%04d.exr", "fps": 24}}}
+for name, doc in good.items():
+    for err in validator.iter_errors(doc):
+        failures.append(f"schema refuses {name}: {err.message}")
 for name, doc in bad.items():
     if validator.is_valid(doc):
         failures.append(f"schema accepts {name}: {json.dumps(doc)}")

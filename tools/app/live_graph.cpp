@@ -50,6 +50,42 @@ LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint
     if (!options_.scene.empty()) sceneWatcher_.emplace(options_.scene);
     // No graph file: HotReloader watches the shaders alone.
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
+    startSequence();
+}
+
+void LiveGraph::startSequence() {
+    player_.reset();
+    sequenceBaking_ = false;
+    const Scene* scene = built_->scene ? &*built_->scene : nullptr;
+    if (!scene || !scene->environment || !scene->environment->sequence || scene->environment->sequence->count < 2)
+        return;
+    const ResourceDesc* equirect = renderer_->graph().findResource(shipped::kEquirect);
+    if (!built_->environment.graph || !equirect) {
+        spdlog::warn("environment sequence: the graph bakes no environment from an equirect; the sky shows the first frame");
+        return;
+    }
+    const auto extent = equirect->extent.resolve(width_, height_);
+    player_ = std::make_unique<SequencePlayer>(*scene->environment->sequence, extent[0], extent[1]);
+}
+
+void LiveGraph::playSequence(double seconds) {
+    if (!player_) return;
+    if (sequenceBaking_ && !rebaking()) {  // poll() swapped it in
+        player_->swappedIn(seconds);
+        sequenceBaking_ = false;
+    }
+    if (!canRebake()) return;
+    std::optional<SequenceFrame> frame = player_->frameToBake(seconds);
+    if (!frame) return;
+    if (!frame->error.empty()) {
+        spdlog::warn("environment sequence: {}; the sky holds the last frame", frame->error);
+        return;
+    }
+    try {
+        sequenceBaking_ = rebake(std::move(frame->pixels), {});
+    } catch (const std::exception& e) {
+        spdlog::warn("environment sequence: {}: {}; the sky holds the last frame", frame->file, e.what());
+    }
 }
 
 LiveGraph::~LiveGraph() {
@@ -105,6 +141,7 @@ bool LiveGraph::rebuild(RenderOptions options) {
     options_ = std::move(options);
     error_.clear();
     ++reloads_;
+    startSequence();
     return true;
 }
 
@@ -160,6 +197,8 @@ bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
 }
 
 bool LiveGraph::rebakeInPlace(const std::filesystem::path& file) {
+    player_.reset();  // the file replaces the sequence
+    sequenceBaking_ = false;
     if (file.empty() || !canRebake()) return false;
     return rebake(loadHdrImage(file), file.string());
 }
@@ -172,7 +211,7 @@ bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
     const FrameEnvironment& running = built_->environment;
     // The running image's size is the frame graph's `equirect` (loadFrameInputs sets it).
     const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
-    if (pixels.width != extent[0] || pixels.height != extent[1]) {
+    if (pixels.width != extent[0] || pixels.height != extent[1]) {  // never for a sequence's frames: the stream resamples
         // The running equirect and products keep their sizes, so the bake stays beside the
         // frames; a rebuild (a graph or scene edit) bakes the file at its own size.
         spdlog::info("environment: {} is {}x{}; resampled to the running {}x{} for a bake beside the frames", what,
@@ -184,7 +223,7 @@ bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
                                                     running.products,
                                                     options_.passes ? options_.passes : &PassLibrary::genericOnly());
     if (renderer_->plan().resourceIndex(shipped::kEquirect) >= 0) rebakeEquirect_ = pixels;
-    spdlog::info("environment: re-baking {} beside the frames", what);
+    if (!what.empty()) spdlog::info("environment: re-baking {} beside the frames", what);
     return baker_->start(std::move(pixels));
 }
 
@@ -217,7 +256,7 @@ void LiveGraph::swapRebake() {
     // sky and the lighting change together; this waits for the frames in flight.
     if (rebakeEquirect_)
         renderer_->updateExternalImage(std::string(shipped::kEquirect), toImageData(*std::exchange(rebakeEquirect_, std::nullopt)));
-    ++reloads_;
+    if (!sequenceBaking_) ++reloads_;  // a sequence's frames are playback, not reloads
 }
 
 bool LiveGraph::poll() {

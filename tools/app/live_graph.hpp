@@ -7,6 +7,7 @@
 #include "environment_bake.hpp"
 #include "file_watcher.hpp"
 #include "render.hpp"
+#include "sequence_player.hpp"
 
 #include <skygraph/hot_reload.hpp>
 #include <skygraph/renderer.hpp>
@@ -60,6 +61,14 @@ public:
     /// a bake runs is baked after it (only the latest). False when the scene's environment is
     /// not the procedural sky.
     bool setSunDirection(const Vec3& sun);
+    /// Plays the scene's environment sequence: at `seconds` since playback began, once no
+    /// bake runs, starts baking the frame due then if it is decoded (SequencePlayer), the
+    /// frames holding the last one meanwhile. Call after poll(), which swaps a bake in. A
+    /// sequence restarts from its first frame after a rebuild; another environment file
+    /// stops it. Nothing happens without a sequence.
+    void playSequence(double seconds);
+    /// What playback has done; null without a sequence playing.
+    [[nodiscard]] const SequencePlayer* sequence() const noexcept { return player_.get(); }
     /// Whether a re-bake started by setEnvironmentFile is not swapped in yet.
     [[nodiscard]] bool rebaking() const noexcept { return baker_ && baker_->pending(); }
     /// Swaps in a finished re-bake; rebuilds after the graph or scene file was saved, reloads
@@ -107,6 +116,8 @@ private:
     /// Starts re-baking `pixels` (named `what` in the log), resampled to the running
     /// equirect's size when they differ; false when the baker cannot start one now.
     bool rebake(HdrImage pixels, const std::string& what);
+    /// A player for the running scene's sequence, if it has one of several frames.
+    void startSequence();
     void startPendingSunBake();
     void swapRebake();
 
@@ -121,6 +132,8 @@ private:
     std::unique_ptr<EnvironmentBaker> baker_;
     std::optional<HdrImage> rebakeEquirect_;  ///< The pixels being re-baked, for the frame's own equirect.
     std::optional<Vec3> pendingSun_;           ///< A sun direction not baked yet.
+    std::unique_ptr<SequencePlayer> player_;
+    bool sequenceBaking_ = false;  ///< The pending re-bake is a sequence frame.
     std::unique_ptr<Built> built_;
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;

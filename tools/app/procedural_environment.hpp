@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 namespace skygraph::app {
 
@@ -20,5 +21,15 @@ inline constexpr uint32_t kProceduralEquirectWidth = 1024;
 /// width; the rest of the sky is smooth enough for the texel centre. Width at least 2.
 [[nodiscard]] HdrImage proceduralSkyEquirect(const std::array<double, 3>& sunDirection,
                                              uint32_t width = kProceduralEquirectWidth);
+
+/// The sun of frame `frame` of proceduralSkySequence(): it circles the sky once in `frames`
+/// frames at 25 degrees above the horizon, so every frame's sky differs from the last.
+[[nodiscard]] std::array<double, 3> sequenceSunDirection(uint32_t frame, uint32_t frames);
+
+/// Writes a time-lapse of the procedural sky, the test content of environment sequences:
+/// frames 0 to `frames` - 1 of proceduralSkyEquirect(sequenceSunDirection(i, frames), width),
+/// each to formatSequenceFrame(pattern, i) (.hdr or .exr, saveHdrImage). Nothing large is
+/// committed: tests and benchmarks write what they play. Throws ImageError.
+void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uint32_t width);
 
 }  // namespace skygraph::app

@@ -116,6 +116,7 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         SceneEnvironment& e = scene->environment ? *scene->environment : scene->environment.emplace();
         e.procedural = options.environmentFile->empty();
         e.file = e.procedural ? std::filesystem::path() : std::filesystem::absolute(*options.environmentFile);
+        e.sequence.reset();  // the file replaces the scene's sequence too
     }
     if (scene && scene->environment && scene->environment->procedural && options.sunDirection)
         scene->environment->sunDirection = *options.sunDirection;

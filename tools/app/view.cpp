@@ -195,6 +195,7 @@ int viewCommand(const ViewOptions& options) {
 
         uint64_t presented = 0;
         uint32_t reloads = 0;
+        std::optional<SequenceStats> sequence;  // of an environment sequence, when one played
         VkExtent2D lastExtent{};
         PresentMode lastMode = options.presentMode;
         {
@@ -233,11 +234,13 @@ int viewCommand(const ViewOptions& options) {
 
             uint32_t screenshots = 0;
             double frameMs = 0.0;
+            const auto playbackStart = std::chrono::steady_clock::now();
             while (!glfwWindowShouldClose(window) && !stopRequested) {
                 const auto start = std::chrono::steady_clock::now();
                 if (swapchain->paused()) glfwWaitEventsTimeout(0.1);  // no size: nothing to render
                 else glfwPollEvents();
                 if (live.poll() && live.sceneReplaced() && state.orbit) state.orbit.emplace(state.scene->camera);
+                live.playSequence(std::chrono::duration<double>(start - playbackStart).count());
                 if (std::exchange(state.toggleOverlay, false) && overlay && live.declares(kOverlayFeature))
                     live.setFeature(std::string(kOverlayFeature), !live.feature(kOverlayFeature));
                 state.overlayVisible = overlay && live.feature(kOverlayFeature);
@@ -268,6 +271,7 @@ int viewCommand(const ViewOptions& options) {
             lastExtent = swapchain->extent();
             lastMode = swapchain->presentMode();
             reloads = live.reloads();
+            if (const SequencePlayer* player = live.sequence()) sequence = player->stats();
             glfwSetWindowUserPointer(window, nullptr);  // `state` ends here
         }
         // The renderers, the swapchain and the overlay are gone: destroying the device now
@@ -276,7 +280,11 @@ int viewCommand(const ViewOptions& options) {
         device->finish();
         std::cout << "skygraph view: " << presented << " frames presented, last at " << lastExtent.width << "x"
                   << lastExtent.height << " (" << presentModeName(lastMode) << "), " << reloads
-                  << " reload(s); validation: ";
+                  << " reload(s); ";
+        if (sequence)
+            std::cout << "sequence: " << sequence->shown << " frame(s) shown (" << sequence->late << " late), "
+                      << sequence->dropped << " dropped (" << sequence->failed << " unreadable); ";
+        std::cout << "validation: ";
         if (device->validationEnabled()) {
             std::cout << device->messageCount() << " message(s)\n";
         } else

@@ -1,0 +1,136 @@
+// An environment sequence's streaming, without a device: SequenceStream decodes ahead on its
+// own thread and holds no more than its lookahead; SequencePlayer says which frame is due and
+// counts late and dropped ones. Frames are time-lapses of the procedural sky written here.
+#include "app/procedural_environment.hpp"
+#include "app/sequence_player.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+namespace skygraph::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// `frames` frames of the procedural sky at 32 x 16 in a folder of their own.
+EnvironmentSequence writeSequence(const std::string& name, uint32_t frames, double fps = 10.0) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-sequence-" + name);
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    EnvironmentSequence s;
+    s.pattern = (dir / "sky_%03d.exr").string();
+    s.fps = fps;
+    s.count = frames;
+    app::writeProceduralSkySequence(s.pattern, frames, 32);
+    return s;
+}
+
+/// Asks for frame `index` until it comes (the stream decodes on its own thread), for 20 s at most.
+template <class Ask>
+auto waitFor(Ask ask) -> decltype(ask()) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    for (;;) {
+        if (auto got = ask()) return got;
+        if (std::chrono::steady_clock::now() > until) return {};
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+}
+
+TEST(SequenceStream, DecodesEveryFrameInOrderAndHoldsNoMoreThanItsLookahead) {
+    const EnvironmentSequence s = writeSequence("in-order", 5);
+    app::SequenceStream stream(s, 32, 16, 0, 2);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // time to decode all, were it unbounded
+    for (uint32_t i = 0; i < 7; ++i) {  // past the end: the stream loops
+        const auto frame = waitFor([&] { return stream.take(i % 5); });
+        ASSERT_TRUE(frame) << i;
+        EXPECT_EQ(frame->index, i % 5);
+        EXPECT_EQ(frame->error, "");
+        EXPECT_EQ(frame->file, s.frame(i % 5).string());
+        EXPECT_EQ(frame->pixels.rgba, loadHdrImage(s.frame(i % 5)).rgba) << "frame " << i % 5 << " as its file holds it";
+    }
+    EXPECT_LE(stream.mostFramesHeld(), 2u);
+    EXPECT_GE(stream.mostFramesHeld(), 1u);
+}
+
+TEST(SequenceStream, SkipsAheadToTheFramePlaybackAsksFor) {
+    const EnvironmentSequence s = writeSequence("skip", 40);
+    app::SequenceStream stream(s, 32, 16, 0, 2);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // frames 0 and 1 wait, taken by nobody
+    const auto frame = waitFor([&] { return stream.take(30); });
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, 30u);
+    EXPECT_LT(stream.decodeTimesMs().size(), 20u) << "it decoded its way through the frames before 30";
+    const auto next = waitFor([&] { return stream.take(31); });
+    ASSERT_TRUE(next);
+    EXPECT_EQ(next->index, 31u);
+}
+
+TEST(SequenceStream, AFrameOfAnotherSizeIsResampledAndAnUnreadableOneNamesItsFile) {
+    const EnvironmentSequence s = writeSequence("odd-frames", 3);
+    saveHdrImage(s.frame(1), app::proceduralSkyEquirect({0.0, 1.0, 0.0}, 64));
+    std::ofstream(s.frame(2), std::ios::binary) << "not an EXR";
+    app::SequenceStream stream(s, 32, 16, 1, 2);
+    const auto resized = waitFor([&] { return stream.take(1); });
+    ASSERT_TRUE(resized);
+    EXPECT_EQ(resized->pixels.width, 32u);
+    EXPECT_EQ(resized->pixels.height, 16u);
+    const auto broken = waitFor([&] { return stream.take(2); });
+    ASSERT_TRUE(broken);
+    EXPECT_TRUE(broken->pixels.rgba.empty());
+    EXPECT_NE(broken->error.find(s.frame(2).string()), std::string::npos) << broken->error;
+}
+
+TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
+    const EnvironmentSequence s = writeSequence("player", 6, 10.0);
+    app::SequencePlayer player(s, 32, 16);
+    EXPECT_EQ(player.stats().current, 0u) << "frame 0 was baked before playback";
+    EXPECT_FALSE(player.frameToBake(0.05)) << "frame 0 is on screen until 0.1 s";
+
+    auto frame = waitFor([&] { return player.frameToBake(0.1); });
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, 1u);
+    EXPECT_FALSE(player.frameToBake(0.12)) << "frame 1 is started: nothing more until frame 2 is due";
+    player.swappedIn(0.15);
+    EXPECT_EQ(player.stats().shown, 2u);
+    EXPECT_EQ(player.stats().late, 0u);
+    EXPECT_EQ(player.stats().current, 1u);
+
+    frame = waitFor([&] { return player.frameToBake(0.45); });  // frames 2 and 3 passed unshown
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, 4u);
+    EXPECT_EQ(player.stats().dropped, 2u);
+    player.swappedIn(0.51);  // after frame 4's time
+    EXPECT_EQ(player.stats().late, 1u);
+    EXPECT_EQ(player.stats().current, 4u);
+
+    frame = waitFor([&] { return player.frameToBake(0.62); });  // tick 6: the loop's frame 0
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, 0u);
+    EXPECT_EQ(player.stats().dropped, 3u) << "frame 5";
+    EXPECT_EQ(player.tick(0.62), 6);
+}
+
+TEST(SequencePlayer, AnUnreadableFrameIsDroppedAndTheSkyHoldsTheLastOne) {
+    const EnvironmentSequence s = writeSequence("player-unreadable", 4, 10.0);
+    std::ofstream(s.frame(1), std::ios::binary) << "not an EXR";
+    app::SequencePlayer player(s, 32, 16);
+    const auto frame = waitFor([&] { return player.frameToBake(0.1); });
+    ASSERT_TRUE(frame);
+    EXPECT_NE(frame->error, "");
+    player.swappedIn(0.12);  // nothing was baked: nothing changes on screen
+    EXPECT_EQ(player.stats().current, 0u);
+    EXPECT_EQ(player.stats().shown, 1u);
+    EXPECT_EQ(player.stats().dropped, 1u);
+    EXPECT_EQ(player.stats().failed, 1u);
+    const auto next = waitFor([&] { return player.frameToBake(0.2); });
+    ASSERT_TRUE(next);
+    EXPECT_EQ(next->index, 2u);
+    EXPECT_EQ(next->error, "");
+}
+
+}  // namespace
+}  // namespace skygraph::test

@@ -1,0 +1,23 @@
+// sequenceSunDirection and writeProceduralSkySequence: see procedural_environment.hpp.
+#include "procedural_environment.hpp"
+
+#include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace skygraph::app {
+
+std::array<double, 3> sequenceSunDirection(uint32_t frame, uint32_t frames) {
+    const double azimuth = 2.0 * math::kPi<double> * frame / std::max(frames, 1u);
+    const double elevation = math::radians(25.0);
+    return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), -std::cos(elevation) * std::cos(azimuth)};
+}
+
+void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uint32_t width) {
+    for (uint32_t i = 0; i < frames; ++i)
+        saveHdrImage(formatSequenceFrame(pattern, i), proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
+}
+
+}  // namespace skygraph::app

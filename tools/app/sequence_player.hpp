@@ -1,0 +1,52 @@
+// When an environment sequence's frames are due, and what became of each: shown on time,
+// shown late, or dropped. The sky never goes black: until a due frame is baked and swapped
+// in, the frames hold the last one.
+#pragma once
+
+#include "sequence_stream.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+namespace skygraph::app {
+
+/// What playback has done so far.
+struct SequenceStats {
+    uint32_t shown = 0;    ///< frames swapped in
+    uint32_t late = 0;     ///< of those, swapped in after their time had passed
+    uint32_t dropped = 0;  ///< frames never shown: their time passed first, or they failed to decode
+    uint32_t failed = 0;   ///< of the dropped, frames that could not be decoded
+    std::optional<uint32_t> current;  ///< the frame the sky shows, once one was swapped in
+};
+
+class SequencePlayer {
+public:
+    /// Streams `sequence` (SequenceStream) at `width` x `height`, the running equirect's size.
+    /// Frame 0 is on screen already: the environment was baked from it.
+    SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height);
+    SequencePlayer(const SequencePlayer&) = delete;
+    SequencePlayer& operator=(const SequencePlayer&) = delete;
+
+    /// At `seconds` of playback, when nothing is being baked: the frame to bake now, if the
+    /// frame due is decoded and not started yet. A frame that failed to decode is returned
+    /// too (its `error` set, counted dropped), for the caller to report; bake it not.
+    [[nodiscard]] std::optional<SequenceFrame> frameToBake(double seconds);
+    /// The frame frameToBake() last returned without an error is on screen since `seconds`.
+    void swappedIn(double seconds);
+
+    [[nodiscard]] const SequenceStats& stats() const noexcept { return stats_; }
+    [[nodiscard]] const SequenceStream& stream() const noexcept { return *stream_; }
+    /// Playback's frame number at `seconds`: it counts on past the end as playback loops.
+    [[nodiscard]] int64_t tick(double seconds) const noexcept;
+
+private:
+    std::unique_ptr<SequenceStream> stream_;
+    double fps_;
+    uint32_t count_;
+    SequenceStats stats_;
+    int64_t lastStarted_ = 0;   ///< the tick of the last frame handed out
+    int64_t baking_ = -1;       ///< the tick of the frame being baked, or -1
+};
+
+}  // namespace skygraph::app

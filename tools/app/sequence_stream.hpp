@@ -1,0 +1,72 @@
+// An environment sequence's frames, decoded ahead of playback on a thread of their own, so
+// that the frame thread never waits for a file: it takes a frame once it is ready, and the
+// sky holds the last one meanwhile. Memory stays what `lookahead` frames take, however long
+// the sequence is.
+#pragma once
+
+#include <skygraph/hdr_image.hpp>
+#include <skygraph/scene.hpp>
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace skygraph::app {
+
+/// One decoded frame of a sequence, or why it could not be.
+struct SequenceFrame {
+    uint32_t index = 0;  ///< in the sequence: 0 <= index < count
+    std::string file;
+    HdrImage pixels;    ///< at the stream's size; empty when `error` is set
+    std::string error;  ///< the ImageError's message, naming the file
+    double decodeMs = 0.0;  ///< reading, decoding and resampling, on the stream's thread
+};
+
+class SequenceStream {
+public:
+    /// Starts decoding `sequence` from frame `first`. Frames of another size than `width` x
+    /// `height` are resampled to it (resampleEquirect), so that a bake beside the frames can
+    /// take them. At most `lookahead` (>= 1) decoded frames wait to be taken.
+    SequenceStream(EnvironmentSequence sequence, uint32_t width, uint32_t height, uint32_t first = 0,
+                   uint32_t lookahead = 2);
+    /// Stops the thread; a decode under way is finished first.
+    ~SequenceStream();
+    SequenceStream(const SequenceStream&) = delete;
+    SequenceStream& operator=(const SequenceStream&) = delete;
+
+    /// Frame `index` if it is decoded, moved out to the caller; nullopt while it is not.
+    /// Frames decoded before it in playback order are dropped, and when the thread is behind
+    /// `index` it skips ahead to it: playback asks for the frame due, not for every frame.
+    [[nodiscard]] std::optional<SequenceFrame> take(uint32_t index);
+
+    [[nodiscard]] const EnvironmentSequence& sequence() const noexcept { return sequence_; }
+    /// Frames decoded so far (failures included), and their decode times.
+    [[nodiscard]] std::vector<double> decodeTimesMs() const;
+    /// The most frames held at once, decoded and waiting, since the start.
+    [[nodiscard]] size_t mostFramesHeld() const;
+
+private:
+    void decodeLoop();
+    /// Frames from `from` forwards to `to`, looping: 0 when they are the same.
+    [[nodiscard]] uint32_t stepsFrom(uint32_t from, uint32_t to) const noexcept;
+
+    const EnvironmentSequence sequence_;
+    const uint32_t width_, height_;
+    const size_t lookahead_;
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    std::deque<SequenceFrame> ready_;
+    uint32_t next_ = 0;         ///< the frame the thread decodes next
+    uint64_t generation_ = 0;   ///< bumped by a skip: a decode of an older one is thrown away
+    bool stopping_ = false;
+    std::vector<double> decodeMs_;
+    size_t mostHeld_ = 0;
+    std::thread thread_;  ///< last: started once everything it reads is
+};
+
+}  // namespace skygraph::app
