@@ -492,6 +492,8 @@ bool Device::validationEnabled() const noexcept { return impl_->validation; }
 float Device::timestampPeriodNs() const noexcept { return impl_->timestampPeriod; }
 std::shared_ptr<const MemoryModel> Device::memoryModel() const noexcept { return impl_->memoryModel; }
 
+uint64_t Device::allocatedBytes() const noexcept { return impl_->allocatedBytes.load(); }
+
 uint32_t Device::messageCount() const {
     std::lock_guard lock(impl_->mutex);
     return impl_->count;

@@ -10,6 +10,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -20,6 +21,15 @@ struct DeviceMemory {
     vk::Memory memory;
     VkDeviceSize bytes = 0;
     uint32_t type = 0;  ///< The memory type index it was allocated from.
+    /// The device's Device::allocatedBytes() count, which holds `bytes` while this lives.
+    std::atomic<uint64_t>* counted = nullptr;
+
+    DeviceMemory() = default;
+    DeviceMemory(const DeviceMemory&) = delete;
+    DeviceMemory& operator=(const DeviceMemory&) = delete;
+    ~DeviceMemory() {
+        if (counted) counted->fetch_sub(bytes);
+    }
 };
 
 /// Shared by everything bound to it; immutable once allocated.

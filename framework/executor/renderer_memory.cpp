@@ -72,6 +72,8 @@ SharedMemory Renderer::Impl::allocate(VkDeviceSize bytes, uint32_t typeBits, VkM
         throw ExecutorError(name + ": vkAllocateMemory of " + std::to_string(bytes) + " bytes in memory type " +
                             std::to_string(memory->type) + " failed: " + vk::resultName(result));
     memory->memory = vk::Memory(vkd, raw);
+    memory->counted = &dev.allocatedBytes;
+    memory->counted->fetch_add(bytes);
     if (dev.fn.setObjectName) {
         VkDebugUtilsObjectNameInfoEXT ni{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
         ni.objectType = VK_OBJECT_TYPE_DEVICE_MEMORY;

@@ -7,6 +7,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include <array>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -71,6 +72,8 @@ struct Device::Impl {
     vk::DeviceFunctions fn;
     /// Device::memoryModel(); detached by finish(), before the device goes.
     std::shared_ptr<detail::DeviceMemoryModel> memoryModel;
+    /// Device::allocatedBytes(): each DeviceMemory adds its size and takes it back when freed.
+    std::atomic<uint64_t> allocatedBytes{0};
 
     // Message counting; the callback may run on any thread.
     mutable std::mutex mutex;

@@ -1,6 +1,7 @@
 // Device::memoryModel(): the device's memory requirements for exactly the images and buffers a
 // renderer creates, asked without creating them; cached, safe from any thread, refusing what
-// the device cannot create, and refusing to answer once its device is gone.
+// the device cannot create, and refusing to answer once its device is gone. And
+// Device::allocatedBytes(), what renderers hold.
 #include "executor_test_util.hpp"
 
 #include "device_memory_model.hpp"
@@ -161,6 +162,30 @@ TEST(MemoryModelLifetime, AfterTheDeviceIsDestroyedItThrows) {
         }
     }
     EXPECT_THROW((void)model->bufferImageGranularity(), ExecutorError);
+}
+
+// Device::allocatedBytes() counts what renderers hold: up while a renderer lives, and for a
+// shared image until its last holder lets go, back to where it was after.
+TEST_F(MemoryModelTest, AllocatedBytesFollowWhatRenderersHold) {
+    Device& device = sharedDevice();
+    const uint64_t before = device.allocatedBytes();
+    const std::string graph = graphWithSwapchain(
+        "held", R"("big": { "type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [256, 256],
+                            "external": true, "final": "ShaderRead" })",
+        R"({ "name": "fill", "type": "Generic", "uses": { "big": "Write@ColorAttachment", "swapchain": "Write@ColorAttachment" } })");
+    SharedImage kept;
+    {
+        Renderer renderer(device, compileText(graph), genericOptions(1));
+        renderer.renderFrame();
+        renderer.waitIdle();
+        EXPECT_GE(device.allocatedBytes(), before + 256 * 256 * 16) << "the 1 MiB image at least";
+        kept = renderer.shareImage("big");
+    }
+    const uint64_t keptBytes = device.allocatedBytes() - before;
+    EXPECT_GE(keptBytes, 256u * 256 * 16) << "the shared image outlives its renderer";
+    EXPECT_LT(keptBytes, 2u * 256 * 256 * 16) << "and nothing else of it does";
+    kept = SharedImage();
+    EXPECT_EQ(device.allocatedBytes(), before);
 }
 
 }  // namespace
