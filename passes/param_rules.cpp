@@ -11,6 +11,11 @@ SlotDecl slot(std::string name, Stage stage, std::vector<Access> accesses, BindA
     return SlotDecl{std::move(name), stage, std::move(accesses), as, optional, repeated, std::move(doc)};
 }
 
+SlotDecl byNameOnly(SlotDecl decl) {
+    decl.byNameOnly = true;
+    return decl;
+}
+
 ParamValidator rules(std::vector<ParamRule> list) {
     return [list = std::move(list)](const json& params) {
         std::vector<ParamError> errors;

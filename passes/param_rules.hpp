@@ -15,6 +15,8 @@ namespace skygraph::passes {
 
 [[nodiscard]] SlotDecl slot(std::string name, Stage stage, std::vector<Access> accesses, BindAs as, std::string doc,
                             bool optional = false, bool repeated = false);
+/// `decl`, bound only by name (SlotDecl::byNameOnly).
+[[nodiscard]] SlotDecl byNameOnly(SlotDecl decl);
 
 /// Checks one parameter's value: an empty string when it is fine, else what is wrong.
 using ParamCheck = std::function<std::string(const nlohmann::json&)>;

@@ -578,7 +578,8 @@ private:
             if (slot == type.slots.size()) {
                 size_t candidates = 0;
                 for (size_t s = 0; s < type.slots.size(); ++s)
-                    if (matches(type.slots[s], u) && (type.slots[s].repeated || !filled_[s])) {
+                    if (!type.slots[s].byNameOnly && matches(type.slots[s], u) &&
+                        (type.slots[s].repeated || !filled_[s])) {
                         if (candidates++ == 0) slot = s;
                     }
                 if (candidates > 1) {

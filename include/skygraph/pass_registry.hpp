@@ -25,6 +25,10 @@ struct SlotDecl {
     /// Whether the slot may be bound several times (e.g. one entry per mip level).
     bool repeated = false;
     std::string doc;
+    /// Bound only by name (a usage's `slot`, or a resource of the slot's name), never as the
+    /// one slot a usage fits: a slot added to a type this way leaves its graphs' bindings as
+    /// they were.
+    bool byNameOnly = false;
 
     /// "Read@Fragment" or "Write|ReadWrite@ColorAttachment".
     [[nodiscard]] std::string describeUsage() const;

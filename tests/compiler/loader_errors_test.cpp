@@ -366,6 +366,42 @@ TEST(LoaderErrors, UsageContradictingANamedSlot) {
     EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0]", "tonemap", "hdr_color", {"no slot 'bloom'", "hdr (Read@Fragment"}));
 }
 
+// SkyboxPass's `previous` is bound by name only: a sampled fragment read still binds to
+// `environment` as the one slot it fits, as it did before `previous` existed.
+TEST(LoaderErrors, ASlotBoundByNameOnlyIsNeverChosenByFit) {
+    const auto graphWith = [](const std::string& fadeFrom) {
+        return R"({"version": 1, "name": "t",
+          "resources": {
+            "depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": {"depth": 0.0}},
+            "hdr": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output", "external": true,
+                    "initial": "ShaderRead", "final": "ShaderRead"},
+            "sky": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "external": true, "initial": "ShaderRead"},
+            "previous": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "external": true, "initial": "ShaderRead"},
+            "older": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "external": true, "initial": "ShaderRead"}},
+          "passes": [{"name": "sky", "type": "SkyboxPass", "uses": [
+            {"resource": "depth", "access": "Read", "stage": "DepthAttachment"},
+            {"resource": "hdr", "access": "ReadWrite", "stage": "ColorAttachment"},
+            {"resource": "sky", "access": "Read", "stage": "Fragment"})" + fadeFrom + "]}]}";
+    };
+    const auto slots = [](const GraphDesc& g) {
+        std::vector<std::string> out;
+        for (const UsageDecl& u : g.passes.at(0).uses) out.emplace_back(g.slotName(u.slot));
+        return out;
+    };
+    EXPECT_EQ(slots(parseGraph(graphWith(""), kFile, registry())),
+              (std::vector<std::string>{"depth", "color", "environment"}));
+    EXPECT_EQ(slots(parseGraph(graphWith(R"(, {"resource": "previous", "access": "Read", "stage": "Fragment"})"), kFile,
+                               registry())),
+              (std::vector<std::string>{"depth", "color", "environment", "previous"}))
+        << "by the resource's name";
+    EXPECT_EQ(slots(parseGraph(graphWith(R"(, {"resource": "older", "access": "Read", "stage": "Fragment", "slot": "previous"})"),
+                               kFile, registry())),
+              (std::vector<std::string>{"depth", "color", "environment", "previous"}))
+        << "by the usage's slot";
+    const auto ds = textErrors(graphWith(R"(, {"resource": "older", "access": "Read", "stage": "Fragment"})"));
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses[3]", "sky", "older", {"contradicts SkyboxPass"})) << listAll(ds);
+}
+
 TEST(LoaderErrors, DepthFormatAsColorAttachment) {
     Json g = baseGraph();
     g["passes"][0]["uses"]["depth"] = "Write@ColorAttachment";
