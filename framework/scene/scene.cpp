@@ -16,7 +16,10 @@ FeatureValues sceneFeatures(const Scene& scene) {
             {std::string(kEnvironmentFileFeature), file},
             // The procedural sky is evaluated per pixel; only a file is sampled either way.
             {std::string(kSampleCubemapFeature),
-             file && scene.environment->sampling == EnvironmentSampling::Cubemap}};
+             file && scene.environment->sampling == EnvironmentSampling::Cubemap},
+            // A sequence of one frame is a still.
+            {std::string(kEnvironmentSequenceFeature),
+             file && scene.environment->sequence && scene.environment->sequence->count > 1}};
 }
 
 std::vector<std::string> explainSceneFeatures(const Scene& scene) {
@@ -37,6 +40,11 @@ std::vector<std::string> explainSceneFeatures(const Scene& scene) {
                         (scene.environment->sampling == EnvironmentSampling::Cubemap
                              ? "through a cubemap (" + sampleCubemap + " = on)"
                              : "directly as equirect (" + sampleCubemap + " = off)"));
+    if (scene.environment && scene.environment->sequence && scene.environment->sequence->count > 1)
+        lines.push_back(std::string(kEnvironmentSequenceFeature) + " = on: the environment is a sequence of " +
+                        std::to_string(scene.environment->sequence->count) + " frames at " +
+                        std::to_string(scene.environment->sequence->fps) + " fps, '" +
+                        scene.environment->sequence->pattern + "'");
     return lines;
 }
 

@@ -15,6 +15,7 @@ inline constexpr std::string_view kGeometryFeature = "geometry";
 inline constexpr std::string_view kSkyboxFeature = "skybox";
 inline constexpr std::string_view kEnvironmentFileFeature = "environment_file";
 inline constexpr std::string_view kSampleCubemapFeature = "sample_cubemap";
+inline constexpr std::string_view kEnvironmentSequenceFeature = "environment_sequence";
 /// The debug overlay (ImGuiPass), which `skygraph view` turns on.
 inline constexpr std::string_view kOverlayFeature = "ui";
 
@@ -23,6 +24,7 @@ inline constexpr std::string_view kOverlayFeature = "ui";
 inline constexpr std::string_view kEquirect = "equirect";
 /// The environment cube with its mip chain.
 inline constexpr std::string_view kEnvironment = "environment";
+inline constexpr std::string_view kEnvironmentPrevious = "environment_previous";
 inline constexpr std::string_view kIrradiance = "irradiance";
 /// GGX-prefiltered specular, one roughness per mip.
 inline constexpr std::string_view kPrefiltered = "prefiltered";

@@ -72,6 +72,13 @@ struct SceneEnvironment {
     std::optional<EnvironmentSequence> sequence;  ///< an animated sky, or nullopt
 };
 
+/// Per frame, set through Renderer::frameData(): how far the sky has faded from a sequence's
+/// previous frame to the current one, for a SkyboxPass with a `previous` environment (0 shows
+/// the previous frame, 1 the current). Without it the sky is the current frame.
+struct SkyFade {
+    double current = 1.0;  ///< in [0, 1]
+};
+
 enum class Tonemapper { AcesNarkowicz, AcesHill, KhronosPbrNeutral, Passthrough };
 enum class DebugView { None, Normal, Metallic, Roughness, Ao };
 
@@ -141,6 +148,7 @@ public:
 ///   skybox   = the scene has an environment (off: no skybox and no IBL work)
 ///   environment_file = the environment is a file, not the procedural sky
 ///   sample_cubemap   = a file environment is sampled through a cubemap (else as equirect)
+///   environment_sequence = the environment is a sequence of two frames or more
 /// A debug view does not change features; it changes the tonemapper (effectiveTonemapper()).
 [[nodiscard]] FeatureValues sceneFeatures(const Scene& scene);
 

@@ -22,6 +22,8 @@ public:
     /// "graph 'ibl', resource 'environment'": where it came from, for messages ("nothing" when
     /// empty). The reference is valid while this SharedImage is neither destroyed nor assigned.
     [[nodiscard]] const std::string& origin() const noexcept;
+    /// True for a default-constructed SharedImage, which holds no image.
+    [[nodiscard]] bool empty() const noexcept { return !impl_; }
 
     struct Impl;
 

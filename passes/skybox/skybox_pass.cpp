@@ -1,12 +1,17 @@
 // SkyboxPass: a fullscreen triangle at the reverse-Z far plane, depth test GREATER_OR_EQUAL
 // without writes, LOAD of the HDR target; rays from the camera rotation alone (exact at any
-// distance from the origin), and cubemap or direct equirect sampling (docs/conventions.md).
+// distance from the origin), and cubemap or direct equirect sampling (docs/conventions.md), or
+// a fade between two cubemaps (a sequence's previous and current frames).
 #include "builtin_passes.hpp"
+#include "pass_error.hpp"
+#include <skygraph/device.hpp>
 #include <skygraph/pipeline_builder.hpp>
 #include "scene_camera.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace skygraph::passes {
@@ -21,11 +26,17 @@ public:
           outputDirection_(desc.params.value("output", std::string("radiance")) == "direction") {}
 
     void createPipelines(const PipelineContext& ctx) override {
-        const BoundResource* env = nullptr;
-        for (const auto& r : ctx.resources)
+        const BoundResource *env = nullptr, *previous = nullptr;
+        for (const auto& r : ctx.resources) {
             if (r.usage && r.usage->slot == "environment") env = &r;
-        // Which texture, if any, decides the pipeline: each mode binds only what it samples.
-        const int mode = !env ? 0 : env->desc->type == ResourceType::Cube ? 1 : 2;
+            if (r.usage && r.usage->slot == "previous") previous = &r;
+        }
+        const bool cube = env && env->desc->type == ResourceType::Cube;
+        if (previous && (!cube || previous->desc->type != ResourceType::Cube))
+            throw ExecutorError(detail::passError(*ctx.pass, previous->desc->name,
+                                          "SkyboxPass fades between cubemaps: 'environment' and 'previous' must both be cubes"));
+        // Which textures, if any, decide the pipeline: each mode binds only what it samples.
+        const int mode = !env ? 0 : previous ? 3 : cube ? 1 : 2;
         GraphicsPipelineRecipe recipe;
         recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/skybox.vert");
         recipe.fragment = compileShader(*ctx.shaders, VK_SHADER_STAGE_FRAGMENT_BIT, "passes/skybox.frag",
@@ -37,6 +48,8 @@ public:
         recipe.depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL;
         if (mode != 0)
             recipe.bindings = {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}};
+        if (mode == 3)
+            recipe.bindings.push_back({1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
         recipe.pushConstantBytes = sizeof(Push);
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
         pushDescriptors_ = pushDescriptorFunction(ctx.device);
@@ -68,10 +81,19 @@ public:
         if (mode_ != 0) {
             const BoundResource* env = ctx.slot("environment");
             push.environment[0] = float(env->extent.height);
+            const SkyFade* fade = ctx.frame ? ctx.frame->get<SkyFade>() : nullptr;
+            push.environment[1] = float(std::clamp(fade ? fade->current : 1.0, 0.0, 1.0));
             const VkDescriptorImageInfo image{mode_ == 2 ? ctx.repeatSampler : ctx.linearSampler, env->view,
                                               env->usage->layout};
-            const VkWriteDescriptorSet write = sampledImageWrite(0, &image);
-            pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), 0, 1, &write);
+            VkDescriptorImageInfo previousImage{};
+            std::array<VkWriteDescriptorSet, 2> writes{sampledImageWrite(0, &image), VkWriteDescriptorSet{}};
+            if (mode_ == 3) {
+                const BoundResource* previous = ctx.slot("previous");
+                previousImage = {ctx.linearSampler, previous->view, previous->usage->layout};
+                writes[1] = sampledImageWrite(1, &previousImage);
+            }
+            pushDescriptors_(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.layout.get(), 0,
+                             mode_ == 3 ? 2u : 1u, writes.data());
         }
         vkCmdPushConstants(ctx.cmd, pipeline_.layout.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                            0, sizeof(push), &push);

@@ -56,10 +56,10 @@ TEST_F(Cli, CheckPassesEveryShippedGraphAndCombinationWithJUnit) {
     const CliRun r = run({"check", "graphs/deferred.json", "graphs/ibl.json", "graphs/pathtrace.json",
                           "graphs/raster.json", "--frames", "2", "--junit", junit.string()});
     EXPECT_EQ(r.status, 0) << r.out << r.err;
-    // 16 + 1 + 2 + 64 combinations, each compiled, verified and run without a message.
-    EXPECT_EQ(rows(r.out, "pass"), 83u) << r.out;
+    // 16 + 1 + 2 + 128 combinations, each compiled, verified and run without a message.
+    EXPECT_EQ(rows(r.out, "pass"), 147u) << r.out;
     EXPECT_EQ(rows(r.out, "FAIL"), 0u) << r.out;
-    EXPECT_NE(r.out.find("83 case(s): 83 passed, 0 failed"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("147 case(s): 147 passed, 0 failed"), std::string::npos) << r.out;
     // Read back by Python's XML parser: a suite per file, a case per combination, none failing.
     const std::string script =
         "import sys, xml.etree.ElementTree as E\n"
@@ -71,7 +71,7 @@ TEST_F(Cli, CheckPassesEveryShippedGraphAndCombinationWithJUnit) {
     const std::string cmd = "python3 " + quote((dir_ / "junit.py").string()) + " " + quote(junit.string()) + " > " +
                             quote((dir_ / "parsed").string());
     ASSERT_EQ(std::system(cmd.c_str()), 0);
-    EXPECT_EQ(slurp(dir_ / "parsed"), "83 0 4 83 0\n");
+    EXPECT_EQ(slurp(dir_ / "parsed"), "147 0 4 147 0\n");
 }
 
 TEST_F(Cli, CheckShowsTheDiffOfAGoldenWithOneBarrierEdited) {
@@ -179,7 +179,7 @@ TEST_F(Cli, CheckGivesTheSameTableOnSeveralThreads) {
     const CliRun four = run({"check", "graphs/raster.json", "graphs/deferred.json", "--no-run", "--jobs", "4"});
     EXPECT_EQ(one.status, 0);
     EXPECT_EQ(four.status, 0);
-    EXPECT_EQ(rows(four.out, "pass"), 80u);
+    EXPECT_EQ(rows(four.out, "pass"), 144u);  // 128 + 16
     EXPECT_EQ(withoutTimes(one.out), withoutTimes(four.out));
 }
 

@@ -207,7 +207,7 @@ TEST(CommandLog, EveryShippedPlanIsRecordedWithExactlyItsOwnBarriers) {
         }
         ++plans;
     }
-    EXPECT_EQ(plans, 64u + 2u + 1u + 16u);
+    EXPECT_EQ(plans, 128u + 2u + 1u + 16u);
     EXPECT_GT(barriers, 500u) << "the plans' barriers were all compared";
 }
 

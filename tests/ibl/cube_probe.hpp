@@ -61,8 +61,8 @@ public:
     }
 
 private:
-    bool keepsHandles_ = true;
     std::vector<Dir> dirs_;
+    bool keepsHandles_ = true;
     ComputePipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR push_ = nullptr;
 };

@@ -535,9 +535,9 @@ TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {
 }
 
 // An environment sequence plays beside the frames: each frame due is decoded on the stream's
-// thread, baked beside the frames and swapped in, so the sky changes with it; over an
-// unreadable frame the sky holds the last one (never black), and playback loops. Nothing
-// rebuilds, and validation stays silent.
+// thread, baked beside the frames and swapped in, and the sky fades to it from the frame
+// before over one frame of the sequence; over an unreadable frame the sky holds the last one
+// (never black), and playback loops. Nothing rebuilds, and validation stays silent.
 TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadableFrame) {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / "skygraph-present-sequence";
     std::filesystem::remove_all(dir);
@@ -582,19 +582,30 @@ TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadabl
     const ImageData first = screen();
 
     playUntil(0.1, [](const app::SequenceStats& s) { return s.current == 1u; });
+    EXPECT_LT(difference(first, screen()), 1e-6) << "the fade starts from the frame shown before";
+    w.frame();
+    live.playSequence(0.15);  // half way: the fade lasts one frame of the sequence
+    const ImageData half = screen();
+
+    playUntil(0.2, [](const app::SequenceStats& s) { return s.failed == 1u; });
     const ImageData second = screen();
     EXPECT_GT(mean(second), 0.05) << "a sky, not black";
     EXPECT_GT(difference(first, second), 0.2) << "the sun left the view: the sky changed with the frame";
-
-    playUntil(0.2, [](const app::SequenceStats& s) { return s.failed == 1u; });
-    for (int i = 0; i < 3; ++i) w.frame();
+    EXPECT_GT(difference(first, half), 0.05) << "half way, neither frame";
+    EXPECT_GT(difference(half, second), 0.05) << "half way, neither frame";
+    for (int i = 0; i < 3; ++i) {
+        w.frame();
+        live.playSequence(0.25);
+    }
     EXPECT_EQ(live.sequence()->stats().current, 1u) << "the sky holds frame 1 over the unreadable frame 2";
     EXPECT_EQ(difference(second, screen()), 0.0);
 
     playUntil(0.3, [](const app::SequenceStats& s) { return s.current == 3u; });
     playUntil(0.45, [](const app::SequenceStats& s) { return s.current == 0u && s.shown == 4u; });  // looped
-    EXPECT_LT(difference(first, screen()), 1e-6) << "frame 0 again, as at the start";
     const app::SequenceStats stats = live.sequence()->stats();
+    w.frame();
+    live.playSequence(0.58);  // the fade from frame 3 is over; frame 1 is due, and fades in from frame 0 if swapped in
+    EXPECT_LT(difference(first, screen()), 1e-6) << "frame 0 again, as at the start";
     EXPECT_EQ(stats.shown, 4u) << "frames 0, 1, 3 and 0 again";
     EXPECT_EQ(stats.dropped, 1u);
     EXPECT_EQ(stats.late, 0u) << "playback's clock waited for every bake";

@@ -49,9 +49,10 @@ TEST(SceneFiles, EveryShippedSceneLoads) {
     EXPECT_GE(count, 4);
 }
 
-/// The four features of graphs/raster.json that a scene decides.
-FeatureValues rasterFeatures(bool geometry, bool skybox, bool file, bool cubemap) {
-    return {{"geometry", geometry}, {"skybox", skybox}, {"environment_file", file}, {"sample_cubemap", cubemap}};
+/// The five features of graphs/raster.json that a scene decides.
+FeatureValues rasterFeatures(bool geometry, bool skybox, bool file, bool cubemap, bool sequence = false) {
+    return {{"geometry", geometry},  {"skybox", skybox}, {"environment_file", file}, {"sample_cubemap", cubemap},
+            {"environment_sequence", sequence}};
 }
 
 TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
@@ -162,7 +163,9 @@ TEST(SceneLoader, ASequenceFindsItsFramesFromZeroOrOneWithoutAGap) {
     EXPECT_EQ(q.frame(2), fs::absolute(dir / "frames" / "sky_003.exr"));
     EXPECT_FALSE(s.environment->procedural);
     EXPECT_EQ(s.environment->file, q.frame(0)) << "the first frame stands for the environment";
-    EXPECT_EQ(sceneFeatures(s).at("environment_file"), true);
+    EXPECT_EQ(sceneFeatures(s), rasterFeatures(false, true, true, true, true));
+    EXPECT_EQ(explainSceneFeatures(s).back(), "environment_sequence = on: the environment is a sequence of 3 frames at "
+                                              "30.000000 fps, '" + q.pattern + "'");
 
     std::ofstream(dir / "frames" / "sky_000.exr") << "x";
     std::ofstream(dir / "t.json") << R"({"environment": {"sequence": "frames/sky_%03d.exr"}})";
@@ -170,6 +173,10 @@ TEST(SceneLoader, ASequenceFindsItsFramesFromZeroOrOneWithoutAGap) {
     EXPECT_EQ(t.environment->sequence->first, 0u);
     EXPECT_EQ(t.environment->sequence->count, 4u);
     EXPECT_EQ(t.environment->sequence->fps, 24.0) << "the default";
+    fs::remove(dir / "frames" / "sky_001.exr");
+    const Scene still = loadSceneFile(dir / "t.json");
+    EXPECT_EQ(still.environment->sequence->count, 1u);
+    EXPECT_EQ(sceneFeatures(still).at("environment_sequence"), false) << "one frame is a still";
     fs::remove_all(dir);
 }
 

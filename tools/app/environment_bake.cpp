@@ -118,8 +118,10 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
 
 EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                                    std::set<std::string, std::less<>> products, const PassLibrary* passes,
-                                   bool background)
+                                   bool background, uint32_t renderers)
     : products_(std::move(products)), background_(background) {
+    if (renderers < 2 || renderers > 3)
+        throw std::invalid_argument("EnvironmentBaker: 2 or 3 renderers, not " + std::to_string(renderers));
     if (!setEquirectExtent(graph, width, height))
         throw ExecutorError("the environment graph '" + graph.name + "' has no resource '" + std::string(kEquirect) +
                             "'");
@@ -133,15 +135,21 @@ EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t wid
     RendererOptions ro;
     ro.framesInFlight = 1;
     ro.passes = passes;
-    for (auto& r : renderers_) r = std::make_unique<Renderer>(device, compiled, ro);
+    for (uint32_t i = 0; i < renderers; ++i) renderers_.push_back(std::make_unique<Renderer>(device, compiled, ro));
+    uploaded_.assign(renderers, false);
+}
+
+SharedImage EnvironmentBaker::swappedIn(const std::string& name) const {
+    return swapped_ ? renderers_[*swapped_]->shareImage(name) : SharedImage();
 }
 
 bool EnvironmentBaker::start(HdrImage equirect) {
     if (pending_) return false;
     const auto begin = Clock::now();
     Renderer& r = *renderers_[next_];
-    // Its products were last sampled by frames before the previous swap; the bake's first
-    // submit, on the graphics queue, orders its writes after all of them.
+    // Its products were last sampled by frames before the previous swap (with three
+    // renderers, the one before); the bake's first submit, on the graphics queue, orders its
+    // writes after all of them.
     if (uploaded_[next_]) {
         r.updateExternalImage(std::string(kEquirect), toImageData(std::move(equirect)), UploadTiming::WithNextFrame);
     } else {
@@ -165,7 +173,8 @@ bool EnvironmentBaker::swapInWhenFinished(Renderer& frame) {
     if (!r.finishBackgroundFrame()) return false;
     for (const auto& name : products_) frame.importImage(name, r.shareImage(name));
     pending_ = false;
-    next_ = 1 - next_;
+    swapped_ = next_;
+    next_ = (next_ + 1) % renderers_.size();
     return true;
 }
 

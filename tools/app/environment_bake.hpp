@@ -14,6 +14,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -52,19 +53,23 @@ struct EnvironmentBake {
                                               const PassLibrary* passes, const BakeStepCallback& onStep = {});
 
 /// Re-bakes the environment a frame renderer imports beside its frames, again and again
-/// (docs/queues.md, "Background frames"). Two renderers of `graph`, with every pass on the
-/// compute queue, are made once and take turns: a change costs the upload of the new
+/// (docs/queues.md, "Background frames"). Two or three renderers of `graph`, with every pass
+/// on the compute queue, are made once and take turns: a change costs the upload of the new
 /// equirect and a submit, not a compile. Each bake is a background frame; the frames keep the
-/// products they import until swapInWhenFinished() hands them the new ones. Owns both
-/// renderers (and so the products the frames sample after a swap); `device` and `passes`
+/// products they import until swapInWhenFinished() hands them the new ones. A bake reuses the
+/// renderer swapped in longest ago: with two, the frames must sample only the last swap's
+/// products; with three, also the swap's before (a sky fading from one to the other). Owns
+/// the renderers (and so the products the frames sample after a swap); `device` and `passes`
 /// must outlive it, and it must outlive the frames' use of its products. Not copyable.
 class EnvironmentBaker {
 public:
-    /// Compiles `graph` for `products` with an equirect of `width` x `height` and makes both
-    /// renderers. `background` false: the passes stay on the graphics queue and start() waits
-    /// for the bake (the synchronous way, for comparison). Throws like bakeEnvironment().
+    /// Compiles `graph` for `products` with an equirect of `width` x `height` and makes
+    /// `renderers` (2 or 3) renderers. `background` false: the passes stay on the graphics
+    /// queue and start() waits for the bake (the synchronous way, for comparison). Throws like
+    /// bakeEnvironment().
     EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
-                     std::set<std::string, std::less<>> products, const PassLibrary* passes, bool background = true);
+                     std::set<std::string, std::less<>> products, const PassLibrary* passes, bool background = true,
+                     uint32_t renderers = 2);
     EnvironmentBaker(const EnvironmentBaker&) = delete;
     EnvironmentBaker& operator=(const EnvironmentBaker&) = delete;
 
@@ -78,16 +83,19 @@ public:
     /// returns true; false while it runs or when none was started. Never blocks.
     bool swapInWhenFinished(Renderer& frame);
     [[nodiscard]] bool pending() const noexcept { return pending_; }
+    /// Product `name` of the last bake swapped in (empty before the first swap).
+    [[nodiscard]] SharedImage swappedIn(const std::string& name) const;
     /// Host time of the last start(): the upload and the submits.
     [[nodiscard]] double lastStartMs() const noexcept { return lastStartMs_; }
 
 private:
-    std::array<std::unique_ptr<Renderer>, 2> renderers_;
+    std::vector<std::unique_ptr<Renderer>> renderers_;
     std::set<std::string, std::less<>> products_;
     bool background_ = true;
     size_t next_ = 0;  ///< The renderer the next bake uses.
+    std::optional<size_t> swapped_;  ///< The renderer last swapped in.
     bool pending_ = false;
-    bool uploaded_[2] = {false, false};
+    std::vector<bool> uploaded_;
     double lastStartMs_ = 0.0;
 };
 

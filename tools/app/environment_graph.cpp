@@ -58,7 +58,8 @@ std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph
 }
 
 void resizeEnvironmentGraph(GraphDesc& graph, const EnvironmentSizes& sizes) {
-    if (ResourceDesc* r = findCube(graph, kEnvironment)) r->extent = Extent{false, 1, sizes.environment, sizes.environment};
+    for (std::string_view name : {kEnvironment, kEnvironmentPrevious})
+        if (ResourceDesc* r = findCube(graph, name)) r->extent = Extent{false, 1, sizes.environment, sizes.environment};
     if (ResourceDesc* r = findCube(graph, kPrefiltered)) r->extent = Extent{false, 1, sizes.prefiltered, sizes.prefiltered};
 
     const auto isMip = [](const PassDesc& p) { return p.type == kCubemapMipPass; };

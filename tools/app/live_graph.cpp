@@ -56,6 +56,12 @@ LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint
 void LiveGraph::startSequence() {
     player_.reset();
     sequenceBaking_ = false;
+    fadeStarting_ = false;
+    fadeStart_.reset();
+    const FrameEnvironment& built = built_->environment;
+    environmentShown_ = built.products.contains(shipped::kEnvironment)
+                            ? built.renderer->shareImage(std::string(shipped::kEnvironment))
+                            : SharedImage();
     const Scene* scene = built_->scene ? &*built_->scene : nullptr;
     if (!scene || !scene->environment || !scene->environment->sequence || scene->environment->sequence->count < 2)
         return;
@@ -73,6 +79,12 @@ void LiveGraph::playSequence(double seconds) {
     if (sequenceBaking_ && !rebaking()) {  // poll() swapped it in
         player_->swappedIn(seconds);
         sequenceBaking_ = false;
+    }
+    if (std::exchange(fadeStarting_, false)) fadeStart_ = seconds;
+    if (fadeStart_) {
+        const double fade = std::min((seconds - *fadeStart_) * player_->fps(), 1.0);
+        renderer_->frameData().set(SkyFade{fade});
+        if (fade >= 1.0) fadeStart_.reset();
     }
     if (!canRebake()) return;
     std::optional<SequenceFrame> frame = player_->frameToBake(seconds);
@@ -218,10 +230,13 @@ bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
                      pixels.width, pixels.height, extent[0], extent[1]);
         pixels = resampleEquirect(pixels, extent[0], extent[1]);
     }
+    // A sky that fades samples two swaps' products: a third renderer bakes meanwhile.
+    const bool fades = renderer_->plan().resourceIndex(shipped::kEnvironmentPrevious) >= 0;
     if (!baker_)
         baker_ = std::make_unique<EnvironmentBaker>(device_, *running.graph, pixels.width, pixels.height,
                                                     running.products,
-                                                    options_.passes ? options_.passes : &PassLibrary::genericOnly());
+                                                    options_.passes ? options_.passes : &PassLibrary::genericOnly(),
+                                                    true, fades ? 3 : 2);
     if (renderer_->plan().resourceIndex(shipped::kEquirect) >= 0) rebakeEquirect_ = pixels;
     if (!what.empty()) spdlog::info("environment: re-baking {} beside the frames", what);
     return baker_->start(std::move(pixels));
@@ -251,7 +266,18 @@ void LiveGraph::startPendingSunBake() {
 }
 
 void LiveGraph::swapRebake() {
+    const SharedImage shown = environmentShown_;
     if (!baker_ || !baker_->swapInWhenFinished(*renderer_)) return;
+    environmentShown_ = baker_->swappedIn(std::string(shipped::kEnvironment));
+    // The fade's source is the cube shown until now, never an older one: the baker reuses the
+    // renderer swapped in before it. Another file than a sequence's frame is not faded to.
+    if (renderer_->plan().resourceIndex(shipped::kEnvironmentPrevious) >= 0) {
+        const bool fade = sequenceBaking_ && !shown.empty();
+        renderer_->importImage(std::string(shipped::kEnvironmentPrevious), fade ? shown : environmentShown_);
+        renderer_->frameData().set(SkyFade{fade ? 0.0 : 1.0});
+        fadeStarting_ = fade;
+        fadeStart_.reset();
+    }
     // The frame's own equirect (a skybox that samples it): uploaded at the swap, so that the
     // sky and the lighting change together; this waits for the frames in flight.
     if (rebakeEquirect_)

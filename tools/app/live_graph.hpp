@@ -63,9 +63,11 @@ public:
     bool setSunDirection(const Vec3& sun);
     /// Plays the scene's environment sequence: at `seconds` since playback began, once no
     /// bake runs, starts baking the frame due then if it is decoded (SequencePlayer), the
-    /// frames holding the last one meanwhile. Call after poll(), which swaps a bake in. A
-    /// sequence restarts from its first frame after a rebuild; another environment file
-    /// stops it. Nothing happens without a sequence.
+    /// frames holding the last one meanwhile. Call after poll(), which swaps a bake in. Where
+    /// the graph's skybox fades (graphs/raster.json's environment_sequence), the sky fades
+    /// from the previous frame's cube to the new one over one frame of the sequence (SkyFade);
+    /// the lighting changes at the swap. A sequence restarts from its first frame after a
+    /// rebuild; another environment file stops it. Nothing happens without a sequence.
     void playSequence(double seconds);
     /// What playback has done; null without a sequence playing.
     [[nodiscard]] const SequencePlayer* sequence() const noexcept { return player_.get(); }
@@ -134,6 +136,10 @@ private:
     std::optional<Vec3> pendingSun_;           ///< A sun direction not baked yet.
     std::unique_ptr<SequencePlayer> player_;
     bool sequenceBaking_ = false;  ///< The pending re-bake is a sequence frame.
+    /// The environment cube the frames sample: what a sequence's sky fades from at a swap.
+    SharedImage environmentShown_;
+    bool fadeStarting_ = false;         ///< A swap began a fade; playSequence() notes when.
+    std::optional<double> fadeStart_;  ///< Playback seconds at which the running fade began.
     std::unique_ptr<Built> built_;
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;

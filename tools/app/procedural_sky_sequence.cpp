@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 namespace skygraph::app {
 
@@ -16,6 +18,11 @@ std::array<double, 3> sequenceSunDirection(uint32_t frame, uint32_t frames) {
 }
 
 void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uint32_t width) {
+    if (const auto folder = std::filesystem::path(pattern).parent_path(); !folder.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(folder, ec);
+        if (ec) throw ImageError(folder, "cannot make the folder: " + ec.message());
+    }
     for (uint32_t i = 0; i < frames; ++i)
         saveHdrImage(formatSequenceFrame(pattern, i), proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
 }

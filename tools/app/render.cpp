@@ -53,7 +53,8 @@ std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const G
         const ResourceDesc& d = graph.resources[r.decl];
         // What the plan only reads: a graph that writes an external (graphs/ibl.json itself)
         // produces it.
-        if (!d.external || d.name == kEquirect || written.count(i)) continue;
+        // The previous environment is the environment's cube, imported by attachFrameInputs.
+        if (!d.external || d.name == kEquirect || d.name == kEnvironmentPrevious || written.count(i)) continue;
         const ResourceDesc* produced = environmentGraph ? environmentGraph->findResource(d.name) : nullptr;
         if (produced && produced->isExported()) {
             products.insert(d.name);
@@ -188,6 +189,9 @@ void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvir
     if (inputs.scene) renderer.frameData().set(*inputs.scene);
     for (const auto& name : environment.products)
         renderer.importImage(name, environment.renderer->shareImage(name));
+    // A sequence's sky fades from the previous frame's cube: until there is one, the first.
+    if (environment.products.contains(kEnvironment) && renderer.plan().resourceIndex(kEnvironmentPrevious) >= 0)
+        renderer.importImage(std::string(kEnvironmentPrevious), environment.renderer->shareImage(std::string(kEnvironment)));
     if (inputs.environment && renderer.plan().resourceIndex(kEquirect) >= 0)
         renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*inputs.environment)));
 }

@@ -36,6 +36,7 @@ public:
     void swappedIn(double seconds);
 
     [[nodiscard]] const SequenceStats& stats() const noexcept { return stats_; }
+    [[nodiscard]] double fps() const noexcept { return fps_; }
     [[nodiscard]] const SequenceStream& stream() const noexcept { return *stream_; }
     /// Playback's frame number at `seconds`: it counts on past the end as playback loops.
     [[nodiscard]] int64_t tick(double seconds) const noexcept;

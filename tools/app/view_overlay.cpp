@@ -121,6 +121,11 @@ void ViewOverlay::sceneControls(LiveGraph& live) {
         if (scene->environment->procedural) sunControls(live, scene->environment->sunDirection);
     }
     if (edited) live.sceneChanged();
+    if (const SequencePlayer* player = live.sequence()) {
+        const SequenceStats& s = player->stats();
+        ImGui::Text("sequence: frame %u of %u at %.3g fps; %u shown, %u late, %u dropped", s.current.value_or(0) + 1,
+                    player->stream().sequence().count, player->fps(), s.shown, s.late, s.dropped);
+    }
     ImGui::InputText("environment", environmentFile_.data(), environmentFile_.size());
     if (ImGui::Button("load file")) live.setEnvironmentFile(environmentFile_.data());
     ImGui::SameLine();
