@@ -20,8 +20,9 @@
 # QUEUES_BENCH=1 to run graphs/async.json and rebake_bench under validation, then timed with
 # separate queues against one (REBAKE_FRAMES, REBAKE_REPS), SKIP_IMGUI_BENCH=1 to skip imgui_bench (the ImGui pass at IMGUI_SIZE, 1920x1080; IMGUI_REPS
 # (5) repetitions, interleaved when more than 5), GLTF_CHECK=1 to render the glTF reference
-# scenes raster and path traced under validation (models from .devbundle/data/gltf/), TARGETS
-# the targets built (default: all four).
+# scenes raster and path traced under validation (models from .devbundle/data/gltf/),
+# SEQUENCE_BENCH=1 to run sequence_bench at 2K and 6K (SEQUENCE_FRAMES), TARGETS the targets
+# built (default: all four).
 # graphs/ibl.json's external "equirect" is
 # filled with gpu_frame_bench's procedural HDR sky (--procedural equirect) when a run has it.
 #
@@ -117,6 +118,7 @@ bin_exec=$build/framework/executor/executor_bench
 bin_cli=$build/tools/skygraph
 bin_imgui=$build/bench/imgui_bench
 bin_rebake=$build/bench/rebake_bench
+bin_sequence=$build/bench/sequence_bench
 # A target that failed to build is reported and skipped; the others still run.
 ran() { [ -x "$1" ] || { echo "not built: $1"; return 1; }; }
 
@@ -214,6 +216,18 @@ if [ "${GLTF_CHECK:-0}" = 1 ]; then
       && "$bin_cli" render graphs/pathtrace.json --device "$device" --validate --scene "/tmp/$name.json" \
       --width 480 --height 320 --frames 64 -o "$out/$name-pathtrace.png")
     echo "$name: rc=$?"
+  done
+fi
+if [ "${SEQUENCE_BENCH:-0}" = 1 ]; then
+  # An environment sequence per frame and in memory at 2K and 6K (bench/sequence_bench.cpp):
+  # once under validation at 2K, then timed (SEQUENCE_FRAMES frames, default 9).
+  step "sequence_bench under validation on $device, 2K"
+  ran "$bin_sequence" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device SKYGRAPH_VALIDATION=1 "$bin_sequence" \
+    --width 2048 --frames 4 --size 1920x1080 --dir /tmp/skygraph-sequence) | tee "$out/sequence-validation.txt"
+  for width in 2048 6144; do
+    step "sequence_bench on $device, equirect width $width"
+    ran "$bin_sequence" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_sequence" --width "$width" \
+      --frames "${SEQUENCE_FRAMES:-9}" --size 1920x1080 --dir /tmp/skygraph-sequence) | tee "$out/sequence-$width.txt"
   done
 fi
 step "done"

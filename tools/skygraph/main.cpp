@@ -8,6 +8,7 @@
 #include "render_command.hpp"
 #include "check_command.hpp"
 #include "cubemap_command.hpp"
+#include "sky_sequence_command.hpp"
 #include "view_command.hpp"
 #endif
 
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
         addCheckCommand(app),
         addCubemapCommand(app),
         addViewCommand(app),
+        addSkySequenceCommand(app),
 #endif
     };
 

@@ -1,0 +1,46 @@
+// `skygraph sky-sequence`: see sky_sequence_command.hpp.
+#include "sky_sequence_command.hpp"
+
+#include "app/procedural_environment.hpp"
+
+#include <skygraph/scene.hpp>
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <memory>
+
+namespace skygraph::cli {
+namespace {
+
+struct SkySequenceArgs {
+    std::string pattern;
+    uint32_t frames = 48;
+    uint32_t width = 1024;
+};
+
+int run(const SkySequenceArgs& args) {
+    if (const std::string problem = sequencePatternProblem(args.pattern); !problem.empty())
+        throw UsageError("skygraph sky-sequence: '" + args.pattern + "' " + problem);
+    app::writeProceduralSkySequence(args.pattern, args.frames, args.width);
+    std::cout << "skygraph sky-sequence: " << args.frames << " frames of " << args.width << "x" << args.width / 2
+              << ", " << formatSequenceFrame(args.pattern, 0) << " to "
+              << formatSequenceFrame(args.pattern, args.frames - 1) << "\n";
+    return kExitOk;
+}
+
+}  // namespace
+
+Command addSkySequenceCommand(CLI::App& parent) {
+    auto args = std::make_shared<SkySequenceArgs>();
+    CLI::App* cmd = parent.add_subcommand(
+        "sky-sequence", "Write a time-lapse of the procedural sky as equirect frames (its sun circles the sky once), "
+                        "for an environment sequence: PATTERN holds the frame number as %d or %0Nd, e.g. frames/%04d.exr");
+    cmd->add_option("pattern", args->pattern, "Frame files, .hdr or .exr, numbered from 0")->required();
+    cmd->add_option("--frames", args->frames, "How many frames")->check(CLI::Range(1u, 100000u))->capture_default_str();
+    cmd->add_option("--width", args->width, "Equirect width; the height is half")
+        ->check(CLI::Range(2u, 16384u))->capture_default_str();
+    return {cmd, [args] { return run(*args); }};
+}
+
+}  // namespace skygraph::cli
