@@ -12,13 +12,17 @@
 //
 // as medians over the frames, and the device memory the renderers hold (Device::
 // allocatedBytes): the frame renderer with its first environment, then with the baker, which
-// stays the same however many frames play. Host memory: the stream's decoded frames.
+// stays the same however many frames play. Host memory: the stream's decoded frames. Where
+// the frames are baked smaller than the files (sequenceEquirectWidth), it also bakes one
+// frame's cube at both sizes (bakeAndReadBack, on a device of its own) and reports the
+// difference.
 //
 //   sequence_bench [--width W] [--frames N] [--size WxH] [--dir DIR]
 //
 // Environment: SKYGRAPH_BENCH_DEVICE picks the device, SKYGRAPH_VALIDATION=1 runs under
 // validation; the exit status is 1 when a validation message was counted.
 #include "app/environment_bake.hpp"
+#include "app/equirect_resample.hpp"
 #include "app/procedural_environment.hpp"
 #include "app/render.hpp"
 #include "app/sequence_stream.hpp"
@@ -34,6 +38,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <iterator>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +166,40 @@ int main(int argc, char** argv) {
         const double seedMib = 120.0 * double(width) * (width / 2) * 4 / (1024.0 * 1024.0);
         std::printf("120 frames at this size: every frame resident as 4 bytes a texel %.0f MiB, ours %.0f MiB (%.3fx)\n",
                     seedMib, allMib, allMib / seedMib);
+        if (extent[0] < width) {
+            // What baking the smaller frames costs in accuracy: frame 1's environment cube baked
+            // from the file as it is and from the size the frames are baked at.
+            const HdrImage full = loadHdrImage(sequence.frame(1));
+            app::BakeOptions o;
+            std::ifstream ibl(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/ibl.json");
+            o.graphText.assign(std::istreambuf_iterator<char>(ibl), {});
+            o.size = environment.graph->findResource(std::string(shipped::kEnvironment))->extent.width;
+            o.products = {};
+            o.device = dopts.device;
+            const auto cube = [&](const HdrImage& equirect) {
+                auto levels = app::bakeAndReadBack(equirect, o).products.at(std::string(shipped::kEnvironment));
+                levels.resize(6);  // mip 0's faces
+                return levels;
+            };
+            const auto reference = cube(full), baked = cube(app::resampleEquirect(full, extent[0], extent[1]));
+            double sum = 0.0, sumRef = 0.0;
+            std::vector<double> relative;
+            for (size_t f = 0; f < 6; ++f)
+                for (size_t i = 0; i < reference[f].rgba.size(); ++i) {
+                    if (i % 4 == 3) continue;
+                    const double a = reference[f].rgba[i], b = baked[f].rgba[i];
+                    sum += std::abs(a - b);
+                    sumRef += std::abs(a);
+                    relative.push_back(std::abs(a - b) / std::max(std::abs(a), 1e-3));
+                }
+            std::sort(relative.begin(), relative.end());
+            std::printf("the %u^2 cube baked from %ux%u instead of %ux%u: mean difference %.2e of the mean, relative "
+                        "difference 99th percentile %.2e, 99.9th %.2e, largest %.2e\n",
+                        o.size, extent[0], extent[1], width, width / 2, sumRef > 0 ? sum / sumRef : 0.0,
+                        relative[relative.size() * 99 / 100], relative[relative.size() * 999 / 1000], relative.back());
+        } else {
+            std::printf("the frames are baked at their own size (%ux%u)\n", width, width / 2);
+        }
         const uint32_t messages = device->messageCount();
         std::printf("sequence_bench: validation: %u message(s)\n", messages);
         return messages == 0 ? 0 : 1;

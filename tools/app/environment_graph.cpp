@@ -39,6 +39,11 @@ uint32_t viewEnvironmentFaceSize(uint32_t outputHeight, double fovYDeg, uint32_t
     return std::max(std::min({forView, forSource, cap}), 1u);
 }
 
+uint32_t sequenceEquirectWidth(uint32_t faceSize, uint32_t sourceWidth) noexcept {
+    const uint64_t wanted = uint64_t(faceSize) * 8;
+    return uint32_t(std::min<uint64_t>(wanted, sourceWidth));
+}
+
 std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph, uint32_t outputHeight,
                                                      double fovYDeg, uint32_t equirectWidth) {
     const ResourceDesc* environment = frameGraph.findResource(kEnvironment);

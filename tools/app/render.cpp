@@ -1,6 +1,8 @@
 // `skygraph render`: compile a graph file and render it headless.
 #include "render.hpp"
 
+#include "equirect_resample.hpp"
+
 #include "command_exit.hpp"
 
 #include "environment_bake.hpp"
@@ -148,6 +150,19 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
                          "(equirect {} wide)",
                          in.environmentSizes->environment, in.environmentSizes->prefiltered, options.height,
                          scene->camera.fovYDeg, environment->width);
+        }
+    }
+    // A sequence's frames are baked again and again beside the frames: where the sky samples
+    // the cube, each is uploaded only as wide as the cube needs (the stream resamples the
+    // frames to this size), which bounds the copy, the bakes' memory and their filtering.
+    if (environment && in.environmentSizes && scene->environment->sequence &&
+        scene->environment->sampling == EnvironmentSampling::Cubemap) {
+        const uint32_t width = sequenceEquirectWidth(in.environmentSizes->environment, environment->width);
+        if (width < environment->width) {
+            spdlog::info("environment: the sequence's frames are baked at {}x{} (from {}x{}) for the {}^2 cube", width,
+                         width / 2, environment->width, environment->height, in.environmentSizes->environment);
+            *environment = resampleEquirect(*environment, width, width / 2);
+            setEquirectExtent(graph, width, width / 2);
         }
     }
     CompileOptions& co = in.compile;
