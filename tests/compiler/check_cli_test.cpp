@@ -3,6 +3,8 @@
 // compile, a device that does not exist, JUnit XML read back by an independent parser.
 #include "cli_fixture.hpp"
 
+#include <skygraph/hdr_image.hpp>
+
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -241,6 +243,22 @@ TEST_F(Cli, CheckFeatureSelection) {
         << badValue.err;
     EXPECT_EQ(run({"check", "graphs/raster.json", "--size", "64by64", "--no-run"}).status, 2);
     EXPECT_EQ(run({"check", "graphs/raster.json", "--update", "--no-run"}).status, 2);  // needs --golden
+}
+
+TEST_F(Cli, SkySequenceWritesEveryFrameAndRefusesAPatternWithoutANumber) {
+    const fs::path pattern = dir_ / "work" / "frames" / "sky_%03d.exr";
+    const CliRun ok = run({"sky-sequence", pattern.string(), "--frames", "3", "--width", "32"});
+    EXPECT_EQ(ok.status, 0) << ok.err;
+    for (const char* name : {"sky_000.exr", "sky_001.exr", "sky_002.exr"}) {
+        const skygraph::HdrImage frame = skygraph::loadHdrImage(dir_ / "work" / "frames" / name);
+        EXPECT_EQ(frame.width, 32u) << name;
+        EXPECT_EQ(frame.height, 16u) << name;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "work" / "frames" / "sky_003.exr"));
+    const CliRun bad = run({"sky-sequence", (dir_ / "work" / "sky.exr").string()});
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("sky.exr' must hold the frame number as %d or %0Nd"), std::string::npos) << bad.err;
+    EXPECT_FALSE(fs::exists(dir_ / "work" / "sky.exr"));
 }
 
 TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
