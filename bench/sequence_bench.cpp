@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
         SharedImage shown = environment.renderer->shareImage(std::string(shipped::kEnvironment));
         for (uint32_t i = 1; i < frames; ++i) {
             std::optional<app::SequenceFrame> next;
-            while (!(next = stream.take(i))) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            while (!(next = stream.takeNewest(i, 1))) std::this_thread::sleep_for(std::chrono::milliseconds(1));
             if (!next->error.empty()) throw std::runtime_error(next->error);
             decode.push_back(next->decodeMs);
             const auto begin = Clock::now();

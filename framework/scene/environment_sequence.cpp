@@ -50,8 +50,12 @@ std::string formatSequenceFrame(std::string_view pattern, uint32_t number) {
     return std::string(pattern.substr(0, c.begin)) + digits + std::string(pattern.substr(c.end));
 }
 
+std::filesystem::path sequenceFrameFile(const std::filesystem::path& pattern, uint32_t number) {
+    return pattern.parent_path() / formatSequenceFrame(pattern.filename().string(), number);
+}
+
 std::filesystem::path EnvironmentSequence::frame(uint32_t index) const {
-    return formatSequenceFrame(pattern, first + index);
+    return sequenceFrameFile(pattern, first + index);
 }
 
 }  // namespace skygraph

@@ -231,8 +231,9 @@ private:
         if (!name.is_string() || name.get<std::string>().empty())
             return error("environment.sequence", "must be a file pattern such as \"frames/%04d.exr\"");
         const std::string text = name.get<std::string>();
-        if (const std::string problem = sequencePatternProblem(text); !problem.empty())
-            return error("environment.sequence", "'" + text + "' " + problem);
+        if (const std::string problem = sequencePatternProblem(std::filesystem::path(text).filename().string());
+            !problem.empty())
+            return error("environment.sequence", "'" + text + "': its file name " + problem);
         sequence.pattern = (baseDir_ / text).lexically_normal().string();
         std::string ext = std::filesystem::path(text).extension().string();
         for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
@@ -240,11 +241,12 @@ private:
             return error("environment.sequence", "'" + text + "' names neither .hdr nor .exr files");
         std::error_code ec;
         const auto exists = [&](uint32_t number) {
-            return std::filesystem::is_regular_file(formatSequenceFrame(sequence.pattern, number), ec);
+            return std::filesystem::is_regular_file(sequenceFrameFile(sequence.pattern, number), ec);
         };
         if (!exists(0) && !exists(1))
-            return error("environment.sequence", "no first frame: neither '" + formatSequenceFrame(sequence.pattern, 0) +
-                                                     "' nor '" + formatSequenceFrame(sequence.pattern, 1) + "' exists");
+            return error("environment.sequence", "no first frame: neither '" +
+                                                     sequenceFrameFile(sequence.pattern, 0).string() + "' nor '" +
+                                                     sequenceFrameFile(sequence.pattern, 1).string() + "' exists");
         sequence.first = exists(0) ? 0 : 1;
         while (sequence.count < kMaxSequenceFrames && exists(sequence.first + sequence.count)) ++sequence.count;
         if (exists(sequence.first + sequence.count))

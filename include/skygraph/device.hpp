@@ -118,10 +118,11 @@ public:
     /// but once the device is destroyed (finish() or the destructor) its requirements() and
     /// bufferImageGranularity() throw ExecutorError.
     [[nodiscard]] std::shared_ptr<const MemoryModel> memoryModel() const noexcept;
-    /// Bytes of device memory that renderers on this device hold now: every vkAllocateMemory
-    /// of theirs (images, buffers, heaps, staging) not yet freed, whatever its memory type;
-    /// memory that others allocate on the device (an ImGui backend) is not counted. Safe from
-    /// any thread.
+    /// Bytes of device memory that renderers on this device hold now for their plans: every
+    /// vkAllocateMemory a Renderer makes (the plan's images and buffers, its heaps, staging)
+    /// not yet freed, whatever its memory type. Memory that pass implementations allocate on
+    /// their own (a model's geometry and textures, the path tracer's scene) or others do (an
+    /// ImGui backend) is not counted. Safe from any thread.
     [[nodiscard]] uint64_t allocatedBytes() const noexcept;
 
     /// Number of warning and error messages received since creation or the last clear,

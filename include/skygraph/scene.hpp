@@ -40,8 +40,9 @@ struct SceneCamera {
 
 enum class EnvironmentSampling { Cubemap, Equirect };
 
-/// Equirect frames played as an animated sky, one file a frame, named by a pattern with one
-/// printf-style number: `%d`, or `%0Nd` for N digits with leading zeros (N from 1 to 9).
+/// Equirect frames played as an animated sky, one file a frame, named by a pattern whose file
+/// name holds one printf-style number: `%d`, or `%0Nd` for N digits with leading zeros (N
+/// from 1 to 9).
 /// The frames are numbered from 0 or 1 on, without a gap; playback loops.
 struct EnvironmentSequence {
     std::string pattern;  ///< absolute (resolved against the scene's folder), e.g. /x/frames/%04d.exr
@@ -59,6 +60,9 @@ inline constexpr uint32_t kMaxSequenceFrames = 1000000;
 [[nodiscard]] std::string sequencePatternProblem(std::string_view pattern);
 /// `pattern` (sequencePatternProblem() is empty) with its number replaced by `number`.
 [[nodiscard]] std::string formatSequenceFrame(std::string_view pattern, uint32_t number);
+/// The file of frame `number` of a sequence `pattern` (a path): the number goes into the file
+/// name only, so that a folder may hold a '%'.
+[[nodiscard]] std::filesystem::path sequenceFrameFile(const std::filesystem::path& pattern, uint32_t number);
 
 struct SceneEnvironment {
     bool procedural = true;      ///< the built-in analytic sky; `file` is empty then

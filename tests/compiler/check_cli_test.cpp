@@ -257,7 +257,7 @@ TEST_F(Cli, SkySequenceWritesEveryFrameAndRefusesAPatternWithoutANumber) {
     EXPECT_FALSE(fs::exists(dir_ / "work" / "frames" / "sky_003.exr"));
     const CliRun bad = run({"sky-sequence", (dir_ / "work" / "sky.exr").string()});
     EXPECT_EQ(bad.status, 2);
-    EXPECT_NE(bad.err.find("sky.exr' must hold the frame number as %d or %0Nd"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find("sky.exr': its file name must hold the frame number as %d or %0Nd"), std::string::npos) << bad.err;
     EXPECT_FALSE(fs::exists(dir_ / "work" / "sky.exr"));
 }
 

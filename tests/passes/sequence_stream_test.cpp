@@ -45,7 +45,7 @@ TEST(SequenceStream, DecodesEveryFrameInOrderAndHoldsNoMoreThanItsLookahead) {
     app::SequenceStream stream(s, 32, 16, 0, 2);
     std::this_thread::sleep_for(std::chrono::milliseconds(200));  // time to decode all, were it unbounded
     for (uint32_t i = 0; i < 7; ++i) {  // past the end: the stream loops
-        const auto frame = waitFor([&] { return stream.take(i % 5); });
+        const auto frame = waitFor([&] { return stream.takeNewest(i % 5, 1); });
         ASSERT_TRUE(frame) << i;
         EXPECT_EQ(frame->index, i % 5);
         EXPECT_EQ(frame->error, "");
@@ -60,11 +60,11 @@ TEST(SequenceStream, SkipsAheadToTheFramePlaybackAsksFor) {
     const EnvironmentSequence s = writeSequence("skip", 40);
     app::SequenceStream stream(s, 32, 16, 0, 2);
     std::this_thread::sleep_for(std::chrono::milliseconds(200));  // frames 0 and 1 wait, taken by nobody
-    const auto frame = waitFor([&] { return stream.take(30); });
+    const auto frame = waitFor([&] { return stream.takeNewest(30, 1); });
     ASSERT_TRUE(frame);
     EXPECT_EQ(frame->index, 30u);
     EXPECT_LT(stream.decodeTimesMs().size(), 20u) << "it decoded its way through the frames before 30";
-    const auto next = waitFor([&] { return stream.take(31); });
+    const auto next = waitFor([&] { return stream.takeNewest(31, 1); });
     ASSERT_TRUE(next);
     EXPECT_EQ(next->index, 31u);
 }
@@ -74,11 +74,11 @@ TEST(SequenceStream, AFrameOfAnotherSizeIsResampledAndAnUnreadableOneNamesItsFil
     saveHdrImage(s.frame(1), app::proceduralSkyEquirect({0.0, 1.0, 0.0}, 64));
     std::ofstream(s.frame(2), std::ios::binary) << "not an EXR";
     app::SequenceStream stream(s, 32, 16, 1, 2);
-    const auto resized = waitFor([&] { return stream.take(1); });
+    const auto resized = waitFor([&] { return stream.takeNewest(1, 1); });
     ASSERT_TRUE(resized);
     EXPECT_EQ(resized->pixels.width, 32u);
     EXPECT_EQ(resized->pixels.height, 16u);
-    const auto broken = waitFor([&] { return stream.take(2); });
+    const auto broken = waitFor([&] { return stream.takeNewest(2, 1); });
     ASSERT_TRUE(broken);
     EXPECT_TRUE(broken->pixels.rgba.empty());
     EXPECT_NE(broken->error.find(s.frame(2).string()), std::string::npos) << broken->error;
@@ -99,19 +99,45 @@ TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
     EXPECT_EQ(player.stats().late, 0u);
     EXPECT_EQ(player.stats().current, 1u);
 
-    frame = waitFor([&] { return player.frameToBake(0.45); });  // frames 2 and 3 passed unshown
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // frames 2 and 3 wait decoded
+    frame = waitFor([&] { return player.frameToBake(0.45); });   // tick 4: 4 is not decoded
     ASSERT_TRUE(frame);
-    EXPECT_EQ(frame->index, 4u);
-    EXPECT_EQ(player.stats().dropped, 2u);
-    player.swappedIn(0.51);  // after frame 4's time
+    EXPECT_EQ(frame->index, 3u) << "the newest decoded frame whose time has come";
+    EXPECT_EQ(player.stats().dropped, 1u) << "frame 2, passed over";
+    player.swappedIn(0.51);  // after frame 3's time
     EXPECT_EQ(player.stats().late, 1u);
-    EXPECT_EQ(player.stats().current, 4u);
+    EXPECT_EQ(player.stats().current, 3u);
 
-    frame = waitFor([&] { return player.frameToBake(0.62); });  // tick 6: the loop's frame 0
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // frames 4 and 5 wait decoded
+    frame = waitFor([&] { return player.frameToBake(0.62); });   // tick 6, the loop's frame 0
     ASSERT_TRUE(frame);
-    EXPECT_EQ(frame->index, 0u);
-    EXPECT_EQ(player.stats().dropped, 3u) << "frame 5";
+    EXPECT_EQ(frame->index, 5u) << "frame 0's time has come too, but it is not decoded";
+    EXPECT_EQ(player.stats().dropped, 2u) << "frame 4";
     EXPECT_EQ(player.tick(0.62), 6);
+    EXPECT_FALSE(player.frameToBake(0.62)) << "frame 5 is started";
+}
+
+// Playback that moves on faster than frames decode (here five frames' time between two asks)
+// still shows frames: the newest decoded one whose time has come, not only the frame due,
+// which is never decoded by the time it is asked for.
+TEST(SequencePlayer, ShowsTheNewestDecodedFrameWhenDecodingFallsBehind) {
+    const EnvironmentSequence s = writeSequence("player-behind", 40, 10.0);
+    app::SequencePlayer player(s, 32, 16);
+    double seconds = 0.0;
+    for (int i = 0; i < 60; ++i) {
+        seconds += 0.5;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the stream decodes meanwhile
+        const auto frame = player.frameToBake(seconds);
+        if (!frame) continue;
+        ASSERT_EQ(frame->error, "");
+        const auto due = uint32_t(player.tick(seconds) % 40);
+        EXPECT_LT((due + 40 - frame->index) % 40, 5u) << "a frame whose time came since the last ask";
+        player.swappedIn(seconds);
+    }
+    const app::SequenceStats& stats = player.stats();
+    EXPECT_GE(stats.shown, 30u) << "playback froze: only the frame due was ever asked for";
+    EXPECT_GT(stats.dropped, 0u);
+    EXPECT_LE(stats.shown + stats.dropped, uint32_t(player.tick(seconds)) + 1) << "no tick counted twice";
 }
 
 TEST(SequencePlayer, AnUnreadableFrameIsDroppedAndTheSkyHoldsTheLastOne) {

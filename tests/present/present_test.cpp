@@ -544,7 +544,7 @@ TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadabl
     std::filesystem::create_directories(dir);
     const std::string pattern = (dir / "sky_%02d.exr").string();
     app::writeProceduralSkySequence(pattern, 4, 64);  // the sun circles the sky: frame 0 ahead, 1 to the right
-    std::ofstream(formatSequenceFrame(pattern, 2), std::ios::binary) << "not an EXR";
+    std::ofstream(sequenceFrameFile(pattern, 2), std::ios::binary) << "not an EXR";
     std::ofstream(dir / "scene.json") << R"({"environment": {"sequence": "sky_%02d.exr", "fps": 10}})";
     LiveWindow w(*device_, (dir / "scene.json").string());
     app::LiveGraph& live = w.live;
@@ -579,6 +579,7 @@ TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadabl
         EXPECT_TRUE(done(live.sequence()->stats())) << "at " << seconds << " s";
     };
     for (int i = 0; i < 3; ++i) w.frame();
+    live.playSequence(0.0);  // playback starts: frame 0, baked with the renderer, is on screen
     const ImageData first = screen();
 
     playUntil(0.1, [](const app::SequenceStats& s) { return s.current == 1u; });

@@ -184,6 +184,8 @@ TEST(SceneLoader, SequencePatternsHoldOneNumber) {
     EXPECT_EQ(formatSequenceFrame("a/%d.exr", 12), "a/12.exr");
     EXPECT_EQ(formatSequenceFrame("a/%04d.exr", 12), "a/0012.exr");
     EXPECT_EQ(formatSequenceFrame("a/%02d.exr", 123), "a/123.exr") << "a width is a minimum";
+    EXPECT_EQ(sequenceFrameFile("/a/100%/f_%03d.exr", 7), std::filesystem::path("/a/100%/f_007.exr"))
+        << "a folder's '%' is left alone";
     EXPECT_EQ(sequencePatternProblem("f_%05d_x.hdr"), "");
     for (const char* bad : {"f.exr", "f_%s.exr", "f_%5d.exr", "f_%00d.exr", "f_%d_%d.exr", "f_%d%%.exr", "f_%"})
         EXPECT_NE(sequencePatternProblem(bad), "") << bad;
@@ -191,7 +193,9 @@ TEST(SceneLoader, SequencePatternsHoldOneNumber) {
 
 TEST(SceneErrors, Sequences) {
     expectError(R"({"environment": {"sequence": "frames/%04d.png"}})", "environment.sequence", "neither .hdr nor .exr");
-    expectError(R"({"environment": {"sequence": "frames/0001.exr"}})", "environment.sequence", "must hold the frame number");
+    expectError(R"({"environment": {"sequence": "frames/0001.exr"}})", "environment.sequence",
+                "'frames/0001.exr': its file name must hold the frame number");
+    expectError(R"({"environment": {"sequence": "f%d/sky.exr"}})", "environment.sequence", "its file name must hold");
     expectError(R"({"environment": {"sequence": 4}})", "environment.sequence", "must be a file pattern");
     expectError(R"({"environment": {"sequence": "nothing_here/%04d.exr"}})", "environment.sequence",
                 "no first frame: neither '" + (kScenes / "nothing_here/0000.exr").string() + "' nor '" +

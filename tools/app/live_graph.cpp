@@ -53,9 +53,23 @@ LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint
     startSequence();
 }
 
+void LiveGraph::stopSequence() {
+    player_.reset();
+    sequenceBaking_ = false;
+    playbackOrigin_.reset();
+    fadeStarting_ = false;
+    fadeStart_.reset();
+    // No fade is left half way: the sky shows the cube swapped in last.
+    if (!environmentShown_.empty() && renderer_->plan().resourceIndex(shipped::kEnvironmentPrevious) >= 0) {
+        renderer_->frameData().set(SkyFade{1.0});
+        renderer_->importImage(std::string(shipped::kEnvironmentPrevious), environmentShown_);
+    }
+}
+
 void LiveGraph::startSequence() {
     player_.reset();
     sequenceBaking_ = false;
+    playbackOrigin_.reset();
     fadeStarting_ = false;
     fadeStart_.reset();
     const FrameEnvironment& built = built_->environment;
@@ -74,8 +88,11 @@ void LiveGraph::startSequence() {
     player_ = std::make_unique<SequencePlayer>(*scene->environment->sequence, extent[0], extent[1]);
 }
 
-void LiveGraph::playSequence(double seconds) {
+void LiveGraph::playSequence(double clockSeconds) {
     if (!player_) return;
+    // Playback starts at the first call after the player was made (a rebuild makes a new one).
+    if (!playbackOrigin_) playbackOrigin_ = clockSeconds;
+    const double seconds = clockSeconds - *playbackOrigin_;
     if (sequenceBaking_ && !rebaking()) {  // poll() swapped it in
         player_->swappedIn(seconds);
         sequenceBaking_ = false;
@@ -95,7 +112,9 @@ void LiveGraph::playSequence(double seconds) {
     }
     try {
         sequenceBaking_ = rebake(std::move(frame->pixels), {});
+        if (!sequenceBaking_) player_->bakeFailed();
     } catch (const std::exception& e) {
+        player_->bakeFailed();
         spdlog::warn("environment sequence: {}: {}; the sky holds the last frame", frame->file, e.what());
     }
 }
@@ -209,10 +228,10 @@ bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
 }
 
 bool LiveGraph::rebakeInPlace(const std::filesystem::path& file) {
-    player_.reset();  // the file replaces the sequence
-    sequenceBaking_ = false;
     if (file.empty() || !canRebake()) return false;
-    return rebake(loadHdrImage(file), file.string());
+    HdrImage pixels = loadHdrImage(file);  // throws: the sequence, if any, plays on
+    stopSequence();                        // the file replaces it
+    return rebake(std::move(pixels), file.string());
 }
 
 bool LiveGraph::canRebake() const {

@@ -61,13 +61,14 @@ public:
     /// a bake runs is baked after it (only the latest). False when the scene's environment is
     /// not the procedural sky.
     bool setSunDirection(const Vec3& sun);
-    /// Plays the scene's environment sequence: at `seconds` since playback began, once no
-    /// bake runs, starts baking the frame due then if it is decoded (SequencePlayer), the
-    /// frames holding the last one meanwhile. Call after poll(), which swaps a bake in. Where
-    /// the graph's skybox fades (graphs/raster.json's environment_sequence), the sky fades
-    /// from the previous frame's cube to the new one over one frame of the sequence (SkyFade);
-    /// the lighting changes at the swap. A sequence restarts from its first frame after a
-    /// rebuild; another environment file stops it. Nothing happens without a sequence.
+    /// Plays the scene's environment sequence: at `seconds` by the caller's clock (playback
+    /// begins at the first call, and again from the first frame after a rebuild), once no
+    /// bake runs, starts baking the newest decoded frame whose time has come
+    /// (SequencePlayer), the frames holding the last one meanwhile. Call after poll(), which
+    /// swaps a bake in. Where the graph's skybox fades (graphs/raster.json's
+    /// environment_sequence), the sky fades from the previous frame's cube to the new one over
+    /// one frame of the sequence (SkyFade); the lighting changes at the swap. Another
+    /// environment file stops playback. Nothing happens without a sequence.
     void playSequence(double seconds);
     /// What playback has done; null without a sequence playing.
     [[nodiscard]] const SequencePlayer* sequence() const noexcept { return player_.get(); }
@@ -120,6 +121,8 @@ private:
     bool rebake(HdrImage pixels, const std::string& what);
     /// A player for the running scene's sequence, if it has one of several frames.
     void startSequence();
+    /// Ends playback, the sky left on the cube swapped in last (no fade half way).
+    void stopSequence();
     void startPendingSunBake();
     void swapRebake();
 
@@ -138,6 +141,7 @@ private:
     bool sequenceBaking_ = false;  ///< The pending re-bake is a sequence frame.
     /// The environment cube the frames sample: what a sequence's sky fades from at a swap.
     SharedImage environmentShown_;
+    std::optional<double> playbackOrigin_;  ///< The clock at the player's first playSequence().
     bool fadeStarting_ = false;         ///< A swap began a fade; playSequence() notes when.
     std::optional<double> fadeStart_;  ///< Playback seconds at which the running fade began.
     std::unique_ptr<Built> built_;

@@ -24,7 +24,7 @@ void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uin
         if (ec) throw ImageError(folder, "cannot make the folder: " + ec.message());
     }
     for (uint32_t i = 0; i < frames; ++i)
-        saveHdrImage(formatSequenceFrame(pattern, i), proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
+        saveHdrImage(sequenceFrameFile(pattern, i), proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
 }
 
 }  // namespace skygraph::app

@@ -1,6 +1,7 @@
 // SequencePlayer: see sequence_player.hpp.
 #include "sequence_player.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace skygraph::app {
@@ -19,18 +20,34 @@ int64_t SequencePlayer::tick(double seconds) const noexcept {
 std::optional<SequenceFrame> SequencePlayer::frameToBake(double seconds) {
     const int64_t due = tick(seconds);
     if (due <= lastStarted_) return std::nullopt;  // started already; it holds until the next is due
-    std::optional<SequenceFrame> frame = stream_->take(uint32_t(due % count_));
+    // Any frame whose time has come since the last one started will do, the newest best: when
+    // decoding is slower than the frames' pace, the frame due has moved on by the time it is
+    // decoded. At most one loop of the sequence back.
+    const auto span = uint32_t(std::min<int64_t>(due - lastStarted_, count_));
+    const int64_t first = due - span + 1;
+    // Where playback will be once the thread has decoded a frame it skips to.
+    // (Rounded: a decode well inside one frame's time aims at the frame due itself.)
+    const auto ahead = uint32_t(std::min<double>(std::round(stream_->lastDecodeMs() * fps_ / 1000.0), count_ - 1));
+    std::optional<SequenceFrame> frame = stream_->takeNewest(uint32_t(first % count_), span, ahead);
     if (!frame) return std::nullopt;  // not decoded yet: the sky holds the last frame
+    const int64_t taken = first + (frame->index + count_ - uint32_t(first % count_)) % count_;
     // Every tick between the last frame started and this one passed unshown.
-    stats_.dropped += uint32_t(due - lastStarted_ - 1);
-    lastStarted_ = due;
+    stats_.dropped += uint32_t(taken - lastStarted_ - 1);
+    lastStarted_ = taken;
     if (!frame->error.empty()) {
         ++stats_.dropped;
         ++stats_.failed;
     } else {
-        baking_ = due;
+        baking_ = taken;
     }
     return frame;
+}
+
+void SequencePlayer::bakeFailed() {
+    if (baking_ < 0) return;
+    ++stats_.dropped;
+    ++stats_.failed;
+    baking_ = -1;
 }
 
 void SequencePlayer::swappedIn(double seconds) {

@@ -15,8 +15,9 @@ namespace skygraph::app {
 struct SequenceStats {
     uint32_t shown = 0;    ///< frames swapped in
     uint32_t late = 0;     ///< of those, swapped in after their time had passed
-    uint32_t dropped = 0;  ///< frames never shown: their time passed first, or they failed to decode
-    uint32_t failed = 0;   ///< of the dropped, frames that could not be decoded
+    uint32_t dropped = 0;  ///< frames never shown: their time passed first, or they failed (counted
+                           ///< once a later frame is taken)
+    uint32_t failed = 0;   ///< of the dropped, frames that could not be decoded or baked
     std::optional<uint32_t> current;  ///< the frame the sky shows, once one was swapped in
 };
 
@@ -28,12 +29,16 @@ public:
     SequencePlayer(const SequencePlayer&) = delete;
     SequencePlayer& operator=(const SequencePlayer&) = delete;
 
-    /// At `seconds` of playback, when nothing is being baked: the frame to bake now, if the
-    /// frame due is decoded and not started yet. A frame that failed to decode is returned
-    /// too (its `error` set, counted dropped), for the caller to report; bake it not.
+    /// At `seconds` of playback, when nothing is being baked: the frame to bake now, the
+    /// newest decoded one whose time has come since the last frame started (the frame due,
+    /// when decoding keeps pace); nullopt while none is decoded. The frames passed over are
+    /// counted dropped. A frame that failed to decode is returned too (its `error` set,
+    /// counted dropped), for the caller to report; bake it not.
     [[nodiscard]] std::optional<SequenceFrame> frameToBake(double seconds);
     /// The frame frameToBake() last returned without an error is on screen since `seconds`.
     void swappedIn(double seconds);
+    /// Its bake could not start: it is counted dropped and failed.
+    void bakeFailed();
 
     [[nodiscard]] const SequenceStats& stats() const noexcept { return stats_; }
     [[nodiscard]] double fps() const noexcept { return fps_; }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <stdexcept>
 
 namespace skygraph::app {
 
@@ -16,7 +17,10 @@ SequenceStream::SequenceStream(EnvironmentSequence sequence, uint32_t width, uin
       height_(height),
       lookahead_(std::max<uint32_t>(lookahead, 1)),
       next_(first % std::max<uint32_t>(sequence_.count, 1)),
-      thread_([this] { decodeLoop(); }) {}
+      thread_() {
+    if (sequence_.count == 0) throw std::invalid_argument("SequenceStream: a sequence of no frames");
+    thread_ = std::thread([this] { decodeLoop(); });
+}
 
 SequenceStream::~SequenceStream() {
     {
@@ -31,31 +35,43 @@ uint32_t SequenceStream::stepsFrom(uint32_t from, uint32_t to) const noexcept {
     return (to + sequence_.count - from) % sequence_.count;
 }
 
-std::optional<SequenceFrame> SequenceStream::take(uint32_t index) {
+std::optional<SequenceFrame> SequenceStream::takeNewest(uint32_t first, uint32_t span, uint32_t ahead) {
+    span = std::clamp<uint32_t>(span, 1, sequence_.count);
+    const uint32_t due = uint32_t((uint64_t(first) + span - 1) % sequence_.count);
+    const auto inRange = [&](uint32_t index) { return stepsFrom(first, index) < span; };
+    // Frames in the range before its last, the frame due: playback is past them.
+    const auto passed = [&](uint32_t index) { return stepsFrom(first, index) + 1 < span; };
+    // The range's last frame and the few after it, which playback asks for next.
+    const uint64_t window = uint64_t(span) + lookahead_ + ahead;
+    const auto coming = [&](uint32_t index) { return stepsFrom(first, index) < window && !passed(index); };
     std::unique_lock lock(mutex_);
-    const auto queued = std::find_if(ready_.begin(), ready_.end(), [&](const SequenceFrame& f) { return f.index == index; });
-    if (queued != ready_.end()) {
-        SequenceFrame frame = std::move(*queued);
-        ready_.erase(ready_.begin(), queued + 1);  // those before it were skipped
-        lock.unlock();
-        wake_.notify_all();
-        return frame;
+    std::optional<SequenceFrame> taken;
+    auto newest = ready_.end();
+    for (auto it = ready_.begin(); it != ready_.end(); ++it)
+        if (inRange(it->index)) newest = it;
+    if (newest != ready_.end()) {
+        taken = std::move(*newest);
+        ready_.erase(ready_.begin(), newest + 1);  // older than the frame taken: never shown
     }
-    // Frames that playback will not ask for before it loops round: all but the few after `index`.
     const size_t before = ready_.size();
-    std::erase_if(ready_, [&](const SequenceFrame& f) { return stepsFrom(index, f.index) >= lookahead_; });
-    // `index` is not decoded. Unless frames after it are queued (it was skipped) or the thread
-    // is decoding it or about to, the thread is behind: it skips to `index`.
-    const bool decodingIt = stepsFrom(index, next_) == 1;
-    const bool skip = ready_.empty() && !decodingIt && next_ != index;
+    std::erase_if(ready_, [&](const SequenceFrame& f) { return !coming(f.index); });
+    // A thread on a frame playback is past falls behind for good when decoding is slower than
+    // the frames' pace: it skips to `ahead` frames past the frame due, where playback will be
+    // once that one is decoded.
+    const bool skip = !coming(decoding_.value_or(next_));
     if (skip) {
-        next_ = index;
+        next_ = uint32_t((uint64_t(due) + ahead) % sequence_.count);
         ++generation_;
     }
-    const bool room = ready_.size() != before;
+    const bool wake = skip || taken || ready_.size() != before;
     lock.unlock();
-    if (skip || room) wake_.notify_all();
-    return std::nullopt;
+    if (wake) wake_.notify_all();
+    return taken;
+}
+
+double SequenceStream::lastDecodeMs() const {
+    std::lock_guard lock(mutex_);
+    return decodeMs_.empty() ? 0.0 : decodeMs_.back();
 }
 
 void SequenceStream::decodeLoop() {
@@ -66,12 +82,13 @@ void SequenceStream::decodeLoop() {
         const uint32_t index = next_;
         const uint64_t generation = generation_;
         next_ = (index + 1) % sequence_.count;
+        decoding_ = index;
         lock.unlock();
         SequenceFrame frame;
         frame.index = index;
-        frame.file = sequence_.frame(index).string();
         const auto start = std::chrono::steady_clock::now();
-        try {
+        try {  // anything thrown here would end the program: it becomes the frame's error
+            frame.file = sequence_.frame(index).string();
             frame.pixels = loadHdrImage(frame.file);
             if (frame.pixels.width != width_ || frame.pixels.height != height_)
                 frame.pixels = resampleEquirect(frame.pixels, width_, height_);
@@ -81,6 +98,8 @@ void SequenceStream::decodeLoop() {
         }
         frame.decodeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         lock.lock();
+        decoding_.reset();
+        if (decodeMs_.size() == kDecodeTimesKept) decodeMs_.erase(decodeMs_.begin());
         decodeMs_.push_back(frame.decodeMs);
         if (generation != generation_) continue;  // playback skipped past it while it decoded
         ready_.push_back(std::move(frame));

@@ -31,7 +31,8 @@ class SequenceStream {
 public:
     /// Starts decoding `sequence` from frame `first`. Frames of another size than `width` x
     /// `height` are resampled to it (resampleEquirect), so that a bake beside the frames can
-    /// take them. At most `lookahead` (>= 1) decoded frames wait to be taken.
+    /// take them. At most `lookahead` (>= 1) decoded frames wait to be taken. Throws
+    /// std::invalid_argument for a sequence of no frames.
     SequenceStream(EnvironmentSequence sequence, uint32_t width, uint32_t height, uint32_t first = 0,
                    uint32_t lookahead = 2);
     /// Stops the thread; a decode under way is finished first.
@@ -39,13 +40,17 @@ public:
     SequenceStream(const SequenceStream&) = delete;
     SequenceStream& operator=(const SequenceStream&) = delete;
 
-    /// Frame `index` if it is decoded, moved out to the caller; nullopt while it is not.
-    /// Frames decoded before it in playback order are dropped, and when the thread is behind
-    /// `index` it skips ahead to it: playback asks for the frame due, not for every frame.
-    [[nodiscard]] std::optional<SequenceFrame> take(uint32_t index);
+    /// The newest decoded frame of the `span` frames from `first` on (looping), moved out to
+    /// the caller, and those decoded before it dropped; nullopt while none of them is. Then,
+    /// when the thread is behind the range, it skips to `ahead` frames past its end: playback
+    /// asks for the frames whose time has come since the last one it took, and a decode that
+    /// takes longer than a frame's time would otherwise never catch up.
+    [[nodiscard]] std::optional<SequenceFrame> takeNewest(uint32_t first, uint32_t span, uint32_t ahead = 0);
+    /// The last decode's time, 0 before the first.
+    [[nodiscard]] double lastDecodeMs() const;
 
     [[nodiscard]] const EnvironmentSequence& sequence() const noexcept { return sequence_; }
-    /// Frames decoded so far (failures included), and their decode times.
+    /// The decode times of the last frames decoded (failures included; at most 1024).
     [[nodiscard]] std::vector<double> decodeTimesMs() const;
     /// The most frames held at once, decoded and waiting, since the start.
     [[nodiscard]] size_t mostFramesHeld() const;
@@ -61,7 +66,9 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     std::deque<SequenceFrame> ready_;
+    static constexpr size_t kDecodeTimesKept = 1024;
     uint32_t next_ = 0;         ///< the frame the thread decodes next
+    std::optional<uint32_t> decoding_;  ///< the frame the thread decodes now
     uint64_t generation_ = 0;   ///< bumped by a skip: a decode of an older one is thrown away
     bool stopping_ = false;
     std::vector<double> decodeMs_;

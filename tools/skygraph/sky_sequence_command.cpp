@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -20,12 +21,13 @@ struct SkySequenceArgs {
 };
 
 int run(const SkySequenceArgs& args) {
-    if (const std::string problem = sequencePatternProblem(args.pattern); !problem.empty())
-        throw UsageError("skygraph sky-sequence: '" + args.pattern + "' " + problem);
+    if (const std::string problem = sequencePatternProblem(std::filesystem::path(args.pattern).filename().string());
+        !problem.empty())
+        throw UsageError("skygraph sky-sequence: '" + args.pattern + "': its file name " + problem);
     app::writeProceduralSkySequence(args.pattern, args.frames, args.width);
     std::cout << "skygraph sky-sequence: " << args.frames << " frames of " << args.width << "x" << args.width / 2
-              << ", " << formatSequenceFrame(args.pattern, 0) << " to "
-              << formatSequenceFrame(args.pattern, args.frames - 1) << "\n";
+              << ", " << sequenceFrameFile(args.pattern, 0).string() << " to "
+              << sequenceFrameFile(args.pattern, args.frames - 1).string() << "\n";
     return kExitOk;
 }
 
