@@ -55,14 +55,12 @@ std::optional<SequenceFrame> SequenceStream::takeNewest(uint32_t first, uint32_t
     }
     const size_t before = ready_.size();
     std::erase_if(ready_, [&](const SequenceFrame& f) { return !coming(f.index); });
-    // A thread on a frame playback is past falls behind for good when decoding is slower than
-    // the frames' pace: it skips to `ahead` frames past the frame due, where playback will be
-    // once that one is decoded.
-    const bool skip = !coming(decoding_.value_or(next_));
-    if (skip) {
-        next_ = uint32_t((uint64_t(due) + ahead) % sequence_.count);
-        ++generation_;
-    }
+    // A thread headed for frames playback is past falls behind for good when decoding is
+    // slower than the frames' pace: after the frame it decodes now (which is finished, so that
+    // a slow decode still shows something), it goes on `ahead` frames past the frame due,
+    // where playback will be once that one is decoded.
+    const bool skip = !coming(next_);
+    if (skip) next_ = uint32_t((uint64_t(due) + ahead) % sequence_.count);
     const bool wake = skip || taken || ready_.size() != before;
     lock.unlock();
     if (wake) wake_.notify_all();
@@ -80,9 +78,7 @@ void SequenceStream::decodeLoop() {
         wake_.wait(lock, [&] { return stopping_ || ready_.size() < lookahead_; });
         if (stopping_) return;
         const uint32_t index = next_;
-        const uint64_t generation = generation_;
         next_ = (index + 1) % sequence_.count;
-        decoding_ = index;
         lock.unlock();
         SequenceFrame frame;
         frame.index = index;
@@ -98,10 +94,8 @@ void SequenceStream::decodeLoop() {
         }
         frame.decodeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         lock.lock();
-        decoding_.reset();
         if (decodeMs_.size() == kDecodeTimesKept) decodeMs_.erase(decodeMs_.begin());
         decodeMs_.push_back(frame.decodeMs);
-        if (generation != generation_) continue;  // playback skipped past it while it decoded
         ready_.push_back(std::move(frame));
         mostHeld_ = std::max(mostHeld_, ready_.size());
     }

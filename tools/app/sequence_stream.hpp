@@ -42,9 +42,10 @@ public:
 
     /// The newest decoded frame of the `span` frames from `first` on (looping), moved out to
     /// the caller, and those decoded before it dropped; nullopt while none of them is. Then,
-    /// when the thread is behind the range, it skips to `ahead` frames past its end: playback
-    /// asks for the frames whose time has come since the last one it took, and a decode that
-    /// takes longer than a frame's time would otherwise never catch up.
+    /// when the thread is headed for frames before the range's last, it goes on (after the
+    /// frame it decodes now) `ahead` frames past that one: playback asks for the frames whose
+    /// time has come since the last one it took, and a decode that takes longer than a
+    /// frame's time would otherwise never catch up.
     [[nodiscard]] std::optional<SequenceFrame> takeNewest(uint32_t first, uint32_t span, uint32_t ahead = 0);
     /// The last decode's time, 0 before the first.
     [[nodiscard]] double lastDecodeMs() const;
@@ -67,9 +68,7 @@ private:
     std::condition_variable wake_;
     std::deque<SequenceFrame> ready_;
     static constexpr size_t kDecodeTimesKept = 1024;
-    uint32_t next_ = 0;         ///< the frame the thread decodes next
-    std::optional<uint32_t> decoding_;  ///< the frame the thread decodes now
-    uint64_t generation_ = 0;   ///< bumped by a skip: a decode of an older one is thrown away
+    uint32_t next_ = 0;  ///< the frame the thread decodes next
     bool stopping_ = false;
     std::vector<double> decodeMs_;
     size_t mostHeld_ = 0;
