@@ -47,7 +47,7 @@ installed_package() {
 SANITIZED_TARGETS=(compiler_tests plan_verifier_tests cli_tests skygraph fuzz_corpus_tests graph_fuzzer math_tests
     image_tests scene_tests executor_tests recording_tests reliability_tests pass_tests ibl_tests
     cubemap_command_tests extremes_tests path_trace_tests present_tests testing_kit_tests gpu_frame_bench study present_bench
-    imgui_bench rebake_bench)
+    imgui_bench rebake_bench sequence_bench)
 LEAK_CHECKED_TESTS=(compiler/compiler_tests verifier/plan_verifier_tests fuzz/fuzz_corpus_tests math/math_tests
     scene/scene_tests image/image_tests executor/recording_tests)
 sanitizers_and_fuzz() {
