@@ -53,12 +53,16 @@ LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint
     startSequence();
 }
 
-void LiveGraph::stopSequence() {
+void LiveGraph::forgetPlayback() {
     player_.reset();
     sequenceBaking_ = false;
     playbackOrigin_.reset();
     fadeStarting_ = false;
     fadeStart_.reset();
+}
+
+void LiveGraph::stopSequence() {
+    forgetPlayback();
     // No fade is left half way: the sky shows the cube swapped in last.
     if (!environmentShown_.empty() && renderer_->plan().resourceIndex(shipped::kEnvironmentPrevious) >= 0) {
         renderer_->frameData().set(SkyFade{1.0});
@@ -67,11 +71,7 @@ void LiveGraph::stopSequence() {
 }
 
 void LiveGraph::startSequence() {
-    player_.reset();
-    sequenceBaking_ = false;
-    playbackOrigin_.reset();
-    fadeStarting_ = false;
-    fadeStart_.reset();
+    forgetPlayback();
     const FrameEnvironment& built = built_->environment;
     environmentShown_ = built.products.contains(shipped::kEnvironment)
                             ? built.renderer->shareImage(std::string(shipped::kEnvironment))

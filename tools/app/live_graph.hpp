@@ -123,6 +123,8 @@ private:
     void startSequence();
     /// Ends playback, the sky left on the cube swapped in last (no fade half way).
     void stopSequence();
+    /// Drops the player and the state of its bakes and fades.
+    void forgetPlayback();
     void startPendingSunBake();
     void swapRebake();
 
