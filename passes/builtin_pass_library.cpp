@@ -20,6 +20,7 @@ PassLibrary PassLibrary::withBuiltins() {
         {"IrradiancePass", passes::makeIrradiancePass},
         {"PrefilterPass", passes::makePrefilterPass},
         {"BrdfLutPass", passes::makeBrdfLutPass},
+        {"UploadPass", passes::makeUploadPass},
     };
     PassLibrary library;
     library.registry_ = declarations;

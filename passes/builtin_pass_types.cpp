@@ -19,6 +19,7 @@ void registerBuiltinPassTypes(PassRegistry& r) {
     r.add(passes::irradiancePassType());
     r.add(passes::prefilterPassType());
     r.add(passes::brdfLutPassType());
+    r.add(passes::uploadPassType());
 }
 
 PassRegistry PassRegistry::withBuiltins() {

@@ -21,5 +21,7 @@ namespace skygraph::passes {
 [[nodiscard]] PassTypeInfo irradiancePassType();
 [[nodiscard]] PassTypeInfo prefilterPassType();
 [[nodiscard]] PassTypeInfo brdfLutPassType();
+/// Copies staged pixels into a resource (upload/upload_type.cpp).
+[[nodiscard]] PassTypeInfo uploadPassType();
 
 }  // namespace skygraph::passes

@@ -23,5 +23,7 @@ namespace skygraph::passes {
 [[nodiscard]] std::unique_ptr<PassImplementation> makeIrradiancePass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makePrefilterPass(const PassDesc& desc);
 [[nodiscard]] std::unique_ptr<PassImplementation> makeBrdfLutPass(const PassDesc& desc);
+/// Copies staged pixels (passes/upload/upload_pass.cpp).
+[[nodiscard]] std::unique_ptr<PassImplementation> makeUploadPass(const PassDesc& desc);
 
 }  // namespace skygraph::passes

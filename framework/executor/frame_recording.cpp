@@ -83,6 +83,11 @@ void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecor
     rc.linearSampler = r.linearSampler;
     rc.repeatSampler = r.repeatSampler;
     rc.frame = r.frameData;
+    rc.staged = [&r](std::string_view resource) -> const StagingBuffer* {
+        if (!r.staged) return nullptr;
+        const auto it = r.staged->find(resource);
+        return it == r.staged->end() ? nullptr : it->second.get();
+    };
     rc.frameIndex = r.frameIndex;
     rc.recordInPassBarriers = [&] {
         if (!sl.inPass.empty()) sink.barriers(sl.inPass);

@@ -392,6 +392,41 @@ void Renderer::updateExternalImage(const std::string& resource, ImageData pixels
     }
 }
 
+namespace {
+
+/// The plan state's resource `name`, for `call`'s messages.
+const ResourceState& stagedResource(const PlanState& s, const std::string& name, const char* call) {
+    const int index = s.plan.resourceIndex(name);
+    if (index < 0) throw ExecutorError(std::string(call) + ": no resource '" + name + "' in the plan");
+    return s.resources[size_t(index)];
+}
+
+VkDeviceSize stagedBytes(const ResourceState& r) {
+    return r.isImage ? VkDeviceSize(r.width) * r.height * r.layers * copyTexelBytes(r.desc->format) : r.size;
+}
+
+}  // namespace
+
+VkDeviceSize Renderer::stagingBytes(const std::string& resource) const {
+    return stagedBytes(stagedResource(*impl_->state, resource, "stagingBytes"));
+}
+
+void Renderer::stageUpload(const std::string& resource, std::shared_ptr<const StagingBuffer> pixels) {
+    Impl& d = *impl_;
+    const ResourceState& r = stagedResource(*d.state, resource, "stageUpload");
+    if (!pixels) throw ExecutorError("stageUpload: no staging buffer for '" + resource + "'");
+    const VkDeviceSize bytes = stagedBytes(r);
+    if (pixels->size() != bytes) {
+        const std::string shape = r.isImage ? std::to_string(r.width) + "x" + std::to_string(r.height) + ", " +
+                                                  std::to_string(r.layers) + " layer(s) of " +
+                                                  std::string(r.desc->format.name)
+                                            : "a buffer";
+        throw ExecutorError("stageUpload: '" + resource + "' takes " + std::to_string(bytes) + " bytes (" + shape +
+                            "), the staging buffer holds " + std::to_string(pixels->size()));
+    }
+    d.staged[resource] = std::move(pixels);
+}
+
 void Renderer::reloadShaders() {
     Impl& d = *impl_;
     d.shaders.clear();

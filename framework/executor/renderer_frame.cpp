@@ -44,6 +44,7 @@ void Renderer::Impl::waitSlot(FrameSlot& f) {
     vk::check(vkWaitForFences(vkd, 1, &fence, VK_TRUE, kWaitForever), "vkWaitForFences");
     f.submitted = false;
     f.setupKeep.reset();
+    f.stagedKeep.clear();
     collectTimings(f);
     releaseRetired();
 }
@@ -133,6 +134,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     r.linearSampler = linearSampler.get();
     r.repeatSampler = repeatSampler.get();
     r.frameData = &frameData;
+    r.staged = &staged;
     r.sampledImagePlanEdit = &sampledImagePlanEdit;
     if (frame) {
         ensureQueries(*frame, passCount * 2);
@@ -165,6 +167,8 @@ bool Renderer::Impl::releaseHeld(FrameSlot& f, bool wait) {
         vk::check(done, "vkWaitForFences");
     }
     FrameSlot::HeldSubmit& h = *f.held;
+    // Every copy of the staged pixels has run, unless the held submit records one.
+    if (!h.recordsPasses) f.stagedKeep.clear();
     VkSubmitInfo2 batch{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     batch.commandBufferInfoCount = 1;
     batch.pCommandBufferInfos = &h.cmd;
@@ -318,9 +322,11 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
         f.runFences.resize(calls);
         const size_t k = submits.size() - 1;
         f.held = FrameSlot::HeldSubmit{cbis[k], std::move(waits[k]), std::move(signals[k]),
-                                       dev.queues[static_cast<size_t>(submits[k].queue)]};
+                                       dev.queues[static_cast<size_t>(submits[k].queue)],
+                                       !submits[k].passes.empty()};
     }
     f.frame = frameIndex;
+    f.stagedKeep = std::exchange(staged, {});
     for (size_t q = 0; q < kQueueKinds; ++q) timelineValues[q] += signalled[q];
     f.submitted = true;
     f.timingsPending = true;

@@ -201,12 +201,16 @@ struct PlanState {
 };
 
 /// What recording one frame needs besides the plan's state.
+/// Renderer::stageUpload's pixels, by resource name.
+using StagedUploads = std::map<std::string, std::shared_ptr<const StagingBuffer>, std::less<>>;
+
 struct FrameRecording {
     uint32_t slot = 0;  ///< The binding slot.
     uint64_t frameIndex = 0;
     VkSampler linearSampler = VK_NULL_HANDLE;
     VkSampler repeatSampler = VK_NULL_HANDLE;
     const FrameData* frameData = nullptr;
+    const StagedUploads* staged = nullptr;  ///< What UploadPasses copy (RecordContext::staged).
     VkQueryPool queries = VK_NULL_HANDLE;  ///< Two timestamps per pass; none when null.
     uint32_t queryCount = 0;
     /// Per queue kind: whether its passes write timestamps (their queue family has valid bits).
@@ -272,6 +276,7 @@ struct FrameSlot {
     vk::Fence fence;
     uint64_t frame = 0;  ///< frameIndex of the frame last submitted in this slot.
     std::shared_ptr<void> setupKeep;  ///< A pending setup's staging, until this slot's frame finishes.
+    StagedUploads stagedKeep;  ///< What the frame's UploadPasses copy, until they have.
     /// A background frame (Renderer::renderFrameInBackground): a fence per vkQueueSubmit2
     /// before its last submit, and that submit, held back until those fences signal.
     std::vector<vk::Fence> runFences;
@@ -279,6 +284,7 @@ struct FrameSlot {
         VkCommandBufferSubmitInfo cmd{};
         std::vector<VkSemaphoreSubmitInfo> waits, signals;
         VkQueue queue = VK_NULL_HANDLE;
+        bool recordsPasses = false;
     };
     std::optional<HeldSubmit> held;
     vk::QueryPool queries;
@@ -311,6 +317,7 @@ struct Renderer::Impl {
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
+    detail::StagedUploads staged;  ///< For the next frame (Renderer::stageUpload).
     /// Pixels given to setExternalImage, by resource name; uploaded on every import.
     std::map<std::string, ImageData> uploads;
     /// Images of other renderers that externals use instead of their own (importImage).

@@ -6,6 +6,7 @@
 #include <skygraph/graph.hpp>
 #include <skygraph/pass_registry.hpp>
 #include <skygraph/plan.hpp>
+#include <skygraph/staging_buffer.hpp>
 #include <skygraph/transfer_plans.hpp>
 
 #include <vulkan/vulkan_core.h>
@@ -135,6 +136,10 @@ struct RecordContext {
     /// ReadWrite transfer calls it once, between its copies out and its copies in; it is the
     /// only barrier a pass may record, and the executor provides it.
     std::function<void()> recordInPassBarriers;
+    /// The pixels staged for this frame (Renderer::stageUpload) for resource `name`, or
+    /// nullptr: what an UploadPass copies from. The pointer is valid during the call; the
+    /// renderer keeps the buffer until the frame has finished.
+    std::function<const StagingBuffer*(std::string_view name)> staged;
 
     /// The first usage filling `slot`, or nullptr. Repeated slots: `nth` picks which. The
     /// pointer is into `resources`: valid during the call only.

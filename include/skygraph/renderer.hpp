@@ -21,6 +21,7 @@ namespace skygraph {
 
 class PassLibrary;  // skygraph/pass.hpp: pass implementations
 class FrameData;    // skygraph/pass.hpp: per-frame values for pass implementations
+class StagingBuffer;  // skygraph/staging_buffer.hpp: host pixels an UploadPass copies
 
 /// How a Renderer runs; what it runs (graph, options, output size) is the CompiledGraph.
 struct RendererOptions {
@@ -186,6 +187,20 @@ public:
     /// per frame slot is uploaded now all the same). Throws ExecutorError as setExternalImage()
     /// does, and for a resource without pixels yet.
     void updateExternalImage(const std::string& resource, ImageData pixels, UploadTiming timing = UploadTiming::Now);
+    /// Pixels for the next frame's UploadPass that writes `resource` (docs/graph-format.md,
+    /// "Built-in pass types"): mip 0 of every layer, rows tightly packed, in the image's format
+    /// (the whole buffer, for a buffer resource). Only that frame copies them:
+    /// stage again before each frame whose plan runs the pass. The renderer holds `pixels`
+    /// until the copy has finished on the GPU; write it no sooner. Unlike
+    /// updateExternalImage(), nothing runs outside the plan, and the copy runs on whatever
+    /// queue the graph puts the pass (a transfer queue copies beside the frames). Throws
+    /// ExecutorError, staging nothing, for a resource the plan does not have or a buffer of
+    /// another size than the resource needs.
+    void stageUpload(const std::string& resource, std::shared_ptr<const StagingBuffer> pixels);
+    /// The bytes stageUpload() takes for `resource`: width x height x layers x texel bytes
+    /// of an image, the size of a buffer. Throws ExecutorError for a resource the plan does
+    /// not have.
+    [[nodiscard]] VkDeviceSize stagingBytes(const std::string& resource) const;
     /// Shares the image of `resource`, an external image this plan exports (`final` set),
     /// with another renderer on the same Device. It holds this frame's contents once the
     /// frames that write it have finished (waitIdle()), in the layout of its `final` state.

@@ -1,0 +1,45 @@
+// Pixels in host-visible memory, written by the application on any thread and copied into a
+// plan's image by the graph's own UploadPass (Renderer::stageUpload), on whichever queue the
+// graph puts that pass: a transfer queue copies beside the frames.
+#pragma once
+
+#include <vulkan/vulkan_core.h>
+
+#include <cstddef>
+#include <memory>
+#include <span>
+
+namespace skygraph {
+
+class Device;
+
+/// A VkBuffer in host-visible, host-coherent memory, mapped for its whole life. Create it with
+/// StagingBuffer::create(), which may be called on any thread; the Device must outlive it. Its
+/// bytes may be written from any thread while no frame that copies them may run: hand it to
+/// Renderer::stageUpload() through a std::shared_ptr, and the renderer holds that pointer
+/// until the frame has copied it, so a buffer whose use_count() is 1 is the caller's again.
+/// Not copyable.
+class StagingBuffer {
+public:
+    /// `bytes` (> 0) of host-visible memory on `device`. Throws ExecutorError when no memory
+    /// type fits or the allocation fails, and std::invalid_argument for 0 bytes.
+    [[nodiscard]] static std::shared_ptr<StagingBuffer> create(Device& device, VkDeviceSize bytes);
+    ~StagingBuffer();
+    StagingBuffer(const StagingBuffer&) = delete;
+    StagingBuffer& operator=(const StagingBuffer&) = delete;
+
+    /// The mapped bytes, valid for the buffer's life.
+    [[nodiscard]] std::span<std::byte> bytes() noexcept;
+    [[nodiscard]] std::span<const std::byte> bytes() const noexcept;
+    [[nodiscard]] VkDeviceSize size() const noexcept;
+    /// The buffer, with TRANSFER_SRC usage, for recording code that copies from it.
+    [[nodiscard]] VkBuffer buffer() const noexcept;
+
+    struct Impl;
+
+private:
+    explicit StagingBuffer(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace skygraph

@@ -1,0 +1,178 @@
+// UploadPass: the application stages pixels (Renderer::stageUpload) and the graph's own pass
+// copies them on the queue the graph gives it, here the transfer queue with a compute reader
+// after it, under validation. Only the frame they were staged for copies them, and the
+// renderer holds the buffer until that copy has run.
+#include "compiled_graph_access.hpp"
+#include "executor_test_util.hpp"
+#include "plan_editor.hpp"
+
+#include <skygraph/pass.hpp>
+#include <skygraph/staging_buffer.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace skygraph::test {
+namespace {
+
+constexpr const char* kGraph = R"({
+  "version": 1, "name": "upload",
+  "resources": {
+    "sky": {"type": "cube", "format": "R32G32B32A32_SFLOAT", "extent": [4, 4], "external": true, "final": "ShaderRead"}
+  },
+  "passes": [
+    {"name": "upload_sky", "type": "UploadPass", "queue": "transfer", "uses": {"sky": "Write@Transfer"}},
+    {"name": "read_sky", "type": "Generic", "queue": "compute", "never_cull": true, "uses": {"sky": "Read@Compute"}}
+  ]
+})";
+
+constexpr size_t kFloats = 4 * 4 * 6 * 4;
+
+class UploadPassTest : public ExecutorTest {
+protected:
+    UploadPassTest()
+        : library_(PassLibrary::withBuiltins()),
+          graph_(parseGraph(kGraph, "upload.json", library_.registry())),
+          renderer_(sharedDevice(), CompiledGraph(graph_, CompileOptions{}), options()) {}
+
+    RendererOptions options() const {
+        RendererOptions ro;
+        ro.framesInFlight = 2;
+        ro.passes = &library_;
+        return ro;
+    }
+
+    /// Texel floats base, base + 1, ...: every layer, row and channel told apart.
+    static std::shared_ptr<StagingBuffer> staged(float base) {
+        auto buffer = StagingBuffer::create(sharedDevice(), kFloats * sizeof(float));
+        std::vector<float> values(kFloats);
+        for (size_t i = 0; i < kFloats; ++i) values[i] = base + float(i);
+        std::memcpy(buffer->bytes().data(), values.data(), kFloats * sizeof(float));
+        return buffer;
+    }
+
+    void expectContents(float base) {
+        const std::vector<ImageData> layers = renderer_.readImage("sky");
+        ASSERT_EQ(layers.size(), 6u);
+        for (size_t layer = 0; layer < 6; ++layer)
+            for (size_t i = 0; i < 4 * 4 * 4; ++i)
+                ASSERT_EQ(layers[layer].rgba[i], base + float(layer * 64 + i)) << "layer " << layer << " float " << i;
+    }
+
+    PassLibrary library_;
+    GraphDesc graph_;
+    Renderer renderer_;
+};
+
+TEST_F(UploadPassTest, CopiesWhatWasStagedOnTheTransferQueue) {
+    const Plan& plan = renderer_.plan();
+    ASSERT_EQ(plan.passes()[0].name, "upload_sky");
+    bool onTransfer = false;
+    for (const Submit& submit : plan.submits())
+        for (uint32_t pass : submit.passes) onTransfer |= pass == 0 && submit.queue == QueueKind::Transfer;
+    EXPECT_TRUE(onTransfer) << "a submit of its own on the transfer queue, with the semaphores between";
+
+    const auto first = staged(1.0f);
+    renderer_.stageUpload("sky", first);
+    renderer_.renderFrame();
+    expectContents(1.0f);
+
+    const auto second = staged(1000.0f);
+    renderer_.stageUpload("sky", second);
+    renderer_.renderFrame();
+    expectContents(1000.0f);
+}
+
+TEST_F(UploadPassTest, HoldsTheBufferUntilTheCopyHasRun) {
+    const auto buffer = staged(0.0f);
+    renderer_.stageUpload("sky", buffer);
+    EXPECT_EQ(buffer.use_count(), 2) << "staged";
+    renderer_.renderFrame();
+    EXPECT_EQ(buffer.use_count(), 2) << "held by the frame in flight";
+    renderer_.waitIdle();
+    EXPECT_EQ(buffer.use_count(), 1) << "the copy has run: the caller's again";
+}
+
+TEST_F(UploadPassTest, OnlyTheFrameItWasStagedForCopiesIt) {
+    renderer_.stageUpload("sky", staged(0.0f));
+    renderer_.renderFrame();
+    try {
+        renderer_.renderFrame();
+        FAIL() << "a frame with nothing staged for its UploadPass must not run";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'upload_sky' (UploadPass): no pixels staged for 'sky'"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST_F(UploadPassTest, StagingRefusesAnUnknownResourceOrAWrongSize) {
+    auto expectRefused = [&](const std::string& resource, std::shared_ptr<const StagingBuffer> buffer,
+                             const std::string& message) {
+        try {
+            renderer_.stageUpload(resource, std::move(buffer));
+            FAIL() << "staged " << resource;
+        } catch (const ExecutorError& e) {
+            EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+        }
+    };
+    expectRefused("moon", staged(0.0f), "stageUpload: no resource 'moon' in the plan");
+    expectRefused("sky", StagingBuffer::create(sharedDevice(), 16),
+                  "stageUpload: 'sky' takes 1536 bytes (4x4, 6 layer(s) of R32G32B32A32_SFLOAT), the staging buffer "
+                  "holds 16");
+    expectRefused("sky", nullptr, "no staging buffer for 'sky'");
+    EXPECT_THROW((void)StagingBuffer::create(sharedDevice(), 0), std::invalid_argument);
+}
+
+// The oracle can fail: without the compute submit's wait for the transfer queue's signal, the
+// read (and its layout transition) races the copy, which synchronization validation reports.
+TEST_F(UploadPassTest, ADroppedWaitForTheCopyIsCaught) {
+    CompileOptions o;
+    o.memory = sharedDevice().memoryModel();
+    o.queueFamilies = sharedDevice().queueFamilies();
+    const CompiledGraph intact(graph_, o);
+    Plan broken = intact.plan();
+    auto submits = detail::PlanEditor::submits(broken);
+    size_t dropped = 0;
+    for (auto& s : submits)
+        for (uint32_t p : s.passes)
+            if (broken.passes()[p].name == "read_sky")
+                dropped += std::erase_if(s.waits, [](const SemaphoreOp& w) { return w.semaphore == QueueKind::Transfer; });
+    ASSERT_EQ(dropped, 1u) << planToText(broken);
+    detail::PlanEditor::setSubmits(broken, submits);
+    allowMessages();
+    sharedDevice().clearMessages();
+    Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(intact, broken), options());
+    for (int i = 0; i < 2; ++i) {
+        r.stageUpload("sky", staged(float(i)));
+        r.renderFrame();
+    }
+    r.waitIdle();
+    EXPECT_TRUE(sharedDevice().hasMessage("SYNC-HAZARD")) << formatMessages(sharedDevice());
+}
+
+TEST_F(ExecutorTest, AnUploadPassWritesMipZeroAlone) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    const GraphDesc graph = parseGraph(R"({
+      "version": 1, "name": "upload_mips",
+      "resources": {"img": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [8, 8], "mips": 2,
+                            "external": true, "final": "ShaderRead"}},
+      "passes": [{"name": "upload_img", "type": "UploadPass", "uses": {"img": "Write@Transfer"}}]
+    })",
+                                       "upload_mips.json", library.registry());
+    RendererOptions ro;
+    ro.passes = &library;
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(graph, CompileOptions{}), ro);
+        FAIL() << "a usage of both mips was accepted";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'upload_img' (UploadPass): its usage of 'img' must cover mip 0 of "
+                                             "every layer and nothing else"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace skygraph::test
