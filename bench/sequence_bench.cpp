@@ -3,16 +3,18 @@
 // procedural sky (writeProceduralSkySequence) and plays it through the pieces LiveGraph uses:
 // a SequenceStream decodes ahead on its thread; an EnvironmentBaker of three renderers bakes
 // each frame beside a headless frame renderer of graphs/raster.json (environment_sequence on,
-// the sky fading from the previous frame's cube) and swaps it in. Per frame it reports
+// the sky fading from the previous frame's cube), its upload on the transfer queue, and swaps
+// it in. It plays the sequence twice, side by side: with the frames staged on the stream's
+// thread (what `skygraph view` does), and with the pixels handed over on the host and copied
+// to a staging buffer by start() on the calling thread. Per frame it reports
 //
-//   decode   reading and decoding the EXR on the stream's thread
-//   start    EnvironmentBaker::start() on the calling thread: the copy to the staging buffer
-//            and the submits
+//   decode   reading, decoding (and staging) the EXR on the stream's thread
+//   start    EnvironmentBaker::start() on the calling thread: staging and the submits
 //   bake     from start() to the swap, while the frame renderer keeps rendering
 //
-// as medians over the frames, and the device memory the renderers hold (Device::
-// allocatedBytes): the frame renderer with its first environment, then with the baker, which
-// stays the same however many frames play. Host memory: the stream's decoded frames. Where
+// as medians over the frames, and the memory the renderers hold (Device::allocatedBytes,
+// staging buffers included): the frame renderer with its first environment, then with the
+// baker, which stays the same however many frames play. Host memory: the stream's frames. Where
 // the frames are baked smaller than the files (sequenceEquirectWidth), it also bakes one
 // frame's cube at both sizes (bakeAndReadBack, on a device of its own) and reports the
 // difference.
@@ -125,44 +127,63 @@ int main(int argc, char** argv) {
         const uint64_t frameBytes = device->allocatedBytes();
 
         const auto extent = frame.graph().findResource(shipped::kEquirect)->extent.resolve(outWidth, outHeight);
-        app::EnvironmentBaker baker(*device, *environment.graph, extent[0], extent[1], environment.products, inputs.passes,
-                                    true, 3);
-        app::SequenceStream stream(sequence, extent[0], extent[1], 1);
-        std::vector<double> decode, start, bake;
-        std::vector<uint32_t> framesPerBake;
-        uint64_t mostBytes = 0;
         SharedImage shown = environment.renderer->shareImage(std::string(shipped::kEnvironment));
-        for (uint32_t i = 1; i < frames; ++i) {
-            std::optional<app::SequenceFrame> next;
-            while (!(next = stream.takeNewest(i, 1))) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-            if (!next->error.empty()) throw std::runtime_error(next->error);
-            decode.push_back(next->decodeMs);
-            const auto begin = Clock::now();
-            if (!baker.start(std::move(next->pixels))) throw std::runtime_error("the previous bake is still pending");
-            start.push_back(baker.lastStartMs());
-            uint32_t rendered = 0;
-            while (!baker.swapInWhenFinished(frame)) {
+        double hostMib = 0.0;
+        struct Playback {
+            double startMs = 0.0;
+            uint64_t mostBytes = 0;
+        };
+        // One playback of the sequence; `staged`: the stream stages the frames on its thread.
+        const auto play = [&](bool staged) {
+            uint64_t mostBytes = 0;
+            app::EnvironmentBaker baker(*device, *environment.graph, extent[0], extent[1], environment.products,
+                                        inputs.passes, true, 3);
+            app::SequenceStream stream(sequence, extent[0], extent[1], 1, 2, staged ? device.get() : nullptr);
+            std::vector<double> decode, start, bake;
+            std::vector<uint32_t> framesPerBake;
+            for (uint32_t i = 1; i < frames; ++i) {
+                std::optional<app::SequenceFrame> next;
+                while (!(next = stream.takeNewest(i, 1))) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                if (!next->error.empty()) throw std::runtime_error(next->error);
+                decode.push_back(next->decodeMs);
+                const auto begin = Clock::now();
+                const bool started = staged ? baker.start(std::move(next->staged)) : baker.start(next->pixels);
+                if (!started) throw std::runtime_error("the previous bake is still pending");
+                next.reset();  // as LiveGraph does: only the bake holds the frame now
+                start.push_back(baker.lastStartMs());
+                uint32_t rendered = 0;
+                while (!baker.swapInWhenFinished(frame)) {
+                    frame.renderFrame();
+                    ++rendered;
+                }
+                bake.push_back(ms(Clock::now() - begin));
+                framesPerBake.push_back(rendered);
+                // As LiveGraph does: the sky fades from the cube shown until now.
+                frame.importImage(std::string(shipped::kEnvironmentPrevious), shown);
+                shown = baker.swappedIn(std::string(shipped::kEnvironment));
+                frame.frameData().set(SkyFade{0.5});
                 frame.renderFrame();
-                ++rendered;
+                mostBytes = std::max(mostBytes, device->allocatedBytes());
             }
-            bake.push_back(ms(Clock::now() - begin));
-            framesPerBake.push_back(rendered);
-            // As LiveGraph does: the sky fades from the cube shown until now.
-            frame.importImage(std::string(shipped::kEnvironmentPrevious), shown);
-            shown = baker.swappedIn(std::string(shipped::kEnvironment));
-            frame.frameData().set(SkyFade{0.5});
-            frame.renderFrame();
-            mostBytes = std::max(mostBytes, device->allocatedBytes());
-        }
-        frame.waitIdle();
-        const double frameMib = mib(frameBytes), allMib = mib(mostBytes);
-        const double hostMib = mib(uint64_t(stream.mostFramesHeld()) * extent[0] * extent[1] * 16);
-        std::printf("per frame (median of %zu): decode %.1f ms, start %.1f ms, bake %.1f ms (%u frames rendered meanwhile)\n",
-                    decode.size(), median(decode), median(start), median(bake),
-                    uint32_t(median(std::vector<double>(framesPerBake.begin(), framesPerBake.end()))));
-        std::printf("device memory: frame renderer %.1f MiB; with the baker's 3 renderers %.1f MiB (the sequence's "
-                    "share %.1f MiB), the same for any length; host: %zu decoded frame(s) waiting, %.1f MiB\n",
-                    frameMib, allMib, allMib - frameMib, stream.mostFramesHeld(), hostMib);
+            frame.waitIdle();
+            std::printf("%s (median of %zu): decode %.1f ms, start %.1f ms, bake %.1f ms (%u frames rendered "
+                        "meanwhile); memory %.1f MiB%s\n",
+                        staged ? "staged on the stream's thread" : "staged by start()  ", decode.size(), median(decode),
+                        median(start), median(bake),
+                        uint32_t(median(std::vector<double>(framesPerBake.begin(), framesPerBake.end()))),
+                        mib(mostBytes),
+                        staged ? (", " + std::to_string(stream.stagingBuffers()) + " staging buffer(s)").c_str() : "");
+            if (!staged) hostMib = mib(uint64_t(stream.mostFramesHeld()) * extent[0] * extent[1] * 16);
+            return Playback{median(start), mostBytes};
+        };
+        const Playback onStream = play(true), onHost = play(false);
+        std::printf("start on the calling thread: staged on the stream's thread / by start() = %.3f\n",
+                    onHost.startMs > 0 ? onStream.startMs / onHost.startMs : 0.0);
+        const double frameMib = mib(frameBytes), allMib = mib(onStream.mostBytes);
+        std::printf("memory (Device::allocatedBytes, staging included): frame renderer %.1f MiB; with the baker's 3 "
+                    "renderers and the stream's staging buffers %.1f MiB (the sequence's share %.1f MiB), the same for "
+                    "any length; host, unstaged: decoded frames waiting %.1f MiB\n",
+                    frameMib, allMib, allMib - frameMib, hostMib);
         const double seedMib = 120.0 * double(width) * (width / 2) * 4 / (1024.0 * 1024.0);
         std::printf("120 frames at this size: every frame resident as 4 bytes a texel %.0f MiB, ours %.0f MiB (%.3fx)\n",
                     seedMib, allMib, allMib / seedMib);

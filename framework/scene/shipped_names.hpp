@@ -19,6 +19,11 @@ inline constexpr std::string_view kEnvironmentSequenceFeature = "environment_seq
 /// The debug overlay (ImGuiPass), which `skygraph view` turns on.
 inline constexpr std::string_view kOverlayFeature = "ui";
 
+// The feature of graphs/ibl.json under which its own UploadPass, on the transfer queue,
+// copies the equirect in at every bake (EnvironmentBaker) rather than a setup before the
+// first (a file's one bake).
+inline constexpr std::string_view kStreamedEquirectFeature = "streamed_equirect";
+
 // Resources of graphs/ibl.json and of the frame graphs that import its products.
 /// The equirect image a scene's environment file is loaded into.
 inline constexpr std::string_view kEquirect = "equirect";
@@ -35,6 +40,8 @@ inline constexpr std::string_view kEquirectToCubemapPass = "EquirectToCubemapPas
 inline constexpr std::string_view kCubemapMipPass = "CubemapMipPass";
 inline constexpr std::string_view kIrradiancePass = "IrradiancePass";
 inline constexpr std::string_view kPrefilterPass = "PrefilterPass";
+/// The pass type whose staged pixels `render`, `check` and `view` provide (UploadPassPixels).
+inline constexpr std::string_view kUploadPass = "UploadPass";
 /// CubemapMipPass's slot of the level it reads.
 inline constexpr std::string_view kCubemapMipSourceSlot = "source";
 /// IrradiancePass's and PrefilterPass's samples per texel.

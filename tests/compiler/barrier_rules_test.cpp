@@ -389,7 +389,8 @@ namespace skygraph {
 namespace {
 
 // CompileOptions::outputs: a consumer keeps only the products it samples. On the shipped
-// environment graph, a skybox-only scene needs the cube alone, so the IBL passes go.
+// environment graph, a skybox-only scene needs the cube alone, so the IBL passes go; the
+// equirect's upload (streamed_equirect) feeds the cube, so it stays.
 TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
     const GraphDesc ibl = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json",
                                         PassRegistry::withBuiltins());
@@ -398,7 +399,9 @@ TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
         for (const auto& c : p.culled()) names.insert(c.name);
         return names;
     };
+    const FeatureValues streamed{{"streamed_equirect", true}};
     CompileOptions cubeOnly;
+    cubeOnly.features = streamed;
     cubeOnly.outputs = std::set<std::string, std::less<>>{"environment"};
     const Plan sky = compile(ibl, cubeOnly);
     EXPECT_EQ(culledNames(sky), (std::set<std::string>{"irradiance", "prefilter", "brdf_lut"}));
@@ -406,9 +409,12 @@ TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
     ASSERT_GE(sky.resourceIndex("environment"), 0);
     for (const auto& b : sky.finalBarriers()) EXPECT_EQ(sky.resources()[b.resource].name, "environment");
 
-    const Plan all = compile(ibl);
+    CompileOptions everything;
+    everything.features = streamed;
+    const Plan all = compile(ibl, everything);
     EXPECT_TRUE(all.culled().empty());
     CompileOptions none;
+    none.features = streamed;
     none.outputs = std::set<std::string, std::less<>>{};
     EXPECT_EQ(compile(ibl, none).passes().size(), 0u) << "nothing asked for, nothing runs";
     CompileOptions unknown;

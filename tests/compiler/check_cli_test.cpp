@@ -58,10 +58,10 @@ TEST_F(Cli, CheckPassesEveryShippedGraphAndCombinationWithJUnit) {
     const CliRun r = run({"check", "graphs/deferred.json", "graphs/ibl.json", "graphs/pathtrace.json",
                           "graphs/raster.json", "--frames", "2", "--junit", junit.string()});
     EXPECT_EQ(r.status, 0) << r.out << r.err;
-    // 16 + 1 + 2 + 128 combinations, each compiled, verified and run without a message.
-    EXPECT_EQ(rows(r.out, "pass"), 147u) << r.out;
+    // 16 + 2 + 2 + 128 combinations, each compiled, verified and run without a message.
+    EXPECT_EQ(rows(r.out, "pass"), 148u) << r.out;
     EXPECT_EQ(rows(r.out, "FAIL"), 0u) << r.out;
-    EXPECT_NE(r.out.find("147 case(s): 147 passed, 0 failed"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("148 case(s): 148 passed, 0 failed"), std::string::npos) << r.out;
     // Read back by Python's XML parser: a suite per file, a case per combination, none failing.
     const std::string script =
         "import sys, xml.etree.ElementTree as E\n"
@@ -73,7 +73,7 @@ TEST_F(Cli, CheckPassesEveryShippedGraphAndCombinationWithJUnit) {
     const std::string cmd = "python3 " + quote((dir_ / "junit.py").string()) + " " + quote(junit.string()) + " > " +
                             quote((dir_ / "parsed").string());
     ASSERT_EQ(std::system(cmd.c_str()), 0);
-    EXPECT_EQ(slurp(dir_ / "parsed"), "147 0 4 147 0\n");
+    EXPECT_EQ(slurp(dir_ / "parsed"), "148 0 4 148 0\n");
 }
 
 TEST_F(Cli, CheckShowsTheDiffOfAGoldenWithOneBarrierEdited) {
@@ -105,7 +105,7 @@ TEST_F(Cli, CheckShowsTheDiffOfAGoldenWithOneBarrierEdited) {
 TEST_F(Cli, CheckReportsGoldensOfAnotherVersionAndMissingDirectories) {
     const fs::path golden = dir_ / "golden";
     ASSERT_EQ(run({"check", "graphs/ibl.json", "--golden", golden.string(), "--update", "--no-run"}).status, 0);
-    const fs::path file = golden / "ibl.plan.txt";
+    const fs::path file = golden / "ibl.streamed_equirect-off.plan.txt";
     std::string text = slurp(file);
     text.replace(0, text.find('\n'), "# skygraph golden plan, format 0");
     std::ofstream(file, std::ios::binary) << text;
@@ -190,13 +190,14 @@ TEST_F(Cli, CheckRefusesTwoCasesWithOneGoldenAndNamesTheLayoutsItForces) {
     const CliRun twice = run({"check", "graphs/ibl.json", "graphs/ibl.json", "--golden", golden.string(), "--update",
                               "--no-run"});
     EXPECT_EQ(twice.status, 1);
-    EXPECT_EQ(rows(twice.out, "pass"), 1u) << twice.out;
-    EXPECT_NE(twice.out.find("its golden " + (golden / "ibl.plan.txt").string() + " is also graphs/ibl.json's"),
+    EXPECT_EQ(rows(twice.out, "pass"), 2u) << twice.out;  // the first file's two combinations
+    EXPECT_EQ(rows(twice.out, "FAIL"), 2u) << twice.out;
+    EXPECT_NE(twice.out.find("its golden " + (golden / "ibl.streamed_equirect-off.plan.txt").string() + " is also graphs/ibl.json's"),
               std::string::npos) << twice.out;
     const CliRun optimal = run({"check", "graphs/ibl.json", "--golden", golden.string(), "--update", "--no-run",
                                 "--layouts", "optimal"});
     EXPECT_EQ(optimal.status, 0);
-    EXPECT_TRUE(fs::exists(golden / "ibl.layouts-optimal.plan.txt"));
+    EXPECT_TRUE(fs::exists(golden / "ibl.streamed_equirect-off.layouts-optimal.plan.txt"));
 }
 
 TEST_F(Cli, CheckCountsPerformanceWarningsAndCanFailOnThem) {

@@ -152,18 +152,26 @@ std::vector<std::string> barrierLines(const std::vector<std::string>& log) {
     return out;
 }
 
-/// The plan's barriers of frame slot `slot` in the order a frame records them.
+/// The plan's barriers of frame slot `slot` in the order a frame records them: submit by
+/// submit, each pass's batch and in-pass barriers, then the submit's ownership releases; the
+/// final barriers last.
 std::vector<std::string> planBarriers(const StandIn& s, uint32_t slot) {
     std::vector<std::string> out;
     const Plan& plan = s.state.plan;
-    for (uint32_t i = 0; i < plan.passes().size(); ++i) {
-        for (const std::string& l : s.expected(plan.passes()[i].barriers, slot)) out.push_back(l);
-        std::vector<Barrier> inPass;
-        for (const InPassBarrier& ib : plan.inPassBarriers())
-            if (ib.pass == i) inPass.push_back(ib.barrier);
-        for (const std::string& l : s.expected(inPass, slot)) out.push_back(l);
+    const auto add = [&](std::span<const Barrier> barriers) {
+        for (const std::string& l : s.expected(barriers, slot)) out.push_back(l);
+    };
+    for (const Submit& submit : plan.submits()) {
+        for (const uint32_t i : submit.passes) {
+            add(plan.passes()[i].barriers);
+            std::vector<Barrier> inPass;
+            for (const InPassBarrier& ib : plan.inPassBarriers())
+                if (ib.pass == i) inPass.push_back(ib.barrier);
+            add(inPass);
+        }
+        add(submit.releases);
     }
-    for (const std::string& l : s.expected(plan.finalBarriers(), slot)) out.push_back(l);
+    add(plan.finalBarriers());
     return out;
 }
 
@@ -207,7 +215,7 @@ TEST(CommandLog, EveryShippedPlanIsRecordedWithExactlyItsOwnBarriers) {
         }
         ++plans;
     }
-    EXPECT_EQ(plans, 128u + 2u + 1u + 16u);
+    EXPECT_EQ(plans, 128u + 2u + 2u + 16u);
     EXPECT_GT(barriers, 500u) << "the plans' barriers were all compared";
 }
 

@@ -1,12 +1,14 @@
-// An environment sequence's streaming, without a device: SequenceStream decodes ahead on its
-// own thread and holds no more than its lookahead; SequencePlayer says which frame is due and
+// An environment sequence's streaming: SequenceStream decodes ahead on its own thread, holds
+// no more than its lookahead, and stages its frames in host-visible memory when given a device; SequencePlayer says which frame is due and
 // counts late and dropped ones. Frames are time-lapses of the procedural sky written here.
 #include "app/procedural_environment.hpp"
 #include "app/sequence_player.hpp"
+#include "executor_test_util.hpp"
 
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -54,6 +56,24 @@ TEST(SequenceStream, DecodesEveryFrameInOrderAndHoldsNoMoreThanItsLookahead) {
     }
     EXPECT_LE(stream.mostFramesHeld(), 2u);
     EXPECT_GE(stream.mostFramesHeld(), 1u);
+}
+
+TEST(SequenceStream, StagesEachFrameOnItsThreadAndReusesTheBuffersNothingHolds) {
+    const EnvironmentSequence s = writeSequence("staged", 6);
+    app::SequenceStream stream(s, 32, 16, 0, 2, &sharedDevice());
+    for (uint32_t i = 0; i < 12; ++i) {
+        const auto frame = waitFor([&] { return stream.takeNewest(i % 6, 1); });
+        ASSERT_TRUE(frame) << i;
+        ASSERT_TRUE(frame->staged) << frame->error;
+        EXPECT_TRUE(frame->pixels.rgba.empty()) << "the host copy is dropped once staged";
+        const HdrImage file = loadHdrImage(s.frame(i % 6));
+        ASSERT_EQ(frame->staged->size(), file.rgba.size() * sizeof(float));
+        EXPECT_EQ(std::memcmp(frame->staged->bytes().data(), file.rgba.data(), file.rgba.size() * sizeof(float)), 0)
+            << "frame " << i % 6 << " as its file holds it";
+    }
+    // Two waiting, one decoding, one taken: a buffer is reused once the frame holding it goes.
+    EXPECT_LE(stream.stagingBuffers(), 4u);
+    EXPECT_GE(stream.stagingBuffers(), 2u);
 }
 
 TEST(SequenceStream, SkipsAheadToTheFramePlaybackAsksFor) {

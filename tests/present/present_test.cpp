@@ -447,7 +447,7 @@ struct LiveWindow {
     void frame() {
         glfwPollEvents();
         live.poll();
-        EXPECT_EQ(live.renderer().renderFrame(*swapchain), PresentStatus::Presented);
+        EXPECT_EQ(live.renderFrame(*swapchain), PresentStatus::Presented);
     }
     app::LiveGraph live;
     std::unique_ptr<Swapchain> swapchain;

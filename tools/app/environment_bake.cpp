@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 
 namespace skygraph::app {
@@ -119,15 +120,25 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
 EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                                    std::set<std::string, std::less<>> products, const PassLibrary* passes,
                                    bool background, uint32_t renderers)
-    : products_(std::move(products)), background_(background) {
+    : device_(device), stagingBytes_(VkDeviceSize(width) * height * 16), width_(width), height_(height),
+      products_(std::move(products)), background_(background) {
     if (renderers < 2 || renderers > 3)
         throw std::invalid_argument("EnvironmentBaker: 2 or 3 renderers, not " + std::to_string(renderers));
     if (!setEquirectExtent(graph, width, height))
         throw ExecutorError("the environment graph '" + graph.name + "' has no resource '" + std::string(kEquirect) +
                             "'");
-    if (background)
-        for (PassDesc& pass : graph.passes) pass.queue = QueueKind::Compute;
+    if (std::none_of(graph.features.begin(), graph.features.end(),
+                     [](const FeatureDecl& f) { return f.name == kStreamedEquirectFeature; }))
+        throw ExecutorError("the environment graph '" + graph.name + "' has no feature '" +
+                            std::string(kStreamedEquirectFeature) + "' (an UploadPass of '" + std::string(kEquirect) +
+                            "' for re-bakes)");
+    // The upload keeps the queue the graph gives it (the transfer queue); the bake's passes
+    // run beside the frames on the compute queue.
+    for (PassDesc& pass : graph.passes)
+        if (!background) pass.queue = QueueKind::Graphics;
+        else if (pass.queue == QueueKind::Graphics) pass.queue = QueueKind::Compute;
     CompileOptions co;
+    co.features[std::string(kStreamedEquirectFeature)] = true;
     co.outputs = products_;
     co.memory = device.memoryModel();
     co.queueFamilies = device.queueFamilies();
@@ -136,26 +147,35 @@ EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t wid
     ro.framesInFlight = 1;
     ro.passes = passes;
     for (uint32_t i = 0; i < renderers; ++i) renderers_.push_back(std::make_unique<Renderer>(device, compiled, ro));
-    uploaded_.assign(renderers, false);
 }
 
 SharedImage EnvironmentBaker::swappedIn(const std::string& name) const {
     return swapped_ ? renderers_[*swapped_]->shareImage(name) : SharedImage();
 }
 
-bool EnvironmentBaker::start(HdrImage equirect) {
+bool EnvironmentBaker::start(const HdrImage& equirect) {
+    if (pending_) return false;
+    const auto begin = Clock::now();
+    if (equirect.width != width_ || equirect.height != height_ || equirect.rgba.size() * sizeof(float) != stagingBytes_)
+        throw ExecutorError("the environment bake takes a " + std::to_string(width_) + "x" + std::to_string(height_) +
+                            " equirect, not " + std::to_string(equirect.width) + "x" +
+                            std::to_string(equirect.height));
+    auto free = std::find_if(staging_.begin(), staging_.end(), [](const auto& b) { return b.use_count() == 1; });
+    if (free == staging_.end()) free = staging_.insert(staging_.end(), StagingBuffer::create(device_, stagingBytes_));
+    std::memcpy((*free)->bytes().data(), equirect.rgba.data(), stagingBytes_);
+    const bool started = start(std::shared_ptr<const StagingBuffer>(*free));
+    lastStartMs_ = msSince(begin);  // the copy included
+    return started;
+}
+
+bool EnvironmentBaker::start(std::shared_ptr<const StagingBuffer> pixels) {
     if (pending_) return false;
     const auto begin = Clock::now();
     Renderer& r = *renderers_[next_];
     // Its products were last sampled by frames before the previous swap (with three
     // renderers, the one before); the bake's first submit, on the graphics queue, orders its
     // writes after all of them.
-    if (uploaded_[next_]) {
-        r.updateExternalImage(std::string(kEquirect), toImageData(std::move(equirect)), UploadTiming::WithNextFrame);
-    } else {
-        r.setExternalImage(std::string(kEquirect), toImageData(std::move(equirect)));
-        uploaded_[next_] = true;
-    }
+    r.stageUpload(std::string(kEquirect), std::move(pixels));
     if (background_) {
         r.renderFrameInBackground();
     } else {

@@ -9,6 +9,7 @@
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/image_data.hpp>
 #include <skygraph/renderer.hpp>
+#include <skygraph/staging_buffer.hpp>
 
 #include <array>
 #include <functional>
@@ -53,9 +54,10 @@ struct EnvironmentBake {
                                               const PassLibrary* passes, const BakeStepCallback& onStep = {});
 
 /// Re-bakes the environment a frame renderer imports beside its frames, again and again
-/// (docs/queues.md, "Background frames"). Two or three renderers of `graph`, with every pass
-/// on the compute queue, are made once and take turns: a change costs the upload of the new
-/// equirect and a submit, not a compile. Each bake is a background frame; the frames keep the
+/// (docs/queues.md, "Background frames"). Two or three renderers of `graph` with its feature
+/// `streamed_equirect` on are made once and take turns: the graph's own UploadPass copies the
+/// equirect in on the transfer queue, and every other pass runs on the compute queue. A change
+/// costs a submit, not a compile. Each bake is a background frame; the frames keep the
 /// products they import until swapInWhenFinished() hands them the new ones. A bake reuses the
 /// renderer swapped in longest ago: with two, the frames must sample only the last swap's
 /// products; with three, also the swap's before (a sky fading from one to the other). Owns
@@ -64,20 +66,27 @@ struct EnvironmentBake {
 class EnvironmentBaker {
 public:
     /// Compiles `graph` for `products` with an equirect of `width` x `height` and makes
-    /// `renderers` (2 or 3) renderers. `background` false: the passes stay on the graphics
+    /// `renderers` (2 or 3) renderers. `background` false: every pass runs on the graphics
     /// queue and start() waits for the bake (the synchronous way, for comparison). Throws like
-    /// bakeEnvironment().
+    /// bakeEnvironment(), and for a graph without the feature `streamed_equirect`.
     EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                      std::set<std::string, std::less<>> products, const PassLibrary* passes, bool background = true,
                      uint32_t renderers = 2);
     EnvironmentBaker(const EnvironmentBaker&) = delete;
     EnvironmentBaker& operator=(const EnvironmentBaker&) = delete;
 
-    /// Starts baking `equirect` (of the size given at construction) with the renderer whose
-    /// products the frames do not sample; waits only for that renderer's last bake and for
-    /// the upload. False, starting nothing, while the previous bake is not swapped in yet.
-    /// Throws ExecutorError for an equirect of another size.
-    bool start(HdrImage equirect);
+    /// Starts baking the equirect in `pixels` (stagingBytes() of float RGBA texels, rows
+    /// tightly packed, of the size given at construction; made with the baker's Device) with
+    /// the renderer whose products the frames do not sample: stages it for that renderer's
+    /// UploadPass and submits, waiting only for that renderer's last bake. The renderer holds
+    /// `pixels` until its copy has run. False, starting nothing, while the previous bake is
+    /// not swapped in yet. Throws ExecutorError for a buffer of another size.
+    bool start(std::shared_ptr<const StagingBuffer> pixels);
+    /// The same from pixels on the host: they are copied into a staging buffer of the baker's
+    /// first (on the calling thread). Throws ExecutorError for an equirect of another size.
+    bool start(const HdrImage& equirect);
+    /// Bytes of the equirect a bake uploads: width x height x 16.
+    [[nodiscard]] VkDeviceSize stagingBytes() const noexcept { return stagingBytes_; }
     /// Between two frames of `frame`: once the bake has finished on the GPU, imports its
     /// products into `frame` (Renderer::importImage, which neither waits nor rebuilds) and
     /// returns true; false while it runs or when none was started. Never blocks.
@@ -85,17 +94,22 @@ public:
     [[nodiscard]] bool pending() const noexcept { return pending_; }
     /// Product `name` of the last bake swapped in (empty before the first swap).
     [[nodiscard]] SharedImage swappedIn(const std::string& name) const;
-    /// Host time of the last start(): the upload and the submits.
+    /// Host time of the last start() on the calling thread: the copy to a staging buffer (from
+    /// an HdrImage) and the submits.
     [[nodiscard]] double lastStartMs() const noexcept { return lastStartMs_; }
 
 private:
+    Device& device_;
+    VkDeviceSize stagingBytes_ = 0;
+    uint32_t width_ = 0, height_ = 0;
     std::vector<std::unique_ptr<Renderer>> renderers_;
+    /// start(HdrImage)'s staging buffers: one whose use_count() is 1 no bake holds.
+    std::vector<std::shared_ptr<StagingBuffer>> staging_;
     std::set<std::string, std::less<>> products_;
     bool background_ = true;
     size_t next_ = 0;  ///< The renderer the next bake uses.
     std::optional<size_t> swapped_;  ///< The renderer last swapped in.
     bool pending_ = false;
-    std::vector<bool> uploaded_;
     double lastStartMs_ = 0.0;
 };
 

@@ -38,6 +38,7 @@ void keepViewSettings(const Scene& edited, Scene& loaded) {
 struct LiveGraph::Built {
     FrameEnvironment environment;  // outlives the renderer that imports its products
     std::unique_ptr<Renderer> renderer;
+    UploadPassPixels uploads;  // what the graph's UploadPasses copy, every frame
     std::optional<Scene> scene;
 };
 
@@ -85,7 +86,11 @@ void LiveGraph::startSequence() {
         return;
     }
     const auto extent = equirect->extent.resolve(width_, height_);
-    player_ = std::make_unique<SequencePlayer>(*scene->environment->sequence, extent[0], extent[1]);
+    // The stream stages its frames for the bake's upload, unless the frame samples the
+    // equirect itself and needs the pixels on the host too (rebake()).
+    const bool staged = renderer_->plan().resourceIndex(shipped::kEquirect) < 0;
+    player_ = std::make_unique<SequencePlayer>(*scene->environment->sequence, extent[0], extent[1],
+                                               staged ? &device_ : nullptr);
 }
 
 void LiveGraph::playSequence(double clockSeconds) {
@@ -111,7 +116,12 @@ void LiveGraph::playSequence(double clockSeconds) {
         return;
     }
     try {
-        sequenceBaking_ = rebake(std::move(frame->pixels), {});
+        if (frame->staged) {
+            const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
+            sequenceBaking_ = baker(extent[0], extent[1]).start(std::move(frame->staged));
+        } else {
+            sequenceBaking_ = rebake(std::move(frame->pixels), {});
+        }
         if (!sequenceBaking_) player_->bakeFailed();
     } catch (const std::exception& e) {
         player_->bakeFailed();
@@ -145,6 +155,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options)
     ro.passes = inputs.passes;
     ro.presentTo = swapchain_;
     b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
+    b->uploads = UploadPassPixels(device_, *b->renderer, inputs.environment);
     attachFrameInputs(*b->renderer, inputs, b->environment);
     return b;
 }
@@ -174,6 +185,11 @@ bool LiveGraph::rebuild(RenderOptions options) {
     ++reloads_;
     startSequence();
     return true;
+}
+
+PresentStatus LiveGraph::renderFrame(Swapchain& swapchain) {
+    built_->uploads.stageFor(*renderer_);
+    return renderer_->renderFrame(swapchain);
 }
 
 void LiveGraph::sceneChanged() {
@@ -239,7 +255,6 @@ bool LiveGraph::canRebake() const {
 }
 
 bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
-    const FrameEnvironment& running = built_->environment;
     // The running image's size is the frame graph's `equirect` (loadFrameInputs sets it).
     const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
     if (pixels.width != extent[0] || pixels.height != extent[1]) {  // never for a sequence's frames: the stream resamples
@@ -249,16 +264,21 @@ bool LiveGraph::rebake(HdrImage pixels, const std::string& what) {
                      pixels.width, pixels.height, extent[0], extent[1]);
         pixels = resampleEquirect(pixels, extent[0], extent[1]);
     }
-    // A sky that fades samples two swaps' products: a third renderer bakes meanwhile.
-    const bool fades = renderer_->plan().resourceIndex(shipped::kEnvironmentPrevious) >= 0;
-    if (!baker_)
-        baker_ = std::make_unique<EnvironmentBaker>(device_, *running.graph, pixels.width, pixels.height,
-                                                    running.products,
-                                                    options_.passes ? options_.passes : &PassLibrary::genericOnly(),
-                                                    true, fades ? 3 : 2);
+    EnvironmentBaker& bake = baker(pixels.width, pixels.height);
     if (renderer_->plan().resourceIndex(shipped::kEquirect) >= 0) rebakeEquirect_ = pixels;
     if (!what.empty()) spdlog::info("environment: re-baking {} beside the frames", what);
-    return baker_->start(std::move(pixels));
+    return bake.start(pixels);
+}
+
+EnvironmentBaker& LiveGraph::baker(uint32_t width, uint32_t height) {
+    if (baker_) return *baker_;
+    // A sky that fades samples two swaps' products: a third renderer bakes meanwhile.
+    const bool fades = renderer_->plan().resourceIndex(shipped::kEnvironmentPrevious) >= 0;
+    baker_ = std::make_unique<EnvironmentBaker>(device_, *built_->environment.graph, width, height,
+                                                built_->environment.products,
+                                                options_.passes ? options_.passes : &PassLibrary::genericOnly(), true,
+                                                fades ? 3 : 2);
+    return *baker_;
 }
 
 bool LiveGraph::setSunDirection(const Vec3& sun) {

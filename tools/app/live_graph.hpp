@@ -38,6 +38,9 @@ public:
     /// The renderer that presents; replaced by a rebuild, so do not keep the reference
     /// across setFeature, setEnvironmentFile or poll.
     [[nodiscard]] Renderer& renderer() noexcept { return *renderer_; }
+    /// renderer().renderFrame(swapchain), with what the graph's UploadPasses copy staged
+    /// first (UploadPassPixels).
+    PresentStatus renderFrame(Swapchain& swapchain);
     /// The scene the passes get, edited in place by the overlay (call sceneChanged()
     /// after); null when the graph runs without one. Kept across rebuilds.
     [[nodiscard]] Scene* scene() noexcept { return scene_ ? &*scene_ : nullptr; }
@@ -119,6 +122,8 @@ private:
     /// Starts re-baking `pixels` (named `what` in the log), resampled to the running
     /// equirect's size when they differ; false when the baker cannot start one now.
     bool rebake(HdrImage pixels, const std::string& what);
+    /// The baker, made on first use for an equirect of `width` x `height`.
+    EnvironmentBaker& baker(uint32_t width, uint32_t height);
     /// A player for the running scene's sequence, if it has one of several frames.
     void startSequence();
     /// Ends playback, the sky left on the cube swapped in last (no fade half way).

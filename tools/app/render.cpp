@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <set>
 #include <iostream>
@@ -211,6 +212,25 @@ void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvir
         renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*inputs.environment)));
 }
 
+UploadPassPixels::UploadPassPixels(Device& device, const Renderer& renderer, const std::optional<HdrImage>& environment) {
+    const Plan& plan = renderer.plan();
+    for (const PlannedPass& pass : plan.passes()) {
+        if (pass.type != kUploadPass || pass.usages.empty()) continue;
+        const std::string target(plan.resources()[pass.usages[0].resource].name);
+        const VkDeviceSize bytes = renderer.stagingBytes(target);
+        auto buffer = StagingBuffer::create(device, bytes);
+        const bool fromEnvironment =
+            target == kEquirect && environment && environment->rgba.size() * sizeof(float) == bytes;
+        if (fromEnvironment) std::memcpy(buffer->bytes().data(), environment->rgba.data(), bytes);
+        else std::memset(buffer->bytes().data(), 0, bytes);
+        staged_.emplace_back(target, std::move(buffer));
+    }
+}
+
+void UploadPassPixels::stageFor(Renderer& renderer) const {
+    for (const auto& [resource, buffer] : staged_) renderer.stageUpload(resource, buffer);
+}
+
 RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs& inputs, const RenderOptions& options) {
     RenderedFrames out;
     out.environment = bakeFrameEnvironment(device, compiled.plan(), inputs, options);
@@ -218,8 +238,10 @@ RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs&
     ropts.framesInFlight = options.framesInFlight;
     ropts.passes = inputs.passes;
     out.renderer = std::make_unique<Renderer>(device, std::move(compiled), ropts);
+    const UploadPassPixels uploads(device, *out.renderer, inputs.environment);
     attachFrameInputs(*out.renderer, inputs, out.environment);
     for (uint32_t i = 0; i < options.frames; ++i) {
+        uploads.stageFor(*out.renderer);
         out.renderer->renderFrame();
         if (options.onFrameSubmitted) options.onFrameSubmitted(i + 1, options.frames);
     }

@@ -14,6 +14,7 @@
 #include <skygraph/pass_registry.hpp>
 #include <skygraph/plan.hpp>
 #include <skygraph/scene.hpp>
+#include <skygraph/staging_buffer.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -22,6 +23,8 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace skygraph {
 class Device;
@@ -120,6 +123,22 @@ struct FrameEnvironment {
 /// Hands `renderer` the scene (FrameData), the baked products (importImage) and the
 /// environment file's pixels (setExternalImage; moved out of `inputs`).
 void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvironment& environment);
+
+/// What the UploadPasses of a frame graph copy in every frame of `render`, `check` and
+/// `view`, which have no pixels of their own to stream: the scene's environment for the
+/// equirect, zeros for anything else. Owns its staging buffers (made once).
+class UploadPassPixels {
+public:
+    UploadPassPixels() = default;
+    /// For each UploadPass of `renderer`'s plan, a staging buffer on `device` holding
+    /// `environment` (float RGBA of the target's size) for the equirect, else zeros.
+    UploadPassPixels(Device& device, const Renderer& renderer, const std::optional<HdrImage>& environment);
+    /// Stages them for `renderer`'s next frame (Renderer::stageUpload).
+    void stageFor(Renderer& renderer) const;
+
+private:
+    std::vector<std::pair<std::string, std::shared_ptr<const StagingBuffer>>> staged_;
+};
 
 /// A headless run: the environment baked for it and the frame's renderer, idle. Destroying it
 /// destroys the renderer before the environment whose products it imported.

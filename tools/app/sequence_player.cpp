@@ -6,9 +6,9 @@
 
 namespace skygraph::app {
 
-SequencePlayer::SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height)
+SequencePlayer::SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height, Device* stagingDevice)
     : fps_(sequence.fps), count_(sequence.count) {
-    stream_ = std::make_unique<SequenceStream>(std::move(sequence), width, height, 1);
+    stream_ = std::make_unique<SequenceStream>(std::move(sequence), width, height, 1, 2, stagingDevice);
     stats_.shown = 1;
     stats_.current = 0;
 }

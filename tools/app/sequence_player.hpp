@@ -23,9 +23,10 @@ struct SequenceStats {
 
 class SequencePlayer {
 public:
-    /// Streams `sequence` (SequenceStream) at `width` x `height`, the running equirect's size.
-    /// Frame 0 is on screen already: the environment was baked from it.
-    SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height);
+    /// Streams `sequence` (SequenceStream) at `width` x `height`, the running equirect's size,
+    /// staged on `stagingDevice` when given (SequenceStream). Frame 0 is on screen already: the
+    /// environment was baked from it.
+    SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height, Device* stagingDevice = nullptr);
     SequencePlayer(const SequencePlayer&) = delete;
     SequencePlayer& operator=(const SequencePlayer&) = delete;
 

@@ -4,18 +4,22 @@
 #include "equirect_resample.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstring>
 #include <exception>
 #include <stdexcept>
+#include <utility>
 
 namespace skygraph::app {
 
 SequenceStream::SequenceStream(EnvironmentSequence sequence, uint32_t width, uint32_t height, uint32_t first,
-                               uint32_t lookahead)
+                               uint32_t lookahead, Device* stagingDevice)
     : sequence_(std::move(sequence)),
       width_(width),
       height_(height),
       lookahead_(std::max<uint32_t>(lookahead, 1)),
+      stagingDevice_(stagingDevice),
       next_(first % std::max<uint32_t>(sequence_.count, 1)),
       thread_() {
     if (sequence_.count == 0) throw std::invalid_argument("SequenceStream: a sequence of no frames");
@@ -88,8 +92,10 @@ void SequenceStream::decodeLoop() {
             frame.pixels = loadHdrImage(frame.file);
             if (frame.pixels.width != width_ || frame.pixels.height != height_)
                 frame.pixels = resampleEquirect(frame.pixels, width_, height_);
+            if (stagingDevice_) frame.staged = stage(std::exchange(frame.pixels, {}));
         } catch (const std::exception& e) {
             frame.pixels = {};
+            frame.staged.reset();
             frame.error = e.what();
         }
         frame.decodeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -99,6 +105,26 @@ void SequenceStream::decodeLoop() {
         ready_.push_back(std::move(frame));
         mostHeld_ = std::max(mostHeld_, ready_.size());
     }
+}
+
+std::shared_ptr<const StagingBuffer> SequenceStream::stage(const HdrImage& pixels) {
+    const size_t bytes = pixels.rgba.size() * sizeof(float);
+    // Only this thread copies the pool's pointers: a count of 1 means every frame and bake that
+    // held the buffer has let go of it, the bake only once its copy had run.
+    auto free = std::find_if(staging_.begin(), staging_.end(), [](const auto& b) { return b.use_count() == 1; });
+    std::atomic_thread_fence(std::memory_order_acquire);
+    if (free == staging_.end()) {
+        free = staging_.insert(staging_.end(), StagingBuffer::create(*stagingDevice_, bytes));
+        std::lock_guard lock(mutex_);
+        stagingMade_ = staging_.size();
+    }
+    std::memcpy((*free)->bytes().data(), pixels.rgba.data(), bytes);
+    return *free;
+}
+
+size_t SequenceStream::stagingBuffers() const {
+    std::lock_guard lock(mutex_);
+    return stagingMade_;
 }
 
 std::vector<double> SequenceStream::decodeTimesMs() const {

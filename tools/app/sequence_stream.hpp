@@ -6,6 +6,7 @@
 
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/scene.hpp>
+#include <skygraph/staging_buffer.hpp>
 
 #include <condition_variable>
 #include <cstdint>
@@ -22,19 +23,26 @@ namespace skygraph::app {
 struct SequenceFrame {
     uint32_t index = 0;  ///< in the sequence: 0 <= index < count
     std::string file;
-    HdrImage pixels;    ///< at the stream's size; empty when `error` is set
+    HdrImage pixels;    ///< at the stream's size; empty when `error` is set or the frame is staged
+    /// The pixels in host-visible memory (float RGBA, rows tightly packed), when the stream
+    /// stages its frames; null otherwise or when `error` is set.
+    std::shared_ptr<const StagingBuffer> staged;
     std::string error;  ///< the ImageError's message, naming the file
-    double decodeMs = 0.0;  ///< reading, decoding and resampling, on the stream's thread
+    double decodeMs = 0.0;  ///< reading, decoding, resampling and staging, on the stream's thread
 };
 
 class SequenceStream {
 public:
     /// Starts decoding `sequence` from frame `first`. Frames of another size than `width` x
     /// `height` are resampled to it (resampleEquirect), so that a bake beside the frames can
-    /// take them. At most `lookahead` (>= 1) decoded frames wait to be taken. Throws
-    /// std::invalid_argument for a sequence of no frames.
+    /// take them. At most `lookahead` (>= 1) decoded frames wait to be taken. With
+    /// `stagingDevice` (borrowed; it must outlive the stream and the frames taken), each frame
+    /// is also copied into a StagingBuffer on it, on the stream's thread, and handed out in
+    /// `staged` instead of `pixels`: the frame thread then only passes the buffer on to the
+    /// bake. A buffer is reused once nothing else holds it. Throws std::invalid_argument for a
+    /// sequence of no frames.
     SequenceStream(EnvironmentSequence sequence, uint32_t width, uint32_t height, uint32_t first = 0,
-                   uint32_t lookahead = 2);
+                   uint32_t lookahead = 2, Device* stagingDevice = nullptr);
     /// Stops the thread; a decode under way is finished first.
     ~SequenceStream();
     SequenceStream(const SequenceStream&) = delete;
@@ -55,15 +63,22 @@ public:
     [[nodiscard]] std::vector<double> decodeTimesMs() const;
     /// The most frames held at once, decoded and waiting, since the start.
     [[nodiscard]] size_t mostFramesHeld() const;
+    /// The staging buffers made so far (0 without a staging device): the most frames staged
+    /// at once, waiting, decoding or not yet copied by their bake.
+    [[nodiscard]] size_t stagingBuffers() const;
 
 private:
     void decodeLoop();
+    /// `pixels` copied into a staging buffer of the pool; on the stream's thread.
+    [[nodiscard]] std::shared_ptr<const StagingBuffer> stage(const HdrImage& pixels);
     /// Frames from `from` forwards to `to`, looping: 0 when they are the same.
     [[nodiscard]] uint32_t stepsFrom(uint32_t from, uint32_t to) const noexcept;
 
     const EnvironmentSequence sequence_;
     const uint32_t width_, height_;
     const size_t lookahead_;
+    Device* const stagingDevice_;
+    std::vector<std::shared_ptr<StagingBuffer>> staging_;  ///< the stream thread's alone
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     std::deque<SequenceFrame> ready_;
@@ -72,6 +87,7 @@ private:
     bool stopping_ = false;
     std::vector<double> decodeMs_;
     size_t mostHeld_ = 0;
+    size_t stagingMade_ = 0;
     std::thread thread_;  ///< last: started once everything it reads is
 };
 

@@ -252,7 +252,7 @@ int viewCommand(const ViewOptions& options) {
                 // A paused window presents nothing: the screenshot waits for a frame.
                 const bool screenshot = !swapchain->paused() && std::exchange(state.screenshotWanted, false) &&
                                         live.beginScreenshot();
-                if (live.renderer().renderFrame(*swapchain) == PresentStatus::Presented) {
+                if (live.renderFrame(*swapchain) == PresentStatus::Presented) {
                     ++presented;
                     if (screenshot) live.finishScreenshot("skygraph-view-" + std::to_string(++screenshots) + ".png");
                     reportReloadLatency(live);
