@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 
 namespace skygraph::verifier {
 namespace {
@@ -121,6 +122,53 @@ TEST(Queues, AcquireTurnedIntoAPlainBarrierIsCaught) {
     ASSERT_TRUE(edited);
     const VerificationReport r = verifyPlan(c.plan, c.graph);
     EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "normals")) << r.summary();
+}
+
+/// graphs/ibl.json as EnvironmentBaker runs it beside the frames: the equirect copied in on the
+/// transfer queue, every other pass on the compute queue, three families.
+test::Compiled backgroundBake() {
+    GraphDesc graph = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json", test::registry());
+    for (PassDesc& pass : graph.passes)
+        if (pass.queue == QueueKind::Graphics) pass.queue = QueueKind::Compute;
+    CompileOptions o;
+    o.features = {{"streamed_equirect", true}};
+    o.queueFamilies = {0, 1, 2};
+    Plan plan = compile(graph, o);
+    return {std::move(graph), std::move(plan)};
+}
+
+// Validation layer 1.3.239 reports the acquire of the equirect after the compute queue's wait
+// at COMPUTE_SHADER as a write-after-write on separate families (docs/queues.md): the
+// verifier is the oracle there, and it must also catch that order missing.
+TEST(Queues, TheBackgroundBakesTransferUploadVerifiesAndItsOrderIsChecked) {
+    const test::Compiled intact = backgroundBake();
+    const size_t upload = stepIndex(intact.plan, "upload_equirect");
+    const size_t toCube = stepIndex(intact.plan, "equirect_to_cube");
+    ASSERT_EQ(intact.plan.submits()[submitOf(intact.plan, upload)].queue, QueueKind::Transfer);
+    ASSERT_EQ(intact.plan.submits()[submitOf(intact.plan, toCube)].queue, QueueKind::Compute);
+    const VerificationReport clean = verifyPlan(intact.plan, intact.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+
+    test::Compiled noWait = backgroundBake();
+    auto submits = PlanEditor::submits(noWait.plan);
+    auto& waits = submits.at(submitOf(noWait.plan, toCube)).waits;
+    const auto before = waits.size();
+    std::erase_if(waits, [](const SemaphoreOp& w) { return w.semaphore == QueueKind::Transfer; });
+    ASSERT_EQ(waits.size() + 1, before);
+    PlanEditor::setSubmits(noWait.plan, submits);
+    const VerificationReport unordered = verifyPlan(noWait.plan, noWait.graph);
+    EXPECT_TRUE(anyFinding(unordered, {FindingKind::Unordered, FindingKind::NotVisible, FindingKind::Ownership},
+                           "equirect"))
+        << unordered.summary();
+
+    test::Compiled noRelease = backgroundBake();
+    submits = PlanEditor::submits(noRelease.plan);
+    auto& releases = submits.at(submitOf(noRelease.plan, upload)).releases;
+    ASSERT_EQ(releases.size(), 1u);
+    releases.clear();
+    PlanEditor::setSubmits(noRelease.plan, submits);
+    const VerificationReport unreleased = verifyPlan(noRelease.plan, noRelease.graph);
+    EXPECT_TRUE(hasFinding(unreleased, FindingKind::Ownership, "equirect")) << unreleased.summary();
 }
 
 TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
