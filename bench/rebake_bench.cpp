@@ -2,18 +2,22 @@
 // environment file (scenes/studio.json), rendered headless with two frames in flight, gets a
 // new environment (the same HDRI at half or double brightness, so every size stays) at frame
 // --change-at, re-baked by an EnvironmentBaker (two renderers of graphs/ibl.json made once,
-// taking turns) one of two ways:
+// taking turns) one of three ways:
 //
-//   sync   the passes on the graphics queue; start() renders the bake and waits for it
-//   async  the passes on the compute queue, a background frame beside the frames, swapped in
-//          by swapInWhenFinished between frames (docs/queues.md, "Background frames")
+//   sync    the passes on the graphics queue; start() renders the bake and waits for it
+//   async   the passes on the compute queue, a background frame beside the frames, swapped in
+//           by swapInWhenFinished between frames (docs/queues.md, "Background frames"), the
+//           equirect's upload on the transfer queue; start() copies the new pixels from the
+//           host into a staging buffer on the frame's thread
+//   staged  async, with the pixels copied into a StagingBuffer by a loader thread of the
+//           application while the frames before the change render; start() only submits
 //
 // Each frame's time is the wall-clock time between two renderFrame() returns (with two in
 // flight, renderFrame waits for the frame before last: the pace the GPU sets). Per run it
 // reports the median frame before the change, the worst frame from the change on, and
-// start()'s time on the calling thread (the equirect's upload and the submits; sync: the bake
-// too); runs alternate the two modes, --reps of each, and the summary gives the medians over
-// runs and their ratio.
+// start()'s time on the calling thread (staging from the host and the submits; sync: the bake
+// too); runs rotate the three modes, --reps of each, and the summary gives the medians over
+// runs and their ratios to sync.
 //
 //   rebake_bench [--scene FILE] [--size WxH] [--frames N] [--change-at K] [--reps R] [--csv FILE]
 //
@@ -26,6 +30,7 @@
 #include <skygraph/device.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/renderer.hpp>
+#include <skygraph/staging_buffer.hpp>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -33,9 +38,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <exception>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace skygraph::bench {
@@ -68,9 +76,12 @@ HdrImage scaled(const HdrImage& image, float factor) {
     return out;
 }
 
+enum class Mode { Sync, Async, Staged };
+constexpr const char* kModeNames[] = {"sync", "async", "staged"};
+
 class Bench {
 public:
-    Bench(Device& device, const app::RenderOptions& options) {
+    Bench(Device& device, const app::RenderOptions& options) : device_(device) {
         app::FrameInputs inputs = app::loadFrameInputs(options);
         if (!inputs.environment) throw std::runtime_error("the scene has no environment file: nothing to re-bake");
         equirect_ = *inputs.environment;
@@ -90,16 +101,32 @@ public:
                 background);
     }
 
-    RunResult run(bool async, uint32_t frames, uint32_t changeAt, float brightness) {
+    RunResult run(Mode mode, uint32_t frames, uint32_t changeAt, float brightness) {
         RunResult r;
-        r.mode = async ? "async" : "sync";
-        app::EnvironmentBaker& baker = *bakers_[async];
-        HdrImage next = scaled(equirect_, brightness);
+        r.mode = kModeNames[int(mode)];
+        app::EnvironmentBaker& baker = *bakers_[mode != Mode::Sync];
+        const HdrImage next = scaled(equirect_, brightness);
+        // The application's loader thread: what it stages meanwhile costs the frames nothing.
+        std::shared_ptr<StagingBuffer> staged;
+        std::exception_ptr loaderError;
+        std::thread loader;
+        if (mode == Mode::Staged)
+            loader = std::thread([&] {
+                try {
+                    staged = StagingBuffer::create(device_, baker.stagingBytes());
+                    std::memcpy(staged->bytes().data(), next.rgba.data(), baker.stagingBytes());
+                } catch (...) {
+                    loaderError = std::current_exception();
+                }
+            });
         std::vector<double> before, after;
         auto last = Clock::now();
         for (uint32_t i = 0; i < frames; ++i) {
             if (i == changeAt) {
-                if (!baker.start(std::move(next))) throw std::runtime_error("the previous bake is still pending");
+                if (loader.joinable()) loader.join();
+                if (loaderError) std::rethrow_exception(loaderError);
+                const bool started = staged ? baker.start(std::move(staged)) : baker.start(next);
+                if (!started) throw std::runtime_error("the previous bake is still pending");
                 r.setupMs = baker.lastStartMs();
             }
             const auto swapStart = Clock::now();
@@ -127,6 +154,7 @@ public:
     }
 
 private:
+    Device& device_;
     HdrImage equirect_;
     app::FrameEnvironment environment_;  // the first products, until the first swap
     std::unique_ptr<app::EnvironmentBaker> bakers_[2];  // [background]
@@ -176,11 +204,11 @@ int main(int argc, char** argv) {
         bench::Bench bench(*device, options);
         std::vector<bench::RunResult> runs;
         for (uint32_t rep = 0; rep < reps; ++rep)
-            for (int k = 0; k < 2; ++k) {
-                const bool async = (rep + k) % 2 == 1;  // alternate which mode goes first
-                runs.push_back(bench.run(async, frames, changeAt, rep % 2 ? 2.0f : 0.5f));
+            for (uint32_t k = 0; k < 3; ++k) {
+                const auto mode = bench::Mode((rep + k) % 3);  // rotate which mode goes first
+                runs.push_back(bench.run(mode, frames, changeAt, rep % 2 ? 2.0f : 0.5f));
                 const auto& r = runs.back();
-                std::printf("%-5s steady %7.3f ms  worst %8.3f ms (frame +%u)  start %8.3f ms  swap %7.3f ms after %u frames\n",
+                std::printf("%-6s steady %7.3f ms  worst %8.3f ms (frame +%u)  start %8.3f ms  swap %7.3f ms after %u frames\n",
                             r.mode.c_str(), r.steadyMs, r.worstMs, r.worstAt, r.setupMs, r.swapMs, r.framesToSwap);
             }
         auto med = [&](const char* mode, double bench::RunResult::*field) {
@@ -190,13 +218,13 @@ int main(int argc, char** argv) {
             return bench::median(v);
         };
         const double syncWorst = med("sync", &bench::RunResult::worstMs);
-        const double asyncWorst = med("async", &bench::RunResult::worstMs);
-        std::printf("median over %u runs each at %s: steady sync %.3f ms, async %.3f ms; worst frame sync %.3f ms, "
-                    "async %.3f ms (async/sync %.3f); start sync %.3f ms, async %.3f ms\n",
-                    reps, size.c_str(), med("sync", &bench::RunResult::steadyMs),
-                    med("async", &bench::RunResult::steadyMs), syncWorst, asyncWorst,
-                    syncWorst > 0 ? asyncWorst / syncWorst : 0.0, med("sync", &bench::RunResult::setupMs),
-                    med("async", &bench::RunResult::setupMs));
+        std::printf("median over %u runs each at %s:\n", reps, size.c_str());
+        for (const char* mode : bench::kModeNames) {
+            const double worst = med(mode, &bench::RunResult::worstMs);
+            std::printf("  %-6s steady %.3f ms, worst frame %.3f ms (%.3fx sync), start %.3f ms\n", mode,
+                        med(mode, &bench::RunResult::steadyMs), worst, syncWorst > 0 ? worst / syncWorst : 0.0,
+                        med(mode, &bench::RunResult::setupMs));
+        }
         if (!csv.empty()) {
             std::ofstream out(csv);
             out << "mode,steady_ms,worst_ms,worst_at,start_ms,swap_ms,frames_to_swap\n";
