@@ -52,6 +52,7 @@ void Renderer::Impl::waitSlot(FrameSlot& f) {
 void Renderer::Impl::collectTimings(FrameSlot& f) {
     if (!f.timingsPending) return;
     f.timingsPending = false;
+    if (!f.queries) return;
     const auto n = static_cast<uint32_t>(f.passNames.size());
     if (n == 0) return;
     // Each query's value and availability: passes on a queue without timestamps wrote none.
@@ -136,7 +137,7 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     r.frameData = &frameData;
     r.staged = &staged;
     r.sampledImagePlanEdit = &sampledImagePlanEdit;
-    if (frame) {
+    if (frame && options.timestamps) {
         ensureQueries(*frame, passCount * 2);
         r.queries = frame->queries.get();
         r.queryCount = frame->queryCount;
@@ -145,8 +146,8 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
         r.resetQueries = !dev.hostQueryReset;
         for (size_t k = 0; k < kQueueKinds; ++k)
             r.timestamps[k] = dev.timestamps[k] && (dev.hostQueryReset || dev.queues[k] == dev.queue);
-        r.labels = dev.fn.cmdBeginLabel != nullptr;
     }
+    if (frame) r.labels = dev.fn.cmdBeginLabel != nullptr;
     VulkanCommands sink(cmd, commandFunctions());
     if (submit) detail::recordSubmit(sink, s, r, *submit);
     else detail::recordFrame(sink, s, r);

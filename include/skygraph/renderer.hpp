@@ -41,6 +41,11 @@ struct RendererOptions {
     /// (paused, out of date, or made for another format or usage) nothing is bound and the
     /// first frame binds, as with null.
     Swapchain* presentTo = nullptr;
+    /// GPU timestamps around each pass (lastTimings(), completedTimings()). Off, a frame
+    /// writes none and reading them back never waits: on lavapipe, reading query results
+    /// waits for the work the queue is running, which a renderer whose frames run beside
+    /// another's (a background bake) would wait for on the caller's thread.
+    bool timestamps = true;
 };
 
 /// What renderFrame(Swapchain&) did.

@@ -230,6 +230,25 @@ TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
     EXPECT_EQ(timings[2].pass, "read back swapchain");
 }
 
+// RendererOptions::timestamps off: the same pixels, no query written, no timing.
+TEST_F(ExecutorTest, ARendererWithoutTimestampsRendersTheSameAndTimesNothing) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output/2" })",
+        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@Compute" },
+             "params": { "color": [0, 1, 0, 1] } },
+           { "name": "b", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    RendererOptions untimed = genericOptions();
+    untimed.timestamps = false;
+    Renderer timedRenderer(sharedDevice(), c, genericOptions()), untimedRenderer(sharedDevice(), c, untimed);
+    for (Renderer* r : {&timedRenderer, &untimedRenderer})
+        for (int i = 0; i < 3; ++i) r->renderFrame();
+    EXPECT_EQ(untimedRenderer.readback().rgba, timedRenderer.readback().rgba);
+    EXPECT_EQ(timedRenderer.lastTimings().size(), 3u);
+    EXPECT_TRUE(untimedRenderer.lastTimings().empty());
+    EXPECT_TRUE(untimedRenderer.completedTimings().empty());
+}
+
 TEST_F(ExecutorTest, BadParamsAreClearErrors) {
     const auto c = compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",

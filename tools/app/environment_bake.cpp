@@ -146,6 +146,7 @@ EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t wid
     RendererOptions ro;
     ro.framesInFlight = 1;
     ro.passes = passes;
+    ro.timestamps = false;  // nothing reads them, and reading them on lavapipe waits for the frames' work
     for (uint32_t i = 0; i < renderers; ++i) renderers_.push_back(std::make_unique<Renderer>(device, compiled, ro));
 }
 
