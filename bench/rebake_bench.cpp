@@ -106,14 +106,18 @@ public:
         r.mode = kModeNames[int(mode)];
         app::EnvironmentBaker& baker = *bakers_[mode != Mode::Sync];
         const HdrImage next = scaled(equirect_, brightness);
-        // The application's loader thread: what it stages meanwhile costs the frames nothing.
+        // The application's loader thread: what it stages meanwhile costs the frames nothing. It
+        // keeps its buffer for the next change, as a pool would: freeing host-visible memory
+        // where the bake lets go of it (on the frame's thread, at the swap) takes milliseconds.
         std::shared_ptr<StagingBuffer> staged;
         std::exception_ptr loaderError;
         std::thread loader;
         if (mode == Mode::Staged)
             loader = std::thread([&] {
                 try {
-                    staged = StagingBuffer::create(device_, baker.stagingBytes());
+                    if (!loaderBuffer_ || loaderBuffer_.use_count() > 1)
+                        loaderBuffer_ = StagingBuffer::create(device_, baker.stagingBytes());
+                    staged = loaderBuffer_;
                     std::memcpy(staged->bytes().data(), next.rgba.data(), baker.stagingBytes());
                 } catch (...) {
                     loaderError = std::current_exception();
@@ -155,6 +159,7 @@ public:
 
 private:
     Device& device_;
+    std::shared_ptr<StagingBuffer> loaderBuffer_;
     HdrImage equirect_;
     app::FrameEnvironment environment_;  // the first products, until the first swap
     std::unique_ptr<app::EnvironmentBaker> bakers_[2];  // [background]
