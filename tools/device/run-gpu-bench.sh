@@ -220,10 +220,14 @@ if [ "${GLTF_CHECK:-0}" = 1 ]; then
 fi
 if [ "${SEQUENCE_BENCH:-0}" = 1 ]; then
   # An environment sequence per frame and in memory at 2K and 6K (bench/sequence_bench.cpp):
-  # once under validation at 2K, then timed (SEQUENCE_FRAMES frames, default 9).
-  step "sequence_bench under validation on $device, 2K"
-  ran "$bin_sequence" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device SKYGRAPH_VALIDATION=1 "$bin_sequence" \
-    --width 2048 --frames 4 --size 1920x1080 --dir /tmp/skygraph-sequence) | tee "$out/sequence-validation.txt"
+  # under validation at 2K with the device's queue families and with every kind on the
+  # graphics queue, then timed (SEQUENCE_FRAMES frames, default 9).
+  for q in 1 0; do
+    step "sequence_bench under validation on $device, 2K, SKYGRAPH_SEPARATE_QUEUES=$q"
+    ran "$bin_sequence" && (cd "$src" && SKYGRAPH_SEPARATE_QUEUES=$q SKYGRAPH_BENCH_DEVICE=$device SKYGRAPH_VALIDATION=1 \
+      "$bin_sequence" --width 2048 --frames 4 --size 1920x1080 --dir /tmp/skygraph-sequence) \
+      | tee "$out/sequence-validation-queues-$q.txt"
+  done
   for width in 2048 6144; do
     step "sequence_bench on $device, equirect width $width"
     ran "$bin_sequence" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_sequence" --width "$width" \
