@@ -63,6 +63,10 @@ struct RunResult {
     std::string mode;
     double steadyMs = 0.0;  ///< median frame before the change
     double worstMs = 0.0;   ///< longest frame from the change on
+    /// Longest frame of the change itself: from start() to the frame after the swap. Later
+    /// frames' worst is the frames' own jitter, which the worst frame before the change shows.
+    double changeWorstMs = 0.0;
+    double worstBeforeMs = 0.0;  ///< longest frame before the change
     double setupMs = 0.0;   ///< EnvironmentBaker::start() on this thread
     uint32_t framesToSwap = 0;
     uint32_t worstAt = 0;  ///< frames after the change at which the worst frame came
@@ -154,6 +158,9 @@ public:
         const auto worst = std::max_element(after.begin(), after.end());
         r.worstMs = after.empty() ? 0.0 : *worst;
         r.worstAt = static_cast<uint32_t>(worst - after.begin());
+        const size_t window = std::min<size_t>(after.size(), size_t(r.framesToSwap) + 2);
+        r.changeWorstMs = window ? *std::max_element(after.begin(), after.begin() + std::ptrdiff_t(window)) : 0.0;
+        r.worstBeforeMs = before.empty() ? 0.0 : *std::max_element(before.begin(), before.end());
         return r;
     }
 
@@ -226,17 +233,18 @@ int main(int argc, char** argv) {
         std::printf("median over %u runs each at %s:\n", reps, size.c_str());
         for (const char* mode : bench::kModeNames) {
             const double worst = med(mode, &bench::RunResult::worstMs);
-            std::printf("  %-6s steady %.3f ms, worst frame %.3f ms (%.3fx sync), start %.3f ms\n", mode,
-                        med(mode, &bench::RunResult::steadyMs), worst, syncWorst > 0 ? worst / syncWorst : 0.0,
+            std::printf("  %-6s steady %.3f ms, worst frame %.3f ms (%.3fx sync), worst of the change (start to the "
+                        "frame after the swap) %.3f ms, worst before it %.3f ms, start %.3f ms\n",
+                        mode, med(mode, &bench::RunResult::steadyMs), worst, syncWorst > 0 ? worst / syncWorst : 0.0,
+                        med(mode, &bench::RunResult::changeWorstMs), med(mode, &bench::RunResult::worstBeforeMs),
                         med(mode, &bench::RunResult::setupMs));
         }
         if (!csv.empty()) {
             std::ofstream out(csv);
-            out << "mode,steady_ms,worst_ms,worst_at,start_ms,swap_ms,frames_to_swap\n";
+            out << "mode,steady_ms,worst_ms,worst_at,start_ms,swap_ms,frames_to_swap,change_worst_ms,worst_before_ms\n";
             for (const auto& r : runs)
                 out << r.mode << ',' << r.steadyMs << ',' << r.worstMs << ',' << r.worstAt << ',' << r.setupMs << ','
-                    << r.swapMs << ',' << r.framesToSwap
-                    << '\n';
+                    << r.swapMs << ',' << r.framesToSwap << ',' << r.changeWorstMs << ',' << r.worstBeforeMs << '\n';
         }
         const uint32_t messages = device->messageCount();
         std::printf("rebake_bench: validation: %u message(s)\n", messages);
