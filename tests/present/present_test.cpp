@@ -509,6 +509,33 @@ TEST_F(Present, AnEnvironmentFileOfAnotherSizeIsResampledAndRebakedBesideTheFram
     expectSilent();
 }
 
+// The file is decoded on a thread of its own: setEnvironmentFile returns at once, and a file
+// that cannot be read is reported once its decoding fails, naming it; the sky stays as it was.
+TEST_F(Present, AnUnreadableEnvironmentFileIsReportedAndTheSkyStays) {
+    LiveWindow w(*device_, "scenes/studio.json");
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "skygraph-unreadable.exr";
+    std::ofstream(file) << "not an EXR file";
+    ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
+    EXPECT_TRUE(live.rebaking()) << "decoding beside the frames";
+    int frames = 0;
+    while (live.rebaking() && frames < 100) {
+        w.frame();
+        ++frames;
+    }
+    EXPECT_FALSE(live.rebaking()) << "still loading after " << frames << " frames";
+    EXPECT_NE(live.error().find(file.string()), std::string::npos) << live.error();
+    EXPECT_EQ(&live.renderer(), running) << "nothing was rebuilt";
+    EXPECT_EQ(live.reloads(), reloads);
+    for (int i = 0; i < 3; ++i) w.frame();
+    live.renderer().waitIdle();
+    std::filesystem::remove(file);
+    expectSilent();
+}
+
 // Moving the procedural sky's sun re-bakes its lighting beside the frames as a file change
 // does; a second move while the first bake runs is baked after it, and nothing rebuilds.
 TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {

@@ -15,6 +15,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cstring>
 #include <exception>
 #include <utility>
 
@@ -177,6 +179,7 @@ bool LiveGraph::rebuild(RenderOptions options) {
     built_ = std::move(next);  // the old renderer is gone before the new one records
     baker_.reset();            // the new build baked its own environment
     rebakeEquirect_.reset();
+    load_.reset();             // a file still decoding was meant for the old build (waits for it)
     renderer_ = built_->renderer.get();
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
     if (built_->scene) scene_ = built_->scene;
@@ -229,25 +232,58 @@ bool LiveGraph::setFeature(const std::string& name, bool on) {
 bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
     RenderOptions next = options_;
     next.environmentFile = file;
-    try {
-        if (rebakeInPlace(file)) {
-            options_ = std::move(next);
-            error_.clear();
-            return true;
-        }
-    } catch (const std::exception& e) {
-        error_ = e.what();
-        spdlog::warn("{}", error_);
-        return false;
+    if (rebakeInPlace(file, next)) {
+        error_.clear();
+        return true;
     }
     return rebuild(std::move(next));
 }
 
-bool LiveGraph::rebakeInPlace(const std::filesystem::path& file) {
+bool LiveGraph::rebakeInPlace(const std::filesystem::path& file, RenderOptions next) {
     if (file.empty() || !canRebake()) return false;
-    HdrImage pixels = loadHdrImage(file);  // throws: the sequence, if any, plays on
-    stopSequence();                        // the file replaces it
-    return rebake(std::move(pixels), file.string());
+    // The running image's size is the frame graph's `equirect` (loadFrameInputs sets it).
+    const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
+    const bool keepPixels = renderer_->plan().resourceIndex(shipped::kEquirect) >= 0;
+    std::shared_ptr<StagingBuffer> reuse = loadStaging_.use_count() == 1 ? loadStaging_ : nullptr;
+    auto decode = [file, extent, keepPixels, reuse, &device = device_]() mutable {
+        HdrImage pixels = loadHdrImage(file);  // throws: reported once the load is finished
+        if (pixels.width != extent[0] || pixels.height != extent[1]) {
+            spdlog::info("environment: {} is {}x{}; resampled to the running {}x{} for a bake beside the frames",
+                         file.string(), pixels.width, pixels.height, extent[0], extent[1]);
+            pixels = resampleEquirect(pixels, extent[0], extent[1]);
+        }
+        const size_t bytes = pixels.rgba.size() * sizeof(float);
+        LoadedEnvironment out;
+        out.staged = reuse && reuse->size() == bytes ? std::move(reuse) : StagingBuffer::create(device, bytes);
+        std::memcpy(out.staged->bytes().data(), pixels.rgba.data(), bytes);
+        if (keepPixels) out.pixels = std::move(pixels);
+        return out;
+    };
+    load_ = EnvironmentLoad{file, std::move(next), std::async(std::launch::async, std::move(decode))};
+    return true;
+}
+
+void LiveGraph::finishEnvironmentLoad() {
+    if (!load_ || load_->result.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    EnvironmentLoad load = std::move(*load_);
+    load_.reset();
+    try {
+        LoadedEnvironment loaded = load.result.get();  // throws what the decoding threw
+        stopSequence();  // the file replaces it
+        const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
+        loadStaging_ = loaded.staged;
+        if (loaded.pixels) rebakeEquirect_ = std::move(loaded.pixels);
+        spdlog::info("environment: re-baking {} beside the frames", load.file.string());
+        if (!baker(extent[0], extent[1]).start(std::move(loaded.staged))) {
+            rebuild(std::move(load.next));
+            return;
+        }
+        options_ = std::move(load.next);
+        error_.clear();
+    } catch (const std::exception& e) {
+        error_ = e.what();
+        spdlog::warn("{}", error_);
+    }
 }
 
 bool LiveGraph::canRebake() const {
@@ -325,6 +361,7 @@ void LiveGraph::swapRebake() {
 }
 
 bool LiveGraph::poll() {
+    finishEnvironmentLoad();
     swapRebake();
     startPendingSunBake();
     const bool graphSaved = graphWatcher_ && graphWatcher_->changed();

@@ -12,6 +12,7 @@
 #include <skygraph/hot_reload.hpp>
 #include <skygraph/renderer.hpp>
 
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,12 +53,13 @@ public:
     [[nodiscard]] bool feature(std::string_view name) const;
     /// Rebuilds with `name` forced on or off. False (error() says why) keeps what ran.
     bool setFeature(const std::string& name, bool on);
-    /// Another environment: a file, or empty for the procedural sky. A file is re-baked
-    /// beside the frames (EnvironmentBaker) and swapped in by a later poll(), the frames going
-    /// on with the old environment meanwhile; one of another size than the running equirect is
-    /// resampled to it first (resampleEquirect), and baked at its own size by the next
-    /// rebuild. While a bake runs, or without a baked environment, it rebuilds. False
-    /// (error() says why) keeps what ran.
+    /// Another environment: a file, or empty for the procedural sky. A file is decoded on a
+    /// thread of its own (resampled to the running equirect's size when it has another, and
+    /// baked at its own size by the next rebuild), then re-baked beside the frames
+    /// (EnvironmentBaker) and swapped in by later polls, the frames going on with the old
+    /// environment meanwhile; a file that cannot be read is reported by error() once its
+    /// decoding fails, and the old environment stays. While a load or bake runs, or without a
+    /// baked environment, it rebuilds at once. False (error() says why) keeps what ran.
     bool setEnvironmentFile(const std::filesystem::path& file);
     /// Moves the procedural sky's sun (unit `sun`): the skybox shows it at once, and the
     /// lighting is re-baked beside the frames and swapped in by a later poll(); a change while
@@ -75,8 +77,8 @@ public:
     void playSequence(double seconds);
     /// What playback has done; null without a sequence playing.
     [[nodiscard]] const SequencePlayer* sequence() const noexcept { return player_.get(); }
-    /// Whether a re-bake started by setEnvironmentFile is not swapped in yet.
-    [[nodiscard]] bool rebaking() const noexcept { return baker_ && baker_->pending(); }
+    /// Whether a re-bake (a file being decoded for one included) is not swapped in yet.
+    [[nodiscard]] bool rebaking() const noexcept { return (baker_ && baker_->pending()) || load_.has_value(); }
     /// Swaps in a finished re-bake; rebuilds after the graph or scene file was saved, reloads
     /// shaders after a shader edit. True when something was reloaded (or failed: see error()).
     bool poll();
@@ -114,8 +116,11 @@ private:
     struct Built;
     [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options) const;
     bool rebuild(RenderOptions options);
-    /// setEnvironmentFile's re-bake beside the frames; false when it needs a rebuild.
-    bool rebakeInPlace(const std::filesystem::path& file);
+    /// setEnvironmentFile's re-bake beside the frames: starts decoding `file`; false when it
+    /// needs a rebuild.
+    bool rebakeInPlace(const std::filesystem::path& file, RenderOptions next);
+    /// Once the file is decoded: starts its bake, or reports why it could not be read.
+    void finishEnvironmentLoad();
     /// Whether a re-bake beside the frames is possible now (an environment is baked, the frame
     /// graph has an equirect, no bake is pending).
     [[nodiscard]] bool canRebake() const;
@@ -143,6 +148,20 @@ private:
     /// Declared before built_: the frames that sample its products go first.
     std::unique_ptr<EnvironmentBaker> baker_;
     std::optional<HdrImage> rebakeEquirect_;  ///< The pixels being re-baked, for the frame's own equirect.
+    /// An environment file decoded, resampled and staged on a thread of its own.
+    struct LoadedEnvironment {
+        std::shared_ptr<StagingBuffer> staged;
+        std::optional<HdrImage> pixels;  ///< kept only when the frame samples the equirect itself
+    };
+    struct EnvironmentLoad {
+        std::filesystem::path file;
+        RenderOptions next;  ///< what runs once it is baked
+        std::future<LoadedEnvironment> result;
+    };
+    std::optional<EnvironmentLoad> load_;
+    /// The last load's staging buffer, reused by the next load once no bake holds it (freeing
+    /// host-visible memory where a bake lets go of it would cost the frame's thread).
+    std::shared_ptr<StagingBuffer> loadStaging_;
     std::optional<Vec3> pendingSun_;           ///< A sun direction not baked yet.
     std::unique_ptr<SequencePlayer> player_;
     bool sequenceBaking_ = false;  ///< The pending re-bake is a sequence frame.
