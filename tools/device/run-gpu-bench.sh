@@ -228,6 +228,11 @@ if [ "${SEQUENCE_BENCH:-0}" = 1 ]; then
       "$bin_sequence" --width 2048 --frames 4 --size 1920x1080 --dir /tmp/skygraph-sequence) \
       | tee "$out/sequence-validation-queues-$q.txt"
   done
+  # The upload's own GPU time: graphs/ibl.json with its transfer-queue UploadPass, rendered
+  # with scenes/studio.json's 1024x512 HDRI (8 MiB of floats), per-pass GPU times.
+  step "graphs/ibl.json, streamed_equirect on, on $device: GPU time per pass"
+  ran "$bin_cli" && (cd "$src" && "$bin_cli" render graphs/ibl.json --scene /tmp/studio.json \
+    --feature streamed_equirect=on --device "$device" --frames 20 2>&1 | grep "pass ") | tee "$out/ibl-upload.txt"
   for width in 2048 6144; do
     step "sequence_bench on $device, equirect width $width"
     ran "$bin_sequence" && (cd "$src" && SKYGRAPH_BENCH_DEVICE=$device "$bin_sequence" --width "$width" \
