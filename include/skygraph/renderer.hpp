@@ -42,9 +42,8 @@ struct RendererOptions {
     /// first frame binds, as with null.
     Swapchain* presentTo = nullptr;
     /// GPU timestamps around each pass (lastTimings(), completedTimings()). Off, a frame
-    /// writes none and reading them back never waits: on lavapipe, reading query results
-    /// waits for the work the queue is running, which a renderer whose frames run beside
-    /// another's (a background bake) would wait for on the caller's thread.
+    /// writes none and none is read back, which on some drivers waits for whatever the queue
+    /// runs: for a renderer whose frames run beside another's (a background bake).
     bool timestamps = true;
 };
 
