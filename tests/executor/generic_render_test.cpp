@@ -205,13 +205,18 @@ TEST_F(ExecutorTest, PersistentExternalAcrossFrames) {
     EXPECT_PIXEL_NEAR(img, 2, 9, 0.75, 0.5, 0.5, 1.0);
 }
 
-TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
-    const auto c = compileText(graph(
+/// "a" writes a half-size image in a compute shader, "b" samples it into the target.
+CompiledGraph computeThenFragment() {
+    return compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output/2" })",
         R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@Compute" },
              "params": { "color": [0, 1, 0, 1] } },
            { "name": "b", "type": "Generic",
              "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+}
+
+TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
+    const auto c = computeThenFragment();
     Renderer r(sharedDevice(), c, genericOptions());
     r.renderFrame();
     EXPECT_EQ(r.readback().width, 16u);
@@ -232,12 +237,7 @@ TEST_F(ExecutorTest, ResizeRecreatesOutputSizedResources) {
 
 // RendererOptions::timestamps off: the same pixels, no query written, no timing.
 TEST_F(ExecutorTest, ARendererWithoutTimestampsRendersTheSameAndTimesNothing) {
-    const auto c = compileText(graph(
-        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output/2" })",
-        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@Compute" },
-             "params": { "color": [0, 1, 0, 1] } },
-           { "name": "b", "type": "Generic",
-             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    const auto c = computeThenFragment();
     RendererOptions untimed = genericOptions();
     untimed.timestamps = false;
     Renderer timedRenderer(sharedDevice(), c, genericOptions()), untimedRenderer(sharedDevice(), c, untimed);

@@ -449,6 +449,12 @@ struct LiveWindow {
         live.poll();
         EXPECT_EQ(live.renderFrame(*swapchain), PresentStatus::Presented);
     }
+    /// Presents frames until the re-bake under way is swapped in, 100 at most; how many.
+    int framesUntilRebaked() {
+        int frames = 0;
+        for (; live.rebaking() && frames < 100; ++frames) frame();
+        return frames;
+    }
     app::LiveGraph live;
     std::unique_ptr<Swapchain> swapchain;
 };
@@ -463,11 +469,7 @@ TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
         loadSceneFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "scenes/studio.json").environment->file;
     ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
     EXPECT_TRUE(live.rebaking());
-    int frames = 0;
-    while (live.rebaking() && frames < 100) {
-        w.frame();
-        ++frames;
-    }
+    const int frames = w.framesUntilRebaked();
     EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
     EXPECT_GE(frames, 1);
     EXPECT_EQ(&live.renderer(), running) << "the change rebuilt the renderer";
@@ -495,11 +497,7 @@ TEST_F(Present, AnEnvironmentFileOfAnotherSizeIsResampledAndRebakedBesideTheFram
     writeHdr(file, other);
     ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
     EXPECT_TRUE(live.rebaking()) << "re-baked beside the frames, not rebuilt";
-    int frames = 0;
-    while (live.rebaking() && frames < 100) {
-        w.frame();
-        ++frames;
-    }
+    const int frames = w.framesUntilRebaked();
     EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
     EXPECT_EQ(&live.renderer(), running) << "the change rebuilt the renderer";
     EXPECT_EQ(live.reloads(), reloads + 1);
@@ -521,11 +519,7 @@ TEST_F(Present, AnUnreadableEnvironmentFileIsReportedAndTheSkyStays) {
     std::ofstream(file) << "not an EXR file";
     ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
     EXPECT_TRUE(live.rebaking()) << "decoding beside the frames";
-    int frames = 0;
-    while (live.rebaking() && frames < 100) {
-        w.frame();
-        ++frames;
-    }
+    const int frames = w.framesUntilRebaked();
     EXPECT_FALSE(live.rebaking()) << "still loading after " << frames << " frames";
     EXPECT_NE(live.error().find(file.string()), std::string::npos) << live.error();
     EXPECT_EQ(&live.renderer(), running) << "nothing was rebuilt";
