@@ -317,6 +317,21 @@ TEST(GltfTextures, ForgedImageSizesAreRefusedBeforeAnyPixelIsDecoded) {
     }
 }
 
+// A 2x2 PNG whose IDAT chunk declares 800 MB: stb would grow its buffer to that before reading.
+TEST(GltfTextures, AForgedPngChunkLengthIsRefusedBeforeAnyPixelIsDecoded) {
+    std::string png = forgedPngHeader(2, 2);
+    png += std::string("\x30\x00\x00\x00", 4);  // 805,306,368 bytes, big-endian
+    png += "IDAT";
+    png += std::string(16, '\0');
+    const fs::path file = writeTexturedQuad("forged-chunk", "forged.png", &png, true);
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(file, {}, d));
+    ASSERT_FALSE(d.empty());
+    EXPECT_EQ(d.items()[0].jsonPath, "images[0]") << messages(d);
+    EXPECT_NE(d.items()[0].message.find("declares 805306368 bytes, past the end of the image's"), std::string::npos)
+        << messages(d);
+}
+
 struct BadQuad {
     std::string name;
     Quad quad;
