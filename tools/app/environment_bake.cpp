@@ -120,8 +120,8 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
 EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                                    std::set<std::string, std::less<>> products, const PassLibrary* passes,
                                    bool background, uint32_t renderers)
-    : device_(device), stagingBytes_(VkDeviceSize(width) * height * 16), width_(width), height_(height),
-      products_(std::move(products)), background_(background) {
+    : stagingBytes_(VkDeviceSize(width) * height * 16), width_(width), height_(height),
+      staging_(device, stagingBytes_), products_(std::move(products)), background_(background) {
     if (renderers < 2 || renderers > 3)
         throw std::invalid_argument("EnvironmentBaker: 2 or 3 renderers, not " + std::to_string(renderers));
     if (!setEquirectExtent(graph, width, height))
@@ -161,10 +161,7 @@ bool EnvironmentBaker::start(const HdrImage& equirect) {
         throw ExecutorError("the environment bake takes a " + std::to_string(width_) + "x" + std::to_string(height_) +
                             " equirect, not " + std::to_string(equirect.width) + "x" +
                             std::to_string(equirect.height));
-    auto free = std::find_if(staging_.begin(), staging_.end(), [](const auto& b) { return b.use_count() == 1; });
-    if (free == staging_.end()) free = staging_.insert(staging_.end(), StagingBuffer::create(device_, stagingBytes_));
-    std::memcpy((*free)->bytes().data(), equirect.rgba.data(), stagingBytes_);
-    const bool started = start(std::shared_ptr<const StagingBuffer>(*free));
+    const bool started = start(staging_.stage(equirect.rgba));
     lastStartMs_ = msSince(begin);  // the copy included
     return started;
 }

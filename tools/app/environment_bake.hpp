@@ -8,6 +8,8 @@
 #include <skygraph/graph.hpp>
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/image_data.hpp>
+#include "staging_pool.hpp"
+
 #include <skygraph/renderer.hpp>
 #include <skygraph/staging_buffer.hpp>
 
@@ -99,12 +101,10 @@ public:
     [[nodiscard]] double lastStartMs() const noexcept { return lastStartMs_; }
 
 private:
-    Device& device_;
     VkDeviceSize stagingBytes_ = 0;
     uint32_t width_ = 0, height_ = 0;
+    StagingPool staging_;  ///< start(HdrImage)'s
     std::vector<std::unique_ptr<Renderer>> renderers_;
-    /// start(HdrImage)'s staging buffers: one whose use_count() is 1 no bake holds.
-    std::vector<std::shared_ptr<StagingBuffer>> staging_;
     std::set<std::string, std::less<>> products_;
     bool background_ = true;
     size_t next_ = 0;  ///< The renderer the next bake uses.

@@ -19,10 +19,10 @@ SequenceStream::SequenceStream(EnvironmentSequence sequence, uint32_t width, uin
       width_(width),
       height_(height),
       lookahead_(std::max<uint32_t>(lookahead, 1)),
-      stagingDevice_(stagingDevice),
       next_(first % std::max<uint32_t>(sequence_.count, 1)),
       thread_() {
     if (sequence_.count == 0) throw std::invalid_argument("SequenceStream: a sequence of no frames");
+    if (stagingDevice) staging_.emplace(*stagingDevice, VkDeviceSize(width) * height * 16);
     thread_ = std::thread([this] { decodeLoop(); });
 }
 
@@ -92,7 +92,7 @@ void SequenceStream::decodeLoop() {
             frame.pixels = loadHdrImage(frame.file);
             if (frame.pixels.width != width_ || frame.pixels.height != height_)
                 frame.pixels = resampleEquirect(frame.pixels, width_, height_);
-            if (stagingDevice_) frame.staged = stage(std::exchange(frame.pixels, {}));
+            if (staging_) frame.staged = staging_->stage(std::exchange(frame.pixels, {}).rgba);
         } catch (const std::exception& e) {
             frame.pixels = {};
             frame.staged.reset();
@@ -100,26 +100,12 @@ void SequenceStream::decodeLoop() {
         }
         frame.decodeMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         lock.lock();
+        if (staging_) stagingMade_ = staging_->size();
         if (decodeMs_.size() == kDecodeTimesKept) decodeMs_.erase(decodeMs_.begin());
         decodeMs_.push_back(frame.decodeMs);
         ready_.push_back(std::move(frame));
         mostHeld_ = std::max(mostHeld_, ready_.size());
     }
-}
-
-std::shared_ptr<const StagingBuffer> SequenceStream::stage(const HdrImage& pixels) {
-    const size_t bytes = pixels.rgba.size() * sizeof(float);
-    // Only this thread copies the pool's pointers: a count of 1 means every frame and bake that
-    // held the buffer has let go of it, the bake only once its copy had run.
-    auto free = std::find_if(staging_.begin(), staging_.end(), [](const auto& b) { return b.use_count() == 1; });
-    std::atomic_thread_fence(std::memory_order_acquire);
-    if (free == staging_.end()) {
-        free = staging_.insert(staging_.end(), StagingBuffer::create(*stagingDevice_, bytes));
-        std::lock_guard lock(mutex_);
-        stagingMade_ = staging_.size();
-    }
-    std::memcpy((*free)->bytes().data(), pixels.rgba.data(), bytes);
-    return *free;
 }
 
 size_t SequenceStream::stagingBuffers() const {

@@ -4,6 +4,8 @@
 // the sequence is.
 #pragma once
 
+#include "staging_pool.hpp"
+
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/scene.hpp>
 #include <skygraph/staging_buffer.hpp>
@@ -69,16 +71,14 @@ public:
 
 private:
     void decodeLoop();
-    /// `pixels` copied into a staging buffer of the pool; on the stream's thread.
-    [[nodiscard]] std::shared_ptr<const StagingBuffer> stage(const HdrImage& pixels);
+
     /// Frames from `from` forwards to `to`, looping: 0 when they are the same.
     [[nodiscard]] uint32_t stepsFrom(uint32_t from, uint32_t to) const noexcept;
 
     const EnvironmentSequence sequence_;
     const uint32_t width_, height_;
     const size_t lookahead_;
-    Device* const stagingDevice_;
-    std::vector<std::shared_ptr<StagingBuffer>> staging_;  ///< the stream thread's alone
+    std::optional<StagingPool> staging_;  ///< with a staging device; the stream thread's alone
     mutable std::mutex mutex_;
     std::condition_variable wake_;
     std::deque<SequenceFrame> ready_;
