@@ -210,6 +210,13 @@ CompileOptions placedBy(MemoryStrategy s) {
 }
 void BM_CompileFirstUse(benchmark::State& state) { compileBench(state, Shape::Synthetic, placedBy(MemoryStrategy::FirstUseOrder)); }
 void BM_CompileUnaliased(benchmark::State& state) { compileBench(state, Shape::Synthetic, placedBy(MemoryStrategy::Unaliased)); }
+// Heaps per frame in flight (CompileOptions::shareTransientsAcrossFrames off): no placement
+// names what the previous frame left in its bytes.
+void BM_CompileHeapsPerFrame(benchmark::State& state) {
+    CompileOptions o;
+    o.shareTransientsAcrossFrames = false;
+    compileBench(state, Shape::Synthetic, o);
+}
 
 // The layouts knob (docs/barriers.md, rule 4) on reads that want different layouts: the
 // second argument is 0 for FewestBarriers, 1 for Optimal; `barriers` shows what each costs the
@@ -293,6 +300,7 @@ void BM_CopyGraph(benchmark::State& state) {
 BENCHMARK(BM_Compile)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileFirstUse)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileUnaliased)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompileHeapsPerFrame)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileMixedReads)->ArgsProduct({{1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CopyPlan)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Parse)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);

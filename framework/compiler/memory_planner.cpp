@@ -241,83 +241,93 @@ void placeFirstUseOrder(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
 
 /// Where a placement's aliases start in the layout's storage, and how many of each kind.
 struct AliasRun {
-    uint32_t first = 0;
-    uint32_t inFrame = 0;
-    uint32_t previousFrame = 0;
+    uint32_t inFrameFirst = 0, inFrame = 0;
+    uint32_t previousFrameFirst = 0, previousFrame = 0;
 };
 
 /// For each resource in order of first use, the resources that last held each byte of its
-/// range: a sweep over each heap's bytes, kept as segments by their latest holder. With
-/// frames sharing the heaps, a first sweep leaves the segments as the previous frame ends,
-/// and the bytes a resource finds held by them name its previous-frame aliases. Appends them
-/// to `storage`, in-frame ones first, each kind sorted.
+/// range: a sweep over each heap's bytes, kept as segments by their latest holder. Appends
+/// them to `storage`, sorted. With frames sharing the heaps, the bytes a resource finds held
+/// by nobody earlier in the frame were last held by whoever holds them when the frame ends:
+/// those ranges are kept during the sweep and looked up in the segments it leaves, which
+/// name the previous-frame aliases (appended after every in-frame run, each sorted).
 std::vector<AliasRun> findAliases(std::span<const TransientResource> in, const std::vector<Item>& items,
                                   size_t heapCount, bool acrossFrames, std::vector<uint32_t>& storage) {
-    constexpr uint32_t kPreviousFrame = 1u << 31;  // on a holder: it held the bytes in the last frame
     struct Segment {
         uint64_t begin, end;
         uint32_t holder;  // index into items
     };
+    struct Unheld {  // bytes of an item that no earlier item of the frame held
+        uint64_t begin, end;
+        uint32_t item;
+    };
     std::vector<std::vector<Segment>> heldBy(heapCount);
     std::vector<AliasRun> runs(items.size());
-    std::vector<uint32_t> previous;
-    for (int sweep = acrossFrames ? 0 : 1; sweep < 2; ++sweep) {
-        if (sweep == 1)
-            for (auto& segments : heldBy)
-                for (Segment& seg : segments) seg.holder |= kPreviousFrame;
-        for (uint32_t i = 0; i < items.size(); ++i) {
-            const Item& it = items[i];
-            auto& segments = heldBy[it.heap];
-            const uint64_t begin = it.offset, end = it.offset + it.bytes;
-            const auto from = std::partition_point(segments.begin(), segments.end(),
-                                                   [&](const Segment& seg) { return seg.end <= begin; });
-            auto to = from;
-            const auto first = static_cast<uint32_t>(storage.size());
-            previous.clear();
-            for (; to != segments.end() && to->begin < end; ++to) {
-                if (to->holder & kPreviousFrame) {
-                    previous.push_back(in[to->holder & ~kPreviousFrame].resource);
-                    continue;
-                }
-                // Placement never lets two resources that live at the same time share a byte.
-                if (in[to->holder].lastStep >= in[i].firstStep)
-                    throw std::logic_error("memory planner: plan resources " + std::to_string(in[to->holder].resource) +
-                                           " and " + std::to_string(in[i].resource) + " share memory while both live");
-                if (sweep == 1) storage.push_back(in[to->holder].resource);
-            }
-            if (sweep == 1) {
-                std::sort(storage.begin() + first, storage.end());
-                storage.erase(std::unique(storage.begin() + first, storage.end()), storage.end());
-                const auto inFrame = static_cast<uint32_t>(storage.size()) - first;
-                std::sort(previous.begin(), previous.end());
-                previous.erase(std::unique(previous.begin(), previous.end()), previous.end());
-                storage.insert(storage.end(), previous.begin(), previous.end());
-                runs[i] = {first, inFrame, static_cast<uint32_t>(previous.size())};
-            }
-            // The resource now holds [begin, end); what the segments it overlaps held outside
-            // it stays theirs.
-            if (to - from == 1 && from->begin == begin && from->end == end) {
-                from->holder = i;  // the common case: the same range as the last holder
-                continue;
-            }
-            Segment replacement[3];
-            size_t n = 0;
-            if (from != to && from->begin < begin) replacement[n++] = {from->begin, begin, from->holder};
-            replacement[n++] = {begin, end, i};
-            if (from != to && std::prev(to)->end > end)
-                replacement[n++] = {end, std::prev(to)->end, std::prev(to)->holder};
-            const auto at = static_cast<size_t>(from - segments.begin());
-            const auto old = static_cast<size_t>(to - from);
-            if (n <= old) {
-                std::copy(replacement, replacement + n, segments.begin() + static_cast<std::ptrdiff_t>(at));
-                segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(at + n),
-                               segments.begin() + static_cast<std::ptrdiff_t>(at + old));
-            } else {
-                std::copy(replacement, replacement + old, segments.begin() + static_cast<std::ptrdiff_t>(at));
-                segments.insert(segments.begin() + static_cast<std::ptrdiff_t>(at + old), replacement + old,
-                                replacement + n);
-            }
+    std::vector<Unheld> unheld;
+    const auto firstOverlapping = [](std::vector<Segment>& segments, uint64_t begin) {
+        return std::partition_point(segments.begin(), segments.end(),
+                                    [&](const Segment& seg) { return seg.end <= begin; });
+    };
+    for (uint32_t i = 0; i < items.size(); ++i) {
+        const Item& it = items[i];
+        auto& segments = heldBy[it.heap];
+        const uint64_t begin = it.offset, end = it.offset + it.bytes;
+        const auto from = firstOverlapping(segments, begin);
+        auto to = from;
+        const auto first = static_cast<uint32_t>(storage.size());
+        uint64_t covered = begin;  // the bytes below it are held by earlier items
+        for (; to != segments.end() && to->begin < end; ++to) {
+            // Placement never lets two resources that live at the same time share a byte.
+            if (in[to->holder].lastStep >= in[i].firstStep)
+                throw std::logic_error("memory planner: plan resources " + std::to_string(in[to->holder].resource) +
+                                       " and " + std::to_string(in[i].resource) + " share memory while both live");
+            storage.push_back(in[to->holder].resource);
+            if (acrossFrames && to->begin > covered) unheld.push_back({covered, to->begin, i});
+            covered = std::max(covered, to->end);
         }
+        if (acrossFrames && covered < end) unheld.push_back({covered, end, i});
+        if (storage.size() - first > 1) {
+            std::sort(storage.begin() + first, storage.end());
+            storage.erase(std::unique(storage.begin() + first, storage.end()), storage.end());
+        }
+        runs[i] = {first, static_cast<uint32_t>(storage.size()) - first, 0, 0};
+        // The resource now holds [begin, end); what the segments it overlaps held outside
+        // it stays theirs.
+        if (to - from == 1 && from->begin == begin && from->end == end) {
+            from->holder = i;  // the common case: the same range as the last holder
+            continue;
+        }
+        Segment replacement[3];
+        size_t n = 0;
+        if (from != to && from->begin < begin) replacement[n++] = {from->begin, begin, from->holder};
+        replacement[n++] = {begin, end, i};
+        if (from != to && std::prev(to)->end > end) replacement[n++] = {end, std::prev(to)->end, std::prev(to)->holder};
+        const auto at = static_cast<size_t>(from - segments.begin());
+        const auto old = static_cast<size_t>(to - from);
+        if (n <= old) {
+            std::copy(replacement, replacement + n, segments.begin() + static_cast<std::ptrdiff_t>(at));
+            segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(at + n),
+                           segments.begin() + static_cast<std::ptrdiff_t>(at + old));
+        } else {
+            std::copy(replacement, replacement + old, segments.begin() + static_cast<std::ptrdiff_t>(at));
+            segments.insert(segments.begin() + static_cast<std::ptrdiff_t>(at + old), replacement + old,
+                            replacement + n);
+        }
+    }
+    // The segments now say who holds each byte as the frame ends: the previous frame left
+    // the same. `unheld` is in item order.
+    for (size_t u = 0; u < unheld.size();) {
+        const uint32_t i = unheld[u].item;
+        auto& segments = heldBy[items[i].heap];
+        const auto first = static_cast<uint32_t>(storage.size());
+        for (; u < unheld.size() && unheld[u].item == i; ++u)
+            for (auto seg = firstOverlapping(segments, unheld[u].begin);
+                 seg != segments.end() && seg->begin < unheld[u].end; ++seg)
+                storage.push_back(in[seg->holder].resource);
+        std::sort(storage.begin() + first, storage.end());
+        storage.erase(std::unique(storage.begin() + first, storage.end()), storage.end());
+        runs[i].previousFrameFirst = first;
+        runs[i].previousFrame = static_cast<uint32_t>(storage.size()) - first;
     }
     return runs;
 }
@@ -367,9 +377,9 @@ MemoryLayout placeTransients(std::span<const TransientResource> in, uint32_t ste
         storage.reserve(in.size() * (acrossFrames ? 2 : 1));
         const auto runs = findAliases(in, items, out.heaps.size(), acrossFrames, storage);
         for (size_t i = 0; i < in.size(); ++i) {  // the storage no longer moves
-            const uint32_t* first = storage.data() + runs[i].first;
-            out.placements[i].aliases = {first, runs[i].inFrame};
-            out.placements[i].previousFrameAliases = {first + runs[i].inFrame, runs[i].previousFrame};
+            out.placements[i].aliases = {storage.data() + runs[i].inFrameFirst, runs[i].inFrame};
+            out.placements[i].previousFrameAliases = {storage.data() + runs[i].previousFrameFirst,
+                                                      runs[i].previousFrame};
         }
     }
     return out;

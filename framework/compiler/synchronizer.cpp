@@ -62,6 +62,8 @@ struct ResourceFacts {
     bool image = false;
     bool exported = false;
     bool external = false;
+    uint32_t firstStep = 0;   ///< Its lifetime: the steps of its first and last accesses.
+    uint32_t lastStep = 0;
 };
 
 class Synchronizer {
@@ -121,6 +123,7 @@ private:
         steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size() + clobberRoom);
         planResources().reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
+        if (options_.shareTransientsAcrossFrames) frameUses_.reserve(graph_.resources.size());
         const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size() + clobberRoom;
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
@@ -215,6 +218,7 @@ private:
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
+        if (options_.shareTransientsAcrossFrames) frameUses_.emplace_back();
         return static_cast<uint32_t>(planResources().size() - 1);
     }
 
@@ -309,6 +313,7 @@ private:
         // plan record is in cache (the barrier sweep would reach it cold).
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
+            f.firstStep = a.step;
             a.firstOfResource = true;
             planResources()[r].firstPass = a.step;
             planResources()[r].firstStages = scope.stages;
@@ -321,6 +326,18 @@ private:
         }
         if (cells(range) > 1) steps_.back().mayMerge = true;
         f.lastAccess = k;
+        f.lastStep = a.step;
+        if (!frameUses_.empty()) {
+            FrameUses& uses = frameUses_[r];
+            if (a.writes) {
+                uses.writes.stages |= scope.stages;
+                uses.writes.access |= writeBits(scope.access);
+                uses.lastWriteStages = scope.stages;
+                uses.readsSince = 0;
+            } else {
+                uses.readsSince |= scope.stages;
+            }
+        }
     }
 
     /// What a barrier before read `k` makes visible in the `cell`-th subresource of its range:
@@ -776,6 +793,8 @@ private:
         const MemoryModel* model = options_.memory.get();
         std::vector<TransientResource> transients;
         transients.reserve(facts_.size());
+        bool sorted = true;  // by first step
+        uint32_t latestFirstStep = 0;
         const auto& usages = *usages_;
         for (uint32_t r = 0; r < facts_.size(); ++r) {
             const ResourceFacts& f = facts_[r];
@@ -802,8 +821,10 @@ private:
             // Field by field, in place: a braced temporary copied in stalls on store forwarding.
             TransientResource& t = transients.emplace_back();
             t.resource = r;
-            t.firstStep = accesses_[f.firstAccess].step;
-            t.lastStep = accesses_[f.lastAccess].step;
+            t.firstStep = f.firstStep;
+            t.lastStep = f.lastStep;
+            sorted &= f.firstStep >= latestFirstStep;
+            latestFirstStep = f.firstStep;
             t.requirements = model ? model->requirements(q) : estimatedRequirements(q);
             if (model) checkRequirements(t.requirements, d, *model);
             t.linear = !f.image;
@@ -814,8 +835,7 @@ private:
         const auto byFirstStep = [](const TransientResource& x, const TransientResource& y) {
             return x.firstStep < y.firstStep;
         };
-        if (!std::is_sorted(transients.begin(), transients.end(), byFirstStep))
-            std::stable_sort(transients.begin(), transients.end(), byFirstStep);
+        if (!sorted) std::stable_sort(transients.begin(), transients.end(), byFirstStep);
         const uint64_t granularity = model ? model->bufferImageGranularity() : estimatedMemory()->bufferImageGranularity();
         if (granularity == 0 || (granularity & (granularity - 1)) != 0) {
             Diagnostics diags;
@@ -829,44 +849,44 @@ private:
         layout = placeTransients(transients, static_cast<uint32_t>(steps_.size()), granularity, options_.placement,
                                  options_.aliasing, options_.shareTransientsAcrossFrames);
         layout.model = model ? model->name() : "estimate";
+        // With frames sharing the heaps, the next frame's first holders of each byte wait for
+        // every use of it in this frame: per plan resource, its own last uses and, through
+        // its aliases (placed before it), every earlier use of its bytes.
+        const bool acrossFrames = options_.shareTransientsAcrossFrames;
+        std::vector<StageAccess> usesUpTo(acrossFrames ? facts_.size() : 0);
+        std::vector<uint32_t> firstHolders;  // placements with previous-frame aliases
         for (uint32_t p = 0; p < layout.placements.size(); ++p) {
             const MemoryPlacement& placement = layout.placements[p];
-            planResources()[placement.resource].placement = p;
-            if (facts_[placement.resource].grid.size() > 1 &&
-                (!placement.aliases.empty() || !placement.previousFrameAliases.empty()))
-                aliasedCells_ += static_cast<uint32_t>(facts_[placement.resource].grid.size());
-        }
-        // Which resources take over memory (startAliased looks no further for the rest) and
-        // which are taken over from (their last uses are kept when they end).
-        for (const MemoryPlacement& placement : layout.placements) {
+            const uint32_t r = placement.resource;
+            planResources()[r].placement = p;
+            if (acrossFrames) {
+                StageAccess uses = lastUsesInFrame(r);
+                for (const uint32_t a : placement.aliases) {
+                    uses.stages |= usesUpTo[a].stages;
+                    uses.access |= usesUpTo[a].access;
+                }
+                usesUpTo[r] = uses;
+                if (!placement.previousFrameAliases.empty()) firstHolders.push_back(p);
+            }
             if (placement.aliases.empty() && placement.previousFrameAliases.empty()) continue;
+            // Which resources take over memory (startAliased looks no further for the rest)
+            // and which are taken over from (their last uses are kept when they end).
+            if (facts_[r].grid.size() > 1) aliasedCells_ += static_cast<uint32_t>(facts_[r].grid.size());
             if (takesOver_.empty()) {
                 takesOver_.resize(facts_.size());
                 predecessor_.resize(facts_.size());
                 lastUses_.resize(facts_.size());
                 earlierUses_.resize(facts_.size());
             }
-            takesOver_[placement.resource] = 1;
+            takesOver_[r] = 1;
             for (const uint32_t a : placement.aliases) predecessor_[a] = 1;
         }
-        if (!options_.shareTransientsAcrossFrames) return;
-        // The previous frame's uses of each placement's bytes: its holders' last uses and what
-        // they waited for in that frame, as startAliased gathers them within one.
-        std::vector<StageAccess> last(layout.placements.size()), earlier(layout.placements.size());
-        for (uint32_t p = 0; p < layout.placements.size(); ++p) {
-            last[p] = lastUsesInFrame(layout.placements[p].resource);
-            for (const uint32_t a : layout.placements[p].aliases) {
-                const uint32_t q = plan_.resources()[a].placement;
-                earlier[p].stages |= last[q].stages | earlier[q].stages;
-                earlier[p].access |= last[q].access | earlier[q].access;
-            }
-        }
+        if (firstHolders.empty()) return;
         previousFrameLastUses_.resize(layout.placements.size());
-        for (uint32_t p = 0; p < layout.placements.size(); ++p)
+        for (const uint32_t p : firstHolders)
             for (const uint32_t a : layout.placements[p].previousFrameAliases) {
-                const uint32_t q = plan_.resources()[a].placement;
-                previousFrameLastUses_[p].stages |= last[q].stages | earlier[q].stages;
-                previousFrameLastUses_[p].access |= last[q].access | earlier[q].access;
+                previousFrameLastUses_[p].stages |= usesUpTo[a].stages;
+                previousFrameLastUses_[p].access |= usesUpTo[a].access;
             }
     }
 
@@ -892,6 +912,13 @@ private:
     /// accesses replayed with rules 1-5's bookkeeping, before the frame's barriers are written
     /// (the next frame's first uses of r's bytes need it at their start).
     StageAccess lastUsesInFrame(uint32_t r) {
+        if (facts_[r].grid.size() == 1) {  // most resources: what addAccess gathered says it
+            const FrameUses& uses = frameUses_[r];
+            StageAccess last = uses.writes;
+            last.stages |= uses.readsSince | uses.lastWriteStages;
+            if (!uses.readsSince && !uses.lastWriteStages) last.stages |= plan_.resources()[r].firstStages;
+            return last;
+        }
         const StageAccess writes = replayAccesses(r);
         StageAccess last = writes;
         // A subresource never used was transitioned by the first step's aliasing barrier.
@@ -1041,6 +1068,14 @@ private:
     std::vector<uint8_t> takesOver_;      // per plan resource: its placement has aliases
     std::vector<uint8_t> predecessor_;    // per plan resource: some placement names it an alias
     std::vector<SubresourceState> replay_;
+    // With frames sharing the heaps, per plan resource: its accesses in the frame folded as
+    // replayAccesses would leave a resource of one subresource, while addAccess has them.
+    struct FrameUses {
+        StageAccess writes;                     // every write
+        VkPipelineStageFlags2 lastWriteStages = 0;
+        VkPipelineStageFlags2 readsSince = 0;   // the reads after the last write
+    };
+    std::vector<FrameUses> frameUses_;
     const LayoutPolicy layouts_;  // the options', else the graph's
 };
 
