@@ -6,6 +6,7 @@
 #include "memory_planner.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -113,34 +114,36 @@ std::vector<uint32_t> largestFirst(const std::vector<Item>& items) {
 /// placed in its heap that hold memory during any step it does (above them all if none fits),
 /// as AMD's Render Pipeline Shaders place theirs.
 void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps, uint32_t steps) {
-    // The placed items holding memory at each step, as linked lists in one array sized up
-    // front. An item holding several steps is met several times when gathering; that only
-    // repeats an interval, which the gap search does not mind.
+    // The placed items holding memory at each step of each heap, as linked lists in one array
+    // sized up front and left unwritten until used. An item holding several steps is in the
+    // list of each, and is gathered once: at the first of them that the gathering item holds.
     struct Node {
         uint64_t begin, end;
-        uint32_t heap, next;
+        uint32_t next;
+        uint32_t ownerFirst;  ///< The first step its item holds memory in.
     };
     // Items that hold memory all frame are kept once, apart from the steps' lists, which would
     // otherwise hold a node per step for each.
     const auto wholeFrame = [&](const Item& it) { return it.first == 0 && it.last == steps - 1; };
     size_t nodeCount = 0;
     for (const Item& it : items) nodeCount += wholeFrame(it) ? 0 : it.last - it.first + 1;
-    std::vector<Node> nodes(nodeCount);
-    std::vector<Node> always;
-    std::vector<uint32_t> head(steps, kNone);
-    uint32_t used = 0;
+    const std::unique_ptr<Node[]> nodes(new Node[nodeCount]);
     struct Busy {
         uint64_t begin, end;
     };
+    std::vector<std::pair<uint32_t, Busy>> always;  // heap, range
+    std::vector<uint32_t> head(size_t(steps) * heaps.size(), kNone);
+    uint32_t used = 0;
     std::vector<Busy> busy;
     for (const uint32_t i : largestFirst(items)) {
         Item& it = items[i];
         busy.clear();
-        for (const Node& n : always)
-            if (n.heap == it.heap) busy.push_back({n.begin, n.end});
+        for (const auto& [heap, range] : always)
+            if (heap == it.heap) busy.push_back(range);
+        const uint32_t* heads = head.data() + size_t(it.heap) * steps;
         for (uint32_t s = it.first; s <= it.last; ++s)
-            for (uint32_t n = head[s]; n != kNone; n = nodes[n].next)
-                if (nodes[n].heap == it.heap) busy.push_back({nodes[n].begin, nodes[n].end});
+            for (uint32_t n = heads[s]; n != kNone; n = nodes[n].next)
+                if (s == it.first || nodes[n].ownerFirst == s) busy.push_back({nodes[n].begin, nodes[n].end});
         // Few intervals live at once: insertion sort beats a call into std::sort.
         for (size_t a = 1; a < busy.size(); ++a)
             for (size_t b = a; b > 0 && busy[b].begin < busy[b - 1].begin; --b) std::swap(busy[b], busy[b - 1]);
@@ -156,12 +159,13 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         it.offset = bestGap != ~uint64_t(0) ? best : alignUp(free, it.alignment);
         heaps[it.heap].bytes = std::max(heaps[it.heap].bytes, it.offset + it.bytes);
         if (wholeFrame(it)) {
-            always.push_back({it.offset, it.offset + it.bytes, it.heap, kNone});
+            always.push_back({it.heap, {it.offset, it.offset + it.bytes}});
             continue;
         }
+        uint32_t* listOf = head.data() + size_t(it.heap) * steps;
         for (uint32_t s = it.first; s <= it.last; ++s) {
-            nodes[used] = {it.offset, it.offset + it.bytes, it.heap, head[s]};
-            head[s] = used++;
+            nodes[used] = {it.offset, it.offset + it.bytes, listOf[s], it.first};
+            listOf[s] = used++;
         }
     }
 }
