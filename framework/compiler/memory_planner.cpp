@@ -115,12 +115,13 @@ std::vector<uint32_t> largestFirst(const std::vector<Item>& items) {
 /// as AMD's Render Pipeline Shaders place theirs.
 void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps, uint32_t steps) {
     // The placed items holding memory at each step of each heap, as linked lists in one array
-    // sized up front and left unwritten until used. An item holding several steps is in the
-    // list of each, and is gathered once: at the first of them that the gathering item holds.
+    // sized up front and left unwritten until used. Each step has two lists: the items whose
+    // memory is first held there, and those held since an earlier step. An item holding
+    // steps f..l meets every placed item it shares a step with once: those held at f, and
+    // those first held in f+1..l.
     struct Node {
         uint64_t begin, end;
         uint32_t next;
-        uint32_t ownerFirst;  ///< The first step its item holds memory in.
     };
     // Items that hold memory all frame are kept once, apart from the steps' lists, which would
     // otherwise hold a node per step for each.
@@ -132,18 +133,22 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         uint64_t begin, end;
     };
     std::vector<std::pair<uint32_t, Busy>> always;  // heap, range
-    std::vector<uint32_t> head(size_t(steps) * heaps.size(), kNone);
+    // Per heap and step: [2 * step] the items first held there, [2 * step + 1] those held since before.
+    std::vector<uint32_t> head(2 * size_t(steps) * heaps.size(), kNone);
     uint32_t used = 0;
     std::vector<Busy> busy;
+    const auto gather = [&](uint32_t list) {
+        for (uint32_t n = list; n != kNone; n = nodes[n].next) busy.push_back({nodes[n].begin, nodes[n].end});
+    };
     for (const uint32_t i : largestFirst(items)) {
         Item& it = items[i];
         busy.clear();
         for (const auto& [heap, range] : always)
             if (heap == it.heap) busy.push_back(range);
-        const uint32_t* heads = head.data() + size_t(it.heap) * steps;
-        for (uint32_t s = it.first; s <= it.last; ++s)
-            for (uint32_t n = heads[s]; n != kNone; n = nodes[n].next)
-                if (s == it.first || nodes[n].ownerFirst == s) busy.push_back({nodes[n].begin, nodes[n].end});
+        uint32_t* lists = head.data() + 2 * size_t(it.heap) * steps;
+        gather(lists[2 * it.first]);
+        gather(lists[2 * it.first + 1]);
+        for (uint32_t s = it.first + 1; s <= it.last; ++s) gather(lists[2 * s]);
         // Few intervals live at once: insertion sort beats a call into std::sort.
         for (size_t a = 1; a < busy.size(); ++a)
             for (size_t b = a; b > 0 && busy[b].begin < busy[b - 1].begin; --b) std::swap(busy[b], busy[b - 1]);
@@ -162,10 +167,10 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
             always.push_back({it.heap, {it.offset, it.offset + it.bytes}});
             continue;
         }
-        uint32_t* listOf = head.data() + size_t(it.heap) * steps;
         for (uint32_t s = it.first; s <= it.last; ++s) {
-            nodes[used] = {it.offset, it.offset + it.bytes, listOf[s], it.first};
-            listOf[s] = used++;
+            uint32_t& list = lists[2 * s + (s == it.first ? 0 : 1)];
+            nodes[used] = {it.offset, it.offset + it.bytes, list};
+            list = used++;
         }
     }
 }
@@ -353,17 +358,29 @@ MemoryLayout placeTransients(std::span<const TransientResource> in, uint32_t ste
         case MemoryStrategy::BestFitBySize: placeBestFitBySize(items, out.heaps, steps); break;
         case MemoryStrategy::FirstUseOrder: placeFirstUseOrder(items, out.heaps, steps); break;
     }
-    out.placements.resize(in.size());
+    // Without aliasing, frames sharing the heaps still take over each other's bytes. Found
+    // first, so that the placements are written once, with their aliases' final storage.
+    std::vector<AliasRun> runs;
+    std::vector<uint32_t>& storage = detail::MemoryLayoutBuilder::aliasStorage(out);
+    if (aliasing || acrossFrames) {
+        storage.reserve(in.size() * (acrossFrames ? 2 : 1));
+        runs = findAliases(in, items, out.heaps.size(), acrossFrames, storage);
+    }
+    out.placements.reserve(in.size());
     // The lower bound: resources that may not share hold memory all frame, whatever the strategy.
     std::vector<int64_t> liveChange(size_t(steps) + 1, 0);
     for (size_t i = 0; i < in.size(); ++i) {
-        MemoryPlacement& p = out.placements[i];
+        MemoryPlacement& p = out.placements.emplace_back();
         p.resource = in[i].resource;
         p.heap = items[i].heap;
         p.offset = items[i].offset;
         p.bytes = items[i].bytes;
         p.requirements = in[i].requirements;
         p.aliasable = aliasing && in[i].aliasable;
+        if (!runs.empty()) {
+            p.aliases = {storage.data() + runs[i].inFrameFirst, runs[i].inFrame};
+            p.previousFrameAliases = {storage.data() + runs[i].previousFrameFirst, runs[i].previousFrame};
+        }
         out.unaliasedBytes += items[i].bytes;
         const uint32_t first = in[i].aliasable ? in[i].firstStep : 0;
         const uint32_t last = in[i].aliasable ? in[i].lastStep : steps - 1;
@@ -374,17 +391,6 @@ MemoryLayout placeTransients(std::span<const TransientResource> in, uint32_t ste
     for (uint32_t s = 0; s < steps; ++s) {
         live += liveChange[s];
         out.peakLiveBytes = std::max(out.peakLiveBytes, static_cast<uint64_t>(live));
-    }
-    // Without aliasing, frames sharing the heaps still take over each other's bytes.
-    if (aliasing || acrossFrames) {
-        std::vector<uint32_t>& storage = detail::MemoryLayoutBuilder::aliasStorage(out);
-        storage.reserve(in.size() * (acrossFrames ? 2 : 1));
-        const auto runs = findAliases(in, items, out.heaps.size(), acrossFrames, storage);
-        for (size_t i = 0; i < in.size(); ++i) {  // the storage no longer moves
-            out.placements[i].aliases = {storage.data() + runs[i].inFrameFirst, runs[i].inFrame};
-            out.placements[i].previousFrameAliases = {storage.data() + runs[i].previousFrameFirst,
-                                                      runs[i].previousFrame};
-        }
     }
     return out;
 }
