@@ -64,6 +64,7 @@ struct ResourceFacts {
     bool external = false;
     uint32_t firstStep = 0;   ///< Its lifetime: the steps of its first and last accesses.
     uint32_t lastStep = 0;
+    uint32_t placement = PlannedResource::kNoPlacement;  ///< As PlannedResource::placement.
 };
 
 class Synchronizer {
@@ -731,11 +732,9 @@ private:
     /// Which resources need a copy per frame in flight: frames in flight overlap on the GPU,
     /// and nothing in a plan orders one frame's accesses after another's unless a resource is
     /// exported (its final barrier and the next frame's first use chain across frames). A
-    /// resource that is not external keeps the default, PerFrameTransient.
+    /// transient is SharedTransient when the frames share the heaps (set by planMemory), and
+    /// otherwise keeps the default, PerFrameTransient.
     void decideCopies() {
-        if (options_.shareTransientsAcrossFrames)
-            for (const MemoryPlacement& p : plan_.memory().placements)
-                planResources()[p.resource].copies = ResourceCopies::SharedTransient;
         for (const uint32_t r : external_) {
             const ResourceFacts& f = facts_[r];
             PlannedResource& res = planResources()[r];
@@ -858,7 +857,11 @@ private:
         for (uint32_t p = 0; p < layout.placements.size(); ++p) {
             const MemoryPlacement& placement = layout.placements[p];
             const uint32_t r = placement.resource;
-            planResources()[r].placement = p;
+            // Set here, not in sweeps of their own: the records are in cache now.
+            PlannedResource& planned = planResources()[r];
+            planned.placement = p;
+            if (options_.shareTransientsAcrossFrames) planned.copies = ResourceCopies::SharedTransient;
+            facts_[r].placement = p;
             if (acrossFrames) {
                 StageAccess uses = lastUsesInFrame(r);
                 for (const uint32_t a : placement.aliases) {
@@ -952,7 +955,7 @@ private:
     /// before them too (rule 2); writes nothing read are waited for with a memory dependency.
     /// Returns false when r takes over no memory.
     bool startAliased(uint32_t r, SubresourceState* states, size_t cells) {
-        const uint32_t p = plan_.resources()[r].placement;
+        const uint32_t p = facts_[r].placement;
         if (p == PlannedResource::kNoPlacement) return false;
         const MemoryPlacement& placement = plan_.memory().placements[p];
         const std::span<const uint32_t> aliases = placement.aliases;
