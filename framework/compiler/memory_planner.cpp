@@ -136,30 +136,35 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
     // Per heap and step: [2 * step] the items first held there, [2 * step + 1] those held since before.
     std::vector<uint32_t> head(2 * size_t(steps) * heaps.size(), kNone);
     uint32_t used = 0;
-    std::vector<Busy> busy;
+    // The intervals an item lives beside, kept sorted by offset as they are gathered (few are
+    // live at once: insertion beats a sort call). No item meets more than every other.
+    const std::unique_ptr<Busy[]> busy(new Busy[items.size()]);
+    size_t busyCount = 0;
+    const auto add = [&](Busy b) {
+        size_t at = busyCount++;
+        for (; at > 0 && b.begin < busy[at - 1].begin; --at) busy[at] = busy[at - 1];
+        busy[at] = b;
+    };
     const auto gather = [&](uint32_t list) {
-        for (uint32_t n = list; n != kNone; n = nodes[n].next) busy.push_back({nodes[n].begin, nodes[n].end});
+        for (uint32_t n = list; n != kNone; n = nodes[n].next) add({nodes[n].begin, nodes[n].end});
     };
     for (const uint32_t i : largestFirst(items)) {
         Item& it = items[i];
-        busy.clear();
+        busyCount = 0;
         for (const auto& [heap, range] : always)
-            if (heap == it.heap) busy.push_back(range);
+            if (heap == it.heap) add(range);
         uint32_t* lists = head.data() + 2 * size_t(it.heap) * steps;
         gather(lists[2 * it.first]);
         gather(lists[2 * it.first + 1]);
         for (uint32_t s = it.first + 1; s <= it.last; ++s) gather(lists[2 * s]);
-        // Few intervals live at once: insertion sort beats a call into std::sort.
-        for (size_t a = 1; a < busy.size(); ++a)
-            for (size_t b = a; b > 0 && busy[b].begin < busy[b - 1].begin; --b) std::swap(busy[b], busy[b - 1]);
         uint64_t free = 0, best = ~uint64_t(0), bestGap = ~uint64_t(0);
-        for (const Busy& b : busy) {
+        for (size_t b = 0; b < busyCount; ++b) {
             const uint64_t start = alignUp(free, it.alignment);
-            if (start + it.bytes <= b.begin && b.begin - start < bestGap) {
+            if (start + it.bytes <= busy[b].begin && busy[b].begin - start < bestGap) {
                 best = start;
-                bestGap = b.begin - start;
+                bestGap = busy[b].begin - start;
             }
-            free = std::max(free, b.end);
+            free = std::max(free, busy[b].end);
         }
         it.offset = bestGap != ~uint64_t(0) ? best : alignUp(free, it.alignment);
         heaps[it.heap].bytes = std::max(heaps[it.heap].bytes, it.offset + it.bytes);
