@@ -62,8 +62,7 @@ struct ResourceFacts {
     bool image = false;
     bool exported = false;
     bool external = false;
-    uint32_t firstStep = 0;   ///< Its lifetime: the steps of its first and last accesses.
-    uint32_t lastStep = 0;
+    uint32_t lastStep = 0;    ///< The step of its last access (PlannedResource::lastPass once emitted).
     uint32_t placement = PlannedResource::kNoPlacement;  ///< As PlannedResource::placement.
 };
 
@@ -314,7 +313,6 @@ private:
         // plan record is in cache (the barrier sweep would reach it cold).
         if (f.firstAccess == kNone) {
             f.firstAccess = k;
-            f.firstStep = a.step;
             a.firstOfResource = true;
             planResources()[r].firstPass = a.step;
             planResources()[r].firstStages = scope.stages;
@@ -820,10 +818,10 @@ private:
             // Field by field, in place: a braced temporary copied in stalls on store forwarding.
             TransientResource& t = transients.emplace_back();
             t.resource = r;
-            t.firstStep = f.firstStep;
+            t.firstStep = planResources()[r].firstPass;
             t.lastStep = f.lastStep;
-            sorted &= f.firstStep >= latestFirstStep;
-            latestFirstStep = f.firstStep;
+            sorted &= t.firstStep >= latestFirstStep;
+            latestFirstStep = t.firstStep;
             t.requirements = model ? model->requirements(q) : estimatedRequirements(q);
             if (model) checkRequirements(t.requirements, d, *model);
             t.linear = !f.image;
@@ -860,7 +858,7 @@ private:
             // Set here, not in sweeps of their own: the records are in cache now.
             PlannedResource& planned = planResources()[r];
             planned.placement = p;
-            if (options_.shareTransientsAcrossFrames) planned.copies = ResourceCopies::SharedTransient;
+            if (acrossFrames) planned.copies = ResourceCopies::SharedTransient;
             facts_[r].placement = p;
             if (acrossFrames) {
                 StageAccess uses = lastUsesInFrame(r);

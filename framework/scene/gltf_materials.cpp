@@ -24,6 +24,24 @@ std::string stbReason() {
     return reason ? reason : "no reason given";
 }
 
+/// Why a PNG's chunks cannot all be in `data`, or empty (also for data that is no PNG): stb
+/// grows its buffer for the compressed pixels to a chunk's declared length before reading it,
+/// so a forged length would allocate up to 2 GiB for a file of a few bytes.
+std::string pngChunkProblem(std::span<const unsigned char> data) {
+    static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (data.size() < 8 || !std::equal(kSignature, kSignature + 8, data.begin())) return {};
+    for (size_t at = 8; at + 8 <= data.size();) {
+        const uint64_t length = uint64_t(data[at]) << 24 | uint64_t(data[at + 1]) << 16 | uint64_t(data[at + 2]) << 8 |
+                                uint64_t(data[at + 3]);
+        const uint64_t end = uint64_t(at) + 12 + length;  // length, type, data, CRC
+        if (end > data.size())
+            return "a PNG chunk at byte " + std::to_string(at) + " declares " + std::to_string(length) +
+                   " bytes, past the end of the image's " + std::to_string(data.size());
+        at = size_t(end);
+    }
+    return {};
+}
+
 }  // namespace
 
 bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
@@ -156,28 +174,6 @@ void GltfMaterials::use(MeshMaterial& m, std::vector<MeshImage>& images) {
                            &m.emissiveTexture})
         if (t->present()) t->image = decode(size_t(t->image), images);
 }
-
-namespace {
-
-/// Why a PNG's chunks cannot all be in `data`, or empty (also for data that is no PNG): stb
-/// grows its buffer for the compressed pixels to a chunk's declared length before reading it,
-/// so a forged length would allocate up to 2 GiB for a file of a few bytes.
-std::string pngChunkProblem(std::span<const unsigned char> data) {
-    static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (data.size() < 8 || !std::equal(kSignature, kSignature + 8, data.begin())) return {};
-    for (size_t at = 8; at + 8 <= data.size();) {
-        const uint64_t length = uint64_t(data[at]) << 24 | uint64_t(data[at + 1]) << 16 | uint64_t(data[at + 2]) << 8 |
-                                uint64_t(data[at + 3]);
-        const uint64_t end = uint64_t(at) + 12 + length;  // length, type, data, CRC
-        if (end > data.size())
-            return "a PNG chunk at byte " + std::to_string(at) + " declares " + std::to_string(length) +
-                   " bytes, past the end of the image's " + std::to_string(data.size());
-        at = size_t(end);
-    }
-    return {};
-}
-
-}  // namespace
 
 int32_t GltfMaterials::decode(size_t fileImage, std::vector<MeshImage>& images) {
     int32_t& meshImage = meshImageOf_[fileImage];

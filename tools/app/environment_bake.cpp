@@ -120,8 +120,7 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
 EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                                    std::set<std::string, std::less<>> products, const PassLibrary* passes,
                                    bool background, uint32_t renderers)
-    : stagingBytes_(VkDeviceSize(width) * height * 16), width_(width), height_(height),
-      staging_(device, stagingBytes_), products_(std::move(products)), background_(background) {
+    : width_(width), height_(height), staging_(device, rgba32fBytes(width, height)), products_(std::move(products)), background_(background) {
     if (renderers < 2 || renderers > 3)
         throw std::invalid_argument("EnvironmentBaker: 2 or 3 renderers, not " + std::to_string(renderers));
     if (!setEquirectExtent(graph, width, height))
@@ -157,7 +156,7 @@ SharedImage EnvironmentBaker::swappedIn(const std::string& name) const {
 bool EnvironmentBaker::start(const HdrImage& equirect) {
     if (pending_) return false;
     const auto begin = Clock::now();
-    if (equirect.width != width_ || equirect.height != height_ || equirect.rgba.size() * sizeof(float) != stagingBytes_)
+    if (equirect.width != width_ || equirect.height != height_ || equirect.rgba.size() * sizeof(float) != stagingBytes())
         throw ExecutorError("the environment bake takes a " + std::to_string(width_) + "x" + std::to_string(height_) +
                             " equirect, not " + std::to_string(equirect.width) + "x" +
                             std::to_string(equirect.height));

@@ -8,10 +8,10 @@
 #include <skygraph/graph.hpp>
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/image_data.hpp>
-#include "staging_pool.hpp"
-
 #include <skygraph/renderer.hpp>
 #include <skygraph/staging_buffer.hpp>
+
+#include "staging_pool.hpp"
 
 #include <array>
 #include <functional>
@@ -88,7 +88,7 @@ public:
     /// first (on the calling thread). Throws ExecutorError for an equirect of another size.
     bool start(const HdrImage& equirect);
     /// Bytes of the equirect a bake uploads: width x height x 16.
-    [[nodiscard]] VkDeviceSize stagingBytes() const noexcept { return stagingBytes_; }
+    [[nodiscard]] VkDeviceSize stagingBytes() const noexcept { return staging_.bufferBytes(); }
     /// Between two frames of `frame`: once the bake has finished on the GPU, imports its
     /// products into `frame` (Renderer::importImage, which neither waits nor rebuilds) and
     /// returns true; false while it runs or when none was started. Never blocks.
@@ -101,7 +101,6 @@ public:
     [[nodiscard]] double lastStartMs() const noexcept { return lastStartMs_; }
 
 private:
-    VkDeviceSize stagingBytes_ = 0;
     uint32_t width_ = 0, height_ = 0;
     StagingPool staging_;  ///< start(HdrImage)'s
     std::vector<std::unique_ptr<Renderer>> renderers_;

@@ -22,7 +22,7 @@ SequenceStream::SequenceStream(EnvironmentSequence sequence, uint32_t width, uin
       next_(first % std::max<uint32_t>(sequence_.count, 1)),
       thread_() {
     if (sequence_.count == 0) throw std::invalid_argument("SequenceStream: a sequence of no frames");
-    if (stagingDevice) staging_.emplace(*stagingDevice, VkDeviceSize(width) * height * 16);
+    if (stagingDevice) staging_.emplace(*stagingDevice, rgba32fBytes(width, height));
     thread_ = std::thread([this] { decodeLoop(); });
 }
 

@@ -16,6 +16,11 @@
 
 namespace skygraph::app {
 
+/// The bytes of a width x height RGBA32F image (HdrImage's pixels): what an equirect stages.
+[[nodiscard]] inline VkDeviceSize rgba32fBytes(uint32_t width, uint32_t height) noexcept {
+    return VkDeviceSize(width) * height * 4 * sizeof(float);
+}
+
 /// Owns its buffers; `device` must outlive it and them. Use from one thread: only that thread
 /// copies the pool's pointers, so a buffer the pool alone holds (use_count() 1) is one that
 /// every frame and bake has let go of, a bake only once its copy had run. Not copyable.
@@ -37,6 +42,8 @@ public:
         std::memcpy((*free)->bytes().data(), pixels.data(), bytes_);
         return *free;
     }
+    /// Each buffer's size, which every stage() must fill.
+    [[nodiscard]] VkDeviceSize bufferBytes() const noexcept { return bytes_; }
     /// The buffers made so far.
     [[nodiscard]] size_t size() const noexcept { return buffers_.size(); }
 
