@@ -304,7 +304,7 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
         while (end < now && dev.queues[static_cast<size_t>(submits[end].queue)] == queue) ++end;
         const bool last = end == submits.size();
         if (last) end = batches.size();
-        VkFence fence = last ? f.fence.get() : VK_NULL_HANDLE;
+        VkFence submitFence = last ? f.fence.get() : VK_NULL_HANDLE;
         if (hold) {
             if (f.runFences.size() == calls) {
                 VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
@@ -312,10 +312,10 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
                 vk::check(vkCreateFence(vkd, &fci, nullptr, &made), "vkCreateFence");
                 f.runFences.emplace_back(vkd, made);
             }
-            fence = f.runFences[calls].get();
-            vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");
+            submitFence = f.runFences[calls].get();
+            vk::check(vkResetFences(vkd, 1, &submitFence), "vkResetFences");
         }
-        vk::check(vkQueueSubmit2(queue, static_cast<uint32_t>(end - first), &batches[first], fence), "vkQueueSubmit2");
+        vk::check(vkQueueSubmit2(queue, static_cast<uint32_t>(end - first), &batches[first], submitFence), "vkQueueSubmit2");
         ++calls;
         first = end;
     }

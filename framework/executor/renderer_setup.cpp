@@ -67,6 +67,9 @@ void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image
     sink.clearColor(image, u.layout, v, range);
 }
 
+/// How many copies the renderer keeps of a resource: one, or one per frame slot.
+size_t copiesOf(const ResourceState& r) { return r.isImage ? r.images.size() : r.buffers.size(); }
+
 }  // namespace
 
 void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNextFrame) {
@@ -96,10 +99,7 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
     // per copy.
     std::vector<uint32_t> frameResource;
     for (const PlannedResource& r : setup.resources()) frameResource.push_back(uint32_t(s.plan.resourceIndex(r.name)));
-    auto copiesOf = [&](uint32_t setupResource) {
-        const ResourceState& r = s.resources[frameResource[setupResource]];
-        return r.isImage ? r.images.size() : r.buffers.size();
-    };
+    const auto copiesOfSetupResource = [&](uint32_t r) { return copiesOf(s.resources[frameResource[r]]); };
     // Host contents of the Upload steps, written before the submission (which makes host writes
     // visible to it): one staging buffer per step, shared by the copies.
     auto stagingOwned = std::make_shared<std::vector<OwnedBuffer>>(setup.passes().size());
@@ -128,22 +128,18 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
             }
     }
     auto record = [this, &s, planned, stagingOwned, frameResource](CommandSink& sink) {
-        const Plan& setup = *planned;
-        const std::vector<OwnedBuffer>& staging = *stagingOwned;
-        auto copiesOf = [&](uint32_t setupResource) {
-            const ResourceState& r = s.resources[frameResource[setupResource]];
-            return r.isImage ? r.images.size() : r.buffers.size();
-        };
+        const Plan& steps = *planned;
+        const std::vector<OwnedBuffer>& stagingOf = *stagingOwned;
         const size_t copies = options.framesInFlight;
         for (uint32_t c = 0; c < copies; ++c) {
             // Copy c of a per-slot resource is frame slot c's, whose first binding slot is this.
             const uint32_t binding = c * s.presentImages;
             const auto target = [&](uint32_t r) { return s.resources[frameResource[r]].barrierTarget(binding); };
-            for (size_t i = 0; i < setup.passes().size(); ++i) {
-                const PlannedPass& step = setup.passes()[i];
+            for (size_t i = 0; i < steps.passes().size(); ++i) {
+                const PlannedPass& step = steps.passes()[i];
                 const PlannedUsage& u = step.usages[0];
-                if (c >= copiesOf(u.resource)) continue;
                 const ResourceState& r = s.resources[frameResource[u.resource]];
+                if (c >= copiesOf(r)) continue;
                 if (const BarrierBatch before(step.barriers, target, s.families()); !before.empty()) sink.barriers(before);
                 if (step.type == "Clear") {
                     recordInitialClear(sink, r, r.images[c].image, u);
@@ -152,24 +148,24 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
                                    downsampleRegion(r.aspect, r.width, r.height, step.usages[1].range, u.range));
                 } else if (!r.isImage) {
                     const VkBufferCopy region{0, 0, r.size};
-                    sink.copyBuffer(staging[i].buffer.get(), r.buffers[c].buffer.get(), {&region, 1});
+                    sink.copyBuffer(stagingOf[i].buffer.get(), r.buffers[c].buffer.get(), {&region, 1});
                 } else {
                     VkBufferImageCopy region{};
                     region.imageSubresource = {copyAspectOf(r.desc->format), 0, 0, r.layers};
                     region.imageExtent = {r.width, r.height, 1};
-                    sink.copyBufferToImage(staging[i].buffer.get(), r.images[c].image, u.layout, {&region, 1});
+                    sink.copyBufferToImage(stagingOf[i].buffer.get(), r.images[c].image, u.layout, {&region, 1});
                 }
             }
             std::vector<Barrier> finals;
-            for (const Barrier& b : setup.finalBarriers())
-                if (c < copiesOf(b.resource)) finals.push_back(b);
+            for (const Barrier& b : steps.finalBarriers())
+                if (c < copiesOf(s.resources[frameResource[b.resource]])) finals.push_back(b);
             if (const BarrierBatch after(finals, target, s.families()); !after.empty()) sink.barriers(after);
         }
     };
     // One copy of each resource: the next frame records the steps before its passes and
     // nothing waits. A resource with a copy per frame slot may be in use by frames in flight.
     bool singleCopies = true;
-    for (const PlannedPass& step : setup.passes()) singleCopies &= copiesOf(step.usages[0].resource) == 1;
+    for (const PlannedPass& step : setup.passes()) singleCopies &= copiesOfSetupResource(step.usages[0].resource) == 1;
     if (withNextFrame && singleCopies) {
         lastStaging = stagingOwned;
         pendingSetup = PendingSetup{&s, std::move(record), std::move(stagingOwned)};

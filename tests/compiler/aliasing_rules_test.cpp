@@ -269,7 +269,9 @@ TEST(Clobbering, EveryTransientIsPoisonedAndItsFirstWriteKeepsWhatItDoesNotWrite
     // Without clobbering, the same write discards (rule 6).
     const Plan plain = compileGraph(kTwo, kTwoPasses);
     for (const PlannedUsage& u : pass(plain, "make_b").usages)
-        if (plain.resources()[u.resource].name == "b") EXPECT_EQ(u.load, LoadOp::DontCare);
+        if (plain.resources()[u.resource].name == "b") {
+            EXPECT_EQ(u.load, LoadOp::DontCare);
+        }
 }
 
 /// A model an embedder might get wrong: answers `answer` for every resource.
@@ -313,7 +315,9 @@ TEST(MemoryModelAnswers, ThatCannotBePlacedAreErrorsNamingTheModelAndTheResource
             EXPECT_NE(what.find("aliasing.json"), std::string::npos) << what;
             EXPECT_NE(what.find("memory model 'fixed'"), std::string::npos) << what;
             EXPECT_NE(what.find(c.says), std::string::npos) << what;
-            if (c.granularity == 1024) EXPECT_NE(what.find("resources.a"), std::string::npos) << what;
+            if (c.granularity == 1024) {
+                EXPECT_NE(what.find("resources.a"), std::string::npos) << what;
+            }
         }
     }
 }

@@ -157,7 +157,9 @@ void expectValid(const std::vector<TransientResource>& in, uint32_t steps, const
         EXPECT_EQ(p.offset % in[i].requirements.alignment, 0u) << what;
         EXPECT_GE(p.bytes, in[i].requirements.size) << what;
         EXPECT_LE(p.offset + p.bytes, m.heaps[p.heap].bytes) << what;
-        if (m.heaps[p.heap].granular) EXPECT_EQ(p.offset % granularity, 0u) << what;
+        if (m.heaps[p.heap].granular) {
+            EXPECT_EQ(p.offset % granularity, 0u) << what;
+        }
         std::vector<uint32_t> expectedAliases;
         for (size_t j = 0; j < in.size(); ++j) {
             if (i == j || !overlapsInMemory(p, m.placements[j])) continue;
@@ -207,11 +209,11 @@ void expectValid(const std::vector<TransientResource>& in, uint32_t steps, const
 TEST(MemoryPlacement, RandomInputsMeetTheDefinitionsUnderEveryStrategy) {
     for (uint32_t seed = 1; seed <= 300; ++seed) {
         std::mt19937 rng(seed);
-        const uint32_t steps = 1 + rng() % 12;
+        const auto steps = static_cast<uint32_t>(1 + rng() % 12);
         std::vector<TransientResource> in;
-        const uint32_t count = 1 + rng() % 14;
+        const auto count = static_cast<uint32_t>(1 + rng() % 14);
         for (uint32_t i = 0; i < count; ++i) {
-            uint32_t a = rng() % steps, b = rng() % steps;
+            auto a = static_cast<uint32_t>(rng() % steps), b = static_cast<uint32_t>(rng() % steps);
             if (a > b) std::swap(a, b);
             TransientResource t = image(i, a, b, 64 * (1 + rng() % 64), 64u << (rng() % 4));
             t.linear = rng() % 5 == 0;
