@@ -217,6 +217,14 @@ void BM_CompileHeapsPerFrame(benchmark::State& state) {
     o.shareTransientsAcrossFrames = false;
     compileBench(state, Shape::Synthetic, o);
 }
+// The cheapest memory plan: no aliasing and heaps per frame in flight, so no transient takes
+// over another's bytes. What it costs beyond a compile without memory planning is what
+// gathering requirements and writing placements cost, with no search and no aliasing barrier.
+void BM_CompileNoSharing(benchmark::State& state) {
+    CompileOptions o = placedBy(MemoryStrategy::Unaliased);
+    o.shareTransientsAcrossFrames = false;
+    compileBench(state, Shape::Synthetic, o);
+}
 
 // The layouts knob (docs/barriers.md, rule 4) on reads that want different layouts: the
 // second argument is 0 for FewestBarriers, 1 for Optimal; `barriers` shows what each costs the
@@ -301,6 +309,7 @@ BENCHMARK(BM_Compile)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::k
 BENCHMARK(BM_CompileFirstUse)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileUnaliased)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileHeapsPerFrame)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompileNoSharing)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CompileMixedReads)->ArgsProduct({{1000, 10000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CopyPlan)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Parse)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);

@@ -36,6 +36,18 @@ public:
     void emitMerged(uint32_t r, BarrierKind kind, const SubresourceRange& range,
                     const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
         assert(perSub.size() == cells(range));
+        // One barrier (the aliasing barrier of the one subresource a resource's first use left
+        // out, most often) is its own rectangle: no scratch to fill.
+        const auto set = [](const std::optional<Barrier>& b) { return b.has_value(); };
+        if (const auto only = std::find_if(perSub.begin(), perSub.end(), set);
+            only != perSub.end() && std::find_if(only + 1, perSub.end(), set) == perSub.end()) {
+            const auto c = static_cast<uint32_t>(only - perSub.begin());
+            Barrier& b = out.emplace_back(**only);
+            b.resource = r;
+            b.kind = kind;
+            b.range = {range.baseMip + c / range.layerCount, 1, range.baseLayer + c % range.layerCount, 1};
+            return;
+        }
         auto& open = open_;  // rectangles that may still grow by one more mip
         auto& row = row_;
         auto& next = next_;
