@@ -88,12 +88,6 @@ std::optional<Sharing> parseSharing(std::string_view s) noexcept {
     return std::nullopt;
 }
 
-std::array<uint32_t, 2> Extent::resolve(uint32_t outputWidth,
-                                        uint32_t outputHeight) const noexcept {
-    if (!relativeToOutput) return {width, height};
-    return {std::max(1u, outputWidth / divisor), std::max(1u, outputHeight / divisor)};
-}
-
 uint32_t ResourceDesc::mipCount(uint32_t outputWidth, uint32_t outputHeight) const noexcept {
     if (mips != 0) return mips;
     auto [w, h] = extent.resolve(outputWidth, outputHeight);

@@ -1,5 +1,5 @@
-// The device-free memory estimate, and the usage flags both the compiler and the executor
-// derive from a plan's usages.
+// The device-free memory estimate as a MemoryModel (its arithmetic is in memory_planner.hpp),
+// and the usage flags both the compiler and the executor derive from a plan's usages.
 #include "memory_planner.hpp"
 
 #include <skygraph/memory.hpp>
@@ -9,30 +9,14 @@
 namespace skygraph {
 namespace {
 
-constexpr uint64_t kImageGranule = 64 * 1024;  // a common GPU page: images are placed in them
-constexpr uint64_t kBufferAlignment = 256;     // the largest minStorageBufferOffsetAlignment seen
-constexpr uint64_t kGranularity = 1024;        // bufferImageGranularity of current desktop GPUs
-
-uint64_t roundUp(uint64_t v, uint64_t to) { return (v + to - 1) / to * to; }
-
 class EstimatedMemory final : public MemoryModel {
 public:
     MemoryRequirements requirements(const MemoryQuery& q) const override { return estimatedRequirements(q); }
-    uint64_t bufferImageGranularity() const override { return kGranularity; }
+    uint64_t bufferImageGranularity() const override { return estimate::kGranularity; }
     std::string name() const override { return "estimate"; }
 };
 
 }  // namespace
-
-MemoryRequirements estimatedRequirements(const MemoryQuery& q) noexcept {
-    const ResourceDesc& d = *q.resource;
-    if (!d.isImage()) return {roundUp(std::max<uint64_t>(d.sizeBytes, 4), 4), kBufferAlignment, 1u};
-    uint64_t bytes = 0;
-    const uint64_t texel = std::max(1u, d.format.bytesPerTexel);
-    for (uint32_t m = 0; m < q.mips; ++m)
-        bytes += uint64_t(std::max(1u, q.width >> m)) * std::max(1u, q.height >> m) * texel;
-    return {roundUp(bytes * std::max(1u, q.layers), kImageGranule), kImageGranule, 1u};
-}
 
 std::shared_ptr<const MemoryModel> estimatedMemory() {
     static const auto model = std::make_shared<const EstimatedMemory>();

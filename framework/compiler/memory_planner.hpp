@@ -5,6 +5,7 @@
 
 #include <skygraph/memory.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 
@@ -29,9 +30,26 @@ struct TransientResource {
                                            uint64_t granularity, MemoryStrategy strategy, bool aliasing,
                                            bool acrossFrames = false);
 
+/// The device-free estimate's figures (docs/memory.md, "Requirements").
+namespace estimate {
+inline constexpr uint64_t kImageGranule = 64 * 1024;  // a common GPU page: images are placed in them
+inline constexpr uint64_t kBufferAlignment = 256;     // the largest minStorageBufferOffsetAlignment seen
+inline constexpr uint64_t kGranularity = 1024;        // bufferImageGranularity of current desktop GPUs
+}  // namespace estimate
+
 /// What estimatedMemory() answers, without the call through MemoryModel: the compiler's path
-/// when no model is given (it needs no usage flags).
-[[nodiscard]] MemoryRequirements estimatedRequirements(const MemoryQuery& query) noexcept;
+/// when no model is given (it needs no usage flags). Inline: the compiler asks once per
+/// transient.
+[[nodiscard]] inline MemoryRequirements estimatedRequirements(const MemoryQuery& q) noexcept {
+    const auto roundUp = [](uint64_t v, uint64_t to) { return (v + to - 1) / to * to; };
+    const ResourceDesc& d = *q.resource;
+    if (!d.isImage()) return {roundUp(std::max<uint64_t>(d.sizeBytes, 4), 4), estimate::kBufferAlignment, 1u};
+    uint64_t bytes = 0;
+    const uint64_t texel = std::max(1u, d.format.bytesPerTexel);
+    for (uint32_t m = 0; m < q.mips; ++m)
+        bytes += uint64_t(std::max(1u, q.width >> m)) * std::max(1u, q.height >> m) * texel;
+    return {roundUp(bytes * std::max(1u, q.layers), estimate::kImageGranule), estimate::kImageGranule, 1u};
+}
 
 namespace detail {
 /// The planner's write access to a layout's alias storage.

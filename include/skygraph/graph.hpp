@@ -7,6 +7,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -65,8 +66,10 @@ struct Extent {
     uint32_t height = 0;
 
     /// Width and height for a given output size; never below 1.
-    [[nodiscard]] std::array<uint32_t, 2> resolve(uint32_t outputWidth,
-                                                  uint32_t outputHeight) const noexcept;
+    [[nodiscard]] std::array<uint32_t, 2> resolve(uint32_t outputWidth, uint32_t outputHeight) const noexcept {
+        if (!relativeToOutput) return {width, height};
+        return {std::max(1u, outputWidth / divisor), std::max(1u, outputHeight / divisor)};
+    }
 };
 
 struct ClearValue {

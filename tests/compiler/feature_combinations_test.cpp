@@ -45,7 +45,9 @@ TEST(FeatureCombinations, PairwiseCoversEveryPairOfValuesAndStartsFromTheDefault
                 EXPECT_EQ(seen.size(), 4u) << n << " features: f" << i << ", f" << j;
             }
         }
-        if (n >= 6) EXPECT_LT(rows.size(), size_t(1) << n) << n;
+        if (n >= 6) {
+            EXPECT_LT(rows.size(), size_t(1) << n) << n;
+        }
         EXPECT_LE(rows.size(), 14u) << n << " features need " << rows.size() << " combinations";
     }
     EXPECT_EQ(pairwiseFeatureCombinations(graphWith(0)).size(), 1u);
