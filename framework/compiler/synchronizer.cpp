@@ -123,7 +123,7 @@ private:
         steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size() + clobberRoom);
         planResources().reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        if (options_.shareTransientsAcrossFrames) frameUses_.reserve(graph_.resources.size());
+        if (options_.shareTransientsAcrossFrames) frameUses_.reserve(index_.cells());  // the plan's resources are fewer
         const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size() + clobberRoom;
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
@@ -218,7 +218,7 @@ private:
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
-        if (options_.shareTransientsAcrossFrames) frameUses_.emplace_back();
+        if (options_.shareTransientsAcrossFrames) frameUses_.resize(cellCount_);
         return static_cast<uint32_t>(planResources().size() - 1);
     }
 
@@ -327,15 +327,18 @@ private:
         f.lastAccess = k;
         f.lastStep = a.step;
         if (!frameUses_.empty()) {
-            FrameUses& uses = frameUses_[r];
-            if (a.writes) {
-                uses.writes.stages |= scope.stages;
-                uses.writes.access |= writeBits(scope.access);
-                uses.lastWriteStages = scope.stages;
-                uses.readsSince = 0;
-            } else {
-                uses.readsSince |= scope.stages;
-            }
+            const auto fold = [&](FrameUses& uses) {
+                if (a.writes) {
+                    uses.writes.stages |= scope.stages;
+                    uses.writes.access |= writeBits(scope.access);
+                    uses.lastWriteStages = scope.stages;
+                    uses.readsSince = 0;
+                } else {
+                    uses.readsSince |= scope.stages;
+                }
+            };
+            if (cells(range) == 1) fold(frameUses_[a.cell]);  // most accesses
+            else forEachCell(r, range, [&](size_t c) { fold(frameUses_[c]); });
         }
     }
 
@@ -665,7 +668,7 @@ private:
             // What a resource taking over its memory later will wait for; kept now, while its
             // state is in cache. (Subresources it never used have nothing to wait for unless
             // aliased, which finishAliasing adds.)
-            if (!lastUses_.empty() && predecessor_[r]) addLastUses(lastUses_[r], stateOf(r), facts_[r].grid.size(), 0);
+            if (!lastUses_.empty() && predecessor_[r]) addLastUses(lastUses_[r], stateOf(r), facts_[r].grid.size());
         }
     }
 
@@ -893,58 +896,44 @@ private:
 
     /// Adds to `last` what a barrier after the uses of a resource in the frame waits for, given
     /// the state of its subresources `states` after them (rule 16): per subresource, its last
-    /// write with its access and the reads since (or, never used, the `untouched` stages of
-    /// its aliasing transition). The caller adds every earlier write of the frame to it too:
-    /// the reads alone would order the writes (rule 2), but the barriers that made the writes
-    /// available named only the subresources they wrote, and the spec asks the barrier
-    /// between aliases to contain every subresource that overlaps. The aliasing barrier does,
-    /// so it is the memory dependency itself.
-    static void addLastUses(StageAccess& last, const SubresourceState* states, size_t cells,
-                            VkPipelineStageFlags2 untouched) {
+    /// write with its access and the reads since. The caller adds every earlier write of the
+    /// frame to it too: the reads alone would order the writes (rule 2), but the barriers that
+    /// made the writes available named only the subresources they wrote, and the spec asks
+    /// the barrier between aliases to contain every subresource that overlaps. The aliasing
+    /// barrier does, so it is the memory dependency itself.
+    static void addLastUses(StageAccess& last, const SubresourceState* states, size_t cells) {
         for (size_t c = 0; c < cells; ++c) {
-            const SubresourceState& st = states[c];
-            last.stages |= st.readStages | st.writeStages;
-            last.access |= st.writeAccess;
-            if (!st.readStages && !st.writeStages) last.stages |= untouched;
+            last.stages |= states[c].readStages | states[c].writeStages;
+            last.access |= states[c].writeAccess;
         }
     }
 
-    /// What a barrier after resource r's uses in the frame waits for, as addLastUses: its
-    /// accesses replayed with rules 1-5's bookkeeping, before the frame's barriers are written
-    /// (the next frame's first uses of r's bytes need it at their start).
+    /// What a barrier after resource r's uses in the frame waits for, as addLastUses would
+    /// find it after the frame's barriers: from what addAccess folded per subresource, before
+    /// they are written (the next frame's first uses of r's bytes need it at their start).
     StageAccess lastUsesInFrame(uint32_t r) {
-        if (facts_[r].grid.size() == 1) {  // most resources: what addAccess gathered says it
-            const FrameUses& uses = frameUses_[r];
-            StageAccess last = uses.writes;
-            last.stages |= uses.readsSince | uses.lastWriteStages;
-            if (!uses.readsSince && !uses.lastWriteStages) last.stages |= plan_.resources()[r].firstStages;
-            return last;
+        StageAccess last;
+        const FrameUses* uses = &frameUses_[facts_[r].firstCell];
+        for (size_t c = 0; c < facts_[r].grid.size(); ++c) {
+            last.stages |= uses[c].writes.stages | uses[c].readsSince | uses[c].lastWriteStages;
+            last.access |= uses[c].writes.access;
+            // A subresource never used was transitioned by the first step's aliasing barrier.
+            if (!uses[c].readsSince && !uses[c].lastWriteStages) last.stages |= plan_.resources()[r].firstStages;
         }
-        const StageAccess writes = replayAccesses(r);
-        StageAccess last = writes;
-        // A subresource never used was transitioned by the first step's aliasing barrier.
-        addLastUses(last, replay_.data(), replay_.size(), plan_.resources()[r].firstStages);
         return last;
     }
 
     /// Resource r's accesses in the frame replayed with rules 1-5's bookkeeping into replay_
-    /// (per subresource, what the frame leaves), before the frame's barriers are written;
-    /// returns every write's stages and access.
-    StageAccess replayAccesses(uint32_t r) {
+    /// (per subresource, what the frame leaves), before the frame's barriers are written.
+    void replayAccesses(uint32_t r) {
         const auto& usages = *usages_;
         const SubresourceGrid& grid = facts_[r].grid;
         replay_.assign(grid.size(), SubresourceState{});
-        StageAccess writes;
         for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next) {
             const VulkanScope scope{usages[k].stages, usages[k].access, VK_IMAGE_LAYOUT_UNDEFINED};
-            if (accesses_[k].writes) {
-                writes.stages |= scope.stages;
-                writes.access |= writeBits(scope.access);
-            }
             grid.forEach(usages[k].range,
                          [&](size_t sub) { recordAccess(replay_[sub], accesses_[k].writes, scope.layout, scope); });
         }
-        return writes;
     }
 
     /// The memory that resource r takes over was last used by its placement's `aliases`
@@ -1062,15 +1051,15 @@ private:
     std::vector<uint32_t> aliasedHere_;
     uint32_t aliasedCells_ = 0;
     // With frames sharing the heaps: per placement, the previous frame's last uses of the bytes
-    // no earlier resource of the frame holds; and lastUsesInFrame's scratch.
+    // no earlier resource of the frame holds.
     std::vector<StageAccess> previousFrameLastUses_;
     std::vector<StageAccess> lastUses_;   // per plan resource taken over from: its writes, then its last uses
     std::vector<StageAccess> earlierUses_;  // per plan resource taking over: what its aliasing barrier waits for
     std::vector<uint8_t> takesOver_;      // per plan resource: its placement has aliases
     std::vector<uint8_t> predecessor_;    // per plan resource: some placement names it an alias
-    std::vector<SubresourceState> replay_;
-    // With frames sharing the heaps, per plan resource: its accesses in the frame folded as
-    // replayAccesses would leave a resource of one subresource, while addAccess has them.
+    std::vector<SubresourceState> replay_;  // replayAccesses' result
+    // With frames sharing the heaps, per subresource of every resource (as state_): its
+    // accesses in the frame folded as replayAccesses would leave it, while addAccess has them.
     struct FrameUses {
         StageAccess writes;                     // every write
         VkPipelineStageFlags2 lastWriteStages = 0;
