@@ -123,7 +123,8 @@ private:
         steps_.reserve(schedule.passes.size() + index_.clearResources() + 2 * readbacks_.size() + clobberRoom);
         planResources().reserve(graph_.resources.size());
         facts_.reserve(graph_.resources.size());
-        if (options_.shareTransientsAcrossFrames) frameUses_.reserve(index_.cells());  // the plan's resources are fewer
+        // Zeroed once, for every subresource there can be (the plan's resources are fewer).
+        if (options_.shareTransientsAcrossFrames) frameUses_.resize(index_.cells());
         const size_t accessRoom = schedule.usages + index_.clearResources() + 2 * readbacks_.size() + clobberRoom;
         if (accessRoom >= kNone) throw std::length_error("synchronizer: more usages than access indices");
         accesses_ = std::make_unique_for_overwrite<AccessRecord[]>(accessRoom);
@@ -218,7 +219,6 @@ private:
         if (index_.exported(declIndex)) exported_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         if (index_.external(declIndex)) external_.push_back(static_cast<uint32_t>(planResources().size() - 1));
         cellCount_ += static_cast<uint32_t>(grid.size());
-        if (options_.shareTransientsAcrossFrames) frameUses_.resize(cellCount_);
         return static_cast<uint32_t>(planResources().size() - 1);
     }
 
