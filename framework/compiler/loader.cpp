@@ -40,13 +40,14 @@ constexpr Keys<7> kUsageKeys{"resource", "access", "stage", "as", "mips", "layer
 namespace rootKey {
 constexpr size_t version = keyIndex(kRootKeys, "version"), name = keyIndex(kRootKeys, "name"),
                  features = keyIndex(kRootKeys, "features"), layouts = keyIndex(kRootKeys, "layouts"),
-                 resources = keyIndex(kRootKeys, "resources"), passes = keyIndex(kRootKeys, "passes");
+                 resources = keyIndex(kRootKeys, "resources"), passes = keyIndex(kRootKeys, "passes"),
+                 schema = keyIndex(kRootKeys, "$schema"), description = keyIndex(kRootKeys, "description");
 }
 namespace passKey {
 constexpr size_t name = keyIndex(kPassKeys, "name"), type = keyIndex(kPassKeys, "type"),
                  condition = keyIndex(kPassKeys, "if"), uses = keyIndex(kPassKeys, "uses"),
                  params = keyIndex(kPassKeys, "params"), neverCull = keyIndex(kPassKeys, "never_cull"),
-                 queue = keyIndex(kPassKeys, "queue");
+                 queue = keyIndex(kPassKeys, "queue"), description = keyIndex(kPassKeys, "description");
 }
 namespace usageKey {
 constexpr size_t resource = keyIndex(kUsageKeys, "resource"), access = keyIndex(kUsageKeys, "access"),
@@ -191,6 +192,9 @@ private:
             graph_.name = name.string();
         else
             error("name", "", "", "missing or not a string");
+        for (const size_t k : {rootKey::schema, rootKey::description})
+            if (const JsonValue text = f[k]; text && !text.isString())
+                error(std::string(kRootKeys[k]), "", "", "expected a string, got " + text.dump());
         if (const JsonValue layouts = f[rootKey::layouts]) {
             const auto policy = layouts.isString() ? parseLayoutPolicy(layouts.string()) : std::nullopt;
             if (policy) graph_.layouts = *policy;
@@ -292,6 +296,8 @@ private:
             if (queue) p.queue = *queue;
             else error(path + ".queue", p.name, "", "expected \"graphics\", \"compute\" or \"transfer\", got " + q.dump());
         }
+        if (const JsonValue text = f[passKey::description]; text && !text.isString())
+            error(path + ".description", p.name, "", "expected a string, got " + text.dump());
         if (const JsonValue params = f[passKey::params]) {
             if (!params.isObject()) error(path + ".params", p.name, "", "expected an object");
             else if (params.size() != 0) p.params = PassParams(params.toJson());
@@ -480,9 +486,15 @@ private:
                 if (!it) return true;
                 if (!res->isImage()) return fail(std::string("buffers have no ") + key), false;
                 if (!it.isArray() || it.size() != 2 || !it[0].isUnsigned() || !it[1].isUnsigned() ||
-                    it[1].number<uint64_t>() == 0 || it[0].number<uint64_t>() > kMaxLayers ||
-                    it[1].number<uint64_t>() > kMaxLayers)
+                    it[1].number<uint64_t>() == 0)
                     return fail(std::string("`") + key + "` must be [first, count] with count >= 1"), false;
+                // Past any image's levels or layers: said here, before the numbers are narrowed.
+                if (it[0].number<uint64_t>() > kMaxLayers || it[1].number<uint64_t>() > kMaxLayers)
+                    return fail(std::string("`") + key + "` " + it.dump() + " is past any image's " +
+                                (key == std::string_view("mips")
+                                     ? "mip levels (at most " + std::to_string(std::bit_width(kMaxImageExtent)) + ")"
+                                     : "layers (at most " + std::to_string(kMaxLayers) + ")")),
+                           false;
                 first = it[0].number<uint32_t>();
                 count = it[1].number<uint32_t>();
                 return true;

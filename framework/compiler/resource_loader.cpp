@@ -20,6 +20,7 @@ constexpr size_t type = keyIndex(kResourceKeys, "type"), format = keyIndex(kReso
                  clear = keyIndex(kResourceKeys, "clear"), external = keyIndex(kResourceKeys, "external"),
                  initial = keyIndex(kResourceKeys, "initial"), final = keyIndex(kResourceKeys, "final"),
                  alias = keyIndex(kResourceKeys, "alias"), sharing = keyIndex(kResourceKeys, "sharing"),
+                 description = keyIndex(kResourceKeys, "description"),
                  color = keyIndex(kClearKeys, "color"), depth = keyIndex(kClearKeys, "depth"),
                  stencil = keyIndex(kClearKeys, "stencil");
 }  // namespace key
@@ -134,6 +135,8 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
     const auto f = fieldsOf(clear, kClearKeys);
     fail.file().unknownKeys(clear, f, [&] { return r.jsonPath() + ".clear"; }, kClearKeys, "", r.name);
     if (!r.isImage()) fail("clear", "buffers cannot be cleared by the graph");
+    if (f[key::color] && (f[key::depth] || f[key::stencil]))
+        fail("clear", "expected {\"color\": [r, g, b, a]} or {\"depth\": d, \"stencil\": s}, not both");
     if (const JsonValue color = f[key::color]) {
         bool numbers = color.isArray() && color.size() == 4;
         for (size_t i = 0; numbers && i < 4; ++i) numbers = color[i].isNumber();
@@ -151,7 +154,9 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
                 c.depth = depth.number<float>();
         }
         if (const JsonValue st = f[key::stencil]) {
-            if (!st.isUnsigned() || st.number<uint64_t>() > 255)
+            if (r.format.isDepthStencil() && !r.format.hasStencil)
+                fail("clear.stencil", "format " + std::string(r.format.name) + " has no stencil aspect");
+            else if (!st.isUnsigned() || st.number<uint64_t>() > 255)
                 fail("clear.stencil", "expected an integer in [0, 255]");
             else
                 c.stencil = st.number<uint32_t>();
@@ -195,6 +200,8 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
         if (r.external)
             fail("alias", "an external resource has memory of its own; only transient resources share memory");
     }
+    if (const JsonValue text = f[key::description]; text && !text.isString())
+        fail("description", "expected a string, got " + text.dump());
     if (const JsonValue sharing = f[key::sharing]) {
         const auto mode = sharing.isString() ? parseSharing(sharing.string()) : std::nullopt;
         if (mode) r.sharing = *mode;

@@ -221,6 +221,42 @@ TEST(LoaderErrors, UnknownClearKey) {
     EXPECT_TRUE(hasDiag(ds, "resources.depth.clear.dpeth", "", "depth", {"unknown key 'dpeth'", "depth"}));
 }
 
+TEST(LoaderErrors, ClearWithColorAndDepthTogether) {
+    Json g = baseGraph();
+    g["resources"]["hdr_color"]["clear"] = Json{{"color", {0, 0, 0, 1}}, {"depth", 0.5}};
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.hdr_color.clear", "", "hdr_color", {"not both"}));
+    g = baseGraph();
+    g["resources"]["depth"]["clear"] = Json{{"color", {0, 0, 0, 1}}, {"stencil", 1}};
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.depth.clear", "", "depth", {"not both"}));
+}
+
+TEST(LoaderErrors, StencilClearNeedsAStencilAspect) {
+    Json g = baseGraph();
+    g["resources"]["depth"]["clear"] = Json{{"depth", 0.0}, {"stencil", 3}};
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.depth.clear.stencil", "", "depth",
+                        {"format D32_SFLOAT has no stencil aspect"}));
+    g["resources"]["depth"]["format"] = "D24_UNORM_S8_UINT";
+    expectLoads(g);
+}
+
+TEST(LoaderErrors, DescriptionsAreStrings) {
+    Json g = baseGraph();
+    g["description"] = 5;
+    g["$schema"] = Json::array();
+    g["resources"]["depth"]["description"] = true;
+    g["passes"][1]["description"] = Json{{"text", "x"}};
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "description", "", "", {"expected a string, got 5"}));
+    EXPECT_TRUE(hasDiag(ds, "$schema", "", "", {"expected a string, got []"}));
+    EXPECT_TRUE(hasDiag(ds, "resources.depth.description", "", "depth", {"expected a string, got true"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[1].description", "tonemap", "", {"expected a string"}));
+    g = baseGraph();
+    g["description"] = "a frame";
+    g["resources"]["depth"]["description"] = "";
+    g["passes"][1]["description"] = "tonemaps";
+    expectLoads(g);
+}
+
 TEST(LoaderErrors, UnknownPassKey) {
     Json g = baseGraph();
     g["passes"][1]["paramz"] = Json::object();
@@ -724,7 +760,9 @@ TEST(LoaderErrors, UsageRangesOutOfBounds) {
         {usage("mipped", {0, 0}, nullptr), "mipped", "count >= 1"},
         {usage("mipped", {-1, 1}, nullptr), "mipped", "[first, count]"},
         {usage("mipped", {0}, nullptr), "mipped", "[first, count]"},
-        {usage("mipped", {4294967295u, 1}, nullptr), "mipped", "[first, count]"},
+        {usage("mipped", {4294967295u, 1}, nullptr), "mipped", "[4294967295,1] is past any image's mip levels (at most 15)"},
+        {usage("mipped", {3000, 1}, nullptr), "mipped", "[3000,1] is past any image's mip levels (at most 15)"},
+        {usage("cube", nullptr, {0, 5000}), "cube", "[0,5000] is past any image's layers (at most 2048)"},
         {usage("cube", nullptr, {5, 2}), "cube", "exceed the resource's 6 layers"},
         {usage("cube", nullptr, {6, 1}), "cube", "exceed the resource's 6 layers"},
         {usage("cube", {7, 1}, nullptr), "cube", "7 mip levels"},
