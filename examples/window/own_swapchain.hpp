@@ -16,8 +16,9 @@ namespace window_example {
 
 /// A swapchain for `device.surface()` with images for a plan's Present resource, one acquire
 /// semaphore per frame slot and one render-complete semaphore per image. Owns all of them;
-/// borrows the Device, which must outlive it, and so must every Renderer it was bound to: a
-/// renderer keeps views of the images, so destroy the renderer first. Not copyable.
+/// borrows the Device, which must outlive it. It must itself outlive every Renderer bound to
+/// it (one renderFrame() was given), since such a renderer keeps views of its images:
+/// destroy the renderers first, as main.cpp does. Not copyable.
 class OwnSwapchain {
 public:
     /// Creates it at the surface's size (`width` x `height`, the window's framebuffer size, where

@@ -12,7 +12,7 @@
 namespace skygraph {
 
 namespace detail {
-struct CompiledGraphAccess;  // tests: run a plan they weakened on purpose
+struct CompiledGraphAccess;  // the implementation's own access; not part of the API
 }
 
 /// Owns its graph, options and plan; copies are independent. The references the accessors

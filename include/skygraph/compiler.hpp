@@ -66,7 +66,7 @@ struct CompileOptions {
     /// copy of each heap. Frames run in order on one queue, so each frame's first use of a
     /// byte waits, through the plan's aliasing barriers, for the previous frame's last use of
     /// it (docs/memory.md, "Frames in flight": it halves transient memory with two frames in
-    /// flight at no measured frame time). false: a copy per frame in flight (`--heaps-per-frame`).
+    /// flight). false: a copy per frame in flight (`--heaps-per-frame`).
     bool shareTransientsAcrossFrames = true;
     /// How they are placed when they share (docs/memory.md, "Placement").
     MemoryStrategy placement = MemoryStrategy::BestFitBySize;

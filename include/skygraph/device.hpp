@@ -70,9 +70,12 @@ struct ValidationMessage {
 
 /// Instance, physical device, logical device, a graphics+compute queue (which also presents,
 /// when DeviceOptions::presentation is set) and the compute and transfer queues, and the
-/// surface then. Owns every
-/// handle it creates and destroys them with itself; not copyable or movable (renderers keep a
-/// reference). Must outlive every Renderer made from it and every SharedImage of theirs.
+/// surface then. Owns every handle it creates and destroys them with itself; not copyable or
+/// movable (what is made from it keeps a reference). Must outlive everything made from it,
+/// since each destroys its Vulkan objects with this device: every Renderer, Swapchain and
+/// StagingBuffer, every SharedImage (which may outlive its renderer), and whatever the
+/// application creates with device() (e.g. vk_handles.hpp owners, pipeline_builder.hpp
+/// pipelines).
 /// Validation messages may arrive on any thread: the message accessors are thread-safe,
 /// the rest is for the thread that uses the device.
 class Device {

@@ -38,6 +38,7 @@ enum class GoldenStatus : uint8_t {
     Unreadable,    ///< It exists but could not be read.
     Unwritable,    ///< Writing it failed (`skygraph check --update`); the message says why.
 };
+/// e.g. "matches", "other version"; a view of static storage.
 [[nodiscard]] std::string_view toString(GoldenStatus status) noexcept;
 
 struct GoldenComparison {

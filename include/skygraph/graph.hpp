@@ -28,7 +28,7 @@ enum class ExternalState : uint8_t { None, Present, TransferSrc, ShaderRead, Gen
 /// queue of a family that supports it, and to fewer queues where the device has fewer.
 enum class QueueKind : uint8_t { Graphics, Compute, Transfer };
 inline constexpr size_t kQueueKinds = 3;
-/// "graphics", "compute" or "transfer", as graph files spell them.
+/// "graphics", "compute" or "transfer", as graph files spell them; a view of static storage.
 [[nodiscard]] std::string_view toString(QueueKind queue) noexcept;
 /// Whether a queue of this kind can perform a usage at `stage`: graphics every stage, compute
 /// compute shaders, indirect arguments and copies, transfer copies only.
@@ -54,7 +54,7 @@ enum class Sharing : uint8_t {
     /// VK_SHARING_MODE_CONCURRENT over the families that use it: no ownership transfers.
     Concurrent,
 };
-/// "auto", "exclusive" or "concurrent".
+/// "auto", "exclusive" or "concurrent"; a view of static storage.
 [[nodiscard]] std::string_view toString(Sharing sharing) noexcept;
 [[nodiscard]] std::optional<Sharing> parseSharing(std::string_view s) noexcept;
 
@@ -192,7 +192,7 @@ enum class LayoutPolicy : uint8_t {
     /// when one layout is optimal for all of them, and a layout transition separates runs.
     Optimal,
 };
-/// "fewest-barriers" or "optimal", as graph files spell them.
+/// "fewest-barriers" or "optimal", as graph files spell them; a view of static storage.
 [[nodiscard]] std::string_view toString(LayoutPolicy policy) noexcept;
 /// The inverse of toString; nullopt for an unknown name. `s` is read during the call only.
 [[nodiscard]] std::optional<LayoutPolicy> parseLayoutPolicy(std::string_view s) noexcept;
@@ -214,14 +214,20 @@ struct GraphDesc {
 
     /// Defaults from the file's `features`.
     [[nodiscard]] FeatureValues defaultFeatures() const;
+    /// The resource named `name`, or null; `name` is read during the call only. The pointer
+    /// is into `resources`: valid while this GraphDesc lives, is not assigned to, and
+    /// `resources` is not resized or reordered.
     [[nodiscard]] const ResourceDesc* findResource(std::string_view name) const noexcept;
     /// Slot names that usages fill: SlotId i (from 1) is slotNames[i - 1].
     std::vector<std::string> slotNames;
 
     /// The id of slot name `slot`, added to slotNames if it is new; 0 for an empty name.
+    /// Adding a name invalidates the views slotName() returned before.
     SlotId internSlot(std::string_view slot);
     /// The name slot `id` stands for; "" for 0. Throws std::out_of_range for an id the graph
-    /// did not hand out.
+    /// did not hand out. The view is into slotNames: valid until slotNames changes (an
+    /// internSlot() of a new name, since a growing vector may move its strings' characters)
+    /// or this GraphDesc is destroyed or assigned to. Copy it into a std::string to keep it.
     [[nodiscard]] std::string_view slotName(SlotId id) const {
         return id == 0 ? std::string_view() : std::string_view(slotNames.at(id - 1));
     }

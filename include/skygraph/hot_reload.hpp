@@ -14,10 +14,11 @@ namespace skygraph {
 class Renderer;
 
 /// Hot reload: watches a graph file and a shader directory and, on a change, recompiles and
-/// hands the result to a Renderer. A failed rebuild logs the compiler's message as a warning
-/// and leaves the last good plan and pipelines running. Borrows the renderer (and the
-/// registry), which must outlive it; owns its copies of the paths. Use it on the renderer's
-/// thread: poll() rebuilds the renderer.
+/// hands the result to a Renderer. A failed rebuild logs the compiler's message as a warning;
+/// what keeps running then is poll()'s to say. Borrows the renderer (and the registry), which
+/// must outlive it; owns its copies of the paths. Not copyable: a copy would reload every
+/// change into the same renderer a second time. Use it on the renderer's thread: poll()
+/// rebuilds the renderer.
 class HotReloader {
 public:
     enum class Result : uint8_t { Unchanged, Reloaded, Failed };
@@ -32,13 +33,22 @@ public:
     /// the renderer's current graph was compiled with (Renderer::compiled()).
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
                 const PassRegistry* registry = nullptr);
+    HotReloader(const HotReloader&) = delete;
+    HotReloader& operator=(const HotReloader&) = delete;
 
     /// Checks the watched files (by content: it reads them all on every call) and reloads what
     /// changed: a changed graph is recompiled and handed to Renderer::setGraph(), a change to
-    /// the shaders goes to Renderer::reloadShaders() (after setGraph when both changed). Either
-    /// rebuilds the renderer's plan
-    /// state, so references from its compiled(), plan() and graph() are invalid after a
-    /// Reloaded. A failed reload does not throw: it returns Failed and sets lastError().
+    /// the shaders goes to Renderer::reloadShaders() (after setGraph when both changed).
+    /// Reloaded: the renderer's plan state was rebuilt, so references from its compiled(),
+    /// plan() and graph() are invalid. A failed reload does not throw: it returns Failed and
+    /// sets lastError(), and the change counts as seen (the next poll() reloads only after
+    /// another edit). What runs after a Failed:
+    /// - nothing was rebuilt (the graph file is gone or did not load or compile, setGraph()
+    ///   threw, or reloadShaders() threw on a change to the shaders alone): the previous plan
+    ///   and pipelines run, and references from the renderer stay valid;
+    /// - both changed, setGraph() succeeded and reloadShaders() threw: the new graph runs, its
+    ///   pipelines possibly built from shaders compiled before the edit, and references from
+    ///   compiled(), plan() and graph() are invalid, as after a Reloaded.
     Result poll();
     /// The message of the last failed reload; empty after a success. The reference is valid
     /// until the next poll().

@@ -1,7 +1,7 @@
 // KTX 2.0 output (Khronos Texture Container, https://registry.khronos.org/KTX/specs/2.0/):
-// float textures with mip levels, 2D or cube, uncompressed, no supercompression. Debian ships
-// no KTX2 library (libktx is not packaged), so this is a small writer of the subset the
-// environment pipeline needs; tests check its files with an independent reader (ktx-parse).
+// float textures with mip levels, 2D or cube, uncompressed, no supercompression: the subset
+// the environment pipeline writes, with no KTX library to link. The files are standard
+// KTX 2.0.
 #pragma once
 
 #include <skygraph/hdr_image.hpp>

@@ -161,7 +161,7 @@ private:
     std::vector<uint32_t> aliasStorage_;  // every placement's aliases, one after another
 };
 
-/// "bestFitBySize", "firstUseOrder", "unaliased".
+/// "bestFitBySize", "firstUseOrder", "unaliased"; static storage, never null.
 [[nodiscard]] const char* toString(MemoryStrategy s) noexcept;
 
 }  // namespace skygraph

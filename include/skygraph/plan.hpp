@@ -195,8 +195,8 @@ struct CulledPass {
 };
 
 namespace detail {
-struct PlanBuilder;  // the compiler's way of writing a plan
-struct PlanEditor;   // tests: weaken a plan on purpose
+struct PlanBuilder;  // the implementation's own access; not part of the API
+struct PlanEditor;   // the implementation's own access; not part of the API
 }
 
 /// A compiled plan: read-only, see the top of this file for what its views point to and how

@@ -73,12 +73,18 @@ struct PassTiming {
 /// a plan places its transient resources in shared heaps by their memory requirements: a
 /// CompiledGraph compiled with other CompileOptions::memory (e.g. none, the estimate) is
 /// compiled again with the device's, and compiled() reports that one, the plan that runs.
-/// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt by
-/// setGraph(), resize() and reloadShaders() when they succeed: references
-/// returned by compiled(), graph() and plan() are invalid afterwards, and images shared before
-/// are no longer written by this renderer. A failed call keeps the old state. Names passed in
-/// are read during the call only. Use from one thread at a time; renderers on one Device share
-/// its queue, which Vulkan lets one thread use at a time, so use them all from one thread.
+/// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt, when
+/// they succeed, by exactly these calls: setGraph(), resize(), reloadShaders(),
+/// setPresentImages() (every call, even with images of an unchanged extent), and
+/// renderFrame(Swapchain&) whenever it binds the swapchain's images: its first frame into a
+/// swapchain the renderer is not already bound to (RendererOptions::presentTo), and its first
+/// frame after the swapchain was re-created (out of date, suboptimal, Swapchain::resize).
+/// HotReloader::poll() calls setGraph() and reloadShaders(). After a rebuild, references
+/// returned by compiled(), graph(), plan() and setupPlan() are invalid, and images shared
+/// before are no longer written by this renderer. A failed call keeps the old state. Names
+/// passed in are read during the call only. Use from one thread at a time; renderers on one
+/// Device share its queue, which Vulkan lets one thread use at a time, so use them all from
+/// one thread.
 class Renderer {
 public:
     /// Takes `compiled` (compiled again with the device's memory model unless it was: see the
@@ -87,9 +93,9 @@ public:
     /// framesInFlight outside 1..8, a pass type without recording code, a format the device
     /// cannot use as the plan requires, a pass's createPipelines failing).
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
-    /// Waits for its frames to finish (for the whole device once it has recorded into command
-    /// buffers of the application's), then destroys what the renderer owns; images shared
-    /// with other renderers live on while they use them.
+    /// Waits for this renderer's own frames to finish, not for other renderers' (a background
+    /// bake may go on running), then destroys what the renderer owns; images shared with
+    /// other renderers live on while they use them.
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -105,14 +111,19 @@ public:
     /// image's render-complete semaphore, and presents. The plan's Present resource is the
     /// acquired image (no copy of it is made). When the swapchain is out of date, suboptimal or
     /// resized (Swapchain::resize), it is re-created first and the plan recompiled at its new
-    /// extent (as resize() does). Returns Paused, rendering nothing, while the window is 0x0.
+    /// extent (as resize() does). Binding the swapchain's images (the first frame into it,
+    /// unless RendererOptions::presentTo bound them, and the first after each re-creation)
+    /// rebuilds the plan state, which invalidates references from compiled(), graph() and
+    /// plan(). Returns Paused, rendering nothing, while the window is 0x0.
     /// The swapchain must outlive this renderer's use of it. Throws ExecutorError (e.g. the
     /// plan does not compile at the new size: the old plan stays, and the next call tries again).
     PresentStatus renderFrame(Swapchain& swapchain);
     /// Presenting into images of the application's own (e.g. its own VkSwapchainKHR's): they
-    /// become the plan's Present resource, and the plan state is rebuilt, compiled again at
-    /// their extent if it differs. Their format must be the Present resource's and their usage
-    /// must include presentRequirements(compiled()).usage. Call it again after re-creating them.
+    /// become the plan's Present resource, and the plan state is rebuilt on every call,
+    /// compiled again at their extent if it differs (references from compiled(), graph() and
+    /// plan() are invalid afterwards). Their format must be the Present resource's and their
+    /// usage must include presentRequirements(compiled()).usage. Call it again after
+    /// re-creating them.
     /// The images are borrowed: keep them alive while this renderer renders into them. Waits
     /// for every submitted frame first; once it returns, the renderer holds no view of the
     /// images given before, which may then be destroyed (their presents done). Throws
@@ -160,13 +171,16 @@ public:
     /// its mip chain; the caller owns the copies. The steps and their barriers are the plan of
     /// planImageRead. The image is left in its end-of-frame layout (the plan's final layout).
     /// Throws ExecutorError for an unknown name, a buffer, an image no frame has written, a
-    /// transient whose memory another resource takes over later in the frame, or when no
-    /// frame has been rendered since the plan state was built or setExternalImage().
+    /// transient whose memory another resource takes over later in the frame, the presented
+    /// image (the Present resource of a presenting renderer: the presentation engine owns it
+    /// after the frame), or when no frame has been rendered since the plan state was built or
+    /// setExternalImage().
     [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
     /// Compiles the graph again at a new output extent (CompiledGraph::resized, with the running
-    /// options and so the device's memory model) and rebuilds the plan state. Throws ExecutorError when the graph does not compile at that size or
-    /// the device cannot hold it; the old plan keeps running then. A presenting renderer
-    /// follows its images' extent instead (a size other than theirs throws).
+    /// options and so the device's memory model) and rebuilds the plan state. Throws
+    /// ExecutorError when the graph does not compile at that size or the device cannot hold
+    /// it; the old plan keeps running then. A presenting renderer follows its images' extent
+    /// instead (a size other than theirs throws).
     void resize(uint32_t width, uint32_t height);
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
     /// frame has finished; compiled again with the device's memory model unless it was (the
@@ -178,9 +192,11 @@ public:
     void reloadShaders();
     /// Imports a loaded texture: `pixels` (float RGBA, as stored; the renderer keeps them)
     /// become the contents of mip 0 (every layer) of the external image `resource`, by an Upload
-    /// step of the plan's setup, now and whenever the plan is re-installed. Waits for the GPU,
-    /// then runs the whole setup again, so every external resource it covers gets its first
-    /// contents back. Throws ExecutorError for a wrong name, size or format.
+    /// step of the plan's setup, now and whenever the plan is re-installed. Waits for this
+    /// renderer's own frames, not for other renderers' (one that reads an image this renderer
+    /// shares must have finished before: the caller orders that), then runs the whole setup
+    /// again and waits for it, so every external resource it covers gets its first contents
+    /// back. Throws ExecutorError for a wrong name, size or format.
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// New pixels for external image `resource`, which setExternalImage() gave pixels before:
     /// one Upload step of the setup and its barriers, every other resource left as it is (so
@@ -210,7 +226,9 @@ public:
     /// frames that write it have finished (waitIdle()), in the layout of its `final` state.
     /// The handle keeps the image alive after this renderer rebuilds or is destroyed, but only
     /// the current plan state's image is written: share again after a rebuild. Throws
-    /// ExecutorError for a resource that is not an exported external image of the current plan.
+    /// ExecutorError for a resource that is not an exported external image of the current
+    /// plan, and while a background frame (renderFrameInBackground()) has not been finished:
+    /// call finishBackgroundFrame() until it returns true, then share.
     [[nodiscard]] SharedImage shareImage(const std::string& resource) const;
     /// Makes the external image `resource` use `image` instead of the one it uses now, from
     /// the next frame on and whenever the plan is re-installed, and keeps a share of it. The
@@ -227,10 +245,12 @@ public:
     /// rebuilds included.
     [[nodiscard]] FrameData& frameData() noexcept;
     /// What runs: the graph, its compile options and the plan, always compiled with the
-    /// device's memory model (so it may be a recompile of what was given). Valid until the plan
-    /// state is rebuilt (see the class comment).
+    /// device's memory model (so it may be a recompile of what was given). Owned by the
+    /// renderer; valid until the plan state is rebuilt (the class comment lists the calls that
+    /// rebuild it). Copy it to keep it longer.
     [[nodiscard]] const CompiledGraph& compiled() const noexcept;
-    /// compiled().graph(): the graph the current plan was compiled from.
+    /// compiled().graph(): the graph the current plan was compiled from. Owned by the renderer;
+    /// valid until the plan state is rebuilt, as compiled() is.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
     /// before the first frame of the current plan state. Passes on a queue whose family has no
@@ -242,11 +262,12 @@ public:
     /// readback) or rebuilds.
     [[nodiscard]] const std::vector<PassTiming>& completedTimings() const noexcept;
 
-    /// compiled().plan(): the current plan. Valid until the plan state is rebuilt.
+    /// compiled().plan(): the current plan. Owned by the renderer; valid until the plan state
+    /// is rebuilt (the class comment lists the calls that rebuild it). A copy stands alone.
     [[nodiscard]] const Plan& plan() const noexcept;
     /// The setup that ran before the current plan's first frame (planSetup of plan(), with
-    /// this renderer's uploads and imports). Valid until the plan state is rebuilt or
-    /// setExternalImage() runs it again.
+    /// this renderer's uploads and imports). Owned by the renderer; valid until the plan state
+    /// is rebuilt or setExternalImage() runs it again.
     [[nodiscard]] const Plan& setupPlan() const noexcept;
     /// Frames submitted since construction, rebuilds included.
     [[nodiscard]] uint64_t frameCount() const noexcept;
@@ -254,7 +275,7 @@ public:
     struct Impl;
 
 private:
-    friend struct RendererAccess;  // the executor's own sources (framework/executor)
+    friend struct RendererAccess;  // the implementation's own access; not part of the API
     std::unique_ptr<Impl> impl_;
 };
 

@@ -1,7 +1,8 @@
 // The plan verifier: an independent check that a compiled Plan is free of data races, layout
 // errors and memory-aliasing errors under the Vulkan 1.3 memory model, from the plan alone,
-// with no device. It shares no code with the compiler's synchronizer and reads only the public
-// headers, so it can check plans a compiler bug produced, or plans edited by hand.
+// with no device. It is independent of the compiler: it derives every dependency from the
+// plan itself instead of trusting how the plan was made, so it also catches plans a compiler
+// bug produced, and checks plans edited by hand.
 // docs/verifier.md says what it models and which checks are known to fail when they should.
 #pragma once
 
@@ -41,6 +42,7 @@ enum class FindingKind : uint8_t {
     /// one semaphore that do not grow.
     Semaphore,
 };
+/// The enumerator's name, e.g. "NotVisible"; a view of static storage.
 [[nodiscard]] std::string_view toString(FindingKind kind) noexcept;
 
 /// One side of a finding: an access, a barrier or an agent outside the frame.

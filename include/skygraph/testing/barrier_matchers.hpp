@@ -3,9 +3,10 @@
 //
 //     using namespace skygraph::testing;
 //     EXPECT_THAT(barriersBefore(plan, "tonemap"),
-//                 Contains(barrier("hdr_color").readAfterWrite()
-//                              .from(Stage::ColorAttachment).to(Stage::Fragment)
-//                              .into(VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)));
+//                 ::testing::Contains(barrier("hdr_color").readAfterWrite()
+//                                         .from(skygraph::Stage::ColorAttachment)
+//                                         .to(skygraph::Stage::Fragment)
+//                                         .into(VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL)));
 #pragma once
 
 #include <skygraph/plan.hpp>
@@ -30,7 +31,8 @@ struct NamedBarrier {
 void PrintTo(const NamedBarrier& b, std::ostream* os);
 
 /// The barriers recorded before plan step `pass` (a pass's name, or an inserted step's such as
-/// "clear_hdr_color"). Throws std::out_of_range naming the pass and the steps there are.
+/// "clear hdr_color", as plan text prints it). Throws std::out_of_range naming the pass and the
+/// steps there are.
 [[nodiscard]] std::vector<NamedBarrier> barriersBefore(const Plan& plan, std::string_view pass);
 /// The barriers after the last step (Plan::finalBarriers()).
 [[nodiscard]] std::vector<NamedBarrier> finalBarriers(const Plan& plan);
