@@ -30,11 +30,15 @@ run() {  # NAME CORPUS SEED_DIR... [-- LIBFUZZER_FLAGS...]
     local name=$1 corpus=$2
     shift 2
     mkdir -p "$corpus"
+    # Not under errexit: a failing fuzzer must reach the report below, not end the script.
+    set +e
     ASAN_OPTIONS="detect_leaks=1:abort_on_error=0" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     "$BUILD/tests/fuzz/$name" "$corpus" "$@" -max_total_time="$SECONDS_BOX" -timeout=2 -rss_limit_mb=1024 \
       -malloc_limit_mb=512 -artifact_prefix="$BUILD/" -print_final_stats=1 \
       2>&1 | tee "$BUILD/$name.log" | grep -E "^#|ERROR|SUMMARY|crash|leak|timeout|Done" | tail -40
-    if [ "${PIPESTATUS[0]}" -ne 0 ]; then
+    local fuzzer_status=${PIPESTATUS[0]}
+    set -e
+    if [ "$fuzzer_status" -ne 0 ]; then
         status=1
         # The whole report and the input, so that a failure on a CI machine can be replayed here.
         sed -n '/^==[0-9]*== \?ERROR\|runtime error\|exception escaped\|GraphError without/,/^SUMMARY/p' "$BUILD/$name.log" | head -80

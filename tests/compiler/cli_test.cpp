@@ -517,8 +517,8 @@ TEST_F(Cli, RenderDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
         << withBar.err;
     EXPECT_NE(withBar.err.find("info: wrote "), std::string::npos) << withBar.err;
 
-    const CliRun quiet = run({"render", "--width", "16", "--height", "16", "--frames", "2", "-q", "-o",
-                              out.string()});
+    const CliRun quiet = run({"render", "--width", "16", "--height", "16", "--frames", "2", "-q", "--validate",
+                              "-o", out.string()});
     ASSERT_EQ(quiet.status, 0) << quiet.err;
     // No bar (stderr is not a terminal) and no info lines (-q); lavapipe's own warning may remain.
     EXPECT_EQ(quiet.err.find("render ["), std::string::npos) << quiet.err;

@@ -103,7 +103,8 @@ nlohmann::ordered_json frameAndSetup(const GraphDesc& g, const Plan& frame, cons
 
 void expectGolden(const fs::path& golden, const nlohmann::ordered_json& plan) {
     const std::string actual = plan.dump(2) + "\n";
-    if (std::getenv("SKYGRAPH_UPDATE_GOLDEN")) std::ofstream(golden, std::ios::binary) << actual;
+    if (const char* update = std::getenv("SKYGRAPH_UPDATE_GOLDEN"); update && std::string_view(update) == "1")
+        std::ofstream(golden, std::ios::binary) << actual;
     ASSERT_TRUE(fs::exists(golden)) << "no golden plan " << golden;
     const std::string expected = readFile(golden);
     EXPECT_EQ(expected, actual) << "plan differs from " << golden << ":\n" << diff(expected, actual);

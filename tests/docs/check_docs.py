@@ -266,6 +266,10 @@ def main():
         return 2
     root = os.path.abspath(sys.argv[1])
     count, problems = check(root)
+    # A wrong root reads nothing and finds nothing: the tree's own docs must be among the files.
+    if not os.path.isfile(os.path.join(root, "docs", "graph-format.md")) or count < 20:
+        print(f"check_docs: {root} is not the skygraph tree ({count} files read)")
+        return 1
     for p in problems:
         print(p)
     print(f"check_docs: {count} files, {len(problems)} problem(s)")

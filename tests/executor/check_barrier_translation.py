@@ -25,12 +25,14 @@ DIRS = ["framework", "passes", "tools", "examples", "include"]
 SUFFIXES = {".cpp", ".hpp", ".h", ".cc", ".inl"}
 
 
-def findings(root: Path):
+def findings(root: Path, scanned=None):
     out = []
     for d in DIRS:
         for path in sorted((root / d).rglob("*")):
             if path.suffix not in SUFFIXES or not path.is_file():
                 continue
+            if scanned is not None:
+                scanned.append(path)
             rel = path.relative_to(root).as_posix()
             if rel in ALLOWED:
                 continue
@@ -64,10 +66,20 @@ def self_test():
 def main():
     if sys.argv[1:] == ["--self-test"]:
         return self_test()
-    found = findings(Path(sys.argv[1]))
+    root = Path(sys.argv[1])
+    # A wrong root would scan nothing and find nothing: the translation place must be there.
+    missing = [a for a in sorted(ALLOWED) if not (root / a).is_file()]
+    if missing:
+        print("not a skygraph tree, or the translation place moved:", ", ".join(missing), "missing under", root)
+        return 1
+    scanned = []
+    found = findings(root, scanned)
+    if len(scanned) < 100:
+        print(f"only {len(scanned)} source file(s) under {root}: not the whole tree")
+        return 1
     for f in found:
         print(f)
-    print(f"{len(found)} barrier(s) written outside the translation place")
+    print(f"{len(found)} barrier(s) written outside the translation place ({len(scanned)} files scanned)")
     return 1 if found else 0
 
 

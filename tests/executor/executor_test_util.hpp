@@ -16,8 +16,12 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace skygraph::test {
+
+inline std::string formatMessages(const Device& d);
+inline std::string unexplainedPerformanceWarnings(const Device& d);
 
 /// Owns the device every test shares, and destroys it before static destruction (tearing
 /// down a Vulkan device from a static destructor hangs some drivers at exit).
@@ -27,7 +31,14 @@ public:
         static std::unique_ptr<Device> device;
         return device;
     }
-    void TearDown() override { slot().reset(); }
+    /// Messages no test checked (work after the last test that did) fail the binary.
+    void TearDown() override {
+        if (slot()) {
+            EXPECT_EQ(slot()->messageCount(), 0u) << "messages no test checked:\n" << formatMessages(*slot());
+            EXPECT_EQ(unexplainedPerformanceWarnings(*slot()), "") << "performance warnings no test checked";
+        }
+        slot().reset();
+    }
 };
 
 /// The device every test shares: validation + synchronization validation (QUEUE_SUBMIT
@@ -49,6 +60,23 @@ inline Device& sharedDevice() {
 inline std::string formatMessages(const Device& d) {
     std::string s;
     for (const auto& m : d.messages()) s += "  [" + m.idName + "] " + m.message.substr(0, 600) + "\n";
+    return s;
+}
+
+/// The performance warnings on `d` that no layouts policy explains, formatted; empty when
+/// every one is the layer's advice for a copy that reads in GENERAL, which plans do by
+/// design: a run of reads that mixes a copy with other readers keeps one layout under
+/// `fewest-barriers`, and a ReadWrite transfer is GENERAL under either policy
+/// (docs/barriers.md, rules 4 and 13). Any other performance warning fails a test, and so do
+/// warnings past those the device keeps.
+inline std::string unexplainedPerformanceWarnings(const Device& d) {
+    std::string s;
+    const std::vector<ValidationMessage> kept = d.performanceWarnings();
+    for (const ValidationMessage& m : kept)
+        if (m.message.find("should be VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL instead of GENERAL") == std::string::npos)
+            s += "  [" + m.idName + "] " + m.message.substr(0, 600) + "\n";
+    if (d.performanceWarningCount() > kept.size())
+        s += "  " + std::to_string(d.performanceWarningCount() - kept.size()) + " more, not kept\n";
     return s;
 }
 
@@ -77,10 +105,20 @@ inline CompiledGraph compileText(const std::string& json, FeatureValues features
 /// Every test fixture starts with a clean message count and fails on any message.
 class ExecutorTest : public ::testing::Test {
 protected:
-    void SetUp() override { sharedDevice().clearMessages(); }
+    void SetUp() override {
+        // Work outside any test's own check (a suite's SetUpTestSuite, or a plain TEST on the
+        // shared device) answers for its messages here, in the next test that checks.
+        EXPECT_EQ(sharedDevice().messageCount(), 0u)
+            << "messages from work before this test (a suite's setup, or a test that checks none):\n"
+            << formatMessages(sharedDevice());
+        EXPECT_EQ(unexplainedPerformanceWarnings(sharedDevice()), "")
+            << "performance warnings from work before this test";
+        sharedDevice().clearMessages();
+    }
     void TearDown() override {
         if (expectClean_) {
             EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+            EXPECT_EQ(unexplainedPerformanceWarnings(sharedDevice()), "");
         }
         sharedDevice().clearMessages();
     }

@@ -145,11 +145,13 @@ TEST(MemoryModelLifetime, AfterTheDeviceIsDestroyedItThrows) {
     const char* name = std::getenv("SKYGRAPH_TEST_DEVICE");
     o.device = name ? name : "llvmpipe";
     o.logMessages = false;
+    o.validation = true;
     auto device = Device::create(o);
     const std::shared_ptr<const MemoryModel> model = device->memoryModel();
     const ResourceDesc color = image(ResourceType::Image2D, "R8G8B8A8_UNORM");
     const MemoryRequirements before = model->requirements(query(color, 16, 16, 1, 0));
     EXPECT_GT(before.size, 0u);
+    EXPECT_EQ(device->messageCount(), 0u) << "the validation layer reported the model's questions";
     const std::string deviceName = device->name();
     device.reset();
     EXPECT_EQ(model->name(), deviceName) << "still named, for messages";

@@ -9,6 +9,8 @@
 
 #include <skygraph/scene.hpp>
 
+#include <gtest/gtest-spi.h>
+
 #include <algorithm>
 
 namespace skygraph::test {
@@ -295,6 +297,51 @@ TEST_F(NegativeControl, UnscopedBarrierInAModelTexturesMipChainIsCaught) {
     run(true);
     EXPECT_TRUE(sharedDevice().hasMessage("SYNC-HAZARD-WRITE-AFTER-WRITE"))
         << "expected the transition to race the blit that wrote mip 1; got:\n" << formatMessages(sharedDevice());
+}
+
+
+/// Renders attachmentThenSampled() without the barrier before "sample": messages that no
+/// test's own check sees, as a suite's SetUpTestSuite or a plain TEST would leave them.
+void leaveAHazardBehind() {
+    const CompiledGraph c = attachmentThenSampled();
+    Plan broken = c.plan();
+    dropBarrier(broken, "sample", "tex");
+    Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(c, broken), genericOptions());
+    for (int i = 0; i < 2; ++i) r.renderFrame();
+    r.waitIdle();
+}
+
+/// The fixture's own check can fail: messages left by work outside any test's check fail the
+/// next test's SetUp, and are cleared for it.
+TEST(ExecutorTestFixture, MessagesLeftBeforeATestFailItsSetUp) {
+    leaveAHazardBehind();
+    ASSERT_GT(sharedDevice().messageCount(), 0u) << "the dropped barrier must be reported";
+    struct NextTest : ExecutorTest {
+        void TestBody() override {}
+        void setUp() { SetUp(); }
+    };
+    EXPECT_NONFATAL_FAILURE(NextTest().setUp(), "messages from work before this test");
+    EXPECT_EQ(sharedDevice().messageCount(), 0u);
+}
+
+/// Only the layer's advice for a copy that reads in GENERAL is explained by the layouts
+/// policies; the explanation is checked against the device's real warning text.
+TEST_F(ExecutorTest, ACopyReadingInGeneralIsTheOnlyExplainedPerformanceWarning) {
+    // A copy and a sampler read one image with no write between: under fewest-barriers the
+    // run stays in GENERAL, and the layer advises TRANSFER_SRC_OPTIMAL for the copy.
+    const CompiledGraph c = compileText(graph(
+        R"("img":  { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" },
+           "copy": { "type": "buffer", "size": 4096 })",
+        R"({ "name": "produce", "type": "Generic", "uses": { "img": "Write@Compute" } },
+           { "name": "copy_out", "type": "Generic", "never_cull": true, "uses": { "img": "Read@Transfer", "copy": "Write@Transfer" } },
+           { "name": "sample", "type": "Generic", "uses": { "img": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    {
+        Renderer r(sharedDevice(), c, genericOptions());
+        r.renderFrame();
+        r.waitIdle();
+    }
+    ASSERT_GT(sharedDevice().performanceWarningCount(), 0u) << "the layer no longer advises on a copy in GENERAL";
+    EXPECT_EQ(unexplainedPerformanceWarnings(sharedDevice()), "");
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace skygraph::test {
 namespace {
@@ -72,7 +73,8 @@ TEST_P(ReferenceImages, MatchTheReviewedFrame) {
     ASSERT_EQ(app::renderCommand(o), 0) << "render failed or validation reported messages";
 
     const fs::path reference = kSource / "tests/passes/reference" / ((c.reference.empty() ? c.name : c.reference) + ".png");
-    if (std::getenv("SKYGRAPH_UPDATE_REFERENCE")) fs::copy_file(o.output, reference, fs::copy_options::overwrite_existing);
+    if (const char* update = std::getenv("SKYGRAPH_UPDATE_REFERENCE"); update && std::string_view(update) == "1")
+        fs::copy_file(o.output, reference, fs::copy_options::overwrite_existing);
     const RgbaImage want = readPng(reference), got = readPng(o.output);
     ASSERT_GT(want.width, 0) << "no reference image " << reference;
     ASSERT_EQ(got.width, want.width);

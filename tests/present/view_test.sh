@@ -24,6 +24,8 @@
 #   no_display   without an X server: exit 1 and one line that suggests `skygraph render`
 set -euo pipefail
 case_name="$1" skygraph="$2" root="$3" work="$4"
+# Nothing from an earlier run may stand in for this one's captures and comparisons.
+rm -rf "$work"
 mkdir -p "$work"
 cd "$work"
 
@@ -217,7 +219,7 @@ case "$case_name" in
     pixels | compute_pixels)
         features=()
         [ "$case_name" = pixels ] || features=(--feature compute_tonemap=on)
-        "$skygraph" render "${features[@]}" --width 256 --height 256 -o render.png >render.log 2>&1 ||
+        "$skygraph" render --validate "${features[@]}" --width 256 --height 256 -o render.png >render.log 2>&1 ||
             fail "skygraph render failed"
         convert render.png -alpha off -depth 8 rgb:render.rgb
         view --validate --no-ui "${features[@]}" --width 256 --height 256
@@ -225,6 +227,7 @@ case "$case_name" in
         # Frames before the first present show nothing yet: retry until one is on screen.
         matched=""
         for _ in $(seq 120); do
+            rm -f view.rgb
             xwd -silent -id "$w" | convert xwd:- -alpha off -depth 8 rgb:view.rgb 2>/dev/null || true
             if python3 - <<'EOF'
 import sys
@@ -244,16 +247,18 @@ EOF
         expect_clean_end "$pid" ""
         ;;
     ui_pixels)
-        "$skygraph" render --width 640 --height 480 -o render.png >render.log 2>&1 || fail "skygraph render failed"
+        "$skygraph" render --validate --width 640 --height 480 -o render.png >render.log 2>&1 || fail "skygraph render failed"
         convert render.png -alpha off -depth 8 rgb:render.rgb
         view --validate --width 640 --height 480
         w="$(window_of)"
         wait_for_log "overlay: window at"
         matched=""
         for _ in $(seq 120); do
+            rm -f view.rgb compare.txt
             capture "$w" view.rgb || true
             # shellcheck disable=SC2046
             python3 compare.py render.rgb view.rgb 640 $(overlay_rect) || true
+            outside="" inside=""
             read -r outside inside <compare.txt || true
             if [ "${outside:-99}" -le 1 ] && python3 -c "import sys; sys.exit(0 if ${inside:-0} > 0.5 else 1)"; then
                 matched=1
