@@ -1,7 +1,8 @@
-// What the loader's parts share: the graph file format's limits, where each problem found in
+// What the loader's parts share: the graph file format's limits (graph_limits.hpp), where each problem found in
 // a file goes, and the check for keys that an entry of the file does not have.
 #pragma once
 
+#include "graph_limits.hpp"
 #include "json_document.hpp"
 
 #include <skygraph/diagnostics.hpp>
@@ -14,13 +15,6 @@
 #include <vector>
 
 namespace skygraph {
-
-/// The largest image extent a file may give (the common maxImageDimension2D; devices may allow
-/// less); extents, mip counts and mip ranges are bounded by it.
-inline constexpr uint32_t kMaxImageExtent = 16384;
-inline constexpr uint32_t kMaxLayers = 2048;
-inline constexpr uint32_t kMaxDivisor = 4096;  ///< Of "output/N".
-inline constexpr uint64_t kMaxBufferBytes = 1ull << 31;
 
 /// The keys an entry of the file may have, in the order messages list them.
 template <size_t N>

@@ -5,6 +5,7 @@
 // no source. Shared by validation.cpp, scheduler.cpp and synchronizer.cpp.
 #pragma once
 
+#include "graph_limits.hpp"
 #include "subresources.hpp"
 #include "vulkan_state.hpp"
 
@@ -182,6 +183,9 @@ private:
         heldAtStart.reserve(graph_.resources.size() * 9 / 8);  // most resources have one subresource
         liveAtEnd_.reserve(graph_.resources.size() * 9 / 8);
         for (const auto& r : graph_.resources) {
+            // The loader keeps these; a GraphDesc built in code may not (a divisor of 0 would
+            // divide by zero resolving the extent).
+            if (!withinLimits(r)) throw GraphError(limitProblems(graph_));
             const SubresourceGrid grid(r, outputWidth, outputHeight);
             const size_t cells = grid.size();
             // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can

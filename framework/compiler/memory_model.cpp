@@ -5,6 +5,7 @@
 #include <skygraph/memory.hpp>
 
 #include <algorithm>
+#include <functional>
 
 namespace skygraph {
 namespace {
@@ -59,9 +60,16 @@ MemoryLayout::MemoryLayout(const MemoryLayout& other)
     : heaps(other.heaps), placements(other.placements), strategy(other.strategy), model(other.model),
       granularity(other.granularity), unaliasedBytes(other.unaliasedBytes), peakLiveBytes(other.peakLiveBytes),
       sharedAcrossFrames(other.sharedAcrossFrames), aliasStorage_(other.aliasStorage_) {
+    // Only views into `other`'s storage move to the copy's; a caller may have pointed a
+    // placement at storage of its own, which the copy views as the original does. std::less
+    // orders pointers into unrelated arrays too, where < would be undefined.
+    const std::less<const uint32_t*> before;
+    const uint32_t* begin = other.aliasStorage_.data();
+    const uint32_t* end = begin + other.aliasStorage_.size();
     const auto rebased = [&](std::span<const uint32_t> v) -> std::span<const uint32_t> {
         if (v.empty()) return {};
-        return {aliasStorage_.data() + (v.data() - other.aliasStorage_.data()), v.size()};
+        if (before(v.data(), begin) || !before(v.data(), end)) return v;
+        return {aliasStorage_.data() + (v.data() - begin), v.size()};
     };
     for (MemoryPlacement& p : placements) {
         p.aliases = rebased(p.aliases);

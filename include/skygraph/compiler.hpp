@@ -94,7 +94,8 @@ struct CompileOptions {
 /// feature values (a read whose only writer is switched off, an unknown feature override) or
 /// on the output size (a mip range past the resolved chain, a read of levels of an
 /// output-sized "full" chain that no pass writes), and for what only a GraphDesc
-/// built in code can hold: a usage naming a resource index past `resources`, an empty range,
+/// built in code can hold: a resource past the format's limits (an extent, layer or mip count
+/// or buffer size the loader refuses), a usage naming a resource index past `resources`, an empty range,
 /// or more subresources than 32-bit indices can number; and when `options.memory` answers
 /// what cannot be placed (no memory type, a zero size, an alignment or granularity that is not
 /// a power of two). What the model itself throws passes through. Every error names what it can of the

@@ -65,7 +65,9 @@ struct Extent {
     uint32_t width = 0;    ///< For fixed extents.
     uint32_t height = 0;
 
-    /// Width and height for a given output size; never below 1.
+    /// Width and height for a given output size; never below 1 for an extent within the
+    /// format's limits (a divisor 1..4096, a fixed size 1..16384 each way), which the loader
+    /// and compile() enforce. A divisor of 0 is not one: do not resolve it.
     [[nodiscard]] std::array<uint32_t, 2> resolve(uint32_t outputWidth, uint32_t outputHeight) const noexcept {
         if (!relativeToOutput) return {width, height};
         return {std::max(1u, outputWidth / divisor), std::max(1u, outputHeight / divisor)};

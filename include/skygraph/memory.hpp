@@ -121,7 +121,8 @@ struct MemoryLayoutBuilder;  // the compiler's way of writing a layout
 }
 
 /// The plan's transient memory: heaps and placements, and the figures to judge them by.
-/// Copies are deep: a copy's placements view its own alias storage.
+/// Copies are deep: a copy's placements view its own copy of the alias storage the compiler
+/// wrote (a placement pointed at storage of the caller's keeps viewing that).
 struct MemoryLayout {
     MemoryLayout() = default;
     MemoryLayout(const MemoryLayout& other);

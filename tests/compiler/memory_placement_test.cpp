@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <memory>
 #include <random>
 #include <set>
 #include <vector>
@@ -42,6 +43,21 @@ TEST(MemoryPlacement, DisjointLifetimesShareAndTheLaterTakesOverFromTheEarlier) 
         EXPECT_TRUE(m.placements[0].aliases.empty());
         EXPECT_EQ(ids(m.placements[1].aliases), std::vector<uint32_t>{0});
     }
+}
+
+// A copy views its own alias storage, not the original's (which may be gone), except where a
+// caller pointed a placement at storage of its own: that stays as it was.
+TEST(MemoryPlacement, ACopyViewsItsOwnAliasStorage) {
+    const std::vector<TransientResource> in = {image(0, 0, 1, 1024), image(1, 2, 3, 1024)};
+    auto original = std::make_unique<MemoryLayout>(placeTransients(in, 4, 1024, MemoryStrategy::BestFitBySize, true));
+    const std::vector<uint32_t> callers{7};
+    original->placements[0].aliases = callers;
+    const MemoryLayout copy = *original;
+    EXPECT_NE(copy.placements[1].aliases.data(), original->placements[1].aliases.data());
+    EXPECT_EQ(copy.placements[0].aliases.data(), callers.data());
+    original.reset();
+    EXPECT_EQ(ids(copy.placements[1].aliases), std::vector<uint32_t>{0});
+    EXPECT_EQ(ids(copy.placements[0].aliases), std::vector<uint32_t>{7});
 }
 
 TEST(MemoryPlacement, OverlappingLifetimesNeverShare) {
