@@ -429,6 +429,7 @@ TEST_F(Cli, MisuseOfAnySubcommandExitsTwo) {
         {"--progress", "sometimes", "compile", "graphs/raster.json"},
         {"compile", "graphs/raster.json", "--watch", "--watch-interval-ms", "1"},
         {"compile", "graphs/raster.json", "--watch-iterations", "many"},
+        {"run", "graphs/raster.json"},
     };
 #if SKYGRAPH_CLI_HAS_RENDER
     cases.push_back({"render", "--width", "0"});
@@ -446,12 +447,18 @@ TEST_F(Cli, MisuseOfAnySubcommandExitsTwo) {
     }
 }
 
+TEST_F(Cli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+    const CliRun r = run({"run", "graphs/raster.json"});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("error: unknown command 'run'; commands: compile"), std::string::npos) << r.err;
+}
+
 #if SKYGRAPH_CLI_HAS_RENDER
 TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
     const fs::path graph = writeGraph("bad.json", kBadGraph);
     const std::string out = (dir_ / "work" / "out.png").string();
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
-        {{"render", graph.string(), "-o", out}, "passes[0].params.operator"},
+        {{"render", graph.string(), "-o", out}, "error: " + graph.string() + ": passes[0].params.operator"},
         {{"render", (dir_ / "nope.json").string(), "-o", out}, "nope.json"},
         {{"render", "graphs/raster.json", "--feature", "nosuch=on", "-o", out}, "unknown feature 'nosuch'"},
     };

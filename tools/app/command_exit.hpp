@@ -24,7 +24,8 @@ inline int exitForCurrentException(std::string_view command) {
     try {
         throw;
     } catch (const GraphError& e) {
-        std::cerr << e.diagnostics().format() << "\n";
+        // As `skygraph compile` prints them: one "error: " line per diagnostic.
+        for (const auto& d : e.diagnostics().items()) std::cerr << "error: " << d.format() << "\n";
     } catch (const std::exception& e) {
         std::cerr << command << ": " << e.what() << "\n";
     }

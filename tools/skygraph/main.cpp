@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,19 @@ int main(int argc, char** argv) {
 #endif
     };
 
+    // CLI11 would answer an unknown command with "A subcommand is required": name it instead.
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string known;
+        bool found = false;
+        for (const Command& command : commands) {
+            found = found || command.app->get_name() == argv[1];
+            known += (known.empty() ? "" : ", ") + command.app->get_name();
+        }
+        if (!found) {
+            std::cerr << "error: unknown command '" << argv[1] << "'; commands: " << known << "\n";
+            return kExitUsage;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
