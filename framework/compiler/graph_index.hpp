@@ -38,8 +38,11 @@ struct IndexedUsage {
 };
 static_assert(sizeof(IndexedUsage) == 12);
 
-/// The sweeps number subresources with 32 bits: a graph may have this many, together.
-inline constexpr size_t kMaxSubresources = ~0u - 1;
+/// A graph may have this many subresources, together. The sweeps keep tables of tens of bytes
+/// per subresource, and an index is built before the first of them is refused: a bound far
+/// past any frame (a 4K frame has thousands) keeps a graph built in code from costing
+/// gigabytes before its error.
+inline constexpr size_t kMaxSubresources = size_t(1) << 24;
 
 /// The error for a graph whose resources, up to and including `r`, have more.
 inline Diagnostics tooManySubresources(const GraphDesc& graph, const ResourceDesc& r) {

@@ -96,7 +96,7 @@ struct CompileOptions {
 /// output-sized "full" chain that no pass writes), and for what only a GraphDesc
 /// built in code can hold: a resource past the format's limits (an extent, layer or mip count
 /// or buffer size the loader refuses), a usage naming a resource index past `resources`, an empty range,
-/// or more subresources than 32-bit indices can number; and when `options.memory` answers
+/// or more than 2^24 subresources (mip levels x layers) together; and when `options.memory` answers
 /// what cannot be placed (no memory type, a zero size, an alignment or granularity that is not
 /// a power of two). What the model itself throws passes through. Every error names what it can of the
 /// file, JSON path, pass and resource. The plan owns copies of the names it holds (shared with

@@ -636,22 +636,30 @@ TEST(GraphsFromCode, SlotsAreInternedAndAnUnknownSlotIdIsAnError) {
 
 // Subresources are numbered with 32 bits: a GraphDesc built in code whose images have more
 // layers than that together is an error naming the resource, not a wrapped index.
-TEST(GraphsFromCode, MoreSubresourcesThan32BitIndicesIsAnError) {
-    // One resource with more layers than 32-bit subresource indices can number is refused by
-    // name before any per-subresource table is sized. (Within the limits, only some 140,000
-    // resources of 15 levels and 2048 layers reach 2^32 together: the index checks that sum
-    // too, but a test of it would fill 17 GB before the check.)
+TEST(GraphsFromCode, MoreSubresourcesThanTheBoundIsAnError) {
+    // Each within the limits (15 levels of 2048 layers), together past 2^24 subresources.
     GraphDesc raster = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json",
                                      PassRegistry::withBuiltins());
-    ResourceDesc* image = nullptr;
-    for (auto& r : raster.resources)
-        if (r.isImage() && !image) image = &r;
-    ASSERT_NE(image, nullptr);
-    image->layers = UINT32_MAX;
+    ResourceDesc big;
+    big.type = ResourceType::Image2DArray;
+    big.format = *findFormat(VK_FORMAT_R8_UNORM);
+    big.extent = Extent{false, 1, 16384, 16384};
+    big.mips = 15;
+    big.layers = 2048;
+    big.external = true;
+    const size_t count = (size_t(1) << 24) / (15 * 2048) + 1;
+    for (size_t i = 0; i < count; ++i) {
+        big.name = "big" + std::to_string(i);
+        raster.resources.push_back(big);
+    }
     const std::string text = compileErrorText(raster);
     ASSERT_FALSE(text.empty()) << "expected a GraphError";
-    EXPECT_NE(text.find("resource '" + image->name + "'"), std::string::npos) << text;
-    EXPECT_NE(text.find("layers must be between 1 and 2048, not 4294967295"), std::string::npos) << text;
+    EXPECT_NE(text.find("resource 'big" + std::to_string(count - 1) + "'"), std::string::npos) << text;
+    EXPECT_NE(text.find("more than 16777216 subresources (mip levels x layers) together"), std::string::npos) << text;
+    // One resource past the layer limit is refused by the limits first.
+    raster.resources.resize(raster.resources.size() - count);
+    raster.resources[0].layers = UINT32_MAX;
+    EXPECT_NE(compileErrorText(raster).find("layers must be between 1 and 2048, not 4294967295"), std::string::npos);
 }
 
 // A planned usage keeps how it was written (access, stage, binding) and the range the compiler
