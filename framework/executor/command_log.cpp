@@ -60,17 +60,40 @@ std::string CommandLog::barrierLine(const char* kind, const std::string& resourc
     return line;
 }
 
+std::string CommandLog::ownershipText(uint32_t srcFamily, uint32_t dstFamily) {
+    if (srcFamily == VK_QUEUE_FAMILY_IGNORED && dstFamily == VK_QUEUE_FAMILY_IGNORED) return "";
+    const auto family = [](uint32_t f) { return f == VK_QUEUE_FAMILY_IGNORED ? std::string("ignored") : std::to_string(f); };
+    return " family " + family(srcFamily) + " -> " + family(dstFamily);
+}
+
+std::string CommandLog::aspectText(VkImageAspectFlags aspects) {
+    std::string s;
+    if (aspects & VK_IMAGE_ASPECT_COLOR_BIT) s += "|COLOR";
+    if (aspects & VK_IMAGE_ASPECT_DEPTH_BIT) s += "|DEPTH";
+    if (aspects & VK_IMAGE_ASPECT_STENCIL_BIT) s += "|STENCIL";
+    if (aspects & ~VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT | VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT))
+        s += "|other";
+    return " aspect " + (s.empty() ? std::string("none") : s.substr(1));
+}
+
+std::string CommandLog::bytesText(VkDeviceSize offset, VkDeviceSize size) {
+    return " bytes " + std::to_string(offset) + "+" + (size == VK_WHOLE_SIZE ? std::string("whole") : std::to_string(size));
+}
+
 void CommandLog::barriers(const BarrierBatch& batch) {
     for (const VkMemoryBarrier2& b : batch.memory())
         lines_.push_back("barrier " + barrierLine("memory", "-", b.srcStageMask, b.srcAccessMask, b.dstStageMask,
                                                   b.dstAccessMask, nullptr, {}, {}));
     for (const VkBufferMemoryBarrier2& b : batch.buffers())
         lines_.push_back("barrier " + barrierLine("buffer", name(b.buffer), b.srcStageMask, b.srcAccessMask,
-                                                  b.dstStageMask, b.dstAccessMask, nullptr, {}, {}));
+                                                  b.dstStageMask, b.dstAccessMask, nullptr, {}, {}) +
+                         bytesText(b.offset, b.size) + ownershipText(b.srcQueueFamilyIndex, b.dstQueueFamilyIndex));
     for (const VkImageMemoryBarrier2& b : batch.images())
         lines_.push_back("barrier " + barrierLine("image", name(b.image), b.srcStageMask, b.srcAccessMask,
                                                   b.dstStageMask, b.dstAccessMask, &b.subresourceRange, b.oldLayout,
-                                                  b.newLayout));
+                                                  b.newLayout) +
+                         aspectText(b.subresourceRange.aspectMask) +
+                         ownershipText(b.srcQueueFamilyIndex, b.dstQueueFamilyIndex));
 }
 
 void CommandLog::beginLabel(const char* n) { lines_.push_back(std::string("begin label ") + n); }
