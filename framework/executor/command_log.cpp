@@ -35,6 +35,26 @@ std::string rangeText(const VkImageSubresourceRange& r) {
            std::to_string(r.baseArrayLayer) + "+" + std::to_string(r.layerCount) + "]";
 }
 
+std::string ownershipText(uint32_t srcFamily, uint32_t dstFamily) {
+    if (srcFamily == VK_QUEUE_FAMILY_IGNORED && dstFamily == VK_QUEUE_FAMILY_IGNORED) return "";
+    const auto family = [](uint32_t f) { return f == VK_QUEUE_FAMILY_IGNORED ? std::string("ignored") : std::to_string(f); };
+    return " family " + family(srcFamily) + " -> " + family(dstFamily);
+}
+
+std::string aspectText(VkImageAspectFlags aspects) {
+    std::string s;
+    if (aspects & VK_IMAGE_ASPECT_COLOR_BIT) s += "|COLOR";
+    if (aspects & VK_IMAGE_ASPECT_DEPTH_BIT) s += "|DEPTH";
+    if (aspects & VK_IMAGE_ASPECT_STENCIL_BIT) s += "|STENCIL";
+    if (aspects & ~VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT | VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT))
+        s += "|other";
+    return " aspect " + (s.empty() ? std::string("none") : s.substr(1));
+}
+
+std::string bytesText(VkDeviceSize offset, VkDeviceSize size) {
+    return " bytes " + std::to_string(offset) + "+" + (size == VK_WHOLE_SIZE ? std::string("whole") : std::to_string(size));
+}
+
 }  // namespace
 
 template <typename Handle>
@@ -58,26 +78,6 @@ std::string CommandLog::barrierLine(const char* kind, const std::string& resourc
             shortNames(accessMaskNames(dstAccess), "VK_ACCESS_2_");
     if (range) line += " " + shortLayout(oldLayout) + " -> " + shortLayout(newLayout);
     return line;
-}
-
-std::string CommandLog::ownershipText(uint32_t srcFamily, uint32_t dstFamily) {
-    if (srcFamily == VK_QUEUE_FAMILY_IGNORED && dstFamily == VK_QUEUE_FAMILY_IGNORED) return "";
-    const auto family = [](uint32_t f) { return f == VK_QUEUE_FAMILY_IGNORED ? std::string("ignored") : std::to_string(f); };
-    return " family " + family(srcFamily) + " -> " + family(dstFamily);
-}
-
-std::string CommandLog::aspectText(VkImageAspectFlags aspects) {
-    std::string s;
-    if (aspects & VK_IMAGE_ASPECT_COLOR_BIT) s += "|COLOR";
-    if (aspects & VK_IMAGE_ASPECT_DEPTH_BIT) s += "|DEPTH";
-    if (aspects & VK_IMAGE_ASPECT_STENCIL_BIT) s += "|STENCIL";
-    if (aspects & ~VkImageAspectFlags(VK_IMAGE_ASPECT_COLOR_BIT | VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT))
-        s += "|other";
-    return " aspect " + (s.empty() ? std::string("none") : s.substr(1));
-}
-
-std::string CommandLog::bytesText(VkDeviceSize offset, VkDeviceSize size) {
-    return " bytes " + std::to_string(offset) + "+" + (size == VK_WHOLE_SIZE ? std::string("whole") : std::to_string(size));
 }
 
 void CommandLog::barriers(const BarrierBatch& batch) {

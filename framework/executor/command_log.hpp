@@ -18,9 +18,10 @@ public:
     explicit CommandLog(std::map<uint64_t, std::string> names = {}) : names_(std::move(names)) {}
 
     /// Every command so far, one per line, in order. Barriers are "barrier " followed by
-    /// barrierLine()'s text, then for a buffer bytesText() and for an image aspectText(), and
-    /// ownershipText() for both, one line per barrier of a batch. Clears and fills end in the value
-    /// they write: colours as four 32-bit words in hex, "depth D stencil S", a fill's word.
+    /// barrierLine()'s text, then " bytes OFFSET+SIZE" for a buffer and " aspect COLOR|..." for
+    /// an image, and " family S -> D" for an ownership transfer, one line per barrier of a
+    /// batch. Clears and fills end in the value they write: colours as four 32-bit words in
+    /// hex, "depth D stencil S", a fill's word.
     [[nodiscard]] const std::vector<std::string>& lines() const noexcept { return lines_; }
     /// How a barrier reads in the log, e.g. "image out mips[0+1] layers[0+1]
     /// COLOR_ATTACHMENT_OUTPUT/COLOR_ATTACHMENT_WRITE -> TRANSFER/TRANSFER_READ
@@ -29,13 +30,6 @@ public:
                                                  VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStages,
                                                  VkAccessFlags2 dstAccess, const VkImageSubresourceRange* range,
                                                  VkImageLayout oldLayout, VkImageLayout newLayout);
-
-    /// " family S -> D" for a queue family ownership transfer; "" when both are IGNORED.
-    [[nodiscard]] static std::string ownershipText(uint32_t srcFamily, uint32_t dstFamily);
-    /// " aspect COLOR", " aspect DEPTH|STENCIL", ...
-    [[nodiscard]] static std::string aspectText(VkImageAspectFlags aspects);
-    /// " bytes OFFSET+SIZE", SIZE "whole" for VK_WHOLE_SIZE.
-    [[nodiscard]] static std::string bytesText(VkDeviceSize offset, VkDeviceSize size);
 
     void barriers(const BarrierBatch& batch) override;
     void beginLabel(const char* name) override;
