@@ -59,11 +59,13 @@ HotReloader::Result HotReloader::poll() {
     const size_t g = hashFile(graphFile_);
     const size_t s = hashDir(shaderDir_);
     if (g == graphHash_ && s == shaderHash_) return Result::Unchanged;
-    const bool graphChanged = g != graphHash_;
-    const bool shadersChanged = s != shaderHash_;
+    // Edits that a failed reload left unapplied are applied with this one: a fixed shader
+    // must not run the graph from before an edit that failed only for the shader's sake.
+    graphPending_ |= g != graphHash_;
+    shadersPending_ |= s != shaderHash_;
     graphHash_ = g;
     shaderHash_ = s;
-    if (graphChanged && g == kMissing) {
+    if (graphPending_ && g == kMissing) {
         // Deleted while watched: keep rendering the last good plan and say so once; the
         // file's return (any content) is the next change.
         lastError_ = graphFile_.string() + ": the watched graph file is gone (deleted or renamed); the "
@@ -72,16 +74,19 @@ HotReloader::Result HotReloader::poll() {
         return Result::Failed;
     }
     try {
-        if (graphChanged) {
+        if (graphPending_) {
             GraphDesc graph = registry_ ? loadGraphFile(graphFile_, *registry_)
                                         : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
-            renderer_.setGraph(renderer_.compiled().withGraph(std::move(graph)));
+            // One rebuild for both: the new graph and the edited shaders run together or not at all.
+            renderer_.setGraph(renderer_.compiled().withGraph(std::move(graph)),
+                               shadersPending_ ? Renderer::ShaderSources::Reread : Renderer::ShaderSources::Cached);
+        } else {
+            renderer_.reloadShaders();
         }
-        // setGraph reuses cached SPIR-V, which an edited include makes stale.
-        if (shadersChanged) renderer_.reloadShaders();
         lastError_.clear();
-        spdlog::info("hot reload: {}{}{} reloaded", graphChanged ? graphFile_.string() : "",
-                     graphChanged && shadersChanged ? " and " : "", shadersChanged ? shaderDir_.string() : "");
+        spdlog::info("hot reload: {}{}{} reloaded", graphPending_ ? graphFile_.string() : "",
+                     graphPending_ && shadersPending_ ? " and " : "", shadersPending_ ? shaderDir_.string() : "");
+        graphPending_ = shadersPending_ = false;
         return Result::Reloaded;
     } catch (const GraphError& e) {
         lastError_ = e.diagnostics().format();

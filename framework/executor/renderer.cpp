@@ -263,8 +263,9 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     setGraph(std::move(*next));
 }
 
-void Renderer::setGraph(CompiledGraph compiled) {
+void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
+    if (shaders == ShaderSources::Reread) d.shaders.clear();
     d.waitIdle();
     auto next = d.build(std::move(compiled));  // throws: the old plan keeps running
     vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");

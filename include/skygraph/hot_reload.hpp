@@ -36,19 +36,16 @@ public:
     HotReloader(const HotReloader&) = delete;
     HotReloader& operator=(const HotReloader&) = delete;
 
-    /// Checks the watched files (by content: it reads them all on every call) and reloads what
-    /// changed: a changed graph is recompiled and handed to Renderer::setGraph(), a change to
-    /// the shaders goes to Renderer::reloadShaders() (after setGraph when both changed).
+    /// Checks the watched files (by content: it reads them all on every call) and, when any
+    /// changed, applies every edit not yet applied in one rebuild: a changed graph is
+    /// recompiled and handed to Renderer::setGraph() (with ShaderSources::Reread when the
+    /// shaders changed too), a change to the shaders alone goes to Renderer::reloadShaders().
     /// Reloaded: the renderer's plan state was rebuilt, so references from its compiled(),
-    /// plan() and graph() are invalid. A failed reload does not throw: it returns Failed and
-    /// sets lastError(), and the change counts as seen (the next poll() reloads only after
-    /// another edit). What runs after a Failed:
-    /// - nothing was rebuilt (the graph file is gone or did not load or compile, setGraph()
-    ///   threw, or reloadShaders() threw on a change to the shaders alone): the previous plan
-    ///   and pipelines run, and references from the renderer stay valid;
-    /// - both changed, setGraph() succeeded and reloadShaders() threw: the new graph runs, its
-    ///   pipelines possibly built from shaders compiled before the edit, and references from
-    ///   compiled(), plan() and graph() are invalid, as after a Reloaded.
+    /// plan() and graph() are invalid. A failed reload does not throw: it returns Failed, sets
+    /// lastError(), and rebuilds nothing, so the previous plan and pipelines run and references
+    /// from the renderer stay valid. Its edits stay pending, and the next poll() that sees
+    /// another change (to any watched file) applies them with it: a graph edit that failed
+    /// because a shader did not compile takes effect once the shader is fixed.
     Result poll();
     /// The message of the last failed reload; empty after a success. The reference is valid
     /// until the next poll().
@@ -61,6 +58,8 @@ private:
     const PassRegistry* registry_ = nullptr;
     size_t graphHash_ = 0;
     size_t shaderHash_ = 0;
+    bool graphPending_ = false;    // edited since the last reload that succeeded
+    bool shadersPending_ = false;
     std::string lastError_;
 };
 

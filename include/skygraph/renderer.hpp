@@ -182,10 +182,17 @@ public:
     /// it; the old plan keeps running then. A presenting renderer follows its images' extent
     /// instead (a size other than theirs throws).
     void resize(uint32_t width, uint32_t height);
+    /// Where setGraph() takes its shaders from.
+    enum class ShaderSources : uint8_t {
+        Cached,  ///< SPIR-V compiled before, for sources unchanged (an edited include is not seen)
+        Reread,  ///< every shader compiled again from the shader directory, as reloadShaders() does
+    };
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
     /// frame has finished; compiled again with the device's memory model unless it was (the
-    /// class comment). On failure throws ExecutorError and keeps the old one running.
-    void setGraph(CompiledGraph compiled);
+    /// class comment). On failure throws ExecutorError and keeps the old plan and pipelines
+    /// running: with ShaderSources::Reread, a new graph and edited shaders take effect together
+    /// or not at all.
+    void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Drops every cached shader and rebuilds the plan state from the shader directory (after
     /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
     /// running.

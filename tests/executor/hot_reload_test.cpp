@@ -1,4 +1,5 @@
-// Hot reload: a broken graph and a broken shader each leave the last good version running.
+// Hot reload: a broken graph and a broken shader each leave the last good version running, and
+// edits a failure left unapplied take effect with the next change.
 #include "executor_test_util.hpp"
 
 #include <skygraph/hot_reload.hpp>
@@ -92,6 +93,31 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 1.0, 0.0, 0.25, 1.0);  // the shader edit is not lost to the graph's
+
+    // The graph and a shader edited together, the shader broken: neither takes effect...
+    write(shader, good + "\nthis is not glsl;\n");
+    write(graphFile, graphWithColor("[0, 0, 1, 1]"));
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Failed);
+    EXPECT_NE(reloader.lastError().find("does not compile"), std::string::npos) << reloader.lastError();
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 1.0, 0.0, 0.25, 1.0);  // the old graph with the old pipelines
+    // ...and both do once the shader is fixed, though the graph was not saved again.
+    write(shader, edited);
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 1.0, 0.0, 0.0, 1.0);  // the new graph's blue, swapped to red
+
+    // A shader edited while the graph is broken takes effect with the fixed graph, not from a
+    // cache that does not see an edited include.
+    write(graphFile, "{ \"version\": 1, \"passes\": [ ");
+    write(shader, good);
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Failed);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 1.0, 0.0, 0.0, 1.0);
+    write(graphFile, graphWithColor("[0, 0, 1, 1]"));
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 0.0, 0.0, 1.0, 1.0);
     r.waitIdle();
     std::filesystem::remove_all(dir);
 }

@@ -18,6 +18,8 @@
 #                overlay's layout moves down for it); the fixed edit (no skybox pass) renders
 #   shader_reload  a broken shader keeps the last good frame and shows glslang's message; the
 #                fixed one clears it
+#   graph_shader_reload  a graph saved while a shader is broken does not build; fixing the
+#                shader brings in the saved graph (no skybox pass), not the old graph's pipelines
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
@@ -185,6 +187,17 @@ overlay_rect() { grep "overlay: window at" view.err | tail -1 | sed -E 's/.* at 
 # The centre of feature $1's checkbox, as last logged, as "X Y".
 checkbox_of() { grep "overlay: feature checkboxes" view.err | tail -1 | tr ' ' '\n' | grep "^$1=" | sed -E 's/.*=([0-9]+),([0-9]+)/\1 \2/'; }
 
+# Saves graph.json as graphs/raster.json without its skybox pass, by a rename as editors do.
+save_raster_without_skybox() {
+    python3 - "$root/graphs/raster.json" <<'EOF'
+import json, sys
+g = json.load(open(sys.argv[1]))
+g["passes"] = [p for p in g["passes"] if p["type"] != "SkyboxPass"]
+json.dump(g, open("graph.json.tmp", "w"), indent=1)
+EOF
+    mv graph.json.tmp graph.json
+}
+
 case "$case_name" in
     frames)
         view --validate --frames 120
@@ -306,13 +319,7 @@ EOF
         grep -q "warning: .*graph.json" view.err || fail "the log has no message naming graph.json"
         capture "$w" broken.rgb
         [ "$(pixel broken.rgb 640 630 10)" = "$sky_good" ] || fail "the last good frame is not on screen"
-        python3 - "$root/graphs/raster.json" <<'EOF'
-import json, sys
-g = json.load(open(sys.argv[1]))
-g["passes"] = [p for p in g["passes"] if p["type"] != "SkyboxPass"]
-json.dump(g, open("graph.json.tmp", "w"), indent=1)
-EOF
-        mv graph.json.tmp graph.json
+        save_raster_without_skybox
         wait_for_log "reload: first frame of the new plan presented"
         sky="$(sky_until_clear "$w" fixed.rgb)"
         [ "$sky" = "0 0 0" ] || fail "the fixed graph (no skybox pass) does not render: sky $sky"
@@ -347,6 +354,35 @@ EOF
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
         grep -q " 1 reload(s)" view.out || fail "not one reload"
+        ;;
+    graph_shader_reload)
+        cp -r "$root/shaders" shaders
+        cp "$root/graphs/raster.json" graph.json
+        SKYGRAPH_SHADER_DIR="$PWD/shaders" view --validate --width 640 --height 480 graph.json \
+            --scene "$root/scenes/default.json"
+        w="$(window_of)"
+        wait_for_log "overlay: feature checkboxes"
+        sleep 2
+        capture "$w" good.rgb
+        sky_good="$(pixel good.rgb 640 630 10)"
+        cp shaders/passes/tonemap.frag tonemap.frag.good
+        echo "this is not GLSL" >>shaders/passes/tonemap.frag
+        wait_for_log "tonemap.frag. does not compile"
+        save_raster_without_skybox
+        # The save's build fails on the shader too: a second message.
+        for _ in $(seq 600); do
+            [ "$(grep -c "tonemap.frag. does not compile" view.err)" -ge 2 ] && break
+            sleep 0.1
+        done
+        [ "$(grep -c "tonemap.frag. does not compile" view.err)" -ge 2 ] || fail "the saved graph was not built"
+        capture "$w" broken.rgb
+        [ "$(pixel broken.rgb 640 630 10)" = "$sky_good" ] || fail "the last good frame is not on screen"
+        cp tonemap.frag.good tonemap.frag.restored
+        mv tonemap.frag.restored shaders/passes/tonemap.frag
+        sky="$(sky_until_clear "$w" fixed.rgb)"
+        [ "$sky" = "0 0 0" ] || fail "the fixed shader did not bring in the graph saved beside it (no skybox pass): sky $sky"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
         ;;
     screenshot)
         view --validate --no-ui --width 320 --height 240

@@ -360,6 +360,26 @@ void LiveGraph::swapRebake() {
     if (!sequenceBaking_) ++reloads_;  // a sequence's frames are playback, not reloads
 }
 
+void LiveGraph::rebuildAfterSave(bool graphSaved, bool sceneSaved, std::filesystem::file_time_type saved,
+                                 bool reportLatency) {
+    std::optional<Scene> edited;
+    if (sceneSaved) {  // the saved scene wins over the overlay, its sun included
+        edited = std::exchange(scene_, std::nullopt);
+        options_.sunDirection.reset();
+        pendingSun_.reset();
+    }
+    const auto noticed = std::filesystem::file_time_type::clock::now();
+    if (rebuild(options_)) {
+        lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), reportLatency};
+        sceneReplaced_ = sceneReplaced_ || sceneSaved;
+        graphSavePending_ = sceneSavePending_ = false;
+        return;
+    }
+    graphSavePending_ = graphSavePending_ || graphSaved;
+    sceneSavePending_ = sceneSavePending_ || sceneSaved;
+    if (edited) scene_ = std::move(edited);
+}
+
 bool LiveGraph::poll() {
     finishEnvironmentLoad();
     swapRebake();
@@ -369,22 +389,19 @@ bool LiveGraph::poll() {
     if (graphSaved || sceneSaved) {
         std::error_code ec;
         const auto saved = std::filesystem::last_write_time(graphSaved ? options_.graph : options_.scene, ec);
-        std::optional<Scene> edited;
-        if (sceneSaved) {  // the saved scene wins over the overlay, its sun included
-            edited = std::exchange(scene_, std::nullopt);
-            options_.sunDirection.reset();
-            pendingSun_.reset();
-        }
-        const auto noticed = std::filesystem::file_time_type::clock::now();
-        if (rebuild(options_)) {
-            lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), !ec};
-            sceneReplaced_ = sceneReplaced_ || sceneSaved;
-        } else if (edited) {
-            scene_ = std::move(edited);
-        }
+        rebuildAfterSave(graphSaved, sceneSaved, saved, !ec);
         return true;
     }
-    switch (shaderWatcher_->poll()) {
+    const HotReloader::Result shaders = shaderWatcher_->poll();
+    if ((graphSavePending_ || sceneSavePending_) && shaders != HotReloader::Result::Unchanged) {
+        // A save whose build failed (a shader its plan compiles did not) is built again after a
+        // shader edit: the reload just done rebuilt the pipelines of the plan from before it.
+        // The time of that edit is not known, so no latency is reported for this rebuild.
+        shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
+        rebuildAfterSave(graphSavePending_, sceneSavePending_, {}, false);
+        return true;
+    }
+    switch (shaders) {
         case HotReloader::Result::Unchanged: return false;
         case HotReloader::Result::Reloaded:
             shaderError_.clear();

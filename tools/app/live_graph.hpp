@@ -80,7 +80,9 @@ public:
     /// Whether a re-bake (a file being decoded for one included) is not swapped in yet.
     [[nodiscard]] bool rebaking() const noexcept { return (baker_ && baker_->pending()) || load_.has_value(); }
     /// Swaps in a finished re-bake; rebuilds after the graph or scene file was saved, reloads
-    /// shaders after a shader edit. True when something was reloaded (or failed: see error()).
+    /// shaders after a shader edit. A save whose rebuild failed is rebuilt again at the next
+    /// save or shader edit, so that fixing a shader brings in the graph saved with it. True
+    /// when something was reloaded (or failed: see error()).
     bool poll();
 
     /// Screenshots go through the plan: beginScreenshot() recompiles with the presented
@@ -116,6 +118,9 @@ private:
     struct Built;
     [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options) const;
     bool rebuild(RenderOptions options);
+    /// rebuild() after the graph or scene file was saved; a failure keeps the saves pending.
+    void rebuildAfterSave(bool graphSaved, bool sceneSaved, std::filesystem::file_time_type saved,
+                          bool reportLatency);
     /// setEnvironmentFile's re-bake beside the frames: starts decoding `file`; false when it
     /// needs a rebuild.
     bool rebakeInPlace(const std::filesystem::path& file, RenderOptions next);
@@ -176,6 +181,7 @@ private:
     std::unique_ptr<HotReloader> shaderWatcher_;
     std::string error_, shaderError_;
     bool sceneReplaced_ = false;
+    bool graphSavePending_ = false, sceneSavePending_ = false;  // saved, but its build failed
     uint32_t reloads_ = 0;
     Reload lastReload_;
 };
