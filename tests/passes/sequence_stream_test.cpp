@@ -119,7 +119,8 @@ TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
     EXPECT_EQ(player.stats().late, 0u);
     EXPECT_EQ(player.stats().current, 1u);
 
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // frames 2 and 3 wait decoded
+    // Frames 2 and 3 wait decoded (waited for, not slept for: a loaded machine decodes slowly).
+    ASSERT_TRUE(waitFor([&] { return player.stream().decodeTimesMs().size() >= 3; }));
     frame = waitFor([&] { return player.frameToBake(0.45); });   // tick 4: 4 is not decoded
     ASSERT_TRUE(frame);
     EXPECT_EQ(frame->index, 3u) << "the newest decoded frame whose time has come";
@@ -128,7 +129,7 @@ TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
     EXPECT_EQ(player.stats().late, 1u);
     EXPECT_EQ(player.stats().current, 3u);
 
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // frames 4 and 5 wait decoded
+    ASSERT_TRUE(waitFor([&] { return player.stream().decodeTimesMs().size() >= 5; }));  // 4 and 5 wait
     frame = waitFor([&] { return player.frameToBake(0.62); });   // tick 6, the loop's frame 0
     ASSERT_TRUE(frame);
     EXPECT_EQ(frame->index, 5u) << "frame 0's time has come too, but it is not decoded";
