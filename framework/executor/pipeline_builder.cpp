@@ -4,7 +4,6 @@
 #include "vk_util.hpp"
 
 #include <array>
-#include <fstream>
 #include <sstream>
 
 namespace skygraph {
@@ -13,9 +12,7 @@ std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagB
                                     const std::string& relativePath,
                                     const std::vector<std::pair<std::string, std::string>>& defines) {
     if (defines.empty()) return compiler.compileFile(stage, relativePath);
-    const auto path = compiler.includeDir() / relativePath;
-    std::ifstream in(path);
-    if (!in) throw ExecutorError("cannot read shader " + path.string());
+    std::istringstream in(compiler.source(relativePath));
     std::ostringstream out;
     std::string line;
     bool inserted = false;

@@ -265,9 +265,21 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 
 void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
-    if (shaders == ShaderSources::Reread) d.shaders.clear();
     d.waitIdle();
-    auto next = d.build(std::move(compiled));  // throws: the old plan keeps running
+    // Rereading builds with a new compiler, which reads every shader again. When that fails,
+    // the old one comes back with the sources the running pipelines were built from, so that
+    // later rebuilds (a resize) do not read the broken files.
+    std::unique_ptr<ShaderCompiler> previous;
+    if (shaders == ShaderSources::Reread)
+        previous = std::exchange(d.shaders, std::make_unique<ShaderCompiler>(d.shaders->includeDir(),
+                                                                             SpirvDiskCache::defaultDir()));
+    std::unique_ptr<detail::PlanState> next;
+    try {
+        next = d.build(std::move(compiled));  // throws: the old plan keeps running
+    } catch (...) {
+        if (previous) d.shaders = std::move(previous);
+        throw;
+    }
     vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     d.state = std::move(next);
     d.lastSlot = -1;
@@ -428,16 +440,7 @@ void Renderer::stageUpload(const std::string& resource, std::shared_ptr<const St
     d.staged[resource] = std::move(pixels);
 }
 
-void Renderer::reloadShaders() {
-    Impl& d = *impl_;
-    d.shaders.clear();
-    d.waitIdle();
-    auto next = d.build(d.state->compiled);  // throws: the old pipelines keep running
-    vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
-    d.state = std::move(next);
-    d.lastSlot = -1;
-    d.timings.clear();  // they name the old plan's passes
-}
+void Renderer::reloadShaders() { setGraph(impl_->state->compiled, ShaderSources::Reread); }
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 
 void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {

@@ -313,7 +313,9 @@ struct Renderer::Impl {
     Device::Impl& dev;
     VkDevice vkd;
     RendererOptions options;
-    ShaderCompiler shaders;
+    /// Keeps the shader sources the running pipelines were built from (ShaderCompiler::source),
+    /// for rebuilds other than a reload of the shaders.
+    std::unique_ptr<ShaderCompiler> shaders;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
@@ -345,7 +347,7 @@ struct Renderer::Impl {
 
     Impl(Device& d, RendererOptions o)
         : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
-          shaders(options.shaderDir, SpirvDiskCache::defaultDir()) {}
+          shaders(std::make_unique<ShaderCompiler>(options.shaderDir, SpirvDiskCache::defaultDir())) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);

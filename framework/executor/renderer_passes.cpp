@@ -116,7 +116,7 @@ void Renderer::Impl::createPipelines(PlanState& s, PassState& ps) {
         pc.resources = ps.slots[0].bound;
         pc.frameSlots = frameSlots;
         pc.outputExtent = {s.outputWidth(), s.outputHeight()};
-        pc.shaders = &shaders;
+        pc.shaders = shaders.get();
         try {
             ps.implementation->createPipelines(pc);
         } catch (const ExecutorError&) {

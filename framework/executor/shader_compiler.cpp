@@ -103,19 +103,28 @@ ShaderCompiler::~ShaderCompiler() {
     if (--processRefs() == 0) glslang::FinalizeProcess();
 }
 
-std::vector<uint32_t> ShaderCompiler::compileFile(VkShaderStageFlagBits stage,
-                                                  const std::filesystem::path& relativePath) {
+std::string ShaderCompiler::source(const std::filesystem::path& relativePath) {
+    const std::string key = relativePath.lexically_normal().generic_string();
+    std::lock_guard lock(mutex_);
+    if (auto it = sources_.find(key); it != sources_.end()) return it->second;
     const auto path = includeDir_ / relativePath;
     std::ifstream in(path, std::ios::binary);
     if (!in) throw ExecutorError("shader '" + path.string() + "' cannot be read");
     std::stringstream ss;
     ss << in.rdbuf();
-    return compile(stage, ss.str(), path.string());
+    if (in.bad()) throw ExecutorError("shader '" + path.string() + "' cannot be read");
+    return sources_.emplace(key, ss.str()).first->second;
+}
+
+std::vector<uint32_t> ShaderCompiler::compileFile(VkShaderStageFlagBits stage,
+                                                  const std::filesystem::path& relativePath) {
+    return compile(stage, source(relativePath), (includeDir_ / relativePath).string());
 }
 
 void ShaderCompiler::clear() {
     std::lock_guard lock(mutex_);
     cache_.clear();
+    sources_.clear();
 }
 
 std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,

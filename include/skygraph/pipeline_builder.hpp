@@ -26,8 +26,9 @@ namespace skygraph {
 
 /// SPIR-V for shaders/<relativePath> (relative to `compiler.includeDir()`) with
 /// `#define NAME VALUE` lines inserted after the #version and #extension lines; a copy the
-/// caller owns. Reads the file on every call. Throws ExecutorError when it cannot be read or
-/// does not compile (with glslang's log).
+/// caller owns. The text is ShaderCompiler::source()'s: read once, until the compiler's
+/// clear(). Throws ExecutorError when it cannot be read or does not compile (with glslang's
+/// log).
 [[nodiscard]] std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagBits stage,
                                                   const std::string& relativePath,
                                                   const std::vector<std::pair<std::string, std::string>>& defines = {});

@@ -184,8 +184,8 @@ public:
     void resize(uint32_t width, uint32_t height);
     /// Where setGraph() takes its shaders from.
     enum class ShaderSources : uint8_t {
-        Cached,  ///< SPIR-V compiled before, for sources unchanged (an edited include is not seen)
-        Reread,  ///< every shader compiled again from the shader directory, as reloadShaders() does
+        Cached,  ///< shader files read before are not read again: edits since are not seen
+        Reread,  ///< every shader read and compiled again, as reloadShaders() does
     };
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
     /// frame has finished; compiled again with the device's memory model unless it was (the
@@ -193,9 +193,11 @@ public:
     /// running: with ShaderSources::Reread, a new graph and edited shaders take effect together
     /// or not at all.
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
-    /// Drops every cached shader and rebuilds the plan state from the shader directory (after
+    /// Reads every shader again from the shader directory and rebuilds the plan state (after
     /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
-    /// running.
+    /// running. Every other rebuild (resize(), setPresentImages(), a swapchain's new images,
+    /// setGraph() with ShaderSources::Cached) builds from the shader sources the running
+    /// pipelines were built from, so a shader broken on disk fails only this call.
     void reloadShaders();
     /// Imports a loaded texture: `pixels` (float RGBA, as stored; the renderer keeps them)
     /// become the contents of mip 0 (every layer) of the external image `resource`, by an Upload

@@ -14,8 +14,8 @@
 namespace skygraph {
 
 /// Compiles GLSL at run time. Results are cached in memory by (stage, source) and, when a
-/// cache directory is given, on disk as .spv files. compile(), compileFile() and clear() may be
-/// called from several threads at once (compilations then run one at a time).
+/// cache directory is given, on disk as .spv files. compile(), compileFile(), source() and
+/// clear() may be called from several threads at once (compilations then run one at a time).
 class ShaderCompiler {
 public:
     /// `includeDir` is searched for `#include "..."` (empty: defaultIncludeDir()); `cacheDir`
@@ -32,14 +32,21 @@ public:
                                                 const std::string& source,
                                                 const std::string& name);
 
-    /// Reads `relativePath` under the include directory (e.g. "passes/tonemap.frag") and
-    /// compiles it; the stage comes from `stage`. Throws ExecutorError when the file is
-    /// missing or does not compile. Reads the file every call, so edits are picked up.
+    /// The text of `relativePath` under the include directory (e.g. "passes/tonemap.frag"),
+    /// a copy the caller owns. Read from disk on its first call after construction or clear()
+    /// and kept: later calls return the same text, so pipelines rebuilt for another reason (a
+    /// resize) are built from the shaders that ran before, even while a file on disk is
+    /// broken or half saved. Throws ExecutorError when the file cannot be read.
+    [[nodiscard]] std::string source(const std::filesystem::path& relativePath);
+
+    /// Compiles source(relativePath); the stage comes from `stage`. Throws ExecutorError when
+    /// the file cannot be read or does not compile.
     [[nodiscard]] std::vector<uint32_t> compileFile(VkShaderStageFlagBits stage,
                                                     const std::filesystem::path& relativePath);
 
-    /// Forgets every cached result (memory only), e.g. after an included file changed: the
-    /// memory cache's key does not cover included files (the disk cache checks them).
+    /// Forgets every cached result (memory only) and every kept source, so that the next
+    /// compiles read the shader directory again, e.g. after an edit: the memory cache's key
+    /// does not cover included files (the disk cache checks them).
     void clear();
 
     /// Fixed at construction; the reference is valid while this compiler lives.
@@ -60,6 +67,7 @@ private:
     std::filesystem::path cacheDir_;
     std::mutex mutex_;
     std::unordered_map<std::string, std::vector<uint32_t>> cache_;
+    std::unordered_map<std::string, std::string> sources_;  // by path relative to includeDir_
     std::atomic<uint32_t> compilations_{0};
 };
 

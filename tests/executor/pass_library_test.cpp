@@ -5,17 +5,24 @@
 #include "executor_test_util.hpp"
 
 #include <skygraph/pass.hpp>
+#include <skygraph/pipeline_builder.hpp>
 #include <skygraph/shader_compiler.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 namespace skygraph::test {
 namespace {
 
-/// Clears its `target` attachment to params.color inside the executor's render pass.
+/// Clears its `target` attachment to params.color inside the executor's render pass. With a
+/// shader file, compiles it (from the renderer's shader directory) for its pipelines.
 class FillPass final : public PassImplementation {
 public:
-    explicit FillPass(const PassDesc& d) {
+    explicit FillPass(const PassDesc& d, std::string shaderFile = {}) : shaderFile_(std::move(shaderFile)) {
         const auto c = d.params.value("color", std::vector<float>{0, 0, 0, 1});
         for (size_t i = 0; i < 4 && i < c.size(); ++i) color_[i] = c[i];
     }
@@ -24,9 +31,11 @@ public:
         if (ctx.resources.size() != 1 || ctx.resources[0].view == VK_NULL_HANDLE)
             throw std::runtime_error("target not bound");
         // The shader compiler is available to passes; compile something to prove it works.
-        const auto spirv = ctx.shaders->compile(VK_SHADER_STAGE_COMPUTE_BIT,
-                                                "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n",
-                                                "fill.comp");
+        const auto spirv = shaderFile_.empty()
+                               ? ctx.shaders->compile(VK_SHADER_STAGE_COMPUTE_BIT,
+                                                      "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n",
+                                                      "fill.comp")
+                               : compileShader(*ctx.shaders, VK_SHADER_STAGE_COMPUTE_BIT, shaderFile_);
         if (spirv.empty()) throw std::runtime_error("no SPIR-V");
         ++pipelinesCreated;
     }
@@ -42,6 +51,7 @@ public:
     static inline int pipelinesCreated = 0;
 
 private:
+    std::string shaderFile_;
     float color_[4] = {0, 0, 0, 1};
 };
 
@@ -63,10 +73,14 @@ PassTypeInfo fillType() {
     return fill;
 }
 
-/// The built-in passes (Generic for "show") and the two above.
+/// The built-in passes (Generic for "show"), the two above, and FileFill: Fill compiling
+/// fill.comp from the shader directory.
 PassLibrary library() {
     PassLibrary lib = PassLibrary::withBuiltins();
     lib.add(fillType(), [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
+    PassTypeInfo fileFill = fillType();
+    fileFill.name = "FileFill";
+    lib.add(fileFill, [](const PassDesc& d) { return std::make_unique<FillPass>(d, "fill.comp"); });
     PassTypeInfo broken = fillType();
     broken.name = "Broken";
     lib.add(broken, [](const PassDesc&) { return std::make_unique<BrokenPass>(); });
@@ -118,6 +132,46 @@ TEST_F(ExecutorTest, PassLibraryPipelineFailureIsAnErrorAndKeepsOldPlan) {
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 1, 1, 0.25, 0.5, 0.5, 1.0);
     r.waitIdle();
+}
+
+TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgain) {
+    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_sources_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
+                               dir / "generic_common.glsl");  // for "show"
+    const auto shader = dir / "fill.comp";
+    const auto write = [&](const std::string& text) { std::ofstream(shader, std::ios::binary | std::ios::trunc) << text; };
+    write("#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+    const PassLibrary lib = library();
+    const GraphDesc graph = parseGraph(graphText("FileFill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
+    RendererOptions o;
+    o.passes = &lib;
+    o.shaderDir = dir;
+    Renderer r(sharedDevice(), CompiledGraph(graph, co), o);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 5, 5, 0.25, 0.5, 0.5, 1.0);
+
+    write("this is not glsl");
+    // A resize, a graph installed with its cached shaders: built from the source that ran.
+    EXPECT_NO_THROW(r.resize(24, 24));
+    EXPECT_NO_THROW(r.setGraph(CompiledGraph(graph, co)));
+    // Reading the shaders again fails, and the old pipelines and their sources stay.
+    EXPECT_THROW(r.reloadShaders(), ExecutorError);
+    EXPECT_THROW(r.setGraph(CompiledGraph(graph, co), Renderer::ShaderSources::Reread), ExecutorError);
+    EXPECT_NO_THROW(r.resize(20, 20));
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 19, 19, 0.25, 0.5, 0.5, 1.0);
+
+    write("#version 450\nlayout(local_size_x = 2) in;\nvoid main() {}\n");
+    EXPECT_NO_THROW(r.reloadShaders());
+    write("this is not glsl");
+    EXPECT_NO_THROW(r.resize(16, 16));
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 15, 15, 0.25, 0.5, 0.5, 1.0);
+    r.waitIdle();
+    std::filesystem::remove_all(dir);
 }
 
 TEST_F(ExecutorTest, APassWithoutRecordingCodeNeedsAPassLibrary) {

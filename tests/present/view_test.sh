@@ -16,8 +16,8 @@
 #                and the sky's pixels become the clear colour
 #   hot_reload   a broken graph edit keeps the last good frame and shows the message (the
 #                overlay's layout moves down for it); the fixed edit (no skybox pass) renders
-#   shader_reload  a broken shader keeps the last good frame and shows glslang's message; the
-#                fixed one clears it
+#   shader_reload  a broken shader keeps the last good frame and shows glslang's message, also
+#                through two resizes; the fixed one clears it
 #   graph_shader_reload  a graph saved while a shader is broken does not build; fixing the
 #                shader brings in the saved graph (no skybox pass), not the old graph's pipelines
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
@@ -344,6 +344,11 @@ EOF
         grep -q "tonemap.frag. does not compile" view.err || fail "the log has no glslang message naming tonemap.frag"
         capture "$w" broken.rgb
         [ "$(pixel broken.rgb 640 630 10)" = "$sky_good" ] || fail "the last good frame is not on screen"
+        # Resized meanwhile: the new swapchain's pipelines come from the sources that ran.
+        xdotool windowsize "$w" 600 440
+        wait_for_swapchain 600x440
+        xdotool windowsize "$w" 640 480
+        wait_for_swapchain 640x480
         # Restored the way editors save, by a rename: a copy in place passes through an empty
         # file, and a poll that hashes it then compiles the whole one a moment later and
         # reloads again when it hashes that.
