@@ -17,9 +17,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
+#include <system_error>
 
 namespace skygraph {
 namespace {
@@ -31,6 +34,28 @@ using glm::dvec3;
 std::string at(const char* array, size_t i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+/// tinygltf's file callbacks, for a buffer's or an image's uri: only regular files count. Its
+/// own would block forever on a FIFO and read a directory's size as bytes to allocate.
+bool regularFileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(path, ec);
+}
+
+bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        if (error) *error += "'" + path + "' is not a regular file\n";
+        return false;
+    }
+    std::ifstream in(path, std::ios::binary);
+    out->assign(std::istreambuf_iterator<char>(in), {});
+    if (in.bad()) {
+        if (error) *error += "'" + path + "' cannot be read\n";
+        return false;
+    }
+    return true;
+}
 
 /// A vertex attribute as skygraph reads it: its accessor type and, for texture coordinates,
 /// the normalized integers glTF allows besides floats.
@@ -116,6 +141,7 @@ public:
         const std::string scenePath = at("scenes", scene) + ".nodes";
         if (model_.scenes[scene].nodes.empty()) error(scenePath, "the scene has no nodes: nothing to draw");
         onPath_.assign(model_.nodes.size(), false);
+        visited_.assign(model_.nodes.size(), false);
         for (size_t i = 0; i < model_.scenes[scene].nodes.size(); ++i)
             visit(model_.scenes[scene].nodes[i], root, scenePath + "[" + std::to_string(i) + "]");
         if (!failed_ && mesh_.indices.empty()) error(scenePath, "the scene draws no triangles");
@@ -139,24 +165,51 @@ private:
         return m;
     }
 
-    void visit(int index, const dmat4& parent, const std::string& reference) {
-        if (index < 0 || size_t(index) >= model_.nodes.size())
-            return error(reference, "node " + std::to_string(index) + " does not exist (" +
-                                        std::to_string(model_.nodes.size()) + " nodes)");
-        const std::string path = at("nodes", size_t(index));
-        if (onPath_[size_t(index)])
-            return error(reference, "node " + std::to_string(index) + " is its own ancestor: the hierarchy has a cycle");
-        const tinygltf::Node& node = model_.nodes[size_t(index)];
-        const dmat4 world = parent * localMatrix(node);
-        for (int c = 0; c < 4; ++c)
-            if (!finite(dvec3(world[c])) || !std::isfinite(world[c][3]))
-                return error(path, "its transform is not finite");
-        onPath_[size_t(index)] = true;
-        if (node.mesh >= 0) addMesh(size_t(node.mesh), world, path + ".mesh");
-        if (node.camera >= 0 && !mesh_.camera) addCamera(size_t(node.camera), world, path + ".camera");
-        for (size_t c = 0; c < node.children.size() && !failed_; ++c)
-            visit(node.children[c], world, path + ".children[" + std::to_string(c) + "]");
-        onPath_[size_t(index)] = false;
+    /// The tree under scene node `index`, depth first. With a stack of its own: a chain of
+    /// nodes as deep as a file likes would overflow the thread's stack if visited recursively.
+    /// Each node is visited once, so a node shared by two parents (glTF's nodes form disjoint
+    /// trees) is an error rather than a mesh drawn twice or a hierarchy that doubles per level.
+    void visit(int index, const dmat4& root, const std::string& reference) {
+        struct Frame {
+            size_t node;
+            dmat4 world;
+            std::string path;
+            size_t nextChild = 0;
+        };
+        std::vector<Frame> stack;
+        const auto enter = [&](int i, const dmat4& parent, const std::string& ref) {
+            if (i < 0 || size_t(i) >= model_.nodes.size())
+                return error(ref, "node " + std::to_string(i) + " does not exist (" +
+                                      std::to_string(model_.nodes.size()) + " nodes)");
+            const size_t n = size_t(i);
+            if (onPath_[n]) return error(ref, "node " + std::to_string(i) + " is its own ancestor: the hierarchy has a cycle");
+            if (visited_[n])
+                return error(ref, "node " + std::to_string(i) +
+                                      " is reached twice (a child of two nodes, or a scene root twice): glTF nodes "
+                                      "form disjoint trees");
+            const std::string path = at("nodes", n);
+            const tinygltf::Node& node = model_.nodes[n];
+            const dmat4 world = parent * localMatrix(node);
+            for (int c = 0; c < 4; ++c)
+                if (!finite(dvec3(world[c])) || !std::isfinite(world[c][3])) return error(path, "its transform is not finite");
+            onPath_[n] = visited_[n] = true;
+            if (node.mesh >= 0) addMesh(size_t(node.mesh), world, path + ".mesh");
+            if (node.camera >= 0 && !mesh_.camera) addCamera(size_t(node.camera), world, path + ".camera");
+            stack.push_back({n, world, path});
+        };
+        enter(index, root, reference);
+        while (!stack.empty() && !failed_) {
+            Frame& top = stack.back();
+            const std::vector<int>& children = model_.nodes[top.node].children;
+            if (top.nextChild == children.size()) {
+                onPath_[top.node] = false;
+                stack.pop_back();
+                continue;
+            }
+            const size_t c = top.nextChild++;
+            const dmat4 world = top.world;  // enter() may move the stack's frames
+            enter(children[c], world, top.path + ".children[" + std::to_string(c) + "]");
+        }
     }
 
     /// The bytes of `accessor`'s elements of `elementBytes` each, checked against its buffer
@@ -185,8 +238,10 @@ private:
         if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
             return error(at("bufferViews", size_t(a.bufferView)), "bytes [" + std::to_string(view.byteOffset) + ", +" +
                                 std::to_string(view.byteLength) + ") lie outside its buffer of " + std::to_string(buffer.size()) + " bytes"), Span{};
+        if (a.count > (size_t(1) << 32))
+            return error(label, std::to_string(a.count) + " elements are more than any buffer view holds"), Span{};
         const size_t needed = a.byteOffset + stride * (a.count - 1) + elementBytes;  // count <= 2^32: no overflow in size_t
-        if (a.count > (size_t(1) << 32) || needed > view.byteLength)
+        if (needed > view.byteLength)
             return error(label, std::to_string(a.count) + " elements need " + std::to_string(needed) +
                                     " bytes of its buffer view, which has " + std::to_string(view.byteLength)), Span{};
         return Span{buffer.data() + view.byteOffset + a.byteOffset, stride, a.count};
@@ -459,6 +514,7 @@ private:
     GltfMaterials materials_;
     TriangleMesh mesh_;
     std::vector<bool> onPath_;
+    std::vector<bool> visited_;
     bool failed_ = false;
 };
 
@@ -488,6 +544,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     tinygltf::Model model;
     ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
+    reader.SetFsCallbacks({regularFileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, nullptr});
     std::string error, warning;
     bool read = false;
     try {

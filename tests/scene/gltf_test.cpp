@@ -15,6 +15,9 @@
 #include <fstream>
 #include <limits>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 namespace skygraph {
 namespace {
 
@@ -215,6 +218,70 @@ TEST(Gltf, AnImageOutsideItsBufferIsRefused) {
     text.insert(text.rfind('}'), R"(, "images": [{"bufferView": 1, "mimeType": "image/png"}])");
     std::ofstream(file) << text;
     gltf_test::expectRefusedAt(file, "images[0]", "bufferViews[1], lies outside buffer 0 of 36 bytes");
+}
+
+/// The triangle file with its nodes and scene roots replaced.
+fs::path withNodes(const std::string& name, const std::string& nodes, const std::string& roots) {
+    const fs::path file = writeTriangle(name, 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string oldNodes = R"("nodes": [{"mesh": 0}])", oldRoots = R"("scenes": [{"nodes": [0]}])";
+    text.replace(text.find(oldNodes), oldNodes.size(), R"("nodes": )" + nodes);
+    text.replace(text.find(oldRoots), oldRoots.size(), R"("scenes": [{"nodes": )" + roots + "}]");
+    std::ofstream(file, std::ios::trunc) << text;
+    return file;
+}
+
+TEST(Gltf, AHierarchyDeeperThanTheStackLoads) {
+    // Node 1 -> 2 -> ... -> kDepth -> 0, the triangle's: recursion this deep overflows a stack.
+    constexpr int kDepth = 100000;
+    std::string nodes = R"([{"mesh": 0})";
+    for (int i = 1; i <= kDepth; ++i) nodes += R"(, {"children": [)" + std::to_string(i < kDepth ? i + 1 : 0) + "]}";
+    Diagnostics d;
+    const auto mesh = loadGltf(withNodes("deep", nodes + "]", "[1]"), {}, d);
+    ASSERT_TRUE(mesh) << messages(d);
+    EXPECT_EQ(mesh->vertices.size(), 3u);
+}
+
+TEST(Gltf, ANodeWithTwoParentsIsRefused) {
+    // glTF's nodes form disjoint trees: drawing node 0 once per parent would double per level.
+    gltf_test::expectRefusedAt(withNodes("two-parents", R"([{"mesh": 0}, {"children": [0]}, {"children": [0]}])", "[1, 2]"),
+                               "nodes[2].children[0]", "node 0 is reached twice");
+    gltf_test::expectRefusedAt(withNodes("root-twice", R"([{"mesh": 0}])", "[0, 0]"), "scenes[0].nodes[1]",
+                               "node 0 is reached twice");
+}
+
+TEST(Gltf, AnAccessorCountPastAnyBufferIsRefusedWithoutOverflow) {
+    const fs::path file = writeTriangle("huge-count", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string count = R"("count": 3)";
+    text.replace(text.find(count), count.size(), R"("count": 4611686018427387907)");
+    std::ofstream(file, std::ios::trunc) << text;
+    gltf_test::expectRefusedAt(file, "accessors[0] (POSITION of meshes[0].primitives[0])",
+                               "4611686018427387907 elements are more than");
+}
+
+TEST(Gltf, AnImageUriThatIsNotARegularFileIsNeverRead) {
+    // A FIFO would block a read forever, and a directory's size is no count of bytes. Images
+    // no material samples are not needed: the file loads without them (a sampled one that
+    // cannot be read is refused, as any unreadable image is).
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-image-uris-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+    fs::create_directories(dir / "folder.png");
+    for (const std::string uri : {"fifo.png", "folder.png", "."}) {
+        const fs::path file = writeTriangle("image-uri", 3, false);
+        std::ifstream in(file);
+        std::string text((std::istreambuf_iterator<char>(in)), {});
+        text.insert(text.rfind('}'), R"(, "images": [{"uri": ")" + uri + R"("}])");
+        const fs::path moved = dir / "model.gltf";
+        std::ofstream(moved, std::ios::trunc) << text;
+        Diagnostics d;
+        EXPECT_TRUE(loadGltf(moved, {}, d)) << uri << ": " << messages(d);
+    }
+    fs::remove_all(dir);
 }
 
 TEST(Gltf, NotAGltfFile) {
