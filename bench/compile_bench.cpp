@@ -136,12 +136,30 @@ std::string mixedReadGraph(int n) {
     return g;
 }
 
+/// n passes each writing a transient image and one last pass reading them all: every transient
+/// lives until the end, so each meets all those placed before it (memory planning's worst
+/// shape, quadratic in n: docs/performance.md).
+std::string wideReadGraph(int n) {
+    std::string res, passes, reads;
+    for (int i = 0; i < n; ++i) {
+        const std::string t = "t" + std::to_string(i);
+        res += "    \"" + t + R"(": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },)" + "\n";
+        passes += R"(    { "name": "w)" + std::to_string(i) + R"(", "type": "Generic", "uses": { ")" + t +
+                  R"(": "Write@ColorAttachment" } },)" + "\n";
+        reads += "\"" + t + R"(": "Read@Fragment", )";
+    }
+    return "{\n  \"version\": 1,\n  \"name\": \"wide" + std::to_string(n) + "\",\n  \"resources\": {\n" + res +
+           R"(    "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true, "final": "ShaderRead" })" +
+           "\n  },\n  \"passes\": [\n" + passes + R"(    { "name": "last", "type": "Generic", "uses": { )" + reads +
+           R"("out": "Write@ColorAttachment" } })" + "\n  ]\n}\n";
+}
+
 const PassRegistry& registry() {
     static const PassRegistry r = PassRegistry::withBuiltins();
     return r;
 }
 
-enum class Shape { Synthetic, SharedRead, MixedReads };
+enum class Shape { Synthetic, SharedRead, MixedReads, WideRead };
 
 struct Case {
     std::string text;
@@ -156,6 +174,7 @@ const Case& graphFor(int n, Shape shape = Shape::Synthetic) {
     if (fresh) {
         it->second.text = shape == Shape::SharedRead   ? sharedReadGraph(n)
                           : shape == Shape::MixedReads ? mixedReadGraph(n)
+                          : shape == Shape::WideRead   ? wideReadGraph(n)
                                                        : syntheticGraph(n);
         it->second.graph = parseGraph(it->second.text, "synthetic.json", registry());
         for (const auto& p : it->second.graph.passes) it->second.usages += static_cast<double>(p.uses.size());
@@ -248,6 +267,7 @@ void BM_CopyPlan(benchmark::State& state) {
     setCounters(state, c);
 }
 void BM_CompileSharedRead(benchmark::State& state) { compileBench(state, Shape::SharedRead); }
+void BM_CompileWideRead(benchmark::State& state) { compileBench(state, Shape::WideRead); }
 
 // `bytes_per_second`: MB/s of graph text; `page_faults`: per load.
 void BM_Parse(benchmark::State& state) {
@@ -317,5 +337,6 @@ BENCHMARK(BM_JsonSax)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::k
 BENCHMARK(BM_CopyGraph)->RangeMultiplier(10)->Range(10, 100000)->Unit(benchmark::kMicrosecond);
 // Up to 10k passes: one read run as long as the frame, linear like BM_Compile (docs/performance.md).
 BENCHMARK(BM_CompileSharedRead)->RangeMultiplier(10)->Range(10, 10000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CompileWideRead)->Arg(1000)->Arg(4000)->Arg(16000)->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -114,30 +114,44 @@ std::vector<uint32_t> largestFirst(const std::vector<Item>& items) {
 /// placed in its heap that hold memory during any step it does (above them all if none fits),
 /// as AMD's Render Pipeline Shaders place theirs.
 void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps, uint32_t steps) {
-    // The placed items holding memory at each step of each heap, as linked lists in one array
-    // sized up front and left unwritten until used. Each step has two lists: the items whose
-    // memory is first held there, and those held since an earlier step. An item holding
-    // steps f..l meets every placed item it shares a step with once: those held at f, and
-    // those first held in f+1..l.
+    // Resources that hold memory for a few steps are found through linked lists per step, in
+    // one array sized up front and left unwritten until used. Each step has two lists: the
+    // items whose memory is first held there, and those held since an earlier step. An item
+    // holding steps f..l meets every placed item it shares a step with once: those held at f,
+    // and those first held in f+1..l.
     struct Node {
         uint64_t begin, end;
         uint32_t next;
     };
-    // Items that hold memory all frame are kept once, apart from the steps' lists, which would
-    // otherwise hold a node per step for each.
-    const auto wholeFrame = [&](const Item& it) { return it.first == 0 && it.last == steps - 1; };
+    // Longer-lived ones (those that may not share hold the whole frame) are kept apart, per
+    // heap by offset: a node per step for each would make a frame of many long-lived
+    // resources (one pass reading thousands) quadratic in memory, and sorting them for every
+    // item that meets them, cubic in time.
+    constexpr uint32_t kShortLife = 16;
+    const auto isLong = [](const Item& it) { return it.last - it.first >= kShortLife; };
     size_t nodeCount = 0;
-    for (const Item& it : items) nodeCount += wholeFrame(it) ? 0 : it.last - it.first + 1;
+    for (const Item& it : items) nodeCount += isLong(it) ? 0 : it.last - it.first + 1;
     const std::unique_ptr<Node[]> nodes(new Node[nodeCount]);
-    struct Busy {
+    struct Held {
         uint64_t begin, end;
+        uint32_t first, last;
     };
-    std::vector<std::pair<uint32_t, Busy>> always;  // heap, range
+    std::vector<std::vector<Held>> longLived(heaps.size());  // per heap, by offset
+    // Out of line: the common loop below keeps its registers.
+    const auto keepByOffset = [](std::vector<Held>& to, Held held) __attribute__((noinline)) {
+        to.insert(std::upper_bound(to.begin(), to.end(), held.begin,
+                                   [](uint64_t offset, const Held& x) { return offset < x.begin; }),
+                  held);
+    };
     // Per heap and step: [2 * step] the items first held there, [2 * step + 1] those held since before.
     std::vector<uint32_t> head(2 * size_t(steps) * heaps.size(), kNone);
     uint32_t used = 0;
-    // The intervals an item lives beside, kept sorted by offset as they are gathered (few are
-    // live at once: insertion beats a sort call). No item meets more than every other.
+    // The intervals an item lives beside, kept sorted by offset as they are gathered (few
+    // short-lived ones are live at once: insertion beats a sort call). No item meets more
+    // than every other.
+    struct Busy {
+        uint64_t begin, end;
+    };
     const std::unique_ptr<Busy[]> busy(new Busy[items.size()]);
     size_t busyCount = 0;
     const auto add = [&](Busy b) {
@@ -150,9 +164,11 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
     };
     for (const uint32_t i : largestFirst(items)) {
         Item& it = items[i];
+        // The long-lived ones it shares a step with come in order of offset, and the
+        // short-lived ones are inserted among them.
         busyCount = 0;
-        for (const auto& [heap, range] : always)
-            if (heap == it.heap) add(range);
+        for (const Held& h : longLived[it.heap])
+            if (h.first <= it.last && h.last >= it.first) busy[busyCount++] = {h.begin, h.end};
         uint32_t* lists = head.data() + 2 * size_t(it.heap) * steps;
         gather(lists[2 * it.first]);
         gather(lists[2 * it.first + 1]);
@@ -168,8 +184,8 @@ void placeBestFitBySize(std::vector<Item>& items, std::vector<MemoryHeap>& heaps
         }
         it.offset = bestGap != ~uint64_t(0) ? best : alignUp(free, it.alignment);
         heaps[it.heap].bytes = std::max(heaps[it.heap].bytes, it.offset + it.bytes);
-        if (wholeFrame(it)) {
-            always.push_back({it.heap, {it.offset, it.offset + it.bytes}});
+        if (isLong(it)) {
+            keepByOffset(longLived[it.heap], {it.offset, it.offset + it.bytes, it.first, it.last});
             continue;
         }
         for (uint32_t s = it.first; s <= it.last; ++s) {

@@ -251,6 +251,63 @@ TEST(MemoryPlacement, RandomInputsMeetTheDefinitionsUnderEveryStrategy) {
     }
 }
 
+/// Best fit by size by brute force: largest first (equal sizes in first-use order), each at the
+/// smallest gap that fits among the placed resources it shares a step with, else above them
+/// all. Images in one heap (no granularity).
+std::vector<uint64_t> bestFitOffsets(const std::vector<TransientResource>& in) {
+    std::vector<uint32_t> order(in.size());
+    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t x, uint32_t y) { return in[x].requirements.size > in[y].requirements.size; });
+    std::vector<uint64_t> offset(in.size());
+    std::vector<bool> placed(in.size());
+    for (const uint32_t i : order) {
+        std::vector<std::pair<uint64_t, uint64_t>> busy;
+        for (size_t j = 0; j < in.size(); ++j)
+            if (placed[j] && overlapsInTime(in[i], in[j])) busy.emplace_back(offset[j], offset[j] + in[j].requirements.size);
+        std::sort(busy.begin(), busy.end());
+        const uint64_t alignment = in[i].requirements.alignment, bytes = in[i].requirements.size;
+        const auto alignUp = [&](uint64_t v) { return (v + alignment - 1) / alignment * alignment; };
+        uint64_t free = 0, best = 0, bestGap = ~uint64_t(0);
+        for (const auto& [begin, end] : busy) {
+            const uint64_t start = alignUp(free);
+            if (start + bytes <= begin && begin - start < bestGap) {
+                best = start;
+                bestGap = begin - start;
+            }
+            free = std::max(free, end);
+        }
+        offset[i] = bestGap != ~uint64_t(0) ? best : alignUp(free);
+        placed[i] = true;
+    }
+    return offset;
+}
+
+// Resources that hold memory for many steps are looked up apart from the short-lived ones
+// (memory_planner.cpp): best fit places both as its definition says, and a frame where one
+// pass reads thousands of resources stays linear in memory.
+TEST(MemoryPlacement, BestFitPlacesLongAndShortLivedResourcesByItsDefinition) {
+    for (uint32_t seed = 1; seed <= 100; ++seed) {
+        std::mt19937 rng(seed);
+        const auto steps = static_cast<uint32_t>(20 + rng() % 200);
+        const auto count = static_cast<uint32_t>(1 + rng() % 200);
+        std::vector<TransientResource> in;
+        for (uint32_t i = 0; i < count; ++i) {
+            const auto first = static_cast<uint32_t>(rng() % steps);
+            const uint32_t span = rng() % 2 ? static_cast<uint32_t>(rng() % 6) : static_cast<uint32_t>(rng() % steps);
+            in.push_back(image(i, first, std::min(steps - 1, first + span), 256 * (1 + rng() % 6), 256u << (rng() % 3)));
+        }
+        std::stable_sort(in.begin(), in.end(), [](const auto& x, const auto& y) { return x.firstStep < y.firstStep; });
+        for (uint32_t i = 0; i < in.size(); ++i) in[i].resource = i;
+        const MemoryLayout m = placeTransients(in, steps, 1024, MemoryStrategy::BestFitBySize, true);
+        const std::vector<uint64_t> expected = bestFitOffsets(in);
+        ASSERT_EQ(m.placements.size(), in.size());
+        for (size_t i = 0; i < in.size(); ++i)
+            ASSERT_EQ(m.placements[i].offset, expected[i]) << "seed " << seed << ", resource " << i;
+        expectValid(in, steps, m, 1024, "seed " + std::to_string(seed));
+    }
+}
+
 // The device-free estimate (docs/memory.md, "Requirements"), on the sizes the shipped graphs use.
 TEST(MemoryEstimate, ImagesArePackedTexelsInPagesAndBuffersTheirSize) {
     const auto model = estimatedMemory();
