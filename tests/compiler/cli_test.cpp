@@ -3,8 +3,12 @@
 // misuse of the command line.
 #include "cli_fixture.hpp"
 
+#include <skygraph/hdr_image.hpp>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include <limits>
 
 namespace {
 
@@ -468,6 +472,26 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
         EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
         EXPECT_TRUE(workFiles().empty()) << args[1];
     }
+}
+
+// An environment of a NaN would spread through every filtered product and light the whole
+// frame with it (a black frame and exit 0, before): refused, named where the scene names it.
+TEST_F(Cli, RenderRefusesAnEnvironmentThatIsNotFinite) {
+    skygraph::HdrImage sky{8, 4, std::vector<float>(8 * 4 * 4, 1.0f)};
+    sky.rgba[5] = std::numeric_limits<float>::quiet_NaN();
+    const fs::path exr = dir_ / "nan.exr";
+    skygraph::saveExr(exr, sky);
+    const fs::path scene = writeGraph("scene.json", R"({
+      "camera": { "position": [0.0, 1.7, 0.0], "fov_y_deg": 70.0, "near": 0.1 },
+      "environment": { "file": "nan.exr", "sampling": "cubemap" }, "objects": [] })");
+    const CliRun r = run({"render", "--scene", scene.string(), "--width", "16", "--height", "16", "-o",
+                          (dir_ / "work" / "out.png").string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("error: " + scene.string() + ": environment.file: '" + exr.string() +
+                         "': 1 pixel values are NaN or infinite"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(workFiles().empty());
 }
 
 // A graph without a Present image: a compute-only bake writes nothing unless asked, and then

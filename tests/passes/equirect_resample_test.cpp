@@ -1,13 +1,18 @@
 // resampleEquirect, which lets `skygraph view` bake a file of another size beside its frames:
 // shrinking keeps the map's integral (a sun's power), growing interpolates and wraps around
 // in longitude.
+#include "app/environment_bake.hpp"
 #include "app/equirect_resample.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <limits>
 #include <numeric>
 #include <random>
+
+#include <unistd.h>
 
 namespace skygraph::test {
 namespace {
@@ -61,6 +66,36 @@ TEST(EquirectResample, GrowingInterpolatesAndWrapsInLongitudeOnly) {
 TEST(EquirectResample, TheSameSizeIsACopy) {
     const HdrImage map = randomMap(64, 32, 9);
     EXPECT_EQ(app::resampleEquirect(map, 64, 32).rgba, map.rgba);
+}
+
+}  // namespace
+}  // namespace skygraph::test
+
+// loadEnvironmentImage, the one way the application reads an environment file: values the
+// half-float products cannot hold are clamped, and NaN or infinity is refused.
+namespace skygraph::test {
+namespace {
+
+TEST(EnvironmentImage, ValuesPastTheLargestHalfAreClampedAndNonFiniteOnesRefused) {
+    const auto base = std::filesystem::temp_directory_path() / ("skygraph-environment-" + std::to_string(::getpid()));
+    const auto hdr = base.string() + ".hdr", exr = base.string() + ".exr";
+    HdrImage sky{4, 2, std::vector<float>(4 * 2 * 4, 1.0f)};
+    sky.rgba[0] = 1.0e30f;  // a half float's infinity
+    saveHdrImage(hdr, sky);
+    const HdrImage clamped = app::loadEnvironmentImage(hdr);
+    EXPECT_EQ(clamped.rgba[0], app::kLargestHalf);
+    EXPECT_EQ(clamped.rgba[4], 1.0f) << "the next pixel as it was";
+    sky.rgba[0] = std::numeric_limits<float>::infinity();
+    saveExr(exr, sky);
+    try {
+        (void)app::loadEnvironmentImage(exr);
+        ADD_FAILURE() << "an infinite value was taken";
+    } catch (const ImageError& e) {
+        EXPECT_EQ(e.file(), exr);
+        EXPECT_NE(std::string(e.what()).find("1 pixel values are NaN or infinite"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove(hdr);
+    std::filesystem::remove(exr);
 }
 
 }  // namespace

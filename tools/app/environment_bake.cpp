@@ -11,6 +11,8 @@
 #include <skygraph/format.hpp>
 #include <skygraph/pass.hpp>
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstring>
@@ -70,6 +72,22 @@ ImageData toImageData(HdrImage image) {
     data.format = VK_FORMAT_R32G32B32A32_SFLOAT;
     data.rgba = std::move(image.rgba);
     return data;
+}
+
+HdrImage loadEnvironmentImage(const std::filesystem::path& file) {
+    HdrImage image = loadHdrImage(file);
+    if (const size_t bad = countNonFinite(image))
+        throw ImageError(file, std::to_string(bad) + " pixel values are NaN or infinite; an environment must be finite");
+    size_t clamped = 0;
+    for (float& v : image.rgba)
+        if (v > kLargestHalf) {
+            v = kLargestHalf;
+            ++clamped;
+        }
+    if (clamped)
+        spdlog::warn("'{}': {} pixel values above {} (the half-float products' largest) are clamped to it",
+                     file.string(), clamped, kLargestHalf);
+    return image;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // `skygraph view`'s inputs and renderer, rebuilt on a change.
 #include "live_graph.hpp"
 
+#include "environment_bake.hpp"
 #include "equirect_resample.hpp"
 
 #include "procedural_environment.hpp"
@@ -246,7 +247,7 @@ bool LiveGraph::rebakeInPlace(const std::filesystem::path& file, RenderOptions n
     const bool keepPixels = renderer_->plan().resourceIndex(shipped::kEquirect) >= 0;
     std::shared_ptr<StagingBuffer> reuse = loadStaging_.use_count() == 1 ? loadStaging_ : nullptr;
     auto decode = [file, extent, keepPixels, reuse, &device = device_]() mutable {
-        HdrImage pixels = loadHdrImage(file);  // throws: reported once the load is finished
+        HdrImage pixels = loadEnvironmentImage(file);  // throws: reported once the load is finished
         if (pixels.width != extent[0] || pixels.height != extent[1]) {
             spdlog::info("environment: {} is {}x{}; resampled to the running {}x{} for a bake beside the frames",
                          file.string(), pixels.width, pixels.height, extent[0], extent[1]);

@@ -133,7 +133,13 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
             environment = proceduralSkyEquirect(scene->environment->sunDirection);
             spdlog::info("environment: the procedural sky ({}x{})", environment->width, environment->height);
         } else {
-            environment = loadHdrImage(scene->environment->file);
+            try {
+                environment = loadEnvironmentImage(scene->environment->file);
+            } catch (const ImageError& e) {  // named where the scene names it
+                Diagnostics d;
+                d.add({scene->file, "environment.file", "", "", e.what()});
+                throw SceneError(std::move(d));
+            }
             spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
                          environment->height);
         }

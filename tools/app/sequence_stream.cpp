@@ -1,6 +1,7 @@
 // SequenceStream: see sequence_stream.hpp.
 #include "sequence_stream.hpp"
 
+#include "environment_bake.hpp"
 #include "equirect_resample.hpp"
 
 #include <algorithm>
@@ -89,7 +90,7 @@ void SequenceStream::decodeLoop() {
         const auto start = std::chrono::steady_clock::now();
         try {  // anything thrown here would end the program: it becomes the frame's error
             frame.file = sequence_.frame(index).string();
-            frame.pixels = loadHdrImage(frame.file);
+            frame.pixels = loadEnvironmentImage(frame.file);
             if (frame.pixels.width != width_ || frame.pixels.height != height_)
                 frame.pixels = resampleEquirect(frame.pixels, width_, height_);
             if (staging_) frame.staged = staging_->stage(std::exchange(frame.pixels, {}).rgba);
