@@ -16,6 +16,8 @@ inline constexpr uint32_t kMaxImageExtent = 16384;
 inline constexpr uint32_t kMaxLayers = 2048;
 inline constexpr uint32_t kMaxDivisor = 4096;  ///< Of "output/N".
 inline constexpr uint64_t kMaxBufferBytes = 1ull << 31;
+/// The largest graph file loadGraphFile() reads (a 100,000-pass graph is about 20 MiB).
+inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 
 /// Whether `r`'s extent, layers, mip count and size are within the limits; the index asks
 /// once per resource, so only a resource past them costs a message.

@@ -5,6 +5,7 @@
 // allocation per value), and everything only a message needs (JSON paths, lists of names) is
 // worked out when there is a problem to report.
 #include "graph_file.hpp"
+#include "graph_limits.hpp"
 #include "json_document.hpp"
 #include "name_index.hpp"
 #include "resource_loader.hpp"
@@ -705,15 +706,23 @@ GraphDesc parseGraph(std::string_view text, const std::string& fileName, const P
 }
 
 GraphDesc loadGraphFile(const std::filesystem::path& path, const PassRegistry& registry) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    const auto fail = [&](const std::string& message) {
         Diagnostics d;
-        d.add({path.string(), "", "", "", "cannot open the file"});
+        d.add({path.string(), "", "", "", message});
         throw GraphError(std::move(d));
+    };
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail("cannot open the file");
+    // In pieces, up to the limit: a device or a pipe need not end.
+    std::string text;
+    std::array<char, 1 << 16> piece;
+    while (in.read(piece.data(), piece.size()) || in.gcount() > 0) {
+        text.append(piece.data(), size_t(in.gcount()));
+        if (text.size() > kMaxGraphFileBytes)
+            fail("is larger than " + std::to_string(kMaxGraphFileBytes >> 20) + " MiB, the most a graph file may be");
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseGraph(text.str(), path.string(), registry);
+    if (in.bad()) fail("cannot read the file (a directory?)");
+    return parseGraph(text, path.string(), registry);
 }
 
 }  // namespace skygraph

@@ -5,6 +5,8 @@
 // stb's implementation lives in skygraph_image (its only owner).
 #include <skygraph/hdr_image.hpp>
 
+#include "image_internal.hpp"
+
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
@@ -28,14 +30,15 @@ void writePng(const std::filesystem::path& path, const ImageData& image) {
     for (size_t i = 0; i < bytes.size(); ++i) {
         bytes[i] = static_cast<uint8_t>(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f));
     }
-    const auto tmp = path.string() + ".tmp";
-    if (!stbi_write_png(tmp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 4,
-                        bytes.data(), static_cast<int>(image.width * 4))) {
-        throw ExecutorError("cannot write '" + path.string() + "'");
+    try {  // nothing half-written under the final name, and no temporary left behind
+        image_detail::writeAtomically(path, [&](const std::string& temp) {
+            if (!stbi_write_png(temp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 4,
+                                bytes.data(), static_cast<int>(image.width * 4)))
+                throw ImageError(path, "cannot write");
+        });
+    } catch (const ImageError& e) {
+        throw ExecutorError(e.what());
     }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);  // nothing half-written under the final name
-    if (ec) throw ExecutorError("cannot write '" + path.string() + "': " + ec.message());
 }
 
 void writeHdr(const std::filesystem::path& path, const ImageData& image) {

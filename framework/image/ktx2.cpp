@@ -3,6 +3,8 @@
 // smallest first, each aligned to lcm(texel size, 4).
 #include <skygraph/ktx2.hpp>
 
+#include "image_internal.hpp"
+
 #include <Imath/half.h>
 
 #include <algorithm>
@@ -156,24 +158,13 @@ void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
         w.putU64At(levelIndexAt + m * 24 + 16, length);
     }
 
-    const std::filesystem::path tmp = path.string() + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    image_detail::writeAtomically(path, [&](const std::string& temp) {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
         if (!out) throw ImageError(path, "cannot open for writing");
         out.write(reinterpret_cast<const char*>(w.bytes.data()), std::streamsize(w.bytes.size()));
         out.close();
-        if (!out) {
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            throw ImageError(path, "write failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::filesystem::remove(tmp, ec);
-        throw ImageError(path, "cannot rename the finished file into place");
-    }
+        if (!out) throw ImageError(path, "write failed (disk full?)");
+    });
 }
 
 }  // namespace skygraph

@@ -8,7 +8,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <limits>
+
+#include <sys/wait.h>
 
 namespace {
 
@@ -171,12 +174,38 @@ TEST_F(Cli, MissingGraphFileExitsOne) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+TEST_F(Cli, AGraphFileThatIsEndlessOrADirectoryExitsOne) {
+    const CliRun endless = run({"compile", "/dev/zero"});
+    EXPECT_EQ(endless.status, 1) << endless.err;
+    EXPECT_NE(endless.err.find("error: /dev/zero: is larger than 256 MiB, the most a graph file may be"),
+              std::string::npos)
+        << endless.err;
+    const CliRun folder = run({"compile", dir_.string()});
+    EXPECT_EQ(folder.status, 1) << folder.err;
+    EXPECT_NE(folder.err.find("error: " + dir_.string() + ": cannot read the file"), std::string::npos) << folder.err;
+}
+
 TEST_F(Cli, UnwritableOutputExitsOne) {
     const fs::path out = dir_ / "work" / "no_such_dir" / "plan.json";
     const CliRun r = run({"compile", "graphs/raster.json", "-o", out.string()});
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("plan.json"), std::string::npos) << r.err;
     EXPECT_TRUE(workFiles().empty());
+}
+
+TEST_F(Cli, StandardOutputThatCannotBeWrittenExitsOne) {
+    // /dev/full fails every write, as a full disk does: the plan was not printed.
+    for (const char* format : {"text", "json"}) {
+        const std::string command = std::string(SKYGRAPH_CLI) + " compile " + SKYGRAPH_SOURCE_DIR +
+                                    "/graphs/raster.json --format " + format + " >/dev/full 2>" +
+                                    (dir_ / "err.txt").string();
+        const int status = std::system(command.c_str());
+        ASSERT_TRUE(WIFEXITED(status)) << format;
+        EXPECT_EQ(WEXITSTATUS(status), 1) << format;
+        std::ifstream err(dir_ / "err.txt");
+        const std::string text((std::istreambuf_iterator<char>(err)), {});
+        EXPECT_NE(text.find("error: cannot write to standard output"), std::string::npos) << text;
+    }
 }
 
 TEST_F(Cli, UnknownFeatureExitsOne) {
@@ -465,6 +494,9 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
         {{"render", graph.string(), "-o", out}, "error: " + graph.string() + ": passes[0].params.operator"},
         {{"render", (dir_ / "nope.json").string(), "-o", out}, "nope.json"},
         {{"render", "graphs/raster.json", "--feature", "nosuch=on", "-o", out}, "unknown feature 'nosuch'"},
+        {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "out.jpg").string()},
+         "its extension must be .png, .hdr or .exr"},
+        {{"render", graph.string(), "-o", graph.string()}, "its extension must be"},
     };
     for (const auto& [args, message] : cases) {
         const CliRun r = run(args);
@@ -492,6 +524,21 @@ TEST_F(Cli, RenderRefusesAnEnvironmentThatIsNotFinite) {
               std::string::npos)
         << r.err;
     EXPECT_TRUE(workFiles().empty());
+}
+
+// A PNG that cannot be written leaves no temporary behind, and never touches a file of the
+// temporary's name that was there before.
+TEST_F(Cli, RenderThatCannotWriteItsPngLeavesNothingBehind) {
+    fs::create_directories(dir_ / "work" / "out.png");  // a directory where the file would go
+    std::ofstream(dir_ / "work" / "out.png.tmp") << "precious";
+    const CliRun r = run({"render", "--width", "8", "--height", "8", "-o", (dir_ / "work" / "out.png").string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("out.png': cannot write"), std::string::npos) << r.err;
+    std::vector<std::string> left = workFiles();
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"out.png", "out.png.tmp"}));
+    std::ifstream kept(dir_ / "work" / "out.png.tmp");
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), {}), "precious");
 }
 
 // A graph without a Present image: a compute-only bake writes nothing unless asked, and then

@@ -255,6 +255,16 @@ RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs&
     return out;
 }
 
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
 int renderCommand(const RenderOptions& options) {
     try {
         if (options.graph.empty() && options.graphText.empty()) {
@@ -264,6 +274,20 @@ int renderCommand(const RenderOptions& options) {
         if (options.width == 0 || options.height == 0 || options.frames == 0) {
             std::cerr << "skygraph render: --width, --height and --frames must be at least 1\n";
             return 1;
+        }
+        const std::string format = lowerExtension(options.output);
+        if (!options.output.empty() && format != ".png" && format != ".hdr" && format != ".exr") {
+            std::cerr << "skygraph render: cannot write '" << options.output.string()
+                      << "': its extension must be .png, .hdr or .exr\n";
+            return 1;
+        }
+        for (const std::filesystem::path& input : {options.graph, options.scene}) {
+            std::error_code ec;
+            if (!options.output.empty() && !input.empty() && std::filesystem::equivalent(input, options.output, ec)) {
+                std::cerr << "skygraph render: -o '" << options.output.string() << "' is the input '"
+                          << input.string() << "': it would be overwritten\n";
+                return 1;
+            }
         }
         FrameInputs inputs = loadFrameInputs(options);
         const GraphDesc& graph = inputs.graph;
@@ -300,7 +324,7 @@ int renderCommand(const RenderOptions& options) {
         }
         if (!target.empty()) {
             const ImageData image = renderer.readback(target);
-            const auto ext = output.extension().string();
+            const std::string ext = lowerExtension(output);
             if (ext == ".hdr" || ext == ".exr") {
                 writeHdr(output, image);
             } else {

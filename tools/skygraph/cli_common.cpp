@@ -87,11 +87,18 @@ int reportCurrentException() {
 }
 
 int runGuarded(const std::function<int()>& body) {
+    int status = kExitOk;
     try {
-        return body();
+        status = body();
     } catch (...) {
-        return reportCurrentException();
+        status = reportCurrentException();
     }
+    // A plan printed to a full disk or a closed pipe is not a success.
+    if (!std::cout.flush() && status == kExitOk) {
+        std::cerr << "error: cannot write to standard output\n";
+        return kExitUserError;
+    }
+    return status;
 }
 
 }  // namespace skygraph::cli
