@@ -20,6 +20,8 @@
 #                through two resizes; the fixed one clears it
 #   graph_shader_reload  a graph saved while a shader is broken does not build; fixing the
 #                shader brings in the saved graph (no skybox pass), not the old graph's pipelines
+#   feature_removed  a feature the overlay set, then removed from the saved graph, is dropped:
+#                the save builds
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
@@ -388,6 +390,35 @@ EOF
         [ "$sky" = "0 0 0" ] || fail "the fixed shader did not bring in the graph saved beside it (no skybox pass): sky $sky"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
+        ;;
+    feature_removed)
+        cp "$root/graphs/raster.json" graph.json
+        view --validate --width 640 --height 480 graph.json
+        w="$(window_of)"
+        wait_for_log "overlay: feature checkboxes"
+        sleep 2
+        read -r x y <<<"$(checkbox_of skybox)"
+        [ -n "$x" ] || fail "the overlay logged no skybox checkbox"
+        xdotool mousemove --window "$w" "$x" "$y" click 1
+        wait_for_log "culled skybox: "
+        # Saved without the feature the click set: the save builds, the feature is dropped.
+        python3 - "$root/graphs/raster.json" <<'EOF'
+import json, re, sys
+g = json.load(open(sys.argv[1]))
+del g["features"]["skybox"]
+for p in g["passes"]:
+    if "if" in p:
+        p["if"] = re.sub(r"\bskybox\b", "false", p["if"])
+json.dump(g, open("graph.json.tmp", "w"), indent=1)
+EOF
+        mv graph.json.tmp graph.json
+        wait_for_log "reload: first frame of the new plan presented"
+        grep -q "feature 'skybox' is not declared by the graph any more: dropped" view.err ||
+            fail "the log does not say the feature was dropped"
+        ! grep -q "unknown feature" view.err || fail "the save was refused for the feature the click set"
+        xdotool key --window "$w" Escape
+        expect_clean_end "$pid" ""
+        grep -q " 2 reload(s)" view.out || fail "not two reloads (the click's and the save's)"
         ;;
     screenshot)
         view --validate --no-ui --width 320 --height 240

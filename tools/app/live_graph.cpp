@@ -141,9 +141,19 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options)
     FrameInputs inputs = loadFrameInputs(options);
     const std::string ui(shipped::kOverlayFeature);
     const auto& declared = inputs.graph.features;
-    if (!options.features.contains(ui) &&
-        std::any_of(declared.begin(), declared.end(), [&](const FeatureDecl& f) { return f.name == ui; }))
-        inputs.compile.features[ui] = overlay_;
+    const auto isDeclared = [&](const std::string& name) {
+        return std::any_of(declared.begin(), declared.end(), [&](const FeatureDecl& f) { return f.name == name; });
+    };
+    // A feature set since the start (the overlay's checkboxes, F1) that a saved graph no longer
+    // declares is dropped: as an unknown feature it would refuse every later save. The first
+    // build keeps them, so that a wrong --feature is an error.
+    if (renderer_)
+        std::erase_if(inputs.compile.features, [&](const auto& feature) {
+            if (isDeclared(feature.first)) return false;
+            spdlog::info("feature '{}' is not declared by the graph any more: dropped", feature.first);
+            return true;
+        });
+    if (!options.features.contains(ui) && isDeclared(ui)) inputs.compile.features[ui] = overlay_;
     if (inputs.scene && scene_) keepViewSettings(*scene_, *inputs.scene);
     b->scene = inputs.scene;
     CompileOptions co = inputs.compile;  // presented: the Present resource stays Present
@@ -185,7 +195,10 @@ bool LiveGraph::rebuild(RenderOptions options) {
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
     if (built_->scene) scene_ = built_->scene;
     options_ = std::move(options);
+    // Built from the files and shaders as they are now: nothing saved is left unapplied.
     error_.clear();
+    shaderError_.clear();
+    graphSavePending_ = sceneSavePending_ = false;
     ++reloads_;
     startSequence();
     return true;
@@ -390,7 +403,8 @@ bool LiveGraph::poll() {
     if (graphSaved || sceneSaved) {
         std::error_code ec;
         const auto saved = std::filesystem::last_write_time(graphSaved ? options_.graph : options_.scene, ec);
-        rebuildAfterSave(graphSaved, sceneSaved, saved, !ec);
+        // A save still pending (its build failed) is part of this one's.
+        rebuildAfterSave(graphSaved || graphSavePending_, sceneSaved || sceneSavePending_, saved, !ec);
         return true;
     }
     const HotReloader::Result shaders = shaderWatcher_->poll();
