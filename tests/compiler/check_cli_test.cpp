@@ -262,6 +262,35 @@ TEST_F(Cli, SkySequenceWritesEveryFrameAndRefusesAPatternWithoutANumber) {
     EXPECT_FALSE(fs::exists(dir_ / "work" / "sky.exr"));
 }
 
+// A run that fails part way writes none of its outputs: a frame path that is a folder, a
+// cross in a folder that does not exist, a product where a folder is.
+TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
+    fs::create_directories(dir_ / "work" / "frames" / "sky_1.exr");
+    const CliRun frames = run({"sky-sequence", (dir_ / "work" / "frames" / "sky_%d.exr").string(), "--frames", "3",
+                               "--width", "8"});
+    EXPECT_EQ(frames.status, 1) << frames.err;
+    EXPECT_NE(frames.err.find("sky_1.exr': is a folder"), std::string::npos) << frames.err;
+    EXPECT_FALSE(fs::exists(dir_ / "work" / "frames" / "sky_0.exr"));
+    fs::remove_all(dir_ / "work" / "frames");
+
+    const fs::path sky = dir_ / "sky.exr";
+    ASSERT_EQ(run({"sky-sequence", (dir_ / "sky%d.exr").string(), "--frames", "1", "--width", "32"}).status, 0);
+    fs::rename(dir_ / "sky0.exr", sky);
+    const fs::path cube = dir_ / "work" / "cube.ktx2";
+    const CliRun cross = run({"cubemap", sky.string(), "-o", cube.string(), "--size", "32", "--cross",
+                              (dir_ / "work" / "nodir" / "x.exr").string()});
+    EXPECT_EQ(cross.status, 1) << cross.err;
+    EXPECT_NE(cross.err.find("the folder '" + (dir_ / "work" / "nodir").string() + "' does not exist"),
+              std::string::npos)
+        << cross.err;
+    EXPECT_TRUE(workFiles().empty());
+    fs::create_directories(dir_ / "work" / "cube.brdf.ktx2");
+    const CliRun product = run({"cubemap", sky.string(), "-o", cube.string(), "--size", "32"});
+    EXPECT_EQ(product.status, 1) << product.err;
+    EXPECT_NE(product.err.find("cube.brdf.ktx2': is a folder"), std::string::npos) << product.err;
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"cube.brdf.ktx2"});
+}
+
 TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
     const CliRun bar = run({"--progress", "always", "check", "graphs/pathtrace.json", "--frames", "1"});
     EXPECT_EQ(bar.status, 0) << bar.out << bar.err;

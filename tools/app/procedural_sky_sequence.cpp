@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <system_error>
+#include <vector>
 
 namespace skygraph::app {
 
@@ -23,8 +24,23 @@ void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uin
         std::filesystem::create_directories(folder, ec);
         if (ec) throw ImageError(folder, "cannot make the folder: " + ec.message());
     }
+    std::error_code ec;
     for (uint32_t i = 0; i < frames; ++i)
-        saveHdrImage(sequenceFrameFile(pattern, i), proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
+        if (std::filesystem::is_directory(sequenceFrameFile(pattern, i), ec))
+            throw ImageError(sequenceFrameFile(pattern, i), "is a folder");
+    // A sequence cut short by a failure is no sequence: the frames this run made go again.
+    std::vector<std::filesystem::path> made;
+    try {
+        for (uint32_t i = 0; i < frames; ++i) {
+            const std::filesystem::path frame = sequenceFrameFile(pattern, i);
+            const bool existed = std::filesystem::exists(frame, ec);
+            saveHdrImage(frame, proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
+            if (!existed) made.push_back(frame);
+        }
+    } catch (...) {
+        for (const auto& frame : made) std::filesystem::remove(frame, ec);
+        throw;
+    }
 }
 
 }  // namespace skygraph::app

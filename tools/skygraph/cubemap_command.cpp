@@ -13,7 +13,12 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <filesystem>
+#include <functional>
 #include <memory>
+#include <system_error>
+
+#include <unistd.h>
 
 namespace skygraph::cli {
 namespace {
@@ -72,6 +77,48 @@ HdrImage crossLayout(const std::vector<ImageData>& faces) {
     return cross;
 }
 
+/// An output must go to an existing folder and may not be a folder itself: checked before the
+/// bake, so that a mistyped path costs no work.
+void requireWritablePath(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) throw ImageError(path, "is a folder");
+    const std::filesystem::path folder = path.parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+        throw ImageError(path, "cannot be written: the folder '" + folder.string() + "' does not exist");
+}
+
+/// writes[i] writes outputs[i] to the path it is given: first each to a temporary beside its
+/// output (with the same extension, which picks the format), then, once all are written, each
+/// renamed into place. A failure removes the temporaries and leaves the outputs as they were.
+void writeAllOrNone(const std::vector<std::filesystem::path>& outputs,
+                    const std::vector<std::function<void(const std::filesystem::path&)>>& writes) {
+    std::vector<std::filesystem::path> temporaries;
+    const auto removeTemporaries = [&] {
+        std::error_code ignored;
+        for (const auto& t : temporaries) std::filesystem::remove(t, ignored);
+    };
+    try {
+        for (size_t i = 0; i < outputs.size(); ++i) {
+            std::filesystem::path temporary = outputs[i];
+            temporary.replace_filename(outputs[i].stem().string() + ".partial" + std::to_string(::getpid()) +
+                                       outputs[i].extension().string());
+            temporaries.push_back(temporary);
+            writes[i](temporary);
+        }
+    } catch (...) {
+        removeTemporaries();
+        throw;
+    }
+    for (size_t i = 0; i < outputs.size(); ++i) {
+        std::error_code ec;
+        std::filesystem::rename(temporaries[i], outputs[i], ec);
+        if (ec) {
+            removeTemporaries();
+            throw ImageError(outputs[i], "cannot be written: " + ec.message());
+        }
+    }
+}
+
 int run(CubemapArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::filesystem::path output = args.output;
@@ -89,6 +136,12 @@ int run(CubemapArgs& args) {
     bake.products.clear();
     for (const auto& p : args.products) bake.products.push_back(p == "brdf" ? std::string(kBrdfLut) : p);
 
+    // Every output is checked before the bake and written after it, all or none.
+    std::vector<std::filesystem::path> outputs{output};
+    for (const auto& p : args.products) outputs.push_back(productPath(output, p));
+    if (!args.cross.empty()) outputs.emplace_back(args.cross);
+    for (const auto& path : outputs) requireWritablePath(path);
+
     ProgressBar bar("cubemap", 6, "steps");
     const HdrImage equirect = loadHdrImage(args.input);  // ImageError names the file and reason
     if (const size_t bad = countNonFinite(equirect))
@@ -104,17 +157,23 @@ int run(CubemapArgs& args) {
 
     for (const PassTiming& t : result.passTimings) spdlog::debug("  {:<18} {:8.1f} ms", t.pass, t.milliseconds);
     const Ktx2Format colour = bake.float32 ? Ktx2Format::Rgba32Float : Ktx2Format::Rgba16Float;
-    saveKtx2(output, toKtx2(result.products.at(std::string(kEnvironment)), 6, colour));
-    for (const auto& p : args.products) {
-        const std::string resource = p == "brdf" ? std::string(kBrdfLut) : p;
-        const bool table = resource == kBrdfLut;
-        const Ktx2Format format = table ? (bake.float32 ? Ktx2Format::Rg32Float : Ktx2Format::Rg16Float) : colour;
-        saveKtx2(productPath(output, p), toKtx2(result.products.at(resource), table ? 1 : 6, format));
-    }
-    if (!args.cross.empty()) {
-        const auto& env = result.products.at(std::string(kEnvironment));
-        saveHdrImage(args.cross, crossLayout({env.begin(), env.begin() + 6}));
-    }
+    std::vector<std::function<void(const std::filesystem::path&)>> writes;  // parallel to outputs
+    writes.push_back([&](const std::filesystem::path& to) {
+        saveKtx2(to, toKtx2(result.products.at(std::string(kEnvironment)), 6, colour));
+    });
+    for (const auto& p : args.products)
+        writes.push_back([&, p](const std::filesystem::path& to) {
+            const std::string resource = p == "brdf" ? std::string(kBrdfLut) : p;
+            const bool table = resource == kBrdfLut;
+            const Ktx2Format format = table ? (bake.float32 ? Ktx2Format::Rg32Float : Ktx2Format::Rg16Float) : colour;
+            saveKtx2(to, toKtx2(result.products.at(resource), table ? 1 : 6, format));
+        });
+    if (!args.cross.empty())
+        writes.push_back([&](const std::filesystem::path& to) {
+            const auto& env = result.products.at(std::string(kEnvironment));
+            saveHdrImage(to, crossLayout({env.begin(), env.begin() + 6}));
+        });
+    writeAllOrNone(outputs, writes);
     bar.advance();
     bar.finish();
     const double totalMs =
