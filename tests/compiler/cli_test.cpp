@@ -191,6 +191,12 @@ TEST_F(Cli, UnwritableOutputExitsOne) {
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("plan.json"), std::string::npos) << r.err;
     EXPECT_TRUE(workFiles().empty());
+    // A folder where the file would go: the rename's reason, and no temporary left.
+    fs::create_directories(dir_ / "work" / "plan");
+    const CliRun folder = run({"compile", "graphs/raster.json", "-o", (dir_ / "work" / "plan").string()});
+    EXPECT_EQ(folder.status, 1) << folder.err;
+    EXPECT_NE(folder.err.find("plan': Is a directory"), std::string::npos) << folder.err;
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"plan"});
 }
 
 TEST_F(Cli, StandardOutputThatCannotBeWrittenExitsOne) {

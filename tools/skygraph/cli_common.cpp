@@ -11,6 +11,8 @@
 #include <fstream>
 #include <iostream>
 
+#include <unistd.h>
+
 namespace skygraph::cli {
 
 std::optional<LayoutPolicy> parseLayoutsFlag(const std::string& text) {
@@ -45,7 +47,8 @@ void writeOutput(const std::string& path, const std::string& text) {
     }
     namespace fs = std::filesystem;
     const fs::path target(path);
-    const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".partial");
+    const fs::path temp =
+        target.parent_path() / ("." + target.filename().string() + ".partial" + std::to_string(::getpid()));
     {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
         out << text;
@@ -59,7 +62,8 @@ void writeOutput(const std::string& path, const std::string& text) {
     std::error_code ec;
     fs::rename(temp, target, ec);
     if (ec) {
-        fs::remove(temp, ec);
+        std::error_code ignored;  // the rename's reason is the one to tell
+        fs::remove(temp, ignored);
         throw std::runtime_error("cannot write '" + path + "': " + ec.message());
     }
 }
