@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -79,6 +80,12 @@ private:
         if (!v.is_number()) return error(path, "expected a number, got " + v.dump()), false;
         const double d = v.get<double>();
         if (!std::isfinite(d)) return error(path, "must be a finite number"), false;
+        // The GPU reads scenes as 32-bit floats: past their range a value becomes infinite, and
+        // below their normal numbers it loses its precision (or becomes 0).
+        if (std::abs(d) > double(std::numeric_limits<float>::max()) ||
+            (d != 0.0 && std::abs(d) < double(std::numeric_limits<float>::min())))
+            return error(path, "must be 0 or of a magnitude a 32-bit float holds (1.2e-38 to 3.4e38), got " + v.dump()),
+                   false;
         if (!range.contains(d)) return error(path, "must be " + range.text() + ", got " + v.dump()), false;
         out = d;
         return true;

@@ -244,6 +244,11 @@ TEST(SceneErrors, TypesAndFiniteNumbers) {
     expectError(R"({"camera": {"yaw_deg": 1e400}})", "camera", "number overflow parsing '1e400'");
     expectError(R"({"camera": {"position": [0, -1e999, 0]}})", "camera.position", "number overflow");
     expectError(R"({"camera": {"yaw_deg": NaN}})", "camera", "malformed JSON");
+    // A double the GPU's 32-bit floats cannot hold: infinite there, or a denormal near plane.
+    expectError(R"({"camera": {"pitch_deg": 1e39}})", "camera.pitch_deg", "a 32-bit float holds");
+    expectError(R"({"camera": {"near": 1e-39}})", "camera.near", "a 32-bit float holds");
+    expectError(R"({"objects": [{"type": "sphere", "center": [1e39, 0, 0], "radius": 1}]})", "objects[0].center[0]",
+                "a 32-bit float holds");
     expectError(R"({"camera": {"position": [0, 0]}})", "camera.position", "array of 3 numbers");
     expectError(R"({"camera": []})", "camera", "must be an object");
     expectError(R"({"description": 3})", "description", "must be a string");
