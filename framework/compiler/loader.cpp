@@ -222,8 +222,11 @@ private:
             return;
         }
         graph_.resources.reserve(resources.size());
-        for (const auto& [name, value] : resources.members())  // in place: a ResourceDesc is large
+        for (const auto& [name, value] : resources.members()) {  // in place: a ResourceDesc is large
+            const size_t before = resourceDiags_.size();
             loadResource(name, value, report_, graph_.resources.emplace_back());
+            faultyResources_.push_back(resourceDiags_.size() > before);
+        }
         // Keys are unique: every name is new.
         resourceIndex_.reserve(graph_.resources.size());
         for (size_t i = 0; i < graph_.resources.size(); ++i)
@@ -513,7 +516,10 @@ private:
                             ")");
             u.usage.range = range;
         }
-        std::string problem = usageProblem(*res, u.usage);
+        // A resource whose declaration was refused has no description to check a usage against:
+        // its own error says what to mend, and follow-on errors would only mislead.
+        const bool described = !faultyResources_[static_cast<size_t>(res - graph_.resources.data())];
+        std::string problem = described ? usageProblem(*res, u.usage) : std::string();
         if (!problem.empty()) return fail(problem);
         u.usage.as = resolvedBinding(u.usage.mode(), res->isImage());
         p.uses.push_back(u);
@@ -682,6 +688,7 @@ private:
     /// Of the pass being loaded, beside PassDesc::uses: each usage's index in an array of
     /// uses, for its JSON path.
     std::vector<uint32_t> useIndices_;
+    std::vector<bool> faultyResources_;  ///< Per resource: its declaration had an error.
     std::vector<uint32_t> filled_;           ///< bindSlots: per slot, the usages filling it
     struct Ahead {
         std::string_view name;

@@ -280,6 +280,15 @@ TEST(LoaderErrors, UnknownResourceType) {
                         {"texture3d", "image2d", "cube", "image2d_array", "buffer"}));
 }
 
+TEST(LoaderErrors, AResourceRefusedIsNotCheckedAgainstItsUsages) {
+    // Its description is unknown: "format  has no depth or stencil" would only mislead.
+    Json g = baseGraph();
+    g["resources"]["depth"]["type"] = "image3d";
+    const auto ds = loadErrors(g);
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.depth.type", "", "depth", {"image3d"}));
+}
+
 TEST(LoaderErrors, UnknownFormat) {
     Json g = baseGraph();
     g["resources"]["hdr_color"]["format"] = "R16G16B16A16_SFLOATY";
