@@ -28,6 +28,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+
+#include <unistd.h>
 #include <memory>
 #include <optional>
 #include <string>
@@ -434,8 +436,9 @@ TEST_F(Present, NegativeControlNoPresentBarrierIsReported) {
 /// `skygraph view`'s LiveGraph of graphs/raster.json with `scene`, presenting to a 96x64
 /// window, two frames in flight, screenshots allowed; frame() polls and presents one frame.
 struct LiveWindow {
-    LiveWindow(Device& device, const std::string& scene)
-        : live(device, options(scene), 96, 64, false),
+    LiveWindow(Device& device, const std::string& scene) : LiveWindow(device, options(scene)) {}
+    LiveWindow(Device& device, app::RenderOptions o)
+        : live(device, std::move(o), 96, 64, false),
           swapchain(Swapchain::create(device, live.renderer().compiled(), swapchainOptions())) {
         live.presentTo(*swapchain);
     }
@@ -537,6 +540,32 @@ TEST_F(Present, AnUnreadableEnvironmentFileIsReportedAndTheSkyStays) {
     for (int i = 0; i < 3; ++i) w.frame();
     live.renderer().waitIdle();
     std::filesystem::remove(file);
+    expectSilent();
+}
+
+// A saved graph that does not load keeps its message on screen while an environment file is
+// loaded and re-baked beside the frames: the save is still not built.
+TEST_F(Present, ASaveThatDidNotBuildKeepsItsMessageThroughAnEnvironmentChange) {
+    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("skygraph-save-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    for (const char* graph : {"raster.json", "ibl.json"}) std::filesystem::copy_file(root / "graphs" / graph, dir / graph);
+    app::RenderOptions o = LiveWindow::options("scenes/studio.json");
+    o.graph = dir / "raster.json";
+    LiveWindow w(*device_, o);
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
+    std::ofstream(dir / "raster.json", std::ios::trunc) << "{ \"version\": 1, \"passes\": [ ";
+    w.frame();
+    ASSERT_NE(live.error().find("raster.json"), std::string::npos) << live.error();
+    const std::filesystem::path file = loadSceneFile(root / "scenes/studio.json").environment->file;
+    ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
+    const int frames = w.framesUntilRebaked();
+    EXPECT_FALSE(live.rebaking()) << "not swapped in after " << frames << " frames";
+    EXPECT_NE(live.error().find("raster.json"), std::string::npos) << "the save's message went: " << live.error();
+    live.renderer().waitIdle();
+    std::filesystem::remove_all(dir);
     expectSilent();
 }
 

@@ -246,10 +246,7 @@ bool LiveGraph::setFeature(const std::string& name, bool on) {
 bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
     RenderOptions next = options_;
     next.environmentFile = file;
-    if (rebakeInPlace(file, next)) {
-        error_.clear();
-        return true;
-    }
+    if (rebakeInPlace(file, next)) return true;  // its message, if any, once the file is decoded
     return rebuild(std::move(next));
 }
 
@@ -293,7 +290,8 @@ void LiveGraph::finishEnvironmentLoad() {
             return;
         }
         options_ = std::move(load.next);
-        error_.clear();
+        // A save that did not build is still not built: its message stays.
+        if (!graphSavePending_ && !sceneSavePending_) error_.clear();
     } catch (const std::exception& e) {
         error_ = e.what();
         spdlog::warn("{}", error_);
