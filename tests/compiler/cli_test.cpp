@@ -475,6 +475,11 @@ TEST_F(Cli, MisuseOfAnySubcommandExitsTwo) {
     cases.push_back({"render", "--frames", "lots"});
     cases.push_back({"render", "--feature", "skybox"});
     cases.push_back({"render", "a.json", "b.json"});
+    // Empty names would silently mean the default (skygraph.png, the first device).
+    cases.push_back({"render", "-o", ""});
+    cases.push_back({"render", "--device", ""});
+    cases.push_back({"render", "--readback", ""});
+    cases.push_back({"compile", "graphs/raster.json", "-o", ""});
 #endif
     for (const auto& args : cases) {
         std::string shown;

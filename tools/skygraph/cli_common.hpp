@@ -8,6 +8,8 @@
 // list of commands. Long work shows a ProgressBar (progress_bar.hpp).
 #pragma once
 
+#include <CLI/CLI.hpp>
+
 #include <skygraph/condition.hpp>
 #include <skygraph/graph.hpp>
 
@@ -50,6 +52,12 @@ struct Command {
 /// "NAME=on|off" strings -> values. Throws UsageError on bad syntax, naming `option`.
 [[nodiscard]] FeatureValues parseFeatureFlags(const std::vector<std::string>& flags,
                                               std::string_view option = "--feature");
+
+/// For options that name a file or a device: given empty (`-o ""`), they would silently mean
+/// their default; CLI11 then refuses them as misuse (exit 2).
+inline const CLI::Validator kNotEmpty(
+    [](const std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
+    "NOT EMPTY");
 
 /// Writes `text` to `path` (stdout when empty) through a temporary file and a rename, so a
 /// failure never leaves half a file behind.

@@ -145,7 +145,7 @@ Command addCompileCommand(CLI::App& parent) {
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
     cmd->add_option("--format", args->format, "Output format: text, json (schemas/plan.schema.json) or dot (graphviz)")
         ->check(CLI::IsMember({"text", "json", "dot"}));
-    cmd->add_option("-o,--output", args->output, "Write to FILE instead of stdout (never half-written)");
+    cmd->add_option("-o,--output", args->output, "Write to FILE instead of stdout (never half-written)")->check(kNotEmpty);
     cmd->add_flag("--no-cull", args->noCull, "Keep passes whose output nobody reads");
     cmd->add_option("--width", args->width, "Output width that \"output\" extents resolve to (default 1920)")
         ->check(CLI::Range(1u, 16384u));

@@ -55,9 +55,10 @@ Command addRenderCommand(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "render", "Render a graph headless and write the swapchain target. With no graph and no scene: "
                   "the built-in raster graph and default scene");
-    cmd->add_option("graph", args->graph, "Graph file (default: the built-in graphs/raster.json)");
+    cmd->add_option("graph", args->graph, "Graph file (default: the built-in graphs/raster.json)")->check(kNotEmpty);
     cmd->add_option("--scene", args->scene, "Scene file (scenes/*.json); default with the built-in graph: "
-                                            "the built-in scenes/default.json");
+                                            "the built-in scenes/default.json")
+        ->check(kNotEmpty);
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
     cmd->add_option("--width", o.width, "Output width")->check(CLI::Range(1u, 16384u));
     cmd->add_option("--height", o.height, "Output height")->check(CLI::Range(1u, 16384u));
@@ -65,9 +66,11 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
     cmd->add_option("-o,--output", args->output,
                     "Write the result: .png, .hdr or .exr (default skygraph.png, when the graph has a Present image "
-                    "or --readback names one)");
+                    "or --readback names one)")
+        ->check(kNotEmpty);
     cmd->add_option("--readback", o.readback,
-                    "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)");
+                    "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)")
+        ->check(kNotEmpty);
     cmd->add_flag("!--no-fit-environment", o.fitEnvironmentToView,
                   "Build the environment cube and the prefiltered cube at the graph's declared sizes, not at "
                   "the sizes the view can show (output height, field of view, equirect width)");
@@ -79,7 +82,7 @@ Command addRenderCommand(CLI::App& parent) {
                   "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
                   "before its first use: a frame that then renders differently reads what it did not write");
     cmd->add_flag("--validate", o.validate, "Khronos validation with synchronization validation; any message fails");
-    cmd->add_option("--device", o.device, "Device by index or name");
+    cmd->add_option("--device", o.device, "Device by index or name")->check(kNotEmpty);
     return {cmd, [args] { return run(*args); }};
 }
 

@@ -76,7 +76,7 @@ Command addViewCommand(CLI::App& parent) {
     cmd->add_flag("!--no-ui", o.overlay, "Hide the debug overlay (the graph's feature ui off)");
     cmd->add_flag("--validate", o.frame.validate,
                   "Khronos validation with synchronization validation; any message fails");
-    cmd->add_option("--device", o.frame.device, "Device by index or name");
+    cmd->add_option("--device", o.frame.device, "Device by index or name")->check(kNotEmpty);
     return {cmd, [args] { return run(*args); }};
 }
 
