@@ -61,32 +61,37 @@ HotReloader::Result HotReloader::poll() {
     if (g == graphHash_ && s == shaderHash_) return Result::Unchanged;
     // Edits that a failed reload left unapplied are applied with this one: a fixed shader
     // must not run the graph from before an edit that failed only for the shader's sake.
-    graphPending_ |= g != graphHash_;
+    const bool graphChanged = g != graphHash_;
+    graphPending_ |= graphChanged;
     shadersPending_ |= s != shaderHash_;
     graphHash_ = g;
     shaderHash_ = s;
-    if (graphPending_ && g == kMissing) {
-        // Deleted while watched: keep rendering the last good plan and say so once; the
-        // file's return (any content) is the next change.
+    // Deleted while watched: keep rendering the last good plan and say so once, when it goes;
+    // shader edits meanwhile go to the running plan, and the file's return (any content) is
+    // the next change.
+    const bool graphGone = graphPending_ && g == kMissing;
+    if (graphGone && graphChanged) {
         lastError_ = graphFile_.string() + ": the watched graph file is gone (deleted or renamed); the "
                      "previous version keeps running until it is back";
         spdlog::warn("hot reload: {}", lastError_);
         return Result::Failed;
     }
+    const bool graph = graphPending_ && !graphGone;
     try {
-        if (graphPending_) {
-            GraphDesc graph = registry_ ? loadGraphFile(graphFile_, *registry_)
-                                        : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
+        if (graph) {
+            GraphDesc desc = registry_ ? loadGraphFile(graphFile_, *registry_)
+                                       : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
             // One rebuild for both: the new graph and the edited shaders run together or not at all.
-            renderer_.setGraph(renderer_.compiled().withGraph(std::move(graph)),
+            renderer_.setGraph(renderer_.compiled().withGraph(std::move(desc)),
                                shadersPending_ ? Renderer::ShaderSources::Reread : Renderer::ShaderSources::Cached);
         } else {
             renderer_.reloadShaders();
         }
         lastError_.clear();
-        spdlog::info("hot reload: {}{}{} reloaded", graphPending_ ? graphFile_.string() : "",
-                     graphPending_ && shadersPending_ ? " and " : "", shadersPending_ ? shaderDir_.string() : "");
-        graphPending_ = shadersPending_ = false;
+        spdlog::info("hot reload: {}{}{} reloaded", graph ? graphFile_.string() : "",
+                     graph && shadersPending_ ? " and " : "", shadersPending_ ? shaderDir_.string() : "");
+        if (graph) graphPending_ = false;
+        shadersPending_ = false;
         return Result::Reloaded;
     } catch (const GraphError& e) {
         lastError_ = e.diagnostics().format();

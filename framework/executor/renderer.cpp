@@ -276,11 +276,11 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     std::unique_ptr<detail::PlanState> next;
     try {
         next = d.build(std::move(compiled));  // throws: the old plan keeps running
+        vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     } catch (...) {
         if (previous) d.shaders = std::move(previous);
         throw;
     }
-    vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     d.state = std::move(next);
     d.lastSlot = -1;
     d.timings.clear();  // they name the old plan's passes

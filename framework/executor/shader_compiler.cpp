@@ -108,11 +108,12 @@ std::string ShaderCompiler::source(const std::filesystem::path& relativePath) {
     std::lock_guard lock(mutex_);
     if (auto it = sources_.find(key); it != sources_.end()) return it->second;
     const auto path = includeDir_ / relativePath;
+    std::error_code ec;
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw ExecutorError("shader '" + path.string() + "' cannot be read");
+    if (!std::filesystem::is_regular_file(path, ec) || !in)
+        throw ExecutorError("shader '" + path.string() + "' cannot be read");
     std::stringstream ss;
     ss << in.rdbuf();
-    if (in.bad()) throw ExecutorError("shader '" + path.string() + "' cannot be read");
     return sources_.emplace(key, ss.str()).first->second;
 }
 

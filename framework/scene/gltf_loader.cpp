@@ -210,6 +210,7 @@ private:
             const dmat4 world = top.world;  // enter() may move the stack's frames
             enter(children[c], world, top.path + ".children[" + std::to_string(c) + "]");
         }
+        for (const Frame& left : stack) onPath_[left.node] = false;  // after an error: no cycle to report
     }
 
     /// The bytes of `accessor`'s elements of `elementBytes` each, checked against its buffer

@@ -289,6 +289,14 @@ TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
     EXPECT_EQ(product.status, 1) << product.err;
     EXPECT_NE(product.err.find("cube.brdf.ktx2': is a folder"), std::string::npos) << product.err;
     EXPECT_EQ(workFiles(), std::vector<std::string>{"cube.brdf.ktx2"});
+    fs::remove(dir_ / "work" / "cube.brdf.ktx2");
+    // A product named twice is written once.
+    const CliRun twice = run({"cubemap", sky.string(), "-o", cube.string(), "--size", "32", "--products",
+                              "irradiance,irradiance"});
+    EXPECT_EQ(twice.status, 0) << twice.err;
+    std::vector<std::string> written = workFiles();
+    std::sort(written.begin(), written.end());
+    EXPECT_EQ(written, (std::vector<std::string>{"cube.irradiance.ktx2", "cube.ktx2"}));
 }
 
 TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {

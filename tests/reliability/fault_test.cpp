@@ -145,6 +145,12 @@ TEST_F(FaultTest, DeletedGraphFileKeepsTheLastGoodPlanUntilItIsBack) {
     const std::string text = read(graphFile());
     fs::remove(graphFile());
     expectOneWarningAndNoLostFrame(log, "is gone");
+    // A shader edit meanwhile goes to the running plan; the file is not reported gone again.
+    write(shader(), read(shader()) + "\n// edited\n");
+    EXPECT_EQ(reloader_->poll(), HotReloader::Result::Reloaded) << reloader_->lastError();
+    renderer_->renderFrame();
+    expectRed();
+    EXPECT_TRUE(log.take().empty()) << "the file was reported gone again";
     // The same text back is a change too: it is loaded again.
     write(graphFile(), text);
     EXPECT_EQ(reloader_->poll(), HotReloader::Result::Reloaded);

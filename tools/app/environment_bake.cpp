@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstring>
 #include <stdexcept>
@@ -80,12 +81,12 @@ HdrImage loadEnvironmentImage(const std::filesystem::path& file) {
         throw ImageError(file, std::to_string(bad) + " pixel values are NaN or infinite; an environment must be finite");
     size_t clamped = 0;
     for (float& v : image.rgba)
-        if (v > kLargestHalf) {
-            v = kLargestHalf;
+        if (std::abs(v) > kLargestHalf) {
+            v = std::copysign(kLargestHalf, v);
             ++clamped;
         }
     if (clamped)
-        spdlog::warn("'{}': {} pixel values above {} (the half-float products' largest) are clamped to it",
+        spdlog::warn("'{}': {} pixel values past +-{} (the half-float products' largest) are clamped to it",
                      file.string(), clamped, kLargestHalf);
     return image;
 }

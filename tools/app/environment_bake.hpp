@@ -40,7 +40,7 @@ inline constexpr float kLargestHalf = 65504.0f;
 
 /// An environment file as the bakes take it (loadHdrImage). Throws ImageError naming the file
 /// when a pixel value is NaN or infinite: it would spread through every filtered product and
-/// light the whole frame with it. Values above kLargestHalf are clamped to it, with a warning,
+/// light the whole frame with it. Values past +-kLargestHalf are clamped to it, with a warning,
 /// rather than becoming infinite in the products.
 [[nodiscard]] HdrImage loadEnvironmentImage(const std::filesystem::path& file);
 

@@ -195,10 +195,11 @@ bool LiveGraph::rebuild(RenderOptions options) {
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
     if (built_->scene) scene_ = built_->scene;
     options_ = std::move(options);
-    // Built from the files and shaders as they are now: nothing saved is left unapplied.
+    // Built from the graph file and shaders as they are now. A saved scene still pending is
+    // not applied as a save is (its view settings win over the overlay's): rebuildAfterSave does.
     error_.clear();
     shaderError_.clear();
-    graphSavePending_ = sceneSavePending_ = false;
+    graphSavePending_ = false;
     ++reloads_;
     startSequence();
     return true;

@@ -12,6 +12,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -136,6 +137,9 @@ int run(CubemapArgs& args) {
     bake.products.clear();
     for (const auto& p : args.products) bake.products.push_back(p == "brdf" ? std::string(kBrdfLut) : p);
 
+    // A product named twice is one output.
+    for (auto it = args.products.begin(); it != args.products.end();)
+        it = std::find(args.products.begin(), it, *it) != it ? args.products.erase(it) : it + 1;
     // Every output is checked before the bake and written after it, all or none.
     std::vector<std::filesystem::path> outputs{output};
     for (const auto& p : args.products) outputs.push_back(productPath(output, p));
