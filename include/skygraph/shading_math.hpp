@@ -194,6 +194,9 @@ Vec3<T> proceduralSky(const Vec3<T>& dirIn) {
 
 // ---- tone mapping ---------------------------------------------------------------------------
 
+/// The largest finite half float: what an R16G16B16A16_SFLOAT image holds at most.
+inline constexpr float kLargestHalf = 65504.0f;
+
 /// Makes any input safe for the curves: NaN -> 0, negatives -> 0, everything above fp16 max
 /// (including +inf) -> fp16 max. Done with comparisons because GLSL's clamp() does not remove
 /// NaN. Every curve below saturates well before 65504, so nothing visible is lost.
@@ -201,7 +204,7 @@ template <typename T>
 T sanitizeHdr(T x) {
     if (!(x == x)) return T(0);  // NaN
     if (!(x > T(0))) return T(0);
-    return x < T(65504) ? x : T(65504);
+    return x < T(kLargestHalf) ? x : T(kLargestHalf);
 }
 
 /// Narkowicz 2015 ACES fit, his published constants (no 0.6 pre-exposure: docs/tradeoffs.md).

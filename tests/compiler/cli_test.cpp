@@ -208,8 +208,7 @@ TEST_F(Cli, StandardOutputThatCannotBeWrittenExitsOne) {
         const int status = std::system(command.c_str());
         ASSERT_TRUE(WIFEXITED(status)) << format;
         EXPECT_EQ(WEXITSTATUS(status), 1) << format;
-        std::ifstream err(dir_ / "err.txt");
-        const std::string text((std::istreambuf_iterator<char>(err)), {});
+        const std::string text = slurp(dir_ / "err.txt");
         EXPECT_NE(text.find("error: cannot write to standard output"), std::string::npos) << text;
     }
 }
@@ -548,8 +547,7 @@ TEST_F(Cli, RenderThatCannotWriteItsPngLeavesNothingBehind) {
     std::vector<std::string> left = workFiles();
     std::sort(left.begin(), left.end());
     EXPECT_EQ(left, (std::vector<std::string>{"out.png", "out.png.tmp"}));
-    std::ifstream kept(dir_ / "work" / "out.png.tmp");
-    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), {}), "precious");
+    EXPECT_EQ(slurp(dir_ / "work" / "out.png.tmp"), "precious");
 }
 
 // A graph without a Present image: a compute-only bake writes nothing unless asked, and then

@@ -4,6 +4,8 @@
 #include "app/environment_bake.hpp"
 #include "app/equirect_resample.hpp"
 
+#include <skygraph/shading_math.hpp>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -83,7 +85,7 @@ TEST(EnvironmentImage, ValuesPastTheLargestHalfAreClampedAndNonFiniteOnesRefused
     sky.rgba[0] = 1.0e30f;  // a half float's infinity
     saveHdrImage(hdr, sky);
     const HdrImage clamped = app::loadEnvironmentImage(hdr);
-    EXPECT_EQ(clamped.rgba[0], app::kLargestHalf);
+    EXPECT_EQ(clamped.rgba[0], math::kLargestHalf);
     EXPECT_EQ(clamped.rgba[4], 1.0f) << "the next pixel as it was";
     sky.rgba[0] = std::numeric_limits<float>::infinity();
     saveExr(exr, sky);

@@ -10,6 +10,7 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/format.hpp>
 #include <skygraph/pass.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -81,13 +82,13 @@ HdrImage loadEnvironmentImage(const std::filesystem::path& file) {
         throw ImageError(file, std::to_string(bad) + " pixel values are NaN or infinite; an environment must be finite");
     size_t clamped = 0;
     for (float& v : image.rgba)
-        if (std::abs(v) > kLargestHalf) {
-            v = std::copysign(kLargestHalf, v);
+        if (std::abs(v) > math::kLargestHalf) {
+            v = std::copysign(math::kLargestHalf, v);
             ++clamped;
         }
     if (clamped)
         spdlog::warn("'{}': {} pixel values past +-{} (the half-float products' largest) are clamped to it",
-                     file.string(), clamped, kLargestHalf);
+                     file.string(), clamped, math::kLargestHalf);
     return image;
 }
 

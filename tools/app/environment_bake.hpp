@@ -35,12 +35,10 @@ using BakeStepCallback = std::function<void(const std::string& step)>;
 /// An HDRI's pixels as the float RGBA image the graph's `equirect` is uploaded from.
 [[nodiscard]] ImageData toImageData(HdrImage image);
 
-/// The largest value the half-float products (cube, irradiance, prefiltered) hold.
-inline constexpr float kLargestHalf = 65504.0f;
-
 /// An environment file as the bakes take it (loadHdrImage). Throws ImageError naming the file
 /// when a pixel value is NaN or infinite: it would spread through every filtered product and
-/// light the whole frame with it. Values past +-kLargestHalf are clamped to it, with a warning,
+/// light the whole frame with it. Values past +-math::kLargestHalf, the most the half-float
+/// products (cube, irradiance, prefiltered) hold, are clamped to it, with a warning,
 /// rather than becoming infinite in the products.
 [[nodiscard]] HdrImage loadEnvironmentImage(const std::filesystem::path& file);
 
