@@ -48,7 +48,7 @@ size_t hashDir(const std::filesystem::path& dir) {
 
 HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir,
                          const PassRegistry* registry)
-    : renderer_(renderer), graphFile_(std::move(graphFile)),
+    : renderer_(&renderer), graphFile_(std::move(graphFile)),
       shaderDir_(shaderDir.empty() ? ShaderCompiler::defaultIncludeDir() : std::move(shaderDir)),
       registry_(registry) {
     graphHash_ = hashFile(graphFile_);
@@ -82,10 +82,10 @@ HotReloader::Result HotReloader::poll() {
             GraphDesc desc = registry_ ? loadGraphFile(graphFile_, *registry_)
                                        : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
             // One rebuild for both: the new graph and the edited shaders run together or not at all.
-            renderer_.setGraph(renderer_.compiled().withGraph(std::move(desc)),
+            renderer_->setGraph(renderer_->compiled().withGraph(std::move(desc)),
                                shadersPending_ ? Renderer::ShaderSources::Reread : Renderer::ShaderSources::Cached);
         } else {
-            renderer_.reloadShaders();
+            renderer_->reloadShaders();
         }
         lastError_.clear();
         spdlog::info("hot reload: {}{}{} reloaded", graph ? graphFile_.string() : "",

@@ -269,9 +269,9 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     // Rereading builds with a new compiler, which reads every shader again. When that fails,
     // the old one comes back with the sources the running pipelines were built from, so that
     // later rebuilds (a resize) do not read the broken files.
-    std::unique_ptr<ShaderCompiler> previous;
+    std::shared_ptr<ShaderCompiler> previous;
     if (shaders == ShaderSources::Reread)
-        previous = std::exchange(d.shaders, std::make_unique<ShaderCompiler>(d.shaders->includeDir(),
+        previous = std::exchange(d.shaders, std::make_shared<ShaderCompiler>(d.shaders->includeDir(),
                                                                              SpirvDiskCache::defaultDir()));
     std::unique_ptr<detail::PlanState> next;
     try {

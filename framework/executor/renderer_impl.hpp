@@ -314,8 +314,9 @@ struct Renderer::Impl {
     VkDevice vkd;
     RendererOptions options;
     /// Keeps the shader sources the running pipelines were built from (ShaderCompiler::source),
-    /// for rebuilds other than a reload of the shaders.
-    std::unique_ptr<ShaderCompiler> shaders;
+    /// for rebuilds other than a reload of the shaders. Shared with the renderers made from this
+    /// one (RendererOptions::shadersFrom) until one of them reads the shaders again.
+    std::shared_ptr<ShaderCompiler> shaders;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
     vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
@@ -347,7 +348,9 @@ struct Renderer::Impl {
 
     Impl(Device& d, RendererOptions o)
         : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
-          shaders(std::make_unique<ShaderCompiler>(options.shaderDir, SpirvDiskCache::defaultDir())) {}
+          shaders(options.shadersFrom
+                      ? options.shadersFrom->impl_->shaders
+                      : std::make_shared<ShaderCompiler>(options.shaderDir, SpirvDiskCache::defaultDir())) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);

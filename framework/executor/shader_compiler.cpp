@@ -19,11 +19,13 @@
 namespace skygraph {
 namespace {
 
-/// Resolves `#include "x"` against one directory; owns the loaded text until released, and
-/// remembers what it loaded (by content) for the disk cache.
+/// Resolves `#include "x"` against one directory, taking each file's text from `read` (null:
+/// it cannot be read); owns the loaded text until released, and remembers what it loaded (by
+/// content) for the disk cache.
 class DirIncluder final : public glslang::TShader::Includer {
 public:
-    explicit DirIncluder(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    using Read = std::function<const std::string*(const std::filesystem::path&)>;
+    DirIncluder(std::filesystem::path dir, Read read) : dir_(std::move(dir)), read_(std::move(read)) {}
 
     IncludeResult* includeLocal(const char* headerName, const char*, size_t) override {
         return load(headerName);
@@ -41,16 +43,15 @@ public:
 
 private:
     IncludeResult* load(const char* name) {
-        const auto path = std::filesystem::absolute(dir_ / name);
-        std::ifstream in(path, std::ios::binary);
-        if (!in) return nullptr;
-        std::stringstream ss;
-        ss << in.rdbuf();
-        auto* text = new std::string(ss.str());
+        const auto path = std::filesystem::absolute(dir_ / name).lexically_normal();
+        const std::string* kept = read_(path);
+        if (!kept) return nullptr;
+        auto* text = new std::string(*kept);
         loaded_.push_back({path, SpirvDiskCache::hash(*text)});
         return new IncludeResult(path.string(), text->data(), text->size(), text);
     }
     std::filesystem::path dir_;
+    Read read_;
     std::vector<IncludedFile> loaded_;
 };
 
@@ -103,18 +104,23 @@ ShaderCompiler::~ShaderCompiler() {
     if (--processRefs() == 0) glslang::FinalizeProcess();
 }
 
-std::string ShaderCompiler::source(const std::filesystem::path& relativePath) {
-    const std::string key = relativePath.lexically_normal().generic_string();
-    std::lock_guard lock(mutex_);
-    if (auto it = sources_.find(key); it != sources_.end()) return it->second;
-    const auto path = includeDir_ / relativePath;
+const std::string* ShaderCompiler::keptFile(const std::filesystem::path& path) {
+    const std::string key = std::filesystem::absolute(path).lexically_normal().generic_string();
+    if (auto it = sources_.find(key); it != sources_.end()) return &it->second;
     std::error_code ec;
     std::ifstream in(path, std::ios::binary);
-    if (!std::filesystem::is_regular_file(path, ec) || !in)
-        throw ExecutorError("shader '" + path.string() + "' cannot be read");
+    if (!std::filesystem::is_regular_file(path, ec) || !in) return nullptr;  // never a FIFO: it could block
     std::stringstream ss;
     ss << in.rdbuf();
-    return sources_.emplace(key, ss.str()).first->second;
+    if (in.bad()) return nullptr;
+    return &sources_.emplace(key, ss.str()).first->second;
+}
+
+std::string ShaderCompiler::source(const std::filesystem::path& relativePath) {
+    const auto path = includeDir_ / relativePath;
+    std::lock_guard lock(mutex_);
+    if (const std::string* text = keptFile(path)) return *text;
+    throw ExecutorError("shader '" + path.string() + "' cannot be read");
 }
 
 std::vector<uint32_t> ShaderCompiler::compileFile(VkShaderStageFlagBits stage,
@@ -140,8 +146,13 @@ std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
     const std::string diskKey = "glslang " + std::to_string(GLSLANG_VERSION_MAJOR) + "." +
                                 std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH) +
                                 "\n" + includeDir_.string() + "\n" + key;
+    // Included files as this compiler includes them: kept since their first read, like sources.
+    const auto read = [this](const std::filesystem::path& path) { return keptFile(path); };
     const SpirvDiskCache disk(cacheDir_);
-    if (auto spirv = disk.find(diskKey)) {
+    if (auto spirv = disk.find(diskKey, [&](const std::filesystem::path& path) -> std::optional<std::string> {
+            const std::string* text = read(path);
+            return text ? std::optional<std::string>(*text) : std::nullopt;
+        })) {
         cache_.emplace(key, *spirv);
         return std::move(*spirv);
     }
@@ -155,7 +166,7 @@ std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_5);
     const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
-    DirIncluder includer(includeDir_);
+    DirIncluder includer(includeDir_, read);
     if (!shader.parse(GetDefaultResources(), 450, false, messages, includer)) {
         throw ExecutorError("shader '" + name + "' does not compile:\n" + shader.getInfoLog());
     }

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -27,8 +28,14 @@ public:
     /// `dir` empty: disabled (find() misses, store() does nothing).
     explicit SpirvDiskCache(std::filesystem::path dir) : dir_(std::move(dir)) {}
 
-    /// The SPIR-V stored for `key`, if its included files are unchanged.
-    [[nodiscard]] std::optional<std::vector<uint32_t>> find(const std::string& key) const;
+    /// The text of an included file as the compile would include it; nullopt when it cannot
+    /// be read.
+    using IncludeReader = std::function<std::optional<std::string>(const std::filesystem::path&)>;
+
+    /// The SPIR-V stored for `key`, if its included files are unchanged: as `read` gives them
+    /// (empty: as they are on disk).
+    [[nodiscard]] std::optional<std::vector<uint32_t>> find(const std::string& key,
+                                                            const IncludeReader& read = {}) const;
 
     /// Stores `spirv` for `key` with the files it included.
     void store(const std::string& key, const std::vector<IncludedFile>& includes,

@@ -51,8 +51,14 @@ public:
     /// until the next poll().
     [[nodiscard]] const std::string& lastError() const noexcept { return lastError_; }
 
+    /// Applies later edits to `renderer` (borrowed like the first) instead: one that replaced
+    /// the watched renderer. What was seen so far stays the state changes are measured against,
+    /// and edits a failed reload left pending stay pending, so that an edit saved while the
+    /// replacement was being built is still applied to it.
+    void follow(Renderer& renderer) noexcept { renderer_ = &renderer; }
+
 private:
-    Renderer& renderer_;
+    Renderer* renderer_;
     std::filesystem::path graphFile_;
     std::filesystem::path shaderDir_;
     const PassRegistry* registry_ = nullptr;

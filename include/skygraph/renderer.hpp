@@ -22,6 +22,7 @@ namespace skygraph {
 class PassLibrary;  // skygraph/pass.hpp: pass implementations
 class FrameData;    // skygraph/pass.hpp: per-frame values for pass implementations
 class StagingBuffer;  // skygraph/staging_buffer.hpp: host pixels an UploadPass copies
+class Renderer;
 
 /// How a Renderer runs; what it runs (graph, options, output size) is the CompiledGraph.
 struct RendererOptions {
@@ -45,6 +46,12 @@ struct RendererOptions {
     /// writes none and none is read back, which on some drivers waits for whatever the queue
     /// runs: for a renderer whose frames run beside another's (a background bake).
     bool timestamps = true;
+    /// Borrowed during construction only. The new renderer builds from the shader sources that
+    /// renderer's pipelines were built from, and from its shader directory (`shaderDir` is not
+    /// used), as that renderer's setGraph() with ShaderSources::Cached would: e.g. an
+    /// application replacing its renderer while a shader on disk is half edited. Null: the
+    /// shaders are read from `shaderDir`.
+    const Renderer* shadersFrom = nullptr;
 };
 
 /// What renderFrame(Swapchain&) did.

@@ -36,7 +36,8 @@ public:
     /// a copy the caller owns. Read from disk on its first call after construction or clear()
     /// and kept: later calls return the same text, so pipelines rebuilt for another reason (a
     /// resize) are built from the shaders that ran before, even while a file on disk is
-    /// broken or half saved. Throws ExecutorError when the file cannot be read.
+    /// broken or half saved. Files a compile `#include`s are kept the same way. Throws
+    /// ExecutorError when the file cannot be read.
     [[nodiscard]] std::string source(const std::filesystem::path& relativePath);
 
     /// Compiles source(relativePath); the stage comes from `stage`. Throws ExecutorError when
@@ -44,9 +45,8 @@ public:
     [[nodiscard]] std::vector<uint32_t> compileFile(VkShaderStageFlagBits stage,
                                                     const std::filesystem::path& relativePath);
 
-    /// Forgets every cached result (memory only) and every kept source, so that the next
-    /// compiles read the shader directory again, e.g. after an edit: the memory cache's key
-    /// does not cover included files (the disk cache checks them).
+    /// Forgets every cached result (memory only) and every kept source and included file, so
+    /// that the next compiles read the shader directory again, e.g. after an edit.
     void clear();
 
     /// Fixed at construction; the reference is valid while this compiler lives.
@@ -67,8 +67,13 @@ private:
     std::filesystem::path cacheDir_;
     std::mutex mutex_;
     std::unordered_map<std::string, std::vector<uint32_t>> cache_;
-    std::unordered_map<std::string, std::string> sources_;  // by path relative to includeDir_
+    /// Shader and included files as first read, by absolute normal path; keptFile() reads them.
+    std::unordered_map<std::string, std::string> sources_;
     std::atomic<uint32_t> compilations_{0};
+
+    /// The kept text of the file at `path`, read on first use; null when it cannot be read.
+    /// The caller holds mutex_.
+    const std::string* keptFile(const std::filesystem::path& path);
 };
 
 }  // namespace skygraph

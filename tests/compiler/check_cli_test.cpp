@@ -299,6 +299,29 @@ TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
     EXPECT_EQ(written, (std::vector<std::string>{"cube.irradiance.ktx2", "cube.ktx2"}));
 }
 
+// A frame that cannot be written part way through: the frames this run made are removed, and a
+// file of the user's that the run had not reached yet is as it was. The third frame's
+// temporary (its name holds the writer's pid, which `exec` keeps) is a folder already.
+TEST_F(Cli, SkySequenceThatFailsPartWayRemovesTheFramesItMade) {
+    const fs::path frames = dir_ / "work" / "frames";
+    fs::create_directories(frames);
+    std::ofstream(frames / "sky_3.exr") << "the user's";
+    const std::string command = "sh -c " + quote("mkdir -p \"" + (frames / "sky_2.exr").string() +
+                                                 ".tmp$$/full\" && exec " + quote(kCli.string()) +
+                                                 " sky-sequence " + quote((frames / "sky_%d.exr").string()) +
+                                                 " --frames 4 --width 8") +
+                                " 2>" + quote((dir_ / "stderr").string());
+    const int raw = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(raw));
+    const std::string err = slurp(dir_ / "stderr");
+    EXPECT_EQ(WEXITSTATUS(raw), 1) << err;
+    EXPECT_NE(err.find("sky_2.exr': cannot write"), std::string::npos) << err;
+    EXPECT_FALSE(fs::exists(frames / "sky_0.exr"));
+    EXPECT_FALSE(fs::exists(frames / "sky_1.exr"));
+    EXPECT_FALSE(fs::exists(frames / "sky_2.exr"));
+    EXPECT_EQ(slurp(frames / "sky_3.exr"), "the user's");
+}
+
 TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
     const CliRun bar = run({"--progress", "always", "check", "graphs/pathtrace.json", "--frames", "1"});
     EXPECT_EQ(bar.status, 0) << bar.out << bar.err;

@@ -536,6 +536,36 @@ TEST_F(Cli, RenderRefusesAnEnvironmentThatIsNotFinite) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+// -o naming a file the render reads is refused before anything is rendered: the environment
+// file and a sequence's later frames are inputs as much as the graph and the scene are.
+TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {
+    const skygraph::HdrImage sky{8, 4, std::vector<float>(8 * 4 * 4, 0.5f)};
+    fs::create_directories(dir_ / "frames");
+    for (const char* name : {"sky.exr", "frames/sky_000.exr", "frames/sky_001.exr", "frames/sky_002.exr"})
+        skygraph::saveExr(dir_ / name, sky);
+    const fs::path fileScene = writeGraph("file_scene.json", R"({
+      "camera": { "position": [0.0, 1.7, 0.0], "fov_y_deg": 70.0, "near": 0.1 },
+      "environment": { "file": "sky.exr" }, "objects": [] })");
+    const fs::path sequenceScene = writeGraph("sequence_scene.json", R"({
+      "camera": { "position": [0.0, 1.7, 0.0], "fov_y_deg": 70.0, "near": 0.1 },
+      "environment": { "sequence": "frames/sky_%03d.exr" }, "objects": [] })");
+    const std::vector<std::pair<fs::path, fs::path>> cases = {
+        {fileScene, dir_ / "sky.exr"},
+        {sequenceScene, dir_ / "frames" / "sky_000.exr"},
+        {sequenceScene, dir_ / "frames" / "sky_002.exr"},
+    };
+    for (const auto& [scene, input] : cases) {
+        const auto before = fs::last_write_time(input);
+        const CliRun r = run({"render", "--scene", scene.string(), "--width", "8", "--height", "8", "-o",
+                              input.string()});
+        EXPECT_EQ(r.status, 1) << input << r.err;
+        EXPECT_NE(r.err.find("-o '" + input.string() + "' is the input '"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("it would be overwritten"), std::string::npos) << r.err;
+        EXPECT_EQ(fs::last_write_time(input), before) << input;
+        EXPECT_EQ(skygraph::loadExr(input).rgba, sky.rgba) << input;
+    }
+}
+
 // A PNG that cannot be written leaves no temporary behind, and never touches a file of the
 // temporary's name that was there before.
 TEST_F(Cli, RenderThatCannotWriteItsPngLeavesNothingBehind) {

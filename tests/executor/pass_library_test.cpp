@@ -163,6 +163,19 @@ TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgai
     EXPECT_NO_THROW(r.resize(20, 20));
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 19, 19, 0.25, 0.5, 0.5, 1.0);
+    // A renderer made to replace this one builds from its sources; one that reads the shader
+    // directory does not build.
+    EXPECT_THROW(Renderer(sharedDevice(), CompiledGraph(graph, co), o), ExecutorError);
+    RendererOptions replacing = o;
+    replacing.shaderDir = dir / "elsewhere";  // unused: the sources' directory is r's
+    replacing.shadersFrom = &r;
+    {
+        Renderer replacement(sharedDevice(), CompiledGraph(graph, co), replacing);
+        replacement.renderFrame();
+        EXPECT_PIXEL_NEAR(replacement.readback(), 5, 5, 0.25, 0.5, 0.5, 1.0);
+        EXPECT_THROW(replacement.reloadShaders(), ExecutorError) << "its reload reads the directory";
+        replacement.waitIdle();
+    }
 
     write("#version 450\nlayout(local_size_x = 2) in;\nvoid main() {}\n");
     EXPECT_NO_THROW(r.reloadShaders());

@@ -66,6 +66,28 @@ TEST_F(SpirvCacheTest, AnEditedIncludeIsCompiledAgain) {
     EXPECT_THROW((void)compileFresh(), ExecutorError) << "a broken include is an error, not the old shader";
 }
 
+// A compiler includes each file as it first read it, like its top-level sources, until clear():
+// a new variant compiled while an include is edited (or broken) on disk uses the kept text,
+// and a disk cache entry made from the edited include is not taken for it.
+TEST_F(SpirvCacheTest, IncludedFilesAreKeptUntilClear) {
+    ShaderCompiler kept(root / "include", root / "cache");
+    (void)kept.compile(VK_SHADER_STAGE_COMPUTE_BIT, kShader, "cached.comp");
+    const std::string variant = std::string(kShader) + "// another variant\n";
+    writeInclude("float scale() { return 3.0; }\n");
+    const std::vector<uint32_t> edited =
+        ShaderCompiler(root / "include", root / "cache").compile(VK_SHADER_STAGE_COMPUTE_BIT, variant, "v.comp");
+    writeInclude("float scale() { return oops; }\n");
+    const std::vector<uint32_t> fromKept = kept.compile(VK_SHADER_STAGE_COMPUTE_BIT, variant, "v.comp");
+    EXPECT_NE(fromKept, edited) << "the disk cache's entry for the edited include was taken";
+    writeInclude("float scale() { return 2.0; }\n");
+    EXPECT_EQ(fromKept, ShaderCompiler(root / "include").compile(VK_SHADER_STAGE_COMPUTE_BIT, variant, "v.comp"))
+        << "not compiled from the include as first read";
+    writeInclude("float scale() { return oops; }\n");
+    kept.clear();
+    EXPECT_THROW((void)kept.compile(VK_SHADER_STAGE_COMPUTE_BIT, variant, "v.comp"), ExecutorError)
+        << "clear() reads the include again";
+}
+
 TEST_F(SpirvCacheTest, DamagedEntriesAreMisses) {
     const auto [good, runs] = compileFresh();
     ASSERT_EQ(entries().size(), 1u);

@@ -142,6 +142,32 @@ TEST_F(CubemapCommand, Float32OutputAndOnlyTheProductsAskedFor) {
     EXPECT_FALSE(fs::exists(dir_ / "f.prefiltered.ktx2"));
 }
 
+// A sky brighter than a half float holds is clamped to 65504 for rgba16f cubes, not written as
+// infinity into every mip and filtered product; rgba32f cubes keep it.
+TEST_F(CubemapCommand, ValuesPastTheLargestHalfAreClampedOnlyForHalfFloatCubes) {
+    const HdrImage bright{64, 32, std::vector<float>(64 * 32 * 4, 1.0e30f)};
+    saveHdrImage(dir_ / "bright.hdr", bright);
+    const CommandRun half = run("'" + kCli.string() + "' cubemap '" + (dir_ / "bright.hdr").string() + "' -o '" +
+                                (dir_ / "h.ktx2").string() + "' --size 32 --samples 16 --validate");
+    ASSERT_EQ(half.status, 0) << half.output;
+    EXPECT_NE(half.output.find("pixel values past +-65504"), std::string::npos) << half.output;
+    for (const char* file : {"h.ktx2", "h.irradiance.ktx2", "h.prefiltered.ktx2"}) {
+        const json cube = readKtx2(dir_ / file);
+        for (const json& level : cube["levels"])
+            for (const json& centre : level["centres"])
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_TRUE(centre[c].is_number()) << file << ": " << centre;  // infinity reads as null
+                    EXPECT_NEAR(double(centre[c]), 65504.0, 65504.0 * 2e-3) << file;
+                }
+    }
+    const CommandRun full = run("'" + kCli.string() + "' cubemap '" + (dir_ / "bright.hdr").string() + "' -o '" +
+                                (dir_ / "f.ktx2").string() +
+                                "' --size 32 --samples 16 --format rgba32f --products brdf --validate");
+    ASSERT_EQ(full.status, 0) << full.output;
+    EXPECT_EQ(full.output.find("clamped"), std::string::npos) << full.output;
+    EXPECT_NEAR(double(readKtx2(dir_ / "f.ktx2")["levels"][0]["centres"][4][0]), 1.0e30, 1.0e30 * 1e-2);
+}
+
 TEST(Ktx2Writer, RefusesInconsistentLevelsAndLeavesNoFile) {
     const fs::path path = fs::temp_directory_path() / ("skygraph-ktx2-" + std::to_string(::getpid()) + ".ktx2");
     Ktx2Texture texture;

@@ -520,6 +520,51 @@ TEST_F(Present, AnEnvironmentFileOfAnotherSizeIsResampledAndRebakedBesideTheFram
     expectSilent();
 }
 
+// The procedural sky has a skybox of its own (the scene's feature environment_file): a file
+// loaded in its place rebuilds the plan, so that the sky drawn is the file's, as the lighting is.
+TEST_F(Present, AnEnvironmentFileInPlaceOfTheProceduralSkyRebuildsWithItsSkybox) {
+    LiveWindow w(*device_, "scenes/default.json");
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
+    ASSERT_TRUE(live.scene()->environment->procedural);
+    ASSERT_FALSE(live.feature("environment_file"));
+    const std::filesystem::path file =
+        loadSceneFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "scenes/studio.json").environment->file;
+    ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
+    EXPECT_FALSE(live.rebaking()) << "re-baked beside the frames under the procedural sky's skybox";
+    EXPECT_TRUE(live.feature("environment_file"));
+    EXPECT_FALSE(live.scene()->environment->procedural);
+    for (int i = 0; i < 3; ++i) w.frame();
+    live.renderer().waitIdle();
+    expectSilent();
+}
+
+// A rebuild while an environment file is still decoding (a checkbox clicked meanwhile) builds
+// with that file rather than dropping it.
+TEST_F(Present, ARebuildWhileAnEnvironmentFileDecodesBuildsWithTheFile) {
+    LiveWindow w(*device_, "scenes/studio.json");
+    app::LiveGraph& live = w.live;
+    for (int i = 0; i < 3; ++i) w.frame();
+    ImageData sky;
+    sky.width = 64;
+    sky.height = 32;
+    sky.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    sky.rgba.assign(size_t(sky.width) * sky.height * 4, 0.75f);
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("skygraph-decoding-" + std::to_string(::getpid()) + ".hdr");
+    writeHdr(file, sky);
+    ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
+    ASSERT_TRUE(live.rebaking()) << "decoding beside the frames";
+    ASSERT_TRUE(live.setFeature("skybox", false)) << live.error();
+    EXPECT_FALSE(live.rebaking());
+    EXPECT_EQ(live.scene()->environment->file, file) << "the rebuild dropped the file";
+    EXPECT_TRUE(live.error().empty()) << live.error();
+    for (int i = 0; i < 3; ++i) w.frame();
+    live.renderer().waitIdle();
+    std::filesystem::remove(file);
+    expectSilent();
+}
+
 // The file is decoded on a thread of its own: setEnvironmentFile returns at once, and a file
 // that cannot be read is reported once its decoding fails, naming it; the sky stays as it was.
 TEST_F(Present, AnUnreadableEnvironmentFileIsReportedAndTheSkyStays) {

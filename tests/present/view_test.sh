@@ -17,7 +17,7 @@
 #   hot_reload   a broken graph edit keeps the last good frame and shows the message (the
 #                overlay's layout moves down for it); the fixed edit (no skybox pass) renders
 #   shader_reload  a broken shader keeps the last good frame and shows glslang's message, also
-#                through two resizes; the fixed one clears it
+#                through two resizes and a checkbox's rebuild; the fixed one clears it
 #   graph_shader_reload  a graph saved while a shader is broken does not build; fixing the
 #                shader brings in the saved graph (no skybox pass), not the old graph's pipelines
 #   feature_removed  a feature the overlay set, then removed from the saved graph, is dropped:
@@ -351,6 +351,15 @@ EOF
         wait_for_swapchain 600x440
         xdotool windowsize "$w" 640 480
         wait_for_swapchain 640x480
+        # A checkbox meanwhile rebuilds from the sources that ran too: the sky goes, glslang is
+        # not run on the broken file again, and its message stays.
+        read -r x y <<<"$(checkbox_of skybox)"
+        xdotool mousemove --window "$w" "$x" "$y" click 1
+        wait_for_log "culled skybox: "
+        [ "$(sky_until_clear "$w" unchecked.rgb)" = "0 0 0" ] || fail "the click did not take the sky away"
+        [ "$(grep -c "tonemap.frag. does not compile" view.err)" -eq 1 ] || fail "the click's rebuild read the broken shader"
+        read -r _ y_clicked <<<"$(checkbox_of skybox)"
+        [ "$y_clicked" -eq "$y_broken" ] || fail "the shader's message went with the click's rebuild"
         # Restored the way editors save, by a rename: a copy in place passes through an empty
         # file, and a poll that hashes it then compiles the whole one a moment later and
         # reloads again when it hashes that.
@@ -360,7 +369,7 @@ EOF
         [ "$y_fixed" -eq "$y_good" ] || fail "the message stays after the shader was fixed"
         xdotool key --window "$w" Escape
         expect_clean_end "$pid" ""
-        grep -q " 1 reload(s)" view.out || fail "not one reload"
+        grep -q " 2 reload(s)" view.out || fail "not two reloads (the click's and the fixed shader's)"
         ;;
     graph_shader_reload)
         cp -r "$root/shaders" shaders

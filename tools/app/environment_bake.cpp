@@ -76,19 +76,19 @@ ImageData toImageData(HdrImage image) {
     return data;
 }
 
-HdrImage loadEnvironmentImage(const std::filesystem::path& file) {
+HdrImage loadEnvironmentImage(const std::filesystem::path& file, float largest) {
     HdrImage image = loadHdrImage(file);
     if (const size_t bad = countNonFinite(image))
         throw ImageError(file, std::to_string(bad) + " pixel values are NaN or infinite; an environment must be finite");
     size_t clamped = 0;
     for (float& v : image.rgba)
-        if (std::abs(v) > math::kLargestHalf) {
-            v = std::copysign(math::kLargestHalf, v);
+        if (std::abs(v) > largest) {
+            v = std::copysign(largest, v);
             ++clamped;
         }
     if (clamped)
-        spdlog::warn("'{}': {} pixel values past +-{} (the half-float products' largest) are clamped to it",
-                     file.string(), clamped, math::kLargestHalf);
+        spdlog::warn("'{}': {} pixel values past +-{} (the products' largest) are clamped to it", file.string(),
+                     clamped, largest);
     return image;
 }
 

@@ -9,6 +9,7 @@
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/image_data.hpp>
 #include <skygraph/renderer.hpp>
+#include <skygraph/shading_math.hpp>
 #include <skygraph/staging_buffer.hpp>
 
 #include "staging_pool.hpp"
@@ -37,10 +38,10 @@ using BakeStepCallback = std::function<void(const std::string& step)>;
 
 /// An environment file as the bakes take it (loadHdrImage). Throws ImageError naming the file
 /// when a pixel value is NaN or infinite: it would spread through every filtered product and
-/// light the whole frame with it. Values past +-math::kLargestHalf, the most the half-float
-/// products (cube, irradiance, prefiltered) hold, are clamped to it, with a warning,
-/// rather than becoming infinite in the products.
-[[nodiscard]] HdrImage loadEnvironmentImage(const std::filesystem::path& file);
+/// light the whole frame with it. Values past +-`largest`, the most the products hold
+/// (math::kLargestHalf for half-float cubes), are clamped to it, with a warning, rather than
+/// becoming infinite in the products.
+[[nodiscard]] HdrImage loadEnvironmentImage(const std::filesystem::path& file, float largest = math::kLargestHalf);
 
 /// One run of the environment graph. Owns the renderer, which owns the products.
 struct EnvironmentBake {

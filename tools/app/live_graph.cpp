@@ -47,7 +47,7 @@ struct LiveGraph::Built {
 
 LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay)
     : device_(device), options_(std::move(options)), width_(width), height_(height), overlay_(overlay) {
-    built_ = build(options_);
+    built_ = build(options_, Renderer::ShaderSources::Reread);
     renderer_ = built_->renderer.get();
     scene_ = built_->scene;
     if (!options_.graph.empty()) graphWatcher_.emplace(options_.graph);
@@ -136,7 +136,8 @@ LiveGraph::~LiveGraph() {
     if (renderer_) renderer_->waitIdle();
 }
 
-std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options) const {
+std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
+                                                   Renderer::ShaderSources shaders) const {
     auto b = std::make_unique<Built>();
     FrameInputs inputs = loadFrameInputs(options);
     const std::string ui(shipped::kOverlayFeature);
@@ -167,38 +168,54 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options)
     ro.framesInFlight = options.framesInFlight;
     ro.passes = inputs.passes;
     ro.presentTo = swapchain_;
+    if (shaders == Renderer::ShaderSources::Cached) ro.shadersFrom = renderer_;
     b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
     b->uploads = UploadPassPixels(device_, *b->renderer, inputs.environment);
     attachFrameInputs(*b->renderer, inputs, b->environment);
     return b;
 }
 
-bool LiveGraph::rebuild(RenderOptions options) {
+bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders) {
     // The running renderer follows the window; the new one starts at its size.
     width_ = renderer_->compiled().outputWidth();
     height_ = renderer_->compiled().outputHeight();
+    // An environment file still decoding is built in, unless this rebuild is for another one;
+    // one that cannot be read is reported as finishEnvironmentLoad() would, and left out.
+    std::string loadError;
+    if (load_ && options.environmentFile == options_.environmentFile) {
+        try {
+            (void)load_->result.get();
+            options.environmentFile = load_->next.environmentFile;
+        } catch (const std::exception& e) {
+            loadError = e.what();
+            spdlog::warn("{}", loadError);
+        }
+        load_.reset();
+    }
     std::unique_ptr<Built> next;
     try {
-        next = build(options);
+        next = build(options, shaders);
     } catch (const std::exception& e) {
-        error_ = e.what();
-        spdlog::warn("{}", error_);
+        error_ = loadError.empty() ? e.what() : loadError + "\n" + e.what();
+        spdlog::warn("{}", e.what());
         return false;
     }
     renderer_->waitIdle();
-    shaderWatcher_.reset();
     built_ = std::move(next);  // the old renderer is gone before the new one records
     baker_.reset();            // the new build baked its own environment
     rebakeEquirect_.reset();
-    load_.reset();             // a file still decoding was meant for the old build (waits for it)
+    load_.reset();             // a file for another environment, still decoding (waits for it)
     renderer_ = built_->renderer.get();
-    shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
+    // The watcher's record of the shaders carries over: an edit saved while this was built, or
+    // one a failed reload left pending, is still applied.
+    shaderWatcher_->follow(*renderer_);
     if (built_->scene) scene_ = built_->scene;
     options_ = std::move(options);
-    // Built from the graph file and shaders as they are now. A saved scene still pending is
-    // not applied as a save is (its view settings win over the overlay's): rebuildAfterSave does.
-    error_.clear();
-    shaderError_.clear();
+    // Built from the graph file as it is now. A saved scene still pending is not applied as a
+    // save is (its view settings win over the overlay's): rebuildAfterSave does. Shaders from
+    // the running renderer's sources say nothing of one broken on disk: its message stays.
+    error_ = loadError;
+    if (shaders == Renderer::ShaderSources::Reread) shaderError_.clear();
     graphSavePending_ = false;
     ++reloads_;
     startSequence();
@@ -241,14 +258,17 @@ bool LiveGraph::feature(std::string_view name) const {
 bool LiveGraph::setFeature(const std::string& name, bool on) {
     RenderOptions next = options_;
     next.features[name] = on;
-    return rebuild(std::move(next));
+    return rebuild(std::move(next), Renderer::ShaderSources::Cached);
 }
 
 bool LiveGraph::setEnvironmentFile(const std::filesystem::path& file) {
     RenderOptions next = options_;
     next.environmentFile = file;
-    if (rebakeInPlace(file, next)) return true;  // its message, if any, once the file is decoded
-    return rebuild(std::move(next));
+    // The procedural sky is drawn by a skybox of its own (the scene's feature environment_file):
+    // a file in its place needs the plan that draws the file, not only the file's lighting.
+    const bool proceduralSky = scene_ && scene_->environment && scene_->environment->procedural;
+    if (!proceduralSky && rebakeInPlace(file, next)) return true;  // its message, if any, once decoded
+    return rebuild(std::move(next), Renderer::ShaderSources::Cached);
 }
 
 bool LiveGraph::rebakeInPlace(const std::filesystem::path& file, RenderOptions next) {
@@ -287,7 +307,7 @@ void LiveGraph::finishEnvironmentLoad() {
         if (loaded.pixels) rebakeEquirect_ = std::move(loaded.pixels);
         spdlog::info("environment: re-baking {} beside the frames", load.file.string());
         if (!baker(extent[0], extent[1]).start(std::move(loaded.staged))) {
-            rebuild(std::move(load.next));
+            rebuild(std::move(load.next), Renderer::ShaderSources::Cached);
             return;
         }
         options_ = std::move(load.next);
@@ -344,7 +364,8 @@ void LiveGraph::startPendingSunBake() {
     if (!pendingSun_ || !canRebake()) return;
     try {
         // A bake that cannot start beside the frames: a rebuild bakes the sun.
-        if (!rebake(proceduralSkyEquirect(*pendingSun_), "the procedural sky")) rebuild(options_);
+        if (!rebake(proceduralSkyEquirect(*pendingSun_), "the procedural sky"))
+            rebuild(options_, Renderer::ShaderSources::Cached);
         pendingSun_.reset();
     } catch (const std::exception& e) {
         error_ = e.what();
@@ -382,7 +403,7 @@ void LiveGraph::rebuildAfterSave(bool graphSaved, bool sceneSaved, std::filesyst
         pendingSun_.reset();
     }
     const auto noticed = std::filesystem::file_time_type::clock::now();
-    if (rebuild(options_)) {
+    if (rebuild(options_, Renderer::ShaderSources::Reread)) {
         lastReload_ = {saved, noticed, std::filesystem::file_time_type::clock::now(), reportLatency};
         sceneReplaced_ = sceneReplaced_ || sceneSaved;
         graphSavePending_ = sceneSavePending_ = false;

@@ -58,8 +58,9 @@ public:
     /// baked at its own size by the next rebuild), then re-baked beside the frames
     /// (EnvironmentBaker) and swapped in by later polls, the frames going on with the old
     /// environment meanwhile; a file that cannot be read is reported by error() once its
-    /// decoding fails, and the old environment stays. While a load or bake runs, or without a
-    /// baked environment, it rebuilds at once. False (error() says why) keeps what ran.
+    /// decoding fails, and the old environment stays. While a load or bake runs, without a
+    /// baked environment, or in place of the procedural sky (whose skybox is another pass), it
+    /// rebuilds at once. False (error() says why) keeps what ran.
     bool setEnvironmentFile(const std::filesystem::path& file);
     /// Moves the procedural sky's sun (unit `sun`): the skybox shows it at once, and the
     /// lighting is re-baked beside the frames and swapped in by a later poll(); a change while
@@ -116,8 +117,11 @@ public:
 
 private:
     struct Built;
-    [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options) const;
-    bool rebuild(RenderOptions options);
+    /// With ShaderSources::Cached (and a renderer running) the new renderer builds from the
+    /// shader sources the running one was built from: a shader broken on disk fails only the
+    /// rebuilds that follow a saved file, which read every shader again.
+    [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options, Renderer::ShaderSources shaders) const;
+    bool rebuild(RenderOptions options, Renderer::ShaderSources shaders);
     /// rebuild() after the graph or scene file was saved; a failure keeps the saves pending.
     void rebuildAfterSave(bool graphSaved, bool sceneSaved, std::filesystem::file_time_type saved,
                           bool reportLatency);

@@ -24,8 +24,9 @@
 #include <cstdio>
 #include <cstring>
 #include <optional>
-#include <set>
 #include <iostream>
+#include <set>
+#include <vector>
 
 namespace skygraph::app {
 namespace {
@@ -263,6 +264,25 @@ std::string lowerExtension(const std::filesystem::path& path) {
     return ext;
 }
 
+/// The file among those a render reads (the graph, the scene, the environment file or a
+/// sequence's frames) that `output` names, if any: writing it would destroy an input.
+std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output, const RenderOptions& options,
+                                             const FrameInputs& inputs) {
+    std::error_code ec;
+    if (output.empty() || !std::filesystem::exists(output, ec)) return std::nullopt;
+    std::vector<std::filesystem::path> inputFiles{options.graph, options.scene};
+    if (inputs.scene && inputs.scene->environment && !inputs.scene->environment->procedural) {
+        const SceneEnvironment& environment = *inputs.scene->environment;
+        inputFiles.push_back(environment.file);
+        if (environment.sequence)
+            for (uint32_t i = 0; i < environment.sequence->count; ++i)
+                inputFiles.push_back(environment.sequence->frame(i));
+    }
+    for (const std::filesystem::path& input : inputFiles)
+        if (!input.empty() && std::filesystem::equivalent(input, output, ec)) return input;
+    return std::nullopt;
+}
+
 }  // namespace
 
 int renderCommand(const RenderOptions& options) {
@@ -281,15 +301,12 @@ int renderCommand(const RenderOptions& options) {
                       << "': its extension must be .png, .hdr or .exr\n";
             return 1;
         }
-        for (const std::filesystem::path& input : {options.graph, options.scene}) {
-            std::error_code ec;
-            if (!options.output.empty() && !input.empty() && std::filesystem::equivalent(input, options.output, ec)) {
-                std::cerr << "skygraph render: -o '" << options.output.string() << "' is the input '"
-                          << input.string() << "': it would be overwritten\n";
-                return 1;
-            }
-        }
         FrameInputs inputs = loadFrameInputs(options);
+        if (const auto input = inputAt(options.output, options, inputs)) {
+            std::cerr << "skygraph render: -o '" << options.output.string() << "' is the input '" << input->string()
+                      << "': it would be overwritten\n";
+            return 1;
+        }
         const GraphDesc& graph = inputs.graph;
         CompileOptions co = inputs.compile;
         // Headless: the swapchain target is an image of our own, read back instead of presented.

@@ -8,6 +8,7 @@
 
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/ktx2.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -16,6 +17,7 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <system_error>
 
@@ -147,9 +149,10 @@ int run(CubemapArgs& args) {
     for (const auto& path : outputs) requireWritablePath(path);
 
     ProgressBar bar("cubemap", 6, "steps");
-    const HdrImage equirect = loadHdrImage(args.input);  // ImageError names the file and reason
-    if (const size_t bad = countNonFinite(equirect))
-        throw ImageError(args.input, std::to_string(bad) + " pixel values are NaN or infinite");
+    // Half-float products would hold what a half cannot as infinity, and spread it through
+    // every mip and filtered product.
+    const HdrImage equirect = app::loadEnvironmentImage(
+        args.input, bake.float32 ? std::numeric_limits<float>::max() : math::kLargestHalf);
     if (equirect.width != 2 * equirect.height)
         spdlog::warn("'{}' is {}x{}, not 2:1; it is read as an equirect map all the same", args.input,
                      equirect.width, equirect.height);
