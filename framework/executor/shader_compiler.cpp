@@ -19,13 +19,12 @@
 namespace skygraph {
 namespace {
 
-/// Resolves `#include "x"` against one directory, taking each file's text from `read` (null:
-/// it cannot be read); owns the loaded text until released, and remembers what it loaded (by
-/// content) for the disk cache.
+/// Resolves `#include "x"` against one directory, taking each file's text from `read`; owns
+/// the loaded text until released, and remembers what it loaded (by content) for the disk cache.
 class DirIncluder final : public glslang::TShader::Includer {
 public:
-    using Read = std::function<const std::string*(const std::filesystem::path&)>;
-    DirIncluder(std::filesystem::path dir, Read read) : dir_(std::move(dir)), read_(std::move(read)) {}
+    DirIncluder(std::filesystem::path dir, SpirvDiskCache::IncludeReader read)
+        : dir_(std::move(dir)), read_(std::move(read)) {}
 
     IncludeResult* includeLocal(const char* headerName, const char*, size_t) override {
         return load(headerName);
@@ -51,7 +50,7 @@ private:
         return new IncludeResult(path.string(), text->data(), text->size(), text);
     }
     std::filesystem::path dir_;
-    Read read_;
+    SpirvDiskCache::IncludeReader read_;
     std::vector<IncludedFile> loaded_;
 };
 
@@ -147,12 +146,9 @@ std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,
                                 std::to_string(GLSLANG_VERSION_MINOR) + "." + std::to_string(GLSLANG_VERSION_PATCH) +
                                 "\n" + includeDir_.string() + "\n" + key;
     // Included files as this compiler includes them: kept since their first read, like sources.
-    const auto read = [this](const std::filesystem::path& path) { return keptFile(path); };
+    const SpirvDiskCache::IncludeReader read = [this](const std::filesystem::path& path) { return keptFile(path); };
     const SpirvDiskCache disk(cacheDir_);
-    if (auto spirv = disk.find(diskKey, [&](const std::filesystem::path& path) -> std::optional<std::string> {
-            const std::string* text = read(path);
-            return text ? std::optional<std::string>(*text) : std::nullopt;
-        })) {
+    if (auto spirv = disk.find(diskKey, read)) {
         cache_.emplace(key, *spirv);
         return std::move(*spirv);
     }

@@ -100,7 +100,7 @@ std::optional<std::vector<uint32_t>> SpirvDiskCache::find(const std::string& key
         std::string_view path;
         uint64_t storedHash = 0;
         if (!in.text(path) || !in.value(storedHash)) return std::nullopt;
-        const auto now = read ? read(std::filesystem::path(path)) : readFile(std::filesystem::path(path));
+        const std::string* now = read(std::filesystem::path(path));
         if (!now || hash(*now) != storedHash) return std::nullopt;
     }
     uint64_t words = 0;

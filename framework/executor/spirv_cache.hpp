@@ -28,14 +28,12 @@ public:
     /// `dir` empty: disabled (find() misses, store() does nothing).
     explicit SpirvDiskCache(std::filesystem::path dir) : dir_(std::move(dir)) {}
 
-    /// The text of an included file as the compile would include it; nullopt when it cannot
-    /// be read.
-    using IncludeReader = std::function<std::optional<std::string>(const std::filesystem::path&)>;
+    /// The text of an included file as the compile would include it (borrowed from the
+    /// compiler); null when it cannot be read.
+    using IncludeReader = std::function<const std::string*(const std::filesystem::path&)>;
 
-    /// The SPIR-V stored for `key`, if its included files are unchanged: as `read` gives them
-    /// (empty: as they are on disk).
-    [[nodiscard]] std::optional<std::vector<uint32_t>> find(const std::string& key,
-                                                            const IncludeReader& read = {}) const;
+    /// The SPIR-V stored for `key`, if its included files, as `read` gives them, are unchanged.
+    [[nodiscard]] std::optional<std::vector<uint32_t>> find(const std::string& key, const IncludeReader& read) const;
 
     /// Stores `spirv` for `key` with the files it included.
     void store(const std::string& key, const std::vector<IncludedFile>& includes,

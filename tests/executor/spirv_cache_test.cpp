@@ -111,7 +111,7 @@ TEST_F(SpirvCacheTest, DamagedEntriesAreMisses) {
 TEST_F(SpirvCacheTest, AnEmptyDirectoryDisablesIt) {
     const SpirvDiskCache disabled{fs::path{}};
     disabled.store("key", {}, {0x07230203u, 1u});
-    EXPECT_FALSE(disabled.find("key"));
+    EXPECT_FALSE(disabled.find("key", {}));
     ShaderCompiler memoryOnly(root / "include");
     (void)memoryOnly.compile(VK_SHADER_STAGE_COMPUTE_BIT, kShader, "memory.comp");
     EXPECT_TRUE(entries().empty());

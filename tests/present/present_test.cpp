@@ -25,6 +25,7 @@
 #include <GLFW/glfw3.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -472,6 +473,19 @@ struct LiveWindow {
     std::unique_ptr<Swapchain> swapchain;
 };
 
+/// An environment file in the temporary folder, every texel `texel`; its path.
+std::filesystem::path writeUniformSky(const std::string& name, uint32_t width, uint32_t height,
+                                      std::array<float, 4> texel) {
+    ImageData sky;
+    sky.width = width;
+    sky.height = height;
+    sky.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    for (uint32_t i = 0; i < width * height; ++i) sky.rgba.insert(sky.rgba.end(), texel.begin(), texel.end());
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / name;
+    writeHdr(file, sky);
+    return file;
+}
+
 TEST_F(Present, AnEnvironmentChangeIsRebakedBesideTheFrames) {
     LiveWindow w(*device_, "scenes/studio.json");
     app::LiveGraph& live = w.live;
@@ -501,13 +515,9 @@ TEST_F(Present, AnEnvironmentFileOfAnotherSizeIsResampledAndRebakedBesideTheFram
     const Renderer* running = &live.renderer();
     const uint32_t reloads = live.reloads();
     const auto equirect = live.renderer().graph().findResource("equirect")->extent.resolve(96, 64);
-    ImageData other;
-    other.width = equirect[0] / 2 + 3;  // neither the running size nor a multiple of it
-    other.height = equirect[1] / 2 + 1;
-    other.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    for (uint32_t i = 0; i < other.width * other.height; ++i) other.rgba.insert(other.rgba.end(), {0.5f, 1.0f, 2.0f, 1.0f});
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / "skygraph-other-size.hdr";
-    writeHdr(file, other);
+    // Neither the running size nor a multiple of it.
+    const std::filesystem::path file =
+        writeUniformSky("skygraph-other-size.hdr", equirect[0] / 2 + 3, equirect[1] / 2 + 1, {0.5f, 1.0f, 2.0f, 1.0f});
     ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
     EXPECT_TRUE(live.rebaking()) << "re-baked beside the frames, not rebuilt";
     const int frames = w.framesUntilRebaked();
@@ -545,14 +555,8 @@ TEST_F(Present, ARebuildWhileAnEnvironmentFileDecodesBuildsWithTheFile) {
     LiveWindow w(*device_, "scenes/studio.json");
     app::LiveGraph& live = w.live;
     for (int i = 0; i < 3; ++i) w.frame();
-    ImageData sky;
-    sky.width = 64;
-    sky.height = 32;
-    sky.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    sky.rgba.assign(size_t(sky.width) * sky.height * 4, 0.75f);
-    const std::filesystem::path file =
-        std::filesystem::temp_directory_path() / ("skygraph-decoding-" + std::to_string(::getpid()) + ".hdr");
-    writeHdr(file, sky);
+    const std::filesystem::path file = writeUniformSky(
+        "skygraph-decoding-" + std::to_string(::getpid()) + ".hdr", 64, 32, {0.75f, 0.75f, 0.75f, 0.75f});
     ASSERT_TRUE(live.setEnvironmentFile(file)) << live.error();
     ASSERT_TRUE(live.rebaking()) << "decoding beside the frames";
     ASSERT_TRUE(live.setFeature("skybox", false)) << live.error();
