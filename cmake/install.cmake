@@ -25,7 +25,7 @@ target_compile_definitions(skygraph_all INTERFACE
   $<BUILD_INTERFACE:SKYGRAPH_PACKAGE_SHADER_DIR="${PROJECT_SOURCE_DIR}/shaders">)
 
 set(_skygraph_exported skygraph_all skygraph_compiler skygraph_verifier skygraph_golden skygraph_pass_types skygraph_scene skygraph_image skygraph_math
-    skygraph_warnings)
+    skygraph_files skygraph_warnings)
 set_target_properties(skygraph_compiler PROPERTIES EXPORT_NAME compiler)
 set_target_properties(skygraph_verifier PROPERTIES EXPORT_NAME verifier)
 set_target_properties(skygraph_golden PROPERTIES EXPORT_NAME golden)
@@ -33,6 +33,7 @@ set_target_properties(skygraph_pass_types PROPERTIES EXPORT_NAME pass_types)
 set_target_properties(skygraph_scene PROPERTIES EXPORT_NAME scene)
 set_target_properties(skygraph_image PROPERTIES EXPORT_NAME image)
 set_target_properties(skygraph_math PROPERTIES EXPORT_NAME math)
+set_target_properties(skygraph_files PROPERTIES EXPORT_NAME files)
 # Linked privately by the static libraries, so it is in their link interface; it carries no
 # usage requirements beyond the build tree's warning flags (not propagated by LINK_ONLY).
 set_target_properties(skygraph_warnings PROPERTIES EXPORT_NAME warnings)

@@ -5,9 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
-#include <thread>
 
-#include <unistd.h>
+#include "replace_file.hpp"
 
 namespace skygraph {
 namespace {
@@ -93,21 +92,10 @@ void writeGolden(const Plan& plan, const fs::path& golden) {
     std::error_code ec;
     if (golden.has_parent_path()) fs::create_directories(golden.parent_path(), ec);
     if (ec) throw std::runtime_error("cannot create the directory of " + golden.string() + ": " + ec.message());
-    const fs::path temporary = golden.string() + ".tmp" + std::to_string(::getpid()) + "-" +
-                               std::to_string(std::hash<std::thread::id>{}(std::this_thread::get_id()));
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << goldenText(plan);
-        out.close();
-        if (!out) {
-            fs::remove(temporary, ec);
-            throw std::runtime_error("cannot write the golden plan " + golden.string());
-        }
-    }
-    fs::rename(temporary, golden, ec);
-    if (ec) {
-        fs::remove(temporary, ec);
-        throw std::runtime_error("cannot write the golden plan " + golden.string() + ": " + ec.message());
+    try {
+        files::replaceFileContents(golden, goldenText(plan));
+    } catch (const fs::filesystem_error& e) {
+        throw std::runtime_error("cannot write the golden plan " + golden.string() + ": " + e.code().message());
     }
 }
 

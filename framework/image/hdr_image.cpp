@@ -1,10 +1,11 @@
 // Dispatch by extension, the error type, and the checks shared by both formats.
 #include "image_internal.hpp"
 
+#include "replace_file.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <unistd.h>
 
 namespace skygraph {
 namespace {
@@ -83,22 +84,14 @@ void requireWritable(const std::filesystem::path& path, const HdrImage& image) {
 
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::string& tempPath)>& write) {
-    const std::string temp = path.string() + ".tmp" + std::to_string(::getpid());
-    std::error_code ec;
     try {
-        write(temp);
+        files::replaceFile(path, [&](const std::filesystem::path& temp) { write(temp.string()); });
     } catch (const ImageError&) {
-        std::filesystem::remove(temp, ec);
         throw;
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw ImageError(path, "cannot write: " + e.code().message());
     } catch (const std::exception& e) {
-        std::filesystem::remove(temp, ec);
         throw ImageError(path, std::string("cannot write: ") + e.what());
-    }
-    std::filesystem::rename(temp, path, ec);
-    if (ec) {
-        std::error_code ignored;
-        std::filesystem::remove(temp, ignored);
-        throw ImageError(path, "cannot write: " + ec.message());
     }
 }
 

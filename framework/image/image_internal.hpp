@@ -23,8 +23,7 @@ void requireLoadableSize(const std::filesystem::path& path, int64_t width, int64
 /// Throws ImageError for an empty image, a pixel vector of the wrong size, or one over the limits.
 void requireWritable(const std::filesystem::path& path, const HdrImage& image);
 
-/// Calls write(tempPath) and renames the temporary over `path`; removes the temporary and
-/// throws ImageError if write throws or the rename fails.
+/// files::replaceFile(path, write), with every failure an ImageError naming `path`.
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::string& tempPath)>& write);
 

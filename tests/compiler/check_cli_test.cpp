@@ -301,13 +301,14 @@ TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
 
 // A frame that cannot be written part way through: the frames this run made are removed, and a
 // file of the user's that the run had not reached yet is as it was. The third frame's
-// temporary (its name holds the writer's pid, which `exec` keeps) is a folder already.
+// temporary is a folder already: files::temporaryBeside names it from the writer's pid, which
+// `exec` keeps, and the count of temporaries the process named before (one per frame).
 TEST_F(Cli, SkySequenceThatFailsPartWayRemovesTheFramesItMade) {
     const fs::path frames = dir_ / "work" / "frames";
     fs::create_directories(frames);
     std::ofstream(frames / "sky_3.exr") << "the user's";
-    const std::string command = "sh -c " + quote("mkdir -p \"" + (frames / "sky_2.exr").string() +
-                                                 ".tmp$$/full\" && exec " + quote(kCli.string()) +
+    const std::string command = "sh -c " + quote("mkdir -p \"" + (frames / ".sky_2.partial").string() +
+                                                 "$$-2.exr/full\" && exec " + quote(kCli.string()) +
                                                  " sky-sequence " + quote((frames / "sky_%d.exr").string()) +
                                                  " --frames 4 --width 8") +
                                 " 2>" + quote((dir_ / "stderr").string());

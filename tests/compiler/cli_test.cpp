@@ -11,7 +11,10 @@
 #include <cstdlib>
 #include <limits>
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -98,6 +101,28 @@ TEST_F(Cli, OutputFileMatchesStdout) {
     EXPECT_EQ(toFile.out, "");
     EXPECT_EQ(slurp(out), toStdout.out);
     EXPECT_EQ(workFiles(), std::vector<std::string>{"plan.json"});  // no temporary left
+}
+
+// -o through a link writes the file the link names and keeps the link; -o /dev/stdout writes
+// the stream the shell redirected (here to the fixture's file), replacing no file.
+TEST_F(Cli, OutputThroughALinkOrToStandardOutput) {
+    const CliRun toStdout = run({"compile", "graphs/raster.json", "--format", "json"});
+    ASSERT_EQ(toStdout.status, 0);
+    fs::create_directories(dir_ / "work" / "plans");
+    std::ofstream(dir_ / "work" / "plans" / "raster.json") << "an older plan";
+    fs::create_symlink("plans/raster.json", dir_ / "work" / "current.json");
+    const CliRun viaLink =
+        run({"compile", "graphs/raster.json", "--format", "json", "-o", (dir_ / "work" / "current.json").string()});
+    ASSERT_EQ(viaLink.status, 0) << viaLink.err;
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir_ / "work" / "current.json")));
+    EXPECT_EQ(slurp(dir_ / "work" / "plans" / "raster.json"), toStdout.out);
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(dir_ / "work" / "plans")) left.push_back(e.path().filename().string());
+    EXPECT_EQ(left, std::vector<std::string>{"raster.json"});  // no temporary left beside the target
+
+    const CliRun viaStdout = run({"compile", "graphs/raster.json", "--format", "json", "-o", "/dev/stdout"});
+    ASSERT_EQ(viaStdout.status, 0) << viaStdout.err;
+    EXPECT_EQ(viaStdout.out, toStdout.out);
 }
 
 TEST_F(Cli, TextAndDotFormats) {
@@ -564,6 +589,32 @@ TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {
         EXPECT_EQ(fs::last_write_time(input), before) << input;
         EXPECT_EQ(skygraph::loadExr(input).rgba, sky.rgba) << input;
     }
+}
+
+// `render -o PIPE`: the PNG goes to the FIFO's reader as it is written; the FIFO stays.
+TEST_F(Cli, RenderWritesItsPngIntoAFifo) {
+    const fs::path fifo = dir_ / "work" / "frames.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // Our own end, read and write, so that neither side waits for the other: the PNG of 8x6
+    // pixels fits the pipe's buffer, and a render that replaced the FIFO leaves it empty.
+    const int end = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+    ASSERT_GE(end, 0);
+    const CliRun r = run({"render", "--width", "8", "--height", "6", "-o", fifo.string()});
+    std::string png;
+    char chunk[4096];
+    for (ssize_t n; (n = ::read(end, chunk, sizeof chunk)) > 0;) png.append(chunk, size_t(n));
+    ::close(end);
+    EXPECT_EQ(r.status, 0) << r.err;
+    ASSERT_GE(png.size(), 24u);
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    const auto bigEndian = [&](size_t at) {
+        return uint32_t(uint8_t(png[at])) << 24 | uint32_t(uint8_t(png[at + 1])) << 16 |
+               uint32_t(uint8_t(png[at + 2])) << 8 | uint32_t(uint8_t(png[at + 3]));
+    };
+    EXPECT_EQ(bigEndian(16), 8u);  // IHDR's width and height
+    EXPECT_EQ(bigEndian(20), 6u);
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"frames.png"});
 }
 
 // A PNG that cannot be written leaves no temporary behind, and never touches a file of the

@@ -3,15 +3,14 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
 
+#include "replace_file.hpp"
+
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
-
-#include <unistd.h>
 
 namespace skygraph::cli {
 
@@ -45,26 +44,10 @@ void writeOutput(const std::string& path, const std::string& text) {
         std::cout << text << std::flush;
         return;
     }
-    namespace fs = std::filesystem;
-    const fs::path target(path);
-    const fs::path temp =
-        target.parent_path() / ("." + target.filename().string() + ".partial" + std::to_string(::getpid()));
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) {
-            std::error_code ignored;
-            fs::remove(temp, ignored);
-            throw std::runtime_error("cannot write '" + path + "'");
-        }
-    }
-    std::error_code ec;
-    fs::rename(temp, target, ec);
-    if (ec) {
-        std::error_code ignored;  // the rename's reason is the one to tell
-        fs::remove(temp, ignored);
-        throw std::runtime_error("cannot write '" + path + "': " + ec.message());
+    try {
+        files::replaceFileContents(path, text);
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw std::runtime_error("cannot write '" + path + "': " + e.code().message());
     }
 }
 

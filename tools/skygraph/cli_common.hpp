@@ -59,8 +59,8 @@ inline const CLI::Validator kNotEmpty(
     [](const std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
     "NOT EMPTY");
 
-/// Writes `text` to `path` (stdout when empty) through a temporary file and a rename, so a
-/// failure never leaves half a file behind.
+/// Writes `text` to `path` (stdout when empty) with files::replaceFileContents: a failure never
+/// leaves half a file behind, a link's target gets the text, and a FIFO or device is written.
 void writeOutput(const std::string& path, const std::string& text);
 
 /// Logs to stderr (stdout carries plans) at debug (-v), error (-q) or info level.

@@ -2,6 +2,7 @@
 
 #include "builtin_ibl_graph.hpp"
 #include "progress_bar.hpp"
+#include "replace_file.hpp"
 
 #include "app/environment_bake.hpp"
 #include "shipped_names.hpp"
@@ -21,7 +22,6 @@
 #include <memory>
 #include <system_error>
 
-#include <unistd.h>
 
 namespace skygraph::cli {
 namespace {
@@ -90,35 +90,45 @@ void requireWritablePath(const std::filesystem::path& path) {
         throw ImageError(path, "cannot be written: the folder '" + folder.string() + "' does not exist");
 }
 
-/// writes[i] writes outputs[i] to the path it is given: first each to a temporary beside its
-/// output (with the same extension, which picks the format), then, once all are written, each
-/// renamed into place. A failure removes the temporaries and leaves the outputs as they were.
+/// writes[i] writes outputs[i] to the path it is given: first each file to a temporary beside
+/// it (files::temporaryBeside keeps the extension, which picks the format), then each FIFO or
+/// device in place, then, once all are written, each file renamed into place (a link's target,
+/// as files::outputTarget finds it). A failure before the renames removes the temporaries and
+/// leaves every file as it was.
 void writeAllOrNone(const std::vector<std::filesystem::path>& outputs,
                     const std::vector<std::function<void(const std::filesystem::path&)>>& writes) {
-    std::vector<std::filesystem::path> temporaries;
+    std::vector<files::OutputTarget> targets;
+    for (const auto& output : outputs) {
+        try {
+            targets.push_back(files::outputTarget(output));
+        } catch (const std::filesystem::filesystem_error& e) {
+            throw ImageError(output, "cannot be written: " + e.code().message());
+        }
+    }
+    std::vector<std::filesystem::path> temporaries(outputs.size());
     const auto removeTemporaries = [&] {
         std::error_code ignored;
-        for (const auto& t : temporaries) std::filesystem::remove(t, ignored);
+        for (const auto& t : temporaries)
+            if (!t.empty()) std::filesystem::remove(t, ignored);
     };
     try {
-        for (size_t i = 0; i < outputs.size(); ++i) {
-            std::filesystem::path temporary = outputs[i];
-            temporary.replace_filename(outputs[i].stem().string() + ".partial" + std::to_string(::getpid()) +
-                                       outputs[i].extension().string());
-            temporaries.push_back(temporary);
-            writes[i](temporary);
-        }
+        for (size_t i = 0; i < outputs.size(); ++i)
+            if (!targets[i].inPlace) writes[i](temporaries[i] = files::temporaryBeside(targets[i].path));
+        for (size_t i = 0; i < outputs.size(); ++i)
+            if (targets[i].inPlace) writes[i](targets[i].path);
     } catch (...) {
         removeTemporaries();
         throw;
     }
     for (size_t i = 0; i < outputs.size(); ++i) {
+        if (targets[i].inPlace) continue;
         std::error_code ec;
-        std::filesystem::rename(temporaries[i], outputs[i], ec);
+        std::filesystem::rename(temporaries[i], targets[i].path, ec);
         if (ec) {
             removeTemporaries();
             throw ImageError(outputs[i], "cannot be written: " + ec.message());
         }
+        temporaries[i].clear();
     }
 }
 

@@ -1,0 +1,40 @@
+// Writing a whole file so that whoever reads it sees the old contents or the new, never part:
+// every file the libraries and the tool write for a user is written through here.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string_view>
+
+namespace skygraph::files {
+
+/// Where a write meant for `path` lands. A symbolic link is followed to the file at the end of
+/// its chain, so the link stays a link and its target gets the contents. A FIFO, terminal or
+/// other device there is written in place (`inPlace`): its reader takes the bytes as they come
+/// and there is no file to replace. So is a link into /proc (/dev/stdout, /dev/fd/N): the
+/// stream it stands for is written, as a shell's redirection set it up. Anything else, a
+/// regular file or nothing yet, is replaced.
+struct OutputTarget {
+    std::filesystem::path path;
+    bool inPlace = false;
+};
+
+/// Resolves `path` as described above. Throws std::filesystem::filesystem_error for a folder,
+/// a loop of links or a link that cannot be read.
+[[nodiscard]] OutputTarget outputTarget(const std::filesystem::path& path);
+
+/// A name for a temporary beside `target`: hidden, unique to this process and call, and ending
+/// in the target's extension (writers that choose the format by extension keep choosing it).
+[[nodiscard]] std::filesystem::path temporaryBeside(const std::filesystem::path& target);
+
+/// Calls write(p) for p a temporary beside outputTarget(path).path, then renames p over that
+/// target; in place, calls write(target) and nothing else. If write throws or the rename fails,
+/// removes the temporary and leaves the target as it was: write's exception is rethrown, a
+/// failed rename throws std::filesystem::filesystem_error.
+void replaceFile(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
+
+/// replaceFile() with `bytes` as the contents. A write that fails (a full disk) throws
+/// std::filesystem::filesystem_error too.
+void replaceFileContents(const std::filesystem::path& path, std::string_view bytes);
+
+}  // namespace skygraph::files

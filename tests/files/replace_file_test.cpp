@@ -1,0 +1,150 @@
+// files::replaceFile on real files, links and FIFOs in a fresh folder per test.
+#include "replace_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace fs = std::filesystem;
+using skygraph::files::outputTarget;
+using skygraph::files::replaceFile;
+using skygraph::files::replaceFileContents;
+using skygraph::files::temporaryBeside;
+
+namespace {
+
+class ReplaceFile : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() /
+               ("skygraph-files-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    static std::string slurp(const fs::path& p) {
+        std::ifstream in(p, std::ios::binary);
+        std::ostringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    static void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+    /// The names in `folder`, sorted: what a write left there, temporaries included.
+    static std::vector<std::string> names(const fs::path& folder) {
+        std::vector<std::string> out;
+        for (const auto& e : fs::directory_iterator(folder)) out.push_back(e.path().filename().string());
+        std::sort(out.begin(), out.end());
+        return out;
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(ReplaceFile, ReplacesAFileWholeAndLeavesNoTemporary) {
+    write(dir_ / "plan.json", "old contents, longer than the new");
+    replaceFileContents(dir_ / "plan.json", "new");
+    EXPECT_EQ(slurp(dir_ / "plan.json"), "new");
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"plan.json"});
+}
+
+TEST_F(ReplaceFile, ALinkStaysALinkAndTheFileAtTheEndOfItsChainGetsTheContents) {
+    fs::create_directories(dir_ / "real");
+    write(dir_ / "real" / "out.png", "old");
+    fs::create_symlink("real/out.png", dir_ / "second");  // relative to the link's folder
+    fs::create_symlink(dir_ / "second", dir_ / "first");
+    replaceFileContents(dir_ / "first", "new");
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir_ / "first")));
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir_ / "second")));
+    EXPECT_EQ(slurp(dir_ / "real" / "out.png"), "new");
+    EXPECT_EQ(names(dir_ / "real"), std::vector<std::string>{"out.png"});
+    EXPECT_EQ(names(dir_), (std::vector<std::string>{"first", "real", "second"}));
+}
+
+TEST_F(ReplaceFile, ALinkToNothingYetCreatesItsTarget) {
+    fs::create_symlink("made.txt", dir_ / "link");
+    replaceFileContents(dir_ / "link", "made");
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dir_ / "link")));
+    EXPECT_EQ(slurp(dir_ / "made.txt"), "made");
+}
+
+TEST_F(ReplaceFile, AFifoIsWrittenInPlaceForItsReader) {
+    const fs::path fifo = dir_ / "pipe";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    EXPECT_TRUE(outputTarget(fifo).inPlace);
+    std::string received;
+    std::thread reader([&] { received = slurp(fifo); });
+    replaceFileContents(fifo, "through the pipe");
+    reader.join();
+    EXPECT_EQ(received, "through the pipe");
+    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"pipe"});
+}
+
+TEST_F(ReplaceFile, ADeviceIsWrittenInPlace) {
+    const skygraph::files::OutputTarget null = outputTarget("/dev/null");
+    EXPECT_TRUE(null.inPlace);
+    EXPECT_EQ(null.path, fs::path("/dev/null"));
+    EXPECT_FALSE(outputTarget(dir_ / "nothing yet").inPlace);
+}
+
+// Whatever file a shell redirected standard output to, /dev/stdout is written as the stream
+// (appending to a `>>` log), never replaced by a new file.
+TEST_F(ReplaceFile, StandardOutputIsTheStreamNotTheFileItWasRedirectedTo) {
+    const skygraph::files::OutputTarget out = outputTarget("/dev/stdout");
+    EXPECT_TRUE(out.inPlace);
+    EXPECT_EQ(out.path, fs::path("/dev/stdout"));
+    fs::create_symlink("/dev/stdout", dir_ / "to-stdout");
+    EXPECT_EQ(outputTarget(dir_ / "to-stdout").path, dir_ / "to-stdout");
+    EXPECT_TRUE(outputTarget(dir_ / "to-stdout").inPlace);
+}
+
+TEST_F(ReplaceFile, AFolderOrALoopOfLinksIsRefusedAndLeftAlone) {
+    fs::create_directories(dir_ / "folder");
+    EXPECT_THROW(replaceFileContents(dir_ / "folder", "x"), fs::filesystem_error);
+    fs::create_symlink("folder", dir_ / "to-folder");
+    EXPECT_THROW(replaceFileContents(dir_ / "to-folder", "x"), fs::filesystem_error);
+    fs::create_symlink("loop-b", dir_ / "loop-a");
+    fs::create_symlink("loop-a", dir_ / "loop-b");
+    try {
+        replaceFileContents(dir_ / "loop-a", "x");
+        ADD_FAILURE() << "a loop of links was written";
+    } catch (const fs::filesystem_error& e) {
+        EXPECT_EQ(e.code(), std::make_error_code(std::errc::too_many_symbolic_link_levels));
+    }
+    EXPECT_EQ(names(dir_), (std::vector<std::string>{"folder", "loop-a", "loop-b", "to-folder"}));
+    EXPECT_TRUE(fs::is_empty(dir_ / "folder"));
+}
+
+TEST_F(ReplaceFile, AWriteThatFailsLeavesTheFileAsItWasAndNoTemporary) {
+    write(dir_ / "sky.exr", "precious");
+    fs::path given;
+    EXPECT_THROW(replaceFile(dir_ / "sky.exr",
+                             [&](const fs::path& temporary) {
+                                 given = temporary;
+                                 write(temporary, "half");
+                                 throw std::runtime_error("disk full");
+                             }),
+                 std::runtime_error);
+    EXPECT_EQ(given.parent_path(), dir_);
+    EXPECT_EQ(slurp(dir_ / "sky.exr"), "precious");
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"sky.exr"});
+}
+
+TEST_F(ReplaceFile, TemporariesAreHiddenUniqueAndKeepTheExtension) {
+    const fs::path a = temporaryBeside(dir_ / "cube.ktx2"), b = temporaryBeside(dir_ / "cube.ktx2");
+    EXPECT_NE(a, b);
+    EXPECT_EQ(a.parent_path(), dir_);
+    EXPECT_EQ(a.extension(), ".ktx2");
+    EXPECT_EQ(a.filename().string().front(), '.');
+}
+
+}  // namespace
