@@ -9,15 +9,29 @@
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/SPIRV/GlslangToSpv.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <sstream>
 
 namespace skygraph {
 namespace {
+
+/// A shader file's text; nothing when it is not a regular file (never a FIFO: it could block)
+/// or cannot be read.
+std::optional<std::string> readShaderFile(const std::filesystem::path& path) {
+    std::error_code ec;
+    std::ifstream in(path, std::ios::binary);
+    if (!std::filesystem::is_regular_file(path, ec) || !in) return std::nullopt;
+    std::stringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) return std::nullopt;
+    return std::move(ss).str();
+}
 
 /// Resolves `#include "x"` against one directory, taking each file's text from `read`; owns
 /// the loaded text until released, and remembers what it loaded (by content) for the disk cache.
@@ -106,13 +120,8 @@ ShaderCompiler::~ShaderCompiler() {
 const std::string* ShaderCompiler::keptFile(const std::filesystem::path& path) {
     const std::string key = std::filesystem::absolute(path).lexically_normal().generic_string();
     if (auto it = sources_.find(key); it != sources_.end()) return &it->second;
-    std::error_code ec;
-    std::ifstream in(path, std::ios::binary);
-    if (!std::filesystem::is_regular_file(path, ec) || !in) return nullptr;  // never a FIFO: it could block
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) return nullptr;
-    return &sources_.emplace(key, ss.str()).first->second;
+    std::optional<std::string> text = readShaderFile(path);
+    return text ? &sources_.emplace(key, std::move(*text)).first->second : nullptr;
 }
 
 std::string ShaderCompiler::source(const std::filesystem::path& relativePath) {
@@ -131,6 +140,12 @@ void ShaderCompiler::clear() {
     std::lock_guard lock(mutex_);
     cache_.clear();
     sources_.clear();
+}
+
+bool ShaderCompiler::keptFilesChanged() {
+    std::lock_guard lock(mutex_);
+    return std::any_of(sources_.begin(), sources_.end(),
+                       [](const auto& kept) { return readShaderFile(kept.first) != kept.second; });
 }
 
 std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,

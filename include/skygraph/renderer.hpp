@@ -206,6 +206,11 @@ public:
     /// setGraph() with ShaderSources::Cached) builds from the shader sources the running
     /// pipelines were built from, so a shader broken on disk fails only this call.
     void reloadShaders();
+    /// Whether a shader file the running pipelines were built from, or a file it includes,
+    /// reads differently on disk now (ShaderCompiler::keptFilesChanged): e.g. whether an edit
+    /// in the shader directory concerns this renderer, for one that renders once (a bake) and
+    /// would render again rather than reload.
+    [[nodiscard]] bool shadersChangedOnDisk() const;
     /// Imports a loaded texture: `pixels` (float RGBA, as stored; the renderer keeps them)
     /// become the contents of mip 0 (every layer) of the external image `resource`, by an Upload
     /// step of the plan's setup, now and whenever the plan is re-installed. Waits for this

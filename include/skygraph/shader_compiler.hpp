@@ -49,6 +49,11 @@ public:
     /// that the next compiles read the shader directory again, e.g. after an edit.
     void clear();
 
+    /// Whether a kept file, source or include, now reads differently on disk or cannot be
+    /// read: whether an edit in the shader directory concerns what this compiler built. Reads
+    /// only the kept files.
+    [[nodiscard]] bool keptFilesChanged();
+
     /// Fixed at construction; the reference is valid while this compiler lives.
     [[nodiscard]] const std::filesystem::path& includeDir() const noexcept { return includeDir_; }
 

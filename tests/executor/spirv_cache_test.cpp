@@ -88,6 +88,30 @@ TEST_F(SpirvCacheTest, IncludedFilesAreKeptUntilClear) {
         << "clear() reads the include again";
 }
 
+// keptFilesChanged() answers for the files this compiler read, sources and includes, and for
+// no other file of the folder.
+TEST_F(SpirvCacheTest, KeptFilesChangedSeesEditsToWhatWasReadOnly) {
+    std::ofstream(root / "include" / "main.comp") << kShader;
+    std::ofstream(root / "include" / "other.comp") << kShader;
+    ShaderCompiler compiler(root / "include");
+    EXPECT_FALSE(compiler.keptFilesChanged()) << "nothing read yet";
+    (void)compiler.compileFile(VK_SHADER_STAGE_COMPUTE_BIT, "main.comp");
+    EXPECT_FALSE(compiler.keptFilesChanged());
+    std::ofstream(root / "include" / "other.comp", std::ios::app) << "// an edit elsewhere\n";
+    EXPECT_FALSE(compiler.keptFilesChanged()) << "a file it never read";
+    writeInclude("float scale() { return 2.5; }\n");
+    EXPECT_TRUE(compiler.keptFilesChanged()) << "an include it read";
+    writeInclude("float scale() { return 2.0; }\n");
+    EXPECT_FALSE(compiler.keptFilesChanged()) << "the include as first read again";
+    std::ofstream(root / "include" / "main.comp", std::ios::app) << "// an edit\n";
+    EXPECT_TRUE(compiler.keptFilesChanged()) << "the source it read";
+    compiler.clear();
+    EXPECT_FALSE(compiler.keptFilesChanged()) << "clear() keeps nothing";
+    (void)compiler.compileFile(VK_SHADER_STAGE_COMPUTE_BIT, "main.comp");
+    fs::remove(root / "include" / "lib.glsl");
+    EXPECT_TRUE(compiler.keptFilesChanged()) << "an include deleted";
+}
+
 TEST_F(SpirvCacheTest, DamagedEntriesAreMisses) {
     const auto [good, runs] = compileFresh();
     ASSERT_EQ(entries().size(), 1u);

@@ -29,6 +29,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 #include <memory>
@@ -463,6 +464,16 @@ struct LiveWindow {
         live.poll();
         EXPECT_EQ(live.renderFrame(*swapchain), PresentStatus::Presented);
     }
+    /// The next presented frame, read back as the view's screenshots are.
+    ImageData screen() {
+        EXPECT_TRUE(live.beginScreenshot()) << live.error();
+        frame();
+        live.renderer().waitIdle();
+        ImageData image = live.renderer().readback();
+        (void)live.finishScreenshot({});  // writes nothing (false), compiles the plan back
+        EXPECT_EQ(live.error(), "");
+        return image;
+    }
     /// Presents frames until the re-bake under way is swapped in, 100 at most; how many.
     int framesUntilRebaked() {
         int frames = 0;
@@ -472,6 +483,13 @@ struct LiveWindow {
     app::LiveGraph live;
     std::unique_ptr<Swapchain> swapchain;
 };
+
+/// The mean of an image's colour channels.
+double meanColour(const ImageData& image) {
+    double sum = 0.0;
+    for (size_t i = 0; i < image.rgba.size(); ++i) sum += i % 4 == 3 ? 0.0 : image.rgba[i];
+    return sum / (double(image.rgba.size()) * 0.75);
+}
 
 /// An environment file in the temporary folder, every texel `texel`; its path.
 std::filesystem::path writeUniformSky(const std::string& name, uint32_t width, uint32_t height,
@@ -618,6 +636,62 @@ TEST_F(Present, ASaveThatDidNotBuildKeepsItsMessageThroughAnEnvironmentChange) {
     expectSilent();
 }
 
+// The environment is baked once, by a renderer of its own: an edit to one of its shaders (the
+// watcher sees every edit in the shader folder) bakes it again in a rebuild. A broken one is
+// reported and the frames go on; an edit to a frame shader only reloads the frame's pipelines.
+TEST_F(Present, AnEditedEnvironmentShaderBakesTheEnvironmentAgain) {
+    namespace fs = std::filesystem;
+    const fs::path shaders = fs::temp_directory_path() / ("skygraph-shaders-" + std::to_string(::getpid()));
+    fs::remove_all(shaders);
+    fs::copy(fs::path(SKYGRAPH_SOURCE_DIR) / "shaders", shaders, fs::copy_options::recursive);
+    const char* before = std::getenv("SKYGRAPH_SHADER_DIR");
+    const std::optional<std::string> previous = before ? std::optional<std::string>(before) : std::nullopt;
+    setenv("SKYGRAPH_SHADER_DIR", shaders.c_str(), 1);
+    {
+        LiveWindow w(*device_, "scenes/studio.json");
+        app::LiveGraph& live = w.live;
+        const ImageData lit = w.screen();
+        const Renderer* running = &live.renderer();
+        const uint32_t reloads = live.reloads();
+
+        std::ofstream(shaders / "passes/tonemap.frag", std::ios::app) << "\n// an edit to a frame shader\n";
+        w.frame();
+        EXPECT_EQ(&live.renderer(), running) << "a frame shader's edit baked the environment again";
+        EXPECT_EQ(live.reloads(), reloads + 1);
+        const ImageData same = w.screen();
+        EXPECT_EQ(same.rgba, lit.rgba) << "a comment in a frame shader changed the frame";
+
+        const fs::path cube = shaders / "passes/ibl/equirect_to_cube.comp";
+        std::string source;
+        {
+            std::ifstream in(cube);
+            source.assign(std::istreambuf_iterator<char>(in), {});
+        }
+        std::ofstream(cube, std::ios::app) << "\nthis is not GLSL\n";
+        w.frame();
+        EXPECT_EQ(&live.renderer(), running) << "a bake that failed replaced the running frames";
+        EXPECT_NE(live.error().find("equirect_to_cube.comp"), std::string::npos) << live.error();
+
+        // The environment cube black: the spheres lose their light; the sky, drawn from the
+        // equirect (the scene's "sampling"), stays.
+        const std::string sample = "vec4(sum / float(n * n), 1.0)";
+        ASSERT_NE(source.find(sample), std::string::npos);
+        source.replace(source.find(sample), sample.size(), "vec4(0.0, 0.0, 0.0, 1.0)");
+        std::ofstream(cube, std::ios::trunc) << source;
+        w.frame();
+        EXPECT_NE(&live.renderer(), running) << "the fixed environment shader was not baked";
+        EXPECT_EQ(live.error(), "");
+        EXPECT_EQ(live.reloads(), reloads + 2);
+        const ImageData dark = w.screen();
+        EXPECT_LT(meanColour(dark), 0.9 * meanColour(lit)) << "the spheres are still lit by the old bake";
+        live.renderer().waitIdle();
+    }
+    if (previous) setenv("SKYGRAPH_SHADER_DIR", previous->c_str(), 1);
+    else unsetenv("SKYGRAPH_SHADER_DIR");
+    fs::remove_all(shaders);
+    expectSilent();
+}
+
 // Moving the procedural sky's sun re-bakes its lighting beside the frames as a file change
 // does; a second move while the first bake runs is baked after it, and nothing rebuilds.
 TEST_F(Present, MovingTheSunRebakesTheSkysLightingBesideTheFrames) {
@@ -660,20 +734,7 @@ TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadabl
     ASSERT_NE(live.sequence(), nullptr);
     const Renderer* running = &live.renderer();
     const uint32_t reloads = live.reloads();
-    const auto screen = [&] {
-        EXPECT_TRUE(live.beginScreenshot()) << live.error();
-        w.frame();
-        live.renderer().waitIdle();
-        ImageData image = live.renderer().readback();
-        (void)live.finishScreenshot({});  // writes nothing (false), compiles the plan back
-        EXPECT_EQ(live.error(), "");
-        return image;
-    };
-    const auto mean = [](const ImageData& image) {
-        double sum = 0.0;
-        for (size_t i = 0; i < image.rgba.size(); ++i) sum += i % 4 == 3 ? 0.0 : image.rgba[i];
-        return sum / (double(image.rgba.size()) * 0.75);
-    };
+    const auto screen = [&] { return w.screen(); };
     const auto difference = [](const ImageData& a, const ImageData& b) {
         double most = 0.0;
         for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i) most = std::max(most, double(std::abs(a.rgba[i] - b.rgba[i])));
@@ -699,7 +760,7 @@ TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadabl
 
     playUntil(0.2, [](const app::SequenceStats& s) { return s.failed == 1u; });
     const ImageData second = screen();
-    EXPECT_GT(mean(second), 0.05) << "a sky, not black";
+    EXPECT_GT(meanColour(second), 0.05) << "a sky, not black";
     EXPECT_GT(difference(first, second), 0.2) << "the sun left the view: the sky changed with the frame";
     EXPECT_GT(difference(first, half), 0.05) << "half way, neither frame";
     EXPECT_GT(difference(half, second), 0.05) << "half way, neither frame";

@@ -436,6 +436,15 @@ bool LiveGraph::poll() {
         rebuildAfterSave(graphSavePending_, sceneSavePending_, {}, false);
         return true;
     }
+    // The environment was baked once, by a renderer of its own that the watcher (which sees
+    // every edit in the shader directory) does not reload: an edit to a shader that bake was
+    // built from bakes it again, in a rebuild that keeps everything else.
+    const Renderer* bake = built_->environment.renderer.get();
+    if (shaders != HotReloader::Result::Unchanged && bake && bake->shadersChangedOnDisk()) {
+        shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
+        rebuild(options_, Renderer::ShaderSources::Cached);
+        return true;
+    }
     switch (shaders) {
         case HotReloader::Result::Unchanged: return false;
         case HotReloader::Result::Reloaded:

@@ -81,9 +81,10 @@ public:
     /// Whether a re-bake (a file being decoded for one included) is not swapped in yet.
     [[nodiscard]] bool rebaking() const noexcept { return (baker_ && baker_->pending()) || load_.has_value(); }
     /// Swaps in a finished re-bake; rebuilds after the graph or scene file was saved, reloads
-    /// shaders after a shader edit. A save whose rebuild failed is rebuilt again at the next
-    /// save or shader edit, so that fixing a shader brings in the graph saved with it. True
-    /// when something was reloaded (or failed: see error()).
+    /// shaders after a shader edit, and rebuilds, baking the environment again, after an edit
+    /// to a shader the environment's bake was built from. A save whose rebuild failed is
+    /// rebuilt again at the next save or shader edit, so that fixing a shader brings in the
+    /// graph saved with it. True when something was reloaded (or failed: see error()).
     bool poll();
 
     /// Screenshots go through the plan: beginScreenshot() recompiles with the presented
