@@ -9,7 +9,8 @@ FileWatcher::FileWatcher(std::filesystem::path file) : file_(std::move(file)), c
 
 bool FileWatcher::changed() {
     std::optional<std::string> now = read();
-    if (!now || now == contents_) return false;
+    // Empty: truncated by a save in place (a shell's `>`, many editors) and not written yet.
+    if (!now || now->empty() || now == contents_) return false;
     contents_ = std::move(now);
     return true;
 }

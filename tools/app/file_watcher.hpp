@@ -16,8 +16,9 @@ public:
     explicit FileWatcher(std::filesystem::path file);
 
     /// True when the file can be read and its contents differ from the last time this
-    /// returned true (or from construction). A file that is briefly missing mid-save is
-    /// not a change.
+    /// returned true (or from construction). A file that is briefly missing or empty mid-save
+    /// (saved by rename, or truncated and then written in place) is not a change, so a save
+    /// is one change; no graph or scene file is empty.
     [[nodiscard]] bool changed();
 
     [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
