@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <sstream>
 
 namespace skygraph {
@@ -24,24 +25,27 @@ std::string readAll(const std::filesystem::path& p) {
 /// A watched file that is missing (deleted, or renamed away mid-save) hashes apart from
 /// every content, so that its return is seen as a change even with the same text.
 constexpr size_t kMissing = 0x6d697373696e67;  // "missing"
+/// An empty file: truncated by a save in place and not written yet, so taken for what it held.
+constexpr size_t kEmpty = 0x656d707479;  // "empty"
 
 size_t hashFile(const std::filesystem::path& p) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(p, ec)) return kMissing;
-    return std::hash<std::string>{}(readAll(p));
+    const std::string text = readAll(p);
+    return text.empty() ? kEmpty : std::hash<std::string>{}(text);
 }
 
-size_t hashDir(const std::filesystem::path& dir) {
+/// `now` as what it replaces: an empty file still holds what `before` says it did.
+size_t unlessMidSave(size_t now, size_t before) { return now == kEmpty ? before : now; }
+
+std::map<std::filesystem::path, size_t> hashDir(const std::filesystem::path& dir) {
     // error_code overloads throughout: files deleted or the directory removed while it is
     // listed must not throw out of poll(); what is gone simply hashes differently.
-    std::vector<std::filesystem::path> files;
+    std::map<std::filesystem::path, size_t> files;
     std::error_code ec;
     for (std::filesystem::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
-        if (it->is_regular_file(ec)) files.push_back(it->path());
-    std::sort(files.begin(), files.end());
-    size_t h = 0;
-    for (const auto& f : files) h = h * 31 + std::hash<std::string>{}(f.string() + readAll(f));
-    return h;
+        if (it->is_regular_file(ec)) files.emplace(it->path(), hashFile(it->path()));
+    return files;
 }
 
 }  // namespace
@@ -52,20 +56,23 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
       shaderDir_(shaderDir.empty() ? ShaderCompiler::defaultIncludeDir() : std::move(shaderDir)),
       registry_(registry) {
     graphHash_ = hashFile(graphFile_);
-    shaderHash_ = hashDir(shaderDir_);
+    shaderHashes_ = hashDir(shaderDir_);
 }
 
 HotReloader::Result HotReloader::poll() {
-    const size_t g = hashFile(graphFile_);
-    const size_t s = hashDir(shaderDir_);
-    if (g == graphHash_ && s == shaderHash_) return Result::Unchanged;
+    const size_t g = unlessMidSave(hashFile(graphFile_), graphHash_);
+    std::map<std::filesystem::path, size_t> s = hashDir(shaderDir_);
+    for (auto& [file, hash] : s)
+        if (const auto before = shaderHashes_.find(file); before != shaderHashes_.end())
+            hash = unlessMidSave(hash, before->second);
+    if (g == graphHash_ && s == shaderHashes_) return Result::Unchanged;
     // Edits that a failed reload left unapplied are applied with this one: a fixed shader
     // must not run the graph from before an edit that failed only for the shader's sake.
     const bool graphChanged = g != graphHash_;
     graphPending_ |= graphChanged;
-    shadersPending_ |= s != shaderHash_;
+    shadersPending_ |= s != shaderHashes_;
     graphHash_ = g;
-    shaderHash_ = s;
+    shaderHashes_ = std::move(s);
     // Deleted while watched: keep rendering the last good plan and say so once, when it goes;
     // shader edits meanwhile go to the running plan, and the file's return (any content) is
     // the next change.

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace skygraph {
@@ -45,7 +46,9 @@ public:
     /// lastError(), and rebuilds nothing, so the previous plan and pipelines run and references
     /// from the renderer stay valid. Its edits stay pending, and the next poll() that sees
     /// another change (to any watched file) applies them with it: a graph edit that failed
-    /// because a shader did not compile takes effect once the shader is fixed.
+    /// because a shader did not compile takes effect once the shader is fixed. A watched file
+    /// found empty is taken to be mid-save (truncated by a save in place, not written yet) and
+    /// to hold what it held, so such a save is one reload, not a failed one first.
     Result poll();
     /// The message of the last failed reload; empty after a success. The reference is valid
     /// until the next poll().
@@ -63,7 +66,7 @@ private:
     std::filesystem::path shaderDir_;
     const PassRegistry* registry_ = nullptr;
     size_t graphHash_ = 0;
-    size_t shaderHash_ = 0;
+    std::map<std::filesystem::path, size_t> shaderHashes_;  // per file under shaderDir_
     bool graphPending_ = false;    // edited since the last reload that succeeded
     bool shadersPending_ = false;
     std::string lastError_;

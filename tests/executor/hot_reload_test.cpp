@@ -122,6 +122,45 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     std::filesystem::remove_all(dir);
 }
 
+// A save in place truncates the file and then writes it: polled in between, the empty graph or
+// shader is not a change, so the save is one reload rather than a failed one and then another.
+TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
+    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_reload_in_place_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "shaders");
+    const auto shader = dir / "shaders" / "generic_common.glsl";
+    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl", shader);
+    const auto graphFile = dir / "g.json";
+    write(graphFile, graphWithColor("[1, 0, 0, 1]"));
+    const auto registry = PassRegistry::withBuiltins();
+    GraphDesc graph = loadGraphFile(graphFile, registry);
+    const CompileOptions co = headless(graph);
+    RendererOptions ro = genericOptions();
+    ro.shaderDir = dir / "shaders";
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
+    HotReloader reloader(r, graphFile, dir / "shaders");
+
+    for (const auto& file : {graphFile, shader}) {
+        SCOPED_TRACE(file.filename().string());
+        const std::string text = [&] {
+            std::ifstream in(file);
+            return std::string((std::istreambuf_iterator<char>(in)), {});
+        }();
+        std::ofstream saving(file, std::ios::binary | std::ios::trunc);
+        saving.flush();
+        EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged) << "the truncated file was taken for the save";
+        EXPECT_EQ(reloader.lastError(), "");
+        saving << (file == graphFile ? graphWithColor("[0, 1, 0, 1]") : text + "\n// saved again\n");
+        saving.close();
+        EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded) << reloader.lastError();
+        EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged);
+    }
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
+    r.waitIdle();
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace skygraph::test
 
