@@ -45,11 +45,11 @@ installed_package() {
 # attributed nor suppressed; the binaries that make no Vulkan device are run again directly
 # with leak detection on (seconds).
 SANITIZED_TARGETS=(compiler_tests plan_verifier_tests cli_tests skygraph fuzz_corpus_tests graph_fuzzer math_tests
-    image_tests scene_tests executor_tests recording_tests reliability_tests pass_tests ibl_tests
+    files_tests file_watcher_tests image_tests scene_tests executor_tests recording_tests reliability_tests pass_tests ibl_tests
     cubemap_command_tests extremes_tests path_trace_tests present_tests testing_kit_tests gpu_frame_bench study present_bench
     imgui_bench rebake_bench sequence_bench)
 LEAK_CHECKED_TESTS=(compiler/compiler_tests verifier/plan_verifier_tests fuzz/fuzz_corpus_tests math/math_tests
-    scene/scene_tests image/image_tests executor/recording_tests)
+    scene/scene_tests image/image_tests executor/recording_tests files/files_tests compiler/file_watcher_tests)
 sanitizers_and_fuzz() {
     stage "sanitizers: clang ASan + UBSan build of every test (build-fuzz)"
     local flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
