@@ -33,9 +33,10 @@ set_target_properties(skygraph_pass_types PROPERTIES EXPORT_NAME pass_types)
 set_target_properties(skygraph_scene PROPERTIES EXPORT_NAME scene)
 set_target_properties(skygraph_image PROPERTIES EXPORT_NAME image)
 set_target_properties(skygraph_math PROPERTIES EXPORT_NAME math)
-set_target_properties(skygraph_files PROPERTIES EXPORT_NAME files)
-# Linked privately by the static libraries, so it is in their link interface; it carries no
+# Linked privately by the static libraries, so they are in their link interface. Internal:
+# skygraph_files (replacing a file whole) installs no header, and skygraph_warnings carries no
 # usage requirements beyond the build tree's warning flags (not propagated by LINK_ONLY).
+set_target_properties(skygraph_files PROPERTIES EXPORT_NAME files)
 set_target_properties(skygraph_warnings PROPERTIES EXPORT_NAME warnings)
 set(SKYGRAPH_PACKAGE_HAS_EXECUTOR OFF)
 if(TARGET skygraph_passes)

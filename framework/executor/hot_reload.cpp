@@ -25,7 +25,7 @@ std::string readAll(const std::filesystem::path& p) {
 /// A watched file that is missing (deleted, or renamed away mid-save) hashes apart from
 /// every content, so that its return is seen as a change even with the same text.
 constexpr size_t kMissing = 0x6d697373696e67;  // "missing"
-/// An empty file: truncated by a save in place and not written yet, so taken for what it held.
+/// An empty file, told apart from every content so that midSave() can see it.
 constexpr size_t kEmpty = 0x656d707479;  // "empty"
 
 size_t hashFile(const std::filesystem::path& p) {
@@ -35,8 +35,8 @@ size_t hashFile(const std::filesystem::path& p) {
     return text.empty() ? kEmpty : std::hash<std::string>{}(text);
 }
 
-/// `now` as what it replaces: an empty file still holds what `before` says it did.
-size_t unlessMidSave(size_t now, size_t before) { return now == kEmpty ? before : now; }
+/// A file that held text and is empty now was truncated by a save in place not written yet.
+bool midSave(size_t now, size_t before) { return now == kEmpty && before != kEmpty; }
 
 std::map<std::filesystem::path, size_t> hashDir(const std::filesystem::path& dir) {
     // error_code overloads throughout: files deleted or the directory removed while it is
@@ -60,11 +60,14 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
 }
 
 HotReloader::Result HotReloader::poll() {
-    const size_t g = unlessMidSave(hashFile(graphFile_), graphHash_);
+    const size_t g = hashFile(graphFile_);
     std::map<std::filesystem::path, size_t> s = hashDir(shaderDir_);
-    for (auto& [file, hash] : s)
-        if (const auto before = shaderHashes_.find(file); before != shaderHashes_.end())
-            hash = unlessMidSave(hash, before->second);
+    // Until a save in place is written, nothing is taken from any file: a reload then would
+    // read the empty file with the others.
+    if (midSave(g, graphHash_)) return Result::Unchanged;
+    for (const auto& [file, hash] : s)
+        if (const auto before = shaderHashes_.find(file); before != shaderHashes_.end() && midSave(hash, before->second))
+            return Result::Unchanged;
     if (g == graphHash_ && s == shaderHashes_) return Result::Unchanged;
     // Edits that a failed reload left unapplied are applied with this one: a fixed shader
     // must not run the graph from before an edit that failed only for the shader's sake.

@@ -25,8 +25,9 @@ namespace {
 /// or cannot be read.
 std::optional<std::string> readShaderFile(const std::filesystem::path& path) {
     std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
     std::ifstream in(path, std::ios::binary);
-    if (!std::filesystem::is_regular_file(path, ec) || !in) return std::nullopt;
+    if (!in) return std::nullopt;
     std::stringstream ss;
     ss << in.rdbuf();
     if (in.bad()) return std::nullopt;
@@ -144,8 +145,10 @@ void ShaderCompiler::clear() {
 
 bool ShaderCompiler::keptFilesChanged() {
     std::lock_guard lock(mutex_);
-    return std::any_of(sources_.begin(), sources_.end(),
-                       [](const auto& kept) { return readShaderFile(kept.first) != kept.second; });
+    return std::any_of(sources_.begin(), sources_.end(), [](const auto& kept) {
+        const std::optional<std::string> now = readShaderFile(kept.first);
+        return now && !now->empty() && *now != kept.second;  // missing or empty: mid-save
+    });
 }
 
 std::vector<uint32_t> ShaderCompiler::compile(VkShaderStageFlagBits stage,

@@ -3,13 +3,13 @@
 //   per include: u64 path size, path, u64 content hash; then u64 word count, SPIR-V words.
 #include "spirv_cache.hpp"
 
-#include <atomic>
+#include "replace_file.hpp"
+
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <sstream>
-#include <unistd.h>
 
 namespace skygraph {
 namespace {
@@ -129,20 +129,8 @@ void SpirvDiskCache::store(const std::string& key, const std::vector<IncludedFil
 
         std::error_code ec;
         std::filesystem::create_directories(dir_, ec);
-        const auto target = entryPath(dir_, key);
-        static std::atomic<uint32_t> writes{0};  // two compilers of one process may store one key
-        auto temporary = target;
-        temporary += ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(writes++);
-        {
-            std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-            file.write(out.data(), std::streamsize(out.size()));
-            if (!file.flush()) {
-                std::filesystem::remove(temporary, ec);
-                return;
-            }
-        }
-        std::filesystem::rename(temporary, target, ec);
-        if (ec) std::filesystem::remove(temporary, ec);
+        // Whole or not at all: another process may read the entry at any moment.
+        files::replaceFileContents(entryPath(dir_, key), out);
     } catch (...) {
         // Out of memory or a filesystem error: the next run compiles again.
     }

@@ -1,34 +1,75 @@
 #include "replace_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <fstream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace skygraph::files {
 namespace fs = std::filesystem;
 
 namespace {
-bool isUnderProc(const fs::path& p) {
-    const fs::path normal = p.lexically_normal();
-    auto part = normal.begin();
-    return normal.is_absolute() && ++part != normal.end() && *part == "proc";
+
+/// Whether `path` names an entry of /proc, such as /proc/self/fd/1, by the real folder it is
+/// in: /dev/stdout, /dev/fd/1 and /proc/self/fd/1 all lead to a descriptor's link there.
+bool inProc(const fs::path& path) {
+    std::error_code ec;
+    const fs::path folder = fs::canonical(path.has_parent_path() ? path.parent_path() : fs::path("."), ec);
+    auto part = folder.begin();
+    return !ec && folder.is_absolute() && ++part != folder.end() && *part == "proc";
 }
+
+std::system_error lastError() { return {errno ? errno : EIO, std::system_category()}; }
+
+/// Appends the whole of `from` to `to`, an existing FIFO, device or descriptor, opened without
+/// truncating it: a shell's `>>` log is appended to, as its redirection asked.
+void appendTo(const fs::path& to, const fs::path& from) {
+    std::ifstream in(from, std::ios::binary);
+    if (!in) throw fs::filesystem_error("cannot write", to, std::make_error_code(std::errc::io_error));
+    const int fd = ::open(to.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (fd < 0) throw fs::filesystem_error("cannot write", to, lastError().code());
+    std::vector<char> chunk(1 << 16);
+    bool failed = false;
+    int error = 0;
+    while (!failed && in) {
+        in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+        for (size_t done = 0, size = static_cast<size_t>(in.gcount()); done < size;) {
+            const ssize_t n = ::write(fd, chunk.data() + done, size - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                failed = true;
+                error = errno ? errno : EIO;
+                break;
+            }
+            done += static_cast<size_t>(n);
+        }
+    }
+    if (::close(fd) != 0 && !failed) {
+        failed = true;
+        error = errno;
+    }
+    if (failed || in.bad()) throw fs::filesystem_error("cannot write", to, std::error_code(error ? error : EIO, std::system_category()));
+}
+
 }  // namespace
 
 OutputTarget outputTarget(const fs::path& path) {
     constexpr int kMostLinks = 40;  // Linux's own limit on a path's links (ELOOP)
     fs::path at = path;
-    for (int links = 0; fs::is_symlink(fs::symlink_status(at)); ++links) {
+    for (int links = 0;; ++links) {
+        // The stream a shell set up, not the file it may lead to: writing that file would
+        // replace a `>>` log rather than append to it.
+        if (inProc(at)) return {path, true};
+        if (!fs::is_symlink(fs::symlink_status(at))) break;
         if (links == kMostLinks)
             throw fs::filesystem_error("cannot write", path, std::make_error_code(std::errc::too_many_symbolic_link_levels));
         const fs::path to = fs::read_symlink(at);
         at = to.is_absolute() ? to : at.parent_path() / to;
-        // /dev/stdout and /dev/fd/N lead to /proc's links to open descriptors: writing the file
-        // such a link names would replace a shell's `>>` log instead of appending to the stream.
-        if (isUnderProc(at)) return {path, true};
     }
     std::error_code ec;
     const fs::file_status status = fs::status(at, ec);
@@ -47,27 +88,30 @@ fs::path temporaryBeside(const fs::path& target) {
 
 void replaceFile(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     const OutputTarget target = outputTarget(path);
-    if (target.inPlace) {
-        write(target.path);
-        return;
-    }
-    const fs::path temporary = temporaryBeside(target.path);
+    // In place, the temporary is the system's: writers that seek (OpenEXR) cannot write a pipe,
+    // and a stream gets the file whole or nothing of it.
+    const fs::path temporary =
+        temporaryBeside(target.inPlace ? fs::temp_directory_path() / target.path.filename() : target.path);
     std::error_code ignored;
     try {
         write(temporary);
-        fs::rename(temporary, target.path);
+        if (target.inPlace) appendTo(target.path, temporary);
+        else fs::rename(temporary, target.path);
     } catch (...) {
         fs::remove(temporary, ignored);
         throw;
     }
+    if (target.inPlace) fs::remove(temporary, ignored);
 }
 
 void replaceFileContents(const fs::path& path, std::string_view bytes) {
     replaceFile(path, [&](const fs::path& to) {
+        errno = 0;
         std::ofstream out(to, std::ios::binary | std::ios::trunc);
+        if (!out.is_open()) throw fs::filesystem_error("cannot write", path, lastError().code());
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         out.close();
-        if (!out) throw fs::filesystem_error("cannot write", to, std::make_error_code(std::errc::io_error));
+        if (!out) throw fs::filesystem_error("cannot write", path, lastError().code());
     });
 }
 

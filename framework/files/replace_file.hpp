@@ -11,9 +11,9 @@ namespace skygraph::files {
 /// Where a write meant for `path` lands. A symbolic link is followed to the file at the end of
 /// its chain, so the link stays a link and its target gets the contents. A FIFO, terminal or
 /// other device there is written in place (`inPlace`): its reader takes the bytes as they come
-/// and there is no file to replace. So is a link into /proc (/dev/stdout, /dev/fd/N): the
-/// stream it stands for is written, as a shell's redirection set it up. Anything else, a
-/// regular file or nothing yet, is replaced.
+/// and there is no file to replace. So is a descriptor's link in /proc (/dev/stdout,
+/// /dev/fd/N, /proc/self/fd/N): the stream a shell's redirection set up is written, not the
+/// file it may lead to. Anything else, a regular file or nothing yet, is replaced.
 struct OutputTarget {
     std::filesystem::path path;
     bool inPlace = false;
@@ -28,13 +28,15 @@ struct OutputTarget {
 [[nodiscard]] std::filesystem::path temporaryBeside(const std::filesystem::path& target);
 
 /// Calls write(p) for p a temporary beside outputTarget(path).path, then renames p over that
-/// target; in place, calls write(target) and nothing else. If write throws or the rename fails,
-/// removes the temporary and leaves the target as it was: write's exception is rethrown, a
-/// failed rename throws std::filesystem::filesystem_error.
+/// target. In place, p is in the system's temporary folder and, once written, is appended to
+/// the target, which is opened without truncating it (a `>>` log is appended to) and gets
+/// nothing if write fails. If write throws or the rename or copy fails, removes the temporary
+/// and leaves a replaced target as it was: write's exception is rethrown, a failed rename or
+/// copy throws std::filesystem::filesystem_error.
 void replaceFile(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
 
-/// replaceFile() with `bytes` as the contents. A write that fails (a full disk) throws
-/// std::filesystem::filesystem_error too.
+/// replaceFile() with `bytes` as the contents. A temporary that cannot be made or written (a
+/// missing folder, a full disk) throws std::filesystem::filesystem_error naming `path`.
 void replaceFileContents(const std::filesystem::path& path, std::string_view bytes);
 
 }  // namespace skygraph::files

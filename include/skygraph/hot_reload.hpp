@@ -46,9 +46,9 @@ public:
     /// lastError(), and rebuilds nothing, so the previous plan and pipelines run and references
     /// from the renderer stay valid. Its edits stay pending, and the next poll() that sees
     /// another change (to any watched file) applies them with it: a graph edit that failed
-    /// because a shader did not compile takes effect once the shader is fixed. A watched file
-    /// found empty is taken to be mid-save (truncated by a save in place, not written yet) and
-    /// to hold what it held, so such a save is one reload, not a failed one first.
+    /// because a shader did not compile takes effect once the shader is fixed. While a watched
+    /// file that held text is empty (truncated by a save in place, not written yet), nothing
+    /// is reloaded, so such a save is one reload, not a failed one first.
     Result poll();
     /// The message of the last failed reload; empty after a success. The reference is valid
     /// until the next poll().

@@ -49,9 +49,10 @@ public:
     /// that the next compiles read the shader directory again, e.g. after an edit.
     void clear();
 
-    /// Whether a kept file, source or include, now reads differently on disk or cannot be
-    /// read: whether an edit in the shader directory concerns what this compiler built. Reads
-    /// only the kept files.
+    /// Whether a kept file, source or include, now reads differently on disk: whether an edit
+    /// in the shader directory concerns what this compiler built. A file missing or empty is
+    /// taken to be mid-save (renamed away or truncated by an editor), not changed. Reads only
+    /// the kept files.
     [[nodiscard]] bool keptFilesChanged();
 
     /// Fixed at construction; the reference is valid while this compiler lives.

@@ -123,6 +123,14 @@ TEST_F(Cli, OutputThroughALinkOrToStandardOutput) {
     const CliRun viaStdout = run({"compile", "graphs/raster.json", "--format", "json", "-o", "/dev/stdout"});
     ASSERT_EQ(viaStdout.status, 0) << viaStdout.err;
     EXPECT_EQ(viaStdout.out, toStdout.out);
+
+    // Redirected with `>>`, standard output appends to the log: the log is not replaced.
+    const fs::path log = dir_ / "work" / "log.txt";
+    std::ofstream(log) << "earlier\n";
+    const std::string command = "cd " + quote(kSource.string()) + " && " + quote(kCli.string()) +
+                                " compile graphs/raster.json --format json -o /dev/stdout >> " + quote(log.string());
+    EXPECT_EQ(std::system(command.c_str()), 0);
+    EXPECT_EQ(slurp(log), "earlier\n" + toStdout.out);
 }
 
 TEST_F(Cli, TextAndDotFormats) {
@@ -591,30 +599,45 @@ TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {
     }
 }
 
-// `render -o PIPE`: the PNG goes to the FIFO's reader as it is written; the FIFO stays.
-TEST_F(Cli, RenderWritesItsPngIntoAFifo) {
-    const fs::path fifo = dir_ / "work" / "frames.png";
-    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    // Our own end, read and write, so that neither side waits for the other: the PNG of 8x6
-    // pixels fits the pipe's buffer, and a render that replaced the FIFO leaves it empty.
-    const int end = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
-    ASSERT_GE(end, 0);
-    const CliRun r = run({"render", "--width", "8", "--height", "6", "-o", fifo.string()});
-    std::string png;
-    char chunk[4096];
-    for (ssize_t n; (n = ::read(end, chunk, sizeof chunk)) > 0;) png.append(chunk, size_t(n));
-    ::close(end);
-    EXPECT_EQ(r.status, 0) << r.err;
-    ASSERT_GE(png.size(), 24u);
-    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
-    const auto bigEndian = [&](size_t at) {
-        return uint32_t(uint8_t(png[at])) << 24 | uint32_t(uint8_t(png[at + 1])) << 16 |
-               uint32_t(uint8_t(png[at + 2])) << 8 | uint32_t(uint8_t(png[at + 3]));
-    };
-    EXPECT_EQ(bigEndian(16), 8u);  // IHDR's width and height
-    EXPECT_EQ(bigEndian(20), 6u);
-    EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
-    EXPECT_EQ(workFiles(), std::vector<std::string>{"frames.png"});
+// `render -o PIPE`: the image goes to the FIFO's reader whole, a PNG or an EXR (whose writer
+// seeks, so it is written to a temporary first); the FIFO stays.
+TEST_F(Cli, RenderWritesItsImageIntoAFifo) {
+    for (const std::string name : {"frames.png", "frames.exr"}) {
+        SCOPED_TRACE(name);
+        const fs::path fifo = dir_ / "work" / name;
+        ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+        // Our own end, read and write, so that neither side waits for the other: an image of
+        // 8x6 pixels fits the pipe's buffer, and a render that replaced the FIFO leaves it empty.
+        const int end = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+        ASSERT_GE(end, 0);
+        const CliRun r = run({"render", "--width", "8", "--height", "6", "-o", fifo.string()});
+        std::string image;
+        char chunk[4096];
+        for (ssize_t n; (n = ::read(end, chunk, sizeof chunk)) > 0;) image.append(chunk, size_t(n));
+        ::close(end);
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+        if (name == "frames.exr") {
+            // Read back as a file: the bytes are the whole EXR.
+            const fs::path copy = dir_ / "copy.exr";
+            std::ofstream(copy, std::ios::binary) << image;
+            const skygraph::HdrImage exr = skygraph::loadExr(copy);
+            EXPECT_EQ(exr.width, 8u);
+            EXPECT_EQ(exr.height, 6u);
+            continue;
+        }
+        ASSERT_GE(image.size(), 24u);
+        EXPECT_EQ(image.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+        const auto bigEndian = [&](size_t at) {
+            return uint32_t(uint8_t(image[at])) << 24 | uint32_t(uint8_t(image[at + 1])) << 16 |
+                   uint32_t(uint8_t(image[at + 2])) << 8 | uint32_t(uint8_t(image[at + 3]));
+        };
+        EXPECT_EQ(bigEndian(16), 8u);  // IHDR's width and height
+        EXPECT_EQ(bigEndian(20), 6u);
+    }
+    std::vector<std::string> left = workFiles();
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"frames.exr", "frames.png"}));
 }
 
 // A PNG that cannot be written leaves no temporary behind, and never touches a file of the

@@ -139,6 +139,10 @@ TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
     ro.shaderDir = dir / "shaders";
     Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
     HotReloader reloader(r, graphFile, dir / "shaders");
+    const std::string good = [&] {
+        std::ifstream in(shader);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    }();
 
     for (const auto& file : {graphFile, shader}) {
         SCOPED_TRACE(file.filename().string());
@@ -155,8 +159,18 @@ TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
         EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded) << reloader.lastError();
         EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged);
     }
+    // Another file edited while one is half saved: nothing is reloaded until both are written,
+    // so no reload reads the empty file with the edited one.
+    {
+        std::ofstream saving(shader, std::ios::binary | std::ios::trunc);
+        saving.flush();
+        write(graphFile, graphWithColor("[0, 0, 1, 1]"));
+        EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged);
+        saving << good;
+    }
+    EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded) << reloader.lastError();
     r.renderFrame();
-    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
+    EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 0.0, 1.0, 1.0);
     r.waitIdle();
     std::filesystem::remove_all(dir);
 }

@@ -109,7 +109,11 @@ TEST_F(SpirvCacheTest, KeptFilesChangedSeesEditsToWhatWasReadOnly) {
     EXPECT_FALSE(compiler.keptFilesChanged()) << "clear() keeps nothing";
     (void)compiler.compileFile(VK_SHADER_STAGE_COMPUTE_BIT, "main.comp");
     fs::remove(root / "include" / "lib.glsl");
-    EXPECT_TRUE(compiler.keptFilesChanged()) << "an include deleted";
+    EXPECT_FALSE(compiler.keptFilesChanged()) << "renamed away mid-save";
+    writeInclude("");
+    EXPECT_FALSE(compiler.keptFilesChanged()) << "truncated mid-save";
+    writeInclude("float scale() { return 2.5; }\n");
+    EXPECT_TRUE(compiler.keptFilesChanged()) << "saved";
 }
 
 TEST_F(SpirvCacheTest, DamagedEntriesAreMisses) {

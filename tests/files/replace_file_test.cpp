@@ -3,14 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -38,6 +39,13 @@ protected:
         return s.str();
     }
     static void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+    /// What can be read now from a non-blocking descriptor.
+    static std::string drain(int fd) {
+        std::string out;
+        char chunk[4096];
+        for (ssize_t n; (n = ::read(fd, chunk, sizeof chunk)) > 0;) out.append(chunk, size_t(n));
+        return out;
+    }
     /// The names in `folder`, sorted: what a write left there, temporaries included.
     static std::vector<std::string> names(const fs::path& folder) {
         std::vector<std::string> out;
@@ -80,13 +88,67 @@ TEST_F(ReplaceFile, AFifoIsWrittenInPlaceForItsReader) {
     const fs::path fifo = dir_ / "pipe";
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
     EXPECT_TRUE(outputTarget(fifo).inPlace);
-    std::string received;
-    std::thread reader([&] { received = slurp(fifo); });
+    // Our own end, read and write, so that neither side waits for the other; a write that
+    // replaced the FIFO leaves it empty.
+    const int end = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+    ASSERT_GE(end, 0);
     replaceFileContents(fifo, "through the pipe");
-    reader.join();
-    EXPECT_EQ(received, "through the pipe");
+    EXPECT_EQ(drain(end), "through the pipe");
+    ::close(end);
     EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
     EXPECT_EQ(names(dir_), std::vector<std::string>{"pipe"});
+}
+
+// /dev/fd/N and /proc/self/fd/N name the descriptor, as /dev/stdout does: its file, opened
+// for appending like a shell's `>>` log, is appended to and never replaced or truncated.
+TEST_F(ReplaceFile, ADescriptorIsAppendedToAsItsShellOpenedIt) {
+    write(dir_ / "log", "line 1\n");
+    const int log = ::open((dir_ / "log").c_str(), O_WRONLY | O_APPEND);
+    ASSERT_GE(log, 0);
+    const auto inode = [&] {
+        struct stat st {};
+        ::stat((dir_ / "log").c_str(), &st);
+        return st.st_ino;
+    };
+    const auto before = inode();
+    for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+        const fs::path descriptor = prefix + std::to_string(log);
+        EXPECT_TRUE(outputTarget(descriptor).inPlace) << descriptor;
+        EXPECT_EQ(outputTarget(descriptor).path, descriptor);
+        replaceFileContents(descriptor, prefix + "\n");
+    }
+    ::close(log);
+    EXPECT_EQ(slurp(dir_ / "log"), "line 1\n/dev/fd/\n/proc/self/fd/\n");
+    EXPECT_EQ(inode(), before) << "the log was replaced";
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"log"});
+}
+
+// A writer that seeks (OpenEXR) cannot write a pipe: in place, it writes a temporary of the
+// system's, and the pipe gets it whole, or nothing when the writer fails.
+TEST_F(ReplaceFile, InPlaceTheWriterGetsASeekableTemporaryAndTheStreamAllOrNothing) {
+    const fs::path fifo = dir_ / "frames.exr";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const int end = ::open(fifo.c_str(), O_RDWR | O_NONBLOCK);
+    ASSERT_GE(end, 0);
+    fs::path given;
+    replaceFile(fifo, [&](const fs::path& temporary) {
+        given = temporary;
+        std::fstream out(temporary, std::ios::binary | std::ios::in | std::ios::out | std::ios::trunc);
+        out << "header?? body";
+        out.seekp(6);
+        out << "ok";  // seeks back, as a writer filling in offsets does
+    });
+    EXPECT_EQ(drain(end), "headerok body");
+    EXPECT_EQ(given.extension(), ".exr");
+    EXPECT_FALSE(fs::exists(given)) << "the temporary stayed";
+    EXPECT_THROW(replaceFile(fifo,
+                             [&](const fs::path& temporary) {
+                                 write(temporary, "half");
+                                 throw std::runtime_error("the writer failed");
+                             }),
+                 std::runtime_error);
+    EXPECT_EQ(drain(end), "") << "the stream got part of a failed write";
+    ::close(end);
 }
 
 TEST_F(ReplaceFile, ADeviceIsWrittenInPlace) {

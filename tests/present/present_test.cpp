@@ -644,10 +644,23 @@ TEST_F(Present, AnEditedEnvironmentShaderBakesTheEnvironmentAgain) {
     const fs::path shaders = fs::temp_directory_path() / ("skygraph-shaders-" + std::to_string(::getpid()));
     fs::remove_all(shaders);
     fs::copy(fs::path(SKYGRAPH_SOURCE_DIR) / "shaders", shaders, fs::copy_options::recursive);
-    const char* before = std::getenv("SKYGRAPH_SHADER_DIR");
-    const std::optional<std::string> previous = before ? std::optional<std::string>(before) : std::nullopt;
-    setenv("SKYGRAPH_SHADER_DIR", shaders.c_str(), 1);
+    // Restored however the test ends: later tests must read the real shaders.
+    struct ShaderDirForTheTest {
+        explicit ShaderDirForTheTest(const fs::path& dir) : dir_(dir) {
+            if (const char* before = std::getenv("SKYGRAPH_SHADER_DIR")) previous_ = before;
+            setenv("SKYGRAPH_SHADER_DIR", dir.c_str(), 1);
+        }
+        ~ShaderDirForTheTest() {
+            if (previous_) setenv("SKYGRAPH_SHADER_DIR", previous_->c_str(), 1);
+            else unsetenv("SKYGRAPH_SHADER_DIR");
+            std::error_code ignored;
+            fs::remove_all(dir_, ignored);
+        }
+        fs::path dir_;
+        std::optional<std::string> previous_;
+    };
     {
+        const ShaderDirForTheTest shaderDir(shaders);
         LiveWindow w(*device_, "scenes/studio.json");
         app::LiveGraph& live = w.live;
         const ImageData lit = w.screen();
@@ -671,6 +684,10 @@ TEST_F(Present, AnEditedEnvironmentShaderBakesTheEnvironmentAgain) {
         w.frame();
         EXPECT_EQ(&live.renderer(), running) << "a bake that failed replaced the running frames";
         EXPECT_NE(live.error().find("equirect_to_cube.comp"), std::string::npos) << live.error();
+        std::ofstream(cube, std::ios::trunc) << source;  // undone: the bake that runs is on disk again
+        w.frame();
+        EXPECT_EQ(&live.renderer(), running) << "undoing the edit baked the environment again";
+        EXPECT_EQ(live.error(), "") << "the undone edit's message stayed";
 
         // The environment cube black: the spheres lose their light; the sky, drawn from the
         // equirect (the scene's "sampling"), stays.
@@ -679,16 +696,13 @@ TEST_F(Present, AnEditedEnvironmentShaderBakesTheEnvironmentAgain) {
         source.replace(source.find(sample), sample.size(), "vec4(0.0, 0.0, 0.0, 1.0)");
         std::ofstream(cube, std::ios::trunc) << source;
         w.frame();
-        EXPECT_NE(&live.renderer(), running) << "the fixed environment shader was not baked";
+        EXPECT_NE(&live.renderer(), running) << "the edited environment shader was not baked";
         EXPECT_EQ(live.error(), "");
-        EXPECT_EQ(live.reloads(), reloads + 2);
+        EXPECT_EQ(live.reloads(), reloads + 3) << "the frame shader's edit, the undo's reload and the bake";
         const ImageData dark = w.screen();
         EXPECT_LT(meanColour(dark), 0.9 * meanColour(lit)) << "the spheres are still lit by the old bake";
         live.renderer().waitIdle();
     }
-    if (previous) setenv("SKYGRAPH_SHADER_DIR", previous->c_str(), 1);
-    else unsetenv("SKYGRAPH_SHADER_DIR");
-    fs::remove_all(shaders);
     expectSilent();
 }
 

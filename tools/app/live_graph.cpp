@@ -216,6 +216,7 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders) 
     // the running renderer's sources say nothing of one broken on disk: its message stays.
     error_ = loadError;
     if (shaders == Renderer::ShaderSources::Reread) shaderError_.clear();
+    bakeShaderError_.clear();  // the environment was baked from the shaders on disk
     graphSavePending_ = false;
     ++reloads_;
     startSequence();
@@ -245,8 +246,10 @@ bool LiveGraph::declares(std::string_view name) const {
 bool LiveGraph::sceneReplaced() noexcept { return std::exchange(sceneReplaced_, false); }
 
 std::string LiveGraph::error() const {
-    if (error_.empty() || shaderError_.empty()) return error_.empty() ? shaderError_ : error_;
-    return error_ + "\n" + shaderError_;
+    std::string all;
+    for (const std::string* message : {&error_, &shaderError_, &bakeShaderError_})
+        if (!message->empty()) all += (all.empty() ? "" : "\n") + *message;
+    return all;
 }
 
 bool LiveGraph::feature(std::string_view name) const {
@@ -439,11 +442,16 @@ bool LiveGraph::poll() {
     // The environment was baked once, by a renderer of its own that the watcher (which sees
     // every edit in the shader directory) does not reload: an edit to a shader that bake was
     // built from bakes it again, in a rebuild that keeps everything else.
+    // A failed bake keeps its message apart, to go when the edit is undone.
     const Renderer* bake = built_->environment.renderer.get();
-    if (shaders != HotReloader::Result::Unchanged && bake && bake->shadersChangedOnDisk()) {
-        shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
-        rebuild(options_, Renderer::ShaderSources::Cached);
-        return true;
+    if (shaders != HotReloader::Result::Unchanged && bake) {
+        if (bake->shadersChangedOnDisk()) {
+            shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
+            std::string before = error_;
+            if (!rebuild(options_, Renderer::ShaderSources::Cached)) bakeShaderError_ = std::exchange(error_, std::move(before));
+            return true;
+        }
+        bakeShaderError_.clear();
     }
     switch (shaders) {
         case HotReloader::Result::Unchanged: return false;

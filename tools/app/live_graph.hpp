@@ -185,6 +185,7 @@ private:
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;
     std::unique_ptr<HotReloader> shaderWatcher_;
     std::string error_, shaderError_;
+    std::string bakeShaderError_;  // an edited shader of the environment's bake did not build
     bool sceneReplaced_ = false;
     bool graphSavePending_ = false, sceneSavePending_ = false;  // saved, but its build failed
     uint32_t reloads_ = 0;

@@ -80,13 +80,19 @@ HdrImage crossLayout(const std::vector<ImageData>& faces) {
     return cross;
 }
 
-/// An output must go to an existing folder and may not be a folder itself: checked before the
-/// bake, so that a mistyped path costs no work.
+/// An output must go to an existing folder (a link's target's) and may not be a folder itself:
+/// checked before the bake, so that a mistyped path costs no work.
 void requireWritablePath(const std::filesystem::path& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw ImageError(path, "is a folder");
-    const std::filesystem::path folder = path.parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder, ec))
+    files::OutputTarget target;
+    try {
+        target = files::outputTarget(path);
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw ImageError(path, "cannot be written: " + e.code().message());
+    }
+    const std::filesystem::path folder = target.path.parent_path();
+    if (!target.inPlace && !folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw ImageError(path, "cannot be written: the folder '" + folder.string() + "' does not exist");
 }
 
