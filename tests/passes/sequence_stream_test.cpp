@@ -135,7 +135,8 @@ TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
     EXPECT_EQ(frame->index, 5u) << "frame 0's time has come too, but it is not decoded";
     EXPECT_EQ(player.stats().dropped, 2u) << "frame 4";
     EXPECT_EQ(player.tick(0.62), 6);
-    EXPECT_FALSE(player.frameToBake(0.62)) << "frame 5 is started";
+    EXPECT_FALSE(player.frameToBake(0.62)) << "frame 5 is being baked: nothing else until it is swapped in, "
+                                              "though frame 0's time has come and it may be decoded by now";
 }
 
 // Playback that moves on faster than frames decode (here five frames' time between two asks)

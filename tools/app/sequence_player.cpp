@@ -18,6 +18,7 @@ int64_t SequencePlayer::tick(double seconds) const noexcept {
 }
 
 std::optional<SequenceFrame> SequencePlayer::frameToBake(double seconds) {
+    if (baking_ >= 0) return std::nullopt;  // one bake at a time: the frame taken is still on its way
     const int64_t due = tick(seconds);
     if (due <= lastStarted_) return std::nullopt;  // started already; it holds until the next is due
     // Any frame whose time has come since the last one started will do, the newest best: when

@@ -30,10 +30,10 @@ public:
     SequencePlayer(const SequencePlayer&) = delete;
     SequencePlayer& operator=(const SequencePlayer&) = delete;
 
-    /// At `seconds` of playback, when nothing is being baked: the frame to bake now, the
-    /// newest decoded one whose time has come since the last frame started (the frame due,
-    /// when decoding keeps pace); nullopt while none is decoded. The frames passed over are
-    /// counted dropped. A frame that failed to decode is returned too (its `error` set,
+    /// At `seconds` of playback: nullopt while the frame it last returned is being baked (until
+    /// swappedIn() or bakeFailed()); else the frame to bake now, the newest decoded one whose
+    /// time has come since the last frame started (the frame due, when decoding keeps pace);
+    /// nullopt while none is decoded. The frames passed over are counted dropped. A frame that failed to decode is returned too (its `error` set,
     /// counted dropped), for the caller to report; bake it not.
     [[nodiscard]] std::optional<SequenceFrame> frameToBake(double seconds);
     /// The frame frameToBake() last returned without an error is on screen since `seconds`.
