@@ -47,7 +47,7 @@ struct LiveGraph::Built {
 
 LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay)
     : device_(device), options_(std::move(options)), width_(width), height_(height), overlay_(overlay) {
-    built_ = build(options_, Renderer::ShaderSources::Reread);
+    built_ = build(options_, Renderer::ShaderSources::Reread, Renderer::ShaderSources::Reread);
     renderer_ = built_->renderer.get();
     scene_ = built_->scene;
     if (!options_.graph.empty()) graphWatcher_.emplace(options_.graph);
@@ -136,8 +136,8 @@ LiveGraph::~LiveGraph() {
     if (renderer_) renderer_->waitIdle();
 }
 
-std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
-                                                   Renderer::ShaderSources shaders) const {
+std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options, Renderer::ShaderSources shaders,
+                                                   Renderer::ShaderSources bakeShaders) const {
     auto b = std::make_unique<Built>();
     FrameInputs inputs = loadFrameInputs(options);
     const std::string ui(shipped::kOverlayFeature);
@@ -163,7 +163,9 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     co.memory = device_.memoryModel();  // what the renderer compiles with: it would compile again
     CompiledGraph compiled(inputs.graph, co);
     for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
-    b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options);
+    const Renderer* runningBake = built_ ? built_->environment.renderer.get() : nullptr;
+    b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options,
+                                          bakeShaders == Renderer::ShaderSources::Cached ? runningBake : nullptr);
     RendererOptions ro;
     ro.framesInFlight = options.framesInFlight;
     ro.passes = inputs.passes;
@@ -175,7 +177,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     return b;
 }
 
-bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders) {
+bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders, Renderer::ShaderSources bakeShaders) {
     // The running renderer follows the window; the new one starts at its size.
     width_ = renderer_->compiled().outputWidth();
     height_ = renderer_->compiled().outputHeight();
@@ -194,7 +196,7 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders) 
     }
     std::unique_ptr<Built> next;
     try {
-        next = build(options, shaders);
+        next = build(options, shaders, bakeShaders);
     } catch (const std::exception& e) {
         error_ = loadError.empty() ? e.what() : loadError + "\n" + e.what();
         spdlog::warn("{}", e.what());
@@ -216,7 +218,7 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders) 
     // the running renderer's sources say nothing of one broken on disk: its message stays.
     error_ = loadError;
     if (shaders == Renderer::ShaderSources::Reread) shaderError_.clear();
-    bakeShaderError_.clear();  // the environment was baked from the shaders on disk
+    if (bakeShaders == Renderer::ShaderSources::Reread) bakeShaderError_.clear();  // baked from the files on disk
     graphSavePending_ = false;
     ++reloads_;
     startSequence();
@@ -349,7 +351,7 @@ EnvironmentBaker& LiveGraph::baker(uint32_t width, uint32_t height) {
     baker_ = std::make_unique<EnvironmentBaker>(device_, *built_->environment.graph, width, height,
                                                 built_->environment.products,
                                                 options_.passes ? options_.passes : &PassLibrary::genericOnly(), true,
-                                                fades ? 3 : 2);
+                                                fades ? 3 : 2, built_->environment.renderer.get());
     return *baker_;
 }
 
@@ -448,7 +450,8 @@ bool LiveGraph::poll() {
         if (bake->shadersChangedOnDisk()) {
             shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
             std::string before = error_;
-            if (!rebuild(options_, Renderer::ShaderSources::Cached)) bakeShaderError_ = std::exchange(error_, std::move(before));
+            if (!rebuild(options_, Renderer::ShaderSources::Cached, Renderer::ShaderSources::Reread))
+                bakeShaderError_ = std::exchange(error_, std::move(before));
             return true;
         }
         bakeShaderError_.clear();

@@ -119,10 +119,16 @@ public:
 private:
     struct Built;
     /// With ShaderSources::Cached (and a renderer running) the new renderer builds from the
-    /// shader sources the running one was built from: a shader broken on disk fails only the
-    /// rebuilds that follow a saved file, which read every shader again.
-    [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options, Renderer::ShaderSources shaders) const;
-    bool rebuild(RenderOptions options, Renderer::ShaderSources shaders);
+    /// shader sources the running one was built from, and the environment's bake from the
+    /// running bake's (`bakeShaders`): a shader broken on disk fails only the rebuilds that
+    /// read it again, after a saved file or an edit to that bake's shaders.
+    [[nodiscard]] std::unique_ptr<Built> build(const RenderOptions& options, Renderer::ShaderSources shaders,
+                                               Renderer::ShaderSources bakeShaders) const;
+    bool rebuild(RenderOptions options, Renderer::ShaderSources shaders, Renderer::ShaderSources bakeShaders);
+    /// rebuild() with the frame's and the bake's shaders from the same sources.
+    bool rebuild(RenderOptions options, Renderer::ShaderSources shaders) {
+        return rebuild(std::move(options), shaders, shaders);
+    }
     /// rebuild() after the graph or scene file was saved; a failure keeps the saves pending.
     void rebuildAfterSave(bool graphSaved, bool sceneSaved, std::filesystem::file_time_type saved,
                           bool reportLatency);

@@ -115,10 +115,11 @@ struct FrameEnvironment {
 };
 
 /// Bakes the environment products `plan` (compiled from inputs.graph) samples, when the scene
-/// has an environment file; nothing otherwise. The result must outlive the frame renderer's
-/// use of the products.
+/// has an environment file; nothing otherwise. `shadersFrom`: the bake builds from that
+/// renderer's shader sources (bakeEnvironment()), e.g. the running bake's, not the files on
+/// disk. The result must outlive the frame renderer's use of the products.
 [[nodiscard]] FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const FrameInputs& inputs,
-                                                    const RenderOptions& options);
+                                                    const RenderOptions& options, const Renderer* shadersFrom = nullptr);
 
 /// Hands `renderer` the scene (FrameData), the baked products (importImage) and the
 /// environment file's pixels (setExternalImage; moved out of `inputs`).
