@@ -4,23 +4,16 @@
 #include <skygraph/hot_reload.hpp>
 #include <skygraph/renderer.hpp>
 
+#include "read_file.hpp"
+
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
-#include <fstream>
 #include <functional>
 #include <map>
-#include <sstream>
+#include <optional>
 
 namespace skygraph {
 namespace {
-
-std::string readAll(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 /// A watched file that is missing (deleted, or renamed away mid-save) hashes apart from
 /// every content, so that its return is seen as a change even with the same text.
@@ -29,10 +22,9 @@ constexpr size_t kMissing = 0x6d697373696e67;  // "missing"
 constexpr size_t kEmpty = 0x656d707479;  // "empty"
 
 size_t hashFile(const std::filesystem::path& p) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec)) return kMissing;
-    const std::string text = readAll(p);
-    return text.empty() ? kEmpty : std::hash<std::string>{}(text);
+    const std::optional<std::string> text = files::readFile(p);
+    if (!text) return kMissing;
+    return text->empty() ? kEmpty : std::hash<std::string>{}(*text);
 }
 
 /// A file that held text and is empty now was truncated by a save in place not written yet.

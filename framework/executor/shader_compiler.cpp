@@ -2,6 +2,7 @@
 
 #include <skygraph/device.hpp>
 
+#include "read_file.hpp"
 #include "spirv_cache.hpp"
 
 #include <glslang/Public/ResourceLimits.h>
@@ -13,26 +14,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <optional>
-#include <sstream>
 
 namespace skygraph {
 namespace {
-
-/// A shader file's text; nothing when it is not a regular file (never a FIFO: it could block)
-/// or cannot be read.
-std::optional<std::string> readShaderFile(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::stringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) return std::nullopt;
-    return std::move(ss).str();
-}
 
 /// Resolves `#include "x"` against one directory, taking each file's text from `read`; owns
 /// the loaded text until released, and remembers what it loaded (by content) for the disk cache.
@@ -121,7 +107,7 @@ ShaderCompiler::~ShaderCompiler() {
 const std::string* ShaderCompiler::keptFile(const std::filesystem::path& path) {
     const std::string key = std::filesystem::absolute(path).lexically_normal().generic_string();
     if (auto it = sources_.find(key); it != sources_.end()) return &it->second;
-    std::optional<std::string> text = readShaderFile(path);
+    std::optional<std::string> text = files::readFile(path);
     return text ? &sources_.emplace(key, std::move(*text)).first->second : nullptr;
 }
 
@@ -146,7 +132,7 @@ void ShaderCompiler::clear() {
 bool ShaderCompiler::keptFilesChanged() {
     std::lock_guard lock(mutex_);
     return std::any_of(sources_.begin(), sources_.end(), [](const auto& kept) {
-        const std::optional<std::string> now = readShaderFile(kept.first);
+        const std::optional<std::string> now = files::readFile(kept.first);
         return now && !now->empty() && *now != kept.second;  // missing or empty: mid-save
     });
 }

@@ -3,13 +3,11 @@
 //   per include: u64 path size, path, u64 content hash; then u64 word count, SPIR-V words.
 #include "spirv_cache.hpp"
 
+#include "read_file.hpp"
 #include "replace_file.hpp"
 
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
-#include <sstream>
 
 namespace skygraph {
 namespace {
@@ -45,15 +43,6 @@ private:
     size_t at_ = 0;
 };
 
-std::optional<std::string> readFile(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) return std::nullopt;
-    return std::move(ss).str();
-}
-
 template <class T>
 void put(std::string& out, const T& v) {
     out.append(reinterpret_cast<const char*>(&v), sizeof(T));
@@ -88,7 +77,7 @@ std::filesystem::path SpirvDiskCache::defaultDir() {
 
 std::optional<std::vector<uint32_t>> SpirvDiskCache::find(const std::string& key, const IncludeReader& read) const {
     if (dir_.empty()) return std::nullopt;
-    auto file = readFile(entryPath(dir_, key));
+    auto file = files::readFile(entryPath(dir_, key));
     if (!file) return std::nullopt;
     Reader in(std::move(*file));
     std::string_view magic, storedKey;

@@ -24,7 +24,7 @@ bool inProc(const fs::path& path) {
     return !ec && folder.is_absolute() && ++part != folder.end() && *part == "proc";
 }
 
-std::system_error lastError() { return {errno ? errno : EIO, std::system_category()}; }
+std::error_code lastError() { return {errno ? errno : EIO, std::system_category()}; }
 
 /// Appends the whole of `from` to `to`, an existing FIFO, device or descriptor, opened without
 /// truncating it: a shell's `>>` log is appended to, as its redirection asked.
@@ -32,28 +32,23 @@ void appendTo(const fs::path& to, const fs::path& from) {
     std::ifstream in(from, std::ios::binary);
     if (!in) throw fs::filesystem_error("cannot write", to, std::make_error_code(std::errc::io_error));
     const int fd = ::open(to.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-    if (fd < 0) throw fs::filesystem_error("cannot write", to, lastError().code());
+    if (fd < 0) throw fs::filesystem_error("cannot write", to, lastError());
+    const auto fail = [&](std::error_code error) {
+        ::close(fd);
+        throw fs::filesystem_error("cannot write", to, error);
+    };
     std::vector<char> chunk(1 << 16);
-    bool failed = false;
-    int error = 0;
-    while (!failed && in) {
+    while (in) {
         in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
         for (size_t done = 0, size = static_cast<size_t>(in.gcount()); done < size;) {
             const ssize_t n = ::write(fd, chunk.data() + done, size - done);
             if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) {
-                failed = true;
-                error = errno ? errno : EIO;
-                break;
-            }
+            if (n <= 0) fail(lastError());
             done += static_cast<size_t>(n);
         }
     }
-    if (::close(fd) != 0 && !failed) {
-        failed = true;
-        error = errno;
-    }
-    if (failed || in.bad()) throw fs::filesystem_error("cannot write", to, std::error_code(error ? error : EIO, std::system_category()));
+    if (in.bad()) fail(std::make_error_code(std::errc::io_error));
+    if (::close(fd) != 0) throw fs::filesystem_error("cannot write", to, lastError());
 }
 
 }  // namespace
@@ -108,10 +103,10 @@ void replaceFileContents(const fs::path& path, std::string_view bytes) {
     replaceFile(path, [&](const fs::path& to) {
         errno = 0;
         std::ofstream out(to, std::ios::binary | std::ios::trunc);
-        if (!out.is_open()) throw fs::filesystem_error("cannot write", path, lastError().code());
+        if (!out.is_open()) throw fs::filesystem_error("cannot write", path, lastError());
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         out.close();
-        if (!out) throw fs::filesystem_error("cannot write", path, lastError().code());
+        if (!out) throw fs::filesystem_error("cannot write", path, lastError());
     });
 }
 

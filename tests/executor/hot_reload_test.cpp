@@ -7,6 +7,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <memory>
 
 #include <unistd.h>
 
@@ -25,24 +27,51 @@ void write(const std::filesystem::path& p, const std::string& text) {
     std::ofstream(p, std::ios::binary | std::ios::trunc) << text;
 }
 
-TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("skygraph_reload_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir / "shaders");
-    const auto shader = dir / "shaders" / "generic_common.glsl";
-    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
-                               shader);
-    const auto graphFile = dir / "g.json";
-    write(graphFile, graphWithColor("[1, 0, 0, 1]"));
+std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
 
-    const auto registry = PassRegistry::withBuiltins();
-    GraphDesc graph = loadGraphFile(graphFile, registry);
-    const CompileOptions co = headless(graph);
-    RendererOptions ro = genericOptions();
-    ro.shaderDir = dir / "shaders";
-    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
-    HotReloader reloader(r, graphFile, dir / "shaders");
+/// A renderer of graphWithColor("[1, 0, 0, 1]") loaded from a graph file, with the shared
+/// generic_common.glsl copied into a shader folder of its own, and a HotReloader watching
+/// both. The folder is removed at the end.
+struct WatchedRenderer {
+    explicit WatchedRenderer(const std::string& name)
+        : dir(std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()))),
+          shader(dir / "shaders" / "generic_common.glsl"), graphFile(dir / "g.json") {
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir / "shaders");
+        std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
+                                   shader);
+        write(graphFile, graphWithColor("[1, 0, 0, 1]"));
+        GraphDesc graph = loadGraphFile(graphFile, PassRegistry::withBuiltins());
+        const CompileOptions co = headless(graph);
+        RendererOptions ro = genericOptions();
+        ro.shaderDir = dir / "shaders";
+        renderer = std::make_unique<Renderer>(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
+        reloader = std::make_unique<HotReloader>(*renderer, graphFile, dir / "shaders");
+    }
+    ~WatchedRenderer() {
+        reloader.reset();
+        renderer->waitIdle();
+        renderer.reset();
+        std::error_code ignored;
+        std::filesystem::remove_all(dir, ignored);
+    }
+    WatchedRenderer(const WatchedRenderer&) = delete;
+    WatchedRenderer& operator=(const WatchedRenderer&) = delete;
+
+    std::filesystem::path dir, shader, graphFile;
+    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<HotReloader> reloader;
+};
+
+TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
+    WatchedRenderer watched("skygraph_reload");
+    Renderer& r = *watched.renderer;
+    HotReloader& reloader = *watched.reloader;
+    const auto& shader = watched.shader;
+    const auto& graphFile = watched.graphFile;
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 1.0, 0.0, 0.0, 1.0);
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged);
@@ -62,10 +91,7 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
 
     // A broken shader: the old pipelines keep rendering.
-    const std::string good = [&] {
-        std::ifstream in(shader);
-        return std::string((std::istreambuf_iterator<char>(in)), {});
-    }();
+    const std::string good = slurp(shader);
     write(shader, good + "\nthis is not glsl;\n");
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Failed);
     EXPECT_NE(reloader.lastError().find("does not compile"), std::string::npos) << reloader.lastError();
@@ -118,38 +144,21 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded);
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 0.0, 0.0, 1.0, 1.0);
-    r.waitIdle();
-    std::filesystem::remove_all(dir);
 }
 
 // A save in place truncates the file and then writes it: polled in between, the empty graph or
 // shader is not a change, so the save is one reload rather than a failed one and then another.
 TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
-    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_reload_in_place_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir / "shaders");
-    const auto shader = dir / "shaders" / "generic_common.glsl";
-    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl", shader);
-    const auto graphFile = dir / "g.json";
-    write(graphFile, graphWithColor("[1, 0, 0, 1]"));
-    const auto registry = PassRegistry::withBuiltins();
-    GraphDesc graph = loadGraphFile(graphFile, registry);
-    const CompileOptions co = headless(graph);
-    RendererOptions ro = genericOptions();
-    ro.shaderDir = dir / "shaders";
-    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
-    HotReloader reloader(r, graphFile, dir / "shaders");
-    const std::string good = [&] {
-        std::ifstream in(shader);
-        return std::string((std::istreambuf_iterator<char>(in)), {});
-    }();
+    WatchedRenderer watched("skygraph_reload_in_place");
+    Renderer& r = *watched.renderer;
+    HotReloader& reloader = *watched.reloader;
+    const auto& shader = watched.shader;
+    const auto& graphFile = watched.graphFile;
+    const std::string good = slurp(shader);
 
     for (const auto& file : {graphFile, shader}) {
         SCOPED_TRACE(file.filename().string());
-        const std::string text = [&] {
-            std::ifstream in(file);
-            return std::string((std::istreambuf_iterator<char>(in)), {});
-        }();
+        const std::string text = slurp(file);
         std::ofstream saving(file, std::ios::binary | std::ios::trunc);
         saving.flush();
         EXPECT_EQ(reloader.poll(), HotReloader::Result::Unchanged) << "the truncated file was taken for the save";
@@ -171,8 +180,6 @@ TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
     EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded) << reloader.lastError();
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 0.0, 1.0, 1.0);
-    r.waitIdle();
-    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -24,8 +24,6 @@ public:
     [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
 
 private:
-    [[nodiscard]] std::optional<std::string> read() const;
-
     std::filesystem::path file_;
     std::optional<std::string> contents_;
 };

@@ -22,7 +22,6 @@
 #include <memory>
 #include <system_error>
 
-
 namespace skygraph::cli {
 namespace {
 
@@ -80,9 +79,9 @@ HdrImage crossLayout(const std::vector<ImageData>& faces) {
     return cross;
 }
 
-/// An output must go to an existing folder (a link's target's) and may not be a folder itself:
-/// checked before the bake, so that a mistyped path costs no work.
-void requireWritablePath(const std::filesystem::path& path) {
+/// Where `path` is written (files::outputTarget): a target in an existing folder (a link's
+/// target's), not a folder itself. Found before the bake, so that a mistyped path costs no work.
+files::OutputTarget writableTarget(const std::filesystem::path& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) throw ImageError(path, "is a folder");
     files::OutputTarget target;
@@ -94,23 +93,16 @@ void requireWritablePath(const std::filesystem::path& path) {
     const std::filesystem::path folder = target.path.parent_path();
     if (!target.inPlace && !folder.empty() && !std::filesystem::is_directory(folder, ec))
         throw ImageError(path, "cannot be written: the folder '" + folder.string() + "' does not exist");
+    return target;
 }
 
-/// writes[i] writes outputs[i] to the path it is given: first each file to a temporary beside
-/// it (files::temporaryBeside keeps the extension, which picks the format), then each FIFO or
-/// device in place, then, once all are written, each file renamed into place (a link's target,
-/// as files::outputTarget finds it). A failure before the renames removes the temporaries and
-/// leaves every file as it was.
-void writeAllOrNone(const std::vector<std::filesystem::path>& outputs,
+/// writes[i] writes outputs[i], which goes to targets[i], to the path it is given: first each
+/// file to a temporary beside its target (files::temporaryBeside keeps the extension, which
+/// picks the format), then each FIFO or device in place, then, once all are written, each file
+/// renamed into place. A failure before the renames removes the temporaries and leaves every
+/// file as it was.
+void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std::vector<files::OutputTarget>& targets,
                     const std::vector<std::function<void(const std::filesystem::path&)>>& writes) {
-    std::vector<files::OutputTarget> targets;
-    for (const auto& output : outputs) {
-        try {
-            targets.push_back(files::outputTarget(output));
-        } catch (const std::filesystem::filesystem_error& e) {
-            throw ImageError(output, "cannot be written: " + e.code().message());
-        }
-    }
     std::vector<std::filesystem::path> temporaries(outputs.size());
     const auto removeTemporaries = [&] {
         std::error_code ignored;
@@ -162,7 +154,8 @@ int run(CubemapArgs& args) {
     std::vector<std::filesystem::path> outputs{output};
     for (const auto& p : args.products) outputs.push_back(productPath(output, p));
     if (!args.cross.empty()) outputs.emplace_back(args.cross);
-    for (const auto& path : outputs) requireWritablePath(path);
+    std::vector<files::OutputTarget> targets;
+    for (const auto& path : outputs) targets.push_back(writableTarget(path));
 
     ProgressBar bar("cubemap", 6, "steps");
     // Half-float products would hold what a half cannot as infinity, and spread it through
@@ -196,7 +189,7 @@ int run(CubemapArgs& args) {
             const auto& env = result.products.at(std::string(kEnvironment));
             saveHdrImage(to, crossLayout({env.begin(), env.begin() + 6}));
         });
-    writeAllOrNone(outputs, writes);
+    writeAllOrNone(outputs, targets, writes);
     bar.advance();
     bar.finish();
     const double totalMs =
