@@ -540,6 +540,10 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
         {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "out.jpg").string()},
          "its extension must be .png, .hdr or .exr"},
         {{"render", graph.string(), "-o", graph.string()}, "its extension must be"},
+        {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "frame").string()},
+         "its extension must be .png, .hdr or .exr, or --format must say which"},
+        {{"render", "graphs/raster.json", "-o", out, "--format", "exr"},
+         "-o '" + out + "' names a .png file but --format is exr"},
     };
     for (const auto& [args, message] : cases) {
         const CliRun r = run(args);
@@ -638,6 +642,30 @@ TEST_F(Cli, RenderWritesItsImageIntoAFifo) {
     std::vector<std::string> left = workFiles();
     std::sort(left.begin(), left.end());
     EXPECT_EQ(left, (std::vector<std::string>{"frames.exr", "frames.png"}));
+}
+
+// `render -o /dev/stdout --format F` writes the image to standard output (logs go to stderr),
+// and --format names the format of a file whose name says none.
+TEST_F(Cli, RenderWritesTheFormatItIsToldToStandardOutput) {
+    const CliRun png = run({"render", "--width", "8", "--height", "6", "-o", "/dev/stdout", "--format", "png"});
+    EXPECT_EQ(png.status, 0) << png.err;
+    ASSERT_GE(png.out.size(), 24u);
+    EXPECT_EQ(png.out.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    const CliRun exr = run({"render", "--width", "8", "--height", "6", "-o", "/dev/stdout", "--format", "exr"});
+    EXPECT_EQ(exr.status, 0) << exr.err;
+    const fs::path copy = dir_ / "copy.exr";
+    std::ofstream(copy, std::ios::binary) << exr.out;
+    const skygraph::HdrImage image = skygraph::loadExr(copy);
+    EXPECT_EQ(image.width, 8u);
+    EXPECT_EQ(image.height, 6u);
+    const fs::path frame = dir_ / "work" / "frame";
+    const CliRun hdr = run({"render", "--width", "8", "--height", "6", "-o", frame.string(), "--format", "hdr"});
+    EXPECT_EQ(hdr.status, 0) << hdr.err;
+    EXPECT_TRUE(slurp(frame).starts_with("#?RADIANCE")) << slurp(frame).substr(0, 16);
+    const CliRun unknown = run({"render", "-o", "/dev/stdout", "--format", "jpg"});
+    EXPECT_EQ(unknown.status, 2) << unknown.err;
+    EXPECT_NE(unknown.err.find("--format"), std::string::npos) << unknown.err;
+    EXPECT_EQ(unknown.out, "");
 }
 
 // A PNG that cannot be written leaves no temporary behind, and never touches a file of the

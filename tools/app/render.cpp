@@ -21,6 +21,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstring>
 #include <optional>
@@ -285,6 +286,46 @@ std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output
     return std::nullopt;
 }
 
+/// The file format of the image render writes ("png", "hdr" or "exr"): RenderOptions::
+/// outputFormat, else the extension of -o. Null after reporting a name that says neither, or
+/// one that contradicts the format given.
+std::optional<std::string> outputFormat(const RenderOptions& options) {
+    constexpr std::array<std::string_view, 3> kFormats{"png", "hdr", "exr"};
+    const auto known = [&](std::string_view f) { return std::find(kFormats.begin(), kFormats.end(), f) != kFormats.end(); };
+    std::string fromName = lowerExtension(options.output);
+    if (!fromName.empty()) fromName.erase(0, 1);  // the dot
+    if (!options.outputFormat.empty()) {
+        if (!known(options.outputFormat)) {
+            std::cerr << "skygraph render: --format must be png, hdr or exr, got '" << options.outputFormat << "'\n";
+            return std::nullopt;
+        }
+        if (known(fromName) && fromName != options.outputFormat) {
+            std::cerr << "skygraph render: -o '" << options.output.string() << "' names a ." << fromName
+                      << " file but --format is " << options.outputFormat << "\n";
+            return std::nullopt;
+        }
+        return options.outputFormat;
+    }
+    if (options.output.empty()) return "png";
+    if (!known(fromName)) {
+        std::cerr << "skygraph render: cannot write '" << options.output.string()
+                  << "': its extension must be .png, .hdr or .exr, or --format must say which (e.g. -o /dev/stdout "
+                     "--format exr)\n";
+        return std::nullopt;
+    }
+    return fromName;
+}
+
+void writeImage(const std::filesystem::path& output, const ImageData& image, std::string_view format) {
+    if (format == "png") return writePng(output, image);
+    HdrImage hdr;
+    hdr.width = image.width;
+    hdr.height = image.height;
+    hdr.rgba = image.rgba;
+    if (format == "hdr") return saveRadianceHdr(output, hdr);
+    saveExr(output, hdr);
+}
+
 }  // namespace
 
 int renderCommand(const RenderOptions& options) {
@@ -297,12 +338,9 @@ int renderCommand(const RenderOptions& options) {
             std::cerr << "skygraph render: --width, --height and --frames must be at least 1\n";
             return 1;
         }
-        const std::string format = lowerExtension(options.output);
-        if (!options.output.empty() && format != ".png" && format != ".hdr" && format != ".exr") {
-            std::cerr << "skygraph render: cannot write '" << options.output.string()
-                      << "': its extension must be .png, .hdr or .exr\n";
-            return 1;
-        }
+        const std::optional<std::string> chosenFormat = outputFormat(options);
+        if (!chosenFormat) return 1;
+        const std::string& format = *chosenFormat;
         FrameInputs inputs = loadFrameInputs(options);
         if (const auto input = inputAt(options.output, options, inputs)) {
             std::cerr << "skygraph render: -o '" << options.output.string() << "' is the input '" << input->string()
@@ -326,7 +364,7 @@ int renderCommand(const RenderOptions& options) {
                          "writes one)",
                          graph.name);
         } else {
-            if (output.empty()) output = "skygraph.png";
+            if (output.empty()) output = "skygraph." + format;
             co.readbacks = {target};
         }
         CompiledGraph compiled(graph, co);
@@ -343,12 +381,7 @@ int renderCommand(const RenderOptions& options) {
         }
         if (!target.empty()) {
             const ImageData image = renderer.readback(target);
-            const std::string ext = lowerExtension(output);
-            if (ext == ".hdr" || ext == ".exr") {
-                writeHdr(output, image);
-            } else {
-                writePng(output, image);
-            }
+            writeImage(output, image, format);
             spdlog::info("wrote {}", output.string());
         }
         return validationExit(*device, "skygraph render");

@@ -69,8 +69,12 @@ struct RenderOptions {
     uint32_t height = 256;
     uint32_t frames = 3;
     uint32_t framesInFlight = 2;
-    /// .png, .hdr or .exr. Empty: skygraph.png when there is an image to write, else no file.
+    /// .png, .hdr or .exr. Empty: skygraph.png (or skygraph.<outputFormat>) when there is an
+    /// image to write, else no file.
     std::filesystem::path output;
+    /// "png", "hdr" or "exr"; empty: by the extension of `output`. Needed for a name without
+    /// one of those extensions (/dev/stdout, a FIFO).
+    std::string outputFormat;
     /// Resource to write instead of the swapchain target, e.g. "hdr_color" as .exr
     /// (CompileOptions::readbacks). A graph with neither writes no file.
     std::string readback;

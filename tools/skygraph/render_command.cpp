@@ -65,9 +65,13 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_option("--frames", o.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
     cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
     cmd->add_option("-o,--output", args->output,
-                    "Write the result: .png, .hdr or .exr (default skygraph.png, when the graph has a Present image "
+                    "Write the result: .png, .hdr or .exr (default skygraph.png or skygraph.FORMAT, when the graph has a Present image "
                     "or --readback names one)")
         ->check(kNotEmpty);
+    cmd->add_option("--format", o.outputFormat,
+                    "The image's format: png, hdr or exr (default: by the extension of -o), for a name without one "
+                    "such as /dev/stdout")
+        ->check(CLI::IsMember({"png", "hdr", "exr"}));
     cmd->add_option("--readback", o.readback,
                     "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)")
         ->check(kNotEmpty);
