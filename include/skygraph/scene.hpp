@@ -51,6 +51,7 @@ struct EnvironmentSequence {
     uint32_t count = 0;   ///< the frames found from `first` on, at least 1
     /// The file of the sequence's frame `index` (0 <= index < count): number first + index.
     [[nodiscard]] std::filesystem::path frame(uint32_t index) const;
+    [[nodiscard]] bool operator==(const EnvironmentSequence&) const = default;
 };
 
 /// Most frames one sequence may have.

@@ -142,6 +142,39 @@ TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
 // Playback that moves on faster than frames decode (here five frames' time between two asks)
 // still shows frames: the newest decoded one whose time has come, not only the frame due,
 // which is never decoded by the time it is asked for.
+// A player that takes over from another (a rebuild) goes on where that one stood: the frame
+// being baked counts as on screen, the next one is due at its own time, and the stats carry on.
+TEST(SequencePlayer, GoesOnFromWherePlaybackStood) {
+    const EnvironmentSequence s = writeSequence("resume", 6, 10.0);
+    app::SequencePlayer before(s, 32, 16);
+    EXPECT_EQ(before.position().tick, 0);
+    auto frame = waitFor([&] { return before.frameToBake(0.1); });
+    ASSERT_TRUE(frame);
+    ASSERT_EQ(frame->index, 1u);
+    before.swappedIn(0.1);
+    EXPECT_EQ(before.position().tick, 1);
+    frame = waitFor([&] { return before.frameToBake(0.25); });
+    ASSERT_TRUE(frame);
+    ASSERT_EQ(frame->index, 2u);  // being baked
+    const app::SequencePosition at = before.position();
+    EXPECT_EQ(at.tick, 2);
+    EXPECT_EQ(at.stats.shown, 3u) << "the frame being baked is baked by whoever goes on";
+    EXPECT_EQ(at.stats.current, 2u);
+    EXPECT_EQ(before.stats().shown, 2u) << "position() changes nothing";
+
+    app::SequencePlayer after(s, 32, 16, nullptr, at);
+    EXPECT_EQ(after.stats().current, 2u);
+    EXPECT_EQ(after.stats().shown, 3u);
+    EXPECT_FALSE(after.frameToBake(0.29)) << "frame 2 is on screen until 0.3 s";
+    frame = waitFor([&] { return after.frameToBake(0.3); });
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, 3u) << "the stream decodes from the frame after the one on screen";
+    after.swappedIn(0.3);
+    EXPECT_EQ(after.stats().shown, 4u);
+    EXPECT_EQ(after.stats().dropped, 0u);
+    EXPECT_EQ(after.stats().current, 3u);
+}
+
 TEST(SequencePlayer, ShowsTheNewestDecodedFrameWhenDecodingFallsBehind) {
     const EnvironmentSequence s = writeSequence("player-behind", 40, 10.0);
     app::SequencePlayer player(s, 32, 16);

@@ -808,5 +808,70 @@ TEST_F(Present, AnEnvironmentSequencePlaysBesideTheFramesAndHoldsOverAnUnreadabl
     expectSilent();
 }
 
+// A rebuild (a checkbox, F1, a saved graph) goes on with playback: it bakes the environment
+// from the frame on screen, or from the one being baked, and the clock and the stats carry on.
+TEST_F(Present, AnEnvironmentSequencePlaysOnThroughARebuild) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "skygraph-present-sequence-rebuild";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    app::writeProceduralSkySequence((dir / "sky_%02d.exr").string(), 4, 64);  // the sun circles the sky
+    std::ofstream(dir / "scene.json") << R"({"environment": {"sequence": "sky_%02d.exr", "fps": 10}})";
+    LiveWindow w(*device_, (dir / "scene.json").string());
+    app::LiveGraph& live = w.live;
+    ASSERT_NE(live.sequence(), nullptr);
+    const auto playUntil = [&](double seconds, auto done) {
+        for (int i = 0; i < 300 && !done(live.sequence()->stats()); ++i) {
+            w.frame();
+            live.playSequence(seconds);
+        }
+        EXPECT_TRUE(done(live.sequence()->stats())) << "at " << seconds << " s";
+    };
+    const auto difference = [](const ImageData& a, const ImageData& b) {
+        double most = 0.0;
+        for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); ++i) most = std::max(most, double(std::abs(a.rgba[i] - b.rgba[i])));
+        return most;
+    };
+    for (int i = 0; i < 3; ++i) w.frame();
+    live.playSequence(0.0);
+    const ImageData first = w.screen();
+    playUntil(0.1, [](const app::SequenceStats& s) { return s.current == 1u; });
+
+    // Off and on again: two rebuilds, each baking frame 1, the frame on screen.
+    const uint32_t reloads = live.reloads();
+    ASSERT_TRUE(live.setFeature("compute_tonemap", !live.feature("compute_tonemap"))) << live.error();
+    ASSERT_TRUE(live.setFeature("compute_tonemap", !live.feature("compute_tonemap"))) << live.error();
+    EXPECT_EQ(live.reloads(), reloads + 2);
+    ASSERT_NE(live.sequence(), nullptr);
+    for (int i = 0; i < 3; ++i) {
+        w.frame();
+        live.playSequence(0.15);  // frame 1's time still: nothing to bake
+    }
+    EXPECT_FALSE(live.rebaking());
+    app::SequenceStats stats = live.sequence()->stats();
+    EXPECT_EQ(stats.current, 1u) << "playback started again";
+    EXPECT_EQ(stats.shown, 2u);
+    EXPECT_EQ(stats.dropped, 0u);
+    EXPECT_GT(difference(first, w.screen()), 0.2) << "the rebuild baked frame 0, not the frame on screen";
+
+    // A rebuild while frame 2 is being baked bakes frame 2 itself.
+    for (int i = 0; i < 300 && !live.rebaking(); ++i) {
+        w.frame();
+        live.playSequence(0.2);
+    }
+    ASSERT_TRUE(live.rebaking()) << "frame 2's bake never started";
+    ASSERT_TRUE(live.setFeature("compute_tonemap", !live.feature("compute_tonemap"))) << live.error();
+    EXPECT_FALSE(live.rebaking());
+    stats = live.sequence()->stats();
+    EXPECT_EQ(stats.current, 2u);
+    EXPECT_EQ(stats.shown, 3u);
+    playUntil(0.3, [](const app::SequenceStats& s) { return s.current == 3u; });
+    stats = live.sequence()->stats();
+    EXPECT_EQ(stats.shown, 4u) << "frames 0, 1, 2 and 3";
+    EXPECT_EQ(stats.dropped, 0u);
+    live.renderer().waitIdle();
+    std::filesystem::remove_all(dir);
+    expectSilent();
+}
+
 }  // namespace
 }  // namespace skygraph::test

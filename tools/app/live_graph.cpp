@@ -74,7 +74,7 @@ void LiveGraph::stopSequence() {
     }
 }
 
-void LiveGraph::startSequence() {
+void LiveGraph::startSequence(const std::optional<Playback>& from) {
     forgetPlayback();
     const FrameEnvironment& built = built_->environment;
     environmentShown_ = built.products.contains(shipped::kEnvironment)
@@ -92,8 +92,11 @@ void LiveGraph::startSequence() {
     // The stream stages its frames for the bake's upload, unless the frame samples the
     // equirect itself and needs the pixels on the host too (rebake()).
     const bool staged = renderer_->plan().resourceIndex(shipped::kEquirect) < 0;
-    player_ = std::make_unique<SequencePlayer>(*scene->environment->sequence, extent[0], extent[1],
-                                               staged ? &device_ : nullptr);
+    const EnvironmentSequence& sequence = *scene->environment->sequence;
+    const bool goesOn = from && from->sequence == sequence;
+    player_ = std::make_unique<SequencePlayer>(sequence, extent[0], extent[1], staged ? &device_ : nullptr,
+                                               goesOn ? std::optional(from->position) : std::nullopt);
+    if (goesOn) playbackOrigin_ = from->origin;
 }
 
 void LiveGraph::playSequence(double clockSeconds) {
@@ -194,9 +197,16 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders, 
         }
         load_.reset();
     }
+    // Playback goes on through the rebuild, which bakes the environment from the frame on
+    // screen (or the one being baked) instead of the sequence's first.
+    std::optional<Playback> playing;
+    if (player_) playing = Playback{player_->stream().sequence(), player_->position(), playbackOrigin_};
     std::unique_ptr<Built> next;
     try {
-        next = build(options, shaders, bakeShaders);
+        RenderOptions building = options;
+        if (playing)
+            building.sequenceFrame = {playing->sequence, uint32_t(playing->position.tick % playing->sequence.count)};
+        next = build(building, shaders, bakeShaders);
     } catch (const std::exception& e) {
         error_ = loadError.empty() ? e.what() : loadError + "\n" + e.what();
         spdlog::warn("{}", e.what());
@@ -221,7 +231,7 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders, 
     if (bakeShaders == Renderer::ShaderSources::Reread) bakeShaderError_.clear();  // baked from the files on disk
     graphSavePending_ = false;
     ++reloads_;
-    startSequence();
+    startSequence(playing);
     return true;
 }
 

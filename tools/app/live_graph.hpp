@@ -145,8 +145,15 @@ private:
     bool rebake(HdrImage pixels, const std::string& what);
     /// The baker, made on first use for an equirect of `width` x `height`.
     EnvironmentBaker& baker(uint32_t width, uint32_t height);
-    /// A player for the running scene's sequence, if it has one of several frames.
-    void startSequence();
+    /// Playback that a rebuild goes on with: the sequence and where it stood.
+    struct Playback {
+        EnvironmentSequence sequence;
+        SequencePosition position;
+        std::optional<double> origin;
+    };
+    /// A player for the running scene's sequence, if it has one of several frames; it goes on
+    /// from `from` when that is the same sequence (the environment was baked from its frame).
+    void startSequence(const std::optional<Playback>& from = std::nullopt);
     /// Ends playback, the sky left on the cube swapped in last (no fade half way).
     void stopSequence();
     /// Drops the player and the state of its bakes and fades.

@@ -126,6 +126,10 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         e.file = e.procedural ? std::filesystem::path() : std::filesystem::absolute(*options.environmentFile);
         e.sequence.reset();  // the file replaces the scene's sequence too
     }
+    if (scene && scene->environment && scene->environment->sequence && options.sequenceFrame &&
+        options.sequenceFrame->sequence == *scene->environment->sequence &&
+        options.sequenceFrame->frame < scene->environment->sequence->count)
+        scene->environment->file = scene->environment->sequence->frame(options.sequenceFrame->frame);
     if (scene && scene->environment && scene->environment->procedural && options.sunDirection)
         scene->environment->sunDirection = *options.sunDirection;
     // The environment image is made before compiling: its size is the extent of the graph's

@@ -56,6 +56,13 @@ struct RenderOptions {
     /// Replaces the scene's environment: an .hdr or .exr file, or, empty, the procedural sky.
     /// Unset: the scene's own.
     std::optional<std::filesystem::path> environmentFile;
+    /// A frame of a sequence to bake the environment from, instead of the first, when the
+    /// scene's sequence is that one: the view's rebuilds go on with playback.
+    struct SequenceFrame {
+        EnvironmentSequence sequence;
+        uint32_t frame = 0;
+    };
+    std::optional<SequenceFrame> sequenceFrame;
     /// Replaces the procedural sky's sun direction (unit) of the scene; ignored for a file.
     std::optional<std::array<double, 3>> sunDirection;
     FeatureValues features;          ///< Overrides of the graph's defaults.

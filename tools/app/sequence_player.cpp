@@ -6,11 +6,26 @@
 
 namespace skygraph::app {
 
-SequencePlayer::SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height, Device* stagingDevice)
+SequencePlayer::SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height, Device* stagingDevice,
+                               std::optional<SequencePosition> from)
     : fps_(sequence.fps), count_(sequence.count) {
-    stream_ = std::make_unique<SequenceStream>(std::move(sequence), width, height, 1, 2, stagingDevice);
-    stats_.shown = 1;
-    stats_.current = 0;
+    if (from) {
+        stats_ = from->stats;
+        lastStarted_ = onScreen_ = std::max<int64_t>(from->tick, 0);
+    } else {
+        stats_.shown = 1;
+    }
+    stats_.current = uint32_t(onScreen_ % count_);
+    stream_ = std::make_unique<SequenceStream>(std::move(sequence), width, height, uint32_t((onScreen_ + 1) % count_),
+                                               2, stagingDevice);
+}
+
+SequencePosition SequencePlayer::position() const noexcept {
+    if (baking_ < 0) return {onScreen_, stats_};
+    SequencePosition at{baking_, stats_};
+    ++at.stats.shown;
+    at.stats.current = uint32_t(baking_ % count_);
+    return at;
 }
 
 int64_t SequencePlayer::tick(double seconds) const noexcept {
@@ -56,6 +71,7 @@ void SequencePlayer::swappedIn(double seconds) {
     ++stats_.shown;
     if (tick(seconds) > baking_) ++stats_.late;
     stats_.current = uint32_t(baking_ % count_);
+    onScreen_ = baking_;
     baking_ = -1;
 }
 

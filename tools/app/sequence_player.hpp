@@ -21,12 +21,20 @@ struct SequenceStats {
     std::optional<uint32_t> current;  ///< the frame the sky shows, once one was swapped in
 };
 
+/// Where playback stands: what a player that takes over from another (after a rebuild) goes on from.
+struct SequencePosition {
+    int64_t tick = 0;  ///< playback's frame number (SequencePlayer::tick) of the frame on screen
+    SequenceStats stats;
+};
+
 class SequencePlayer {
 public:
     /// Streams `sequence` (SequenceStream) at `width` x `height`, the running equirect's size,
-    /// staged on `stagingDevice` when given (SequenceStream). Frame 0 is on screen already: the
-    /// environment was baked from it.
-    SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height, Device* stagingDevice = nullptr);
+    /// staged on `stagingDevice` when given (SequenceStream). The frame of `from` (frame 0 when
+    /// there is none) is on screen already: the environment was baked from it. With `from`,
+    /// playback goes on where it stood, its stats too.
+    SequencePlayer(EnvironmentSequence sequence, uint32_t width, uint32_t height, Device* stagingDevice = nullptr,
+                   std::optional<SequencePosition> from = std::nullopt);
     SequencePlayer(const SequencePlayer&) = delete;
     SequencePlayer& operator=(const SequencePlayer&) = delete;
 
@@ -40,6 +48,9 @@ public:
     void swappedIn(double seconds);
     /// Its bake could not start: it is counted dropped and failed.
     void bakeFailed();
+    /// Where playback stands, for a player that goes on from here. A frame being baked counts
+    /// as on screen (shown): whoever goes on bakes it into the environment it starts with.
+    [[nodiscard]] SequencePosition position() const noexcept;
 
     [[nodiscard]] const SequenceStats& stats() const noexcept { return stats_; }
     [[nodiscard]] double fps() const noexcept { return fps_; }
@@ -54,6 +65,7 @@ private:
     SequenceStats stats_;
     int64_t lastStarted_ = 0;   ///< the tick of the last frame handed out
     int64_t baking_ = -1;       ///< the tick of the frame being baked, or -1
+    int64_t onScreen_ = 0;      ///< the tick of the frame on screen
 };
 
 }  // namespace skygraph::app
