@@ -636,6 +636,48 @@ TEST_F(Present, ASaveThatDidNotBuildKeepsItsMessageThroughAnEnvironmentChange) {
     expectSilent();
 }
 
+// graphs/ibl.json beside the graph is part of the frame's graphs: a save of it builds and bakes
+// again, and one that does not load is reported while the frames go on.
+TEST_F(Present, ASavedEnvironmentGraphBakesTheEnvironmentAgain) {
+    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("skygraph-ibl-save-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    for (const char* graph : {"raster.json", "ibl.json"}) std::filesystem::copy_file(root / "graphs" / graph, dir / graph);
+    std::string ibl;
+    {
+        std::ifstream in(dir / "ibl.json");
+        ibl.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    app::RenderOptions o = LiveWindow::options("scenes/studio.json");
+    o.graph = dir / "raster.json";
+    LiveWindow w(*device_, o);
+    app::LiveGraph& live = w.live;
+    const ImageData lit = w.screen();
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+
+    std::ofstream(dir / "ibl.json", std::ios::trunc) << "{ \"version\": 1, \"passes\": [ ";
+    w.frame();
+    EXPECT_NE(live.error().find((dir / "ibl.json").string()), std::string::npos) << live.error();
+    EXPECT_EQ(&live.renderer(), running) << "a graph that does not load replaced the running frames";
+
+    // The irradiance integrated from 4 samples instead of 1024: the spheres' diffuse light changes.
+    const std::string samples = "\"IrradiancePass\",\n      \"uses\": {\n        \"environment\": \"Read@Compute\",\n"
+                                "        \"irradiance\": \"Write@Compute\"\n      },\n      \"params\": {\n        \"samples\": 1024";
+    ASSERT_NE(ibl.find(samples), std::string::npos);
+    ibl.replace(ibl.find(samples) + samples.size() - 4, 4, "4");
+    std::ofstream(dir / "ibl.json", std::ios::trunc) << ibl;
+    w.frame();
+    EXPECT_EQ(live.error(), "");
+    EXPECT_NE(&live.renderer(), running) << "the saved environment graph was not built";
+    EXPECT_EQ(live.reloads(), reloads + 1);
+    EXPECT_NE(w.screen().rgba, lit.rgba) << "the environment was not baked from the saved graph";
+    live.renderer().waitIdle();
+    std::filesystem::remove_all(dir);
+    expectSilent();
+}
+
 // The environment is baked once, by a renderer of its own: an edit to one of its shaders (the
 // watcher sees every edit in the shader folder) bakes it again in a rebuild. A broken one is
 // reported and the frames go on; an edit to a frame shader only reloads the frame's pipelines.

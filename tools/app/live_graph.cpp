@@ -52,6 +52,8 @@ LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint
     scene_ = built_->scene;
     if (!options_.graph.empty()) graphWatcher_.emplace(options_.graph);
     if (!options_.scene.empty()) sceneWatcher_.emplace(options_.scene);
+    environmentGraphFile_ = environmentGraphFile(options_);
+    if (!environmentGraphFile_.empty()) environmentGraphWatcher_.emplace(environmentGraphFile_);
     // No graph file: HotReloader watches the shaders alone.
     shaderWatcher_ = std::make_unique<HotReloader>(*renderer_, std::filesystem::path());
     startSequence();
@@ -433,11 +435,14 @@ bool LiveGraph::poll() {
     finishEnvironmentLoad();
     swapRebake();
     startPendingSunBake();
-    const bool graphSaved = graphWatcher_ && graphWatcher_->changed();
+    // The environment graph is part of the frame's: a save of it builds everything again too.
+    const bool environmentGraphSaved = environmentGraphWatcher_ && environmentGraphWatcher_->changed();
+    const bool graphSaved = (graphWatcher_ && graphWatcher_->changed()) || environmentGraphSaved;
     const bool sceneSaved = sceneWatcher_ && sceneWatcher_->changed();
     if (graphSaved || sceneSaved) {
         std::error_code ec;
-        const auto saved = std::filesystem::last_write_time(graphSaved ? options_.graph : options_.scene, ec);
+        const auto saved = std::filesystem::last_write_time(
+            environmentGraphSaved ? environmentGraphFile_ : graphSaved ? options_.graph : options_.scene, ec);
         // A save still pending (its build failed) is part of this one's.
         rebuildAfterSave(graphSaved || graphSavePending_, sceneSaved || sceneSavePending_, saved, !ec);
         return true;

@@ -196,6 +196,9 @@ private:
     std::unique_ptr<Built> built_;
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;
+    /// The environment graph's file (graphs/ibl.json beside the graph), when one is read.
+    std::filesystem::path environmentGraphFile_;
+    std::optional<FileWatcher> environmentGraphWatcher_;
     std::unique_ptr<HotReloader> shaderWatcher_;
     std::string error_, shaderError_;
     std::string bakeShaderError_;  // an edited shader of the environment's bake did not build

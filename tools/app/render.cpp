@@ -34,13 +34,12 @@ namespace {
 
 using namespace shipped;
 
-/// graphs/ibl.json: RenderOptions::environmentGraph(Text), else ibl.json beside the graph file.
+/// graphs/ibl.json: RenderOptions::environmentGraphText, else environmentGraphFile().
 std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, const PassRegistry& registry) {
     if (!options.environmentGraphText.empty())
         return parseGraph(options.environmentGraphText, std::string(kBuiltinEnvironmentGraphName), registry);
-    std::filesystem::path file = options.environmentGraph;
-    if (file.empty() && !options.graph.empty()) file = options.graph.parent_path() / kEnvironmentGraphFile;
-    if (file.empty() || !std::filesystem::exists(file)) return std::nullopt;
+    const std::filesystem::path file = environmentGraphFile(options);
+    if (file.empty()) return std::nullopt;
     return loadGraphFile(file, registry);
 }
 
@@ -105,6 +104,15 @@ std::string imageNames(const GraphDesc& graph) {
 }
 
 }  // namespace
+
+std::filesystem::path environmentGraphFile(const RenderOptions& options) {
+    if (!options.environmentGraphText.empty()) return {};
+    if (!options.environmentGraph.empty()) return options.environmentGraph;  // named: its absence is an error
+    if (options.graph.empty()) return {};
+    std::filesystem::path beside = options.graph.parent_path() / kEnvironmentGraphFile;
+    std::error_code ec;
+    return std::filesystem::exists(beside, ec) ? beside : std::filesystem::path();
+}
 
 FrameInputs loadFrameInputs(const RenderOptions& options) {
     FrameInputs in;

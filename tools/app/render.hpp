@@ -125,6 +125,11 @@ struct FrameEnvironment {
     std::optional<GraphDesc> graph;
 };
 
+/// The environment graph file a build reads: RenderOptions::environmentGraph, else
+/// graphs/ibl.json's name beside the graph file when there is one. Empty when the build reads
+/// it from memory (environmentGraphText) or there is none.
+[[nodiscard]] std::filesystem::path environmentGraphFile(const RenderOptions& options);
+
 /// Bakes the environment products `plan` (compiled from inputs.graph) samples, when the scene
 /// has an environment file; nothing otherwise. `shadersFrom`: the bake builds from that
 /// renderer's shader sources (bakeEnvironment()), e.g. the running bake's, not the files on
