@@ -610,17 +610,30 @@ TEST_F(Present, AnUnreadableEnvironmentFileIsReportedAndTheSkyStays) {
     expectSilent();
 }
 
+/// graphs/raster.json and graphs/ibl.json copied into a new folder (`prefix` and the process
+/// id) of the temporary folder, for a test that saves them; the folder.
+std::filesystem::path copyOfTheGraphs(const std::string& prefix) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    for (const char* graph : {"raster.json", "ibl.json"})
+        std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / graph, dir / graph);
+    return dir;
+}
+
+/// A LiveWindow's options with the copy's raster.json as the graph.
+app::RenderOptions optionsForTheCopy(const std::filesystem::path& dir, const std::string& scene) {
+    app::RenderOptions o = LiveWindow::options(scene);
+    o.graph = dir / "raster.json";
+    return o;
+}
+
 // A saved graph that does not load keeps its message on screen while an environment file is
 // loaded and re-baked beside the frames: the save is still not built.
 TEST_F(Present, ASaveThatDidNotBuildKeepsItsMessageThroughAnEnvironmentChange) {
     const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("skygraph-save-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    for (const char* graph : {"raster.json", "ibl.json"}) std::filesystem::copy_file(root / "graphs" / graph, dir / graph);
-    app::RenderOptions o = LiveWindow::options("scenes/studio.json");
-    o.graph = dir / "raster.json";
-    LiveWindow w(*device_, o);
+    const std::filesystem::path dir = copyOfTheGraphs("skygraph-save-");
+    LiveWindow w(*device_, optionsForTheCopy(dir, "scenes/studio.json"));
     app::LiveGraph& live = w.live;
     for (int i = 0; i < 3; ++i) w.frame();
     std::ofstream(dir / "raster.json", std::ios::trunc) << "{ \"version\": 1, \"passes\": [ ";
@@ -639,19 +652,13 @@ TEST_F(Present, ASaveThatDidNotBuildKeepsItsMessageThroughAnEnvironmentChange) {
 // graphs/ibl.json beside the graph is part of the frame's graphs: a save of it builds and bakes
 // again, and one that does not load is reported while the frames go on.
 TEST_F(Present, ASavedEnvironmentGraphBakesTheEnvironmentAgain) {
-    const std::filesystem::path root = SKYGRAPH_SOURCE_DIR;
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("skygraph-ibl-save-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    for (const char* graph : {"raster.json", "ibl.json"}) std::filesystem::copy_file(root / "graphs" / graph, dir / graph);
+    const std::filesystem::path dir = copyOfTheGraphs("skygraph-ibl-save-");
     std::string ibl;
     {
         std::ifstream in(dir / "ibl.json");
         ibl.assign(std::istreambuf_iterator<char>(in), {});
     }
-    app::RenderOptions o = LiveWindow::options("scenes/studio.json");
-    o.graph = dir / "raster.json";
-    LiveWindow w(*device_, o);
+    LiveWindow w(*device_, optionsForTheCopy(dir, "scenes/studio.json"));
     app::LiveGraph& live = w.live;
     const ImageData lit = w.screen();
     const Renderer* running = &live.renderer();
