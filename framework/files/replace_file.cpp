@@ -99,6 +99,36 @@ void replaceFile(const fs::path& path, const std::function<void(const fs::path&)
     if (target.inPlace) fs::remove(temporary, ignored);
 }
 
+void renameAllOrNone(std::span<const Replacement> replacements) {
+    const size_t n = replacements.size();
+    std::vector<fs::path> kept(n);  // a hard link to the file the target was, if it was one
+    std::vector<bool> existed(n);
+    std::error_code ignored;
+    size_t renamed = 0;
+    try {
+        for (size_t i = 0; i < n; ++i) {
+            existed[i] = fs::exists(fs::symlink_status(replacements[i].target));
+            if (!existed[i]) continue;
+            const fs::path keep = temporaryBeside(replacements[i].target);
+            std::error_code ec;
+            fs::create_hard_link(replacements[i].target, keep, ec);
+            if (!ec) kept[i] = keep;
+        }
+        for (; renamed < n; ++renamed) fs::rename(replacements[renamed].temporary, replacements[renamed].target);
+    } catch (...) {
+        for (size_t i = 0; i < renamed; ++i) {
+            if (!kept[i].empty()) fs::rename(kept[i], replacements[i].target, ignored);
+            else if (!existed[i]) fs::remove(replacements[i].target, ignored);
+        }
+        for (size_t i = renamed; i < n; ++i) fs::remove(replacements[i].temporary, ignored);
+        for (const fs::path& keep : kept)
+            if (!keep.empty()) fs::remove(keep, ignored);
+        throw;
+    }
+    for (const fs::path& keep : kept)
+        if (!keep.empty()) fs::remove(keep, ignored);
+}
+
 void replaceFileContents(const fs::path& path, std::string_view bytes) {
     replaceFile(path, [&](const fs::path& to) {
         errno = 0;

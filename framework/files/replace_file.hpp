@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <string_view>
 
 namespace skygraph::files {
@@ -34,6 +35,21 @@ struct OutputTarget {
 /// and leaves a replaced target as it was: write's exception is rethrown, a failed rename or
 /// copy throws std::filesystem::filesystem_error.
 void replaceFile(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
+
+/// One file of a set replaced together: `temporary`, written beside `target` (an
+/// outputTarget() that is not in place), takes its place.
+struct Replacement {
+    std::filesystem::path temporary;
+    std::filesystem::path target;
+};
+
+/// Renames each temporary over its target, all or none. Each target there before is kept under
+/// a hidden name (a hard link) until every rename is done; when one fails, the targets renamed
+/// so far get their old files back (one that did not exist is removed), every temporary is
+/// removed, and std::filesystem::filesystem_error is thrown naming the target that failed. On
+/// a filesystem without hard links the old files cannot be kept, and a failure part way leaves
+/// the targets renamed so far replaced.
+void renameAllOrNone(std::span<const Replacement> replacements);
 
 /// replaceFile() with `bytes` as the contents. A temporary that cannot be made or written (a
 /// missing folder, a full disk) throws std::filesystem::filesystem_error naming `path`.

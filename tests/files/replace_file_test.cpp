@@ -16,6 +16,8 @@
 
 namespace fs = std::filesystem;
 using skygraph::files::outputTarget;
+using skygraph::files::renameAllOrNone;
+using skygraph::files::Replacement;
 using skygraph::files::replaceFile;
 using skygraph::files::replaceFileContents;
 using skygraph::files::temporaryBeside;
@@ -199,6 +201,43 @@ TEST_F(ReplaceFile, AWriteThatFailsLeavesTheFileAsItWasAndNoTemporary) {
     EXPECT_EQ(given.parent_path(), dir_);
     EXPECT_EQ(slurp(dir_ / "sky.exr"), "precious");
     EXPECT_EQ(names(dir_), std::vector<std::string>{"sky.exr"});
+}
+
+// A set of files replaced together (cubemap's outputs): all of them, and nothing left beside.
+TEST_F(ReplaceFile, RenamesASetOfFilesTogether) {
+    write(dir_ / "cube.ktx2", "old cube");
+    std::vector<Replacement> set;
+    for (const char* name : {"cube.ktx2", "cube.brdf.ktx2"}) {
+        set.push_back({temporaryBeside(dir_ / name), dir_ / name});
+        write(set.back().temporary, std::string("new ") + name);
+    }
+    renameAllOrNone(set);
+    EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "new cube.ktx2");
+    EXPECT_EQ(slurp(dir_ / "cube.brdf.ktx2"), "new cube.brdf.ktx2");
+    EXPECT_EQ(fs::hard_link_count(dir_ / "cube.ktx2"), 1u) << "the old file's kept name is left";
+    EXPECT_EQ(names(dir_), (std::vector<std::string>{"cube.brdf.ktx2", "cube.ktx2"}));
+}
+
+// The third rename fails (a folder took its target's name after the check): the first target
+// gets its old file back, the second, new, is removed, and no temporary is left.
+TEST_F(ReplaceFile, ASetThatCannotBeRenamedWholeIsPutBackAsItWas) {
+    write(dir_ / "cube.ktx2", "old cube");
+    fs::create_directories(dir_ / "cube.prefiltered.ktx2" / "inside");
+    std::vector<Replacement> set;
+    for (const char* name : {"cube.ktx2", "cube.irradiance.ktx2", "cube.prefiltered.ktx2"}) {
+        set.push_back({temporaryBeside(dir_ / name), dir_ / name});
+        write(set.back().temporary, std::string("new ") + name);
+    }
+    try {
+        renameAllOrNone(set);
+        ADD_FAILURE() << "renamed a file over a folder";
+    } catch (const fs::filesystem_error& e) {
+        EXPECT_EQ(e.path2(), dir_ / "cube.prefiltered.ktx2");
+    }
+    EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "old cube");
+    EXPECT_EQ(fs::hard_link_count(dir_ / "cube.ktx2"), 1u);
+    EXPECT_TRUE(fs::is_directory(dir_ / "cube.prefiltered.ktx2" / "inside"));
+    EXPECT_EQ(names(dir_), (std::vector<std::string>{"cube.ktx2", "cube.prefiltered.ktx2"}));
 }
 
 TEST_F(ReplaceFile, TemporariesAreHiddenUniqueAndKeepTheExtension) {

@@ -100,7 +100,8 @@ files::OutputTarget writableTarget(const std::filesystem::path& path) {
 /// file to a temporary beside its target (files::temporaryBeside keeps the extension, which
 /// picks the format), then each FIFO or device in place, then, once all are written, each file
 /// renamed into place. A failure before the renames removes the temporaries and leaves every
-/// file as it was.
+/// file as it was; a rename that fails puts back the files renamed before it
+/// (files::renameAllOrNone). A FIFO or device has had its bytes by then.
 void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std::vector<files::OutputTarget>& targets,
                     const std::vector<std::function<void(const std::filesystem::path&)>>& writes) {
     std::vector<std::filesystem::path> temporaries(outputs.size());
@@ -118,15 +119,15 @@ void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std
         removeTemporaries();
         throw;
     }
-    for (size_t i = 0; i < outputs.size(); ++i) {
-        if (targets[i].inPlace) continue;
-        std::error_code ec;
-        std::filesystem::rename(temporaries[i], targets[i].path, ec);
-        if (ec) {
-            removeTemporaries();
-            throw ImageError(outputs[i], "cannot be written: " + ec.message());
-        }
-        temporaries[i].clear();
+    std::vector<files::Replacement> replacements;
+    for (size_t i = 0; i < outputs.size(); ++i)
+        if (!targets[i].inPlace) replacements.push_back({temporaries[i], targets[i].path});
+    try {
+        files::renameAllOrNone(replacements);
+    } catch (const std::filesystem::filesystem_error& e) {
+        size_t failed = 0;
+        while (failed + 1 < outputs.size() && targets[failed].path != e.path2()) ++failed;
+        throw ImageError(outputs[failed], "cannot be written: " + e.code().message());
     }
 }
 
