@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 namespace skygraph::files {
@@ -104,29 +105,46 @@ void renameAllOrNone(std::span<const Replacement> replacements) {
     std::vector<fs::path> kept(n);  // a hard link to the file the target was, if it was one
     std::vector<bool> existed(n);
     std::error_code ignored;
+    const auto removeKept = [&] {
+        for (const fs::path& keep : kept)
+            if (!keep.empty()) fs::remove(keep, ignored);
+    };
     size_t renamed = 0;
     try {
         for (size_t i = 0; i < n; ++i) {
-            existed[i] = fs::exists(fs::symlink_status(replacements[i].target));
+            std::error_code ec;
+            const fs::file_status status = fs::symlink_status(replacements[i].target, ec);
+            if (status.type() == fs::file_type::none) throw fs::filesystem_error("cannot write", replacements[i].target, ec);
+            existed[i] = fs::exists(status);
             if (!existed[i]) continue;
             const fs::path keep = temporaryBeside(replacements[i].target);
-            std::error_code ec;
             fs::create_hard_link(replacements[i].target, keep, ec);
             if (!ec) kept[i] = keep;
         }
         for (; renamed < n; ++renamed) fs::rename(replacements[renamed].temporary, replacements[renamed].target);
     } catch (...) {
-        for (size_t i = 0; i < renamed; ++i) {
-            if (!kept[i].empty()) fs::rename(kept[i], replacements[i].target, ignored);
-            else if (!existed[i]) fs::remove(replacements[i].target, ignored);
-        }
         for (size_t i = renamed; i < n; ++i) fs::remove(replacements[i].temporary, ignored);
-        for (const fs::path& keep : kept)
-            if (!keep.empty()) fs::remove(keep, ignored);
+        for (size_t i = 0; i < renamed; ++i) {
+            if (kept[i].empty()) {
+                if (!existed[i]) fs::remove(replacements[i].target, ignored);
+                continue;
+            }
+            std::error_code ec;
+            fs::rename(kept[i], replacements[i].target, ec);
+            if (!ec) {
+                kept[i].clear();
+                continue;
+            }
+            // The kept link is the old file's last name now: it stays, and the error says where.
+            const fs::path keep = std::exchange(kept[i], {});
+            removeKept();
+            throw fs::filesystem_error("cannot put the old file back; it is kept as '" + keep.string() + "'",
+                                       replacements[i].target, ec);
+        }
+        removeKept();
         throw;
     }
-    for (const fs::path& keep : kept)
-        if (!keep.empty()) fs::remove(keep, ignored);
+    removeKept();
 }
 
 void replaceFileContents(const fs::path& path, std::string_view bytes) {

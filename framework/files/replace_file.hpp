@@ -46,9 +46,10 @@ struct Replacement {
 /// Renames each temporary over its target, all or none. Each target there before is kept under
 /// a hidden name (a hard link) until every rename is done; when one fails, the targets renamed
 /// so far get their old files back (one that did not exist is removed), every temporary is
-/// removed, and std::filesystem::filesystem_error is thrown naming the target that failed. On
-/// a filesystem without hard links the old files cannot be kept, and a failure part way leaves
-/// the targets renamed so far replaced.
+/// removed, and the rename's std::filesystem::filesystem_error is rethrown (path2 the target
+/// that failed). An old file that cannot be put back stays under its hidden name, which the
+/// error thrown then names instead. On a filesystem without hard links the old files cannot be
+/// kept, and a failure part way leaves the targets renamed so far replaced.
 void renameAllOrNone(std::span<const Replacement> replacements);
 
 /// replaceFile() with `bytes` as the contents. A temporary that cannot be made or written (a

@@ -544,6 +544,8 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
          "its extension must be .png, .hdr or .exr, or --format must say which"},
         {{"render", "graphs/raster.json", "-o", out, "--format", "exr"},
          "-o '" + out + "' names a .png file but --format is exr"},
+        {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "out.jpg").string(), "--format", "png"},
+         "names a .jpg file but --format is png"},
     };
     for (const auto& [args, message] : cases) {
         const CliRun r = run(args);

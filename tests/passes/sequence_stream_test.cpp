@@ -139,9 +139,6 @@ TEST(SequencePlayer, HoldsFramesUntilDueAndCountsLateAndDroppedOnes) {
                                               "though frame 0's time has come and it may be decoded by now";
 }
 
-// Playback that moves on faster than frames decode (here five frames' time between two asks)
-// still shows frames: the newest decoded one whose time has come, not only the frame due,
-// which is never decoded by the time it is asked for.
 // A player that takes over from another (a rebuild) goes on where that one stood: the frame
 // being baked counts as on screen, the next one is due at its own time, and the stats carry on.
 TEST(SequencePlayer, GoesOnFromWherePlaybackStood) {
@@ -175,6 +172,37 @@ TEST(SequencePlayer, GoesOnFromWherePlaybackStood) {
     EXPECT_EQ(after.stats().current, 3u);
 }
 
+// A frame that failed before the rebuild is counted once: the player that goes on starts after
+// it, not at the frame on screen.
+TEST(SequencePlayer, GoesOnPastAFrameThatFailed) {
+    const EnvironmentSequence s = writeSequence("resume-failed", 6, 10.0);
+    std::ofstream(s.frame(2), std::ios::binary | std::ios::trunc) << "not an EXR";
+    app::SequencePlayer before(s, 32, 16);
+    auto frame = waitFor([&] { return before.frameToBake(0.1); });
+    ASSERT_TRUE(frame);
+    before.swappedIn(0.1);
+    frame = waitFor([&] { return before.frameToBake(0.2); });
+    ASSERT_TRUE(frame);
+    ASSERT_FALSE(frame->error.empty()) << "frame 2 is unreadable";
+    const app::SequencePosition at = before.position();
+    EXPECT_EQ(at.tick, 1);
+    EXPECT_EQ(at.lastStarted, 2);
+    EXPECT_EQ(at.stats.failed, 1u);
+
+    app::SequencePlayer after(s, 32, 16, nullptr, at);
+    EXPECT_EQ(after.stats().current, 1u);
+    EXPECT_FALSE(after.frameToBake(0.25)) << "frame 2 was handed out already";
+    frame = waitFor([&] { return after.frameToBake(0.3); });
+    ASSERT_TRUE(frame);
+    EXPECT_EQ(frame->index, 3u);
+    EXPECT_TRUE(frame->error.empty()) << frame->error;
+    EXPECT_EQ(after.stats().failed, 1u) << "frame 2 counted again";
+    EXPECT_EQ(after.stats().dropped, 1u);
+}
+
+// Playback that moves on faster than frames decode (here five frames' time between two asks)
+// still shows frames: the newest decoded one whose time has come, not only the frame due,
+// which is never decoded by the time it is asked for.
 TEST(SequencePlayer, ShowsTheNewestDecodedFrameWhenDecodingFallsBehind) {
     const EnvironmentSequence s = writeSequence("player-behind", 40, 10.0);
     app::SequencePlayer player(s, 32, 16);

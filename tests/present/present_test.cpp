@@ -685,6 +685,26 @@ TEST_F(Present, ASavedEnvironmentGraphBakesTheEnvironmentAgain) {
     expectSilent();
 }
 
+// An environment graph saved beside the graph after the view started is built as a save of it.
+TEST_F(Present, AnEnvironmentGraphSavedBesideTheGraphLaterIsBuilt) {
+    const std::filesystem::path dir = copyOfTheGraphs("skygraph-ibl-later-");
+    std::filesystem::rename(dir / "ibl.json", dir / "ibl.json.away");
+    LiveWindow w(*device_, optionsForTheCopy(dir, "scenes/studio.json"));
+    app::LiveGraph& live = w.live;
+    const ImageData unlit = w.screen();
+    const Renderer* running = &live.renderer();
+    const uint32_t reloads = live.reloads();
+    std::filesystem::rename(dir / "ibl.json.away", dir / "ibl.json");
+    w.frame();
+    EXPECT_EQ(live.error(), "");
+    EXPECT_NE(&live.renderer(), running) << "the environment graph saved later was not built";
+    EXPECT_EQ(live.reloads(), reloads + 1);
+    EXPECT_NE(w.screen().rgba, unlit.rgba) << "the environment was not baked";
+    live.renderer().waitIdle();
+    std::filesystem::remove_all(dir);
+    expectSilent();
+}
+
 // The environment is baked once, by a renderer of its own: an edit to one of its shaders (the
 // watcher sees every edit in the shader folder) bakes it again in a rebuild. A broken one is
 // reported and the frames go on; an edit to a frame shader only reloads the frame's pipelines.
@@ -917,6 +937,15 @@ TEST_F(Present, AnEnvironmentSequencePlaysOnThroughARebuild) {
     stats = live.sequence()->stats();
     EXPECT_EQ(stats.shown, 4u) << "frames 0, 1, 2 and 3";
     EXPECT_EQ(stats.dropped, 0u);
+
+    // The frame on screen cannot be read now: the rebuild bakes the first frame, and playback
+    // starts again from it rather than refusing the rebuild.
+    std::ofstream(sequenceFrameFile((dir / "sky_%02d.exr").string(), 3), std::ios::trunc) << "not an EXR";
+    ASSERT_TRUE(live.setFeature("compute_tonemap", !live.feature("compute_tonemap"))) << live.error();
+    EXPECT_EQ(live.error(), "");
+    ASSERT_NE(live.sequence(), nullptr);
+    EXPECT_EQ(live.sequence()->stats().current, 0u);
+    EXPECT_EQ(live.sequence()->stats().shown, 1u);
     live.renderer().waitIdle();
     std::filesystem::remove_all(dir);
     expectSilent();

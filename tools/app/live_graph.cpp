@@ -43,6 +43,7 @@ struct LiveGraph::Built {
     std::unique_ptr<Renderer> renderer;
     UploadPassPixels uploads;  // what the graph's UploadPasses copy, every frame
     std::optional<Scene> scene;
+    uint32_t sequenceFrame = 0;  // the frame of the scene's sequence the environment was baked from
 };
 
 LiveGraph::LiveGraph(Device& device, RenderOptions options, uint32_t width, uint32_t height, bool overlay)
@@ -95,7 +96,8 @@ void LiveGraph::startSequence(const std::optional<Playback>& from) {
     // equirect itself and needs the pixels on the host too (rebake()).
     const bool staged = renderer_->plan().resourceIndex(shipped::kEquirect) < 0;
     const EnvironmentSequence& sequence = *scene->environment->sequence;
-    const bool goesOn = from && from->sequence == sequence;
+    const bool goesOn = from && from->sequence == sequence &&
+                        built_->sequenceFrame == uint32_t(from->position.tick % sequence.count);
     player_ = std::make_unique<SequencePlayer>(sequence, extent[0], extent[1], staged ? &device_ : nullptr,
                                                goesOn ? std::optional(from->position) : std::nullopt);
     if (goesOn) playbackOrigin_ = from->origin;
@@ -162,6 +164,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     if (!options.features.contains(ui) && isDeclared(ui)) inputs.compile.features[ui] = overlay_;
     if (inputs.scene && scene_) keepViewSettings(*scene_, *inputs.scene);
     b->scene = inputs.scene;
+    b->sequenceFrame = inputs.sequenceFrame;
     CompileOptions co = inputs.compile;  // presented: the Present resource stays Present
     co.outputWidth = width_;
     co.outputHeight = height_;

@@ -152,7 +152,7 @@ private:
         std::optional<double> origin;
     };
     /// A player for the running scene's sequence, if it has one of several frames; it goes on
-    /// from `from` when that is the same sequence (the environment was baked from its frame).
+    /// from `from` when that is the same sequence and the build baked the frame on screen.
     void startSequence(const std::optional<Playback>& from = std::nullopt);
     /// Ends playback, the sky left on the cube swapped in last (no fade half way).
     void stopSequence();
@@ -196,7 +196,8 @@ private:
     std::unique_ptr<Built> built_;
     Renderer* renderer_ = nullptr;
     std::optional<FileWatcher> graphWatcher_, sceneWatcher_;
-    /// The environment graph's file (graphs/ibl.json beside the graph), when one is read.
+    /// The environment graph's file (graphs/ibl.json beside the graph), watched from the start
+    /// when there is a graph file, so that one saved there later is built too.
     std::filesystem::path environmentGraphFile_;
     std::optional<FileWatcher> environmentGraphWatcher_;
     std::unique_ptr<HotReloader> shaderWatcher_;

@@ -39,7 +39,8 @@ std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, cons
     if (!options.environmentGraphText.empty())
         return parseGraph(options.environmentGraphText, std::string(kBuiltinEnvironmentGraphName), registry);
     const std::filesystem::path file = environmentGraphFile(options);
-    if (file.empty()) return std::nullopt;
+    std::error_code ec;
+    if (file.empty() || (options.environmentGraph.empty() && !std::filesystem::exists(file, ec))) return std::nullopt;
     return loadGraphFile(file, registry);
 }
 
@@ -109,9 +110,7 @@ std::filesystem::path environmentGraphFile(const RenderOptions& options) {
     if (!options.environmentGraphText.empty()) return {};
     if (!options.environmentGraph.empty()) return options.environmentGraph;  // named: its absence is an error
     if (options.graph.empty()) return {};
-    std::filesystem::path beside = options.graph.parent_path() / kEnvironmentGraphFile;
-    std::error_code ec;
-    return std::filesystem::exists(beside, ec) ? beside : std::filesystem::path();
+    return options.graph.parent_path() / kEnvironmentGraphFile;
 }
 
 FrameInputs loadFrameInputs(const RenderOptions& options) {
@@ -134,10 +133,6 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         e.file = e.procedural ? std::filesystem::path() : std::filesystem::absolute(*options.environmentFile);
         e.sequence.reset();  // the file replaces the scene's sequence too
     }
-    if (scene && scene->environment && scene->environment->sequence && options.sequenceFrame &&
-        options.sequenceFrame->sequence == *scene->environment->sequence &&
-        options.sequenceFrame->frame < scene->environment->sequence->count)
-        scene->environment->file = scene->environment->sequence->frame(options.sequenceFrame->frame);
     if (scene && scene->environment && scene->environment->procedural && options.sunDirection)
         scene->environment->sunDirection = *options.sunDirection;
     // The environment image is made before compiling: its size is the extent of the graph's
@@ -149,15 +144,28 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
             environment = proceduralSkyEquirect(scene->environment->sunDirection);
             spdlog::info("environment: the procedural sky ({}x{})", environment->width, environment->height);
         } else {
+            const SceneEnvironment& sky = *scene->environment;
+            std::filesystem::path file = sky.file;
+            if (sky.sequence && options.sequenceFrame && options.sequenceFrame->sequence == *sky.sequence &&
+                options.sequenceFrame->frame > 0 && options.sequenceFrame->frame < sky.sequence->count) {
+                // Read again at a rebuild, it may be gone: playback skips a frame it cannot
+                // read, and the rebuild does too.
+                try {
+                    environment = loadEnvironmentImage(sky.sequence->frame(options.sequenceFrame->frame));
+                    in.sequenceFrame = options.sequenceFrame->frame;
+                    file = sky.sequence->frame(in.sequenceFrame);
+                } catch (const ImageError& e) {
+                    spdlog::warn("environment sequence: {}; baked from the first frame", e.what());
+                }
+            }
             try {
-                environment = loadEnvironmentImage(scene->environment->file);
+                if (!environment) environment = loadEnvironmentImage(file);
             } catch (const ImageError& e) {  // named where the scene names it
                 Diagnostics d;
                 d.add({scene->file, "environment.file", "", "", e.what()});
                 throw SceneError(std::move(d));
             }
-            spdlog::info("environment: {} ({}x{})", scene->environment->file.string(), environment->width,
-                         environment->height);
+            spdlog::info("environment: {} ({}x{})", file.string(), environment->width, environment->height);
         }
         if (!setEquirectExtent(graph, environment->width, environment->height) && !scene->environment->procedural)
             spdlog::warn("graph '{}' has no resource '{}': the environment file is not used", graph.name,
@@ -311,7 +319,7 @@ std::optional<std::string> outputFormat(const RenderOptions& options) {
             std::cerr << "skygraph render: --format must be png, hdr or exr, got '" << options.outputFormat << "'\n";
             return std::nullopt;
         }
-        if (known(fromName) && fromName != options.outputFormat) {
+        if (!fromName.empty() && fromName != options.outputFormat) {
             std::cerr << "skygraph render: -o '" << options.output.string() << "' names a ." << fromName
                       << " file but --format is " << options.outputFormat << "\n";
             return std::nullopt;

@@ -46,9 +46,9 @@ struct RenderOptions {
     std::string sceneText;           ///< A scene in memory; used instead of `scene` when not empty.
     /// The environment pipeline (graphs/ibl.json), run once when the scene's environment is a
     /// file, for the products the plan imports by name (`environment`, `irradiance`, ...).
-    /// Empty: `environmentGraphText`, else ibl.json beside `graph`.
+    /// Named, it must exist; empty: ibl.json beside `graph`, when there is one.
     std::filesystem::path environmentGraph;
-    std::string environmentGraphText;  ///< A graph in memory (the built-in one).
+    std::string environmentGraphText;  ///< A graph in memory (the built-in one); wins over the file.
     /// Size the environment cube and the prefiltered cube for the view (output height and
     /// the scene camera's field of view, environment_graph.hpp), the graph's declared extents
     /// being the largest allowed. false: build them at the declared extents.
@@ -57,7 +57,8 @@ struct RenderOptions {
     /// Unset: the scene's own.
     std::optional<std::filesystem::path> environmentFile;
     /// A frame of a sequence to bake the environment from, instead of the first, when the
-    /// scene's sequence is that one: the view's rebuilds go on with playback.
+    /// scene's sequence is that one: the view's rebuilds go on with playback. One that cannot
+    /// be read is logged, and the first frame stands in (FrameInputs::sequenceFrame says which).
     struct SequenceFrame {
         EnvironmentSequence sequence;
         uint32_t frame = 0;
@@ -106,6 +107,9 @@ struct FrameInputs {
     GraphDesc graph;
     std::optional<Scene> scene;
     std::optional<HdrImage> environment;  ///< The scene's environment: its file, or the procedural sky rendered to an equirect.
+    /// The frame of the scene's sequence that `environment` is: RenderOptions::sequenceFrame's,
+    /// or 0 (the first) when that one is not this sequence's or could not be read.
+    uint32_t sequenceFrame = 0;
     std::optional<EnvironmentSizes> environmentSizes;
     /// Features, output size, aliasing and clobbering; the caller adds presentation or
     /// read-backs.
@@ -125,9 +129,9 @@ struct FrameEnvironment {
     std::optional<GraphDesc> graph;
 };
 
-/// The environment graph file a build reads: RenderOptions::environmentGraph, else
-/// graphs/ibl.json's name beside the graph file when there is one. Empty when the build reads
-/// it from memory (environmentGraphText) or there is none.
+/// The environment graph file a build reads: RenderOptions::environmentGraph (which must
+/// exist), else graphs/ibl.json's name beside the graph file (read when it exists). Empty when
+/// the build reads it from memory (environmentGraphText) or has no graph file.
 [[nodiscard]] std::filesystem::path environmentGraphFile(const RenderOptions& options);
 
 /// Bakes the environment products `plan` (compiled from inputs.graph) samples, when the scene

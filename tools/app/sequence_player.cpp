@@ -11,18 +11,19 @@ SequencePlayer::SequencePlayer(EnvironmentSequence sequence, uint32_t width, uin
     : fps_(sequence.fps), count_(sequence.count) {
     if (from) {
         stats_ = from->stats;
-        lastStarted_ = onScreen_ = std::max<int64_t>(from->tick, 0);
+        onScreen_ = std::max<int64_t>(from->tick, 0);
+        lastStarted_ = std::max(from->lastStarted, onScreen_);
     } else {
         stats_.shown = 1;
     }
     stats_.current = uint32_t(onScreen_ % count_);
-    stream_ = std::make_unique<SequenceStream>(std::move(sequence), width, height, uint32_t((onScreen_ + 1) % count_),
-                                               2, stagingDevice);
+    stream_ = std::make_unique<SequenceStream>(std::move(sequence), width, height,
+                                               uint32_t((lastStarted_ + 1) % count_), 2, stagingDevice);
 }
 
 SequencePosition SequencePlayer::position() const noexcept {
-    if (baking_ < 0) return {onScreen_, stats_};
-    SequencePosition at{baking_, stats_};
+    if (baking_ < 0) return {onScreen_, lastStarted_, stats_};
+    SequencePosition at{baking_, lastStarted_, stats_};
     ++at.stats.shown;
     at.stats.current = uint32_t(baking_ % count_);
     return at;

@@ -24,6 +24,9 @@ struct SequenceStats {
 /// Where playback stands: what a player that takes over from another (after a rebuild) goes on from.
 struct SequencePosition {
     int64_t tick = 0;  ///< playback's frame number (SequencePlayer::tick) of the frame on screen
+    /// The last frame handed out: past `tick` when later ones failed or were dropped, which
+    /// are counted in `stats` already.
+    int64_t lastStarted = 0;
     SequenceStats stats;
 };
 

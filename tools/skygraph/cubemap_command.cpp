@@ -125,9 +125,13 @@ void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std
     try {
         files::renameAllOrNone(replacements);
     } catch (const std::filesystem::filesystem_error& e) {
-        size_t failed = 0;
-        while (failed + 1 < outputs.size() && targets[failed].path != e.path2()) ++failed;
-        throw ImageError(outputs[failed], "cannot be written: " + e.code().message());
+        // A rename names its target second; renameAllOrNone's own errors (an old file it could
+        // not put back, and where it is kept) name it first, and say more than their code.
+        for (size_t i = 0; i < outputs.size(); ++i) {
+            if (targets[i].path == e.path2()) throw ImageError(outputs[i], "cannot be written: " + e.code().message());
+            if (targets[i].path == e.path1()) throw ImageError(outputs[i], e.what());
+        }
+        throw;
     }
 }
 

@@ -69,8 +69,8 @@ Command addRenderCommand(CLI::App& parent) {
                     "or --readback names one)")
         ->check(kNotEmpty);
     cmd->add_option("--format", o.outputFormat,
-                    "The image's format: png, hdr or exr (default: by the extension of -o), for a name without one "
-                    "such as /dev/stdout")
+                    "The image's format: png, hdr or exr (default: by the extension of -o), for a name "
+                    "without an extension such as /dev/stdout")
         ->check(CLI::IsMember({"png", "hdr", "exr"}));
     cmd->add_option("--readback", o.readback,
                     "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)")
