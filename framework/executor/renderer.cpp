@@ -148,7 +148,7 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
                 }
             }
             d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},
-                                             &sc, sc.generation};
+                                             &sc, sc.imagesId};
         }
     }
     d.state = d.build(std::move(compiled));

@@ -336,7 +336,7 @@ struct Renderer::Impl {
     struct PresentBinding {
         PresentImages images;
         const Swapchain::Impl* swapchain = nullptr;  ///< Null: the application's own images.
-        uint64_t generation = 0;                     ///< The swapchain's, when bound.
+        uint64_t imagesId = 0;                       ///< The swapchain's images_id, when bound.
     };
     std::optional<PresentBinding> present;
     /// Test hooks (RendererAccess): stages in place of the plan's acquire wait (0: no wait) and

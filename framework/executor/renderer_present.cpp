@@ -62,7 +62,7 @@ void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Im
         next.emplace(running);
     }
     std::optional<PresentBinding> previous = std::move(present);
-    present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->generation : 0};
+    present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->imagesId : 0};
     try {
         waitIdle();
         auto built = build(std::move(*next));  // throws: the old plan and binding stay
@@ -106,7 +106,7 @@ PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
             sc.recreate(need);
         }
         if (sc.paused()) return PresentStatus::Paused;
-        if (!present || present->swapchain != &sc || present->generation != sc.generation) {
+        if (!present || present->imagesId != sc.imagesId) {
             bindPresentImages(PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage}, &sc);
             sc.releaseRetired();  // no view of its images is left
         }

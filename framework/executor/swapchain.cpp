@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
 
 namespace skygraph {
 
@@ -192,6 +193,8 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     extent = e;
     stale = false;
     ++generation;
+    static std::atomic<uint64_t> lastImagesId{0};
+    imagesId = ++lastImagesId;
     spdlog::info("swapchain: {} images of {} at {}, present mode {}", n, formatName(ci.imageFormat), extentText(e),
                  presentModeName(mode));
 }

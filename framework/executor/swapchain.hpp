@@ -45,6 +45,9 @@ struct Swapchain::Impl {
     std::vector<vk::Semaphore> renderComplete;  ///< One per image.
     std::vector<vk::Semaphore> acquired;        ///< One per frame slot, made on first use.
     uint64_t generation = 0;
+    /// Unique in the process to the current images: what a renderer bound to them knows them
+    /// by, since a swapchain made after this one is destroyed can have its address.
+    uint64_t imagesId = 0;
     bool stale = false;  ///< Out of date, suboptimal or resized: re-create before the next frame.
     bool surfaceEmpty = false;  ///< The last re-creation found the surface 0x0.
 

@@ -122,7 +122,8 @@ public:
     /// unless RendererOptions::presentTo bound them, and the first after each re-creation)
     /// rebuilds the plan state, which invalidates references from compiled(), graph() and
     /// plan(). Returns Paused, rendering nothing, while the window is 0x0.
-    /// The swapchain must outlive this renderer's use of it. Throws ExecutorError (e.g. the
+    /// Borrows the swapchain for the call; the renderer keeps views of its images until it
+    /// renders into another one (Swapchain says how to replace one). Throws ExecutorError (e.g. the
     /// plan does not compile at the new size: the old plan stays, and the next call tries again).
     PresentStatus renderFrame(Swapchain& swapchain);
     /// Presenting into images of the application's own (e.g. its own VkSwapchainKHR's): they

@@ -110,6 +110,20 @@ TEST_F(Present, MailboxAndImmediateAreSilent) {
     expectSilent();
 }
 
+// Another present mode is another swapchain: one renderer presents into the next after the
+// last is destroyed, though the new one may have the old one's address.
+TEST_F(Present, ARendererGoesOnInASwapchainMadeAfterItsLastWasDestroyed) {
+    const CompiledGraph compiled = raster(96, 64);
+    Renderer renderer(*device_, compiled, genericOptions(2));
+    std::unique_ptr<Swapchain> swapchain;
+    for (const PresentMode mode : {PresentMode::Fifo, PresentMode::Immediate, PresentMode::Mailbox, PresentMode::Fifo}) {
+        swapchain.reset();  // freed just before the next is made, which then tends to get its address
+        swapchain = Swapchain::create(*device_, compiled, {96, 64, mode});
+        present(renderer, *swapchain, 4);  // ends with waitIdle()
+    }
+    expectSilent();
+}
+
 TEST_F(Present, ResizeRecreatesTheSwapchainAndRecompiles) {
     auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
     Renderer renderer(*device_, raster(96, 64), genericOptions(2));
