@@ -4,7 +4,7 @@
 #include "vk_util.hpp"
 
 #include <array>
-#include <sstream>
+#include <algorithm>
 
 namespace skygraph {
 
@@ -12,20 +12,30 @@ std::vector<uint32_t> compileShader(ShaderCompiler& compiler, VkShaderStageFlagB
                                     const std::string& relativePath,
                                     const std::vector<std::pair<std::string, std::string>>& defines) {
     if (defines.empty()) return compiler.compileFile(stage, relativePath);
-    std::istringstream in(compiler.source(relativePath));
-    std::ostringstream out;
-    std::string line;
-    bool inserted = false;
-    while (std::getline(in, line)) {
-        if (!inserted && !line.starts_with("#version") && !line.starts_with("#extension")) {
-            for (const auto& [name, value] : defines) out << "#define " << name << " " << value << "\n";
-            inserted = true;
+    // Right after the #version directive, which only comments and blank lines may precede;
+    // #extension lines may follow a #define (both are preprocessor directives). Without one,
+    // first.
+    std::string definitions;
+    for (const auto& [name, value] : defines) definitions += "#define " + name + " " + value + "\n";
+    std::string source = compiler.source(relativePath);
+    size_t at = 0;
+    for (size_t line = 0; line < source.size();) {
+        const size_t end = std::min(source.find('\n', line), source.size());
+        const size_t text = source.find_first_not_of(" \t", line);
+        if (text < end && source.compare(text, 8, "#version") == 0) {
+            at = end == source.size() ? end : end + 1;
+            break;
         }
-        out << line << "\n";
+        line = end + 1;
     }
+    if (at == source.size() && !source.empty() && source.back() != '\n') {  // #version ends the file
+        source += '\n';
+        at = source.size();
+    }
+    source.insert(at, definitions);
     std::string name = relativePath;
     for (const auto& [n, v] : defines) name += " " + n + "=" + v;
-    return compiler.compile(stage, out.str(), name);
+    return compiler.compile(stage, source, name);
 }
 
 namespace {

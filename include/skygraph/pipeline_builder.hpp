@@ -25,7 +25,7 @@
 namespace skygraph {
 
 /// SPIR-V for shaders/<relativePath> (relative to `compiler.includeDir()`) with
-/// `#define NAME VALUE` lines inserted after the #version and #extension lines; a copy the
+/// `#define NAME VALUE` lines inserted right after the #version line; a copy the
 /// caller owns. The text is ShaderCompiler::source()'s: read once, until the compiler's
 /// clear(). Throws ExecutorError when it cannot be read or does not compile (with glslang's
 /// log).

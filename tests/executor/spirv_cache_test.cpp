@@ -4,6 +4,7 @@
 #include "spirv_cache.hpp"
 
 #include <skygraph/device.hpp>
+#include <skygraph/pipeline_builder.hpp>
 #include <skygraph/shader_compiler.hpp>
 
 #include <gtest/gtest.h>
@@ -143,6 +144,23 @@ TEST_F(SpirvCacheTest, AnEmptyDirectoryDisablesIt) {
     ShaderCompiler memoryOnly(root / "include");
     (void)memoryOnly.compile(VK_SHADER_STAGE_COMPUTE_BIT, kShader, "memory.comp");
     EXPECT_TRUE(entries().empty());
+}
+
+// compileShader's defines go right after #version, which a licence comment may precede (above
+// it they would be an error: #version must come first), and they take effect.
+TEST_F(SpirvCacheTest, CompileShaderDefinesFollowTheVersionAfterAComment) {
+    std::ofstream(root / "include" / "licensed.comp")
+        << "// SPDX-License-Identifier: MIT\n\n  #version 450\n"
+           "#extension GL_GOOGLE_include_directive : require\n"
+           "layout(local_size_x = 1) in;\nlayout(std430, binding = 0) buffer B { float v; };\n"
+           "void main() { v = VALUE; }\n";
+    ShaderCompiler compiler(root / "include", {});
+    std::vector<uint32_t> one, two;
+    ASSERT_NO_THROW(one = compileShader(compiler, VK_SHADER_STAGE_COMPUTE_BIT, "licensed.comp", {{"VALUE", "1.0"}}));
+    ASSERT_NO_THROW(two = compileShader(compiler, VK_SHADER_STAGE_COMPUTE_BIT, "licensed.comp", {{"VALUE", "2.0"}}));
+    EXPECT_NE(one, two);
+    EXPECT_THROW((void)compileShader(compiler, VK_SHADER_STAGE_COMPUTE_BIT, "licensed.comp"), ExecutorError)
+        << "VALUE is defined only by the caller";
 }
 
 TEST(SpirvCacheHash, IsFnv1a) {
