@@ -44,9 +44,7 @@ int decodeThreads() {
     return threads;
 }
 
-void readPixels(const std::filesystem::path& path, const Imath::Box2i& window, HdrImage& image) {
-    Imf::InputFile file(path.c_str(), decodeThreads());
-    if (!file.isComplete()) throw ImageError(path, "truncated: some pixel blocks are missing");
+void readPixels(const std::filesystem::path& path, Imf::InputFile& file, const Imath::Box2i& window, HdrImage& image) {
     const Imf::ChannelList& channels = file.header().channels();
     const bool rgb = channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
     if (!rgb && (channels.findChannel("RY") || channels.findChannel("BY"))) {
@@ -104,8 +102,11 @@ HdrImage loadExr(const std::filesystem::path& path) {
         const int64_t w = int64_t(window.max.x) - window.min.x + 1;
         const int64_t h = int64_t(window.max.y) - window.min.y + 1;
         image_detail::requireLoadableSize(path, w, h);
+        // Before the pixels are allocated: a few hundred bytes may claim gigabytes of them.
+        Imf::InputFile file(path.c_str(), decodeThreads());
+        if (!file.isComplete()) throw ImageError(path, "truncated: some pixel blocks are missing");
         HdrImage image{uint32_t(w), uint32_t(h), std::vector<float>(size_t(w) * size_t(h) * 4)};
-        readPixels(path, window, image);
+        readPixels(path, file, window, image);
         return image;
     } catch (const ImageError&) {
         throw;

@@ -15,8 +15,8 @@
 namespace skygraph {
 
 /// Largest image accepted by the loaders, checked from the header before any pixel memory is
-/// allocated: 32768 x 16384 (an 8 GiB RGBA float image).
-inline constexpr uint32_t kMaxHdrImageWidth = 32768;
+/// allocated: the largest extent a graph's image takes, 16384 x 16384 (a 4 GiB RGBA float image).
+inline constexpr uint32_t kMaxHdrImageWidth = 16384;
 inline constexpr uint32_t kMaxHdrImageHeight = 16384;
 
 /// A linear-light image, 4 floats per pixel (R, G, B, A), rows top to bottom.

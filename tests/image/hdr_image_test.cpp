@@ -306,8 +306,9 @@ TEST_F(HdrImageTest, PngRenamedToHdrOrExrIsRefusedAsPng) {
 
 // A header that claims 100000 x 100000 (160 GB as RGBA float) must be refused from the header,
 // before any allocation: the load runs in a child whose address space is capped at 512 MiB
-// above what it already uses, and must end with our "exceeds the limit" error.
-void loadUnderMemoryCap(const fs::path& path) {
+// above what it already uses, and must end with our error, which names the file and says
+// `expected`.
+void loadUnderMemoryCap(const fs::path& path, const std::string& expected) {
     rlimit limit{};
     getrlimit(RLIMIT_AS, &limit);
     std::ifstream statm("/proc/self/statm");
@@ -319,7 +320,7 @@ void loadUnderMemoryCap(const fs::path& path) {
         (void)skygraph::loadHdrImage(path);
     } catch (const ImageError& e) {
         const std::string what = e.what();
-        std::exit(what.find("100000x100000 exceeds the limit 32768x16384") != std::string::npos &&
+        std::exit(what.find(expected) != std::string::npos &&
                           what.find(path.string()) != std::string::npos
                       ? 0
                       : 3);
@@ -333,7 +334,7 @@ TEST_F(HdrImageTest, HugeHeaderIsRefusedBeforeAllocating) {
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     const fs::path hdr = dir_ / "huge.hdr";
     writeBytes(hdr, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n" + std::string(64, '\x02'));
-    EXPECT_EXIT(loadUnderMemoryCap(hdr), ::testing::ExitedWithCode(0), "");
+    EXPECT_EXIT(loadUnderMemoryCap(hdr, "100000x100000 exceeds the limit 16384x16384"), ::testing::ExitedWithCode(0), "");
 
     // An EXR header with a 100000 x 100000 data window and no pixel data.
     const fs::path exr = dir_ / "huge.exr";
@@ -343,7 +344,19 @@ TEST_F(HdrImageTest, HugeHeaderIsRefusedBeforeAllocating) {
         header.channels().insert("R", Imf::Channel(Imf::HALF));
         Imf::OutputFile out(exr.c_str(), header);
     }
-    EXPECT_EXIT(loadUnderMemoryCap(exr), ::testing::ExitedWithCode(0), "");
+    EXPECT_EXIT(loadUnderMemoryCap(exr, "100000x100000 exceeds the limit 16384x16384"), ::testing::ExitedWithCode(0), "");
+
+    // Within the limit, 16384 x 8192 (2 GiB as RGBA float), and still no pixel data: refused
+    // as truncated before the pixels are allocated.
+    const fs::path claim = dir_ / "claim.exr";
+    {
+        Imf::Header header(16384, 8192);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        header.channels().insert("R", Imf::Channel(Imf::HALF));
+        Imf::OutputFile out(claim.c_str(), header);
+    }
+    ASSERT_LT(fs::file_size(claim), 1u << 20);
+    EXPECT_EXIT(loadUnderMemoryCap(claim, "truncated"), ::testing::ExitedWithCode(0), "");
 }
 
 }  // namespace
