@@ -355,16 +355,23 @@ Scene parseScene(std::string_view text, const std::string& fileName, const std::
 }
 
 Scene loadSceneFile(const std::filesystem::path& path) {
+    const auto fail = [&](const std::string& message) {
+        Diagnostics d;
+        d.add({path.string(), "", "", "", message});
+        throw SceneError(std::move(d));
+    };
     std::ifstream in(path, std::ios::binary);
     std::error_code ec;
-    if (!in || std::filesystem::is_directory(path, ec)) {
-        Diagnostics d;
-        d.add({path.string(), "", "", "", "cannot open the file"});
-        throw SceneError(std::move(d));
+    if (!in || std::filesystem::is_directory(path, ec)) fail("cannot open the file");
+    // Up to the limit: a device or a pipe need not end.
+    std::string text;
+    for (char piece[1 << 14]; in.read(piece, sizeof piece) || in.gcount() > 0;) {
+        text.append(piece, size_t(in.gcount()));
+        if (text.size() > kMaxSceneFileBytes)
+            fail("is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, the most a scene file may be");
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parseScene(text.str(), path.string(), std::filesystem::absolute(path, ec).parent_path());
+    if (in.bad()) fail("cannot read the file");
+    return parseScene(text, path.string(), std::filesystem::absolute(path, ec).parent_path());
 }
 
 }  // namespace skygraph

@@ -24,6 +24,8 @@ namespace skygraph {
 
 /// Most objects a scene may hold; the forward pass may size its buffers by it.
 inline constexpr size_t kMaxSceneObjects = 256;
+/// Largest scene file loadSceneFile() reads (a scene of kMaxSceneObjects takes a few KiB).
+inline constexpr uint64_t kMaxSceneFileBytes = 16ull << 20;
 
 using Vec3 = std::array<double, 3>;
 

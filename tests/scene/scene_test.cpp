@@ -81,6 +81,27 @@ TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
                                         "skybox = off: the scene has no environment (no skybox, no IBL)"}));
 }
 
+// A scene file past the limit, or a device that never ends, is refused with the file named,
+// having read no more than the limit.
+TEST(SceneFiles, AFileLargerThanTheLimitIsRefused) {
+    for (const std::filesystem::path& file : {std::filesystem::path("/dev/zero"),
+                                             std::filesystem::temp_directory_path() / "skygraph-large-scene.json"}) {
+        if (file.filename() != "zero") {
+            std::ofstream out(file, std::ios::binary);
+            out << "{\"objects\": []}" << std::string(kMaxSceneFileBytes, ' ');
+        }
+        try {
+            (void)loadSceneFile(file);
+            ADD_FAILURE() << file << " loaded";
+        } catch (const SceneError& e) {
+            EXPECT_NE(std::string(e.what()).find(file.string() + ": is larger than 16 MiB, the most a scene file may be"),
+                      std::string::npos)
+                << e.what();
+        }
+        if (file.filename() != "zero") std::filesystem::remove(file);
+    }
+}
+
 TEST(SceneFeatures, DebugViewForcesPassthroughAndKeepsFeatures) {
     Scene s = parse(R"({"tonemapper": "aces_hill", "debug_view": "roughness",
                         "environment": {"file": "procedural"}})");
