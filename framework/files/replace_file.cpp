@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <fstream>
@@ -76,9 +77,13 @@ OutputTarget outputTarget(const fs::path& path) {
 
 fs::path temporaryBeside(const fs::path& target) {
     static std::atomic<uint32_t> calls{0};  // threads of one process write beside one target too
+    const std::string suffix =
+        ".partial" + std::to_string(::getpid()) + "-" + std::to_string(calls++) + target.extension().string();
+    // A name of the longest a folder takes (NAME_MAX) leaves no room for the suffix: its stem gives way.
+    constexpr size_t kLongestName = 255;
+    const std::string stem = target.stem().string().substr(0, kLongestName - 1 - std::min(suffix.size(), kLongestName - 1));
     fs::path temporary = target;
-    temporary.replace_filename("." + target.stem().string() + ".partial" + std::to_string(::getpid()) + "-" +
-                               std::to_string(calls++) + target.extension().string());
+    temporary.replace_filename("." + stem + suffix);
     return temporary;
 }
 

@@ -244,6 +244,17 @@ TEST_F(ReplaceFile, ASetThatCannotBeRenamedWholeIsPutBackAsItWas) {
     EXPECT_EQ(names(dir_), (std::vector<std::string>{"cube.ktx2", "cube.prefiltered.ktx2"}));
 }
 
+// A name as long as a folder takes (255 bytes) is written: its temporary's stem gives way.
+TEST_F(ReplaceFile, ANameOfTheLongestAFolderTakesIsWritten) {
+    const std::string name = std::string(251, 'a') + ".exr";
+    replaceFileContents(dir_ / name, "long");
+    EXPECT_EQ(slurp(dir_ / name), "long");
+    EXPECT_EQ(names(dir_), std::vector<std::string>{name});
+    const fs::path temporary = temporaryBeside(dir_ / name);
+    EXPECT_LE(temporary.filename().string().size(), 255u);
+    EXPECT_EQ(temporary.extension(), ".exr");
+}
+
 TEST_F(ReplaceFile, TemporariesAreHiddenUniqueAndKeepTheExtension) {
     const fs::path a = temporaryBeside(dir_ / "cube.ktx2"), b = temporaryBeside(dir_ / "cube.ktx2");
     EXPECT_NE(a, b);
