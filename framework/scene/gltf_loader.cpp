@@ -42,7 +42,9 @@ bool regularFileExists(const std::string& path, void*) {
     return std::filesystem::is_regular_file(path, ec);
 }
 
-bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+/// `read`: the paths read so far (a std::vector<std::filesystem::path>).
+bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* read) {
+    static_cast<std::vector<std::filesystem::path>*>(read)->emplace_back(path);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
         if (error) *error += "'" + path + "' is not a regular file\n";
@@ -545,7 +547,8 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     tinygltf::Model model;
     ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
-    reader.SetFsCallbacks({regularFileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, nullptr});
+    std::vector<std::filesystem::path> referenced;
+    reader.SetFsCallbacks({regularFileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &referenced});
     std::string error, warning;
     bool read = false;
     try {
@@ -566,7 +569,9 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     for (const auto& [index, problem] : headerCheck.problems)
         diagnostics.add(Diagnostic{name, "images[" + std::to_string(index) + "]", "", "", problem});
     if (!read || !error.empty() || !headerCheck.problems.empty()) return std::nullopt;
-    return GltfFlattener(name, model, limits, diagnostics).flatten(transformMatrix(transform));
+    std::optional<TriangleMesh> mesh = GltfFlattener(name, model, limits, diagnostics).flatten(transformMatrix(transform));
+    if (mesh) mesh->referencedFiles = std::move(referenced);
+    return mesh;
 }
 
 std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,

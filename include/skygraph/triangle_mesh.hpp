@@ -87,6 +87,8 @@ struct MeshCamera {
 /// it can be large.
 struct TriangleMesh {
     std::filesystem::path file;
+    /// The files its buffers and images were read from, as the glTF names them (beside `file`).
+    std::vector<std::filesystem::path> referencedFiles;
     std::vector<MeshVertex> vertices;
     std::vector<uint32_t> indices;  ///< every index < vertices.size()
     std::vector<MeshPrimitive> primitives;

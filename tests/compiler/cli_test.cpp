@@ -646,6 +646,47 @@ TEST_F(Cli, RenderWritesItsImageIntoAFifo) {
     EXPECT_EQ(left, (std::vector<std::string>{"frames.exr", "frames.png"}));
 }
 
+// An output that is one of the command's inputs is refused before anything is written: the
+// graph for compile and check, the equirect for cubemap, and for render a file a scene's glTF
+// model reads (its texture).
+TEST_F(Cli, OutputsThatNameAnInputAreRefused) {
+    const fs::path graph = dir_ / "graph.json";
+    fs::copy_file(kSource / "graphs/raster.json", graph);
+    const std::string before = slurp(graph);
+    const fs::path model = dir_ / "box";
+    fs::copy(fs::path("/usr/share/assimp/models/glTF2/BoxTextured-glTF"), model);
+    const fs::path texture = model / "CesiumLogoFlat.png";
+    const std::string textureBytes = slurp(texture);
+    const fs::path scene = writeGraph("scene.json", R"({"camera": {"position": [0, 1, 4]}, "environment": null,
+      "objects": [{"type": "gltf", "file": "box/BoxTextured.gltf"}]})");
+    const fs::path sky = dir_ / "sky.hdr";
+    skygraph::saveRadianceHdr(sky, skygraph::HdrImage{8, 4, std::vector<float>(8 * 4 * 4, 0.5f)});
+    const std::string skyBytes = slurp(sky);
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"compile", graph.string(), "-o", graph.string()}, "-o '" + graph.string() + "' is the input"},
+        {{"compile", graph.string(), "--memory-svg", graph.string()}, "--memory-svg '" + graph.string() + "' is the input"},
+        {{"check", graph.string(), "--no-run", "--junit", graph.string()}, "--junit '" + graph.string() + "' is the input"},
+        {{"cubemap", sky.string(), "-o", (dir_ / "work" / "cube.ktx2").string(), "--cross", sky.string()},
+         "an output '" + sky.string() + "' is the input"},
+        {{"render", "--scene", scene.string(), "--width", "8", "--height", "8", "-o", texture.string()},
+         "-o '" + texture.string() + "' is the input '" + texture.string() + "'"},
+    };
+    for (const auto& [args, message] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 1) << args[0] << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    }
+    EXPECT_EQ(slurp(graph), before);
+    EXPECT_EQ(slurp(texture), textureBytes);
+    EXPECT_EQ(slurp(sky), skyBytes);
+    EXPECT_TRUE(workFiles().empty());
+    for (const std::vector<std::string>& args : {std::vector<std::string>{"compile", ""}, {"check", ""},
+                                                {"view", ""}, {"view", "--scene", ""}, {"cubemap", sky.string(), "-o", ""}}) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 2) << args[0] << " with an empty name: " << r.err;
+    }
+}
+
 // `render -o /dev/stdout --format F` writes the image to standard output (logs go to stderr),
 // and --format names the format of a file whose name says none.
 TEST_F(Cli, RenderWritesTheFormatItIsToldToStandardOutput) {

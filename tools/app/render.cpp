@@ -301,6 +301,13 @@ std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output
             for (uint32_t i = 0; i < environment.sequence->count; ++i)
                 inputFiles.push_back(environment.sequence->frame(i));
     }
+    if (inputs.scene)
+        for (const SceneObject& object : inputs.scene->objects)
+            if (const auto* model = std::get_if<GltfModel>(&object.shape)) {
+                inputFiles.push_back(model->mesh->file);
+                inputFiles.insert(inputFiles.end(), model->mesh->referencedFiles.begin(),
+                                  model->mesh->referencedFiles.end());
+            }
     for (const std::filesystem::path& input : inputFiles)
         if (!input.empty() && std::filesystem::equivalent(input, output, ec)) return input;
     return std::nullopt;
@@ -362,11 +369,6 @@ int renderCommand(const RenderOptions& options) {
         if (!chosenFormat) return 1;
         const std::string& format = *chosenFormat;
         FrameInputs inputs = loadFrameInputs(options);
-        if (const auto input = inputAt(options.output, options, inputs)) {
-            std::cerr << "skygraph render: -o '" << options.output.string() << "' is the input '" << input->string()
-                      << "': it would be overwritten\n";
-            return 1;
-        }
         const GraphDesc& graph = inputs.graph;
         CompileOptions co = inputs.compile;
         // Headless: the swapchain target is an image of our own, read back instead of presented.
@@ -386,6 +388,11 @@ int renderCommand(const RenderOptions& options) {
         } else {
             if (output.empty()) output = "skygraph." + format;
             co.readbacks = {target};
+        }
+        if (const auto input = inputAt(output, options, inputs)) {
+            std::cerr << "skygraph render: " << (options.output.empty() ? "the default output '" : "-o '")
+                      << output.string() << "' is the input '" << input->string() << "': it would be overwritten\n";
+            return 1;
         }
         CompiledGraph compiled(graph, co);
         for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);

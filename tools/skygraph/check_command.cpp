@@ -54,6 +54,7 @@ int run(CheckArgs& args) {
     static const PassLibrary library = PassLibrary::withBuiltins();
     app::CheckOptions o = args.options;
     for (const std::string& g : args.graphs) o.graphs.emplace_back(g);
+    refuseToOverwriteInputs("--junit", args.junit, o.graphs);
     if (!args.golden.empty()) o.goldenDir = args.golden;
     if (o.updateGoldens && !o.goldenDir) throw UsageError("--update needs --golden DIR");
     parseCoverage(args.features, o);
@@ -88,13 +89,15 @@ Command addCheckCommand(CLI::App& parent) {
         "check", "Check graphs under every feature combination: compile, compare with reviewed golden plans, verify "
                  "with the plan verifier, and run under validation with synchronization validation. Exit 0 only "
                  "when every case passes");
-    cmd->add_option("graphs", args->graphs, "Graph files")->required();
+    cmd->add_option("graphs", args->graphs, "Graph files")->required()->check(kNotEmpty);
     cmd->add_option("--golden", args->golden,
-                    "Directory of golden plans (<graph>.<feature>-on|off....plan.txt) to compare with");
+                    "Directory of golden plans (<graph>.<feature>-on|off....plan.txt) to compare with")
+        ->check(kNotEmpty);
     cmd->add_flag("--update", o.updateGoldens, "Write the golden plans instead of comparing (then review them)");
     cmd->add_option("--features", args->features,
                     "Which combinations: auto (all up to 8 features, else pairwise; the default), all, pairwise, "
-                    "or one: NAME=on,NAME=off,... (the others at their defaults)");
+                    "or one: NAME=on,NAME=off,... (the others at their defaults)")
+        ->check(kNotEmpty);
     cmd->add_option("--layouts", args->layouts,
                     "Compile and run with this layout policy (fewest-barriers, optimal) instead of the graph's")
         ->check(CLI::IsMember({"fewest-barriers", "optimal"}));
@@ -102,9 +105,9 @@ Command addCheckCommand(CLI::App& parent) {
     cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
     cmd->add_option("--size", args->size, "Output size of the runs, WIDTHxHEIGHT (goldens and the verifier use "
                                           "1920x1080)");
-    cmd->add_option("--device", o.device, "Device by index or name (default: a GPU, else lavapipe)");
+    cmd->add_option("--device", o.device, "Device by index or name (default: a GPU, else lavapipe)")->check(kNotEmpty);
     cmd->add_flag("--no-run", args->noRun, "Compile, compare and verify only; no device");
-    cmd->add_option("--junit", args->junit, "Also write JUnit XML to FILE (never half-written)");
+    cmd->add_option("--junit", args->junit, "Also write JUnit XML to FILE (never half-written)")->check(kNotEmpty);
     cmd->add_option("--jobs", o.jobs, "Threads that compile, compare and verify (runs take turns on one device)")
         ->check(CLI::Range(1u, 256u));
     cmd->add_flag("--warnings-as-errors", args->warningsAsErrors, "Fail cases with validation performance warnings");

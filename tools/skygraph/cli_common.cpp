@@ -39,6 +39,16 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
     return out;
 }
 
+void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,
+                             const std::vector<std::filesystem::path>& inputs) {
+    std::error_code ec;
+    if (output.empty() || !std::filesystem::exists(output, ec)) return;
+    for (const std::filesystem::path& input : inputs)
+        if (!input.empty() && std::filesystem::equivalent(input, output, ec))
+            throw std::runtime_error(std::string(option) + " '" + output.string() + "' is the input '" + input.string() +
+                                     "': it would be overwritten");
+}
+
 void writeOutput(const std::string& path, const std::string& text) {
     if (path.empty()) {
         std::cout << text << std::flush;

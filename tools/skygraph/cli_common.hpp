@@ -14,6 +14,7 @@
 #include <skygraph/graph.hpp>
 
 #include <array>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -58,6 +59,11 @@ struct Command {
 inline const CLI::Validator kNotEmpty(
     [](const std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
     "NOT EMPTY");
+
+/// Throws std::runtime_error (exit 1) when `output`, given as `option`, is the same file as one
+/// of `inputs`: writing it would destroy what the command reads. Empty names are skipped.
+void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,
+                             const std::vector<std::filesystem::path>& inputs);
 
 /// Writes `text` to `path` (stdout when empty) with files::replaceFileContents: a failure never
 /// leaves half a file behind, a link's target gets the text, and a FIFO or device is written.

@@ -130,6 +130,8 @@ int watch(const CompileArgs& args, const FeatureValues& features) {
 }
 
 int run(const CompileArgs& args) {
+    refuseToOverwriteInputs("-o", args.output, {args.graph});
+    refuseToOverwriteInputs("--memory-svg", args.memorySvg, {args.graph});
     const FeatureValues features = parseFeatureFlags(args.features);
     if (args.watch) return watch(args, features);
     writeCompiled(args, compileOnce(args, features), true);
@@ -141,7 +143,7 @@ int run(const CompileArgs& args) {
 Command addCompileCommand(CLI::App& parent) {
     auto args = std::make_shared<CompileArgs>();
     CLI::App* cmd = parent.add_subcommand("compile", "Compile a graph file into a plan of passes and barriers");
-    cmd->add_option("graph", args->graph, "Graph file (graphs/*.json)")->required();
+    cmd->add_option("graph", args->graph, "Graph file (graphs/*.json)")->required()->check(kNotEmpty);
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
     cmd->add_option("--format", args->format, "Output format: text, json (schemas/plan.schema.json) or dot (graphviz)")
         ->check(CLI::IsMember({"text", "json", "dot"}));
@@ -171,7 +173,8 @@ Command addCompileCommand(CLI::App& parent) {
                     "\"layouts\", else fewest-barriers")
         ->check(CLI::IsMember({"fewest-barriers", "optimal"}));
     cmd->add_option("--memory-svg", args->memorySvg,
-                    "Also draw the memory layout (passes across, byte offsets down) as SVG to FILE (never half-written)");
+                    "Also draw the memory layout (passes across, byte offsets down) as SVG to FILE (never half-written)")
+        ->check(kNotEmpty);
     cmd->add_flag("--watch", args->watch,
                   "Recompile whenever GRAPH is saved and print the text plan's diff (until Ctrl-C)");
     cmd->add_option("--watch-interval-ms", args->watchIntervalMs, "How often --watch looks at GRAPH")

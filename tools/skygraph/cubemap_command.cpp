@@ -160,7 +160,10 @@ int run(CubemapArgs& args) {
     for (const auto& p : args.products) outputs.push_back(productPath(output, p));
     if (!args.cross.empty()) outputs.emplace_back(args.cross);
     std::vector<files::OutputTarget> targets;
-    for (const auto& path : outputs) targets.push_back(writableTarget(path));
+    for (const auto& path : outputs) {
+        refuseToOverwriteInputs(path == output ? "-o" : "an output", path, {args.input});
+        targets.push_back(writableTarget(path));
+    }
 
     ProgressBar bar("cubemap", 6, "steps");
     // Half-float products would hold what a half cannot as infinity, and spread it through
@@ -211,8 +214,8 @@ Command addCubemapCommand(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "cubemap", "Equirect HDR -> KTX2 cube with mips, plus IBL products (OUT.irradiance.ktx2, "
                    "OUT.prefiltered.ktx2: one GGX roughness per mip, OUT.brdf.ktx2)");
-    cmd->add_option("input", args->input, "Equirectangular .hdr or .exr")->required();
-    cmd->add_option("-o,--output", args->output, "Output .ktx2 (the environment cube)")->required();
+    cmd->add_option("input", args->input, "Equirectangular .hdr or .exr")->required()->check(kNotEmpty);
+    cmd->add_option("-o,--output", args->output, "Output .ktx2 (the environment cube)")->required()->check(kNotEmpty);
     cmd->add_option("--size", args->bake.size, "Environment cube face size (power of two)")
         ->check(CLI::Range(32u, 4096u))->capture_default_str();
     cmd->add_option("--prefiltered-size", args->bake.prefilteredSize,
@@ -227,8 +230,8 @@ Command addCubemapCommand(CLI::App& parent) {
         ->delimiter(',')->check(CLI::IsMember({"irradiance", "prefiltered", "brdf", "none"}))->capture_default_str();
     cmd->add_option("--format", args->format, "Texel format")->check(CLI::IsMember({"rgba16f", "rgba32f"}))
         ->capture_default_str();
-    cmd->add_option("--cross", args->cross, "Also write mip 0 as a horizontal cross (.hdr or .exr)");
-    cmd->add_option("--device", args->bake.device, "Vulkan device: index or name substring");
+    cmd->add_option("--cross", args->cross, "Also write mip 0 as a horizontal cross (.hdr or .exr)")->check(kNotEmpty);
+    cmd->add_option("--device", args->bake.device, "Vulkan device: index or name substring")->check(kNotEmpty);
     cmd->add_flag("--validate", args->bake.validate, "Validation + synchronization validation; fail on any message");
     return {cmd, [args] {
                 std::erase(args->products, std::string("none"));

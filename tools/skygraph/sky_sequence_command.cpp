@@ -38,7 +38,7 @@ Command addSkySequenceCommand(CLI::App& parent) {
     CLI::App* cmd = parent.add_subcommand(
         "sky-sequence", "Write a time-lapse of the procedural sky as equirect frames (its sun circles the sky once), "
                         "for an environment sequence: PATTERN holds the frame number as %d or %0Nd, e.g. frames/%04d.exr");
-    cmd->add_option("pattern", args->pattern, "Frame files, .hdr or .exr, numbered from 0")->required();
+    cmd->add_option("pattern", args->pattern, "Frame files, .hdr or .exr, numbered from 0")->required()->check(kNotEmpty);
     cmd->add_option("--frames", args->frames, "How many frames")->check(CLI::Range(1u, 100000u))->capture_default_str();
     cmd->add_option("--width", args->width, "Equirect width; the height is half")
         ->check(CLI::Range(2u, 16384u))->capture_default_str();

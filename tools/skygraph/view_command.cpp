@@ -52,9 +52,10 @@ Command addViewCommand(CLI::App& parent) {
         "view", "Present a graph in a window (GLFW) until it is closed. With no graph and no scene: the built-in "
                 "raster graph and default scene. Left-drag orbits the camera, the wheel zooms, Escape closes. A saved "
                 "graph, scene or shader file reloads; a broken one shows its error and keeps the last good frame");
-    cmd->add_option("graph", args->graph, "Graph file (default: the built-in graphs/raster.json)");
+    cmd->add_option("graph", args->graph, "Graph file (default: the built-in graphs/raster.json)")->check(kNotEmpty);
     cmd->add_option("--scene", args->scene, "Scene file (scenes/*.json); default with the built-in graph: "
-                                            "the built-in scenes/default.json");
+                                            "the built-in scenes/default.json")
+        ->check(kNotEmpty);
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
     cmd->add_option("--width", o.frame.width, "Window width")->check(CLI::Range(1u, 16384u));
     cmd->add_option("--height", o.frame.height, "Window height")->check(CLI::Range(1u, 16384u));
