@@ -145,8 +145,8 @@ public:
 
     /// Waits for the queue, then destroys the logical device and the surface while validation
     /// still listens: the layer reports each object made from the device that is still alive
-    /// (a leaked handle), and messageCount() counts those reports. Every Renderer, Swapchain
-    /// and SharedImage of this device must be destroyed first; afterwards device() and
+    /// (a leaked handle), and messageCount() counts those reports. Every Renderer, Swapchain,
+    /// SharedImage and StagingBuffer of this device must be destroyed first; afterwards device() and
     /// surface() are VK_NULL_HANDLE and only name(), validationEnabled() and the message
     /// accessors may be used. The destructor does the same when this was not called; calling
     /// it twice does nothing more.

@@ -7,6 +7,7 @@
 //   shared_image.hpp  SharedImage: an image one renderer writes and another reads
 //   hot_reload.hpp    HotReloader
 //   image_data.hpp    ImageData, writePng, writeHdr
+//   staging_buffer.hpp StagingBuffer: pixels Renderer::stageUpload hands to an UploadPass
 // Recording code for pass types is pass.hpp.
 #pragma once
 
@@ -15,4 +16,5 @@
 #include <skygraph/image_data.hpp>
 #include <skygraph/renderer.hpp>
 #include <skygraph/shared_image.hpp>
+#include <skygraph/staging_buffer.hpp>
 #include <skygraph/swapchain.hpp>

@@ -77,9 +77,11 @@ struct PassTiming {
 /// Runs one compiled graph. Owns all images, buffers, pipelines and command buffers it
 /// creates, and its CompiledGraph; borrows `device` (which must outlive it). Not copyable.
 /// It runs only plans compiled with its device's memory model (Device::memoryModel()), since
-/// a plan places its transient resources in shared heaps by their memory requirements: a
-/// CompiledGraph compiled with other CompileOptions::memory (e.g. none, the estimate) is
-/// compiled again with the device's, and compiled() reports that one, the plan that runs.
+/// a plan places its transient resources in shared heaps by their memory requirements, and,
+/// for a plan that submits to more than one queue, with its device's queue families
+/// (Device::queueFamilies(), which decide ownership transfers): a CompiledGraph compiled with
+/// other CompileOptions::memory or queueFamilies is compiled again with the device's, and
+/// compiled() reports that one, the plan that runs.
 /// The renderer's plan state (the compiled graph, the images, the pipelines) is rebuilt, when
 /// they succeed, by exactly these calls: setGraph(), resize(), reloadShaders(),
 /// setPresentImages() (every call, even with images of an unchanged extent), and
@@ -94,8 +96,8 @@ struct PassTiming {
 /// one thread.
 class Renderer {
 public:
-    /// Takes `compiled` (compiled again with the device's memory model unless it was: see the
-    /// class comment); creates resources, pipelines and per-frame state at its output size
+    /// Takes `compiled` (compiled again with the device's memory model and queue families unless
+    /// it was: see the class comment); creates resources, pipelines and per-frame state at its output size
     /// and runs its plan's setup (planSetup), waiting for it. Throws ExecutorError (e.g.
     /// framesInFlight outside 1..8, a pass type without recording code, a format the device
     /// cannot use as the plan requires, a pass's createPipelines failing).
