@@ -75,6 +75,15 @@ OutputTarget outputTarget(const fs::path& path) {
     return {at, fs::exists(status) && !fs::is_regular_file(status)};
 }
 
+OutputTarget writableOutputTarget(const fs::path& path) {
+    const OutputTarget target = outputTarget(path);
+    const fs::path folder = target.path.parent_path();
+    std::error_code ec;
+    if (!target.inPlace && !folder.empty() && !fs::is_directory(folder, ec))
+        throw fs::filesystem_error("cannot write", path, folder, std::make_error_code(std::errc::no_such_file_or_directory));
+    return target;
+}
+
 fs::path temporaryBeside(const fs::path& target) {
     static std::atomic<uint32_t> calls{0};  // threads of one process write beside one target too
     const std::string suffix =

@@ -24,6 +24,11 @@ struct OutputTarget {
 /// a loop of links or a link that cannot be read.
 [[nodiscard]] OutputTarget outputTarget(const std::filesystem::path& path);
 
+/// outputTarget(), checked before any work is done for it: not a folder and, unless written
+/// in place, in a folder that exists. Throws std::filesystem::filesystem_error naming `path`
+/// (EISDIR for a folder; ENOENT, with the missing folder second, for a missing folder).
+[[nodiscard]] OutputTarget writableOutputTarget(const std::filesystem::path& path);
+
 /// A name for a temporary beside `target`: hidden, unique to this process and call, and ending
 /// in the target's extension (writers that choose the format by extension keep choosing it).
 [[nodiscard]] std::filesystem::path temporaryBeside(const std::filesystem::path& target);

@@ -533,6 +533,7 @@ TEST_F(Cli, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
 TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
     const fs::path graph = writeGraph("bad.json", kBadGraph);
     const std::string out = (dir_ / "work" / "out.png").string();
+    fs::create_directories(dir_ / "folder.png");
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
         {{"render", graph.string(), "-o", out}, "error: " + graph.string() + ": passes[0].params.operator"},
         {{"render", (dir_ / "nope.json").string(), "-o", out}, "nope.json"},
@@ -546,6 +547,10 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
          "-o '" + out + "' names a .png file but --format is exr"},
         {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "out.jpg").string(), "--format", "png"},
          "names a .jpg file but --format is png"},
+        {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "missing" / "out.png").string()},
+         "the folder '" + (dir_ / "work" / "missing").string() + "' does not exist"},
+        {{"render", "graphs/raster.json", "-o", (dir_ / "folder.png").string()},
+         "cannot write '" + (dir_ / "folder.png").string() + "': Is a directory"},
     };
     for (const auto& [args, message] : cases) {
         const CliRun r = run(args);
@@ -711,14 +716,16 @@ TEST_F(Cli, RenderWritesTheFormatItIsToldToStandardOutput) {
     EXPECT_EQ(unknown.out, "");
 }
 
-// A PNG that cannot be written leaves no temporary behind, and never touches a file of the
-// temporary's name that was there before.
+// A PNG that cannot be written (a folder where it would go) is refused before the render,
+// leaves no temporary behind, and never touches a file of a temporary's old name.
 TEST_F(Cli, RenderThatCannotWriteItsPngLeavesNothingBehind) {
     fs::create_directories(dir_ / "work" / "out.png");  // a directory where the file would go
     std::ofstream(dir_ / "work" / "out.png.tmp") << "precious";
     const CliRun r = run({"render", "--width", "8", "--height", "8", "-o", (dir_ / "work" / "out.png").string()});
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_NE(r.err.find("out.png': cannot write"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("cannot write '" + (dir_ / "work" / "out.png").string() + "': Is a directory"),
+              std::string::npos)
+        << r.err;
     std::vector<std::string> left = workFiles();
     std::sort(left.begin(), left.end());
     EXPECT_EQ(left, (std::vector<std::string>{"out.png", "out.png.tmp"}));

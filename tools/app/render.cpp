@@ -6,6 +6,7 @@
 #include "command_exit.hpp"
 
 #include "environment_bake.hpp"
+#include "replace_file.hpp"
 #include "environment_graph.hpp"
 #include "procedural_environment.hpp"
 #include "shipped_names.hpp"
@@ -393,6 +394,17 @@ int renderCommand(const RenderOptions& options) {
             std::cerr << "skygraph render: " << (options.output.empty() ? "the default output '" : "-o '")
                       << output.string() << "' is the input '" << input->string() << "': it would be overwritten\n";
             return 1;
+        }
+        if (!output.empty()) {  // before the render: a mistyped folder costs no work
+            try {
+                (void)files::writableOutputTarget(output);
+            } catch (const std::filesystem::filesystem_error& e) {
+                std::cerr << "skygraph render: cannot write '" << output.string() << "': "
+                          << (e.path2().empty() ? e.code().message()
+                                                : "the folder '" + e.path2().string() + "' does not exist")
+                          << "\n";
+                return 1;
+            }
         }
         CompiledGraph compiled(graph, co);
         for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);

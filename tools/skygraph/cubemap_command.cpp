@@ -82,18 +82,14 @@ HdrImage crossLayout(const std::vector<ImageData>& faces) {
 /// Where `path` is written (files::outputTarget): a target in an existing folder (a link's
 /// target's), not a folder itself. Found before the bake, so that a mistyped path costs no work.
 files::OutputTarget writableTarget(const std::filesystem::path& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw ImageError(path, "is a folder");
-    files::OutputTarget target;
     try {
-        target = files::outputTarget(path);
+        return files::writableOutputTarget(path);
     } catch (const std::filesystem::filesystem_error& e) {
+        if (e.code() == std::errc::is_a_directory) throw ImageError(path, "is a folder");
+        if (!e.path2().empty())
+            throw ImageError(path, "cannot be written: the folder '" + e.path2().string() + "' does not exist");
         throw ImageError(path, "cannot be written: " + e.code().message());
     }
-    const std::filesystem::path folder = target.path.parent_path();
-    if (!target.inPlace && !folder.empty() && !std::filesystem::is_directory(folder, ec))
-        throw ImageError(path, "cannot be written: the folder '" + folder.string() + "' does not exist");
-    return target;
 }
 
 /// writes[i] writes outputs[i], which goes to targets[i], to the path it is given: first each
