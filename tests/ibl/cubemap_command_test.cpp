@@ -203,6 +203,10 @@ TEST_F(CubemapCommand, BadInputFailsWithTheFileNamedAndWritesNothing) {
     EXPECT_EQ(r.status, 2) << "a non-.ktx2 output is misuse: " << r.output;
     r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" + out.string() + "' --size 48");
     EXPECT_EQ(r.status, 2) << r.output;
+    r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" + out.string() +
+            "' --products none,brdf");
+    EXPECT_EQ(r.status, 2) << "'none' with a product is misuse: " << r.output;
+    EXPECT_NE(r.output.find("'none' is the cube alone"), std::string::npos) << r.output;
 
     for (const auto& entry : fs::directory_iterator(dir_))
         EXPECT_NE(entry.path().extension(), ".ktx2") << "nothing written: " << entry.path();

@@ -230,7 +230,9 @@ Command addCubemapCommand(CLI::App& parent) {
     cmd->add_option("--device", args->bake.device, "Vulkan device: index or name substring")->check(kNotEmpty);
     cmd->add_flag("--validate", args->bake.validate, "Validation + synchronization validation; fail on any message");
     return {cmd, [args] {
-                std::erase(args->products, std::string("none"));
+                const bool none = std::erase(args->products, std::string("none")) > 0;
+                if (none && !args->products.empty())
+                    throw UsageError("--products: 'none' is the cube alone; it cannot be given with other products");
                 return run(*args);
             }};
 }
