@@ -43,12 +43,8 @@ void writePng(const std::filesystem::path& path, const ImageData& image) {
 
 void writeHdr(const std::filesystem::path& path, const ImageData& image) {
     checkImage(image);
-    HdrImage hdr;
-    hdr.width = image.width;
-    hdr.height = image.height;
-    hdr.rgba = image.rgba;
     try {
-        saveHdrImage(path, hdr);  // by extension: .hdr (Radiance) or .exr (half float)
+        saveHdrImage(path, toHdrImage(image));  // by extension: .hdr (Radiance) or .exr (half float)
     } catch (const ImageError& e) {
         throw ExecutorError(e.what());
     }

@@ -84,6 +84,14 @@ OutputTarget writableOutputTarget(const fs::path& path) {
     return target;
 }
 
+std::optional<fs::path> sameFileAmong(const fs::path& output, std::span<const fs::path> inputs) {
+    std::error_code ec;
+    if (output.empty() || !fs::exists(output, ec)) return std::nullopt;
+    for (const fs::path& input : inputs)
+        if (!input.empty() && fs::equivalent(input, output, ec)) return input;
+    return std::nullopt;
+}
+
 fs::path temporaryBeside(const fs::path& target) {
     static std::atomic<uint32_t> calls{0};  // threads of one process write beside one target too
     const std::string suffix =

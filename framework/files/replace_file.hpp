@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string_view>
 
@@ -28,6 +29,11 @@ struct OutputTarget {
 /// in place, in a folder that exists. Throws std::filesystem::filesystem_error naming `path`
 /// (EISDIR for a folder; ENOENT, with the missing folder second, for a missing folder).
 [[nodiscard]] OutputTarget writableOutputTarget(const std::filesystem::path& path);
+
+/// The first of `inputs` that is the same file as `output` (an existing file, through links
+/// and other names): writing `output` would destroy it. Empty names are skipped.
+[[nodiscard]] std::optional<std::filesystem::path> sameFileAmong(const std::filesystem::path& output,
+                                                                 std::span<const std::filesystem::path> inputs);
 
 /// A name for a temporary beside `target`: hidden, unique to this process and call, and ending
 /// in the target's extension (writers that choose the format by extension keep choosing it).

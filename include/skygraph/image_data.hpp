@@ -2,6 +2,8 @@
 // (setExternalImage()), and writing them to PNG, Radiance .hdr or OpenEXR files.
 #pragma once
 
+#include <skygraph/hdr_image.hpp>
+
 #include <vulkan/vulkan_core.h>
 
 #include <array>
@@ -26,6 +28,9 @@ struct ImageData {
         return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
     }
 };
+
+/// The same pixels as an HdrImage (hdr_image.hpp's savers take one); a copy the caller owns.
+[[nodiscard]] inline HdrImage toHdrImage(const ImageData& image) { return {image.width, image.height, image.rgba}; }
 
 /// Writes 8-bit RGBA PNG (values clamped to [0,1]), through a temporary file renamed over
 /// `path`, so a failure never leaves half a file there. Throws ExecutorError (device.hpp) on

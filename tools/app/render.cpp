@@ -289,7 +289,8 @@ std::string lowerExtension(const std::filesystem::path& path) {
 }
 
 /// The file among those a render reads (the graph, the scene, the environment file or a
-/// sequence's frames) that `output` names, if any: writing it would destroy an input.
+/// sequence's frames, the glTF models and what they read) that `output` names, if any:
+/// writing it would destroy an input. Gathered only when `output` exists.
 std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output, const RenderOptions& options,
                                              const FrameInputs& inputs) {
     std::error_code ec;
@@ -309,9 +310,7 @@ std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output
                 inputFiles.insert(inputFiles.end(), model->mesh->referencedFiles.begin(),
                                   model->mesh->referencedFiles.end());
             }
-    for (const std::filesystem::path& input : inputFiles)
-        if (!input.empty() && std::filesystem::equivalent(input, output, ec)) return input;
-    return std::nullopt;
+    return files::sameFileAmong(output, inputFiles);
 }
 
 /// The file format of the image render writes ("png", "hdr" or "exr"): RenderOptions::
@@ -346,12 +345,8 @@ std::optional<std::string> outputFormat(const RenderOptions& options) {
 
 void writeImage(const std::filesystem::path& output, const ImageData& image, std::string_view format) {
     if (format == "png") return writePng(output, image);
-    HdrImage hdr;
-    hdr.width = image.width;
-    hdr.height = image.height;
-    hdr.rgba = image.rgba;
-    if (format == "hdr") return saveRadianceHdr(output, hdr);
-    saveExr(output, hdr);
+    if (format == "hdr") return saveRadianceHdr(output, toHdrImage(image));
+    saveExr(output, toHdrImage(image));
 }
 
 }  // namespace

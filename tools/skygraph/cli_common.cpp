@@ -41,12 +41,9 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
 
 void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,
                              const std::vector<std::filesystem::path>& inputs) {
-    std::error_code ec;
-    if (output.empty() || !std::filesystem::exists(output, ec)) return;
-    for (const std::filesystem::path& input : inputs)
-        if (!input.empty() && std::filesystem::equivalent(input, output, ec))
-            throw std::runtime_error(std::string(option) + " '" + output.string() + "' is the input '" + input.string() +
-                                     "': it would be overwritten");
+    if (const auto input = files::sameFileAmong(output, inputs))
+        throw std::runtime_error(std::string(option) + " '" + output.string() + "' is the input '" + input->string() +
+                                 "': it would be overwritten");
 }
 
 void writeOutput(const std::string& path, const std::string& text) {

@@ -41,21 +41,13 @@ std::filesystem::path productPath(const std::filesystem::path& output, const std
     return p.replace_extension().string() + "." + product + ".ktx2";
 }
 
-HdrImage toHdr(const ImageData& image) {
-    HdrImage hdr;
-    hdr.width = image.width;
-    hdr.height = image.height;
-    hdr.rgba = image.rgba;
-    return hdr;
-}
-
 /// levels[mip * faces + face] -> a KTX2 texture.
 Ktx2Texture toKtx2(const std::vector<ImageData>& levels, size_t faces, Ktx2Format format) {
     Ktx2Texture t;
     t.format = format;
     for (size_t i = 0; i < levels.size(); i += faces) {
         t.levels.emplace_back();
-        for (size_t f = 0; f < faces; ++f) t.levels.back().push_back(toHdr(levels[i + f]));
+        for (size_t f = 0; f < faces; ++f) t.levels.back().push_back(toHdrImage(levels[i + f]));
     }
     return t;
 }
