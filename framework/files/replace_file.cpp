@@ -1,5 +1,7 @@
 #include "replace_file.hpp"
 
+#include "pending_temporaries.hpp"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -7,6 +9,7 @@
 #include <atomic>
 #include <cerrno>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -110,6 +113,7 @@ void replaceFile(const fs::path& path, const std::function<void(const fs::path&)
     // and a stream gets the file whole or nothing of it.
     const fs::path temporary =
         temporaryBeside(target.inPlace ? fs::temp_directory_path() / target.path.filename() : target.path);
+    const PendingTemporary pending(temporary);
     std::error_code ignored;
     try {
         write(temporary);
@@ -126,6 +130,7 @@ void renameAllOrNone(std::span<const Replacement> replacements) {
     const size_t n = replacements.size();
     std::vector<fs::path> kept(n);  // a hard link to the file the target was, if it was one
     std::vector<bool> existed(n);
+    std::vector<std::unique_ptr<PendingTemporary>> pending;  // the kept links
     std::error_code ignored;
     const auto removeKept = [&] {
         for (const fs::path& keep : kept)
@@ -140,6 +145,7 @@ void renameAllOrNone(std::span<const Replacement> replacements) {
             existed[i] = fs::exists(status);
             if (!existed[i]) continue;
             const fs::path keep = temporaryBeside(replacements[i].target);
+            pending.push_back(std::make_unique<PendingTemporary>(keep));
             fs::create_hard_link(replacements[i].target, keep, ec);
             if (!ec) kept[i] = keep;
         }

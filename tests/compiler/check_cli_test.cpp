@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <regex>
 
 namespace {
@@ -314,6 +316,40 @@ TEST_F(Cli, SkySequenceThatFailsPartWayRemovesTheFramesItMade) {
     EXPECT_FALSE(fs::exists(frames / "sky_1.exr"));
     EXPECT_TRUE(fs::is_symlink(fs::symlink_status(frames / "sky_2.exr")));
     EXPECT_EQ(slurp(frames / "sky_3.exr"), "the user's");
+}
+
+// A run stopped by a signal while it writes leaves no temporary: not the hidden one beside an
+// output, nor the system's one of an output written in place. The cross is a FIFO that no one
+// reads, so the run waits to open it with every temporary made; then it gets SIGTERM (and SIGINT).
+TEST_F(Cli, AStoppedRunLeavesNoTemporaries) {
+    const fs::path sky = dir_ / "sky.exr";
+    ASSERT_EQ(run({"sky-sequence", (dir_ / "sky%d.exr").string(), "--frames", "1", "--width", "32"}).status, 0);
+    fs::rename(dir_ / "sky0.exr", sky);
+    const fs::path fifo = dir_ / "work" / "cross.hdr", temporaries = dir_ / "tmp";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    fs::create_directories(temporaries);
+    ASSERT_EQ(::setenv("TMPDIR", temporaries.c_str(), 1), 0);
+    const auto hidden = [&] {
+        std::vector<std::string> names;
+        for (const fs::path& folder : {dir_ / "work", temporaries})
+            for (const auto& e : fs::directory_iterator(folder))
+                if (e.path().filename().string()[0] == '.') names.push_back(e.path().string());
+        return names;
+    };
+    for (const int signal : {SIGTERM, SIGINT}) {
+        SCOPED_TRACE(signal);
+        const pid_t pid = spawn({"cubemap", sky.string(), "-o", (dir_ / "work" / "cube.ktx2").string(), "--size", "32",
+                                 "--products", "irradiance", "--cross", fifo.string()});
+        // cube.ktx2 and cube.irradiance.ktx2 beside their targets, and the cross's in the system's folder.
+        EXPECT_TRUE(waitFor([&] { return hidden().size() == 3; }, 120)) << ::testing::PrintToString(hidden());
+        ::kill(pid, signal);
+        int raw = 0;
+        ASSERT_EQ(::waitpid(pid, &raw, 0), pid);
+        EXPECT_TRUE(WIFSIGNALED(raw) && WTERMSIG(raw) == signal) << raw << " " << slurp(dir_ / "stderr");
+        EXPECT_EQ(hidden(), std::vector<std::string>{});
+        EXPECT_EQ(workFiles(), std::vector<std::string>{"cross.hdr"});
+    }
+    ::unsetenv("TMPDIR");
 }
 
 TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {

@@ -1,6 +1,8 @@
 // files::replaceFile on real files, links and FIFOs in a fresh folder per test.
 #include "replace_file.hpp"
 
+#include "pending_temporaries.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -261,6 +263,31 @@ TEST_F(ReplaceFile, TemporariesAreHiddenUniqueAndKeepTheExtension) {
     EXPECT_EQ(a.parent_path(), dir_);
     EXPECT_EQ(a.extension(), ".ktx2");
     EXPECT_EQ(a.filename().string().front(), '.');
+}
+
+// What a signal handler removes: the files named by live registrations, and only those. The
+// registration of a temporary that replaceFile is writing is one of them.
+TEST_F(ReplaceFile, PendingTemporariesAreRemovedUntilTheirWriteEnds) {
+    using skygraph::files::PendingTemporary;
+    using skygraph::files::removePendingTemporaries;
+    const fs::path done = dir_ / ".done.partial", pending = dir_ / ".pending.partial";
+    std::ofstream(done) << "renamed into place";
+    { const PendingTemporary registration(done); }
+    std::ofstream(pending) << "half written";
+    {
+        const PendingTemporary registration(pending);
+        removePendingTemporaries();
+        EXPECT_FALSE(fs::exists(pending));
+    }
+    EXPECT_TRUE(fs::exists(done));
+    replaceFile(dir_ / "out.txt", [&](const fs::path& temporary) {
+        std::ofstream(temporary) << "half";
+        removePendingTemporaries();
+        EXPECT_FALSE(fs::exists(temporary));
+        std::ofstream(temporary) << "whole";
+    });
+    EXPECT_EQ(slurp(dir_ / "out.txt"), "whole");
+    EXPECT_EQ(names(dir_), (std::vector<std::string>{".done.partial", "out.txt"}));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "cubemap_command.hpp"
 
 #include "builtin_ibl_graph.hpp"
+#include "pending_temporaries.hpp"
 #include "progress_bar.hpp"
 #include "replace_file.hpp"
 
@@ -93,14 +94,19 @@ files::OutputTarget writableTarget(const std::filesystem::path& path) {
 void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std::vector<files::OutputTarget>& targets,
                     const std::vector<std::function<void(const std::filesystem::path&)>>& writes) {
     std::vector<std::filesystem::path> temporaries(outputs.size());
+    std::vector<std::unique_ptr<files::PendingTemporary>> pending;
     const auto removeTemporaries = [&] {
         std::error_code ignored;
         for (const auto& t : temporaries)
             if (!t.empty()) std::filesystem::remove(t, ignored);
     };
     try {
-        for (size_t i = 0; i < outputs.size(); ++i)
-            if (!targets[i].inPlace) writes[i](temporaries[i] = files::temporaryBeside(targets[i].path));
+        for (size_t i = 0; i < outputs.size(); ++i) {
+            if (targets[i].inPlace) continue;
+            temporaries[i] = files::temporaryBeside(targets[i].path);
+            pending.push_back(std::make_unique<files::PendingTemporary>(temporaries[i]));
+            writes[i](temporaries[i]);
+        }
         for (size_t i = 0; i < outputs.size(); ++i)
             if (targets[i].inPlace) writes[i](targets[i].path);
     } catch (...) {

@@ -3,6 +3,7 @@
 // subcommand lives in its own x_command.{hpp,cpp} and is listed once below (see cli_common.hpp).
 #include "cli_common.hpp"
 #include "compile_command.hpp"
+#include "pending_temporaries.hpp"
 #include "progress_bar.hpp"
 #if SKYGRAPH_HAS_EXECUTOR
 #include "render_command.hpp"
@@ -14,13 +15,27 @@
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <iostream>
 #include <string>
 #include <vector>
 
 using namespace skygraph::cli;
 
+namespace {
+
+/// A signal that ends the process ends it as it would have, without the hidden temporary of a
+/// write in progress (`view` and `compile --watch` stop on SIGINT and SIGTERM on their own).
+extern "C" void removeTemporariesAndEnd(int signal) {
+    skygraph::files::removePendingTemporaries();
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) std::signal(signal, removeTemporariesAndEnd);
     CLI::App app{"skygraph: a data-driven Vulkan render graph"};
     app.require_subcommand(1);
     app.fallthrough();  // -v, -q and --progress also after the subcommand's name
