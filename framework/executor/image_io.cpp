@@ -31,11 +31,12 @@ void writePng(const std::filesystem::path& path, const ImageData& image) {
         bytes[i] = static_cast<uint8_t>(std::lround(std::clamp(image.rgba[i], 0.0f, 1.0f) * 255.0f));
     }
     try {  // nothing half-written under the final name, and no temporary left behind
-        image_detail::writeAtomically(path, [&](const std::string& temp) {
-            if (!stbi_write_png(temp.c_str(), static_cast<int>(image.width), static_cast<int>(image.height), 4,
-                                bytes.data(), static_cast<int>(image.width * 4)))
-                throw ImageError(path, "cannot write");
-        });
+        std::string encoded;
+        if (!stbi_write_png_to_func(image_detail::appendToString, &encoded, static_cast<int>(image.width),
+                                    static_cast<int>(image.height), 4, bytes.data(), static_cast<int>(image.width * 4)))
+            throw ImageError(path, "cannot encode the image");
+        image_detail::writeAtomically(path,
+                                      [&](const std::string& temp) { image_detail::writeWhole(path, temp, encoded); });
     } catch (const ImageError& e) {
         throw ExecutorError(e.what());
     }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <string>
@@ -56,6 +57,16 @@ void appendTo(const fs::path& to, const fs::path& from) {
     if (::close(fd) != 0) throw fs::filesystem_error("cannot write", to, lastError());
 }
 
+/// Where a stream's temporary is written; throws naming `path` and the folder when it is missing.
+fs::path systemTemporaryFolder(const fs::path& path) {
+    const char* named = std::getenv("TMPDIR");
+    const fs::path folder = named && *named ? fs::path(named) : fs::path("/tmp");
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec))
+        throw fs::filesystem_error("cannot write", path, folder, std::make_error_code(std::errc::no_such_file_or_directory));
+    return folder;
+}
+
 }  // namespace
 
 OutputTarget outputTarget(const fs::path& path) {
@@ -95,6 +106,16 @@ std::optional<fs::path> sameFileAmong(const fs::path& output, std::span<const fs
     return std::nullopt;
 }
 
+std::string whyNotWritten(const fs::filesystem_error& error) {
+    if (error.code() == std::errc::is_a_directory) return "it is a folder";
+    if (error.path2().empty() || error.code() != std::errc::no_such_file_or_directory) return error.code().message();
+    const char* temporaryFolder = std::getenv("TMPDIR");
+    return "the folder '" + error.path2().string() + "' does not exist" +
+           (temporaryFolder && error.path2() == temporaryFolder
+                ? " (TMPDIR names it: a stream is written through a temporary there)"
+                : "");
+}
+
 fs::path temporaryBeside(const fs::path& target) {
     static std::atomic<uint32_t> calls{0};  // threads of one process write beside one target too
     const std::string suffix =
@@ -108,11 +129,11 @@ fs::path temporaryBeside(const fs::path& target) {
 }
 
 void replaceFile(const fs::path& path, const std::function<void(const fs::path&)>& write) {
-    const OutputTarget target = outputTarget(path);
+    const OutputTarget target = writableOutputTarget(path);
     // In place, the temporary is the system's: writers that seek (OpenEXR) cannot write a pipe,
     // and a stream gets the file whole or nothing of it.
-    const fs::path temporary =
-        temporaryBeside(target.inPlace ? fs::temp_directory_path() / target.path.filename() : target.path);
+    const fs::path temporary = temporaryBeside(target.inPlace ? systemTemporaryFolder(path) / target.path.filename()
+                                                              : target.path);
     const PendingTemporary pending(temporary);
     std::error_code ignored;
     try {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace skygraph::files {
@@ -35,14 +36,21 @@ struct OutputTarget {
 [[nodiscard]] std::optional<std::filesystem::path> sameFileAmong(const std::filesystem::path& output,
                                                                  std::span<const std::filesystem::path> inputs);
 
+/// Why a write that threw `error` (from the functions here) failed, in words for a message
+/// that names the output already: "it is a folder", "the folder 'F' does not exist" (the
+/// system's temporary folder says that TMPDIR names it), or the system's reason.
+[[nodiscard]] std::string whyNotWritten(const std::filesystem::filesystem_error& error);
+
 /// A name for a temporary beside `target`: hidden, unique to this process and call, and ending
 /// in the target's extension (writers that choose the format by extension keep choosing it).
 [[nodiscard]] std::filesystem::path temporaryBeside(const std::filesystem::path& target);
 
-/// Calls write(p) for p a temporary beside outputTarget(path).path, then renames p over that
+/// Calls write(p) for p a temporary beside writableOutputTarget(path).path (which throws as it
+/// says when there is no such place), then renames p over that
 /// target. In place, p is in the system's temporary folder and, once written, is appended to
 /// the target, which is opened without truncating it (a `>>` log is appended to) and gets
-/// nothing if write fails. If write throws or the rename or copy fails, removes the temporary
+/// nothing if write fails; a temporary folder that does not exist throws before write is
+/// called, with the folder as path2. If write throws or the rename or copy fails, removes the temporary
 /// and leaves a replaced target as it was: write's exception is rethrown, a failed rename or
 /// copy throws std::filesystem::filesystem_error.
 void replaceFile(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);

@@ -95,7 +95,7 @@ void writeGolden(const Plan& plan, const fs::path& golden) {
     try {
         files::replaceFileContents(golden, goldenText(plan));
     } catch (const fs::filesystem_error& e) {
-        throw std::runtime_error("cannot write the golden plan " + golden.string() + ": " + e.code().message());
+        throw std::runtime_error("cannot write the golden plan " + golden.string() + ": " + files::whyNotWritten(e));
     }
 }
 

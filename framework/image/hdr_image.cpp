@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <fstream>
+#include <system_error>
 
 namespace skygraph {
 namespace {
@@ -82,16 +85,39 @@ void requireWritable(const std::filesystem::path& path, const HdrImage& image) {
                                    std::to_string(size_t(image.width) * image.height * 4));
 }
 
+void writeWhole(const std::filesystem::path& path, const std::string& temp, std::string_view bytes) {
+    const auto fail = [&] {
+        throw ImageError(path, "cannot write: " + std::error_code(errno ? errno : EIO, std::system_category()).message());
+    };
+    errno = 0;
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) fail();
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) fail();
+}
+
+void appendToString(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
+}
+
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::string& tempPath)>& write) {
+    std::string temporary;
     try {
-        files::replaceFile(path, [&](const std::filesystem::path& temp) { write(temp.string()); });
+        files::replaceFile(path, [&](const std::filesystem::path& temp) { write(temporary = temp.string()); });
     } catch (const ImageError&) {
         throw;
     } catch (const std::filesystem::filesystem_error& e) {
-        throw ImageError(path, "cannot write: " + e.code().message());
+        throw ImageError(path, "cannot write: " + files::whyNotWritten(e));
     } catch (const std::exception& e) {
-        throw ImageError(path, std::string("cannot write: ") + e.what());
+        // A writer's reason names the file it opened: the user knows the output, not the temporary.
+        std::string why = e.what();
+        const std::string output = path.string();
+        if (!temporary.empty())
+            for (size_t at = why.find(temporary); at != std::string::npos; at = why.find(temporary, at + output.size()))
+                why.replace(at, temporary.size(), output);
+        throw ImageError(path, "cannot write: " + why);
     }
 }
 

@@ -159,11 +159,8 @@ void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
     }
 
     image_detail::writeAtomically(path, [&](const std::string& temp) {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out) throw ImageError(path, "cannot open for writing");
-        out.write(reinterpret_cast<const char*>(w.bytes.data()), std::streamsize(w.bytes.size()));
-        out.close();
-        if (!out) throw ImageError(path, "write failed (disk full?)");
+        image_detail::writeWhole(path, temp,
+                                 {reinterpret_cast<const char*>(w.bytes.data()), w.bytes.size()});
     });
 }
 

@@ -118,10 +118,10 @@ void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image) {
     std::vector<float> rgb(size_t(image.width) * image.height * 3);
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
         for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
-    image_detail::writeAtomically(path, [&](const std::string& temp) {
-        if (!stbi_write_hdr(temp.c_str(), int(image.width), int(image.height), 3, rgb.data()))
-            throw ImageError(path, "cannot write (stb_image_write failed; is the directory writable?)");
-    });
+    std::string encoded;
+    if (!stbi_write_hdr_to_func(image_detail::appendToString, &encoded, int(image.width), int(image.height), 3, rgb.data()))
+        throw ImageError(path, "cannot encode the image");
+    image_detail::writeAtomically(path, [&](const std::string& temp) { image_detail::writeWhole(path, temp, encoded); });
 }
 
 }  // namespace skygraph

@@ -271,7 +271,7 @@ TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
     const CliRun frames = run({"sky-sequence", (dir_ / "work" / "frames" / "sky_%d.exr").string(), "--frames", "3",
                                "--width", "8"});
     EXPECT_EQ(frames.status, 1) << frames.err;
-    EXPECT_NE(frames.err.find("sky_1.exr': is a folder"), std::string::npos) << frames.err;
+    EXPECT_NE(frames.err.find("sky_1.exr': cannot write: it is a folder"), std::string::npos) << frames.err;
     EXPECT_FALSE(fs::exists(dir_ / "work" / "frames" / "sky_0.exr"));
     fs::remove_all(dir_ / "work" / "frames");
 
@@ -289,7 +289,7 @@ TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
     fs::create_directories(dir_ / "work" / "cube.brdf.ktx2");
     const CliRun product = run({"cubemap", sky.string(), "-o", cube.string(), "--size", "32"});
     EXPECT_EQ(product.status, 1) << product.err;
-    EXPECT_NE(product.err.find("cube.brdf.ktx2': is a folder"), std::string::npos) << product.err;
+    EXPECT_NE(product.err.find("cube.brdf.ktx2': cannot write: it is a folder"), std::string::npos) << product.err;
     EXPECT_EQ(workFiles(), std::vector<std::string>{"cube.brdf.ktx2"});
     fs::remove(dir_ / "work" / "cube.brdf.ktx2");
     // A product named twice is written once.

@@ -61,9 +61,10 @@ protected:
     }
     void TearDown() override { fs::remove_all(dir_); }
 
-    /// Runs the CLI with `args`, from the source directory, capturing stdout and stderr.
-    CliRun run(const std::vector<std::string>& args) {
-        std::string cmd = "cd " + quote(kSource.string()) + " && " + quote(kCli.string());
+    /// Runs the CLI with `args`, from the source directory, capturing stdout and stderr;
+    /// `shell` runs in the same shell first (`ulimit -f 4;`, `export TMPDIR=...;`).
+    CliRun run(const std::vector<std::string>& args, const std::string& shell = "") {
+        std::string cmd = "cd " + quote(kSource.string()) + " && " + shell + quote(kCli.string());
         for (const auto& a : args) cmd += " " + quote(a);
         cmd += " >" + quote((dir_ / "stdout").string()) + " 2>" + quote((dir_ / "stderr").string());
         const int raw = std::system(cmd.c_str());

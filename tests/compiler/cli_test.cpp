@@ -222,14 +222,36 @@ TEST_F(Cli, UnwritableOutputExitsOne) {
     const fs::path out = dir_ / "work" / "no_such_dir" / "plan.json";
     const CliRun r = run({"compile", "graphs/raster.json", "-o", out.string()});
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_NE(r.err.find("plan.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("cannot write '" + out.string() + "': the folder '" + out.parent_path().string() +
+                         "' does not exist"),
+              std::string::npos)
+        << r.err;
     EXPECT_TRUE(workFiles().empty());
     // A folder where the file would go: the rename's reason, and no temporary left.
     fs::create_directories(dir_ / "work" / "plan");
     const CliRun folder = run({"compile", "graphs/raster.json", "-o", (dir_ / "work" / "plan").string()});
     EXPECT_EQ(folder.status, 1) << folder.err;
-    EXPECT_NE(folder.err.find("plan': Is a directory"), std::string::npos) << folder.err;
+    EXPECT_NE(folder.err.find("plan': it is a folder"), std::string::npos) << folder.err;
     EXPECT_EQ(workFiles(), std::vector<std::string>{"plan"});
+}
+
+// What the system refuses part way through a write names the output and the reason, and
+// leaves nothing: a file size limit (as a full disk would; SIGXFSZ ignored, so the write fails
+// with EFBIG), and a TMPDIR that does not exist for an output that is a stream.
+TEST_F(Cli, WritesTheSystemRefusesNameTheOutputAndLeaveNothing) {
+    const fs::path png = dir_ / "work" / "frame.png";
+    const CliRun cut = run({"-q", "render", "--width", "64", "--height", "64", "-o", png.string()},
+                           "trap '' XFSZ; ulimit -f 1; ");
+    EXPECT_EQ(cut.status, 1) << cut.err;
+    EXPECT_NE(cut.err.find("'" + png.string() + "': cannot write: File too large"), std::string::npos) << cut.err;
+    EXPECT_TRUE(workFiles().empty());
+
+    const std::string missing = (dir_ / "no such folder").string();
+    const CliRun stream = run({"compile", "graphs/raster.json", "-o", "/dev/null"}, "export TMPDIR=" + quote(missing) + "; ");
+    EXPECT_EQ(stream.status, 1) << stream.err;
+    EXPECT_NE(stream.err.find("cannot write '/dev/null': the folder '" + missing + "' does not exist (TMPDIR names it"),
+              std::string::npos)
+        << stream.err;
 }
 
 TEST_F(Cli, StandardOutputThatCannotBeWrittenExitsOne) {
@@ -550,7 +572,7 @@ TEST_F(Cli, RenderUserErrorsExitOneAndWriteNothing) {
         {{"render", "graphs/raster.json", "-o", (dir_ / "work" / "missing" / "out.png").string()},
          "the folder '" + (dir_ / "work" / "missing").string() + "' does not exist"},
         {{"render", "graphs/raster.json", "-o", (dir_ / "folder.png").string()},
-         "cannot write '" + (dir_ / "folder.png").string() + "': Is a directory"},
+         "cannot write '" + (dir_ / "folder.png").string() + "': it is a folder"},
     };
     for (const auto& [args, message] : cases) {
         const CliRun r = run(args);
@@ -723,7 +745,7 @@ TEST_F(Cli, RenderThatCannotWriteItsPngLeavesNothingBehind) {
     std::ofstream(dir_ / "work" / "out.png.tmp") << "precious";
     const CliRun r = run({"render", "--width", "8", "--height", "8", "-o", (dir_ / "work" / "out.png").string()});
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_NE(r.err.find("cannot write '" + (dir_ / "work" / "out.png").string() + "': Is a directory"),
+    EXPECT_NE(r.err.find("cannot write '" + (dir_ / "work" / "out.png").string() + "': it is a folder"),
               std::string::npos)
         << r.err;
     std::vector<std::string> left = workFiles();

@@ -1,5 +1,6 @@
 // skygraph_image: the blender-data studio lights, round trips, and every way a file can be bad.
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/ktx2.hpp>
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
@@ -11,8 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <random>
@@ -234,6 +238,51 @@ TEST_F(HdrImageTest, FailedSaveKeepsThePreviousFile) {
     const std::string before = readBytes(path);
     EXPECT_THROW(skygraph::saveHdrImage(path, HdrImage{8, 8, {}}), ImageError);
     EXPECT_EQ(readBytes(path), before);
+}
+
+// A write cut short (a full disk; here a file size limit, with SIGXFSZ ignored so that the
+// write fails with EFBIG instead of ending the process) is an error naming the output, never a
+// half file under its name, and the previous file stays. stb's writers report no such failure
+// on their own.
+TEST_F(HdrImageTest, AWriteCutShortLeavesThePreviousFileAndNamesTheOutput) {
+    HdrImage big = pattern(64, 64);  // noise: over 4 KiB in every format, compressed or not
+    std::mt19937 random(7);
+    for (float& v : big.rgba) v = std::uniform_real_distribution<float>(0.0f, 100.0f)(random);
+    const HdrImage small = pattern(2, 2);
+    skygraph::Ktx2Texture bigTexture{skygraph::Ktx2Format::Rgba32Float, {{big}}};
+    skygraph::Ktx2Texture smallTexture{skygraph::Ktx2Format::Rgba32Float, {{small}}};
+    const std::vector<std::pair<fs::path, std::function<void(const fs::path&, bool)>>> writers{
+        {dir_ / "x.hdr", [&](const fs::path& p, bool large) { skygraph::saveHdrImage(p, large ? big : small); }},
+        {dir_ / "x.exr", [&](const fs::path& p, bool large) { skygraph::saveHdrImage(p, large ? big : small); }},
+        {dir_ / "x.ktx2", [&](const fs::path& p, bool large) { skygraph::saveKtx2(p, large ? bigTexture : smallTexture); }},
+    };
+    for (const auto& [path, write] : writers) {
+        SCOPED_TRACE(path.string());
+        write(path, false);
+        const std::string before = readBytes(path);
+        ASSERT_LT(before.size(), 4096u);
+        const auto previousSignal = std::signal(SIGXFSZ, SIG_IGN);
+        rlimit limit{}, cut{};
+        ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &limit), 0);
+        cut = {4096, limit.rlim_max};
+        ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &cut), 0);
+        std::string message;
+        try {
+            write(path, true);
+        } catch (const ImageError& e) {
+            message = e.what();
+        }
+        ::setrlimit(RLIMIT_FSIZE, &limit);
+        std::signal(SIGXFSZ, previousSignal);
+        EXPECT_NE(message.find("'" + path.string() + "': cannot write: "), std::string::npos) << message;
+        EXPECT_NE(message.find("File too large"), std::string::npos) << message;
+        EXPECT_EQ(message.find("partial"), std::string::npos) << message;  // the temporary is not the user's
+        EXPECT_EQ(readBytes(path), before);
+    }
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"x.exr", "x.hdr", "x.ktx2"}));
 }
 
 TEST_F(HdrImageTest, MissingEmptyAndDirectoryInputsNameTheFile) {

@@ -27,7 +27,7 @@ void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uin
     std::error_code ec;
     for (uint32_t i = 0; i < frames; ++i)
         if (std::filesystem::is_directory(sequenceFrameFile(pattern, i), ec))
-            throw ImageError(sequenceFrameFile(pattern, i), "is a folder");
+            throw ImageError(sequenceFrameFile(pattern, i), "cannot write: it is a folder");
     // A sequence cut short by a failure is no sequence: the frames this run made go again.
     std::vector<std::filesystem::path> made;
     try {

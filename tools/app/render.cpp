@@ -394,9 +394,7 @@ int renderCommand(const RenderOptions& options) {
             try {
                 (void)files::writableOutputTarget(output);
             } catch (const std::filesystem::filesystem_error& e) {
-                std::cerr << "skygraph render: cannot write '" << output.string() << "': "
-                          << (e.path2().empty() ? e.code().message()
-                                                : "the folder '" + e.path2().string() + "' does not exist")
+                std::cerr << "skygraph render: cannot write '" << output.string() << "': " << files::whyNotWritten(e)
                           << "\n";
                 return 1;
             }

@@ -54,7 +54,7 @@ void writeOutput(const std::string& path, const std::string& text) {
     try {
         files::replaceFileContents(path, text);
     } catch (const std::filesystem::filesystem_error& e) {
-        throw std::runtime_error("cannot write '" + path + "': " + e.code().message());
+        throw std::runtime_error("cannot write '" + path + "': " + files::whyNotWritten(e));
     }
 }
 

@@ -78,10 +78,7 @@ files::OutputTarget writableTarget(const std::filesystem::path& path) {
     try {
         return files::writableOutputTarget(path);
     } catch (const std::filesystem::filesystem_error& e) {
-        if (e.code() == std::errc::is_a_directory) throw ImageError(path, "is a folder");
-        if (!e.path2().empty())
-            throw ImageError(path, "cannot be written: the folder '" + e.path2().string() + "' does not exist");
-        throw ImageError(path, "cannot be written: " + e.code().message());
+        throw ImageError(path, "cannot write: " + files::whyNotWritten(e));
     }
 }
 
@@ -122,7 +119,7 @@ void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std
         // A rename names its target second; renameAllOrNone's own errors (an old file it could
         // not put back, and where it is kept) name it first, and say more than their code.
         for (size_t i = 0; i < outputs.size(); ++i) {
-            if (targets[i].path == e.path2()) throw ImageError(outputs[i], "cannot be written: " + e.code().message());
+            if (targets[i].path == e.path2()) throw ImageError(outputs[i], "cannot write: " + files::whyNotWritten(e));
             if (targets[i].path == e.path1()) throw ImageError(outputs[i], e.what());
         }
         throw;
