@@ -1,11 +1,10 @@
 #include <skygraph/golden.hpp>
 #include <skygraph/plan_format.hpp>
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
+#include "read_file.hpp"
 #include "replace_file.hpp"
 
 namespace skygraph {
@@ -54,15 +53,14 @@ GoldenComparison compareWithGolden(const Plan& plan, const fs::path& golden) {
                          "; write it with --update (or SKYGRAPH_UPDATE_GOLDEN=1) and review it";
         return result;
     }
-    std::ifstream in(golden, std::ios::binary);
-    std::ostringstream text;
-    if (in.is_open() && !fs::is_directory(golden, ec)) text << in.rdbuf();
-    if (!in.is_open() || fs::is_directory(golden, ec) || (!in.good() && !in.eof())) {
+    std::optional<std::string> text = files::readFile(golden);
+    if (!text) {  // a folder, a FIFO (whose read would wait for a writer), a file we may not read
         result.status = GoldenStatus::Unreadable;
-        result.message = "cannot read the golden plan " + golden.string();
+        result.message = "cannot read the golden plan " + golden.string() +
+                         (fs::is_regular_file(golden, ec) ? "" : ": it is not a regular file");
         return result;
     }
-    std::string expected = text.str();
+    std::string expected = std::move(*text);
     if (expected.find('\r') != std::string::npos) {
         std::string lf;
         for (size_t i = 0; i < expected.size(); ++i)

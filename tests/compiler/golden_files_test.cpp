@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -79,6 +81,13 @@ TEST_F(GoldenFile, EveryStatus) {
     fs::remove(file);
     fs::create_directories(file);  // a directory where the file should be
     EXPECT_EQ(compareWithGolden(plan_, file).status, GoldenStatus::Unreadable);
+
+    // A FIFO that no one writes: refused at once, where reading it would wait for ever.
+    fs::remove(file);
+    ASSERT_EQ(::mkfifo(file.c_str(), 0600), 0);
+    const GoldenComparison fifo = compareWithGolden(plan_, file);
+    EXPECT_EQ(fifo.status, GoldenStatus::Unreadable);
+    EXPECT_NE(fifo.message.find("it is not a regular file"), std::string::npos) << fifo.message;
 }
 
 TEST_F(GoldenFile, AFailedWriteNamesTheFileAndLeavesNothingBehind) {
