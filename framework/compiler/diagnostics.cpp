@@ -1,15 +1,17 @@
 #include <skygraph/diagnostics.hpp>
 
+#include "printable_name.hpp"
+
 namespace skygraph {
 
 std::string Diagnostic::format() const {
     std::string out = file.empty() ? "<memory>" : file;
     if (line > 0) out += ":" + std::to_string(line) + ":" + std::to_string(column);
     out += ": ";
-    if (!jsonPath.empty()) out += jsonPath + ": ";
-    if (!pass.empty()) out += "pass '" + pass + "'" + (resource.empty() ? ": " : ", ");
-    if (!resource.empty()) out += "resource '" + resource + "': ";
-    out += message;
+    if (!jsonPath.empty()) out += printableName(jsonPath) + ": ";
+    if (!pass.empty()) out += "pass '" + printableName(pass) + "'" + (resource.empty() ? ": " : ", ");
+    if (!resource.empty()) out += "resource '" + printableName(resource) + "': ";
+    out += printableName(message);
     return out;
 }
 

@@ -8,6 +8,7 @@
 #include "graph_limits.hpp"
 #include "json_document.hpp"
 #include "name_index.hpp"
+#include "printable_name.hpp"
 #include "resource_loader.hpp"
 #include "validation.hpp"
 #include "vulkan_state.hpp"
@@ -189,10 +190,13 @@ private:
             error("version", "", "", "unsupported version " + version.dump() +
                                          "; this reader understands version 1");
         }
-        if (const JsonValue name = f[rootKey::name]; name && name.isString())
+        if (const JsonValue name = f[rootKey::name]; name && name.isString()) {
             graph_.name = name.string();
-        else
+            if (hasControlCharacter(graph_.name))
+                error("name", "", "", "'" + printableName(graph_.name) + "' holds a control character; " + kPrintedNames);
+        } else {
             error("name", "", "", "missing or not a string");
+        }
         for (const size_t k : {rootKey::schema, rootKey::description})
             if (const JsonValue text = f[k]; text && !text.isString())
                 error(std::string(kRootKeys[k]), "", "", "expected a string, got " + text.dump());
@@ -244,7 +248,7 @@ private:
             std::string err;
             if (!Condition::parse(name, err) || name == "true" || name == "false" ||
                 name.find_first_of("!&|() ") != std::string::npos)
-                error("features." + name, "", "", "'" + name + "' is not a valid feature name");
+                error("features." + name, "", "", "'" + printableName(name) + "' is not a valid feature name");
             if (!value.isBoolean())
                 error("features." + name, "", "", "default must be true or false");
             graph_.features.push_back({name, value.isBoolean() && value.boolean()});
@@ -271,6 +275,10 @@ private:
             p.name = name.string();
         else
             error(path + ".name", "", "", "missing or not a non-empty string");
+        if (hasControlCharacter(p.name)) {
+            error(path + ".name", "", "", "'" + printableName(p.name) + "' holds a control character; " + kPrintedNames);
+            p.name.clear();
+        }
         report_.unknownKeys(v, f, [&] { return path; }, kPassKeys, p.name);
         if (!p.name.empty()) {
             passNames_[index] = name.string();

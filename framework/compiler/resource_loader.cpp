@@ -1,5 +1,7 @@
 #include "resource_loader.hpp"
 
+#include "printable_name.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -214,6 +216,7 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
 void loadResource(std::string_view name, JsonValue v, FileProblems& report, ResourceDesc& r) {
     r.name = name;
     const ResourceProblems fail(name, report);
+    if (hasControlCharacter(name)) fail("", "its name holds a control character; " + std::string(kPrintedNames));
     if (!v.isObject()) {
         fail("", "must be an object");
         return;

@@ -632,6 +632,30 @@ TEST(LoaderErrors, BadFeatureDeclarations) {
     EXPECT_TRUE(hasDiag(ds, "features.on", "", "", {"true or false"}));
 }
 
+// A control character in a name would ring a terminal or break a line of a text plan or DOT
+// graph: refused where the name is given, and shown escaped in every message.
+TEST(LoaderErrors, NamesWithControlCharactersAreRefusedAndShownEscaped) {
+    Json g = baseGraph();
+    g["name"] = "t\u0001";
+    g["passes"][1]["name"] = "tone\u0007map";
+    g["resources"]["hdr\ncolor"] = g["resources"]["hdr_color"];
+    g["passes"].push_back(Json{{"name", "reader"}, {"type", "Generic"}, {"uses", {{"no\tsuch", "Read@Fragment"}}}});
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "name", "", "", {"'t\\u0001' holds a control character", "printed in plans"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].name", "", "", {"'tone\\u0007map' holds a control character"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr\ncolor", "", "hdr\ncolor", {"its name holds a control character"}))
+        << listAll(ds);
+    for (const Diagnostic& d : ds) {
+        const std::string line = d.format();
+        EXPECT_EQ(std::count_if(line.begin(), line.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; }), 0)
+            << line;
+    }
+    const std::string all = listAll(ds);
+    EXPECT_NE(all.find("resource 'no\\u0009such': unknown resource; declared: buf, cube, depth, hdr\\u000acolor"),
+              std::string::npos)
+        << all;
+}
+
 TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {
     CompileOptions options;
     options.features["bloom"] = true;

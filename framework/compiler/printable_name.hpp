@@ -1,0 +1,41 @@
+// Names from a graph file end up in terminals, text plans, DOT graphs and XML. A control
+// character in one (a JSON "\u0007" or "\n") would ring, break a line or make a file invalid, so
+// the loader refuses them and messages show them escaped.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+namespace skygraph {
+
+/// Why the loader refuses such names, for its messages.
+inline constexpr const char* kPrintedNames = "names are printed in plans, DOT graphs and messages";
+
+[[nodiscard]] constexpr bool isControlCharacter(char c) noexcept {
+    return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+}
+
+[[nodiscard]] inline bool hasControlCharacter(std::string_view name) noexcept {
+    for (const char c : name)
+        if (isControlCharacter(c)) return true;
+    return false;
+}
+
+/// `name` with each control character written as JSON writes it (\u0007), for messages.
+[[nodiscard]] inline std::string printableName(std::string_view name) {
+    if (!hasControlCharacter(name)) return std::string(name);
+    std::string out;
+    for (const char c : name) {
+        if (!isControlCharacter(c)) {
+            out += c;
+            continue;
+        }
+        char escaped[8];
+        std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned char>(c));
+        out += escaped;
+    }
+    return out;
+}
+
+}  // namespace skygraph
