@@ -33,8 +33,16 @@ struct DeviceFunctions {
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
 };
 
-using Semaphore = Owned<VkSemaphore, vkDestroySemaphore>;
-using Swapchain = Owned<VkSwapchainKHR, vkDestroySwapchainKHR>;
+struct DestroySemaphore {
+    static void destroy(VkDevice device, VkSemaphore semaphore) noexcept { vkDestroySemaphore(device, semaphore, nullptr); }
+};
+struct DestroySwapchain {
+    static void destroy(VkDevice device, VkSwapchainKHR swapchain) noexcept {
+        vkDestroySwapchainKHR(device, swapchain, nullptr);
+    }
+};
+using Semaphore = Owned<VkSemaphore, DestroySemaphore>;
+using Swapchain = Owned<VkSwapchainKHR, DestroySwapchain>;
 
 /// Index of a memory type with `required` properties among `typeBits`; throws if none.
 [[nodiscard]] uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,

@@ -8,11 +8,28 @@
 
 namespace skygraph::vk {
 
-/// Owns one device-level handle and destroys it with `Destroy(device, handle, nullptr)` when
+/// How each owner below destroys its handle: a call into the library, so that this header
+/// needs no Vulkan prototypes and includes under VK_NO_PROTOTYPES (volk and other loaders).
+struct DestroyImage { static void destroy(VkDevice, VkImage) noexcept; };
+struct DestroyBuffer { static void destroy(VkDevice, VkBuffer) noexcept; };
+struct FreeMemory { static void destroy(VkDevice, VkDeviceMemory) noexcept; };
+struct DestroyImageView { static void destroy(VkDevice, VkImageView) noexcept; };
+struct DestroySampler { static void destroy(VkDevice, VkSampler) noexcept; };
+struct DestroyRenderPass { static void destroy(VkDevice, VkRenderPass) noexcept; };
+struct DestroyFramebuffer { static void destroy(VkDevice, VkFramebuffer) noexcept; };
+struct DestroyPipeline { static void destroy(VkDevice, VkPipeline) noexcept; };
+struct DestroyPipelineLayout { static void destroy(VkDevice, VkPipelineLayout) noexcept; };
+struct DestroySetLayout { static void destroy(VkDevice, VkDescriptorSetLayout) noexcept; };
+struct DestroyShaderModule { static void destroy(VkDevice, VkShaderModule) noexcept; };
+struct DestroyCommandPool { static void destroy(VkDevice, VkCommandPool) noexcept; };
+struct DestroyFence { static void destroy(VkDevice, VkFence) noexcept; };
+struct DestroyQueryPool { static void destroy(VkDevice, VkQueryPool) noexcept; };
+
+/// Owns one device-level handle and destroys it with `Destroyer::destroy(device, handle)` when
 /// it is reset, reassigned or destroyed. Move-only; a moved-from owner holds nothing. The
 /// device must outlive the owner; the owner does not wait for the GPU to finish with the
 /// handle, so destroy it only once no submitted work uses it.
-template <typename T, void (*Destroy)(VkDevice, T, const VkAllocationCallbacks*)>
+template <typename T, typename Destroyer>
 class Owned {
 public:
     Owned() = default;
@@ -32,7 +49,7 @@ public:
         return *this;
     }
     void reset() noexcept {
-        if (handle_ != VK_NULL_HANDLE) Destroy(device_, handle_, nullptr);
+        if (handle_ != VK_NULL_HANDLE) Destroyer::destroy(device_, handle_);
         handle_ = VK_NULL_HANDLE;
     }
     /// The handle, still owned here: valid until this owner is reset, reassigned or destroyed.
@@ -47,19 +64,19 @@ private:
 };
 
 /// One owner per handle type the executor and the built-in passes create.
-using Image = Owned<VkImage, vkDestroyImage>;
-using Buffer = Owned<VkBuffer, vkDestroyBuffer>;
-using Memory = Owned<VkDeviceMemory, vkFreeMemory>;
-using ImageView = Owned<VkImageView, vkDestroyImageView>;
-using Sampler = Owned<VkSampler, vkDestroySampler>;
-using RenderPass = Owned<VkRenderPass, vkDestroyRenderPass>;
-using Framebuffer = Owned<VkFramebuffer, vkDestroyFramebuffer>;
-using Pipeline = Owned<VkPipeline, vkDestroyPipeline>;
-using PipelineLayout = Owned<VkPipelineLayout, vkDestroyPipelineLayout>;
-using SetLayout = Owned<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
-using ShaderModule = Owned<VkShaderModule, vkDestroyShaderModule>;
-using CommandPool = Owned<VkCommandPool, vkDestroyCommandPool>;
-using Fence = Owned<VkFence, vkDestroyFence>;
-using QueryPool = Owned<VkQueryPool, vkDestroyQueryPool>;
+using Image = Owned<VkImage, DestroyImage>;
+using Buffer = Owned<VkBuffer, DestroyBuffer>;
+using Memory = Owned<VkDeviceMemory, FreeMemory>;
+using ImageView = Owned<VkImageView, DestroyImageView>;
+using Sampler = Owned<VkSampler, DestroySampler>;
+using RenderPass = Owned<VkRenderPass, DestroyRenderPass>;
+using Framebuffer = Owned<VkFramebuffer, DestroyFramebuffer>;
+using Pipeline = Owned<VkPipeline, DestroyPipeline>;
+using PipelineLayout = Owned<VkPipelineLayout, DestroyPipelineLayout>;
+using SetLayout = Owned<VkDescriptorSetLayout, DestroySetLayout>;
+using ShaderModule = Owned<VkShaderModule, DestroyShaderModule>;
+using CommandPool = Owned<VkCommandPool, DestroyCommandPool>;
+using Fence = Owned<VkFence, DestroyFence>;
+using QueryPool = Owned<VkQueryPool, DestroyQueryPool>;
 
 }  // namespace skygraph::vk
