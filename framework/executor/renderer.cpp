@@ -272,7 +272,7 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     std::shared_ptr<ShaderCompiler> previous;
     if (shaders == ShaderSources::Reread)
         previous = std::exchange(d.shaders, std::make_shared<ShaderCompiler>(d.shaders->includeDir(),
-                                                                             SpirvDiskCache::defaultDir()));
+                                                                             d.shaders->cacheDir()));
     std::unique_ptr<detail::PlanState> next;
     try {
         next = d.build(std::move(compiled));  // throws: the old plan keeps running

@@ -350,7 +350,8 @@ struct Renderer::Impl {
         : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
           shaders(options.shadersFrom
                       ? options.shadersFrom->impl_->shaders
-                      : std::make_shared<ShaderCompiler>(options.shaderDir, SpirvDiskCache::defaultDir())) {}
+                      : std::make_shared<ShaderCompiler>(options.shaderDir, options.shaderCacheDir.value_or(
+                                                                                ShaderCompiler::defaultCacheDir()))) {}
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);

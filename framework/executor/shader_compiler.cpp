@@ -92,6 +92,15 @@ std::filesystem::path ShaderCompiler::defaultIncludeDir() {
     return SKYGRAPH_SHADER_INSTALL_DIR;
 }
 
+std::filesystem::path ShaderCompiler::defaultCacheDir() {
+    if (const char* dir = std::getenv("SKYGRAPH_SHADER_CACHE")) return dir;
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+        return std::filesystem::path(xdg) / "skygraph" / "spirv";
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return std::filesystem::path(home) / ".cache" / "skygraph" / "spirv";
+    return {};
+}
+
 ShaderCompiler::ShaderCompiler(std::filesystem::path includeDir, std::filesystem::path cacheDir)
     : includeDir_(includeDir.empty() ? defaultIncludeDir() : std::move(includeDir)),
       cacheDir_(std::move(cacheDir)) {

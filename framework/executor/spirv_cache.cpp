@@ -66,15 +66,6 @@ uint64_t SpirvDiskCache::hash(std::string_view bytes) noexcept {
     return h;
 }
 
-std::filesystem::path SpirvDiskCache::defaultDir() {
-    if (const char* dir = std::getenv("SKYGRAPH_SHADER_CACHE")) return dir;
-    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-        return std::filesystem::path(xdg) / "skygraph" / "spirv";
-    if (const char* home = std::getenv("HOME"); home && *home)
-        return std::filesystem::path(home) / ".cache" / "skygraph" / "spirv";
-    return {};
-}
-
 std::optional<std::vector<uint32_t>> SpirvDiskCache::find(const std::string& key, const IncludeReader& read) const {
     if (dir_.empty()) return std::nullopt;
     auto file = files::readFile(entryPath(dir_, key));

@@ -42,10 +42,6 @@ public:
     /// 64-bit FNV-1a: stable across runs, builds and machines (std::hash is not).
     [[nodiscard]] static uint64_t hash(std::string_view bytes) noexcept;
 
-    /// $SKYGRAPH_SHADER_CACHE if set (set but empty: disabled), else
-    /// $XDG_CACHE_HOME/skygraph/spirv, else $HOME/.cache/skygraph/spirv, else disabled.
-    [[nodiscard]] static std::filesystem::path defaultDir();
-
 private:
     std::filesystem::path dir_;
 };

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,8 +30,10 @@ struct RendererOptions {
     /// 1 to 8; the constructor throws otherwise.
     uint32_t framesInFlight = 2;
     /// Directory with the GLSL includes (shaders/); empty: ShaderCompiler::defaultIncludeDir().
-    /// Compiled SPIR-V is also kept on disk between runs (docs/executor.md).
     std::filesystem::path shaderDir;
+    /// Where compiled SPIR-V is kept between runs: unset, ShaderCompiler::defaultCacheDir();
+    /// an empty path, nowhere (every run compiles its shaders).
+    std::optional<std::filesystem::path> shaderCacheDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;

@@ -57,6 +57,8 @@ public:
 
     /// Fixed at construction; the reference is valid while this compiler lives.
     [[nodiscard]] const std::filesystem::path& includeDir() const noexcept { return includeDir_; }
+    /// Fixed at construction (empty: memory only); the reference is valid while this compiler lives.
+    [[nodiscard]] const std::filesystem::path& cacheDir() const noexcept { return cacheDir_; }
 
     /// Number of compilations that actually ran glslang (cache misses) so far.
     [[nodiscard]] uint32_t compilations() const noexcept { return compilations_.load(std::memory_order_relaxed); }
@@ -67,6 +69,11 @@ public:
     /// exists; else the install prefix configured at build time. Programs built against an
     /// installed package should pass SKYGRAPH_PACKAGE_SHADER_DIR instead (docs/embedding.md).
     [[nodiscard]] static std::filesystem::path defaultIncludeDir();
+
+    /// Where compiled SPIR-V is kept between runs when no cache directory is given:
+    /// $SKYGRAPH_SHADER_CACHE if set (empty: none); else $XDG_CACHE_HOME/skygraph/spirv; else
+    /// ~/.cache/skygraph/spirv; else none (empty).
+    [[nodiscard]] static std::filesystem::path defaultCacheDir();
 
 private:
     std::filesystem::path includeDir_;

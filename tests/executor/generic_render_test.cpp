@@ -2,6 +2,11 @@
 // back. Each test names the hazard kind (RAW, WAR, WAW, layout transition) it exercises.
 #include "executor_test_util.hpp"
 
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+
 namespace skygraph::test {
 namespace {
 
@@ -247,6 +252,28 @@ TEST_F(ExecutorTest, ARendererWithoutTimestampsRendersTheSameAndTimesNothing) {
     EXPECT_EQ(timedRenderer.lastTimings().size(), 3u);
     EXPECT_TRUE(untimedRenderer.lastTimings().empty());
     EXPECT_TRUE(untimedRenderer.completedTimings().empty());
+}
+
+// RendererOptions::shaderCacheDir: the SPIR-V is kept where it says, and an empty path keeps
+// none on disk, whatever SKYGRAPH_SHADER_CACHE says.
+TEST_F(ExecutorTest, ARendererKeepsItsSpirvWhereItsOptionsSay) {
+    namespace fs = std::filesystem;
+    const fs::path root = fs::temp_directory_path() / ("skygraph-shader-cache-option-" + std::to_string(::getpid()));
+    fs::remove_all(root);
+    const char* previous = std::getenv("SKYGRAPH_SHADER_CACHE");
+    const std::string saved = previous ? previous : "";
+    ASSERT_EQ(::setenv("SKYGRAPH_SHADER_CACHE", (root / "from the environment").c_str(), 1), 0);
+    const auto c = computeThenFragment();
+    RendererOptions o = genericOptions();
+    o.shaderCacheDir = root / "from the options";
+    Renderer(sharedDevice(), c, o).renderFrame();
+    o.shaderCacheDir = fs::path();
+    Renderer(sharedDevice(), c, o).renderFrame();
+    if (previous) ::setenv("SKYGRAPH_SHADER_CACHE", saved.c_str(), 1);
+    else ::unsetenv("SKYGRAPH_SHADER_CACHE");
+    EXPECT_TRUE(fs::is_directory(root / "from the options") && !fs::is_empty(root / "from the options"));
+    EXPECT_FALSE(fs::exists(root / "from the environment"));
+    fs::remove_all(root);
 }
 
 TEST_F(ExecutorTest, BadParamsAreClearErrors) {
