@@ -2,6 +2,7 @@
 #include <skygraph/shader_compiler.hpp>
 
 #include <skygraph/hot_reload.hpp>
+#include <skygraph/pass.hpp>
 #include <skygraph/renderer.hpp>
 
 #include "read_file.hpp"
@@ -45,8 +46,8 @@ std::map<std::filesystem::path, size_t> hashDir(const std::filesystem::path& dir
 HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir,
                          const PassRegistry* registry)
     : renderer_(&renderer), graphFile_(std::move(graphFile)),
-      shaderDir_(shaderDir.empty() ? ShaderCompiler::defaultIncludeDir() : std::move(shaderDir)),
-      registry_(registry) {
+      shaderDir_(shaderDir.empty() ? renderer.shaderDir() : std::move(shaderDir)),
+      registry_(registry ? registry : renderer.passes() ? &renderer.passes()->registry() : nullptr) {
     graphHash_ = hashFile(graphFile_);
     shaderHashes_ = hashDir(shaderDir_);
 }

@@ -27,11 +27,11 @@ public:
     /// Reads the watched files once, as the state later changes are measured against.
     /// `graphFile` empty: the shaders alone are watched (an application that reloads its
     /// graph itself).
-    /// `shaderDir` empty: ShaderCompiler::defaultIncludeDir(), so pass the renderer's
-    /// RendererOptions::shaderDir when it set one. `registry` (borrowed; null:
-    /// PassRegistry::withBuiltins()) parses the reloaded graph, e.g. `PassLibrary::registry()`
-    /// when the renderer runs pass implementations. A reloaded graph compiles with the options
-    /// the renderer's current graph was compiled with (Renderer::compiled()).
+    /// `shaderDir` empty: the renderer's (Renderer::shaderDir()). `registry` (borrowed) parses
+    /// the reloaded graph; null: the registry of the renderer's pass library
+    /// (Renderer::passes()), or PassRegistry::withBuiltins() when it has none. Both are fixed
+    /// here: follow() keeps them. A reloaded graph compiles with the options the renderer's
+    /// current graph was compiled with (Renderer::compiled()).
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
                 const PassRegistry* registry = nullptr);
     HotReloader(const HotReloader&) = delete;

@@ -298,6 +298,11 @@ public:
     [[nodiscard]] const Plan& setupPlan() const noexcept;
     /// Frames submitted since construction, rebuilds included.
     [[nodiscard]] uint64_t frameCount() const noexcept;
+    /// The directory its shaders are read from: RendererOptions::shaderDir, the default an
+    /// empty one stands for, or shadersFrom's. Valid while the renderer lives.
+    [[nodiscard]] const std::filesystem::path& shaderDir() const noexcept;
+    /// RendererOptions::passes: borrowed, null when the renderer has no recording code.
+    [[nodiscard]] const PassLibrary* passes() const noexcept;
 
     struct Impl;
 

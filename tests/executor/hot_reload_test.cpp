@@ -34,7 +34,7 @@ std::string slurp(const std::filesystem::path& p) {
 
 /// A renderer of graphWithColor("[1, 0, 0, 1]") loaded from a graph file, with the shared
 /// generic_common.glsl copied into a shader folder of its own, and a HotReloader watching
-/// both. The folder is removed at the end.
+/// both (the folder because it is the renderer's). The folder is removed at the end.
 struct WatchedRenderer {
     explicit WatchedRenderer(const std::string& name)
         : dir(std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()))),
@@ -49,7 +49,8 @@ struct WatchedRenderer {
         RendererOptions ro = genericOptions();
         ro.shaderDir = dir / "shaders";
         renderer = std::make_unique<Renderer>(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
-        reloader = std::make_unique<HotReloader>(*renderer, graphFile, dir / "shaders");
+        reloader = std::make_unique<HotReloader>(*renderer, graphFile);  // watches the renderer's shaderDir
+        EXPECT_EQ(renderer->shaderDir(), dir / "shaders");
     }
     ~WatchedRenderer() {
         reloader.reset();
