@@ -32,6 +32,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -343,6 +344,8 @@ struct Renderer::Impl {
     /// of presentSignalStages.
     std::optional<VkPipelineStageFlags2> acquireWaitOverride;
     std::function<void(Plan&)> setupPlanEdit;  ///< RendererAccess::editSetupPlans
+    /// Pass types that ran as Generic and were warned of: once per renderer, not per rebuild.
+    mutable std::set<std::string, std::less<>> typesRunAsGeneric;
     std::function<void(Plan&)> sampledImagePlanEdit;  ///< RendererAccess::editSampledImagePlans
     std::optional<VkPipelineStageFlags2> signalOverride;
 

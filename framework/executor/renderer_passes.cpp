@@ -58,8 +58,12 @@ std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const Plann
             throw ExecutorError(passError(pass, "", "type '" + desc.type +
                                                         "' has no recording code and the pass library has no "
                                                         "'Generic' to run it with"));
-        spdlog::debug("pass '{}' of type '{}' runs as Generic (performs its declared accesses)", pass.name,
-                      desc.type);
+        // Said once per type: a type the application meant to implement and did not register
+        // shows as a placeholder, and the reason should not wait for -v.
+        if (typesRunAsGeneric.insert(desc.type).second)
+            spdlog::warn("pass '{}' of type '{}' runs as Generic: the renderer's pass library has no recording code "
+                         "for '{}' (the pass performs its declared accesses and draws nothing of its own)",
+                         pass.name, desc.type, desc.type);
     }
     std::unique_ptr<PassImplementation> implementation = (*factory)(desc);
     if (!implementation) throw ExecutorError(passError(pass, "", "the pass factory returned nothing"));

@@ -35,7 +35,8 @@ struct RendererOptions {
     /// an empty path, nowhere (every run compiles its shaders).
     std::optional<std::filesystem::path> shaderCacheDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
-    /// runs with the library's "Generic". Null: no recording code, so a plan with passes throws.
+    /// runs with the library's "Generic" (a warning says so, once per type). Null: no
+    /// recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
     /// Borrowed, and must outlive the renderer: the renderer starts out bound to this
     /// swapchain's current images, so that its first renderFrame(*presentTo) builds nothing

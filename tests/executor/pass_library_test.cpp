@@ -14,6 +14,8 @@
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
 
 namespace skygraph::test {
 namespace {
@@ -224,6 +226,38 @@ TEST_F(ExecutorTest, ATypeWithoutRecordingCodeRunsWithTheLibrarysGeneric) {
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 3, 3, 0.25, 0.5, 0.5, 1.0);
     r.waitIdle();
+}
+
+// A type the library has no recording code for runs as Generic, and the renderer says so as a
+// warning, once per type: not again when a resize rebuilds the passes.
+TEST_F(ExecutorTest, APassTypeWithoutRecordingCodeIsWarnedOfOnce) {
+    const auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(16);
+    const auto previous = spdlog::default_logger();
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("pass_library_test", sink));
+    const PassLibrary registryOnly = library();  // declares Fill, parses the graph
+    PassLibrary genericOnly;
+    const PassLibrary builtins = PassLibrary::withBuiltins();
+    genericOnly.add(*builtins.registry().find("Generic"), *builtins.factory("Generic"));
+    GraphDesc graph = parseGraph(graphText("Fill"), "<lib>", registryOnly.registry());
+    const CompileOptions co = headless(graph);
+    RendererOptions o;
+    o.passes = &genericOnly;
+    {
+        Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), o);
+        r.renderFrame();
+        r.resize(24, 16);
+        r.renderFrame();
+        r.waitIdle();
+    }
+    spdlog::set_default_logger(previous);
+    std::vector<std::string> warnings;
+    for (const auto& line : sink->last_formatted())
+        if (line.find("[warning]") != std::string::npos) warnings.push_back(line);
+    ASSERT_EQ(warnings.size(), 1u) << ::testing::PrintToString(sink->last_formatted());
+    EXPECT_NE(warnings[0].find("pass 'fill' of type 'Fill' runs as Generic: the renderer's pass library has no "
+                               "recording code for 'Fill'"),
+              std::string::npos)
+        << warnings[0];
 }
 
 }  // namespace
