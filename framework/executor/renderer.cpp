@@ -349,6 +349,11 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     d.imports[resource] = std::move(image);
 }
 
+void Renderer::forgetImport(const std::string& resource) {
+    if (impl_->imports.erase(resource) == 0)
+        throw ExecutorError("forgetImport: '" + resource + "' has no imported image");
+}
+
 namespace {
 
 /// Why `pixels` cannot become the contents of external image `resource`, naming `call`.

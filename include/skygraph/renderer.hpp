@@ -268,6 +268,13 @@ public:
     /// keep the image they were recorded with, which stays alive until they finish. Throws
     /// ExecutorError for an empty handle or on any mismatch, keeping the old image.
     void importImage(const std::string& resource, SharedImage image);
+    /// Undoes importImage() for `resource` from the next rebuild on (the class comment lists
+    /// the calls that rebuild): the rebuilt plan makes and sets up an image of its own for it,
+    /// as before the first import, and drops its share of the imported one. Until then the
+    /// frames go on reading the imported image. An import whose image no longer fits (an
+    /// output-sized one, before a resize) fails every rebuild; forget it, rebuild, then import
+    /// one that fits. Throws ExecutorError when `resource` has no imported image.
+    void forgetImport(const std::string& resource);
     /// Values handed to pass implementations while recording (camera, exposure, ...). Owned
     /// by the renderer; the reference is valid, and the values kept, for its whole life,
     /// rebuilds included.

@@ -99,5 +99,53 @@ TEST_F(Resize, ASizeTheGraphCannotTakeKeepsTheOldPlanRunning) {
     r.waitIdle();
 }
 
+// An imported output-sized image stops fitting at a resize, which then fails and keeps the old
+// plan; forgetImport lets the resize make an image of the renderer's own, and an import of the
+// new size is read from the next frame on.
+TEST_F(Resize, AnImportThatNoLongerFitsIsForgottenForAResize) {
+    const auto compileAt = [](const char* json, uint32_t size, bool readback) {
+        CompileOptions o;
+        o.presentReplacement = ExternalState::TransferSrc;
+        if (readback) o.readbacks = {"swapchain"};
+        o.outputWidth = o.outputHeight = size;
+        o.memory = sharedDevice().memoryModel();
+        return CompiledGraph(parseGraph(json, "import.json", PassRegistry::withBuiltins()), o);
+    };
+    const char* producerGraph = R"({ "version": 1, "name": "producer", "resources": {
+        "shared": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "external": true, "final": "ShaderRead" } },
+      "passes": [ { "name": "paint", "type": "Generic", "uses": { "shared": "Write@ColorAttachment" },
+                    "params": { "color": [0, 1, 0, 1] } } ] })";
+    const char* consumerGraph = R"({ "version": 1, "name": "consumer", "resources": {
+        "shared": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "external": true, "initial": "ShaderRead" },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true, "final": "Present" } },
+      "passes": [ { "name": "show", "type": "Generic", "uses": { "shared": "Read@Fragment", "swapchain": "Write@ColorAttachment" } } ] })";
+    Renderer producer(sharedDevice(), compileAt(producerGraph, 32, false), genericOptions());
+    Renderer consumer(sharedDevice(), compileAt(consumerGraph, 32, true), genericOptions());
+    const auto importFromProducer = [&] {
+        producer.renderFrame();
+        producer.waitIdle();
+        consumer.importImage("shared", producer.shareImage("shared"));
+    };
+    importFromProducer();
+    consumer.renderFrame();
+    EXPECT_THROW(consumer.resize(48, 40), ExecutorError) << "a 32x32 import in a 48x40 plan";
+    EXPECT_EQ(consumer.plan().outputWidth(), 32u);
+    consumer.renderFrame();
+
+    consumer.forgetImport("shared");
+    consumer.resize(48, 40);
+    consumer.renderFrame();
+    const ImageData own = consumer.readback();
+    EXPECT_EQ(own.width, 48u);
+    producer.resize(48, 40);
+    importFromProducer();
+    consumer.renderFrame();
+    const ImageData imported = consumer.readback();
+    ASSERT_EQ(imported.width, 48u);
+    EXPECT_NE(imported.rgba, own.rgba) << "the frame reads the new import, not the renderer's own image";
+    EXPECT_THROW(consumer.forgetImport("swapchain"), ExecutorError);
+    consumer.waitIdle();
+}
+
 }  // namespace
 }  // namespace skygraph::test
