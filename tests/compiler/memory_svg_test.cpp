@@ -95,18 +95,18 @@ TEST(MemorySvg, UnaliasedLayoutsAndEveryShippedGraphParse) {
 
 TEST(MemorySvg, NamesThatLookLikeMarkupAreEscaped) {
     const char* graph = R"({
-      "version": 1, "name": "<&\"'>\u0001",
+      "version": 1, "name": "<&\"'>",
       "resources": {
         "a<b>&\"c'": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64] },
-        "tab\there": { "type": "buffer", "size": 4096, "alias": false },
+        "a spaced name": { "type": "buffer", "size": 4096, "alias": false },
         "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64],
                  "external": true, "final": "TransferSrc" }
       },
       "passes": [
         { "name": "</svg><script>", "type": "Generic",
-          "uses": { "a<b>&\"c'": "Write@ColorAttachment", "tab\there": "Write@Compute" } },
+          "uses": { "a<b>&\"c'": "Write@ColorAttachment", "a spaced name": "Write@Compute" } },
         { "name": "a pass whose name is far too long to stand under one column of the picture", "type": "Generic",
-          "uses": { "a<b>&\"c'": "Read@Fragment", "tab\there": "Read@Fragment", "out": "Write@ColorAttachment" } }
+          "uses": { "a<b>&\"c'": "Read@Fragment", "a spaced name": "Read@Fragment", "out": "Write@ColorAttachment" } }
       ]
     })";
     const Plan plan = compile(parseGraph(graph, "escaped.json", PassRegistry::withBuiltins()));
