@@ -22,6 +22,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <typeindex>
 #include <unordered_map>
 #include <vector>
@@ -33,16 +34,26 @@ class ShaderCompiler;
 /// Values the application hands to passes for one frame (a camera, an exposure, a scene...),
 /// stored by type. The renderer owns it; passes read it while renderFrame() records, so a value
 /// set between frames applies from the next one. Not synchronized: use the renderer's thread.
+/// The type is the key, so it must be a class of its own (`struct Exposure { float ev; }`): a
+/// bare `set(1.0)` would store a double that `get<float>()` never finds, and two passes
+/// wanting different floats would share one. A value is found by the exact type it was set
+/// as, not by a base class.
 class FrameData {
 public:
+    /// What a FrameData stores: a class type, the key it is found by.
+    template <typename T>
+    static constexpr bool kKeyable = std::is_class_v<T>;
+
     /// Stores (replaces) the value of type T; the FrameData owns the copy.
     template <typename T>
+        requires kKeyable<T>
     void set(T value) {
         values_[std::type_index(typeid(T))] = std::move(value);
     }
     /// The value of type T, or nullptr when none was set. The pointer is valid until a value
     /// of type T is set again or the FrameData is destroyed.
     template <typename T>
+        requires kKeyable<T>
     [[nodiscard]] const T* get() const {
         auto it = values_.find(std::type_index(typeid(T)));
         return it == values_.end() ? nullptr : std::any_cast<T>(&it->second);

@@ -260,5 +260,28 @@ TEST_F(ExecutorTest, APassTypeWithoutRecordingCodeIsWarnedOfOnce) {
         << warnings[0];
 }
 
+// FrameData's key is the value's type: a bare number, pointer or string literal is refused at
+// compile time, since `set(1.0)` would never be found by `get<float>()`.
+struct Exposure {
+    float ev = 0;
+};
+template <typename T>
+concept Settable = requires(FrameData& data, T value) { data.set(value); };
+template <typename T>
+concept Gettable = requires(const FrameData& data) { data.template get<T>(); };
+static_assert(Settable<Exposure> && Gettable<Exposure>);
+static_assert(!Settable<double> && !Settable<const char*> && !Settable<int*>);
+static_assert(!Gettable<float>);
+
+TEST(FrameDataTest, FindsAValueByTheTypeItWasSetAs) {
+    FrameData data;
+    EXPECT_EQ(data.get<Exposure>(), nullptr);
+    data.set(Exposure{2.5f});
+    ASSERT_NE(data.get<Exposure>(), nullptr);
+    EXPECT_EQ(data.get<Exposure>()->ev, 2.5f);
+    data.set(Exposure{-1.0f});
+    EXPECT_EQ(data.get<Exposure>()->ev, -1.0f);
+}
+
 }  // namespace
 }  // namespace skygraph::test
