@@ -159,7 +159,7 @@ public:
     struct Impl;
 
 private:
-    friend struct DeviceAccess;  // the executor's own sources (framework/executor)
+    friend struct DeviceAccess;  // the implementation's own access; not part of the API
     explicit Device(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };

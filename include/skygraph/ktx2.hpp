@@ -1,4 +1,4 @@
-// KTX 2.0 output (Khronos Texture Container, https://registry.khronos.org/KTX/specs/2.0/):
+// KTX 2.0 output (Khronos Texture Container):
 // float textures with mip levels, 2D or cube, uncompressed, no supercompression: the subset
 // the environment pipeline writes, with no KTX library to link. The files are standard
 // KTX 2.0.

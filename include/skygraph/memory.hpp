@@ -71,7 +71,7 @@ inline constexpr UsageFlags kAlwaysUsable{VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_I
 /// How transient resources are placed in their heaps (docs/memory.md, "Placement").
 enum class MemoryStrategy : uint8_t {
     /// Largest first, each into the tightest gap left by the resources already placed that
-    /// live at the same time (as AMD's Render Pipeline Shaders do). The default.
+    /// live at the same time. The default.
     BestFitBySize,
     /// In order of first use, each into the tightest free block of memory that no live
     /// resource holds (an online allocator: what a frame-by-frame pool achieves).
@@ -117,7 +117,7 @@ struct MemoryPlacement {
 };
 
 namespace detail {
-struct MemoryLayoutBuilder;  // the compiler's way of writing a layout
+struct MemoryLayoutBuilder;  // the implementation's own access; not part of the API
 }
 
 /// The plan's transient memory: heaps and placements, and the figures to judge them by.

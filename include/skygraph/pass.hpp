@@ -203,8 +203,8 @@ class PassLibrary {
 public:
     /// Generic and the built-in passes (docs/graph-format.md, "Built-in pass types"), each
     /// with its recording code; Generic's performs exactly the declared accesses. A new library
-    /// the caller owns. Defined by the built-in passes' library (skygraph_passes, passes/): link
-    /// it to call this.
+    /// the caller owns. Defined by the built-in passes' library (skygraph::passes): link it to
+    /// call this.
     [[nodiscard]] static PassLibrary withBuiltins();
     /// The built-in Generic alone: a renderer given it records every pass type, built-in ones
     /// included, as Generic, performing exactly the declared accesses (what validating a

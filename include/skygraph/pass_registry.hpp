@@ -66,7 +66,7 @@ public:
 
     /// Generic plus the built-in passes (forward, skybox, tonemapping, environment pipeline),
     /// in a new registry the caller owns. Defined by the pass types' library
-    /// (skygraph_pass_types, passes/): link it to call this.
+    /// (skygraph::pass_types): link it to call this.
     [[nodiscard]] static PassRegistry withBuiltins();
 
     /// Registers a type (the registry keeps `info`). Throws std::invalid_argument, registering
@@ -85,7 +85,7 @@ private:
     std::map<std::string, PassTypeInfo, std::less<>> types_;
 };
 
-/// Adds the built-in pass types; `withBuiltins()` calls it. Defined in skygraph_pass_types.
+/// Adds the built-in pass types; `withBuiltins()` calls it. Defined in skygraph::pass_types.
 /// Throws std::invalid_argument when `registry` already has one of them; those added before
 /// it stay.
 void registerBuiltinPassTypes(PassRegistry& registry);

@@ -123,7 +123,7 @@ public:
     struct Impl;
 
 private:
-    friend struct SwapchainAccess;  // the executor's own sources (framework/executor)
+    friend struct SwapchainAccess;  // the implementation's own access; not part of the API
     explicit Swapchain(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
