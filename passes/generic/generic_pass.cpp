@@ -189,9 +189,12 @@ GraphicsPipeline graphicsPipeline(const PipelineContext& ctx, const GenericProgr
         const BoundResource& r = ctx.resources[c];
         VkPipelineColorBlendAttachmentState b{};
         b.colorWriteMask = 0xf;
-        const bool integer = !detail::scalarPrefix(r.format).empty();
-        if (r.usage->usage.access == Access::ReadWrite && !integer) {
-            // ReadWrite: additive blending reads the attachment.
+        // ReadWrite: additive blending reads the attachment, where the format can blend
+        // (never integer ones; SNORM ones on some devices): others are only written.
+        VkFormatProperties properties{};
+        vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, r.format, &properties);
+        const bool blends = (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) != 0;
+        if (r.usage->usage.access == Access::ReadWrite && blends) {
             b.blendEnable = VK_TRUE;
             b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
             b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;

@@ -276,6 +276,21 @@ TEST_F(ExecutorTest, ARendererKeepsItsSpirvWhereItsOptionsSay) {
     fs::remove_all(root);
 }
 
+// A ReadWrite colour attachment of a format the device cannot blend (SNORM on lavapipe, or an
+// integer one) is written without blending: validation stays silent, where blending it is an error.
+TEST_F(ExecutorTest, AReadWriteAttachmentTheDeviceCannotBlendIsWrittenWithoutBlending) {
+    for (const char* format : {"R8G8B8A8_SNORM", "R32_UINT", "R32G32B32A32_UINT"}) {
+        SCOPED_TRACE(format);
+        const auto c = compileText(graphWithSwapchain(
+            "unblendable", std::string(R"("t": { "type": "image2d", "format": ")") + format +
+                               R"(", "extent": "output", "clear": { "color": [0, 0, 0, 0] } })",
+            R"({ "name": "accumulate", "type": "Generic", "uses": { "t": "ReadWrite@ColorAttachment" } },
+               { "name": "show", "type": "Generic", "uses": { "t": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+        (void)render(c);
+        EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+    }
+}
+
 TEST_F(ExecutorTest, BadParamsAreClearErrors) {
     const auto c = compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
