@@ -44,6 +44,7 @@ std::string scalarPrefix(VkFormat format) {
         case VK_FORMAT_R16_UINT: case VK_FORMAT_R16G16_UINT: case VK_FORMAT_R16G16B16A16_UINT:
         case VK_FORMAT_R32_UINT: case VK_FORMAT_R32G32_UINT: case VK_FORMAT_R32G32B32A32_UINT:
         case VK_FORMAT_A2B10G10R10_UINT_PACK32:
+        case VK_FORMAT_S8_UINT:  // its views see the stencil aspect alone: unsigned integers
             return "u";
         case VK_FORMAT_R8_SINT: case VK_FORMAT_R8G8_SINT: case VK_FORMAT_R8G8B8A8_SINT:
         case VK_FORMAT_R16_SINT: case VK_FORMAT_R16G16_SINT: case VK_FORMAT_R16G16B16A16_SINT:

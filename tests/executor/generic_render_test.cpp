@@ -291,6 +291,18 @@ TEST_F(ExecutorTest, AReadWriteAttachmentTheDeviceCannotBlendIsWrittenWithoutBle
     }
 }
 
+// A stencil-only image sampled by Generic is read as the unsigned integers its view holds
+// (a float sampler on it is a validation error at every draw), in the fragment and compute stages.
+TEST_F(ExecutorTest, AStencilOnlyImageIsSampledAsUnsignedIntegers) {
+    const auto c = compileText(graphWithSwapchain(
+        "stencil", R"("st": { "type": "image2d", "format": "S8_UINT", "extent": "output", "clear": { "stencil": 0 } })",
+        R"({ "name": "mark", "type": "Generic", "uses": { "st": "Write@DepthAttachment" } },
+           { "name": "count", "type": "Generic", "uses": { "st": "Read@Compute" }, "never_cull": true },
+           { "name": "show", "type": "Generic", "uses": { "st": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    (void)render(c);
+    EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+}
+
 TEST_F(ExecutorTest, BadParamsAreClearErrors) {
     const auto c = compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
