@@ -47,7 +47,13 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
                          const PassRegistry* registry)
     : renderer_(&renderer), graphFile_(std::move(graphFile)),
       shaderDir_(shaderDir.empty() ? renderer.shaderDir() : std::move(shaderDir)),
-      registry_(registry ? registry : renderer.passes() ? &renderer.passes()->registry() : nullptr) {
+      registry_(registry ? registry : &ownRegistry_) {
+    if (!registry) {
+        ownRegistry_ = PassRegistry::withBuiltins();
+        if (const PassLibrary* library = renderer.passes())
+            for (const std::string& name : library->registry().names())
+                if (!ownRegistry_.find(name)) ownRegistry_.add(*library->registry().find(name));
+    }
     graphHash_ = hashFile(graphFile_);
     shaderHashes_ = hashDir(shaderDir_);
 }
@@ -82,8 +88,7 @@ HotReloader::Result HotReloader::poll() {
     const bool graph = graphPending_ && !graphGone;
     try {
         if (graph) {
-            GraphDesc desc = registry_ ? loadGraphFile(graphFile_, *registry_)
-                                       : loadGraphFile(graphFile_, PassRegistry::withBuiltins());
+            GraphDesc desc = loadGraphFile(graphFile_, *registry_);
             // One rebuild for both: the new graph and the edited shaders run together or not at all.
             renderer_->setGraph(renderer_->compiled().withGraph(std::move(desc)),
                                shadersPending_ ? Renderer::ShaderSources::Reread : Renderer::ShaderSources::Cached);

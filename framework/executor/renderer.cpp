@@ -448,7 +448,7 @@ void Renderer::stageUpload(const std::string& resource, std::shared_ptr<const St
 void Renderer::reloadShaders() { setGraph(impl_->state->compiled, ShaderSources::Reread); }
 bool Renderer::shadersChangedOnDisk() const { return impl_->shaders->keptFilesChanged(); }
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
-const std::filesystem::path& Renderer::shaderDir() const noexcept { return impl_->shaders->includeDir(); }
+std::filesystem::path Renderer::shaderDir() const { return impl_->shaders->includeDir(); }
 const PassLibrary* Renderer::passes() const noexcept { return impl_->options.passes; }
 
 void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {

@@ -10,8 +10,9 @@ namespace skygraph::files {
 namespace {
 
 // A signal handler may run on any thread at any point, so the names live in fixed storage and
-// a slot is read only while its state says it is whole.
-enum SlotState : int { kFree, kFilling, kNamed };
+// a slot is read only while its state says it is whole. The handler claims a slot before
+// reading it, and a claimed slot is never freed: the process is ending.
+enum SlotState : int { kFree, kFilling, kNamed, kRemoving };
 
 struct Slot {
     std::atomic<int> state{kFree};
@@ -38,12 +39,15 @@ PendingTemporary::PendingTemporary(const std::filesystem::path& path) noexcept {
 }
 
 PendingTemporary::~PendingTemporary() {
-    if (slot_ >= 0) slots[slot_].state.store(kFree);
+    int named = kNamed;
+    if (slot_ >= 0) slots[slot_].state.compare_exchange_strong(named, kFree);
 }
 
 void removePendingTemporaries() noexcept {
-    for (Slot& slot : slots)
-        if (slot.state.load() == kNamed) ::unlink(slot.path);
+    for (Slot& slot : slots) {
+        int named = kNamed;
+        if (slot.state.compare_exchange_strong(named, kRemoving)) ::unlink(slot.path);
+    }
 }
 
 }  // namespace skygraph::files

@@ -63,7 +63,7 @@ fs::path systemTemporaryFolder(const fs::path& path) {
     const fs::path folder = named && *named ? fs::path(named) : fs::path("/tmp");
     std::error_code ec;
     if (!fs::is_directory(folder, ec))
-        throw fs::filesystem_error("cannot write", path, folder, std::make_error_code(std::errc::no_such_file_or_directory));
+        throw MissingFolder(path, folder, named && *named);
     return folder;
 }
 
@@ -93,8 +93,7 @@ OutputTarget writableOutputTarget(const fs::path& path) {
     const OutputTarget target = outputTarget(path);
     const fs::path folder = target.path.parent_path();
     std::error_code ec;
-    if (!target.inPlace && !folder.empty() && !fs::is_directory(folder, ec))
-        throw fs::filesystem_error("cannot write", path, folder, std::make_error_code(std::errc::no_such_file_or_directory));
+    if (!target.inPlace && !folder.empty() && !fs::is_directory(folder, ec)) throw MissingFolder(path, folder, false);
     return target;
 }
 
@@ -106,14 +105,16 @@ std::optional<fs::path> sameFileAmong(const fs::path& output, std::span<const fs
     return std::nullopt;
 }
 
+MissingFolder::MissingFolder(const fs::path& output, const fs::path& folder, bool temporaryFolder)
+    : fs::filesystem_error("cannot write", output, folder, std::make_error_code(std::errc::no_such_file_or_directory)),
+      temporaryFolder_(temporaryFolder) {}
+
 std::string whyNotWritten(const fs::filesystem_error& error) {
+    if (const auto* missing = dynamic_cast<const MissingFolder*>(&error))
+        return "the folder '" + missing->path2().string() + "' does not exist" +
+               (missing->temporaryFolder() ? " (TMPDIR names it: a stream is written through a temporary there)" : "");
     if (error.code() == std::errc::is_a_directory) return "it is a folder";
-    if (error.path2().empty() || error.code() != std::errc::no_such_file_or_directory) return error.code().message();
-    const char* temporaryFolder = std::getenv("TMPDIR");
-    return "the folder '" + error.path2().string() + "' does not exist" +
-           (temporaryFolder && error.path2() == temporaryFolder
-                ? " (TMPDIR names it: a stream is written through a temporary there)"
-                : "");
+    return error.code().message();
 }
 
 fs::path temporaryBeside(const fs::path& target) {
@@ -151,7 +152,9 @@ void renameAllOrNone(std::span<const Replacement> replacements) {
     const size_t n = replacements.size();
     std::vector<fs::path> kept(n);  // a hard link to the file the target was, if it was one
     std::vector<bool> existed(n);
-    std::vector<std::unique_ptr<PendingTemporary>> pending;  // the kept links
+    // The kept links, until their target is renamed: then a kept link may be the old file's
+    // only name, which a rollback needs.
+    std::vector<std::unique_ptr<PendingTemporary>> pending(n);
     std::error_code ignored;
     const auto removeKept = [&] {
         for (const fs::path& keep : kept)
@@ -166,11 +169,14 @@ void renameAllOrNone(std::span<const Replacement> replacements) {
             existed[i] = fs::exists(status);
             if (!existed[i]) continue;
             const fs::path keep = temporaryBeside(replacements[i].target);
-            pending.push_back(std::make_unique<PendingTemporary>(keep));
+            pending[i] = std::make_unique<PendingTemporary>(keep);
             fs::create_hard_link(replacements[i].target, keep, ec);
             if (!ec) kept[i] = keep;
         }
-        for (; renamed < n; ++renamed) fs::rename(replacements[renamed].temporary, replacements[renamed].target);
+        for (; renamed < n; ++renamed) {
+            fs::rename(replacements[renamed].temporary, replacements[renamed].target);
+            pending[renamed].reset();
+        }
     } catch (...) {
         for (size_t i = renamed; i < n; ++i) fs::remove(replacements[i].temporary, ignored);
         for (size_t i = 0; i < renamed; ++i) {

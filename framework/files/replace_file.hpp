@@ -22,13 +22,25 @@ struct OutputTarget {
     bool inPlace = false;
 };
 
+/// A folder an output needs does not exist: the output's own, or the system's temporary folder
+/// that a stream's temporary is written in. path1() is the output, path2() the folder.
+class MissingFolder : public std::filesystem::filesystem_error {
+public:
+    MissingFolder(const std::filesystem::path& output, const std::filesystem::path& folder, bool temporaryFolder);
+    /// Whether the folder is the system's temporary folder ($TMPDIR).
+    [[nodiscard]] bool temporaryFolder() const noexcept { return temporaryFolder_; }
+
+private:
+    bool temporaryFolder_;
+};
+
 /// Resolves `path` as described above. Throws std::filesystem::filesystem_error for a folder,
 /// a loop of links or a link that cannot be read.
 [[nodiscard]] OutputTarget outputTarget(const std::filesystem::path& path);
 
 /// outputTarget(), checked before any work is done for it: not a folder and, unless written
 /// in place, in a folder that exists. Throws std::filesystem::filesystem_error naming `path`
-/// (EISDIR for a folder; ENOENT, with the missing folder second, for a missing folder).
+/// (EISDIR for a folder), MissingFolder for a missing folder.
 [[nodiscard]] OutputTarget writableOutputTarget(const std::filesystem::path& path);
 
 /// The first of `inputs` that is the same file as `output` (an existing file, through links
@@ -37,8 +49,9 @@ struct OutputTarget {
                                                                  std::span<const std::filesystem::path> inputs);
 
 /// Why a write that threw `error` (from the functions here) failed, in words for a message
-/// that names the output already: "it is a folder", "the folder 'F' does not exist" (the
-/// system's temporary folder says that TMPDIR names it), or the system's reason.
+/// that names the output already: "it is a folder", "the folder 'F' does not exist" (for
+/// MissingFolder; the system's temporary folder says that TMPDIR names it), or the system's
+/// reason.
 [[nodiscard]] std::string whyNotWritten(const std::filesystem::filesystem_error& error);
 
 /// A name for a temporary beside `target`: hidden, unique to this process and call, and ending
@@ -49,8 +62,8 @@ struct OutputTarget {
 /// says when there is no such place), then renames p over that
 /// target. In place, p is in the system's temporary folder and, once written, is appended to
 /// the target, which is opened without truncating it (a `>>` log is appended to) and gets
-/// nothing if write fails; a temporary folder that does not exist throws before write is
-/// called, with the folder as path2. If write throws or the rename or copy fails, removes the temporary
+/// nothing if write fails; a temporary folder that does not exist throws MissingFolder before
+/// write is called. If write throws or the rename or copy fails, removes the temporary
 /// and leaves a replaced target as it was: write's exception is rethrown, a failed rename or
 /// copy throws std::filesystem::filesystem_error.
 void replaceFile(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);

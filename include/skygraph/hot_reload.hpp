@@ -28,9 +28,9 @@ public:
     /// `graphFile` empty: the shaders alone are watched (an application that reloads its
     /// graph itself).
     /// `shaderDir` empty: the renderer's (Renderer::shaderDir()). `registry` (borrowed) parses
-    /// the reloaded graph; null: the registry of the renderer's pass library
-    /// (Renderer::passes()), or PassRegistry::withBuiltins() when it has none. Both are fixed
-    /// here: follow() keeps them. A reloaded graph compiles with the options the renderer's
+    /// the reloaded graph; null: the built-in types (PassRegistry::withBuiltins()) and those of
+    /// the renderer's pass library (Renderer::passes()), copied here. Both are fixed here:
+    /// follow() keeps them. A reloaded graph compiles with the options the renderer's
     /// current graph was compiled with (Renderer::compiled()).
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
                 const PassRegistry* registry = nullptr);
@@ -64,6 +64,7 @@ private:
     Renderer* renderer_;
     std::filesystem::path graphFile_;
     std::filesystem::path shaderDir_;
+    PassRegistry ownRegistry_;  // when none is given
     const PassRegistry* registry_ = nullptr;
     size_t graphHash_ = 0;
     std::map<std::filesystem::path, size_t> shaderHashes_;  // per file under shaderDir_

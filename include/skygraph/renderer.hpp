@@ -32,10 +32,12 @@ struct RendererOptions {
     /// Directory with the GLSL includes (shaders/); empty: ShaderCompiler::defaultIncludeDir().
     std::filesystem::path shaderDir;
     /// Where compiled SPIR-V is kept between runs: unset, ShaderCompiler::defaultCacheDir();
-    /// an empty path, nowhere (every run compiles its shaders).
+    /// an empty path, nowhere (every run compiles its shaders). With shadersFrom, that
+    /// renderer's is kept instead.
     std::optional<std::filesystem::path> shaderCacheDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
-    /// runs with the library's "Generic" (a warning says so, once per type). Null: no
+    /// runs with the library's "Generic" (a warning says so, once per type, unless the library
+    /// has Generic alone, as PassLibrary::genericOnly() does: it asks for exactly that). Null: no
     /// recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
     /// Borrowed, and must outlive the renderer: the renderer starts out bound to this
@@ -307,8 +309,8 @@ public:
     /// Frames submitted since construction, rebuilds included.
     [[nodiscard]] uint64_t frameCount() const noexcept;
     /// The directory its shaders are read from: RendererOptions::shaderDir, the default an
-    /// empty one stands for, or shadersFrom's. Valid while the renderer lives.
-    [[nodiscard]] const std::filesystem::path& shaderDir() const noexcept;
+    /// empty one stands for, or shadersFrom's. A copy.
+    [[nodiscard]] std::filesystem::path shaderDir() const;
     /// RendererOptions::passes: borrowed, null when the renderer has no recording code.
     [[nodiscard]] const PassLibrary* passes() const noexcept;
 

@@ -9,6 +9,7 @@
 
 #include <sys/stat.h>
 
+#include <csignal>
 #include <regex>
 
 namespace {
@@ -336,19 +337,36 @@ TEST_F(Cli, AStoppedRunLeavesNoTemporaries) {
                 if (e.path().filename().string()[0] == '.') names.push_back(e.path().string());
         return names;
     };
-    for (const int signal : {SIGTERM, SIGINT}) {
-        SCOPED_TRACE(signal);
+    const auto startWaitingOnTheFifo = [&] {
         const pid_t pid = spawn({"cubemap", sky.string(), "-o", (dir_ / "work" / "cube.ktx2").string(), "--size", "32",
                                  "--products", "irradiance", "--cross", fifo.string()});
         // cube.ktx2 and cube.irradiance.ktx2 beside their targets, and the cross's in the system's folder.
         EXPECT_TRUE(waitFor([&] { return hidden().size() == 3; }, 120)) << ::testing::PrintToString(hidden());
-        ::kill(pid, signal);
+        return pid;
+    };
+    const auto expectEndedBy = [&](pid_t pid, int signal) {
         int raw = 0;
         ASSERT_EQ(::waitpid(pid, &raw, 0), pid);
         EXPECT_TRUE(WIFSIGNALED(raw) && WTERMSIG(raw) == signal) << raw << " " << slurp(dir_ / "stderr");
         EXPECT_EQ(hidden(), std::vector<std::string>{});
         EXPECT_EQ(workFiles(), std::vector<std::string>{"cross.hdr"});
+    };
+    for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
+        SCOPED_TRACE(signal);
+        const pid_t pid = startWaitingOnTheFifo();
+        ::kill(pid, signal);
+        expectEndedBy(pid, signal);
     }
+    // A signal ignored when the run started (nohup's SIGHUP) stays ignored.
+    const auto previous = std::signal(SIGHUP, SIG_IGN);
+    const pid_t pid = startWaitingOnTheFifo();
+    std::signal(SIGHUP, previous);
+    ::kill(pid, SIGHUP);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    int raw = 0;
+    EXPECT_EQ(::waitpid(pid, &raw, WNOHANG), 0) << "the run ended on an ignored SIGHUP";
+    ::kill(pid, SIGTERM);
+    expectEndedBy(pid, SIGTERM);
     ::unsetenv("TMPDIR");
 }
 

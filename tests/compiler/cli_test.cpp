@@ -245,6 +245,15 @@ TEST_F(Cli, WritesTheSystemRefusesNameTheOutputAndLeaveNothing) {
     EXPECT_EQ(cut.status, 1) << cut.err;
     EXPECT_NE(cut.err.find("'" + png.string() + "': cannot write: File too large"), std::string::npos) << cut.err;
     EXPECT_TRUE(workFiles().empty());
+    // cubemap writes each product to a temporary first: the error still names the product.
+    ASSERT_EQ(run({"-q", "sky-sequence", (dir_ / "sky%d.exr").string(), "--frames", "1", "--width", "32"}).status, 0);
+    const fs::path cube = dir_ / "work" / "cube.ktx2";
+    const CliRun cutCube = run({"-q", "cubemap", (dir_ / "sky0.exr").string(), "-o", cube.string(), "--size", "32"},
+                               "trap '' XFSZ; ulimit -f 8; ");
+    EXPECT_EQ(cutCube.status, 1) << cutCube.err;
+    EXPECT_NE(cutCube.err.find("'" + cube.string() + "': cannot write: File too large"), std::string::npos)
+        << cutCube.err;
+    EXPECT_TRUE(workFiles().empty());
 
     const std::string missing = (dir_ / "no such folder").string();
     const CliRun stream = run({"compile", "graphs/raster.json", "-o", "/dev/null"}, "export TMPDIR=" + quote(missing) + "; ");

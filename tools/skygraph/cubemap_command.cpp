@@ -102,7 +102,14 @@ void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std
             if (targets[i].inPlace) continue;
             temporaries[i] = files::temporaryBeside(targets[i].path);
             pending.push_back(std::make_unique<files::PendingTemporary>(temporaries[i]));
-            writes[i](temporaries[i]);
+            try {
+                writes[i](temporaries[i]);
+            } catch (const ImageError& e) {
+                // The writer named the file it wrote, the temporary: the user knows the output.
+                const std::string prefix = "'" + temporaries[i].string() + "': ";
+                const std::string what = e.what();
+                throw ImageError(outputs[i], what.starts_with(prefix) ? what.substr(prefix.size()) : what);
+            }
         }
         for (size_t i = 0; i < outputs.size(); ++i)
             if (targets[i].inPlace) writes[i](targets[i].path);

@@ -15,6 +15,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <signal.h>
+
 #include <csignal>
 #include <iostream>
 #include <string>
@@ -35,7 +37,15 @@ extern "C" void removeTemporariesAndEnd(int signal) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) std::signal(signal, removeTemporariesAndEnd);
+    // A signal the parent had ignored (nohup's SIGHUP, a background job's SIGINT) stays ignored.
+    for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+        struct sigaction previous {};
+        if (::sigaction(signal, nullptr, &previous) == 0 && previous.sa_handler == SIG_IGN) continue;
+        struct sigaction ending {};
+        ending.sa_handler = removeTemporariesAndEnd;
+        sigemptyset(&ending.sa_mask);
+        ::sigaction(signal, &ending, nullptr);
+    }
     CLI::App app{"skygraph: a data-driven Vulkan render graph"};
     app.require_subcommand(1);
     app.fallthrough();  // -v, -q and --progress also after the subcommand's name
