@@ -10,8 +10,11 @@
 
 #include <cstdlib>
 #include <limits>
+#include <string_view>
 
 #include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -275,6 +278,47 @@ TEST_F(Cli, StandardOutputThatCannotBeWrittenExitsOne) {
         const std::string text = slurp(dir_ / "err.txt");
         EXPECT_NE(text.find("error: cannot write to standard output"), std::string::npos) << text;
     }
+}
+
+// An output stream whose reader is gone ends the run with SIGPIPE, as it would any program,
+// and the temporary the plan was written to first (in TMPDIR) goes with it.
+TEST_F(Cli, AStreamWhoseReaderIsGoneEndsTheRunWithoutItsTemporary) {
+    const fs::path temporaries = dir_ / "tmp";
+    fs::create_directories(temporaries);
+    int ends[2];
+    ASSERT_EQ(::pipe(ends), 0);
+    ::close(ends[0]);  // no reader
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, ends[1], 1);
+    posix_spawn_file_actions_addclose(&actions, ends[1]);
+    posix_spawn_file_actions_addchdir_np(&actions, kSource.c_str());
+    posix_spawnattr_t attributes;  // SIGPIPE as a shell leaves it, whatever the test runner does
+    posix_spawnattr_init(&attributes);
+    sigset_t pipeSignal;
+    sigemptyset(&pipeSignal);
+    sigaddset(&pipeSignal, SIGPIPE);
+    posix_spawnattr_setsigdefault(&attributes, &pipeSignal);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGDEF);
+    std::string tmpdir = "TMPDIR=" + temporaries.string();
+    std::vector<char*> environment;
+    for (char** e = environ; *e; ++e)
+        if (std::string_view(*e).substr(0, 7) != "TMPDIR=") environment.push_back(*e);
+    environment.push_back(tmpdir.data());
+    environment.push_back(nullptr);
+    std::vector<std::string> args{kCli.string(), "compile", "graphs/raster.json", "-o", "/dev/stdout"};
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(posix_spawn(&pid, kCli.c_str(), &actions, &attributes, argv.data(), environment.data()), 0);
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
+    ::close(ends[1]);
+    int raw = 0;
+    ASSERT_EQ(::waitpid(pid, &raw, 0), pid);
+    EXPECT_TRUE(WIFSIGNALED(raw) && WTERMSIG(raw) == SIGPIPE) << raw;
+    EXPECT_TRUE(fs::is_empty(temporaries));
 }
 
 TEST_F(Cli, UnknownFeatureExitsOne) {
