@@ -35,8 +35,7 @@ void writePng(const std::filesystem::path& path, const ImageData& image) {
         if (!stbi_write_png_to_func(image_detail::appendToString, &encoded, static_cast<int>(image.width),
                                     static_cast<int>(image.height), 4, bytes.data(), static_cast<int>(image.width * 4)))
             throw ImageError(path, "cannot encode the image");
-        image_detail::writeAtomically(path,
-                                      [&](const std::string& temp) { image_detail::writeWhole(path, temp, encoded); });
+        image_detail::writeBytes(path, encoded);
     } catch (const ImageError& e) {
         throw ExecutorError(e.what());
     }

@@ -5,10 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <fstream>
-#include <system_error>
 
 namespace skygraph {
 namespace {
@@ -85,16 +82,12 @@ void requireWritable(const std::filesystem::path& path, const HdrImage& image) {
                                    std::to_string(size_t(image.width) * image.height * 4));
 }
 
-void writeWhole(const std::filesystem::path& path, const std::string& temp, std::string_view bytes) {
-    const auto fail = [&] {
-        throw ImageError(path, "cannot write: " + std::error_code(errno ? errno : EIO, std::system_category()).message());
-    };
-    errno = 0;
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) fail();
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) fail();
+void writeBytes(const std::filesystem::path& path, std::string_view bytes) {
+    try {
+        files::replaceFileContents(path, bytes);
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw ImageError(path, "cannot write: " + files::whyNotWritten(e));
+    }
 }
 
 void appendToString(void* context, void* data, int size) {

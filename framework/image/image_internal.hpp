@@ -25,13 +25,13 @@ void requireWritable(const std::filesystem::path& path, const HdrImage& image);
 
 /// files::replaceFile(path, write), with every failure an ImageError naming `path`.
 /// Writers that cannot report a failed write themselves (stb's) encode to memory and write
-/// the bytes with writeWhole().
+/// the bytes with writeBytes().
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::string& tempPath)>& write);
 
-/// Writes `bytes` to `temp`, the temporary of `path`: a file that cannot be opened or written
-/// whole (a full disk, a file size limit) throws ImageError naming `path` and the reason.
-void writeWhole(const std::filesystem::path& path, const std::string& temp, std::string_view bytes);
+/// files::replaceFileContents(path, bytes): a file that cannot be written whole (a full disk,
+/// a file size limit) throws ImageError naming `path` and the reason.
+void writeBytes(const std::filesystem::path& path, std::string_view bytes);
 
 /// An stb_image_write callback that appends to the std::string its context points at.
 void appendToString(void* context, void* data, int size);

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <fstream>
 #include <numeric>
 #include <string>
 
@@ -158,10 +157,7 @@ void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
         w.putU64At(levelIndexAt + m * 24 + 16, length);
     }
 
-    image_detail::writeAtomically(path, [&](const std::string& temp) {
-        image_detail::writeWhole(path, temp,
-                                 {reinterpret_cast<const char*>(w.bytes.data()), w.bytes.size()});
-    });
+    image_detail::writeBytes(path, {reinterpret_cast<const char*>(w.bytes.data()), w.bytes.size()});
 }
 
 }  // namespace skygraph

@@ -121,7 +121,7 @@ void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image) {
     std::string encoded;
     if (!stbi_write_hdr_to_func(image_detail::appendToString, &encoded, int(image.width), int(image.height), 3, rgb.data()))
         throw ImageError(path, "cannot encode the image");
-    image_detail::writeAtomically(path, [&](const std::string& temp) { image_detail::writeWhole(path, temp, encoded); });
+    image_detail::writeBytes(path, encoded);
 }
 
 }  // namespace skygraph
