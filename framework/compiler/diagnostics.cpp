@@ -5,7 +5,7 @@
 namespace skygraph {
 
 std::string Diagnostic::format() const {
-    std::string out = file.empty() ? "<memory>" : file;
+    std::string out = file.empty() ? "<memory>" : printableName(file);
     if (line > 0) out += ":" + std::to_string(line) + ":" + std::to_string(column);
     out += ": ";
     if (!jsonPath.empty()) out += printableName(jsonPath) + ": ";

@@ -1,6 +1,7 @@
 // Dispatch by extension, the error type, and the checks shared by both formats.
 #include "image_internal.hpp"
 
+#include "printable_name.hpp"
 #include "replace_file.hpp"
 
 #include <algorithm>
@@ -20,7 +21,7 @@ std::string lowerExtension(const std::filesystem::path& path) {
 }  // namespace
 
 ImageError::ImageError(const std::filesystem::path& file, const std::string& reason)
-    : std::runtime_error("'" + file.string() + "': " + reason), file_(file) {}
+    : std::runtime_error(printableName("'" + file.string() + "': " + reason)), file_(file) {}
 
 HdrImage loadHdrImage(const std::filesystem::path& path) {
     const std::string ext = lowerExtension(path);

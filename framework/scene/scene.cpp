@@ -1,6 +1,7 @@
 // What a loaded scene means for the frame: graph features, the tonemapper, names.
 #include <skygraph/scene.hpp>
 
+#include "printable_name.hpp"
 #include "shipped_names.hpp"
 
 #include <cmath>
@@ -36,7 +37,7 @@ std::vector<std::string> explainSceneFeatures(const Scene& scene) {
         lines.push_back(skybox + " = on: environment is the procedural sky");
     else
         lines.push_back(skybox + " = on, " + environmentFile + " = on: environment is '" +
-                        scene.environment->file.string() + "', sampled " +
+                        printableName(scene.environment->file.string()) + "', sampled " +
                         (scene.environment->sampling == EnvironmentSampling::Cubemap
                              ? "through a cubemap (" + sampleCubemap + " = on)"
                              : "directly as equirect (" + sampleCubemap + " = off)"));
@@ -44,7 +45,7 @@ std::vector<std::string> explainSceneFeatures(const Scene& scene) {
         lines.push_back(std::string(kEnvironmentSequenceFeature) + " = on: the environment is a sequence of " +
                         std::to_string(scene.environment->sequence->count) + " frames at " +
                         std::to_string(scene.environment->sequence->fps) + " fps, '" +
-                        scene.environment->sequence->pattern + "'");
+                        printableName(scene.environment->sequence->pattern) + "'");
     return lines;
 }
 

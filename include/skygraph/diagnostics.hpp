@@ -18,7 +18,8 @@ struct Diagnostic {
     int line = 0;          ///< 1-based, for malformed JSON only; 0 when unknown.
     int column = 0;
 
-    /// "file:line:col: passes[2].uses.x: pass 'p', resource 'x': message"
+    /// "file:line:col: passes[2].uses.x: pass 'p', resource 'x': message", one line: control
+    /// characters in any part (a glTF file's name, a key) show escaped as JSON writes them.
     [[nodiscard]] std::string format() const;
 };
 

@@ -33,7 +33,9 @@ struct HdrImage {
     }
 };
 
-/// Any failure to read or write an image. what() names the file and the reason.
+/// Any failure to read or write an image. what() names the file and the reason on one line,
+/// with control characters shown escaped as JSON writes them ("\u000a"); file() is the path as
+/// given.
 class ImageError : public std::runtime_error {
 public:
     ImageError(const std::filesystem::path& file, const std::string& reason);

@@ -160,7 +160,8 @@ public:
 [[nodiscard]] FeatureValues sceneFeatures(const Scene& scene);
 
 /// One line per feature of sceneFeatures() saying why it is on or off, e.g.
-/// "geometry = off: the scene has no objects". For `skygraph render` to print.
+/// "geometry = off: the scene has no objects". For `skygraph render` to print: the files it
+/// names show control characters escaped, as JSON writes them.
 [[nodiscard]] std::vector<std::string> explainSceneFeatures(const Scene& scene);
 
 /// The operator the tonemapping pass must use: Passthrough whenever a debug view is on (the

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 #include <string_view>
@@ -765,6 +766,47 @@ TEST_F(Cli, OutputsThatNameAnInputAreRefused) {
         const CliRun r = run(args);
         EXPECT_EQ(r.status, 2) << args[0] << " with an empty name: " << r.err;
     }
+}
+
+// Names in scene and glTF files may hold control characters (a glTF file's names are free
+// text; Linux file names take any byte but '/'): the scene renders, and what `render` prints
+// about them (the scene's lines, the environment's, an input that -o would overwrite) shows
+// them escaped as JSON writes them, so that none rings the terminal or breaks a line.
+TEST_F(Cli, RenderShowsControlCharactersInSceneAndGltfNamesEscaped) {
+    const fs::path box = fs::path("/usr/share/assimp/models/glTF2/BoxTextured-glTF");
+    fs::create_directories(dir_ / "box");
+    fs::copy_file(box / "BoxTextured0.bin", dir_ / "box" / "BoxTextured0.bin");
+    fs::copy_file(box / "CesiumLogoFlat.png", dir_ / "box" / "logo\a.png");
+    nlohmann::json gltf = nlohmann::json::parse(slurp(box / "BoxTextured.gltf"));
+    gltf["nodes"][1]["name"] = "node\a";
+    gltf["meshes"][0]["name"] = "mesh\n";
+    gltf["materials"][0]["name"] = "\x1b[31mmaterial";
+    gltf["images"][0]["uri"] = "logo\a.png";
+    std::ofstream(dir_ / "box" / "box.gltf") << gltf.dump();
+    skygraph::saveExr(dir_ / "sky\a.exr", skygraph::HdrImage{8, 4, std::vector<float>(8 * 4 * 4, 0.5f)});
+    const fs::path scene = writeGraph("scene.json", R"({"camera": {"position": [0, 1, 4]},
+      "environment": {"file": "sky\u0007.exr"}, "objects": [{"type": "gltf", "file": "box/box.gltf"}]})");
+    const auto controlCharacters = [](const std::string& text) {
+        return std::count_if(text.begin(), text.end(), [](char c) {
+            return c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f);
+        });
+    };
+
+    const CliRun r = run({"render", "--scene", scene.string(), "--width", "8", "--height", "8", "-o",
+                          (dir_ / "work" / "out.png").string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("environment is '" + dir_.string() + "/sky\\u0007.exr'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("environment: " + dir_.string() + "/sky\\u0007.exr ("), std::string::npos) << r.err;
+    EXPECT_EQ(controlCharacters(r.err), 0) << r.err;
+
+    const fs::path texture = dir_ / "box" / "logo\a.png";
+    const std::string shown = dir_.string() + "/box/logo\\u0007.png";
+    const CliRun refused = run({"render", "--scene", scene.string(), "--width", "8", "--height", "8", "-o",
+                                texture.string()});
+    EXPECT_EQ(refused.status, 1) << refused.err;
+    EXPECT_NE(refused.err.find("-o '" + shown + "' is the input '" + shown + "'"), std::string::npos) << refused.err;
+    EXPECT_EQ(controlCharacters(refused.err), 0) << refused.err;
+    EXPECT_EQ(slurp(texture), slurp(box / "CesiumLogoFlat.png"));
 }
 
 // `render -o /dev/stdout --format F` writes the image to standard output (logs go to stderr),

@@ -298,6 +298,21 @@ TEST_F(HdrImageTest, MissingEmptyAndDirectoryInputsNameTheFile) {
     expectLoadError(dir_ / "image.tga", "unknown image extension");
 }
 
+// A scene may name an environment file whose name holds control characters: the message is
+// one line that shows them escaped, and file() keeps the path as it is.
+TEST_F(HdrImageTest, AFileNamedWithControlCharactersIsShownEscaped) {
+    const fs::path odd = dir_ / "sky\a\n\x1b.exr";
+    writeBytes(odd, "");
+    try {
+        (void)skygraph::loadHdrImage(odd);
+        FAIL() << "an empty file loaded";
+    } catch (const ImageError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(what, "'" + dir_.string() + "/sky\\u0007\\u000a\\u001b.exr': empty file; expected an OpenEXR image");
+        EXPECT_EQ(e.file(), odd);
+    }
+}
+
 TEST_F(HdrImageTest, TruncatedFilesGiveACleanError) {
     const std::vector<fs::path> sources = {kStudioLights / "studio.exr", dir_ / "rle.hdr", dir_ / "flat.hdr",
                                            dir_ / "zip.exr"};

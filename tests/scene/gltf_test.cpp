@@ -7,6 +7,7 @@
 #include <skygraph/triangle_mesh.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -284,6 +285,66 @@ TEST(Gltf, AnImageUriThatIsNotARegularFileIsNeverRead) {
     fs::remove_all(dir);
 }
 
+/// Whether `text` holds a control character other than the line ends that separate messages.
+bool holdsControlCharacter(const std::string& text) {
+    return std::any_of(text.begin(), text.end(), [](char c) {
+        return c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f);
+    });
+}
+
+/// BoxTextured copied into a fresh folder `folder` of the temporary folder as `file`, every name
+/// it has (scene, nodes, mesh, material, texture, image, buffer) holding control characters,
+/// and its image read from a file whose name holds one too, `uri` when given (one that does
+/// not exist makes the file fail); the copy.
+fs::path boxWithControlCharacterNames(const std::string& folder, const std::string& file, std::string uri = "") {
+    const fs::path dir = fs::temp_directory_path() / (folder + "-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path box = kModels / "BoxTextured-glTF";
+    fs::copy_file(box / "BoxTextured0.bin", dir / "BoxTextured0.bin");
+    fs::copy_file(box / "CesiumLogoFlat.png", dir / "logo\a.png");
+    std::ifstream in(box / "BoxTextured.gltf");
+    nlohmann::json gltf = nlohmann::json::parse(in);
+    gltf["scenes"][0]["name"] = "scene\n";
+    gltf["nodes"][0]["name"] = "root\a";
+    gltf["nodes"][1]["name"] = "\x1b[31mred";
+    gltf["meshes"][0]["name"] = "mesh\r\n";
+    gltf["materials"][0]["name"] = "material\t\x7f";
+    gltf["textures"][0]["name"] = "texture\b";
+    gltf["images"][0]["name"] = "image\x01";
+    gltf["images"][0]["uri"] = uri.empty() ? "logo\a.png" : uri;
+    gltf["buffers"][0]["name"] = "buffer\f";
+    const fs::path copy = dir / file;
+    std::ofstream(copy) << gltf.dump(2);  // JSON writes each as \u0007 and so on
+    return copy;
+}
+
+// Names in a glTF file are free text (glTF 2.0 does not restrict them), and skygraph never
+// looks a model's part up by one: a file whose names hold control characters is valid and
+// loads. What it keeps are JSON paths, and every message that names something of the file, or
+// the file itself, shows control characters escaped as JSON writes them.
+TEST(Gltf, NamesWithControlCharactersLoadAndMessagesShowThemEscaped) {
+    Diagnostics d;
+    const auto mesh = loadGltf(boxWithControlCharacterNames("skygraph-gltf-names", "box.gltf"), {}, d);
+    ASSERT_TRUE(mesh) << messages(d);
+    ASSERT_EQ(mesh->primitives.size(), 1u);
+    EXPECT_EQ(mesh->primitives[0].name, "meshes[0].primitives[0]");
+    ASSERT_EQ(mesh->images.size(), 1u);
+    EXPECT_EQ(mesh->images[0].name, "images[0]");
+
+    const fs::path broken = boxWithControlCharacterNames("skygraph-gltf-names-broken", "box\a\n.gltf", "gone\a.png");
+    Diagnostics e;
+    EXPECT_FALSE(loadGltf(broken, {}, e));
+    ASSERT_FALSE(e.empty());
+    EXPECT_EQ(e.items()[0].file, broken.string()) << "the diagnostic keeps the path as it is";
+    for (const Diagnostic& x : e.items()) {
+        const std::string line = x.format();
+        EXPECT_FALSE(holdsControlCharacter(line) || line.find('\n') != std::string::npos) << line;
+        EXPECT_EQ(line.rfind(broken.parent_path().string() + "/box\\u0007\\u000a.gltf: ", 0), 0u) << line;
+    }
+    EXPECT_NE(messages(e).find("gone\\u0007.png"), std::string::npos) << messages(e);
+}
+
 TEST(Gltf, NotAGltfFile) {
     Diagnostics d;
     EXPECT_FALSE(loadGltf(fs::path(SKYGRAPH_SOURCE_DIR) / "scenes/default.json", {}, d));
@@ -334,6 +395,26 @@ TEST(GltfScene, TheSceneNamesItsObjectAndTheFileItsProblem) {
         const std::string what = e.what();
         EXPECT_NE(what.find("test.json: objects[1].file: '" + bad + "' cannot be drawn"), std::string::npos) << what;
         EXPECT_NE(what.find(bad + ": accessors[0] (indices of meshes[0].primitives[0])"), std::string::npos) << what;
+    }
+}
+
+// A scene's glTF file named with control characters, with a problem: each diagnostic, the
+// scene's and the file's, is one line with them escaped.
+TEST(GltfScene, AGltfFileNamedWithControlCharactersIsShownEscaped) {
+    const fs::path broken = boxWithControlCharacterNames("skygraph-gltf-scene-names", "box\a\x1b.gltf", "gone\n.png");
+    try {
+        (void)parse(R"({"objects": [{"type": "gltf", "file": )" + nlohmann::json(broken.string()).dump() + "}]}");
+        FAIL() << "the image is missing";
+    } catch (const SceneError& e) {
+        const std::string what = e.what();
+        EXPECT_FALSE(holdsControlCharacter(what)) << what;
+        size_t lines = 0;
+        for (const char c : what) lines += c == '\n';
+        EXPECT_EQ(lines, e.diagnostics().size()) << what;
+        const std::string shown = broken.parent_path().string() + "/box\\u0007\\u001b.gltf";
+        EXPECT_NE(what.find("test.json: objects[0].file: '" + shown + "' cannot be drawn"), std::string::npos) << what;
+        EXPECT_NE(what.find("\n" + shown + ": "), std::string::npos) << what;
+        EXPECT_NE(what.find("gone\\u000a.png"), std::string::npos) << what;
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -167,6 +168,34 @@ TEST(SceneLoader, TheSunDirectionIsNormalisedAndOnlyForTheProceduralSky) {
                 "must not be the zero vector");
     expectError(R"({"environment": {"file": "sky.hdr", "sun_direction": [0, 1, 0]}})", "environment.sun_direction",
                 "only the procedural sky has a sun");
+}
+
+// A scene may name files whose names hold control characters (Linux allows any byte but '/'):
+// they load, and the lines `skygraph render` prints about them show those characters escaped.
+TEST(SceneLoader, FilesNamedWithControlCharactersAreExplainedEscaped) {
+    const fs::path dir = fs::temp_directory_path() / "skygraph_scene_test_names";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "frames\n");
+    std::ofstream(dir / "sky\a.hdr") << "x";
+    for (const char* frame : {"sky_000.exr", "sky_001.exr"}) std::ofstream(dir / "frames\n" / frame) << "x";
+    std::ofstream(dir / "file.json") << R"({"environment": {"file": "sky\u0007.hdr"}})";
+    std::ofstream(dir / "sequence.json") << R"({"environment": {"sequence": "frames\n/sky_%03d.exr"}})";
+    const Scene file = loadSceneFile(dir / "file.json");
+    ASSERT_TRUE(file.environment);
+    EXPECT_EQ(file.environment->file, dir / "sky\a.hdr") << "the file as it is named";
+    const Scene sequence = loadSceneFile(dir / "sequence.json");
+    ASSERT_TRUE(sequence.environment && sequence.environment->sequence);
+    EXPECT_EQ(sequence.environment->sequence->count, 2u);
+    std::string all;
+    for (const Scene* s : {&file, &sequence})
+        for (const std::string& line : explainSceneFeatures(*s)) all += line + "\n";
+    EXPECT_NE(all.find("environment is '" + dir.string() + "/sky\\u0007.hdr'"), std::string::npos) << all;
+    EXPECT_NE(all.find("environment is '" + dir.string() + "/frames\\u000a/sky_000.exr'"), std::string::npos) << all;
+    EXPECT_NE(all.find("'" + dir.string() + "/frames\\u000a/sky_%03d.exr'"), std::string::npos) << all;
+    EXPECT_EQ(std::count_if(all.begin(), all.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; }),
+              std::count(all.begin(), all.end(), '\n'))
+        << all;
+    fs::remove_all(dir);
 }
 
 TEST(SceneLoader, ASequenceFindsItsFramesFromZeroOrOneWithoutAGap) {

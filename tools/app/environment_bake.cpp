@@ -5,6 +5,7 @@
 #include "environment_bake.hpp"
 
 #include "environment_graph.hpp"
+#include "printable_name.hpp"
 #include "shipped_names.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -87,8 +88,8 @@ HdrImage loadEnvironmentImage(const std::filesystem::path& file, float largest) 
             ++clamped;
         }
     if (clamped)
-        spdlog::warn("'{}': {} pixel values past +-{} (the products' largest) are clamped to it", file.string(),
-                     clamped, largest);
+        spdlog::warn("'{}': {} pixel values past +-{} (the products' largest) are clamped to it",
+                     printableName(file.string()), clamped, largest);
     return image;
 }
 

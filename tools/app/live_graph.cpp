@@ -4,6 +4,7 @@
 #include "environment_bake.hpp"
 #include "equirect_resample.hpp"
 
+#include "printable_name.hpp"
 #include "procedural_environment.hpp"
 
 #include "shipped_names.hpp"
@@ -135,7 +136,7 @@ void LiveGraph::playSequence(double clockSeconds) {
         if (!sequenceBaking_) player_->bakeFailed();
     } catch (const std::exception& e) {
         player_->bakeFailed();
-        spdlog::warn("environment sequence: {}: {}; the sky holds the last frame", frame->file, e.what());
+        spdlog::warn("environment sequence: {}: {}; the sky holds the last frame", printableName(frame->file), e.what());
     }
 }
 
@@ -301,7 +302,7 @@ bool LiveGraph::rebakeInPlace(const std::filesystem::path& file, RenderOptions n
         HdrImage pixels = loadEnvironmentImage(file);  // throws: reported once the load is finished
         if (pixels.width != extent[0] || pixels.height != extent[1]) {
             spdlog::info("environment: {} is {}x{}; resampled to the running {}x{} for a bake beside the frames",
-                         file.string(), pixels.width, pixels.height, extent[0], extent[1]);
+                         printableName(file.string()), pixels.width, pixels.height, extent[0], extent[1]);
             pixels = resampleEquirect(pixels, extent[0], extent[1]);
         }
         const size_t bytes = pixels.rgba.size() * sizeof(float);
@@ -325,7 +326,7 @@ void LiveGraph::finishEnvironmentLoad() {
         const auto extent = renderer_->graph().findResource(shipped::kEquirect)->extent.resolve(width_, height_);
         loadStaging_ = loaded.staged;
         if (loaded.pixels) rebakeEquirect_ = std::move(loaded.pixels);
-        spdlog::info("environment: re-baking {} beside the frames", load.file.string());
+        spdlog::info("environment: re-baking {} beside the frames", printableName(load.file.string()));
         if (!baker(extent[0], extent[1]).start(std::move(loaded.staged))) {
             rebuild(std::move(load.next), Renderer::ShaderSources::Cached);
             return;

@@ -8,6 +8,7 @@
 #include "environment_bake.hpp"
 #include "replace_file.hpp"
 #include "environment_graph.hpp"
+#include "printable_name.hpp"
 #include "procedural_environment.hpp"
 #include "shipped_names.hpp"
 
@@ -166,7 +167,8 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
                 d.add({scene->file, "environment.file", "", "", e.what()});
                 throw SceneError(std::move(d));
             }
-            spdlog::info("environment: {} ({}x{})", file.string(), environment->width, environment->height);
+            spdlog::info("environment: {} ({}x{})", printableName(file.string()), environment->width,
+                         environment->height);
         }
         if (!setEquirectExtent(graph, environment->width, environment->height) && !scene->environment->procedural)
             spdlog::warn("graph '{}' has no resource '{}': the environment file is not used", graph.name,
@@ -387,7 +389,8 @@ int renderCommand(const RenderOptions& options) {
         }
         if (const auto input = inputAt(output, options, inputs)) {
             std::cerr << "skygraph render: " << (options.output.empty() ? "the default output '" : "-o '")
-                      << output.string() << "' is the input '" << input->string() << "': it would be overwritten\n";
+                      << printableName(output.string()) << "' is the input '" << printableName(input->string())
+                      << "': it would be overwritten\n";
             return 1;
         }
         if (!output.empty()) {  // before the render: a mistyped folder costs no work

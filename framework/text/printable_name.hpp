@@ -1,6 +1,9 @@
-// Names from a graph file end up in terminals, text plans, DOT graphs and XML. A control
-// character in one (a JSON "\u0007" or "\n") would ring, break a line or make a file invalid, so
-// the loader refuses them and messages show them escaped.
+// Names end up in terminals, logs, text plans, DOT graphs and XML. A control character in one
+// (a JSON "\u0007" or "\n") would ring, break a line or make a file invalid. The graph loader
+// refuses such names in graph files, where a name is an identifier that plans and code must
+// find again; names and paths from scene and glTF files are valid as they are, and every
+// message and log line shows them escaped instead. Header-only, for the libraries and the
+// tool; not installed.
 #pragma once
 
 #include <cstdio>
