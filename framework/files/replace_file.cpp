@@ -33,15 +33,16 @@ bool inProc(const fs::path& path) {
 std::error_code lastError() { return {errno ? errno : EIO, std::system_category()}; }
 
 /// Appends the whole of `from` to `to`, an existing FIFO, device or descriptor, opened without
-/// truncating it: a shell's `>>` log is appended to, as its redirection asked.
-void appendTo(const fs::path& to, const fs::path& from) {
+/// truncating it: a shell's `>>` log is appended to, as its redirection asked. Errors name
+/// `output`, the name `to` was reached by.
+void appendTo(const fs::path& to, const fs::path& from, const fs::path& output) {
     std::ifstream in(from, std::ios::binary);
-    if (!in) throw fs::filesystem_error("cannot write", to, std::make_error_code(std::errc::io_error));
+    if (!in) throw fs::filesystem_error("cannot write", output, std::make_error_code(std::errc::io_error));
     const int fd = ::open(to.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-    if (fd < 0) throw fs::filesystem_error("cannot write", to, lastError());
+    if (fd < 0) throw fs::filesystem_error("cannot write", output, lastError());
     const auto fail = [&](std::error_code error) {
         ::close(fd);
-        throw fs::filesystem_error("cannot write", to, error);
+        throw fs::filesystem_error("cannot write", output, error);
     };
     std::vector<char> chunk(1 << 16);
     while (in) {
@@ -54,7 +55,18 @@ void appendTo(const fs::path& to, const fs::path& from) {
         }
     }
     if (in.bad()) fail(std::make_error_code(std::errc::io_error));
-    if (::close(fd) != 0) throw fs::filesystem_error("cannot write", to, lastError());
+    if (::close(fd) != 0) throw fs::filesystem_error("cannot write", output, lastError());
+}
+
+/// Writes `bytes` to the new file `to`, checking every step: a full disk or a file size limit
+/// is an error naming `output`, never a short file.
+void writeWhole(const fs::path& to, std::string_view bytes, const fs::path& output) {
+    errno = 0;
+    std::ofstream out(to, std::ios::binary | std::ios::trunc);
+    if (!out.is_open()) throw fs::filesystem_error("cannot write", output, lastError());
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) throw fs::filesystem_error("cannot write", output, lastError());
 }
 
 /// Where a stream's temporary is written; throws naming `path` and the folder when it is missing.
@@ -65,6 +77,71 @@ fs::path systemTemporaryFolder(const fs::path& path) {
     if (!fs::is_directory(folder, ec))
         throw MissingFolder(path, folder, named && *named);
     return folder;
+}
+
+/// One file of a set replaced together: `temporary`, written beside `target` (an
+/// outputTarget() that is not in place), takes its place; errors name `output`, the name the
+/// target was reached by.
+struct Replacement {
+    fs::path temporary;
+    fs::path target;
+    fs::path output;
+};
+
+/// replaceFilesContents()'s renames, all or none, as it describes them.
+void renameAllOrNone(std::span<const Replacement> replacements) {
+    const size_t n = replacements.size();
+    std::vector<fs::path> kept(n);  // a hard link to the file the target was, if it was one
+    std::vector<bool> existed(n);
+    // The kept links, until their target is renamed: then a kept link may be the old file's
+    // only name, which a rollback needs.
+    std::vector<std::unique_ptr<PendingTemporary>> pending(n);
+    std::error_code ignored;
+    const auto removeKept = [&] {
+        for (const fs::path& keep : kept)
+            if (!keep.empty()) fs::remove(keep, ignored);
+    };
+    size_t renamed = 0;
+    try {
+        for (size_t i = 0; i < n; ++i) {
+            std::error_code ec;
+            const fs::file_status status = fs::symlink_status(replacements[i].target, ec);
+            if (status.type() == fs::file_type::none) throw fs::filesystem_error("cannot write", replacements[i].output, ec);
+            existed[i] = fs::exists(status);
+            if (!existed[i]) continue;
+            const fs::path keep = temporaryBeside(replacements[i].target);
+            pending[i] = std::make_unique<PendingTemporary>(keep);
+            fs::create_hard_link(replacements[i].target, keep, ec);
+            if (!ec) kept[i] = keep;
+        }
+        for (; renamed < n; ++renamed) {
+            std::error_code ec;
+            fs::rename(replacements[renamed].temporary, replacements[renamed].target, ec);
+            if (ec) throw fs::filesystem_error("cannot write", replacements[renamed].output, ec);
+            pending[renamed].reset();
+        }
+    } catch (...) {
+        for (size_t i = renamed; i < n; ++i) fs::remove(replacements[i].temporary, ignored);
+        for (size_t i = 0; i < renamed; ++i) {
+            if (kept[i].empty()) {
+                if (!existed[i]) fs::remove(replacements[i].target, ignored);
+                continue;
+            }
+            std::error_code ec;
+            fs::rename(kept[i], replacements[i].target, ec);
+            if (!ec) {
+                kept[i].clear();
+                continue;
+            }
+            // The kept link is the old file's last name now: it stays, and the error says where.
+            const fs::path keep = std::exchange(kept[i], {});
+            removeKept();
+            throw OldFileKept(replacements[i].output, keep, ec);
+        }
+        removeKept();
+        throw;
+    }
+    removeKept();
 }
 
 }  // namespace
@@ -109,7 +186,13 @@ MissingFolder::MissingFolder(const fs::path& output, const fs::path& folder, boo
     : fs::filesystem_error("cannot write", output, folder, std::make_error_code(std::errc::no_such_file_or_directory)),
       temporaryFolder_(temporaryFolder) {}
 
+OldFileKept::OldFileKept(const fs::path& output, const fs::path& kept, std::error_code why)
+    : fs::filesystem_error("cannot put the old file back", output, kept, why) {}
+
 std::string whyNotWritten(const fs::filesystem_error& error) {
+    if (dynamic_cast<const OldFileKept*>(&error))
+        return error.code().message() + "; the old file could not be put back: it is kept as '" +
+               error.path2().string() + "'";
     if (const auto* missing = dynamic_cast<const MissingFolder*>(&error))
         return "the folder '" + missing->path2().string() + "' does not exist" +
                (missing->temporaryFolder() ? " (TMPDIR names it: a stream is written through a temporary there)" : "");
@@ -139,7 +222,7 @@ void replaceFile(const fs::path& path, const std::function<void(const fs::path&)
     std::error_code ignored;
     try {
         write(temporary);
-        if (target.inPlace) appendTo(target.path, temporary);
+        if (target.inPlace) appendTo(target.path, temporary, path);
         else fs::rename(temporary, target.path);
     } catch (...) {
         fs::remove(temporary, ignored);
@@ -148,69 +231,42 @@ void replaceFile(const fs::path& path, const std::function<void(const fs::path&)
     if (target.inPlace) fs::remove(temporary, ignored);
 }
 
-void renameAllOrNone(std::span<const Replacement> replacements) {
-    const size_t n = replacements.size();
-    std::vector<fs::path> kept(n);  // a hard link to the file the target was, if it was one
-    std::vector<bool> existed(n);
-    // The kept links, until their target is renamed: then a kept link may be the old file's
-    // only name, which a rollback needs.
-    std::vector<std::unique_ptr<PendingTemporary>> pending(n);
-    std::error_code ignored;
-    const auto removeKept = [&] {
-        for (const fs::path& keep : kept)
-            if (!keep.empty()) fs::remove(keep, ignored);
-    };
-    size_t renamed = 0;
-    try {
-        for (size_t i = 0; i < n; ++i) {
-            std::error_code ec;
-            const fs::file_status status = fs::symlink_status(replacements[i].target, ec);
-            if (status.type() == fs::file_type::none) throw fs::filesystem_error("cannot write", replacements[i].target, ec);
-            existed[i] = fs::exists(status);
-            if (!existed[i]) continue;
-            const fs::path keep = temporaryBeside(replacements[i].target);
-            pending[i] = std::make_unique<PendingTemporary>(keep);
-            fs::create_hard_link(replacements[i].target, keep, ec);
-            if (!ec) kept[i] = keep;
-        }
-        for (; renamed < n; ++renamed) {
-            fs::rename(replacements[renamed].temporary, replacements[renamed].target);
-            pending[renamed].reset();
-        }
-    } catch (...) {
-        for (size_t i = renamed; i < n; ++i) fs::remove(replacements[i].temporary, ignored);
-        for (size_t i = 0; i < renamed; ++i) {
-            if (kept[i].empty()) {
-                if (!existed[i]) fs::remove(replacements[i].target, ignored);
-                continue;
-            }
-            std::error_code ec;
-            fs::rename(kept[i], replacements[i].target, ec);
-            if (!ec) {
-                kept[i].clear();
-                continue;
-            }
-            // The kept link is the old file's last name now: it stays, and the error says where.
-            const fs::path keep = std::exchange(kept[i], {});
-            removeKept();
-            throw fs::filesystem_error("cannot put the old file back; it is kept as '" + keep.string() + "'",
-                                       replacements[i].target, ec);
-        }
-        removeKept();
-        throw;
-    }
-    removeKept();
+void replaceFileContents(const fs::path& path, std::string_view bytes) {
+    replaceFile(path, [&](const fs::path& to) { writeWhole(to, bytes, path); });
 }
 
-void replaceFileContents(const fs::path& path, std::string_view bytes) {
-    replaceFile(path, [&](const fs::path& to) {
-        errno = 0;
-        std::ofstream out(to, std::ios::binary | std::ios::trunc);
-        if (!out.is_open()) throw fs::filesystem_error("cannot write", path, lastError());
-        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        out.close();
-        if (!out) throw fs::filesystem_error("cannot write", path, lastError());
-    });
+void replaceFilesContents(std::span<const fs::path> paths, const std::function<std::string(size_t)>& contents) {
+    std::vector<fs::path> temporaries(paths.size());
+    std::vector<OutputTarget> targets(paths.size());
+    std::vector<std::unique_ptr<PendingTemporary>> pending;
+    std::error_code ignored;
+    const auto removeTemporaries = [&] {
+        for (const fs::path& t : temporaries)
+            if (!t.empty()) fs::remove(t, ignored);
+    };
+    try {
+        for (size_t i = 0; i < paths.size(); ++i) {
+            targets[i] = writableOutputTarget(paths[i]);
+            // In place, as replaceFile() does: the stream gets the file whole, once all are made.
+            temporaries[i] = temporaryBeside(targets[i].inPlace
+                                                  ? systemTemporaryFolder(paths[i]) / targets[i].path.filename()
+                                                  : targets[i].path);
+            pending.push_back(std::make_unique<PendingTemporary>(temporaries[i]));
+            writeWhole(temporaries[i], contents(i), paths[i]);
+        }
+        for (size_t i = 0; i < paths.size(); ++i)
+            if (targets[i].inPlace) {
+                appendTo(targets[i].path, temporaries[i], paths[i]);
+                fs::remove(std::exchange(temporaries[i], {}), ignored);
+            }
+    } catch (...) {
+        removeTemporaries();
+        throw;
+    }
+    std::vector<Replacement> replacements;
+    for (size_t i = 0; i < paths.size(); ++i)
+        if (!targets[i].inPlace) replacements.push_back({temporaries[i], targets[i].path, paths[i]});
+    renameAllOrNone(replacements);  // removes the temporaries it does not rename
 }
 
 }  // namespace skygraph::files

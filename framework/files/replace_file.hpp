@@ -51,7 +51,7 @@ private:
 /// Why a write that threw `error` (from the functions here) failed, in words for a message
 /// that names the output already: "it is a folder", "the folder 'F' does not exist" (for
 /// MissingFolder; the system's temporary folder says that TMPDIR names it), or the system's
-/// reason.
+/// reason (for OldFileKept, followed by where the old file is kept).
 [[nodiscard]] std::string whyNotWritten(const std::filesystem::filesystem_error& error);
 
 /// A name for a temporary beside `target`: hidden, unique to this process and call, and ending
@@ -68,24 +68,33 @@ private:
 /// copy throws std::filesystem::filesystem_error.
 void replaceFile(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write);
 
-/// One file of a set replaced together: `temporary`, written beside `target` (an
-/// outputTarget() that is not in place), takes its place.
-struct Replacement {
-    std::filesystem::path temporary;
-    std::filesystem::path target;
+/// A failure part way through replaceFilesContents()'s renames, after which an old file could
+/// not be put back: it is kept under a hidden name beside its output. path1() is the output,
+/// path2() the name it is kept under.
+class OldFileKept : public std::filesystem::filesystem_error {
+public:
+    OldFileKept(const std::filesystem::path& output, const std::filesystem::path& kept, std::error_code why);
 };
-
-/// Renames each temporary over its target, all or none. Each target there before is kept under
-/// a hidden name (a hard link) until every rename is done; when one fails, the targets renamed
-/// so far get their old files back (one that did not exist is removed), every temporary is
-/// removed, and the rename's std::filesystem::filesystem_error is rethrown (path2 the target
-/// that failed). An old file that cannot be put back stays under its hidden name, which the
-/// error thrown then names instead. On a filesystem without hard links the old files cannot be
-/// kept, and a failure part way leaves the targets renamed so far replaced.
-void renameAllOrNone(std::span<const Replacement> replacements);
 
 /// replaceFile() with `bytes` as the contents. A temporary that cannot be made or written (a
 /// missing folder, a full disk) throws std::filesystem::filesystem_error naming `path`.
 void replaceFileContents(const std::filesystem::path& path, std::string_view bytes);
+
+/// Replaces each of `paths` with the bytes contents(i) makes for paths[i], all or none. Each
+/// file is written once: contents(i) is called once per path, in order, and its bytes are
+/// written to one temporary (beside the writableOutputTarget() of paths[i], which throws as it
+/// says; in the system's temporary folder for one written in place) and dropped, so that one
+/// file's bytes are held at a time. Once all are written, each FIFO or device gets its bytes
+/// (appended, as replaceFile() does), then each temporary is renamed over its target, once.
+/// Each old file is kept under a hidden name (a hard link) until every rename is done; when
+/// one fails, the targets renamed so far get their old files back (one that did not exist is
+/// removed). Whatever fails, no temporary is left and a file not renamed is as it was (a FIFO
+/// or device written before has had its bytes); an exception of contents is rethrown, any
+/// other failure throws std::filesystem::filesystem_error whose path1() is the paths[i] it
+/// concerns: MissingFolder, and OldFileKept for an old file that could not be put back. On a
+/// filesystem without hard links the old files cannot be kept, and a failure part way leaves
+/// the targets renamed so far replaced.
+void replaceFilesContents(std::span<const std::filesystem::path> paths,
+                          const std::function<std::string(size_t)>& contents);
 
 }  // namespace skygraph::files

@@ -21,6 +21,26 @@
 namespace skygraph {
 namespace {
 
+/// OpenEXR's output stream into memory. RgbaOutputFile seeks back to write its offset table
+/// when it is done, so the bytes are written at the stream's position, not appended.
+class MemoryStream : public Imf::OStream {
+public:
+    /// `path`: the file the bytes are for, which OpenEXR's messages name.
+    explicit MemoryStream(const std::filesystem::path& path) : Imf::OStream(path.c_str()) {}
+    void write(const char c[], int n) override {
+        const size_t end = position_ + size_t(n);
+        if (end > bytes.size()) bytes.resize(end);
+        std::copy(c, c + n, bytes.begin() + std::ptrdiff_t(position_));
+        position_ = end;
+    }
+    uint64_t tellp() override { return position_; }
+    void seekp(uint64_t position) override { position_ = size_t(position); }
+    std::string bytes;
+
+private:
+    size_t position_ = 0;
+};
+
 /// Reads only the first header and returns its data window, so that the size can be refused
 /// before OpenEXR or we allocate anything in proportion to it.
 Imath::Box2i peekDataWindow(const std::filesystem::path& path) {
@@ -115,19 +135,32 @@ HdrImage loadExr(const std::filesystem::path& path) {
     }
 }
 
-void saveExr(const std::filesystem::path& path, const HdrImage& image) {
-    image_detail::requireWritable(path, image);
+namespace image_detail {
+
+std::string encodeExr(const std::filesystem::path& path, const HdrImage& image) {
+    requireWritable(path, image);
     std::vector<Imf::Rgba> half(size_t(image.width) * image.height);
     for (size_t i = 0; i < half.size(); ++i) {
         const float* p = image.rgba.data() + i * 4;
         half[i] = Imf::Rgba(p[0], p[1], p[2], p[3]);
     }
-    image_detail::writeAtomically(path, [&](const std::string& temp) {
-        Imf::RgbaOutputFile out(temp.c_str(), int(image.width), int(image.height), Imf::WRITE_RGBA, 1.0f,
-                                Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y, Imf::ZIP_COMPRESSION);
+    MemoryStream stream(path);
+    try {
+        const Imf::Header header(int(image.width), int(image.height), 1.0f, Imath::V2f(0, 0), 1.0f, Imf::INCREASING_Y,
+                                 Imf::ZIP_COMPRESSION);
+        Imf::RgbaOutputFile out(stream, header, Imf::WRITE_RGBA);
         out.setFrameBuffer(half.data(), 1, image.width);
         out.writePixels(int(image.height));
-    });
+    } catch (const std::exception& e) {  // Iex::BaseExc and std::bad_alloc
+        throw ImageError(path, std::string("cannot encode: ") + e.what());
+    }
+    return std::move(stream.bytes);
+}
+
+}  // namespace image_detail
+
+void saveExr(const std::filesystem::path& path, const HdrImage& image) {
+    image_detail::writeBytes(path, image_detail::encodeExr(path, image));
 }
 
 }  // namespace skygraph

@@ -31,9 +31,13 @@ HdrImage loadHdrImage(const std::filesystem::path& path) {
 }
 
 void saveHdrImage(const std::filesystem::path& path, const HdrImage& image) {
+    image_detail::writeBytes(path, encodeHdrImage(path, image));
+}
+
+std::string encodeHdrImage(const std::filesystem::path& path, const HdrImage& image) {
     const std::string ext = lowerExtension(path);
-    if (ext == ".hdr") return saveRadianceHdr(path, image);
-    if (ext == ".exr") return saveExr(path, image);
+    if (ext == ".hdr") return image_detail::encodeRadianceHdr(path, image);
+    if (ext == ".exr") return image_detail::encodeExr(path, image);
     throw ImageError(path, "unknown image extension '" + ext + "'; expected .hdr or .exr");
 }
 
@@ -93,26 +97,6 @@ void writeBytes(const std::filesystem::path& path, std::string_view bytes) {
 
 void appendToString(void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
-}
-
-void writeAtomically(const std::filesystem::path& path,
-                     const std::function<void(const std::string& tempPath)>& write) {
-    std::string temporary;
-    try {
-        files::replaceFile(path, [&](const std::filesystem::path& temp) { write(temporary = temp.string()); });
-    } catch (const ImageError&) {
-        throw;
-    } catch (const std::filesystem::filesystem_error& e) {
-        throw ImageError(path, "cannot write: " + files::whyNotWritten(e));
-    } catch (const std::exception& e) {
-        // A writer's reason names the file it opened: the user knows the output, not the temporary.
-        std::string why = e.what();
-        const std::string output = path.string();
-        if (!temporary.empty())
-            for (size_t at = why.find(temporary); at != std::string::npos; at = why.find(temporary, at + output.size()))
-                why.replace(at, temporary.size(), output);
-        throw ImageError(path, "cannot write: " + why);
-    }
 }
 
 }  // namespace image_detail

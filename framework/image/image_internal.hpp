@@ -3,7 +3,6 @@
 
 #include <skygraph/hdr_image.hpp>
 
-#include <functional>
 #include <string>
 #include <string_view>
 
@@ -23,15 +22,15 @@ void requireLoadableSize(const std::filesystem::path& path, int64_t width, int64
 /// Throws ImageError for an empty image, a pixel vector of the wrong size, or one over the limits.
 void requireWritable(const std::filesystem::path& path, const HdrImage& image);
 
-/// files::replaceFile(path, write), with every failure an ImageError naming `path`.
-/// Writers that cannot report a failed write themselves (stb's) encode to memory and write
-/// the bytes with writeBytes().
-void writeAtomically(const std::filesystem::path& path,
-                     const std::function<void(const std::string& tempPath)>& write);
-
 /// files::replaceFileContents(path, bytes): a file that cannot be written whole (a full disk,
-/// a file size limit) throws ImageError naming `path` and the reason.
+/// a file size limit) throws ImageError naming `path` and the reason. Every writer encodes to
+/// memory and writes through here, so that a write is checked whole in one place (stb's file
+/// writers report a full disk as success).
 void writeBytes(const std::filesystem::path& path, std::string_view bytes);
+
+/// The bytes saveRadianceHdr() and saveExr() write to `path` (named in errors only).
+[[nodiscard]] std::string encodeRadianceHdr(const std::filesystem::path& path, const HdrImage& image);
+[[nodiscard]] std::string encodeExr(const std::filesystem::path& path, const HdrImage& image);
 
 /// An stb_image_write callback that appends to the std::string its context points at.
 void appendToString(void* context, void* data, int size);

@@ -1,4 +1,4 @@
-// saveKtx2: the KTX 2.0 layout (spec §3): identifier, header, index, level index, data format
+// encodeKtx2: the KTX 2.0 layout (spec §3): identifier, header, index, level index, data format
 // descriptor (one basic block, KHR_DF_MODEL_RGBSDA, linear), key/value data, then the levels,
 // smallest first, each aligned to lcm(texel size, 4).
 #include <skygraph/ktx2.hpp>
@@ -34,16 +34,13 @@ class ByteWriter {
 public:
     void u32(uint32_t v) { raw(&v, 4); }
     void u64(uint64_t v) { raw(&v, 8); }
-    void raw(const void* p, size_t n) {
-        const auto* b = static_cast<const uint8_t*>(p);
-        bytes.insert(bytes.end(), b, b + n);
-    }
+    void raw(const void* p, size_t n) { bytes.append(static_cast<const char*>(p), n); }
     void padTo(size_t alignment) {
-        while (bytes.size() % alignment) bytes.push_back(0);
+        while (bytes.size() % alignment) bytes.push_back('\0');
     }
     void putU32At(size_t offset, uint32_t v) { std::memcpy(bytes.data() + offset, &v, 4); }
     void putU64At(size_t offset, uint64_t v) { std::memcpy(bytes.data() + offset, &v, 8); }
-    std::vector<uint8_t> bytes;  // little-endian host assumed (x86-64, arm64)
+    std::string bytes;  // little-endian host assumed (x86-64, arm64)
 };
 
 /// The basic data format descriptor block of an uncompressed float RGBA/RG format.
@@ -109,7 +106,7 @@ void checkTexture(const std::filesystem::path& path, const Ktx2Texture& t) {
 
 }  // namespace
 
-void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
+std::string encodeKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
     checkTexture(path, texture);
     const FormatFacts facts = factsOf(texture.format);
     const auto levelCount = uint32_t(texture.levels.size());
@@ -157,7 +154,11 @@ void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
         w.putU64At(levelIndexAt + m * 24 + 16, length);
     }
 
-    image_detail::writeBytes(path, {reinterpret_cast<const char*>(w.bytes.data()), w.bytes.size()});
+    return std::move(w.bytes);
+}
+
+void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture) {
+    image_detail::writeBytes(path, encodeKtx2(path, texture));
 }
 
 }  // namespace skygraph

@@ -113,15 +113,23 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
     return image;
 }
 
-void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image) {
-    image_detail::requireWritable(path, image);
+namespace image_detail {
+
+std::string encodeRadianceHdr(const std::filesystem::path& path, const HdrImage& image) {
+    requireWritable(path, image);
     std::vector<float> rgb(size_t(image.width) * image.height * 3);
     for (size_t i = 0; i < size_t(image.width) * image.height; ++i)
         for (size_t c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
     std::string encoded;
-    if (!stbi_write_hdr_to_func(image_detail::appendToString, &encoded, int(image.width), int(image.height), 3, rgb.data()))
+    if (!stbi_write_hdr_to_func(appendToString, &encoded, int(image.width), int(image.height), 3, rgb.data()))
         throw ImageError(path, "cannot encode the image");
-    image_detail::writeBytes(path, encoded);
+    return encoded;
+}
+
+}  // namespace image_detail
+
+void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image) {
+    image_detail::writeBytes(path, image_detail::encodeRadianceHdr(path, image));
 }
 
 }  // namespace skygraph

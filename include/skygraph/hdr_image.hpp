@@ -65,6 +65,12 @@ private:
 /// `path` and renames it over `path` only once it is complete. Throws ImageError.
 void saveHdrImage(const std::filesystem::path& path, const HdrImage& image);
 
+/// The bytes saveHdrImage() writes to `path` (by its extension), in memory, for a caller that
+/// writes the file itself (several files replaced together, say). `path` names the file in
+/// errors and chooses the format. Throws ImageError for what saveHdrImage() cannot write (an
+/// empty image, one over the limits, another extension).
+[[nodiscard]] std::string encodeHdrImage(const std::filesystem::path& path, const HdrImage& image);
+
 /// Saves RGB as Radiance RGBE through stb_image_write (alpha is dropped; RGBE has ~1% precision
 /// and cannot store negative or non-finite values). Atomic as saveHdrImage(). Throws ImageError.
 void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image);

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace skygraph {
@@ -33,5 +34,10 @@ struct Ktx2Texture {
 /// complete. Floats are rounded to the nearest half for the 16-bit formats. Throws ImageError
 /// for an inconsistent texture (sizes, face count) or an I/O failure; never leaves half a file.
 void saveKtx2(const std::filesystem::path& path, const Ktx2Texture& texture);
+
+/// The bytes saveKtx2() writes, in memory, for a caller that writes the file itself (several
+/// files replaced together, say). `path` names the file in errors only. Throws ImageError for
+/// an inconsistent texture.
+[[nodiscard]] std::string encodeKtx2(const std::filesystem::path& path, const Ktx2Texture& texture);
 
 }  // namespace skygraph

@@ -2,6 +2,7 @@
 // goldens written, edited and compared, a compute-only graph, a combination that cannot
 // compile, a device that does not exist, JUnit XML read back by an independent parser.
 #include "cli_fixture.hpp"
+#include "folder_events.hpp"
 
 #include <skygraph/hdr_image.hpp>
 
@@ -300,6 +301,36 @@ TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {
     std::vector<std::string> written = workFiles();
     std::sort(written.begin(), written.end());
     EXPECT_EQ(written, (std::vector<std::string>{"cube.irradiance.ktx2", "cube.ktx2"}));
+}
+
+// Each of cubemap's outputs is written once, into one temporary beside it, and renamed into
+// place once (the folder's events say so): not a temporary written through a temporary of its
+// own and renamed twice.
+TEST_F(Cli, CubemapWritesEachOutputOnceAndRenamesItOnce) {
+    const fs::path sky = dir_ / "sky.exr";
+    ASSERT_EQ(run({"sky-sequence", (dir_ / "sky%d.exr").string(), "--frames", "1", "--width", "32"}).status, 0);
+    fs::rename(dir_ / "sky0.exr", sky);
+    const fs::path work = dir_ / "work";
+    skygraph::test::FolderEvents events(work);
+    const CliRun r = run({"cubemap", sky.string(), "-o", (work / "cube.ktx2").string(), "--size", "32", "--cross",
+                          (work / "cross.exr").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const skygraph::test::FolderEvents::Counts counts = events.take();
+    const std::vector<std::string> outputs{"cross.exr", "cube.brdf.ktx2", "cube.irradiance.ktx2", "cube.ktx2",
+                                           "cube.prefiltered.ktx2"};
+    std::map<std::string, int> once;
+    for (const std::string& name : outputs) once[name] = 1;
+    EXPECT_EQ(counts.renamedTo, once) << "each output is renamed into place once, and nothing else is renamed";
+    EXPECT_EQ(counts.written.size(), outputs.size()) << "one temporary each";
+    EXPECT_EQ(counts.created.size(), outputs.size()) << "one temporary each";
+    for (const auto& [name, times] : counts.written) {
+        EXPECT_EQ(name.front(), '.') << name << " was written under its own name";
+        EXPECT_EQ(times, 1) << name;
+        EXPECT_EQ(counts.created.count(name), 1u) << name;
+    }
+    std::vector<std::string> left = workFiles();
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, outputs);
 }
 
 // A frame that cannot be written part way through: the frames this run made are removed, and a

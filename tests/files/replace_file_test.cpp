@@ -1,6 +1,7 @@
 // files::replaceFile on real files, links and FIFOs in a fresh folder per test.
 #include "replace_file.hpp"
 
+#include "folder_events.hpp"
 #include "pending_temporaries.hpp"
 
 #include <gtest/gtest.h>
@@ -10,7 +11,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -18,11 +22,12 @@
 
 namespace fs = std::filesystem;
 using skygraph::files::outputTarget;
-using skygraph::files::renameAllOrNone;
-using skygraph::files::Replacement;
 using skygraph::files::replaceFile;
 using skygraph::files::replaceFileContents;
+using skygraph::files::replaceFilesContents;
 using skygraph::files::temporaryBeside;
+using skygraph::files::whyNotWritten;
+using skygraph::test::FolderEvents;
 
 namespace {
 
@@ -206,17 +211,13 @@ TEST_F(ReplaceFile, AWriteThatFailsLeavesTheFileAsItWasAndNoTemporary) {
 }
 
 // A set of files replaced together (cubemap's outputs): all of them, and nothing left beside.
-TEST_F(ReplaceFile, RenamesASetOfFilesTogether) {
+TEST_F(ReplaceFile, ReplacesASetOfFilesTogether) {
     write(dir_ / "cube.ktx2", "old cube");
     const fs::path witness = dir_.parent_path() / (dir_.filename().string() + "-witness");
     fs::remove(witness);
     fs::create_hard_link(dir_ / "cube.ktx2", witness);  // counts the old file's names
-    std::vector<Replacement> set;
-    for (const char* name : {"cube.ktx2", "cube.brdf.ktx2"}) {
-        set.push_back({temporaryBeside(dir_ / name), dir_ / name});
-        write(set.back().temporary, std::string("new ") + name);
-    }
-    renameAllOrNone(set);
+    const std::vector<fs::path> set{dir_ / "cube.ktx2", dir_ / "cube.brdf.ktx2"};
+    replaceFilesContents(set, [&](size_t i) { return "new " + set[i].filename().string(); });
     EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "new cube.ktx2");
     EXPECT_EQ(slurp(dir_ / "cube.brdf.ktx2"), "new cube.brdf.ktx2");
     EXPECT_EQ(fs::hard_link_count(witness), 1u) << "the old file's kept name is left";
@@ -224,26 +225,115 @@ TEST_F(ReplaceFile, RenamesASetOfFilesTogether) {
     EXPECT_EQ(names(dir_), (std::vector<std::string>{"cube.brdf.ktx2", "cube.ktx2"}));
 }
 
+// Each file of a set is written once, into one temporary beside it, and renamed into place
+// once; its bytes are asked for once, in order.
+TEST_F(ReplaceFile, EachFileOfASetIsWrittenOnceAndRenamedOnce) {
+    write(dir_ / "cube.ktx2", "old cube");
+    const std::vector<fs::path> set{dir_ / "cube.ktx2", dir_ / "cube.irradiance.ktx2", dir_ / "cross.exr"};
+    FolderEvents events(dir_);
+    std::vector<size_t> asked;
+    replaceFilesContents(set, [&](size_t i) {
+        asked.push_back(i);
+        return "new " + set[i].filename().string();
+    });
+    const FolderEvents::Counts counts = events.take();
+    EXPECT_EQ(asked, (std::vector<size_t>{0, 1, 2}));
+    EXPECT_EQ(counts.renamedTo, (std::map<std::string, int>{{"cross.exr", 1}, {"cube.irradiance.ktx2", 1}, {"cube.ktx2", 1}}));
+    EXPECT_EQ(counts.written.size(), set.size()) << "one temporary each";
+    for (const auto& [name, times] : counts.written) {
+        EXPECT_EQ(name.front(), '.') << name << " was written under its own name";
+        EXPECT_EQ(times, 1) << name;
+        EXPECT_EQ(counts.created.count(name), 1u) << name;
+    }
+    EXPECT_EQ(names(dir_), (std::vector<std::string>{"cross.exr", "cube.irradiance.ktx2", "cube.ktx2"}));
+}
+
 // The third rename fails (a folder took its target's name after the check): the first target
-// gets its old file back, the second, new, is removed, and no temporary is left.
+// gets its old file back, the second, new, is removed, no temporary is left, and the error
+// names the output whose rename failed.
 TEST_F(ReplaceFile, ASetThatCannotBeRenamedWholeIsPutBackAsItWas) {
     write(dir_ / "cube.ktx2", "old cube");
-    fs::create_directories(dir_ / "cube.prefiltered.ktx2" / "inside");
-    std::vector<Replacement> set;
-    for (const char* name : {"cube.ktx2", "cube.irradiance.ktx2", "cube.prefiltered.ktx2"}) {
-        set.push_back({temporaryBeside(dir_ / name), dir_ / name});
-        write(set.back().temporary, std::string("new ") + name);
-    }
+    const std::vector<fs::path> set{dir_ / "cube.ktx2", dir_ / "cube.irradiance.ktx2", dir_ / "cube.prefiltered.ktx2"};
     try {
-        renameAllOrNone(set);
+        replaceFilesContents(set, [&](size_t i) {
+            if (i == 2) fs::create_directories(set[2] / "inside");
+            return "new " + set[i].filename().string();
+        });
         ADD_FAILURE() << "renamed a file over a folder";
     } catch (const fs::filesystem_error& e) {
-        EXPECT_EQ(e.path2(), dir_ / "cube.prefiltered.ktx2");
+        EXPECT_EQ(e.path1(), set[2]);
+        EXPECT_EQ(whyNotWritten(e), "it is a folder");
     }
     EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "old cube");
     EXPECT_EQ(fs::hard_link_count(dir_ / "cube.ktx2"), 1u);
     EXPECT_TRUE(fs::is_directory(dir_ / "cube.prefiltered.ktx2" / "inside"));
     EXPECT_EQ(names(dir_), (std::vector<std::string>{"cube.ktx2", "cube.prefiltered.ktx2"}));
+}
+
+// Bytes that cannot be made (an image that does not encode) or a file that cannot be written
+// (its folder is missing) leave every file as it was and no temporary; the error is the
+// encoder's, or names the output.
+TEST_F(ReplaceFile, ASetThatCannotBeWrittenWholeLeavesEveryFileAsItWas) {
+    write(dir_ / "cube.ktx2", "old cube");
+    const std::vector<fs::path> set{dir_ / "cube.ktx2", dir_ / "cube.brdf.ktx2"};
+    EXPECT_THROW(replaceFilesContents(set,
+                                      [&](size_t i) -> std::string {
+                                          if (i == 1) throw std::runtime_error("cannot encode");
+                                          return "new";
+                                      }),
+                 std::runtime_error);
+    EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "old cube");
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"cube.ktx2"});
+    const std::vector<fs::path> missing{dir_ / "cube.ktx2", dir_ / "nowhere" / "cross.exr"};
+    try {
+        replaceFilesContents(missing, [](size_t) { return std::string("new"); });
+        ADD_FAILURE() << "wrote into a folder that does not exist";
+    } catch (const skygraph::files::MissingFolder& e) {
+        EXPECT_EQ(e.path1(), missing[1]);
+    }
+    EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "old cube");
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"cube.ktx2"});
+}
+
+// A stream in a set (here /dev/null) gets its bytes from a temporary in TMPDIR, which is gone
+// afterwards; without that folder, nothing of the set is written.
+TEST_F(ReplaceFile, AStreamInASetIsWrittenThroughTheSystemsTemporaryFolder) {
+    struct Tmpdir {
+        explicit Tmpdir(const fs::path& dir) {
+            if (const char* before = std::getenv("TMPDIR")) previous = before;
+            ::setenv("TMPDIR", dir.c_str(), 1);
+        }
+        ~Tmpdir() {
+            if (previous) ::setenv("TMPDIR", previous->c_str(), 1);
+            else ::unsetenv("TMPDIR");
+        }
+        std::optional<std::string> previous;
+    };
+    fs::create_directories(dir_ / "tmp");
+    const std::vector<fs::path> set{dir_ / "cube.ktx2", "/dev/null"};
+    {
+        const Tmpdir tmp(dir_ / "tmp");
+        replaceFilesContents(set, [](size_t) { return std::string("new"); });
+    }
+    EXPECT_EQ(slurp(dir_ / "cube.ktx2"), "new");
+    EXPECT_TRUE(fs::is_empty(dir_ / "tmp"));
+    fs::remove(dir_ / "cube.ktx2");
+    {
+        const Tmpdir tmp(dir_ / "no such folder");
+        EXPECT_THROW(replaceFilesContents(set, [](size_t) { return std::string("new"); }), skygraph::files::MissingFolder);
+    }
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"tmp"});
+}
+
+// An old file that a failed set could not put back is kept under a hidden name, and the
+// reason says where.
+TEST_F(ReplaceFile, AnOldFileThatCannotBePutBackSaysWhereItIsKept) {
+    const skygraph::files::OldFileKept e(dir_ / "cube.ktx2", dir_ / ".cube.partial1-0.ktx2",
+                                         std::make_error_code(std::errc::permission_denied));
+    EXPECT_EQ(e.path1(), dir_ / "cube.ktx2");
+    EXPECT_EQ(whyNotWritten(e), std::make_error_code(std::errc::permission_denied).message() +
+                                    "; the old file could not be put back: it is kept as '" +
+                                    (dir_ / ".cube.partial1-0.ktx2").string() + "'");
 }
 
 // A name as long as a folder takes (255 bytes) is written: its temporary's stem gives way.

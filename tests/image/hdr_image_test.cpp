@@ -285,6 +285,30 @@ TEST_F(HdrImageTest, AWriteCutShortLeavesThePreviousFileAndNamesTheOutput) {
     EXPECT_EQ(names, (std::vector<std::string>{"x.exr", "x.hdr", "x.ktx2"}));
 }
 
+// The encoders give the bytes the savers write, for a caller that writes several files
+// together; they write nothing themselves.
+TEST_F(HdrImageTest, EncodedBytesAreWhatASaveWrites) {
+    const HdrImage image = pattern(8, 4);
+    const skygraph::Ktx2Texture texture{skygraph::Ktx2Format::Rgba16Float, {{image}}};
+    for (const char* name : {"x.hdr", "x.exr"}) {
+        SCOPED_TRACE(name);
+        const std::string bytes = skygraph::encodeHdrImage(dir_ / name, image);
+        EXPECT_FALSE(fs::exists(dir_ / name));
+        skygraph::saveHdrImage(dir_ / name, image);
+        EXPECT_EQ(readBytes(dir_ / name), bytes);
+    }
+    const std::string ktx2 = skygraph::encodeKtx2(dir_ / "x.ktx2", texture);
+    skygraph::saveKtx2(dir_ / "x.ktx2", texture);
+    EXPECT_EQ(readBytes(dir_ / "x.ktx2"), ktx2);
+    try {
+        (void)skygraph::encodeHdrImage(dir_ / "x.png", image);
+        ADD_FAILURE() << "encoded a PNG";
+    } catch (const ImageError& e) {
+        EXPECT_EQ(e.file(), dir_ / "x.png");
+    }
+    EXPECT_EQ(skygraph::loadExr(dir_ / "x.exr").rgba.size(), image.rgba.size());
+}
+
 TEST_F(HdrImageTest, MissingEmptyAndDirectoryInputsNameTheFile) {
     expectLoadError(dir_ / "missing.hdr", "no such file");
     expectLoadError(dir_ / "missing.exr", "no such file");

@@ -1,7 +1,6 @@
 #include "cubemap_command.hpp"
 
 #include "builtin_ibl_graph.hpp"
-#include "pending_temporaries.hpp"
 #include "progress_bar.hpp"
 #include "replace_file.hpp"
 
@@ -72,64 +71,19 @@ HdrImage crossLayout(const std::vector<ImageData>& faces) {
     return cross;
 }
 
-/// Where `path` is written (files::outputTarget): a target in an existing folder (a link's
-/// target's), not a folder itself. Found before the bake, so that a mistyped path costs no work.
-files::OutputTarget writableTarget(const std::filesystem::path& path) {
-    try {
-        return files::writableOutputTarget(path);
-    } catch (const std::filesystem::filesystem_error& e) {
-        throw ImageError(path, "cannot write: " + files::whyNotWritten(e));
-    }
+/// A failed write (from files::) as the ImageError of its output, which path1() names.
+ImageError cannotWrite(const std::filesystem::filesystem_error& e) {
+    return ImageError(e.path1(), "cannot write: " + files::whyNotWritten(e));
 }
 
-/// writes[i] writes outputs[i], which goes to targets[i], to the path it is given: first each
-/// file to a temporary beside its target (files::temporaryBeside keeps the extension, which
-/// picks the format), then each FIFO or device in place, then, once all are written, each file
-/// renamed into place. A failure before the renames removes the temporaries and leaves every
-/// file as it was; a rename that fails puts back the files renamed before it
-/// (files::renameAllOrNone). A FIFO or device has had its bytes by then.
-void writeAllOrNone(const std::vector<std::filesystem::path>& outputs, const std::vector<files::OutputTarget>& targets,
-                    const std::vector<std::function<void(const std::filesystem::path&)>>& writes) {
-    std::vector<std::filesystem::path> temporaries(outputs.size());
-    std::vector<std::unique_ptr<files::PendingTemporary>> pending;
-    const auto removeTemporaries = [&] {
-        std::error_code ignored;
-        for (const auto& t : temporaries)
-            if (!t.empty()) std::filesystem::remove(t, ignored);
-    };
+/// Throws ImageError naming `path` unless it can be written: files::writableOutputTarget, a
+/// file in an existing folder (a link's target's) or a stream, not a folder. Checked before
+/// the bake, so that a mistyped path costs no work.
+void requireWritableOutput(const std::filesystem::path& path) {
     try {
-        for (size_t i = 0; i < outputs.size(); ++i) {
-            if (targets[i].inPlace) continue;
-            temporaries[i] = files::temporaryBeside(targets[i].path);
-            pending.push_back(std::make_unique<files::PendingTemporary>(temporaries[i]));
-            try {
-                writes[i](temporaries[i]);
-            } catch (const ImageError& e) {
-                // The writer named the file it wrote, the temporary: the user knows the output.
-                const std::string prefix = "'" + temporaries[i].string() + "': ";
-                const std::string what = e.what();
-                throw ImageError(outputs[i], what.starts_with(prefix) ? what.substr(prefix.size()) : what);
-            }
-        }
-        for (size_t i = 0; i < outputs.size(); ++i)
-            if (targets[i].inPlace) writes[i](targets[i].path);
-    } catch (...) {
-        removeTemporaries();
-        throw;
-    }
-    std::vector<files::Replacement> replacements;
-    for (size_t i = 0; i < outputs.size(); ++i)
-        if (!targets[i].inPlace) replacements.push_back({temporaries[i], targets[i].path});
-    try {
-        files::renameAllOrNone(replacements);
+        (void)files::writableOutputTarget(path);
     } catch (const std::filesystem::filesystem_error& e) {
-        // A rename names its target second; renameAllOrNone's own errors (an old file it could
-        // not put back, and where it is kept) name it first, and say more than their code.
-        for (size_t i = 0; i < outputs.size(); ++i) {
-            if (targets[i].path == e.path2()) throw ImageError(outputs[i], "cannot write: " + files::whyNotWritten(e));
-            if (targets[i].path == e.path1()) throw ImageError(outputs[i], e.what());
-        }
-        throw;
+        throw cannotWrite(e);
     }
 }
 
@@ -157,10 +111,9 @@ int run(CubemapArgs& args) {
     std::vector<std::filesystem::path> outputs{output};
     for (const auto& p : args.products) outputs.push_back(productPath(output, p));
     if (!args.cross.empty()) outputs.emplace_back(args.cross);
-    std::vector<files::OutputTarget> targets;
     for (const auto& path : outputs) {
         refuseToOverwriteInputs(path == output ? "-o" : "an output", path, {args.input});
-        targets.push_back(writableTarget(path));
+        requireWritableOutput(path);
     }
 
     ProgressBar bar("cubemap", 6, "steps");
@@ -179,23 +132,28 @@ int run(CubemapArgs& args) {
 
     for (const PassTiming& t : result.passTimings) spdlog::debug("  {:<18} {:8.1f} ms", t.pass, t.milliseconds);
     const Ktx2Format colour = bake.float32 ? Ktx2Format::Rgba32Float : Ktx2Format::Rgba16Float;
-    std::vector<std::function<void(const std::filesystem::path&)>> writes;  // parallel to outputs
-    writes.push_back([&](const std::filesystem::path& to) {
-        saveKtx2(to, toKtx2(result.products.at(std::string(kEnvironment)), 6, colour));
-    });
-    for (const auto& p : args.products)
-        writes.push_back([&, p](const std::filesystem::path& to) {
+    // Each output's file, encoded when it is written: one file's bytes are held at a time.
+    std::vector<std::function<std::string()>> encode;  // parallel to outputs
+    encode.push_back([&] { return encodeKtx2(output, toKtx2(result.products.at(std::string(kEnvironment)), 6, colour)); });
+    for (size_t i = 0; i < args.products.size(); ++i)
+        encode.push_back([&, i] {
+            const std::string& p = args.products[i];
             const std::string resource = p == "brdf" ? std::string(kBrdfLut) : p;
             const bool table = resource == kBrdfLut;
             const Ktx2Format format = table ? (bake.float32 ? Ktx2Format::Rg32Float : Ktx2Format::Rg16Float) : colour;
-            saveKtx2(to, toKtx2(result.products.at(resource), table ? 1 : 6, format));
+            return encodeKtx2(outputs[i + 1], toKtx2(result.products.at(resource), table ? 1 : 6, format));
         });
     if (!args.cross.empty())
-        writes.push_back([&](const std::filesystem::path& to) {
+        encode.push_back([&] {
             const auto& env = result.products.at(std::string(kEnvironment));
-            saveHdrImage(to, crossLayout({env.begin(), env.begin() + 6}));
+            return encodeHdrImage(outputs.back(), crossLayout({env.begin(), env.begin() + 6}));
         });
-    writeAllOrNone(outputs, targets, writes);
+    // All or none: a failure leaves every output as it was (files::replaceFilesContents).
+    try {
+        files::replaceFilesContents(outputs, [&](size_t i) { return encode[i](); });
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw cannotWrite(e);
+    }
     bar.advance();
     bar.finish();
     const double totalMs =
