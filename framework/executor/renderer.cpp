@@ -449,6 +449,7 @@ void Renderer::reloadShaders() { setGraph(impl_->state->compiled, ShaderSources:
 bool Renderer::shadersChangedOnDisk() const { return impl_->shaders->keptFilesChanged(); }
 uint64_t Renderer::frameCount() const noexcept { return impl_->frameIndex; }
 std::filesystem::path Renderer::shaderDir() const { return impl_->shaders->includeDir(); }
+std::shared_ptr<ShaderCompiler> Renderer::shaderCompiler() const { return impl_->shaders; }
 const PassLibrary* Renderer::passes() const noexcept { return impl_->options.passes; }
 
 void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_t slot) {

@@ -23,6 +23,7 @@ namespace skygraph {
 class PassLibrary;  // skygraph/pass.hpp: pass implementations
 class FrameData;    // skygraph/pass.hpp: per-frame values for pass implementations
 class StagingBuffer;  // skygraph/staging_buffer.hpp: host pixels an UploadPass copies
+class ShaderCompiler;  // skygraph/shader_compiler.hpp: GLSL to SPIR-V, and the sources it kept
 class Renderer;
 
 /// How a Renderer runs; what it runs (graph, options, output size) is the CompiledGraph.
@@ -32,8 +33,8 @@ struct RendererOptions {
     /// Directory with the GLSL includes (shaders/); empty: ShaderCompiler::defaultIncludeDir().
     std::filesystem::path shaderDir;
     /// Where compiled SPIR-V is kept between runs: unset, ShaderCompiler::defaultCacheDir();
-    /// an empty path, nowhere (every run compiles its shaders). With shadersFrom, that
-    /// renderer's is kept instead.
+    /// an empty path, nowhere (every run compiles its shaders). With shadersFrom or
+    /// shaderCompiler, theirs is kept instead.
     std::optional<std::filesystem::path> shaderCacheDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic" (a warning says so, once per type, unless the library
@@ -55,9 +56,15 @@ struct RendererOptions {
     /// Borrowed during construction only. The new renderer builds from the shader sources that
     /// renderer's pipelines were built from, and from its shader directory (`shaderDir` is not
     /// used), as that renderer's setGraph() with ShaderSources::Cached would: e.g. an
-    /// application replacing its renderer while a shader on disk is half edited. Null: the
-    /// shaders are read from `shaderDir`.
+    /// application replacing its renderer while a shader on disk is half edited. Null:
+    /// shaderCompiler's sources, else the shaders are read from `shaderDir`.
     const Renderer* shadersFrom = nullptr;
+    /// As shadersFrom, for sources kept longer than the renderer that read them: the compiler
+    /// a renderer built with (Renderer::shaderCompiler()), e.g. of one that is gone. The new
+    /// renderer builds with it, and so from the sources it keeps and its include directory
+    /// (`shaderDir` and `shaderCacheDir` are not used), until it reads its shaders again.
+    /// Used when shadersFrom is null.
+    std::shared_ptr<ShaderCompiler> shaderCompiler;
 };
 
 /// What renderFrame(Swapchain&) did.
@@ -309,8 +316,14 @@ public:
     /// Frames submitted since construction, rebuilds included.
     [[nodiscard]] uint64_t frameCount() const noexcept;
     /// The directory its shaders are read from: RendererOptions::shaderDir, the default an
-    /// empty one stands for, or shadersFrom's. A copy.
+    /// empty one stands for, or shadersFrom's or shaderCompiler's. A copy.
     [[nodiscard]] std::filesystem::path shaderDir() const;
+    /// The compiler the running pipelines were built with, which keeps the shader sources they
+    /// were built from (ShaderCompiler::source): for RendererOptions::shaderCompiler of a
+    /// renderer made later, after this one is gone too. Shared with this renderer until it
+    /// reads its shaders again (reloadShaders(), setGraph() with ShaderSources::Reread), which
+    /// it does with a new compiler, leaving this one as it was.
+    [[nodiscard]] std::shared_ptr<ShaderCompiler> shaderCompiler() const;
     /// RendererOptions::passes: borrowed, null when the renderer has no recording code.
     [[nodiscard]] const PassLibrary* passes() const noexcept;
 

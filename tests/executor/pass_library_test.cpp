@@ -189,6 +189,44 @@ TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgai
     std::filesystem::remove_all(dir);
 }
 
+// The compiler a renderer built with keeps the sources it read after the renderer is gone: a
+// renderer made from it later (RendererOptions::shaderCompiler) builds from them while the
+// file on disk is broken, as one made from a running renderer (shadersFrom) does.
+TEST_F(ExecutorTest, ARendererBuildsFromTheKeptSourcesOfOneThatIsGone) {
+    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_kept_sources_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
+                               dir / "generic_common.glsl");  // for "show"
+    std::ofstream(dir / "fill.comp") << "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
+    const PassLibrary lib = library();
+    const GraphDesc graph = parseGraph(graphText("FileFill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
+    RendererOptions o;
+    o.passes = &lib;
+    o.shaderDir = dir;
+    std::shared_ptr<ShaderCompiler> kept;
+    {
+        Renderer first(sharedDevice(), CompiledGraph(graph, co), o);
+        kept = first.shaderCompiler();
+        first.waitIdle();
+    }
+    std::ofstream(dir / "fill.comp", std::ios::trunc) << "this is not glsl";
+    EXPECT_THROW(Renderer(sharedDevice(), CompiledGraph(graph, co), o), ExecutorError) << "it reads the directory";
+    RendererOptions later = o;
+    later.shaderDir = dir / "elsewhere";  // unused: the sources' directory is the compiler's
+    later.shaderCompiler = kept;
+    Renderer r(sharedDevice(), CompiledGraph(graph, co), later);
+    EXPECT_EQ(r.shaderDir(), dir);
+    EXPECT_EQ(r.shaderCompiler(), kept);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 5, 5, 0.25, 0.5, 0.5, 1.0);
+    EXPECT_THROW(r.reloadShaders(), ExecutorError) << "its reload reads the directory";
+    EXPECT_EQ(r.shaderCompiler(), kept) << "a failed reload keeps the sources that ran";
+    r.waitIdle();
+    std::filesystem::remove_all(dir);
+}
+
 TEST_F(ExecutorTest, APassWithoutRecordingCodeNeedsAPassLibrary) {
     const PassLibrary lib = library();
     GraphDesc graph = parseGraph(graphText("Fill"), "<lib>", lib.registry());

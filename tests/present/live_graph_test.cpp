@@ -127,6 +127,34 @@ std::filesystem::path writeUniformSky(const std::string& name, uint32_t width, u
     return file;
 }
 
+/// A copy of the shaders that renderers read (SKYGRAPH_SHADER_DIR) while it lives, for a test
+/// to edit; the real ones again however the test ends, as later tests must read them.
+struct ShaderDirForTheTest {
+    ShaderDirForTheTest() : dir(std::filesystem::temp_directory_path() / ("skygraph-shaders-" + std::to_string(::getpid()))) {
+        std::filesystem::remove_all(dir);
+        std::filesystem::copy(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders", dir,
+                              std::filesystem::copy_options::recursive);
+        if (const char* before = std::getenv("SKYGRAPH_SHADER_DIR")) previous = before;
+        setenv("SKYGRAPH_SHADER_DIR", dir.c_str(), 1);
+    }
+    ~ShaderDirForTheTest() {
+        if (previous) setenv("SKYGRAPH_SHADER_DIR", previous->c_str(), 1);
+        else unsetenv("SKYGRAPH_SHADER_DIR");
+        std::error_code ignored;
+        std::filesystem::remove_all(dir, ignored);
+    }
+    ShaderDirForTheTest(const ShaderDirForTheTest&) = delete;
+    ShaderDirForTheTest& operator=(const ShaderDirForTheTest&) = delete;
+    std::filesystem::path dir;
+    std::optional<std::string> previous;
+};
+
+/// The text of `file`.
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 // `skygraph view`'s environment change (LiveGraph::setEnvironmentFile): a file of the running
 // one's size is re-baked on the compute queue beside the presented frames and swapped in
 // between two of them, with no rebuild and no validation message.
@@ -336,26 +364,9 @@ TEST_F(Present, AnEnvironmentGraphSavedBesideTheGraphLaterIsBuilt) {
 // reported and the frames go on; an edit to a frame shader only reloads the frame's pipelines.
 TEST_F(Present, AnEditedEnvironmentShaderBakesTheEnvironmentAgain) {
     namespace fs = std::filesystem;
-    const fs::path shaders = fs::temp_directory_path() / ("skygraph-shaders-" + std::to_string(::getpid()));
-    fs::remove_all(shaders);
-    fs::copy(fs::path(SKYGRAPH_SOURCE_DIR) / "shaders", shaders, fs::copy_options::recursive);
-    // Restored however the test ends: later tests must read the real shaders.
-    struct ShaderDirForTheTest {
-        explicit ShaderDirForTheTest(const fs::path& dir) : dir_(dir) {
-            if (const char* before = std::getenv("SKYGRAPH_SHADER_DIR")) previous_ = before;
-            setenv("SKYGRAPH_SHADER_DIR", dir.c_str(), 1);
-        }
-        ~ShaderDirForTheTest() {
-            if (previous_) setenv("SKYGRAPH_SHADER_DIR", previous_->c_str(), 1);
-            else unsetenv("SKYGRAPH_SHADER_DIR");
-            std::error_code ignored;
-            fs::remove_all(dir_, ignored);
-        }
-        fs::path dir_;
-        std::optional<std::string> previous_;
-    };
     {
-        const ShaderDirForTheTest shaderDir(shaders);
+        const ShaderDirForTheTest shaderDir;
+        const fs::path& shaders = shaderDir.dir;
         LiveWindow w(*device_, "scenes/studio.json");
         app::LiveGraph& live = w.live;
         const ImageData lit = w.screen();
@@ -403,6 +414,52 @@ TEST_F(Present, AnEditedEnvironmentShaderBakesTheEnvironmentAgain) {
         EXPECT_EQ(live.reloads(), reloads + 2) << "the undo's reload and the bake";
         const ImageData dark = w.screen();
         EXPECT_LT(meanColour(dark), 0.9 * meanColour(lit)) << "the spheres are still lit by the old bake";
+        live.renderer().waitIdle();
+    }
+    expectSilent();
+}
+
+// A checkbox that drops every product of the environment's bake (geometry off, with a sky
+// drawn from the equirect: nothing samples the bake) keeps the bake's shader sources: when it
+// is turned back on, the bake is built from them, as any checkbox's rebuild is, so it works
+// while a bake shader is broken on disk. An edit made while no bake ran is then baked, or
+// reported, as one made while it ran would have been.
+TEST_F(Present, ACheckboxThatDropsTheWholeBakeKeepsItsShaderSources) {
+    namespace fs = std::filesystem;
+    {
+        const ShaderDirForTheTest shaderDir;
+        LiveWindow w(*device_, "scenes/studio.json");
+        app::LiveGraph& live = w.live;
+        const ImageData lit = w.screen();
+        const fs::path cube = shaderDir.dir / "passes/ibl/equirect_to_cube.comp";
+        const std::string source = readText(cube);
+
+        ASSERT_TRUE(live.setFeature("geometry", false)) << live.error();
+        std::ofstream(cube, std::ios::app) << "\nthis is not GLSL\n";
+        w.frame();  // the watcher sees the edit; no bake runs to read it
+        ASSERT_TRUE(live.setFeature("geometry", true)) << live.error();
+        EXPECT_EQ(live.error(), "") << "the bake came back from its sources, not from the broken file";
+        w.frame();
+        EXPECT_NE(live.error().find("equirect_to_cube.comp"), std::string::npos)
+            << "the edit made while no bake ran is not reported once one runs: " << live.error();
+        std::ofstream(cube, std::ios::trunc) << source;
+        w.frame();
+        EXPECT_EQ(live.error(), "") << "the undone edit's message stayed";
+        EXPECT_EQ(w.screen().rgba, lit.rgba) << "the bake that came back is not the one that went";
+
+        // A good edit made while no bake runs (the environment cube black) is baked once one
+        // runs again: the spheres lose their light.
+        ASSERT_TRUE(live.setFeature("geometry", false)) << live.error();
+        std::string black = source;
+        const std::string sample = "vec4(sum / float(n * n), 1.0)";
+        ASSERT_NE(black.find(sample), std::string::npos);
+        black.replace(black.find(sample), sample.size(), "vec4(0.0, 0.0, 0.0, 1.0)");
+        std::ofstream(cube, std::ios::trunc) << black;
+        w.frame();
+        ASSERT_TRUE(live.setFeature("geometry", true)) << live.error();
+        w.frame();
+        EXPECT_EQ(live.error(), "");
+        EXPECT_LT(meanColour(w.screen()), 0.9 * meanColour(lit)) << "the spheres are still lit by the old bake";
         live.renderer().waitIdle();
     }
     expectSilent();

@@ -99,7 +99,7 @@ namespace {
 /// to render its one frame.
 EnvironmentBake prepareBake(Device& device, GraphDesc graph, const HdrImage& equirect,
                             const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
-                            const BakeStepCallback& onStep, const Renderer* shadersFrom) {
+                            const BakeStepCallback& onStep, std::shared_ptr<ShaderCompiler> shaders) {
     const auto step = [&](const char* name) {
         if (onStep) onStep(name);
     };
@@ -116,7 +116,7 @@ EnvironmentBake prepareBake(Device& device, GraphDesc graph, const HdrImage& equ
     RendererOptions ro;
     ro.framesInFlight = 1;
     ro.passes = passes;
-    ro.shadersFrom = shadersFrom;
+    ro.shaderCompiler = std::move(shaders);
     EnvironmentBake bake;
     bake.renderer = std::make_unique<Renderer>(device, std::move(compiled), ro);
     bake.renderer->setExternalImage(std::string(kEquirect), toImageData(equirect));
@@ -129,8 +129,8 @@ EnvironmentBake prepareBake(Device& device, GraphDesc graph, const HdrImage& equ
 
 EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
                                 const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
-                                const BakeStepCallback& onStep, const Renderer* shadersFrom) {
-    EnvironmentBake bake = prepareBake(device, std::move(graph), equirect, products, passes, onStep, shadersFrom);
+                                const BakeStepCallback& onStep, std::shared_ptr<ShaderCompiler> shaders) {
+    EnvironmentBake bake = prepareBake(device, std::move(graph), equirect, products, passes, onStep, std::move(shaders));
     const auto gpuStart = Clock::now();
     bake.renderer->renderFrame();
     bake.renderer->waitIdle();
@@ -141,7 +141,7 @@ EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage&
 
 EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                                    std::set<std::string, std::less<>> products, const PassLibrary* passes,
-                                   bool background, uint32_t renderers, const Renderer* shadersFrom)
+                                   bool background, uint32_t renderers, std::shared_ptr<ShaderCompiler> shaders)
     : width_(width), height_(height), staging_(device, rgba32fBytes(width, height)), products_(std::move(products)), background_(background) {
     if (renderers < 2 || renderers > 3)
         throw std::invalid_argument("EnvironmentBaker: 2 or 3 renderers, not " + std::to_string(renderers));
@@ -168,7 +168,7 @@ EnvironmentBaker::EnvironmentBaker(Device& device, GraphDesc graph, uint32_t wid
     ro.framesInFlight = 1;
     ro.passes = passes;
     ro.timestamps = false;  // nothing reads them, and reading them on lavapipe waits for the frames' work
-    ro.shadersFrom = shadersFrom;
+    ro.shaderCompiler = std::move(shaders);
     for (uint32_t i = 0; i < renderers; ++i) renderers_.push_back(std::make_unique<Renderer>(device, compiled, ro));
 }
 

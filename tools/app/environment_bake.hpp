@@ -57,14 +57,14 @@ struct EnvironmentBake {
 /// passes of the graph's other exports are culled. `equirect` sets the extent of the graph's
 /// `equirect` and is uploaded to it (the renderer keeps its own copy). `passes` (the recording
 /// code, e.g. PassLibrary::withBuiltins()) is borrowed for the renderer's life; `device` must
-/// outlive the result. `shadersFrom` (borrowed during the call; RendererOptions::shadersFrom):
-/// a renderer whose shader sources to build from, e.g. the last bake's, rather than the files
-/// on disk. Throws GraphError / ExecutorError naming what is wrong, e.g. a product the graph
-/// does not export.
+/// outlive the result. `shaders` (RendererOptions::shaderCompiler): the compiler whose kept
+/// shader sources to build from, e.g. the last bake's (Renderer::shaderCompiler()), rather
+/// than the files on disk. Throws GraphError / ExecutorError naming what is wrong, e.g. a
+/// product the graph does not export.
 [[nodiscard]] EnvironmentBake bakeEnvironment(Device& device, GraphDesc graph, const HdrImage& equirect,
                                               const std::set<std::string, std::less<>>& products,
                                               const PassLibrary* passes, const BakeStepCallback& onStep = {},
-                                              const Renderer* shadersFrom = nullptr);
+                                              std::shared_ptr<ShaderCompiler> shaders = nullptr);
 
 /// Re-bakes the environment a frame renderer imports beside its frames, again and again
 /// (docs/queues.md, "Background frames"). Two or three renderers of `graph` with its feature
@@ -81,11 +81,11 @@ public:
     /// Compiles `graph` for `products` with an equirect of `width` x `height` and makes
     /// `renderers` (2 or 3) renderers. `background` false: every pass runs on the graphics
     /// queue and start() waits for the bake (the synchronous way, for comparison).
-    /// `shadersFrom` as for bakeEnvironment(). Throws like bakeEnvironment(), and for a graph
+    /// `shaders` as for bakeEnvironment(). Throws like bakeEnvironment(), and for a graph
     /// without the feature `streamed_equirect`.
     EnvironmentBaker(Device& device, GraphDesc graph, uint32_t width, uint32_t height,
                      std::set<std::string, std::less<>> products, const PassLibrary* passes, bool background = true,
-                     uint32_t renderers = 2, const Renderer* shadersFrom = nullptr);
+                     uint32_t renderers = 2, std::shared_ptr<ShaderCompiler> shaders = nullptr);
     EnvironmentBaker(const EnvironmentBaker&) = delete;
     EnvironmentBaker& operator=(const EnvironmentBaker&) = delete;
 

@@ -41,6 +41,10 @@ void keepViewSettings(const Scene& edited, Scene& loaded) {
 
 struct LiveGraph::Built {
     FrameEnvironment environment;  // outlives the renderer that imports its products
+    /// The shader sources of the last bake built: environment.renderer's, or, when this build
+    /// bakes nothing (a checkbox dropped every product), those of the bake before it, so that
+    /// the bake a later rebuild brings back builds from them as a rebuild's bake does.
+    std::shared_ptr<ShaderCompiler> bakeShaders;
     std::unique_ptr<Renderer> renderer;
     UploadPassPixels uploads;  // what the graph's UploadPasses copy, every frame
     std::optional<Scene> scene;
@@ -172,9 +176,10 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     co.memory = device_.memoryModel();  // what the renderer compiles with: it would compile again
     CompiledGraph compiled(inputs.graph, co);
     for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
-    const Renderer* runningBake = built_ ? built_->environment.renderer.get() : nullptr;
+    const std::shared_ptr<ShaderCompiler> lastBake = built_ ? built_->bakeShaders : nullptr;
     b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options,
-                                          bakeShaders == Renderer::ShaderSources::Cached ? runningBake : nullptr);
+                                          bakeShaders == Renderer::ShaderSources::Cached ? lastBake : nullptr);
+    b->bakeShaders = b->environment.renderer ? b->environment.renderer->shaderCompiler() : lastBake;
     RendererOptions ro;
     ro.framesInFlight = options.framesInFlight;
     ro.passes = inputs.passes;
@@ -219,6 +224,11 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders, 
         return false;
     }
     renderer_->waitIdle();
+    // A bake built from the sources of one that was not running may be behind an edit made
+    // meanwhile, which no bake saw: the next poll looks, as it does after an edit.
+    if (!built_->environment.renderer && next->environment.renderer && built_->bakeShaders &&
+        bakeShaders == Renderer::ShaderSources::Cached)
+        checkBakeShaders_ = true;
     built_ = std::move(next);  // the old renderer is gone before the new one records
     baker_.reset();            // the new build baked its own environment
     rebakeEquirect_.reset();
@@ -367,7 +377,7 @@ EnvironmentBaker& LiveGraph::baker(uint32_t width, uint32_t height) {
     baker_ = std::make_unique<EnvironmentBaker>(device_, *built_->environment.graph, width, height,
                                                 built_->environment.products,
                                                 options_.passes ? options_.passes : &PassLibrary::genericOnly(), true,
-                                                fades ? 3 : 2, built_->environment.renderer.get());
+                                                fades ? 3 : 2, built_->environment.renderer->shaderCompiler());
     return *baker_;
 }
 
@@ -462,12 +472,15 @@ bool LiveGraph::poll() {
     }
     // The environment was baked once, by a renderer of its own that the watcher (which sees
     // every edit in the shader directory) does not reload: an edit to a shader that bake was
-    // built from bakes it again, in a rebuild that keeps everything else.
+    // built from bakes it again, in a rebuild that keeps everything else; so does one made
+    // while no bake ran, once a bake is back (checkBakeShaders_).
     // A failed bake keeps its message apart, to go when the edit is undone.
     const Renderer* bake = built_->environment.renderer.get();
-    if (shaders != HotReloader::Result::Unchanged && bake) {
+    const bool bakeMayBeBehind = std::exchange(checkBakeShaders_, false);
+    if ((shaders != HotReloader::Result::Unchanged || bakeMayBeBehind) && bake) {
         if (bake->shadersChangedOnDisk()) {
-            shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
+            if (shaders != HotReloader::Result::Unchanged)
+                shaderError_ = shaders == HotReloader::Result::Failed ? shaderWatcher_->lastError() : std::string();
             std::string before = error_;
             if (!rebuild(options_, Renderer::ShaderSources::Cached, Renderer::ShaderSources::Reread))
                 bakeShaderError_ = std::exchange(error_, std::move(before));

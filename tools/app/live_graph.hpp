@@ -203,6 +203,9 @@ private:
     std::unique_ptr<HotReloader> shaderWatcher_;
     std::string error_, shaderError_;
     std::string bakeShaderError_;  // an edited shader of the environment's bake did not build
+    /// A rebuild brought a bake back from the sources of one that was not running: the next
+    /// poll checks them against the files, as after an edit.
+    bool checkBakeShaders_ = false;
     bool sceneReplaced_ = false;
     bool graphSavePending_ = false, sceneSavePending_ = false;  // saved, but its build failed
     uint32_t reloads_ = 0;

@@ -74,11 +74,11 @@ std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const G
 
 /// The environment graph (sized like the frame by the caller), baked once on `equirect`
 /// for `products`; the returned renderer owns them (share them with Renderer::shareImage()).
-/// `shadersFrom` as for bakeEnvironment().
+/// `shaders` as for bakeEnvironment().
 std::unique_ptr<Renderer> bakeForFrame(Device& device, GraphDesc graph, const HdrImage& equirect,
                                        const std::set<std::string, std::less<>>& products, const PassLibrary* passes,
-                                       const Renderer* shadersFrom) {
-    EnvironmentBake bake = bakeEnvironment(device, std::move(graph), equirect, products, passes, {}, shadersFrom);
+                                       std::shared_ptr<ShaderCompiler> shaders) {
+    EnvironmentBake bake = bakeEnvironment(device, std::move(graph), equirect, products, passes, {}, std::move(shaders));
     for (const auto& c : bake.renderer->plan().culled()) spdlog::info("environment: culled {}: {}", c.name, c.reason);
     for (const auto& t : bake.renderer->lastTimings())
         spdlog::info("environment: pass {:<20} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
@@ -220,7 +220,7 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
 }
 
 FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const FrameInputs& inputs,
-                                      const RenderOptions& options, const Renderer* shadersFrom) {
+                                      const RenderOptions& options, std::shared_ptr<ShaderCompiler> shaders) {
     // The environment pipeline runs once, now (the environment does not change during a
     // run), and builds only the products this plan samples; its renderer keeps them alive.
     FrameEnvironment env;
@@ -230,7 +230,7 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     if (env.products.empty()) return env;
     env.graph = *envGraph;
     if (inputs.environmentSizes) resizeEnvironmentGraph(*env.graph, *inputs.environmentSizes);
-    env.renderer = bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, shadersFrom);
+    env.renderer = bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
     return env;
 }
 

@@ -30,6 +30,7 @@ namespace skygraph {
 class Device;
 class PassLibrary;
 class Renderer;
+class ShaderCompiler;
 }
 
 namespace skygraph::app {
@@ -135,11 +136,12 @@ struct FrameEnvironment {
 [[nodiscard]] std::filesystem::path environmentGraphFile(const RenderOptions& options);
 
 /// Bakes the environment products `plan` (compiled from inputs.graph) samples, when the scene
-/// has an environment file; nothing otherwise. `shadersFrom`: the bake builds from that
-/// renderer's shader sources (bakeEnvironment()), e.g. the running bake's, not the files on
-/// disk. The result must outlive the frame renderer's use of the products.
+/// has an environment file; nothing otherwise. `shaders`: the bake builds from the shader
+/// sources that compiler keeps (bakeEnvironment()), e.g. the last bake's, not from the files
+/// on disk. The result must outlive the frame renderer's use of the products.
 [[nodiscard]] FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const FrameInputs& inputs,
-                                                    const RenderOptions& options, const Renderer* shadersFrom = nullptr);
+                                                    const RenderOptions& options,
+                                                    std::shared_ptr<ShaderCompiler> shaders = nullptr);
 
 /// Hands `renderer` the scene (FrameData), the baked products (importImage) and the
 /// environment file's pixels (setExternalImage; moved out of `inputs`).
