@@ -343,6 +343,8 @@ TEST(Gltf, NamesWithControlCharactersLoadAndMessagesShowThemEscaped) {
         EXPECT_EQ(line.rfind(broken.parent_path().string() + "/box\\u0007\\u000a.gltf: ", 0), 0u) << line;
     }
     EXPECT_NE(messages(e).find("gone\\u0007.png"), std::string::npos) << messages(e);
+    fs::remove_all(broken.parent_path());
+    fs::remove_all(mesh->file.parent_path());
 }
 
 TEST(Gltf, NotAGltfFile) {
@@ -416,6 +418,7 @@ TEST(GltfScene, AGltfFileNamedWithControlCharactersIsShownEscaped) {
         EXPECT_NE(what.find("\n" + shown + ": "), std::string::npos) << what;
         EXPECT_NE(what.find("gone\\u000a.png"), std::string::npos) << what;
     }
+    fs::remove_all(broken.parent_path());
 }
 
 TEST(GltfScene, TransformAndKeysAreChecked) {
