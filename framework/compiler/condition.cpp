@@ -112,9 +112,19 @@ private:
     void skipSpace() {
         while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
     }
-    std::string rest() const { return text_.substr(pos_, 8); }
+    // Errors quote and count characters, not bytes: a cut UTF-8 sequence is not text.
+    static bool continuationByte(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+    std::string rest() const {
+        size_t end = pos_;
+        for (size_t chars = 0; end < text_.size() && chars < 8; ++chars)
+            do ++end;
+            while (end < text_.size() && continuationByte(text_[end]));
+        return text_.substr(pos_, end - pos_);
+    }
     void fail(const std::string& what) {
-        if (error_.empty()) error_ = "column " + std::to_string(pos_ + 1) + ": " + what;
+        const auto column = 1 + std::count_if(text_.begin(), text_.begin() + static_cast<std::ptrdiff_t>(pos_),
+                                              [](char c) { return !continuationByte(c); });
+        if (error_.empty()) error_ = "column " + std::to_string(column) + ": " + what;
     }
 
     const std::string& text_;

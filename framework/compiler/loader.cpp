@@ -25,6 +25,13 @@
 namespace skygraph {
 namespace {
 
+/// docs/graph-format.md, "Features": what a condition can name.
+bool isFeatureName(std::string_view name) {
+    const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+    if (name.empty() || !letter(name[0]) || name == "true" || name == "false") return false;
+    return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
+}
+
 std::string joinNames(const std::vector<std::string>& names) {
     std::string out;
     for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -105,6 +112,7 @@ public:
             loadRoot(root);
         }
         checkPassNames();
+        checkOutputsAreUsed();
         FileProblems::Part repeatedKeys;
         into(repeatedKeys);
         for (const auto& dup : duplicateKeys) reportDuplicate(dup);
@@ -157,12 +165,37 @@ private:
         report_(path, pass, resource, message);
     }
 
+    /// An output no pass of the file uses would silently be missing from every plan. Culling
+    /// and features may still drop its passes; that the plan reports.
+    void checkOutputsAreUsed() {
+        if (!rootDiags_.empty() || !passDiags_.empty()) return;  // the uses may be incomplete
+        into(resourceDiags_);
+        std::vector<bool> used(graph_.resources.size());
+        for (const PassDesc& p : graph_.passes)
+            for (const UsageDecl& u : p.uses) used[u.resource] = true;
+        for (size_t r = 0; r < graph_.resources.size(); ++r) {
+            const ResourceDesc& d = graph_.resources[r];
+            if (!used[r] && d.final != ExternalState::None && !faultyResources_[r])
+                error(d.jsonPath() + ".final", "", d.name,
+                      "'" + printableName(d.name) + "' is an output of the graph (`final`), but no pass uses it");
+        }
+    }
+
     /// A repeated JSON key, with the pass and resource it concerns: "resources.<r>..." names
     /// resource r, "passes[i]..." pass i, and "passes[i].uses.<r>" both.
     void reportDuplicate(const DuplicateKey& dup) {
         std::string pass, resource;
         const std::string& path = dup.path;
-        auto segment = [&](size_t from) { return path.substr(from, path.find('.', from) - from); };
+        // A declared name may hold '.': the longest one the path continues with is meant.
+        auto segment = [&](size_t from) {
+            const std::string_view rest = std::string_view(path).substr(from);
+            std::string best = std::string(rest.substr(0, rest.find('.')));
+            for (const ResourceDesc& r : graph_.resources)
+                if (r.name.size() > best.size() && rest.starts_with(r.name) &&
+                    (rest.size() == r.name.size() || rest[r.name.size()] == '.'))
+                    best = r.name;
+            return best;
+        };
         if (path.starts_with("resources.")) resource = segment(10);
         if (path.starts_with("passes[")) {
             const size_t close = path.find(']');
@@ -173,7 +206,7 @@ private:
                 if (path.compare(close + 1, 6, ".uses.") == 0) resource = segment(close + 7);
             }
         }
-        const bool isResource = path.starts_with("resources.") && path.find('.', 10) == std::string::npos;
+        const bool isResource = path == "resources." + dup.key;
         error(path, pass, resource,
               (isResource ? "duplicate resource name '" : "duplicate key '") + dup.key +
                   "'; JSON keeps only the last one");
@@ -186,7 +219,7 @@ private:
         report_.unknownKeys(root, f, [] { return std::string(); }, kRootKeys);
         if (const JsonValue version = f[rootKey::version]; !version) {
             error("version", "", "", "missing; this reader understands version 1");
-        } else if (!version.equals(1)) {
+        } else if (!version.isInteger() || !version.equals(1)) {
             error("version", "", "", "unsupported version " + version.dump() +
                                          "; this reader understands version 1");
         }
@@ -245,9 +278,7 @@ private:
         }
         for (const auto& [key, value] : features.members()) {
             const std::string name(key);
-            std::string err;
-            if (!Condition::parse(name, err) || name == "true" || name == "false" ||
-                name.find_first_of("!&|() ") != std::string::npos)
+            if (!isFeatureName(name))
                 error("features." + name, "", "", "'" + printableName(name) + "' is not a valid feature name");
             if (!value.isBoolean())
                 error("features." + name, "", "", "default must be true or false");
@@ -265,6 +296,7 @@ private:
             error(passPath(index), "", "", "a pass must be an object");
             return;
         }
+        const size_t problemsBeforePass = passDiags_.size();
         PassDesc& p = graph_.passes.emplace_back();  // built in place: a PassDesc is large
         p.jsonPath = passPath(index);
         const std::string& path = p.jsonPath;
@@ -317,9 +349,15 @@ private:
         if (type && type->validateParams)
             for (const auto& e : type->validateParams(p.params))
                 error(path + ".params" + (e.path.empty() ? "" : "." + e.path), p.name, "", e.message);
-        if (const JsonValue uses = f[passKey::uses]) loadUses(p, uses);
-        else error(path + ".uses", p.name, "", "missing; a pass that uses nothing does nothing");
+        if (const JsonValue uses = f[passKey::uses]) {
+            loadUses(p, uses);
+            if ((uses.isObject() || uses.isArray()) && uses.size() == 0)
+                error(path + ".uses", p.name, "", "empty; a pass that uses nothing does nothing");
+        } else {
+            error(path + ".uses", p.name, "", "missing; a pass that uses nothing does nothing");
+        }
         if (type) bindSlots(p, *type);
+        if (type && type->validateUsages && passDiags_.size() == problemsBeforePass) checkUsagesWithType(p, *type);
         if (type) checkQueue(p, *type);
         checkOverlaps(p);
     }
@@ -482,7 +520,7 @@ private:
             u.usage.as = *parsed;
         }
         if (const JsonValue slot = e.fields[usageKey::slot]) {
-            if (!slot.isString()) return fail("`slot` must be a string");
+            if (!slot.isString() || slot.string().empty()) return fail("`slot` must name a slot of the pass type");
             u.slot = graph_.internSlot(slot.string());
         }
         const JsonValue mips = e.fields[usageKey::mips], layers = e.fields[usageKey::layers];
@@ -574,10 +612,33 @@ private:
         }
     }
 
+    /// The type's own checks, on a pass whose usages all bound to declared resources.
+    void checkUsagesWithType(const PassDesc& p, const PassTypeInfo& type) {
+        for (const UsageDecl& u : p.uses)
+            if (faultyResources_[u.resource]) return;  // its declaration's error says enough
+        for (const UsageError& e : type.validateUsages(p, graph_)) {
+            if (e.usage < p.uses.size())
+                error(usePath(p, e.usage), p.name, graph_.resources[p.uses[e.usage].resource].name, e.message);
+            else
+                error(p.jsonPath + ".uses", p.name, "", e.message);
+        }
+    }
+
+    std::string alreadyFilled(const PassDesc& p, const PassTypeInfo& type, size_t slot) const {
+        return "slot '" + type.slots[slot].name + "' of " + type.name + " is already filled by '" +
+               graph_.resources[p.uses[filled_[slot]].resource].name + "'";
+    }
+
     void bindSlots(PassDesc& p, const PassTypeInfo& type) {
-        if (type.acceptsAnyUsage) return;
-        // Per slot of the type (slot names are unique in a type): how many usages fill it.
-        filled_.assign(type.slots.size(), 0);
+        if (type.acceptsAnyUsage) {
+            for (size_t i = 0; i < p.uses.size(); ++i)
+                if (!graph_.slotName(p.uses[i].slot).empty())
+                    error(usePath(p, i), p.name, graph_.resources[p.uses[i].resource].name,
+                          type.name + " takes any usage and has no slots; remove `slot`");
+            return;
+        }
+        // Per slot of the type (slot names are unique in a type): the first usage filling it.
+        filled_.assign(type.slots.size(), kUnfilled);
         auto matches = [&](const SlotDecl& s, const UsageDecl& u) {
             return s.stage == u.usage.stage &&
                    std::find(s.accesses.begin(), s.accesses.end(), u.usage.access) != s.accesses.end() &&
@@ -606,7 +667,7 @@ private:
                 size_t candidates = 0;
                 for (size_t s = 0; s < type.slots.size(); ++s)
                     if (!type.slots[s].byNameOnly && matches(type.slots[s], u) &&
-                        (type.slots[s].repeated || !filled_[s])) {
+                        (type.slots[s].repeated || filled_[s] == kUnfilled)) {
                         if (candidates++ == 0) slot = s;
                     }
                 if (candidates > 1) {
@@ -615,6 +676,18 @@ private:
                     continue;
                 }
                 if (candidates == 0) {
+                    // The slots it fits may all be taken: saying so beats listing them as expected.
+                    size_t taken = type.slots.size();
+                    for (size_t s = 0; s < type.slots.size(); ++s)
+                        if (!type.slots[s].byNameOnly && matches(type.slots[s], u)) taken = s;
+                    if (taken < type.slots.size()) {
+                        std::string byName;
+                        for (const SlotDecl& s : type.slots)
+                            if (s.byNameOnly && matches(s, u) && byName.empty())
+                                byName = "; slot '" + s.name + "' takes it by name only: \"slot\": \"" + s.name + "\"";
+                        error(usePath(p, i), p.name, resName, alreadyFilled(p, type, taken) + byName);
+                        continue;
+                    }
                     error(usePath(p, i), p.name, resName, "usage " + toString(u.usage) + " contradicts " +
                                                               type.name + "; expected " + expected());
                     continue;
@@ -627,16 +700,15 @@ private:
                                                           decl.describeUsage());
                 continue;
             }
-            if (filled_[slot] && !decl.repeated) {
-                error(usePath(p, i), p.name, resName, "slot '" + decl.name + "' of " + type.name +
-                                                          " is already filled");
+            if (filled_[slot] != kUnfilled && !decl.repeated) {
+                error(usePath(p, i), p.name, resName, alreadyFilled(p, type, slot));
                 continue;
             }
-            ++filled_[slot];
+            if (filled_[slot] == kUnfilled) filled_[slot] = static_cast<uint32_t>(i);
             u.slot = graph_.internSlot(decl.name);
         }
         for (size_t s = 0; s < type.slots.size(); ++s)
-            if (!type.slots[s].optional && !filled_[s])
+            if (!type.slots[s].optional && filled_[s] == kUnfilled)
                 error(p.jsonPath + ".uses", p.name, "", type.name + " needs slot '" + type.slots[s].name + "' (" +
                                                             type.slots[s].describeUsage() + "); no usage fills it");
     }
@@ -697,7 +769,8 @@ private:
     /// uses, for its JSON path.
     std::vector<uint32_t> useIndices_;
     std::vector<bool> faultyResources_;  ///< Per resource: its declaration had an error.
-    std::vector<uint32_t> filled_;           ///< bindSlots: per slot, the usages filling it
+    static constexpr uint32_t kUnfilled = ~0u;
+    std::vector<uint32_t> filled_;           ///< bindSlots: per slot, the first usage filling it
     struct Ahead {
         std::string_view name;
         bool named = true;  ///< Whether the entry names a resource at all.

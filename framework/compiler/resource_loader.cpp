@@ -142,7 +142,19 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
     if (const JsonValue color = f[key::color]) {
         bool numbers = color.isArray() && color.size() == 4;
         for (size_t i = 0; numbers && i < 4; ++i) numbers = color[i].isNumber();
-        if (!numbers)
+        // An integer format clears to integers, and the value is kept as a float: one that
+        // holds each of them exactly.
+        const bool unsignedInts = r.format.name.ends_with("_UINT"), signedInts = r.format.name.ends_with("_SINT");
+        constexpr double kExactInFloat = 16777216.0;  // 2^24
+        const double lowest = unsignedInts ? 0.0 : -kExactInFloat;
+        for (size_t i = 0; numbers && (unsignedInts || signedInts) && i < 4; ++i) {
+            const double v = color[i].number<double>();
+            numbers = color[i].isInteger() && v >= lowest && v <= kExactInFloat;
+        }
+        if (!numbers && (unsignedInts || signedInts))
+            fail("clear.color", "expected four integers in [" + std::string(unsignedInts ? "0" : "-16777216") +
+                                    ", 16777216] for the integer format " + std::string(r.format.name));
+        else if (!numbers)
             fail("clear.color", "expected four numbers");
         else
             for (size_t i = 0; i < 4; ++i) c.color[i] = color[i].number<float>();
@@ -150,7 +162,9 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
     } else if (f[key::depth] || f[key::stencil]) {
         c.isDepth = true;
         if (const JsonValue depth = f[key::depth]) {
-            if (!depth.isNumber() || depth.number<double>() < 0.0 || depth.number<double>() > 1.0)
+            if (r.format.isDepthStencil() && !r.format.hasDepth)
+                fail("clear.depth", "format " + std::string(r.format.name) + " has no depth aspect");
+            else if (!depth.isNumber() || depth.number<double>() < 0.0 || depth.number<double>() > 1.0)
                 fail("clear.depth", "expected a number in [0, 1]");
             else
                 c.depth = depth.number<float>();
@@ -192,6 +206,9 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
     r.final = state(key::final);
     r.initial = state(key::initial);
     if (r.initial != ExternalState::None && !r.external) fail("initial", "only external resources arrive in a state");
+    // Only the embedder can hand an image to the presentation engine: the graph's own have no swapchain.
+    if (r.final == ExternalState::Present && !r.external)
+        fail("final", "only an external image (the swapchain's) can be presented; add \"external\": true");
     // An external resource that persists comes back in the state it was left in.
     if (r.external && r.initial == ExternalState::None)
         r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;
@@ -216,6 +233,7 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
 void loadResource(std::string_view name, JsonValue v, FileProblems& report, ResourceDesc& r) {
     r.name = name;
     const ResourceProblems fail(name, report);
+    if (name.empty()) fail("", "a resource needs a name: plans and passes refer to it by its key");
     if (hasControlCharacter(name)) fail("", "its name holds a control character; " + std::string(kPrintedNames));
     if (!v.isObject()) {
         fail("", "must be an object");

@@ -77,6 +77,7 @@ std::string conditionReason(const Condition& c, const FeatureValues& features) {
     };
     if (c.features().size() == 1 && c.text().find_first_of("!&|()") == std::string::npos)
         return "feature '" + c.features().front() + "' is off";
+    if (c.features().empty()) return "condition '" + c.text() + "' is always false";
     std::string values;
     for (const auto& f : c.features()) values += (values.empty() ? "" : ", ") + f + "=" + onOff(value(f));
     return "condition '" + c.text() + "' is false (" + values + ")";

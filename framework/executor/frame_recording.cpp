@@ -3,8 +3,6 @@
 #include "poison.hpp"
 #include "renderer_impl.hpp"
 
-#include <cstring>
-
 namespace skygraph::detail {
 namespace {
 
@@ -17,9 +15,7 @@ void recordClear(CommandSink& sink, const PlanState& s, const PassState& ps, uin
         if (r.desc->format.isDepthStencil()) {
             sink.clearDepthStencil(image, u.layout, {r.desc->clear->depth, r.desc->clear->stencil}, range);
         } else {
-            VkClearColorValue v{};
-            std::memcpy(v.float32, r.desc->clear->color.data(), 16);
-            sink.clearColor(image, u.layout, v, range);
+            sink.clearColor(image, u.layout, clearColorOf(r.desc->format.format, r.desc->clear->color), range);
         }
     }
 }

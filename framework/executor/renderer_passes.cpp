@@ -4,8 +4,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <cstring>
-
 namespace skygraph {
 
 using namespace detail;
@@ -184,7 +182,7 @@ void Renderer::Impl::buildRenderPass(PlanState& s, PassState& ps) {
             if (r.desc->format.isDepthStencil()) {
                 cv.depthStencil = {r.desc->clear->depth, r.desc->clear->stencil};
             } else {
-                std::memcpy(cv.color.float32, r.desc->clear->color.data(), 16);
+                cv.color = clearColorOf(r.desc->format.format, r.desc->clear->color);
             }
         }
         ps.clearValues.push_back(cv);

@@ -60,11 +60,7 @@ void recordInitialClear(CommandSink& sink, const ResourceState& r, VkImage image
     }
     const std::array<float, 4> grey{0.5f, 0.5f, 0.5f, 1.0f};
     const std::array<float, 4>& c = clear ? clear->color : grey;
-    VkClearColorValue v{};
-    if (scalarPrefix(r.format).empty()) std::memcpy(v.float32, c.data(), 16);
-    else
-        for (size_t k = 0; k < 4; ++k) v.uint32[k] = static_cast<uint32_t>(c[k]);
-    sink.clearColor(image, u.layout, v, range);
+    sink.clearColor(image, u.layout, clearColorOf(r.format, c), range);
 }
 
 /// How many copies the renderer keeps of a resource: one, or one per frame slot.

@@ -38,6 +38,18 @@ uint32_t copyTexelBytes(const FormatInfo& f) {
     }
 }
 
+VkClearColorValue clearColorOf(VkFormat format, const std::array<float, 4>& color) {
+    VkClearColorValue v{};
+    const std::string prefix = scalarPrefix(format);
+    for (size_t k = 0; k < 4; ++k) {
+        // Clamped first: converting a float outside the integer's range is undefined.
+        if (prefix == "u") v.uint32[k] = static_cast<uint32_t>(std::clamp(color[k], 0.0f, 4294967040.0f));
+        else if (prefix == "i") v.int32[k] = static_cast<int32_t>(std::clamp(color[k], -2147483648.0f, 2147483520.0f));
+        else v.float32[k] = color[k];
+    }
+    return v;
+}
+
 std::string scalarPrefix(VkFormat format) {
     switch (format) {
         case VK_FORMAT_R8_UINT: case VK_FORMAT_R8G8_UINT: case VK_FORMAT_R8G8B8A8_UINT:

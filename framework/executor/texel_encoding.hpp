@@ -25,6 +25,10 @@ namespace skygraph::detail {
 /// of its sampler, image and output types.
 [[nodiscard]] std::string scalarPrefix(VkFormat format);
 
+/// `color` as a clear of `format` reads it: floats, or for integer formats the integers they
+/// hold (the loader allows integers only there), clamped to 32 bits.
+[[nodiscard]] VkClearColorValue clearColorOf(VkFormat format, const std::array<float, 4>& color);
+
 /// Bytes of one texel of `format` filled with `color` (depth formats take color.x). Unknown
 /// encodings yield zero bytes.
 [[nodiscard]] std::vector<uint8_t> encodeTexel(VkFormat format, uint32_t texelBytes, const std::array<float, 4>& color);

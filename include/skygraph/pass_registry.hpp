@@ -42,6 +42,17 @@ struct ParamError {
 
 using ParamValidator = std::function<std::vector<ParamError>(const nlohmann::json& params)>;
 
+/// A problem a pass type finds in one of a pass's usages: what its slots cannot say, such as
+/// the formats it can write or the range it copies.
+struct UsageError {
+    size_t usage = 0;  ///< Index into PassDesc::uses.
+    std::string message;
+};
+
+/// Checks `pass`, whose usages are bound to this type's slots (UsageDecl::slot names the slot);
+/// `graph` holds the resources they name. Reads both during the call only.
+using UsageValidator = std::function<std::vector<UsageError>(const PassDesc& pass, const GraphDesc& graph)>;
+
 /// Everything the compiler needs to know about a pass type.
 struct PassTypeInfo {
     std::string name;
@@ -56,6 +67,10 @@ struct PassTypeInfo {
     /// compute shaders need graphics or compute, copies run anywhere). A type that records
     /// more than its usages say (a blit needs graphics) lists its queues here.
     std::vector<QueueKind> queues;
+    /// Optional. parseGraph calls it for each pass of this type whose usages bound without an
+    /// error, so that a pass the type cannot record is refused with the file's JSON path
+    /// rather than when the graph runs.
+    UsageValidator validateUsages;
 };
 
 /// Pass types by name. Owns its entries; copyable because it is only data.

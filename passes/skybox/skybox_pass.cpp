@@ -4,6 +4,7 @@
 // a fade between two cubemaps (a sequence's previous and current frames).
 #include "builtin_passes.hpp"
 #include "pass_error.hpp"
+#include "skybox_rules.hpp"
 #include <skygraph/device.hpp>
 #include <skygraph/pipeline_builder.hpp>
 #include "scene_camera.hpp"
@@ -32,9 +33,9 @@ public:
             if (r.usage && r.usage->slot == "previous") previous = &r;
         }
         const bool cube = env && env->desc->type == ResourceType::Cube;
-        if (previous && (!cube || previous->desc->type != ResourceType::Cube))
-            throw ExecutorError(detail::passError(*ctx.pass, previous->desc->name,
-                                          "SkyboxPass fades between cubemaps: 'environment' and 'previous' must both be cubes"));
+        // A graph built in code has not been through the loader's check.
+        if (const auto problem = skyboxFadeProblem(env ? env->desc : nullptr, previous ? previous->desc : nullptr))
+            throw ExecutorError(detail::passError(*ctx.pass, previous->desc->name, *problem));
         // Which textures, if any, decide the pipeline: each mode binds only what it samples.
         const int mode = !env ? 0 : previous ? 3 : cube ? 1 : 2;
         GraphicsPipelineRecipe recipe;

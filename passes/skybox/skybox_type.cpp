@@ -1,10 +1,26 @@
 // SkyboxPass's declaration: its slots and params (recording code: skybox_pass.cpp).
 #include "builtin_pass_types.hpp"
 #include "param_rules.hpp"
+#include "skybox_rules.hpp"
 
 namespace skygraph::passes {
 
 PassTypeInfo skyboxPassType() {
+    const auto checkFade = [](const PassDesc& pass, const GraphDesc& graph) {
+        const ResourceDesc *environment = nullptr, *previous = nullptr;
+        size_t previousUsage = 0;
+        for (size_t i = 0; i < pass.uses.size(); ++i) {
+            const std::string_view slot = graph.slotName(pass.uses[i].slot);
+            if (slot == "environment") environment = &graph.resources[pass.uses[i].resource];
+            if (slot == "previous") {
+                previous = &graph.resources[pass.uses[i].resource];
+                previousUsage = i;
+            }
+        }
+        std::vector<UsageError> problems;
+        if (auto problem = skyboxFadeProblem(environment, previous)) problems.push_back({previousUsage, std::move(*problem)});
+        return problems;
+    };
     return {"SkyboxPass",
             {slot("depth", Stage::DepthAttachment, {Access::Read}, BindAs::Default,
                   "rejects covered pixels (GREATER_OR_EQUAL)"),
@@ -19,7 +35,8 @@ PassTypeInfo skyboxPassType() {
             rules({{"sampling", oneOf({"cubemap", "equirect"})},
                    {"rotation_deg", numberIn(-360.0, 360.0)},
                    {"output", oneOf({"radiance", "direction"})}}),
-            "Fullscreen-triangle sky at the reverse-Z far plane."};
+            "Fullscreen-triangle sky at the reverse-Z far plane.",
+            {}, checkFade};
 }
 
 }  // namespace skygraph::passes

@@ -2,6 +2,7 @@
 // (shaders/common/tonemap.glsl). Exposure and operator come from the scene when one is set
 // (FrameData<Scene>), else from the pass's params.
 #include "builtin_passes.hpp"
+#include "tonemapping_rules.hpp"
 #include <skygraph/pipeline_builder.hpp>
 
 #include <skygraph/scene.hpp>
@@ -130,9 +131,9 @@ std::vector<std::pair<std::string, std::string>> storageFormatDefines(const Pipe
                                     "qualifier (shaderStorageImageWriteWithoutFormat); use R8G8B8A8_UNORM");
     }
     const auto info = findFormat(output.format);
-    throw ExecutorError(where + ": TonemappingComputePass writes R8G8B8A8_UNORM, B8G8R8A8_UNORM, "
-                        "A2B10G10R10_UNORM_PACK32, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT storage images "
-                        "(it encodes sRGB itself), not " + (info ? std::string(info->name) : std::to_string(output.format)));
+    throw ExecutorError(where + ": TonemappingComputePass writes " + kTonemappingComputeOutputNames +
+                        " storage images (it encodes sRGB itself), not " +
+                        (info ? std::string(info->name) : std::to_string(output.format)));
 }
 
 class TonemappingComputePass final : public PassImplementation {

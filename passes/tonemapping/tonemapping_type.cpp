@@ -2,6 +2,9 @@
 // (recording code: tonemapping_pass.cpp).
 #include "builtin_pass_types.hpp"
 #include "param_rules.hpp"
+#include "tonemapping_rules.hpp"
+
+#include <string>
 
 namespace skygraph::passes {
 
@@ -16,14 +19,25 @@ PassTypeInfo tonemappingPassType() {
 }
 
 PassTypeInfo tonemappingComputePassType() {
+    const auto checkOutput = [](const PassDesc& pass, const GraphDesc& graph) {
+        std::vector<UsageError> problems;
+        for (size_t i = 0; i < pass.uses.size(); ++i) {
+            const ResourceDesc& r = graph.resources[pass.uses[i].resource];
+            if (graph.slotName(pass.uses[i].slot) == "output" && !tonemappingComputeWrites(r.format.format))
+                problems.push_back({i, "TonemappingComputePass writes " + std::string(kTonemappingComputeOutputNames) +
+                                           " (it encodes sRGB itself), not " + std::string(r.format.name)});
+        }
+        return problems;
+    };
     return {"TonemappingComputePass",
             {slot("hdr", Stage::Compute, {Access::Read}, BindAs::Sampled, "HDR input"),
              slot("output", Stage::Compute, {Access::Write}, BindAs::Storage,
-                  "display-referred output: R8G8B8A8_UNORM, B8G8R8A8_UNORM (or a float format), sRGB-encoded by the shader")},
+                  std::string("display-referred output, sRGB-encoded by the shader: ") + kTonemappingComputeOutputNames)},
             false,
             rules({{"operator", oneOf({"aces_narkowicz", "aces_hill", "khronos_pbr_neutral", "passthrough"})},
                    {"exposure_ev", numberIn(-64.0, 64.0)}}),
-            "TonemappingPass as a compute shader (same math), writing a storage image with sRGB encoded by the shader."};
+            "TonemappingPass as a compute shader (same math), writing a storage image with sRGB encoded by the shader.",
+            {}, checkOutput};
 }
 
 }  // namespace skygraph::passes

@@ -3,6 +3,7 @@
 // TRANSFER_DST_OPTIMAL before it and hand it on (across queues too) after it.
 #include "../builtin_passes.hpp"
 #include "texel_encoding.hpp"
+#include "upload_rules.hpp"
 
 #include <skygraph/device.hpp>
 
@@ -16,15 +17,10 @@ public:
     explicit UploadPass(const PassDesc&) {}
 
     void createPipelines(const PipelineContext& ctx) override {
+        // A graph built in code has not been through the loader's check.
         const BoundResource& target = ctx.resources[0];
-        const SubresourceRange& range = target.usage->range;
-        const uint32_t layers = target.desc->layers;
-        // A copy of mip 0 alone, declared as a write of more, would leave the other levels
-        // undefined while the plan calls them written.
-        if (target.desc->isImage() &&
-            (range.baseMip != 0 || range.mipCount != 1 || range.baseLayer != 0 || range.layerCount != layers))
-            throw ExecutorError("pass '" + ctx.desc->name + "' (UploadPass): its usage of '" + target.desc->name +
-                                "' must cover mip 0 of every layer and nothing else (\"mips\": [0, 1])");
+        if (const auto problem = uploadTargetProblem(*target.desc, target.usage->range))
+            throw ExecutorError("pass '" + ctx.desc->name + "': " + *problem);
     }
 
     void record(const RecordContext& ctx) override {

@@ -302,6 +302,15 @@ TEST(BarrierRules, SubresourceRangesMergeWhenTheyAgree) {
     ASSERT_EQ(plan.finalBarriers().size(), 1u);
 }
 
+TEST(Culling, AConditionOfNoFeatureIsAlwaysFalse) {
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "never", "type": "Generic", "if": "false", "uses": {"color": "ReadWrite@ColorAttachment"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}})");
+    ASSERT_EQ(plan.culled().size(), 1u);
+    EXPECT_EQ(plan.culled()[0].reason, "condition 'false' is always false");
+}
+
 TEST(Culling, ReasonsForEveryRemovedPass) {
     CompileOptions options;
     options.features = {{"fx", false}};
@@ -324,7 +333,7 @@ TEST(Culling, ReasonsForEveryRemovedPass) {
     EXPECT_EQ(plan.passes()[2].name, "sidefx") << "never_cull keeps a pass with side effects";
 
     options.cull = false;
-    const Plan all = compileGraph(std::string(kColor) + "," + kOut + "," + kBuf,
+    const Plan all = compileGraph(std::string(kColor) + "," + kBuf,
                                   R"({"name": "unused", "type": "Generic", "uses": {"buf": "Write@Compute"}},
                                      {"name": "fx", "type": "Generic", "if": "fx", "uses": {"buf": "Write@Compute"}})",
                                   options, R"({"fx": true})");

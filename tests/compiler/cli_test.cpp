@@ -340,6 +340,16 @@ TEST_F(Cli, BadFeatureValueExitsTwo) {
     }
 }
 
+TEST_F(Cli, AFeatureGivenTwiceExitsTwo) {
+    // Even with the same value: a script that sets a feature twice has lost track of it.
+    for (const char* second : {"skybox=off", "skybox=on"}) {
+        const CliRun r = run({"compile", "graphs/raster.json", "--feature", "skybox=on", "--feature", second});
+        EXPECT_EQ(r.status, 2) << second << ": " << r.err;
+        EXPECT_EQ(r.out, "") << second;
+        EXPECT_NE(r.err.find("--feature gives feature 'skybox' twice"), std::string::npos) << second << ": " << r.err;
+    }
+}
+
 TEST_F(Cli, MisuseExitsTwo) {
     const std::vector<std::vector<std::string>> cases{
         {"compile", "graphs/raster.json", "--bogus"},

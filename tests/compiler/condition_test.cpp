@@ -123,6 +123,14 @@ TEST(Condition, ErrorsNameTheColumn) {
     EXPECT_EQ(parseError("a && sky-box"), "column 9: unexpected '-box'");
 }
 
+TEST(Condition, ErrorsQuoteAndCountWholeCharacters) {
+    // Three-byte characters: a quote cut after eight bytes would end inside the third.
+    EXPECT_EQ(parseError("a && \u274c\u274c\u274c"), "column 6: expected a feature name, found '\u274c\u274c\u274c'");
+    EXPECT_EQ(parseError("\u00e9\u00e9 || \u00e9\u00e9\u00e9\u00e9\u00e9\u00e9\u00e9\u00e9\u00e9"),
+              "column 1: expected a feature name, found '\u00e9\u00e9 || \u00e9\u00e9'");
+    EXPECT_EQ(parseError("a \u00e9"), "column 3: unexpected '\u00e9'");
+}
+
 TEST(Condition, DeepParenthesesAreRefusedNotFatal) {
     // 100000 '(' would overflow the stack of a naive recursive-descent parser.
     const std::string deep(100000, '(');

@@ -444,7 +444,10 @@ TEST(LoaderErrors, ASlotBoundByNameOnlyIsNeverChosenByFit) {
               (std::vector<std::string>{"depth", "color", "environment", "previous"}))
         << "by the usage's slot";
     const auto ds = textErrors(graphWith(R"(, {"resource": "older", "access": "Read", "stage": "Fragment"})"));
-    EXPECT_TRUE(hasDiag(ds, "passes[0].uses[3]", "sky", "older", {"contradicts SkyboxPass"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses[3]", "sky", "older",
+                        {"slot 'environment' of SkyboxPass is already filled by 'sky'",
+                         "slot 'previous' takes it by name only: \"slot\": \"previous\""}))
+        << listAll(ds);
 }
 
 TEST(LoaderErrors, DepthFormatAsColorAttachment) {
@@ -654,6 +657,135 @@ TEST(LoaderErrors, NamesWithControlCharactersAreRefusedAndShownEscaped) {
     EXPECT_NE(all.find("resource 'no\\u0009such': unknown resource; declared: buf, cube, depth, hdr\\u000acolor"),
               std::string::npos)
         << all;
+}
+
+TEST(LoaderErrors, MeaninglessDeclarationsAreRefused) {
+    Json g = baseGraph();
+    g["version"] = 1.0;
+    g["features"]["tab\t"] = true;
+    g["features"]["line\n"] = true;
+    g["features"]["9lives"] = true;
+    g["resources"][""] = Json{{"type", "buffer"}, {"size", 4}};
+    g["resources"]["shown"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", "output"},
+                                   {"final", "Present"}};
+    g["resources"]["stencil"] = Json{{"type", "image2d"}, {"format", "S8_UINT"}, {"extent", "output"},
+                                     {"clear", {{"depth", 0.5}}}};
+    g["resources"]["unused_output"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"},
+                                           {"extent", "output"}, {"final", "TransferSrc"}};
+    g = withGeneric(g, "generic", Json::array({Json{{"resource", "shown"}, {"access", "Write"},
+                                                    {"stage", "ColorAttachment"}, {"slot", "color"}},
+                                               Json{{"resource", "stencil"}, {"access", "Read"},
+                                                    {"stage", "Fragment"}},
+                                               Json{{"resource", ""}, {"access", "Read"}, {"stage", "Compute"}}}));
+    g["passes"][1]["uses"] = Json::array({Json{{"resource", "hdr_color"}, {"access", "Read"}, {"stage", "Fragment"},
+                                               {"slot", ""}},
+                                          Json{{"resource", "swapchain"}, {"access", "Write"},
+                                               {"stage", "ColorAttachment"}}});
+    g = withGeneric(g, "idle", Json::object());
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "version", "", "", {"unsupported version 1.0"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "features.tab\t", "", "", {"'tab\\u0009' is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "features.line\n", "", "", {"'line\\u000a' is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "features.9lives", "", "", {"'9lives' is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.", "", "", {"a resource needs a name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.shown.final", "", "shown", {"only an external image", "can be presented"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.stencil.clear.depth", "", "stencil", {"S8_UINT has no depth aspect"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0]", "generic", "shown", {"Generic takes any usage and has no slots"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0]", "tonemap", "hdr_color", {"`slot` must name a slot"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses", "idle", "", {"empty; a pass that uses nothing does nothing"}))
+        << listAll(ds);
+}
+
+TEST(LoaderErrors, AnOutputNoPassUsesIsRefused) {
+    Json g = baseGraph();
+    g["resources"]["unused_output"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", "output"},
+                                           {"final", "TransferSrc"}};
+    g["resources"]["unused_input"] = Json{{"type", "buffer"}, {"size", 4}, {"external", true}};
+    const auto ds = loadErrors(g);
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);  // an unused resource that is no output is left out, not refused
+    EXPECT_TRUE(hasDiag(ds, "resources.unused_output.final", "", "unused_output",
+                        {"'unused_output' is an output of the graph (`final`), but no pass uses it"}))
+        << listAll(ds);
+}
+
+TEST(LoaderErrors, ASlotAlreadyFilledNamesWhatFilledIt) {
+    Json g = baseGraph();
+    g["resources"]["other"] = g["resources"]["hdr_color"];
+    g["passes"][1]["uses"] = Json{{"hdr_color", "Read@Fragment"}, {"other", "Read@Fragment"},
+                                  {"swapchain", "Write@ColorAttachment"}};
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.other", "tonemap", "other",
+                        {"slot 'hdr' of TonemappingPass is already filled by 'hdr_color'"}))
+        << listAll(ds);
+}
+
+TEST(LoaderErrors, ARepeatedKeyNamesAResourceWhoseNameHoldsADot) {
+    const std::string text = R"({"version": 1, "name": "t", "resources": {
+        "a": {"type": "buffer", "size": 4, "external": true},
+        "a.b": {"type": "buffer", "size": 4, "size": 8, "external": true}},
+      "passes": [{"name": "p", "type": "Generic", "never_cull": true,
+                  "uses": {"a.b": "Read@Compute", "a": "Read@Compute"}}]})";
+    const auto ds = textErrors(text);
+    EXPECT_TRUE(hasDiag(ds, "resources.a.b.size", "", "a.b", {"duplicate key 'size'"})) << listAll(ds);
+}
+
+TEST(LoaderErrors, PassTypesCheckWhatTheirSlotsCannotSay) {
+    Json g = baseGraph();
+    g["resources"]["mipped_target"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", {8, 8}},
+                                           {"mips", 2}, {"external", true}, {"final", "ShaderRead"}};
+    g["resources"]["r32"] = Json{{"type", "image2d"}, {"format", "R32_SFLOAT"}, {"extent", "output"},
+                                 {"external", true}, {"final", "ShaderRead"}};
+    g["resources"]["flat_sky"] = Json{{"type", "image2d"}, {"format", "R16G16B16A16_SFLOAT"}, {"extent", {8, 4}},
+                                      {"external", true}};
+    g["passes"].push_back(Json{{"name", "upload"}, {"type", "UploadPass"}, {"uses", {{"mipped_target", "Write@Transfer"}}}});
+    g["passes"].push_back(Json{{"name", "tonemap_cs"}, {"type", "TonemappingComputePass"},
+                               {"uses", {{"hdr_color", "Read@Compute"}, {"r32", "Write@Compute"}}}});
+    g["passes"].push_back(Json{{"name", "sky"}, {"type", "SkyboxPass"},
+                               {"uses", {{"depth", "Read@DepthAttachment"}, {"hdr_color", "ReadWrite@ColorAttachment"},
+                                         {"cube", "Read@Fragment"}, {"previous", "Read@Fragment"}}}});
+    g["resources"]["previous"] = g["resources"]["flat_sky"];
+    g["resources"].erase("flat_sky");
+    // The same usages a type accepts pass: a whole single-level target, a storage format it writes.
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.mipped_target", "upload", "mipped_target",
+                        {"UploadPass copies mip 0 of every layer", "\"mips\": [0, 1]"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses.r32", "tonemap_cs", "r32",
+                        {"TonemappingComputePass writes R8G8B8A8_UNORM", "not R32_SFLOAT"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[4].uses.previous", "sky", "previous", {"must both be cubes"})) << listAll(ds);
+    EXPECT_EQ(ds.size(), 3u) << listAll(ds);
+
+    g["passes"][2]["uses"] = Json::array({Json{{"resource", "mipped_target"}, {"access", "Write"},
+                                               {"stage", "Transfer"}, {"mips", {0, 1}}}});
+    g["resources"]["r32"]["format"] = "R16G16B16A16_SFLOAT";
+    g["resources"]["previous"]["type"] = "cube";
+    g["resources"]["previous"]["extent"] = {8, 8};
+    expectLoads(g);
+}
+
+TEST(LoaderErrors, IntegerFormatsClearToIntegers) {
+    Json g = baseGraph();
+    const auto image = [](const char* format, Json color) {
+        return Json{{"type", "image2d"}, {"format", format}, {"extent", {4, 4}}, {"clear", {{"color", color}}}};
+    };
+    g["resources"]["fraction"] = image("R32_UINT", {0.5, 0, 0, 1});
+    g["resources"]["negative"] = image("R32G32B32A32_UINT", {-1, 0, 0, 1});
+    g["resources"]["huge"] = image("R32_SINT", {0, 0, 0, 16777217});
+    g["resources"]["fine_uint"] = image("R32_UINT", {16777216, 0, 0, 1});
+    g["resources"]["fine_sint"] = image("R32_SINT", {-16777216, 7, 0, 1});
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.fraction.clear.color", "", "fraction",
+                        {"expected four integers in [0, 16777216] for the integer format R32_UINT"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.negative.clear.color", "", "negative", {"[0, 16777216]", "R32G32B32A32_UINT"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.huge.clear.color", "", "huge", {"[-16777216, 16777216]", "R32_SINT"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 3u) << listAll(ds);
 }
 
 TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {

@@ -95,7 +95,7 @@ TEST(LoaderOrder, DiagnosticsComeInTheFormatsOrder) {
     }
     EXPECT_EQ(paths, (std::vector<std::string>{"extra", "features.bad feature!", "features.bad feature!",
                                                "resources.volume.type", "passes[3].if", "passes[3].uses.ghost",
-                                               "passes[4].name", "passes[4].params"}))
+                                               "passes[4].name", "passes[4].params", "passes[4].uses"}))
         << Json(paths).dump();
 }
 

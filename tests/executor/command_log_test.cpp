@@ -239,6 +239,28 @@ TEST(CommandLog, EveryShippedPlanIsRecordedWithExactlyItsOwnBarriers) {
     EXPECT_GT(transfers, 0u) << "async.json's ownership transfers were compared, families included";
 }
 
+TEST(CommandLog, IntegerImagesAreClearedToTheIntegersTheirClearNames) {
+    const GraphDesc g = parseGraph(R"({"version": 1, "name": "t", "resources": {
+        "ids": {"type": "image2d", "format": "R32_UINT", "extent": [4, 4], "clear": {"color": [7, 0, 0, 1]}},
+        "offsets": {"type": "image2d", "format": "R32_SINT", "extent": [4, 4], "clear": {"color": [-2, 3, 0, 1]}},
+        "out": {"type": "buffer", "size": 64, "external": true, "final": "General"}},
+      "passes": [
+        {"name": "use", "type": "Generic",
+         "uses": {"ids": "Read@Transfer", "offsets": "Read@Compute", "out": "Write@Compute"}}]})",
+                                   "ints.json", registry());
+    StandIn s(CompiledGraph(g, CompileOptions{}));
+    CommandLog log(s.names);
+    s.log = &log;
+    FrameRecording r;
+    recordFrame(log, s.state, r);
+    std::vector<std::string> clears;
+    for (const std::string& line : log.lines())
+        if (line.starts_with("clear color")) clears.push_back(line.substr(line.find(" to ")));
+    // As float bits they would be 0x40e00000 and 0xc0000000.
+    EXPECT_EQ(clears, (std::vector<std::string>{" to 0x00000007 0x00000000 0x00000000 0x00000001",
+                                                " to 0xfffffffe 0x00000003 0x00000000 0x00000001"}));
+}
+
 TEST(CommandLog, AFramesStepsComeInPlanOrderWithTheirCommands) {
     const GraphDesc g = parseGraph(R"({"version": 1, "name": "t", "resources": {
         "color": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "clear": {"color": [0, 0, 0, 1]}},

@@ -34,7 +34,8 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
         const std::string value = eq == std::string::npos ? "" : f.substr(eq + 1);
         if (eq == 0 || eq == std::string::npos || (value != "on" && value != "off"))
             throw UsageError(std::string(option) + " expects NAME=on or NAME=off, got '" + f + "'");
-        out[f.substr(0, eq)] = value == "on";
+        if (!out.emplace(f.substr(0, eq), value == "on").second)
+            throw UsageError(std::string(option) + " gives feature '" + f.substr(0, eq) + "' twice");
     }
     return out;
 }
