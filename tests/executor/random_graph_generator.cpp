@@ -24,6 +24,7 @@ struct Resource {
     uint32_t mips = 1;
     uint32_t layers = 1;
     bool storage = true;  ///< The format can be a storage image.
+    bool integer = false;  ///< Of an integer format: cleared to integers.
 };
 
 struct Range {
@@ -88,12 +89,9 @@ public:
     RandomGraph run(uint32_t seed) {
         RandomGraph g;
         g.seed = seed;
-        std::ostringstream res;
+        std::vector<std::string> declared;
         const uint32_t count = 1 + pick(shape_.maxResources);
-        for (uint32_t i = 0; i < count; ++i) res << resource(i) << ",\n";
-        res << R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",)"
-            << R"( "external": true, "final": "Present" })";
-        g.resources = res.str();
+        for (uint32_t i = 0; i < count; ++i) declared.push_back(resource(i));
         features_ = {chance(2), chance(2)};
         for (size_t f = 0; f < features_.size(); ++f)
             if (chance(3)) g.features["f" + std::to_string(f)] = chance(2);
@@ -105,8 +103,15 @@ public:
         std::string last;  // the image the present pass reads; empty: any
         std::string chainResources;
         for (uint32_t c = 0; c < shape_.chains; ++c) last = chain(c, last, chainResources, g.passes);
-        g.resources += chainResources;
+        g.resources = chainResources;
         g.present = present(last);
+        // An output no pass uses is refused: such a resource keeps its declaration, not `final`.
+        std::ostringstream res;
+        for (size_t i = 0; i < declared.size(); ++i)
+            res << (usedByAny(resources_[i].name, g) ? declared[i] : withoutFinal(declared[i])) << ",\n";
+        res << R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",)"
+            << R"( "external": true, "final": "Present" })";
+        g.resources = res.str() + g.resources;
         featureDecl_ = R"("features": { "f0": )" + std::string(features_[0] ? "true" : "false") +
                        R"(, "f1": )" + (features_[1] ? "true" : "false") + " }";
         g.resources = featureDecl_ + ",\n\"resources\": {\n" + g.resources + "}";
@@ -114,6 +119,18 @@ public:
     }
 
 private:
+    static bool usedByAny(const std::string& resource, const RandomGraph& g) {
+        const std::string use = R"("resource": ")" + resource + "\"";
+        return g.present.find(use) != std::string::npos ||
+               std::any_of(g.passes.begin(), g.passes.end(),
+                           [&](const std::string& p) { return p.find(use) != std::string::npos; });
+    }
+    static std::string withoutFinal(std::string declaration) {
+        const size_t at = declaration.find(R"(, "final": ")");
+        if (at != std::string::npos) declaration.erase(at, declaration.find('"', at + 12) + 1 - at);
+        return declaration;
+    }
+
     uint32_t pick(uint32_t n) { return n == 0 ? 0 : static_cast<uint32_t>(rng_() % n); }
     bool chance(uint32_t oneIn) { return pick(oneIn) == 0; }
     template <class T>
@@ -145,7 +162,7 @@ private:
         } else if (r.kind == Kind::Depth) {
             s += R"(, "clear": { "depth": 1.0 })";
         } else {
-            s += R"(, "clear": { "color": [0.25, 0.5, 0.75, 1] })";
+            s += r.integer ? R"(, "clear": { "color": [1, 2, 3, 1] })" : R"(, "clear": { "color": [0.25, 0.5, 0.75, 1] })";
             if (chance(4)) s += R"(, "final": ")" + std::string(chance(2) ? "ShaderRead" : "TransferSrc") + "\"";
         }
         return s;
@@ -174,6 +191,7 @@ private:
             default: {
                 const auto& [format, storage] = any(colorFormats);
                 r.storage = storage;
+                r.integer = std::string_view(format).ends_with("_UINT");
                 const bool fixed = r.kind == Kind::Cube;
                 const std::string e = extent(r.width, r.height, fixed);
                 if (r.kind == Kind::Cube) {
