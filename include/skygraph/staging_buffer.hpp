@@ -3,6 +3,8 @@
 // graph puts that pass: a transfer queue copies beside the frames.
 #pragma once
 
+#include <skygraph/device.hpp>
+
 #include <vulkan/vulkan_core.h>
 
 #include <cstddef>
@@ -10,8 +12,6 @@
 #include <span>
 
 namespace skygraph {
-
-class Device;
 
 /// A VkBuffer in host-visible, host-coherent memory, mapped for its whole life. Create it with
 /// StagingBuffer::create(), which may be called on any thread; the Device must outlive it. Its
@@ -21,8 +21,8 @@ class Device;
 /// Not copyable.
 class StagingBuffer {
 public:
-    /// `bytes` (> 0) of host-visible memory on `device`. Throws ExecutorError when no memory
-    /// type fits or the allocation fails, and std::invalid_argument for 0 bytes.
+    /// `bytes` (> 0) of host-visible memory on `device`. Throws ExecutorError for 0 bytes, or
+    /// when no memory type fits or the allocation fails.
     [[nodiscard]] static std::shared_ptr<StagingBuffer> create(Device& device, VkDeviceSize bytes);
     ~StagingBuffer();
     StagingBuffer(const StagingBuffer&) = delete;

@@ -122,7 +122,7 @@ TEST_F(UploadPassTest, StagingRefusesAnUnknownResourceOrAWrongSize) {
                   "stageUpload: 'sky' takes 1536 bytes (4x4, 6 layer(s) of R32G32B32A32_SFLOAT), the staging buffer "
                   "holds 16");
     expectRefused("sky", nullptr, "no staging buffer for 'sky'");
-    EXPECT_THROW((void)StagingBuffer::create(sharedDevice(), 0), std::invalid_argument);
+    EXPECT_THROW((void)StagingBuffer::create(sharedDevice(), 0), ExecutorError);
 }
 
 // The oracle can fail: without the compute submit's wait for the transfer queue's signal, the
