@@ -88,10 +88,14 @@ TEST_F(UploadPassTest, HoldsTheBufferUntilTheCopyHasRun) {
     const auto buffer = staged(0.0f);
     renderer_.stageUpload("sky", buffer);
     EXPECT_EQ(buffer.use_count(), 2) << "staged";
+    EXPECT_FALSE(StagingBuffer::reusable(buffer));
     renderer_.renderFrame();
     EXPECT_EQ(buffer.use_count(), 2) << "held by the frame in flight";
+    EXPECT_FALSE(StagingBuffer::reusable(buffer));
     renderer_.waitIdle();
     EXPECT_EQ(buffer.use_count(), 1) << "the copy has run: the caller's again";
+    EXPECT_TRUE(StagingBuffer::reusable(buffer));
+    EXPECT_FALSE(StagingBuffer::reusable(nullptr));
 }
 
 TEST_F(UploadPassTest, OnlyTheFrameItWasStagedForCopiesIt) {
