@@ -40,6 +40,12 @@ class ShaderCompiler;
 /// as, not by a base class.
 class FrameData {
 public:
+    FrameData() = default;
+    /// Not copyable or movable: the renderer's is the one passes read, so a copy
+    /// (`auto data = renderer.frameData();`) would take values that no pass ever sees.
+    FrameData(const FrameData&) = delete;
+    FrameData& operator=(const FrameData&) = delete;
+
     /// What a FrameData stores: a class type, the key it is found by.
     template <typename T>
     static constexpr bool kKeyable = std::is_class_v<T>;
