@@ -284,6 +284,7 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     d.state = std::move(next);
     d.lastSlot = -1;
     d.timings.clear();  // they name the old plan's passes
+    d.timingsFrame.reset();
 }
 
 std::vector<PassTiming> Renderer::lastTimings() {
@@ -458,6 +459,10 @@ void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_
         throw ExecutorError("the plan runs on several queues: each of its submits needs a command buffer of its own");
     d.recordedElsewhere = true;
     d.recordFrame(cmd, slot, nullptr);
+}
+
+std::optional<uint64_t> RendererAccess::timingsFrame(const Renderer& renderer) {
+    return renderer.impl_->timingsFrame;
 }
 
 void RendererAccess::editSetupPlans(Renderer& renderer, std::function<void(Plan&)> edit) {

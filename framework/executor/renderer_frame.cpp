@@ -60,6 +60,10 @@ void Renderer::Impl::collectTimings(FrameSlot& f) {
     const VkResult got = vkGetQueryPoolResults(vkd, f.queries.get(), 0, n * 2, ts.size() * 8, ts.data(), 16,
                                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
     if (got != VK_SUCCESS && got != VK_NOT_READY) return;
+    // A frame older than the one timed last (slots are not always collected in frame order)
+    // says nothing new.
+    if (timingsFrame && f.frame < *timingsFrame) return;
+    timingsFrame = f.frame;
     timings.clear();
     for (uint32_t i = 0; i < n; ++i) {
         const uint64_t* begin = &ts[4 * i];
@@ -345,7 +349,10 @@ void Renderer::Impl::renderFrame(bool background) {
 }
 
 void Renderer::Impl::waitIdle() {
-    for (FrameSlot& f : frames) waitSlot(f);
+    std::vector<FrameSlot*> oldestFirst;
+    for (FrameSlot& f : frames) oldestFirst.push_back(&f);
+    std::sort(oldestFirst.begin(), oldestFirst.end(), [](const FrameSlot* a, const FrameSlot* b) { return a->frame < b->frame; });
+    for (FrameSlot* f : oldestFirst) waitSlot(*f);
 }
 
 }  // namespace skygraph

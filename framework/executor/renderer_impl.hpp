@@ -332,6 +332,7 @@ struct Renderer::Impl {
     int64_t lastSlot = -1;
     uint32_t lastBinding = 0;  ///< The binding slot of the last frame (lastSlot's, headless).
     std::vector<PassTiming> timings;
+    std::optional<uint64_t> timingsFrame;  ///< The frame `timings` are of (FrameSlot::frame).
 
     /// Presenting: the images the plan's Present resource is, and where they came from.
     struct PresentBinding {

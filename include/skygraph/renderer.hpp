@@ -289,14 +289,16 @@ public:
     /// compiled().graph(): the graph the current plan was compiled from. Owned by the renderer;
     /// valid until the plan state is rebuilt, as compiled() is.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
-    /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
-    /// before the first frame of the current plan state. Passes on a queue whose family has no
+    /// Per-pass GPU times of the most recently submitted frame (waits for it to finish),
+    /// copied. Empty before the first frame of the current plan state. Passes on a queue whose family has no
     /// timestamps are left out.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
-    /// Per-pass GPU times of the latest frame seen finished, without waiting (up to frames
-    /// in flight behind: what a live overlay shows). The reference is valid until the next
-    /// call that waits for a frame (renderFrame, waitForFrameSlot, waitIdle, lastTimings,
-    /// readback) or rebuilds.
+    /// Per-pass GPU times of the newest frame seen finished, without waiting (up to frames
+    /// in flight behind: what a live overlay shows). The reference is valid, and what it holds
+    /// unchanged, until the next call that waits for a frame (renderFrame() of any kind,
+    /// renderFrameInBackground(), waitForFrameSlot(), waitIdle(), lastTimings(), readback(),
+    /// readImage(), setExternalImage(), updateExternalImage()) or rebuilds the plan state
+    /// (the class comment lists the calls that do).
     [[nodiscard]] const std::vector<PassTiming>& completedTimings() const noexcept;
 
     /// compiled().plan(): the current plan. Owned by the renderer; valid until the plan state

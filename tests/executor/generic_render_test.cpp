@@ -1,6 +1,7 @@
 // Generic graphs run under validation + synchronization validation, with real pixels read
 // back. Each test names the hazard kind (RAW, WAR, WAW, layout transition) it exercises.
 #include "executor_test_util.hpp"
+#include "renderer_access.hpp"
 
 #include <unistd.h>
 
@@ -415,6 +416,25 @@ TEST_F(ExecutorTest, UnexportedExternalWrittenEveryFrame) {
              "params": { "color": [0, 0, 0, 0] } })"));
     const ImageData img = render(c, 4);
     EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.5, 0.5, 0.5);
+}
+
+// completedTimings() are the newest finished frame's, whatever order the frame slots are
+// waited for in. Three in flight: frame 3 reuses slot 0, and waitIdle() must not let the older
+// frames of slots 1 and 2 overwrite its timings; nor may the next frame's wait for its slot
+// bring back an older frame's after lastTimings() took the newest.
+TEST_F(ExecutorTest, TimingsAreOfTheNewestFinishedFrame) {
+    Renderer r(sharedDevice(), computeThenFragment(), genericOptions(3));
+    for (int i = 0; i < 4; ++i) r.renderFrame();
+    r.waitIdle();
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 3u);
+    EXPECT_EQ(r.completedTimings().size(), 3u);
+    for (int i = 0; i < 3; ++i) r.renderFrame();  // frames 4, 5, 6 in slots 1, 2, 0
+    (void)r.lastTimings();                         // waits for frame 6
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 6u);
+    r.renderFrame();  // frame 7 waits for slot 1's frame 4
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 6u);
+    r.waitIdle();
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 7u);
 }
 
 }  // namespace
