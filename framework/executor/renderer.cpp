@@ -276,15 +276,23 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     std::unique_ptr<detail::PlanState> next;
     try {
         next = d.build(std::move(compiled));  // throws: the old plan keeps running
-        vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     } catch (...) {
         if (previous) d.shaders = std::move(previous);
         throw;
     }
-    d.state = std::move(next);
-    d.lastSlot = -1;
-    d.timings.clear();  // they name the old plan's passes
-    d.timingsFrame.reset();
+    d.replaceState(std::move(next));
+}
+
+void Renderer::Impl::replaceState(std::unique_ptr<PlanState> next) {
+    // The old state's frames have finished (waitIdle() before the build), and what other
+    // renderers use of it, images they import, they hold themselves (SharedImage). Work
+    // recorded into the application's command buffers is not fenced: only an idle device
+    // is sure to be done with it.
+    if (recordedElsewhere) vk::check(vkDeviceWaitIdle(vkd), "vkDeviceWaitIdle");
+    state = std::move(next);
+    lastSlot = -1;
+    timings.clear();  // they name the old plan's passes
+    timingsFrame.reset();
 }
 
 std::vector<PassTiming> Renderer::lastTimings() {

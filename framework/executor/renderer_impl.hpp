@@ -359,6 +359,9 @@ struct Renderer::Impl {
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);
+    /// Makes `next`, just built, the plan state, once this renderer's frames have finished
+    /// (the caller has waited for them).
+    void replaceState(std::unique_ptr<detail::PlanState> next);
 
     // --- renderer_memory.cpp: device memory -------------------------------------------------
     /// A memory object of `bytes` from a type among `typeBits` with `properties`, named `name`

@@ -66,9 +66,7 @@ void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Im
     try {
         waitIdle();
         auto built = build(std::move(*next));  // throws: the old plan and binding stay
-        vk::check(vkDeviceWaitIdle(vkd), "vkDeviceWaitIdle");
-        state = std::move(built);
-        lastSlot = -1;
+        replaceState(std::move(built));
     } catch (...) {
         present = std::move(previous);
         throw;

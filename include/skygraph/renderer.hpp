@@ -94,7 +94,9 @@ struct PassTiming {
 /// renderFrame(Swapchain&) whenever it binds the swapchain's images: its first frame into a
 /// swapchain the renderer is not already bound to (RendererOptions::presentTo), and its first
 /// frame after the swapchain was re-created (out of date, suboptimal, Swapchain::resize).
-/// HotReloader::poll() calls setGraph() and reloadShaders(). After a rebuild, references
+/// HotReloader::poll() calls setGraph() and reloadShaders(). A rebuild waits for this renderer's own frames, not for other renderers'
+/// (a background bake may go on running); only re-creating a Swapchain waits for the whole
+/// queue (renderFrame(Swapchain&)). After a rebuild, references
 /// returned by compiled(), graph(), plan() and setupPlan() are invalid, and images shared
 /// before are no longer written by this renderer. A failed call keeps the old state. Names
 /// passed in are read during the call only. Use from one thread at a time; renderers on one
@@ -129,7 +131,9 @@ public:
     /// extent (as resize() does). Binding the swapchain's images (the first frame into it,
     /// unless RendererOptions::presentTo bound them, and the first after each re-creation)
     /// rebuilds the plan state, which invalidates references from compiled(), graph() and
-    /// plan(). Returns Paused, rendering nothing, while the window is 0x0.
+    /// plan(). Returns Paused, rendering nothing, while the window is 0x0. Re-creating the
+    /// swapchain waits for the Device's queue to be idle (vkQueueWaitIdle: presents have no
+    /// fence to wait for), and so for other renderers' work on it too.
     /// Borrows the swapchain for the call; the renderer keeps views of its images until it
     /// renders into another one (Swapchain says how to replace one). Throws ExecutorError (e.g. the
     /// plan does not compile at the new size: the old plan stays, and the next call tries again).
@@ -196,7 +200,8 @@ public:
     /// options and so the device's memory model) and rebuilds the plan state. Throws
     /// ExecutorError when the graph does not compile at that size or the device cannot hold
     /// it; the old plan keeps running then. A presenting renderer follows its images' extent
-    /// instead (a size other than theirs throws).
+    /// instead (a size other than theirs throws ExecutorError). Waits for this renderer's
+    /// frames, not for other renderers'.
     void resize(uint32_t width, uint32_t height);
     /// Where setGraph() takes its shaders from.
     enum class ShaderSources : uint8_t {
@@ -204,14 +209,14 @@ public:
         Reread,  ///< every shader read and compiled again, as reloadShaders() does
     };
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
-    /// frame has finished; compiled again with the device's memory model unless it was (the
-    /// class comment). On failure throws ExecutorError and keeps the old plan and pipelines
-    /// running: with ShaderSources::Reread, a new graph and edited shaders take effect together
-    /// or not at all.
+    /// frame of this renderer has finished; compiled again with the device's memory model
+    /// unless it was (the class comment). On failure throws ExecutorError and keeps the old
+    /// plan and pipelines running: with ShaderSources::Reread, a new graph and edited shaders
+    /// take effect together or not at all.
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
-    /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
-    /// running. Every other rebuild (resize(), setPresentImages(), a swapchain's new images,
+    /// an edit), once this renderer's frames have finished. On failure throws ExecutorError
+    /// with glslang's log; the old pipelines keep running. Every other rebuild (resize(), setPresentImages(), a swapchain's new images,
     /// setGraph() with ShaderSources::Cached) builds from the shader sources the running
     /// pipelines were built from, so a shader broken on disk fails only this call.
     void reloadShaders();

@@ -97,7 +97,8 @@ public:
     /// that format or those usages (naming what it can give).
     static std::unique_ptr<Swapchain> create(Device& device, const CompiledGraph& compiled,
                                              const SwapchainOptions& options);
-    /// Waits for the device's queue to be idle, then destroys what it owns.
+    /// Waits for the device's queue to be idle (other renderers' work on it included), then
+    /// destroys what it owns.
     ~Swapchain();
     Swapchain(const Swapchain&) = delete;
     Swapchain& operator=(const Swapchain&) = delete;

@@ -2,6 +2,7 @@
 // size gives, and the plan's barriers cover exactly those, under synchronization validation.
 #include "compiled_graph_access.hpp"
 #include "executor_test_util.hpp"
+#include "queue_blocker.hpp"
 
 #include <skygraph/compiled_graph.hpp>
 
@@ -145,6 +146,34 @@ TEST_F(Resize, AnImportThatNoLongerFitsIsForgottenForAResize) {
     EXPECT_NE(imported.rgba, own.rgba) << "the frame reads the new import, not the renderer's own image";
     EXPECT_THROW(consumer.forgetImport("swapchain"), ExecutorError);
     consumer.waitIdle();
+}
+
+// A rebuild waits for this renderer's own frames only: work that another renderer or the
+// application has on the device's queue goes on, however long it takes.
+TEST_F(Resize, ARebuildWaitsForNoOtherWorkOnTheDevice) {
+    // No external resource, so no setup: that would be submitted behind the blocker.
+    Renderer r(sharedDevice(), compileText(R"({ "version": 1, "name": "inner", "resources": {
+        "chain": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "mips": "full" },
+        "target": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" } },
+      "passes": [
+        { "name": "fill", "type": "Generic", "never_cull": true, "uses": { "chain": "Write@Transfer" } },
+        { "name": "show", "type": "Generic", "never_cull": true,
+          "uses": { "chain": "Read@Fragment", "target": "Write@ColorAttachment" } } ] })"),
+               genericOptions());
+    ASSERT_TRUE(r.setupPlan().passes().empty());
+    r.renderFrame();
+    r.waitIdle();
+    {
+        QueueBlocker blocked(sharedDevice());
+        r.resize(24, 20);
+        r.setGraph(r.compiled());
+        r.reloadShaders();
+        EXPECT_FALSE(blocked.released()) << "a rebuild waited for work that is not the renderer's";
+    }
+    r.renderFrame();
+    r.waitIdle();
+    EXPECT_EQ(r.compiled().outputWidth(), 24u);
+    EXPECT_EQ(r.lastTimings().size(), 2u) << "the frame after the rebuilds ran";
 }
 
 }  // namespace
