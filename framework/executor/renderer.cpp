@@ -253,6 +253,10 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
 
 void Renderer::resize(uint32_t width, uint32_t height) {
     if (width == 0 || height == 0) throw ExecutorError("output extent must be at least 1x1");
+    if (const auto& p = impl_->present; p && (p->images.extent.width != width || p->images.extent.height != height))
+        throw ExecutorError("resize to " + std::to_string(width) + "x" + std::to_string(height) +
+                            ": the renderer presents, at its present images' extent (" +
+                            std::to_string(p->images.extent.width) + "x" + std::to_string(p->images.extent.height) + ")");
     std::optional<CompiledGraph> next;
     try {
         next.emplace(impl_->state->compiled.resized(width, height));
@@ -265,6 +269,16 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 
 void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
+    // A presenting renderer renders at its present images' extent, as its constructor does.
+    if (const auto& p = d.present;
+        p && (compiled.outputWidth() != p->images.extent.width || compiled.outputHeight() != p->images.extent.height)) {
+        try {
+            compiled = compiled.resized(p->images.extent.width, p->images.extent.height);
+        } catch (const GraphError& e) {
+            throw ExecutorError("presenting at " + std::to_string(p->images.extent.width) + "x" +
+                                std::to_string(p->images.extent.height) + ": " + e.what());
+        }
+    }
     d.waitIdle();
     // Rereading builds with a new compiler, which reads every shader again. When that fails,
     // the old one comes back with the sources the running pipelines were built from, so that

@@ -210,9 +210,11 @@ public:
     };
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
     /// frame of this renderer has finished; compiled again with the device's memory model
-    /// unless it was (the class comment). On failure throws ExecutorError and keeps the old
-    /// plan and pipelines running: with ShaderSources::Reread, a new graph and edited shaders
-    /// take effect together or not at all.
+    /// unless it was (the class comment), and, while the renderer presents, at its present
+    /// images' extent (as the constructor does with RendererOptions::presentTo). On failure
+    /// throws ExecutorError (also when the graph does not compile at that extent) and keeps
+    /// the old plan and pipelines running: with ShaderSources::Reread, a new graph and edited
+    /// shaders take effect together or not at all.
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
     /// an edit), once this renderer's frames have finished. On failure throws ExecutorError

@@ -275,6 +275,22 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
     expectSilent();
 }
 
+// setGraph on a presenting renderer compiles the graph at the present images' extent, as the
+// constructor does with RendererOptions::presentTo; resize() to another size still throws.
+TEST_F(Present, SetGraphCompilesAtThePresentImagesExtent) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer renderer(*device_, raster(96, 64), genericOptions(2));
+    present(renderer, *swapchain, 2);
+    renderer.setGraph(raster(50, 40));
+    EXPECT_EQ(renderer.compiled().outputWidth(), 96u);
+    EXPECT_EQ(renderer.compiled().outputHeight(), 64u);
+    present(renderer, *swapchain, 2);
+    EXPECT_EQ(swapchain->generation(), 1u) << "the swapchain's images were kept";
+    EXPECT_THROW(renderer.resize(50, 40), ExecutorError);
+    present(renderer, *swapchain, 1);
+    expectSilent();
+}
+
 // --- Negative controls: the same frames, weakened on purpose, must be reported. ------------
 
 /// Renders frames with the acquire wait at `stages` (0: no wait) and returns what validation said.
