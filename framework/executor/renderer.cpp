@@ -366,9 +366,12 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     if (!desc->external || !desc->isImage())
         throw ExecutorError("importImage: '" + resource + "' is not an external image");
     if (!image.impl_) throw ExecutorError("importImage: '" + resource + "': the SharedImage is empty");
-    // A resource the plan culled is imported when a rebuild brings it back.
+    // A resource the plan culled is imported when a rebuild brings it back; what the plan
+    // would say of it (usages, layout, sharing) is checked then.
     if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0)
         d.swapImport(*d.state, static_cast<size_t>(index), image);
+    else
+        d.checkImportShape(*desc, d.state->outputWidth(), d.state->outputHeight(), image);
     d.imports[resource] = std::move(image);
 }
 

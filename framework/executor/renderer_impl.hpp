@@ -392,6 +392,11 @@ struct Renderer::Impl {
                      const SubresourceRange& range, bool attachment);
     void describeResources(detail::PlanState& s);
     void createResources(detail::PlanState& s);
+    /// Throws ExecutorError unless `image` is of this device and of the format, extent, mips
+    /// and layers that `d` declares at that output extent: what an import must match whether
+    /// or not the plan uses the resource.
+    void checkImportShape(const ResourceDesc& d, uint32_t outputWidth, uint32_t outputHeight,
+                          const SharedImage& image) const;
     /// The single copy of imported resource `r`, after checking that it fits the plan.
     detail::ImageCopy adoptImport(const detail::PlanState& s, size_t index, const SharedImage& image) const;
     void buildSized(detail::PlanState& s);

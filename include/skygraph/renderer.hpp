@@ -275,7 +275,12 @@ public:
     /// (its waitIdle()), or its background frame been finished (finishBackgroundFrame()),
     /// before this renderer's next frame. Neither waits nor rebuilds: frames already submitted
     /// keep the image they were recorded with, which stays alive until they finish. Throws
-    /// ExecutorError for an empty handle or on any mismatch, keeping the old image.
+    /// ExecutorError for an empty handle or on any mismatch, keeping the old image. For a
+    /// resource the current plan does not use (its passes culled), the image is checked
+    /// against the graph's declaration (device, format, extent, mips, layers) and kept for the
+    /// rebuild that brings the resource back; what only a plan that uses it can say (usages,
+    /// layout, sharing, being written) is checked by that rebuild, which throws on a mismatch
+    /// (forgetImport()).
     void importImage(const std::string& resource, SharedImage image);
     /// Undoes importImage() for `resource` from the next rebuild on (the class comment lists
     /// the calls that rebuild): the rebuilt plan makes and sets up an image of its own for it,
