@@ -428,7 +428,9 @@ void Renderer::updateExternalImage(const std::string& resource, ImageData pixels
         throw ExecutorError("updateExternalImage: '" + resource + "' has no pixels yet (setExternalImage first)");
     ImageData previous = std::exchange(it->second, std::move(pixels));
     try {
-        d.waitIdle();
+        // A copy that rides with the next frame is ordered after the frames before by its
+        // barriers; runSetup waits for them when it cannot ride.
+        if (timing == UploadTiming::Now) d.waitIdle();
         d.runSetup(*d.state, resource, timing == UploadTiming::WithNextFrame);
     } catch (...) {
         it->second = std::move(previous);

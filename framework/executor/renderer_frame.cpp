@@ -200,13 +200,16 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         vk::check(vkBeginCommandBuffer(cmds[k], &bi), "vkBeginCommandBuffer");
-        if (k == 0 && pendingSetup) {
-            if (pendingSetup->state == state.get()) {
-                VulkanCommands sink(cmds[k], commandFunctions());
-                pendingSetup->record(sink);
-                f.setupKeep = std::move(pendingSetup->keep);
+        if (k == 0 && !pendingSetups.empty()) {
+            VulkanCommands sink(cmds[k], commandFunctions());
+            std::vector<std::shared_ptr<void>> keep;
+            for (PendingSetup& p : pendingSetups) {
+                if (p.state != state.get()) continue;  // for a plan state since replaced
+                p.record(sink);
+                keep.push_back(std::move(p.keep));
             }
-            pendingSetup.reset();
+            if (!keep.empty()) f.setupKeep = std::make_shared<std::vector<std::shared_ptr<void>>>(std::move(keep));
+            pendingSetups.clear();
         }
         recordFrame(cmds[k], binding, &f, k);
         vk::check(vkEndCommandBuffer(cmds[k]), "vkEndCommandBuffer");

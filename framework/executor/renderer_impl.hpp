@@ -406,17 +406,21 @@ struct Renderer::Impl {
     /// uploaded pixels, its clear value, or grey) and the state the frame expects it in. Runs
     /// outside any frame and waits.
     /// `only`: that external resource alone (updateExternalImage); the others keep theirs.
-    /// `withNextFrame`: when every resource it sets up has one copy, the steps are recorded
-    /// at the start of the next frame's first submit instead (pendingSetup), and nothing waits.
+    /// `withNextFrame`: when every resource it sets up has one copy and the plan submits all
+    /// its work to Device::queue(), the steps are recorded at the start of the next frame's
+    /// first submit instead (pendingSetups), and nothing waits; otherwise it waits for this
+    /// renderer's frames first (without it, the caller has waited).
     void runSetup(detail::PlanState& s, std::string_view only = {}, bool withNextFrame = false);
     /// Setup steps for the next frame to record before its passes, with what they need kept
     /// alive (the staging buffers) until that frame has finished.
     struct PendingSetup {
         const detail::PlanState* state = nullptr;  ///< Dropped if the plan state is rebuilt first.
+        std::string resource;  ///< The one external resource it sets up.
         std::function<void(detail::CommandSink&)> record;
         std::shared_ptr<void> keep;
     };
-    std::optional<PendingSetup> pendingSetup;
+    /// In the order they were asked for, at most one per resource.
+    std::vector<PendingSetup> pendingSetups;
     /// The staging buffers of the last upload that rode with a frame, to be reused.
     std::shared_ptr<std::vector<detail::OwnedBuffer>> lastStaging;
     /// A host-visible staging buffer of `bytes`: one of lastStaging's once its frame is done.

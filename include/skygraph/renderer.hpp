@@ -70,8 +70,11 @@ enum class PresentStatus : uint8_t {
 
 /// When Renderer::updateExternalImage() copies new pixels into the image.
 enum class UploadTiming : uint8_t {
-    Now,            ///< Submitted and waited for before the call returns.
-    WithNextFrame,  ///< Recorded at the start of the next frame; nothing waits.
+    /// Submitted and waited for before the call returns, after this renderer's frames.
+    Now,
+    /// Recorded at the start of the next frame, and nothing waits; where the copy cannot ride
+    /// with a frame, as Now (Renderer::updateExternalImage() says when).
+    WithNextFrame,
 };
 
 /// GPU time of one pass in the last completed frame of a slot.
@@ -237,12 +240,17 @@ public:
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// New pixels for external image `resource`, which setExternalImage() gave pixels before:
     /// one Upload step of the setup and its barriers, every other resource left as it is (so
-    /// images this renderer shares keep their contents). Waits for this renderer's frames, not
-    /// for other renderers'. The pixels go to a staging buffer now; with UploadTiming::Now the
-    /// copy is submitted and waited for, with WithNextFrame it is recorded at the start of the
-    /// next frame's first submit, before its passes, and nothing waits (an image with a copy
-    /// per frame slot is uploaded now all the same). Throws ExecutorError as setExternalImage()
-    /// does, and for a resource without pixels yet.
+    /// images this renderer shares keep their contents). The pixels go to a staging buffer
+    /// now. With UploadTiming::Now the call waits for this renderer's frames (not for other
+    /// renderers'), then submits the copy and waits for it. With WithNextFrame the copy is
+    /// recorded at the start of the next frame's first submit, before its passes, and nothing
+    /// waits: frames already submitted read the old pixels, and the copy's barriers order it
+    /// after them. Updates of several resources before a frame all ride with it; a later one
+    /// of the same resource replaces the earlier. Where the copy cannot ride with a frame (an
+    /// image with a copy per frame slot, or a plan that submits to a queue other than
+    /// Device::queue(), whose earlier frames' work those barriers do not order) it is
+    /// uploaded as with Now. Throws ExecutorError as setExternalImage() does, and for a
+    /// resource without pixels yet.
     void updateExternalImage(const std::string& resource, ImageData pixels, UploadTiming timing = UploadTiming::Now);
     /// Pixels for the next frame's UploadPass that writes `resource` (docs/graph-format.md,
     /// "Built-in pass types"): mip 0 of every layer, rows tightly packed, in the image's format

@@ -1,6 +1,7 @@
 // Generic graphs run under validation + synchronization validation, with real pixels read
 // back. Each test names the hazard kind (RAW, WAR, WAW, layout transition) it exercises.
 #include "executor_test_util.hpp"
+#include "queue_blocker.hpp"
 #include "renderer_access.hpp"
 
 #include <unistd.h>
@@ -416,6 +417,51 @@ TEST_F(ExecutorTest, UnexportedExternalWrittenEveryFrame) {
              "params": { "color": [0, 0, 0, 0] } })"));
     const ImageData img = render(c, 4);
     EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.5, 0.5, 0.5);
+}
+
+/// 8x4 pixels of one grey `value`, alpha 1.
+ImageData grey(float value) {
+    ImageData px;
+    px.width = 8;
+    px.height = 4;
+    px.rgba.assign(8 * 4 * 4, value);
+    for (size_t i = 3; i < px.rgba.size(); i += 4) px.rgba[i] = 1.0f;
+    return px;
+}
+
+// updateExternalImage with WithNextFrame waits for no frame, even one held up on the queue;
+// uploads of several resources all ride with the next frame, and one made now replaces one
+// still waiting for a frame.
+TEST_F(ExecutorTest, UploadsWithTheNextFrameWaitForNoFrameAndAllArrive) {
+    const auto c = compileText(R"({ "version": 1, "name": "t", "resources": {
+      "photo": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 4],
+                 "external": true, "initial": "ShaderRead" },
+      "photo2": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 4],
+                  "external": true, "initial": "ShaderRead" },
+      "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": [8, 4],
+                     "external": true, "final": "Present" } },
+      "passes": [ { "name": "show", "type": "Generic",
+        "uses": { "photo": "Read@Fragment", "photo2": "Read@Fragment", "swapchain": "Write@ColorAttachment" } } ] })");
+    Renderer r(sharedDevice(), c, genericOptions(2));
+    r.setExternalImage("photo", grey(0.1f));
+    r.setExternalImage("photo2", grey(0.2f));
+    r.renderFrame();
+    r.waitIdle();
+    {
+        QueueBlocker blocked(sharedDevice());
+        r.renderFrame();  // queued behind the blocker, in flight until it is released
+        r.updateExternalImage("photo", grey(0.3f), UploadTiming::WithNextFrame);
+        r.updateExternalImage("photo2", grey(0.4f), UploadTiming::WithNextFrame);
+        EXPECT_FALSE(blocked.released()) << "an upload with the next frame waited for the frame in flight";
+    }
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readImage("photo").at(0), 7, 3, 0.3, 0.3, 0.3, 1.0);
+    EXPECT_PIXEL_NEAR(r.readImage("photo2").at(0), 7, 3, 0.4, 0.4, 0.4, 1.0);
+    r.updateExternalImage("photo", grey(0.5f), UploadTiming::WithNextFrame);
+    r.updateExternalImage("photo", grey(0.6f), UploadTiming::Now);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readImage("photo").at(0), 7, 3, 0.6, 0.6, 0.6, 1.0);
+    r.waitIdle();
 }
 
 // completedTimings() are the newest finished frame's, whatever order the frame slots are
