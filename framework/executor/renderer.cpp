@@ -307,6 +307,7 @@ void Renderer::Impl::replaceState(std::unique_ptr<PlanState> next) {
     lastSlot = -1;
     timings.clear();  // they name the old plan's passes
     timingsFrame.reset();
+    passesRecordedUnsubmitted = false;  // the new state's implementations have recorded nothing
 }
 
 std::vector<PassTiming> Renderer::lastTimings() {

@@ -483,6 +483,16 @@ struct Renderer::Impl {
     /// signalling its render-complete semaphore.
     /// `background`: hold the last submit back (FrameSlot::held) until the others finish.
     void submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target, bool background = false);
+    /// A frame whose recording threw: nothing of it is submitted. With `target`, a batch of no
+    /// commands still waits for its acquire semaphore (signalling the slot's fence).
+    void abandonFrame(detail::FrameSlot& f, const PresentTarget* target) noexcept;
+    /// Set when a frame's recording threw: work the passes recorded for it never ran, and
+    /// their implementations may count on it (a texture filled on first use), so the next
+    /// frame makes them all again first (remakePassImplementations). A rebuild clears it.
+    bool passesRecordedUnsubmitted = false;
+    /// Waits for this renderer's frames and replaces every pass implementation of the plan
+    /// state with a new one (createPipelines included). On failure throws, keeping the old ones.
+    void remakePassImplementations();
     /// Submits `f`'s held last submit once every earlier submission of its frame has finished
     /// (`wait`: waits for them). True when nothing is held any more.
     bool releaseHeld(detail::FrameSlot& f, bool wait);

@@ -182,7 +182,10 @@ public:
 
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
     /// and, for graphics passes, begun the render pass; it ends it afterwards. What this throws
-    /// comes out of renderFrame() as it is, and that frame is not submitted.
+    /// comes out of renderFrame() as it is, and that frame is not submitted: nothing any pass
+    /// recorded for it runs. The renderer then makes every pass implementation again before
+    /// its next frame, so an implementation is never called again after recording work that
+    /// did not run (it may count on what it recorded before, a texture filled once, say).
     virtual void record(const RecordContext& context) = 0;
 
     /// Graphics passes only: records what Vulkan does not allow inside a render pass (copies,

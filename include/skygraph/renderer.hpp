@@ -96,8 +96,9 @@ struct PassTiming {
 /// setPresentImages() (every call, even with images of an unchanged extent), and
 /// renderFrame(Swapchain&) whenever it binds the swapchain's images: its first frame into a
 /// swapchain the renderer is not already bound to (RendererOptions::presentTo), and its first
-/// frame after the swapchain was re-created (out of date, suboptimal, Swapchain::resize).
-/// HotReloader::poll() calls setGraph() and reloadShaders(). A rebuild waits for this renderer's own frames, not for other renderers'
+/// frame after the swapchain was re-created (out of date, suboptimal, Swapchain::resize, or a
+/// frame into it whose recording threw). HotReloader::poll() calls setGraph() and
+/// reloadShaders(). A rebuild waits for this renderer's own frames, not for other renderers'
 /// (a background bake may go on running); only re-creating a Swapchain waits for the whole
 /// queue (renderFrame(Swapchain&)). After a rebuild, references
 /// returned by compiled(), graph(), plan() and setupPlan() are invalid, and images shared
@@ -122,8 +123,15 @@ public:
 
     /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
     /// otherwise: up to framesInFlight frames run at once. Throws ExecutorError for a Vulkan
-    /// failure, and once the renderer presents (renderFrame(Swapchain&), setPresentImages);
-    /// what a pass implementation throws comes out as it is, and that frame is not submitted.
+    /// failure, and once the renderer presents (renderFrame(Swapchain&), setPresentImages).
+    /// What a pass implementation throws while the frame is recorded comes out as it is, and
+    /// the renderer stays usable: the frame is not submitted (frameCount() does not count it,
+    /// readback() still reads the frame before), what was to ride with it (stageUpload(),
+    /// updateExternalImage() with WithNextFrame) rides with the next one, and since the work
+    /// every pass recorded for it never runs, the next frame first waits for this renderer's
+    /// frames and makes every pass implementation again (PassFactory, then createPipelines;
+    /// should that throw, the frame throws it and the next tries again). Presenting, see
+    /// renderFrame(Swapchain&) and renderFrame(const PresentTarget&) for the image.
     void renderFrame();
     /// Presents a frame through `swapchain` (made for this renderer's device and plan): waits
     /// for the frame slot, acquires an image, records the plan into it, submits waiting for
@@ -140,6 +148,10 @@ public:
     /// Borrows the swapchain for the call; the renderer keeps views of its images until it
     /// renders into another one (Swapchain says how to replace one). Throws ExecutorError (e.g. the
     /// plan does not compile at the new size: the old plan stays, and the next call tries again).
+    /// When a pass throws while the frame is recorded (renderFrame() says what else happens),
+    /// the acquired image is not presented, but the frame's wait for its acquire is still
+    /// submitted, and the swapchain is marked for re-creation, which gives the image back:
+    /// the next call re-creates it, and so rebuilds the plan state.
     PresentStatus renderFrame(Swapchain& swapchain);
     /// Presenting into images of the application's own (e.g. its own VkSwapchainKHR's): they
     /// become the plan's Present resource, and the plan state is rebuilt on every call,
@@ -164,7 +176,13 @@ public:
     /// Device::queue(). The semaphores are borrowed for the submit: the caller owns them and
     /// keeps them until that frame and its present are done (waitIdle(), then the queue's
     /// vkQueueWaitIdle). Throws ExecutorError without setPresentImages, for an index out of
-    /// range or a null semaphore, submitting nothing.
+    /// range or a null semaphore, submitting nothing. When a pass throws while the frame is
+    /// recorded (renderFrame() says what else happens), the frame still submits its wait for
+    /// `target.acquired` (so the semaphore may be acquired with again once
+    /// waitForFrameSlot() returns that slot, which the next frame uses again) but does not
+    /// signal `target.renderComplete`: do not present the image. It stays acquired; re-create
+    /// the swapchain (after waitIdle() and the queue's vkQueueWaitIdle) and call
+    /// setPresentImages() to have it back.
     void renderFrame(const PresentTarget& target);
     /// Renders one frame beside other renderers' frames, for work such as an environment
     /// re-bake on the compute queue (docs/queues.md, "Background frames"): as renderFrame(),

@@ -3,6 +3,7 @@
 #include "executor_test_util.hpp"
 #include "queue_blocker.hpp"
 #include "renderer_access.hpp"
+#include "throwing_pass.hpp"
 
 #include <unistd.h>
 
@@ -419,6 +420,15 @@ TEST_F(ExecutorTest, UnexportedExternalWrittenEveryFrame) {
     EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.5, 0.5, 0.5);
 }
 
+/// `json` compiled as compileText() does, with the pass types of `library`.
+CompiledGraph compileWith(const PassLibrary& library, const std::string& json) {
+    GraphDesc g = parseGraph(json, "<test>", library.registry());
+    CompileOptions o = sizedOptions();
+    o.memory = sharedDevice().memoryModel();
+    o = headless(g, std::move(o));
+    return CompiledGraph(std::move(g), std::move(o));
+}
+
 /// 8x4 pixels of one grey `value`, alpha 1.
 ImageData grey(float value) {
     ImageData px;
@@ -427,6 +437,46 @@ ImageData grey(float value) {
     px.rgba.assign(8 * 4 * 4, value);
     for (size_t i = 3; i < px.rgba.size(); i += 4) px.rgba[i] = 1.0f;
     return px;
+}
+
+/// An 8x4 external image `photo` that pass "show", of type `type`, copies to the output.
+std::string photoGraph(const std::string& type) {
+    return R"({ "version": 1, "name": "t", "resources": {
+      "photo": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 4],
+                 "external": true, "initial": "ShaderRead" },
+      "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": [8, 4],
+                     "external": true, "final": "Present" } },
+      "passes": [ { "name": "show", "type": ")" + type + R"(",
+        "uses": { "photo": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+        "params": { "color": [0, 0, 0, 0] } } ] })";
+}
+
+// A pass that throws while its frame is recorded: the frame is not submitted, and the renderer
+// goes on. The upload that was to ride with that frame rides with the next, and the recording
+// code, which recorded work that never ran, is made again before it.
+TEST_F(ExecutorTest, AFrameWhosePassThrowsIsNotSubmittedAndTheNextCarriesItsUpload) {
+    const PassLibrary library = throwingPassLibrary();
+    RendererOptions ro = genericOptions(2);
+    ro.passes = &library;
+    Renderer r(sharedDevice(), compileWith(library, photoGraph("ThrowingPass")), ro);
+    r.setExternalImage("photo", grey(0.25f));
+    r.renderFrame();
+    r.renderFrame();
+    const int made = ThrowingPass::made();
+    r.updateExternalImage("photo", grey(0.75f), UploadTiming::WithNextFrame);
+    r.frameData().set(ThrowWhileRecording{true});
+    EXPECT_THROW(r.renderFrame(), PassThrew);
+    EXPECT_THROW(r.renderFrame(), PassThrew) << "the same again: the recording code is made again first";
+    EXPECT_EQ(ThrowingPass::made(), made + 1);
+    EXPECT_EQ(r.frameCount(), 2u) << "frames that threw are not submitted";
+    EXPECT_PIXEL_NEAR(r.readback(), 3, 2, 0.25, 0.25, 0.25, 1.0);
+    r.frameData().set(ThrowWhileRecording{false});
+    r.renderFrame();
+    r.renderFrame();
+    EXPECT_EQ(ThrowingPass::made(), made + 2) << "made again once more, after the second throw";
+    EXPECT_EQ(r.frameCount(), 4u);
+    EXPECT_PIXEL_NEAR(r.readback(), 3, 2, 0.75, 0.75, 0.75, 1.0);
+    r.waitIdle();
 }
 
 // updateExternalImage with WithNextFrame waits for no frame, even one held up on the queue;
