@@ -40,9 +40,10 @@ struct RendererOptions {
     /// has Generic alone, as PassLibrary::genericOnly() does: it asks for exactly that). Null: no
     /// recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
-    /// Borrowed, and must outlive the renderer: the renderer starts out bound to this
-    /// swapchain's current images, so that its first renderFrame(*presentTo) builds nothing
-    /// again; e.g. a new renderer for a window that is already presenting. The constructor
+    /// Borrowed during construction only: the renderer starts out bound to this swapchain's
+    /// current images (it keeps views of them, as after a frame into it: Swapchain says how
+    /// long the swapchain must live then), so that its first renderFrame(*presentTo) builds
+    /// nothing again; e.g. a new renderer for a window that is already presenting. The constructor
     /// then compiles the graph at the images' extent (compiled() has that size) and throws
     /// ExecutorError when it does not compile there. When the swapchain has no fitting images
     /// (paused, out of date, or made for another format or usage) nothing is bound and the
