@@ -43,7 +43,8 @@ struct PresentationOptions {
 
 struct DeviceOptions {
     /// Physical device by index ("0") or case-insensitive name substring ("llvmpipe").
-    /// Empty: a discrete GPU, else an integrated one, else any, else the CPU (lavapipe).
+    /// Empty: a discrete GPU, else an integrated one, else a virtual one, else the CPU
+    /// (lavapipe), else a device of any other type.
     std::string device;
     /// Khronos validation with synchronization validation (including QUEUE_SUBMIT checks).
     /// Also switched on by the environment variable SKYGRAPH_VALIDATION=1.
