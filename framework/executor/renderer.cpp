@@ -256,7 +256,8 @@ void Renderer::resize(uint32_t width, uint32_t height) {
     if (const auto& p = impl_->present; p && (p->images.extent.width != width || p->images.extent.height != height))
         throw ExecutorError("resize to " + std::to_string(width) + "x" + std::to_string(height) +
                             ": the renderer presents, at its present images' extent (" +
-                            std::to_string(p->images.extent.width) + "x" + std::to_string(p->images.extent.height) + ")");
+                            std::to_string(p->images.extent.width) + "x" +
+                            std::to_string(p->images.extent.height) + ")");
     std::optional<CompiledGraph> next;
     try {
         next.emplace(impl_->state->compiled.resized(width, height));

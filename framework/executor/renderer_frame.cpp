@@ -401,7 +401,8 @@ void Renderer::Impl::renderFrame(bool background) {
 void Renderer::Impl::waitIdle() {
     std::vector<FrameSlot*> oldestFirst;
     for (FrameSlot& f : frames) oldestFirst.push_back(&f);
-    std::sort(oldestFirst.begin(), oldestFirst.end(), [](const FrameSlot* a, const FrameSlot* b) { return a->frame < b->frame; });
+    std::sort(oldestFirst.begin(), oldestFirst.end(),
+              [](const FrameSlot* a, const FrameSlot* b) { return a->frame < b->frame; });
     for (FrameSlot* f : oldestFirst) waitSlot(*f);
 }
 

@@ -168,7 +168,9 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
     for (const Submit& sub : s.plan.submits()) singleCopies &= dev.queues[static_cast<size_t>(sub.queue)] == dev.queue;
     // Pixels set up now replace any still waiting for the next frame, which would otherwise
     // be copied over them.
-    const auto supersedes = [&](const PendingSetup& p) { return p.state == &s && (only.empty() || p.resource == only); };
+    const auto supersedes = [&](const PendingSetup& p) {
+        return p.state == &s && (only.empty() || p.resource == only);
+    };
     if (withNextFrame && singleCopies) {
         std::erase_if(pendingSetups, supersedes);
         lastStaging = stagingOwned;

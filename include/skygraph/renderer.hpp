@@ -41,13 +41,13 @@ struct RendererOptions {
     /// recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
     /// Borrowed during construction only: the renderer starts out bound to this swapchain's
-    /// current images (it keeps views of them, as after a frame into it: Swapchain says how
-    /// long the swapchain must live then), so that its first renderFrame(*presentTo) builds
-    /// nothing again; e.g. a new renderer for a window that is already presenting. The constructor
-    /// then compiles the graph at the images' extent (compiled() has that size) and throws
+    /// current images (it keeps views of them, as after a frame into it: Swapchain says how long
+    /// the swapchain must live then), so that its first renderFrame(*presentTo) builds nothing
+    /// again; e.g. a new renderer for a window that is already presenting. The constructor then
+    /// compiles the graph at the images' extent (compiled() has that size) and throws
     /// ExecutorError when it does not compile there. When the swapchain has no fitting images
-    /// (paused, out of date, or made for another format or usage) nothing is bound and the
-    /// first frame binds, as with null.
+    /// (paused, out of date, or made for another format or usage) nothing is bound and the first
+    /// frame binds, as with null.
     Swapchain* presentTo = nullptr;
     /// GPU timestamps around each pass (lastTimings(), completedTimings()). Off, a frame
     /// writes none and none is read back, which on some drivers waits for whatever the queue
@@ -240,9 +240,10 @@ public:
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
     /// an edit), once this renderer's frames have finished. On failure throws ExecutorError
-    /// with glslang's log; the old pipelines keep running. Every other rebuild (resize(), setPresentImages(), a swapchain's new images,
-    /// setGraph() with ShaderSources::Cached) builds from the shader sources the running
-    /// pipelines were built from, so a shader broken on disk fails only this call.
+    /// with glslang's log; the old pipelines keep running. Every other rebuild (resize(),
+    /// setPresentImages(), a swapchain's new images, setGraph() with ShaderSources::Cached)
+    /// builds from the shader sources the running pipelines were built from, so a shader
+    /// broken on disk fails only this call.
     void reloadShaders();
     /// Whether a shader file the running pipelines were built from, or a file it includes,
     /// reads differently on disk now (ShaderCompiler::keptFilesChanged): e.g. whether an edit
@@ -329,8 +330,8 @@ public:
     /// valid until the plan state is rebuilt, as compiled() is.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
     /// Per-pass GPU times of the most recently submitted frame (waits for it to finish),
-    /// copied. Empty before the first frame of the current plan state. Passes on a queue whose family has no
-    /// timestamps are left out.
+    /// copied. Empty before the first frame of the current plan state. Passes on a queue whose
+    /// family has no timestamps are left out.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
     /// Per-pass GPU times of the newest frame seen finished, without waiting (up to frames
     /// in flight behind: what a live overlay shows). The reference is valid, and what it holds
