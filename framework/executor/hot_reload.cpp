@@ -49,10 +49,12 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
       shaderDir_(shaderDir.empty() ? renderer.shaderDir() : std::move(shaderDir)),
       registry_(registry ? registry : &ownRegistry_) {
     if (!registry) {
-        ownRegistry_ = PassRegistry::withBuiltins();
-        if (const PassLibrary* library = renderer.passes())
-            for (const std::string& name : library->registry().names())
-                if (!ownRegistry_.find(name)) ownRegistry_.add(*library->registry().find(name));
+        // The library's declarations first: a type it redeclares records with its factory,
+        // so its graphs are parsed against its declaration, not the built-in one.
+        const PassRegistry builtins = PassRegistry::withBuiltins();
+        if (const PassLibrary* library = renderer.passes()) ownRegistry_ = library->registry();
+        for (const std::string& name : builtins.names())
+            if (!ownRegistry_.find(name)) ownRegistry_.add(*builtins.find(name));
     }
     graphHash_ = hashFile(graphFile_);
     shaderHashes_ = hashDir(shaderDir_);

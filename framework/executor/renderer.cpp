@@ -253,6 +253,11 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
 
 void Renderer::resize(uint32_t width, uint32_t height) {
     if (width == 0 || height == 0) throw ExecutorError("output extent must be at least 1x1");
+    if (const auto& p = impl_->present; p && (p->images.extent.width != width || p->images.extent.height != height))
+        throw ExecutorError("resize to " + std::to_string(width) + "x" + std::to_string(height) +
+                            ": the renderer presents, at its present images' extent (" +
+                            std::to_string(p->images.extent.width) + "x" +
+                            std::to_string(p->images.extent.height) + ")");
     std::optional<CompiledGraph> next;
     try {
         next.emplace(impl_->state->compiled.resized(width, height));
@@ -265,6 +270,16 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 
 void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
+    // A presenting renderer renders at its present images' extent, as its constructor does.
+    if (const auto& p = d.present;
+        p && (compiled.outputWidth() != p->images.extent.width || compiled.outputHeight() != p->images.extent.height)) {
+        try {
+            compiled = compiled.resized(p->images.extent.width, p->images.extent.height);
+        } catch (const GraphError& e) {
+            throw ExecutorError("presenting at " + std::to_string(p->images.extent.width) + "x" +
+                                std::to_string(p->images.extent.height) + ": " + e.what());
+        }
+    }
     d.waitIdle();
     // Rereading builds with a new compiler, which reads every shader again. When that fails,
     // the old one comes back with the sources the running pipelines were built from, so that
@@ -276,14 +291,24 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     std::unique_ptr<detail::PlanState> next;
     try {
         next = d.build(std::move(compiled));  // throws: the old plan keeps running
-        vk::check(vkDeviceWaitIdle(d.vkd), "vkDeviceWaitIdle");
     } catch (...) {
         if (previous) d.shaders = std::move(previous);
         throw;
     }
-    d.state = std::move(next);
-    d.lastSlot = -1;
-    d.timings.clear();  // they name the old plan's passes
+    d.replaceState(std::move(next));
+}
+
+void Renderer::Impl::replaceState(std::unique_ptr<PlanState> next) {
+    // The old state's frames have finished (waitIdle() before the build), and what other
+    // renderers use of it, images they import, they hold themselves (SharedImage). Work
+    // recorded into the application's command buffers is not fenced: only an idle device
+    // is sure to be done with it.
+    if (recordedElsewhere) vk::check(vkDeviceWaitIdle(vkd), "vkDeviceWaitIdle");
+    state = std::move(next);
+    lastSlot = -1;
+    timings.clear();  // they name the old plan's passes
+    timingsFrame.reset();
+    passesRecordedUnsubmitted = false;  // the new state's implementations have recorded nothing
 }
 
 std::vector<PassTiming> Renderer::lastTimings() {
@@ -343,9 +368,12 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     if (!desc->external || !desc->isImage())
         throw ExecutorError("importImage: '" + resource + "' is not an external image");
     if (!image.impl_) throw ExecutorError("importImage: '" + resource + "': the SharedImage is empty");
-    // A resource the plan culled is imported when a rebuild brings it back.
+    // A resource the plan culled is imported when a rebuild brings it back; what the plan
+    // would say of it (usages, layout, sharing) is checked then.
     if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0)
         d.swapImport(*d.state, static_cast<size_t>(index), image);
+    else
+        d.checkImportShape(*desc, d.state->outputWidth(), d.state->outputHeight(), image);
     d.imports[resource] = std::move(image);
 }
 
@@ -402,7 +430,9 @@ void Renderer::updateExternalImage(const std::string& resource, ImageData pixels
         throw ExecutorError("updateExternalImage: '" + resource + "' has no pixels yet (setExternalImage first)");
     ImageData previous = std::exchange(it->second, std::move(pixels));
     try {
-        d.waitIdle();
+        // A copy that rides with the next frame is ordered after the frames before by its
+        // barriers; runSetup waits for them when it cannot ride.
+        if (timing == UploadTiming::Now) d.waitIdle();
         d.runSetup(*d.state, resource, timing == UploadTiming::WithNextFrame);
     } catch (...) {
         it->second = std::move(previous);
@@ -459,6 +489,10 @@ void RendererAccess::recordInto(Renderer& renderer, VkCommandBuffer cmd, uint32_
         throw ExecutorError("the plan runs on several queues: each of its submits needs a command buffer of its own");
     d.recordedElsewhere = true;
     d.recordFrame(cmd, slot, nullptr);
+}
+
+std::optional<uint64_t> RendererAccess::timingsFrame(const Renderer& renderer) {
+    return renderer.impl_->timingsFrame;
 }
 
 void RendererAccess::editSetupPlans(Renderer& renderer, std::function<void(Plan&)> edit) {

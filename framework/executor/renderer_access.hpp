@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -88,6 +89,9 @@ struct RendererAccess {
     /// Test-only: the stages the next presented frames signal the render-complete semaphore in,
     /// in place of presentSignalStages. std::nullopt: presentSignalStages again.
     static void overrideRenderCompleteSignal(Renderer& renderer, std::optional<VkPipelineStageFlags2> stages);
+    /// Test-only: the frame (counted from 0, as frameCount() counts) whose timings
+    /// completedTimings() holds; none when it holds none.
+    [[nodiscard]] static std::optional<uint64_t> timingsFrame(const Renderer& renderer);
     /// Test-only, for negative controls of setup plans (uploads and their mip chains): `edit`
     /// changes each setup plan after the compiler made it and before it is recorded. Empty:
     /// none again.

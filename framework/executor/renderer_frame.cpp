@@ -60,6 +60,10 @@ void Renderer::Impl::collectTimings(FrameSlot& f) {
     const VkResult got = vkGetQueryPoolResults(vkd, f.queries.get(), 0, n * 2, ts.size() * 8, ts.data(), 16,
                                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
     if (got != VK_SUCCESS && got != VK_NOT_READY) return;
+    // A frame older than the one timed last (slots are not always collected in frame order)
+    // says nothing new.
+    if (timingsFrame && f.frame < *timingsFrame) return;
+    timingsFrame = f.frame;
     timings.clear();
     for (uint32_t i = 0; i < n; ++i) {
         const uint64_t* begin = &ts[4 * i];
@@ -182,31 +186,81 @@ bool Renderer::Impl::releaseHeld(FrameSlot& f, bool wait) {
     return true;
 }
 
+void Renderer::Impl::remakePassImplementations() {
+    // Frames in flight record with the implementations being replaced.
+    waitIdle();
+    PlanState& s = *state;
+    std::vector<std::unique_ptr<PassImplementation>> previous(s.passes.size());
+    try {
+        for (size_t i = 0; i < s.passes.size(); ++i) {
+            PassState& ps = s.passes[i];
+            if (!ps.implementation) continue;
+            std::unique_ptr<PassImplementation> fresh = implementationOf(*ps.pass, *ps.desc);
+            previous[i] = std::exchange(ps.implementation, std::move(fresh));
+            createPipelines(s, ps);
+        }
+    } catch (...) {
+        for (size_t i = 0; i < s.passes.size(); ++i)
+            if (previous[i]) s.passes[i].implementation = std::move(previous[i]);
+        throw;
+    }
+    passesRecordedUnsubmitted = false;
+}
+
+void Renderer::Impl::abandonFrame(FrameSlot& f, const PresentTarget* target) noexcept {
+    passesRecordedUnsubmitted = true;
+    // Still submitted: the wait for the slot's last frame failed, and its fence is not free.
+    if (!target || f.submitted) return;
+    // The acquire has a signal pending, and a binary semaphore is unsignalled again only by a
+    // wait on a queue: a batch of no commands waits for it and signals the slot's fence, so
+    // that the slot reuses the semaphore only once that wait has run. Failing, the slot stays
+    // unsubmitted: the error being thrown already says more.
+    const VkFence fence = f.fence.get();
+    if (vkResetFences(vkd, 1, &fence) != VK_SUCCESS) return;
+    VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+    wait.semaphore = target->acquired;
+    wait.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    VkSubmitInfo2 batch{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    batch.waitSemaphoreInfoCount = 1;
+    batch.pWaitSemaphoreInfos = &wait;
+    if (vkQueueSubmit2(dev.queue, 1, &batch, fence) == VK_SUCCESS) f.submitted = true;
+}
+
 void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target, bool background) {
     FrameSlot& f = frames[slot];
-    waitSlot(f);
-    const VkFence fence = f.fence.get();
-    vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");
     const Plan& plan = state->plan;
     const std::span<const Submit> submits = plan.submits();
-    const std::vector<VkCommandBuffer> cmds = commandBuffers(f, submits);
-    if (submits.size() > 1) ensureTimelines();
-    for (size_t k = 0; k < submits.size(); ++k) {
-        vk::check(vkResetCommandBuffer(cmds[k], 0), "vkResetCommandBuffer");
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        vk::check(vkBeginCommandBuffer(cmds[k], &bi), "vkBeginCommandBuffer");
-        if (k == 0 && pendingSetup) {
-            if (pendingSetup->state == state.get()) {
+    std::vector<VkCommandBuffer> cmds;
+    try {
+        if (passesRecordedUnsubmitted) remakePassImplementations();
+        waitSlot(f);
+        const VkFence fence = f.fence.get();
+        vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");
+        cmds = commandBuffers(f, submits);
+        if (submits.size() > 1) ensureTimelines();
+        // Setups for a plan state since replaced have nothing left to set up.
+        std::erase_if(pendingSetups, [&](const PendingSetup& p) { return p.state != state.get(); });
+        for (size_t k = 0; k < submits.size(); ++k) {
+            vk::check(vkResetCommandBuffer(cmds[k], 0), "vkResetCommandBuffer");
+            VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+            bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+            vk::check(vkBeginCommandBuffer(cmds[k], &bi), "vkBeginCommandBuffer");
+            if (k == 0) {
                 VulkanCommands sink(cmds[k], commandFunctions());
-                pendingSetup->record(sink);
-                f.setupKeep = std::move(pendingSetup->keep);
+                for (const PendingSetup& p : pendingSetups) p.record(sink);
             }
-            pendingSetup.reset();
+            recordFrame(cmds[k], binding, &f, k);
+            vk::check(vkEndCommandBuffer(cmds[k]), "vkEndCommandBuffer");
         }
-        recordFrame(cmds[k], binding, &f, k);
-        vk::check(vkEndCommandBuffer(cmds[k]), "vkEndCommandBuffer");
+    } catch (...) {
+        // Nothing recorded is submitted, and the setups stay pending for the next frame.
+        abandonFrame(f, target);
+        throw;
     }
+    std::vector<std::shared_ptr<void>> keep;
+    for (PendingSetup& p : pendingSetups) keep.push_back(std::move(p.keep));
+    pendingSetups.clear();
+    if (!keep.empty()) f.setupKeep = std::make_shared<std::vector<std::shared_ptr<void>>>(std::move(keep));
     // The fence wait above finished every use of the queries.
     if (dev.hostQueryReset && f.queries) vkResetQueryPool(vkd, f.queries.get(), 0, f.queryCount);
     // The plan's semaphore values count within the frame; the frames before have used the
@@ -345,7 +399,11 @@ void Renderer::Impl::renderFrame(bool background) {
 }
 
 void Renderer::Impl::waitIdle() {
-    for (FrameSlot& f : frames) waitSlot(f);
+    std::vector<FrameSlot*> oldestFirst;
+    for (FrameSlot& f : frames) oldestFirst.push_back(&f);
+    std::sort(oldestFirst.begin(), oldestFirst.end(),
+              [](const FrameSlot* a, const FrameSlot* b) { return a->frame < b->frame; });
+    for (FrameSlot* f : oldestFirst) waitSlot(*f);
 }
 
 }  // namespace skygraph

@@ -333,6 +333,7 @@ struct Renderer::Impl {
     int64_t lastSlot = -1;
     uint32_t lastBinding = 0;  ///< The binding slot of the last frame (lastSlot's, headless).
     std::vector<PassTiming> timings;
+    std::optional<uint64_t> timingsFrame;  ///< The frame `timings` are of (FrameSlot::frame).
 
     /// Presenting: the images the plan's Present resource is, and where they came from.
     struct PresentBinding {
@@ -362,6 +363,9 @@ struct Renderer::Impl {
 
     // --- renderer.cpp: building a plan --------------------------------------------------------
     std::unique_ptr<detail::PlanState> build(CompiledGraph compiled);
+    /// Makes `next`, just built, the plan state, once this renderer's frames have finished
+    /// (the caller has waited for them).
+    void replaceState(std::unique_ptr<detail::PlanState> next);
 
     // --- renderer_memory.cpp: device memory -------------------------------------------------
     /// A memory object of `bytes` from a type among `typeBits` with `properties`, named `name`
@@ -392,6 +396,11 @@ struct Renderer::Impl {
                      const SubresourceRange& range, bool attachment);
     void describeResources(detail::PlanState& s);
     void createResources(detail::PlanState& s);
+    /// Throws ExecutorError unless `image` is of this device and of the format, extent, mips
+    /// and layers that `d` declares at that output extent: what an import must match whether
+    /// or not the plan uses the resource.
+    void checkImportShape(const ResourceDesc& d, uint32_t outputWidth, uint32_t outputHeight,
+                          const SharedImage& image) const;
     /// The single copy of imported resource `r`, after checking that it fits the plan.
     detail::ImageCopy adoptImport(const detail::PlanState& s, size_t index, const SharedImage& image) const;
     void buildSized(detail::PlanState& s);
@@ -401,17 +410,21 @@ struct Renderer::Impl {
     /// uploaded pixels, its clear value, or grey) and the state the frame expects it in. Runs
     /// outside any frame and waits.
     /// `only`: that external resource alone (updateExternalImage); the others keep theirs.
-    /// `withNextFrame`: when every resource it sets up has one copy, the steps are recorded
-    /// at the start of the next frame's first submit instead (pendingSetup), and nothing waits.
+    /// `withNextFrame`: when every resource it sets up has one copy and the plan submits all
+    /// its work to Device::queue(), the steps are recorded at the start of the next frame's
+    /// first submit instead (pendingSetups), and nothing waits; otherwise it waits for this
+    /// renderer's frames first (without it, the caller has waited).
     void runSetup(detail::PlanState& s, std::string_view only = {}, bool withNextFrame = false);
     /// Setup steps for the next frame to record before its passes, with what they need kept
     /// alive (the staging buffers) until that frame has finished.
     struct PendingSetup {
         const detail::PlanState* state = nullptr;  ///< Dropped if the plan state is rebuilt first.
+        std::string resource;  ///< The one external resource it sets up.
         std::function<void(detail::CommandSink&)> record;
         std::shared_ptr<void> keep;
     };
-    std::optional<PendingSetup> pendingSetup;
+    /// In the order they were asked for, at most one per resource.
+    std::vector<PendingSetup> pendingSetups;
     /// The staging buffers of the last upload that rode with a frame, to be reused.
     std::shared_ptr<std::vector<detail::OwnedBuffer>> lastStaging;
     /// A host-visible staging buffer of `bytes`: one of lastStaging's once its frame is done.
@@ -474,6 +487,16 @@ struct Renderer::Impl {
     /// signalling its render-complete semaphore.
     /// `background`: hold the last submit back (FrameSlot::held) until the others finish.
     void submitFrame(uint32_t slot, uint32_t binding, const PresentTarget* target, bool background = false);
+    /// A frame whose recording threw: nothing of it is submitted. With `target`, a batch of no
+    /// commands still waits for its acquire semaphore (signalling the slot's fence).
+    void abandonFrame(detail::FrameSlot& f, const PresentTarget* target) noexcept;
+    /// Set when a frame's recording threw: work the passes recorded for it never ran, and
+    /// their implementations may count on it (a texture filled on first use), so the next
+    /// frame makes them all again first (remakePassImplementations). A rebuild clears it.
+    bool passesRecordedUnsubmitted = false;
+    /// Waits for this renderer's frames and replaces every pass implementation of the plan
+    /// state with a new one (createPipelines included). On failure throws, keeping the old ones.
+    void remakePassImplementations();
     /// Submits `f`'s held last submit once every earlier submission of its frame has finished
     /// (`wait`: waits for them). True when nothing is held any more.
     bool releaseHeld(detail::FrameSlot& f, bool wait);

@@ -66,9 +66,7 @@ void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Im
     try {
         waitIdle();
         auto built = build(std::move(*next));  // throws: the old plan and binding stay
-        vk::check(vkDeviceWaitIdle(vkd), "vkDeviceWaitIdle");
-        state = std::move(built);
-        lastSlot = -1;
+        replaceState(std::move(built));
     } catch (...) {
         present = std::move(previous);
         throw;
@@ -115,7 +113,14 @@ PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
         uint32_t image = 0;
         if (sc.acquire(acquired, image) == VK_ERROR_OUT_OF_DATE_KHR) continue;
         const PresentTarget target{image, acquired, sc.renderComplete.at(image).get()};
-        submitFrame(slot, slot * state->presentImages + image, &target);
+        try {
+            submitFrame(slot, slot * state->presentImages + image, &target);
+        } catch (...) {
+            // The image stays acquired, and only a present or the swapchain's end gives it
+            // back: the next frame re-creates the swapchain.
+            sc.stale = true;
+            throw;
+        }
         sc.present(image);
         return PresentStatus::Presented;
     }

@@ -281,19 +281,30 @@ void Renderer::Impl::createReadbackTargets(PlanState& s) {
     }
 }
 
+void Renderer::Impl::checkImportShape(const ResourceDesc& d, uint32_t outputWidth, uint32_t outputHeight,
+                                      const SharedImage& shared) const {
+    const SharedImage::Impl& from = *shared.impl_;
+    const std::string what = "importImage: resource '" + d.name + "' from " + from.origin + ": ";
+    if (from.device != vkd) throw ExecutorError(what + "the image belongs to another device");
+    const auto ext = d.extent.resolve(outputWidth, outputHeight);
+    const uint32_t mips = std::max(1u, d.mipCount(outputWidth, outputHeight));
+    const uint32_t layers = std::max(1u, d.layers);
+    if (from.format != d.format.format || from.width != ext[0] || from.height != ext[1] || from.mips != mips ||
+        from.layers != layers) {
+        throw ExecutorError(what + "the image is " + std::to_string(from.width) + "x" + std::to_string(from.height) +
+                            ", " + std::to_string(from.mips) + " mips, " + std::to_string(from.layers) +
+                            " layers of format " + std::to_string(from.format) + "; the graph declares " +
+                            std::to_string(ext[0]) + "x" + std::to_string(ext[1]) + ", " + std::to_string(mips) +
+                            " mips, " + std::to_string(layers) + " layers of format " +
+                            std::to_string(d.format.format));
+    }
+}
+
 ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const SharedImage& shared) const {
     const SharedImage::Impl& from = *shared.impl_;
     const ResourceState& r = s.resources[index];
     const std::string what = "importImage: resource '" + r.desc->name + "' from " + from.origin + ": ";
-    if (from.device != vkd) throw ExecutorError(what + "the image belongs to another device");
-    if (from.format != r.format || from.width != r.width || from.height != r.height || from.mips != r.mips ||
-        from.layers != r.layers) {
-        throw ExecutorError(what + "the image is " + std::to_string(from.width) + "x" + std::to_string(from.height) +
-                            ", " + std::to_string(from.mips) + " mips, " + std::to_string(from.layers) +
-                            " layers of format " + std::to_string(from.format) + "; the graph declares " +
-                            std::to_string(r.width) + "x" + std::to_string(r.height) + ", " + std::to_string(r.mips) +
-                            " mips, " + std::to_string(r.layers) + " layers of format " + std::to_string(r.format));
-    }
+    checkImportShape(*r.desc, s.outputWidth(), s.outputHeight(), shared);
     if ((r.imageUsage & ~from.usage) != 0) throw ExecutorError(what + "the image lacks usages this plan needs");
     for (const PlannedPass& pass : s.plan.passes())
         for (const PlannedUsage& u : pass.usages)

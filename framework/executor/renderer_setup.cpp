@@ -158,16 +158,28 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
             if (const BarrierBatch after(finals, target, s.families()); !after.empty()) sink.barriers(after);
         }
     };
-    // One copy of each resource: the next frame records the steps before its passes and
-    // nothing waits. A resource with a copy per frame slot may be in use by frames in flight.
+    // One copy of each resource, and every submit of the plan on the queue the setup is made
+    // for: the next frame records the steps before its passes and nothing waits, since their
+    // barriers follow every use by the frames before in that queue's submission order. A
+    // resource with a copy per frame slot may be in use by frames in flight, and a use on
+    // another queue is not ordered before them.
     bool singleCopies = true;
     for (const PlannedPass& step : setup.passes()) singleCopies &= copiesOfSetupResource(step.usages[0].resource) == 1;
+    for (const Submit& sub : s.plan.submits()) singleCopies &= dev.queues[static_cast<size_t>(sub.queue)] == dev.queue;
+    // Pixels set up now replace any still waiting for the next frame, which would otherwise
+    // be copied over them.
+    const auto supersedes = [&](const PendingSetup& p) {
+        return p.state == &s && (only.empty() || p.resource == only);
+    };
     if (withNextFrame && singleCopies) {
+        std::erase_if(pendingSetups, supersedes);
         lastStaging = stagingOwned;
-        pendingSetup = PendingSetup{&s, std::move(record), std::move(stagingOwned)};
+        pendingSetups.push_back(PendingSetup{&s, std::string(only), std::move(record), std::move(stagingOwned)});
         return;
     }
+    if (withNextFrame) waitIdle();  // the caller left the frames running for a setup that would ride with one
     submitAndWait(record);
+    std::erase_if(pendingSetups, supersedes);
 }
 
 OwnedBuffer Renderer::Impl::spareStaging(VkDeviceSize bytes) {

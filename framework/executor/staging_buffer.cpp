@@ -6,7 +6,6 @@
 
 #include <skygraph/staging_buffer.hpp>
 
-#include <stdexcept>
 #include <string>
 
 namespace skygraph {
@@ -19,7 +18,7 @@ struct StagingBuffer::Impl {
 };
 
 std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSize bytes) {
-    if (bytes == 0) throw std::invalid_argument("StagingBuffer::create: 0 bytes");
+    if (bytes == 0) throw ExecutorError("StagingBuffer::create: 0 bytes");
     Device::Impl& d = DeviceAccess::impl(device);
     auto impl = std::make_unique<Impl>();
     impl->size = bytes;

@@ -1,5 +1,6 @@
 // The Vulkan device a Renderer runs on: instance, physical and logical device, its queues,
-// and the validation messages counted while it lives.
+// and the validation messages counted while it lives. skygraph makes all of them itself
+// (Device::create); a renderer cannot run on an instance or device of the application's own.
 #pragma once
 
 #include <skygraph/graph.hpp>
@@ -42,7 +43,8 @@ struct PresentationOptions {
 
 struct DeviceOptions {
     /// Physical device by index ("0") or case-insensitive name substring ("llvmpipe").
-    /// Empty: a discrete GPU, else an integrated one, else any, else the CPU (lavapipe).
+    /// Empty: a discrete GPU, else an integrated one, else a virtual one, else the CPU
+    /// (lavapipe), else a device of any other type.
     std::string device;
     /// Khronos validation with synchronization validation (including QUEUE_SUBMIT checks).
     /// Also switched on by the environment variable SKYGRAPH_VALIDATION=1.
@@ -70,14 +72,21 @@ struct ValidationMessage {
 
 /// Instance, physical device, logical device, a graphics+compute queue (which also presents,
 /// when DeviceOptions::presentation is set) and the compute and transfer queues, and the
-/// surface then. Owns every handle it creates and destroys them with itself; not copyable or
+/// surface then. Device::create() makes every one of them: there is no way to hand skygraph a
+/// VkInstance, VkDevice or queue of the application's own, so an engine that renders with
+/// skygraph does its own Vulkan work on this device (device(), queue()), or keeps a device of
+/// its own apart. Owns every handle it creates and destroys them with itself; not copyable or
 /// movable (what is made from it keeps a reference). Must outlive everything made from it,
 /// since each destroys its Vulkan objects with this device: every Renderer, Swapchain and
 /// StagingBuffer, every SharedImage (which may outlive its renderer), and whatever the
 /// application creates with device() (e.g. vk_handles.hpp owners, pipeline_builder.hpp
 /// pipelines).
-/// Validation messages may arrive on any thread: the message accessors are thread-safe,
-/// the rest is for the thread that uses the device.
+/// Threads: the device and every Renderer, Swapchain and HotReloader made with it are used
+/// by one thread at a time, all of them together, not each on its own: they submit to its
+/// queues, which Vulkan lets one thread use at a time, and the application's own submits to
+/// those queues must not overlap their calls either. Validation messages may arrive on any thread, and the message
+/// accessors, memoryModel(), allocatedBytes() and StagingBuffer::create() are safe from any
+/// thread.
 class Device {
 public:
     /// Creates the instance and device (and the surface, when presenting); the caller owns the

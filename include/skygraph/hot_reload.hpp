@@ -28,8 +28,10 @@ public:
     /// `graphFile` empty: the shaders alone are watched (an application that reloads its
     /// graph itself).
     /// `shaderDir` empty: the renderer's (Renderer::shaderDir()). `registry` (borrowed) parses
-    /// the reloaded graph; null: the built-in types (PassRegistry::withBuiltins()) and those of
-    /// the renderer's pass library (Renderer::passes()), copied here. Both are fixed here:
+    /// the reloaded graph; null: the types of the renderer's pass library (Renderer::passes())
+    /// and the built-in types (PassRegistry::withBuiltins()) it does not declare, copied here:
+    /// where the library declares a built-in type's name, its declaration is the one that
+    /// counts, as its factory is the one that records. Both are fixed here:
     /// follow() keeps them. A reloaded graph compiles with the options the renderer's
     /// current graph was compiled with (Renderer::compiled()).
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},

@@ -33,12 +33,13 @@ struct ImageData {
 [[nodiscard]] inline HdrImage toHdrImage(const ImageData& image) { return {image.width, image.height, image.rgba}; }
 
 /// Writes 8-bit RGBA PNG (values clamped to [0,1]), through a temporary file renamed over
-/// `path`, so a failure never leaves half a file there. Throws ExecutorError (device.hpp) on
-/// I/O failure or for an empty or malformed image.
+/// `path`, so a failure never leaves half a file there. Throws ImageError (hdr_image.hpp)
+/// naming `path`, as hdr_image.hpp's savers do: on I/O failure or for an empty or malformed
+/// image.
 void writePng(const std::filesystem::path& path, const ImageData& image);
 /// Writes an HDR file by extension: Radiance .hdr or OpenEXR .exr (half float), as atomically
-/// as writePng. Throws ExecutorError (device.hpp) on I/O failure, for another extension, or
-/// for an empty or malformed image.
+/// as writePng (saveHdrImage). Throws ImageError naming `path` on I/O failure, for another
+/// extension, or for an empty or malformed image.
 void writeHdr(const std::filesystem::path& path, const ImageData& image);
 
 }  // namespace skygraph

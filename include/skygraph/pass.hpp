@@ -40,6 +40,12 @@ class ShaderCompiler;
 /// as, not by a base class.
 class FrameData {
 public:
+    FrameData() = default;
+    /// Not copyable or movable: the renderer's is the one passes read, so a copy
+    /// (`auto data = renderer.frameData();`) would take values that no pass ever sees.
+    FrameData(const FrameData&) = delete;
+    FrameData& operator=(const FrameData&) = delete;
+
     /// What a FrameData stores: a class type, the key it is found by.
     template <typename T>
     static constexpr bool kKeyable = std::is_class_v<T>;
@@ -176,7 +182,10 @@ public:
 
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
     /// and, for graphics passes, begun the render pass; it ends it afterwards. What this throws
-    /// comes out of renderFrame() as it is, and that frame is not submitted.
+    /// comes out of renderFrame() as it is, and that frame is not submitted: nothing any pass
+    /// recorded for it runs. The renderer then makes every pass implementation again before
+    /// its next frame, so an implementation is never called again after recording work that
+    /// did not run (it may count on what it recorded before, a texture filled once, say).
     virtual void record(const RecordContext& context) = 0;
 
     /// Graphics passes only: records what Vulkan does not allow inside a render pass (copies,

@@ -79,7 +79,7 @@ public:
     /// An empty registry. Most callers want `withBuiltins()`.
     PassRegistry() = default;
 
-    /// Generic plus the built-in passes (forward, skybox, tonemapping, environment pipeline),
+    /// Generic plus every built-in pass type (docs/graph-format.md, "Built-in pass types"),
     /// in a new registry the caller owns. Defined by the pass types' library
     /// (skygraph::pass_types): link it to call this.
     [[nodiscard]] static PassRegistry withBuiltins();

@@ -41,13 +41,14 @@ struct RendererOptions {
     /// has Generic alone, as PassLibrary::genericOnly() does: it asks for exactly that). Null: no
     /// recording code, so a plan with passes throws.
     const PassLibrary* passes = nullptr;
-    /// Borrowed, and must outlive the renderer: the renderer starts out bound to this
-    /// swapchain's current images, so that its first renderFrame(*presentTo) builds nothing
-    /// again; e.g. a new renderer for a window that is already presenting. The constructor
-    /// then compiles the graph at the images' extent (compiled() has that size) and throws
+    /// Borrowed during construction only: the renderer starts out bound to this swapchain's
+    /// current images (it keeps views of them, as after a frame into it: Swapchain says how long
+    /// the swapchain must live then), so that its first renderFrame(*presentTo) builds nothing
+    /// again; e.g. a new renderer for a window that is already presenting. The constructor then
+    /// compiles the graph at the images' extent (compiled() has that size) and throws
     /// ExecutorError when it does not compile there. When the swapchain has no fitting images
-    /// (paused, out of date, or made for another format or usage) nothing is bound and the
-    /// first frame binds, as with null.
+    /// (paused, out of date, or made for another format or usage) nothing is bound and the first
+    /// frame binds, as with null.
     Swapchain* presentTo = nullptr;
     /// GPU timestamps around each pass (lastTimings(), completedTimings()). Off, a frame
     /// writes none and none is read back, which on some drivers waits for whatever the queue
@@ -77,8 +78,11 @@ enum class PresentStatus : uint8_t {
 
 /// When Renderer::updateExternalImage() copies new pixels into the image.
 enum class UploadTiming : uint8_t {
-    Now,            ///< Submitted and waited for before the call returns.
-    WithNextFrame,  ///< Recorded at the start of the next frame; nothing waits.
+    /// Submitted and waited for before the call returns, after this renderer's frames.
+    Now,
+    /// Recorded at the start of the next frame, and nothing waits; where the copy cannot ride
+    /// with a frame, as Now (Renderer::updateExternalImage() says when).
+    WithNextFrame,
 };
 
 /// GPU time of one pass in the last completed frame of a slot.
@@ -100,8 +104,11 @@ struct PassTiming {
 /// setPresentImages() (every call, even with images of an unchanged extent), and
 /// renderFrame(Swapchain&) whenever it binds the swapchain's images: its first frame into a
 /// swapchain the renderer is not already bound to (RendererOptions::presentTo), and its first
-/// frame after the swapchain was re-created (out of date, suboptimal, Swapchain::resize).
-/// HotReloader::poll() calls setGraph() and reloadShaders(). After a rebuild, references
+/// frame after the swapchain was re-created (out of date, suboptimal, Swapchain::resize, or a
+/// frame into it whose recording threw). HotReloader::poll() calls setGraph() and
+/// reloadShaders(). A rebuild waits for this renderer's own frames, not for other renderers'
+/// (a background bake may go on running); only re-creating a Swapchain waits for the whole
+/// queue (renderFrame(Swapchain&)). After a rebuild, references
 /// returned by compiled(), graph(), plan() and setupPlan() are invalid, and images shared
 /// before are no longer written by this renderer. A failed call keeps the old state. Names
 /// passed in are read during the call only. Use from one thread at a time; renderers on one
@@ -124,8 +131,15 @@ public:
 
     /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
     /// otherwise: up to framesInFlight frames run at once. Throws ExecutorError for a Vulkan
-    /// failure, and once the renderer presents (renderFrame(Swapchain&), setPresentImages);
-    /// what a pass implementation throws comes out as it is, and that frame is not submitted.
+    /// failure, and once the renderer presents (renderFrame(Swapchain&), setPresentImages).
+    /// What a pass implementation throws while the frame is recorded comes out as it is, and
+    /// the renderer stays usable: the frame is not submitted (frameCount() does not count it,
+    /// readback() still reads the frame before), what was to ride with it (stageUpload(),
+    /// updateExternalImage() with WithNextFrame) rides with the next one, and since the work
+    /// every pass recorded for it never runs, the next frame first waits for this renderer's
+    /// frames and makes every pass implementation again (PassFactory, then createPipelines;
+    /// should that throw, the frame throws it and the next tries again). Presenting, see
+    /// renderFrame(Swapchain&) and renderFrame(const PresentTarget&) for the image.
     void renderFrame();
     /// Presents a frame through `swapchain` (made for this renderer's device and plan): waits
     /// for the frame slot, acquires an image, records the plan into it, submits waiting for
@@ -136,10 +150,16 @@ public:
     /// extent (as resize() does). Binding the swapchain's images (the first frame into it,
     /// unless RendererOptions::presentTo bound them, and the first after each re-creation)
     /// rebuilds the plan state, which invalidates references from compiled(), graph() and
-    /// plan(). Returns Paused, rendering nothing, while the window is 0x0.
+    /// plan(). Returns Paused, rendering nothing, while the window is 0x0. Re-creating the
+    /// swapchain waits for the Device's queue to be idle (vkQueueWaitIdle: presents have no
+    /// fence to wait for), and so for other renderers' work on it too.
     /// Borrows the swapchain for the call; the renderer keeps views of its images until it
     /// renders into another one (Swapchain says how to replace one). Throws ExecutorError (e.g. the
     /// plan does not compile at the new size: the old plan stays, and the next call tries again).
+    /// When a pass throws while the frame is recorded (renderFrame() says what else happens),
+    /// the acquired image is not presented, but the frame's wait for its acquire is still
+    /// submitted, and the swapchain is marked for re-creation, which gives the image back:
+    /// the next call re-creates it, and so rebuilds the plan state.
     PresentStatus renderFrame(Swapchain& swapchain);
     /// Presenting into images of the application's own (e.g. its own VkSwapchainKHR's): they
     /// become the plan's Present resource, and the plan state is rebuilt on every call,
@@ -164,7 +184,13 @@ public:
     /// Device::queue(). The semaphores are borrowed for the submit: the caller owns them and
     /// keeps them until that frame and its present are done (waitIdle(), then the queue's
     /// vkQueueWaitIdle). Throws ExecutorError without setPresentImages, for an index out of
-    /// range or a null semaphore, submitting nothing.
+    /// range or a null semaphore, submitting nothing. When a pass throws while the frame is
+    /// recorded (renderFrame() says what else happens), the frame still submits its wait for
+    /// `target.acquired` (so the semaphore may be acquired with again once
+    /// waitForFrameSlot() returns that slot, which the next frame uses again) but does not
+    /// signal `target.renderComplete`: do not present the image. It stays acquired; re-create
+    /// the swapchain (after waitIdle() and the queue's vkQueueWaitIdle) and call
+    /// setPresentImages() to have it back.
     void renderFrame(const PresentTarget& target);
     /// Renders one frame beside other renderers' frames, for work such as an environment
     /// re-bake on the compute queue (docs/queues.md, "Background frames"): as renderFrame(),
@@ -203,7 +229,8 @@ public:
     /// options and so the device's memory model) and rebuilds the plan state. Throws
     /// ExecutorError when the graph does not compile at that size or the device cannot hold
     /// it; the old plan keeps running then. A presenting renderer follows its images' extent
-    /// instead (a size other than theirs throws).
+    /// instead (a size other than theirs throws ExecutorError). Waits for this renderer's
+    /// frames, not for other renderers'.
     void resize(uint32_t width, uint32_t height);
     /// Where setGraph() takes its shaders from.
     enum class ShaderSources : uint8_t {
@@ -211,16 +238,19 @@ public:
         Reread,  ///< every shader read and compiled again, as reloadShaders() does
     };
     /// Takes `compiled` in place of what runs (e.g. after a hot reload), once every submitted
-    /// frame has finished; compiled again with the device's memory model unless it was (the
-    /// class comment). On failure throws ExecutorError and keeps the old plan and pipelines
-    /// running: with ShaderSources::Reread, a new graph and edited shaders take effect together
-    /// or not at all.
+    /// frame of this renderer has finished; compiled again with the device's memory model
+    /// unless it was (the class comment), and, while the renderer presents, at its present
+    /// images' extent (as the constructor does with RendererOptions::presentTo). On failure
+    /// throws ExecutorError (also when the graph does not compile at that extent) and keeps
+    /// the old plan and pipelines running: with ShaderSources::Reread, a new graph and edited
+    /// shaders take effect together or not at all.
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
-    /// an edit). On failure throws ExecutorError with glslang's log; the old pipelines keep
-    /// running. Every other rebuild (resize(), setPresentImages(), a swapchain's new images,
-    /// setGraph() with ShaderSources::Cached) builds from the shader sources the running
-    /// pipelines were built from, so a shader broken on disk fails only this call.
+    /// an edit), once this renderer's frames have finished. On failure throws ExecutorError
+    /// with glslang's log; the old pipelines keep running. Every other rebuild (resize(),
+    /// setPresentImages(), a swapchain's new images, setGraph() with ShaderSources::Cached)
+    /// builds from the shader sources the running pipelines were built from, so a shader
+    /// broken on disk fails only this call.
     void reloadShaders();
     /// Whether a shader file the running pipelines were built from, or a file it includes,
     /// reads differently on disk now (ShaderCompiler::keptFilesChanged): e.g. whether an edit
@@ -237,12 +267,17 @@ public:
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// New pixels for external image `resource`, which setExternalImage() gave pixels before:
     /// one Upload step of the setup and its barriers, every other resource left as it is (so
-    /// images this renderer shares keep their contents). Waits for this renderer's frames, not
-    /// for other renderers'. The pixels go to a staging buffer now; with UploadTiming::Now the
-    /// copy is submitted and waited for, with WithNextFrame it is recorded at the start of the
-    /// next frame's first submit, before its passes, and nothing waits (an image with a copy
-    /// per frame slot is uploaded now all the same). Throws ExecutorError as setExternalImage()
-    /// does, and for a resource without pixels yet.
+    /// images this renderer shares keep their contents). The pixels go to a staging buffer
+    /// now. With UploadTiming::Now the call waits for this renderer's frames (not for other
+    /// renderers'), then submits the copy and waits for it. With WithNextFrame the copy is
+    /// recorded at the start of the next frame's first submit, before its passes, and nothing
+    /// waits: frames already submitted read the old pixels, and the copy's barriers order it
+    /// after them. Updates of several resources before a frame all ride with it; a later one
+    /// of the same resource replaces the earlier. Where the copy cannot ride with a frame (an
+    /// image with a copy per frame slot, or a plan that submits to a queue other than
+    /// Device::queue(), whose earlier frames' work those barriers do not order) it is
+    /// uploaded as with Now. Throws ExecutorError as setExternalImage() does, and for a
+    /// resource without pixels yet.
     void updateExternalImage(const std::string& resource, ImageData pixels, UploadTiming timing = UploadTiming::Now);
     /// Pixels for the next frame's UploadPass that writes `resource` (docs/graph-format.md,
     /// "Built-in pass types"): mip 0 of every layer, rows tightly packed, in the image's format
@@ -275,7 +310,12 @@ public:
     /// (its waitIdle()), or its background frame been finished (finishBackgroundFrame()),
     /// before this renderer's next frame. Neither waits nor rebuilds: frames already submitted
     /// keep the image they were recorded with, which stays alive until they finish. Throws
-    /// ExecutorError for an empty handle or on any mismatch, keeping the old image.
+    /// ExecutorError for an empty handle or on any mismatch, keeping the old image. For a
+    /// resource the current plan does not use (its passes culled), the image is checked
+    /// against the graph's declaration (device, format, extent, mips, layers) and kept for the
+    /// rebuild that brings the resource back; what only a plan that uses it can say (usages,
+    /// layout, sharing, being written) is checked by that rebuild, which throws on a mismatch
+    /// (forgetImport()).
     void importImage(const std::string& resource, SharedImage image);
     /// Undoes importImage() for `resource` from the next rebuild on (the class comment lists
     /// the calls that rebuild): the rebuilt plan makes and sets up an image of its own for it,
@@ -296,14 +336,16 @@ public:
     /// compiled().graph(): the graph the current plan was compiled from. Owned by the renderer;
     /// valid until the plan state is rebuilt, as compiled() is.
     [[nodiscard]] const GraphDesc& graph() const noexcept;
-    /// Per-pass GPU times of the most recently completed frame (waits for it), copied. Empty
-    /// before the first frame of the current plan state. Passes on a queue whose family has no
-    /// timestamps are left out.
+    /// Per-pass GPU times of the most recently submitted frame (waits for it to finish),
+    /// copied. Empty before the first frame of the current plan state. Passes on a queue whose
+    /// family has no timestamps are left out.
     [[nodiscard]] std::vector<PassTiming> lastTimings();
-    /// Per-pass GPU times of the latest frame seen finished, without waiting (up to frames
-    /// in flight behind: what a live overlay shows). The reference is valid until the next
-    /// call that waits for a frame (renderFrame, waitForFrameSlot, waitIdle, lastTimings,
-    /// readback) or rebuilds.
+    /// Per-pass GPU times of the newest frame seen finished, without waiting (up to frames
+    /// in flight behind: what a live overlay shows). The reference is valid, and what it holds
+    /// unchanged, until the next call that waits for a frame (renderFrame() of any kind,
+    /// renderFrameInBackground(), waitForFrameSlot(), waitIdle(), lastTimings(), readback(),
+    /// readImage(), setExternalImage(), updateExternalImage()) or rebuilds the plan state
+    /// (the class comment lists the calls that do).
     [[nodiscard]] const std::vector<PassTiming>& completedTimings() const noexcept;
 
     /// compiled().plan(): the current plan. Owned by the renderer; valid until the plan state

@@ -83,12 +83,16 @@ struct SwapchainOptions {
 /// acquire semaphore per frame slot and a render-complete semaphore per image; a Renderer
 /// drives it with renderFrame(Swapchain&), which re-creates it when it is out of date,
 /// suboptimal or resized. Owns every handle it creates; borrows the Device, which must outlive
-/// it. A Renderer that has rendered into it keeps views of its images until it renders into
-/// another swapchain. To replace one (for another present mode, say): the renderer's
-/// waitIdle(), then destroy this one, create the next and pass it to the next renderFrame(),
-/// with no resize() or setGraph() of that renderer in between (they would build on the old
-/// images); or destroy the renderer first. Not copyable or movable. Use from the thread that
-/// uses the renderer.
+/// it. A Renderer does not keep the Swapchain itself (RendererOptions::presentTo and
+/// renderFrame() borrow it for the call), but one that has rendered into it, or was bound to
+/// it by presentTo, keeps views of its images until it renders into another swapchain or is
+/// destroyed. Either may be destroyed first: destroying the swapchain waits for the Device's
+/// queue, and so for every frame into it. After that, until the renderer renders into
+/// another swapchain, it must not rebuild its plan state in any other way (setGraph(),
+/// resize(), reloadShaders(), setPresentImages(), a HotReloader's poll()), which would build
+/// on the destroyed images. So, to replace one (for another present mode, say): destroy it,
+/// create the next and pass that to the renderer's next renderFrame(). Not copyable or
+/// movable. Use from the thread that uses the renderer.
 class Swapchain {
 public:
     /// A swapchain for `device`'s surface, with images for `compiled`'s Present resource: the
@@ -97,7 +101,8 @@ public:
     /// that format or those usages (naming what it can give).
     static std::unique_ptr<Swapchain> create(Device& device, const CompiledGraph& compiled,
                                              const SwapchainOptions& options);
-    /// Waits for the device's queue to be idle, then destroys what it owns.
+    /// Waits for the device's queue to be idle (other renderers' work on it included), then
+    /// destroys what it owns.
     ~Swapchain();
     Swapchain(const Swapchain&) = delete;
     Swapchain& operator=(const Swapchain&) = delete;

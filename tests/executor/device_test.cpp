@@ -127,5 +127,32 @@ TEST(RenderCommand, WritesPngAndReportsUserErrors) {
     std::filesystem::remove_all(dir);
 }
 
+// The image writers fail as hdr_image.hpp's savers do: an ImageError that names the file.
+TEST(ImageOutput, WritersThrowImageErrorNamingTheFile) {
+    ImageData pixels;
+    pixels.width = pixels.height = 2;
+    pixels.rgba.assign(16, 0.5f);
+    const std::filesystem::path nowhere = std::filesystem::temp_directory_path() /
+                                          ("skygraph_no_such_dir_" + std::to_string(::getpid())) / "out";
+    for (const std::string extension : {".png", ".hdr", ".exr"}) {
+        const std::filesystem::path file = nowhere.string() + extension;
+        try {
+            if (extension == ".png") writePng(file, pixels);
+            else writeHdr(file, pixels);
+            FAIL() << "wrote " << file;
+        } catch (const ImageError& e) {
+            EXPECT_EQ(e.file(), file);
+        }
+    }
+    const std::filesystem::path empty = std::filesystem::temp_directory_path() / "skygraph_empty_image.png";
+    try {
+        writePng(empty, ImageData{});
+        FAIL() << "wrote an empty image";
+    } catch (const ImageError& e) {
+        EXPECT_EQ(e.file(), empty);
+    }
+    EXPECT_FALSE(std::filesystem::exists(empty));
+}
+
 }  // namespace
 }  // namespace skygraph::test

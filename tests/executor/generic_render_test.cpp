@@ -1,6 +1,9 @@
 // Generic graphs run under validation + synchronization validation, with real pixels read
 // back. Each test names the hazard kind (RAW, WAR, WAW, layout transition) it exercises.
 #include "executor_test_util.hpp"
+#include "queue_blocker.hpp"
+#include "renderer_access.hpp"
+#include "throwing_pass.hpp"
 
 #include <unistd.h>
 
@@ -415,6 +418,119 @@ TEST_F(ExecutorTest, UnexportedExternalWrittenEveryFrame) {
              "params": { "color": [0, 0, 0, 0] } })"));
     const ImageData img = render(c, 4);
     EXPECT_PIXEL_NEAR(img, 3, 3, 0.5, 0.5, 0.5, 0.5);
+}
+
+/// `json` compiled as compileText() does, with the pass types of `library`.
+CompiledGraph compileWith(const PassLibrary& library, const std::string& json) {
+    GraphDesc g = parseGraph(json, "<test>", library.registry());
+    CompileOptions o = sizedOptions();
+    o.memory = sharedDevice().memoryModel();
+    o = headless(g, std::move(o));
+    return CompiledGraph(std::move(g), std::move(o));
+}
+
+/// 8x4 pixels of one grey `value`, alpha 1.
+ImageData grey(float value) {
+    ImageData px;
+    px.width = 8;
+    px.height = 4;
+    px.rgba.assign(8 * 4 * 4, value);
+    for (size_t i = 3; i < px.rgba.size(); i += 4) px.rgba[i] = 1.0f;
+    return px;
+}
+
+/// An 8x4 external image `photo` that pass "show", of type `type`, copies to the output.
+std::string photoGraph(const std::string& type) {
+    return R"({ "version": 1, "name": "t", "resources": {
+      "photo": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 4],
+                 "external": true, "initial": "ShaderRead" },
+      "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": [8, 4],
+                     "external": true, "final": "Present" } },
+      "passes": [ { "name": "show", "type": ")" + type + R"(",
+        "uses": { "photo": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+        "params": { "color": [0, 0, 0, 0] } } ] })";
+}
+
+// A pass that throws while its frame is recorded: the frame is not submitted, and the renderer
+// goes on. The upload that was to ride with that frame rides with the next, and the recording
+// code, which recorded work that never ran, is made again before it.
+TEST_F(ExecutorTest, AFrameWhosePassThrowsIsNotSubmittedAndTheNextCarriesItsUpload) {
+    const PassLibrary library = throwingPassLibrary();
+    RendererOptions ro = genericOptions(2);
+    ro.passes = &library;
+    Renderer r(sharedDevice(), compileWith(library, photoGraph("ThrowingPass")), ro);
+    r.setExternalImage("photo", grey(0.25f));
+    r.renderFrame();
+    r.renderFrame();
+    const int made = ThrowingPass::made();
+    r.updateExternalImage("photo", grey(0.75f), UploadTiming::WithNextFrame);
+    r.frameData().set(ThrowWhileRecording{true});
+    EXPECT_THROW(r.renderFrame(), PassThrew);
+    EXPECT_THROW(r.renderFrame(), PassThrew) << "the same again: the recording code is made again first";
+    EXPECT_EQ(ThrowingPass::made(), made + 1);
+    EXPECT_EQ(r.frameCount(), 2u) << "frames that threw are not submitted";
+    EXPECT_PIXEL_NEAR(r.readback(), 3, 2, 0.25, 0.25, 0.25, 1.0);
+    r.frameData().set(ThrowWhileRecording{false});
+    r.renderFrame();
+    r.renderFrame();
+    EXPECT_EQ(ThrowingPass::made(), made + 2) << "made again once more, after the second throw";
+    EXPECT_EQ(r.frameCount(), 4u);
+    EXPECT_PIXEL_NEAR(r.readback(), 3, 2, 0.75, 0.75, 0.75, 1.0);
+    r.waitIdle();
+}
+
+// updateExternalImage with WithNextFrame waits for no frame, even one held up on the queue;
+// uploads of several resources all ride with the next frame, and one made now replaces one
+// still waiting for a frame.
+TEST_F(ExecutorTest, UploadsWithTheNextFrameWaitForNoFrameAndAllArrive) {
+    const auto c = compileText(R"({ "version": 1, "name": "t", "resources": {
+      "photo": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 4],
+                 "external": true, "initial": "ShaderRead" },
+      "photo2": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [8, 4],
+                  "external": true, "initial": "ShaderRead" },
+      "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": [8, 4],
+                     "external": true, "final": "Present" } },
+      "passes": [ { "name": "show", "type": "Generic",
+        "uses": { "photo": "Read@Fragment", "photo2": "Read@Fragment", "swapchain": "Write@ColorAttachment" } } ] })");
+    Renderer r(sharedDevice(), c, genericOptions(2));
+    r.setExternalImage("photo", grey(0.1f));
+    r.setExternalImage("photo2", grey(0.2f));
+    r.renderFrame();
+    r.waitIdle();
+    {
+        QueueBlocker blocked(sharedDevice());
+        r.renderFrame();  // queued behind the blocker, in flight until it is released
+        r.updateExternalImage("photo", grey(0.3f), UploadTiming::WithNextFrame);
+        r.updateExternalImage("photo2", grey(0.4f), UploadTiming::WithNextFrame);
+        EXPECT_FALSE(blocked.released()) << "an upload with the next frame waited for the frame in flight";
+    }
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readImage("photo").at(0), 7, 3, 0.3, 0.3, 0.3, 1.0);
+    EXPECT_PIXEL_NEAR(r.readImage("photo2").at(0), 7, 3, 0.4, 0.4, 0.4, 1.0);
+    r.updateExternalImage("photo", grey(0.5f), UploadTiming::WithNextFrame);
+    r.updateExternalImage("photo", grey(0.6f), UploadTiming::Now);
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readImage("photo").at(0), 7, 3, 0.6, 0.6, 0.6, 1.0);
+    r.waitIdle();
+}
+
+// completedTimings() are the newest finished frame's, whatever order the frame slots are
+// waited for in. Three in flight: frame 3 reuses slot 0, and waitIdle() must not let the older
+// frames of slots 1 and 2 overwrite its timings; nor may the next frame's wait for its slot
+// bring back an older frame's after lastTimings() took the newest.
+TEST_F(ExecutorTest, TimingsAreOfTheNewestFinishedFrame) {
+    Renderer r(sharedDevice(), computeThenFragment(), genericOptions(3));
+    for (int i = 0; i < 4; ++i) r.renderFrame();
+    r.waitIdle();
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 3u);
+    EXPECT_EQ(r.completedTimings().size(), 3u);
+    for (int i = 0; i < 3; ++i) r.renderFrame();  // frames 4, 5, 6 in slots 1, 2, 0
+    (void)r.lastTimings();                         // waits for frame 6
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 6u);
+    r.renderFrame();  // frame 7 waits for slot 1's frame 4
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 6u);
+    r.waitIdle();
+    EXPECT_EQ(RendererAccess::timingsFrame(r), 7u);
 }
 
 }  // namespace

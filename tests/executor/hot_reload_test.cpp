@@ -183,6 +183,43 @@ TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
     EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 0.0, 1.0, 1.0);
 }
 
+// A pass library may declare a type under a built-in's name; its factory records it, and the
+// reloader without a registry of its own parses reloaded graphs against that declaration, not
+// the built-in one, which would refuse them.
+TEST_F(ExecutorTest, HotReloadParsesWithTheLibrarysDeclarationOfABuiltInName) {
+    PassLibrary library = PassLibrary::genericOnly();
+    PassTypeInfo tonemapping;
+    tonemapping.name = "TonemappingPass";
+    tonemapping.slots.push_back(SlotDecl{"target", Stage::ColorAttachment, {Access::Write}});
+    library.add(tonemapping, *PassLibrary::genericOnly().factory("Generic"));
+    const auto graphText = [](const std::string& color) {
+        return R"({ "version": 1, "name": "own", "resources": {
+          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                         "external": true, "final": "Present" } },
+          "passes": [ { "name": "tone", "type": "TonemappingPass", "uses": { "swapchain": "Write@ColorAttachment" },
+                        "params": { "color": )" + color + " } } ] }";
+    };
+    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_reload_own_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir / "shaders");  // watched, and empty
+    const auto graphFile = dir / "g.json";
+    write(graphFile, graphText("[1, 0, 0, 1]"));
+    {
+        GraphDesc graph = loadGraphFile(graphFile, library.registry());
+        const CompileOptions co = headless(graph);
+        RendererOptions ro = genericOptions();
+        ro.passes = &library;
+        Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), ro);
+        HotReloader reloader(r, graphFile, dir / "shaders");
+        write(graphFile, graphText("[0, 1, 0, 1]"));
+        EXPECT_EQ(reloader.poll(), HotReloader::Result::Reloaded) << reloader.lastError();
+        r.renderFrame();
+        EXPECT_PIXEL_NEAR(r.readback(), 0, 0, 0.0, 1.0, 0.0, 1.0);
+        r.waitIdle();
+    }
+    std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace skygraph::test
 

@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 
 #include <unistd.h>
 
@@ -313,6 +314,10 @@ concept Gettable = requires(const FrameData& data) { data.template get<T>(); };
 static_assert(Settable<Exposure> && Gettable<Exposure>);
 static_assert(!Settable<double> && !Settable<const char*> && !Settable<int*>);
 static_assert(!Gettable<float>);
+// The renderer's FrameData is the one passes read: a copy or a move of it would hold values
+// no pass sees (`auto data = renderer.frameData();`), so neither compiles.
+static_assert(!std::is_copy_constructible_v<FrameData> && !std::is_copy_assignable_v<FrameData>);
+static_assert(!std::is_move_constructible_v<FrameData> && !std::is_move_assignable_v<FrameData>);
 
 TEST(FrameDataTest, FindsAValueByTheTypeItWasSetAs) {
     FrameData data;

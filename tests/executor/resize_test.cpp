@@ -2,6 +2,7 @@
 // size gives, and the plan's barriers cover exactly those, under synchronization validation.
 #include "compiled_graph_access.hpp"
 #include "executor_test_util.hpp"
+#include "queue_blocker.hpp"
 
 #include <skygraph/compiled_graph.hpp>
 
@@ -144,6 +145,79 @@ TEST_F(Resize, AnImportThatNoLongerFitsIsForgottenForAResize) {
     ASSERT_EQ(imported.width, 48u);
     EXPECT_NE(imported.rgba, own.rgba) << "the frame reads the new import, not the renderer's own image";
     EXPECT_THROW(consumer.forgetImport("swapchain"), ExecutorError);
+    consumer.waitIdle();
+}
+
+// A rebuild waits for this renderer's own frames only: work that another renderer or the
+// application has on the device's queue goes on, however long it takes.
+TEST_F(Resize, ARebuildWaitsForNoOtherWorkOnTheDevice) {
+    // No external resource, so no setup: that would be submitted behind the blocker.
+    Renderer r(sharedDevice(), compileText(R"({ "version": 1, "name": "inner", "resources": {
+        "chain": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "mips": "full" },
+        "target": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" } },
+      "passes": [
+        { "name": "fill", "type": "Generic", "never_cull": true, "uses": { "chain": "Write@Transfer" } },
+        { "name": "show", "type": "Generic", "never_cull": true,
+          "uses": { "chain": "Read@Fragment", "target": "Write@ColorAttachment" } } ] })"),
+               genericOptions());
+    ASSERT_TRUE(r.setupPlan().passes().empty());
+    r.renderFrame();
+    r.waitIdle();
+    {
+        QueueBlocker blocked(sharedDevice());
+        r.resize(24, 20);
+        r.setGraph(r.compiled());
+        r.reloadShaders();
+        EXPECT_FALSE(blocked.released()) << "a rebuild waited for work that is not the renderer's";
+    }
+    r.renderFrame();
+    r.waitIdle();
+    EXPECT_EQ(r.compiled().outputWidth(), 24u);
+    EXPECT_EQ(r.lastTimings().size(), 2u) << "the frame after the rebuilds ran";
+}
+
+// importImage checks an image for a resource the plan culled against the graph's declaration:
+// device, format, extent, mips and layers, as for one the plan uses.
+TEST_F(Resize, AnImportForACulledResourceIsCheckedAgainstItsDeclaration) {
+    const auto compile = [](const std::string& json) {
+        CompileOptions o;
+        o.presentReplacement = ExternalState::TransferSrc;
+        o.outputWidth = o.outputHeight = 16;
+        o.memory = sharedDevice().memoryModel();
+        return CompiledGraph(parseGraph(json, "import.json", PassRegistry::withBuiltins()), o);
+    };
+    const auto producerGraph = [](const std::string& extent) {
+        return R"({ "version": 1, "name": "producer", "resources": {
+            "shared": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": )" + extent + R"(,
+                        "external": true, "final": "ShaderRead" } },
+          "passes": [ { "name": "paint", "type": "Generic", "uses": { "shared": "Write@ColorAttachment" } } ] })";
+    };
+    // "look" reads the import into an image nothing reads: the plan culls both.
+    const char* consumerGraph = R"({ "version": 1, "name": "consumer", "resources": {
+        "shared": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true, "initial": "ShaderRead" },
+        "unseen": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16] },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true, "final": "Present" } },
+      "passes": [ { "name": "look", "type": "Generic", "uses": { "shared": "Read@Fragment", "unseen": "Write@ColorAttachment" } },
+                  { "name": "show", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" } } ] })";
+    Renderer consumer(sharedDevice(), compile(consumerGraph), genericOptions());
+    ASSERT_LT(consumer.plan().resourceIndex("shared"), 0) << "the plan uses 'shared'";
+    for (const char* extent : {"[16, 8]", "[16, 16]"}) {
+        Renderer producer(sharedDevice(), compile(producerGraph(extent)), genericOptions());
+        producer.renderFrame();
+        producer.waitIdle();
+        if (std::string(extent) == "[16, 8]") {
+            try {
+                consumer.importImage("shared", producer.shareImage("shared"));
+                FAIL() << "a 16x8 image imported for a 16x16 resource";
+            } catch (const ExecutorError& e) {
+                EXPECT_NE(std::string(e.what()).find("the graph declares 16x16"), std::string::npos) << e.what();
+            }
+        } else {
+            consumer.importImage("shared", producer.shareImage("shared"));
+        }
+    }
+    consumer.renderFrame();
+    consumer.forgetImport("shared");  // the one that fits was kept
     consumer.waitIdle();
 }
 

@@ -88,10 +88,14 @@ TEST_F(UploadPassTest, HoldsTheBufferUntilTheCopyHasRun) {
     const auto buffer = staged(0.0f);
     renderer_.stageUpload("sky", buffer);
     EXPECT_EQ(buffer.use_count(), 2) << "staged";
+    EXPECT_FALSE(StagingBuffer::reusable(buffer));
     renderer_.renderFrame();
     EXPECT_EQ(buffer.use_count(), 2) << "held by the frame in flight";
+    EXPECT_FALSE(StagingBuffer::reusable(buffer));
     renderer_.waitIdle();
     EXPECT_EQ(buffer.use_count(), 1) << "the copy has run: the caller's again";
+    EXPECT_TRUE(StagingBuffer::reusable(buffer));
+    EXPECT_FALSE(StagingBuffer::reusable(nullptr));
 }
 
 TEST_F(UploadPassTest, OnlyTheFrameItWasStagedForCopiesIt) {
@@ -122,7 +126,7 @@ TEST_F(UploadPassTest, StagingRefusesAnUnknownResourceOrAWrongSize) {
                   "stageUpload: 'sky' takes 1536 bytes (4x4, 6 layer(s) of R32G32B32A32_SFLOAT), the staging buffer "
                   "holds 16");
     expectRefused("sky", nullptr, "no staging buffer for 'sky'");
-    EXPECT_THROW((void)StagingBuffer::create(sharedDevice(), 0), std::invalid_argument);
+    EXPECT_THROW((void)StagingBuffer::create(sharedDevice(), 0), ExecutorError);
 }
 
 // The oracle can fail: without the compute submit's wait for the transfer queue's signal, the

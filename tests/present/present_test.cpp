@@ -9,6 +9,7 @@
 #include "plan_editor.hpp"
 
 #include "generic_passes.hpp"
+#include "throwing_pass.hpp"
 
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
@@ -272,6 +273,156 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
     for (auto s : acquired) vkDestroySemaphore(vkd, s, nullptr);
     for (auto s : done) vkDestroySemaphore(vkd, s, nullptr);
     vkDestroySwapchainKHR(vkd, swapchain, nullptr);
+    expectSilent();
+}
+
+/// A graph of one ThrowingPass that draws the presented image, compiled to present at
+/// `width` x `height` with `library`'s declarations.
+CompiledGraph throwingGraph(const PassLibrary& library, uint32_t width, uint32_t height) {
+    GraphDesc graph = parseGraph(R"({ "version": 1, "name": "throwing", "resources": {
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output",
+                       "external": true, "final": "Present" } },
+      "passes": [ { "name": "draw", "type": "ThrowingPass", "uses": { "swapchain": "Write@ColorAttachment" },
+                    "params": { "color": [0.2, 0.4, 0.6, 1] } } ] })",
+                                 "throwing.json", library.registry());
+    CompileOptions o;
+    o.outputWidth = width;
+    o.outputHeight = height;
+    return CompiledGraph(std::move(graph), o);
+}
+
+// A pass that throws while a frame is recorded: the image acquired for it is not presented,
+// its acquire semaphore is waited for all the same, and the next frame re-creates the
+// swapchain, which gives the image back; more such frames than the swapchain has images
+// leave it presenting, under validation.
+TEST_F(Present, AFrameWhosePassThrowsLeavesTheSwapchainPresenting) {
+    const PassLibrary library = throwingPassLibrary();
+    const CompiledGraph compiled = throwingGraph(library, 96, 64);
+    auto swapchain = Swapchain::create(*device_, compiled, {96, 64, PresentMode::Fifo});
+    RendererOptions ro = genericOptions(2);
+    ro.passes = &library;
+    Renderer renderer(*device_, compiled, ro);
+    const size_t images = swapchain->images().size();
+    for (size_t round = 0; round <= images; ++round) {
+        SCOPED_TRACE("round " + std::to_string(round));
+        glfwPollEvents();
+        EXPECT_EQ(renderer.renderFrame(*swapchain), PresentStatus::Presented);
+        renderer.frameData().set(ThrowWhileRecording{true});
+        EXPECT_THROW((void)renderer.renderFrame(*swapchain), PassThrew);
+        renderer.frameData().set(ThrowWhileRecording{false});
+        EXPECT_EQ(renderer.renderFrame(*swapchain), PresentStatus::Presented);
+    }
+    renderer.waitIdle();
+    EXPECT_EQ(renderer.frameCount(), 2 * (images + 1));
+    EXPECT_EQ(swapchain->generation(), 2 + images) << "re-created after each frame that threw";
+    expectSilent();
+}
+
+// The same with the application's own swapchain: the renderer waits for the acquire semaphore
+// of the frame that threw, so that the application may acquire with it again once the frame
+// slot comes round, and signals no render-complete semaphore; the application gives the image
+// back by re-creating its swapchain.
+TEST_F(Present, AFrameWhosePassThrowsWaitsForTheApplicationsAcquireSemaphore) {
+    const VkDevice vkd = device_->device();
+    VkSurfaceCapabilitiesKHR caps;
+    ASSERT_EQ(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_->physicalDevice(), device_->surface(), &caps),
+              VK_SUCCESS);
+    const PassLibrary library = throwingPassLibrary();
+    const CompiledGraph compiled = throwingGraph(library, caps.currentExtent.width, caps.currentExtent.height);
+    const PresentRequirements need = presentRequirements(compiled);
+    VkSwapchainKHR swapchain = VK_NULL_HANDLE;
+    PresentImages images;
+    std::vector<VkSemaphore> done;
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    // A new swapchain (the old one retired) with a render-complete semaphore per image.
+    const auto recreate = [&] {
+        VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
+        ci.surface = device_->surface();
+        ci.minImageCount = caps.minImageCount + 1;
+        ci.imageFormat = need.format;
+        ci.imageColorSpace = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
+        ci.imageExtent = caps.currentExtent;
+        ci.imageArrayLayers = 1;
+        ci.imageUsage = need.usage;
+        ci.preTransform = caps.currentTransform;
+        ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
+        ci.presentMode = VK_PRESENT_MODE_FIFO_KHR;
+        ci.clipped = VK_TRUE;
+        ci.oldSwapchain = swapchain;
+        VkSwapchainKHR next = VK_NULL_HANDLE;
+        ASSERT_EQ(vkCreateSwapchainKHR(vkd, &ci, nullptr, &next), VK_SUCCESS);
+        vkDestroySwapchainKHR(vkd, swapchain, nullptr);  // its presents are done: the queue is idle
+        swapchain = next;
+        uint32_t n = 0;
+        vkGetSwapchainImagesKHR(vkd, swapchain, &n, nullptr);
+        images = PresentImages{std::vector<VkImage>(n), need.format, caps.currentExtent, need.usage};
+        vkGetSwapchainImagesKHR(vkd, swapchain, &n, images.images.data());
+        for (VkSemaphore s : done) vkDestroySemaphore(vkd, s, nullptr);
+        done.assign(n, VK_NULL_HANDLE);
+        for (auto& s : done) vkCreateSemaphore(vkd, &sci, nullptr, &s);
+    };
+    recreate();
+    const uint32_t inFlight = 2;
+    std::vector<VkSemaphore> acquired(inFlight);
+    for (auto& s : acquired) vkCreateSemaphore(vkd, &sci, nullptr, &s);
+    {
+        RendererOptions ro = genericOptions(inFlight);
+        ro.passes = &library;
+        Renderer renderer(*device_, compiled, ro);
+        renderer.setPresentImages(images);
+        const auto frame = [&](bool throws) {
+            const uint32_t slot = renderer.waitForFrameSlot();
+            uint32_t image = 0;
+            ASSERT_EQ(vkAcquireNextImageKHR(vkd, swapchain, UINT64_MAX, acquired[slot], VK_NULL_HANDLE, &image),
+                      VK_SUCCESS);
+            renderer.frameData().set(ThrowWhileRecording{throws});
+            if (throws) {
+                EXPECT_THROW(renderer.renderFrame(PresentTarget{image, acquired[slot], done[image]}), PassThrew);
+                return;
+            }
+            renderer.renderFrame(PresentTarget{image, acquired[slot], done[image]});
+            VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+            pi.waitSemaphoreCount = 1;
+            pi.pWaitSemaphores = &done[image];
+            pi.swapchainCount = 1;
+            pi.pSwapchains = &swapchain;
+            pi.pImageIndices = &image;
+            ASSERT_EQ(vkQueuePresentKHR(device_->queue(), &pi), VK_SUCCESS);
+        };
+        for (int round = 0; round < 3; ++round) {
+            SCOPED_TRACE("round " + std::to_string(round));
+            frame(false);
+            frame(true);
+            frame(false);  // the slot of the frame that threw, its acquire semaphore again
+            renderer.waitIdle();
+            vkQueueWaitIdle(device_->queue());
+            recreate();
+            renderer.setPresentImages(images);
+            frame(false);
+        }
+        renderer.waitIdle();
+        vkQueueWaitIdle(device_->queue());
+        EXPECT_EQ(renderer.frameCount(), 9u);
+    }
+    for (auto s : acquired) vkDestroySemaphore(vkd, s, nullptr);
+    for (auto s : done) vkDestroySemaphore(vkd, s, nullptr);
+    vkDestroySwapchainKHR(vkd, swapchain, nullptr);
+    expectSilent();
+}
+
+// setGraph on a presenting renderer compiles the graph at the present images' extent, as the
+// constructor does with RendererOptions::presentTo; resize() to another size still throws.
+TEST_F(Present, SetGraphCompilesAtThePresentImagesExtent) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer renderer(*device_, raster(96, 64), genericOptions(2));
+    present(renderer, *swapchain, 2);
+    renderer.setGraph(raster(50, 40));
+    EXPECT_EQ(renderer.compiled().outputWidth(), 96u);
+    EXPECT_EQ(renderer.compiled().outputHeight(), 64u);
+    present(renderer, *swapchain, 2);
+    EXPECT_EQ(swapchain->generation(), 1u) << "the swapchain's images were kept";
+    EXPECT_THROW(renderer.resize(50, 40), ExecutorError);
+    present(renderer, *swapchain, 1);
     expectSilent();
 }
 

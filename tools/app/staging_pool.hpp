@@ -7,7 +7,6 @@
 #include <skygraph/staging_buffer.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cstring>
 #include <memory>
 #include <span>
@@ -36,8 +35,7 @@ public:
         if (pixels.size_bytes() != bytes_)
             throw ExecutorError("staging " + std::to_string(pixels.size_bytes()) + " bytes in a pool of " +
                                 std::to_string(bytes_) + "-byte buffers");
-        auto free = std::find_if(buffers_.begin(), buffers_.end(), [](const auto& b) { return b.use_count() == 1; });
-        std::atomic_thread_fence(std::memory_order_acquire);  // after the last holder's release
+        auto free = std::find_if(buffers_.begin(), buffers_.end(), &StagingBuffer::reusable);
         if (free == buffers_.end()) free = buffers_.insert(buffers_.end(), StagingBuffer::create(device_, bytes_));
         std::memcpy((*free)->bytes().data(), pixels.data(), bytes_);
         return *free;
