@@ -316,7 +316,7 @@ struct Renderer::Impl {
     RendererOptions options;
     /// Keeps the shader sources the running pipelines were built from (ShaderCompiler::source),
     /// for rebuilds other than a reload of the shaders. Shared with the renderers made from this
-    /// one (RendererOptions::shadersFrom, shaderCompiler) until one of them reads the shaders
+    /// one (RendererOptions::shaderCompiler) until one of them reads the shaders
     /// again.
     std::shared_ptr<ShaderCompiler> shaders;
     vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
@@ -353,11 +353,10 @@ struct Renderer::Impl {
 
     Impl(Device& d, RendererOptions o)
         : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
-          shaders(options.shadersFrom      ? options.shadersFrom->impl_->shaders
-                  : options.shaderCompiler ? options.shaderCompiler
-                                           : std::make_shared<ShaderCompiler>(options.shaderDir,
-                                                                              options.shaderCacheDir.value_or(
-                                                                                  ShaderCompiler::defaultCacheDir()))) {
+          shaders(options.shaderCompiler ? options.shaderCompiler
+                                         : std::make_shared<ShaderCompiler>(
+                                               options.shaderDir,
+                                               options.shaderCacheDir.value_or(ShaderCompiler::defaultCacheDir()))) {
         options.shaderCompiler.reset();  // held by `shaders` alone: a reload lets the old sources go
     }
 

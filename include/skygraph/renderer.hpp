@@ -33,8 +33,8 @@ struct RendererOptions {
     /// Directory with the GLSL includes (shaders/); empty: ShaderCompiler::defaultIncludeDir().
     std::filesystem::path shaderDir;
     /// Where compiled SPIR-V is kept between runs: unset, ShaderCompiler::defaultCacheDir();
-    /// an empty path, nowhere (every run compiles its shaders). With shadersFrom or
-    /// shaderCompiler, theirs is kept instead.
+    /// an empty path, nowhere (every run compiles its shaders). With shaderCompiler, its own is
+    /// kept instead.
     std::optional<std::filesystem::path> shaderCacheDir;
     /// Recording code by pass type; borrowed, must outlive the renderer. A type without a factory
     /// runs with the library's "Generic" (a warning says so, once per type, unless the library
@@ -54,17 +54,12 @@ struct RendererOptions {
     /// writes none and none is read back, which on some drivers waits for whatever the queue
     /// runs: for a renderer whose frames run beside another's (a background bake).
     bool timestamps = true;
-    /// Borrowed during construction only. The new renderer builds from the shader sources that
-    /// renderer's pipelines were built from, and from its shader directory (`shaderDir` is not
-    /// used), as that renderer's setGraph() with ShaderSources::Cached would: e.g. an
-    /// application replacing its renderer while a shader on disk is half edited. Null:
-    /// shaderCompiler's sources, else the shaders are read from `shaderDir`.
-    const Renderer* shadersFrom = nullptr;
-    /// As shadersFrom, for sources kept longer than the renderer that read them: the compiler
-    /// a renderer built with (Renderer::shaderCompiler()), e.g. of one that is gone. The new
-    /// renderer builds with it, and so from the sources it keeps and its include directory
-    /// (`shaderDir` and `shaderCacheDir` are not used), until it reads its shaders again.
-    /// Used when shadersFrom is null.
+    /// The compiler another renderer built with (Renderer::shaderCompiler(), of a running
+    /// renderer or of one that is gone), shared. The new renderer builds from the shader sources
+    /// it keeps and from its include directory (`shaderDir` and `shaderCacheDir` are not used),
+    /// as that renderer's setGraph() with ShaderSources::Cached would, until it reads its shaders
+    /// again: e.g. an application replacing its renderer while a shader on disk is half edited.
+    /// Null: the shaders are read from `shaderDir`.
     std::shared_ptr<ShaderCompiler> shaderCompiler;
 };
 
@@ -358,7 +353,7 @@ public:
     /// Frames submitted since construction, rebuilds included.
     [[nodiscard]] uint64_t frameCount() const noexcept;
     /// The directory its shaders are read from: RendererOptions::shaderDir, the default an
-    /// empty one stands for, or shadersFrom's or shaderCompiler's. A copy.
+    /// empty one stands for, or that of RendererOptions::shaderCompiler. A copy.
     [[nodiscard]] std::filesystem::path shaderDir() const;
     /// The compiler the running pipelines were built with, which keeps the shader sources they
     /// were built from (ShaderCompiler::source): for RendererOptions::shaderCompiler of a

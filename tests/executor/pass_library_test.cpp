@@ -171,7 +171,7 @@ TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgai
     EXPECT_THROW(Renderer(sharedDevice(), CompiledGraph(graph, co), o), ExecutorError);
     RendererOptions replacing = o;
     replacing.shaderDir = dir / "elsewhere";  // unused: the sources' directory is r's
-    replacing.shadersFrom = &r;
+    replacing.shaderCompiler = r.shaderCompiler();
     {
         Renderer replacement(sharedDevice(), CompiledGraph(graph, co), replacing);
         replacement.renderFrame();
@@ -192,7 +192,7 @@ TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgai
 
 // The compiler a renderer built with keeps the sources it read after the renderer is gone: a
 // renderer made from it later (RendererOptions::shaderCompiler) builds from them while the
-// file on disk is broken, as one made from a running renderer (shadersFrom) does.
+// file on disk is broken, as one made from a running renderer's compiler does.
 TEST_F(ExecutorTest, ARendererBuildsFromTheKeptSourcesOfOneThatIsGone) {
     const auto dir = std::filesystem::temp_directory_path() / ("skygraph_kept_sources_" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);

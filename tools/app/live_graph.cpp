@@ -184,7 +184,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     ro.framesInFlight = options.framesInFlight;
     ro.passes = inputs.passes;
     ro.presentTo = swapchain_;
-    if (shaders == Renderer::ShaderSources::Cached) ro.shadersFrom = renderer_;
+    if (shaders == Renderer::ShaderSources::Cached && renderer_) ro.shaderCompiler = renderer_->shaderCompiler();
     b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
     b->uploads = UploadPassPixels(device_, *b->renderer, inputs.environment);
     attachFrameInputs(*b->renderer, inputs, b->environment);
