@@ -84,9 +84,9 @@ struct ValidationMessage {
 /// Threads: the device and every Renderer, Swapchain and HotReloader made with it are used
 /// by one thread at a time, all of them together, not each on its own: they submit to its
 /// queues, which Vulkan lets one thread use at a time, and the application's own submits to
-/// those queues must not overlap their calls either. Validation messages may arrive on any thread, and the message
-/// accessors, memoryModel(), allocatedBytes() and StagingBuffer::create() are safe from any
-/// thread.
+/// those queues must not overlap their calls either. Validation messages may arrive on any
+/// thread, and the message accessors, memoryModel(), allocatedBytes() and
+/// StagingBuffer::create() are safe from any thread.
 class Device {
 public:
     /// Creates the instance and device (and the surface, when presenting); the caller owns the
