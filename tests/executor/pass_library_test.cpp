@@ -137,12 +137,18 @@ TEST_F(ExecutorTest, PassLibraryPipelineFailureIsAnErrorAndKeepsOldPlan) {
     r.waitIdle();
 }
 
-TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgain) {
-    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_sources_" + std::to_string(::getpid()));
+/// A new, empty shader folder for FileFill's shader, with the include its "show" needs.
+std::filesystem::path fileFillShaderDir(const std::string& prefix) {
+    const auto dir = std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
-                               dir / "generic_common.glsl");  // for "show"
+                               dir / "generic_common.glsl");
+    return dir;
+}
+
+TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgain) {
+    const auto dir = fileFillShaderDir("skygraph_sources_");
     const auto shader = dir / "fill.comp";
     const auto write = [&](const std::string& text) { std::ofstream(shader, std::ios::binary | std::ios::trunc) << text; };
     write("#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
@@ -194,11 +200,7 @@ TEST_F(ExecutorTest, AShaderFileBrokenOnDiskFailsOnlyTheCallsThatReadShadersAgai
 // renderer made from it later (RendererOptions::shaderCompiler) builds from them while the
 // file on disk is broken, as one made from a running renderer's compiler does.
 TEST_F(ExecutorTest, ARendererBuildsFromTheKeptSourcesOfOneThatIsGone) {
-    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_kept_sources_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    std::filesystem::copy_file(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "shaders" / "generic_common.glsl",
-                               dir / "generic_common.glsl");  // for "show"
+    const auto dir = fileFillShaderDir("skygraph_kept_sources_");
     std::ofstream(dir / "fill.comp") << "#version 450\nlayout(local_size_x = 1) in;\nvoid main() {}\n";
     const PassLibrary lib = library();
     const GraphDesc graph = parseGraph(graphText("FileFill"), "<lib>", lib.registry());

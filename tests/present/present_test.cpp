@@ -213,17 +213,11 @@ TEST_F(Present, AHeadlessPlanIsNotPresented) {
     EXPECT_THROW((void)presentRequirements(CompiledGraph(std::move(graph), o)), ExecutorError);
 }
 
-/// The application's own swapchain: its images given with setPresentImages, its semaphores
-/// in each PresentTarget, its present.
-TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
-    const VkDevice vkd = device_->device();
-    VkSurfaceCapabilitiesKHR caps;
-    ASSERT_EQ(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_->physicalDevice(), device_->surface(), &caps),
-              VK_SUCCESS);
-    const CompiledGraph compiled = raster(caps.currentExtent.width, caps.currentExtent.height);
-    const PresentRequirements need = presentRequirements(compiled);
+/// A swapchain an application makes for the plan's present images, FIFO at the surface's size.
+VkSwapchainCreateInfoKHR ownSwapchainInfo(const Device& device, const VkSurfaceCapabilitiesKHR& caps,
+                                          const PresentRequirements& need, VkSwapchainKHR old = VK_NULL_HANDLE) {
     VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
-    ci.surface = device_->surface();
+    ci.surface = device.surface();
     ci.minImageCount = caps.minImageCount + 1;
     ci.imageFormat = need.format;
     ci.imageColorSpace = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
@@ -234,6 +228,20 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
     ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
     ci.presentMode = VK_PRESENT_MODE_FIFO_KHR;
     ci.clipped = VK_TRUE;
+    ci.oldSwapchain = old;
+    return ci;
+}
+
+/// The application's own swapchain: its images given with setPresentImages, its semaphores
+/// in each PresentTarget, its present.
+TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
+    const VkDevice vkd = device_->device();
+    VkSurfaceCapabilitiesKHR caps;
+    ASSERT_EQ(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(device_->physicalDevice(), device_->surface(), &caps),
+              VK_SUCCESS);
+    const CompiledGraph compiled = raster(caps.currentExtent.width, caps.currentExtent.height);
+    const PresentRequirements need = presentRequirements(compiled);
+    const VkSwapchainCreateInfoKHR ci = ownSwapchainInfo(*device_, caps, need);
     VkSwapchainKHR swapchain;
     ASSERT_EQ(vkCreateSwapchainKHR(vkd, &ci, nullptr, &swapchain), VK_SUCCESS);
     uint32_t n = 0;
@@ -336,19 +344,7 @@ TEST_F(Present, AFrameWhosePassThrowsWaitsForTheApplicationsAcquireSemaphore) {
     VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     // A new swapchain (the old one retired) with a render-complete semaphore per image.
     const auto recreate = [&] {
-        VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
-        ci.surface = device_->surface();
-        ci.minImageCount = caps.minImageCount + 1;
-        ci.imageFormat = need.format;
-        ci.imageColorSpace = VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
-        ci.imageExtent = caps.currentExtent;
-        ci.imageArrayLayers = 1;
-        ci.imageUsage = need.usage;
-        ci.preTransform = caps.currentTransform;
-        ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
-        ci.presentMode = VK_PRESENT_MODE_FIFO_KHR;
-        ci.clipped = VK_TRUE;
-        ci.oldSwapchain = swapchain;
+        const VkSwapchainCreateInfoKHR ci = ownSwapchainInfo(*device_, caps, need, swapchain);
         VkSwapchainKHR next = VK_NULL_HANDLE;
         ASSERT_EQ(vkCreateSwapchainKHR(vkd, &ci, nullptr, &next), VK_SUCCESS);
         vkDestroySwapchainKHR(vkd, swapchain, nullptr);  // its presents are done: the queue is idle
