@@ -139,14 +139,7 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
         const Swapchain::Impl& sc = SwapchainAccess::impl(*presentTo);
         if (&sc.device != &device) throw ExecutorError("RendererOptions::presentTo: a swapchain of another device");
         if (!sc.needsRecreate(presentRequirements(compiled)) && !sc.paused()) {
-            if (compiled.outputWidth() != sc.extent.width || compiled.outputHeight() != sc.extent.height) {
-                try {
-                    compiled = compiled.resized(sc.extent.width, sc.extent.height);
-                } catch (const GraphError& e) {
-                    throw ExecutorError("presenting at " + std::to_string(sc.extent.width) + "x" +
-                                        std::to_string(sc.extent.height) + ": " + e.what());
-                }
-            }
+            compiled = Impl::atPresentExtent(std::move(compiled), sc.extent);
             d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},
                                              &sc, sc.imagesId};
         }
@@ -271,15 +264,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
     // A presenting renderer renders at its present images' extent, as its constructor does.
-    if (const auto& p = d.present;
-        p && (compiled.outputWidth() != p->images.extent.width || compiled.outputHeight() != p->images.extent.height)) {
-        try {
-            compiled = compiled.resized(p->images.extent.width, p->images.extent.height);
-        } catch (const GraphError& e) {
-            throw ExecutorError("presenting at " + std::to_string(p->images.extent.width) + "x" +
-                                std::to_string(p->images.extent.height) + ": " + e.what());
-        }
-    }
+    if (d.present) compiled = Impl::atPresentExtent(std::move(compiled), d.present->images.extent);
     d.waitIdle();
     // Rereading builds with a new compiler, which reads every shader again. When that fails,
     // the old one comes back with the sources the running pipelines were built from, so that

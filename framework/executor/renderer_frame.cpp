@@ -399,11 +399,7 @@ void Renderer::Impl::renderFrame(bool background) {
 }
 
 void Renderer::Impl::waitIdle() {
-    std::vector<FrameSlot*> oldestFirst;
-    for (FrameSlot& f : frames) oldestFirst.push_back(&f);
-    std::sort(oldestFirst.begin(), oldestFirst.end(),
-              [](const FrameSlot* a, const FrameSlot* b) { return a->frame < b->frame; });
-    for (FrameSlot* f : oldestFirst) waitSlot(*f);
+    for (FrameSlot& f : frames) waitSlot(f);  // in any order: collectTimings keeps the newest
 }
 
 }  // namespace skygraph

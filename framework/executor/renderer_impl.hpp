@@ -506,6 +506,9 @@ struct Renderer::Impl {
     /// Makes `images` the plan's Present resource and rebuilds the plan state (compiled again at
     /// their extent when it differs). On failure throws and keeps the old state and binding.
     void bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain);
+    /// `compiled` at the present images' `extent` (as it is when it has that size already);
+    /// throws ExecutorError when it does not compile there.
+    static CompiledGraph atPresentExtent(CompiledGraph compiled, VkExtent2D extent);
     /// The checks of the binding against a plan state being built; sets presentResource.
     void describePresent(detail::PlanState& s) const;
     [[nodiscard]] uint32_t waitForFrameSlot();

@@ -47,20 +47,19 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     s.presentImages = static_cast<uint32_t>(p.images.size());
 }
 
+CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D extent) {
+    if (compiled.outputWidth() == extent.width && compiled.outputHeight() == extent.height) return compiled;
+    try {
+        return compiled.resized(extent.width, extent.height);
+    } catch (const GraphError& e) {
+        throw ExecutorError("presenting at " + extentText(extent) + ": " + e.what());
+    }
+}
+
 void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain) {
     if (images.images.empty()) throw ExecutorError("setPresentImages: no images");
     if (images.extent.width == 0 || images.extent.height == 0) throw ExecutorError("setPresentImages: 0x0 images");
-    std::optional<CompiledGraph> next;
-    const CompiledGraph& running = state->compiled;
-    if (running.outputWidth() != images.extent.width || running.outputHeight() != images.extent.height) {
-        try {
-            next.emplace(running.resized(images.extent.width, images.extent.height));
-        } catch (const GraphError& e) {
-            throw ExecutorError("presenting at " + extentText(images.extent) + ": " + e.what());
-        }
-    } else {
-        next.emplace(running);
-    }
+    std::optional<CompiledGraph> next = atPresentExtent(state->compiled, images.extent);
     std::optional<PresentBinding> previous = std::move(present);
     present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->imagesId : 0};
     try {
