@@ -131,9 +131,8 @@ std::vector<std::pair<std::string, std::string>> storageFormatDefines(const Pipe
                                     "qualifier (shaderStorageImageWriteWithoutFormat); use R8G8B8A8_UNORM");
     }
     const auto info = findFormat(output.format);
-    throw ExecutorError(where + ": TonemappingComputePass writes " + kTonemappingComputeOutputNames +
-                        " storage images (it encodes sRGB itself), not " +
-                        (info ? std::string(info->name) : std::to_string(output.format)));
+    throw ExecutorError(where + ": " +
+                        tonemappingComputeOutputProblem(info ? std::string(info->name) : std::to_string(output.format)));
 }
 
 class TonemappingComputePass final : public PassImplementation {

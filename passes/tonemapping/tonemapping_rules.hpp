@@ -2,10 +2,14 @@
 // when its pipeline is made (tonemapping_pass.cpp).
 #pragma once
 
+#include <skygraph/format.hpp>
+
 #include <vulkan/vulkan_core.h>
 
 #include <algorithm>
 #include <array>
+#include <string>
+#include <string_view>
 
 namespace skygraph::passes {
 
@@ -15,8 +19,22 @@ namespace skygraph::passes {
 inline constexpr std::array kTonemappingComputeOutputs{VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM,
                                                        VK_FORMAT_A2B10G10R10_UNORM_PACK32,
                                                        VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
-inline constexpr const char* kTonemappingComputeOutputNames =
-    "R8G8B8A8_UNORM, B8G8R8A8_UNORM, A2B10G10R10_UNORM_PACK32, R16G16B16A16_SFLOAT or R32G32B32A32_SFLOAT";
+
+/// "R8G8B8A8_UNORM, ... or R32G32B32A32_SFLOAT": the formats above by their graph-file names.
+[[nodiscard]] inline std::string tonemappingComputeOutputNames() {
+    std::string names;
+    for (size_t i = 0; i < kTonemappingComputeOutputs.size(); ++i) {
+        names += i == 0 ? "" : i + 1 == kTonemappingComputeOutputs.size() ? " or " : ", ";
+        names += findFormat(kTonemappingComputeOutputs[i])->name;
+    }
+    return names;
+}
+
+/// Why TonemappingComputePass cannot write `format`, a name from the format table.
+[[nodiscard]] inline std::string tonemappingComputeOutputProblem(std::string_view format) {
+    return "TonemappingComputePass writes " + tonemappingComputeOutputNames() +
+           " storage images (it encodes sRGB itself), not " + std::string(format);
+}
 
 [[nodiscard]] inline bool tonemappingComputeWrites(VkFormat format) {
     return std::find(kTonemappingComputeOutputs.begin(), kTonemappingComputeOutputs.end(), format) !=

@@ -24,15 +24,14 @@ PassTypeInfo tonemappingComputePassType() {
         for (size_t i = 0; i < pass.uses.size(); ++i) {
             const ResourceDesc& r = graph.resources[pass.uses[i].resource];
             if (graph.slotName(pass.uses[i].slot) == "output" && !tonemappingComputeWrites(r.format.format))
-                problems.push_back({i, "TonemappingComputePass writes " + std::string(kTonemappingComputeOutputNames) +
-                                           " (it encodes sRGB itself), not " + std::string(r.format.name)});
+                problems.push_back({i, tonemappingComputeOutputProblem(r.format.name)});
         }
         return problems;
     };
     return {"TonemappingComputePass",
             {slot("hdr", Stage::Compute, {Access::Read}, BindAs::Sampled, "HDR input"),
              slot("output", Stage::Compute, {Access::Write}, BindAs::Storage,
-                  std::string("display-referred output, sRGB-encoded by the shader: ") + kTonemappingComputeOutputNames)},
+                  std::string("display-referred output, sRGB-encoded by the shader: ") + tonemappingComputeOutputNames())},
             false,
             rules({{"operator", oneOf({"aces_narkowicz", "aces_hill", "khronos_pbr_neutral", "passthrough"})},
                    {"exposure_ev", numberIn(-64.0, 64.0)}}),
