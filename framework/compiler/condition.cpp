@@ -5,6 +5,17 @@
 #include <unordered_set>
 
 namespace skygraph {
+namespace {
+
+bool isDigit(char c) { return c >= '0' && c <= '9'; }
+bool isNameCharacter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || isDigit(c); }
+
+}  // namespace
+
+bool Condition::isFeatureName(std::string_view name) noexcept {
+    return !name.empty() && !isDigit(name[0]) && std::all_of(name.begin(), name.end(), isNameCharacter) &&
+           name != "true" && name != "false";
+}
 
 // And/Or are n-ary: a chain such as `a && b && c && ...` is one node with many children, so
 // the tree's depth grows only with parentheses and `!`, which the parser limits. That keeps
@@ -78,10 +89,8 @@ private:
             return out;
         }
         size_t start = pos_;
-        while (pos_ < text_.size() &&
-               (std::isalnum(static_cast<unsigned char>(text_[pos_])) || text_[pos_] == '_'))
-            ++pos_;
-        if (start == pos_ || std::isdigit(static_cast<unsigned char>(text_[start]))) {
+        while (pos_ < text_.size() && isNameCharacter(text_[pos_])) ++pos_;
+        if (start == pos_ || isDigit(text_[start])) {
             pos_ = start;
             fail(pos_ == text_.size() ? "expected a feature name at the end"
                                       : "expected a feature name, found '" + rest() + "'");

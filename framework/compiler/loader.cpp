@@ -25,13 +25,6 @@
 namespace skygraph {
 namespace {
 
-/// docs/graph-format.md, "Features": what a condition can name.
-bool isFeatureName(std::string_view name) {
-    const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
-    if (name.empty() || !letter(name[0]) || name == "true" || name == "false") return false;
-    return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
-}
-
 std::string joinNames(const std::vector<std::string>& names) {
     std::string out;
     for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -278,7 +271,7 @@ private:
         }
         for (const auto& [key, value] : features.members()) {
             const std::string name(key);
-            if (!isFeatureName(name))
+            if (!Condition::isFeatureName(name))
                 error("features." + name, "", "", "'" + printableName(name) + "' is not a valid feature name");
             if (!value.isBoolean())
                 error("features." + name, "", "", "default must be true or false");

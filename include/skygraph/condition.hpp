@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace skygraph {
@@ -24,6 +25,10 @@ public:
     /// `error` to a message that names the column; on success `error` is cleared. Bad text does
     /// not throw. Names are not checked here; see `features()`.
     [[nodiscard]] static std::optional<Condition> parse(const std::string& text, std::string& error);
+
+    /// Whether `name` is a name a condition can hold: ASCII letters, digits and `_`, not
+    /// starting with a digit, and neither `true` nor `false`.
+    [[nodiscard]] static bool isFeatureName(std::string_view name) noexcept;
 
     /// A feature that `values` does not name counts as off.
     [[nodiscard]] bool evaluate(const FeatureValues& values) const noexcept;
