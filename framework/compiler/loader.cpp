@@ -481,10 +481,16 @@ private:
     void loadUsage(PassDesc& p, std::string_view resName, std::optional<uint32_t> found, const UsageEntry& e,
                    uint32_t fileIndex, Path&& path) {
         auto fail = [&](const std::string& msg) { error(path(), p.name, resName, msg); };
+        // In a usage object, an error about a key it has points at that key; one about a
+        // missing key, at the object. The short form's "Access@Stage" string has no keys inside.
+        auto failAt = [&](const char* key, const std::string& msg) {
+            const bool present = !e.split && e.fields[keyIndex(kUsageKeys, key)];
+            error(present ? path() + "." + key : path(), p.name, resName, msg);
+        };
         if (!found) {
             std::vector<std::string> names;
             for (const auto& r : graph_.resources) names.push_back(r.name);
-            return fail("unknown resource; declared: " + joinNames(names));
+            return failAt("resource", "unknown resource; declared: " + joinNames(names));
         }
         const ResourceDesc* res = &graph_.resources[*found];
         UsageDecl u;
@@ -497,11 +503,11 @@ private:
                            : stageValue && stageValue.isString() ? parseStage(stageValue.string())
                                                                  : std::nullopt;
         if (!access)
-            fail("unknown access " +
+            failAt("access", "unknown access " +
                  (e.split ? dumpString(e.access) : accessValue ? accessValue.dump() : "(missing)") +
                  "; expected Read, Write or ReadWrite");
         if (!stage)
-            fail("unknown stage " + (e.split ? dumpString(e.stage) : stageValue ? stageValue.dump() : "(missing)") +
+            failAt("stage", "unknown stage " + (e.split ? dumpString(e.stage) : stageValue ? stageValue.dump() : "(missing)") +
                  "; expected ColorAttachment, DepthAttachment, Vertex, Fragment, Compute, "
                  "Transfer, VertexInput or Indirect");
         if (!access || !stage) return;
@@ -509,13 +515,17 @@ private:
         u.usage.stage = *stage;
         if (const JsonValue as = e.fields[usageKey::as]) {
             auto parsed = as.isString() ? parseBindAs(as.string()) : std::nullopt;
-            if (!parsed) return fail("unknown `as` " + as.dump() + "; expected sampled, storage, uniform or index");
+            if (!parsed) return failAt("as", "unknown `as` " + as.dump() + "; expected sampled, storage, uniform or index");
             u.usage.as = *parsed;
         }
         if (const JsonValue slot = e.fields[usageKey::slot]) {
-            if (!slot.isString() || slot.string().empty()) return fail("`slot` must name a slot of the pass type");
+            if (!slot.isString() || slot.string().empty())
+                return failAt("slot", "`slot` must name a slot of the pass type");
             u.slot = graph_.internSlot(slot.string());
         }
+        // A resource whose declaration was refused has no description to check a usage against:
+        // its own error says what to mend, and follow-on errors would only mislead.
+        const bool described = !faultyResources_[static_cast<size_t>(res - graph_.resources.data())];
         const JsonValue mips = e.fields[usageKey::mips], layers = e.fields[usageKey::layers];
         if (mips || layers) {
             // A full chain's length is known here for fixed extents only; for output-relative
@@ -527,13 +537,13 @@ private:
             SubresourceRange range{0, levels, 0, res->layers};
             auto pair = [&](const char* key, JsonValue it, uint32_t& first, uint32_t& count) {
                 if (!it) return true;
-                if (!res->isImage()) return fail(std::string("buffers have no ") + key), false;
+                if (!res->isImage()) return failAt(key, std::string("buffers have no ") + key), false;
                 if (!it.isArray() || it.size() != 2 || !it[0].isUnsigned() || !it[1].isUnsigned() ||
                     it[1].number<uint64_t>() == 0)
-                    return fail(std::string("`") + key + "` must be [first, count] with count >= 1"), false;
+                    return failAt(key, std::string("`") + key + "` must be [first, count] with count >= 1"), false;
                 // Past any image's levels or layers: said here, before the numbers are narrowed.
                 if (it[0].number<uint64_t>() > kMaxLayers || it[1].number<uint64_t>() > kMaxLayers)
-                    return fail(std::string("`") + key + "` " + it.dump() + " is past any image's " +
+                    return failAt(key, std::string("`") + key + "` " + it.dump() + " is past any image's " +
                                 (key == std::string_view("mips")
                                      ? "mip levels (at most " + std::to_string(std::bit_width(kMaxImageExtent)) + ")"
                                      : "layers (at most " + std::to_string(kMaxLayers) + ")")),
@@ -545,24 +555,29 @@ private:
             if (!pair("mips", mips, range.baseMip, range.mipCount) ||
                 !pair("layers", layers, range.baseLayer, range.layerCount))
                 return;
-            if (res->mips == 0 && range.baseMip + range.mipCount > levels)
-                return fail("mips [" + std::to_string(range.baseMip) + ", " + std::to_string(range.mipCount) +
-                            "] exceed the resource's " + std::to_string(levels) + " mip levels (" +
-                            (res->extent.relativeToOutput
-                                 ? std::string("the most any image can have")
-                                 : "the full chain of " + std::to_string(res->extent.width) + "x" +
-                                       std::to_string(res->extent.height)) +
-                            ")");
+            // A resource whose declaration was refused has no bounds to check against.
+            if (described && range.baseMip + range.mipCount > levels)
+                return failAt("mips", "mips [" + std::to_string(range.baseMip) + ", " +
+                                          std::to_string(range.mipCount) + "] exceed the resource's " +
+                                          std::to_string(levels) + " mip levels" + chainNote(*res));
+            if (described && range.baseLayer + range.layerCount > res->layers)
+                return failAt("layers", "layers [" + std::to_string(range.baseLayer) + ", " +
+                                            std::to_string(range.layerCount) + "] exceed the resource's " +
+                                            std::to_string(res->layers) + " layers");
             u.usage.range = range;
         }
-        // A resource whose declaration was refused has no description to check a usage against:
-        // its own error says what to mend, and follow-on errors would only mislead.
-        const bool described = !faultyResources_[static_cast<size_t>(res - graph_.resources.data())];
         std::string problem = described ? usageProblem(*res, u.usage) : std::string();
         if (!problem.empty()) return fail(problem);
         u.usage.as = resolvedBinding(u.usage.mode(), res->isImage());
         p.uses.push_back(u);
         useIndices_.push_back(fileIndex);
+    }
+
+    /// Where a mip count that the file leaves to the compiler comes from, for a range past it.
+    static std::string chainNote(const ResourceDesc& r) {
+        if (r.mips != 0) return {};
+        if (r.extent.relativeToOutput) return " (the most any image can have)";
+        return " (the full chain of " + std::to_string(r.extent.width) + "x" + std::to_string(r.extent.height) + ")";
     }
 
     /// The JSON path of usage `i` of the pass being loaded: a usage that failed to load
@@ -626,7 +641,7 @@ private:
         if (type.acceptsAnyUsage) {
             for (size_t i = 0; i < p.uses.size(); ++i)
                 if (!graph_.slotName(p.uses[i].slot).empty())
-                    error(usePath(p, i), p.name, graph_.resources[p.uses[i].resource].name,
+                    error(usePath(p, i) + ".slot", p.name, graph_.resources[p.uses[i].resource].name,
                           type.name + " takes any usage and has no slots; remove `slot`");
             return;
         }
@@ -652,8 +667,8 @@ private:
             for (size_t s = 0; s < type.slots.size(); ++s)
                 if (type.slots[s].name == wanted) slot = s;
             if (slot == type.slots.size() && !named.empty()) {
-                error(usePath(p, i), p.name, resName, type.name + " has no slot '" + named +
-                                                          "'; its slots: " + expected());
+                error(usePath(p, i) + ".slot", p.name, resName,
+                      type.name + " has no slot '" + named + "'; its slots: " + expected());
                 continue;
             }
             if (slot == type.slots.size()) {

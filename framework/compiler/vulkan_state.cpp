@@ -73,16 +73,6 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
                    " cannot be a storage image (sRGB and depth formats never can); sample it or "
                    "pick a storage format";
     }
-    if (u.range && r.isImage()) {
-        const auto& range = *u.range;
-        if (r.mips != 0 && range.baseMip + range.mipCount > r.mips)
-            return "mips [" + std::to_string(range.baseMip) + ", " + std::to_string(range.mipCount) +
-                   "] exceed the resource's " + std::to_string(r.mips) + " mip levels";
-        if (range.baseLayer + range.layerCount > r.layers)
-            return "layers [" + std::to_string(range.baseLayer) + ", " +
-                   std::to_string(range.layerCount) + "] exceed the resource's " +
-                   std::to_string(r.layers) + " layers";
-    }
     return {};
 }
 

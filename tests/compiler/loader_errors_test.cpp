@@ -333,9 +333,15 @@ TEST(LoaderErrors, UnknownAccessStageAndAs) {
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses.mipped", "gen", "mipped", {"unknown stage \"Pixel\"", "Compute"}));
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses.buf", "gen", "buf", {"Access@Stage"}));
     g = withGeneric(baseGraph(), "gen",
-                    Json::array({{{"resource", "cube"}, {"access", "Read"}, {"stage", "Compute"}, {"as", "texture"}}}));
+                    Json::array({{{"resource", "cube"}, {"access", "Read"}, {"stage", "Compute"}, {"as", "texture"}},
+                                 {{"resource", "mipped"}, {"access", "Sample"}, {"stage", "Pixel"}},
+                                 {{"resource", "nothere"}, {"access", "Read"}, {"stage", "Compute"}}}));
     ds = loadErrors(g);
-    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0]", "gen", "cube", {"unknown `as` \"texture\"", "sampled"}));
+    // In usage objects, each error points at its key.
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].as", "gen", "cube", {"unknown `as` \"texture\"", "sampled"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1].access", "gen", "mipped", {"unknown access \"Sample\""}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1].stage", "gen", "mipped", {"unknown stage \"Pixel\""}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[2].resource", "gen", "nothere", {"unknown resource; declared"}));
 }
 
 TEST(LoaderErrors, NonStringResourceInUsageArrayIsAnError) {
@@ -408,7 +414,7 @@ TEST(LoaderErrors, UsageContradictingANamedSlot) {
     g["passes"][1]["uses"][0] = Json{{"resource", "hdr_color"}, {"access", "Read"}, {"stage", "Fragment"},
                                      {"slot", "bloom"}};
     ds = loadErrors(g);
-    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0]", "tonemap", "hdr_color", {"no slot 'bloom'", "hdr (Read@Fragment"}));
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0].slot", "tonemap", "hdr_color", {"no slot 'bloom'", "hdr (Read@Fragment"}));
 }
 
 // SkyboxPass's `previous` is bound by name only: a sampled fragment read still binds to
@@ -692,9 +698,9 @@ TEST(LoaderErrors, MeaninglessDeclarationsAreRefused) {
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.stencil.clear.depth", "", "stencil", {"S8_UINT has no depth aspect"}))
         << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0]", "generic", "shown", {"Generic takes any usage and has no slots"}))
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].slot", "generic", "shown", {"Generic takes any usage and has no slots"}))
         << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0]", "tonemap", "hdr_color", {"`slot` must name a slot"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0].slot", "tonemap", "hdr_color", {"`slot` must name a slot"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "passes[3].uses", "idle", "", {"empty; a pass that uses nothing does nothing"}))
         << listAll(ds);
 }
@@ -937,7 +943,9 @@ TEST(LoaderErrors, UsageRangesOutOfBounds) {
     };
     for (const auto& [u, res, words] : cases) {
         Json g = withGeneric(baseGraph(), "gen", Json::array({u}));
-        EXPECT_TRUE(hasDiag(loadErrors(g), "passes[2].uses[0]", "gen", res, {words})) << u.dump();
+        // The error points at the key it is about.
+        const std::string path = std::string("passes[2].uses[0].") + (u.contains("mips") ? "mips" : "layers");
+        EXPECT_TRUE(hasDiag(loadErrors(g), path, "gen", res, {words})) << u.dump();
     }
     // The last level of each is fine.
     Json g = withGeneric(baseGraph(), "gen",
