@@ -1,6 +1,7 @@
 #include "replace_file.hpp"
 
 #include "pending_temporaries.hpp"
+#include "printable_name.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -192,9 +193,9 @@ OldFileKept::OldFileKept(const fs::path& output, const fs::path& kept, std::erro
 std::string whyNotWritten(const fs::filesystem_error& error) {
     if (dynamic_cast<const OldFileKept*>(&error))
         return error.code().message() + "; the old file could not be put back: it is kept as '" +
-               error.path2().string() + "'";
+               printableName(error.path2().string()) + "'";
     if (const auto* missing = dynamic_cast<const MissingFolder*>(&error))
-        return "the folder '" + missing->path2().string() + "' does not exist" +
+        return "the folder '" + printableName(missing->path2().string()) + "' does not exist" +
                (missing->temporaryFolder() ? " (TMPDIR names it: a stream is written through a temporary there)" : "");
     if (error.code() == std::errc::is_a_directory) return "it is a folder";
     return error.code().message();

@@ -350,6 +350,42 @@ TEST_F(Cli, AFeatureGivenTwiceExitsTwo) {
     }
 }
 
+// Paths and words from the command line are shown with control characters escaped, as names
+// from files are: a bell or a line break in one would ring or split the message.
+TEST_F(Cli, CommandLineTextIsShownEscaped) {
+    const auto controlCharacters = [](const std::string& text) {
+        return std::count_if(text.begin(), text.end(), [](char c) {
+            return c != '\n' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f);
+        });
+    };
+    const fs::path out = dir_ / "work" / "no\a_dir" / "plan.json";
+    const std::string shown = (dir_ / "work").string() + "/no\\u0007_dir";
+    const CliRun unwritable = run({"compile", "graphs/raster.json", "-o", out.string()});
+    EXPECT_EQ(unwritable.status, 1) << unwritable.err;
+    EXPECT_NE(unwritable.err.find("cannot write '" + shown + "/plan.json': the folder '" + shown + "' does not exist"),
+              std::string::npos)
+        << unwritable.err;
+    const CliRun feature = run({"compile", "graphs/raster.json", "--feature", "sky\abox=maybe"});
+    EXPECT_EQ(feature.status, 2) << feature.err;
+    EXPECT_NE(feature.err.find("got 'sky\\u0007box=maybe'"), std::string::npos) << feature.err;
+    const CliRun command = run({"comp\nile"});
+    EXPECT_EQ(command.status, 2) << command.err;
+    EXPECT_NE(command.err.find("unknown command 'comp\\u000aile'"), std::string::npos) << command.err;
+    std::vector<CliRun> runs{unwritable, feature, command};
+#if SKYGRAPH_CLI_HAS_RENDER
+    // Refused before any device is made.
+    const CliRun render = run({"render", "-o", (dir_ / "work" / "frame\a.jpg").string()});
+    EXPECT_EQ(render.status, 1) << render.err;
+    EXPECT_NE(render.err.find("frame\\u0007.jpg': its extension must be"), std::string::npos) << render.err;
+    const CliRun cubemap = run({"cubemap", "sky.hdr", "-o", "sky\a.png"});
+    EXPECT_EQ(cubemap.status, 2) << cubemap.err;
+    EXPECT_NE(cubemap.err.find("got 'sky\\u0007.png'"), std::string::npos) << cubemap.err;
+    runs.insert(runs.end(), {render, cubemap});
+#endif
+    for (const CliRun& r : runs) EXPECT_EQ(controlCharacters(r.err), 0) << r.err;
+    EXPECT_TRUE(workFiles().empty());
+}
+
 TEST_F(Cli, MisuseExitsTwo) {
     const std::vector<std::vector<std::string>> cases{
         {"compile", "graphs/raster.json", "--bogus"},

@@ -1,4 +1,5 @@
 #include "check_report.hpp"
+#include "printable_name.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -106,7 +107,7 @@ std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsError
     for (const CheckCase& c : cases) {
         const std::vector<std::string> reasons = c.failures(warningsAsErrors);
         if (reasons.empty() && c.messages.empty()) continue;
-        out << "\n" << (reasons.empty() ? "WARN " : "FAIL ") << c.file.string() << " [" << c.combination << "]\n";
+        out << "\n" << (reasons.empty() ? "WARN " : "FAIL ") << printableName(c.file.string()) << " [" << c.combination << "]\n";
         for (const std::string& r : reasons) out << "  " << r << "\n";
         if (!c.verifierReport.empty()) out << c.verifierReport;
         if (c.golden && !c.golden->diff.empty()) out << c.golden->diff;

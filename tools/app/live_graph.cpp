@@ -530,7 +530,7 @@ bool LiveGraph::finishScreenshot(const std::filesystem::path& png) {
     try {
         if (!png.empty()) {
             writePng(png, renderer_->readback());
-            spdlog::info("screenshot: {}", png.string());
+            spdlog::info("screenshot: {}", printableName(png.string()));
             written = true;
         }
     } catch (const std::exception& e) {

@@ -329,7 +329,7 @@ std::optional<std::string> outputFormat(const RenderOptions& options) {
             return std::nullopt;
         }
         if (!fromName.empty() && fromName != options.outputFormat) {
-            std::cerr << "skygraph render: -o '" << options.output.string() << "' names a ." << fromName
+            std::cerr << "skygraph render: -o '" << printableName(options.output.string()) << "' names a ." << fromName
                       << " file but --format is " << options.outputFormat << "\n";
             return std::nullopt;
         }
@@ -337,7 +337,7 @@ std::optional<std::string> outputFormat(const RenderOptions& options) {
     }
     if (options.output.empty()) return "png";
     if (!known(fromName)) {
-        std::cerr << "skygraph render: cannot write '" << options.output.string()
+        std::cerr << "skygraph render: cannot write '" << printableName(options.output.string())
                   << "': its extension must be .png, .hdr or .exr, or --format must say which (e.g. -o /dev/stdout "
                      "--format exr)\n";
         return std::nullopt;
@@ -375,7 +375,7 @@ int renderCommand(const RenderOptions& options) {
         const std::string target = outputTarget(graph, compile(graph, co), options.readback);
         if (target.empty()) {
             if (!output.empty()) {
-                std::cerr << "skygraph render: nothing to write to " << output.string() << ": graph '" << graph.name
+                std::cerr << "skygraph render: nothing to write to " << printableName(output.string()) << ": graph '" << graph.name
                           << "' has no Present image that a pass uses; add --readback NAME with one of its images: "
                           << imageNames(graph) << "\n";
                 return 1;
@@ -397,7 +397,7 @@ int renderCommand(const RenderOptions& options) {
             try {
                 (void)files::writableOutputTarget(output);
             } catch (const std::filesystem::filesystem_error& e) {
-                std::cerr << "skygraph render: cannot write '" << output.string() << "': " << files::whyNotWritten(e)
+                std::cerr << "skygraph render: cannot write '" << printableName(output.string()) << "': " << files::whyNotWritten(e)
                           << "\n";
                 return 1;
             }
@@ -417,7 +417,7 @@ int renderCommand(const RenderOptions& options) {
         if (!target.empty()) {
             const ImageData image = renderer.readback(target);
             writeImage(output, image, format);
-            spdlog::info("wrote {}", output.string());
+            spdlog::info("wrote {}", printableName(output.string()));
         }
         return validationExit(*device, "skygraph render");
     } catch (...) {

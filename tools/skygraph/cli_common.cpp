@@ -3,6 +3,7 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
 
+#include "printable_name.hpp"
 #include "replace_file.hpp"
 
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -33,9 +34,9 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
         const auto eq = f.find('=');
         const std::string value = eq == std::string::npos ? "" : f.substr(eq + 1);
         if (eq == 0 || eq == std::string::npos || (value != "on" && value != "off"))
-            throw UsageError(std::string(option) + " expects NAME=on or NAME=off, got '" + f + "'");
+            throw UsageError(std::string(option) + " expects NAME=on or NAME=off, got '" + printableName(f) + "'");
         if (!out.emplace(f.substr(0, eq), value == "on").second)
-            throw UsageError(std::string(option) + " gives feature '" + f.substr(0, eq) + "' twice");
+            throw UsageError(std::string(option) + " gives feature '" + printableName(f.substr(0, eq)) + "' twice");
     }
     return out;
 }
@@ -43,8 +44,8 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
 void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,
                              const std::vector<std::filesystem::path>& inputs) {
     if (const auto input = files::sameFileAmong(output, inputs))
-        throw std::runtime_error(std::string(option) + " '" + output.string() + "' is the input '" + input->string() +
-                                 "': it would be overwritten");
+        throw std::runtime_error(std::string(option) + " '" + printableName(output.string()) + "' is the input '" +
+                                 printableName(input->string()) + "': it would be overwritten");
 }
 
 void writeOutput(const std::string& path, const std::string& text) {
@@ -55,7 +56,7 @@ void writeOutput(const std::string& path, const std::string& text) {
     try {
         files::replaceFileContents(path, text);
     } catch (const std::filesystem::filesystem_error& e) {
-        throw std::runtime_error("cannot write '" + path + "': " + files::whyNotWritten(e));
+        throw std::runtime_error("cannot write '" + printableName(path) + "': " + files::whyNotWritten(e));
     }
 }
 

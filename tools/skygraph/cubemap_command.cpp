@@ -5,6 +5,7 @@
 #include "replace_file.hpp"
 
 #include "app/environment_bake.hpp"
+#include "printable_name.hpp"
 #include "shipped_names.hpp"
 
 #include <skygraph/hdr_image.hpp>
@@ -90,7 +91,7 @@ void requireWritableOutput(const std::filesystem::path& path) {
 int run(CubemapArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::filesystem::path output = args.output;
-    if (output.extension() != ".ktx2") throw UsageError("-o must name a .ktx2 file, got '" + args.output + "'");
+    if (output.extension() != ".ktx2") throw UsageError("-o must name a .ktx2 file, got '" + printableName(args.output) + "'");
     if (!args.cross.empty()) {
         const auto ext = std::filesystem::path(args.cross).extension();
         if (ext != ".hdr" && ext != ".exr") throw UsageError("--cross must name a .hdr or .exr file");
@@ -122,7 +123,7 @@ int run(CubemapArgs& args) {
     const HdrImage equirect = app::loadEnvironmentImage(
         args.input, bake.float32 ? std::numeric_limits<float>::max() : math::kLargestHalf);
     if (equirect.width != 2 * equirect.height)
-        spdlog::warn("'{}' is {}x{}, not 2:1; it is read as an equirect map all the same", args.input,
+        spdlog::warn("'{}' is {}x{}, not 2:1; it is read as an equirect map all the same", printableName(args.input),
                      equirect.width, equirect.height);
     bar.advance();
     bake.onStep = [&](const std::string&) { bar.advance(); };
@@ -159,7 +160,7 @@ int run(CubemapArgs& args) {
     const double totalMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     spdlog::info("wrote '{}' ({}^2 cube, {} products): {:.0f} ms in all, of which setup {:.0f} ms, passes {:.0f} ms",
-                 output.string(), bake.size, args.products.size(), totalMs, result.setupMs, result.gpuMs);
+                 printableName(output.string()), bake.size, args.products.size(), totalMs, result.setupMs, result.gpuMs);
     return kExitOk;
 }
 

@@ -4,6 +4,7 @@
 #include "cli_common.hpp"
 #include "compile_command.hpp"
 #include "pending_temporaries.hpp"
+#include "printable_name.hpp"
 #include "progress_bar.hpp"
 #if SKYGRAPH_HAS_EXECUTOR
 #include "render_command.hpp"
@@ -77,7 +78,7 @@ int main(int argc, char** argv) {
             known += (known.empty() ? "" : ", ") + command.app->get_name();
         }
         if (!found) {
-            std::cerr << "error: unknown command '" << argv[1] << "'; commands: " << known << "\n";
+            std::cerr << "error: unknown command '" << skygraph::printableName(argv[1]) << "'; commands: " << known << "\n";
             return kExitUsage;
         }
     }

@@ -2,6 +2,7 @@
 #include "sky_sequence_command.hpp"
 
 #include "app/procedural_environment.hpp"
+#include "printable_name.hpp"
 
 #include <skygraph/scene.hpp>
 
@@ -23,11 +24,11 @@ struct SkySequenceArgs {
 int run(const SkySequenceArgs& args) {
     if (const std::string problem = sequencePatternProblem(std::filesystem::path(args.pattern).filename().string());
         !problem.empty())
-        throw UsageError("skygraph sky-sequence: '" + args.pattern + "': its file name " + problem);
+        throw UsageError("skygraph sky-sequence: '" + printableName(args.pattern) + "': its file name " + problem);
     app::writeProceduralSkySequence(args.pattern, args.frames, args.width);
     std::cout << "skygraph sky-sequence: " << args.frames << " frames of " << args.width << "x" << args.width / 2
-              << ", " << sequenceFrameFile(args.pattern, 0).string() << " to "
-              << sequenceFrameFile(args.pattern, args.frames - 1).string() << "\n";
+              << ", " << printableName(sequenceFrameFile(args.pattern, 0).string()) << " to "
+              << printableName(sequenceFrameFile(args.pattern, args.frames - 1).string()) << "\n";
     return kExitOk;
 }
 
