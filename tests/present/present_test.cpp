@@ -47,6 +47,17 @@ CompiledGraph raster(uint32_t width, uint32_t height, FeatureValues features = {
     return CompiledGraph(std::move(graph), o);
 }
 
+/// What the application does after renderFrame: presents `image` once `rendered` is signalled.
+VkResult presentImage(VkQueue queue, VkSwapchainKHR swapchain, uint32_t image, VkSemaphore rendered) {
+    VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+    pi.waitSemaphoreCount = 1;
+    pi.pWaitSemaphores = &rendered;
+    pi.swapchainCount = 1;
+    pi.pSwapchains = &swapchain;
+    pi.pImageIndices = &image;
+    return vkQueuePresentKHR(queue, &pi);
+}
+
 TEST(PresentDevice, ASurfaceThatCannotBeMadeIsAnError) {
     DeviceOptions o;
     o.device = "llvmpipe";
@@ -266,13 +277,7 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
             ASSERT_EQ(vkAcquireNextImageKHR(vkd, swapchain, UINT64_MAX, acquired[slot], VK_NULL_HANDLE, &image),
                       VK_SUCCESS);
             renderer.renderFrame(PresentTarget{image, acquired[slot], done[image]});
-            VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
-            pi.waitSemaphoreCount = 1;
-            pi.pWaitSemaphores = &done[image];
-            pi.swapchainCount = 1;
-            pi.pSwapchains = &swapchain;
-            pi.pImageIndices = &image;
-            ASSERT_EQ(vkQueuePresentKHR(device_->queue(), &pi), VK_SUCCESS);
+            ASSERT_EQ(presentImage(device_->queue(), swapchain, image, done[image]), VK_SUCCESS);
         }
         EXPECT_THROW(renderer.renderFrame(PresentTarget{n, acquired[0], done[0]}), ExecutorError);
         renderer.waitIdle();
@@ -377,13 +382,7 @@ TEST_F(Present, AFrameWhosePassThrowsWaitsForTheApplicationsAcquireSemaphore) {
                 return;
             }
             renderer.renderFrame(PresentTarget{image, acquired[slot], done[image]});
-            VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
-            pi.waitSemaphoreCount = 1;
-            pi.pWaitSemaphores = &done[image];
-            pi.swapchainCount = 1;
-            pi.pSwapchains = &swapchain;
-            pi.pImageIndices = &image;
-            ASSERT_EQ(vkQueuePresentKHR(device_->queue(), &pi), VK_SUCCESS);
+            ASSERT_EQ(presentImage(device_->queue(), swapchain, image, done[image]), VK_SUCCESS);
         };
         for (int round = 0; round < 3; ++round) {
             SCOPED_TRACE("round " + std::to_string(round));
