@@ -4,14 +4,17 @@
 //   aces_fits [steps-per-stop, default 32]
 #include "aces_reference.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
 #include <exception>
-#include <string>
 
 int main(int argc, char** argv) {
+    CLI::App app{"aces_fits: the ACES fits' errors against the reference RRT + ODT"};
+    int perStop = 32;
+    app.add_option("steps-per-stop", perStop, "Grey-ramp steps per stop")->check(CLI::Range(1, 4096))->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
     try {
-        const int perStop = argc > 1 ? std::stoi(argv[1]) : 32;
-        if (perStop < 1) throw std::invalid_argument("steps per stop must be >= 1");
         skygraph::aces::printFitTable(skygraph::aces::Reference(), perStop);
         return 0;
     } catch (const std::exception& e) {

@@ -26,11 +26,11 @@
 #include <skygraph/device.hpp>
 #include <skygraph/renderer.hpp>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -43,12 +43,17 @@ struct Size {
     uint32_t width = 0, height = 0;
 };
 
-Size parseSize(const char* text) {
+/// "1920x1080" as a Size, or why not (for CLI11's check).
+std::string sizeProblem(const std::string& text) {
     Size s;
-    if (std::sscanf(text, "%ux%u", &s.width, &s.height) != 2 || s.width == 0 || s.height == 0) {
-        std::fprintf(stderr, "memory_gpu_bench: '%s' is not a size like 1920x1080\n", text);
-        std::exit(2);
-    }
+    if (std::sscanf(text.c_str(), "%ux%u", &s.width, &s.height) != 2 || s.width == 0 || s.height == 0)
+        return "'" + text + "' is not a size like 1920x1080";
+    return {};
+}
+
+Size parseSize(const std::string& text) {
+    Size s;
+    std::sscanf(text.c_str(), "%ux%u", &s.width, &s.height);
     return s;
 }
 
@@ -236,45 +241,50 @@ int compareImages(Device& device, const std::vector<std::string>& graphs, Size s
     return failures == 0 ? 0 : 1;
 }
 
-int usage() {
-    std::fprintf(stderr, "usage: memory_gpu_bench [--device D] memory [--size WxH]... GRAPH...\n"
-                         "       memory_gpu_bench [--device D] time --size WxH [--frames N] [--rounds R] [--layouts] GRAPH\n"
-                         "       memory_gpu_bench [--device D] compare [--size WxH] [--seeds N] GRAPH...\n");
-    return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
+    CLI::App app{"memory_gpu_bench: transient memory, frame time and images with and without aliasing"};
+    app.require_subcommand(1);
     DeviceOptions d;
     d.logMessages = false;
-    std::string mode;
-    std::vector<std::string> graphs;
-    std::vector<Size> sizes;
+    std::vector<std::string> graphs, sizeTexts;
     uint32_t frames = 20, rounds = 9, seeds = 0;
     bool layouts = false;
-    for (int i = 1; i < argc; ++i) {
-        const bool more = i + 1 < argc;
-        if (!std::strcmp(argv[i], "--device") && more) d.device = argv[++i];
-        else if (!std::strcmp(argv[i], "--size") && more) sizes.push_back(parseSize(argv[++i]));
-        else if (!std::strcmp(argv[i], "--frames") && more) frames = std::max(1, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--rounds") && more) rounds = std::max(1, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--layouts")) layouts = true;
-        else if (!std::strcmp(argv[i], "--seeds") && more) seeds = static_cast<uint32_t>(std::atoi(argv[++i]));
-        else if (mode.empty()) mode = argv[i];
-        else graphs.emplace_back(argv[i]);
-    }
-    if (graphs.empty() || (mode != "memory" && mode != "time" && mode != "compare")) return usage();
+    app.add_option("--device", d.device, "Physical device: index or name substring (e.g. nvidia, llvmpipe)");
+    const auto addGraphs = [&](CLI::App* mode, bool one) {
+        mode->add_option("GRAPH", graphs, one ? "The graph file" : "Graph files")->required()->expected(1, one ? 1 : -1);
+    };
+    const auto addSizes = [&](CLI::App* mode, const char* what) {
+        return mode->add_option("--size", sizeTexts, what)->check(CLI::Validator(sizeProblem, "WxH"));
+    };
+    CLI::App* memory = app.add_subcommand("memory", "Heap bytes per copy with each placement strategy, per graph and size");
+    addSizes(memory, "Output WIDTHxHEIGHT (repeatable; default 1920x1080 and 3840x2160)");
+    addGraphs(memory, false);
+    CLI::App* time = app.add_subcommand("time", "Frame time placed three ways, interleaved over rounds (medians)");
+    addSizes(time, "Output WIDTHxHEIGHT (repeatable)")->required();
+    time->add_option("--frames", frames, "Frames submitted back to back per way and round")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    time->add_option("--rounds", rounds, "Rounds")->check(CLI::PositiveNumber)->capture_default_str();
+    time->add_flag("--layouts", layouts, "Compare runs of reads in one layout with each reader's optimal one instead");
+    addGraphs(time, true);
+    CLI::App* compare = app.add_subcommand("compare", "Read-backs aliased and clobbered against unaliased, byte for byte");
+    addSizes(compare, "Output WIDTHxHEIGHT (default 64x64)")->expected(0, 1);
+    compare->add_option("--seeds", seeds, "Random Generic graphs besides the files")->capture_default_str();
+    addGraphs(compare, false);
+    CLI11_PARSE(app, argc, argv);
+    std::vector<Size> sizes;
+    for (const std::string& text : sizeTexts) sizes.push_back(parseSize(text));
     try {
         auto device = Device::create(d);
         std::printf("device: %s\n", device->name().c_str());
-        if (mode == "memory") {
+        if (memory->parsed()) {
             if (sizes.empty()) sizes = {{1920, 1080}, {3840, 2160}};
             reportMemory(*device, graphs, sizes);
             return 0;
         }
-        if (mode == "time") {
-            if (sizes.empty()) return usage();
+        if (time->parsed()) {
             for (const Size s : sizes) reportTime(*device, graphs.front(), s, frames, rounds, layouts);
             return 0;
         }

@@ -30,6 +30,8 @@
 
 #include "aces_reference.hpp"
 
+#include <CLI/CLI.hpp>
+
 
 #include <chrono>
 #include <cmath>
@@ -356,33 +358,7 @@ void printCurveTable() {
     std::printf("  ACES Narkowicz vs ACES Hill (after sRGB encode): worst %d codes at x = %.4g\n", worstFits, atFits);
 }
 
-Options parse(int argc, char** argv) {
-    Options o;
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string k = argv[i], v = argv[i + 1];
-        if (k == "--size") {
-            if (std::sscanf(v.c_str(), "%ux%u", &o.width, &o.height) != 2) throw std::runtime_error("--size WxH");
-        } else if (k == "--out") {
-            o.out = v;
-        } else if (k == "--device") {
-            o.device = v;
-        } else if (k == "--validate") {
-            o.validate = v == "on";
-        } else if (k == "--environment") {
-            o.environment = v != "off";
-        } else if (k == "--gltf-scene") {
-            o.gltfScene = v;
-        } else if (k == "--pt-reference-spp") {
-            o.ptReferenceSpp = uint32_t(std::stoul(v));
-        } else {
-            throw std::runtime_error("unknown option " + k);
-        }
-    }
-    return o;
-}
-
-int run(int argc, char** argv) {
-    const Options o = parse(argc, argv);
+int run(const Options& o) {
     DeviceOptions dopt;
     dopt.device = o.device;
     dopt.validation = o.validate;
@@ -517,8 +493,33 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    CLI::App app{"study: the speed/accuracy sweep (docs/tradeoffs.md)"};
+    Options o;
+    std::string size = std::to_string(o.width) + "x" + std::to_string(o.height);
+    app.add_option("--size", size, "Output WIDTHxHEIGHT")->capture_default_str();
+    app.add_option("--out", o.out, "The CSV to write")->capture_default_str();
+    app.add_option("--device", o.device, "Physical device: index or name substring")->capture_default_str();
+    app.add_option("--pt-reference-spp", o.ptReferenceSpp, "Samples per pixel of the path tracer's reference")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    const auto onOff = [](bool& flag) {
+        return [&flag](const std::string& v) { flag = v == "on"; };
+    };
+    app.add_option_function<std::string>("--environment", onOff(o.environment),
+                                          "off: skip the environment bakes (smoke runs); default on")
+        ->check(CLI::IsMember({"on", "off"}));
+    app.add_option_function<std::string>("--validate", onOff(o.validate),
+                                         "on: validation with synchronization validation, any message fails; default off")
+        ->check(CLI::IsMember({"on", "off"}));
+    app.add_option("--gltf-scene", o.gltfScene, "The glTF scene of the \"glTF model\" point, relative to the source tree")
+        ->capture_default_str();
+    CLI11_PARSE(app, argc, argv);
+    if (std::sscanf(size.c_str(), "%ux%u", &o.width, &o.height) != 2 || o.width == 0 || o.height == 0) {
+        std::fprintf(stderr, "study: --size '%s' is not a size like 128x96\n", size.c_str());
+        return 2;
+    }
     try {
-        return run(argc, argv);
+        return run(o);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "study: %s\n", e.what());
         return 1;
