@@ -411,6 +411,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     f2.features.geometryShader = supported.geometryShader;
     // A pass may blend one colour attachment (ReadWrite) and overwrite another.
     f2.features.independentBlend = supported.independentBlend;
+    // A pass may combine its output with an integer attachment, which cannot blend.
+    f2.features.logicOp = supported.logicOp;
 
     // One create info per family used, with as many queues as its highest chosen index needs.
     const std::array<float, kQueueKinds> priorities{1.0f, 1.0f, 1.0f};

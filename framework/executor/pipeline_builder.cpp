@@ -116,6 +116,10 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
     cb.attachmentCount = static_cast<uint32_t>(blends.size());
     cb.pAttachments = blends.data();
+    if (recipe.logicOp) {
+        cb.logicOpEnable = VK_TRUE;
+        cb.logicOp = *recipe.logicOp;
+    }
     const std::array<VkDynamicState, 2> dynamics{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
     dyn.dynamicStateCount = static_cast<uint32_t>(dynamics.size());

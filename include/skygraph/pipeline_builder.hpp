@@ -18,6 +18,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,10 @@ struct GraphicsPipelineRecipe {
     uint32_t colorAttachments = 1;
     /// Per-attachment blend states; when not empty, one per color attachment of the subpass.
     std::vector<VkPipelineColorBlendAttachmentState> blends;
+    /// A logical operation between each output and its integer or normalized attachment,
+    /// instead of blending (the device's logicOp feature, enabled where it has it); none when
+    /// empty. Float and sRGB attachments are written as they are.
+    std::optional<VkLogicOp> logicOp;
     /// Depth test enabled: the attachment is read with `depthCompare` (ALWAYS keeps the read
     /// without letting earlier depth values decide what is drawn).
     bool depthTest = false;

@@ -164,6 +164,15 @@ GenericPass::~GenericPass() = default;
 
 namespace {
 
+/// Whether a logic op combines with an attachment of this format: integer and normalized
+/// integer ones (the spec's "Logical Operations"; float and sRGB ones are written as they are).
+bool takesLogicOp(VkFormat format) {
+    const std::optional<FormatInfo> f = findFormat(format);
+    if (!f || f->isDepthStencil()) return false;
+    const bool normalized = f->name.find("UNORM") != std::string_view::npos || f->name.find("SNORM") != std::string_view::npos;
+    return !detail::scalarPrefix(format).empty() || (normalized && !f->srgb);
+}
+
 GraphicsPipeline graphicsPipeline(const PipelineContext& ctx, const GenericProgram& p, VkRenderPass renderPass) {
     const std::string label(ctx.pass->name);
     GraphicsPipelineRecipe recipe;
@@ -185,16 +194,32 @@ GraphicsPipeline graphicsPipeline(const PipelineContext& ctx, const GenericProgr
         recipe.depthWrite = hasDepth && writesContents(d.usage->usage.access);
         recipe.depthCompare = VK_COMPARE_OP_ALWAYS;
     }
+    // ReadWrite reads the attachment: by additive blending where the device blends its
+    // format, else (integer formats; SNORM ones on lavapipe) by a logical XOR where the device
+    // has logicOp. A logic op turns blending off for the whole subpass, so it is taken only when
+    // every ReadWrite attachment of the pass takes it too; otherwise the attachments that cannot
+    // blend are only written.
+    const auto blends = [&](const BoundResource& r) {
+        VkFormatProperties properties{};
+        vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, r.format, &properties);
+        return (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) != 0;
+    };
+    VkPhysicalDeviceFeatures features{};
+    vkGetPhysicalDeviceFeatures(ctx.physicalDevice, &features);  // the device enables logicOp where it has it
+    bool anyUnblendable = false, allTakeLogicOp = true;
+    for (uint32_t c : p.colors) {
+        const BoundResource& r = ctx.resources[c];
+        if (r.usage->usage.access != Access::ReadWrite) continue;
+        anyUnblendable |= !blends(r);
+        allTakeLogicOp &= takesLogicOp(r.format);
+    }
+    const bool logicOp = anyUnblendable && allTakeLogicOp && features.logicOp;
+    if (logicOp) recipe.logicOp = VK_LOGIC_OP_XOR;
     for (uint32_t c : p.colors) {
         const BoundResource& r = ctx.resources[c];
         VkPipelineColorBlendAttachmentState b{};
         b.colorWriteMask = 0xf;
-        // ReadWrite: additive blending reads the attachment, where the format can blend
-        // (never integer ones; SNORM ones on some devices): others are only written.
-        VkFormatProperties properties{};
-        vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, r.format, &properties);
-        const bool blends = (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) != 0;
-        if (r.usage->usage.access == Access::ReadWrite && blends) {
+        if (!logicOp && r.usage->usage.access == Access::ReadWrite && blends(r)) {
             b.blendEnable = VK_TRUE;
             b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
             b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;

@@ -280,18 +280,35 @@ TEST_F(ExecutorTest, ARendererKeepsItsSpirvWhereItsOptionsSay) {
 }
 
 // A ReadWrite colour attachment of a format the device cannot blend (SNORM on lavapipe, or an
-// integer one) is written without blending: validation stays silent, where blending it is an error.
-TEST_F(ExecutorTest, AReadWriteAttachmentTheDeviceCannotBlendIsWrittenWithoutBlending) {
-    for (const char* format : {"R8G8B8A8_SNORM", "R32_UINT", "R32G32B32A32_UINT"}) {
-        SCOPED_TRACE(format);
-        const auto c = compileText(graphWithSwapchain(
+// integer one) is read through a logical XOR: what the pass leaves depends on what the image
+// held, and validation stays silent (blending it is an error).
+TEST_F(ExecutorTest, AReadWriteAttachmentTheDeviceCannotBlendIsReadThroughALogicOp) {
+    const auto withClear = [](const char* format, const char* clear) {
+        return compileText(graphWithSwapchain(
             "unblendable", std::string(R"("t": { "type": "image2d", "format": ")") + format +
-                               R"(", "extent": "output", "clear": { "color": [0, 0, 0, 0] } })",
+                               R"(", "extent": "output", "clear": { "color": )" + clear + " } }",
             R"({ "name": "accumulate", "type": "Generic", "uses": { "t": "ReadWrite@ColorAttachment" } },
                { "name": "show", "type": "Generic", "uses": { "t": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
-        (void)render(c);
+    };
+    for (const char* format : {"R8G8B8A8_SNORM", "R32_UINT", "R32G32B32A32_UINT"}) {
+        SCOPED_TRACE(format);
+        const ImageData fromZero = render(withClear(format, "[0, 0, 0, 0]"));
+        const ImageData fromOther = render(withClear(format, "[1, 1, 1, 1]"));
+        EXPECT_NE(fromZero.rgba, fromOther.rgba) << "the pass did not read the attachment";
         EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
     }
+}
+
+// A pass that blends a float attachment keeps blending: the integer attachment beside it,
+// which a logic op would read only by turning that blending off, is only written.
+TEST_F(ExecutorTest, APassBlendingAFloatAttachmentWritesItsIntegerOneWithoutReading) {
+    const auto c = compileText(graphWithSwapchain(
+        "mixed", R"("f": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output", "clear": { "color": [0, 0, 0, 0] } },
+                    "u": { "type": "image2d", "format": "R32_UINT", "extent": "output", "clear": { "color": [1, 1, 1, 1] } })",
+        R"({ "name": "accumulate", "type": "Generic", "uses": { "f": "ReadWrite@ColorAttachment", "u": "ReadWrite@ColorAttachment" } },
+           { "name": "show", "type": "Generic", "uses": { "f": "Read@Fragment", "u": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"));
+    (void)render(c);
+    EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
 }
 
 // A stencil-only image sampled by Generic is read as the unsigned integers its view holds
