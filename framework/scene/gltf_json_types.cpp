@@ -3,6 +3,8 @@
 // (`nodes`, `scale`, `target`) accepting both.
 #include "gltf_json_types.hpp"
 
+#include "json_positions.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -128,10 +130,22 @@ std::optional<std::string> glbJsonChunk(std::string_view data) {
     return std::string(data.substr(20, length));
 }
 
-bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, Diagnostics& diagnostics) {
-    const json root = json::parse(jsonText, nullptr, false);
-    if (root.is_discarded()) return true;  // tinygltf reports malformed JSON with its position
-    return TypeChecker(file, diagnostics).check(root);
+bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bool binary, Diagnostics& diagnostics) {
+    // The reader that refuses deep nesting: tinygltf's recursion would exhaust the stack.
+    const JsonParseResult parsed = parseJsonWithPositions(jsonText);
+    if (!parsed.error.empty()) {
+        // A .glb's positions would count in its JSON chunk, not in the file.
+        Diagnostic d{file, parsed.errorPath, "", "", binary ? "JSON chunk: " + parsed.error : parsed.error};
+        if (!binary) {
+            d.line = parsed.line;
+            d.column = parsed.column;
+        }
+        diagnostics.add(std::move(d));
+        return false;
+    }
+    for (const DuplicateKey& dup : parsed.duplicateKeys)
+        diagnostics.add(Diagnostic{file, dup.path, "", "", "duplicate key '" + dup.key + "'; JSON keeps only the last one"});
+    return TypeChecker(file, diagnostics).check(parsed.value) && parsed.duplicateKeys.empty();
 }
 
 }  // namespace skygraph

@@ -1,6 +1,7 @@
 // The JSON types the glTF 2.0 schema gives the properties skygraph reads. tinygltf skips a
 // property of the wrong type (a string where an index belongs, an object where an array
-// belongs) as if it were absent; this check turns each into an error with its JSON path.
+// belongs) as if it were absent; this check turns each into an error with its JSON path. It
+// reads the JSON first, with the checks tinygltf lacks (depth, repeated keys).
 #pragma once
 
 #include <skygraph/diagnostics.hpp>
@@ -14,10 +15,12 @@ namespace skygraph {
 /// The JSON chunk of a .glb file's bytes; nullopt when it has none (tinygltf then says why).
 [[nodiscard]] std::optional<std::string> glbJsonChunk(std::string_view bytes);
 
-/// Adds an error to `diagnostics` (file `file`) for every property whose JSON type the glTF
-/// schema forbids: indices that are not non-negative integers, objects or arrays of the wrong
-/// kind, numbers that are strings, names that are not strings, extensions that are not
-/// objects. Malformed JSON is left to tinygltf. True when nothing was wrong.
-bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, Diagnostics& diagnostics);
+/// Adds an error to `diagnostics` (file `file`; `binary`: the text is a .glb's JSON chunk) for
+/// malformed JSON (with its line and column in a .gltf), nesting deeper than the JSON readers
+/// allow, repeated keys, and every property whose JSON type the glTF schema forbids: indices
+/// that are not non-negative integers, objects or arrays of the wrong kind, numbers that are
+/// strings, names that are not strings, extensions that are not objects. True when nothing
+/// was wrong.
+bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bool binary, Diagnostics& diagnostics);
 
 }  // namespace skygraph

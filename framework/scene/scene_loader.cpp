@@ -201,7 +201,8 @@ private:
         if (e.contains("fps")) error("environment.fps", "only a sequence has a frame rate; this environment has none");
         auto file = e.find("file");
         if (file == e.end() || !file->is_string() || file->get<std::string>().empty())
-            return error("environment.file", "missing; expected \"procedural\" or a .hdr/.exr path");
+            return error("environment.file", std::string(file == e.end() ? "missing" : "not a file name") +
+                                                 "; expected \"procedural\" or a .hdr/.exr path");
         const std::string name = file->get<std::string>();
         if (auto sun = e.find("sun_direction"); sun != e.end()) {
             Vec3 v{};

@@ -244,6 +244,42 @@ TEST(Gltf, AHierarchyDeeperThanTheStackLoads) {
     EXPECT_EQ(mesh->vertices.size(), 3u);
 }
 
+// tinygltf reads JSON by recursion: nesting this deep (in `extras`, which glTF leaves free)
+// overflowed the stack. The JSON is read first with the depth limit of every JSON reader here.
+TEST(Gltf, JsonNestedDeeperThanTheReadersAllowIsRefused) {
+    constexpr int kDepth = 30000;
+    const std::string extras = std::string(kDepth, '[') + std::string(kDepth, ']');
+    const std::string json = R"({"asset": {"version": "2.0"}, "extras": )" + extras + "}";
+    const fs::path text = fs::temp_directory_path() / "skygraph-deep-extras.gltf";
+    std::ofstream(text) << json;
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(text, {}, d));
+    ASSERT_EQ(d.size(), 1u) << messages(d);
+    EXPECT_NE(d.items()[0].message.find("nesting deeper than 256 levels"), std::string::npos) << messages(d);
+    EXPECT_GT(d.items()[0].line, 0) << "a .gltf's error has its line and column";
+    // The same JSON as a .glb's chunk (padded to 4 bytes, as the format asks).
+    std::string chunk = json;
+    chunk.resize((chunk.size() + 3) / 4 * 4, ' ');
+    const auto word = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+    const std::string glb = "glTF" + word(2) + word(uint32_t(12 + 8 + chunk.size())) + word(uint32_t(chunk.size())) +
+                            "JSON" + chunk;
+    const fs::path binary = fs::temp_directory_path() / "skygraph-deep-extras.glb";
+    std::ofstream(binary, std::ios::binary) << glb;
+    Diagnostics b;
+    EXPECT_FALSE(loadGltf(binary, {}, b));
+    ASSERT_EQ(b.size(), 1u) << messages(b);
+    EXPECT_NE(b.items()[0].message.find("JSON chunk: nesting deeper than 256 levels"), std::string::npos) << messages(b);
+}
+
+TEST(Gltf, ARepeatedKeyIsRefused) {
+    const fs::path file = writeTriangle("repeated-key", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text.replace(text.find(R"("nodes": [{"mesh": 0}])"), 22, R"("nodes": [{"mesh": 0, "mesh": 0}])");
+    std::ofstream(file, std::ios::trunc) << text;
+    gltf_test::expectRefusedAt(file, "nodes[0].mesh", "duplicate key 'mesh'; JSON keeps only the last one");
+}
+
 TEST(Gltf, ANodeWithTwoParentsIsRefused) {
     // glTF's nodes form disjoint trees: drawing node 0 once per parent would double per level.
     gltf_test::expectRefusedAt(withNodes("two-parents", R"([{"mesh": 0}, {"children": [0]}, {"children": [0]}])", "[1, 2]"),

@@ -333,6 +333,7 @@ TEST(SceneErrors, EnumerationsNameTheChoices) {
 TEST(SceneErrors, Environment) {
     expectError(R"({"environment": "procedural"})", "environment", "must be an object");
     expectError(R"({"environment": {"rotation_deg": 0}})", "environment.file", "missing");
+    expectError(R"({"environment": {"file": 5}})", "environment.file", "not a file name");
     expectError(R"({"environment": {"file": "sky.png"}})", "environment.file", "neither");
     expectError(R"({"environment": {"file": "missing_sky.exr"}})", "environment.file",
                 (kScenes / "missing_sky.exr").string() + "' does not exist");
