@@ -732,6 +732,27 @@ TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {
     }
 }
 
+// An environment image that cannot be read is named with the scene key that names it.
+TEST_F(Cli, RenderNamesTheSceneKeyOfAnUnreadableEnvironment) {
+    fs::create_directories(dir_ / "frames");
+    for (const char* name : {"sky.hdr", "frames/sky_000.hdr", "frames/sky_001.hdr"})
+        std::ofstream(dir_ / name) << "#?RADIANCE\n";  // a header and nothing after it
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {R"("file": "sky.hdr")", "environment.file: '" + (dir_ / "sky.hdr").string() + "'"},
+        {R"("sequence": "frames/sky_%03d.hdr")",
+         "environment.sequence: '" + (dir_ / "frames" / "sky_000.hdr").string() + "'"},
+    };
+    for (const auto& [environment, shown] : cases) {
+        const fs::path scene = writeGraph("scene.json", R"({ "camera": { "position": [0, 1, 4] },
+          "environment": { )" + environment + R"( }, "objects": [] })");
+        const CliRun r = run({"render", "--scene", scene.string(), "--width", "8", "--height", "8", "-o",
+                              (dir_ / "work" / "out.png").string()});
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find(scene.string() + ": " + shown), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty());
+    }
+}
+
 // `render -o PIPE`: the image goes to the FIFO's reader whole, a PNG or an EXR (whose writer
 // seeks, so it is written to a temporary first); the FIFO stays.
 TEST_F(Cli, RenderWritesItsImageIntoAFifo) {

@@ -164,7 +164,7 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
                 if (!environment) environment = loadEnvironmentImage(file);
             } catch (const ImageError& e) {  // named where the scene names it
                 Diagnostics d;
-                d.add({scene->file, "environment.file", "", "", e.what()});
+                d.add({scene->file, sky.sequence ? "environment.sequence" : "environment.file", "", "", e.what()});
                 throw SceneError(std::move(d));
             }
             spdlog::info("environment: {} ({}x{})", printableName(file.string()), environment->width,
