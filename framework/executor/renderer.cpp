@@ -152,8 +152,23 @@ Renderer::~Renderer() {
     // Its own frames are fenced; work it recorded into the application's command buffers
     // is not, so then only an idle device is safe. Waiting for its frames alone leaves other
     // renderers' frames running (a background bake that goes while frames render).
-    if (impl_->recordedElsewhere) vkDeviceWaitIdle(impl_->vkd);
-    else impl_->waitIdle();
+    if (impl_->recordedElsewhere) {
+        vkDeviceWaitIdle(impl_->vkd);
+        return;
+    }
+    impl_->waitIdle();
+    // A plan on several queues orders them with the renderer's timeline semaphores. The spec
+    // lets a semaphore go once the batches that use it have completed, which the fences show;
+    // lavapipe's queue threads still release their hold on a waited-for semaphore after the
+    // batch's fence signals (its mutex was seen locked after the semaphore was freed: the heap
+    // corrupted, or the queue deadlocked). So every queue drains first, at this one point.
+    if (impl_->timelines[0])
+        for (size_t k = 0; k < kQueueKinds; ++k) {
+            const VkQueue q = impl_->dev.queues[k];
+            bool seen = false;
+            for (size_t j = 0; j < k; ++j) seen |= impl_->dev.queues[j] == q;
+            if (!seen && q != VK_NULL_HANDLE) vkQueueWaitIdle(q);
+        }
 }
 
 void Renderer::renderFrame() { impl_->renderFrame(); }

@@ -119,7 +119,9 @@ public:
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
     /// Waits for this renderer's own frames to finish, not for other renderers' (a background
     /// bake may go on running), then destroys what the renderer owns; images shared with
-    /// other renderers live on while they use them.
+    /// other renderers live on while they use them. A renderer whose plan submits to several
+    /// queues also waits for each of those queues to be idle (lavapipe's queues still touch
+    /// the semaphores that ordered them after the frames' fences signal).
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
