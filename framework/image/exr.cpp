@@ -112,6 +112,7 @@ HdrImage loadExr(const std::filesystem::path& path) {
         in.read(head.data(), std::streamsize(head.size()));
         head.resize(size_t(in.gcount()));
         const std::string kind = image_detail::sniffFormat(head);
+        if (kind == "an OpenEXR image") throw ImageError(path, "truncated or corrupt OpenEXR header");
         throw ImageError(path, head.empty() ? "empty file; expected an OpenEXR image"
                                             : "not an OpenEXR image (" +
                                                   (kind.empty() ? "no EXR signature" : "it is " + kind) + ")");

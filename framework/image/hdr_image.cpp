@@ -67,7 +67,9 @@ std::string sniffFormat(std::string_view b) {
 
 void requireLoadableSize(const std::filesystem::path& path, int64_t width, int64_t height) {
     const std::string size = std::to_string(width) + "x" + std::to_string(height);
-    if (width <= 0 || height <= 0) throw ImageError(path, "zero size (the header says " + size + ")");
+    if (width == 0 || height == 0) throw ImageError(path, "zero size (the header says " + size + ")");
+    // A size past 32 bits reads as negative.
+    if (width < 0 || height < 0) throw ImageError(path, "corrupt header: its size reads as " + size);
     if (width > kMaxHdrImageWidth || height > kMaxHdrImageHeight)
         throw ImageError(path, "size " + size + " exceeds the limit " + std::to_string(kMaxHdrImageWidth) +
                                    "x" + std::to_string(kMaxHdrImageHeight));

@@ -43,13 +43,15 @@ void checkRgbeStream(const std::filesystem::path& path, const std::string& bytes
         return ImageError(path, "truncated: the pixel data ends in row " + std::to_string(row) +
                                     " of " + std::to_string(h));
     };
-    auto needFlat = [&](size_t from, size_t row) {  // stb reads w*h*4 bytes from `from`
-        if (size - from < w * h * 4) throw truncated(row + (size - from) / (w * 4));
+    // stb reads w*h*4 bytes from `from`: pixels without run-length encoding fill the image
+    // from its first row again, wherever they start.
+    auto needFlat = [&](size_t from) {
+        if (size - from < w * h * 4) throw truncated((size - from) / (w * 4));
     };
-    if (w < 8 || w >= 32768) return needFlat(p, 0);
+    if (w < 8 || w >= 32768) return needFlat(p);
     for (size_t row = 0; row < h; ++row) {
         if (size - p < 4) throw truncated(row);
-        if (byte(p) != 2 || byte(p + 1) != 2 || (byte(p + 2) & 0x80)) return needFlat(p, row);
+        if (byte(p) != 2 || byte(p + 1) != 2 || (byte(p + 2) & 0x80)) return needFlat(p);
         if ((size_t(byte(p + 2)) << 8 | byte(p + 3)) != w)
             throw ImageError(path, "corrupt data: row " + std::to_string(row) +
                                        " has a wrong run-length scanline width");
@@ -89,6 +91,9 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
     const int len = static_cast<int>(bytes.size());
     if (!stbi_is_hdr_from_memory(data, len)) {
         const std::string kind = sniffFormat(bytes);
+        if (kind == "a Radiance HDR image")  // the signature, but not on a line of its own
+            throw ImageError(path, "corrupt header: its #?RADIANCE or #?RGBE signature must end its line with a "
+                                   "newline alone (this one is followed by other bytes, e.g. CR LF line ends)");
         throw ImageError(path, "not a Radiance HDR image (" +
                                    (kind.empty() ? "no #?RADIANCE or #?RGBE signature" : "it is " + kind) + ")");
     }

@@ -379,6 +379,22 @@ TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
     expectLoadError(dir_ / "bad_format.hdr", "header");
     writeBytes(dir_ / "zero.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 16\n");
     expectLoadError(dir_ / "zero.hdr", "zero size");
+    writeBytes(dir_ / "huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 99999999999999999999 +X 4\n");
+    expectLoadError(dir_ / "huge.hdr", "corrupt header: its size reads as 4x-1");
+    // A signature the readers do not take, said as such (not "not a Radiance image (it is one)").
+    writeBytes(dir_ / "crlf.hdr", "#?RADIANCE\r\nFORMAT=32-bit_rle_rgbe\r\n\r\n-Y 2 +X 16\r\n" + noise);
+    expectLoadError(dir_ / "crlf.hdr", "must end its line with a newline alone");
+    writeBytes(dir_ / "magic_only.exr", std::string("\x76\x2f\x31\x01", 4));
+    expectLoadError(dir_ / "magic_only.exr", "truncated or corrupt OpenEXR header");
+    // Run-length rows, then one without: stb reads the whole image again from there, so the
+    // row the pixels run out in counts from the first.
+    std::string rows = header;
+    for (int row = 0; row < 1; ++row) {
+        rows += std::string("\x02\x02\x00\x10", 4);
+        for (int channel = 0; channel < 4; ++channel) rows += std::string("\x90\x01", 2);  // a run of 16
+    }
+    writeBytes(dir_ / "rle_then_flat.hdr", rows + std::string(16 * 4, '\x01'));
+    expectLoadError(dir_ / "rle_then_flat.hdr", "ends in row 1 of 2");
 }
 
 TEST_F(HdrImageTest, PngRenamedToHdrOrExrIsRefusedAsPng) {
