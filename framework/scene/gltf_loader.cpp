@@ -410,7 +410,16 @@ private:
                                        std::to_string(limits_.maxIndices) + " indices");
             const auto base = uint32_t(mesh_.vertices.size());
             const auto place = [&](size_t i, const dvec3& localNormal) {
-                const dvec3 wp = dvec3(world * glm::dvec4(positions[i], 1.0));
+                dvec3 wp = dvec3(world * glm::dvec4(positions[i], 1.0));
+                // Finite in the file, the transforms can still carry it past what a float holds.
+                // The mesh is refused; the vertex stays, at the origin, so that the indices and
+                // tangents after it still find one.
+                if (!finite(dvec3(glm::vec3(wp)))) {
+                    if (!failed_)
+                        error(path, "vertex " + std::to_string(i) +
+                                        " lies past the range of a float once the node and scene transforms place it");
+                    wp = dvec3(0.0);
+                }
                 const dvec3 transformed = normalMatrix * localNormal;
                 // Zero where the transform flattens the surface edge-on, or to a line or a point:
                 // nothing of it shows, and any normal does.

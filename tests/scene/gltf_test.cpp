@@ -126,6 +126,18 @@ TEST(Gltf, TheSceneObjectsTransformPlacesTheModel) {
         EXPECT_NEAR(std::hypot(v.normal[0], v.normal[1], v.normal[2]), 1.0, 1e-6) << "normals stay unit";
 }
 
+// Positions finite in the file that the transforms carry past a float's range are refused,
+// as non-finite ones in the file are: drawn, they vanished or turned a path-traced frame black.
+TEST(Gltf, PositionsTheTransformsCarryPastAFloatAreRefused) {
+    Diagnostics d;
+    MeshTransform t;
+    t.scale = {1e39, 1e39, 1e39};  // the box spans 1: its corners land at 5e38
+    EXPECT_FALSE(loadGltf(kModels / "BoxTextured-glTF/BoxTextured.gltf", t, d));
+    ASSERT_EQ(d.size(), 1u) << messages(d);
+    EXPECT_NE(d.items()[0].message.find("past the range of a float"), std::string::npos) << messages(d);
+    EXPECT_NE(d.items()[0].jsonPath.find("meshes[0].primitives[0]"), std::string::npos) << messages(d);
+}
+
 TEST(Gltf, TheEnginesHierarchyAndCamera) {
     Diagnostics d;
     const auto engine = loadGltf(kModels / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb", {}, d);
