@@ -121,6 +121,25 @@ private:
 
 }  // namespace
 
+std::string glbProblem(std::string_view data) {
+    const auto word = [&](size_t at) {
+        uint32_t v = 0;
+        std::memcpy(&v, data.data() + at, 4);
+        return v;
+    };
+    const std::string size = std::to_string(data.size());
+    if (data.size() < 12) return "truncated: a .glb starts with a 12-byte header; the file has " + size + " bytes";
+    if (word(4) != 2) return "GLB version " + std::to_string(word(4)) + "; skygraph reads version 2";
+    if (word(8) > data.size()) return "truncated: its header says " + std::to_string(word(8)) + " bytes, the file has " + size;
+    if (data.size() < 20) return "truncated: no chunk follows the header";
+    if (data.compare(16, 4, "JSON") != 0) return "its first chunk is not the JSON chunk";
+    if (word(12) == 0) return "its JSON chunk is empty";
+    if (uint64_t(word(12)) + 20 > word(8))
+        return "truncated: its JSON chunk says " + std::to_string(word(12)) + " bytes, and " +
+               std::to_string(word(8) - 20) + " follow within the length its header gives";
+    return {};
+}
+
 std::optional<std::string> glbJsonChunk(std::string_view data) {
     // GLB: a 12-byte header, then the JSON chunk (length, "JSON", text).
     if (data.size() < 20 || data.compare(0, 4, "glTF") != 0 || data.compare(16, 4, "JSON") != 0) return std::nullopt;

@@ -12,6 +12,10 @@
 
 namespace skygraph {
 
+/// What is wrong with a .glb's header and JSON chunk as containers (size, version, lengths,
+/// chunk type), in words; empty when nothing is. tinygltf says only "Invalid glTF binary".
+[[nodiscard]] std::string glbProblem(std::string_view bytes);
+
 /// The JSON chunk of a .glb file's bytes; nullopt when it has none (tinygltf then says why).
 [[nodiscard]] std::optional<std::string> glbJsonChunk(std::string_view bytes);
 

@@ -549,6 +549,8 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     };
     if (bytes.size() > std::numeric_limits<unsigned>::max()) return fail("is larger than 4 GiB");
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    if (binary)
+        if (const std::string problem = glbProblem(bytes); !problem.empty()) return fail(problem);
     if (const auto text = binary ? glbJsonChunk(bytes) : std::optional<std::string>(std::string(bytes));
         text && !checkGltfJsonTypes(*text, name, binary, diagnostics))
         return std::nullopt;

@@ -283,6 +283,30 @@ TEST(Gltf, JsonNestedDeeperThanTheReadersAllowIsRefused) {
     EXPECT_NE(b.items()[0].message.find("JSON chunk: nesting deeper than 256 levels"), std::string::npos) << messages(b);
 }
 
+// A .glb whose container is cut short or wrong says how, where tinygltf says only "Invalid glTF
+// binary" (and reads a GLB of version 1 as if it were 2).
+TEST(Gltf, ABrokenGlbContainerIsNamed) {
+    const std::string good = [] {
+        std::ifstream in(kModels / "BoxTextured-glTF-Binary/BoxTextured.glb", std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), {});
+    }();
+    ASSERT_GT(good.size(), 100u);
+    const auto write = [](const std::string& name, const std::string& bytes) {
+        const fs::path file = fs::temp_directory_path() / ("skygraph-" + name + ".glb");
+        std::ofstream(file, std::ios::binary) << bytes;
+        return file;
+    };
+    std::string version1 = good;
+    version1[4] = 1;
+    const std::vector<std::pair<fs::path, std::string>> cases{
+        {write("glb-cut", good.substr(0, good.size() / 2)), "truncated: its header says " + std::to_string(good.size()) +
+                                                                 " bytes, the file has " + std::to_string(good.size() / 2)},
+        {write("glb-header-only", good.substr(0, 8)), "truncated: a .glb starts with a 12-byte header"},
+        {write("glb-version-1", version1), "GLB version 1; skygraph reads version 2"},
+    };
+    for (const auto& [file, message] : cases) gltf_test::expectRefusedAt(file, "", message);
+}
+
 TEST(Gltf, ARepeatedKeyIsRefused) {
     const fs::path file = writeTriangle("repeated-key", 3, false);
     std::ifstream in(file);
