@@ -7,7 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdint>
+#include <initializer_list>
 #include <cstring>
 #include <set>
 
@@ -121,6 +123,100 @@ private:
 
 }  // namespace
 
+namespace {
+
+/// The values the glTF 2.0 schema allows where tinygltf either says no more than the property
+/// (`componentType`, `type`, `byteStride`, the factors' lengths) or keeps a wrong one (a node's
+/// `matrix` of three numbers is read as the identity). Runs once the types are right. Material
+/// values (`alphaMode`, ranges, wrap modes) are checked where the materials are read.
+class ValueChecker {
+public:
+    ValueChecker(std::string file, Diagnostics& diagnostics) : file_(std::move(file)), diagnostics_(diagnostics) {}
+
+    bool check(const json& root) {
+        each(root, "accessors", [&](const json& a, const std::string& at) {
+            oneOf(a, "componentType", at, {5120, 5121, 5122, 5123, 5125, 5126},
+                  "BYTE (5120), UNSIGNED_BYTE (5121), SHORT (5122), UNSIGNED_SHORT (5123), UNSIGNED_INT (5125) or FLOAT (5126)");
+            oneOf(a, "type", at, {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"});
+            if (const auto sparse = a.find("sparse"); sparse != a.end())
+                if (const auto indices = sparse->find("indices"); indices != sparse->end())
+                    oneOf(*indices, "componentType", at + ".sparse.indices", {5121, 5123, 5125},
+                          "UNSIGNED_BYTE (5121), UNSIGNED_SHORT (5123) or UNSIGNED_INT (5125)");
+        });
+        each(root, "bufferViews", [&](const json& v, const std::string& at) {
+            if (const auto stride = v.find("byteStride"); stride != v.end()) {
+                const uint64_t s = stride->get<uint64_t>();
+                if (s < 4 || s > 252 || s % 4 != 0)
+                    error(at + ".byteStride", "must be a multiple of 4 from 4 to 252, got " + std::to_string(s));
+            }
+        });
+        each(root, "nodes", [&](const json& n, const std::string& at) {
+            length(n, "matrix", at, 16);
+            length(n, "rotation", at, 4);
+            length(n, "translation", at, 3);
+            length(n, "scale", at, 3);
+            if (n.contains("matrix") && (n.contains("rotation") || n.contains("translation") || n.contains("scale")))
+                error(at, "has both a matrix and rotation, translation or scale; glTF allows one or the other");
+        });
+        each(root, "meshes", [&](const json& m, const std::string& at) {
+            if (const auto primitives = m.find("primitives"); primitives != m.end())
+                for (size_t i = 0; i < primitives->size(); ++i) {
+                    const std::string p = at + ".primitives[" + std::to_string(i) + "]";
+                    if ((*primitives)[i].contains("mode") && (*primitives)[i]["mode"].get<uint64_t>() > 6)
+                        error(p + ".mode", "must be a primitive mode from 0 to 6, got " + (*primitives)[i]["mode"].dump());
+                }
+        });
+        each(root, "materials", [&](const json& m, const std::string& at) {
+            length(m, "emissiveFactor", at, 3);
+            if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end())
+                length(*pbr, "baseColorFactor", at + ".pbrMetallicRoughness", 4);
+        });
+        each(root, "cameras", [&](const json& c, const std::string& at) {
+            oneOf(c, "type", at, {"perspective", "orthographic"});
+        });
+        return ok_;
+    }
+
+private:
+    void error(const std::string& path, const std::string& message) {
+        diagnostics_.add(Diagnostic{file_, path, "", "", message});
+        ok_ = false;
+    }
+
+    template <typename F>
+    static void each(const json& root, const char* array, F&& f) {
+        if (const auto a = root.find(array); a != root.end())
+            for (size_t i = 0; i < a->size(); ++i) f((*a)[i], std::string(array) + "[" + std::to_string(i) + "]");
+    }
+
+    void length(const json& object, const char* key, const std::string& at, size_t expected) {
+        if (const auto v = object.find(key); v != object.end() && v->size() != expected)
+            error(at + "." + key, "must be an array of " + std::to_string(expected) + " numbers, got " +
+                                      std::to_string(v->size()));
+    }
+
+    void oneOf(const json& object, const char* key, const std::string& at, std::initializer_list<uint64_t> allowed,
+               const char* names) {
+        if (const auto v = object.find(key); v != object.end() && std::find(allowed.begin(), allowed.end(), v->get<uint64_t>()) == allowed.end())
+            error(at + "." + key, "must be " + std::string(names) + ", got " + v->dump());
+    }
+
+    void oneOf(const json& object, const char* key, const std::string& at, std::initializer_list<std::string_view> allowed) {
+        const auto v = object.find(key);
+        if (v == object.end() || std::find(allowed.begin(), allowed.end(), v->get<std::string>()) != allowed.end()) return;
+        std::string names;
+        for (const std::string_view name : allowed)
+            names += (names.empty() ? "\"" : name == *std::prev(allowed.end()) ? " or \"" : ", \"") + std::string(name) + "\"";
+        error(at + "." + key, "must be " + names + ", got " + v->dump());
+    }
+
+    std::string file_;
+    Diagnostics& diagnostics_;
+    bool ok_ = true;
+};
+
+}  // namespace
+
 std::string glbProblem(std::string_view data) {
     const auto word = [&](size_t at) {
         uint32_t v = 0;
@@ -164,7 +260,8 @@ bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bo
     }
     for (const DuplicateKey& dup : parsed.duplicateKeys)
         diagnostics.add(Diagnostic{file, dup.path, "", "", "duplicate key '" + dup.key + "'; JSON keeps only the last one"});
-    return TypeChecker(file, diagnostics).check(parsed.value) && parsed.duplicateKeys.empty();
+    if (!TypeChecker(file, diagnostics).check(parsed.value)) return false;
+    return ValueChecker(file, diagnostics).check(parsed.value) && parsed.duplicateKeys.empty();
 }
 
 }  // namespace skygraph

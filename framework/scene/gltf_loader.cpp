@@ -35,11 +35,13 @@ std::string at(const char* array, size_t i) { return std::string(array) + "[" + 
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-/// tinygltf's file callbacks, for a buffer's or an image's uri: only regular files count. Its
-/// own would block forever on a FIFO and read a directory's size as bytes to allocate.
-bool regularFileExists(const std::string& path, void*) {
+/// tinygltf's file callbacks, for a buffer's or an image's uri: only regular files are read.
+/// Its own would block forever on a FIFO and read a directory's size as bytes to allocate.
+/// Anything that exists is found, so that readRegularFile says what it is rather than tinygltf
+/// saying "File not found".
+bool fileExists(const std::string& path, void*) {
     std::error_code ec;
-    return std::filesystem::is_regular_file(path, ec);
+    return std::filesystem::exists(path, ec);
 }
 
 /// `read`: the paths read so far (a std::vector<std::filesystem::path>).
@@ -47,7 +49,9 @@ bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const 
     static_cast<std::vector<std::filesystem::path>*>(read)->emplace_back(path);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
-        if (error) *error += "'" + path + "' is not a regular file\n";
+        if (error)
+            *error += "'" + path + "' is " +
+                      (std::filesystem::is_directory(path, ec) ? "a directory" : "not a regular file") + "\n";
         return false;
     }
     std::ifstream in(path, std::ios::binary);
@@ -559,7 +563,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
     std::vector<std::filesystem::path> referenced;
-    reader.SetFsCallbacks({regularFileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &referenced});
+    reader.SetFsCallbacks({fileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &referenced});
     std::string error, warning;
     bool read = false;
     try {
@@ -599,6 +603,9 @@ std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const Me
     std::ifstream in(path, std::ios::binary);
     std::ostringstream bytes;
     if (!(bytes << in.rdbuf())) return fail("cannot be read");
+    // A .glb is never read as JSON: its first bytes would be reported as a JSON syntax error.
+    if (extension == ".glb" && bytes.view().substr(0, 4) != "glTF")
+        return fail("is not a binary glTF: a .glb starts with the bytes 'glTF'");
     std::optional<TriangleMesh> mesh = loadGltfFromMemory(bytes.str(), path.string(),
                                                           std::filesystem::absolute(path, ec).parent_path(), transform,
                                                           diagnostics, limits);

@@ -248,15 +248,29 @@ private:
         if (ext != ".hdr" && ext != ".exr")
             return error("environment.sequence", "'" + text + "' names neither .hdr nor .exr files");
         std::error_code ec;
+        // A folder (or anything but a file) named like a frame would end the sequence there,
+        // or start it at frame 1, without a word.
+        std::filesystem::path notAFrame;
         const auto exists = [&](uint32_t number) {
-            return std::filesystem::is_regular_file(sequenceFrameFile(sequence.pattern, number), ec);
+            const std::filesystem::path frame = sequenceFrameFile(sequence.pattern, number);
+            const std::filesystem::file_status status = std::filesystem::status(frame, ec);
+            if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) && notAFrame.empty())
+                notAFrame = frame;
+            return std::filesystem::is_regular_file(status);
         };
-        if (!exists(0) && !exists(1))
+        const auto refuseNotAFrame = [&] {
+            error("environment.sequence", "'" + notAFrame.string() + "' is named like a frame but is " +
+                                              (std::filesystem::is_directory(notAFrame, ec) ? "a folder" : "not a file"));
+        };
+        if (!exists(0) && !exists(1)) {
+            if (!notAFrame.empty()) return refuseNotAFrame();
             return error("environment.sequence", "no first frame: neither '" +
                                                      sequenceFrameFile(sequence.pattern, 0).string() + "' nor '" +
                                                      sequenceFrameFile(sequence.pattern, 1).string() + "' exists");
+        }
         sequence.first = exists(0) ? 0 : 1;
         while (sequence.count < kMaxSequenceFrames && exists(sequence.first + sequence.count)) ++sequence.count;
+        if (!notAFrame.empty()) return refuseNotAFrame();
         if (exists(sequence.first + sequence.count))
             return error("environment.sequence", "more than " + std::to_string(kMaxSequenceFrames) + " frames");
         env.procedural = false;
@@ -325,7 +339,7 @@ private:
         std::optional<TriangleMesh> mesh = loadGltf(resolved, model.transform, problems);
         if (!mesh) {
             error(path + ".file", "'" + resolved.string() + "' cannot be drawn: " + std::to_string(problems.size()) +
-                                      (problems.size() == 1 ? " problem" : " problems") + " follow");
+                                      (problems.size() == 1 ? " problem follows" : " problems follow"));
             for (const Diagnostic& d : problems.items()) diags_.add(d);
             return;
         }

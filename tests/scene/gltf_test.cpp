@@ -307,6 +307,83 @@ TEST(Gltf, ABrokenGlbContainerIsNamed) {
     for (const auto& [file, message] : cases) gltf_test::expectRefusedAt(file, "", message);
 }
 
+// tinygltf names only the property for these, or reads the value as something else: a node
+// matrix of three numbers became the identity, a rotation of three the identity too.
+TEST(Gltf, ValuesTheSchemaForbidsAreRefusedAtTheirPath) {
+    const auto edited = [](const std::string& name, const std::string& from, const std::string& to) {
+        const fs::path file = writeTriangle(name, 3, false);
+        std::ifstream in(file);
+        std::string text((std::istreambuf_iterator<char>(in)), {});
+        EXPECT_NE(text.find(from), std::string::npos) << from;
+        text.replace(text.find(from), from.size(), to);
+        std::ofstream(file, std::ios::trunc) << text;
+        return file;
+    };
+    const std::string node = R"("nodes": [{"mesh": 0)";
+    const struct {
+        fs::path file;
+        std::string path, message;
+    } cases[]{
+        {edited("component-type", "5126", "9999"), "accessors[0].componentType",
+         "must be BYTE (5120), UNSIGNED_BYTE (5121), SHORT (5122), UNSIGNED_SHORT (5123), UNSIGNED_INT (5125) or "
+         "FLOAT (5126), got 9999"},
+        {edited("accessor-type", R"("VEC3")", R"("VEC7")"), "accessors[0].type",
+         R"(must be "SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3" or "MAT4", got "VEC7")"},
+        {edited("byte-stride", R"("byteLength": 36})", R"("byteLength": 36, "byteStride": 3})"),
+         "bufferViews[0].byteStride", "must be a multiple of 4 from 4 to 252, got 3"},
+        {edited("stride-256", R"("byteLength": 36})", R"("byteLength": 36, "byteStride": 256})"),
+         "bufferViews[0].byteStride", "got 256"},
+        {edited("matrix-3", node, node + R"(, "matrix": [1, 2, 3])"), "nodes[0].matrix",
+         "must be an array of 16 numbers, got 3"},
+        {edited("rotation-3", node, node + R"(, "rotation": [0, 0, 1])"), "nodes[0].rotation",
+         "must be an array of 4 numbers, got 3"},
+        {edited("scale-2", node, node + R"(, "scale": [2, 2])"), "nodes[0].scale", "must be an array of 3 numbers, got 2"},
+        {edited("matrix-and-trs", node,
+                node + R"(, "translation": [1, 0, 0], "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1])"),
+         "nodes[0]", "has both a matrix and rotation, translation or scale"},
+        {edited("mode-7", R"("attributes")", R"("mode": 7, "attributes")"), "meshes[0].primitives[0].mode",
+         "must be a primitive mode from 0 to 6, got 7"},
+        {edited("base-color-2", R"("buffers")",
+                R"("materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 1]}}], "buffers")"),
+         "materials[0].pbrMetallicRoughness.baseColorFactor", "must be an array of 4 numbers, got 2"},
+    };
+    for (const auto& c : cases) gltf_test::expectRefusedAt(c.file, c.path, c.message);
+    // The values at the edges of what the schema allows load.
+    for (const fs::path& file :
+         {edited("stride-4", R"("byteLength": 36})", R"("byteLength": 36, "byteStride": 12})"),
+          edited("matrix-16", node, node + R"(, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1])"),
+          edited("trs", node, node + R"(, "translation": [1, 0, 0], "rotation": [0, 0, 0, 1], "scale": [1, 1, 1])"),
+          edited("mode-4", R"("attributes")", R"("mode": 4, "attributes")")}) {
+        Diagnostics d;
+        EXPECT_TRUE(loadGltf(file, {}, d)) << file << ": " << messages(d);
+    }
+}
+
+// A .glb is not read as JSON when its first bytes are not its magic number.
+TEST(Gltf, AGlbWithoutItsMagicNumberIsNamed) {
+    const fs::path file = fs::temp_directory_path() / "skygraph-no-magic.glb";
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << "NOT A GLB, BUT LONG ENOUGH TO HAVE A HEADER";
+    gltf_test::expectRefusedAt(file, "", "is not a binary glTF: a .glb starts with the bytes 'glTF'");
+}
+
+// A buffer uri naming a directory is reported as one, not as a file that was not found.
+TEST(Gltf, ABufferUriNamingADirectorySaysSo) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-buffer-uri-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "data.bin");
+    const fs::path file = writeTriangle("buffer-uri", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const size_t uri = text.find("data:application");
+    text.replace(uri, text.find('"', uri) - uri, "data.bin");
+    std::ofstream(dir / "model.gltf") << text;
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(dir / "model.gltf", {}, d));
+    EXPECT_NE(messages(d).find("data.bin' is a directory"), std::string::npos) << messages(d);
+    EXPECT_EQ(messages(d).find("File not found"), std::string::npos) << messages(d);
+    fs::remove_all(dir);
+}
+
 TEST(Gltf, ARepeatedKeyIsRefused) {
     const fs::path file = writeTriangle("repeated-key", 3, false);
     std::ifstream in(file);

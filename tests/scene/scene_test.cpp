@@ -241,6 +241,38 @@ TEST(SceneLoader, SequencePatternsHoldOneNumber) {
         EXPECT_NE(sequencePatternProblem(bad), "") << bad;
 }
 
+// A folder named like a frame would end the sequence there, or start it at frame 1, without a
+// word: it is refused, named.
+TEST(SceneLoader, AFolderNamedLikeASequenceFrameIsRefused) {
+    const fs::path dir = fs::temp_directory_path() / "skygraph_scene_test_sequence_folder";
+    fs::remove_all(dir);
+    fs::create_directories(dir / "frames");
+    for (int i : {0, 1, 3}) std::ofstream(dir / "frames" / ("sky_00" + std::to_string(i) + ".exr")) << "x";
+    fs::create_directories(dir / "frames" / "sky_002.exr");
+    std::ofstream(dir / "s.json") << R"({"environment": {"sequence": "frames/sky_%03d.exr"}})";
+    const auto expectRefused = [&](const std::string& frame) {
+        try {
+            (void)loadSceneFile(dir / "s.json");
+            ADD_FAILURE() << "no error";
+        } catch (const SceneError& e) {
+            ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+            EXPECT_EQ(e.diagnostics().items()[0].jsonPath, "environment.sequence");
+            EXPECT_NE(e.diagnostics().items()[0].message.find(
+                          "'" + (dir / "frames" / frame).string() + "' is named like a frame but is a folder"),
+                      std::string::npos)
+                << e.what();
+        }
+    };
+    expectRefused("sky_002.exr");  // it would have ended the sequence after two frames
+    fs::remove_all(dir / "frames");
+    fs::create_directories(dir / "frames" / "sky_000.exr");
+    std::ofstream(dir / "frames" / "sky_001.exr") << "x";
+    expectRefused("sky_000.exr");  // it would have started the sequence at frame 1
+    fs::remove(dir / "frames" / "sky_001.exr");
+    expectRefused("sky_000.exr");  // not "no first frame"
+    fs::remove_all(dir);
+}
+
 TEST(SceneErrors, Sequences) {
     expectError(R"({"environment": {"sequence": "frames/%04d.png"}})", "environment.sequence", "neither .hdr nor .exr");
     expectError(R"({"environment": {"sequence": "frames/0001.exr"}})", "environment.sequence",

@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -91,11 +92,15 @@ void requireWritableOutput(const std::filesystem::path& path) {
 int run(CubemapArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::filesystem::path output = args.output;
-    if (output.extension() != ".ktx2") throw UsageError("-o must name a .ktx2 file, got '" + printableName(args.output) + "'");
-    if (!args.cross.empty()) {
-        const auto ext = std::filesystem::path(args.cross).extension();
-        if (ext != ".hdr" && ext != ".exr") throw UsageError("--cross must name a .hdr or .exr file");
-    }
+    // As `render` does with its output: any case, and a wrong one is a problem with the input.
+    const auto extension = [](const std::filesystem::path& p) {
+        std::string e = p.extension().string();
+        for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return e;
+    };
+    if (extension(output) != ".ktx2") throw ImageError(output, "cannot write: its extension must be .ktx2");
+    if (!args.cross.empty() && extension(args.cross) != ".hdr" && extension(args.cross) != ".exr")
+        throw ImageError(args.cross, "cannot write --cross: its extension must be .hdr or .exr");
     if (args.bake.size & (args.bake.size - 1)) throw UsageError("--size must be a power of two");
     if (args.bake.prefilteredSize & (args.bake.prefilteredSize - 1))
         throw UsageError("--prefiltered-size must be a power of two");
