@@ -100,5 +100,19 @@ TEST(EnvironmentImage, ValuesPastTheLargestHalfAreClampedAndNonFiniteOnesRefused
     std::filesystem::remove(exr);
 }
 
+// An EXR can hold negative colours (a Radiance file cannot); radiance is never negative.
+TEST(EnvironmentImage, NegativeColourValuesAreClampedToZero) {
+    const auto exr = std::filesystem::temp_directory_path() / ("skygraph-negative-" + std::to_string(::getpid()) + ".exr");
+    HdrImage sky{4, 2, std::vector<float>(4 * 2 * 4, 1.0f)};
+    sky.rgba[0] = -0.25f;
+    sky.rgba[6] = -60000.0f;
+    saveExr(exr, sky);
+    const HdrImage loaded = app::loadEnvironmentImage(exr);
+    EXPECT_EQ(loaded.rgba[0], 0.0f);
+    EXPECT_EQ(loaded.rgba[6], 0.0f);
+    for (size_t i : {1u, 2u, 3u, 4u, 5u, 7u}) EXPECT_EQ(loaded.rgba[i], 1.0f) << "value " << i << " as it was";
+    std::filesystem::remove(exr);
+}
+
 }  // namespace
 }  // namespace skygraph::test

@@ -81,15 +81,25 @@ HdrImage loadEnvironmentImage(const std::filesystem::path& file, float largest) 
     HdrImage image = loadHdrImage(file);
     if (const size_t bad = countNonFinite(image))
         throw ImageError(file, std::to_string(bad) + " pixel values are NaN or infinite; an environment must be finite");
-    size_t clamped = 0;
-    for (float& v : image.rgba)
-        if (std::abs(v) > largest) {
+    // Radiance is never negative, but filters (an EXR's denoiser, its resampling) leave small
+    // negative colours behind: the bakes' sums would take them as light taken away.
+    size_t clamped = 0, negative = 0;
+    for (size_t i = 0; i < image.rgba.size(); ++i) {
+        float& v = image.rgba[i];
+        if (i % 4 < 3 && v < 0.0f) {
+            v = 0.0f;
+            ++negative;
+        } else if (std::abs(v) > largest) {
             v = std::copysign(largest, v);
             ++clamped;
         }
+    }
     if (clamped)
         spdlog::warn("'{}': {} pixel values past +-{} (the products' largest) are clamped to it",
                      printableName(file.string()), clamped, largest);
+    if (negative)
+        spdlog::warn("'{}': {} colour values below 0 are clamped to 0: radiance is never negative",
+                     printableName(file.string()), negative);
     return image;
 }
 
