@@ -10,6 +10,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 
 namespace skygraph {
 namespace {
@@ -42,6 +43,18 @@ std::string pngChunkProblem(std::span<const unsigned char> data) {
     return {};
 }
 
+/// A PNG's width and height from its header chunk, or {0, 0} for data that is no PNG. stb's
+/// own reading refuses a PNG of more than 2^30 decoded bytes as unreadable, so the size
+/// limit is checked on these first.
+std::pair<uint64_t, uint64_t> pngHeaderSize(std::span<const unsigned char> data) {
+    static constexpr unsigned char kStart[16] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    if (data.size() < 24 || !std::equal(kStart, kStart + 16, data.begin())) return {0, 0};
+    const auto bigEndian = [&](size_t at) {
+        return uint64_t(data[at]) << 24 | uint64_t(data[at + 1]) << 16 | uint64_t(data[at + 2]) << 8 | data[at + 3];
+    };
+    return {bigEndian(16), bigEndian(20)};
+}
+
 }  // namespace
 
 bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
@@ -60,12 +73,17 @@ bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std
                            std::to_string(bufferBytes) + " bytes");
     }
     if (size <= 0) return problem("has no bytes, or more than 2 GiB");
+    const auto tooLarge = [&](uint64_t width, uint64_t height) {
+        return (width > check.maxTextureSide || height > check.maxTextureSide) &&
+               problem(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
+                       std::to_string(check.maxTextureSide) + " texels a side");
+    };
+    if (const auto [pngWidth, pngHeight] = pngHeaderSize({bytes, size_t(size)}); tooLarge(pngWidth, pngHeight))
+        return true;
     int width = 0, height = 0, components = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &components))
         return problem("not an image stb can read (" + stbReason() + ")");
-    if (size_t(width) > check.maxTextureSide || size_t(height) > check.maxTextureSide)
-        return problem(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
-                       std::to_string(check.maxTextureSide) + " texels a side");
+    if (tooLarge(uint64_t(width), uint64_t(height))) return true;
     image->width = width;
     image->height = height;
     image->component = components;
