@@ -230,7 +230,21 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     if (env.products.empty()) return env;
     env.graph = *envGraph;
     if (inputs.environmentSizes) resizeEnvironmentGraph(*env.graph, *inputs.environmentSizes);
-    env.renderer = bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
+    try {
+        env.renderer =
+            bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
+    } catch (const ExecutorError& e) {
+        // The bake's images are as large as the environment file: one the device cannot hold
+        // (the executor's refusals end "nothing was allocated") is named where the scene names it.
+        const std::optional<SceneEnvironment>& sky = inputs.scene ? inputs.scene->environment : std::nullopt;
+        if (!sky || sky->procedural || !std::string_view(e.what()).ends_with("nothing was allocated")) throw;
+        const std::filesystem::path file = sky->sequence ? sky->sequence->frame(inputs.sequenceFrame) : sky->file;
+        Diagnostics d;
+        d.add({inputs.scene->file, sky->sequence ? "environment.sequence" : "environment.file", "", "",
+               "'" + printableName(file.string()) + "' (" + std::to_string(inputs.environment->width) + "x" +
+                   std::to_string(inputs.environment->height) + ") is too large for this device to bake: " + e.what()});
+        throw SceneError(std::move(d));
+    }
     return env;
 }
 
