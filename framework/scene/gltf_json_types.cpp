@@ -236,13 +236,10 @@ std::string glbProblem(std::string_view data) {
     return {};
 }
 
-std::optional<std::string> glbJsonChunk(std::string_view data) {
-    // GLB: a 12-byte header, then the JSON chunk (length, "JSON", text).
-    if (data.size() < 20 || data.compare(0, 4, "glTF") != 0 || data.compare(16, 4, "JSON") != 0) return std::nullopt;
+std::string_view glbJsonChunk(std::string_view data) {
     uint32_t length = 0;
     std::memcpy(&length, data.data() + 12, 4);
-    if (length > data.size() - 20) return std::nullopt;
-    return std::string(data.substr(20, length));
+    return data.substr(20, length);
 }
 
 bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bool binary, Diagnostics& diagnostics) {

@@ -6,7 +6,6 @@
 
 #include <skygraph/diagnostics.hpp>
 
-#include <optional>
 #include <string>
 #include <string_view>
 
@@ -16,8 +15,9 @@ namespace skygraph {
 /// chunk type), in words; empty when nothing is. tinygltf says only "Invalid glTF binary".
 [[nodiscard]] std::string glbProblem(std::string_view bytes);
 
-/// The JSON chunk of a .glb file's bytes; nullopt when it has none (tinygltf then says why).
-[[nodiscard]] std::optional<std::string> glbJsonChunk(std::string_view bytes);
+/// The JSON chunk of a .glb file's bytes, which glbProblem() found nothing wrong with; a view
+/// into `bytes`.
+[[nodiscard]] std::string_view glbJsonChunk(std::string_view bytes);
 
 /// Adds an error to `diagnostics` (file `file`; `binary`: the text is a .glb's JSON chunk) for
 /// malformed JSON (with its line and column in a .gltf), nesting deeper than the JSON readers

@@ -555,8 +555,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (binary)
         if (const std::string problem = glbProblem(bytes); !problem.empty()) return fail(problem);
-    if (const auto text = binary ? glbJsonChunk(bytes) : std::optional<std::string>(std::string(bytes));
-        text && !checkGltfJsonTypes(*text, name, binary, diagnostics))
+    if (!checkGltfJsonTypes(std::string(binary ? glbJsonChunk(bytes) : bytes), name, binary, diagnostics))
         return std::nullopt;
     tinygltf::TinyGLTF reader;
     tinygltf::Model model;

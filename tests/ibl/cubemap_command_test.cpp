@@ -200,7 +200,8 @@ TEST_F(CubemapCommand, BadInputFailsWithTheFileNamedAndWritesNothing) {
     EXPECT_NE(r.output.find("corrupt.hdr"), std::string::npos) << r.output;
 
     r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" + (dir_ / "out.png").string() + "'");
-    EXPECT_EQ(r.status, 2) << "a non-.ktx2 output is misuse: " << r.output;
+    EXPECT_EQ(r.status, 1) << "a non-.ktx2 output is a problem with the input, as render's: " << r.output;
+    EXPECT_NE(r.output.find("out.png': cannot write: its extension must be .ktx2"), std::string::npos) << r.output;
     r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" + out.string() + "' --size 48");
     EXPECT_EQ(r.status, 2) << r.output;
     r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" + out.string() +
