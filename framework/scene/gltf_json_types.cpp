@@ -131,10 +131,26 @@ namespace {
 /// values (`alphaMode`, ranges, wrap modes) are checked where the materials are read.
 class ValueChecker {
 public:
-    ValueChecker(std::string file, Diagnostics& diagnostics) : file_(std::move(file)), diagnostics_(diagnostics) {}
+    ValueChecker(std::string file, bool binary, Diagnostics& diagnostics)
+        : file_(std::move(file)), binary_(binary), diagnostics_(diagnostics) {}
 
     bool check(const json& root) {
+        // tinygltf names a missing property without saying where, and reads any version.
+        const auto asset = root.find("asset");
+        if (asset == root.end()) {
+            error("asset", "missing; a glTF file says its version there");
+        } else if (const auto version = asset->find("version"); version == asset->end()) {
+            error("asset.version", "missing; expected \"2.0\"");
+        } else if (version->get<std::string>().rfind("2.", 0) != 0) {
+            error("asset.version", "skygraph reads glTF 2.x, got " + version->dump());
+        } else if (const auto min = asset->find("minVersion"); min != asset->end() && min->get<std::string>() != "2.0") {
+            error("asset.minVersion", "skygraph reads glTF 2.0, got " + min->dump());
+        }
+        const size_t views = root.contains("bufferViews") ? root["bufferViews"].size() : 0;
         each(root, "accessors", [&](const json& a, const std::string& at) {
+            required(a, at, {"componentType", "count", "type"});
+            if (const auto view = a.find("bufferView"); view != a.end() && view->get<uint64_t>() >= views)
+                error(at + ".bufferView", "buffer view " + view->dump() + " does not exist");
             oneOf(a, "componentType", at, {5120, 5121, 5122, 5123, 5125, 5126},
                   "BYTE (5120), UNSIGNED_BYTE (5121), SHORT (5122), UNSIGNED_SHORT (5123), UNSIGNED_INT (5125) or FLOAT (5126)");
             oneOf(a, "type", at, {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"});
@@ -144,6 +160,7 @@ public:
                           "UNSIGNED_BYTE (5121), UNSIGNED_SHORT (5123) or UNSIGNED_INT (5125)");
         });
         each(root, "bufferViews", [&](const json& v, const std::string& at) {
+            required(v, at, {"buffer", "byteLength"});
             if (const auto stride = v.find("byteStride"); stride != v.end()) {
                 const uint64_t s = stride->get<uint64_t>();
                 if (s < 4 || s > 252 || s % 4 != 0)
@@ -158,10 +175,18 @@ public:
             if (n.contains("matrix") && (n.contains("rotation") || n.contains("translation") || n.contains("scale")))
                 error(at, "has both a matrix and rotation, translation or scale; glTF allows one or the other");
         });
+        each(root, "buffers", [&](const json& b, const std::string& at) {
+            required(b, at, {"byteLength"});
+            // Only a .glb's first buffer, its binary chunk, has no uri.
+            if (!b.contains("uri") && !(binary_ && at == "buffers[0]"))
+                error(at + ".uri", "missing; only the first buffer of a .glb may have none");
+        });
         each(root, "meshes", [&](const json& m, const std::string& at) {
+            required(m, at, {"primitives"});
             if (const auto primitives = m.find("primitives"); primitives != m.end())
                 for (size_t i = 0; i < primitives->size(); ++i) {
                     const std::string p = at + ".primitives[" + std::to_string(i) + "]";
+                    required((*primitives)[i], p, {"attributes"});
                     if ((*primitives)[i].contains("mode") && (*primitives)[i]["mode"].get<uint64_t>() > 6)
                         error(p + ".mode", "must be a primitive mode from 0 to 6, got " + (*primitives)[i]["mode"].dump());
                 }
@@ -181,6 +206,11 @@ private:
     void error(const std::string& path, const std::string& message) {
         diagnostics_.add(Diagnostic{file_, path, "", "", message});
         ok_ = false;
+    }
+
+    void required(const json& object, const std::string& at, std::initializer_list<const char*> keys) {
+        for (const char* key : keys)
+            if (!object.contains(key)) error(at + "." + key, "missing; glTF requires it here");
     }
 
     template <typename F>
@@ -211,6 +241,7 @@ private:
     }
 
     std::string file_;
+    bool binary_;
     Diagnostics& diagnostics_;
     bool ok_ = true;
 };
@@ -258,7 +289,7 @@ bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bo
     for (const DuplicateKey& dup : parsed.duplicateKeys)
         diagnostics.add(Diagnostic{file, dup.path, "", "", "duplicate key '" + dup.key + "'; JSON keeps only the last one"});
     if (!TypeChecker(file, diagnostics).check(parsed.value)) return false;
-    return ValueChecker(file, diagnostics).check(parsed.value) && parsed.duplicateKeys.empty();
+    return ValueChecker(file, binary, diagnostics).check(parsed.value) && parsed.duplicateKeys.empty();
 }
 
 }  // namespace skygraph
