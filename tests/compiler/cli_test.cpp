@@ -739,6 +739,18 @@ TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {
     }
 }
 
+// The plan and the memory picture named as one file: the plan, written second, would replace
+// the picture, which exited 0.
+TEST_F(Cli, CompileRefusesOneFileForThePlanAndThePicture) {
+    const fs::path out = dir_ / "work" / "both.out";
+    for (const fs::path& svg : {out, dir_ / "work" / "." / "both.out"}) {
+        const CliRun r = run({"compile", "graphs/raster.json", "-o", out.string(), "--memory-svg", svg.string()});
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find("-o and --memory-svg both name '" + out.string() + "'"), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty());
+    }
+}
+
 // An environment image that cannot be read is named with the scene key that names it.
 TEST_F(Cli, RenderNamesTheSceneKeyOfAnUnreadableEnvironment) {
     fs::create_directories(dir_ / "frames");

@@ -1,6 +1,8 @@
 #include "compile_command.hpp"
 
 #include "file_watcher.hpp"
+#include "printable_name.hpp"
+#include "replace_file.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/diagnostics.hpp>
@@ -14,6 +16,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -129,9 +132,22 @@ int watch(const CompileArgs& args, const FeatureValues& features) {
     return last ? kExitOk : kExitUserError;
 }
 
+/// -o and --memory-svg naming one file: the second write would replace the first.
+void refuseOneFileForBothOutputs(const CompileArgs& args) {
+    if (args.output.empty() || args.memorySvg.empty()) return;
+    std::error_code ec;
+    const std::filesystem::path plan = std::filesystem::weakly_canonical(args.output, ec);
+    const bool same = (!ec && plan == std::filesystem::weakly_canonical(args.memorySvg, ec) && !ec) ||
+                      files::sameFileAmong(args.memorySvg, std::vector<std::filesystem::path>{args.output});
+    if (same)
+        throw std::runtime_error("-o and --memory-svg both name '" + printableName(args.output) +
+                                 "': the plan would replace the picture");
+}
+
 int run(const CompileArgs& args) {
     refuseToOverwriteInputs("-o", args.output, {args.graph});
     refuseToOverwriteInputs("--memory-svg", args.memorySvg, {args.graph});
+    refuseOneFileForBothOutputs(args);
     const FeatureValues features = parseFeatureFlags(args.features);
     if (args.watch) return watch(args, features);
     writeCompiled(args, compileOnce(args, features), true);
