@@ -2,6 +2,7 @@
 
 #include "json_document_builder.hpp"
 
+#include <cmath>
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -183,5 +184,11 @@ nlohmann::json JsonValue::toJson() const {
 }
 
 std::string JsonValue::dump() const { return toJson().dump(); }
+
+std::string JsonValue::integerHint() const {
+    if (kind() != Kind::Float) return {};
+    const double v = number<double>();
+    return std::isfinite(v) && v == std::floor(v) ? " (write it as an integer)" : "";
+}
 
 }  // namespace skygraph

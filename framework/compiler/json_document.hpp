@@ -92,6 +92,10 @@ public:
     [[nodiscard]] nlohmann::json toJson() const;
     /// nlohmann's compact text of the value, for messages.
     [[nodiscard]] std::string dump() const;
+    /// For messages where an integer is wanted: " (write it as an integer)" when the value is
+    /// whole but written with a fraction or an exponent (`4.0`, `2.56e2`), which the loader
+    /// does not take as an integer and the schema cannot tell apart; otherwise empty.
+    [[nodiscard]] std::string integerHint() const;
 
 private:
     [[nodiscard]] const Node* children() const noexcept;

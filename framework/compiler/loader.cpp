@@ -213,7 +213,7 @@ private:
         if (const JsonValue version = f[rootKey::version]; !version) {
             error("version", "", "", "missing; this reader understands version 1");
         } else if (!version.isInteger() || !version.equals(1)) {
-            error("version", "", "", "unsupported version " + version.dump() +
+            error("version", "", "", "unsupported version " + version.dump() + version.integerHint() +
                                          "; this reader understands version 1");
         }
         if (const JsonValue name = f[rootKey::name]; name && name.isString()) {

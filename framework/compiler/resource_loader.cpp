@@ -97,7 +97,9 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
         r.extent.height = static_cast<uint32_t>(std::clamp<int64_t>(h, 1, kMaxImageExtent));
         if (r.type == ResourceType::Cube && w != h) fail("extent", "cube faces must be square");
     } else {
-        fail("extent", "expected \"output\", \"output/N\" or [width, height]");
+        std::string hint;
+        for (size_t i = 0; extent.isArray() && i < extent.size() && hint.empty(); ++i) hint = extent[i].integerHint();
+        fail("extent", "expected \"output\", \"output/N\" or [width, height], got " + extent.dump() + hint);
     }
     if (const JsonValue mips = f[key::mips]) {
         const auto maxMips = static_cast<uint32_t>(std::bit_width(kMaxImageExtent));
@@ -105,7 +107,7 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
             r.mips = 0;
         } else if (!mips.isInteger() || mips.number<int64_t>() < 1 || mips.number<int64_t>() > maxMips) {
             fail("mips", "expected \"full\" or a count between 1 and " + std::to_string(maxMips) + ", got " +
-                             mips.dump());
+                             mips.dump() + mips.integerHint());
         } else {
             r.mips = mips.number<uint32_t>();
             if (!r.extent.relativeToOutput &&
@@ -117,7 +119,8 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
     r.layers = r.type == ResourceType::Cube ? 6 : 1;
     if (const JsonValue layers = f[key::layers]) {
         if (!layers.isInteger() || layers.number<int64_t>() < 1 || layers.number<int64_t>() > kMaxLayers) {
-            fail("layers", "expected a count between 1 and " + std::to_string(kMaxLayers) + ", got " + layers.dump());
+            fail("layers", "expected a count between 1 and " + std::to_string(kMaxLayers) + ", got " + layers.dump() +
+                               layers.integerHint());
         } else {
             r.layers = layers.number<uint32_t>();
             if (r.type == ResourceType::Cube && r.layers != 6) fail("layers", "a cube has 6 layers");
@@ -255,8 +258,10 @@ void loadResource(std::string_view name, JsonValue v, FileProblems& report, Reso
         for (const size_t k : {key::format, key::extent, key::mips, key::layers})
             if (f[k]) fail(kResourceKeys[k], "buffers have no " + std::string(kResourceKeys[k]));
         const JsonValue size = f[key::size];
-        if (!size || !size.isUnsigned() || size.number<uint64_t>() == 0 || size.number<uint64_t>() > kMaxBufferBytes)
-            fail("size", "buffers need a size in bytes between 1 and 2 GiB");
+        if (!size)
+            fail("size", "missing; buffers need a size in bytes between 1 and 2 GiB");
+        else if (!size.isUnsigned() || size.number<uint64_t>() == 0 || size.number<uint64_t>() > kMaxBufferBytes)
+            fail("size", "buffers need a size in bytes between 1 and 2 GiB, got " + size.dump() + size.integerHint());
         else
             r.sizeBytes = size.number<uint64_t>();
     }

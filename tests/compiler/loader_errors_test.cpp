@@ -911,7 +911,17 @@ TEST(LoaderErrors, AbsurdBufferSizes) {
     }
     Json g = baseGraph();
     g["resources"]["buf"].erase("size");
-    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"size in bytes"}));
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"missing; buffers need a size in bytes"}));
+    // A whole number written with a fraction is not taken as an integer (the schema cannot
+    // tell): the message says so, where it said only the range the value is in.
+    g["resources"]["buf"]["size"] = 256.0;
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"got 256.0 (write it as an integer)"}));
+    g["resources"]["buf"]["size"] = 1.5;
+    EXPECT_FALSE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"write it as an integer"}));
+    Json extent = baseGraph();
+    extent["resources"]["hdr_color"]["extent"] = Json::array({16.0, 16});
+    EXPECT_TRUE(hasDiag(loadErrors(extent), "resources.hdr_color.extent", "", "hdr_color",
+                        {"got [16.0,16] (write it as an integer)"}));
     g["resources"]["buf"]["size"] = 1;
     g["resources"]["buf"]["extent"] = "output";
     EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.extent", "", "buf", {"buffers have no extent"}));
