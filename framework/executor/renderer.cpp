@@ -382,32 +382,16 @@ void Renderer::forgetImport(const std::string& resource) {
         throw ExecutorError("forgetImport: '" + resource + "' has no imported image");
 }
 
-namespace {
-
-/// Why `pixels` cannot become the contents of external image `resource`, naming `call`.
-void refuseExternalPixels(const char* call, const PlanState& s, const std::string& resource, const ImageData& pixels) {
-    const ResourceDesc* desc = s.graph.findResource(resource);
-    const std::string what = std::string(call) + ": ";
-    if (!desc) throw ExecutorError(what + "no resource '" + resource + "' in the graph");
-    if (!desc->external || !desc->isImage()) throw ExecutorError(what + "'" + resource + "' is not an external image");
-    const auto ext = desc->extent.resolve(s.outputWidth(), s.outputHeight());
-    if (pixels.width != ext[0] || pixels.height != ext[1] ||
-        pixels.rgba.size() != size_t(pixels.width) * pixels.height * 4) {
-        throw ExecutorError(what + "'" + resource + "' is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
-                            ", the pixels are " + std::to_string(pixels.width) + "x" + std::to_string(pixels.height));
-    }
-    const uint32_t texel = findFormat(desc->format.format) ? desc->format.bytesPerTexel : 0;
-    std::array<float, 4> probe{1, 1, 1, 1};
-    const auto encoded = encodeTexel(desc->format.format, texel, probe);
-    if (texel == 0 || std::all_of(encoded.begin(), encoded.end(), [](uint8_t b) { return b == 0; }))
-        throw ExecutorError(what + "cannot upload pixels to format " + std::string(desc->format.name));
+void Renderer::forgetExternalImage(const std::string& resource) {
+    if (impl_->uploads.erase(resource) == 0)
+        throw ExecutorError("forgetExternalImage: '" + resource + "' has no pixels from setExternalImage()");
 }
 
-}  // namespace
 
 void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     Impl& d = *impl_;
-    refuseExternalPixels("setExternalImage", *d.state, resource, pixels);
+    if (const auto problem = Impl::externalPixelsProblem(*d.state, resource, pixels))
+        throw ExecutorError("setExternalImage: " + *problem);
     auto previous = d.uploads;
     d.uploads[resource] = std::move(pixels);
     try {
@@ -424,7 +408,8 @@ void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
 
 void Renderer::updateExternalImage(const std::string& resource, ImageData pixels, UploadTiming timing) {
     Impl& d = *impl_;
-    refuseExternalPixels("updateExternalImage", *d.state, resource, pixels);
+    if (const auto problem = Impl::externalPixelsProblem(*d.state, resource, pixels))
+        throw ExecutorError("updateExternalImage: " + *problem);
     const auto it = d.uploads.find(resource);
     if (it == d.uploads.end())
         throw ExecutorError("updateExternalImage: '" + resource + "' has no pixels yet (setExternalImage first)");

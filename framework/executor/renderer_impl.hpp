@@ -414,6 +414,11 @@ struct Renderer::Impl {
     /// first submit instead (pendingSetups), and nothing waits; otherwise it waits for this
     /// renderer's frames first (without it, the caller has waited).
     void runSetup(detail::PlanState& s, std::string_view only = {}, bool withNextFrame = false);
+    /// Why `pixels` cannot become the contents of external image `resource` of plan state `s`
+    /// (setExternalImage(), and the pixels kept for a rebuild), or nothing.
+    [[nodiscard]] static std::optional<std::string> externalPixelsProblem(const detail::PlanState& s,
+                                                                          const std::string& resource,
+                                                                          const ImageData& pixels);
     /// Setup steps for the next frame to record before its passes, with what they need kept
     /// alive (the staging buffers) until that frame has finished.
     struct PendingSetup {

@@ -7,6 +7,8 @@
 #include <skygraph/transfer_plans.hpp>
 
 #include <cstring>
+#include <optional>
+#include <string>
 
 namespace skygraph {
 
@@ -68,11 +70,39 @@ size_t copiesOf(const ResourceState& r) { return r.isImage ? r.images.size() : r
 
 }  // namespace
 
+std::optional<std::string> Renderer::Impl::externalPixelsProblem(const PlanState& s, const std::string& resource,
+                                                                 const ImageData& pixels) {
+    const ResourceDesc* desc = s.graph.findResource(resource);
+    if (!desc) return "no resource '" + resource + "' in the graph";
+    if (!desc->external || !desc->isImage()) return "'" + resource + "' is not an external image";
+    const auto ext = desc->extent.resolve(s.outputWidth(), s.outputHeight());
+    if (pixels.width != ext[0] || pixels.height != ext[1])
+        return "'" + resource + "' is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) + ", the pixels are " +
+               std::to_string(pixels.width) + "x" + std::to_string(pixels.height);
+    if (pixels.rgba.size() != size_t(pixels.width) * pixels.height * 4)
+        return "the pixels of '" + resource + "' say " + std::to_string(pixels.width) + "x" +
+               std::to_string(pixels.height) + " but hold " + std::to_string(pixels.rgba.size()) + " floats, not " +
+               std::to_string(size_t(pixels.width) * pixels.height * 4);
+    const uint32_t texel = findFormat(desc->format.format) ? desc->format.bytesPerTexel : 0;
+    std::array<float, 4> probe{1, 1, 1, 1};
+    const auto encoded = encodeTexel(desc->format.format, texel, probe);
+    if (texel == 0 || std::all_of(encoded.begin(), encoded.end(), [](uint8_t b) { return b == 0; }))
+        return "cannot upload pixels to format " + std::string(desc->format.name);
+    return std::nullopt;
+}
+
 void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNextFrame) {
     SetupOptions o;
     for (const auto& [name, image] : imports) o.imports.insert(name);
-    for (const auto& [name, pixels] : uploads)
-        if (s.plan.resourceIndex(name) >= 0 && !imports.count(name)) o.uploads.insert(name);
+    for (const auto& [name, pixels] : uploads) {
+        if (s.plan.resourceIndex(name) < 0 || imports.count(name)) continue;
+        // Kept from setExternalImage() for an earlier plan: a resize or a new graph may have
+        // changed the image (the copy would read past the pixels) or made it no external one.
+        if (const auto problem = externalPixelsProblem(s, name, pixels))
+            throw ExecutorError("the pixels setExternalImage() gave '" + name + "' do not fit this plan: " + *problem +
+                                " (forgetExternalImage() them, rebuild, then give pixels that fit)");
+        o.uploads.insert(name);
+    }
     if (!only.empty()) {
         // Every other external resource keeps its contents: to the setup, it is provided.
         for (const PlannedResource& r : s.plan.resources())

@@ -260,8 +260,18 @@ public:
     /// renderer's own frames, not for other renderers' (one that reads an image this renderer
     /// shares must have finished before: the caller orders that), then runs the whole setup
     /// again and waits for it, so every external resource it covers gets its first contents
-    /// back. Throws ExecutorError for a wrong name, size or format.
+    /// back. Throws ExecutorError for a wrong name or size, `pixels.rgba` of another length than
+    /// width x height x 4, or an image format pixels cannot be uploaded to. A rebuild whose
+    /// plan the kept pixels no longer fit throws too (forgetExternalImage()).
     void setExternalImage(const std::string& resource, ImageData pixels);
+    /// Undoes setExternalImage() for `resource` from the next time the setup runs (a rebuild,
+    /// which the class comment lists, or setExternalImage() of any resource): it gives the
+    /// image its clear value or grey, as before the first pixels. Until then the frames keep
+    /// reading the pixels.
+    /// Pixels that no longer fit (an output-sized image, before a resize; a resource a new
+    /// graph makes transient) fail every rebuild; forget them, rebuild, then give pixels that
+    /// fit. Throws ExecutorError when `resource` has no pixels from setExternalImage().
+    void forgetExternalImage(const std::string& resource);
     /// New pixels for external image `resource`, which setExternalImage() gave pixels before:
     /// one Upload step of the setup and its barriers, every other resource left as it is (so
     /// images this renderer shares keep their contents). The pixels go to a staging buffer

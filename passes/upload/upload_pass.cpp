@@ -30,6 +30,16 @@ public:
         if (!staged)
             throw ExecutorError(what + "no pixels staged for '" + target.desc->name +
                                 "' this frame (Renderer::stageUpload before each frame)");
+        // stageUpload() checked the size against the plan of its day; a resize or a new graph
+        // since may have grown the target, and the copy would read past the buffer.
+        const VkDeviceSize needed = target.image ? VkDeviceSize(target.extent.width) * target.extent.height *
+                                                       target.usage->range.layerCount *
+                                                       detail::copyTexelBytes(target.desc->format)
+                                                 : target.size;
+        if (staged->size() != needed)
+            throw ExecutorError(what + "the pixels staged for '" + target.desc->name + "' are " +
+                                std::to_string(staged->size()) + " bytes, and it takes " + std::to_string(needed) +
+                                " now (staged before a resize or a new graph: stage again)");
         if (!target.image) {
             const VkBufferCopy region{0, 0, target.size};
             vkCmdCopyBuffer(ctx.cmd, staged->buffer(), target.buffer, 1, &region);

@@ -407,6 +407,61 @@ TEST_F(ExecutorTest, ExternalImageUpload) {
     r.waitIdle();
 }
 
+// Pixels kept from setExternalImage() for an output-sized image fit only the output size they
+// were given at: a resize either way was a copy past their end (growing) or a garbled image
+// (shrinking). The rebuild refuses them, keeping the old plan, until they are forgotten.
+TEST_F(ExecutorTest, ExternalPixelsThatNoLongerFitFailTheRebuildUntilForgotten) {
+    const auto c = compileText(
+        R"({ "version": 1, "name": "t", "resources": {
+          "photo": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output",
+                     "external": true, "initial": "ShaderRead" },
+          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                         "external": true, "final": "Present" } },
+          "passes": [ { "name": "show", "type": "Generic",
+            "uses": { "photo": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+            "params": { "color": [0, 0, 0, 0] } } ] })");
+    Renderer r(sharedDevice(), c, genericOptions());
+    const auto pixels = [](uint32_t w, uint32_t h) {
+        ImageData px;
+        px.width = w;
+        px.height = h;
+        px.rgba.assign(size_t(w) * h * 4, 0.5f);
+        return px;
+    };
+    const uint32_t w = c.outputWidth(), h = c.outputHeight();
+    r.setExternalImage("photo", pixels(w, h));
+    for (const auto [nw, nh] : {std::pair{w * 2, h * 2}, std::pair{w / 2, h / 2}}) {
+        try {
+            r.resize(nw, nh);
+            FAIL() << "resized to " << nw << "x" << nh << " with pixels of " << w << "x" << h;
+        } catch (const ExecutorError& e) {
+            EXPECT_NE(std::string(e.what()).find("the pixels setExternalImage() gave 'photo' do not fit this plan: "
+                                                 "'photo' is " + std::to_string(nw) + "x" + std::to_string(nh) +
+                                                 ", the pixels are " + std::to_string(w) + "x" + std::to_string(h) +
+                                                 " (forgetExternalImage() them"),
+                      std::string::npos)
+                << e.what();
+        }
+        EXPECT_EQ(r.plan().outputWidth(), w) << "the old plan keeps running";
+    }
+    r.renderFrame();
+    r.forgetExternalImage("photo");
+    r.resize(w * 2, h * 2);
+    r.setExternalImage("photo", pixels(w * 2, h * 2));
+    r.renderFrame();
+    EXPECT_EQ(r.readback().width, w * 2);
+    EXPECT_THROW(r.forgetExternalImage("swapchain"), ExecutorError);
+    ImageData shortPixels = pixels(w * 2, h * 2);
+    shortPixels.rgba.resize(4);
+    try {
+        r.setExternalImage("photo", shortPixels);
+        FAIL() << "4 floats for " << w * 2 << "x" << h * 2;
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("hold 4 floats, not"), std::string::npos) << e.what();
+    }
+    r.waitIdle();
+}
+
 // Cross-frame RAW into a different read stage: the frame reads the persistent buffer as
 // vertex input first, then overwrites it in compute, then reads it in the fragment shader.
 // The next frame's vertex-input read must see this frame's compute write, so the final

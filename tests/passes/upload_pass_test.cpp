@@ -156,6 +156,42 @@ TEST_F(UploadPassTest, ADroppedWaitForTheCopyIsCaught) {
     EXPECT_TRUE(sharedDevice().hasMessage("SYNC-HAZARD")) << formatMessages(sharedDevice());
 }
 
+// stageUpload() checks the size against the plan of its day: pixels staged before a resize that
+// grew the target would have been copied past the end of their buffer (validation's
+// VUID-vkCmdCopyBufferToImage-pRegions-00171), and the frame went on.
+TEST_F(ExecutorTest, PixelsStagedBeforeAResizeAreRefusedWhenTheFrameCopiesThem) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    const GraphDesc graph = parseGraph(R"({
+      "version": 1, "name": "upload_output_sized",
+      "resources": {"img": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": "output",
+                            "external": true, "final": "ShaderRead"}},
+      "passes": [{"name": "upload_img", "type": "UploadPass", "uses": {"img": "Write@Transfer"}},
+                 {"name": "read_img", "type": "Generic", "never_cull": true, "uses": {"img": "Read@Compute"}}]
+    })",
+                                       "upload_output_sized.json", library.registry());
+    CompileOptions co;
+    co.outputWidth = co.outputHeight = 4;
+    RendererOptions ro;
+    ro.passes = &library;
+    Renderer r(sharedDevice(), CompiledGraph(graph, co), ro);
+    r.stageUpload("img", StagingBuffer::create(sharedDevice(), 4 * 4 * 16));
+    r.resize(16, 16);
+    try {
+        r.renderFrame();
+        FAIL() << "a copy of 4096 bytes from a buffer of 256 was recorded";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'upload_img' (UploadPass): the pixels staged for 'img' are 256 "
+                                             "bytes, and it takes 4096 now (staged before a resize or a new graph: "
+                                             "stage again)"),
+                  std::string::npos)
+            << e.what();
+    }
+    r.stageUpload("img", StagingBuffer::create(sharedDevice(), r.stagingBytes("img")));
+    r.renderFrame();
+    r.waitIdle();
+    EXPECT_FALSE(sharedDevice().messageCount()) << formatMessages(sharedDevice());
+}
+
 TEST_F(ExecutorTest, AnUploadPassWritesMipZeroAlone) {
     // The loader refuses such a usage in a file (LoaderErrors.PassTypesCheckWhatTheirSlotsCannotSay);
     // a graph built in code reaches the pass as it is.
