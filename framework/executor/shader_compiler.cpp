@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 
 namespace skygraph {
 namespace {
@@ -27,11 +28,11 @@ public:
     DirIncluder(std::filesystem::path dir, SpirvDiskCache::IncludeReader read)
         : dir_(std::move(dir)), read_(std::move(read)) {}
 
-    IncludeResult* includeLocal(const char* headerName, const char*, size_t) override {
-        return load(headerName);
+    IncludeResult* includeLocal(const char* headerName, const char*, size_t depth) override {
+        return load(headerName, depth);
     }
-    IncludeResult* includeSystem(const char* headerName, const char*, size_t) override {
-        return load(headerName);
+    IncludeResult* includeSystem(const char* headerName, const char*, size_t depth) override {
+        return load(headerName, depth);
     }
     void releaseInclude(IncludeResult* result) override {
         if (result) {
@@ -42,7 +43,17 @@ public:
     [[nodiscard]] const std::vector<IncludedFile>& loaded() const noexcept { return loaded_; }
 
 private:
-    IncludeResult* load(const char* name) {
+    /// Deeper than any include tree: a file that includes itself, directly or through others,
+    /// without a guard would be expanded until memory runs out.
+    static constexpr size_t kMostIncludeDepth = 64;
+
+    IncludeResult* load(const char* name, size_t depth) {
+        if (depth > kMostIncludeDepth) {
+            // glslang's convention: no header name, and the text is the error.
+            auto* error = new std::string("#include nested deeper than " + std::to_string(kMostIncludeDepth) +
+                                          " levels at '" + name + "': an include cycle without an include guard?");
+            return new IncludeResult("", error->data(), error->size(), error);
+        }
         const auto path = std::filesystem::absolute(dir_ / name).lexically_normal();
         const std::string* kept = read_(path);
         if (!kept) return nullptr;

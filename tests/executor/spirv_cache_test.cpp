@@ -67,6 +67,22 @@ TEST_F(SpirvCacheTest, AnEditedIncludeIsCompiledAgain) {
     EXPECT_THROW((void)compileFresh(), ExecutorError) << "a broken include is an error, not the old shader";
 }
 
+// An include cycle without a guard was expanded until memory ran out (a hot reload of such an
+// edit froze the application): it is an error, naming the file, as any broken include is.
+TEST_F(SpirvCacheTest, AnIncludeCycleIsAnError) {
+    writeInclude("#include \"lib.glsl\"\n");
+    try {
+        (void)compileFresh();
+        FAIL() << "a file including itself compiled";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("#include nested deeper than 64 levels at 'lib.glsl'"), std::string::npos)
+            << e.what();
+    }
+    // A guarded one is the usual way to include a file twice, and compiles.
+    writeInclude("#ifndef LIB\n#define LIB\n#include \"lib.glsl\"\nfloat scale() { return 1.0; }\n#endif\n");
+    EXPECT_NO_THROW((void)compileFresh());
+}
+
 // A compiler includes each file as it first read it, like its top-level sources, until clear():
 // a new variant compiled while an include is edited (or broken) on disk uses the kept text,
 // and a disk cache entry made from the edited include is not taken for it.
