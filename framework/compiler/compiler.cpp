@@ -54,7 +54,8 @@ Plan compileExported(const GraphDesc& graph, const CompileOptions& options) {
 }  // namespace
 
 Plan compile(const GraphDesc& graph, const CompileOptions& options) {
-    if (options.exports.empty() && !options.outputs && options.readbacks.empty())
+    if (options.exports.empty() && !options.outputs && options.readbacks.empty() &&
+        options.presentReplacement != ExternalState::None)
         return compileExported(graph, options);
     checkOutputNames(graph, options);
     CompileOptions rest = options;

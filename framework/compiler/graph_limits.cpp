@@ -8,6 +8,18 @@ Diagnostics limitProblems(const GraphDesc& graph) {
     Diagnostics diags;
     for (const ResourceDesc& r : graph.resources) {
         const auto problem = [&](std::string what) { diags.add({graph.file, r.jsonPath(), "", r.name, std::move(what)}); };
+        if (!statesFit(r)) {
+            if (r.final == ExternalState::Present && !r.external)
+                problem("only an external image (the swapchain's) can be presented");
+            else if (!r.isImage() && r.clear)
+                problem("a buffer cannot be cleared by the graph");
+            else if (!r.isImage())
+                problem("a buffer cannot start or end as Present or TransferSrc, which are image layouts");
+            else
+                problem(std::string(r.format.isDepthStencil() ? "the depth format " : "the color format ") +
+                        std::string(r.format.name) + " clears to " +
+                        (r.format.isDepthStencil() ? "a depth value, not a color" : "a color, not a depth value"));
+        }
         if (!r.isImage()) {
             if (r.sizeBytes == 0 || r.sizeBytes > kMaxBufferBytes)
                 problem("a buffer's size must be between 1 and " + std::to_string(kMaxBufferBytes) + " bytes, not " +
@@ -21,6 +33,13 @@ Diagnostics limitProblems(const GraphDesc& graph) {
         if (!e.relativeToOutput && (e.width == 0 || e.height == 0 || e.width > kMaxImageExtent || e.height > kMaxImageExtent))
             problem("a fixed extent must be between 1 and " + std::to_string(kMaxImageExtent) + " each way, not " +
                     std::to_string(e.width) + "x" + std::to_string(e.height));
+        if (r.format.format == VK_FORMAT_UNDEFINED) problem("an image needs a format");
+        if (r.type == ResourceType::Cube && (r.layers != 6 || e.relativeToOutput || e.width != e.height))
+            problem("a cube has 6 layers of square faces of a fixed extent, not " + std::to_string(r.layers) +
+                    " layer(s) " + (e.relativeToOutput ? "of the output's extent" : "of " + std::to_string(e.width) +
+                                                                                          "x" + std::to_string(e.height)));
+        if (r.type == ResourceType::Image2D && r.layers != 1)
+            problem("an image2d has 1 layer, not " + std::to_string(r.layers) + "; use image2d_array");
         if (r.layers == 0 || r.layers > kMaxLayers)
             problem("layers must be between 1 and " + std::to_string(kMaxLayers) + ", not " + std::to_string(r.layers));
         if (r.mips > std::bit_width(kMaxImageExtent))

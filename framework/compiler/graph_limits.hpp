@@ -19,18 +19,34 @@ inline constexpr uint64_t kMaxBufferBytes = 1ull << 31;
 /// The largest graph file loadGraphFile() reads (a 100,000-pass graph is about 20 MiB).
 inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 
-/// Whether `r`'s extent, layers, mip count and size are within the limits; the index asks
-/// once per resource, so only a resource past them costs a message.
+/// Whether a resource's states fit it as the loader requires of a file: only an external image
+/// is presented, a buffer is never left for presentation or a copy source, and only images
+/// clear, to a value of their format's kind.
+[[nodiscard]] inline bool statesFit(const ResourceDesc& r) noexcept {
+    const auto imageOnly = [](ExternalState s) { return s == ExternalState::Present || s == ExternalState::TransferSrc; };
+    if (r.final == ExternalState::Present && !r.external) return false;
+    if (!r.isImage()) return !imageOnly(r.final) && !imageOnly(r.initial) && !r.clear;
+    return !r.clear || r.clear->isDepth == r.format.isDepthStencil();
+}
+
+/// Whether `r`'s extent, layers, mip count and size are within the limits, and its shape and
+/// states are as the loader allows (a code-built GraphDesc has not been through it); the index
+/// asks once per resource, so only a resource past them costs a message.
 [[nodiscard]] inline bool withinLimits(const ResourceDesc& r) noexcept {
-    if (!r.isImage()) return r.sizeBytes != 0 && r.sizeBytes <= kMaxBufferBytes;
+    if (!r.isImage()) return r.sizeBytes != 0 && r.sizeBytes <= kMaxBufferBytes && statesFit(r);
     const Extent& e = r.extent;
     const bool extent = e.relativeToOutput ? e.divisor != 0 && e.divisor <= kMaxDivisor
                                            : e.width != 0 && e.height != 0 && e.width <= kMaxImageExtent &&
                                                  e.height <= kMaxImageExtent;
-    return extent && r.layers != 0 && r.layers <= kMaxLayers && r.mips <= std::bit_width(kMaxImageExtent);
+    const bool shape = r.type == ResourceType::Cube    ? r.layers == 6 && !e.relativeToOutput && e.width == e.height
+                       : r.type == ResourceType::Image2D ? r.layers == 1
+                                                         : true;
+    return extent && shape && r.format.format != VK_FORMAT_UNDEFINED && r.layers != 0 && r.layers <= kMaxLayers &&
+           r.mips <= std::bit_width(kMaxImageExtent) && statesFit(r);
 }
 
-/// A diagnostic for each resource of `graph` past the limits, naming it and what is wrong.
+/// A diagnostic for each resource of `graph` that withinLimits() refuses, naming it and what
+/// is wrong.
 [[nodiscard]] Diagnostics limitProblems(const GraphDesc& graph);
 
 }  // namespace skygraph

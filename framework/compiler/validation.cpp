@@ -116,11 +116,23 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
 
 void checkOutputNames(const GraphDesc& graph, const CompileOptions& options) {
     Diagnostics diags;
+    // The state a presented image is left in instead: None would end it in UNDEFINED.
+    if (options.presentReplacement == ExternalState::None)
+        diags.add({graph.file, "", "", "",
+                   "CompileOptions::presentReplacement must be a state to leave the image in (Present, TransferSrc, "
+                   "ShaderRead or General), not None"});
     if (options.outputs)
-        for (const std::string& name : *options.outputs)
-            if (!graph.findResource(name))
+        for (const std::string& name : *options.outputs) {
+            const ResourceDesc* r = graph.findResource(name);
+            if (!r)
                 diags.add({graph.file, "resources", "", name,
                            "cannot keep '" + name + "' as an output: no such resource"});
+            // Keeping only names that are no export would cull every pass, without a word.
+            else if (!r->isExported() && !options.exports.count(name) && !options.readbacks.count(name))
+                diags.add({graph.file, r->jsonPath(), "", name,
+                           "cannot keep '" + name + "' as an output: it is not exported (no `final`, and not in "
+                           "CompileOptions::exports or readbacks)"});
+        }
     for (const auto& [name, state] : options.exports)
         if (!graph.findResource(name))
             diags.add({graph.file, "resources", "", name, "cannot export '" + name + "': no such resource"});

@@ -25,7 +25,8 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out);
 // ---- compile(): in the order it calls them -----------------------------------------------
 
 /// CompileOptions::outputs, ::exports and ::readbacks name resources of `graph` (images, for
-/// read-backs); throws GraphError if not.
+/// read-backs; exported ones, for outputs), and ::presentReplacement is a state an image can
+/// be left in; throws GraphError if not.
 void checkOutputNames(const GraphDesc& graph, const CompileOptions& options);
 
 /// The file's feature defaults with the options' overrides, adding a diagnostic for each

@@ -37,7 +37,8 @@ struct CompileOptions {
     /// When false, passes are removed only by their `if`, never for unused output.
     bool cull = true;
     /// Headless runs read the `Present` target back instead of presenting it: this replaces
-    /// every exported resource's `Present` final state with another (e.g. TransferSrc).
+    /// every exported resource's `Present` final state with another (e.g. TransferSrc); None
+    /// is an error.
     ExternalState presentReplacement = ExternalState::Present;
     /// The size `"output"` extents resolve to; it matters for `"mips": "full"` only, since
     /// barriers cover whole mip chains. The executor recompiles when the output is resized.
@@ -45,13 +46,16 @@ struct CompileOptions {
     uint32_t outputHeight = 1080;
     /// Resources to export in addition to the file's own exports, with the state to leave
     /// them in: e.g. {"hdr_color", TransferSrc} to read an intermediate target back. Exporting
-    /// keeps the passes that write it from being culled. An unknown name is an error; a
-    /// resource the file already exports keeps its own `final`.
+    /// keeps the passes that write it from being culled. An unknown name is an error, and so
+    /// is a state the resource cannot end in (as in a file: Present for an external image
+    /// alone, Present or TransferSrc for no buffer); a resource the file already exports keeps
+    /// its own `final`.
     std::map<std::string, ExternalState, std::less<>> exports;
     /// When set, only these of the graph's exports are its outputs for this compile: the
     /// file's other exports are dropped, so passes that feed only them are culled. This is
     /// how a consumer asks for just the products it samples (e.g. graphs/ibl.json builds only
-    /// the cube a skybox-only scene needs). An unknown name is an error.
+    /// the cube a skybox-only scene needs). An unknown name, or one that is neither exported
+    /// nor in `exports` or `readbacks`, is an error.
     std::optional<std::set<std::string, std::less<>>> outputs;
     /// Images copied to the host at the end of every frame (the first mip and layer), by
     /// steps of type Readback after the last pass; the final barriers make the copies visible
@@ -95,7 +99,9 @@ struct CompileOptions {
 /// on the output size (a mip range past the resolved chain, a read of levels of an
 /// output-sized "full" chain that no pass writes), and for what only a GraphDesc
 /// built in code can hold: a resource past the format's limits (an extent, layer or mip count
-/// or buffer size the loader refuses), a usage naming a resource index past `resources`, an empty range,
+/// or buffer size the loader refuses) or of a shape or states it refuses (a cube of other than
+/// 6 square layers, an image2d of several, an image of no format, a transient presented, a
+/// buffer left for presentation or cleared, a clear value of the other kind), a usage naming a resource index past `resources`, an empty range,
 /// or more than 2^24 subresources (mip levels x layers) together; and when `options.memory` answers
 /// what cannot be placed (no memory type, a zero size, an alignment or granularity that is not
 /// a power of two). What the model itself throws passes through. Every error names what it can of the

@@ -506,6 +506,15 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
         {[](ResourceDesc& r) { r.extent = Extent{false, 1, 16385, 8}; }, "not 16385x8"},
         {[](ResourceDesc& r) { r.layers = 0; }, "layers must be between 1 and 2048, not 0"},
         {[](ResourceDesc& r) { r.mips = 16; }, "mips must be at most 15"},
+        // What the loader says of a file's shapes and states (the executor then made invalid
+        // Vulkan objects: a cube of one layer, an image of no format, a transient presented).
+        {[](ResourceDesc& r) { r.layers = 2; }, "an image2d has 1 layer, not 2; use image2d_array"},
+        {[](ResourceDesc& r) { r.type = ResourceType::Cube; },
+         "a cube has 6 layers of square faces of a fixed extent, not 1 layer(s) of the output's extent"},
+        {[](ResourceDesc& r) { r.format = FormatInfo{}; }, "an image needs a format"},
+        {[](ResourceDesc& r) { r.final = ExternalState::Present; },
+         "only an external image (the swapchain's) can be presented"},
+        {[](ResourceDesc& r) { r.clear = ClearValue{true}; }, "clears to a color, not a depth value"},
     };
     for (const auto& [edit, words] : cases) {
         GraphDesc g = raster;
@@ -521,6 +530,12 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
     buffer.type = ResourceType::Buffer;
     g.resources.push_back(buffer);
     EXPECT_NE(compileErrorText(g).find("a buffer's size must be between 1 and 2147483648 bytes, not 0"), std::string::npos);
+    g.resources.back().sizeBytes = 16;
+    g.resources.back().final = ExternalState::TransferSrc;
+    EXPECT_NE(compileErrorText(g).find("a buffer cannot start or end as Present or TransferSrc"), std::string::npos);
+    g.resources.back().final = ExternalState::None;
+    g.resources.back().clear = ClearValue{};
+    EXPECT_NE(compileErrorText(g).find("a buffer cannot be cleared by the graph"), std::string::npos);
     EXPECT_EQ(compileErrorText(raster), "") << "the graph as loaded compiles";
 }
 

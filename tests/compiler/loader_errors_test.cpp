@@ -801,6 +801,29 @@ TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {
     EXPECT_TRUE(hasDiag(ds, "features", "", "", {"unknown feature 'bloom'", "geo", "sky"}));
 }
 
+// Options that would give a plan the loader never lets a file give: a presented image ending
+// in UNDEFINED, a transient or a buffer presented, and outputs that cull every pass.
+TEST(LoaderErrors, CompileOptionsThatWouldMakeAnInvalidPlan) {
+    CompileOptions none;
+    none.presentReplacement = ExternalState::None;
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), none), "", "", "", {"presentReplacement must be a state", "not None"}));
+    CompileOptions transient;
+    transient.exports["hdr_color"] = ExternalState::Present;
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), transient), "resources.hdr_color", "", "hdr_color",
+                        {"only an external image (the swapchain's) can be presented"}));
+    CompileOptions buffer;
+    buffer.exports["buf"] = ExternalState::TransferSrc;
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), buffer), "resources.buf", "", "buf",
+                        {"a buffer cannot start or end as Present or TransferSrc"}));
+    CompileOptions outputs;
+    outputs.outputs = std::set<std::string, std::less<>>{"hdr_color"};
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), outputs), "resources.hdr_color", "", "hdr_color",
+                        {"cannot keep 'hdr_color' as an output: it is not exported"}));
+    outputs.exports["hdr_color"] = ExternalState::TransferSrc;
+    EXPECT_NO_THROW((void)compile(parseGraph(baseGraph().dump(2), kFile, registry()), outputs))
+        << "exported by the options, it is an output";
+}
+
 TEST(LoaderErrors, AbsurdExtents) {
     const std::vector<std::pair<Json, std::string_view>> cases{
         {Json::array({0, 16}), "outside 1..16384"},
