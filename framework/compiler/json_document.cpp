@@ -1,6 +1,7 @@
 #include "json_document.hpp"
 
 #include "json_document_builder.hpp"
+#include "printable_name.hpp"
 
 #include <cmath>
 #include <algorithm>
@@ -67,7 +68,7 @@ public:
     bool end_array() { return b_.close(Kind::Array, here()); }
     bool parse_error(size_t position, const std::string&, const nlohmann::detail::exception& ex) {
         b_.errorByte = position;
-        b_.error = ex.what();
+        b_.error = printableName(ex.what());  // its "last read" shows the bytes as they are
         b_.errorPath = b_.currentPath();
         return false;
     }

@@ -371,7 +371,12 @@ TEST_F(Cli, CommandLineTextIsShownEscaped) {
     const CliRun command = run({"comp\nile"});
     EXPECT_EQ(command.status, 2) << command.err;
     EXPECT_NE(command.err.find("unknown command 'comp\\u000aile'"), std::string::npos) << command.err;
-    std::vector<CliRun> runs{unwritable, feature, command};
+    // CLI11's own messages too, prefixed as every error is.
+    const CliRun option = run({"compile", "graphs/raster.json", "--bo\ngus"});
+    EXPECT_EQ(option.status, 2) << option.err;
+    EXPECT_NE(option.err.find("error: The following argument was not expected: --bo\\u000agus"), std::string::npos)
+        << option.err;
+    std::vector<CliRun> runs{unwritable, feature, command, option};
 #if SKYGRAPH_CLI_HAS_RENDER
     // Refused before any device is made.
     const CliRun render = run({"render", "-o", (dir_ / "work" / "frame\a.jpg").string()});

@@ -824,6 +824,15 @@ TEST(LoaderErrors, CompileOptionsThatWouldMakeAnInvalidPlan) {
         << "exported by the options, it is an output";
 }
 
+// nlohmann's message shows the bytes it read last; one that is not UTF-8 is escaped, as control
+// characters are, rather than written raw to the terminal or the log.
+TEST(LoaderErrors, BytesThatAreNotUtf8AreShownEscaped) {
+    const auto ds = textErrors("{\"version\": 1, \"name\": \"t\xff\"}");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_NE(ds[0].message.find("ill-formed UTF-8 byte; last read: '\"t\\xff'"), std::string::npos) << ds[0].message;
+    EXPECT_EQ(ds[0].message.find('\xff'), std::string::npos) << "no raw byte";
+}
+
 TEST(LoaderErrors, AbsurdExtents) {
     const std::vector<std::pair<Json, std::string_view>> cases{
         {Json::array({0, 16}), "outside 1..16384"},

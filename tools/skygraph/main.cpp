@@ -85,8 +85,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);  // prints help, the version, or the parse error
-        return code == 0 ? kExitOk : kExitUsage;
+        // Help and the version are CLI11's to print; a mistake is shown as every other error is,
+        // the words the command line gave escaped.
+        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e) == 0 ? kExitOk : kExitUsage;
+        std::cerr << "error: " << skygraph::printableName(e.what()) << "\nRun with --help for more information.\n";
+        return kExitUsage;
     }
     configureLogging(verbose, quiet);
     const ProgressMode mode = progress == "always" ? ProgressMode::Always
