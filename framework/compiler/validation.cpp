@@ -1,6 +1,7 @@
 #include "validation.hpp"
 
 #include "graph_file.hpp"
+#include "graph_limits.hpp"
 #include "scheduler.hpp"
 
 #include <algorithm>
@@ -179,6 +180,12 @@ FeatureValues checkedFeatures(const GraphDesc& graph, const CompileOptions& opti
     }
     if (options.outputWidth == 0 || options.outputHeight == 0)
         out.add({graph.file, "", "", "", "the output extent must not be zero"});
+    // Past it, output-sized images would be too (and their byte counts wrap).
+    else if (options.outputWidth > kMaxImageExtent || options.outputHeight > kMaxImageExtent)
+        out.add({graph.file, "", "", "",
+                 "the output extent " + std::to_string(options.outputWidth) + "x" +
+                     std::to_string(options.outputHeight) + " is past " + std::to_string(kMaxImageExtent) +
+                     " a side, the largest extent a graph's image takes"});
     return features;
 }
 

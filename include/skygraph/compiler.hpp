@@ -42,6 +42,7 @@ struct CompileOptions {
     ExternalState presentReplacement = ExternalState::Present;
     /// The size `"output"` extents resolve to; it matters for `"mips": "full"` only, since
     /// barriers cover whole mip chains. The executor recompiles when the output is resized.
+    /// Each side from 1 to 16384, the largest extent a graph's image takes.
     uint32_t outputWidth = 1920;
     uint32_t outputHeight = 1080;
     /// Resources to export in addition to the file's own exports, with the state to leave

@@ -819,6 +819,11 @@ TEST(LoaderErrors, CompileOptionsThatWouldMakeAnInvalidPlan) {
     outputs.outputs = std::set<std::string, std::less<>>{"hdr_color"};
     EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), outputs), "resources.hdr_color", "", "hdr_color",
                         {"cannot keep 'hdr_color' as an output: it is not exported"}));
+    CompileOptions huge;
+    huge.outputWidth = 16385;
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), huge), "", "", "", {"the output extent 16385x1080 is past 16384 a side"}));
+    huge.outputWidth = 0xffffffffu;  // whose images' byte counts wrapped
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), huge), "", "", "", {"is past 16384 a side"}));
     outputs.exports["hdr_color"] = ExternalState::TransferSrc;
     EXPECT_NO_THROW((void)compile(parseGraph(baseGraph().dump(2), kFile, registry()), outputs))
         << "exported by the options, it is an output";
