@@ -250,8 +250,9 @@ private:
         const HeapBand& b = bands_[p.heap];
         const KindStyle& style = kKinds[static_cast<size_t>(kinds_[p.resource])];
         const double x = columnX(r.firstPass), w = static_cast<double>(r.lastPass - r.firstPass + 1) * kColumn;
-        const double y = b.top + static_cast<double>(p.offset) * b.pixelsPerByte;
         const double h = std::max(2.0, static_cast<double>(p.bytes) * b.pixelsPerByte);  // a tiny buffer stays visible
+        // Made taller, one at the heap's end stays inside the heap's band.
+        const double y = std::min(b.top + static_cast<double>(p.offset) * b.pixelsPerByte, b.top + b.height - h);
         // Dashed: the exceptions to sharing, which --no-alias would make of every placement.
         const bool unshared = !p.aliasable && m_.strategy != MemoryStrategy::Unaliased;
 
