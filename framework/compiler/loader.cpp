@@ -26,6 +26,7 @@ namespace skygraph {
 namespace {
 
 std::string joinNames(const std::vector<std::string>& names) {
+    if (names.empty()) return "none";
     std::string out;
     for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
     return out;
@@ -397,8 +398,7 @@ private:
             if (!known) {
                 std::vector<std::string> names;
                 for (const auto& d : graph_.features) names.push_back(d.name);
-                error(path, p.name, "", "unknown feature '" + f + "'; the file declares: " +
-                                            (names.empty() ? "none" : joinNames(names)));
+                error(path, p.name, "", "unknown feature '" + f + "'; the file declares: " + joinNames(names));
             }
         }
         p.condition = *cond;

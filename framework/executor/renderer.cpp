@@ -448,6 +448,15 @@ void Renderer::stageUpload(const std::string& resource, std::shared_ptr<const St
     Impl& d = *impl_;
     const ResourceState& r = stagedResource(*d.state, resource, "stageUpload");
     if (!pixels) throw ExecutorError("stageUpload: no staging buffer for '" + resource + "'");
+    // Nothing else copies staged pixels: without an UploadPass they would be dropped unread.
+    const auto index = static_cast<uint32_t>(d.state->plan.resourceIndex(resource));
+    const bool uploaded = std::any_of(d.state->plan.passes().begin(), d.state->plan.passes().end(), [&](const PlannedPass& p) {
+        return p.type == "UploadPass" &&
+               std::any_of(p.usages.begin(), p.usages.end(), [&](const PlannedUsage& u) { return u.resource == index; });
+    });
+    if (!uploaded)
+        throw ExecutorError("stageUpload: no UploadPass of the plan writes '" + resource +
+                            "' (culled, or the resource is filled otherwise): nothing would copy the pixels");
     const VkDeviceSize bytes = stagedBytes(r);
     if (pixels->size() != bytes) {
         const std::string shape = r.isImage ? std::to_string(r.width) + "x" + std::to_string(r.height) + ", " +

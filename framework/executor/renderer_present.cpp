@@ -59,6 +59,9 @@ CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D
 void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain) {
     if (images.images.empty()) throw ExecutorError("setPresentImages: no images");
     if (images.extent.width == 0 || images.extent.height == 0) throw ExecutorError("setPresentImages: 0x0 images");
+    for (size_t i = 0; i < images.images.size(); ++i)
+        if (images.images[i] == VK_NULL_HANDLE)
+            throw ExecutorError("setPresentImages: image " + std::to_string(i) + " is VK_NULL_HANDLE");
     std::optional<CompiledGraph> next = atPresentExtent(state->compiled, images.extent);
     std::optional<PresentBinding> previous = std::move(present);
     present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->imagesId : 0};

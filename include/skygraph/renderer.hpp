@@ -293,8 +293,9 @@ public:
     /// until the copy has finished on the GPU; write it no sooner. Unlike
     /// updateExternalImage(), nothing runs outside the plan, and the copy runs on whatever
     /// queue the graph puts the pass (a transfer queue copies beside the frames). Throws
-    /// ExecutorError, staging nothing, for a resource the plan does not have or a buffer of
-    /// another size than the resource needs.
+    /// ExecutorError, staging nothing, for a resource the plan does not have or that no
+    /// UploadPass of it writes (nothing would copy the pixels), or a buffer of another size
+    /// than the resource needs.
     void stageUpload(const std::string& resource, std::shared_ptr<const StagingBuffer> pixels);
     /// The bytes stageUpload() takes for `resource`: width x height x layers x texel bytes
     /// of an image, the size of a buffer. Throws ExecutorError for a resource the plan does

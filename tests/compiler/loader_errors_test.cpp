@@ -829,6 +829,14 @@ TEST(LoaderErrors, CompileOptionsThatWouldMakeAnInvalidPlan) {
         << "exported by the options, it is an output";
 }
 
+// A list of names to choose from that is empty says so, rather than ending in "declared: ".
+TEST(LoaderErrors, AnEmptyListOfDeclaredNamesSaysNone) {
+    Json g = baseGraph();
+    g["resources"] = Json::object();
+    EXPECT_TRUE(hasDiag(loadErrors(g), "passes[0].uses.depth", "forward", "depth", {"unknown resource; declared: none"}))
+        << listAll(loadErrors(g));
+}
+
 // nlohmann's message shows the bytes it read last; one that is not UTF-8 is escaped, as control
 // characters are, rather than written raw to the terminal or the log.
 TEST(LoaderErrors, BytesThatAreNotUtf8AreShownEscaped) {

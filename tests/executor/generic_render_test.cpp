@@ -462,6 +462,29 @@ TEST_F(ExecutorTest, ExternalPixelsThatNoLongerFitFailTheRebuildUntilForgotten) 
     r.waitIdle();
 }
 
+// A null image among the application's present images was reported as "an image barrier on a
+// buffer" once the plan's barriers met it.
+TEST_F(ExecutorTest, ANullPresentImageIsRefusedByIndex) {
+    Renderer r(sharedDevice(), compileText(R"({ "version": 1, "name": "t", "resources": {
+          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                         "external": true, "final": "Present" } },
+          "passes": [ { "name": "fill", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
+                        "params": { "color": [0, 0, 0, 1] } } ] })"),
+               genericOptions());
+    PresentImages images;
+    images.images = {VK_NULL_HANDLE};
+    images.format = VK_FORMAT_B8G8R8A8_UNORM;
+    images.extent = {8, 8};
+    images.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    try {
+        r.setPresentImages(images);
+        FAIL() << "a null image was taken";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("setPresentImages: image 0 is VK_NULL_HANDLE"), std::string::npos)
+            << e.what();
+    }
+}
+
 // Cross-frame RAW into a different read stage: the frame reads the persistent buffer as
 // vertex input first, then overwrites it in compute, then reads it in the fragment shader.
 // The next frame's vertex-input read must see this frame's compute write, so the final

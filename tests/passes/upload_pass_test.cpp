@@ -192,6 +192,29 @@ TEST_F(ExecutorTest, PixelsStagedBeforeAResizeAreRefusedWhenTheFrameCopiesThem) 
     EXPECT_FALSE(sharedDevice().messageCount()) << formatMessages(sharedDevice());
 }
 
+// Only an UploadPass copies staged pixels: staged for a resource none writes, they were
+// accepted and dropped unread after the frame.
+TEST_F(ExecutorTest, StagingForAResourceNoUploadPassWritesIsRefused) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    const GraphDesc graph = parseGraph(R"({
+      "version": 1, "name": "no_upload",
+      "resources": {"img": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [4, 4],
+                            "external": true, "initial": "ShaderRead"}},
+      "passes": [{"name": "read_img", "type": "Generic", "never_cull": true, "uses": {"img": "Read@Compute"}}]
+    })",
+                                       "no_upload.json", library.registry());
+    RendererOptions ro;
+    ro.passes = &library;
+    Renderer r(sharedDevice(), CompiledGraph(graph, CompileOptions{}), ro);
+    try {
+        r.stageUpload("img", StagingBuffer::create(sharedDevice(), r.stagingBytes("img")));
+        FAIL() << "staged for a resource no UploadPass writes";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("stageUpload: no UploadPass of the plan writes 'img'"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST_F(ExecutorTest, AnUploadPassWritesMipZeroAlone) {
     // The loader refuses such a usage in a file (LoaderErrors.PassTypesCheckWhatTheirSlotsCannotSay);
     // a graph built in code reaches the pass as it is.
