@@ -64,7 +64,7 @@ MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
     const uint32_t types = r.memoryTypeBits & deviceLocalTypes_;
     // A driver that cannot make the resource answers with nothing (lavapipe: size 0).
     if (r.size == 0 || types == 0)
-        throw ExecutorError("resource '" + d.name + "': device '" + name_ + "' reports " +
+        throw DeviceCapacityError("resource '" + d.name + "': device '" + name_ + "' reports " +
                             (r.size == 0 ? std::string("no memory requirements for it")
                                          : "no DEVICE_LOCAL memory type for it") +
                             "; nothing was allocated");

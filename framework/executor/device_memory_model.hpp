@@ -36,8 +36,9 @@ public:
     DeviceMemoryModel& operator=(const DeviceMemoryModel&) = delete;
 
     /// Throws ExecutorError naming the resource when the device cannot create it (as
-    /// refuseImageBeyondLimits / refuseUnsupportedImage / refuseBufferBeyondLimits say), when
-    /// none of its memory types is DEVICE_LOCAL, or once the device is gone.
+    /// refuseImageBeyondLimits / refuseUnsupportedImage / refuseBufferBeyondLimits say), or
+    /// once the device is gone; DeviceCapacityError when the device reports no memory for it
+    /// or none of its memory types is DEVICE_LOCAL.
     [[nodiscard]] MemoryRequirements requirements(const MemoryQuery& query) const override;
     /// The device's bufferImageGranularity. Throws ExecutorError once the device is gone.
     [[nodiscard]] uint64_t bufferImageGranularity() const override;

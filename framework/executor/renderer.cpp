@@ -435,7 +435,7 @@ const ResourceState& stagedResource(const PlanState& s, const std::string& name,
 }
 
 VkDeviceSize stagedBytes(const ResourceState& r) {
-    return r.isImage ? VkDeviceSize(r.width) * r.height * r.layers * copyTexelBytes(r.desc->format) : r.size;
+    return r.isImage ? uploadBytes(r.desc->format, r.width, r.height, r.layers) : r.size;
 }
 
 }  // namespace
@@ -449,12 +449,7 @@ void Renderer::stageUpload(const std::string& resource, std::shared_ptr<const St
     const ResourceState& r = stagedResource(*d.state, resource, "stageUpload");
     if (!pixels) throw ExecutorError("stageUpload: no staging buffer for '" + resource + "'");
     // Nothing else copies staged pixels: without an UploadPass they would be dropped unread.
-    const auto index = static_cast<uint32_t>(d.state->plan.resourceIndex(resource));
-    const bool uploaded = std::any_of(d.state->plan.passes().begin(), d.state->plan.passes().end(), [&](const PlannedPass& p) {
-        return p.type == "UploadPass" &&
-               std::any_of(p.usages.begin(), p.usages.end(), [&](const PlannedUsage& u) { return u.resource == index; });
-    });
-    if (!uploaded)
+    if (!r.uploaded)
         throw ExecutorError("stageUpload: no UploadPass of the plan writes '" + resource +
                             "' (culled, or the resource is filled otherwise): nothing would copy the pixels");
     const VkDeviceSize bytes = stagedBytes(r);

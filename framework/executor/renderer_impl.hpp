@@ -88,6 +88,8 @@ struct ResourceState {
     bool perSlot = false;  ///< The plan's PlannedResource::copies, with more than one slot.
     bool presented = false;  ///< The present images (PresentImages), not images of our own.
     uint32_t presentImages = 1;  ///< PlanState::presentImages.
+    /// An UploadPass of the plan writes it: Renderer::stageUpload() has somewhere to copy to.
+    bool uploaded = false;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkImageAspectFlags aspect = 0;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;

@@ -38,12 +38,12 @@ void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity
     const std::vector<MemoryHeap>& heaps = s.plan.memory().heaps;
     for (size_t h = 0; h < heaps.size(); ++h)
         if (capacity.maxAllocation != 0 && heaps[h].bytes > capacity.maxAllocation)
-            throw ExecutorError("heap " + std::to_string(h) + " of the plan's transients needs " + gib(heaps[h].bytes) +
+            throw DeviceCapacityError("heap " + std::to_string(h) + " of the plan's transients needs " + gib(heaps[h].bytes) +
                                 at + ", over the " + gib(capacity.maxAllocation) +
                                 " one allocation of the device may have (maxMemoryAllocationSize); nothing was allocated");
     total += s.plan.memory().heapBytes() * (s.plan.memory().sharedAcrossFrames ? 1 : slots);
     if (capacity.memoryCap != 0 && total > capacity.memoryCap)
-        throw ExecutorError("the plan's resources need " + gib(total) + at + ", over the memory cap of " +
+        throw DeviceCapacityError("the plan's resources need " + gib(total) + at + ", over the memory cap of " +
                             gib(capacity.memoryCap) +
                             " (half the device's largest device-local heap); nothing was allocated");
 }
@@ -178,6 +178,7 @@ void Renderer::Impl::describeResources(PlanState& s) {
                 throw ExecutorError(passError(pass, "", "usage refers to an unknown resource"));
             ResourceState& r = s.resources[u.resource];
             addUsageFlags(u, r.desc->isImage(), r.imageUsage, r.bufferUsage);
+            r.uploaded = r.uploaded || pass.type == "UploadPass";
         }
     }
     refuseOversizedResources(s, DeviceCapacity::of(dev.physical), options.framesInFlight);

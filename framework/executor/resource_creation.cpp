@@ -81,7 +81,7 @@ namespace {
 
 void refuseOverCap(const DeviceCapacity& capacity, const ResourceDesc& d, VkDeviceSize bytes) {
     if (capacity.memoryCap != 0 && bytes > capacity.memoryCap)
-        throw ExecutorError("resource '" + d.name + "' needs " + gib(bytes) + ", over the memory cap of " +
+        throw DeviceCapacityError("resource '" + d.name + "' needs " + gib(bytes) + ", over the memory cap of " +
                             gib(capacity.memoryCap) +
                             " (half the device's largest device-local heap); nothing was allocated");
 }
@@ -94,11 +94,11 @@ void refuseImageBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc&
     const bool cube = d.type == ResourceType::Cube;
     const uint32_t most = cube ? limits.maxImageDimensionCube : limits.maxImageDimension2D;
     if (width > most || height > most)
-        throw ExecutorError("resource '" + d.name + "': " + std::to_string(width) + "x" + std::to_string(height) +
+        throw DeviceCapacityError("resource '" + d.name + "': " + std::to_string(width) + "x" + std::to_string(height) +
                             " exceeds the device's " + (cube ? "maxImageDimensionCube" : "maxImageDimension2D") +
                             " (" + std::to_string(most) + ")" + at + "; nothing was allocated");
     if (layers > limits.maxImageArrayLayers)
-        throw ExecutorError("resource '" + d.name + "': " + std::to_string(layers) +
+        throw DeviceCapacityError("resource '" + d.name + "': " + std::to_string(layers) +
                             " layers exceed the device's maxImageArrayLayers (" +
                             std::to_string(limits.maxImageArrayLayers) + "); nothing was allocated");
     refuseOverCap(capacity, d, packedBytes(d, width, height, mips, layers));
@@ -119,11 +119,11 @@ void refuseUnsupportedImage(VkPhysicalDevice physical, const ResourceDesc& d, co
 void refuseBufferBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc& d, VkBufferUsageFlags usage) {
     const VkPhysicalDeviceLimits& limits = capacity.limits;
     if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && d.sizeBytes > limits.maxStorageBufferRange)
-        throw ExecutorError("resource '" + d.name + "': a storage buffer of " + std::to_string(d.sizeBytes) +
+        throw DeviceCapacityError("resource '" + d.name + "': a storage buffer of " + std::to_string(d.sizeBytes) +
                             " bytes exceeds the device's maxStorageBufferRange (" +
                             std::to_string(limits.maxStorageBufferRange) + "); nothing was allocated");
     if ((usage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT) && d.sizeBytes > limits.maxUniformBufferRange)
-        throw ExecutorError("resource '" + d.name + "': a uniform buffer of " + std::to_string(d.sizeBytes) +
+        throw DeviceCapacityError("resource '" + d.name + "': a uniform buffer of " + std::to_string(d.sizeBytes) +
                             " bytes exceeds the device's maxUniformBufferRange (" +
                             std::to_string(limits.maxUniformBufferRange) + "); nothing was allocated");
     refuseOverCap(capacity, d, bufferBytes(d));

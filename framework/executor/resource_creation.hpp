@@ -54,7 +54,7 @@ struct DeviceCapacity {
     [[nodiscard]] static DeviceCapacity of(VkPhysicalDevice physical);
 };
 
-/// Throws ExecutorError naming the resource and the limit, ending in "nothing was allocated",
+/// Throws DeviceCapacityError naming the resource and the limit, ending in "nothing was allocated",
 /// for an image the device cannot hold: beyond its dimension or layer limits, or alone over
 /// the memory cap; `at` follows the extent in the message (e.g. " at output 64x64").
 void refuseImageBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc& d, uint32_t width,
@@ -62,7 +62,7 @@ void refuseImageBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc&
 /// Throws ExecutorError naming the resource when the device cannot create `ci` (its format
 /// with that usage, flags, extent, mips and layers).
 void refuseUnsupportedImage(VkPhysicalDevice physical, const ResourceDesc& d, const VkImageCreateInfo& ci);
-/// Throws ExecutorError for a buffer beyond the device's binding ranges for its usage, or alone
+/// Throws DeviceCapacityError for a buffer beyond the device's binding ranges for its usage, or alone
 /// over the memory cap.
 void refuseBufferBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc& d, VkBufferUsageFlags usage);
 

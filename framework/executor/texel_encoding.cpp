@@ -38,6 +38,10 @@ uint32_t copyTexelBytes(const FormatInfo& f) {
     }
 }
 
+VkDeviceSize uploadBytes(const FormatInfo& format, uint32_t width, uint32_t height, uint32_t layers) {
+    return VkDeviceSize(width) * height * layers * copyTexelBytes(format);
+}
+
 VkClearColorValue clearColorOf(VkFormat format, const std::array<float, 4>& color) {
     VkClearColorValue v{};
     const std::string prefix = scalarPrefix(format);

@@ -21,6 +21,10 @@ namespace skygraph::detail {
 /// Bytes of one texel in a buffer<->image copy of `format` (its copied aspect only).
 [[nodiscard]] uint32_t copyTexelBytes(const FormatInfo& format);
 
+/// Bytes of a tightly packed copy of mip 0 of `layers` layers of a width x height image of
+/// `format`: what Renderer::stageUpload() takes and UploadPass copies.
+[[nodiscard]] VkDeviceSize uploadBytes(const FormatInfo& format, uint32_t width, uint32_t height, uint32_t layers);
+
 /// Whether a format stores unsigned ("u") or signed ("i") integers, else "": the GLSL prefix
 /// of its sampler, image and output types.
 [[nodiscard]] std::string scalarPrefix(VkFormat format);

@@ -1,22 +1,15 @@
 // Dispatch by extension, the error type, and the checks shared by both formats.
 #include "image_internal.hpp"
 
+#include "file_extension.hpp"
 #include "printable_name.hpp"
 #include "replace_file.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 namespace skygraph {
 namespace {
-
-std::string lowerExtension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 }  // namespace
 
@@ -24,7 +17,7 @@ ImageError::ImageError(const std::filesystem::path& file, const std::string& rea
     : std::runtime_error(printableName("'" + file.string() + "': " + reason)), file_(file) {}
 
 HdrImage loadHdrImage(const std::filesystem::path& path) {
-    const std::string ext = lowerExtension(path);
+    const std::string ext = lowercaseExtension(path);
     if (ext == ".hdr") return loadRadianceHdr(path);
     if (ext == ".exr") return loadExr(path);
     throw ImageError(path, "unknown image extension '" + ext + "'; expected .hdr or .exr");
@@ -35,7 +28,7 @@ void saveHdrImage(const std::filesystem::path& path, const HdrImage& image) {
 }
 
 std::string encodeHdrImage(const std::filesystem::path& path, const HdrImage& image) {
-    const std::string ext = lowerExtension(path);
+    const std::string ext = lowercaseExtension(path);
     if (ext == ".hdr") return image_detail::encodeRadianceHdr(path, image);
     if (ext == ".exr") return image_detail::encodeExr(path, image);
     throw ImageError(path, "unknown image extension '" + ext + "'; expected .hdr or .exr");

@@ -4,6 +4,7 @@
 // frame. Materials and their images: gltf_materials.cpp.
 #include <skygraph/triangle_mesh.hpp>
 
+#include "file_extension.hpp"
 #include "gltf_json_types.hpp"
 #include "gltf_materials.hpp"
 
@@ -596,8 +597,7 @@ std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const Me
     };
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) return fail("does not exist or is not a file");
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string extension = lowercaseExtension(path);
     if (extension != ".gltf" && extension != ".glb") return fail("is neither a .gltf nor a .glb file");
     std::ifstream in(path, std::ios::binary);
     std::ostringstream bytes;

@@ -1,12 +1,12 @@
 // Scene file -> Scene. Like the graph loader, it collects every problem in the file (each with
 // the file and the JSON path) before throwing, so one run shows all of them.
+#include "file_extension.hpp"
 #include "json_positions.hpp"
 
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <limits>
 #include <fstream>
@@ -218,8 +218,7 @@ private:
         if (name != "procedural") {
             env.procedural = false;
             env.file = (baseDir_ / name).lexically_normal();  // an absolute name replaces baseDir_
-            std::string ext = env.file.extension().string();
-            for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+            const std::string ext = lowercaseExtension(env.file);
             std::error_code ec;
             if (ext != ".hdr" && ext != ".exr")
                 error("environment.file", "'" + name + "' is neither \"procedural\" nor a .hdr or .exr file");
@@ -243,8 +242,7 @@ private:
             !problem.empty())
             return error("environment.sequence", "'" + text + "': its file name " + problem);
         sequence.pattern = (baseDir_ / text).lexically_normal().string();
-        std::string ext = std::filesystem::path(text).extension().string();
-        for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        const std::string ext = lowercaseExtension(text);
         if (ext != ".hdr" && ext != ".exr")
             return error("environment.sequence", "'" + text + "' names neither .hdr nor .exr files");
         std::error_code ec;

@@ -28,6 +28,15 @@ public:
     using std::runtime_error::runtime_error;
 };
 
+/// An ExecutorError thrown before anything is allocated, when the plan needs more than the
+/// device can hold: a resource past one of its size limits (dimensions, layers, buffer ranges),
+/// one it reports no memory for, or all of them together past the memory a renderer allows
+/// itself (half the largest device-local heap). Smaller sizes, or a larger device, would run.
+class DeviceCapacityError : public ExecutorError {
+public:
+    using ExecutorError::ExecutorError;
+};
+
 /// What presenting to a window needs of the Device. Both halves come from the application's
 /// window library (GLFW: glfwGetRequiredInstanceExtensions and glfwCreateWindowSurface); the
 /// library itself depends on no window system.

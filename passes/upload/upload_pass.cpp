@@ -32,9 +32,8 @@ public:
                                 "' this frame (Renderer::stageUpload before each frame)");
         // stageUpload() checked the size against the plan of its day; a resize or a new graph
         // since may have grown the target, and the copy would read past the buffer.
-        const VkDeviceSize needed = target.image ? VkDeviceSize(target.extent.width) * target.extent.height *
-                                                       target.usage->range.layerCount *
-                                                       detail::copyTexelBytes(target.desc->format)
+        const VkDeviceSize needed = target.image ? detail::uploadBytes(target.desc->format, target.extent.width,
+                                                                       target.extent.height, target.usage->range.layerCount)
                                                  : target.size;
         if (staged->size() != needed)
             throw ExecutorError(what + "the pixels staged for '" + target.desc->name + "' are " +

@@ -130,7 +130,7 @@ TEST_F(MemoryModelTest, RefusesWhatTheDeviceCannotCreateBeforeAskingIt) {
     try {
         (void)model->requirements(query(color, props.limits.maxImageDimension2D + 1, 1, 1, 0));
         FAIL() << "an image past maxImageDimension2D was answered";
-    } catch (const ExecutorError& e) {
+    } catch (const DeviceCapacityError& e) {
         EXPECT_NE(std::string(e.what()).find("maxImageDimension2D"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("'probe'"), std::string::npos) << e.what();
     }

@@ -250,7 +250,7 @@ TEST_F(Extremes, LargestDimensionRendersAndOneMoreIsRefusedByName) {
     try {
         (void)renderRaster(scene, most + 1, 1);
         FAIL() << "an output of " << most + 1 << "x1 was accepted";
-    } catch (const ExecutorError& e) {
+    } catch (const DeviceCapacityError& e) {
         const std::string what = e.what();
         EXPECT_LT(most, 16384u) << what;
         EXPECT_NE(what.find("maxImageDimension2D"), std::string::npos) << what;

@@ -8,6 +8,7 @@
 #include "environment_bake.hpp"
 #include "replace_file.hpp"
 #include "environment_graph.hpp"
+#include "file_extension.hpp"
 #include "printable_name.hpp"
 #include "procedural_environment.hpp"
 #include "shipped_names.hpp"
@@ -233,11 +234,11 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     try {
         env.renderer =
             bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
-    } catch (const ExecutorError& e) {
+    } catch (const DeviceCapacityError& e) {
         // The bake's images are as large as the environment file: one the device cannot hold
-        // (the executor's refusals end "nothing was allocated") is named where the scene names it.
+        // is named where the scene names it.
         const std::optional<SceneEnvironment>& sky = inputs.scene ? inputs.scene->environment : std::nullopt;
-        if (!sky || sky->procedural || !std::string_view(e.what()).ends_with("nothing was allocated")) throw;
+        if (!sky || sky->procedural) throw;
         const std::filesystem::path file = sky->sequence ? sky->sequence->frame(inputs.sequenceFrame) : sky->file;
         Diagnostics d;
         d.add({inputs.scene->file, sky->sequence ? "environment.sequence" : "environment.file", "", "",
@@ -298,12 +299,6 @@ RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs&
 
 namespace {
 
-std::string lowerExtension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
 /// The file among those a render reads (the graph, the scene, the environment file or a
 /// sequence's frames, the glTF models and what they read) that `output` names, if any:
 /// writing it would destroy an input. Gathered only when `output` exists.
@@ -335,7 +330,7 @@ std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output
 std::optional<std::string> outputFormat(const RenderOptions& options) {
     constexpr std::array<std::string_view, 3> kFormats{"png", "hdr", "exr"};
     const auto known = [&](std::string_view f) { return std::find(kFormats.begin(), kFormats.end(), f) != kFormats.end(); };
-    std::string fromName = lowerExtension(options.output);
+    std::string fromName = lowercaseExtension(options.output);
     if (!fromName.empty()) fromName.erase(0, 1);  // the dot
     if (!options.outputFormat.empty()) {
         if (!known(options.outputFormat)) {

@@ -135,6 +135,9 @@ int watch(const CompileArgs& args, const FeatureValues& features) {
 /// -o and --memory-svg naming one file: the second write would replace the first.
 void refuseOneFileForBothOutputs(const CompileArgs& args) {
     if (args.output.empty() || args.memorySvg.empty()) return;
+    // Two names of one file: the same path once links and dots are resolved (neither exists
+    // yet, so sameFileAmong cannot compare them), or an existing file under two names (a hard
+    // link, which no path comparison sees).
     std::error_code ec;
     const std::filesystem::path plan = std::filesystem::weakly_canonical(args.output, ec);
     const bool same = (!ec && plan == std::filesystem::weakly_canonical(args.memorySvg, ec) && !ec) ||

@@ -5,6 +5,7 @@
 #include "replace_file.hpp"
 
 #include "app/environment_bake.hpp"
+#include "file_extension.hpp"
 #include "printable_name.hpp"
 #include "shipped_names.hpp"
 
@@ -16,7 +17,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -93,13 +93,8 @@ int run(CubemapArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::filesystem::path output = args.output;
     // As `render` does with its output: any case, and a wrong one is a problem with the input.
-    const auto extension = [](const std::filesystem::path& p) {
-        std::string e = p.extension().string();
-        for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-        return e;
-    };
-    if (extension(output) != ".ktx2") throw ImageError(output, "cannot write: its extension must be .ktx2");
-    if (!args.cross.empty() && extension(args.cross) != ".hdr" && extension(args.cross) != ".exr")
+    if (lowercaseExtension(output) != ".ktx2") throw ImageError(output, "cannot write: its extension must be .ktx2");
+    if (!args.cross.empty() && lowercaseExtension(args.cross) != ".hdr" && lowercaseExtension(args.cross) != ".exr")
         throw ImageError(args.cross, "cannot write --cross: its extension must be .hdr or .exr");
     if (args.bake.size & (args.bake.size - 1)) throw UsageError("--size must be a power of two");
     if (args.bake.prefilteredSize & (args.bake.prefilteredSize - 1))
