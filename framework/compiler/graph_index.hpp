@@ -7,6 +7,7 @@
 
 #include "graph_limits.hpp"
 #include "subresources.hpp"
+#include "usage_fit.hpp"
 #include "vulkan_state.hpp"
 
 #include <skygraph/condition.hpp>
@@ -140,6 +141,10 @@ public:
     /// GraphDesc built in code has them (the loader writes none); compile() reports them, and
     /// no sweep may run on such an index.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> invalidUses() const noexcept { return invalid_; }
+    /// Usages, of any pass, that do not fit their resource (usage_fit.hpp: a buffer as an
+    /// attachment, a sampled image written), as (pass, usage index for use()), in file order.
+    /// Only a GraphDesc built in code has them; compile() reports them before any sweep.
+    [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> misfitUses() const noexcept { return misfits_; }
     /// Reads, by active passes, of a subresource that no earlier active pass wrote and whose
     /// resource is neither `clear` nor `external`, as (pass, usage index for use()), in file
     /// order. Found in the index's own walk (a sweep of their own cost as much again as
@@ -183,6 +188,7 @@ private:
         std::vector<uint32_t> heldAtStart;
         resources_.reserve(graph_.resources.size());
         onlyCell_.reserve(graph_.resources.size());
+        fitRows_.resize(graph_.resources.size());
         heldAtStart.reserve(graph_.resources.size() * 9 / 8);  // most resources have one subresource
         liveAtEnd_.reserve(graph_.resources.size() * 9 / 8);
         for (const auto& r : graph_.resources) {
@@ -198,6 +204,7 @@ private:
                 IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
                                 r.clear.has_value(), r.external, r.isExported()});
             onlyCell_.push_back(cells == 1 ? static_cast<uint32_t>(cells_) : kSeveralCells);
+            fitRows_[resources_.size() - 1] = fitRow(usageSubject(r, std::nullopt));
             cells_ += cells;
             clearResources_ += res.clear;
             appendCells(heldAtStart, cells, uint32_t{res.clear || res.external});
@@ -245,6 +252,9 @@ private:
                     invalid_.emplace_back(static_cast<uint32_t>(p), at);
                     continue;
                 }
+                const FitRow row = fitRows_[u.resource];
+                if (!usageFits(u.usage.range ? withLevels(row, u.usage.range->mipCount) : row, iu.usage)) [[unlikely]]
+                    misfits_.emplace_back(static_cast<uint32_t>(p), at);
                 if (!active) continue;
                 if (readsContents(iu.usage.access)) {
                     bool missing = false;
@@ -331,6 +341,8 @@ private:
     std::vector<SubresourceRange> ranges_;  // the written ranges that uses_ refer to
     std::vector<std::pair<uint32_t, uint32_t>> ranged_;
     std::vector<std::pair<uint32_t, uint32_t>> invalid_;
+    std::vector<std::pair<uint32_t, uint32_t>> misfits_;
+    std::vector<FitRow> fitRows_;  // per resource: usageFits' row for a usage of all of it
     std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
     std::vector<uint32_t> tooManyMips_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask

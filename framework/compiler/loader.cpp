@@ -11,7 +11,7 @@
 #include "printable_name.hpp"
 #include "resource_loader.hpp"
 #include "validation.hpp"
-#include "vulkan_state.hpp"
+#include "usage_fit.hpp"
 
 #include <skygraph/compiler.hpp>
 
@@ -397,7 +397,9 @@ private:
                                      [&](const FeatureDecl& d) { return d.name == f; });
             if (!known) {
                 std::vector<std::string> names;
-                for (const auto& d : graph_.features) names.push_back(d.name);
+                // A declaration refused for its name has its own error; it is no suggestion.
+                for (const auto& d : graph_.features)
+                    if (Condition::isFeatureName(d.name)) names.push_back(d.name);
                 error(path, p.name, "", "unknown feature '" + f + "'; the file declares: " + joinNames(names));
             }
         }
@@ -588,7 +590,7 @@ private:
     }
 
     /// A pass runs only on a queue that its type allows and whose kind supports every stage it
-    /// uses.
+    /// uses: one error per usage that its queue cannot perform.
     void checkQueue(const PassDesc& p, const PassTypeInfo& type) {
         const std::string where = p.jsonPath + ".queue";
         const std::string on = "runs on the " + std::string(toString(p.queue)) + " queue";
@@ -607,7 +609,7 @@ private:
                 error(where, p.name, r.name,
                       on + ", but copies of the depth/stencil image '" + r.name + "' (" + toString(u) +
                           ") need the graphics queue");
-                return;
+                continue;
             }
             if (queueSupports(p.queue, u.stage)) continue;
             const std::string& resource = r.name;
@@ -616,7 +618,6 @@ private:
                       std::string(toString(queueSupports(QueueKind::Compute, u.stage) ? QueueKind::Compute
                                                                                       : QueueKind::Graphics)) +
                       " queue" + (queueSupports(QueueKind::Compute, u.stage) ? " or the graphics queue" : ""));
-            return;
         }
     }
 

@@ -218,6 +218,17 @@ std::string mib(uint64_t bytes) {
     return text;
 }
 
+/// "0", "512 B", "1.0 KiB", "16.00 MiB": small buffers stay readable next to large images.
+std::string byteText(uint64_t bytes) {
+    if (bytes >= (1u << 20)) return mib(bytes);
+    if (bytes >= 1024) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
+        return text;
+    }
+    return bytes == 0 ? "0" : std::to_string(bytes) + " B";
+}
+
 json memoryJson(const Plan& plan) {
     const MemoryLayout& m = plan.memory();
     json j = {{"model", m.model}, {"strategy", toString(m.strategy)}, {"granularity", m.granularity}};
@@ -251,18 +262,18 @@ std::string memoryText(const Plan& plan) {
     const MemoryLayout& m = plan.memory();
     std::ostringstream o;
     o << "memory: " << m.placements.size() << " transient(s) in " << m.heaps.size() << " heap(s) of "
-      << mib(m.heapBytes()) << (m.sharedAcrossFrames ? " shared by the frames in flight (" : " per frame in flight (")
+      << byteText(m.heapBytes()) << (m.sharedAcrossFrames ? " shared by the frames in flight (" : " per frame in flight (")
       << toString(m.strategy) << ", requirements: " << m.model
-      << "); unaliased " << mib(m.unaliasedBytes) << ", peak live " << mib(m.peakLiveBytes) << "\n";
+      << "); unaliased " << byteText(m.unaliasedBytes) << ", peak live " << byteText(m.peakLiveBytes) << "\n";
     for (size_t h = 0; h < m.heaps.size(); ++h) {
-        o << "    heap " << h << ": " << mib(m.heaps[h].bytes) << ", memory types 0x" << std::hex
+        o << "    heap " << h << ": " << byteText(m.heaps[h].bytes) << ", memory types 0x" << std::hex
           << m.heaps[h].memoryTypeBits << std::dec;
         if (m.heaps[h].granular) o << ", placed on the buffer-image granularity (" << m.granularity << " bytes)";
         o << "\n";
         for (const MemoryPlacement& p : m.placements) {
             if (p.heap != h) continue;
             o << "      [" << p.offset << ", " << p.offset + p.bytes << ") " << plan.resources()[p.resource].name << " ("
-              << mib(p.bytes) << ")";
+              << byteText(p.bytes) << ")";
             if (!p.aliasable) o << " not shared";
             o << aliasText(plan, p.resource) << "\n";
         }
@@ -301,16 +312,6 @@ std::string dotEscape(std::string_view s) {
     return out;
 }
 
-/// "0", "512 B", "1.0 KiB", "16.00 MiB": small buffers stay readable next to large images.
-std::string byteText(uint64_t bytes) {
-    if (bytes >= (1u << 20)) return mib(bytes);
-    if (bytes >= 1024) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
-        return text;
-    }
-    return bytes == 0 ? "0" : std::to_string(bytes) + " B";
-}
 
 /// The memory layout for graphviz: a box per heap listing its placements in offset order,
 /// and a dashed edge from each resource to the one that takes over its memory. Edges do not
@@ -324,7 +325,7 @@ std::string memoryDot(const Plan& plan) {
             if (p.heap == h) inHeap.push_back(&p);
         std::stable_sort(inHeap.begin(), inHeap.end(),
                          [](const MemoryPlacement* a, const MemoryPlacement* b) { return a->offset < b->offset; });
-        o << "  subgraph \"cluster_heap" << h << "\" {\n    label=\"heap " << h << ": " << mib(m.heaps[h].bytes)
+        o << "  subgraph \"cluster_heap" << h << "\" {\n    label=\"heap " << h << ": " << byteText(m.heaps[h].bytes)
           << (m.sharedAcrossFrames ? " shared by the frames in flight (" : " per frame in flight (")
           << toString(m.strategy) << ")\";\n    style=rounded;\n    color=\"#7a5cc6\";\n"
           << "    \"heap:" << h << "\" [shape=box, style=filled, fillcolor=\"#f1ecfa\", fontname=\"Courier\", label=\"";

@@ -3,6 +3,7 @@
 #include "graph_file.hpp"
 #include "graph_limits.hpp"
 #include "scheduler.hpp"
+#include "usage_fit.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -206,6 +207,14 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
                              std::to_string(graph.slotNames.size()) + " slot name(s)"});
     }
     if (!index.invalidUses().empty()) throw GraphError(std::move(diags));
+    // The loader refuses these in a file with the same words.
+    for (const auto& [pass, k] : index.misfitUses()) {
+        const IndexedUsage& iu = index.use(k);
+        const ResourceDesc& r = graph.resources[iu.resource];
+        diags.add({graph.file, index.jsonPathOf(pass, iu), graph.passes[pass].name, r.name,
+                   usageProblem(r, index.declOf(pass, iu).usage)});
+    }
+    if (!index.misfitUses().empty()) throw GraphError(std::move(diags));
     // Mip counts of output-relative images can only be checked against a real output size.
     // The index finds them (and the ranged usages below) in the walks it makes anyway.
     for (const uint32_t i : index.tooManyMips()) {
@@ -241,7 +250,9 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
         const ResourceDesc& res = graph.resources[iu.resource];
         const PassDesc& p = graph.passes[pass];
         const auto [w, h] = res.extent.resolve(width, height);
-        diags.add({graph.file, index.jsonPathOf(pass, iu), p.name, res.name,
+        // The key that holds the range, as the loader's range errors name it.
+        const bool mipsAtFault = empty ? range.mipCount == 0 : !mipsFit;
+        diags.add({graph.file, index.jsonPathOf(pass, iu) + (mipsAtFault ? ".mips" : ".layers"), p.name, res.name,
                    empty    ? "uses an empty range (" + std::to_string(range.mipCount) + " mip(s), " +
                                   std::to_string(range.layerCount) + " layer(s)): a usage must touch a subresource"
                    : !mipsFit ? "uses mips [" + std::to_string(range.baseMip) + ", " +

@@ -29,53 +29,6 @@ bool isDepthReadOnly(VkImageLayout l) {
 
 VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept { return access & kWriteBits; }
 
-std::string usageProblem(const ResourceDesc& r, const Usage& u) {
-    // The loader asks this of every usage: the usage's text is made only for a message.
-    const auto usage = [&] { return toString(u); };
-    const BindAs as = resolvedBinding(u.mode(), r.isImage());
-    if (u.as == BindAs::Index && u.stage != Stage::VertexInput)
-        return "`as: index` applies to VertexInput only";
-    if (u.as != BindAs::Default && u.as != BindAs::Index && !isShaderStage(u.stage))
-        return "`as` applies to shader stages (Vertex, Fragment, Compute), not " +
-               std::string(toString(u.stage));
-    if (isAttachmentStage(u.stage)) {
-        if (!r.isImage()) return "a buffer cannot be an attachment (" + usage() + ")";
-        if (u.stage == Stage::ColorAttachment && r.format.isDepthStencil())
-            return "format " + std::string(r.format.name) +
-                   " is a depth/stencil format; it cannot be a color attachment "
-                   "(use Read|Write|ReadWrite@DepthAttachment)";
-        if (u.stage == Stage::DepthAttachment && !r.format.isDepthStencil())
-            return "format " + std::string(r.format.name) +
-                   " has no depth or stencil; it cannot be a depth attachment "
-                   "(use Read|Write|ReadWrite@ColorAttachment)";
-        if (u.range ? u.range->mipCount != 1 : r.mips != 1)
-            return "an attachment renders to one mip level; give \"mips\": [level, 1]";
-    }
-    if ((u.stage == Stage::VertexInput || u.stage == Stage::Indirect)) {
-        if (r.isImage()) return std::string(toString(u.stage)) + " reads buffers, not images";
-        if (u.access != Access::Read)
-            return std::string(toString(u.stage)) + " only reads; expected Read@" +
-                   std::string(toString(u.stage));
-    }
-    if (isShaderStage(u.stage)) {
-        if (as == BindAs::Sampled) {
-            if (!r.isImage()) return "a buffer cannot be sampled; use storage or uniform";
-            if (u.access != Access::Read)
-                return "a sampled image is read-only; expected Read@" +
-                       std::string(toString(u.stage)) + " or \"as\": \"storage\"";
-        }
-        if (as == BindAs::Uniform) {
-            if (r.isImage()) return "images cannot be uniform buffers; use sampled or storage";
-            if (u.access != Access::Read) return "uniform buffers are read-only";
-        }
-        if (as == BindAs::Storage && r.isImage() && !r.format.storageCapable)
-            return "format " + std::string(r.format.name) +
-                   " cannot be a storage image (sRGB and depth formats never can); sample it or "
-                   "pick a storage format";
-    }
-    return {};
-}
-
 VulkanScope vulkanScope(const ResourceDesc& r, const Usage& u) {
     return vulkanScope(scopeRow(aspectsOf(r)), u.access, u.stage, u.as);
 }

@@ -1,5 +1,5 @@
 // The one place that maps graph-file usages to Vulkan stages, accesses and layouts.
-// Both the loader (to reject impossible usages) and the synchronizer read it.
+// The synchronizer reads it; which usages are possible at all is usage_fit.hpp's.
 #pragma once
 
 #include <skygraph/graph.hpp>
@@ -19,10 +19,6 @@ struct VulkanScope {
     VkAccessFlags2 access = 0;  ///< Only the kinds of access the usage performs.
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
-
-/// Empty when the usage is possible for the resource; otherwise why not, in words that name
-/// the expected usage (e.g. a depth format used as a color attachment).
-[[nodiscard]] std::string usageProblem(const ResourceDesc& resource, const Usage& usage);
 
 /// What the mapping below asks of a resource: kept apart by the compiler's sweeps, which would
 /// otherwise read a whole ResourceDesc per usage.

@@ -339,8 +339,13 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
     const int32_t index = d.state->plan.resourceIndex(resource);
     if (index < 0) throw ExecutorError("shareImage: no resource '" + resource + "' in the current plan");
     const ResourceState& r = d.state->resources[size_t(index)];
-    if (!r.isImage || !r.desc->external || !r.desc->isExported() || r.perSlot || r.presented || r.images.size() != 1)
-        throw ExecutorError("shareImage: '" + resource + "' is not an exported external image (set `final`)");
+    const std::string why = !r.isImage            ? "is a buffer, and only images are shared"
+                            : r.presented          ? "is the presented image"
+                            : !r.desc->external    ? "is not external: set \"external\": true and `final`"
+                            : !r.desc->isExported() ? "is not exported: set `final`"
+                            : r.perSlot || r.images.size() != 1 ? "has a copy per frame in flight"
+                                                                : "";
+    if (!why.empty()) throw ExecutorError("shareImage: '" + resource + "' " + why + " (only an exported external image is shared)");
     for (const FrameSlot& f : d.frames)
         if (f.held)
             throw ExecutorError("shareImage: '" + resource + "': the background frame that writes it is not "

@@ -1,6 +1,7 @@
 #include <skygraph/golden.hpp>
 #include <skygraph/plan_format.hpp>
 
+#include <cctype>
 #include <stdexcept>
 #include <system_error>
 
@@ -16,12 +17,22 @@ constexpr std::string_view kHeaderPrefix = "# skygraph golden plan, format ";
 
 std::string headerLine(uint32_t version) { return std::string(kHeaderPrefix) + std::to_string(version); }
 
+/// `name` as one file name: a graph's name may hold any character, and "../x" or "a/b" would
+/// place the golden outside its folder.
+std::string asFileName(std::string name) {
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+    if (name.empty() || name.front() == '.') name.insert(0, "_");
+    return name;
+}
+
 }  // namespace
 
 std::string goldenText(const Plan& plan) { return headerLine(kGoldenFormatVersion) + "\n" + planToText(plan); }
 
 std::string goldenFileName(const GraphDesc& graph, const FeatureValues& features) {
-    std::string name = graph.file.empty() || graph.file.front() == '<' ? graph.name : fs::path(graph.file).stem().string();
+    std::string name = graph.file.empty() || graph.file.front() == '<' ? asFileName(graph.name)
+                                                                        : fs::path(graph.file).stem().string();
     for (const FeatureDecl& f : graph.features) {
         const auto it = features.find(f.name);
         const bool on = it != features.end() ? it->second : f.defaultValue;

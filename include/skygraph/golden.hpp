@@ -27,7 +27,9 @@ inline constexpr uint32_t kGoldenFormatVersion = 1;
 
 /// "<graph file stem>.<feature>-on.<feature>-off....plan.txt", features in the order the graph
 /// declares them; a graph without features gives "<stem>.plan.txt". The stem is the name of
-/// `graph.file` without its extension, or `graph.name` for a graph not read from a file.
+/// `graph.file` without its extension, or `graph.name` for a graph not read from a file, its
+/// characters other than letters, digits, '-', '_' and '.' written as '_' (and '_' before a
+/// leading '.'), so that the name stays one file in the goldens' folder.
 [[nodiscard]] std::string goldenFileName(const GraphDesc& graph, const FeatureValues& features);
 
 enum class GoldenStatus : uint8_t {

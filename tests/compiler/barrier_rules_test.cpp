@@ -461,7 +461,7 @@ TEST(Ranges, LevelsPastTheChainAreAnErrorNotAClippedPlan) {
         if (r.name == "environment") r.extent = Extent{false, 1, 32, 32};  // 6 levels, the graph writes 9
     const std::string text = compileErrorText(ibl);
     ASSERT_FALSE(text.empty()) << "expected a GraphError";
-    EXPECT_NE(text.find("pass 'environment_mip6'"), std::string::npos) << text;
+    EXPECT_NE(text.find(".mips: pass 'environment_mip6'"), std::string::npos) << "at the usage's mips: " << text;
     EXPECT_NE(text.find("resource 'environment'"), std::string::npos) << text;
     EXPECT_NE(text.find("32x32 image has 6 mip level(s)"), std::string::npos) << text;
     EXPECT_EQ(text.find("environment_mip5'"), std::string::npos) << "mip 5 exists: " << text;
@@ -486,7 +486,8 @@ TEST(Ranges, AnEmptyRangeFromCodeIsAnError) {
         const std::string text = compileErrorText(ibl);
         ASSERT_FALSE(text.empty()) << "expected a GraphError";
         EXPECT_NE(text.find("uses an empty range"), std::string::npos) << text;
-        EXPECT_NE(text.find("pass '" + passName + "'"), std::string::npos) << text;
+        EXPECT_NE(text.find((emptyMips ? ".mips: pass '" : ".layers: pass '") + passName + "'"), std::string::npos)
+            << text;
         EXPECT_NE(text.find("resource '" + resourceName + "'"), std::string::npos) << text;
     }
 }
@@ -574,6 +575,66 @@ GraphDesc writerThenReader(bool readerUsesArray = false) {
               { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
               { "name": "r", "type": "Generic", "uses": )" + readerUses + " } ]}";
     return parseGraph(text, "rules.json", registry());
+}
+
+// The loader refuses a usage its resource cannot have; a GraphDesc built in code can hold one,
+// and compile() names it with the loader's words (a buffer as an attachment made the executor
+// build a framebuffer of a buffer; a stage past its enum read past the synchronizer's table).
+TEST(GraphsFromCode, UsagesTheirResourceCannotHaveAreErrors) {
+    const GraphDesc base = writerThenReader();
+    const auto withBuffer = [](GraphDesc& g) {
+        ResourceDesc buffer;
+        buffer.name = "buf";
+        buffer.type = ResourceType::Buffer;
+        buffer.sizeBytes = 64;
+        buffer.clear.reset();
+        g.resources.push_back(buffer);
+        return static_cast<uint32_t>(g.resources.size() - 1);
+    };
+    struct Case {
+        std::function<void(GraphDesc&)> edit;
+        std::string words, path, resource;
+    };
+    const std::vector<Case> cases{
+        {[&](GraphDesc& g) { g.passes[0].uses[0].resource = withBuffer(g); },
+         "a buffer cannot be an attachment (Write@ColorAttachment)", "passes[0].uses.buf", "buf"},
+        {[](GraphDesc& g) { g.passes[0].uses[0].usage.stage = Stage::DepthAttachment; },
+         "format R8G8B8A8_UNORM has no depth or stencil; it cannot be a depth attachment", "passes[0].uses.img",
+         "img"},
+        {[](GraphDesc& g) { g.passes[1].uses[0].usage.access = Access::Write; },
+         "a sampled image is read-only", "passes[1].uses.img", "img"},
+        {[](GraphDesc& g) { g.passes[1].uses[0].usage.as = BindAs::Uniform; },
+         "images cannot be uniform buffers", "passes[1].uses.img", "img"},
+        {[](GraphDesc& g) {
+             g.passes[1].uses[0].usage.stage = Stage::VertexInput;
+             g.passes[1].uses[0].usage.as = BindAs::Default;
+         },
+         "VertexInput reads buffers, not images", "passes[1].uses.img", "img"},
+        {[](GraphDesc& g) { g.passes[1].uses[1].usage.as = BindAs::Index; },
+         "`as: index` applies to VertexInput only", "passes[1].uses.out", "out"},
+        {[](GraphDesc& g) { g.resources[0].mips = 2; },
+         "an attachment renders to one mip level", "passes[0].uses.img", "img"},
+        {[](GraphDesc& g) { g.passes[0].uses[0].usage.range = SubresourceRange{0, 2, 0, 1}; },
+         "an attachment renders to one mip level", "passes[0].uses.img", "img"},
+        {[](GraphDesc& g) { g.passes[1].uses[0].usage.stage = static_cast<Stage>(8); },
+         "stage (8)", "passes[1].uses.img", "img"},
+        {[](GraphDesc& g) { g.passes[1].uses[0].usage.access = static_cast<Access>(3); },
+         "access (3)", "passes[1].uses.img", "img"},
+    };
+    for (const Case& c : cases) {
+        GraphDesc g = base;
+        c.edit(g);
+        const std::string text = compileErrorText(g);
+        EXPECT_NE(text.find(c.words), std::string::npos) << c.words << ": " << text;
+        EXPECT_NE(text.find(c.path), std::string::npos) << c.words << ": " << text;
+        EXPECT_NE(text.find("resource '" + c.resource + "'"), std::string::npos) << c.words << ": " << text;
+    }
+    // One mip of a chain as an attachment fits, as in a file.
+    GraphDesc chain = base;
+    chain.resources[0].mips = 2;
+    chain.passes[0].uses[0].usage.range = SubresourceRange{1, 1, 0, 1};
+    chain.passes[1].uses[0].usage.range = SubresourceRange{1, 1, 0, 1};
+    EXPECT_EQ(compileErrorText(chain), "");
 }
 
 // A pass's reads are sourced by earlier passes only, whichever order its usages come in. The

@@ -450,6 +450,18 @@ bool anyBarrierAliases(const nlohmann::json& plan) {
     return false;
 }
 
+// docs/graph-format.md: the deferred frame's bloom chain needs an output whose longer side is
+// at least 64 pixels, and a smaller one names the chain.
+TEST_F(Cli, TheDeferredFrameNeedsALongerSideOf64) {
+    EXPECT_EQ(run({"compile", kDeferred.string(), "--width", "64", "--height", "1"}).status, 0);
+    EXPECT_EQ(run({"compile", kDeferred.string(), "--width", "1", "--height", "64"}).status, 0);
+    const CliRun small = run({"compile", kDeferred.string(), "--width", "63", "--height", "63"});
+    EXPECT_EQ(small.status, 1);
+    EXPECT_NE(small.err.find("resources.bloom_down.mips: resource 'bloom_down': 6 levels is more than a 31x31 image has (5)"),
+              std::string::npos)
+        << small.err;
+}
+
 TEST_F(Cli, MemorySvgIsWrittenWhole) {
     const fs::path svg = dir_ / "work" / "memory.svg";
     const CliRun r = run({"compile", kDeferred.string(), "--format", "json", "--memory-svg", svg.string()});

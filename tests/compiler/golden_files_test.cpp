@@ -44,6 +44,11 @@ TEST_F(GoldenFile, NamesFollowTheDeclaredFeatures) {
     inMemory.name = "mine";
     inMemory.file = "<memory>";
     EXPECT_EQ(goldenFileName(inMemory, {}), "mine.plan.txt");
+    // A name is any text: it stays one file in the goldens' folder.
+    inMemory.name = "../up/and out";
+    EXPECT_EQ(goldenFileName(inMemory, {}), "_.._up_and_out.plan.txt");
+    inMemory.name = "";
+    EXPECT_EQ(goldenFileName(inMemory, {}), "_.plan.txt");
 }
 
 TEST_F(GoldenFile, EveryStatus) {

@@ -837,6 +837,22 @@ TEST(LoaderErrors, AnEmptyListOfDeclaredNamesSaysNone) {
         << listAll(loadErrors(g));
 }
 
+// A feature refused for its name has its own error and is not offered as a declared one.
+TEST(LoaderErrors, ARefusedFeatureIsNotListedAsDeclared) {
+    Json g = baseGraph();
+    g["features"]["bad name"] = true;
+    g["passes"][1]["if"] = "skyy";
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "features.bad name", "", "", {"is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].if", "tonemap", "", {"unknown feature 'skyy'; the file declares: "}))
+        << listAll(ds);
+    for (const auto& d : ds) {
+        if (d.message.find("unknown feature") != std::string::npos) {
+            EXPECT_EQ(d.message.find("bad name"), std::string::npos) << d.message;
+        }
+    }
+}
+
 // nlohmann's message shows the bytes it read last; one that is not UTF-8 is escaped, as control
 // characters are, rather than written raw to the terminal or the log.
 TEST(LoaderErrors, BytesThatAreNotUtf8AreShownEscaped) {

@@ -260,6 +260,22 @@ TEST(QueueRules, AQueueThatCannotPerformAUsageIsRefusedNamingPassQueueAndResourc
     EXPECT_NE(d.message.find("needs the graphics queue"), std::string::npos) << d.message;
 }
 
+TEST(QueueRules, EveryUsageTheQueueCannotPerformIsNamed) {
+    try {
+        (void)parseGraph(graphText(R"("out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16],
+                                              "external": true, "final": "TransferSrc"},
+                                      "buf": {"type": "buffer", "size": 64, "external": true})",
+                                   R"({"name": "draw", "type": "Generic", "queue": "transfer",
+                                       "uses": {"buf": "Read@Compute", "out": "Write@ColorAttachment"}})"),
+                         "queues.json", registry());
+        FAIL() << "no error";
+    } catch (const GraphError& e) {
+        ASSERT_EQ(e.diagnostics().size(), 2u) << e.what();
+        EXPECT_EQ(e.diagnostics().items()[0].resource, "buf") << e.what();
+        EXPECT_EQ(e.diagnostics().items()[1].resource, "out") << e.what();
+    }
+}
+
 TEST(QueueRules, TheTransferQueueTakesCopiesOnly) {
     const Diagnostic d = errorOf(graphText(R"("buf": {"type": "buffer", "size": 64})",
                                            R"({"name": "fill", "type": "Generic", "queue": "transfer", "never_cull": true,

@@ -430,7 +430,7 @@ TEST_F(ExecutorTest, ExternalPixelsThatNoLongerFitFailTheRebuildUntilForgotten) 
     };
     const uint32_t w = c.outputWidth(), h = c.outputHeight();
     r.setExternalImage("photo", pixels(w, h));
-    for (const auto [nw, nh] : {std::pair{w * 2, h * 2}, std::pair{w / 2, h / 2}}) {
+    for (const auto& [nw, nh] : {std::pair{w * 2, h * 2}, std::pair{w / 2, h / 2}}) {
         try {
             r.resize(nw, nh);
             FAIL() << "resized to " << nw << "x" << nh << " with pixels of " << w << "x" << h;
@@ -483,6 +483,34 @@ TEST_F(ExecutorTest, ANullPresentImageIsRefusedByIndex) {
         EXPECT_NE(std::string(e.what()).find("setPresentImages: image 0 is VK_NULL_HANDLE"), std::string::npos)
             << e.what();
     }
+}
+
+// shareImage() names why a resource cannot be shared; it had said "set `final`" of a resource
+// whose `final` was set.
+TEST_F(ExecutorTest, ShareImageSaysWhyAResourceCannotBeShared) {
+    Renderer r(sharedDevice(), compileText(R"({ "version": 1, "name": "t", "resources": {
+          "kept": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "final": "ShaderRead" },
+          "photo": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                     "initial": "ShaderRead" },
+          "buf": { "type": "buffer", "size": 64, "external": true, "final": "General" },
+          "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                   "final": "ShaderRead" } },
+          "passes": [ { "name": "fill", "type": "Generic", "params": { "color": [0, 0, 0, 1] },
+                        "uses": { "kept": "Write@ColorAttachment", "photo": "Read@Fragment",
+                                  "buf": "Write@Compute", "out": "Write@ColorAttachment" } } ] })"),
+               genericOptions());
+    for (const auto& [resource, why] : {std::pair{"kept", "is not external: set \"external\": true and `final`"},
+                                        std::pair{"photo", "is not exported: set `final`"},
+                                        std::pair{"buf", "is a buffer, and only images are shared"}}) {
+        try {
+            (void)r.shareImage(resource);
+            FAIL() << resource << " was shared";
+        } catch (const ExecutorError& e) {
+            EXPECT_NE(std::string(e.what()).find("shareImage: '" + std::string(resource) + "' " + why), std::string::npos)
+                << e.what();
+        }
+    }
+    EXPECT_NO_THROW((void)r.shareImage("out"));
 }
 
 // Cross-frame RAW into a different read stage: the frame reads the persistent buffer as
