@@ -3,6 +3,9 @@
 #include "renderer_impl.hpp"
 #include "resource_creation.hpp"
 
+#include <string_view>
+#include <unordered_set>
+
 namespace skygraph {
 
 using namespace detail;
@@ -124,6 +127,14 @@ VkImageView Renderer::Impl::view(ResourceState& r, uint32_t copy, VkImageViewTyp
 void Renderer::Impl::describeResources(PlanState& s) {
     const uint32_t slots = options.framesInFlight;
     describePresent(s);
+    // The embedding API finds resources by name (importImage, setExternalImage, stageUpload,
+    // shareImage): two of one name would be one to it. The loader refuses them in a file; a
+    // GraphDesc built in code reaches here.
+    std::unordered_set<std::string_view> names;
+    for (const PlannedResource& pr : s.plan.resources())
+        if (!names.insert(pr.name).second)
+            throw ExecutorError("the graph has two resources named '" + std::string(pr.name) +
+                                "': the renderer finds resources by name");
     s.resources.resize(s.plan.resources().size());
     for (size_t i = 0; i < s.plan.resources().size(); ++i) {
         const PlannedResource& pr = s.plan.resources()[i];

@@ -513,6 +513,27 @@ TEST_F(ExecutorTest, ShareImageSaysWhyAResourceCannotBeShared) {
     EXPECT_NO_THROW((void)r.shareImage("out"));
 }
 
+// The loader refuses two resources of one name; a GraphDesc built in code can hold them, and
+// the renderer, which finds resources by name, names the one it would confuse.
+TEST_F(ExecutorTest, TwoResourcesOfOneNameAreRefused) {
+    GraphDesc graph = parseGraph(R"({ "version": 1, "name": "t", "resources": {
+          "a": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] },
+          "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                   "final": "ShaderRead" } },
+          "passes": [ { "name": "w", "type": "Generic", "params": { "color": [0, 0, 0, 1] },
+                        "uses": { "a": "Write@ColorAttachment" } },
+                      { "name": "r", "type": "Generic",
+                        "uses": { "a": "Read@Fragment", "out": "Write@ColorAttachment" } } ] })",
+                                 "<test>", PassRegistry::withBuiltins());
+    graph.resources[0].name = "out";
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(graph, sizedOptions()), genericOptions());
+        FAIL() << "two resources named 'out' were taken";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("the graph has two resources named 'out'"), std::string::npos) << e.what();
+    }
+}
+
 // Cross-frame RAW into a different read stage: the frame reads the persistent buffer as
 // vertex input first, then overwrites it in compute, then reads it in the fragment shader.
 // The next frame's vertex-input read must see this frame's compute write, so the final
