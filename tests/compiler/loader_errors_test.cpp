@@ -979,6 +979,12 @@ TEST(LoaderErrors, AbsurdBufferSizes) {
     EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"got 256.0 (write it as an integer)"}));
     g["resources"]["buf"]["size"] = 1.5;
     EXPECT_FALSE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"write it as an integer"}));
+    // Digits alone past 2^64 are read as a float: the range is the problem, not the writing.
+    const auto huge = textErrors(R"({"version": 1, "name": "t", "resources": {"buf": {"type": "buffer",
+                                    "size": 99999999999999999999999}}, "passes": []})");
+    ASSERT_FALSE(huge.empty());
+    EXPECT_NE(huge[0].message.find("between 1 and 2 GiB"), std::string::npos) << huge[0].message;
+    EXPECT_EQ(huge[0].message.find("write it as an integer"), std::string::npos) << huge[0].message;
     Json extent = baseGraph();
     extent["resources"]["hdr_color"]["extent"] = Json::array({16.0, 16});
     EXPECT_TRUE(hasDiag(loadErrors(extent), "resources.hdr_color.extent", "", "hdr_color",
