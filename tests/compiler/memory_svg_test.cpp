@@ -8,10 +8,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace skygraph {
 namespace {
@@ -117,6 +119,63 @@ TEST(MemorySvg, NamesThatLookLikeMarkupAreEscaped) {
     EXPECT_NE(svg.find("a pass whose name is far to\xE2\x80\xA6"), std::string::npos) << "cut with an ellipsis";
     EXPECT_NE(svg.find("stroke-dasharray=\"4,2\""), std::string::npos) << "the unshared buffer is outlined dashed";
     EXPECT_EQ(parseWithPython(svg, "escaped"), "0 2");
+}
+
+/// The number after `attribute="` in `element`.
+double attributeOf(const std::string& element, const std::string& attribute) {
+    const size_t at = element.find(" " + attribute + "=\"");
+    return at == std::string::npos ? -1.0 : std::stod(element.substr(at + attribute.size() + 3));
+}
+
+/// Each <rect class="CLASS" ...> element of `svg`, in order, up to its '>'.
+std::vector<std::string> rects(const std::string& svg, const std::string& cls) {
+    std::vector<std::string> out;
+    const std::string open = "<rect class=\"" + cls + "\"";
+    for (size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at + 1))
+        out.push_back(svg.substr(at, svg.find('>', at) - at));
+    return out;
+}
+
+// A placement too small to see is drawn 2 pixels tall; one at its heap's end is drawn from 2
+// pixels above the end, so that it stays inside the heap's band.
+TEST(MemorySvg, EveryPlacementIsDrawnInsideItsHeap) {
+    const char* graph = R"({
+      "version": 1, "name": "ends",
+      "resources": {
+        "big": { "type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [4096, 4096] },
+        "tiny": { "type": "image2d", "format": "R8_UNORM", "extent": [1, 1] },
+        "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64],
+                 "external": true, "final": "TransferSrc" }
+      },
+      "passes": [
+        { "name": "write", "type": "Generic", "uses": { "big": "Write@ColorAttachment", "tiny": "Write@Compute" } },
+        { "name": "read", "type": "Generic",
+          "uses": { "big": "Read@Fragment", "tiny": "Read@Fragment", "out": "Write@ColorAttachment" } }
+      ]
+    })";
+    const Plan ends = compile(parseGraph(graph, "ends.json", PassRegistry::withBuiltins()));
+    const MemoryLayout& m = ends.memory();
+    ASSERT_EQ(m.placements.size(), 2u);
+    const auto tiny = std::find_if(m.placements.begin(), m.placements.end(), [&](const MemoryPlacement& p) {
+        return ends.resources()[p.resource].name == "tiny";
+    });
+    ASSERT_NE(tiny, m.placements.end());
+    ASSERT_EQ(tiny->offset + tiny->bytes, m.heaps[tiny->heap].bytes) << "the fixture puts it at its heap's end";
+    const Plan deferred = compileFile(kDeferred);
+    for (const Plan* plan : {&ends, &deferred}) {
+        const std::string svg = planMemoryToSvg(*plan);
+        const std::vector<std::string> heaps = rects(svg, "heap"), placed = rects(svg, "placement");
+        ASSERT_EQ(heaps.size(), plan->memory().heaps.size());
+        ASSERT_EQ(placed.size(), plan->memory().placements.size());
+        for (size_t i = 0; i < placed.size(); ++i) {
+            const std::string& band = heaps.at(plan->memory().placements[i].heap);
+            const double top = attributeOf(band, "y"), bottom = top + attributeOf(band, "height");
+            const double y = attributeOf(placed[i], "y"), h = attributeOf(placed[i], "height");
+            EXPECT_GE(h, 2.0) << placed[i];
+            EXPECT_GE(y, top) << placed[i] << " in " << band;
+            EXPECT_LE(y + h, bottom + 0.05) << placed[i] << " in " << band;  // num() rounds to 0.1
+        }
+    }
 }
 
 TEST(MemorySvg, APlanWithNothingPlacedSaysSo) {
