@@ -189,8 +189,8 @@ std::string JsonValue::dump() const { return toJson().dump(); }
 std::string JsonValue::integerHint() const {
     if (kind() != Kind::Float) return {};
     const double v = number<double>();
-    // Past 2^63 the number may be written as digits alone and still be read as a float.
-    return std::isfinite(v) && v == std::floor(v) && std::fabs(v) < 0x1p63 ? " (write it as an integer)" : "";
+    // Digits alone are read as an integer from -2^63 to 2^64 - 1, and as a float past them.
+    return std::isfinite(v) && v == std::floor(v) && v >= -0x1p63 && v < 0x1p64 ? " (write it as an integer)" : "";
 }
 
 }  // namespace skygraph

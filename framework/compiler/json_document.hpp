@@ -94,8 +94,8 @@ public:
     [[nodiscard]] std::string dump() const;
     /// For messages where an integer is wanted: " (write it as an integer)" when the value is
     /// whole but written with a fraction or an exponent (`4.0`, `2.56e2`), which the loader
-    /// does not take as an integer and the schema cannot tell apart; otherwise empty. Not for
-    /// 2^63 and past, which digits alone can write and still be read as a float.
+    /// does not take as an integer and the schema cannot tell apart; otherwise empty. Not past
+    /// the 64-bit integers (below -2^63, from 2^64 on), which digits alone write as a float.
     [[nodiscard]] std::string integerHint() const;
 
 private:

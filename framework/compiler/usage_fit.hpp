@@ -80,8 +80,9 @@ inline constexpr size_t kAccesses = 3, kStages = 8, kBindings = 5;
 [[nodiscard]] std::string usageProblem(const ResourceDesc& resource, const Usage& usage);
 
 namespace detail {
-/// Per usage mode (stage << 5 | access << 3 | as: every value each byte's bits can hold), the
-/// rows (fitRow below) it fits as a 16-bit mask; 0 for values outside the enums.
+/// Per usage mode (stage << 5 | access << 3 | as, for stage and as below 8 and access below 4;
+/// usageFits refuses larger values before it looks), the rows (fitRow below) it fits as a
+/// 16-bit mask; 0 where a value is outside its enum.
 extern const std::array<uint16_t, 256> kFitRows;
 }  // namespace detail
 

@@ -63,11 +63,13 @@ MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
     const VkMemoryRequirements& r = req.memoryRequirements;
     const uint32_t types = r.memoryTypeBits & deviceLocalTypes_;
     // A driver that cannot make the resource answers with nothing (lavapipe: size 0).
-    if (r.size == 0 || types == 0)
-        throw DeviceCapacityError("resource '" + d.name + "': device '" + name_ + "' reports " +
-                            (r.size == 0 ? std::string("no memory requirements for it")
-                                         : "no DEVICE_LOCAL memory type for it") +
-                            "; nothing was allocated");
+    // (size 0: what lavapipe answers for a resource too large to make)
+    if (r.size == 0)
+        throw DeviceCapacityError("resource '" + d.name + "': device '" + name_ +
+                                  "' reports no memory requirements for it; nothing was allocated");
+    if (types == 0)
+        throw ExecutorError("resource '" + d.name + "': device '" + name_ +
+                            "' reports no DEVICE_LOCAL memory type for it; nothing was allocated");
     return {r.size, std::max<VkDeviceSize>(r.alignment, 1), types};
 }
 

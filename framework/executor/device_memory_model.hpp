@@ -35,10 +35,11 @@ public:
     DeviceMemoryModel(const DeviceMemoryModel&) = delete;
     DeviceMemoryModel& operator=(const DeviceMemoryModel&) = delete;
 
-    /// Throws ExecutorError naming the resource when the device cannot create it (as
-    /// refuseImageBeyondLimits / refuseUnsupportedImage / refuseBufferBeyondLimits say), or
-    /// once the device is gone; DeviceCapacityError when the device reports no memory for it
-    /// or none of its memory types is DEVICE_LOCAL.
+    /// Throws DeviceCapacityError naming the resource when it is past the device's limits
+    /// (refuseImageBeyondLimits / refuseBufferBeyondLimits) or the device reports no memory for
+    /// it (too large to make); ExecutorError when the device cannot create it otherwise
+    /// (refuseUnsupportedImage), when none of its memory types is DEVICE_LOCAL, or once the
+    /// device is gone.
     [[nodiscard]] MemoryRequirements requirements(const MemoryQuery& query) const override;
     /// The device's bufferImageGranularity. Throws ExecutorError once the device is gone.
     [[nodiscard]] uint64_t bufferImageGranularity() const override;

@@ -131,10 +131,9 @@ void Renderer::Impl::describeResources(PlanState& s) {
     // shareImage): two of one name would be one to it. The loader refuses them in a file; a
     // GraphDesc built in code reaches here.
     std::unordered_set<std::string_view> names;
-    for (const PlannedResource& pr : s.plan.resources())
-        if (!names.insert(pr.name).second)
-            throw ExecutorError("the graph has two resources named '" + std::string(pr.name) +
-                                "': the renderer finds resources by name");
+    for (const ResourceDesc& r : s.graph.resources)
+        if (!names.insert(r.name).second)
+            throw ExecutorError("the graph has two resources named '" + r.name + "': the renderer finds resources by name");
     s.resources.resize(s.plan.resources().size());
     for (size_t i = 0; i < s.plan.resources().size(); ++i) {
         const PlannedResource& pr = s.plan.resources()[i];

@@ -36,7 +36,7 @@ std::string goldenFileName(const GraphDesc& graph, const FeatureValues& features
     for (const FeatureDecl& f : graph.features) {
         const auto it = features.find(f.name);
         const bool on = it != features.end() ? it->second : f.defaultValue;
-        name += "." + f.name + (on ? "-on" : "-off");
+        name += "." + asFileName(f.name) + (on ? "-on" : "-off");
     }
     return name + ".plan.txt";
 }

@@ -9,9 +9,6 @@
 #include <cmath>
 
 namespace skygraph {
-namespace {
-
-}  // namespace
 
 ImageError::ImageError(const std::filesystem::path& file, const std::string& reason)
     : std::runtime_error(printableName("'" + file.string() + "': " + reason)), file_(file) {}

@@ -29,8 +29,8 @@ public:
 };
 
 /// An ExecutorError thrown before anything is allocated, when the plan needs more than the
-/// device can hold: a resource past one of its size limits (dimensions, layers, buffer ranges),
-/// one it reports no memory for, or all of them together past the memory a renderer allows
+/// device can hold: a resource past one of its size limits (dimensions, layers, buffer ranges)
+/// or one it reports no memory for, or all of them together past the memory a renderer allows
 /// itself (half the largest device-local heap). Smaller sizes, or a larger device, would run.
 class DeviceCapacityError : public ExecutorError {
 public:

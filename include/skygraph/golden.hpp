@@ -17,9 +17,9 @@
 namespace skygraph {
 
 /// The version of the golden text: its first line names it. A change to the plan text that
-/// would make every golden differ raises it, so that an old golden is reported as written by
+/// would make goldens differ raises it, so that an old golden is reported as written by
 /// another version instead of as hundreds of differing lines.
-inline constexpr uint32_t kGoldenFormatVersion = 1;
+inline constexpr uint32_t kGoldenFormatVersion = 2;
 
 /// The text a golden file holds for `plan`: one header line naming the format version, then
 /// planToText(plan). The caller owns the result.
@@ -27,9 +27,10 @@ inline constexpr uint32_t kGoldenFormatVersion = 1;
 
 /// "<graph file stem>.<feature>-on.<feature>-off....plan.txt", features in the order the graph
 /// declares them; a graph without features gives "<stem>.plan.txt". The stem is the name of
-/// `graph.file` without its extension, or `graph.name` for a graph not read from a file, its
-/// characters other than letters, digits, '-', '_' and '.' written as '_' (and '_' before a
-/// leading '.'), so that the name stays one file in the goldens' folder.
+/// `graph.file` without its extension, or `graph.name` for a graph not read from a file. In a
+/// graph's and features' names, characters other than letters, digits, '-', '_' and '.' are
+/// written as '_' (and '_' goes before a leading '.'), so that the name stays one file in the
+/// goldens' folder; names that differ only there share a file.
 [[nodiscard]] std::string goldenFileName(const GraphDesc& graph, const FeatureValues& features);
 
 enum class GoldenStatus : uint8_t {

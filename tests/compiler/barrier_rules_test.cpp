@@ -5,6 +5,7 @@
 #include <skygraph/compiler.hpp>
 
 #include "plan_queries.hpp"
+#include "usage_fit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -577,6 +578,20 @@ GraphDesc writerThenReader(bool readerUsesArray = false) {
     return parseGraph(text, "rules.json", registry());
 }
 
+// The compiler's table answers as the rule it is built from, for every subject and every byte
+// value of a usage's three fields (values past an enum do not fit).
+TEST(UsageFit, TheTableAnswersAsTheRule) {
+    for (uint32_t row = 0; row < 16; ++row)
+        for (uint32_t stage = 0; stage < 256; ++stage)
+            for (uint32_t access = 0; access < 256; access += (access < 8 ? 1 : 61))
+                for (uint32_t as = 0; as < 256; as += (as < 8 ? 1 : 83)) {
+                    const UsageSubject subject{(row & 1) != 0, (row & 2) != 0, (row & 4) != 0, (row & 8) != 0};
+                    const UsageMode mode{static_cast<Access>(access), static_cast<Stage>(stage), static_cast<BindAs>(as)};
+                    ASSERT_EQ(usageFits(fitRow(subject), mode), usageMisfit(subject, mode) == UsageMisfit::Fits)
+                        << "row " << row << " stage " << stage << " access " << access << " as " << as;
+                }
+}
+
 // The loader refuses a usage its resource cannot have; a GraphDesc built in code can hold one,
 // and compile() names it with the loader's words (a buffer as an attachment made the executor
 // build a framebuffer of a buffer; a stage past its enum read past the synchronizer's table).
@@ -620,6 +635,20 @@ TEST(GraphsFromCode, UsagesTheirResourceCannotHaveAreErrors) {
          "stage (8)", "passes[1].uses.img", "img"},
         {[](GraphDesc& g) { g.passes[1].uses[0].usage.access = static_cast<Access>(3); },
          "access (3)", "passes[1].uses.img", "img"},
+        {[](GraphDesc& g) { g.passes[1].uses[0].usage.as = static_cast<BindAs>(5); },
+         "binding (5)", "passes[1].uses.img", "img"},
+        // A pass switched off is checked too, as the loader checks it.
+        {[&](GraphDesc& g) {
+             g.features.push_back({"extra", false});
+             std::string error;
+             PassDesc extra = g.passes[0];
+             extra.name = "extra";
+             extra.jsonPath.clear();
+             extra.condition = *Condition::parse("extra", error);
+             extra.uses[0].resource = withBuffer(g);
+             g.passes.push_back(extra);
+         },
+         "a buffer cannot be an attachment", "pass 'extra'", "buf"},
     };
     for (const Case& c : cases) {
         GraphDesc g = base;

@@ -49,6 +49,8 @@ TEST_F(GoldenFile, NamesFollowTheDeclaredFeatures) {
     EXPECT_EQ(goldenFileName(inMemory, {}), "_.._up_and_out.plan.txt");
     inMemory.name = "";
     EXPECT_EQ(goldenFileName(inMemory, {}), "_.plan.txt");
+    inMemory.features.push_back({"../f", false});
+    EXPECT_EQ(goldenFileName(inMemory, {}), "_._.._f-off.plan.txt");
 }
 
 TEST_F(GoldenFile, EveryStatus) {
@@ -60,7 +62,7 @@ TEST_F(GoldenFile, EveryStatus) {
     const GoldenComparison same = compareWithGolden(plan_, file);
     EXPECT_TRUE(same.ok()) << same.message;
     EXPECT_TRUE(same.diff.empty());
-    EXPECT_EQ(goldenText(plan_).substr(0, goldenText(plan_).find('\n')), "# skygraph golden plan, format 1");
+    EXPECT_EQ(goldenText(plan_).substr(0, goldenText(plan_).find('\n')), "# skygraph golden plan, format 2");
 
     CompileOptions other;
     other.outputWidth = 64;

@@ -979,7 +979,7 @@ TEST(LoaderErrors, AbsurdBufferSizes) {
     EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"got 256.0 (write it as an integer)"}));
     g["resources"]["buf"]["size"] = 1.5;
     EXPECT_FALSE(hasDiag(loadErrors(g), "resources.buf.size", "", "buf", {"write it as an integer"}));
-    // Digits alone past 2^64 are read as a float: the range is the problem, not the writing.
+    // Digits alone from 2^64 on are read as a float: the range is the problem, not the writing.
     const auto huge = textErrors(R"({"version": 1, "name": "t", "resources": {"buf": {"type": "buffer",
                                     "size": 99999999999999999999999}}, "passes": []})");
     ASSERT_FALSE(huge.empty());
