@@ -16,6 +16,14 @@
 
 namespace skygraph {
 
+/// `names` as a message lists what was declared: "a, b, c", or "none".
+[[nodiscard]] inline std::string joinNames(const std::vector<std::string>& names) {
+    if (names.empty()) return "none";
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
+
 /// The keys an entry of the file may have, in the order messages list them.
 template <size_t N>
 using Keys = std::array<std::string_view, N>;

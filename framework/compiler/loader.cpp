@@ -25,13 +25,6 @@
 namespace skygraph {
 namespace {
 
-std::string joinNames(const std::vector<std::string>& names) {
-    if (names.empty()) return "none";
-    std::string out;
-    for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-    return out;
-}
-
 /// A value as nlohmann prints it, for messages: strings quoted and escaped.
 std::string dumpString(std::string_view s) { return nlohmann::json(std::string(s)).dump(); }
 

@@ -220,7 +220,8 @@ std::string mib(uint64_t bytes) {
 
 /// "0", "512 B", "1.0 KiB", "16.00 MiB": small buffers stay readable next to large images.
 std::string byteText(uint64_t bytes) {
-    if (bytes >= (1u << 20) - 51) return mib(bytes);  // not "1024.0 KiB"
+    // From 1023.95 KiB (1 MiB less 51 bytes) on, "%.1f KiB" would print 1024.0.
+    if (bytes >= (1u << 20) - 51) return mib(bytes);
     if (bytes >= 1024) {
         char text[32];
         std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);

@@ -171,10 +171,9 @@ FeatureValues checkedFeatures(const GraphDesc& graph, const CompileOptions& opti
     FeatureValues features = graph.defaultFeatures();
     for (const auto& [name, value] : options.features) {
         if (!features.count(name)) {
-            std::string known;
-            for (const auto& f : graph.features) known += (known.empty() ? "" : ", ") + f.name;
-            out.add({graph.file, "features", "", "",
-                     "unknown feature '" + name + "'; the graph declares: " + (known.empty() ? "none" : known)});
+            std::vector<std::string> known;
+            for (const auto& f : graph.features) known.push_back(f.name);
+            out.add({graph.file, "features", "", "", "unknown feature '" + name + "'; the graph declares: " + joinNames(known)});
             continue;
         }
         features[name] = value;

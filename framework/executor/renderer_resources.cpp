@@ -183,12 +183,13 @@ void Renderer::Impl::describeResources(PlanState& s) {
             s.resources[i].imageUsage |= layoutUsage(l);
     }
     for (const PlannedPass& pass : s.plan.passes()) {
+        const bool upload = pass.type == "UploadPass";
         for (const PlannedUsage& u : pass.usages) {
             if (u.resource >= s.resources.size())
                 throw ExecutorError(passError(pass, "", "usage refers to an unknown resource"));
             ResourceState& r = s.resources[u.resource];
             addUsageFlags(u, r.desc->isImage(), r.imageUsage, r.bufferUsage);
-            r.uploaded = r.uploaded || pass.type == "UploadPass";
+            r.uploaded = r.uploaded || upload;
         }
     }
     refuseOversizedResources(s, DeviceCapacity::of(dev.physical), options.framesInFlight);
