@@ -1,5 +1,8 @@
 #include "param_rules.hpp"
 
+#include "integer_hint.hpp"
+#include "json_path.hpp"
+
 #include <algorithm>
 
 namespace skygraph::passes {
@@ -27,11 +30,11 @@ ParamValidator rules(std::vector<ParamRule> list) {
             if (it == list.end()) {
                 std::string known;
                 for (const auto& r : list) known += (known.empty() ? "" : ", ") + r.key;
-                errors.push_back({key, "unknown parameter; expected " + (known.empty() ? "none" : known)});
+                errors.push_back({jsonPathMember("", key), "unknown parameter; expected " + (known.empty() ? "none" : known)});
                 continue;
             }
             if (std::string problem = it->check(value); !problem.empty())
-                errors.push_back({key, problem});
+                errors.push_back({jsonPathMember("", key), problem});
         }
         return errors;
     };
@@ -57,7 +60,8 @@ ParamCheck numberIn(double lo, double hi) {
 ParamCheck integerIn(int64_t lo, int64_t hi) {
     return [lo, hi](const json& v) -> std::string {
         if (v.is_number_integer() && v.get<int64_t>() >= lo && v.get<int64_t>() <= hi) return {};
-        return "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.dump();
+        return "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.dump() +
+               (v.is_number_float() ? integerHint(v.get<double>()) : "");
     };
 }
 

@@ -1,6 +1,8 @@
 #include <skygraph/graph.hpp>
 #include <skygraph/plan.hpp>
 
+#include "json_path.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -115,12 +117,14 @@ SlotId GraphDesc::internSlot(std::string_view slot) {
     return static_cast<SlotId>(slotNames.size());
 }
 
+std::string ResourceDesc::jsonPath() const { return jsonPathMember("resources", name); }
+
 std::string GraphDesc::usageJsonPath(size_t pass, size_t use) const {
     const PassDesc& p = passes.at(pass);
     std::string path = p.jsonPath.empty() ? "passes[" + std::to_string(pass) + "]" : p.jsonPath;
     const uint32_t r = p.uses.at(use).resource;
     // A GraphDesc built in code may name a resource that is not there (compile() reports it).
-    if (p.usesByName && r < resources.size()) return path + ".uses." + resources[r].name;
+    if (p.usesByName && r < resources.size()) return jsonPathMember(path + ".uses", resources[r].name);
     return path + ".uses[" + std::to_string(use) + "]";
 }
 

@@ -4,6 +4,7 @@
 
 #include "graph_limits.hpp"
 #include "json_document.hpp"
+#include "json_path.hpp"
 
 #include <skygraph/diagnostics.hpp>
 
@@ -66,8 +67,7 @@ public:
         for (auto k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
         for (const auto& [key, _] : object.members()) {
             if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
-            const std::string where = path();
-            (*this)(where.empty() ? std::string(key) : where + "." + std::string(key), pass, resource,
+            (*this)(jsonPathMember(path(), key), pass, resource,
                     "unknown key '" + std::string(key) + "'; expected one of: " + list);
         }
     }

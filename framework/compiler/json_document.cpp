@@ -1,6 +1,7 @@
 #include "json_document.hpp"
 
 #include "json_document_builder.hpp"
+#include "integer_hint.hpp"
 #include "printable_name.hpp"
 
 #include <cmath>
@@ -187,10 +188,10 @@ nlohmann::json JsonValue::toJson() const {
 std::string JsonValue::dump() const { return toJson().dump(); }
 
 std::string JsonValue::integerHint() const {
-    if (kind() != Kind::Float) return {};
-    const double v = number<double>();
-    // Digits alone are read as an integer from -2^63 to 2^64 - 1, and as a float past them.
-    return std::isfinite(v) && v == std::floor(v) && v >= -0x1p63 && v < 0x1p64 ? " (write it as an integer)" : "";
+    if (isArray())
+        for (size_t i = 0; i < size(); ++i)
+            if (std::string hint = (*this)[i].integerHint(); !hint.empty()) return hint;
+    return kind() == Kind::Float ? skygraph::integerHint(number<double>()) : "";
 }
 
 }  // namespace skygraph

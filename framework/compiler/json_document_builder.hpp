@@ -3,6 +3,7 @@
 #pragma once
 
 #include "json_document.hpp"
+#include "json_path.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -236,9 +237,8 @@ private:
     }
 
     void noteDuplicate(const Node& n) {
-        const std::string objectPath = path(false);
-        std::string key(keyOf(n));
-        duplicates_.push_back({n.keyOrder, {objectPath.empty() ? key : objectPath + "." + key, key}});
+        const std::string_view key = keyOf(n);
+        duplicates_.push_back({n.keyOrder, {jsonPathMember(path(false), key), std::string(key)}});
     }
 
     /// The innermost open container's path or, with `pending`, that of where the next value
@@ -252,8 +252,7 @@ private:
             if (f.array) {
                 out += "[" + std::to_string(last ? f.next : f.next - 1) + "]";
             } else {
-                if (!out.empty()) out += ".";
-                out += std::string_view(doc_.at(f.keyOffset), f.keyLength);
+                out = jsonPathMember(out, std::string_view(doc_.at(f.keyOffset), f.keyLength));
             }
         }
         return out;

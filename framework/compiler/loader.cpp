@@ -7,6 +7,7 @@
 #include "graph_file.hpp"
 #include "graph_limits.hpp"
 #include "json_document.hpp"
+#include "json_path.hpp"
 #include "name_index.hpp"
 #include "printable_name.hpp"
 #include "resource_loader.hpp"
@@ -173,27 +174,19 @@ private:
     void reportDuplicate(const DuplicateKey& dup) {
         std::string pass, resource;
         const std::string& path = dup.path;
-        // A declared name may hold '.': the longest one the path continues with is meant.
-        auto segment = [&](size_t from) {
-            const std::string_view rest = std::string_view(path).substr(from);
-            std::string best = std::string(rest.substr(0, rest.find('.')));
-            for (const ResourceDesc& r : graph_.resources)
-                if (r.name.size() > best.size() && rest.starts_with(r.name) &&
-                    (rest.size() == r.name.size() || rest[r.name.size()] == '.'))
-                    best = r.name;
-            return best;
-        };
-        if (path.starts_with("resources.")) resource = segment(10);
+        if (size_t at = 9; path.starts_with("resources"))
+            if (auto name = readPathMember(path, at)) resource = std::move(*name);
         if (path.starts_with("passes[")) {
             const size_t close = path.find(']');
             const std::string index = path.substr(7, close - 7);
             if (close != std::string::npos && !index.empty() &&
                 index.find_first_not_of("0123456789") == std::string::npos && index.size() < 10) {
                 if (const size_t i = std::stoul(index); i < passNames_.size()) pass = passNames_[i];
-                if (path.compare(close + 1, 6, ".uses.") == 0) resource = segment(close + 7);
+                if (size_t at = close + 6; path.compare(close + 1, 5, ".uses") == 0)
+                    if (auto name = readPathMember(path, at)) resource = std::move(*name);
             }
         }
-        const bool isResource = path == "resources." + dup.key;
+        const bool isResource = path == jsonPathMember("resources", dup.key);
         error(path, pass, resource,
               (isResource ? "duplicate resource name '" : "duplicate key '") + dup.key +
                   "'; JSON keeps only the last one");
@@ -266,9 +259,9 @@ private:
         for (const auto& [key, value] : features.members()) {
             const std::string name(key);
             if (!Condition::isFeatureName(name))
-                error("features." + name, "", "", "'" + printableName(name) + "' is not a valid feature name");
+                error(jsonPathMember("features", name), "", "", "'" + printableName(name) + "' is not a valid feature name");
             if (!value.isBoolean())
-                error("features." + name, "", "", "default must be true or false");
+                error(jsonPathMember("features", name), "", "", "default must be true or false");
             graph_.features.push_back({name, value.isBoolean() && value.boolean()});
         }
     }
@@ -335,7 +328,8 @@ private:
         }
         if (type && type->validateParams)
             for (const auto& e : type->validateParams(p.params))
-                error(path + ".params" + (e.path.empty() ? "" : "." + e.path), p.name, "", e.message);
+                error(path + ".params" + (e.path.empty() || e.path.starts_with('[') ? "" : ".") + e.path, p.name, "",
+                      e.message);
         if (const JsonValue uses = f[passKey::uses]) {
             loadUses(p, uses);
             if ((uses.isObject() || uses.isArray()) && uses.size() == 0)
@@ -433,7 +427,7 @@ private:
             size_t i = 0;
             for (const auto& [name, value] : uses.members()) {
                 const std::optional<uint32_t> found = ahead_[i++].found;
-                auto upath = [&, name = name] { return path() + "." + std::string(name); };
+                auto upath = [&, name = name] { return jsonPathMember(path(), name); };
                 if (!value.isString()) {
                     error(upath(), p.name, name, "expected \"Access@Stage\", e.g. \"Read@Fragment\"");
                     continue;
@@ -535,7 +529,9 @@ private:
                 if (!res->isImage()) return failAt(key, std::string("buffers have no ") + key), false;
                 if (!it.isArray() || it.size() != 2 || !it[0].isUnsigned() || !it[1].isUnsigned() ||
                     it[1].number<uint64_t>() == 0)
-                    return failAt(key, std::string("`") + key + "` must be [first, count] with count >= 1"), false;
+                    return failAt(key, std::string("`") + key + "` must be [first, count] with count >= 1, got " +
+                                           it.dump() + it.integerHint()),
+                           false;
                 // Past any image's levels or layers: said here, before the numbers are narrowed.
                 if (it[0].number<uint64_t>() > kMaxLayers || it[1].number<uint64_t>() > kMaxLayers)
                     return failAt(key, std::string("`") + key + "` " + it.dump() + " is past any image's " +
@@ -578,7 +574,7 @@ private:
     /// The JSON path of usage `i` of the pass being loaded: a usage that failed to load
     /// leaves a gap in an array's numbering, so it is not always GraphDesc::usageJsonPath.
     std::string usePath(const PassDesc& p, size_t i) const {
-        if (p.usesByName) return p.jsonPath + ".uses." + graph_.resources[p.uses[i].resource].name;
+        if (p.usesByName) return jsonPathMember(p.jsonPath + ".uses", graph_.resources[p.uses[i].resource].name);
         return p.jsonPath + ".uses[" + std::to_string(useIndices_[i]) + "]";
     }
 

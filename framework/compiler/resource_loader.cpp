@@ -1,5 +1,6 @@
 #include "resource_loader.hpp"
 
+#include "json_path.hpp"
 #include "printable_name.hpp"
 
 #include <algorithm>
@@ -46,7 +47,7 @@ constexpr std::array<std::pair<std::string_view, ExternalState>, 4> kExternalSta
 class ResourceProblems {
 public:
     ResourceProblems(std::string_view name, FileProblems& report) : name_(name), report_(report) {}
-    [[nodiscard]] std::string path() const { return "resources." + std::string(name_); }
+    [[nodiscard]] std::string path() const { return jsonPathMember("resources", name_); }
     void operator()(std::string_view sub, const std::string& message) const {
         report_(sub.empty() ? path() : path() + "." + std::string(sub), "", name_, message);
     }
@@ -97,9 +98,8 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
         r.extent.height = static_cast<uint32_t>(std::clamp<int64_t>(h, 1, kMaxImageExtent));
         if (r.type == ResourceType::Cube && w != h) fail("extent", "cube faces must be square");
     } else {
-        std::string hint;
-        for (size_t i = 0; extent.isArray() && i < extent.size() && hint.empty(); ++i) hint = extent[i].integerHint();
-        fail("extent", "expected \"output\", \"output/N\" or [width, height], got " + extent.dump() + hint);
+        fail("extent", "expected \"output\", \"output/N\" or [width, height], got " + extent.dump() +
+                           extent.integerHint());
     }
     if (const JsonValue mips = f[key::mips]) {
         const auto maxMips = static_cast<uint32_t>(std::bit_width(kMaxImageExtent));
@@ -156,7 +156,8 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
         }
         if (!numbers && (unsignedInts || signedInts))
             fail("clear.color", "expected four integers in [" + std::string(unsignedInts ? "0" : "-16777216") +
-                                    ", 16777216] for the integer format " + std::string(r.format.name));
+                                    ", 16777216] for the integer format " + std::string(r.format.name) + ", got " +
+                                    color.dump() + color.integerHint());
         else if (!numbers)
             fail("clear.color", "expected four numbers");
         else
@@ -176,7 +177,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
             if (r.format.isDepthStencil() && !r.format.hasStencil)
                 fail("clear.stencil", "format " + std::string(r.format.name) + " has no stencil aspect");
             else if (!st.isUnsigned() || st.number<uint64_t>() > 255)
-                fail("clear.stencil", "expected an integer in [0, 255]");
+                fail("clear.stencil", "expected an integer in [0, 255], got " + st.dump() + st.integerHint());
             else
                 c.stencil = st.number<uint32_t>();
         }

@@ -3,6 +3,7 @@
 // (`nodes`, `scale`, `target`) accepting both.
 #include "gltf_json_types.hpp"
 
+#include "json_path.hpp"
 #include "json_positions.hpp"
 
 #include <nlohmann/json.hpp>
@@ -69,7 +70,7 @@ private:
 
     void object(const json& v, const std::string& path) {
         if (!v.is_object()) return error(path, "must be an object, got " + kind(v));
-        for (const auto& [key, value] : v.items()) property(key, value, path + "." + key);
+        for (const auto& [key, value] : v.items()) property(key, value, jsonPathMember(path, key));
     }
 
     void indexArray(const json& v, const std::string& path) {
@@ -83,7 +84,7 @@ private:
         if (key == "extensions") {
             if (!v.is_object()) return error(path, "must be an object, got " + kind(v));
             for (const auto& [name, ext] : v.items())
-                if (!ext.is_object()) error(path + "." + name, "an extension must be an object, got " + kind(ext));
+                if (!ext.is_object()) error(jsonPathMember(path, name), "an extension must be an object, got " + kind(ext));
             return;
         }
         if (kIndexKeys.count(key)) {
@@ -110,7 +111,7 @@ private:
         } else if (key == "attributes") {
             if (!v.is_object()) return error(path, "must be an object of accessor indices, got " + kind(v));
             for (const auto& [name, index] : v.items())
-                if (!index.is_number_unsigned()) error(path + "." + name, "must be an accessor index (an integer >= 0), got " + kind(index));
+                if (!index.is_number_unsigned()) error(jsonPathMember(path, name), "must be an accessor index (an integer >= 0), got " + kind(index));
         } else if (kObjectKeys.count(key)) {
             object(v, path);
         }

@@ -1,6 +1,7 @@
 // Scene file -> Scene. Like the graph loader, it collects every problem in the file (each with
 // the file and the JSON path) before throwing, so one run shows all of them.
 #include "file_extension.hpp"
+#include "json_path.hpp"
 #include "json_positions.hpp"
 
 #include <skygraph/scene.hpp>
@@ -35,9 +36,7 @@ const Range kAny{};
 const Range kUnit{0.0, 1.0};
 const Range kPositive{0.0, HUGE_VAL, true};
 
-std::string join(const std::string& path, const std::string& key) {
-    return path.empty() ? key : path + "." + key;
-}
+std::string join(const std::string& path, const std::string& key) { return jsonPathMember(path, key); }
 
 class SceneLoader {
 public:

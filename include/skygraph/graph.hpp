@@ -98,8 +98,9 @@ struct ResourceDesc {
     /// How queues of different families share it (`"sharing"`).
     Sharing sharing = Sharing::Auto;
 
-    /// Where a graph file declares it, for messages: "resources.<name>".
-    [[nodiscard]] std::string jsonPath() const { return "resources." + name; }
+    /// Where a graph file declares it, for messages: `resources.<name>`, or `resources["<name>"]`
+    /// for a name that holds a dot, a bracket, a quote, a backslash or white space.
+    [[nodiscard]] std::string jsonPath() const;
 
     [[nodiscard]] bool isImage() const noexcept { return type != ResourceType::Buffer; }
     /// Exported resources are the graph's outputs; passes writing them are never culled.

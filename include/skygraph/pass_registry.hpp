@@ -36,7 +36,9 @@ struct SlotDecl {
 
 /// A problem found in a pass's `params`, relative to the params object.
 struct ParamError {
-    std::string path;  ///< e.g. "operator"; joined onto "passes[i].params".
+    /// e.g. "operator", or `["a.b"]` for a key a dot could not delimit (docs/graph-format.md,
+    /// "Errors"); joined onto "passes[i].params".
+    std::string path;
     std::string message;
 };
 

@@ -112,7 +112,6 @@ private:
 std::vector<std::pair<std::string, std::string>> storageFormatDefines(const PipelineContext& ctx, const BoundResource& output) {
     switch (output.format) {
         case VK_FORMAT_R8G8B8A8_UNORM: return {{"OUT_FORMAT", "rgba8"}};
-        case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return {{"OUT_FORMAT", "rgb10_a2"}};
         case VK_FORMAT_R16G16B16A16_SFLOAT: return {{"OUT_FORMAT", "rgba16f"}};
         case VK_FORMAT_R32G32B32A32_SFLOAT: return {{"OUT_FORMAT", "rgba32f"}};
         default: break;

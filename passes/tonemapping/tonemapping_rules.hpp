@@ -17,7 +17,6 @@ namespace skygraph::passes {
 /// B8G8R8A8_UNORM (the storage format surfaces offer) has no GLSL format qualifier: the device
 /// must write it without one.
 inline constexpr std::array kTonemappingComputeOutputs{VK_FORMAT_R8G8B8A8_UNORM, VK_FORMAT_B8G8R8A8_UNORM,
-                                                       VK_FORMAT_A2B10G10R10_UNORM_PACK32,
                                                        VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT};
 
 /// "R8G8B8A8_UNORM, ... or R32G32B32A32_SFLOAT": the formats above by their graph-file names.

@@ -766,6 +766,14 @@ TEST_F(Cli, CompileRefusesOneFileForThePlanAndThePicture) {
         EXPECT_NE(r.err.find("-o and --memory-svg both name '" + out.string() + "'"), std::string::npos) << r.err;
         EXPECT_TRUE(workFiles().empty());
     }
+    // Relative names of a file not there yet, from the folder it would be written in: one
+    // with a part that exists ("."), one without any.
+    const CliRun r = run({"compile", (kSource / "graphs" / "raster.json").string(), "-o", "both.out", "--memory-svg",
+                          "./both.out"},
+                         "cd " + quote((dir_ / "work").string()) + " && ");
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("-o and --memory-svg both name 'both.out'"), std::string::npos) << r.err;
+    EXPECT_TRUE(workFiles().empty());
 }
 
 // An environment image that cannot be read is named with the scene key that names it.

@@ -637,7 +637,7 @@ TEST(LoaderErrors, BadFeatureDeclarations) {
     g["features"]["has space"] = true;
     g["features"]["on"] = "yes";
     const auto ds = loadErrors(g);
-    EXPECT_TRUE(hasDiag(ds, "features.has space", "", "", {"not a valid feature name"}));
+    EXPECT_TRUE(hasDiag(ds, R"(features["has space"])", "", "", {"not a valid feature name"}));
     EXPECT_TRUE(hasDiag(ds, "features.on", "", "", {"true or false"}));
 }
 
@@ -652,7 +652,7 @@ TEST(LoaderErrors, NamesWithControlCharactersAreRefusedAndShownEscaped) {
     const auto ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "name", "", "", {"'t\\u0001' holds a control character", "printed in plans"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "passes[1].name", "", "", {"'tone\\u0007map' holds a control character"})) << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "resources.hdr\ncolor", "", "hdr\ncolor", {"its name holds a control character"}))
+    EXPECT_TRUE(hasDiag(ds, "resources[\"hdr\ncolor\"]", "", "hdr\ncolor", {"its name holds a control character"}))
         << listAll(ds);
     for (const Diagnostic& d : ds) {
         const std::string line = d.format();
@@ -690,10 +690,10 @@ TEST(LoaderErrors, MeaninglessDeclarationsAreRefused) {
     g = withGeneric(g, "idle", Json::object());
     const auto ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "version", "", "", {"unsupported version 1.0"})) << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "features.tab\t", "", "", {"'tab\\u0009' is not a valid feature name"})) << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "features.line\n", "", "", {"'line\\u000a' is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "features[\"tab\t\"]", "", "", {"'tab\\u0009' is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "features[\"line\n\"]", "", "", {"'line\\u000a' is not a valid feature name"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "features.9lives", "", "", {"'9lives' is not a valid feature name"})) << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "resources.", "", "", {"a resource needs a name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(resources[""])", "", "", {"a resource needs a name"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.shown.final", "", "shown", {"only an external image", "can be presented"}))
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.stencil.clear.depth", "", "stencil", {"S8_UINT has no depth aspect"}))
@@ -731,11 +731,31 @@ TEST(LoaderErrors, ASlotAlreadyFilledNamesWhatFilledIt) {
 TEST(LoaderErrors, ARepeatedKeyNamesAResourceWhoseNameHoldsADot) {
     const std::string text = R"({"version": 1, "name": "t", "resources": {
         "a": {"type": "buffer", "size": 4, "external": true},
-        "a.b": {"type": "buffer", "size": 4, "size": 8, "external": true}},
+        "a.b": {"type": "buffer", "size": 4, "size": 8, "external": true},
+        "q\"]": {"type": "buffer", "size": 4, "external": true, "external": true}},
       "passes": [{"name": "p", "type": "Generic", "never_cull": true,
-                  "uses": {"a.b": "Read@Compute", "a": "Read@Compute"}}]})";
+                  "uses": {"a.b": "Read@Compute", "a": "Read@Compute", "a": "Read@Compute"}}]})";
     const auto ds = textErrors(text);
-    EXPECT_TRUE(hasDiag(ds, "resources.a.b.size", "", "a.b", {"duplicate key 'size'"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(resources["a.b"].size)", "", "a.b", {"duplicate key 'size'"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(resources["q\"]"].external)", "", "q\"]", {"duplicate key 'external'"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.a", "p", "a", {"duplicate key 'a'"})) << listAll(ds);
+}
+
+// "resources.gbuffer.normal.format" could be a key "normal.format" of resource "gbuffer": a
+// name that a dot cannot delimit is quoted, wherever a path names it.
+TEST(LoaderErrors, PathsQuoteNamesThatHoldADotOrABracket) {
+    const std::string text = R"({"version": 1, "name": "t", "features": {"a.b": true}, "resources": {
+        "gbuffer.normal": {"type": "image2d", "format": "R8G8B8A8_UNROM", "extent": "output"},
+        "list[0]": {"type": "buffer", "size": 4, "external": true, "colour": 1}},
+      "passes": [{"name": "p", "type": "Generic", "never_cull": true,
+                  "uses": {"gbuffer.normal": "Write@ColorAttachment", "list[0]": "Read@Somewhere"}}]})";
+    const auto ds = textErrors(text);
+    EXPECT_TRUE(hasDiag(ds, R"(resources["gbuffer.normal"].format)", "", "gbuffer.normal", {"R8G8B8A8_UNROM"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(resources["list[0]"].colour)", "", "list[0]", {"unknown key 'colour'"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(passes[0].uses["list[0]"])", "p", "list[0]", {"Somewhere"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(features["a.b"])", "", "", {"not a valid feature name"})) << listAll(ds);
 }
 
 TEST(LoaderErrors, PassTypesCheckWhatTheirSlotsCannotSay) {
@@ -843,7 +863,7 @@ TEST(LoaderErrors, ARefusedFeatureIsNotListedAsDeclared) {
     g["features"]["bad name"] = true;
     g["passes"][1]["if"] = "skyy";
     const auto ds = loadErrors(g);
-    EXPECT_TRUE(hasDiag(ds, "features.bad name", "", "", {"is not a valid feature name"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, R"(features["bad name"])", "", "", {"is not a valid feature name"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "passes[1].if", "tonemap", "", {"unknown feature 'skyy'; the file declares: "}))
         << listAll(ds);
     for (const auto& d : ds) {
@@ -994,6 +1014,31 @@ TEST(LoaderErrors, AbsurdBufferSizes) {
     EXPECT_TRUE(hasDiag(loadErrors(g), "resources.buf.extent", "", "buf", {"buffers have no extent"}));
 }
 
+// Every integer the loader or a pass type's params want gets the hint, not only the resource
+// keys': a stencil value, a usage's range, a count in params.
+TEST(LoaderErrors, WholeNumbersWithAFractionAreHintedWhereverAnIntegerIsWanted) {
+    Json g = baseGraph();
+    g["resources"]["ds"] = Json::parse(R"({"type": "image2d", "format": "D32_SFLOAT_S8_UINT", "extent": "output",
+                                           "clear": {"depth": 0, "stencil": 1.0}})");
+    g["resources"]["ids"] = Json::parse(R"({"type": "image2d", "format": "R32_UINT", "extent": [4, 4], "external": true,
+                                            "clear": {"color": [7, 0, 0, 1.0]}})");
+    g = withGeneric(g, "reader", Json::array({Json{{"resource", "mipped"}, {"access", "Read"}, {"stage", "Compute"},
+                                                   {"mips", Json::array({0, 1.0})}}}));
+    g["passes"].push_back(Json{{"name", "trace"}, {"type", "PathTracePass"}, {"uses", {{"buf", "Read@Compute"}}},
+                               {"params", {{"samples_per_frame", 4.0}, {"max_bounces", 2.5}}}});
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.ds.clear.stencil", "", "ds", {"got 1.0 (write it as an integer)"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.ids.clear.color", "", "ids", {"got [7,0,0,1.0] (write it as an integer)"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].mips", "reader", "mipped", {"got [0,1.0] (write it as an integer)"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].params.samples_per_frame", "trace", "", {"got 4.0 (write it as an integer)"}))
+        << listAll(ds);
+    // Not whole: the value is wrong, not its writing.
+    EXPECT_TRUE(hasDiag(ds, "passes[3].params.max_bounces", "trace", "", {"got 2.5"})) << listAll(ds);
+    EXPECT_FALSE(hasDiag(ds, "passes[3].params.max_bounces", "trace", "", {"write it as an integer"}));
+}
+
 TEST(LoaderErrors, UsageRangesOutOfBounds) {
     auto usage = [](const char* res, Json mips, Json layers) {
         Json u{{"resource", res}, {"access", "Read"}, {"stage", "Compute"}};
@@ -1100,6 +1145,9 @@ TEST(LoaderErrors, BadParams) {
     ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "passes[1].params.exposure_ev", "tonemap", "", {"[-64", "1000"}));
     EXPECT_TRUE(hasDiag(ds, "passes[1].params.gamma", "tonemap", "", {"unknown parameter", "operator"}));
+    g = baseGraph();
+    g["passes"][1]["params"]["exposure.ev"] = 1;
+    EXPECT_TRUE(hasDiag(loadErrors(g), R"(passes[1].params["exposure.ev"])", "tonemap", "", {"unknown parameter"}));
     g = baseGraph();
     g["passes"][1]["params"] = "aces";
     EXPECT_TRUE(hasDiag(loadErrors(g), "passes[1].params", "tonemap", "", {"expected an object"}));

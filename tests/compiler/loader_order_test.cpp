@@ -93,7 +93,7 @@ TEST(LoaderOrder, DiagnosticsComeInTheFormatsOrder) {
     } catch (const GraphError& e) {
         for (const auto& d : e.diagnostics().items()) paths.push_back(d.jsonPath);
     }
-    EXPECT_EQ(paths, (std::vector<std::string>{"extra", "features.bad feature!", "features.bad feature!",
+    EXPECT_EQ(paths, (std::vector<std::string>{"extra", R"(features["bad feature!"])", R"(features["bad feature!"])",
                                                "resources.volume.type", "passes[3].if", "passes[3].uses.ghost",
                                                "passes[4].name", "passes[4].params", "passes[4].uses"}))
         << Json(paths).dump();

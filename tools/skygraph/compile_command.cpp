@@ -138,9 +138,16 @@ void refuseOneFileForBothOutputs(const CompileArgs& args) {
     // Two names of one file: the same path once links and dots are resolved (neither exists
     // yet, so sameFileAmong cannot compare them), or an existing file under two names (a hard
     // link, which no path comparison sees).
-    std::error_code ec;
-    const std::filesystem::path plan = std::filesystem::weakly_canonical(args.output, ec);
-    const bool same = (!ec && plan == std::filesystem::weakly_canonical(args.memorySvg, ec) && !ec) ||
+    // Absolute first: a relative path none of whose parts exists stays relative, so "a.svg"
+    // would not meet "./a.svg".
+    const auto resolved = [](const std::filesystem::path& p) {
+        std::error_code ec;
+        std::filesystem::path full = std::filesystem::absolute(p, ec);
+        if (!ec) full = std::filesystem::weakly_canonical(full, ec);
+        return ec ? std::filesystem::path() : full;
+    };
+    const std::filesystem::path plan = resolved(args.output);
+    const bool same = (!plan.empty() && plan == resolved(args.memorySvg)) ||
                       files::sameFileAmong(args.memorySvg, std::vector<std::filesystem::path>{args.output});
     if (same)
         throw std::runtime_error("-o and --memory-svg both name '" + printableName(args.output) +
