@@ -2,7 +2,7 @@
 # the shaders passes compile at run time, and a CMake config exporting skygraph::skygraph.
 #
 # Users link one target, skygraph::skygraph: an umbrella over the compiler, the built-in pass
-# types' declarations, the scene and image libraries and, when the executor is built, the
+# types' declarations, the scene, image and math libraries and, when the executor is built, the
 # executor and the built-in passes' recording code. The pieces are exported too
 # (skygraph::compiler, skygraph::verifier, skygraph::golden and skygraph::pass_types are device-free, for tools
 # that only compile and check graphs).
@@ -18,7 +18,7 @@ add_library(skygraph_all INTERFACE)
 add_library(skygraph::skygraph ALIAS skygraph_all)
 set_target_properties(skygraph_all PROPERTIES EXPORT_NAME skygraph)
 target_link_libraries(skygraph_all INTERFACE skygraph_compiler skygraph_verifier skygraph_golden skygraph_pass_types
-                      skygraph_scene skygraph_image)
+                      skygraph_scene skygraph_image skygraph_math)
 # In the build tree (add_subdirectory) the macro names the source tree's shaders; the installed
 # config file points it at the installed copy.
 target_compile_definitions(skygraph_all INTERFACE

@@ -188,10 +188,19 @@ nlohmann::json JsonValue::toJson() const {
 std::string JsonValue::dump() const { return toJson().dump(); }
 
 std::string JsonValue::integerHint() const {
-    if (isArray())
-        for (size_t i = 0; i < size(); ++i)
-            if (std::string hint = (*this)[i].integerHint(); !hint.empty()) return hint;
     return kind() == Kind::Float ? skygraph::integerHint(number<double>()) : "";
+}
+
+std::string JsonValue::integersHint() const {
+    if (!isArray()) return {};
+    std::string hint;
+    for (size_t i = 0; i < size(); ++i) {
+        const JsonValue element = (*this)[i];
+        if (element.isInteger()) continue;
+        hint = element.integerHint();
+        if (hint.empty()) return {};
+    }
+    return hint;
 }
 
 }  // namespace skygraph

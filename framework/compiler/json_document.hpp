@@ -96,8 +96,10 @@ public:
     /// whole but written with a fraction or an exponent (`4.0`, `2.56e2`), which the loader
     /// does not take as an integer and the schema cannot tell apart; otherwise empty. Not past
     /// the 64-bit integers (below -2^63, from 2^64 on), which digits alone write as a float.
-    /// For an array of integers (`[8, 8.0]`), that of the first element with one.
     [[nodiscard]] std::string integerHint() const;
+    /// The same for an array where integers are wanted: when every element is a whole number
+    /// and some is written with a fraction (`[8, 8.0]`), not when one is not whole (`[0.5, 1.0]`).
+    [[nodiscard]] std::string integersHint() const;
 
 private:
     [[nodiscard]] const Node* children() const noexcept;

@@ -169,8 +169,9 @@ private:
         }
     }
 
-    /// A repeated JSON key, with the pass and resource it concerns: "resources.<r>..." names
-    /// resource r, "passes[i]..." pass i, and "passes[i].uses.<r>" both.
+    /// A repeated JSON key, with the pass and resource it concerns: a path under
+    /// "resources.<r>" (or `resources["<r>"]`) names resource r, one under "passes[i]" pass i,
+    /// and one under "passes[i].uses.<r>" both.
     void reportDuplicate(const DuplicateKey& dup) {
         std::string pass, resource;
         const std::string& path = dup.path;
@@ -530,7 +531,7 @@ private:
                 if (!it.isArray() || it.size() != 2 || !it[0].isUnsigned() || !it[1].isUnsigned() ||
                     it[1].number<uint64_t>() == 0)
                     return failAt(key, std::string("`") + key + "` must be [first, count] with count >= 1, got " +
-                                           it.dump() + it.integerHint()),
+                                           it.dump() + it.integersHint()),
                            false;
                 // Past any image's levels or layers: said here, before the numbers are narrowed.
                 if (it[0].number<uint64_t>() > kMaxLayers || it[1].number<uint64_t>() > kMaxLayers)

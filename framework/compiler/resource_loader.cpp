@@ -99,7 +99,7 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
         if (r.type == ResourceType::Cube && w != h) fail("extent", "cube faces must be square");
     } else {
         fail("extent", "expected \"output\", \"output/N\" or [width, height], got " + extent.dump() +
-                           extent.integerHint());
+                           extent.integersHint());
     }
     if (const JsonValue mips = f[key::mips]) {
         const auto maxMips = static_cast<uint32_t>(std::bit_width(kMaxImageExtent));
@@ -157,7 +157,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
         if (!numbers && (unsignedInts || signedInts))
             fail("clear.color", "expected four integers in [" + std::string(unsignedInts ? "0" : "-16777216") +
                                     ", 16777216] for the integer format " + std::string(r.format.name) + ", got " +
-                                    color.dump() + color.integerHint());
+                                    color.dump() + color.integersHint());
         else if (!numbers)
             fail("clear.color", "expected four numbers");
         else

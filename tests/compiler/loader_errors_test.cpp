@@ -1034,9 +1034,19 @@ TEST(LoaderErrors, WholeNumbersWithAFractionAreHintedWhereverAnIntegerIsWanted) 
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "passes[3].params.samples_per_frame", "trace", "", {"got 4.0 (write it as an integer)"}))
         << listAll(ds);
-    // Not whole: the value is wrong, not its writing.
+    // Not whole, or not every element whole, or an array where a number is wanted: the value is
+    // wrong, not its writing.
     EXPECT_TRUE(hasDiag(ds, "passes[3].params.max_bounces", "trace", "", {"got 2.5"})) << listAll(ds);
     EXPECT_FALSE(hasDiag(ds, "passes[3].params.max_bounces", "trace", "", {"write it as an integer"}));
+    g = baseGraph();
+    g["resources"]["ids"] = Json::parse(R"({"type": "image2d", "format": "R32_UINT", "extent": [4.5, 4.0],
+                                            "external": true, "clear": {"color": [0.5, 0, 0, 1.0]}})");
+    g["resources"]["buf"]["size"] = Json::array({64.0});
+    const auto wrong = loadErrors(g);
+    EXPECT_TRUE(hasDiag(wrong, "resources.ids.clear.color", "", "ids", {"got [0.5,0,0,1.0]"})) << listAll(wrong);
+    EXPECT_TRUE(hasDiag(wrong, "resources.ids.extent", "", "ids", {"got [4.5,4.0]"})) << listAll(wrong);
+    EXPECT_TRUE(hasDiag(wrong, "resources.buf.size", "", "buf", {"got [64.0]"})) << listAll(wrong);
+    for (const Diagnostic& d : wrong) EXPECT_EQ(d.message.find("write it as an integer"), std::string::npos) << d.format();
 }
 
 TEST(LoaderErrors, UsageRangesOutOfBounds) {
