@@ -61,7 +61,7 @@ ParamCheck integerIn(int64_t lo, int64_t hi) {
     return [lo, hi](const json& v) -> std::string {
         if (v.is_number_integer() && v.get<int64_t>() >= lo && v.get<int64_t>() <= hi) return {};
         return "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + v.dump() +
-               (v.is_number_float() ? integerHint(v.get<double>()) : "");
+               (v.is_number_float() ? integerHint(v.get<double>(), double(lo), double(hi)) : "");
     };
 }
 

@@ -187,17 +187,17 @@ nlohmann::json JsonValue::toJson() const {
 
 std::string JsonValue::dump() const { return toJson().dump(); }
 
-std::string JsonValue::integerHint() const {
-    return kind() == Kind::Float ? skygraph::integerHint(number<double>()) : "";
+std::string JsonValue::integerHint(double lowest, double highest) const {
+    return kind() == Kind::Float ? skygraph::integerHint(number<double>(), lowest, highest) : "";
 }
 
-std::string JsonValue::integersHint() const {
+std::string JsonValue::integersHint(double lowest, double highest) const {
     if (!isArray()) return {};
     std::string hint;
     for (size_t i = 0; i < size(); ++i) {
         const JsonValue element = (*this)[i];
-        if (element.isInteger()) continue;
-        hint = element.integerHint();
+        if (element.isInteger() && element.number<double>() >= lowest && element.number<double>() <= highest) continue;
+        hint = element.integerHint(lowest, highest);
         if (hint.empty()) return {};
     }
     return hint;

@@ -92,14 +92,14 @@ public:
     [[nodiscard]] nlohmann::json toJson() const;
     /// nlohmann's compact text of the value, for messages.
     [[nodiscard]] std::string dump() const;
-    /// For messages where an integer is wanted: " (write it as an integer)" when the value is
-    /// whole but written with a fraction or an exponent (`4.0`, `2.56e2`), which the loader
-    /// does not take as an integer and the schema cannot tell apart; otherwise empty. Not past
-    /// the 64-bit integers (below -2^63, from 2^64 on), which digits alone write as a float.
-    [[nodiscard]] std::string integerHint() const;
+    /// For messages where an integer in [lowest, highest] is wanted: " (write it as an
+    /// integer)" when the value is a whole number in that range written with a fraction or an
+    /// exponent (`4.0`, `2.56e2`), which the loader does not take as an integer and the schema
+    /// cannot tell apart; otherwise empty.
+    [[nodiscard]] std::string integerHint(double lowest, double highest) const;
     /// The same for an array where integers are wanted: when every element is a whole number
-    /// and some is written with a fraction (`[8, 8.0]`), not when one is not whole (`[0.5, 1.0]`).
-    [[nodiscard]] std::string integersHint() const;
+    /// in range and some is written with a fraction (`[8, 8.0]`), not when one is not (`[0.5, 1.0]`).
+    [[nodiscard]] std::string integersHint(double lowest, double highest) const;
 
 private:
     [[nodiscard]] const Node* children() const noexcept;

@@ -201,7 +201,7 @@ private:
         if (const JsonValue version = f[rootKey::version]; !version) {
             error("version", "", "", "missing; this reader understands version 1");
         } else if (!version.isInteger() || !version.equals(1)) {
-            error("version", "", "", "unsupported version " + version.dump() + version.integerHint() +
+            error("version", "", "", "unsupported version " + version.dump() + version.integerHint(1, 1) +
                                          "; this reader understands version 1");
         }
         if (const JsonValue name = f[rootKey::name]; name && name.isString()) {
@@ -531,7 +531,7 @@ private:
                 if (!it.isArray() || it.size() != 2 || !it[0].isUnsigned() || !it[1].isUnsigned() ||
                     it[1].number<uint64_t>() == 0)
                     return failAt(key, std::string("`") + key + "` must be [first, count] with count >= 1, got " +
-                                           it.dump() + it.integersHint()),
+                                           it.dump() + it.integersHint(0, kMaxLayers)),
                            false;
                 // Past any image's levels or layers: said here, before the numbers are narrowed.
                 if (it[0].number<uint64_t>() > kMaxLayers || it[1].number<uint64_t>() > kMaxLayers)

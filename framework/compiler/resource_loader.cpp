@@ -99,7 +99,7 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
         if (r.type == ResourceType::Cube && w != h) fail("extent", "cube faces must be square");
     } else {
         fail("extent", "expected \"output\", \"output/N\" or [width, height], got " + extent.dump() +
-                           extent.integersHint());
+                           extent.integersHint(1, kMaxImageExtent));
     }
     if (const JsonValue mips = f[key::mips]) {
         const auto maxMips = static_cast<uint32_t>(std::bit_width(kMaxImageExtent));
@@ -107,7 +107,7 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
             r.mips = 0;
         } else if (!mips.isInteger() || mips.number<int64_t>() < 1 || mips.number<int64_t>() > maxMips) {
             fail("mips", "expected \"full\" or a count between 1 and " + std::to_string(maxMips) + ", got " +
-                             mips.dump() + mips.integerHint());
+                             mips.dump() + mips.integerHint(1, maxMips));
         } else {
             r.mips = mips.number<uint32_t>();
             if (!r.extent.relativeToOutput &&
@@ -120,7 +120,7 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
     if (const JsonValue layers = f[key::layers]) {
         if (!layers.isInteger() || layers.number<int64_t>() < 1 || layers.number<int64_t>() > kMaxLayers) {
             fail("layers", "expected a count between 1 and " + std::to_string(kMaxLayers) + ", got " + layers.dump() +
-                               layers.integerHint());
+                               layers.integerHint(1, kMaxLayers));
         } else {
             r.layers = layers.number<uint32_t>();
             if (r.type == ResourceType::Cube && r.layers != 6) fail("layers", "a cube has 6 layers");
@@ -157,7 +157,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
         if (!numbers && (unsignedInts || signedInts))
             fail("clear.color", "expected four integers in [" + std::string(unsignedInts ? "0" : "-16777216") +
                                     ", 16777216] for the integer format " + std::string(r.format.name) + ", got " +
-                                    color.dump() + color.integersHint());
+                                    color.dump() + color.integersHint(lowest, kExactInFloat));
         else if (!numbers)
             fail("clear.color", "expected four numbers");
         else
@@ -177,7 +177,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
             if (r.format.isDepthStencil() && !r.format.hasStencil)
                 fail("clear.stencil", "format " + std::string(r.format.name) + " has no stencil aspect");
             else if (!st.isUnsigned() || st.number<uint64_t>() > 255)
-                fail("clear.stencil", "expected an integer in [0, 255], got " + st.dump() + st.integerHint());
+                fail("clear.stencil", "expected an integer in [0, 255], got " + st.dump() + st.integerHint(0, 255));
             else
                 c.stencil = st.number<uint32_t>();
         }
@@ -262,7 +262,8 @@ void loadResource(std::string_view name, JsonValue v, FileProblems& report, Reso
         if (!size)
             fail("size", "missing; buffers need a size in bytes between 1 and 2 GiB");
         else if (!size.isUnsigned() || size.number<uint64_t>() == 0 || size.number<uint64_t>() > kMaxBufferBytes)
-            fail("size", "buffers need a size in bytes between 1 and 2 GiB, got " + size.dump() + size.integerHint());
+            fail("size", "buffers need a size in bytes between 1 and 2 GiB, got " + size.dump() +
+                               size.integerHint(1, double(kMaxBufferBytes)));
         else
             r.sizeBytes = size.number<uint64_t>();
     }

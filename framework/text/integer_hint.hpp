@@ -4,13 +4,14 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 namespace skygraph {
 
-/// " (write it as an integer)" for a whole number that digits alone would have given as an
-/// integer (-2^63 to 2^64 - 1; past them digits are read as a float too), else "".
-[[nodiscard]] inline const char* integerHint(double value) noexcept {
-    return std::isfinite(value) && value == std::floor(value) && value >= -0x1p63 && value < 0x1p64
+/// " (write it as an integer)" for a whole number in [lowest, highest], where the integer
+/// would have been taken, else "": a value out of range is wrong however it is written.
+[[nodiscard]] inline const char* integerHint(double value, double lowest, double highest) noexcept {
+    return std::isfinite(value) && value == std::floor(value) && value >= lowest && value <= highest
                ? " (write it as an integer)"
                : "";
 }

@@ -1042,7 +1042,13 @@ TEST(LoaderErrors, WholeNumbersWithAFractionAreHintedWhereverAnIntegerIsWanted) 
     g["resources"]["ids"] = Json::parse(R"({"type": "image2d", "format": "R32_UINT", "extent": [4.5, 4.0],
                                             "external": true, "clear": {"color": [0.5, 0, 0, 1.0]}})");
     g["resources"]["buf"]["size"] = Json::array({64.0});
+    g["resources"]["ds"] = Json::parse(R"({"type": "image2d", "format": "D32_SFLOAT_S8_UINT", "extent": "output",
+                                           "clear": {"depth": 0, "stencil": 300.0}})");
+    g["passes"].push_back(Json{{"name", "trace"}, {"type", "PathTracePass"}, {"uses", {{"buf", "Read@Compute"}}},
+                               {"params", {{"samples_per_frame", 1e6}}}});
     const auto wrong = loadErrors(g);
+    EXPECT_TRUE(hasDiag(wrong, "resources.ds.clear.stencil", "", "ds", {"got 300.0"})) << listAll(wrong);
+    EXPECT_TRUE(hasDiag(wrong, "passes[2].params.samples_per_frame", "trace", "", {"got 1000000.0"})) << listAll(wrong);
     EXPECT_TRUE(hasDiag(wrong, "resources.ids.clear.color", "", "ids", {"got [0.5,0,0,1.0]"})) << listAll(wrong);
     EXPECT_TRUE(hasDiag(wrong, "resources.ids.extent", "", "ids", {"got [4.5,4.0]"})) << listAll(wrong);
     EXPECT_TRUE(hasDiag(wrong, "resources.buf.size", "", "buf", {"got [64.0]"})) << listAll(wrong);
