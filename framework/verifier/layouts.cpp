@@ -81,7 +81,10 @@ public:
             CellState initial;
             if (obj.resource >= 0) {
                 const PlannedResource& r = plan.resources()[static_cast<size_t>(obj.resource)];
-                const bool transient = r.copies == ResourceCopies::PerFrameTransient;
+                // A transient starts each frame undefined in heaps the frames share too: what
+                // the previous frame left there is not its contents.
+                const bool transient =
+                    r.copies == ResourceCopies::PerFrameTransient || r.copies == ResourceCopies::SharedTransient;
                 // Resources from outside the frame arrive in their initial layout, contents visible.
                 initial.layout = transient ? VK_IMAGE_LAYOUT_UNDEFINED : r.initialLayout;
                 initial.defined = !transient;

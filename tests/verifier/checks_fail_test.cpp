@@ -263,6 +263,25 @@ TEST(ChecksFail, UndefinedContents) {
     EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "hdr_color")) << r.summary();
 }
 
+// A transient's contents start undefined in every frame, whether the frames share its heap
+// or each has its own: a buffer (no layout transition to discard them) read before anything
+// wrote it in the frame.
+TEST(ChecksFail, UndefinedContentsOfATransientBufferInSharedAndPerFrameHeaps) {
+    for (const bool shared : {true, false}) {
+        CompileOptions options;
+        options.shareTransientsAcrossFrames = shared;
+        test::Compiled c = test::compileShipped("deferred.json", options);
+        ASSERT_EQ(c.plan.resources()[static_cast<size_t>(c.plan.resourceIndex("light_grid"))].copies,
+                  shared ? ResourceCopies::SharedTransient : ResourceCopies::PerFrameTransient);
+        const size_t step = stepIndex(c.plan, "light_culling");
+        EXPECT_TRUE(verifyPlan(c.plan, c.graph).ok()) << verifyPlan(c.plan, c.graph).summary();
+        PlanEditor::usagesOf(c.plan, step)[usageOf(c.plan, step, "light_grid")].usage.access = Access::ReadWrite;
+        const VerificationReport r = verifyPlan(c.plan, c.graph);
+        EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "light_grid")) << (shared ? "shared " : "per frame ")
+                                                                                   << r.summary();
+    }
+}
+
 TEST(ChecksFail, PresentLayoutAndFinalLayout) {
     test::Compiled c = test::compileShipped("raster.json");
     for (Barrier& b : PlanEditor::finalBarriers(c.plan))
