@@ -159,15 +159,17 @@ private:
         concurrent.assign(resources.size(), 0);
         exclusive_.assign(resources.size(), 0);
         for (size_t r = 0; r < resources.size(); ++r) {
-            bool several = false;
-            for (size_t a = 0; a < kQueueKinds; ++a)
-                for (size_t b = 0; b < kQueueKinds; ++b)
-                    several |= (families[r] >> a & 1u) && (families[r] >> b & 1u) && !sameFamily(a, b);
             const ResourceDesc& d = graph_.resources[resources[r].decl];
             // A resource that crosses renderers (external or exported) is created by one plan
             // and used by another: exclusive, owned by graphics between frames, is what
-            // both keep without knowing each other's queues.
+            // both keep without knowing each other's queues. So the graphics family is one of
+            // its users even when no pass of this frame runs there.
             const bool crossesRenderers = d.external || d.isExported();
+            const uint8_t users = families[r] | (crossesRenderers ? uint8_t(1u << kGraphics) : uint8_t(0));
+            bool several = false;
+            for (size_t a = 0; a < kQueueKinds; ++a)
+                for (size_t b = 0; b < kQueueKinds; ++b)
+                    several |= (users >> a & 1u) && (users >> b & 1u) && !sameFamily(a, b);
             const Sharing s = d.sharing != Sharing::Auto                           ? d.sharing
                               : crossesRenderers                                     ? Sharing::Exclusive
                               : !d.isImage() || readsShared[r]                       ? Sharing::Concurrent
@@ -521,8 +523,10 @@ private:
                 finals.push_back(o == kNoOwner ? piece : acquireAtEnd(piece, o));
             });
         }
+        // Subresources no final barrier covers (already in their final layout) come back too.
         for (size_t r = 0; r < resources.size(); ++r) {
-            if (!exclusive_[r] || !graph_.resources[resources[r].decl].external) continue;
+            const ResourceDesc& d = graph_.resources[resources[r].decl];
+            if (!exclusive_[r] || !(d.external || d.isExported())) continue;
             const auto res = static_cast<uint32_t>(r);
             forCells(res, grids_[r].whole(), [&](uint32_t c, const SubresourceRange& one) {
                 if (coveredByFinal[c]) return;

@@ -92,8 +92,14 @@ public:
             }
             cells_[o].assign(obj.cellCount(), initial);
         }
-        // Which resources one family owns at a time: exclusive ones used by several families.
+        // Which resources one family owns at a time: exclusive ones used by several families,
+        // the graphics family among them for a resource from outside the frame or exported
+        // (it owns those between frames).
         std::vector<uint8_t> familiesOf(plan.resources().size(), 0);
+        for (size_t r = 0; r < plan.resources().size(); ++r)
+            if (const uint32_t decl = plan.resources()[r].decl; decl < graph.resources.size())
+                if (graph.resources[decl].external || graph.resources[decl].isExported())
+                    familiesOf[r] = uint8_t(1u << static_cast<size_t>(QueueKind::Graphics));
         for (size_t i = 0; i < plan.passes().size(); ++i)
             for (const PlannedUsage& u : plan.passes()[i].usages)
                 if (u.resource < familiesOf.size())
@@ -318,9 +324,10 @@ private:
             const PlannedResource& pr = plan_.resources()[r];
             const auto object = static_cast<uint32_t>(objects[r]);
             const MemoryObject& o = model_.memory.object(object);
-            if (o.kind != MemoryObject::Kind::Image || !o.handedOut) continue;
             TimelineItem at = t;
             at.object = object;
+            if (owned_[object]) handedBack(at, graph_.resources[pr.decl]);
+            if (o.kind != MemoryObject::Kind::Image || !o.handedOut) continue;
             std::string wrong;
             for (const CellState& c : cells_[object])
                 if (c.layout != pr.finalLayout && wrong.empty()) wrong = layoutNameShort(c.layout);
@@ -332,6 +339,23 @@ private:
                     "shared across frames, it ends in " + layoutNameShort(pr.finalLayout) +
                         " but the next frame expects " + layoutNameShort(pr.initialLayout));
         }
+    }
+
+    /// What outlives the frame (external or exported) is the graphics family's between frames:
+    /// the frame gives back what another family took, released and acquired.
+    void handedBack(const TimelineItem& t, const ResourceDesc& d) {
+        if (!d.external && !d.isExported()) return;
+        std::string problem;
+        for (const CellState& c : cells_[t.object]) {
+            if (!problem.empty()) break;
+            if (c.releasedTo != kNoQueue)
+                problem = "released to the " + std::string(toString(static_cast<QueueKind>(c.releasedTo))) +
+                          " queue's family and never acquired";
+            else if (c.defined && c.owner != kNoQueue && !sameFamily(c.owner, QueueKind::Graphics))
+                problem = "the frame leaves it owned by the " + std::string(toString(static_cast<QueueKind>(c.owner))) +
+                          " queue's family; the graphics family owns it between frames";
+        }
+        if (!problem.empty()) add(FindingKind::Ownership, t, problem);
     }
 
     void present(const TimelineItem& t) {

@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <span>
 #include <string>
 
 namespace skygraph {
@@ -209,6 +211,32 @@ TEST(QueueRules, ExclusiveImageChangesFamilyBothWays) {
     ASSERT_EQ(submitOf(plan, "show").waits.size(), 1u);
     EXPECT_EQ(submitOf(plan, "show").waits[0].semaphore, QueueKind::Compute);
     EXPECT_EQ(submitOf(plan, "show").waits[0].stages, kFragment);
+}
+
+// External resources are owned by the graphics family between frames: used on the compute
+// queue alone, they still change family at the frame's start and back at its end (an image
+// written from UNDEFINED needs no acquire: its contents are discarded).
+TEST(QueueRules, AnExternalResourceUsedOnlyOffTheGraphicsQueueChangesFamilyBothWays) {
+    const Plan plan = compileText(graphText(
+        R"("buf": {"type": "buffer", "size": 256, "external": true, "final": "ShaderRead"},
+           "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true, "final": "TransferSrc"})",
+        R"({"name": "a", "type": "Generic", "queue": "compute", "uses": {"buf": "Read@Compute", "out": "Write@Compute"}})"));
+    const auto transfer = [&](std::span<const Barrier> barriers, const char* name, QueueKind from, QueueKind to) {
+        return std::any_of(barriers.begin(), barriers.end(), [&](const Barrier& b) {
+            return plan.resources()[b.resource].name == name && b.transfersOwnership() && b.srcQueue == from &&
+                   b.dstQueue == to;
+        });
+    };
+    EXPECT_TRUE(transfer(plan.passes()[0].barriers, "buf", QueueKind::Graphics, QueueKind::Compute));
+    EXPECT_FALSE(transfer(plan.passes()[0].barriers, "out", QueueKind::Graphics, QueueKind::Compute));
+    for (const char* name : {"buf", "out"})
+        EXPECT_TRUE(transfer(plan.finalBarriers(), name, QueueKind::Compute, QueueKind::Graphics)) << name;
+    EXPECT_FALSE(plan.concurrent(0));
+    // One family: nothing to transfer.
+    const Plan one = compileText(graphText(
+        R"("buf": {"type": "buffer", "size": 256, "external": true, "final": "ShaderRead"})",
+        R"({"name": "a", "type": "Generic", "queue": "compute", "uses": {"buf": "Read@Compute"}})"), {0, 0, 0});
+    for (const Barrier& b : one.finalBarriers()) EXPECT_FALSE(b.transfersOwnership());
 }
 
 TEST(QueueRules, ConcurrentSharingReplacesTheTransfersWithSemaphoresOnly) {

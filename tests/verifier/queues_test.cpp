@@ -171,6 +171,25 @@ TEST(Queues, TheBackgroundBakesTransferUploadVerifiesAndItsOrderIsChecked) {
     EXPECT_TRUE(hasFinding(unreleased, FindingKind::Ownership, "equirect")) << unreleased.summary();
 }
 
+// The bake's products are exported and used on the compute queue only: the graphics family,
+// which owns them between frames, takes them back at the frame's end; an acquire turned into
+// a plain barrier there is caught.
+TEST(Queues, TheBackgroundBakeHandsItsProductsBackToTheGraphicsFamily) {
+    test::Compiled c = backgroundBake();
+    for (const char* product : {"environment", "irradiance", "prefiltered", "brdf_lut"}) {
+        bool handedBack = false;
+        for (const Barrier& b : c.plan.finalBarriers())
+            handedBack |= c.plan.resources()[b.resource].name == product && b.transfersOwnership() &&
+                          b.srcQueue == QueueKind::Compute && b.dstQueue == QueueKind::Graphics;
+        EXPECT_TRUE(handedBack) << product;
+    }
+    EXPECT_TRUE(verifyPlan(c.plan, c.graph).ok()) << verifyPlan(c.plan, c.graph).summary();
+    for (Barrier& b : PlanEditor::finalBarriers(c.plan))
+        if (c.plan.resources()[b.resource].name == "environment" && b.transfersOwnership()) b.srcQueue = b.dstQueue;
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "environment")) << r.summary();
+}
+
 TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
     test::Compiled c = async();
     const size_t step = stepIndex(c.plan, "histogram");
