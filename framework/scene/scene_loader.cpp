@@ -36,8 +36,6 @@ const Range kAny{};
 const Range kUnit{0.0, 1.0};
 const Range kPositive{0.0, HUGE_VAL, true};
 
-std::string join(const std::string& path, const std::string& key) { return jsonPathMember(path, key); }
-
 class SceneLoader {
 public:
     SceneLoader(std::string file, std::filesystem::path baseDir) : baseDir_(std::move(baseDir)) {
@@ -70,7 +68,7 @@ private:
             if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
             std::string list;
             for (auto a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-            error(join(path, key), "unknown key '" + key + "'; expected one of: " + list);
+            error(jsonPathMember(path, key), "unknown key '" + key + "'; expected one of: " + list);
         }
     }
 
@@ -93,7 +91,7 @@ private:
     /// Reads optional `key` of `object` into `out`; an absent key leaves the default.
     void optionalNumber(const json& object, const std::string& path, const char* key, const Range& range,
                         double& out) {
-        if (auto it = object.find(key); it != object.end()) number(*it, join(path, key), range, out);
+        if (auto it = object.find(key); it != object.end()) number(*it, jsonPathMember(path, key), range, out);
     }
 
     void vec3(const json& v, const std::string& path, const Range& range, std::array<double, 3>& out) {
@@ -102,8 +100,8 @@ private:
     }
 
     void requiredVec3(const json& object, const std::string& path, const char* key, std::array<double, 3>& out) {
-        if (auto it = object.find(key); it != object.end()) vec3(*it, join(path, key), kAny, out);
-        else error(join(path, key), "missing; expected [x, y, z]");
+        if (auto it = object.find(key); it != object.end()) vec3(*it, jsonPathMember(path, key), kAny, out);
+        else error(jsonPathMember(path, key), "missing; expected [x, y, z]");
     }
 
     template <typename Enum>
@@ -114,7 +112,7 @@ private:
         std::string list;
         for (const auto& [n, _] : names) list += (list.empty() ? "" : ", ") + n;
         if (!it->is_string() || !names.count(it->get<std::string>()))
-            return error(join(path, key), "expected one of " + list + ", got " + it->dump());
+            return error(jsonPathMember(path, key), "expected one of " + list + ", got " + it->dump());
         out = names.at(it->get<std::string>());
     }
 
