@@ -1,7 +1,6 @@
 #include "param_rules.hpp"
 
 #include "integer_hint.hpp"
-#include "json_path.hpp"
 
 #include <algorithm>
 
@@ -30,11 +29,11 @@ ParamValidator rules(std::vector<ParamRule> list) {
             if (it == list.end()) {
                 std::string known;
                 for (const auto& r : list) known += (known.empty() ? "" : ", ") + r.key;
-                errors.push_back({jsonPathMember("", key), "unknown parameter; expected " + (known.empty() ? "none" : known)});
+                errors.push_back(ParamError::forKey(key, "unknown parameter; expected " + (known.empty() ? "none" : known)));
                 continue;
             }
             if (std::string problem = it->check(value); !problem.empty())
-                errors.push_back({jsonPathMember("", key), problem});
+                errors.push_back(ParamError::forKey(key, std::move(problem)));
         }
         return errors;
     };

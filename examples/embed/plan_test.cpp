@@ -6,6 +6,7 @@
 #include <skygraph/compiled_graph.hpp>
 #include <skygraph/compiler.hpp>
 #include <skygraph/device.hpp>
+#include <skygraph/diagnostics.hpp>
 #include <skygraph/golden.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/testing/assertions.hpp>
@@ -13,6 +14,8 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace {
 
@@ -46,6 +49,24 @@ TEST(VignettePlan, TheVignetteSamplesWhatTheClearWrote) {
                 ::testing::Contains(barrier("hdr_color").writeAfterRead().from(Stage::Fragment).to(Stage::Transfer).into(
                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL)));
     EXPECT_TRUE(verifies(plan, v.graph));
+}
+
+// A key the vignette does not know, holding a dot: the message's path says which key it is.
+TEST(VignettePlan, AnUnknownParamsKeyIsNamedByItsPath) {
+    const VignetteGraph v;
+    const std::string text = R"({ "version": 1, "resources": {
+        "in": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output" },
+        "out": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output" } },
+      "passes": [ { "name": "vignette", "type": "VignettePass",
+        "uses": { "in": "Read@Fragment", "out": "Write@ColorAttachment" },
+        "params": { "strength.max": 1 } } ] })";
+    try {
+        (void)parseGraph(text, "dotted.json", v.library.registry());
+        ADD_FAILURE() << "an unknown params key was accepted";
+    } catch (const GraphError& e) {
+        EXPECT_THAT(e.what(), ::testing::HasSubstr(R"(dotted.json: passes[0].params["strength.max"]: pass 'vignette')"));
+        EXPECT_THAT(e.what(), ::testing::HasSubstr("unknown parameter; expected strength"));
+    }
 }
 
 TEST(VignettePlan, RendersWithoutValidationMessages) {

@@ -72,9 +72,9 @@ skygraph::PassTypeInfo vignettePassType() {
     info.validateParams = [](const nlohmann::json& params) {
         std::vector<ParamError> errors;
         for (const auto& [key, value] : params.items()) {
-            if (key != "strength") errors.push_back({key, "unknown parameter; expected strength"});
+            if (key != "strength") errors.push_back(ParamError::forKey(key, "unknown parameter; expected strength"));
             else if (!value.is_number() || value.get<double>() < 0.0 || value.get<double>() > 1.0)
-                errors.push_back({key, "expected a number in [0, 1], got " + value.dump()});
+                errors.push_back(ParamError::forKey(key, "expected a number in [0, 1], got " + value.dump()));
         }
         return errors;
     };

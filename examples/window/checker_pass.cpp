@@ -86,17 +86,18 @@ skygraph::PassTypeInfo checkerPassType() {
         for (const auto& [key, value] : params.items()) {
             if (key == "colors") {
                 if (!value.is_array() || value.size() != 2 || !isColor(value[0]) || !isColor(value[1]))
-                    errors.push_back({key, "expected two [r, g, b] colours, each channel in [0, 64], got " +
-                                               value.dump()});
+                    errors.push_back(ParamError::forKey(
+                        key, "expected two [r, g, b] colours, each channel in [0, 64], got " + value.dump()));
             } else if (key == "tile") {
                 if (!value.is_number_integer() || value.get<int64_t>() < 1 || value.get<int64_t>() > 4096)
-                    errors.push_back({key, "expected an integer in [1, 4096], got " + value.dump()});
+                    errors.push_back(ParamError::forKey(key, "expected an integer in [1, 4096], got " + value.dump()));
             } else {
-                errors.push_back({key, "unknown parameter; expected colors, tile"});
+                errors.push_back(ParamError::forKey(key, "unknown parameter; expected colors, tile"));
             }
         }
         for (const char* required : {"colors", "tile"})
-            if (!params.contains(required)) errors.push_back({required, "required parameter is missing"});
+            if (!params.contains(required))
+                errors.push_back(ParamError::forKey(required, "required parameter is missing"));
         return errors;
     };
     info.doc = "Tiles of two linear colours (the window example's own pass).";

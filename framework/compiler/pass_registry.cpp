@@ -1,7 +1,10 @@
 #include <skygraph/pass_registry.hpp>
 
+#include "json_path.hpp"
+
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 namespace skygraph {
 
@@ -14,6 +17,14 @@ std::string SlotDecl::describeUsage() const {
     out += "@" + std::string(toString(stage));
     if (as != BindAs::Default) out += " as " + std::string(toString(as));
     return out;
+}
+
+ParamError ParamError::forKey(std::string_view key, std::string message) {
+    return {memberPath("", key), std::move(message)};
+}
+
+std::string ParamError::memberPath(std::string_view parent, std::string_view key) {
+    return jsonPathMember(parent, key);
 }
 
 void PassRegistry::add(PassTypeInfo info) {

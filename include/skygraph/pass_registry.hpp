@@ -36,10 +36,16 @@ struct SlotDecl {
 
 /// A problem found in a pass's `params`, relative to the params object.
 struct ParamError {
-    /// e.g. "operator", or `["a.b"]` for a key a dot could not delimit (docs/graph-format.md,
-    /// "Errors"); joined onto "passes[i].params".
+    /// e.g. "operator", `tint.r`, or `["a.b"]` for a key a dot could not delimit
+    /// (docs/graph-format.md, "Errors"); joined onto "passes[i].params". forKey() and
+    /// memberPath() write it so for any key.
     std::string path;
     std::string message;
+
+    /// The error about the params object's member `key`.
+    [[nodiscard]] static ParamError forKey(std::string_view key, std::string message);
+    /// The path of member `key` of the value at `parent` ("" for the params object itself).
+    [[nodiscard]] static std::string memberPath(std::string_view parent, std::string_view key);
 };
 
 using ParamValidator = std::function<std::vector<ParamError>(const nlohmann::json& params)>;

@@ -2,6 +2,8 @@
 // the duplicate-key report reads the resource back out of such a path.
 #include "json_path.hpp"
 
+#include <skygraph/pass_registry.hpp>
+
 #include <gtest/gtest.h>
 
 namespace skygraph::test {
@@ -22,6 +24,15 @@ TEST(JsonPath, KeysADotCouldNotDelimitAreQuotedInBrackets) {
     EXPECT_EQ(jsonPathMember("resources", ""), R"(resources[""])");
     EXPECT_EQ(jsonPathMember("", "a.b"), R"(["a.b"])");
     EXPECT_EQ(jsonPathMember(jsonPathMember("resources", "a.b"), "size"), R"(resources["a.b"].size)");
+}
+
+// What a pass type outside the project writes its params errors with: the same paths.
+TEST(JsonPath, ParamErrorsQuoteKeysTheSameWay) {
+    EXPECT_EQ(ParamError::forKey("strength", "m").path, "strength");
+    EXPECT_EQ(ParamError::forKey("exposure.ev", "m").path, R"(["exposure.ev"])");
+    EXPECT_EQ(ParamError::forKey("exposure.ev", "too bright").message, "too bright");
+    EXPECT_EQ(ParamError::memberPath("tint", "r"), "tint.r");
+    EXPECT_EQ(ParamError::memberPath(ParamError::memberPath("", "a b"), "c"), R"(["a b"].c)");
 }
 
 TEST(JsonPath, EveryMemberReadsBackAsItWasWritten) {
