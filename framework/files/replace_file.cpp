@@ -70,6 +70,16 @@ void writeWhole(const fs::path& to, std::string_view bytes, const fs::path& outp
     if (!out) throw fs::filesystem_error("cannot write", output, lastError());
 }
 
+/// A file replaced by renaming a new one over it keeps its permission bits: a private output
+/// (mode 0600) stays private. Best effort: a temporary the user cannot change keeps the mode
+/// it was made with (what a new file gets).
+void keepPermissions(const fs::path& temporary, const fs::path& target) {
+    std::error_code ec;
+    const fs::file_status old = fs::status(target, ec);
+    if (ec || !fs::is_regular_file(old)) return;
+    fs::permissions(temporary, old.permissions(), fs::perm_options::replace, ec);
+}
+
 /// Where a stream's temporary is written; throws naming `path` and the folder when it is missing.
 fs::path systemTemporaryFolder(const fs::path& path) {
     const char* named = std::getenv("TMPDIR");
@@ -115,6 +125,8 @@ void renameAllOrNone(std::span<const Replacement> replacements) {
             fs::create_hard_link(replacements[i].target, keep, ec);
             if (!ec) kept[i] = keep;
         }
+        for (size_t i = 0; i < n; ++i)
+            if (existed[i]) keepPermissions(replacements[i].temporary, replacements[i].target);
         for (; renamed < n; ++renamed) {
             std::error_code ec;
             fs::rename(replacements[renamed].temporary, replacements[renamed].target, ec);
@@ -223,8 +235,12 @@ void replaceFile(const fs::path& path, const std::function<void(const fs::path&)
     std::error_code ignored;
     try {
         write(temporary);
-        if (target.inPlace) appendTo(target.path, temporary, path);
-        else fs::rename(temporary, target.path);
+        if (target.inPlace) {
+            appendTo(target.path, temporary, path);
+        } else {
+            keepPermissions(temporary, target.path);
+            fs::rename(temporary, target.path);
+        }
     } catch (...) {
         fs::remove(temporary, ignored);
         throw;

@@ -73,6 +73,27 @@ TEST_F(ReplaceFile, ReplacesAFileWholeAndLeavesNoTemporary) {
     EXPECT_EQ(names(dir_), std::vector<std::string>{"plan.json"});
 }
 
+// A private file stays private, and one anybody may write stays so: the replacement takes
+// the old file's permission bits, alone or in a set (a new file gets the usual 0666 & ~umask).
+TEST_F(ReplaceFile, AReplacedFileKeepsItsPermissions) {
+    const auto mode = [](const fs::path& p) { return fs::status(p).permissions() & fs::perms::mask; };
+    write(dir_ / "private.json", "old");
+    fs::permissions(dir_ / "private.json", fs::perms::owner_read | fs::perms::owner_write);
+    replaceFileContents(dir_ / "private.json", "new");
+    EXPECT_EQ(slurp(dir_ / "private.json"), "new");
+    EXPECT_EQ(mode(dir_ / "private.json"), fs::perms::owner_read | fs::perms::owner_write);
+    write(dir_ / "cube.ktx2", "old");
+    fs::permissions(dir_ / "cube.ktx2", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                                            fs::perms::group_write | fs::perms::others_write | fs::perms::others_read);
+    const std::vector<fs::path> set{dir_ / "cube.ktx2", dir_ / "cube.brdf.ktx2"};
+    replaceFilesContents(set, [&](size_t i) { return "new " + set[i].filename().string(); });
+    EXPECT_EQ(mode(dir_ / "cube.ktx2"), fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                                            fs::perms::group_write | fs::perms::others_write | fs::perms::others_read);
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    EXPECT_EQ(static_cast<mode_t>(mode(dir_ / "cube.brdf.ktx2")), 0666 & ~mask) << "a new file";
+}
+
 TEST_F(ReplaceFile, ALinkStaysALinkAndTheFileAtTheEndOfItsChainGetsTheContents) {
     fs::create_directories(dir_ / "real");
     write(dir_ / "real" / "out.png", "old");
