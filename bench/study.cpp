@@ -38,6 +38,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -275,14 +276,17 @@ struct PathTraceRun {
     std::vector<double> wallMs, gpuMs;                   // cumulative, per image
 };
 
-/// The path tracer at `samplesPerFrame`, read back at each spp of `checkpoints`.
-PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, uint32_t samplesPerFrame,
+/// Samples a frame that reach `spp` exactly, at most 64 (the shipped graph's setting).
+uint32_t samplesPerFrameFor(uint32_t spp) { return std::gcd(64u, spp); }
+
+/// The path tracer named `name` (which seeds its samples) at `samplesPerFrame`, read back at
+/// each spp of `checkpoints` (multiples of it).
+PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, const char* name, uint32_t samplesPerFrame,
                        const std::vector<uint32_t>& checkpoints) {
     const PassLibrary library = PassLibrary::withBuiltins();
     std::string text = kPathTraceGraph;
     text.replace(text.find("SPF"), 3, std::to_string(samplesPerFrame));
-    // The pass name seeds the tracer: the reference draws samples independent of the sweep's.
-    text.replace(text.find("NAME"), 4, samplesPerFrame == 1 ? "pathtrace_sweep" : "pathtrace_reference");
+    text.replace(text.find("NAME"), 4, name);
     const GraphDesc graph = parseGraph(text, "study_pathtrace.json", library.registry());
     CompileOptions co;
     co.outputWidth = o.width;
@@ -309,7 +313,7 @@ PathTraceRun pathTrace(Device& device, const Options& o, const Scene& scene, uin
 }
 
 /// The path-traced truth of `scene` lit by `map`: graphs/pathtrace.json as shipped, with
-/// environment_file on and 64 samples a frame, after `spp` samples.
+/// environment_file on and up to 64 samples a frame, after exactly `spp` samples.
 ImageData pathTracedTruth(Device& device, const Options& o, Scene scene, const ImageData& map, uint32_t spp,
                           double& wallMs) {
     const PassLibrary library = PassLibrary::withBuiltins();
@@ -317,7 +321,7 @@ ImageData pathTracedTruth(Device& device, const Options& o, Scene scene, const I
     for (auto& r : graph.resources)
         if (r.name == "equirect") r.extent = Extent{false, 1, map.width, map.height};
     for (auto& p : graph.passes)
-        if (p.name == "pathtrace_equirect") p.params["samples_per_frame"] = 64;
+        if (p.name == "pathtrace_equirect") p.params["samples_per_frame"] = samplesPerFrameFor(spp);
     scene.environment = SceneEnvironment{false, "study-sky.hdr", 0.0, EnvironmentSampling::Equirect};
     CompileOptions co;
     co.features = {{"environment_file", true}};
@@ -328,7 +332,7 @@ ImageData pathTracedTruth(Device& device, const Options& o, Scene scene, const I
     renderer.setExternalImage("equirect", map);
     renderer.frameData().set(scene);
     const auto start = std::chrono::steady_clock::now();
-    for (uint32_t n = 0; n < spp; n += 64) renderer.renderFrame();
+    for (uint32_t n = 0; n < spp; n += samplesPerFrameFor(spp)) renderer.renderFrame();
     renderer.waitIdle();
     wallMs = msSince(start);
     return renderer.readImage("accumulation").at(0);
@@ -452,12 +456,13 @@ int run(const Options& o) {
                     o.ptReferenceSpp, modelTruthMs);
     }
 
-    // Path-tracer samples per pixel against the same tracer at the reference count.
-    const uint32_t refSpf = std::min<uint32_t>(64, o.ptReferenceSpp);
-    const PathTraceRun ref = pathTrace(*device, o, scene, refSpf, {o.ptReferenceSpp});
+    // Path-tracer samples per pixel against the same tracer at the reference count, named
+    // apart: the pass name seeds the tracer, so the reference's samples are independent of the sweep's.
+    const PathTraceRun ref = pathTrace(*device, o, scene, "pathtrace_reference", samplesPerFrameFor(o.ptReferenceSpp),
+                                       {o.ptReferenceSpp});
     const ImageData& ptReference = ref.images.back().second;
     const auto refDisplay = displayOf(ptReference, Tonemapper::AcesNarkowicz, scene.exposureEv);
-    const PathTraceRun sweep = pathTrace(*device, o, scene, 1, {1, 4, 16, 64, 256});
+    const PathTraceRun sweep = pathTrace(*device, o, scene, "pathtrace_sweep", 1, {1, 4, 16, 64, 256});
     for (size_t i = 0; i < sweep.images.size(); ++i) {
         Point p{"path tracer spp", std::to_string(sweep.images[i].first)};
         p.wallMs = sweep.wallMs[i];

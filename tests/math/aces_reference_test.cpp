@@ -82,12 +82,14 @@ struct Pin {
 // (float rounding at a code boundary), the rest by 5 %.
 const Pin kPins[] = {
     {"Narkowicz", "", Encoding::Srgb, 255, 33.54, 64.76, 10.65},
+    {"Narkowicz", "", Encoding::Bt1886, 255, 34.3, 64.76, 10.65},
     {"Narkowicz", "grey", Encoding::Srgb, 52, 16.45, 20.29, 4.85},
     {"Hill", "", Encoding::Srgb, 25, 0.84, 3.76, 0.57},
     {"Hill", "", Encoding::Bt1886, 34, 0.91, 3.76, 0.57},
     {"Hill", "grey", Encoding::Srgb, 2, 0.41, 0.56, 0.10},
     {"Narkowicz x0.6", "", Encoding::Srgb, 255, 24.91, 64.76, 7.16},
     {"Narkowicz x0.6", "grey", Encoding::Srgb, 15, 4.81, 5.96, 1.39},
+    {"Narkowicz x0.6", "skin", Encoding::Srgb, 22, 4.52, 6.11, 1.85},
 };
 
 TEST(AcesReference, FitErrorsAreTheDocumentedOnes) {
