@@ -180,7 +180,7 @@ void Renderer::waitIdle() { impl_->waitIdle(); }
 void Renderer::renderFrameInBackground() { impl_->renderFrame(true); }
 bool Renderer::finishBackgroundFrame() {
     for (FrameSlot& f : impl_->frames)
-        if (!impl_->releaseHeld(f, false)) return false;
+        if (!impl_->releaseHeld(f, Impl::HeldRelease::IfFinished)) return false;
     return true;
 }
 

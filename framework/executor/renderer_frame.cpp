@@ -39,7 +39,7 @@ void Renderer::Impl::ensureQueries(FrameSlot& f, uint32_t count) {
 
 void Renderer::Impl::waitSlot(FrameSlot& f) {
     if (!f.submitted) return;
-    releaseHeld(f, true);
+    releaseHeld(f, HeldRelease::AfterFinished);
     const VkFence fence = f.fence.get();
     vk::check(vkWaitForFences(vkd, 1, &fence, VK_TRUE, kWaitForever), "vkWaitForFences");
     f.submitted = false;
@@ -161,19 +161,20 @@ void Renderer::Impl::recordFrame(VkCommandBuffer cmd, uint32_t slot, FrameSlot* 
     }
 }
 
-bool Renderer::Impl::releaseHeld(FrameSlot& f, bool wait) {
+bool Renderer::Impl::releaseHeld(FrameSlot& f, HeldRelease when) {
     if (!f.held) return true;
     std::vector<VkFence> fences;
-    for (const vk::Fence& r : f.runFences) fences.push_back(r.get());
+    if (when != HeldRelease::Now)
+        for (const vk::Fence& r : f.runFences) fences.push_back(r.get());
     if (!fences.empty()) {
         const VkResult done = vkWaitForFences(vkd, static_cast<uint32_t>(fences.size()), fences.data(), VK_TRUE,
-                                              wait ? kWaitForever : 0);
+                                              when == HeldRelease::AfterFinished ? kWaitForever : 0);
         if (done == VK_TIMEOUT) return false;
         vk::check(done, "vkWaitForFences");
+        // Every copy of the staged pixels has run, unless the held submit records one.
+        if (!f.held->recordsPasses) f.stagedKeep.clear();
     }
     FrameSlot::HeldSubmit& h = *f.held;
-    // Every copy of the staged pixels has run, unless the held submit records one.
-    if (!h.recordsPasses) f.stagedKeep.clear();
     VkSubmitInfo2 batch{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     batch.commandBufferInfoCount = 1;
     batch.pCommandBufferInfos = &h.cmd;
@@ -233,6 +234,10 @@ void Renderer::Impl::submitFrame(uint32_t slot, uint32_t binding, const PresentT
     std::vector<VkCommandBuffer> cmds;
     try {
         if (passesRecordedUnsubmitted) remakePassImplementations();
+        // A frame follows the whole of the frame before (docs/queues.md), whose last submit a
+        // background frame in another slot may still hold: it goes to its queue first. No
+        // wait: the GPU orders it after the rest of its frame, and this frame after it.
+        for (FrameSlot& other : frames) releaseHeld(other, HeldRelease::Now);
         waitSlot(f);
         const VkFence fence = f.fence.get();
         vk::check(vkResetFences(vkd, 1, &fence), "vkResetFences");

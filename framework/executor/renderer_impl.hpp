@@ -503,9 +503,14 @@ struct Renderer::Impl {
     /// Waits for this renderer's frames and replaces every pass implementation of the plan
     /// state with a new one (createPipelines included). On failure throws, keeping the old ones.
     void remakePassImplementations();
-    /// Submits `f`'s held last submit once every earlier submission of its frame has finished
-    /// (`wait`: waits for them). True when nothing is held any more.
-    bool releaseHeld(detail::FrameSlot& f, bool wait);
+    /// When releaseHeld() submits a held last submit.
+    enum class HeldRelease {
+        IfFinished,     ///< only if the rest of its frame has finished (never blocks)
+        AfterFinished,  ///< waiting for the rest of its frame to finish
+        Now,            ///< at once: work submitted next follows it on the GPU anyway
+    };
+    /// Submits `f`'s held last submit as `when` says. True when nothing is held any more.
+    bool releaseHeld(detail::FrameSlot& f, HeldRelease when);
     void renderFrame(bool background = false);
     void waitIdle();
 

@@ -201,7 +201,8 @@ public:
     /// submitted to Device::queue() afterwards, such as another renderer's next frame, is
     /// ordered after the whole frame, and shareImage() may hand its images on. False while
     /// the other queues still work. waitIdle() and every call that waits for a frame submit it
-    /// too, waiting.
+    /// too, waiting; this renderer's next frame submits it first, without waiting (that frame
+    /// follows the whole of this one).
     [[nodiscard]] bool finishBackgroundFrame();
     /// Waits until every submitted frame has finished.
     void waitIdle();

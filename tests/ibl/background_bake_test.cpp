@@ -158,5 +158,34 @@ TEST_F(BackgroundBake, ProductsAreNotSharedBeforeTheBackgroundFrameIsFinished) {
     (void)background.renderer->shareImage("environment");
 }
 
+// Background frames in a row with two in flight: each frame follows the whole of the one
+// before, its held last submit included (the final transitions of the products and the frame
+// end that the next frame's first accesses wait for). The held submit goes to the queue
+// before the next frame's submits, so synchronization validation sees every frame's accesses
+// ordered after the previous frame's, and each frame bakes what its equirect says.
+TEST_F(BackgroundBake, BackgroundFramesInARowEachFollowTheWholeOfTheOneBefore) {
+    GraphDesc onCompute = iblGraph_;
+    for (PassDesc& pass : onCompute.passes) pass.queue = QueueKind::Compute;
+    ASSERT_TRUE(app::setEquirectExtent(onCompute, 64, 32));
+    CompileOptions co;
+    co.outputs = products_;
+    co.memory = sharedDevice().memoryModel();
+    co.queueFamilies = sharedDevice().queueFamilies();
+    RendererOptions ro;
+    ro.framesInFlight = 2;
+    ro.passes = &library_;
+    Renderer bake(sharedDevice(), CompiledGraph(onCompute, co), ro);
+    ASSERT_GT(bake.plan().submits().size(), 1u) << "a held last submit needs a plan of several submits";
+    bake.setExternalImage("equirect", app::toImageData(uniformSky(0, 0, 1)));
+    for (int frame = 0; frame < 3; ++frame) bake.renderFrameInBackground();
+    bake.waitIdle();
+    EXPECT_TRUE(bake.finishBackgroundFrame());
+    const std::vector<ImageData> cube = bake.readImage("environment");
+    ASSERT_FALSE(cube.empty());
+    const auto centre = cube[0].pixel(kCube / 2, kCube / 2);
+    EXPECT_NEAR(centre[0], 0.0f, 2e-3f);
+    EXPECT_NEAR(centre[2], 1.0f, 2e-3f);
+}
+
 }  // namespace
 }  // namespace skygraph::test
