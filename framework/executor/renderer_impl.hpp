@@ -90,6 +90,9 @@ struct ResourceState {
     uint32_t presentImages = 1;  ///< PlanState::presentImages.
     /// An UploadPass of the plan writes it: Renderer::stageUpload() has somewhere to copy to.
     bool uploaded = false;
+    /// BoundResource::contentsReplaced points here: each setup step for it and each import
+    /// counts one.
+    uint64_t contentsReplaced = 0;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkImageAspectFlags aspect = 0;
     uint32_t width = 1, height = 1, mips = 1, layers = 1;

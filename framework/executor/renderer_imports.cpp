@@ -16,6 +16,7 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
     ResourceState& r = s.resources[index];
     old.image = std::move(r.images.at(0));
     r.images[0] = std::move(next);
+    ++r.contentsReplaced;
     for (PassState& ps : s.passes) {
         const bool uses = std::any_of(ps.pass->usages.begin(), ps.pass->usages.end(),
                                       [&](const PlannedUsage& u) { return u.resource == index; });

@@ -247,6 +247,7 @@ void Renderer::Impl::bindResources(PlanState& s, PassState& ps, uint32_t slot) {
         b.usage = &u;
         b.desc = r.desc;
         b.format = r.format;
+        b.contentsReplaced = &r.contentsReplaced;
         const uint32_t copy = r.copyFor(slot);
         if (!r.isImage) {
             b.buffer = r.buffers[copy].buffer.get();

@@ -125,6 +125,7 @@ void Renderer::Impl::runSetup(PlanState& s, std::string_view only, bool withNext
     // per copy.
     std::vector<uint32_t> frameResource;
     for (const PlannedResource& r : setup.resources()) frameResource.push_back(uint32_t(s.plan.resourceIndex(r.name)));
+    for (const uint32_t r : frameResource) ++s.resources[r].contentsReplaced;
     const auto copiesOfSetupResource = [&](uint32_t r) { return copiesOf(s.resources[frameResource[r]]); };
     // Host contents of the Upload steps, written before the submission (which makes host writes
     // visible to it): one staging buffer per step, shared by the copies.

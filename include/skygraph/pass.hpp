@@ -84,6 +84,12 @@ struct BoundResource {
     VkDeviceSize size = 0;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{0, 0};  ///< Of the usage's base mip.
+    /// Owned by the renderer: how many times it has replaced the resource's contents from
+    /// outside the plan's passes (Renderer::setExternalImage(), updateExternalImage(),
+    /// importImage(), the setup of a rebuilt plan). Read it while recording: a pass that builds
+    /// on what earlier frames made of its inputs (PathTracePass accumulates) starts over when
+    /// it changes. Null where nothing counts.
+    const uint64_t* contentsReplaced = nullptr;
 };
 
 /// What a pass may use while creating pipelines. The struct and its spans are valid only

@@ -4,7 +4,7 @@
 // ring so that no frame in flight reads a buffer the host is rewriting; its glTF models as one
 // BVH over their triangles and their textures' texels (trace_geometry.hpp), built once per
 // set of models. Accumulation starts over whenever the scene, the output
-// extent or the plan changes.
+// extent, the environment image's contents or the plan changes.
 #include "builtin_passes.hpp"
 #include "model_resources.hpp"  // makeHostBuffer
 #include "scene_camera.hpp"
@@ -39,9 +39,11 @@ struct GpuObject {  // matches `Object` in pathtrace.comp (std430)
     float roughnessAo[4];
 };
 
-/// Everything a sample depends on, to notice when accumulation must start over.
-std::vector<double> sceneKey(const Scene* scene, VkExtent2D extent) {
+/// Everything a sample depends on, to notice when accumulation must start over: the scene,
+/// the extent, and the environment image's contents (`environment`, when bound).
+std::vector<double> sceneKey(const Scene* scene, VkExtent2D extent, const BoundResource* environment) {
     std::vector<double> k{double(extent.width), double(extent.height)};
+    if (environment && environment->contentsReplaced) k.push_back(double(*environment->contentsReplaced));
     if (!scene) return k;
     const auto& c = scene->camera;
     k.insert(k.end(), {c.position[0], c.position[1], c.position[2], c.yawDeg, c.pitchDeg, c.rollDeg, c.fovYDeg});
@@ -109,7 +111,7 @@ public:
         const Scene* scene = ctx.frame ? ctx.frame->get<Scene>() : nullptr;
         const BoundResource* accumulation = ctx.slot("accumulation");
         const VkExtent2D extent{accumulation->extent.width, accumulation->extent.height};
-        std::vector<double> key = sceneKey(scene, extent);
+        std::vector<double> key = sceneKey(scene, extent, environmentBound_ ? ctx.slot("environment") : nullptr);
         if (key != lastKey_) {
             samplesSoFar_ = 0;
             lastKey_ = std::move(key);

@@ -195,6 +195,39 @@ TEST_F(PathTrace, ShippedGraphTracesTheEnvironmentFileWhenBound) {
         }
 }
 
+// New environment pixels start the mean over: after two frames of a map of 1 and one of a map
+// of 3, every pixel is 3 from one sample, not a mean of both maps.
+TEST_F(PathTrace, ANewEnvironmentImageStartsTheAccumulationOver) {
+    const PassLibrary library = PassLibrary::withBuiltins();
+    const GraphDesc graph = loadGraphFile(kSource / "graphs/pathtrace.json", library.registry());
+    CompileOptions co;
+    co.features = {{"environment_file", true}};
+    co.presentReplacement = ExternalState::TransferSrc;
+    Renderer renderer = rendererAt(graph, library, co, 16, 12);
+    renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(1.0f)));
+    Scene scene;
+    scene.environment = SceneEnvironment{false, "unused.hdr", 0.0, EnvironmentSampling::Equirect};
+    renderer.frameData().set(scene);
+    const auto expectEverywhere = [&](float radiance, float samples, const char* after) {
+        const ImageData hdr = renderer.readImage("accumulation").at(0);
+        for (uint32_t y = 0; y < 12; ++y)
+            for (uint32_t x = 0; x < 16; ++x) {
+                const auto px = hdr.pixel(x, y);
+                ASSERT_NEAR(px[0], radiance, 1e-6) << after << " at " << x << "," << y;
+                ASSERT_EQ(px[3], samples) << after << " at " << x << "," << y;
+            }
+    };
+    for (int i = 0; i < 2; ++i) renderer.renderFrame();
+    expectEverywhere(1.0f, 2.0f, "two frames of the first map");
+    renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(3.0f)));
+    renderer.renderFrame();
+    expectEverywhere(3.0f, 1.0f, "setExternalImage");
+    renderer.updateExternalImage("equirect", constantImage(2, 1, glm::vec3(0.5f)));
+    renderer.renderFrame();
+    renderer.renderFrame();
+    expectEverywhere(0.5f, 2.0f, "updateExternalImage");
+}
+
 // A glTF mesh traces as the analytic object it equals: a textured quad against the bounded
 // plane of the same place and material, the texture's one sRGB texel decoded into the plane's
 // linear base colour. Both draw the same random numbers (one pass name), so any difference is
