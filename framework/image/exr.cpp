@@ -15,6 +15,7 @@
 #include <OpenEXR/ImfXdr.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <thread>
 
@@ -140,10 +141,17 @@ namespace image_detail {
 
 std::string encodeExr(const std::filesystem::path& path, const HdrImage& image) {
     requireWritable(path, image);
+    // Every caller's pixels go to half floats here, which round a finite value past +-65504 to
+    // infinity: a bright texel of an rgba32f bake's --cross, say, would be written as +Inf. Such
+    // values are clamped to the largest half instead; infinities and NaNs stay what they are.
+    const auto toHalf = [](float v) {
+        constexpr float kLargestHalf = float(HALF_MAX);
+        return std::isfinite(v) ? std::clamp(v, -kLargestHalf, kLargestHalf) : v;
+    };
     std::vector<Imf::Rgba> half(size_t(image.width) * image.height);
     for (size_t i = 0; i < half.size(); ++i) {
         const float* p = image.rgba.data() + i * 4;
-        half[i] = Imf::Rgba(p[0], p[1], p[2], p[3]);
+        half[i] = Imf::Rgba(toHalf(p[0]), toHalf(p[1]), toHalf(p[2]), toHalf(p[3]));
     }
     MemoryStream stream(path);
     try {

@@ -19,18 +19,22 @@ namespace {
 
 using image_detail::sniffFormat;
 
-/// Offset of the first pixel byte: after the signature line, the header lines up to the blank
-/// line, and the resolution line. Returns the file size when the header is not terminated.
+/// Offset of the first pixel byte: after the signature line, the header lines up to the one
+/// that ends it, and the resolution line. Returns the file size when the header is not
+/// terminated.
 size_t rgbeDataOffset(const std::string& bytes) {
     size_t pos = 0;
-    bool blankSeen = false;
+    bool headerEnded = false;
     for (int line = 0; pos < bytes.size(); ++line) {
         const size_t end = bytes.find('\n', pos);
         if (end == std::string::npos) return bytes.size();
-        const bool blank = end == pos;
+        // stb_image (stbi__hdr_load) keeps each line as a C string and ends the header at the
+        // first empty one, so a line that starts with NUL ends it too. Ending it anywhere else
+        // would check one stream and let stb decode another.
+        const bool empty = end == pos || bytes[pos] == '\0';
         pos = end + 1;
-        if (blankSeen) return pos;  // that was the resolution line
-        blankSeen = line > 0 && blank;
+        if (headerEnded) return pos;  // that was the resolution line
+        headerEnded = line > 0 && empty;
     }
     return bytes.size();
 }

@@ -265,6 +265,18 @@ std::string glbProblem(std::string_view data) {
     if (uint64_t(word(12)) + 20 > word(8))
         return "truncated: its JSON chunk says " + std::to_string(word(12)) + " bytes, and " +
                std::to_string(word(8) - 20) + " follow within the length its header gives";
+    // tinygltf checks the BIN chunk's length without its own 8-byte header, so one up to 8 bytes
+    // short passed and was read past the end of the file.
+    const uint64_t binChunk = uint64_t(word(12)) + 20, length = word(8);
+    if (binChunk < length) {
+        if (length - binChunk < 8)
+            return "truncated: " + std::to_string(length - binChunk) +
+                   " bytes follow the JSON chunk, too few for the BIN chunk's 8-byte header";
+        const uint32_t binLength = word(size_t(binChunk));
+        if (binLength > length - binChunk - 8)
+            return "truncated: its BIN chunk says " + std::to_string(binLength) + " bytes, and " +
+                   std::to_string(length - binChunk - 8) + " follow within the length its header gives";
+    }
     return {};
 }
 

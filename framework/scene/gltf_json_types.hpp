@@ -11,8 +11,9 @@
 
 namespace skygraph {
 
-/// What is wrong with a .glb's header and JSON chunk as containers (size, version, lengths,
-/// chunk type), in words; empty when nothing is. tinygltf says only "Invalid glTF binary".
+/// What is wrong with a .glb's header, JSON chunk and BIN chunk as containers (size, version,
+/// lengths, chunk type), in words; empty when nothing is. tinygltf says only "Invalid glTF
+/// binary", and reads a BIN chunk up to its header's 8 bytes past the end.
 [[nodiscard]] std::string glbProblem(std::string_view bytes);
 
 /// The JSON chunk of a .glb file's bytes, which glbProblem() found nothing wrong with; a view

@@ -248,7 +248,14 @@ private:
                                 std::to_string(view.byteLength) + ") lie outside its buffer of " + std::to_string(buffer.size()) + " bytes"), Span{};
         if (a.count > (size_t(1) << 32))
             return error(label, std::to_string(a.count) + " elements are more than any buffer view holds"), Span{};
-        const size_t needed = a.byteOffset + stride * (a.count - 1) + elementBytes;  // count <= 2^32: no overflow in size_t
+        // tinygltf reads byteOffset as any 64-bit value: one near 2^64 would wrap the sum below
+        // past the check, so it is held to the view first.
+        if (a.byteOffset > view.byteLength)
+            return error(label, "byteOffset " + std::to_string(a.byteOffset) + " lies outside its buffer view of " +
+                                    std::to_string(view.byteLength) + " bytes"), Span{};
+        // byteOffset <= the view's length <= its buffer's, count <= 2^32 and the schema check holds
+        // byteStride to 252: no overflow in size_t.
+        const size_t needed = a.byteOffset + stride * (a.count - 1) + elementBytes;
         if (needed > view.byteLength)
             return error(label, std::to_string(a.count) + " elements need " + std::to_string(needed) +
                                     " bytes of its buffer view, which has " + std::to_string(view.byteLength)), Span{};

@@ -75,8 +75,9 @@ void saveHdrImage(const std::filesystem::path& path, const HdrImage& image);
 /// and cannot store negative or non-finite values). Atomic as saveHdrImage(). Throws ImageError.
 void saveRadianceHdr(const std::filesystem::path& path, const HdrImage& image);
 
-/// Saves RGBA as half-float OpenEXR with ZIP compression (values beyond +-65504 become
-/// infinite, as half floats do). Atomic as saveHdrImage(). Throws ImageError.
+/// Saves RGBA as half-float OpenEXR with ZIP compression (finite values beyond +-65504 are
+/// clamped to it rather than become infinite; infinities and NaNs are kept). Atomic as
+/// saveHdrImage(). Throws ImageError.
 void saveExr(const std::filesystem::path& path, const HdrImage& image);
 
 /// How many floats of `image.rgba` are NaN or infinite. Loaders keep such values (they are

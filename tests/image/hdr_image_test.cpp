@@ -159,6 +159,22 @@ TEST_F(HdrImageTest, ExrRoundTripKeepsHalfPrecisionAlphaAndNonFiniteValues) {
         ASSERT_NEAR(back.rgba[i], src.rgba[i], std::abs(src.rgba[i]) / 1024.0f + 1e-7f) << "float " << i;
 }
 
+// A half float holds at most 65504 and rounds anything finite past it to infinity: a bright
+// texel of a float image (an rgba32f bake's --cross) came back as +Inf.
+TEST_F(HdrImageTest, ExrClampsFiniteValuesPastTheLargestHalf) {
+    HdrImage src = pattern(4, 4);
+    src.rgba[0] = 1e6f;
+    src.rgba[1] = -1e6f;
+    src.rgba[2] = std::numeric_limits<float>::max();
+    const fs::path path = dir_ / "bright.exr";
+    skygraph::saveHdrImage(path, src);
+    const HdrImage back = skygraph::loadHdrImage(path);
+    EXPECT_EQ(skygraph::countNonFinite(back), 0u);
+    EXPECT_EQ(back.rgba[0], 65504.0f);
+    EXPECT_EQ(back.rgba[1], -65504.0f);
+    EXPECT_EQ(back.rgba[2], 65504.0f);
+}
+
 // Float channels are read at float precision (no trip through half), from a data window that
 // does not start at (0, 0).
 TEST_F(HdrImageTest, ExrFloatChannelsKeepFullPrecisionAndAnyDataWindow) {
@@ -395,6 +411,18 @@ TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
     }
     writeBytes(dir_ / "rle_then_flat.hdr", rows + std::string(16 * 4, '\x01'));
     expectLoadError(dir_ / "rle_then_flat.hdr", "ends in row 1 of 2");
+}
+
+// stb_image ends the header at a line that starts with NUL as at an empty one. The check that
+// ended it only at the empty line walked a valid row after "R", while stb read its pixels from
+// after "-Y 1 +X 16": a run-length row whose first dump of 16 ends at the end of the file,
+// where stb reads zero counts forever.
+TEST_F(HdrImageTest, AHeaderEndedByALineStartingWithNulIsCheckedWhereStbEndsIt) {
+    std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n" + std::string("\0\n", 2) + "-Y 1 +X 16\n" +
+                        std::string("\x02\x02\x00\x10\x10\n", 6) + "\n" + "R\n" + std::string("\x02\x02\x00\x10", 4);
+    for (int channel = 0; channel < 4; ++channel) bytes += std::string("\x90\x01", 2);  // a run of 16
+    writeBytes(dir_ / "nul_line.hdr", bytes);
+    expectLoadError(dir_ / "nul_line.hdr", "truncated: the pixel data ends in row 0 of 1");
 }
 
 TEST_F(HdrImageTest, PngRenamedToHdrOrExrIsRefusedAsPng) {

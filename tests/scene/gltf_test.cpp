@@ -298,11 +298,23 @@ TEST(Gltf, ABrokenGlbContainerIsNamed) {
     };
     std::string version1 = good;
     version1[4] = 1;
+    // The file's first `bytes`, with the header's length to match. tinygltf counted the BIN
+    // chunk's length without its 8-byte header: a chunk up to 8 bytes short was read past the end.
+    const auto cutTo = [&](size_t bytes) {
+        std::string cut = good.substr(0, bytes);
+        const uint32_t length = uint32_t(bytes);
+        std::memcpy(cut.data() + 8, &length, 4);
+        return cut;
+    };
+    ASSERT_EQ(good.size(), 4696u) << "at byte 1412, after a 1392-byte JSON chunk: the BIN chunk's header and 3276 bytes";
     const std::vector<std::pair<fs::path, std::string>> cases{
         {write("glb-cut", good.substr(0, good.size() / 2)), "truncated: its header says " + std::to_string(good.size()) +
                                                                  " bytes, the file has " + std::to_string(good.size() / 2)},
         {write("glb-header-only", good.substr(0, 8)), "truncated: a .glb starts with a 12-byte header"},
         {write("glb-version-1", version1), "GLB version 1; skygraph reads version 2"},
+        {write("glb-bin-short", cutTo(good.size() - 8)), "truncated: its BIN chunk says 3276 bytes, and 3268 follow"},
+        {write("glb-bin-header-cut", cutTo(1412 + 4)),
+         "truncated: 4 bytes follow the JSON chunk, too few for the BIN chunk's 8-byte header"},
     };
     for (const auto& [file, message] : cases) gltf_test::expectRefusedAt(file, "", message);
 }
@@ -421,6 +433,19 @@ TEST(Gltf, AnAccessorCountPastAnyBufferIsRefusedWithoutOverflow) {
     std::ofstream(file, std::ios::trunc) << text;
     gltf_test::expectRefusedAt(file, "accessors[0] (POSITION of meshes[0].primitives[0])",
                                "4611686018427387907 elements are more than");
+}
+
+// 2^64 - 36: added to the 36 bytes three float3 elements need, the end wrapped to 0 and passed
+// the check, and the elements were read from far outside the buffer.
+TEST(Gltf, AnAccessorByteOffsetPastItsBufferViewIsRefusedWithoutOverflow) {
+    const fs::path file = writeTriangle("huge-byte-offset", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string view = R"("accessors": [{"bufferView": 0)";
+    text.replace(text.find(view), view.size(), view + R"(, "byteOffset": 18446744073709551580)");
+    std::ofstream(file, std::ios::trunc) << text;
+    gltf_test::expectRefusedAt(file, "accessors[0] (POSITION of meshes[0].primitives[0])",
+                               "byteOffset 18446744073709551580 lies outside its buffer view of 36 bytes");
 }
 
 TEST(Gltf, AnImageUriThatIsNotARegularFileIsNeverRead) {

@@ -119,7 +119,8 @@ int run(CubemapArgs& args) {
 
     ProgressBar bar("cubemap", 6, "steps");
     // Half-float products would hold what a half cannot as infinity, and spread it through
-    // every mip and filtered product.
+    // every mip and filtered product. An .exr --cross is half floats even from an rgba32f
+    // bake: the EXR writer clamps what it writes, so rgba32f keeps a float's range here.
     const HdrImage equirect = app::loadEnvironmentImage(
         args.input, bake.float32 ? std::numeric_limits<float>::max() : math::kLargestHalf);
     if (equirect.width != 2 * equirect.height)
