@@ -17,7 +17,7 @@ CXX_FUZZ="${CXX_FUZZ:-$(command -v clang++-14 || command -v clang++)}"
 
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER="$CXX_FUZZ" -DSKYGRAPH_FUZZ=ON \
-  "-DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
+  "-DCMAKE_CXX_FLAGS=-fsanitize=address,undefined -fno-sanitize=vptr -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
   >/dev/null
 WHICH="${2:-all}"
 case "$WHICH" in graph) targets=(graph_fuzzer) ;; gltf) targets=(gltf_fuzzer) ;; *) targets=(graph_fuzzer gltf_fuzzer) ;; esac

@@ -1,5 +1,5 @@
 // Sharing memory changes nothing a frame computes: every shipped graph under every feature
-// combination, and random Generic graphs, render byte for byte the same with their transients
+// combination (pairwise in the sanitizer build: shipped_cases.hpp), and random Generic graphs, render byte for byte the same with their transients
 // aliased and clobbered (poisoned before the first use that discards them) as with each in
 // memory of its own. What is compared is every image the plan exports, the read-back target
 // included, with all its mips and layers, after three frames with two in flight (for random

@@ -1,4 +1,5 @@
-// Every shipped graph (graphs/*.json), under every feature combination, runs 3 frames with 2
+// Every shipped graph (graphs/*.json), under every feature combination (a pairwise covering
+// set of them in the sanitizer build: shipped_cases.hpp), runs 3 frames with 2
 // in flight on the validated device with zero messages; so do those whose plans change under
 // LayoutPolicy::Optimal (each reader of an image in its optimal layout) compiled that way.
 // Every pass runs as Generic (genericPasses()): it performs exactly the accesses it declares.
