@@ -15,7 +15,9 @@
 namespace skygraph::detail {
 
 /// Buffers: every word 0x7FC00000, a float quiet NaN, since most buffers a pass reads hold
-/// floats; as an integer (an index, a draw count) it is far out of range.
+/// floats; as an integer (an index, a draw count) it is far out of range. vkCmdFillBuffer
+/// fills whole words: the last 1-3 bytes of a buffer whose size is no multiple of 4 keep what
+/// was there.
 inline constexpr uint32_t kPoisonBufferWord = 0x7FC00000u;
 
 /// The poison for an image of `format`, for vkCmdClearColorImage or (depth/stencil formats)
@@ -25,7 +27,10 @@ inline constexpr uint32_t kPoisonBufferWord = 0x7FC00000u;
 ///   (alternating bits, not the 0 or 0xFF of a cleared stencil);
 /// - float formats (SFLOAT, UFLOAT): a quiet NaN, which spreads through whatever arithmetic
 ///   reads it, and which blending, filtering and tonemapping keep visible;
-/// - UINT/SINT: 0xDEADBEEF, cut to the format's bits: recognisable, and no count or index;
+/// - UINT/SINT: 0xDEADBEEF: recognisable, and no count or index. Every integer colour format
+///   the graph format has is 32 bits a component (R32_UINT, R32G32B32A32_UINT, R32_SINT), so it
+///   is written whole; a narrower SINT format would need a value it can represent (the spec
+///   leaves the clear undefined otherwise).
 /// - UNORM/SNORM/SRGB (no NaN to hold): magenta (1, 0, 1, 1), which no lit frame has much of.
 [[nodiscard]] inline VkClearValue poisonFor(const FormatInfo& format) noexcept {
     VkClearValue v{};

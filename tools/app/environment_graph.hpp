@@ -28,8 +28,8 @@ struct EnvironmentSizes {
                                                uint32_t cap) noexcept;
 
 /// How wide a sequence's frames are uploaded for a cube of `faceSize` texels a side when the
-/// sky samples the cube, not the equirect: 8 equirect texels for each cube texel across a
-/// face's 90 degrees (twice the density at the equator), or the source's width when that is
+/// sky samples the cube, not the equirect: 8 times the face size, so a face's 90 degrees of
+/// the equator get 2 equirect texels for each cube texel, or the source's width when that is
 /// less. A 6K frame for a 256-texel cube is uploaded at 2048 wide: 9 times fewer texels to
 /// copy, hold and filter, for a cube that differs by what docs/performance.md measures.
 [[nodiscard]] uint32_t sequenceEquirectWidth(uint32_t faceSize, uint32_t sourceWidth) noexcept;
