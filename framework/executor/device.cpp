@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -42,6 +43,34 @@ const char* resultName(VkResult r) noexcept {
         default:
             return "VkResult error";
     }
+}
+
+std::string extentText(VkExtent2D e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
+
+std::string imageUsageText(VkImageUsageFlags usage) {
+    static constexpr std::pair<VkImageUsageFlagBits, const char*> kNames[] = {
+        {VK_IMAGE_USAGE_TRANSFER_SRC_BIT, "TRANSFER_SRC"},
+        {VK_IMAGE_USAGE_TRANSFER_DST_BIT, "TRANSFER_DST"},
+        {VK_IMAGE_USAGE_SAMPLED_BIT, "SAMPLED"},
+        {VK_IMAGE_USAGE_STORAGE_BIT, "STORAGE"},
+        {VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "COLOR_ATTACHMENT"},
+        {VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "DEPTH_STENCIL_ATTACHMENT"},
+        {VK_IMAGE_USAGE_TRANSIENT_ATTACHMENT_BIT, "TRANSIENT_ATTACHMENT"},
+        {VK_IMAGE_USAGE_INPUT_ATTACHMENT_BIT, "INPUT_ATTACHMENT"},
+    };
+    std::string text;
+    for (const auto& [bit, name] : kNames)
+        if (usage & bit) {
+            text += text.empty() ? "" : " | ";
+            text += name;
+            usage &= ~VkImageUsageFlags(bit);
+        }
+    if (usage != 0) {
+        char rest[16];
+        std::snprintf(rest, sizeof rest, "0x%x", usage);
+        text += (text.empty() ? "" : " | ") + std::string(rest);
+    }
+    return text.empty() ? "none" : text;
 }
 
 uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,

@@ -279,6 +279,10 @@ struct FrameSlot {
     std::array<std::vector<VkCommandBuffer>, kQueueKinds> cmds;
     /// Under validation: a binary semaphore per semaphore wait of the frame (renderer_frame.cpp).
     std::vector<vk::Semaphore> binaries;
+    /// The semaphore the slot's frames acquire swapchain images with, made on first use. The
+    /// renderer's, not the swapchain's: the slot's fence says when its last wait has run, and
+    /// another renderer presenting to the same swapchain knows nothing of that fence.
+    vk::Semaphore acquire;
     vk::Fence fence;
     uint64_t frame = 0;  ///< frameIndex of the frame last submitted in this slot.
     std::shared_ptr<void> setupKeep;  ///< A pending setup's staging, until this slot's frame finishes.

@@ -9,12 +9,6 @@ namespace skygraph {
 
 using namespace detail;
 
-namespace {
-
-std::string extentText(VkExtent2D e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
-
-}  // namespace
-
 void Renderer::Impl::describePresent(PlanState& s) const {
     s.presentResource = -1;
     s.presentImages = 1;
@@ -38,11 +32,11 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     if (ext[0] != p.extent.width || ext[1] != p.extent.height || desc.layers > 1 ||
         desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)
         throw ExecutorError(what + "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
-                            ", the present images are " + extentText(p.extent) + " (one mip, one layer)");
+                            ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)");
     const VkImageUsageFlags need = planImageUsage(s.plan, uint32_t(index));
     if ((need & ~p.usage) != 0)
-        throw ExecutorError(what + "the plan needs image usage " + std::to_string(need) +
-                            ", the present images were created with " + std::to_string(p.usage));
+        throw ExecutorError(what + "the plan needs image usage " + vk::imageUsageText(need) +
+                            ", the present images were created with " + vk::imageUsageText(p.usage));
     s.presentResource = index;
     s.presentImages = static_cast<uint32_t>(p.images.size());
 }
@@ -52,7 +46,7 @@ CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D
     try {
         return compiled.resized(extent.width, extent.height);
     } catch (const GraphError& e) {
-        throw ExecutorError("presenting at " + extentText(extent) + ": " + e.what());
+        throw ExecutorError("presenting at " + vk::extentText(extent) + ": " + e.what());
     }
 }
 
@@ -111,7 +105,14 @@ PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
             sc.releaseRetired();  // no view of its images is left
         }
         const uint32_t slot = waitForFrameSlot();
-        const VkSemaphore acquired = sc.acquireSemaphore(slot);
+        detail::FrameSlot& f = frames[slot];
+        if (!f.acquire) {
+            VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+            VkSemaphore made;
+            vk::check(vkCreateSemaphore(vkd, &sci, nullptr, &made), "vkCreateSemaphore");
+            f.acquire = vk::Semaphore(vkd, made);
+        }
+        const VkSemaphore acquired = f.acquire.get();
         uint32_t image = 0;
         if (sc.acquire(acquired, image) == VK_ERROR_OUT_OF_DATE_KHR) continue;
         const PresentTarget target{image, acquired, sc.renderComplete.at(image).get()};

@@ -62,8 +62,6 @@ std::string formatName(VkFormat f) {
     return "VkFormat " + std::to_string(int(f));
 }
 
-std::string extentText(VkExtent2D e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
-
 }  // namespace
 
 const char* presentModeName(PresentMode mode) noexcept {
@@ -139,12 +137,13 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
                             "Present resource '" + plan.resource + "'; it presents " + (have.empty() ? "none" : have));
     }
     if ((extraUsage & ~caps.supportedUsageFlags) != 0)
-        spdlog::warn("the surface's images cannot have usage {} besides the plan's", extraUsage & ~caps.supportedUsageFlags);
+        spdlog::warn("the surface's images cannot have usage {} besides the plan's",
+                     vk::imageUsageText(extraUsage & ~caps.supportedUsageFlags));
     const VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
     if ((usage & ~caps.supportedUsageFlags) != 0)
         throw ExecutorError("the surface's images cannot be used as the plan uses '" + plan.resource +
-                            "' (image usage " + std::to_string(usage) + ", the surface allows " +
-                            std::to_string(caps.supportedUsageFlags) + ")");
+                            "' (image usage " + vk::imageUsageText(usage) + ", the surface allows " +
+                            vk::imageUsageText(caps.supportedUsageFlags) + ")");
 
     n = 0;
     vkGetPhysicalDeviceSurfacePresentModesKHR(pd, surface, &n, nullptr);
@@ -174,8 +173,12 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     ci.clipped = VK_TRUE;
     ci.oldSwapchain = swapchain.get();
     VkSwapchainKHR created;
-    vk::check(vkCreateSwapchainKHR(dev.device, &ci, nullptr, &created), "vkCreateSwapchainKHR");
-    retired = std::move(swapchain);
+    const VkResult made = vkCreateSwapchainKHR(dev.device, &ci, nullptr, &created);
+    // The old swapchain is retired by the call even when it fails (the spec): it is never
+    // acquired from or passed as oldSwapchain again, and the next frame tries again from none.
+    if (swapchain) retired.push_back(std::move(swapchain));
+    if (made != VK_SUCCESS) stale = true;
+    vk::check(made, "vkCreateSwapchainKHR");
     swapchain = vk::Swapchain(dev.device, created);
 
     vkGetSwapchainImagesKHR(dev.device, created, &n, nullptr);
@@ -195,18 +198,8 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     ++generation;
     static std::atomic<uint64_t> lastImagesId{0};
     imagesId = ++lastImagesId;
-    spdlog::info("swapchain: {} images of {} at {}, present mode {}", n, formatName(ci.imageFormat), extentText(e),
+    spdlog::info("swapchain: {} images of {} at {}, present mode {}", n, formatName(ci.imageFormat), vk::extentText(e),
                  presentModeName(mode));
-}
-
-VkSemaphore Swapchain::Impl::acquireSemaphore(uint32_t slot) {
-    while (acquired.size() <= slot) {
-        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        VkSemaphore semaphore;
-        vk::check(vkCreateSemaphore(dev.device, &sci, nullptr, &semaphore), "vkCreateSemaphore");
-        acquired.emplace_back(dev.device, semaphore);
-    }
-    return acquired[slot].get();
 }
 
 VkResult Swapchain::Impl::acquire(VkSemaphore semaphore, uint32_t& image) {

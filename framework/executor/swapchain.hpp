@@ -38,12 +38,13 @@ struct Swapchain::Impl {
     VkImageUsageFlags extraUsage = 0;  ///< SwapchainOptions::extraUsage.
     VkExtent2D extent{0, 0};  ///< The images'.
     vk::Swapchain swapchain;
-    /// The swapchain the last re-creation replaced: kept until the renderer no longer holds
-    /// views of its images (releaseRetired).
-    vk::Swapchain retired;
+    /// The swapchains re-creations replaced: kept until the renderer no longer holds views of
+    /// their images (releaseRetired). Several when a re-creation or the bind after one failed.
+    std::vector<vk::Swapchain> retired;
     std::vector<VkImage> images;
-    std::vector<vk::Semaphore> renderComplete;  ///< One per image.
-    std::vector<vk::Semaphore> acquired;        ///< One per frame slot, made on first use.
+    /// One per image. The acquire semaphores are the renderers' (FrameSlot::acquire): only a
+    /// renderer's own slot fence says when its last wait on one has run.
+    std::vector<vk::Semaphore> renderComplete;
     uint64_t generation = 0;
     /// Unique in the process to the current images: what a renderer bound to them knows them
     /// by, since a swapchain made after this one is destroyed can have its address.
@@ -62,10 +63,7 @@ struct Swapchain::Impl {
     /// surface's current extent where it states one). Nothing submitted may still use the old
     /// images: the caller has waited. The old swapchain is retired, not destroyed.
     void recreate(const PresentRequirements& plan);
-    void releaseRetired() noexcept { retired.reset(); }
-    /// The acquire semaphore of frame slot `slot`. Its last wait must have completed (the
-    /// slot's fence).
-    [[nodiscard]] VkSemaphore acquireSemaphore(uint32_t slot);
+    void releaseRetired() noexcept { retired.clear(); }
     /// vkAcquireNextImageKHR with `semaphore`: VK_SUCCESS, VK_SUBOPTIMAL_KHR (marks it stale;
     /// the image is acquired) or VK_ERROR_OUT_OF_DATE_KHR (marks it stale; nothing acquired).
     /// Throws ExecutorError for any other failure.

@@ -17,6 +17,10 @@
 namespace skygraph::vk {
 
 [[nodiscard]] const char* resultName(VkResult r) noexcept;
+/// "96x64", for messages.
+[[nodiscard]] std::string extentText(VkExtent2D e);
+/// "COLOR_ATTACHMENT | STORAGE", for messages; "none" for 0.
+[[nodiscard]] std::string imageUsageText(VkImageUsageFlags usage);
 
 /// Throws ExecutorError naming the call when `r` is not VK_SUCCESS.
 inline void check(VkResult r, const char* what) {

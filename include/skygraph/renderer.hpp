@@ -239,8 +239,10 @@ public:
     /// frame of this renderer has finished; compiled again with the device's memory model
     /// unless it was (the class comment), and, while the renderer presents, at its present
     /// images' extent (as the constructor does with RendererOptions::presentTo). On failure
-    /// throws ExecutorError (also when the graph does not compile at that extent) and keeps
-    /// the old plan and pipelines running: with ShaderSources::Reread, a new graph and edited
+    /// throws ExecutorError (also when the graph does not compile at that extent, or when its
+    /// Present resource wants another format or usage than the present images have: such a
+    /// graph needs a new renderer, whose first frame re-creates the swapchain) and keeps the
+    /// old plan and pipelines running: with ShaderSources::Reread, a new graph and edited
     /// shaders take effect together or not at all.
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
