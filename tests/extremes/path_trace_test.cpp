@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 namespace skygraph::test {
 namespace {
@@ -117,6 +118,26 @@ protected:
         s.rmse = std::sqrt(s.rmse / std::max(1, s.compared));
         return s;
     }
+
+    /// graphs/pathtrace.json with environment_file on, headless at 16x12: no objects, lit by a
+    /// constant map of `radiance` turned by `rotationDeg`.
+    std::unique_ptr<Renderer> environmentFileTracer(glm::vec3 radiance, double rotationDeg) {
+        const GraphDesc graph = loadGraphFile(kSource / "graphs/pathtrace.json", library_.registry());
+        CompileOptions co;
+        co.features = {{"environment_file", true}};
+        co.outputWidth = 16;
+        co.outputHeight = 12;
+        RendererOptions ro;
+        ro.passes = &library_;
+        auto renderer = std::make_unique<Renderer>(sharedDevice(), CompiledGraph(graph, headless(graph, co)), ro);
+        renderer->setExternalImage("equirect", constantImage(2, 1, radiance));
+        Scene scene;
+        scene.environment = SceneEnvironment{false, "unused.hdr", rotationDeg, EnvironmentSampling::Equirect};
+        renderer->frameData().set(scene);
+        return renderer;
+    }
+
+    const PassLibrary library_ = PassLibrary::withBuiltins();
 };
 
 TEST_F(PathTrace, WhiteFurnaceConvergesToTheClosedForm) {
@@ -173,18 +194,9 @@ TEST_F(PathTrace, ShippedGraphRendersTheDefaultSceneCleanly) {
 // graphs/pathtrace.json with environment_file on: the tracer reads the equirect the loader
 // fills. A constant map and no objects: every pixel's mean is the constant exactly.
 TEST_F(PathTrace, ShippedGraphTracesTheEnvironmentFileWhenBound) {
-    const PassLibrary library = PassLibrary::withBuiltins();
-    const GraphDesc graph = loadGraphFile(kSource / "graphs/pathtrace.json", library.registry());
-    CompileOptions co;
-    co.features = {{"environment_file", true}};
-    co.presentReplacement = ExternalState::TransferSrc;
-    Renderer renderer = rendererAt(graph, library, co, 16, 12);
-    renderer.setExternalImage("equirect", constantImage(2, 1, {0.25f, 0.5f, 2.0f}));
-    Scene scene;
-    scene.environment = SceneEnvironment{false, "unused.hdr", 30.0, EnvironmentSampling::Equirect};
-    renderer.frameData().set(scene);
-    for (int i = 0; i < 2; ++i) renderer.renderFrame();
-    const ImageData hdr = renderer.readImage("accumulation").at(0);
+    const auto tracer = environmentFileTracer({0.25f, 0.5f, 2.0f}, 30.0);
+    for (int i = 0; i < 2; ++i) tracer->renderFrame();
+    const ImageData hdr = tracer->readImage("accumulation").at(0);
     for (uint32_t y = 0; y < 12; ++y)
         for (uint32_t x = 0; x < 16; ++x) {
             const auto px = hdr.pixel(x, y);
@@ -198,16 +210,8 @@ TEST_F(PathTrace, ShippedGraphTracesTheEnvironmentFileWhenBound) {
 // New environment pixels start the mean over: after two frames of a map of 1 and one of a map
 // of 3, every pixel is 3 from one sample, not a mean of both maps.
 TEST_F(PathTrace, ANewEnvironmentImageStartsTheAccumulationOver) {
-    const PassLibrary library = PassLibrary::withBuiltins();
-    const GraphDesc graph = loadGraphFile(kSource / "graphs/pathtrace.json", library.registry());
-    CompileOptions co;
-    co.features = {{"environment_file", true}};
-    co.presentReplacement = ExternalState::TransferSrc;
-    Renderer renderer = rendererAt(graph, library, co, 16, 12);
-    renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(1.0f)));
-    Scene scene;
-    scene.environment = SceneEnvironment{false, "unused.hdr", 0.0, EnvironmentSampling::Equirect};
-    renderer.frameData().set(scene);
+    const auto tracer = environmentFileTracer(glm::vec3(1.0f), 0.0);
+    Renderer& renderer = *tracer;
     const auto expectEverywhere = [&](float radiance, float samples, const char* after) {
         const ImageData hdr = renderer.readImage("accumulation").at(0);
         for (uint32_t y = 0; y < 12; ++y)
