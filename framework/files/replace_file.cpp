@@ -80,6 +80,19 @@ void keepPermissions(const fs::path& temporary, const fs::path& target) {
     fs::permissions(temporary, old.permissions(), fs::perm_options::replace, ec);
 }
 
+/// Makes the empty temporary for `target` before anything is written to it, with no more
+/// permissions than `target` has (the umask may take more away): a private file's new
+/// contents are never readable by others while they are written. Writers open it truncating,
+/// which keeps its mode. Nothing happens when `target` is no regular file yet.
+void startTemporaryLike(const fs::path& temporary, const fs::path& target) {
+    std::error_code ec;
+    const fs::file_status old = fs::status(target, ec);
+    if (ec || !fs::is_regular_file(old)) return;
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
+                          static_cast<mode_t>(old.permissions() & fs::perms::all));
+    if (fd >= 0) ::close(fd);
+}
+
 /// Where a stream's temporary is written; throws naming `path` and the folder when it is missing.
 fs::path systemTemporaryFolder(const fs::path& path) {
     const char* named = std::getenv("TMPDIR");
@@ -234,6 +247,7 @@ void replaceFile(const fs::path& path, const std::function<void(const fs::path&)
     const PendingTemporary pending(temporary);
     std::error_code ignored;
     try {
+        if (!target.inPlace) startTemporaryLike(temporary, target.path);
         write(temporary);
         if (target.inPlace) {
             appendTo(target.path, temporary, path);
@@ -269,6 +283,7 @@ void replaceFilesContents(std::span<const fs::path> paths, const std::function<s
                                                   ? systemTemporaryFolder(paths[i]) / targets[i].path.filename()
                                                   : targets[i].path);
             pending.push_back(std::make_unique<PendingTemporary>(temporaries[i]));
+            if (!targets[i].inPlace) startTemporaryLike(temporaries[i], targets[i].path);
             writeWhole(temporaries[i], contents(i), paths[i]);
         }
         for (size_t i = 0; i < paths.size(); ++i)

@@ -73,8 +73,9 @@ TEST_F(ReplaceFile, ReplacesAFileWholeAndLeavesNoTemporary) {
     EXPECT_EQ(names(dir_), std::vector<std::string>{"plan.json"});
 }
 
-// A private file stays private, and one anybody may write stays so: the replacement takes
-// the old file's permission bits, alone or in a set (a new file gets the usual 0666 & ~umask).
+// A private file stays private, also while its new contents are written, and one anybody may
+// write stays so: the replacement takes the old file's permission bits, alone or in a set (a
+// new file gets the usual 0666 & ~umask).
 TEST_F(ReplaceFile, AReplacedFileKeepsItsPermissions) {
     const auto mode = [](const fs::path& p) { return fs::status(p).permissions() & fs::perms::mask; };
     write(dir_ / "private.json", "old");
@@ -82,6 +83,14 @@ TEST_F(ReplaceFile, AReplacedFileKeepsItsPermissions) {
     replaceFileContents(dir_ / "private.json", "new");
     EXPECT_EQ(slurp(dir_ / "private.json"), "new");
     EXPECT_EQ(mode(dir_ / "private.json"), fs::perms::owner_read | fs::perms::owner_write);
+    // And while it is written: the writer finds its temporary as private as the target.
+    std::optional<fs::perms> whileWritten;
+    replaceFile(dir_ / "private.json", [&](const fs::path& to) {
+        std::ofstream(to, std::ios::binary | std::ios::trunc) << "newer";
+        whileWritten = mode(to);
+    });
+    EXPECT_EQ(whileWritten, fs::perms::owner_read | fs::perms::owner_write);
+    EXPECT_EQ(slurp(dir_ / "private.json"), "newer");
     write(dir_ / "cube.ktx2", "old");
     fs::permissions(dir_ / "cube.ktx2", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
                                             fs::perms::group_write | fs::perms::others_write | fs::perms::others_read);
