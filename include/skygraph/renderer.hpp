@@ -202,7 +202,8 @@ public:
     /// ordered after the whole frame, and shareImage() may hand its images on. False while
     /// the other queues still work. waitIdle() and every call that waits for a frame submit it
     /// too, waiting; this renderer's next frame submits it first, without waiting (that frame
-    /// follows the whole of this one).
+    /// follows the whole of this one), so work submitted to Device::queue() after that waits
+    /// for the rest of this frame on the GPU.
     [[nodiscard]] bool finishBackgroundFrame();
     /// Waits until every submitted frame has finished.
     void waitIdle();

@@ -114,6 +114,7 @@ public:
     [[nodiscard]] bool paused() const noexcept;
 
     /// Owned by this Swapchain; valid until it is re-created (see generation()).
+    /// VK_NULL_HANDLE after a re-creation failed, until the next frame's succeeds.
     [[nodiscard]] VkSwapchainKHR handle() const noexcept;
     /// The images of the current swapchain; the span is valid until it is re-created.
     [[nodiscard]] std::span<const VkImage> images() const noexcept;
