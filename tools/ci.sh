@@ -47,7 +47,7 @@ installed_package() {
 # Reliability (docs/reliability.md): clang ASan + UBSan (+ libFuzzer's coverage hooks in the
 # libraries the fuzzers run, so the same build links them) of every test ctest knows but
 # three kinds the main suite runs in full, run under the sanitizers on lavapipe with validation
-# (shipped graphs under pairwise feature combinations), then the fuzzers' 60 s time boxes on
+# (shipped graphs under pairwise feature combinations), then the fuzzers' 30 s time boxes on
 # that build. A test target missing from SANITIZED_TARGETS shows up as a failing *_NOT_BUILT test.
 # Leaks: ctest runs everything with leak detection off, because the Vulkan loader unloads the
 # driver and layers at vkDestroyInstance and their lifetime allocations can then be neither
@@ -82,8 +82,8 @@ sanitizers_and_fuzz() {
     )
     stage "sanitizers: skygraph view closed mid-frame, leak detection on (and its negative control)"
     tests/reliability/view_leak_check.sh build-fuzz
-    stage "fuzz the graph loader and compiler, and the glTF loader, for ${SKYGRAPH_FUZZ_SECONDS:-60} s each"
-    tools/fuzz.sh "${SKYGRAPH_FUZZ_SECONDS:-60}"
+    stage "fuzz the graph loader and compiler, and the glTF loader, for ${SKYGRAPH_FUZZ_SECONDS:-30} s each"
+    tools/fuzz.sh "${SKYGRAPH_FUZZ_SECONDS:-30}"
 }
 
 # tools/ci.sh [STAGE...] runs only the named stages (e.g. sanitizers_and_fuzz); all by default.
