@@ -121,12 +121,7 @@ size_t Renderer::Impl::signallerOf(std::span<const Submit> submits, const Semaph
 }
 
 VkSemaphore Renderer::Impl::binarySemaphore(FrameSlot& f, size_t index) {
-    while (f.binaries.size() <= index) {
-        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        VkSemaphore raw;
-        vk::check(vkCreateSemaphore(vkd, &sci, nullptr, &raw), "vkCreateSemaphore");
-        f.binaries.emplace_back(vkd, raw);
-    }
+    while (f.binaries.size() <= index) f.binaries.push_back(vk::makeBinarySemaphore(vkd));
     return f.binaries[index].get();
 }
 

@@ -106,12 +106,7 @@ PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
         }
         const uint32_t slot = waitForFrameSlot();
         detail::FrameSlot& f = frames[slot];
-        if (!f.acquire) {
-            VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-            VkSemaphore made;
-            vk::check(vkCreateSemaphore(vkd, &sci, nullptr, &made), "vkCreateSemaphore");
-            f.acquire = vk::Semaphore(vkd, made);
-        }
+        if (!f.acquire) f.acquire = vk::makeBinarySemaphore(vkd);
         const VkSemaphore acquired = f.acquire.get();
         uint32_t image = 0;
         if (sc.acquire(acquired, image) == VK_ERROR_OUT_OF_DATE_KHR) continue;

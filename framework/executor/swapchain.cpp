@@ -185,12 +185,7 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     images.resize(n);
     vkGetSwapchainImagesKHR(dev.device, created, &n, images.data());
     renderComplete.clear();
-    for (uint32_t i = 0; i < n; ++i) {
-        VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-        VkSemaphore semaphore;
-        vk::check(vkCreateSemaphore(dev.device, &sci, nullptr, &semaphore), "vkCreateSemaphore");
-        renderComplete.emplace_back(dev.device, semaphore);
-    }
+    for (uint32_t i = 0; i < n; ++i) renderComplete.push_back(vk::makeBinarySemaphore(dev.device));
     requirements = plan;
     requirements.usage = usage;
     extent = e;

@@ -46,6 +46,13 @@ struct DestroySwapchain {
     }
 };
 using Semaphore = Owned<VkSemaphore, DestroySemaphore>;
+/// A new binary semaphore of `device`; throws ExecutorError when it cannot be made.
+[[nodiscard]] inline Semaphore makeBinarySemaphore(VkDevice device) {
+    VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VkSemaphore raw;
+    check(vkCreateSemaphore(device, &sci, nullptr, &raw), "vkCreateSemaphore");
+    return Semaphore(device, raw);
+}
 using Swapchain = Owned<VkSwapchainKHR, DestroySwapchain>;
 
 /// Index of a memory type with `required` properties among `typeBits`; throws if none.

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -73,11 +74,17 @@ void writeWhole(const fs::path& to, std::string_view bytes, const fs::path& outp
 /// A file replaced by renaming a new one over it keeps its permission bits: a private output
 /// (mode 0600) stays private. Best effort: a temporary the user cannot change keeps the mode
 /// it was made with (what a new file gets).
-void keepPermissions(const fs::path& temporary, const fs::path& target) {
+/// The permission bits of `target` when it is a regular file.
+std::optional<fs::perms> regularFileMode(const fs::path& target) {
     std::error_code ec;
-    const fs::file_status old = fs::status(target, ec);
-    if (ec || !fs::is_regular_file(old)) return;
-    fs::permissions(temporary, old.permissions(), fs::perm_options::replace, ec);
+    const fs::file_status status = fs::status(target, ec);
+    if (ec || !fs::is_regular_file(status)) return std::nullopt;
+    return status.permissions() & fs::perms::all;
+}
+
+void keepPermissions(const fs::path& temporary, const fs::path& target) {
+    std::error_code ignored;
+    if (const auto mode = regularFileMode(target)) fs::permissions(temporary, *mode, fs::perm_options::replace, ignored);
 }
 
 /// Makes the empty temporary for `target` before anything is written to it, with no more
@@ -85,11 +92,9 @@ void keepPermissions(const fs::path& temporary, const fs::path& target) {
 /// contents are never readable by others while they are written. Writers open it truncating,
 /// which keeps its mode. Nothing happens when `target` is no regular file yet.
 void startTemporaryLike(const fs::path& temporary, const fs::path& target) {
-    std::error_code ec;
-    const fs::file_status old = fs::status(target, ec);
-    if (ec || !fs::is_regular_file(old)) return;
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC,
-                          static_cast<mode_t>(old.permissions() & fs::perms::all));
+    const auto mode = regularFileMode(target);
+    if (!mode) return;
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, static_cast<mode_t>(*mode));
     if (fd >= 0) ::close(fd);
 }
 
