@@ -10,8 +10,9 @@ stage() { printf '\n=== %s (%s)\n' "$1" "$(date -u +%H:%M:%S)"; }
 
 # Both builds keep line tables only (-g1: every backtrace and sanitizer report still names
 # file and line): full debug information made compiling a quarter slower, on a 2-core machine
-# that CI gives 45 minutes. The main build links with gold (the sanitizer build's links would
-# warn for every binary that gold cannot export ASan's local symbols).
+# that CI gives 45 minutes. Test sources compile at a lower level still (tests/CMakeLists.txt).
+# The main build links with gold (the sanitizer build's links would warn for every binary
+# that gold cannot export ASan's local symbols).
 CI_FLAGS=(-DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG")
 GOLD=(-DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=gold -DCMAKE_SHARED_LINKER_FLAGS=-fuse-ld=gold
     -DCMAKE_MODULE_LINKER_FLAGS=-fuse-ld=gold)
