@@ -1,6 +1,6 @@
 # skygraph_aces_reference: the reference ACES RRT + ODT through OpenColorIO's built-in
-# transforms (bench/aces_reference.hpp). Included by tests/math (its pins) and bench (study
-# prints the fits' errors); whichever comes first defines it.
+# transforms (bench/aces_reference.hpp), which tests/math pins and bench's study and aces_fits
+# use. The top level includes it when tests are built; bench includes it otherwise.
 if(NOT TARGET skygraph_aces_reference)
   find_package(PkgConfig REQUIRED)
   pkg_check_modules(OCIO IMPORTED_TARGET GLOBAL OpenColorIO>=2.1)
