@@ -71,9 +71,6 @@ void writeWhole(const fs::path& to, std::string_view bytes, const fs::path& outp
     if (!out) throw fs::filesystem_error("cannot write", output, lastError());
 }
 
-/// A file replaced by renaming a new one over it keeps its permission bits: a private output
-/// (mode 0600) stays private. Best effort: a temporary the user cannot change keeps the mode
-/// it was made with (what a new file gets).
 /// The permission bits of `target` when it is a regular file.
 std::optional<fs::perms> regularFileMode(const fs::path& target) {
     std::error_code ec;
@@ -82,6 +79,10 @@ std::optional<fs::perms> regularFileMode(const fs::path& target) {
     return status.permissions() & fs::perms::all;
 }
 
+/// A file replaced by renaming a new one over it keeps its permission bits: a private output
+/// (mode 0600) stays private. Read again here, after the write, rather than kept from
+/// startTemporaryLike: a mode changed meanwhile is the one kept. Best effort: a temporary the
+/// user cannot change keeps the mode it was made with (what a new file gets).
 void keepPermissions(const fs::path& temporary, const fs::path& target) {
     std::error_code ignored;
     if (const auto mode = regularFileMode(target)) fs::permissions(temporary, *mode, fs::perm_options::replace, ignored);
