@@ -70,7 +70,10 @@ public:
     bool parse_error(size_t position, const std::string&, const nlohmann::detail::exception& ex) {
         b_.errorByte = position;
         b_.error = printableName(ex.what());  // its "last read" shows the bytes as they are
-        b_.errorPath = b_.currentPath();
+        // A number too large for a double (nlohmann's out_of_range.406) is a bad value, not
+        // bad structure: its path names the value itself, the element or member being read.
+        constexpr int kNumberOverflow = 406;
+        b_.errorPath = ex.id == kNumberOverflow ? b_.valuePath() : b_.currentPath();
         return false;
     }
 

@@ -129,6 +129,9 @@ public:
 
     /// Path of the innermost open container (for parse errors).
     [[nodiscard]] std::string currentPath() const { return path(false); }
+    /// The path of the value being read: the next element of the innermost array, or the
+    /// current key's member of the innermost object.
+    [[nodiscard]] std::string valuePath() const { return path(true); }
 
 private:
     struct Frame {

@@ -1343,6 +1343,26 @@ TEST(JsonPositions, ErrorPathFollowsArraysAndObjects) {
     EXPECT_EQ(r.column, 33);  // the ']'
 }
 
+TEST(JsonPositions, NumberTooLargeNamesTheNumberItself) {
+    struct Case {
+        std::string text, path;
+        int column;
+    };
+    // The column is the number's first character, as for other bad tokens.
+    for (const Case& c : {Case{R"({ "p": [ 1, {"q": 2e400} ] })", "p[1].q", 19},
+                          Case{R"({ "p": [ 1, [3, -1e999 ] ] })", "p[1][1]", 17},
+                          Case{R"([ 1e999 ])", "[0]", 3}, Case{R"(1e999)", "", 1},
+                          // structure broken off after a number names the array it is in
+                          Case{R"({ "p": [ 1, [3 4 ] ] })", "p[1]", 16}}) {
+        SCOPED_TRACE(c.text);
+        JsonParseResult r = parseJsonWithPositions(c.text);
+        EXPECT_NE(r.error, "");
+        EXPECT_EQ(r.errorPath, c.path);
+        EXPECT_EQ(r.line, 1);
+        EXPECT_EQ(r.column, c.column);
+    }
+}
+
 TEST(JsonPositions, ColumnsPointAtTheStartOfTheBadToken) {
     struct Case {
         std::string text;

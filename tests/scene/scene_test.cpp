@@ -323,8 +323,9 @@ TEST(SceneErrors, TypesAndFiniteNumbers) {
     expectError(R"({"exposure_ev": true})", "exposure_ev", "expected a number");
     // JSON has no inf or NaN; numbers too large for a double are refused by the parser, with
     // line and column (the loader's own finiteness check is a second line of defence).
-    expectError(R"({"camera": {"yaw_deg": 1e400}})", "camera", "number overflow parsing '1e400'");
-    expectError(R"({"camera": {"position": [0, -1e999, 0]}})", "camera.position", "number overflow");
+    // The path names the number itself; other malformed JSON names the object it breaks off in.
+    expectError(R"({"camera": {"yaw_deg": 1e400}})", "camera.yaw_deg", "number overflow parsing '1e400'");
+    expectError(R"({"camera": {"position": [0, -1e999, 0]}})", "camera.position[1]", "number overflow");
     expectError(R"({"camera": {"yaw_deg": NaN}})", "camera", "malformed JSON");
     // A double the GPU's 32-bit floats cannot hold: infinite there, or a denormal near plane.
     expectError(R"({"camera": {"pitch_deg": 1e39}})", "camera.pitch_deg", "a 32-bit float holds");
