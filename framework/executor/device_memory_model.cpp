@@ -66,7 +66,7 @@ MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
     // (size 0: what lavapipe answers for a resource too large to make)
     if (r.size == 0)
         throw DeviceCapacityError("resource '" + d.name + "': device '" + name_ +
-                                  "' reports no memory requirements for it; nothing was allocated");
+                                  "' reports no memory requirements for it; nothing was allocated", d.name);
     if (types == 0)
         throw ExecutorError("resource '" + d.name + "': device '" + name_ +
                             "' reports no DEVICE_LOCAL memory type for it; nothing was allocated");

@@ -83,7 +83,7 @@ void refuseOverCap(const DeviceCapacity& capacity, const ResourceDesc& d, VkDevi
     if (capacity.memoryCap != 0 && bytes > capacity.memoryCap)
         throw DeviceCapacityError("resource '" + d.name + "' needs " + gib(bytes) + ", over the memory cap of " +
                             gib(capacity.memoryCap) +
-                            " (half the device's largest device-local heap); nothing was allocated");
+                            " (half the device's largest device-local heap); nothing was allocated", d.name);
 }
 
 }  // namespace
@@ -96,11 +96,11 @@ void refuseImageBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc&
     if (width > most || height > most)
         throw DeviceCapacityError("resource '" + d.name + "': " + std::to_string(width) + "x" + std::to_string(height) +
                             " exceeds the device's " + (cube ? "maxImageDimensionCube" : "maxImageDimension2D") +
-                            " (" + std::to_string(most) + ")" + at + "; nothing was allocated");
+                            " (" + std::to_string(most) + ")" + at + "; nothing was allocated", d.name);
     if (layers > limits.maxImageArrayLayers)
         throw DeviceCapacityError("resource '" + d.name + "': " + std::to_string(layers) +
                             " layers exceed the device's maxImageArrayLayers (" +
-                            std::to_string(limits.maxImageArrayLayers) + "); nothing was allocated");
+                            std::to_string(limits.maxImageArrayLayers) + "); nothing was allocated", d.name);
     refuseOverCap(capacity, d, packedBytes(d, width, height, mips, layers));
 }
 
@@ -121,11 +121,11 @@ void refuseBufferBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc
     if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && d.sizeBytes > limits.maxStorageBufferRange)
         throw DeviceCapacityError("resource '" + d.name + "': a storage buffer of " + std::to_string(d.sizeBytes) +
                             " bytes exceeds the device's maxStorageBufferRange (" +
-                            std::to_string(limits.maxStorageBufferRange) + "); nothing was allocated");
+                            std::to_string(limits.maxStorageBufferRange) + "); nothing was allocated", d.name);
     if ((usage & VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT) && d.sizeBytes > limits.maxUniformBufferRange)
         throw DeviceCapacityError("resource '" + d.name + "': a uniform buffer of " + std::to_string(d.sizeBytes) +
                             " bytes exceeds the device's maxUniformBufferRange (" +
-                            std::to_string(limits.maxUniformBufferRange) + "); nothing was allocated");
+                            std::to_string(limits.maxUniformBufferRange) + "); nothing was allocated", d.name);
     refuseOverCap(capacity, d, bufferBytes(d));
 }
 

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace skygraph {
@@ -34,7 +35,15 @@ public:
 /// itself (half the largest device-local heap). Smaller sizes, or a larger device, would run.
 class DeviceCapacityError : public ExecutorError {
 public:
-    using ExecutorError::ExecutorError;
+    /// `resource`: the graph resource past a limit; empty when only the plan's resources
+    /// together are.
+    explicit DeviceCapacityError(const std::string& message, std::string resource = {})
+        : ExecutorError(message), resource_(std::move(resource)) {}
+    /// The resource past a limit, or empty when the plan's memory as a whole is over the cap.
+    [[nodiscard]] const std::string& resource() const noexcept { return resource_; }
+
+private:
+    std::string resource_;
 };
 
 /// What presenting to a window needs of the Device. Both halves come from the application's

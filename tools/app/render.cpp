@@ -235,10 +235,20 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
         env.renderer =
             bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
     } catch (const DeviceCapacityError& e) {
-        // The bake's images are as large as the environment file: one the device cannot hold
-        // is named where the scene names it.
+        // The equirect is as large as the environment file, and cubes sized for the view grow
+        // with its width: one of those the device cannot hold is named where the scene names
+        // the file. Any other resource is as large as the environment graph declares it.
         const std::optional<SceneEnvironment>& sky = inputs.scene ? inputs.scene->environment : std::nullopt;
         if (!sky || sky->procedural) throw;
+        const bool sizedForView = inputs.environmentSizes && (e.resource() == kEnvironment ||
+                                                              e.resource() == kEnvironmentPrevious ||
+                                                              e.resource() == kPrefiltered);
+        if (!e.resource().empty() && e.resource() != kEquirect && !sizedForView) {
+            const ResourceDesc* declared = env.graph->findResource(e.resource());
+            Diagnostics d;
+            d.add({env.graph->file, declared ? declared->jsonPath() : "", "", "", e.what()});  // names the resource
+            throw GraphError(std::move(d));
+        }
         const std::filesystem::path file = sky->sequence ? sky->sequence->frame(inputs.sequenceFrame) : sky->file;
         Diagnostics d;
         d.add({inputs.scene->file, sky->sequence ? "environment.sequence" : "environment.file", "", "",

@@ -1,0 +1,106 @@
+// An environment bake the device cannot hold is named where its size comes from: a cube sized
+// for the view grows with the environment file's width, so the scene's file is named; a cube
+// built at the size the environment graph declares is that graph's resource. Both fail on
+// lavapipe (its memory cap is 1 GiB) while compiling with the device's memory model, before
+// anything is allocated, and validation stays silent.
+#include "executor_test_util.hpp"
+
+#include "app/render.hpp"
+
+#include <skygraph/compiler.hpp>
+#include <skygraph/hdr_image.hpp>
+#include <skygraph/scene.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace skygraph::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readText(const fs::path& file) {
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+/// `graph` with its `environment` cube declared `face` texels a side (the shipped graphs
+/// declare 256).
+std::string withEnvironmentFace(std::string graph, uint32_t face) {
+    const std::regex declared(R"("environment":\s*\{[^}]*?"extent":\s*(\[\s*256,\s*256\s*\]))");
+    std::smatch m;
+    if (!std::regex_search(graph, m, declared)) {
+        ADD_FAILURE() << "no environment extent to resize";
+        return graph;
+    }
+    const std::string size = std::to_string(face);
+    return graph.replace(static_cast<size_t>(m.position(1)), static_cast<size_t>(m.length(1)), "[" + size + ", " + size + "]");
+}
+
+class EnvironmentCapacity : public ExecutorTest {
+protected:
+    EnvironmentCapacity() {
+        dir_ = fs::temp_directory_path() / ("skygraph_environment_capacity_" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+        // As wide as an image may be (16384) and 2 texels tall: 256 KiB of pixels, whose
+        // width alone asks a view-sized cube of 8192^2.
+        const uint32_t width = 16384, height = 2;
+        saveHdrImage(dir_ / "wide.hdr", HdrImage{width, height, std::vector<float>(size_t(width) * height * 4, 0.5f)});
+        const fs::path graphs = fs::path(SKYGRAPH_SOURCE_DIR) / "graphs";
+        options_.graphText = withEnvironmentFace(readText(graphs / "raster.json"), 16384);
+        options_.sceneText = R"({"camera": {"fov_y_deg": 40},
+            "environment": {"file": ")" + (dir_ / "wide.hdr").string() + R"(", "sampling": "cubemap"}})";
+        options_.environmentGraphText = withEnvironmentFace(readText(graphs / "ibl.json"), 16384);
+        options_.width = 64;
+        options_.height = 4096;  // 4096 / tan(20 degrees): a face of 16384 resolves its pixels
+        options_.device = "llvmpipe";
+    }
+    ~EnvironmentCapacity() override { fs::remove_all(dir_); }
+
+    /// The diagnostics of the bake's failure, which must be `Error`.
+    template <typename Error>
+    std::vector<Diagnostic> bakeFailure() {
+        app::FrameInputs inputs = app::loadFrameInputs(options_);
+        const Plan plan = compile(inputs.graph, inputs.compile);
+        try {
+            (void)app::bakeFrameEnvironment(sharedDevice(), plan, inputs, options_);
+            ADD_FAILURE() << "the bake was accepted";
+        } catch (const Error& e) {
+            return e.diagnostics().items();
+        }
+        return {};
+    }
+
+    fs::path dir_;
+    app::RenderOptions options_;
+};
+
+TEST_F(EnvironmentCapacity, AViewSizedCubeTooLargeNamesTheEnvironmentFile) {
+    const std::vector<Diagnostic> d = bakeFailure<SceneError>();
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0].jsonPath, "environment.file");
+    EXPECT_NE(d[0].message.find("wide.hdr' (16384x2) is too large for this device to bake: resource 'environment'"),
+              std::string::npos)
+        << d[0].message;
+    EXPECT_NE(d[0].message.find("over the memory cap"), std::string::npos) << d[0].message;
+}
+
+TEST_F(EnvironmentCapacity, ACubeAtItsDeclaredSizeNamesTheEnvironmentGraph) {
+    options_.fitEnvironmentToView = false;  // built at 16384^2, as declared
+    const std::vector<Diagnostic> d = bakeFailure<GraphError>();
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0].file, "<built-in ibl.json>") << "not the scene";
+    EXPECT_EQ(d[0].jsonPath, "resources.environment");
+    EXPECT_EQ(d[0].message.find("wide.hdr"), std::string::npos) << "the file is not to blame: " << d[0].message;
+    EXPECT_NE(d[0].message.find("resource 'environment' needs"), std::string::npos) << d[0].message;
+    EXPECT_NE(d[0].message.find("over the memory cap"), std::string::npos) << d[0].message;
+}
+
+}  // namespace
+}  // namespace skygraph::test
