@@ -127,6 +127,35 @@ TEST(RenderCommand, WritesPngAndReportsUserErrors) {
     std::filesystem::remove_all(dir);
 }
 
+// A resource the device cannot hold is named where the graph declares it (file, JSON path),
+// before anything is allocated: at 16384^2, raster.json's hdr_color (RGBA16F) needs 2 GiB,
+// over lavapipe's memory cap of 1 GiB. What does fit renders as before.
+class RenderCapacity : public ExecutorTest {};
+
+TEST_F(RenderCapacity, AResourceTooLargeIsNamedAtItsDeclaration) {
+    RenderOptions o;
+    o.graph = std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json";
+    o.width = o.height = 16384;
+    o.frames = 1;
+    app::FrameInputs inputs = app::loadFrameInputs(o);
+    try {
+        (void)app::renderFrames(sharedDevice(), CompiledGraph(inputs.graph, inputs.compile), inputs, o);
+        FAIL() << "16384x16384 was accepted";
+    } catch (const GraphError& e) {
+        const std::vector<Diagnostic>& d = e.diagnostics().items();
+        ASSERT_EQ(d.size(), 1u) << e.what();
+        EXPECT_EQ(d[0].file, o.graph.string());
+        EXPECT_EQ(d[0].jsonPath, "resources.hdr_color");
+        EXPECT_NE(d[0].message.find("resource 'hdr_color' needs 2.00 GiB, over the memory cap"), std::string::npos)
+            << d[0].message;
+    }
+    o.width = o.height = 16;
+    inputs = app::loadFrameInputs(o);
+    const app::RenderedFrames frames =
+        app::renderFrames(sharedDevice(), CompiledGraph(inputs.graph, inputs.compile), inputs, o);
+    EXPECT_EQ(frames.renderer->frameCount(), 1u);
+}
+
 // The image writers fail as hdr_image.hpp's savers do: an ImageError that names the file.
 TEST(ImageOutput, WritersThrowImageErrorNamingTheFile) {
     ImageData pixels;

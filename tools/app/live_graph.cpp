@@ -25,6 +25,16 @@
 namespace skygraph::app {
 namespace {
 
+/// `graph` compiled with `co` (whose memory model is the device's): a resource the device
+/// cannot hold is named at its declaration.
+CompiledGraph compileForDevice(const GraphDesc& graph, const CompileOptions& co) {
+    try {
+        return CompiledGraph(graph, co);
+    } catch (const DeviceCapacityError& e) {
+        throwAtDeclaration(graph, e);
+    }
+}
+
 /// What the overlay edits survives a rebuild; the rest (objects, the environment) comes from
 /// the reloaded files.
 void keepViewSettings(const Scene& edited, Scene& loaded) {
@@ -174,7 +184,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     co.outputWidth = width_;
     co.outputHeight = height_;
     co.memory = device_.memoryModel();  // what the renderer compiles with: it would compile again
-    CompiledGraph compiled(inputs.graph, co);
+    CompiledGraph compiled = compileForDevice(inputs.graph, co);
     for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
     const std::shared_ptr<ShaderCompiler> lastBake = built_ ? built_->bakeShaders : nullptr;
     b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options,

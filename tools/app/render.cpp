@@ -243,12 +243,7 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
         const bool sizedForView = inputs.environmentSizes && (e.resource() == kEnvironment ||
                                                               e.resource() == kEnvironmentPrevious ||
                                                               e.resource() == kPrefiltered);
-        if (!e.resource().empty() && e.resource() != kEquirect && !sizedForView) {
-            const ResourceDesc* declared = env.graph->findResource(e.resource());
-            Diagnostics d;
-            d.add({env.graph->file, declared ? declared->jsonPath() : "", "", "", e.what()});  // names the resource
-            throw GraphError(std::move(d));
-        }
+        if (!e.resource().empty() && e.resource() != kEquirect && !sizedForView) throwAtDeclaration(*env.graph, e);
         const std::filesystem::path file = sky->sequence ? sky->sequence->frame(inputs.sequenceFrame) : sky->file;
         Diagnostics d;
         d.add({inputs.scene->file, sky->sequence ? "environment.sequence" : "environment.file", "", "",
@@ -289,13 +284,25 @@ void UploadPassPixels::stageFor(Renderer& renderer) const {
     for (const auto& [resource, buffer] : staged_) renderer.stageUpload(resource, buffer);
 }
 
+void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e) {
+    const ResourceDesc* declared = e.resource().empty() ? nullptr : graph.findResource(e.resource());
+    if (!declared) throw e;
+    Diagnostics d;
+    d.add({graph.file, declared->jsonPath(), "", "", e.what()});  // the message names the resource
+    throw GraphError(std::move(d));
+}
+
 RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs& inputs, const RenderOptions& options) {
     RenderedFrames out;
     out.environment = bakeFrameEnvironment(device, compiled.plan(), inputs, options);
     RendererOptions ropts;
     ropts.framesInFlight = options.framesInFlight;
     ropts.passes = inputs.passes;
-    out.renderer = std::make_unique<Renderer>(device, std::move(compiled), ropts);
+    try {
+        out.renderer = std::make_unique<Renderer>(device, std::move(compiled), ropts);
+    } catch (const DeviceCapacityError& e) {
+        throwAtDeclaration(inputs.graph, e);
+    }
     const UploadPassPixels uploads(device, *out.renderer, inputs.environment);
     attachFrameInputs(*out.renderer, inputs, out.environment);
     for (uint32_t i = 0; i < options.frames; ++i) {

@@ -170,6 +170,11 @@ struct RenderedFrames {
     std::unique_ptr<Renderer> renderer;
 };
 
+/// Throws `e` as a GraphError at the declaration in `graph` of the resource it names (file,
+/// JSON path), for a resource of `graph` the device cannot hold; rethrows `e` as it is when
+/// it names none of `graph`'s resources (only all of them together are too large).
+[[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e);
+
 /// Renders options.frames frames of `compiled` (compiled from inputs.graph, headless) on
 /// `device` with what `inputs` holds (the scene, the environment), options.framesInFlight in
 /// flight, and waits for them. Throws what the executor throws.
