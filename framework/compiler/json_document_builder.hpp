@@ -130,7 +130,8 @@ public:
     /// Path of the innermost open container (for parse errors).
     [[nodiscard]] std::string currentPath() const { return path(false); }
     /// The path of the value being read: the next element of the innermost array, or the
-    /// current key's member of the innermost object.
+    /// current key's member of the innermost object. Only while a value is being read: where
+    /// a key is expected, the current key is the previous member's.
     [[nodiscard]] std::string valuePath() const { return path(true); }
 
 private:

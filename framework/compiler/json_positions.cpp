@@ -37,8 +37,10 @@ size_t tokenStart(std::string_view text, size_t byte, std::string_view what) {
     auto partOf = [](char c, std::string_view extra) {
         return std::isalnum(static_cast<unsigned char>(c)) || extra.find(c) != std::string_view::npos;
     };
+    // (A number too large for a double is nlohmann's out_of_range.406, whose message leads
+    // with its id; a parse error's message may quote any text that was read.)
     const bool number = what.find("unexpected number literal") != std::string_view::npos ||
-                        what.find("number overflow") != std::string_view::npos;
+                        what.starts_with("[json.exception.out_of_range.406]");
     const bool literal = what.find("unexpected true literal") != std::string_view::npos ||
                          what.find("unexpected false literal") != std::string_view::npos ||
                          what.find("unexpected null literal") != std::string_view::npos;

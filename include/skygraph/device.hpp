@@ -35,11 +35,11 @@ public:
 /// itself (half the largest device-local heap). Smaller sizes, or a larger device, would run.
 class DeviceCapacityError : public ExecutorError {
 public:
-    /// `resource`: the graph resource past a limit; empty when only the plan's resources
-    /// together are.
+    /// `resource`: the graph resource past a limit; empty when no one resource is (all of
+    /// them together over the memory cap, a heap of transients past the largest allocation).
     explicit DeviceCapacityError(const std::string& message, std::string resource = {})
         : ExecutorError(message), resource_(std::move(resource)) {}
-    /// The resource past a limit, or empty when the plan's memory as a whole is over the cap.
+    /// The resource past a limit, or empty (above). Valid while this exception object lives.
     [[nodiscard]] const std::string& resource() const noexcept { return resource_; }
 
 private:

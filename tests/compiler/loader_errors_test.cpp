@@ -1361,6 +1361,10 @@ TEST(JsonPositions, NumberTooLargeNamesTheNumberItself) {
         EXPECT_EQ(r.line, 1);
         EXPECT_EQ(r.column, c.column);
     }
+    // The words quoted from the text do not make a syntax error a number's.
+    const JsonParseResult quoted = parseJsonWithPositions("{\"a\": \"number overflow\x01\"}");
+    EXPECT_EQ(quoted.errorPath, "");
+    EXPECT_EQ(quoted.column, 23) << "the control character";
 }
 
 TEST(JsonPositions, ColumnsPointAtTheStartOfTheBadToken) {

@@ -1,8 +1,9 @@
-// An environment bake the device cannot hold is named where its size comes from: a cube sized
-// for the view grows with the environment file's width, so the scene's file is named; a cube
-// built at the size the environment graph declares is that graph's resource. Both fail on
-// lavapipe (its memory cap is 1 GiB) while compiling with the device's memory model, before
-// anything is allocated, and validation stays silent.
+// An environment bake the device cannot hold is named where its size comes from. A cube sized
+// for the view is the least of what the environment file's width holds, what the view
+// resolves and what the frame graph declares: the file is named when its width set the size,
+// else the frame graph's declaration. A cube built at the size the environment graph declares
+// is that graph's resource. Each fails on lavapipe (its memory cap is 1 GiB) before anything
+// is allocated, and validation stays silent.
 #include "executor_test_util.hpp"
 
 #include "app/render.hpp"
@@ -63,6 +64,12 @@ protected:
     }
     ~EnvironmentCapacity() override { fs::remove_all(dir_); }
 
+    /// The frame graph's `environment` declared `face` texels a side: the largest cube the
+    /// view may ask for.
+    void declareFrameEnvironment(uint32_t face) {
+        options_.graphText = withEnvironmentFace(readText(fs::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json"), face);
+    }
+
     /// The diagnostics of the bake's failure, which must be `Error`.
     template <typename Error>
     std::vector<Diagnostic> bakeFailure() {
@@ -89,6 +96,16 @@ TEST_F(EnvironmentCapacity, AViewSizedCubeTooLargeNamesTheEnvironmentFile) {
               std::string::npos)
         << d[0].message;
     EXPECT_NE(d[0].message.find("over the memory cap"), std::string::npos) << d[0].message;
+}
+
+TEST_F(EnvironmentCapacity, AViewSizedCubeCappedByTheFrameGraphNamesItsDeclaration) {
+    declareFrameEnvironment(8192);  // the file's width holds 8192 too: the declaration caps it
+    const std::vector<Diagnostic> d = bakeFailure<GraphError>();
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0].file, "<built-in raster.json>") << "the frame graph";
+    EXPECT_EQ(d[0].jsonPath, "resources.environment");
+    EXPECT_EQ(d[0].message.find("wide.hdr"), std::string::npos) << "the file is not to blame: " << d[0].message;
+    EXPECT_NE(d[0].message.find("resource 'environment' needs"), std::string::npos) << d[0].message;
 }
 
 TEST_F(EnvironmentCapacity, ACubeAtItsDeclaredSizeNamesTheEnvironmentGraph) {

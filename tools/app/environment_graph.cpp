@@ -51,6 +51,8 @@ std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph
         return std::nullopt;
     EnvironmentSizes sizes;
     sizes.environment = viewEnvironmentFaceSize(outputHeight, fovYDeg, equirectWidth, environment->extent.width);
+    sizes.boundBySource =
+        sizes.environment < viewEnvironmentFaceSize(outputHeight, fovYDeg, ~0u, environment->extent.width);
     sizes.prefiltered = sizes.environment / 2;
     if (const ResourceDesc* prefiltered = frameGraph.findResource(kPrefiltered);
         prefiltered && !prefiltered->extent.relativeToOutput) {

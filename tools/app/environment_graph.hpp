@@ -14,6 +14,9 @@ namespace skygraph::app {
 struct EnvironmentSizes {
     uint32_t environment = 256;
     uint32_t prefiltered = 128;
+    /// The equirect's width set `environment`: a wider one would have given a larger cube
+    /// (rather than the view or the frame graph's declared extent).
+    bool boundBySource = false;
 
     friend bool operator==(const EnvironmentSizes&, const EnvironmentSizes&) = default;
 };

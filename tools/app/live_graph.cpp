@@ -25,13 +25,13 @@
 namespace skygraph::app {
 namespace {
 
-/// `graph` compiled with `co` (whose memory model is the device's): a resource the device
-/// cannot hold is named at its declaration.
-CompiledGraph compileForDevice(const GraphDesc& graph, const CompileOptions& co) {
+/// inputs.graph compiled with `co` (whose memory model is the device's): a transient the
+/// device cannot hold is named where its size comes from (throwCapacityError).
+CompiledGraph compileForDevice(const FrameInputs& inputs, const CompileOptions& co) {
     try {
-        return CompiledGraph(graph, co);
+        return CompiledGraph(inputs.graph, co);
     } catch (const DeviceCapacityError& e) {
-        throwAtDeclaration(graph, e);
+        throwCapacityError(inputs, co, e);
     }
 }
 
@@ -184,7 +184,7 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     co.outputWidth = width_;
     co.outputHeight = height_;
     co.memory = device_.memoryModel();  // what the renderer compiles with: it would compile again
-    CompiledGraph compiled = compileForDevice(inputs.graph, co);
+    CompiledGraph compiled = compileForDevice(inputs, co);
     for (const auto& c : compiled.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
     const std::shared_ptr<ShaderCompiler> lastBake = built_ ? built_->bakeShaders : nullptr;
     b->environment = bakeFrameEnvironment(device_, compiled.plan(), inputs, options,
@@ -195,7 +195,11 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
     ro.passes = inputs.passes;
     ro.presentTo = swapchain_;
     if (shaders == Renderer::ShaderSources::Cached && renderer_) ro.shaderCompiler = renderer_->shaderCompiler();
-    b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
+    try {  // the renderer checks every resource, the externals and exported ones too
+        b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
+    } catch (const DeviceCapacityError& e) {
+        throwCapacityError(inputs, co, e);
+    }
     b->uploads = UploadPassPixels(device_, *b->renderer, inputs.environment);
     attachFrameInputs(*b->renderer, inputs, b->environment);
     return b;

@@ -47,6 +47,40 @@ std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, cons
     return loadGraphFile(file, registry);
 }
 
+/// The scene's environment file, when the frame has one (not the procedural sky).
+const SceneEnvironment* environmentFile(const FrameInputs& inputs) {
+    if (!inputs.environment || !inputs.scene || !inputs.scene->environment || inputs.scene->environment->procedural)
+        return nullptr;
+    return &*inputs.scene->environment;
+}
+
+/// `e`, for a resource as large as the environment file, named where the scene names the file.
+[[noreturn]] void throwAtEnvironmentFile(const FrameInputs& inputs, const SceneEnvironment& sky,
+                                         const DeviceCapacityError& e, std::string_view doing) {
+    const std::filesystem::path file = sky.sequence ? sky.sequence->frame(inputs.sequenceFrame) : sky.file;
+    Diagnostics d;
+    d.add({inputs.scene->file, sky.sequence ? "environment.sequence" : "environment.file", "", "",
+           "'" + printableName(file.string()) + "' (" + std::to_string(inputs.environment->width) + "x" +
+               std::to_string(inputs.environment->height) + ") is too large for this device" + std::string(doing) +
+               ": " + e.what()});
+    throw SceneError(std::move(d));
+}
+
+/// `e` named at the declaration in `graph` of the resource it names, with the output size
+/// (`compiled`'s, when given) for an extent that follows it; `e` as it is when it names no
+/// resource of `graph`.
+[[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e, const CompileOptions* compiled) {
+    const ResourceDesc* declared = e.resource().empty() ? nullptr : graph.findResource(e.resource());
+    if (!declared) throw e;
+    std::string message = e.what();  // it names the resource
+    if (compiled && declared->extent.relativeToOutput)
+        message += " (its extent follows the output, " + std::to_string(compiled->outputWidth) + "x" +
+                   std::to_string(compiled->outputHeight) + ")";
+    Diagnostics d;
+    d.add({graph.file, declared->jsonPath(), "", "", std::move(message)});
+    throw GraphError(std::move(d));
+}
+
 /// What the plan samples of the environment pipeline's outputs: the externals it imports
 /// (`initial` set) that the environment graph exports under the same name.
 std::set<std::string, std::less<>> environmentProducts(const Plan& plan, const GraphDesc& graph,
@@ -235,21 +269,21 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
         env.renderer =
             bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
     } catch (const DeviceCapacityError& e) {
-        // The equirect is as large as the environment file, and cubes sized for the view grow
-        // with its width: one of those the device cannot hold is named where the scene names
-        // the file. Any other resource is as large as the environment graph declares it.
-        const std::optional<SceneEnvironment>& sky = inputs.scene ? inputs.scene->environment : std::nullopt;
-        if (!sky || sky->procedural) throw;
-        const bool sizedForView = inputs.environmentSizes && (e.resource() == kEnvironment ||
-                                                              e.resource() == kEnvironmentPrevious ||
-                                                              e.resource() == kPrefiltered);
-        if (!e.resource().empty() && e.resource() != kEquirect && !sizedForView) throwAtDeclaration(*env.graph, e);
-        const std::filesystem::path file = sky->sequence ? sky->sequence->frame(inputs.sequenceFrame) : sky->file;
-        Diagnostics d;
-        d.add({inputs.scene->file, sky->sequence ? "environment.sequence" : "environment.file", "", "",
-               "'" + printableName(file.string()) + "' (" + std::to_string(inputs.environment->width) + "x" +
-                   std::to_string(inputs.environment->height) + ") is too large for this device to bake: " + e.what()});
-        throw SceneError(std::move(d));
+        // The equirect is as large as the scene's file. A cube sized for the view is the least
+        // of what the file's width holds, what the view resolves and what the frame graph
+        // declares; any other resource is as the environment graph declares it.
+        const SceneEnvironment* sky = environmentFile(inputs);
+        const bool sizedForView =
+            inputs.environmentSizes && (e.resource() == kEnvironment || e.resource() == kPrefiltered);
+        if (sky && (e.resource() == kEquirect || (sizedForView && inputs.environmentSizes->boundBySource)))
+            throwAtEnvironmentFile(inputs, *sky, e, " to bake");
+        if (sizedForView) throwAtDeclaration(inputs.graph, e, nullptr);
+        if (e.resource().empty()) {  // the bake's resources together: named by its graph
+            Diagnostics d;
+            d.add({env.graph->file, "", "", "", "the environment bake: " + std::string(e.what())});
+            throw GraphError(std::move(d));
+        }
+        throwAtDeclaration(*env.graph, e, nullptr);
     }
     return env;
 }
@@ -284,12 +318,10 @@ void UploadPassPixels::stageFor(Renderer& renderer) const {
     for (const auto& [resource, buffer] : staged_) renderer.stageUpload(resource, buffer);
 }
 
-void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e) {
-    const ResourceDesc* declared = e.resource().empty() ? nullptr : graph.findResource(e.resource());
-    if (!declared) throw e;
-    Diagnostics d;
-    d.add({graph.file, declared->jsonPath(), "", "", e.what()});  // the message names the resource
-    throw GraphError(std::move(d));
+void throwCapacityError(const FrameInputs& inputs, const CompileOptions& compiled, const DeviceCapacityError& e) {
+    if (e.resource() == kEquirect)
+        if (const SceneEnvironment* sky = environmentFile(inputs)) throwAtEnvironmentFile(inputs, *sky, e, "");
+    throwAtDeclaration(inputs.graph, e, &compiled);
 }
 
 RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs& inputs, const RenderOptions& options) {
@@ -298,10 +330,11 @@ RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs&
     RendererOptions ropts;
     ropts.framesInFlight = options.framesInFlight;
     ropts.passes = inputs.passes;
+    const CompileOptions compiledWith = compiled.options();  // `compiled` moves into the renderer
     try {
         out.renderer = std::make_unique<Renderer>(device, std::move(compiled), ropts);
     } catch (const DeviceCapacityError& e) {
-        throwAtDeclaration(inputs.graph, e);
+        throwCapacityError(inputs, compiledWith, e);
     }
     const UploadPassPixels uploads(device, *out.renderer, inputs.environment);
     attachFrameInputs(*out.renderer, inputs, out.environment);

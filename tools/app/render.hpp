@@ -170,10 +170,13 @@ struct RenderedFrames {
     std::unique_ptr<Renderer> renderer;
 };
 
-/// Throws `e` as a GraphError at the declaration in `graph` of the resource it names (file,
-/// JSON path), for a resource of `graph` the device cannot hold; rethrows `e` as it is when
-/// it names none of `graph`'s resources (only all of them together are too large).
-[[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e);
+/// Throws `e`, a resource of inputs.graph that the device cannot hold when compiled with
+/// `compiled`, named where its size comes from: the scene's environment file for the
+/// equirect (as a SceneError), else the resource's declaration in the graph (a GraphError with
+/// its file and JSON path, and the output size for an extent that follows it). Rethrows `e`
+/// as it is when it names no resource of the graph.
+[[noreturn]] void throwCapacityError(const FrameInputs& inputs, const CompileOptions& compiled,
+                                     const DeviceCapacityError& e);
 
 /// Renders options.frames frames of `compiled` (compiled from inputs.graph, headless) on
 /// `device` with what `inputs` holds (the scene, the environment), options.framesInFlight in
