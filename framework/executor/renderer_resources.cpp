@@ -21,7 +21,11 @@ namespace {
 /// them); the others as themselves, once per copy.
 void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity, uint32_t slots) {
     const uint32_t outputWidth = s.outputWidth(), outputHeight = s.outputHeight();
-    const std::string at = " at output " + std::to_string(outputWidth) + "x" + std::to_string(outputHeight);
+    // The output size is named only where it made the sizes: a bake's fixed-size cubes have none.
+    const std::string atOutput = " at output " + std::to_string(outputWidth) + "x" + std::to_string(outputHeight);
+    bool anyFollowsOutput = false;
+    for (const ResourceState& r : s.resources) anyFollowsOutput |= r.isImage && r.desc->extent.relativeToOutput;
+    const std::string at = anyFollowsOutput ? atOutput : "";
     VkDeviceSize total = 0;
     for (const ResourceState& r : s.resources) {
         const ResourceDesc& d = *r.desc;
@@ -33,7 +37,7 @@ void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity
         } else {
             const auto [w, h] = d.extent.resolve(outputWidth, outputHeight);
             const uint32_t mips = std::max(1u, d.mipCount(outputWidth, outputHeight));
-            refuseImageBeyondLimits(capacity, d, w, h, mips, d.layers, at);
+            refuseImageBeyondLimits(capacity, d, w, h, mips, d.layers, d.extent.relativeToOutput ? atOutput : "");
             bytes = packedBytes(d, w, h, mips, d.layers);
         }
         if (r.placement == PlannedResource::kNoPlacement) total += bytes * copies;
