@@ -24,8 +24,6 @@ void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity
     // The output size is named only where it made the sizes: a bake's fixed-size cubes have none.
     const std::string atOutput = " at output " + std::to_string(outputWidth) + "x" + std::to_string(outputHeight);
     bool anyFollowsOutput = false;
-    for (const ResourceState& r : s.resources) anyFollowsOutput |= r.isImage && r.desc->extent.relativeToOutput;
-    const std::string at = anyFollowsOutput ? atOutput : "";
     VkDeviceSize total = 0;
     for (const ResourceState& r : s.resources) {
         const ResourceDesc& d = *r.desc;
@@ -38,10 +36,12 @@ void refuseOversizedResources(const PlanState& s, const DeviceCapacity& capacity
             const auto [w, h] = d.extent.resolve(outputWidth, outputHeight);
             const uint32_t mips = std::max(1u, d.mipCount(outputWidth, outputHeight));
             refuseImageBeyondLimits(capacity, d, w, h, mips, d.layers, d.extent.relativeToOutput ? atOutput : "");
+            anyFollowsOutput |= d.extent.relativeToOutput;
             bytes = packedBytes(d, w, h, mips, d.layers);
         }
         if (r.placement == PlannedResource::kNoPlacement) total += bytes * copies;
     }
+    const std::string at = anyFollowsOutput ? atOutput : "";
     const std::vector<MemoryHeap>& heaps = s.plan.memory().heaps;
     for (size_t h = 0; h < heaps.size(); ++h)
         if (capacity.maxAllocation != 0 && heaps[h].bytes > capacity.maxAllocation)

@@ -7,15 +7,14 @@
 #include "executor_test_util.hpp"
 
 #include "app/render.hpp"
+#include "read_file.hpp"
 
 #include <skygraph/compiler.hpp>
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/scene.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 #include <unistd.h>
 
@@ -23,13 +22,6 @@ namespace skygraph::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 /// `graph` with its `environment` cube declared `face` texels a side (the shipped graphs
 /// declare 256).
@@ -53,11 +45,10 @@ protected:
         // width alone asks a view-sized cube of 8192^2.
         const uint32_t width = 16384, height = 2;
         saveHdrImage(dir_ / "wide.hdr", HdrImage{width, height, std::vector<float>(size_t(width) * height * 4, 0.5f)});
-        const fs::path graphs = fs::path(SKYGRAPH_SOURCE_DIR) / "graphs";
-        options_.graphText = withEnvironmentFace(readText(graphs / "raster.json"), 16384);
+        declareFrameEnvironment(16384);
         options_.sceneText = R"({"camera": {"fov_y_deg": 40},
             "environment": {"file": ")" + (dir_ / "wide.hdr").string() + R"(", "sampling": "cubemap"}})";
-        options_.environmentGraphText = withEnvironmentFace(readText(graphs / "ibl.json"), 16384);
+        options_.environmentGraphText = withEnvironmentFace(shippedGraph("ibl.json"), 16384);
         options_.width = 64;
         options_.height = 4096;  // 4096 / tan(20 degrees): a face of 16384 resolves its pixels
         options_.device = "llvmpipe";
@@ -66,8 +57,10 @@ protected:
 
     /// The frame graph's `environment` declared `face` texels a side: the largest cube the
     /// view may ask for.
-    void declareFrameEnvironment(uint32_t face) {
-        options_.graphText = withEnvironmentFace(readText(fs::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json"), face);
+    void declareFrameEnvironment(uint32_t face) { options_.graphText = withEnvironmentFace(shippedGraph("raster.json"), face); }
+
+    static std::string shippedGraph(const char* name) {
+        return files::readFile(fs::path(SKYGRAPH_SOURCE_DIR) / "graphs" / name).value();
     }
 
     /// The diagnostics of the bake's failure, which must be `Error`.
@@ -88,6 +81,15 @@ protected:
     app::RenderOptions options_;
 };
 
+/// One diagnostic, naming the environment cube at its declaration in `graph` and not the file.
+void expectNamedAtDeclaration(const std::vector<Diagnostic>& d, const std::string& graph) {
+    ASSERT_EQ(d.size(), 1u);
+    EXPECT_EQ(d[0].file, graph);
+    EXPECT_EQ(d[0].jsonPath, "resources.environment");
+    EXPECT_EQ(d[0].message.find("wide.hdr"), std::string::npos) << "the file is not to blame: " << d[0].message;
+    EXPECT_NE(d[0].message.find("resource 'environment' needs"), std::string::npos) << d[0].message;
+}
+
 TEST_F(EnvironmentCapacity, AViewSizedCubeTooLargeNamesTheEnvironmentFile) {
     const std::vector<Diagnostic> d = bakeFailure<SceneError>();
     ASSERT_EQ(d.size(), 1u);
@@ -100,22 +102,14 @@ TEST_F(EnvironmentCapacity, AViewSizedCubeTooLargeNamesTheEnvironmentFile) {
 
 TEST_F(EnvironmentCapacity, AViewSizedCubeCappedByTheFrameGraphNamesItsDeclaration) {
     declareFrameEnvironment(8192);  // the file's width holds 8192 too: the declaration caps it
-    const std::vector<Diagnostic> d = bakeFailure<GraphError>();
-    ASSERT_EQ(d.size(), 1u);
-    EXPECT_EQ(d[0].file, "<built-in raster.json>") << "the frame graph";
-    EXPECT_EQ(d[0].jsonPath, "resources.environment");
-    EXPECT_EQ(d[0].message.find("wide.hdr"), std::string::npos) << "the file is not to blame: " << d[0].message;
-    EXPECT_NE(d[0].message.find("resource 'environment' needs"), std::string::npos) << d[0].message;
+    expectNamedAtDeclaration(bakeFailure<GraphError>(), "<built-in raster.json>");  // the frame graph
 }
 
 TEST_F(EnvironmentCapacity, ACubeAtItsDeclaredSizeNamesTheEnvironmentGraph) {
     options_.fitEnvironmentToView = false;  // built at 16384^2, as declared
     const std::vector<Diagnostic> d = bakeFailure<GraphError>();
-    ASSERT_EQ(d.size(), 1u);
-    EXPECT_EQ(d[0].file, "<built-in ibl.json>") << "not the scene";
-    EXPECT_EQ(d[0].jsonPath, "resources.environment");
-    EXPECT_EQ(d[0].message.find("wide.hdr"), std::string::npos) << "the file is not to blame: " << d[0].message;
-    EXPECT_NE(d[0].message.find("resource 'environment' needs"), std::string::npos) << d[0].message;
+    expectNamedAtDeclaration(d, "<built-in ibl.json>");  // not the scene
+    ASSERT_FALSE(d.empty());
     EXPECT_NE(d[0].message.find("over the memory cap"), std::string::npos) << d[0].message;
 }
 
