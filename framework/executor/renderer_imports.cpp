@@ -9,37 +9,104 @@ namespace skygraph {
 
 using namespace detail;
 
+namespace {
+
+/// What a swap replaced, kept until the new state is whole: when a pass implementation or a
+/// pipeline throws part way, the renderer goes on with the old image, and until then the
+/// frames in flight still use what is being replaced.
+struct SwapJournal {
+    struct PassBefore {
+        PassState* pass = nullptr;
+        /// A pass that uses the image: its slots (and recording code, when made again), whole.
+        bool rebuilt = false;
+        std::unique_ptr<PassImplementation> implementation;
+        std::vector<PassSlot> slots;
+        /// Any other pass: only its slots' barriers change (they name the image's handle).
+        std::vector<BarrierBatch> before, inPass;
+    };
+    ImageCopy image;
+    std::vector<PassBefore> passes;
+    std::vector<BarrierBatch> finals;
+    std::vector<std::vector<BarrierBatch>> releases;
+
+    /// Puts back everything saved so far (moves only: nothing here throws).
+    void rollBack(PlanState& s, ResourceState& r) noexcept {
+        for (PassBefore& p : passes) {
+            if (p.rebuilt) {
+                if (p.implementation) p.pass->implementation = std::move(p.implementation);
+                p.pass->slots = std::move(p.slots);
+                continue;
+            }
+            for (size_t slot = 0; slot < p.before.size(); ++slot) {
+                p.pass->slots[slot].before = std::move(p.before[slot]);
+                p.pass->slots[slot].inPass = std::move(p.inPass[slot]);
+            }
+        }
+        s.finals = std::move(finals);
+        s.releases = std::move(releases);
+        r.images[0] = std::move(image);
+    }
+
+    /// What the frames in flight may still use, for releaseRetired.
+    RetiredImport retired(uint64_t untilFrame) {
+        RetiredImport old;
+        old.untilFrame = untilFrame;
+        old.image = std::move(image);
+        for (PassBefore& p : passes) {
+            if (p.implementation) old.implementations.push_back(std::move(p.implementation));
+            for (PassSlot& slot : p.slots)
+                if (slot.framebuffer) old.framebuffers.push_back(std::move(slot.framebuffer));
+        }
+        return old;
+    }
+};
+
+}  // namespace
+
 void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& image) {
     ImageCopy next = adoptImport(s, index, image);
-    RetiredImport old;
-    old.untilFrame = frameIndex;
     ResourceState& r = s.resources[index];
-    old.image = std::move(r.images.at(0));
+    SwapJournal journal;
+    journal.image = std::move(r.images.at(0));
     r.images[0] = std::move(next);
-    ++r.contentsReplaced;
-    for (PassState& ps : s.passes) {
-        const bool uses = std::any_of(ps.pass->usages.begin(), ps.pass->usages.end(),
-                                      [&](const PlannedUsage& u) { return u.resource == index; });
-        if (!uses) {
-            for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) translatePassBarriers(s, ps, slot);
-            continue;
+    journal.finals = std::move(s.finals);
+    journal.releases = std::move(s.releases);
+    try {
+        journal.passes.reserve(s.passes.size());
+        for (PassState& ps : s.passes) {
+            SwapJournal::PassBefore& before = journal.passes.emplace_back();
+            before.pass = &ps;
+            before.rebuilt = std::any_of(ps.pass->usages.begin(), ps.pass->usages.end(),
+                                         [&](const PlannedUsage& u) { return u.resource == index; });
+            if (!before.rebuilt) {
+                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) {
+                    before.before.push_back(std::move(ps.slots[slot].before));
+                    before.inPass.push_back(std::move(ps.slots[slot].inPass));
+                    translatePassBarriers(s, ps, slot);
+                }
+                continue;
+            }
+            before.slots = std::move(ps.slots);
+            ps.slots = std::vector<PassSlot>(before.slots.size());
+            // A pass implementation may keep its slots' handles for its whole life
+            // (PipelineContext::frameSlots): one that does is replaced. One that reads them while
+            // recording keeps its pipelines, which depend on formats and sizes, not images.
+            if (ps.implementation && ps.implementation->keepsSlotHandles()) {
+                before.implementation = std::move(ps.implementation);
+                ps.implementation = implementationOf(*ps.pass, *ps.desc);
+                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) buildPassSlot(s, ps, slot);
+                createPipelines(s, ps);
+            } else {
+                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) buildPassSlot(s, ps, slot);
+            }
         }
-        // A pass implementation may keep its slots' handles for its whole life
-        // (PipelineContext::frameSlots): one that does is replaced. One that reads them while
-        // recording keeps its pipelines, which depend on formats and sizes, not images.
-        const bool remake = ps.implementation && ps.implementation->keepsSlotHandles();
-        if (remake) {
-            old.implementations.push_back(std::move(ps.implementation));
-            ps.implementation = implementationOf(*ps.pass, *ps.desc);
-        }
-        for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) {
-            if (ps.slots[slot].framebuffer) old.framebuffers.push_back(std::move(ps.slots[slot].framebuffer));
-            buildPassSlot(s, ps, slot);
-        }
-        if (remake) createPipelines(s, ps);
+        translateFinalBarriers(s, static_cast<uint32_t>(journal.finals.size()));
+    } catch (...) {
+        journal.rollBack(s, r);
+        throw;
     }
-    translateFinalBarriers(s, static_cast<uint32_t>(s.finals.size()));
-    retired.push_back(std::move(old));
+    ++r.contentsReplaced;
+    retired.push_back(journal.retired(frameIndex));
     releaseRetired();
 }
 

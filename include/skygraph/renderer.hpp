@@ -322,7 +322,10 @@ public:
     /// (its waitIdle()), or its background frame been finished (finishBackgroundFrame()),
     /// before this renderer's next frame. Neither waits nor rebuilds: frames already submitted
     /// keep the image they were recorded with, which stays alive until they finish. Throws
-    /// ExecutorError for an empty handle or on any mismatch, keeping the old image. For a
+    /// ExecutorError for an empty handle or on any mismatch, keeping the old image; when the
+    /// recording code made again for the new image throws (its factory or createPipelines),
+    /// that exception passes on and the old image, with everything built for it, keeps
+    /// running. For a
     /// resource the current plan does not use (its passes culled), the image is checked
     /// against the graph's declaration (device, format, extent, mips, layers) and kept for the
     /// rebuild that brings the resource back; what only a plan that uses it can say (usages,

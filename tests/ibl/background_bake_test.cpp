@@ -138,6 +138,67 @@ TEST_F(BackgroundBake, ASwapKeepsAPassThatReadsItsHandlesWhileRecording) {
     }
 }
 
+/// A CubeProbe whose pipelines fail once `failing` is set: a pass whose recording code cannot
+/// be made again for a new image.
+class FailingProbe final : public PassImplementation {
+public:
+    explicit FailingProbe(std::shared_ptr<const bool> failing)
+        : failing_(std::move(failing)), probe_(std::vector<Dir>{{1, 0, 0}}) {}
+    void createPipelines(const PipelineContext& ctx) override {
+        if (*failing_) throw ExecutorError("the probe's pipelines failed");
+        probe_.createPipelines(ctx);
+    }
+    void record(const RecordContext& ctx) override { probe_.record(ctx); }
+
+private:
+    std::shared_ptr<const bool> failing_;
+    CubeProbe probe_;
+};
+
+// An import whose swap fails part way (here, the pipelines of the pass made again for the new
+// image) leaves the renderer running the old image, with the framebuffers, barriers and
+// recording code built for it; a later import succeeds. Either way validation is silent.
+TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
+    for (const bool factoryThrows : {false, true}) {
+        const auto failing = std::make_shared<bool>(false);
+        const std::string type = factoryThrows ? "UnmadeProbe" : "FailingProbe";
+        library_.add(CubeProbe::typeInfo(type), [failing, factoryThrows](const PassDesc&) -> std::unique_ptr<PassImplementation> {
+            if (*failing && factoryThrows) throw ExecutorError("the probe cannot be made");
+            return std::make_unique<FailingProbe>(failing);
+        });
+        std::string graph = kFrameGraph;
+        graph.replace(graph.find("FaceProbe"), 9, type);
+        const std::unique_ptr<Renderer> probeFrame = frameRenderer(graph);
+        Renderer& frame = *probeFrame;
+        app::EnvironmentBake red = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(1, 0, 0), products_, &library_);
+        app::EnvironmentBake blue = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 0, 1), products_, &library_);
+        frame.importImage("environment", red.renderer->shareImage("environment"));
+        frame.renderFrame();
+        ASSERT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f);
+        *failing = true;
+        EXPECT_THROW(frame.importImage("environment", blue.renderer->shareImage("environment")), ExecutorError)
+            << "factory throws " << factoryThrows;
+        // The blue bake is gone: a frame that still used any of its image would be a
+        // use after free, which validation reports.
+        blue = {};
+        for (int i = 0; i < 3; ++i) {
+            frame.renderFrame();
+            EXPECT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f) << "the old cube, factory throws " << factoryThrows;
+        }
+        // A rebuild installs the import that succeeded, not the one that failed.
+        *failing = false;
+        frame.resize(8, 8);
+        frame.renderFrame();
+        EXPECT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f) << "after a rebuild, factory throws " << factoryThrows;
+        app::EnvironmentBake green = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
+        frame.importImage("environment", green.renderer->shareImage("environment"));
+        frame.renderFrame();
+        frame.renderFrame();
+        EXPECT_NEAR(frame.readback().rgba[1], 1.0f, 1e-3f) << "factory throws " << factoryThrows;
+        frame.waitIdle();
+    }
+}
+
 TEST_F(BackgroundBake, ProductsAreNotSharedBeforeTheBackgroundFrameIsFinished) {
     app::EnvironmentBake bake = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
     bake.renderer->renderFrameInBackground();  // one submit on the graphics queue: submitted whole
