@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <string_view>
 
 namespace skygraph::vk {
@@ -196,9 +197,12 @@ detail::PhysicalDeviceFacts deviceFacts(VkPhysicalDevice pd, VkSurfaceKHR surfac
     facts.swapchain = deviceExtensionAvailable(pd, VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     if (props.apiVersion >= VK_API_VERSION_1_3) {
         VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+        VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+        VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12, {}};
         vkGetPhysicalDeviceFeatures2(pd, &f2);
         facts.synchronization2 = f13.synchronization2 == VK_TRUE;
+        facts.separateDepthStencilLayouts = f12.separateDepthStencilLayouts == VK_TRUE;
+        facts.timelineSemaphore = f12.timelineSemaphore == VK_TRUE;
     }
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
@@ -241,6 +245,25 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
     vkEnumeratePhysicalDevices(instance, &n, pds.data());
     return pds;
 }
+
+/// Sets an environment variable for its lifetime, then puts back what was there (or nothing).
+class ScopedEnvironment {
+public:
+    ScopedEnvironment(const char* name, const std::string& value) : name_(name) {
+        if (const char* previous = std::getenv(name)) previous_ = previous;
+        setenv(name, value.c_str(), 1);
+    }
+    ~ScopedEnvironment() {
+        if (previous_) setenv(name_, previous_->c_str(), 1);
+        else unsetenv(name_);
+    }
+    ScopedEnvironment(const ScopedEnvironment&) = delete;
+    ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
+
+private:
+    const char* name_;
+    std::optional<std::string> previous_;
+};
 
 bool envFlag(const char* name) {
     const char* v = std::getenv(name);
@@ -292,9 +315,12 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     }
     const bool debugUtils = instanceExtensionAvailable(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
+    // Layer 1.3.239 reads its QUEUE_SUBMIT synchronization checks only from its settings
+    // (file or VK_LAYER_ENABLES); there is no API struct for it in this version. The
+    // application's environment is its own again once the instance and device exist (on a
+    // throw too).
+    std::optional<ScopedEnvironment> layerEnables;
     if (impl->validation) {
-        // Layer 1.3.239 reads its QUEUE_SUBMIT synchronization checks only from its settings
-        // (file or VK_LAYER_ENABLES); there is no API struct for it in this version.
         std::string enables = "VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT:"
                               "VALIDATION_CHECK_ENABLE_SYNCHRONIZATION_VALIDATION_QUEUE_SUBMIT";
         if (const char* prev = std::getenv("VK_LAYER_ENABLES"); prev && *prev) {
@@ -304,7 +330,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
                 enables = prev;
             }
         }
-        setenv("VK_LAYER_ENABLES", enables.c_str(), 1);
+        layerEnables.emplace("VK_LAYER_ENABLES", enables);
     }
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
@@ -423,11 +449,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     f12.pNext = &f13;
     f12.shaderOutputLayer = s12.shaderOutputLayer;
-    // Depth-only layouts (DEPTH_ATTACHMENT_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL) in plans.
-    if (!s12.separateDepthStencilLayouts) throw ExecutorError(impl->name + " lacks separateDepthStencilLayouts");
+    // Both required: selection refused every device lacking them (unsuitableReason).
     f12.separateDepthStencilLayouts = VK_TRUE;
-    // Plans on several queues order their submits with a timeline semaphore per queue.
-    if (!s12.timelineSemaphore) throw ExecutorError(impl->name + " lacks timelineSemaphore");
     f12.timelineSemaphore = VK_TRUE;
     f12.hostQueryReset = s12.hostQueryReset;
     impl->hostQueryReset = s12.hostQueryReset == VK_TRUE;
@@ -466,6 +489,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     dci.enabledExtensionCount = static_cast<uint32_t>(devExts.size());
     dci.ppEnabledExtensionNames = devExts.data();
     vk::check(vkCreateDevice(chosen, &dci, nullptr, &impl->device), "vkCreateDevice");
+    layerEnables.reset();
     for (size_t k = 0; k < kQueueKinds; ++k) {
         vkGetDeviceQueue(impl->device, queueChoices[k].family, queueChoices[k].index, &impl->queues[k]);
         impl->families[k] = queueChoices[k].family;

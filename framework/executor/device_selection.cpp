@@ -12,6 +12,8 @@ std::string unsuitableReason(const PhysicalDeviceFacts& facts, bool presenting, 
     if (facts.apiVersion < VK_API_VERSION_1_3) return "does not support Vulkan 1.3";
     if (!facts.pushDescriptor) return "lacks VK_KHR_push_descriptor";
     if (!facts.synchronization2) return "lacks synchronization2";
+    if (!facts.separateDepthStencilLayouts) return "lacks separateDepthStencilLayouts";
+    if (!facts.timelineSemaphore) return "lacks timelineSemaphore";
     if (presenting && !facts.swapchain) return "cannot present: it lacks VK_KHR_swapchain";
     bool renders = false;
     for (size_t i = 0; i < facts.families.size(); ++i) {

@@ -28,6 +28,10 @@ struct PhysicalDeviceFacts {
     uint32_t apiVersion = 0;
     bool pushDescriptor = false;    ///< VK_KHR_push_descriptor
     bool synchronization2 = false;  ///< the Vulkan 1.3 feature
+    /// Depth-only layouts (DEPTH_ATTACHMENT_OPTIMAL, DEPTH_READ_ONLY_OPTIMAL) in plans.
+    bool separateDepthStencilLayouts = false;
+    /// Plans on several queues order their submits with a timeline semaphore per queue.
+    bool timelineSemaphore = false;
     bool swapchain = false;         ///< VK_KHR_swapchain
     std::vector<QueueFamilyFacts> families;
 };

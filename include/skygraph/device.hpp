@@ -65,7 +65,10 @@ struct DeviceOptions {
     /// (lavapipe), else a device of any other type.
     std::string device;
     /// Khronos validation with synchronization validation (including QUEUE_SUBMIT checks).
-    /// Also switched on by the environment variable SKYGRAPH_VALIDATION=1.
+    /// Also switched on by the environment variable SKYGRAPH_VALIDATION=1. The layer takes
+    /// the QUEUE_SUBMIT checks only from the environment, so Device::create sets
+    /// VK_LAYER_ENABLES while it creates the instance and device, then puts back what was there: no
+    /// other thread should read or change the environment meanwhile.
     bool validation = false;
     /// Log every validation message through spdlog as it arrives (they are always counted).
     bool logMessages = true;

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <unistd.h>
 
@@ -54,6 +55,31 @@ TEST(DeviceSelection, ValidationByEnvironment) {
     unsetenv("SKYGRAPH_VALIDATION");
     EXPECT_TRUE(d->validationEnabled());
     EXPECT_EQ(d->messageCount(), 0u);
+}
+
+// The layer's QUEUE_SUBMIT setting travels through VK_LAYER_ENABLES, which the application
+// gets back as it was: unset, or its own value (the setting is only added for the creation).
+// The negative controls of hazards between submits (NegativeControl.DroppedSemaphoreWait*)
+// show that the layer still has it.
+TEST(DeviceSelection, ValidationLeavesTheEnvironmentAsItWas) {
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    o.validation = true;
+    const char* before = std::getenv("VK_LAYER_ENABLES");
+    const std::optional<std::string> saved = before ? std::optional<std::string>(before) : std::nullopt;
+    unsetenv("VK_LAYER_ENABLES");
+    {
+        auto d = Device::create(o);
+        EXPECT_EQ(std::getenv("VK_LAYER_ENABLES"), nullptr);
+    }
+    setenv("VK_LAYER_ENABLES", "VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT", 1);
+    {
+        auto d = Device::create(o);
+        ASSERT_NE(std::getenv("VK_LAYER_ENABLES"), nullptr);
+        EXPECT_STREQ(std::getenv("VK_LAYER_ENABLES"), "VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT");
+    }
+    if (saved) setenv("VK_LAYER_ENABLES", saved->c_str(), 1);
+    else unsetenv("VK_LAYER_ENABLES");
 }
 
 // finish() destroys the device while validation listens: a handle still alive then (here a

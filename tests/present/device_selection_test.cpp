@@ -32,11 +32,13 @@ using detail::PhysicalDeviceFacts;
 using detail::QueueFamilyFacts;
 using detail::unsuitableReason;
 
-/// Vulkan 1.3, push descriptors, synchronization2, VK_KHR_swapchain; `families` as given.
+/// Vulkan 1.3, push descriptors, synchronization2, separate depth/stencil layouts, timeline
+/// semaphores, VK_KHR_swapchain; `families` as given.
 PhysicalDeviceFacts capable(std::vector<QueueFamilyFacts> families) {
     PhysicalDeviceFacts f;
     f.apiVersion = VK_API_VERSION_1_3;
     f.pushDescriptor = f.synchronization2 = f.swapchain = true;
+    f.separateDepthStencilLayouts = f.timelineSemaphore = true;
     f.families = std::move(families);
     return f;
 }
@@ -73,6 +75,13 @@ TEST(DeviceSelectionReason, EveryOtherReason) {
     f = capable({kRendersAndPresents});
     f.synchronization2 = false;
     EXPECT_EQ(unsuitableReason(f, false, family), "lacks synchronization2");
+    // Found while choosing, so that another device that has them is chosen instead.
+    f = capable({kRendersAndPresents});
+    f.separateDepthStencilLayouts = false;
+    EXPECT_EQ(unsuitableReason(f, false, family), "lacks separateDepthStencilLayouts");
+    f = capable({kRendersAndPresents});
+    f.timelineSemaphore = false;
+    EXPECT_EQ(unsuitableReason(f, false, family), "lacks timelineSemaphore");
     f = capable({kRendersAndPresents});
     f.pushDescriptor = false;
     EXPECT_EQ(unsuitableReason(f, false, family), "lacks VK_KHR_push_descriptor");
