@@ -138,7 +138,7 @@ TEST_F(Cli, CheckRunsAComputeOnlyGraphAndRenderExitsZeroOnIt) {
     const CliRun r = run({"check", graph.string(), "--frames", "2"});
     EXPECT_EQ(r.status, 0) << r.out << r.err;
     EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
-    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(compute_only\s+defaults\s+2\s+0\s+\d+\s+0\s+0\s+-\s+ok)"))) << r.out;
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(compute_only\.json\s+defaults\s+2\s+0\s+\d+\s+0\s+0\s+-\s+ok)"))) << r.out;
     const CliRun render = run({"render", graph.string(), "--frames", "2", "--validate"});
     EXPECT_EQ(render.status, 0) << render.err;
 }
@@ -207,8 +207,11 @@ TEST_F(Cli, CheckRefusesTwoCasesWithOneGoldenAndNamesTheLayoutsItForces) {
     EXPECT_EQ(twice.status, 1);
     EXPECT_EQ(rows(twice.out, "pass"), 2u) << twice.out;  // the first file's two combinations
     EXPECT_EQ(rows(twice.out, "FAIL"), 2u) << twice.out;
-    EXPECT_NE(twice.out.find("its golden " + (golden / "ibl.streamed_equirect-off.plan.txt").string() + " is also graphs/ibl.json's"),
+    // Its plan compiles: the row says it was not checked, not that it does not compile.
+    EXPECT_NE(twice.out.find("  not checked: its golden " + (golden / "ibl.streamed_equirect-off.plan.txt").string() +
+                             " is also graphs/ibl.json's"),
               std::string::npos) << twice.out;
+    EXPECT_EQ(twice.out.find("does not compile"), std::string::npos) << twice.out;
     const CliRun optimal = run({"check", "graphs/ibl.json", "--golden", golden.string(), "--update", "--no-run",
                                 "--layouts", "optimal"});
     EXPECT_EQ(optimal.status, 0);
@@ -252,7 +255,21 @@ TEST_F(Cli, CheckFeatureSelection) {
     EXPECT_EQ(pairwise.status, 0);
     EXPECT_GE(rows(pairwise.out, "pass"), 4u);
     EXPECT_LT(rows(pairwise.out, "pass"), 16u) << pairwise.out;
-    EXPECT_EQ(run({"check", "graphs/raster.json", "--features", "nosuch=on", "--no-run"}).status, 1);
+    // The row of a feature the graph does not declare shows what was asked for.
+    const CliRun unknown = run({"check", "graphs/raster.json", "--features", "nosuch=on,ui=on", "--no-run"});
+    EXPECT_EQ(unknown.status, 1);
+    EXPECT_TRUE(std::regex_search(unknown.out, std::regex(R"(graphs/raster\.json +[a-z_= ]* ui=on nosuch=on +-)")))
+        << unknown.out;
+    EXPECT_NE(unknown.out.find("ui=on nosuch=on]\n  does not compile: graphs/raster.json: features: unknown feature 'nosuch'"),
+              std::string::npos) << unknown.out;
+    // An empty element is a feature lost to a stray comma, wherever it is.
+    for (const std::string features : {"skybox=off,", ",skybox=off", "skybox=off,,ui=on", ","}) {
+        const CliRun empty = run({"check", "graphs/raster.json", "--features", features, "--no-run"});
+        EXPECT_EQ(empty.status, 2) << features;
+        EXPECT_NE(empty.err.find("--features '" + features + "' has an empty element"), std::string::npos)
+            << features << ": " << empty.err;
+        EXPECT_EQ(empty.out, "") << features;
+    }
     const CliRun badValue = run({"check", "graphs/raster.json", "--features", "skybox=maybe", "--no-run"});
     EXPECT_EQ(badValue.status, 2);
     EXPECT_NE(badValue.err.find("--features expects NAME=on or NAME=off, got 'skybox=maybe'"), std::string::npos)
@@ -261,7 +278,64 @@ TEST_F(Cli, CheckFeatureSelection) {
     EXPECT_EQ(run({"check", "graphs/raster.json", "--update", "--no-run"}).status, 2);  // needs --golden
 }
 
+// A graph of 17 features: every combination, 2^17, is more than check tries. The graph loads
+// and would compile: its row says it was not checked, and why.
+TEST_F(Cli, CheckSaysAGraphWithTooManyFeaturesForAllIsNotChecked) {
+    std::string features;
+    for (int i = 0; i < 17; ++i) features += (i ? ", " : "") + std::string("\"f") + std::to_string(i) + "\": false";
+    const fs::path graph = writeGraph("many.json", std::string(R"({
+  "version": 1, "name": "many", "features": {)") + features + R"(},
+  "resources": { "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16],
+                          "external": true, "final": "ShaderRead" } },
+  "passes": [ { "name": "fill", "type": "Generic", "uses": { "out": "Write@Compute" } } ]
+})");
+    const CliRun all = run({"check", graph.string(), "--features", "all", "--no-run"});
+    EXPECT_EQ(all.status, 1) << all.out << all.err;
+    EXPECT_NE(all.out.find("  not checked: graph 'many' has 17 features: all 2^17 combinations are too many"),
+              std::string::npos) << all.out;
+    EXPECT_EQ(all.out.find("does not compile"), std::string::npos) << all.out;
+    const CliRun pairwise = run({"check", graph.string(), "--features", "pairwise", "--no-run"});
+    EXPECT_EQ(pairwise.status, 0) << pairwise.out;
+}
+
+// --golden naming a file is said once, not as a golden missing under it in every case.
+TEST_F(Cli, CheckRefusesAGoldenThatIsNotAFolder) {
+    const fs::path junit = dir_ / "work" / "check.xml";
+    const CliRun r = run({"check", "graphs/pathtrace.json", "--golden", "graphs/raster.json", "--no-run", "--junit",
+                          junit.string()});
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.err.find("error: --golden 'graphs/raster.json' is not a folder"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(workFiles().empty());
+}
+
+// Two files whose graphs have one name: the table and the JUnit XML tell them apart by file.
+TEST_F(Cli, CheckNamesEachCaseByItsFile) {
+    fs::create_directories(dir_ / "a");
+    fs::create_directories(dir_ / "b");
+    const fs::path first = dir_ / "a" / "compute_only.json", second = dir_ / "b" / "compute_only.json";
+    std::ofstream(first) << kComputeOnly;
+    std::ofstream(second) << kComputeOnly;
+    const fs::path junit = dir_ / "work" / "check.xml";
+    const CliRun r = run({"check", first.string(), second.string(), "--no-run", "--junit", junit.string()});
+    EXPECT_EQ(r.status, 0) << r.out << r.err;
+    EXPECT_TRUE(r.out.starts_with("file ")) << r.out;
+    for (const fs::path& file : {first, second})
+        EXPECT_TRUE(std::regex_search(r.out, std::regex("\n" + file.string() + R"( +defaults +2 )"))) << r.out;
+    const std::string script =
+        "import sys, xml.etree.ElementTree as E\n"
+        "root = E.parse(sys.argv[1]).getroot()\n"
+        "print(sorted((s.get('name'), c.get('classname')) for s in root.findall('testsuite') for c in s))\n";
+    std::ofstream(dir_ / "junit.py") << script;
+    const std::string cmd = "python3 " + quote((dir_ / "junit.py").string()) + " " + quote(junit.string()) + " > " +
+                            quote((dir_ / "parsed").string()) + " 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir_ / "parsed");
+    EXPECT_EQ(slurp(dir_ / "parsed"), "[('" + first.string() + "', '" + first.string() + "'), ('" + second.string() +
+                                          "', '" + second.string() + "')]\n");
+}
+
 TEST_F(Cli, SkySequenceWritesEveryFrameAndRefusesAPatternWithoutANumber) {
+    fs::create_directories(dir_ / "work" / "frames");
     const fs::path pattern = dir_ / "work" / "frames" / "sky_%03d.exr";
     const CliRun ok = run({"sky-sequence", pattern.string(), "--frames", "3", "--width", "32"});
     EXPECT_EQ(ok.status, 0) << ok.err;
@@ -275,6 +349,19 @@ TEST_F(Cli, SkySequenceWritesEveryFrameAndRefusesAPatternWithoutANumber) {
     EXPECT_EQ(bad.status, 2);
     EXPECT_NE(bad.err.find("sky.exr': its file name must hold the frame number as %d or %0Nd"), std::string::npos) << bad.err;
     EXPECT_FALSE(fs::exists(dir_ / "work" / "sky.exr"));
+}
+
+// As every command does, sky-sequence refuses a folder that does not exist, making none.
+TEST_F(Cli, SkySequenceRefusesAFolderThatDoesNotExist) {
+    const fs::path missing = dir_ / "work" / "no such folder" / "deeper";
+    const CliRun r = run({"sky-sequence", (missing / "sky_%d.exr").string(), "--frames", "2", "--width", "16"});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("error: '" + (missing / "sky_0.exr").string() + "': cannot write: the folder '" +
+                         missing.string() + "' does not exist"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_TRUE(workFiles().empty());
 }
 
 // A run that fails part way writes none of its outputs: a frame path that is a folder, a

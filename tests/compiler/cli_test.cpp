@@ -422,6 +422,18 @@ TEST_F(Cli, HelpExitsZero) {
     EXPECT_NE(r.out.find("--feature"), std::string::npos) << r.out;
 }
 
+// -v and -q contradict each other: neither silently wins, before or after the command's name.
+TEST_F(Cli, VerboseAndQuietTogetherAreMisuse) {
+    for (const auto& args : std::vector<std::vector<std::string>>{{"-v", "-q", "compile", "graphs/raster.json"},
+                                                                  {"compile", "graphs/raster.json", "-q", "-v"},
+                                                                  {"-q", "compile", "graphs/raster.json", "--verbose"}}) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 2) << args[0] << ": " << r.err;
+        EXPECT_NE(r.err.find("--verbose excludes --quiet"), std::string::npos) << r.err;
+        EXPECT_EQ(r.out, "") << "no plan";
+    }
+}
+
 // ---- compile: output size and transient memory -------------------------------------------
 
 /// The shipped deferred frame, whose 22 transient resources share memory.
@@ -623,6 +635,8 @@ TEST_F(Cli, EverySubcommandHasHelp) {
         EXPECT_EQ(r.status, 0) << name << ": " << r.err;
         EXPECT_NE(r.out.find("Usage:"), std::string::npos) << name << ": " << r.out;
         EXPECT_NE(r.out.find("--help"), std::string::npos) << name << ": " << r.out;
+        // A flag that turns a setting off reads as the plain flag, not CLI11's "--no-alias{false}".
+        EXPECT_EQ(r.out.find("{false}"), std::string::npos) << name << ": " << r.out;
         EXPECT_EQ(r.err, "") << name;
     }
 }
@@ -774,6 +788,27 @@ TEST_F(Cli, CompileRefusesOneFileForThePlanAndThePicture) {
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("-o and --memory-svg both name 'both.out'"), std::string::npos) << r.err;
     EXPECT_TRUE(workFiles().empty());
+}
+
+// A symbolic link to the other output's name, made before either file is there: a write through
+// it lands on the other output, though no existing file is under two names yet.
+TEST_F(Cli, CompileRefusesALinkFromOneOutputToTheOther) {
+    const fs::path work = dir_ / "work";
+    fs::create_symlink("picture.svg", work / "plan_link.txt");   // one link, relative
+    fs::create_symlink(work / "plan_link.txt", work / "chain.svg");  // two links, the first absolute
+    struct Outputs {
+        fs::path plan, picture;
+    };
+    for (const auto& [plan, picture] : {Outputs{work / "plan_link.txt", work / "picture.svg"},
+                                        Outputs{work / "picture.svg", work / "plan_link.txt"},
+                                        Outputs{work / "chain.svg", work / "picture.svg"}}) {
+        const CliRun r = run({"compile", "graphs/pathtrace.json", "-o", plan.string(), "--memory-svg", picture.string()});
+        EXPECT_EQ(r.status, 1) << plan << " " << picture << ": " << r.err;
+        EXPECT_NE(r.err.find("-o and --memory-svg both name '" + plan.string() + "'"), std::string::npos) << r.err;
+        std::vector<std::string> files = workFiles();
+        std::sort(files.begin(), files.end());
+        EXPECT_EQ(files, (std::vector<std::string>{"chain.svg", "plan_link.txt"})) << "nothing written";
+    }
 }
 
 // An environment image that cannot be read is named with the scene key that names it.
@@ -1036,6 +1071,21 @@ TEST_F(Cli, RenderAndViewTakeTheMemoryOptions) {
         EXPECT_NE(help.out.find("--no-alias"), std::string::npos) << command << ": " << help.out;
         EXPECT_NE(help.out.find("--clobber-transients"), std::string::npos) << command << ": " << help.out;
     }
+}
+
+// The flags that turn a setting off take effect: with --no-fit-environment the cubes are baked
+// at the graph's declared sizes, not sized for the 16-pixel-tall view.
+TEST_F(Cli, RenderNoFitEnvironmentBakesAtTheDeclaredSizes) {
+    const std::vector<std::string> args{"render", "--width", "16", "--height", "16", "--frames", "1", "-o",
+                                        (dir_ / "work" / "out.png").string()};
+    const CliRun fitted = run(args);
+    ASSERT_EQ(fitted.status, 0) << fitted.err;
+    EXPECT_NE(fitted.err.find("for a 16-pixel-tall view"), std::string::npos) << fitted.err;
+    std::vector<std::string> declared = args;
+    declared.push_back("--no-fit-environment");
+    const CliRun r = run(declared);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("for a 16-pixel-tall view"), std::string::npos) << r.err;
 }
 #endif
 

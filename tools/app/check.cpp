@@ -1,6 +1,7 @@
 // `skygraph check`: compile, compare with the golden, verify, run; case by case.
 #include "check.hpp"
 
+#include "printable_name.hpp"
 #include "render.hpp"
 
 #include <skygraph/compiler.hpp>
@@ -11,6 +12,7 @@
 #include <skygraph/renderer.hpp>
 #include <skygraph/verifier.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <map>
@@ -29,10 +31,17 @@ constexpr size_t kAllUpTo = 8;  // features; beyond, FeatureCoverage::Automatic 
 
 std::string describe(const FeatureValues& features, const GraphDesc& graph) {
     std::string text;
+    const auto add = [&](const std::string& name, bool on) {
+        text += (text.empty() ? "" : " ") + name + (on ? "=on" : "=off");
+    };
     for (const FeatureDecl& f : graph.features) {
         const auto it = features.find(f.name);
-        text += (text.empty() ? "" : " ") + f.name + ((it != features.end() ? it->second : f.defaultValue) ? "=on" : "=off");
+        add(f.name, it != features.end() ? it->second : f.defaultValue);
     }
+    // A name the graph does not declare is why its case fails: the row shows what was asked.
+    for (const auto& [name, on] : features)
+        if (std::none_of(graph.features.begin(), graph.features.end(), [&](const FeatureDecl& f) { return f.name == name; }))
+            add(printableName(name), on);
     return text.empty() ? "defaults" : text;
 }
 
@@ -158,6 +167,7 @@ bool CheckCase::failed(bool warningsAsErrors) const { return !failures(warningsA
 std::vector<std::string> CheckCase::failures(bool warningsAsErrors) const {
     std::vector<std::string> out;
     if (!compileError.empty()) out.push_back("does not compile: " + compileError);
+    if (!notChecked.empty()) out.push_back("not checked: " + notChecked);
     if (golden && !golden->ok()) out.push_back("golden " + std::string(toString(golden->status)) + ": " + golden->message);
     if (verifierFindings) out.push_back(std::to_string(verifierFindings) + " plan verifier finding(s)");
     if (!runError.empty()) out.push_back("cannot run: " + runError);
@@ -172,23 +182,26 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
     std::vector<CheckCase> cases;
     std::vector<std::shared_ptr<const GraphDesc>> graphOf;  // per case; null when it did not load
     for (const fs::path& file : options.graphs) {
+        std::shared_ptr<const GraphDesc> graph;
+        std::vector<FeatureValues> chosen;
         try {
-            auto graph = std::make_shared<const GraphDesc>(loadGraphFile(file, registry));
-            for (FeatureValues& values : combinations(*graph, options)) {
-                CheckCase& c = cases.emplace_back();
-                c.file = file;
-                c.graph = graph->name;
-                c.combination = describe(values, *graph);
-                c.features = std::move(values);
-                graphOf.push_back(graph);
-            }
+            graph = std::make_shared<const GraphDesc>(loadGraphFile(file, registry));
+            chosen = combinations(*graph, options);
         } catch (const std::exception& e) {
             CheckCase& c = cases.emplace_back();
             c.file = file;
-            c.graph = file.string();
             c.combination = "-";
-            c.compileError = errorText(e);
+            // A graph that loaded but whose combinations are too many to list was not compiled.
+            (graph ? c.notChecked : c.compileError) = errorText(e);
             graphOf.push_back(nullptr);
+            continue;
+        }
+        for (FeatureValues& values : chosen) {
+            CheckCase& c = cases.emplace_back();
+            c.file = file;
+            c.combination = describe(values, *graph);
+            c.features = std::move(values);
+            graphOf.push_back(graph);
         }
     }
     // Two cases with one golden file (the same graph twice, or two graphs of one file name)
@@ -200,7 +213,7 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
             const fs::path golden = goldenOf(cases[i], *graphOf[i], options);
             const auto [it, fresh] = firstWith.emplace(golden, i);
             if (fresh) continue;
-            cases[i].compileError = "its golden " + golden.string() + " is also " + cases[it->second].file.string() +
+            cases[i].notChecked = "its golden " + golden.string() + " is also " + cases[it->second].file.string() +
                                     "'s: check graphs of one file name with different --golden directories";
             graphOf[i] = nullptr;
         }
@@ -215,7 +228,7 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
             try {
                 compileAndCompare(cases[i], *graphOf[i], options);
             } catch (const std::exception& e) {  // out of memory, say: this case fails, the rest go on
-                cases[i].compileError = std::string("could not be checked: ") + e.what();
+                cases[i].notChecked = e.what();
             }
             compileSeconds[i] = std::chrono::duration<double>(Clock::now() - start).count();
         }
@@ -230,7 +243,7 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
     for (size_t i = 0; i < total; ++i) {
         CheckCase& c = cases[i];
         c.seconds = compileSeconds[i];
-        if (options.run && graphOf[i] && c.compileError.empty()) {
+        if (options.run && graphOf[i] && c.compiled()) {
             c.runAttempted = true;
             const auto start = Clock::now();
             if (!device && deviceError.empty()) {

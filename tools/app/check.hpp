@@ -55,11 +55,15 @@ struct CheckOptions {
 
 /// One graph under one feature combination.
 struct CheckCase {
-    std::filesystem::path file;
-    std::string graph;        ///< The graph's name, or the file when it does not load.
+    std::filesystem::path file;  ///< As the command line named it: what the report shows.
     FeatureValues features;
-    std::string combination;  ///< "skybox=on ui=off", or "defaults" for a graph without features.
-    std::string compileError; ///< Empty when it compiled (or when the graph did not load).
+    /// "skybox=on ui=off" (with any feature asked for that the graph does not declare), or
+    /// "defaults" for a graph without features.
+    std::string combination;
+    std::string compileError; ///< Why it did not load or compile; empty when it compiled.
+    /// Why a graph that loaded was not compiled at all (too many features for every
+    /// combination, a golden another case has); empty when it was.
+    std::string notChecked;
     size_t passes = 0, culled = 0, barriers = 0;
     std::optional<GoldenComparison> golden;  ///< Unset without --golden.
     bool goldenWritten = false;
@@ -72,6 +76,8 @@ struct CheckCase {
     std::vector<std::string> messages;  ///< The first few of either kind, one line each.
     double seconds = 0;
 
+    /// Whether a plan was compiled, so that its counts and verifier findings mean something.
+    [[nodiscard]] bool compiled() const { return compileError.empty() && notChecked.empty(); }
     /// Whether this case fails the check: any error, finding, message or golden difference
     /// (and, with `warningsAsErrors`, performance warnings).
     [[nodiscard]] bool failed(bool warningsAsErrors) const;

@@ -76,7 +76,8 @@ std::string prefix(const std::string& s, size_t most) {
 }  // namespace
 
 std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsErrors) {
-    const std::vector<std::string> header{"graph", "features", "passes", "culled", "barriers", "validation",
+    // Graphs by file, as the command line named them: two files may hold graphs of one name.
+    const std::vector<std::string> header{"file", "features", "passes", "culled", "barriers", "validation",
                                           "perf warnings", "golden", "verifier", "time s", "result"};
     std::vector<std::vector<std::string>> rows;
     size_t failed = 0, warnings = 0;
@@ -84,8 +85,8 @@ std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsError
         const bool bad = c.failed(warningsAsErrors);
         failed += bad;
         warnings += c.performanceWarnings;
-        const bool compiled = c.compileError.empty();
-        rows.push_back({c.graph, c.combination, compiled ? std::to_string(c.passes) : "-",
+        const bool compiled = c.compiled();
+        rows.push_back({printableName(c.file.string()), c.combination, compiled ? std::to_string(c.passes) : "-",
                         compiled ? std::to_string(c.culled) : "-", compiled ? std::to_string(c.barriers) : "-",
                         c.runAttempted ? std::to_string(c.validationMessages) : "-",
                         c.runAttempted ? std::to_string(c.performanceWarnings) : "-", goldenCell(c),
@@ -150,7 +151,7 @@ std::string checkJUnit(const std::vector<CheckCase>& cases, bool warningsAsError
         out << "  <testsuite name=\"" << xmlEscape(file, true) << "\" tests=\"" << list.size() << "\" failures=\""
             << suiteFailures << "\" time=\"" << seconds(suiteTime) << "\">\n";
         for (const CheckCase* c : list) {
-            out << "    <testcase classname=\"" << xmlEscape(c->graph, true) << "\" name=\"" << xmlEscape(c->combination, true)
+            out << "    <testcase classname=\"" << xmlEscape(file, true) << "\" name=\"" << xmlEscape(c->combination, true)
                 << "\" time=\"" << seconds(c->seconds) << "\">\n";
             const std::vector<std::string> reasons = c->failures(warningsAsErrors);
             if (!reasons.empty()) {

@@ -1,6 +1,7 @@
 #include "check_command.hpp"
 
 #include "builtin_defaults.hpp"
+#include "printable_name.hpp"
 #include "progress_bar.hpp"
 
 #include "app/check.hpp"
@@ -11,10 +12,11 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 namespace skygraph::cli {
 namespace {
@@ -33,8 +35,17 @@ void parseCoverage(const std::string& text, app::CheckOptions& o) {
     else if (text == "pairwise") o.coverage = app::FeatureCoverage::Pairwise;
     else {
         std::vector<std::string> flags;
-        std::istringstream in(text);
-        for (std::string flag; std::getline(in, flag, ',');) flags.push_back(flag);
+        for (size_t start = 0;;) {
+            const size_t comma = text.find(',', start);
+            flags.push_back(text.substr(start, comma - start));
+            if (comma == std::string::npos) break;
+            start = comma + 1;
+        }
+        // A comma at either end or two together: a feature was meant there and got lost.
+        if (std::any_of(flags.begin(), flags.end(), [](const std::string& f) { return f.empty(); }))
+            throw UsageError("--features '" + printableName(text) +
+                             "' has an empty element; expected NAME=on,NAME=off,... with no comma at either end or two "
+                             "together");
         o.coverage = app::FeatureCoverage::Given;
         o.features = parseFeatureFlags(flags, "--features");
     }
@@ -55,7 +66,14 @@ int run(CheckArgs& args) {
     app::CheckOptions o = args.options;
     for (const std::string& g : args.graphs) o.graphs.emplace_back(g);
     refuseToOverwriteInputs("--junit", args.junit, o.graphs);
-    if (!args.golden.empty()) o.goldenDir = args.golden;
+    if (!args.golden.empty()) {
+        // A missing folder fails each case with a line that says so; a file there is a mistake
+        // in the command line, named once instead of as a missing golden inside it per case.
+        std::error_code ec;
+        if (std::filesystem::exists(args.golden, ec) && !std::filesystem::is_directory(args.golden, ec))
+            throw std::runtime_error("--golden '" + printableName(args.golden) + "' is not a folder");
+        o.goldenDir = args.golden;
+    }
     if (o.updateGoldens && !o.goldenDir) throw UsageError("--update needs --golden DIR");
     parseCoverage(args.features, o);
     parseSize(args.size, o);

@@ -41,6 +41,11 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
     return out;
 }
 
+CLI::Option* addFlagSettingFalse(CLI::App& command, const std::string& name, bool& setting,
+                                 const std::string& description) {
+    return command.add_flag_callback(name, [&setting] { setting = false; }, description);
+}
+
 void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,
                              const std::vector<std::filesystem::path>& inputs) {
     if (const auto input = files::sameFileAmong(output, inputs))

@@ -60,6 +60,12 @@ inline const CLI::Validator kNotEmpty(
     [](const std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
     "NOT EMPTY");
 
+/// Adds a flag that sets `setting` to false when given (--no-alias for aliasing). `setting`
+/// must outlive parsing. CLI11's own form of it, "!--no-alias", would show in --help as
+/// "--no-alias{false}".
+CLI::Option* addFlagSettingFalse(CLI::App& command, const std::string& name, bool& setting,
+                                 const std::string& description);
+
 /// Throws std::runtime_error (exit 1) when `output`, given as `option`, is the same file as one
 /// of `inputs`: writing it would destroy what the command reads. Empty names are skipped.
 void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,

@@ -138,11 +138,19 @@ void refuseOneFileForBothOutputs(const CompileArgs& args) {
     // Two names of one file: the same path once links and dots are resolved (neither exists
     // yet, so sameFileAmong cannot compare them), or an existing file under two names (a hard
     // link, which no path comparison sees).
-    // Absolute first: a relative path none of whose parts exists stays relative, so "a.svg"
+    // The write lands at the end of a link's chain even when nothing is there yet: a dangling
+    // link is followed first, since weakly_canonical leaves a link to a missing file as it is.
+    // Absolute then: a relative path none of whose parts exists stays relative, so "a.svg"
     // would not meet "./a.svg".
     const auto resolved = [](const std::filesystem::path& p) {
+        std::filesystem::path landing = p;
+        try {
+            landing = files::outputTarget(p).path;
+        } catch (const std::filesystem::filesystem_error&) {
+            // A folder or a loop of links: writing it fails and says so.
+        }
         std::error_code ec;
-        std::filesystem::path full = std::filesystem::absolute(p, ec);
+        std::filesystem::path full = std::filesystem::absolute(landing, ec);
         if (!ec) full = std::filesystem::weakly_canonical(full, ec);
         return ec ? std::filesystem::path() : full;
     };

@@ -53,8 +53,8 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "skygraph 0.1.0");
     bool verbose = false, quiet = false;
     std::string progress = "auto";
-    app.add_flag("-v,--verbose", verbose, "Log debug messages");
-    app.add_flag("-q,--quiet", quiet, "Log errors only (and draw no progress bars)");
+    CLI::Option* verboseFlag = app.add_flag("-v,--verbose", verbose, "Log debug messages");
+    app.add_flag("-q,--quiet", quiet, "Log errors only (and draw no progress bars)")->excludes(verboseFlag);
     app.add_option("--progress", progress, "Progress bars on stderr: auto (when it is a terminal), always, never")
         ->check(CLI::IsMember({"auto", "always", "never"}));
 

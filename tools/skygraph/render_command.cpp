@@ -75,13 +75,13 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_option("--readback", o.readback,
                     "Write this resource instead of the swapchain target (e.g. hdr_color to .exr)")
         ->check(kNotEmpty);
-    cmd->add_flag("!--no-fit-environment", o.fitEnvironmentToView,
-                  "Build the environment cube and the prefiltered cube at the graph's declared sizes, not at "
-                  "the sizes the view can show (output height, field of view, equirect width)");
-    cmd->add_flag("!--no-alias", o.aliasing,
-                  "Give every transient resource of the frame memory of its own (no aliasing barriers)");
-    cmd->add_flag("!--heaps-per-frame", o.shareHeapsAcrossFrames,
-                  "A copy of the transients' heaps per frame in flight, instead of one the frames share");
+    addFlagSettingFalse(*cmd, "--no-fit-environment", o.fitEnvironmentToView,
+                        "Build the environment cube and the prefiltered cube at the graph's declared sizes, not at "
+                        "the sizes the view can show (output height, field of view, equirect width)");
+    addFlagSettingFalse(*cmd, "--no-alias", o.aliasing,
+                        "Give every transient resource of the frame memory of its own (no aliasing barriers)");
+    addFlagSettingFalse(*cmd, "--heaps-per-frame", o.shareHeapsAcrossFrames,
+                        "A copy of the transients' heaps per frame in flight, instead of one the frames share");
     cmd->add_flag("--clobber-transients", o.clobberTransients,
                   "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
                   "before its first use: a frame that then renders differently reads what it did not write");

@@ -3,7 +3,9 @@
 
 #include "app/procedural_environment.hpp"
 #include "printable_name.hpp"
+#include "replace_file.hpp"
 
+#include <skygraph/hdr_image.hpp>
 #include <skygraph/scene.hpp>
 
 #include <CLI/CLI.hpp>
@@ -25,6 +27,14 @@ int run(const SkySequenceArgs& args) {
     if (const std::string problem = sequencePatternProblem(std::filesystem::path(args.pattern).filename().string());
         !problem.empty())
         throw UsageError("skygraph sky-sequence: '" + printableName(args.pattern) + "': its file name " + problem);
+    // Every other command refuses an output in a folder that does not exist (a typo in it would
+    // otherwise make folders), and so does this one, before any frame is drawn.
+    const std::filesystem::path firstFrame = sequenceFrameFile(args.pattern, 0);
+    try {
+        (void)files::writableOutputTarget(firstFrame);
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw ImageError(firstFrame, "cannot write: " + files::whyNotWritten(e));
+    }
     app::writeProceduralSkySequence(args.pattern, args.frames, args.width);
     std::cout << "skygraph sky-sequence: " << args.frames << " frames of " << args.width << "x" << args.width / 2
               << ", " << printableName(sequenceFrameFile(args.pattern, 0).string()) << " to "

@@ -65,16 +65,16 @@ Command addViewCommand(CLI::App& parent) {
     cmd->add_option("--present-mode", args->presentMode, "fifo (default), mailbox or immediate; fifo when the "
                                                          "surface lacks it")
         ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}));
-    cmd->add_flag("!--no-fit-environment", o.frame.fitEnvironmentToView,
-                  "Build the environment cube and the prefiltered cube at the graph's declared sizes");
-    cmd->add_flag("!--no-alias", o.frame.aliasing,
-                  "Give every transient resource of the frame memory of its own (no aliasing barriers)");
-    cmd->add_flag("!--heaps-per-frame", o.frame.shareHeapsAcrossFrames,
-                  "A copy of the transients' heaps per frame in flight, instead of one the frames share");
+    addFlagSettingFalse(*cmd, "--no-fit-environment", o.frame.fitEnvironmentToView,
+                        "Build the environment cube and the prefiltered cube at the graph's declared sizes");
+    addFlagSettingFalse(*cmd, "--no-alias", o.frame.aliasing,
+                        "Give every transient resource of the frame memory of its own (no aliasing barriers)");
+    addFlagSettingFalse(*cmd, "--heaps-per-frame", o.frame.shareHeapsAcrossFrames,
+                        "A copy of the transients' heaps per frame in flight, instead of one the frames share");
     cmd->add_flag("--clobber-transients", o.frame.clobberTransients,
                   "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
                   "before its first use");
-    cmd->add_flag("!--no-ui", o.overlay, "Hide the debug overlay (the graph's feature ui off)");
+    addFlagSettingFalse(*cmd, "--no-ui", o.overlay, "Hide the debug overlay (the graph's feature ui off)");
     cmd->add_flag("--validate", o.frame.validate,
                   "Khronos validation with synchronization validation; any message fails");
     cmd->add_option("--device", o.frame.device, "Device by index or name")->check(kNotEmpty);
