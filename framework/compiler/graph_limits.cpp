@@ -4,6 +4,15 @@
 
 namespace skygraph {
 
+std::string unpresentableShape(const ResourceDesc& r) {
+    std::string is = r.type == ResourceType::Cube            ? "a cube"
+                     : r.type == ResourceType::Image2DArray ? "an image2d_array"
+                     : r.format.isDepthStencil()            ? "of the depth format " + std::string(r.format.name)
+                                                            : "of " + (r.mips == 0 ? std::string("the full mip chain")
+                                                                                   : std::to_string(r.mips) + " mips");
+    return "a presented image is a swapchain's: an image2d of a color format with one mip, not " + is;
+}
+
 Diagnostics limitProblems(const GraphDesc& graph) {
     Diagnostics diags;
     for (const ResourceDesc& r : graph.resources) {
@@ -11,6 +20,8 @@ Diagnostics limitProblems(const GraphDesc& graph) {
         if (!statesFit(r)) {
             if (r.final == ExternalState::Present && !r.external)
                 problem("only an external image (the swapchain's) can be presented");
+            else if (r.final == ExternalState::Present && r.isImage())
+                problem(unpresentableShape(r));
             else if (!r.isImage() && r.clear)
                 problem("a buffer cannot be cleared by the graph");
             else if (!r.isImage())

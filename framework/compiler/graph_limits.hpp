@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <string>
 
 namespace skygraph {
 
@@ -19,12 +20,21 @@ inline constexpr uint64_t kMaxBufferBytes = 1ull << 31;
 /// The largest graph file loadGraphFile() reads (a 100,000-pass graph is about 20 MiB).
 inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 
+/// Whether a presented image has a swapchain image's shape: a 2D image of a colour format,
+/// one layer, one mip.
+[[nodiscard]] inline bool presentable(const ResourceDesc& r) noexcept {
+    return r.type == ResourceType::Image2D && !r.format.isDepthStencil() && r.mips == 1;
+}
+
+/// Why `r` (presented, an image) is not presentable(), as the loader and compile() say it.
+[[nodiscard]] std::string unpresentableShape(const ResourceDesc& r);
+
 /// Whether a resource's states fit it as the loader requires of a file: only an external image
-/// is presented, a buffer is never left for presentation or a copy source, and only images
-/// clear, to a value of their format's kind.
+/// of a swapchain image's shape is presented, a buffer is never left for presentation or a
+/// copy source, and only images clear, to a value of their format's kind.
 [[nodiscard]] inline bool statesFit(const ResourceDesc& r) noexcept {
     const auto imageOnly = [](ExternalState s) { return s == ExternalState::Present || s == ExternalState::TransferSrc; };
-    if (r.final == ExternalState::Present && !r.external) return false;
+    if (r.final == ExternalState::Present && (!r.external || (r.isImage() && !presentable(r)))) return false;
     if (!r.isImage()) return !imageOnly(r.final) && !imageOnly(r.initial) && !r.clear;
     return !r.clear || r.clear->isDepth == r.format.isDepthStencil();
 }

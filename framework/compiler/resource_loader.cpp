@@ -1,5 +1,6 @@
 #include "resource_loader.hpp"
 
+#include "graph_limits.hpp"
 #include "json_path.hpp"
 #include "printable_name.hpp"
 
@@ -213,6 +214,8 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
     // Only the embedder can hand an image to the presentation engine: the graph's own have no swapchain.
     if (r.final == ExternalState::Present && !r.external)
         fail("final", "only an external image (the swapchain's) can be presented; add \"external\": true");
+    else if (r.final == ExternalState::Present && r.isImage() && r.format.format != VK_FORMAT_UNDEFINED && !presentable(r))
+        fail("final", unpresentableShape(r));
     // An external resource that persists comes back in the state it was left in.
     if (r.external && r.initial == ExternalState::None)
         r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;

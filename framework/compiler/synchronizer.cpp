@@ -736,10 +736,13 @@ private:
     /// transient is SharedTransient when the frames share the heaps (set by planMemory), and
     /// otherwise keeps the default, PerFrameTransient.
     void decideCopies() {
+        int64_t presented = -1;
         for (const uint32_t r : external_) {
             const ResourceFacts& f = facts_[r];
             PlannedResource& res = planResources()[r];
             if (decl(r).final == ExternalState::Present) {
+                if (presented >= 0) secondPresentedImage(static_cast<uint32_t>(presented), r);
+                presented = r;
                 res.copies = ResourceCopies::PerFramePresented;
                 if (replaced(ExternalState::Present) == ExternalState::Present) presentation(r);
             } else if (f.exported) {
@@ -750,6 +753,16 @@ private:
                 res.copies = written ? ResourceCopies::PerFrameWrittenNotExported : ResourceCopies::SharedReadOnly;
             }
         }
+    }
+
+    /// A frame has one swapchain image to present. A file may declare several presented
+    /// images for passes that features choose between, but one plan uses one.
+    [[noreturn]] void secondPresentedImage(uint32_t first, uint32_t second) const {
+        Diagnostics diags;
+        diags.add({graph_.file, decl(second).jsonPath() + ".final", "", decl(second).name,
+                   "a frame presents one image, and passes of this plan also use the presented image '" +
+                       decl(first).name + "'; choose one with features or conditions"});
+        throw GraphError(std::move(diags));
     }
 
     /// A presented image (not read back instead) meets the swapchain's semaphores. The

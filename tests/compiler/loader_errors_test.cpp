@@ -821,6 +821,59 @@ TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {
     EXPECT_TRUE(hasDiag(ds, "features", "", "", {"unknown feature 'bloom'", "geo", "sky"}));
 }
 
+// A presented image is a swapchain's: a 2D colour image of one mip, and one per plan. A file
+// is told so at the image's `final`; options that would make such a plan (a GraphDesc built in
+// code is checked the same way) are named at the resource.
+TEST(LoaderErrors, APlanPresentsOneImageOfASwapchainsShape) {
+    Json g = baseGraph();
+    const auto presented = [](Json image) {
+        image["external"] = true;
+        image["final"] = "Present";
+        return image;
+    };
+    g["resources"]["depth_shown"] = presented({{"type", "image2d"}, {"format", "D32_SFLOAT"}, {"extent", "output"}});
+    g["resources"]["cube_shown"] =
+        presented({{"type", "cube"}, {"format", "B8G8R8A8_UNORM"}, {"extent", {64, 64}}});
+    g["resources"]["layers_shown"] =
+        presented({{"type", "image2d_array"}, {"format", "B8G8R8A8_UNORM"}, {"extent", "output"}, {"layers", 2}});
+    g["resources"]["mips_shown"] =
+        presented({{"type", "image2d"}, {"format", "B8G8R8A8_UNORM"}, {"extent", {64, 64}}, {"mips", "full"}});
+    Json uses = Json::object();
+    for (const char* name : {"depth_shown", "cube_shown", "layers_shown", "mips_shown"})
+        uses[name] = std::string(name) == "depth_shown" ? "Write@DepthAttachment" : "Write@Compute";
+    g = withGeneric(g, "shows", uses);
+    const auto ds = loadErrors(g);
+    const std::string shape = "a presented image is a swapchain's: an image2d of a color format with one mip, not ";
+    EXPECT_TRUE(hasDiag(ds, "resources.depth_shown.final", "", "depth_shown", {shape + "of the depth format D32_SFLOAT"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.cube_shown.final", "", "cube_shown", {shape + "a cube"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.layers_shown.final", "", "layers_shown", {shape + "an image2d_array"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.mips_shown.final", "", "mips_shown", {shape + "of the full mip chain"}))
+        << listAll(ds);
+
+    Json valid = withGeneric(baseGraph(), "reads", {{"mipped", "Read@Fragment"}});
+    valid["resources"]["plain"] = {{"type", "image2d"}, {"format", "B8G8R8A8_UNORM"}, {"extent", "output"}, {"external", true}};
+    valid["passes"].back()["uses"]["plain"] = "Read@Fragment";
+    CompileOptions mips;
+    mips.exports["mipped"] = ExternalState::Present;
+    EXPECT_TRUE(hasDiag(compileErrors(valid, mips), "resources.mipped", "", "mipped", {shape + "of 3 mips"}));
+    // Two presented images in one plan; a file may declare both for passes that features
+    // choose between (graphs/raster.json's compute tonemap), and then compiles.
+    const std::string both = "a frame presents one image, and passes of this plan also use the presented image ";
+    CompileOptions second;
+    second.exports["plain"] = ExternalState::Present;
+    EXPECT_TRUE(hasDiag(compileErrors(valid, second), "resources.plain.final", "", "plain", {both + "'swapchain'"}));
+    Json twice = withGeneric(baseGraph(), "shows", {{"second", "Write@Compute"}});
+    twice["resources"]["second"] = presented({{"type", "image2d"}, {"format", "B8G8R8A8_UNORM"}, {"extent", "output"}});
+    twice["passes"].back()["if"] = "sky";
+    EXPECT_TRUE(hasDiag(compileErrors(twice, CompileOptions{}), "resources.second.final", "", "second",
+                        {both + "'swapchain'"}));
+    CompileOptions skyOff;
+    skyOff.features["sky"] = false;
+    EXPECT_NO_THROW((void)compile(parseGraph(twice.dump(), kFile, registry()), skyOff));
+}
+
 // Options that would give a plan the loader never lets a file give: a presented image ending
 // in UNDEFINED, a transient or a buffer presented, and outputs that cull every pass.
 TEST(LoaderErrors, CompileOptionsThatWouldMakeAnInvalidPlan) {
