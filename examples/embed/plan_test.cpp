@@ -1,6 +1,6 @@
 // The example's own graph under skygraph::testing, as an engine's CI would test it: the plan
 // against its reviewed golden (golden/), the barrier a reviewer cares about, the plan verifier,
-// and three frames under validation.
+// the path an error names, and three frames under validation.
 #include "vignette_pass.hpp"
 
 #include <skygraph/compiled_graph.hpp>

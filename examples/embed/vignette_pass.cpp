@@ -53,6 +53,9 @@ public:
         vkCmdDraw(ctx.cmd, 3, 1, 0, 0);
     }
 
+    // The input's view comes from the RecordContext each time: an importImage swap keeps the pass.
+    [[nodiscard]] bool keepsSlotHandles() const noexcept override { return false; }
+
 private:
     double strength_;
     GraphicsPipeline pipeline_;

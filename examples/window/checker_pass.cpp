@@ -61,6 +61,9 @@ public:
         vkCmdDraw(ctx.cmd, 3, 1, 0, 0);
     }
 
+    // It binds no resource at all: an importImage swap keeps the pass.
+    [[nodiscard]] bool keepsSlotHandles() const noexcept override { return false; }
+
 private:
     CheckerParams params_{};
     GraphicsPipeline pipeline_;

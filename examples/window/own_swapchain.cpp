@@ -155,7 +155,15 @@ bool OwnSwapchain::renderFrame(skygraph::Renderer& renderer) {
 
     // Waits for `acquired` where the plan first uses the image, leaves it in PRESENT_SRC_KHR
     // and signals renderComplete_[image].
-    renderer.renderFrame(skygraph::PresentTarget{image, acquired, renderComplete_[image]});
+    try {
+        renderer.renderFrame(skygraph::PresentTarget{image, acquired, renderComplete_[image]});
+    } catch (...) {
+        // Nothing signals renderComplete_[image], so the image must not be presented: it stays
+        // acquired until the next call re-creates the swapchain and hands the renderer the new
+        // images.
+        stale_ = true;
+        throw;
+    }
 
     VkPresentInfoKHR present{};
     present.sType = VK_STRUCTURE_TYPE_PRESENT_INFO_KHR;

@@ -41,7 +41,9 @@ public:
     /// One frame: re-creates the swapchain when it is stale (and hands `renderer` the new
     /// images), acquires an image, has `renderer` render into it, and presents it. Returns
     /// false, rendering nothing, while paused or when the acquire found the swapchain out of
-    /// date. Throws skygraph::ExecutorError for any other Vulkan failure.
+    /// date. Throws skygraph::ExecutorError for any other Vulkan failure. What the renderer's
+    /// frame throws (a pass's exception, say) passes on, the image unpresented; the next call
+    /// re-creates the swapchain, which gives that image back.
     bool renderFrame(skygraph::Renderer& renderer);
 
 private:

@@ -21,7 +21,10 @@ struct CompiledGraphAccess;  // the implementation's own access; not part of the
 class CompiledGraph {
 public:
     /// Takes `graph` and `options` and compiles them; the options' output size is the one the
-    /// plan is valid for. Throws GraphError as compile() does.
+    /// plan is valid for. Throws GraphError as compile() does, and passes on what
+    /// `options.memory` throws: with a device's model (Device::memoryModel()),
+    /// DeviceCapacityError for a resource past the device's limits and ExecutorError for one
+    /// it cannot create, or once the device is destroyed.
     CompiledGraph(GraphDesc graph, CompileOptions options);
 
     [[nodiscard]] const GraphDesc& graph() const noexcept { return graph_; }
@@ -31,10 +34,11 @@ public:
     [[nodiscard]] uint32_t outputHeight() const noexcept { return options_.outputHeight; }
 
     /// The same graph and options (copied) compiled for another output size. Throws GraphError
-    /// (e.g. a zero size, or a mip range that the new size's chain does not have); this one is
-    /// unchanged then.
+    /// (e.g. a zero size, or a mip range that the new size's chain does not have), and what
+    /// the options' memory model throws, as the constructor does; this one is unchanged then.
     [[nodiscard]] CompiledGraph resized(uint32_t width, uint32_t height) const;
-    /// Another graph (an edited file) compiled with the same options. Throws GraphError.
+    /// Another graph (an edited file) compiled with the same options. Throws as the
+    /// constructor does.
     [[nodiscard]] CompiledGraph withGraph(GraphDesc graph) const;
 
 private:

@@ -107,8 +107,9 @@ struct PassTiming {
 /// returned by compiled(), graph(), plan() and setupPlan() are invalid, and images shared
 /// before are no longer written by this renderer. A failed call keeps the old state. Names
 /// passed in are read during the call only. Use from one thread at a time; renderers on one
-/// Device share its queue, which Vulkan lets one thread use at a time, so use them all from
-/// one thread.
+/// Device share its queues, which Vulkan lets one thread use at a time, so calls to all of
+/// them, and to the Device and its Swapchains and HotReloaders, must not overlap, whichever
+/// threads make them (Device's comment says so too).
 class Renderer {
 public:
     /// Takes `compiled` (compiled again with the device's memory model and queue families unless

@@ -79,20 +79,20 @@ struct SwapchainOptions {
     VkImageUsageFlags extraUsage = 0;
 };
 
-/// A VkSwapchainKHR for the Device's surface (DeviceOptions::presentation), its images, an
-/// acquire semaphore per frame slot and a render-complete semaphore per image; a Renderer
-/// drives it with renderFrame(Swapchain&), which re-creates it when it is out of date,
-/// suboptimal or resized. Owns every handle it creates; borrows the Device, which must outlive
-/// it. A Renderer does not keep the Swapchain itself (RendererOptions::presentTo and
-/// renderFrame() borrow it for the call), but one that has rendered into it, or was bound to
-/// it by presentTo, keeps views of its images until it renders into another swapchain or is
-/// destroyed. Either may be destroyed first: destroying the swapchain waits for the Device's
-/// queue, and so for every frame into it. After that, until the renderer renders into
-/// another swapchain, it must not rebuild its plan state in any other way (setGraph(),
-/// resize(), reloadShaders(), setPresentImages(), a HotReloader's poll()), which would build
-/// on the destroyed images. So, to replace one (for another present mode, say): destroy it,
-/// create the next and pass that to the renderer's next renderFrame(). Not copyable or
-/// movable. Use from the thread that uses the renderer.
+/// A VkSwapchainKHR for the Device's surface (DeviceOptions::presentation), its images and a
+/// render-complete semaphore per image; a Renderer drives it with renderFrame(Swapchain&), which
+/// re-creates it when it is out of date, suboptimal or resized. The acquire semaphores are not its
+/// own: each renderer has one per frame slot. Owns every handle it creates; borrows the Device,
+/// which must outlive it. A Renderer does not keep the Swapchain itself (RendererOptions::presentTo
+/// and renderFrame() borrow it for the call), but one that has rendered into it, or was bound to it
+/// by presentTo, keeps views of its images until it renders into another swapchain or is destroyed.
+/// Either may be destroyed first: destroying the swapchain waits for the Device's queue, and so for
+/// every frame into it. After that, until the renderer renders into another swapchain, it must not
+/// rebuild its plan state in any other way (setGraph(), resize(), reloadShaders(),
+/// setPresentImages(), a HotReloader's poll()), which would build on the destroyed images. So, to
+/// replace one (for another present mode, say): destroy it, create the next and pass that to the
+/// renderer's next renderFrame(). Not copyable or movable. Used one thread at a time together with
+/// the Device and every renderer made with it (Device's comment says why).
 class Swapchain {
 public:
     /// A swapchain for `device`'s surface, with images for `compiled`'s Present resource: the
