@@ -4,6 +4,7 @@
 #include "renderer_access.hpp"
 #include "swapchain.hpp"
 
+#include <skygraph/format.hpp>
 #include <skygraph/transfer_plans.hpp>
 
 #include <algorithm>
@@ -50,6 +51,28 @@ float halfToFloat(uint16_t h) {
     std::memcpy(&f, &bits, 4);
     return f;
 }
+
+}  // namespace
+
+namespace detail {
+
+bool readsBack(VkFormat format) noexcept {
+    return std::find(kReadBackFormats.begin(), kReadBackFormats.end(), format) != kReadBackFormats.end();
+}
+
+std::string notReadBackable(const std::string& resource, VkFormat format) {
+    std::string formats;
+    for (const VkFormat f : kReadBackFormats)
+        if (const auto info = findFormat(f)) formats += (formats.empty() ? "" : ", ") + std::string(info->name);
+    const auto info = findFormat(format);
+    return "cannot read back '" + resource + "': its format " +
+           (info ? std::string(info->name) : "VkFormat " + std::to_string(int(format))) +
+           " is not supported for read-back, which converts " + formats;
+}
+
+}  // namespace detail
+
+namespace {
 
 ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFormat format,
                         const std::string& name) {
@@ -108,9 +131,7 @@ ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFor
                 px[1] = px[2] = 0.0f;
                 px[3] = 1.0f;
                 break;
-            default:
-                throw ExecutorError("cannot read back '" + name + "': its format is not supported "
-                                    "for read-back");
+            default: throw ExecutorError(notReadBackable(name, format));
         }
     }
     return out;
@@ -223,6 +244,7 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     const ResourceState& r = s.resources[index];
     if (r.presented)
         throw ExecutorError("cannot read '" + resource + "': it is the presented image, the presentation engine's");
+    if (!readsBack(r.format)) throw ExecutorError(notReadBackable(resource, r.format));
     // A transient whose memory a later resource of the frame takes over holds that one's
     // contents after the frame, not its own.
     for (const MemoryPlacement& p : s.plan.memory().placements)

@@ -26,6 +26,7 @@
 #include <skygraph/shader_compiler.hpp>
 
 #include <algorithm>
+#include <array>
 #include <functional>
 #include <cstdint>
 #include <limits>
@@ -159,6 +160,17 @@ struct PassState {
     std::vector<VkClearValue> clearValues;
     std::vector<PassSlot> slots;
 };
+
+/// The formats Renderer::readback() and readImage() convert to floats: what the shipped
+/// passes write and what tests read. Checked when a plan with read-backs is installed, before
+/// anything renders.
+inline constexpr std::array<VkFormat, 11> kReadBackFormats{
+    VK_FORMAT_R8G8B8A8_UNORM,      VK_FORMAT_R8G8B8A8_SRGB,       VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_B8G8R8A8_SRGB,
+    VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,  VK_FORMAT_R16G16_SFLOAT,
+    VK_FORMAT_R32_SFLOAT,          VK_FORMAT_D32_SFLOAT,          VK_FORMAT_R8_UNORM};
+[[nodiscard]] bool readsBack(VkFormat format) noexcept;
+/// The ExecutorError message for reading back `resource` of an unconverted `format`.
+[[nodiscard]] std::string notReadBackable(const std::string& resource, VkFormat format);
 
 /// Host memory that a Readback step of the frame copies its image into, one per frame slot
 /// (not per binding slot).

@@ -290,6 +290,7 @@ void Renderer::Impl::createReadbackTargets(PlanState& s) {
         t.step = step;
         t.resource = s.plan.passes()[step].usages[0].resource;
         const ResourceState& r = s.resources[t.resource];
+        if (!readsBack(r.format)) throw ExecutorError(notReadBackable(r.desc->name, r.format));
         const VkDeviceSize bytes = VkDeviceSize(r.width) * r.height * copyTexelBytes(r.desc->format);
         for (uint32_t slot = 0; slot < options.framesInFlight; ++slot)
             t.perSlot.push_back(makeHostBuffer(bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT));

@@ -354,6 +354,39 @@ TEST_F(ExecutorTest, ReadbackNeedsTheImageInCompileOptionsReadbacks) {
     r.waitIdle();
 }
 
+// A read-back of a format the renderer does not convert (integer, stencil, packed) is refused
+// when the plan is installed, naming the formats it converts, before any frame renders;
+// readImage() refuses it the same way.
+TEST_F(ExecutorTest, AReadBackOfAnUnconvertedFormatIsRefusedBeforeRendering) {
+    const std::string g = graph(R"("ids": { "type": "image2d", "format": "R32_UINT", "extent": "output",
+                                            "external": true, "final": "TransferSrc" })",
+                                R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment",
+                                                                              "ids": "Write@Compute" } })");
+    CompileOptions co;
+    co.outputWidth = co.outputHeight = 16;
+    co.readbacks = {"ids"};
+    const std::string expected = "cannot read back 'ids': its format R32_UINT is not supported for read-back, "
+                                 "which converts R8G8B8A8_UNORM, ";
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(parseGraph(g, "<test>", PassRegistry::withBuiltins()), co),
+                   genericOptions());
+        ADD_FAILURE() << "expected an ExecutorError";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+    co.readbacks.clear();
+    Renderer r(sharedDevice(), CompiledGraph(parseGraph(g, "<test>", PassRegistry::withBuiltins()), co),
+               genericOptions());
+    r.renderFrame();
+    try {
+        (void)r.readImage("ids");
+        ADD_FAILURE() << "expected an ExecutorError";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+    r.waitIdle();
+}
+
 TEST_F(ExecutorTest, SetGraphFailureKeepsOldPlan) {
     const auto good = compileText(graph(
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
