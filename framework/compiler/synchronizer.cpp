@@ -741,10 +741,12 @@ private:
             const ResourceFacts& f = facts_[r];
             PlannedResource& res = planResources()[r];
             if (decl(r).final == ExternalState::Present) {
-                if (presented >= 0) secondPresentedImage(static_cast<uint32_t>(presented), r);
-                presented = r;
                 res.copies = ResourceCopies::PerFramePresented;
-                if (replaced(ExternalState::Present) == ExternalState::Present) presentation(r);
+                if (replaced(ExternalState::Present) == ExternalState::Present) {
+                    if (presented >= 0) secondPresentedImage(static_cast<uint32_t>(presented), r);
+                    presented = r;
+                    presentation(r);
+                }
             } else if (f.exported) {
                 res.copies = ResourceCopies::SharedExported;
             } else {
@@ -756,7 +758,8 @@ private:
     }
 
     /// A frame has one swapchain image to present. A file may declare several presented
-    /// images for passes that features choose between, but one plan uses one.
+    /// images for passes that features choose between, but one plan presents one (a plan
+    /// compiled to run headless, CompileOptions::presentReplacement, presents none).
     [[noreturn]] void secondPresentedImage(uint32_t first, uint32_t second) const {
         Diagnostics diags;
         diags.add({graph_.file, decl(second).jsonPath() + ".final", "", decl(second).name,
