@@ -569,6 +569,13 @@ TEST_F(Cli, UnwritableMemorySvgExitsOneAndWritesNothing) {
     EXPECT_EQ(taken.status, 1) << taken.err;
     EXPECT_NE(taken.err.find("taken.svg"), std::string::npos) << taken.err;
     EXPECT_EQ(workFiles(), std::vector<std::string>{"taken.svg"});
+    // And the other way round: the plan's -o is the folder, and the picture is not left behind.
+    const CliRun planTaken = run({"compile", kDeferred.string(), "--memory-svg", (dir_ / "work" / "picture.svg").string(),
+                                  "-o", (dir_ / "work" / "taken.svg").string()});
+    EXPECT_EQ(planTaken.status, 1) << planTaken.err;
+    EXPECT_NE(planTaken.err.find("taken.svg"), std::string::npos) << planTaken.err;
+    EXPECT_NE(planTaken.err.find("neither file was written"), std::string::npos) << planTaken.err;
+    EXPECT_EQ(workFiles(), std::vector<std::string>{"taken.svg"});
 
     // A graph that does not compile leaves an earlier picture as it was.
     const fs::path svg = dir_ / "work" / "memory.svg";
@@ -953,6 +960,21 @@ TEST_F(Cli, RenderShowsControlCharactersInSceneAndGltfNamesEscaped) {
     EXPECT_NE(refused.err.find("-o '" + shown + "' is the input '" + shown + "'"), std::string::npos) << refused.err;
     EXPECT_EQ(controlCharacters(refused.err), 0) << refused.err;
     EXPECT_EQ(slurp(texture), slurp(box / "CesiumLogoFlat.png"));
+}
+
+// The log says what sets each scene feature: the scene, or a --feature that overrules it.
+TEST_F(Cli, RenderSaysWhichFeaturesTheCommandLineOverrules) {
+    const CliRun r = run({"render", "--width", "8", "--height", "8", "--feature", "geometry=off", "--feature",
+                          "skybox=on", "-o", (dir_ / "out.png").string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("scene: geometry = on: the scene has"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("feature geometry = off: --feature overrules the scene's on"), std::string::npos) << r.err;
+    // skybox=on agrees with the scene: nothing to say.
+    EXPECT_EQ(r.err.find("feature skybox = on: --feature overrules"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("skybox = on, environment_file = off, sample_cubemap = off: environment is the procedural "
+                         "sky, evaluated per pixel"),
+              std::string::npos)
+        << r.err;
 }
 
 // `render -o /dev/stdout --format F` writes the image to standard output (logs go to stderr),

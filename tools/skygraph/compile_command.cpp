@@ -89,8 +89,19 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
     return out;
 }
 
-/// The picture first: when it cannot be written, neither is the plan (exit 1, nothing written).
+/// The picture and the plan file are written all or none (exit 1, nothing written); a plan
+/// for standard output follows the picture.
 void writeCompiled(const CompileArgs& args, const CompiledPlan& compiled, bool planToStdout) {
+    if (!args.memorySvg.empty() && !args.output.empty()) {
+        const std::filesystem::path both[] = {args.memorySvg, args.output};
+        try {
+            files::replaceFilesContents(both, [&](size_t i) { return i == 0 ? compiled.memorySvg : compiled.formatted; });
+        } catch (const std::filesystem::filesystem_error& e) {
+            throw std::runtime_error("cannot write '" + printableName(e.path1().string()) +
+                                     "': " + files::whyNotWritten(e) + "; neither file was written");
+        }
+        return;
+    }
     if (!args.memorySvg.empty()) writeOutput(args.memorySvg, compiled.memorySvg);
     if (!args.output.empty()) writeOutput(args.output, compiled.formatted);
     else if (planToStdout) writeOutput({}, compiled.formatted);
