@@ -34,7 +34,8 @@ std::vector<std::string> explainSceneFeatures(const Scene& scene) {
     if (!scene.environment)
         lines.push_back(skybox + " = off: the scene has no environment (no skybox, no IBL)");
     else if (scene.environment->procedural)
-        lines.push_back(skybox + " = on: environment is the procedural sky");
+        lines.push_back(skybox + " = on, " + environmentFile + " = off, " + sampleCubemap +
+                        " = off: environment is the procedural sky, evaluated per pixel");
     else
         lines.push_back(skybox + " = on, " + environmentFile + " = on: environment is '" +
                         printableName(scene.environment->file.string()) + "', sampled " +

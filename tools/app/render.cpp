@@ -245,7 +245,13 @@ FrameInputs loadFrameInputs(const RenderOptions& options) {
         }
         for (const auto& line : explainSceneFeatures(*scene)) spdlog::info("scene: {}", line);
     }
-    for (const auto& [name, on] : options.features) co.features[name] = on;
+    for (const auto& [name, on] : options.features) {
+        // Said beside the scene's lines above, which the command line overrules.
+        if (const auto set = co.features.find(name); set != co.features.end() && set->second != on)
+            spdlog::info("feature {} = {}: --feature overrules the scene's {}", name, on ? "on" : "off",
+                         set->second ? "on" : "off");
+        co.features[name] = on;
+    }
     co.outputWidth = options.width;
     co.outputHeight = options.height;
     co.aliasing = options.aliasing;

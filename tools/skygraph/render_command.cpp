@@ -85,7 +85,9 @@ Command addRenderCommand(CLI::App& parent) {
     cmd->add_flag("--clobber-transients", o.clobberTransients,
                   "Fill each transient resource that is not cleared with poison (NaN where the format holds it) "
                   "before its first use: a frame that then renders differently reads what it did not write");
-    cmd->add_flag("--validate", o.validate, "Khronos validation with synchronization validation; any message fails");
+    cmd->add_flag("--validate", o.validate,
+                  "Khronos validation with synchronization validation; any warning or error fails (performance "
+                  "advice is logged)");
     cmd->add_option("--device", o.device, "Device by index or name")->check(kNotEmpty);
     return {cmd, [args] { return run(*args); }};
 }

@@ -76,7 +76,8 @@ Command addViewCommand(CLI::App& parent) {
                   "before its first use");
     addFlagSettingFalse(*cmd, "--no-ui", o.overlay, "Hide the debug overlay (the graph's feature ui off)");
     cmd->add_flag("--validate", o.frame.validate,
-                  "Khronos validation with synchronization validation; any message fails");
+                  "Khronos validation with synchronization validation; any warning or error fails (performance "
+                  "advice is logged)");
     cmd->add_option("--device", o.frame.device, "Device by index or name")->check(kNotEmpty);
     return {cmd, [args] { return run(*args); }};
 }
