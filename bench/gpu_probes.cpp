@@ -261,7 +261,7 @@ ProbeResult measureFragmentFill(Device& device, uint32_t width, uint32_t height,
     rpi.pDependencies = &dep;
     VkRenderPass rawPass;
     vk::check(vkCreateRenderPass(vkd, &rpi, nullptr, &rawPass), "vkCreateRenderPass");
-    const vk::RenderPass renderPass(vkd, rawPass);
+    const owned::RenderPass renderPass(vkd, rawPass);
     VkFramebufferCreateInfo fbi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fbi.renderPass = rawPass;
     fbi.attachmentCount = 1;
@@ -272,7 +272,7 @@ ProbeResult measureFragmentFill(Device& device, uint32_t width, uint32_t height,
     fbi.layers = 1;
     VkFramebuffer rawFramebuffer;
     vk::check(vkCreateFramebuffer(vkd, &fbi, nullptr, &rawFramebuffer), "vkCreateFramebuffer");
-    const vk::Framebuffer framebuffer(vkd, rawFramebuffer);
+    const owned::Framebuffer framebuffer(vkd, rawFramebuffer);
 
     ShaderCompiler compiler(ShaderCompiler::defaultIncludeDir());
     GraphicsPipelineRecipe recipe;
@@ -312,7 +312,7 @@ std::vector<ProbeResult> measureComputeTonemap(Device& device, uint32_t width, u
     sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     VkSampler rawSampler;
     vk::check(vkCreateSampler(device.device(), &sci, nullptr, &rawSampler), "vkCreateSampler");
-    const vk::Sampler sampler(device.device(), rawSampler);
+    const owned::Sampler sampler(device.device(), rawSampler);
 
     ShaderCompiler compiler(ShaderCompiler::defaultIncludeDir());
     const auto push = pushDescriptorFunction(device.device());

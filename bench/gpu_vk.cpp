@@ -12,14 +12,14 @@ using vk::check;
 
 namespace {
 
-vk::Memory allocate(Device& device, const VkMemoryRequirements& req) {
+owned::Memory allocate(Device& device, const VkMemoryRequirements& req) {
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = req.size;
     ai.memoryTypeIndex = vk::findMemoryType(device.physicalDevice(), req.memoryTypeBits,
                                             VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkDeviceMemory memory;
     check(vkAllocateMemory(device.device(), &ai, nullptr, &memory), "vkAllocateMemory");
-    return vk::Memory(device.device(), memory);
+    return owned::Memory(device.device(), memory);
 }
 
 }  // namespace
@@ -32,7 +32,7 @@ DeviceBuffer createDeviceBuffer(Device& device, VkDeviceSize size, VkBufferUsage
     bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     VkBuffer buffer;
     check(vkCreateBuffer(device.device(), &bi, nullptr, &buffer), "vkCreateBuffer");
-    b.buffer = vk::Buffer(device.device(), buffer);
+    b.buffer = owned::Buffer(device.device(), buffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device.device(), buffer, &req);
     b.memory = allocate(device, req);
@@ -55,7 +55,7 @@ DeviceImage createDeviceImage(Device& device, VkFormat format, VkExtent2D extent
     ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image;
     check(vkCreateImage(device.device(), &ii, nullptr, &image), "vkCreateImage");
-    img.image = vk::Image(device.device(), image);
+    img.image = owned::Image(device.device(), image);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device.device(), image, &req);
     img.memory = allocate(device, req);
@@ -67,7 +67,7 @@ DeviceImage createDeviceImage(Device& device, VkFormat format, VkExtent2D extent
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     VkImageView view;
     check(vkCreateImageView(device.device(), &vi, nullptr, &view), "vkCreateImageView");
-    img.view = vk::ImageView(device.device(), view);
+    img.view = owned::ImageView(device.device(), view);
     img.format = format;
     img.extent = extent;
     return img;
@@ -80,7 +80,7 @@ GpuTimer::GpuTimer(Device& device) : device_(device) {
     pci.queueFamilyIndex = device.queueFamily();
     VkCommandPool pool;
     check(vkCreateCommandPool(vkd, &pci, nullptr, &pool), "vkCreateCommandPool");
-    pool_ = vk::CommandPool(vkd, pool);
+    pool_ = owned::CommandPool(vkd, pool);
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = pool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -91,11 +91,11 @@ GpuTimer::GpuTimer(Device& device) : device_(device) {
     qci.queryCount = 2;
     VkQueryPool queries;
     check(vkCreateQueryPool(vkd, &qci, nullptr, &queries), "vkCreateQueryPool");
-    queries_ = vk::QueryPool(vkd, queries);
+    queries_ = owned::QueryPool(vkd, queries);
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence fence;
     check(vkCreateFence(vkd, &fci, nullptr, &fence), "vkCreateFence");
-    fence_ = vk::Fence(vkd, fence);
+    fence_ = owned::Fence(vkd, fence);
 }
 
 GpuTimer::~GpuTimer() { vkDeviceWaitIdle(device_.device()); }

@@ -15,8 +15,8 @@ namespace skygraph::gpubench {
 
 /// A device-local buffer and its memory, owned.
 struct DeviceBuffer {
-    vk::Buffer buffer;
-    vk::Memory memory;
+    owned::Buffer buffer;
+    owned::Memory memory;
     VkDeviceSize size = 0;
 };
 
@@ -25,9 +25,9 @@ struct DeviceBuffer {
 
 /// A device-local 2D image (one mip, one layer, optimal tiling) with a color view, owned.
 struct DeviceImage {
-    vk::Image image;
-    vk::Memory memory;
-    vk::ImageView view;
+    owned::Image image;
+    owned::Memory memory;
+    owned::ImageView view;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent2D extent{};
 };
@@ -59,10 +59,10 @@ private:
                   const std::function<void(VkCommandBuffer)>& prologue, bool timed);
 
     Device& device_;
-    vk::CommandPool pool_;
+    owned::CommandPool pool_;
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    vk::QueryPool queries_;
-    vk::Fence fence_;
+    owned::QueryPool queries_;
+    owned::Fence fence_;
 };
 
 /// Median of `values` (the mean of the middle two for an even count); 0 when empty.

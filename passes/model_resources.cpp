@@ -38,7 +38,7 @@ ModelResources::ModelResources(VkDevice device, VkPhysicalDevice physicalDevice)
             si.maxLod = VK_LOD_CLAMP_NONE;
             VkSampler sampler;
             vk::check(vkCreateSampler(device_, &si, nullptr, &sampler), "vkCreateSampler");
-            samplers_[s * 3 + t] = vk::Sampler(device_, sampler);
+            samplers_[s * 3 + t] = owned::Sampler(device_, sampler);
         }
 }
 
@@ -50,7 +50,7 @@ HostBuffer makeHostBuffer(VkDevice device, VkPhysicalDevice physicalDevice, VkDe
     bi.usage = usage;
     VkBuffer b;
     vk::check(vkCreateBuffer(device, &bi, nullptr, &b), "vkCreateBuffer");
-    h.buffer = vk::Buffer(device, b);
+    h.buffer = owned::Buffer(device, b);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(device, b, &req);
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -59,7 +59,7 @@ HostBuffer makeHostBuffer(VkDevice device, VkPhysicalDevice physicalDevice, VkDe
                                             VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     VkDeviceMemory mem;
     vk::check(vkAllocateMemory(device, &ai, nullptr, &mem), "vkAllocateMemory");
-    h.memory = vk::Memory(device, mem);
+    h.memory = owned::Memory(device, mem);
     vk::check(vkBindBufferMemory(device, b, mem, 0), "vkBindBufferMemory");
     void* mapped;
     vk::check(vkMapMemory(device, mem, 0, VK_WHOLE_SIZE, 0, &mapped), "vkMapMemory");
@@ -82,7 +82,7 @@ OwnedTexture ModelResources::texture(const SampledImageShape& shape) const {
     ii.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     VkImage image;
     vk::check(vkCreateImage(device_, &ii, nullptr, &image), "vkCreateImage");
-    t.image = vk::Image(device_, image);
+    t.image = owned::Image(device_, image);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(device_, image, &req);
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -90,7 +90,7 @@ OwnedTexture ModelResources::texture(const SampledImageShape& shape) const {
     ai.memoryTypeIndex = vk::findMemoryType(physicalDevice_, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkDeviceMemory mem;
     vk::check(vkAllocateMemory(device_, &ai, nullptr, &mem), "vkAllocateMemory");
-    t.memory = vk::Memory(device_, mem);
+    t.memory = owned::Memory(device_, mem);
     vk::check(vkBindImageMemory(device_, image, mem, 0), "vkBindImageMemory");
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
@@ -99,7 +99,7 @@ OwnedTexture ModelResources::texture(const SampledImageShape& shape) const {
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, ii.mipLevels, 0, 1};
     VkImageView view;
     vk::check(vkCreateImageView(device_, &vi, nullptr, &view), "vkCreateImageView");
-    t.view = vk::ImageView(device_, view);
+    t.view = owned::ImageView(device_, view);
     return t;
 }
 

@@ -16,15 +16,15 @@ namespace skygraph::passes {
 
 /// A sampled image owned here: the image, its memory and a view of every mip.
 struct OwnedTexture {
-    vk::Memory memory;
-    vk::Image image;
-    vk::ImageView view;
+    owned::Memory memory;
+    owned::Image image;
+    owned::ImageView view;
 };
 
 /// A host-visible buffer filled once.
 struct HostBuffer {
-    vk::Memory memory;
-    vk::Buffer buffer;
+    owned::Memory memory;
+    owned::Buffer buffer;
 };
 
 /// A host-visible, host-coherent buffer of `size` bytes, filled with `data`: written before
@@ -79,7 +79,7 @@ private:
 
     VkDevice device_;
     VkPhysicalDevice physicalDevice_;
-    std::array<vk::Sampler, 9> samplers_;
+    std::array<owned::Sampler, 9> samplers_;
     OwnedTexture white_;
     HostBuffer whiteStaging_;
     std::vector<std::unique_ptr<Model>> models_;

@@ -20,7 +20,7 @@
 namespace {
 
 using namespace skygraph;
-using namespace skygraph::testing;
+using namespace skygraph::testkit;
 
 struct VignetteGraph {
     PassLibrary library = [] {

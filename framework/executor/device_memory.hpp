@@ -18,7 +18,7 @@
 namespace skygraph::detail {
 
 struct DeviceMemory {
-    vk::Memory memory;
+    owned::Memory memory;
     VkDeviceSize bytes = 0;
     uint32_t type = 0;  ///< The memory type index it was allocated from.
     /// The device's Device::allocatedBytes() count, which holds `bytes` while this lives.

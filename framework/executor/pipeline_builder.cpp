@@ -42,15 +42,15 @@ namespace {
 
 /// Push-descriptor set 0 and the pipeline layout over it, owned by `setLayout`/`layout`.
 void createLayouts(VkDevice device, const std::vector<VkDescriptorSetLayoutBinding>& bindings,
-                   VkShaderStageFlags pushStages, uint32_t pushConstantBytes, vk::SetLayout& setLayout,
-                   vk::PipelineLayout& layout) {
+                   VkShaderStageFlags pushStages, uint32_t pushConstantBytes, owned::SetLayout& setLayout,
+                   owned::PipelineLayout& layout) {
     VkDescriptorSetLayoutCreateInfo sli{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     sli.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
     sli.bindingCount = static_cast<uint32_t>(bindings.size());
     sli.pBindings = bindings.data();
     VkDescriptorSetLayout set;
     vk::check(vkCreateDescriptorSetLayout(device, &sli, nullptr, &set), "vkCreateDescriptorSetLayout");
-    setLayout = vk::SetLayout(device, set);
+    setLayout = owned::SetLayout(device, set);
 
     VkPushConstantRange range{pushStages, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -60,16 +60,16 @@ void createLayouts(VkDevice device, const std::vector<VkDescriptorSetLayoutBindi
     pli.pPushConstantRanges = &range;
     VkPipelineLayout l;
     vk::check(vkCreatePipelineLayout(device, &pli, nullptr, &l), "vkCreatePipelineLayout");
-    layout = vk::PipelineLayout(device, l);
+    layout = owned::PipelineLayout(device, l);
 }
 
-vk::ShaderModule shaderModule(VkDevice device, const std::vector<uint32_t>& code) {
+owned::ShaderModule shaderModule(VkDevice device, const std::vector<uint32_t>& code) {
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mi.codeSize = code.size() * 4;
     mi.pCode = code.data();
     VkShaderModule m;
     vk::check(vkCreateShaderModule(device, &mi, nullptr, &m), "vkCreateShaderModule");
-    return vk::ShaderModule(device, m);
+    return owned::ShaderModule(device, m);
 }
 
 }  // namespace
@@ -80,7 +80,7 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
                   recipe.pushConstantBytes, out.setLayout, out.layout);
     const VkPipelineLayout layout = out.layout.get();
 
-    const vk::ShaderModule vs = shaderModule(device, recipe.vertex), fs = shaderModule(device, recipe.fragment);
+    const owned::ShaderModule vs = shaderModule(device, recipe.vertex), fs = shaderModule(device, recipe.fragment);
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                  VK_SHADER_STAGE_VERTEX_BIT, vs.get(), "main", nullptr};
@@ -141,7 +141,7 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     VkPipeline pipeline;
     vk::check(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gi, nullptr, &pipeline),
               "vkCreateGraphicsPipelines");
-    out.pipeline = vk::Pipeline(device, pipeline);
+    out.pipeline = owned::Pipeline(device, pipeline);
     return out;
 }
 
@@ -149,7 +149,7 @@ ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineReci
     ComputePipeline out;
     createLayouts(device, recipe.bindings, VK_SHADER_STAGE_COMPUTE_BIT, recipe.pushConstantBytes,
                   out.setLayout, out.layout);
-    const vk::ShaderModule cs = shaderModule(device, recipe.compute);
+    const owned::ShaderModule cs = shaderModule(device, recipe.compute);
     VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                 VK_SHADER_STAGE_COMPUTE_BIT, cs.get(), "main", nullptr};
@@ -157,7 +157,7 @@ ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineReci
     VkPipeline pipeline;
     vk::check(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline),
               "vkCreateComputePipelines");
-    out.pipeline = vk::Pipeline(device, pipeline);
+    out.pipeline = owned::Pipeline(device, pipeline);
     return out;
 }
 

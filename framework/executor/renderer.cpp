@@ -151,10 +151,10 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
     sci.maxLod = VK_LOD_CLAMP_NONE;
     VkSampler sampler;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
-    d.linearSampler = vk::Sampler(d.vkd, sampler);
+    d.linearSampler = owned::Sampler(d.vkd, sampler);
     sci.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
     vk::check(vkCreateSampler(d.vkd, &sci, nullptr, &sampler), "vkCreateSampler");
-    d.repeatSampler = vk::Sampler(d.vkd, sampler);
+    d.repeatSampler = owned::Sampler(d.vkd, sampler);
     d.createFrames();
     if (Swapchain* presentTo = d.options.presentTo) {
         const Swapchain::Impl& sc = SwapchainAccess::impl(*presentTo);

@@ -16,12 +16,12 @@ void Renderer::Impl::createFrames() {
             pci.queueFamilyIndex = dev.families[k];
             VkCommandPool pool;
             vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &pool), "vkCreateCommandPool");
-            f.pools[k] = vk::CommandPool(vkd, pool);
+            f.pools[k] = owned::CommandPool(vkd, pool);
         }
         VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
         VkFence fence;
         vk::check(vkCreateFence(vkd, &fci, nullptr, &fence), "vkCreateFence");
-        f.fence = vk::Fence(vkd, fence);
+        f.fence = owned::Fence(vkd, fence);
     }
 }
 
@@ -33,7 +33,7 @@ void Renderer::Impl::ensureQueries(FrameSlot& f, uint32_t count) {
     qci.queryCount = std::max(count, 2u);
     VkQueryPool qp;
     vk::check(vkCreateQueryPool(vkd, &qci, nullptr, &qp), "vkCreateQueryPool");
-    f.queries = vk::QueryPool(vkd, qp);
+    f.queries = owned::QueryPool(vkd, qp);
     f.queryCount = qci.queryCount;
 }
 
@@ -106,7 +106,7 @@ void Renderer::Impl::ensureTimelines() {
         VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO, &type};
         VkSemaphore raw;
         vk::check(vkCreateSemaphore(vkd, &sci, nullptr, &raw), "vkCreateSemaphore");
-        t = vk::Semaphore(vkd, raw);
+        t = owned::Semaphore(vkd, raw);
     }
 }
 
@@ -160,7 +160,7 @@ bool Renderer::Impl::releaseHeld(FrameSlot& f, HeldRelease when) {
     if (!f.held) return true;
     std::vector<VkFence> fences;
     if (when != HeldRelease::Now)
-        for (const vk::Fence& r : f.runFences) fences.push_back(r.get());
+        for (const owned::Fence& r : f.runFences) fences.push_back(r.get());
     if (!fences.empty()) {
         const VkResult done = vkWaitForFences(vkd, static_cast<uint32_t>(fences.size()), fences.data(), VK_TRUE,
                                               when == HeldRelease::AfterFinished ? kWaitForever : 0);

@@ -56,7 +56,7 @@ inline VkImageAspectFlags aspectOf(const FormatInfo& f) {
 /// after it.
 struct OwnedBuffer {
     SharedMemory memory;
-    vk::Buffer buffer;
+    owned::Buffer buffer;
     void* mapped = nullptr;
     VkDeviceSize size = 0;
 };
@@ -67,14 +67,14 @@ struct OwnedBuffer {
 /// before the image, the memory is released after it.
 struct ImageStorage {
     SharedMemory memory;
-    vk::Image image;
+    owned::Image image;
     bool concurrent = false;  ///< Created VK_SHARING_MODE_CONCURRENT over the device's families.
 };
 
 struct ImageCopy {
     std::shared_ptr<const ImageStorage> storage;
     VkImage image = VK_NULL_HANDLE;  ///< storage's image
-    std::map<std::tuple<int, uint32_t, uint32_t, uint32_t, uint32_t>, vk::ImageView> views;
+    std::map<std::tuple<int, uint32_t, uint32_t, uint32_t, uint32_t>, owned::ImageView> views;
 };
 
 /// One plan resource: its description and one or N (per frame slot) Vulkan copies, or, for the
@@ -122,7 +122,7 @@ struct ResourceState {
 
 /// Per pass and frame slot: everything recording needs, with handles resolved.
 struct PassSlot {
-    vk::Framebuffer framebuffer;  ///< Graphics passes.
+    owned::Framebuffer framebuffer;  ///< Graphics passes.
     VkExtent2D extent{1, 1};      ///< The framebuffer's.
     BarrierBatch before;  ///< The plan's batch before the pass.
     BarrierBatch inPass;  ///< The plan's in-pass barriers: between its copies out and in.
@@ -156,7 +156,7 @@ struct PassState {
     /// for a type without its own).
     std::unique_ptr<PassImplementation> implementation;
     PassAttachments attachments;
-    vk::RenderPass renderPass;  ///< Graphics passes.
+    owned::RenderPass renderPass;  ///< Graphics passes.
     std::vector<VkClearValue> clearValues;
     std::vector<PassSlot> slots;
 };
@@ -279,7 +279,7 @@ void translateFinalBarriers(PlanState& s, uint32_t slots);
 /// its views), and the framebuffers and recording code of the passes that used it.
 struct RetiredImport {
     ImageCopy image;
-    std::vector<vk::Framebuffer> framebuffers;
+    std::vector<owned::Framebuffer> framebuffers;
     std::vector<std::unique_ptr<PassImplementation>> implementations;
     uint64_t untilFrame = 0;  ///< Frames submitted before this one may still use them.
 };
@@ -287,21 +287,21 @@ struct RetiredImport {
 struct FrameSlot {
     /// Per queue kind (indexed by QueueKind): a pool of its queue's family, and a command buffer
     /// per submit of the plan on that queue, allocated as needed.
-    std::array<vk::CommandPool, kQueueKinds> pools;
+    std::array<owned::CommandPool, kQueueKinds> pools;
     std::array<std::vector<VkCommandBuffer>, kQueueKinds> cmds;
     /// Under validation: a binary semaphore per semaphore wait of the frame (renderer_frame.cpp).
-    std::vector<vk::Semaphore> binaries;
+    std::vector<owned::Semaphore> binaries;
     /// The semaphore the slot's frames acquire swapchain images with, made on first use. The
     /// renderer's, not the swapchain's: the slot's fence says when its last wait has run, and
     /// another renderer presenting to the same swapchain knows nothing of that fence.
-    vk::Semaphore acquire;
-    vk::Fence fence;
+    owned::Semaphore acquire;
+    owned::Fence fence;
     uint64_t frame = 0;  ///< frameIndex of the frame last submitted in this slot.
     std::shared_ptr<void> setupKeep;  ///< A pending setup's staging, until this slot's frame finishes.
     StagedUploads stagedKeep;  ///< What the frame's UploadPasses copy, until they have.
     /// A background frame (Renderer::renderFrameInBackground): a fence per vkQueueSubmit2
     /// before its last submit, and that submit, held back until those fences signal.
-    std::vector<vk::Fence> runFences;
+    std::vector<owned::Fence> runFences;
     struct HeldSubmit {
         VkCommandBufferSubmitInfo cmd{};
         std::vector<VkSemaphoreSubmitInfo> waits, signals;
@@ -309,7 +309,7 @@ struct FrameSlot {
         bool recordsPasses = false;
     };
     std::optional<HeldSubmit> held;
-    vk::QueryPool queries;
+    owned::QueryPool queries;
     uint32_t queryCount = 0;
     bool submitted = false;
     bool timingsPending = false;
@@ -340,8 +340,8 @@ struct Renderer::Impl {
     /// one (RendererOptions::shaderCompiler) until one of them reads the shaders
     /// again.
     std::shared_ptr<ShaderCompiler> shaders;
-    vk::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
-    vk::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
+    owned::Sampler linearSampler;  ///< For pass implementations: trilinear, clamp.
+    owned::Sampler repeatSampler;  ///< Trilinear, repeat U, clamp V (equirect).
     FrameData frameData;
     detail::StagedUploads staged;  ///< For the next frame (Renderer::stageUpload).
     /// Pixels given to setExternalImage, by resource name; uploaded on every import.
@@ -499,7 +499,7 @@ struct Renderer::Impl {
     void recordFrame(VkCommandBuffer cmd, uint32_t slot, detail::FrameSlot* frame, std::optional<size_t> submit = {});
     /// The timeline semaphore of each queue kind (docs/queues.md), made with the first plan of
     /// several submits, and the value each has been signalled up to by submitted frames.
-    std::array<vk::Semaphore, kQueueKinds> timelines;
+    std::array<owned::Semaphore, kQueueKinds> timelines;
     std::array<uint64_t, kQueueKinds> timelineValues{};
     void ensureTimelines();
     /// A command buffer of `f` for each of `submits`, from the pool of its queue.

@@ -71,7 +71,7 @@ SharedMemory Renderer::Impl::allocate(VkDeviceSize bytes, uint32_t typeBits, VkM
     if (const VkResult result = vkAllocateMemory(vkd, &mai, nullptr, &raw); result != VK_SUCCESS)
         throw ExecutorError(name + ": vkAllocateMemory of " + std::to_string(bytes) + " bytes in memory type " +
                             std::to_string(memory->type) + " failed: " + vk::resultName(result));
-    memory->memory = vk::Memory(vkd, raw);
+    memory->memory = owned::Memory(vkd, raw);
     memory->counted = &dev.allocatedBytes;
     memory->counted->fetch_add(bytes);
     if (dev.fn.setObjectName) {

@@ -203,7 +203,7 @@ void Renderer::Impl::buildRenderPass(PlanState& s, PassState& ps) {
     rpci.pSubpasses = &sub;
     VkRenderPass rp;
     vk::check(vkCreateRenderPass(vkd, &rpci, nullptr, &rp), "vkCreateRenderPass");
-    ps.renderPass = vk::RenderPass(vkd, rp);
+    ps.renderPass = owned::RenderPass(vkd, rp);
 }
 
 void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
@@ -234,7 +234,7 @@ void Renderer::Impl::buildPassSlot(PlanState& s, PassState& ps, uint32_t slot) {
     fci.layers = ps.attachments.layers;
     VkFramebuffer fb;
     vk::check(vkCreateFramebuffer(vkd, &fci, nullptr, &fb), "vkCreateFramebuffer");
-    sl.framebuffer = vk::Framebuffer(vkd, fb);
+    sl.framebuffer = owned::Framebuffer(vkd, fb);
 }
 
 void Renderer::Impl::bindResources(PlanState& s, PassState& ps, uint32_t slot) {

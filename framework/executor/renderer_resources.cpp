@@ -92,7 +92,7 @@ OwnedBuffer Renderer::Impl::makeHostBuffer(VkDeviceSize size, VkBufferUsageFlags
     bci.usage = usage;
     VkBuffer buffer;
     vk::check(vkCreateBuffer(vkd, &bci, nullptr, &buffer), "vkCreateBuffer");
-    b.buffer = vk::Buffer(vkd, buffer);
+    b.buffer = owned::Buffer(vkd, buffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(vkd, buffer, &req);
     b.memory = allocate(req.size, req.memoryTypeBits,
@@ -124,7 +124,7 @@ VkImageView Renderer::Impl::view(ResourceState& r, uint32_t copy, VkImageViewTyp
     ci.subresourceRange.layerCount = range.layerCount;
     VkImageView v;
     vk::check(vkCreateImageView(vkd, &ci, nullptr, &v), "vkCreateImageView");
-    img.views.emplace(key, vk::ImageView(vkd, v));
+    img.views.emplace(key, owned::ImageView(vkd, v));
     return v;
 }
 
@@ -219,7 +219,7 @@ void Renderer::Impl::createResources(PlanState& s) {
                 b.size = ci.size;
                 VkBuffer buffer;
                 vk::check(vkCreateBuffer(vkd, &ci, nullptr, &buffer), "vkCreateBuffer");
-                b.buffer = vk::Buffer(vkd, buffer);
+                b.buffer = owned::Buffer(vkd, buffer);
                 b.memory = bindBuffer(s, r, c, buffer);
                 r.buffers.push_back(std::move(b));
             }
@@ -251,7 +251,7 @@ void Renderer::Impl::createResources(PlanState& s) {
             auto storage = std::make_shared<ImageStorage>();
             VkImage image;
             vk::check(vkCreateImage(vkd, &ci, nullptr, &image), "vkCreateImage");
-            storage->image = vk::Image(vkd, image);
+            storage->image = owned::Image(vkd, image);
             storage->concurrent = ci.sharingMode == VK_SHARING_MODE_CONCURRENT;
             img.image = image;
             storage->memory = bindImage(s, r, c, image);

@@ -20,7 +20,7 @@ void Renderer::Impl::submitAndWait(const std::function<void(CommandSink&)>& reco
     pci.queueFamilyIndex = dev.queueFamily;
     VkCommandPool rawPool;
     vk::check(vkCreateCommandPool(vkd, &pci, nullptr, &rawPool), "vkCreateCommandPool");
-    vk::CommandPool pool(vkd, rawPool);
+    owned::CommandPool pool(vkd, rawPool);
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = rawPool;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -43,7 +43,7 @@ void Renderer::Impl::submitAndWait(const std::function<void(CommandSink&)>& reco
     VkFenceCreateInfo fci{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence rawFence;
     vk::check(vkCreateFence(vkd, &fci, nullptr, &rawFence), "vkCreateFence");
-    vk::Fence fence(vkd, rawFence);
+    owned::Fence fence(vkd, rawFence);
     vk::check(vkQueueSubmit2(dev.queue, 1, &si, rawFence), "vkQueueSubmit2");
     vk::check(vkWaitForFences(vkd, 1, &rawFence, VK_TRUE, kWaitForever), "vkWaitForFences");
 }

@@ -12,7 +12,7 @@ namespace skygraph {
 
 struct StagingBuffer::Impl {
     detail::DeviceMemory memory;  ///< declared before the buffer: freed after it
-    vk::Buffer buffer;
+    owned::Buffer buffer;
     std::byte* mapped = nullptr;
     VkDeviceSize size = 0;
 };
@@ -27,7 +27,7 @@ std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSiz
     bci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     VkBuffer raw;
     vk::check(vkCreateBuffer(d.device, &bci, nullptr, &raw), "vkCreateBuffer (staging buffer)");
-    impl->buffer = vk::Buffer(d.device, raw);
+    impl->buffer = owned::Buffer(d.device, raw);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(d.device, raw, &req);
     VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -38,7 +38,7 @@ std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSiz
     if (const VkResult r = vkAllocateMemory(d.device, &mai, nullptr, &memory); r != VK_SUCCESS)
         throw ExecutorError("staging buffer: vkAllocateMemory of " + std::to_string(req.size) +
                             " bytes failed: " + vk::resultName(r));
-    impl->memory.memory = vk::Memory(d.device, memory);
+    impl->memory.memory = owned::Memory(d.device, memory);
     impl->memory.bytes = req.size;
     impl->memory.type = mai.memoryTypeIndex;
     impl->memory.counted = &d.allocatedBytes;

@@ -179,7 +179,7 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     if (swapchain) retired.push_back(std::move(swapchain));
     if (made != VK_SUCCESS) stale = true;
     vk::check(made, "vkCreateSwapchainKHR");
-    swapchain = vk::Swapchain(dev.device, created);
+    swapchain = owned::Swapchain(dev.device, created);
 
     vkGetSwapchainImagesKHR(dev.device, created, &n, nullptr);
     images.resize(n);

@@ -37,14 +37,14 @@ struct Swapchain::Impl {
     VkExtent2D wanted{0, 0};  ///< The window's size, from create() or resize().
     VkImageUsageFlags extraUsage = 0;  ///< SwapchainOptions::extraUsage.
     VkExtent2D extent{0, 0};  ///< The images'.
-    vk::Swapchain swapchain;
+    owned::Swapchain swapchain;
     /// The swapchains re-creations replaced: kept until the renderer no longer holds views of
     /// their images (releaseRetired). Several when a re-creation or the bind after one failed.
-    std::vector<vk::Swapchain> retired;
+    std::vector<owned::Swapchain> retired;
     std::vector<VkImage> images;
     /// One per image. The acquire semaphores are the renderers' (FrameSlot::acquire): only a
     /// renderer's own slot fence says when its last wait on one has run.
-    std::vector<vk::Semaphore> renderComplete;
+    std::vector<owned::Semaphore> renderComplete;
     uint64_t generation = 0;
     /// Unique in the process to the current images: what a renderer bound to them knows them
     /// by, since a swapchain made after this one is destroyed can have its address.

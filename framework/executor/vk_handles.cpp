@@ -3,7 +3,7 @@
 
 #include <vulkan/vulkan.h>
 
-namespace skygraph::vk {
+namespace skygraph::owned {
 
 #define SKYGRAPH_DESTROYER(Destroyer, Handle, call) \
     void Destroyer::destroy(VkDevice device, Handle handle) noexcept { call(device, handle, nullptr); }
@@ -25,4 +25,4 @@ SKYGRAPH_DESTROYER(DestroyQueryPool, VkQueryPool, vkDestroyQueryPool)
 
 #undef SKYGRAPH_DESTROYER
 
-}  // namespace skygraph::vk
+}  // namespace skygraph::owned

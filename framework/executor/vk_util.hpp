@@ -37,6 +37,10 @@ struct DeviceFunctions {
     PFN_vkSetDebugUtilsObjectNameEXT setObjectName = nullptr;
 };
 
+}  // namespace skygraph::vk
+
+namespace skygraph::owned {
+
 struct DestroySemaphore {
     static void destroy(VkDevice device, VkSemaphore semaphore) noexcept { vkDestroySemaphore(device, semaphore, nullptr); }
 };
@@ -46,14 +50,19 @@ struct DestroySwapchain {
     }
 };
 using Semaphore = Owned<VkSemaphore, DestroySemaphore>;
+using Swapchain = Owned<VkSwapchainKHR, DestroySwapchain>;
+
+}  // namespace skygraph::owned
+
+namespace skygraph::vk {
+
 /// A new binary semaphore of `device`; throws ExecutorError when it cannot be made.
-[[nodiscard]] inline Semaphore makeBinarySemaphore(VkDevice device) {
+[[nodiscard]] inline owned::Semaphore makeBinarySemaphore(VkDevice device) {
     VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore raw;
     check(vkCreateSemaphore(device, &sci, nullptr, &raw), "vkCreateSemaphore");
-    return Semaphore(device, raw);
+    return owned::Semaphore(device, raw);
 }
-using Swapchain = Owned<VkSwapchainKHR, DestroySwapchain>;
 
 /// Index of a memory type with `required` properties among `typeBits`; throws if none.
 [[nodiscard]] uint32_t findMemoryType(VkPhysicalDevice physical, uint32_t typeBits,

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <string_view>
 
-namespace skygraph::testing {
+namespace skygraph::testkit {
 
 ::testing::AssertionResult matchesGolden(const Plan& plan, const std::filesystem::path& golden) {
     if (const char* update = std::getenv("SKYGRAPH_UPDATE_GOLDEN"); update && std::string_view(update) == "1") {
@@ -30,4 +30,4 @@ namespace skygraph::testing {
     return failure;
 }
 
-}  // namespace skygraph::testing
+}  // namespace skygraph::testkit

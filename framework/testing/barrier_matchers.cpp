@@ -3,7 +3,7 @@
 
 #include <stdexcept>
 
-namespace skygraph::testing {
+namespace skygraph::testkit {
 namespace {
 
 // The kit's own reading of which pipeline stages a graph stage runs in: a barrier "from" a
@@ -173,4 +173,4 @@ BarrierExpectation::operator ::testing::Matcher<const NamedBarrier&>() const {
     return ::testing::MakeMatcher(new BarrierMatcher(*this));
 }
 
-}  // namespace skygraph::testing
+}  // namespace skygraph::testkit

@@ -2,7 +2,7 @@
 #include <skygraph/renderer.hpp>
 #include <skygraph/testing/assertions.hpp>
 
-namespace skygraph::testing {
+namespace skygraph::testkit {
 
 ::testing::AssertionResult rendersWithoutValidationMessages(Device& device, const CompiledGraph& compiled,
                                                             const RendererOptions& options, uint32_t frames) {
@@ -26,4 +26,4 @@ namespace skygraph::testing {
     return failure;
 }
 
-}  // namespace skygraph::testing
+}  // namespace skygraph::testkit

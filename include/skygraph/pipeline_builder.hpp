@@ -65,9 +65,9 @@ struct GraphicsPipelineRecipe {
 /// The objects one pipeline needs, owned. Returned only once every step succeeded, so a
 /// failed rebuild leaves the caller's previous pipeline untouched.
 struct PipelineObjects {
-    vk::SetLayout setLayout;
-    vk::PipelineLayout layout;
-    vk::Pipeline pipeline;
+    owned::SetLayout setLayout;
+    owned::PipelineLayout layout;
+    owned::Pipeline pipeline;
 };
 using GraphicsPipeline = PipelineObjects;
 using ComputePipeline = PipelineObjects;

@@ -6,7 +6,7 @@
 
 #include <utility>
 
-namespace skygraph::vk {
+namespace skygraph::owned {
 
 /// How each owner below destroys its handle: a call into the library, so that this header
 /// needs no Vulkan prototypes and includes under VK_NO_PROTOTYPES (volk and other loaders).
@@ -79,4 +79,4 @@ using CommandPool = Owned<VkCommandPool, DestroyCommandPool>;
 using Fence = Owned<VkFence, DestroyFence>;
 using QueryPool = Owned<VkQueryPool, DestroyQueryPool>;
 
-}  // namespace skygraph::vk
+}  // namespace skygraph::owned

@@ -20,8 +20,8 @@ namespace {
 
 /// A buffer the pass owns, with its memory; mapped when host-visible.
 struct OwnedBuffer {
-    vk::Buffer buffer;
-    vk::Memory memory;
+    owned::Buffer buffer;
+    owned::Memory memory;
     void* mapped = nullptr;
 };
 
@@ -32,7 +32,7 @@ OwnedBuffer makeBuffer(const PipelineContext& ctx, VkDeviceSize size, VkBufferUs
     bci.usage = usage;
     VkBuffer buffer;
     vk::check(vkCreateBuffer(ctx.device, &bci, nullptr, &buffer), "vkCreateBuffer");
-    b.buffer = vk::Buffer(ctx.device, buffer);
+    b.buffer = owned::Buffer(ctx.device, buffer);
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx.device, buffer, &req);
     VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -43,7 +43,7 @@ OwnedBuffer makeBuffer(const PipelineContext& ctx, VkDeviceSize size, VkBufferUs
                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkDeviceMemory mem;
     vk::check(vkAllocateMemory(ctx.device, &mai, nullptr, &mem), "vkAllocateMemory");
-    b.memory = vk::Memory(ctx.device, mem);
+    b.memory = owned::Memory(ctx.device, mem);
     vk::check(vkBindBufferMemory(ctx.device, buffer, mem, 0), "vkBindBufferMemory");
     if (hostVisible) vk::check(vkMapMemory(ctx.device, mem, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
     return b;
@@ -117,7 +117,7 @@ struct GenericPass::Slot {
     VkBuffer indirectBuffer = VK_NULL_HANDLE;
     OwnedBuffer sink;  ///< Destination of Transfer reads; written once a frame, never read.
     /// A pass without attachments that draws: its own framebuffer (no attachments either).
-    vk::Framebuffer framebuffer;
+    owned::Framebuffer framebuffer;
     VkExtent2D extent{0, 0};
 };
 
@@ -125,12 +125,12 @@ struct GenericPass::Slot {
 struct GenericPass::Built {
     GenericProgram program;
     bool executorRenderPass = false;  ///< The pass has attachments: it draws in the executor's.
-    vk::RenderPass ownRenderPass;     ///< Draws without attachments: a render pass without any.
+    owned::RenderPass ownRenderPass;     ///< Draws without attachments: a render pass without any.
     PipelineObjects graphics, compute;
     PFN_vkCmdPushDescriptorSetKHR pushDescriptors = nullptr;
-    vk::Sampler sampler;  ///< Nearest, clamp to edge: sampled reads take texels as they are.
+    owned::Sampler sampler;  ///< Nearest, clamp to edge: sampled reads take texels as they are.
     /// Views of one mip level for storage images bound per level, by image, type and range.
-    std::map<std::tuple<VkImage, VkImageViewType, uint32_t, uint32_t, uint32_t>, vk::ImageView> levelViews;
+    std::map<std::tuple<VkImage, VkImageViewType, uint32_t, uint32_t, uint32_t>, owned::ImageView> levelViews;
     std::vector<VkDeviceSize> transferOffsets;  ///< Per transfer usage, into source and sink.
     std::vector<std::vector<VkBufferImageCopy>> transferRegions;  ///< Per transfer usage of an image.
     VkDeviceSize transferBytes = 0;
@@ -153,7 +153,7 @@ struct GenericPass::Built {
         ci.subresourceRange = {detail::copyAspectOf(f), range.baseMip + level, 1, range.baseLayer, range.layerCount};
         VkImageView v;
         vk::check(vkCreateImageView(device, &ci, nullptr, &v), "vkCreateImageView");
-        levelViews.emplace(key, vk::ImageView(device, v));
+        levelViews.emplace(key, owned::ImageView(device, v));
         return v;
     }
 };
@@ -239,7 +239,7 @@ ComputePipeline computePipeline(const PipelineContext& ctx, const GenericProgram
     return createComputePipeline(ctx.device, recipe);
 }
 
-vk::RenderPass renderPassWithoutAttachments(VkDevice device) {
+owned::RenderPass renderPassWithoutAttachments(VkDevice device) {
     VkSubpassDescription sub{};
     sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     VkRenderPassCreateInfo rpci{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
@@ -247,10 +247,10 @@ vk::RenderPass renderPassWithoutAttachments(VkDevice device) {
     rpci.pSubpasses = &sub;
     VkRenderPass rp;
     vk::check(vkCreateRenderPass(device, &rpci, nullptr, &rp), "vkCreateRenderPass");
-    return vk::RenderPass(device, rp);
+    return owned::RenderPass(device, rp);
 }
 
-vk::Sampler nearestSampler(VkDevice device) {
+owned::Sampler nearestSampler(VkDevice device) {
     VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     sci.magFilter = sci.minFilter = VK_FILTER_NEAREST;
     sci.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
@@ -258,7 +258,7 @@ vk::Sampler nearestSampler(VkDevice device) {
     sci.maxLod = VK_LOD_CLAMP_NONE;
     VkSampler sampler;
     vk::check(vkCreateSampler(device, &sci, nullptr, &sampler), "vkCreateSampler");
-    return vk::Sampler(device, sampler);
+    return owned::Sampler(device, sampler);
 }
 
 }  // namespace
@@ -360,7 +360,7 @@ void GenericPass::createPipelines(const PipelineContext& ctx) {
             fci.layers = p.attachmentLayers;
             VkFramebuffer fb;
             vk::check(vkCreateFramebuffer(ctx.device, &fci, nullptr, &fb), "vkCreateFramebuffer");
-            sl.framebuffer = vk::Framebuffer(ctx.device, fb);
+            sl.framebuffer = owned::Framebuffer(ctx.device, fb);
         }
     }
     built_ = std::move(b);

@@ -224,8 +224,8 @@ private:
     }
 
     struct RingBuffer {
-        vk::Memory memory;
-        vk::Buffer buffer;
+        owned::Memory memory;
+        owned::Buffer buffer;
         void* mapped = nullptr;
     };
 
@@ -239,7 +239,7 @@ private:
             bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
             VkBuffer b;
             vk::check(vkCreateBuffer(ctx.device, &bi, nullptr, &b), "vkCreateBuffer");
-            r.buffer = vk::Buffer(ctx.device, b);
+            r.buffer = owned::Buffer(ctx.device, b);
             VkMemoryRequirements req;
             vkGetBufferMemoryRequirements(ctx.device, b, &req);
             VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
@@ -248,7 +248,7 @@ private:
                                                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
             VkDeviceMemory mem;
             vk::check(vkAllocateMemory(ctx.device, &ai, nullptr, &mem), "vkAllocateMemory");
-            r.memory = vk::Memory(ctx.device, mem);
+            r.memory = owned::Memory(ctx.device, mem);
             vk::check(vkBindBufferMemory(ctx.device, b, mem, 0), "vkBindBufferMemory");
             vk::check(vkMapMemory(ctx.device, mem, 0, VK_WHOLE_SIZE, 0, &r.mapped), "vkMapMemory");
         }

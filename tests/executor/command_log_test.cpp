@@ -70,7 +70,7 @@ struct StandIn {
                     r.images.push_back(std::move(copy));
                 } else {
                     OwnedBuffer b;
-                    b.buffer = vk::Buffer(VK_NULL_HANDLE, reinterpret_cast<VkBuffer>(handle));
+                    b.buffer = owned::Buffer(VK_NULL_HANDLE, reinterpret_cast<VkBuffer>(handle));
                     r.buffers.push_back(std::move(b));
                 }
             }
@@ -102,7 +102,7 @@ struct StandIn {
                 const uint64_t handle = 0x900000 + 0x10 * step + slot;
                 names[handle] = "host#" + std::to_string(slot);
                 OwnedBuffer b;
-                b.buffer = vk::Buffer(VK_NULL_HANDLE, reinterpret_cast<VkBuffer>(handle));
+                b.buffer = owned::Buffer(VK_NULL_HANDLE, reinterpret_cast<VkBuffer>(handle));
                 t.perSlot.push_back(std::move(b));
             }
             state.readbacks.push_back(std::move(t));

@@ -46,8 +46,8 @@ namespace skygraph {
 namespace {
 
 TEST(PublicHeaders, IncludeWithoutVulkanPrototypes) {
-    vk::Image image;
-    vk::Image moved = std::move(image);
+    owned::Image image;
+    owned::Image moved = std::move(image);
     moved.reset();  // holds nothing: destroys nothing
     EXPECT_FALSE(moved);
     EXPECT_EQ(moved.get(), VkImage(VK_NULL_HANDLE));

@@ -28,7 +28,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::Contains;
 using ::testing::Not;
-using namespace skygraph::testing;
+using namespace skygraph::testkit;
 
 const fs::path kSource = SKYGRAPH_SOURCE_DIR;
 

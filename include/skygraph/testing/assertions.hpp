@@ -3,9 +3,9 @@
 // graph rendered under validation. Each returns an AssertionResult whose message says what
 // failed, for EXPECT_TRUE / ASSERT_TRUE:
 //
-//     EXPECT_TRUE(skygraph::testing::matchesGolden(plan, "golden/" + goldenFileName(graph, features)));
-//     EXPECT_TRUE(skygraph::testing::verifies(plan, graph));
-//     EXPECT_TRUE(skygraph::testing::rendersWithoutValidationMessages(*device, compiled, rendererOptions));
+//     EXPECT_TRUE(skygraph::testkit::matchesGolden(plan, "golden/" + goldenFileName(graph, features)));
+//     EXPECT_TRUE(skygraph::testkit::verifies(plan, graph));
+//     EXPECT_TRUE(skygraph::testkit::rendersWithoutValidationMessages(*device, compiled, rendererOptions));
 #pragma once
 
 #include <skygraph/compiled_graph.hpp>
@@ -22,7 +22,7 @@ namespace skygraph {
 class Device;
 }
 
-namespace skygraph::testing {
+namespace skygraph::testkit {
 
 /// Success when `plan` matches the golden file `golden` (<skygraph/golden.hpp>); otherwise the
 /// status and a unified diff from the golden to the plan. With SKYGRAPH_UPDATE_GOLDEN=1 in the
@@ -44,4 +44,4 @@ namespace skygraph::testing {
                                                                           const RendererOptions& options = {},
                                                                           uint32_t frames = 3);
 
-}  // namespace skygraph::testing
+}  // namespace skygraph::testkit

@@ -1,7 +1,7 @@
 // GoogleMock matchers for the barriers of a plan (library skygraph::testing): what a reviewer
 // says of a barrier, in the graph's words, checked against the plan.
 //
-//     using namespace skygraph::testing;
+//     using namespace skygraph::testkit;
 //     EXPECT_THAT(barriersBefore(plan, "tonemap"),
 //                 ::testing::Contains(barrier("hdr_color").readAfterWrite()
 //                                         .from(skygraph::Stage::ColorAttachment)
@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-namespace skygraph::testing {
+namespace skygraph::testkit {
 
 /// A plan barrier with the name of its resource (empty for a global memory barrier). A copy;
 /// it views nothing of the plan.
@@ -86,4 +86,4 @@ private:
 /// Starts an expectation of a barrier on `resource`.
 [[nodiscard]] inline BarrierExpectation barrier(std::string resource) { return BarrierExpectation(std::move(resource)); }
 
-}  // namespace skygraph::testing
+}  // namespace skygraph::testkit
