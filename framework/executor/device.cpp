@@ -188,8 +188,14 @@ int typeRank(VkPhysicalDeviceType t) {
 
 /// What unsuitableReason (device_selection.hpp) needs to know of `pd`; with a `surface`,
 /// whether each graphics+compute family presents to it.
-detail::PhysicalDeviceFacts deviceFacts(VkPhysicalDevice pd, VkSurfaceKHR surface) {
+detail::PhysicalDeviceFacts deviceFacts(VkPhysicalDevice pd, VkSurfaceKHR surface,
+                                        const std::vector<std::string>& extensions) {
     detail::PhysicalDeviceFacts facts;
+    for (const std::string& e : extensions)
+        if (!deviceExtensionAvailable(pd, e.c_str())) {
+            facts.missingExtension = e;
+            break;
+        }
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(pd, &props);
     facts.apiVersion = props.apiVersion;
@@ -334,7 +340,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     }
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-    app.pApplicationName = "skygraph";
+    app.pApplicationName = options.applicationName.c_str();
+    app.applicationVersion = options.applicationVersion;
     app.pEngineName = "skygraph";
     app.apiVersion = VK_API_VERSION_1_3;
 
@@ -417,7 +424,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
                                                        : lower(c.name).find(lower(options.device)) != std::string::npos);
         if (!c.matched) continue;
         uint32_t family = 0;
-        c.reason = detail::unsuitableReason(deviceFacts(pds[i], impl->surface), impl->surface != VK_NULL_HANDLE, family);
+        c.reason = detail::unsuitableReason(deviceFacts(pds[i], impl->surface, options.deviceExtensions),
+                                            impl->surface != VK_NULL_HANDLE, family);
         if (!c.reason.empty()) continue;
         const int rank = typeRank(props.deviceType);
         if (rank < bestRank) {
@@ -429,7 +437,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     if (!chosen) throw ExecutorError(detail::noDeviceMessage(options.device, impl->surface != VK_NULL_HANDLE, candidates));
     impl->physical = chosen;
     impl->queueFamily = chosenFamily;
-    const detail::PhysicalDeviceFacts chosenFacts = deviceFacts(chosen, impl->surface);
+    const detail::PhysicalDeviceFacts chosenFacts = deviceFacts(chosen, impl->surface, options.deviceExtensions);
     const auto queueChoices = detail::chooseQueues(chosenFacts.families, chosenFamily,
                                                    options.separateQueues && !envFlagOff("SKYGRAPH_SEPARATE_QUEUES"));
     vkGetPhysicalDeviceProperties(chosen, &impl->properties);
@@ -482,6 +490,9 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     }
     std::vector<const char*> devExts{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (impl->surface) devExts.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+    for (const std::string& e : options.deviceExtensions)
+        if (std::none_of(devExts.begin(), devExts.end(), [&](const char* have) { return e == have; }))
+            devExts.push_back(e.c_str());
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &f2;
     dci.queueCreateInfoCount = static_cast<uint32_t>(queueInfos.size());

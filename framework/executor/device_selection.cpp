@@ -15,6 +15,8 @@ std::string unsuitableReason(const PhysicalDeviceFacts& facts, bool presenting, 
     if (!facts.separateDepthStencilLayouts) return "lacks separateDepthStencilLayouts";
     if (!facts.timelineSemaphore) return "lacks timelineSemaphore";
     if (presenting && !facts.swapchain) return "cannot present: it lacks VK_KHR_swapchain";
+    if (!facts.missingExtension.empty())
+        return "lacks " + facts.missingExtension + ", which DeviceOptions::deviceExtensions asks for";
     bool renders = false;
     for (size_t i = 0; i < facts.families.size(); ++i) {
         const QueueFamilyFacts& f = facts.families[i];

@@ -33,6 +33,8 @@ struct PhysicalDeviceFacts {
     /// Plans on several queues order their submits with a timeline semaphore per queue.
     bool timelineSemaphore = false;
     bool swapchain = false;         ///< VK_KHR_swapchain
+    /// The first of DeviceOptions::deviceExtensions the device lacks; empty when it has them all.
+    std::string missingExtension;
     std::vector<QueueFamilyFacts> families;
 };
 

@@ -82,6 +82,14 @@ struct DeviceOptions {
     /// family without compute (else the compute queue). False, or the environment variable
     /// SKYGRAPH_SEPARATE_QUEUES=0: every kind submits to the graphics queue.
     bool separateQueues = true;
+    /// The application's name and version in VkApplicationInfo, which drivers key their
+    /// per-application settings on; the engine is named "skygraph".
+    std::string applicationName = "skygraph";
+    uint32_t applicationVersion = 0;
+    /// Device extensions the application's own Vulkan work on this device needs, enabled
+    /// beside skygraph's. A device that lacks one is unsuitable (Device::create lists it
+    /// with the extension it lacks); their features, where they have any, are not enabled.
+    std::vector<std::string> deviceExtensions;
 };
 
 /// One validation / debug-utils message that was counted. A plain value; copies own their text.

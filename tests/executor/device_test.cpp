@@ -57,6 +57,31 @@ TEST(DeviceSelection, ValidationByEnvironment) {
     EXPECT_EQ(d->messageCount(), 0u);
 }
 
+// An application's own device extensions are enabled beside skygraph's (their commands
+// resolve only then), and a device without one is refused naming it.
+TEST(DeviceSelection, TheApplicationsDeviceExtensionsAreEnabled) {
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    o.validation = true;
+    o.applicationName = "embedding test";
+    const auto plain = Device::create(o);
+    EXPECT_EQ(vkGetDeviceProcAddr(plain->device(), "vkCmdBeginConditionalRenderingEXT"), nullptr);
+    o.deviceExtensions = {"VK_EXT_conditional_rendering"};
+    const auto extended = Device::create(o);
+    EXPECT_NE(vkGetDeviceProcAddr(extended->device(), "vkCmdBeginConditionalRenderingEXT"), nullptr);
+    EXPECT_EQ(extended->messageCount(), 0u);
+    o.deviceExtensions = {"VK_EXT_conditional_rendering", "VK_NOPE_no_such_extension"};
+    try {
+        (void)Device::create(o);
+        ADD_FAILURE() << "expected ExecutorError";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("lacks VK_NOPE_no_such_extension, which DeviceOptions::deviceExtensions "
+                                             "asks for"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 // The layer's QUEUE_SUBMIT setting travels through VK_LAYER_ENABLES, which the application
 // gets back as it was: unset, or its own value (the setting is only added for the creation).
 // The negative controls of hazards between submits (NegativeControl.DroppedSemaphoreWait*)

@@ -83,6 +83,10 @@ TEST(DeviceSelectionReason, EveryOtherReason) {
     f.timelineSemaphore = false;
     EXPECT_EQ(unsuitableReason(f, false, family), "lacks timelineSemaphore");
     f = capable({kRendersAndPresents});
+    f.missingExtension = "VK_EXT_conditional_rendering";
+    EXPECT_EQ(unsuitableReason(f, false, family),
+              "lacks VK_EXT_conditional_rendering, which DeviceOptions::deviceExtensions asks for");
+    f = capable({kRendersAndPresents});
     f.pushDescriptor = false;
     EXPECT_EQ(unsuitableReason(f, false, family), "lacks VK_KHR_push_descriptor");
     f = capable({kRendersAndPresents});
