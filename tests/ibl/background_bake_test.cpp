@@ -63,6 +63,18 @@ protected:
             sharedDevice(), CompiledGraph(parseGraph(graph, "<probe_frame>", library_.registry()), co), ro);
     }
 
+    /// The probe frame, probing with a pass of type `type`.
+    std::unique_ptr<Renderer> frameProbingWith(const std::string& type) {
+        std::string graph = kFrameGraph;
+        graph.replace(graph.find("FaceProbe"), 9, type);
+        return frameRenderer(graph);
+    }
+
+    /// graphs/ibl.json baked from a sky of one colour, `environment` ready to share.
+    app::EnvironmentBake bakeUniform(float r, float g, float b) {
+        return app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(r, g, b), products_, &library_);
+    }
+
     /// The red channel of every face centre of the frame's last read-back.
     static std::vector<float> faceReds(const ImageData& probe) {
         std::vector<float> reds;
@@ -76,7 +88,7 @@ protected:
 };
 
 TEST_F(BackgroundBake, FramesSampleTheOldCubeUntilTheSwapThenTheNewOne) {
-    app::EnvironmentBake first = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(1, 0, 0), products_, &library_);
+    app::EnvironmentBake first = bakeUniform(1, 0, 0);
     std::unique_ptr<Renderer> frame = frameRenderer();
     frame->importImage("environment", first.renderer->shareImage("environment"));
     frame->renderFrame();
@@ -119,12 +131,10 @@ TEST_F(BackgroundBake, ASwapKeepsAPassThatReadsItsHandlesWhileRecording) {
             ++made;
             return std::make_unique<CubeProbe>(std::vector<Dir>{{1, 0, 0}}, keeps);
         });
-        std::string graph = kFrameGraph;
-        graph.replace(graph.find("FaceProbe"), 9, keeps ? "KeepingProbe" : "ReadingProbe");
-        const std::unique_ptr<Renderer> probeFrame = frameRenderer(graph);
+        const std::unique_ptr<Renderer> probeFrame = frameProbingWith(keeps ? "KeepingProbe" : "ReadingProbe");
         Renderer& frame = *probeFrame;
-        app::EnvironmentBake red = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(1, 0, 0), products_, &library_);
-        app::EnvironmentBake blue = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 0, 1), products_, &library_);
+        app::EnvironmentBake red = bakeUniform(1, 0, 0);
+        app::EnvironmentBake blue = bakeUniform(0, 0, 1);
         frame.importImage("environment", red.renderer->shareImage("environment"));
         frame.renderFrame();
         EXPECT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f);
@@ -166,12 +176,10 @@ TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
             if (*failing && factoryThrows) throw ExecutorError("the probe cannot be made");
             return std::make_unique<FailingProbe>(failing);
         });
-        std::string graph = kFrameGraph;
-        graph.replace(graph.find("FaceProbe"), 9, type);
-        const std::unique_ptr<Renderer> probeFrame = frameRenderer(graph);
+        const std::unique_ptr<Renderer> probeFrame = frameProbingWith(type);
         Renderer& frame = *probeFrame;
-        app::EnvironmentBake red = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(1, 0, 0), products_, &library_);
-        app::EnvironmentBake blue = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 0, 1), products_, &library_);
+        app::EnvironmentBake red = bakeUniform(1, 0, 0);
+        app::EnvironmentBake blue = bakeUniform(0, 0, 1);
         frame.importImage("environment", red.renderer->shareImage("environment"));
         frame.renderFrame();
         ASSERT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f);
@@ -190,7 +198,7 @@ TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
         frame.resize(8, 8);
         frame.renderFrame();
         EXPECT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f) << "after a rebuild, factory throws " << factoryThrows;
-        app::EnvironmentBake green = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
+        app::EnvironmentBake green = bakeUniform(0, 1, 0);
         frame.importImage("environment", green.renderer->shareImage("environment"));
         frame.renderFrame();
         frame.renderFrame();
@@ -200,7 +208,7 @@ TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
 }
 
 TEST_F(BackgroundBake, ProductsAreNotSharedBeforeTheBackgroundFrameIsFinished) {
-    app::EnvironmentBake bake = app::bakeEnvironment(sharedDevice(), iblGraph_, uniformSky(0, 1, 0), products_, &library_);
+    app::EnvironmentBake bake = bakeUniform(0, 1, 0);
     bake.renderer->renderFrameInBackground();  // one submit on the graphics queue: submitted whole
     EXPECT_TRUE(bake.renderer->finishBackgroundFrame());
 
