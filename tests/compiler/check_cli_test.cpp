@@ -152,6 +152,23 @@ TEST_F(Cli, CheckGoesOnPastACombinationThatCannotCompile) {
     EXPECT_NE(r.out.find("[producer=off]\n  does not compile: " + graph.string()), std::string::npos) << r.out;
 }
 
+// A frame graph whose passes, in some combination, use none of its presented images would
+// present nothing: that combination fails, naming them; the others pass.
+TEST_F(Cli, CheckFailsACombinationThatPresentsNothing) {
+    const fs::path graph = writeGraph("dark.json", R"({"version": 1, "name": "dark", "features": {"lit": true},
+      "resources": {"swapchain": {"type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                                  "external": true, "final": "Present"}},
+      "passes": [{"name": "light", "type": "Generic", "if": "lit", "uses": {"swapchain": "Write@ColorAttachment"}}]})");
+    const CliRun r = run({"check", graph.string(), "--no-run"});
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_EQ(rows(r.out, "FAIL"), 1u) << r.out;
+    EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
+    EXPECT_NE(r.out.find("[lit=off]\n  presents nothing: no pass of this combination uses a presented image ('swapchain'): "
+                         "the frame presents nothing"),
+              std::string::npos)
+        << r.out;
+}
+
 TEST_F(Cli, CheckNamesADeviceThatCannotRunTheGraphAndStillVerifies) {
     const CliRun r = run({"check", "graphs/pathtrace.json", "--device", "no-such-device"});
     EXPECT_EQ(r.status, 1);

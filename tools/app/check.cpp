@@ -98,6 +98,7 @@ void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions&
     c.passes = plan.passes().size();
     c.culled = plan.culled().size();
     c.barriers = barrierCount(plan);
+    c.presentsNothing = presentsNothing(plan, graph);
     const verifier::VerificationReport report = verifier::verifyPlan(plan, graph);
     c.verifierFindings = report.findings.size();
     for (const verifier::Finding& f : report.findings) c.verifierReport += verifier::format(f) + "\n";
@@ -162,6 +163,15 @@ void runOnDevice(CheckCase& c, Device& device, const CheckOptions& options) {
 
 }  // namespace
 
+std::string presentsNothing(const Plan& plan, const GraphDesc& graph) {
+    if (!plan.presentations().empty()) return {};
+    std::string declared;
+    for (const ResourceDesc& r : graph.resources)
+        if (r.final == ExternalState::Present) declared += (declared.empty() ? "'" : ", '") + r.name + "'";
+    if (declared.empty()) return {};
+    return "no pass of this combination uses a presented image (" + declared + "): the frame presents nothing";
+}
+
 bool CheckCase::failed(bool warningsAsErrors) const { return !failures(warningsAsErrors).empty(); }
 
 std::vector<std::string> CheckCase::failures(bool warningsAsErrors) const {
@@ -170,6 +180,7 @@ std::vector<std::string> CheckCase::failures(bool warningsAsErrors) const {
     if (!notChecked.empty()) out.push_back("not checked: " + notChecked);
     if (golden && !golden->ok()) out.push_back("golden " + std::string(toString(golden->status)) + ": " + golden->message);
     if (verifierFindings) out.push_back(std::to_string(verifierFindings) + " plan verifier finding(s)");
+    if (!presentsNothing.empty()) out.push_back("presents nothing: " + presentsNothing);
     if (!runError.empty()) out.push_back("cannot run: " + runError);
     if (validationMessages) out.push_back(std::to_string(validationMessages) + " validation message(s)");
     if (warningsAsErrors && performanceWarnings)
