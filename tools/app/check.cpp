@@ -39,9 +39,10 @@ std::string describe(const FeatureValues& features, const GraphDesc& graph) {
         add(f.name, it != features.end() ? it->second : f.defaultValue);
     }
     // A name the graph does not declare is why its case fails: the row shows what was asked.
-    for (const auto& [name, on] : features)
-        if (std::none_of(graph.features.begin(), graph.features.end(), [&](const FeatureDecl& f) { return f.name == name; }))
-            add(printableName(name), on);
+    for (const auto& asked : features)  // not a structured binding: clang 14 cannot capture one
+        if (std::none_of(graph.features.begin(), graph.features.end(),
+                         [&](const FeatureDecl& f) { return f.name == asked.first; }))
+            add(printableName(asked.first), asked.second);
     return text.empty() ? "defaults" : text;
 }
 
