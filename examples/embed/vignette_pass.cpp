@@ -69,8 +69,9 @@ skygraph::PassTypeInfo vignettePassType() {
     PassTypeInfo info;
     info.name = "VignettePass";
     info.slots = {
-        SlotDecl{"input", Stage::Fragment, {Access::Read}, BindAs::Sampled, false, false, "image to darken"},
-        SlotDecl{"output", Stage::ColorAttachment, {Access::Write}, BindAs::Default, false, false, "result"},
+        SlotDecl{.name = "input", .stage = Stage::Fragment, .accesses = {Access::Read}, .as = BindAs::Sampled,
+                 .doc = "image to darken"},
+        SlotDecl{.name = "output", .stage = Stage::ColorAttachment, .accesses = {Access::Write}, .doc = "result"},
     };
     info.validateParams = [](const nlohmann::json& params) {
         std::vector<ParamError> errors;

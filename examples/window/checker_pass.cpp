@@ -82,8 +82,8 @@ skygraph::PassTypeInfo checkerPassType() {
     using namespace skygraph;
     PassTypeInfo info;
     info.name = "CheckerPass";
-    info.slots = {SlotDecl{"output", Stage::ColorAttachment, {Access::Write}, BindAs::Default, false, false,
-                           "the checkerboard (linear colours)"}};
+    info.slots = {SlotDecl{.name = "output", .stage = Stage::ColorAttachment, .accesses = {Access::Write},
+                           .doc = "the checkerboard (linear colours)"}};
     info.validateParams = [](const nlohmann::json& params) {
         std::vector<ParamError> errors;
         for (const auto& [key, value] : params.items()) {

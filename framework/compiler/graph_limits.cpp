@@ -20,7 +20,7 @@ Diagnostics limitProblems(const GraphDesc& graph) {
         if (!statesFit(r)) {
             if (r.final == ExternalState::Present && !r.external)
                 problem("only an external image (the swapchain's) can be presented");
-            else if (r.final == ExternalState::Present && r.isImage())
+            else if (r.final == ExternalState::Present && r.isImage() && !presentable(r))
                 problem(unpresentableShape(r));
             else if (!r.isImage() && r.clear)
                 problem("a buffer cannot be cleared by the graph");

@@ -255,19 +255,19 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
 /// Sets an environment variable for its lifetime, then puts back what was there (or nothing).
 class ScopedEnvironment {
 public:
-    ScopedEnvironment(const char* name, const std::string& value) : name_(name) {
-        if (const char* previous = std::getenv(name)) previous_ = previous;
-        setenv(name, value.c_str(), 1);
+    ScopedEnvironment(std::string name, const std::string& value) : name_(std::move(name)) {
+        if (const char* previous = std::getenv(name_.c_str())) previous_ = previous;
+        if (setenv(name_.c_str(), value.c_str(), 1) != 0) throw ExecutorError("cannot set " + name_);
     }
     ~ScopedEnvironment() {
-        if (previous_) setenv(name_, previous_->c_str(), 1);
-        else unsetenv(name_);
+        if (previous_) (void)setenv(name_.c_str(), previous_->c_str(), 1);
+        else (void)unsetenv(name_.c_str());
     }
     ScopedEnvironment(const ScopedEnvironment&) = delete;
     ScopedEnvironment& operator=(const ScopedEnvironment&) = delete;
 
 private:
-    const char* name_;
+    std::string name_;
     std::optional<std::string> previous_;
 };
 

@@ -52,18 +52,76 @@ float halfToFloat(uint16_t h) {
     return f;
 }
 
+/// Writes texel `i` of `bytes` as RGBA floats into `px`.
+using TexelReader = void (*)(const uint8_t* bytes, size_t i, float* px);
+
+/// The reader of one texel of `format`, or null for a format read-back does not convert
+/// (integer, stencil, packed): the one list of what readback() and readImage() read.
+TexelReader texelReader(VkFormat format) noexcept {
+    switch (format) {
+        case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_R8G8B8A8_SRGB:
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                for (size_t c = 0; c < 4; ++c) px[c] = bytes[i * 4 + c] / 255.0f;
+            };
+        case VK_FORMAT_B8G8R8A8_UNORM:
+        case VK_FORMAT_B8G8R8A8_SRGB:
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                px[0] = bytes[i * 4 + 2] / 255.0f;
+                px[1] = bytes[i * 4 + 1] / 255.0f;
+                px[2] = bytes[i * 4 + 0] / 255.0f;
+                px[3] = bytes[i * 4 + 3] / 255.0f;
+            };
+        case VK_FORMAT_R16G16B16A16_SFLOAT:
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                uint16_t h[4];
+                std::memcpy(h, bytes + i * 8, 8);
+                for (size_t c = 0; c < 4; ++c) px[c] = halfToFloat(h[c]);
+            };
+        case VK_FORMAT_R32G32B32A32_SFLOAT:
+            return [](const uint8_t* bytes, size_t i, float* px) { std::memcpy(px, bytes + i * 16, 16); };
+        case VK_FORMAT_R32G32_SFLOAT:  // e.g. a BRDF table
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                std::memcpy(px, bytes + i * 8, 8);
+                px[2] = 0.0f;
+                px[3] = 1.0f;
+            };
+        case VK_FORMAT_R16G16_SFLOAT:  // e.g. a BRDF table
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                uint16_t h[2];
+                std::memcpy(h, bytes + i * 4, 4);
+                px[0] = halfToFloat(h[0]);
+                px[1] = halfToFloat(h[1]);
+                px[2] = 0.0f;
+                px[3] = 1.0f;
+            };
+        case VK_FORMAT_R32_SFLOAT:
+        case VK_FORMAT_D32_SFLOAT:
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                std::memcpy(px, bytes + i * 4, 4);
+                px[1] = px[2] = 0.0f;
+                px[3] = 1.0f;
+            };
+        case VK_FORMAT_R8_UNORM:
+            return [](const uint8_t* bytes, size_t i, float* px) {
+                px[0] = bytes[i] / 255.0f;
+                px[1] = px[2] = 0.0f;
+                px[3] = 1.0f;
+            };
+        default: return nullptr;
+    }
+}
+
 }  // namespace
 
 namespace detail {
 
-bool readsBack(VkFormat format) noexcept {
-    return std::find(kReadBackFormats.begin(), kReadBackFormats.end(), format) != kReadBackFormats.end();
-}
+bool readsBack(VkFormat format) noexcept { return texelReader(format) != nullptr; }
 
 std::string notReadBackable(const std::string& resource, VkFormat format) {
     std::string formats;
-    for (const VkFormat f : kReadBackFormats)
-        if (const auto info = findFormat(f)) formats += (formats.empty() ? "" : ", ") + std::string(info->name);
+    for (const FormatInfo& f : knownFormats())
+        if (readsBack(f.format)) formats += (formats.empty() ? "" : ", ") + std::string(f.name);
     const auto info = findFormat(format);
     return "cannot read back '" + resource + "': its format " +
            (info ? std::string(info->name) : "VkFormat " + std::to_string(int(format))) +
@@ -76,6 +134,8 @@ namespace {
 
 ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFormat format,
                         const std::string& name) {
+    const TexelReader read = texelReader(format);
+    if (!read) throw ExecutorError(notReadBackable(name, format));
     ImageData out;
     out.width = width;
     out.height = height;
@@ -83,57 +143,7 @@ ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFor
     out.rgba.resize(size_t(width) * height * 4);
     const auto* bytes = static_cast<const uint8_t*>(data);
     const size_t n = size_t(width) * height;
-    for (size_t i = 0; i < n; ++i) {
-        float* px = &out.rgba[i * 4];
-        switch (format) {
-            case VK_FORMAT_R8G8B8A8_UNORM:
-            case VK_FORMAT_R8G8B8A8_SRGB:
-                for (int c = 0; c < 4; ++c) px[c] = bytes[i * 4 + size_t(c)] / 255.0f;
-                break;
-            case VK_FORMAT_B8G8R8A8_UNORM:
-            case VK_FORMAT_B8G8R8A8_SRGB:
-                px[0] = bytes[i * 4 + 2] / 255.0f;
-                px[1] = bytes[i * 4 + 1] / 255.0f;
-                px[2] = bytes[i * 4 + 0] / 255.0f;
-                px[3] = bytes[i * 4 + 3] / 255.0f;
-                break;
-            case VK_FORMAT_R16G16B16A16_SFLOAT: {
-                uint16_t h[4];
-                std::memcpy(h, bytes + i * 8, 8);
-                for (int c = 0; c < 4; ++c) px[c] = halfToFloat(h[c]);
-                break;
-            }
-            case VK_FORMAT_R32G32B32A32_SFLOAT:
-                std::memcpy(px, bytes + i * 16, 16);
-                break;
-            case VK_FORMAT_R32G32_SFLOAT:  // e.g. a BRDF table
-                std::memcpy(px, bytes + i * 8, 8);
-                px[2] = 0.0f;
-                px[3] = 1.0f;
-                break;
-            case VK_FORMAT_R16G16_SFLOAT: {  // e.g. a BRDF table
-                uint16_t h[2];
-                std::memcpy(h, bytes + i * 4, 4);
-                px[0] = halfToFloat(h[0]);
-                px[1] = halfToFloat(h[1]);
-                px[2] = 0.0f;
-                px[3] = 1.0f;
-                break;
-            }
-            case VK_FORMAT_R32_SFLOAT:
-            case VK_FORMAT_D32_SFLOAT:
-                std::memcpy(px, bytes + i * 4, 4);
-                px[1] = px[2] = 0.0f;
-                px[3] = 1.0f;
-                break;
-            case VK_FORMAT_R8_UNORM:
-                px[0] = bytes[i] / 255.0f;
-                px[1] = px[2] = 0.0f;
-                px[3] = 1.0f;
-                break;
-            default: throw ExecutorError(notReadBackable(name, format));
-        }
-    }
+    for (size_t i = 0; i < n; ++i) read(bytes, i, &out.rgba[i * 4]);
     return out;
 }
 

@@ -26,7 +26,6 @@
 #include <skygraph/shader_compiler.hpp>
 
 #include <algorithm>
-#include <array>
 #include <functional>
 #include <cstdint>
 #include <limits>
@@ -161,13 +160,9 @@ struct PassState {
     std::vector<PassSlot> slots;
 };
 
-/// The formats Renderer::readback() and readImage() convert to floats: what the shipped
-/// passes write and what tests read. Checked when a plan with read-backs is installed, before
+/// Whether Renderer::readback() and readImage() convert `format` to floats (renderer.cpp
+/// reads each such format); checked when a plan with read-backs is installed, before
 /// anything renders.
-inline constexpr std::array<VkFormat, 11> kReadBackFormats{
-    VK_FORMAT_R8G8B8A8_UNORM,      VK_FORMAT_R8G8B8A8_SRGB,       VK_FORMAT_B8G8R8A8_UNORM, VK_FORMAT_B8G8R8A8_SRGB,
-    VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R32G32_SFLOAT,  VK_FORMAT_R16G16_SFLOAT,
-    VK_FORMAT_R32_SFLOAT,          VK_FORMAT_D32_SFLOAT,          VK_FORMAT_R8_UNORM};
 [[nodiscard]] bool readsBack(VkFormat format) noexcept;
 /// The ExecutorError message for reading back `resource` of an unconverted `format`.
 [[nodiscard]] std::string notReadBackable(const std::string& resource, VkFormat format);

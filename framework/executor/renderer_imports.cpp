@@ -67,6 +67,8 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
     ImageCopy next = adoptImport(s, index, image);
     ResourceState& r = s.resources[index];
     SwapJournal journal;
+    // Room made first: once the new state is whole, retiring the old one must not throw.
+    retired.reserve(retired.size() + 1);
     journal.image = std::move(r.images.at(0));
     r.images[0] = std::move(next);
     journal.finals = std::move(s.finals);
@@ -79,6 +81,8 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
             before.rebuilt = std::any_of(ps.pass->usages.begin(), ps.pass->usages.end(),
                                          [&](const PlannedUsage& u) { return u.resource == index; });
             if (!before.rebuilt) {
+                before.before.reserve(ps.slots.size());  // so that a slot's two batches move together
+                before.inPass.reserve(ps.slots.size());
                 for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) {
                     before.before.push_back(std::move(ps.slots[slot].before));
                     before.inPass.push_back(std::move(ps.slots[slot].inPass));

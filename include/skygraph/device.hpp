@@ -135,12 +135,15 @@ public:
     /// lives; VK_NULL_HANDLE when headless.
     [[nodiscard]] VkSurfaceKHR surface() const noexcept;
     /// The graphics queue (graphics and compute, and present when there is a surface): every
-    /// single-queue plan, setup work and presentation are submitted to it.
+    /// single-queue plan, setup work and presentation are submitted to it. Owned by the
+    /// device and valid while this Device lives; the class comment says when the application
+    /// may submit to it.
     [[nodiscard]] VkQueue queue() const noexcept;
     [[nodiscard]] uint32_t queueFamily() const noexcept;
     /// The queue a plan's submits of `kind` go to: one of its own, or the graphics queue where
     /// the device has none to spare or DeviceOptions::separateQueues is off. Kinds that share
-    /// one queue run there in submission order, with the plan's semaphores.
+    /// one queue run there in submission order, with the plan's semaphores. Valid while this
+    /// Device lives, as queue().
     [[nodiscard]] VkQueue queue(QueueKind kind) const noexcept;
     /// The queue family of each queue kind (indexed by QueueKind), for
     /// CompileOptions::queueFamilies: kinds of different families move exclusive resources

@@ -116,7 +116,8 @@ public:
     /// it was: see the class comment); creates resources, pipelines and per-frame state at its output size
     /// and runs its plan's setup (planSetup), waiting for it. Throws ExecutorError (e.g.
     /// framesInFlight outside 1..8, a pass type without recording code, a format the device
-    /// cannot use as the plan requires, a pass's createPipelines failing).
+    /// cannot use as the plan requires, a read-back of a format readback() does not convert,
+    /// a pass's createPipelines failing). Rebuilds of the plan state throw the same.
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
     /// Waits for this renderer's own frames to finish, not for other renderers' (a background
     /// bake may go on running), then destroys what the renderer owns; images shared with
@@ -222,8 +223,9 @@ public:
     /// Throws ExecutorError for an unknown name, a buffer, an image no frame has written, a
     /// transient whose memory another resource takes over later in the frame, the presented
     /// image (the Present resource of a presenting renderer: the presentation engine owns it
-    /// after the frame), or when no frame has been rendered since the plan state was built or
-    /// setExternalImage().
+    /// after the frame), a format it does not convert (integer, stencil, packed; the message
+    /// lists those it does), or when no frame has been rendered since the plan state was built
+    /// or setExternalImage().
     [[nodiscard]] std::vector<ImageData> readImage(const std::string& resource);
     /// Compiles the graph again at a new output extent (CompiledGraph::resized, with the running
     /// options and so the device's memory model) and rebuilds the plan state. Throws
@@ -324,9 +326,9 @@ public:
     /// before this renderer's next frame. Neither waits nor rebuilds: frames already submitted
     /// keep the image they were recorded with, which stays alive until they finish. Throws
     /// ExecutorError for an empty handle or on any mismatch, keeping the old image; when the
-    /// recording code made again for the new image throws (its factory or createPipelines),
-    /// that exception passes on and the old image, with everything built for it, keeps
-    /// running. For a
+    /// recording code made again for the new image fails (its factory's exception passes on,
+    /// createPipelines' as an ExecutorError naming the pass), the old image, with everything
+    /// built for it, keeps running. For a
     /// resource the current plan does not use (its passes culled), the image is checked
     /// against the graph's declaration (device, format, extent, mips, layers) and kept for the
     /// rebuild that brings the resource back; what only a plan that uses it can say (usages,

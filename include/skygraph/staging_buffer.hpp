@@ -34,7 +34,8 @@ public:
     [[nodiscard]] std::span<std::byte> bytes() noexcept;
     [[nodiscard]] std::span<const std::byte> bytes() const noexcept;
     [[nodiscard]] VkDeviceSize size() const noexcept;
-    /// The buffer, with TRANSFER_SRC usage, for recording code that copies from it.
+    /// The buffer, with TRANSFER_SRC usage, for recording code that copies from it. Owned by
+    /// this StagingBuffer and valid for its life; do not destroy it.
     [[nodiscard]] VkBuffer buffer() const noexcept;
 
     /// Whether `buffer`, the caller's only pointer to it, is the caller's again: no renderer

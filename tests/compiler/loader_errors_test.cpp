@@ -872,6 +872,22 @@ TEST(LoaderErrors, APlanPresentsOneImageOfASwapchainsShape) {
     CompileOptions skyOff;
     skyOff.features["sky"] = false;
     EXPECT_NO_THROW((void)compile(parseGraph(twice.dump(), kFile, registry()), skyOff));
+    // Built in code, a presentable image with a clear of the wrong kind is told of the clear.
+    GraphDesc coded = parseGraph(baseGraph().dump(), kFile, registry());
+    for (ResourceDesc& r : coded.resources)
+        if (r.name == "swapchain") r.clear = ClearValue{.isDepth = true};
+    try {
+        (void)compile(coded, CompileOptions{});
+        ADD_FAILURE() << "expected a GraphError";
+    } catch (const GraphError& e) {
+        EXPECT_TRUE(hasDiag(e.diagnostics().items(), "resources.swapchain", "", "swapchain",
+                            {"the color format B8G8R8A8_SRGB clears to a color, not a depth value"}))
+            << e.what();
+    }
+    // A plan compiled to run headless presents neither: both are outputs read like any other.
+    CompileOptions headless;
+    headless.presentReplacement = ExternalState::TransferSrc;
+    EXPECT_NO_THROW((void)compile(parseGraph(twice.dump(), kFile, registry()), headless));
 }
 
 // Options that would give a plan the loader never lets a file give: a presented image ending

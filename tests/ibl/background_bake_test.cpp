@@ -165,10 +165,15 @@ private:
     CubeProbe probe_;
 };
 
-// An import whose swap fails part way (here, the pipelines of the pass made again for the new
-// image) leaves the renderer running the old image, with the framebuffers, barriers and
-// recording code built for it; a later import succeeds. Either way validation is silent.
+// An import whose swap fails part way (here, the pipelines or the factory of the second pass
+// made again for the new image, after the first was made again) leaves the renderer running
+// the old image, with the framebuffers, barriers and recording code built for it, the first
+// pass's included; a later import succeeds. Either way validation is silent.
 TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
+    library_.add(CubeProbe::typeInfo("RemadeProbe"), [](const PassDesc&) {
+        return std::make_unique<CubeProbe>(std::vector<Dir>{{1, 0, 0}}, true);
+    });
+    const auto firstProbe = [](Renderer& frame) { return frame.readImage("probe_first").at(0).rgba[0]; };
     for (const bool factoryThrows : {false, true}) {
         const auto failing = std::make_shared<bool>(false);
         const std::string type = factoryThrows ? "UnmadeProbe" : "FailingProbe";
@@ -176,13 +181,21 @@ TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
             if (*failing && factoryThrows) throw ExecutorError("the probe cannot be made");
             return std::make_unique<FailingProbe>(failing);
         });
-        const std::unique_ptr<Renderer> probeFrame = frameProbingWith(type);
+        std::string graph = kFrameGraph;
+        graph.replace(graph.find("FaceProbe"), 9, type);
+        graph.replace(graph.find(R"("probe": {)"), 0, R"("probe_first": {"type": "image2d", "format": "R32G32B32A32_SFLOAT",
+            "extent": [6, 1], "external": true, "final": "TransferSrc"}, )");
+        graph.replace(graph.find(R"({"name": "probe")"), 0, R"({"name": "first", "type": "RemadeProbe", "uses": [
+            {"resource": "environment", "access": "Read", "stage": "Compute"},
+            {"resource": "probe_first", "access": "Write", "stage": "Compute", "slot": "probe"}]}, )");
+        const std::unique_ptr<Renderer> probeFrame = frameRenderer(graph);
         Renderer& frame = *probeFrame;
         app::EnvironmentBake red = bakeUniform(1, 0, 0);
         app::EnvironmentBake blue = bakeUniform(0, 0, 1);
         frame.importImage("environment", red.renderer->shareImage("environment"));
         frame.renderFrame();
         ASSERT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f);
+        ASSERT_NEAR(firstProbe(frame), 1.0f, 1e-3f);
         *failing = true;
         EXPECT_THROW(frame.importImage("environment", blue.renderer->shareImage("environment")), ExecutorError)
             << "factory throws " << factoryThrows;
@@ -193,6 +206,8 @@ TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
             frame.renderFrame();
             EXPECT_NEAR(frame.readback().rgba[0], 1.0f, 1e-3f) << "the old cube, factory throws " << factoryThrows;
         }
+        EXPECT_NEAR(firstProbe(frame), 1.0f, 1e-3f) << "the first pass's old recording code, factory throws "
+                                                    << factoryThrows;
         // A rebuild installs the import that succeeded, not the one that failed.
         *failing = false;
         frame.resize(8, 8);
@@ -203,6 +218,7 @@ TEST_F(BackgroundBake, AnImportThatFailsPartWayKeepsTheOldImage) {
         frame.renderFrame();
         frame.renderFrame();
         EXPECT_NEAR(frame.readback().rgba[1], 1.0f, 1e-3f) << "factory throws " << factoryThrows;
+        EXPECT_NEAR(frame.readImage("probe_first").at(0).rgba[1], 1.0f, 1e-3f) << "factory throws " << factoryThrows;
         frame.waitIdle();
     }
 }

@@ -97,8 +97,7 @@ void writeCompiled(const CompileArgs& args, const CompiledPlan& compiled, bool p
         try {
             files::replaceFilesContents(both, [&](size_t i) { return i == 0 ? compiled.memorySvg : compiled.formatted; });
         } catch (const std::filesystem::filesystem_error& e) {
-            throw std::runtime_error("cannot write '" + printableName(e.path1().string()) +
-                                     "': " + files::whyNotWritten(e) + "; neither file was written");
+            throw std::runtime_error("cannot write '" + printableName(e.path1().string()) + "': " + files::whyNotWritten(e));
         }
         return;
     }
