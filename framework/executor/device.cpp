@@ -1,4 +1,5 @@
 // Device context: instance, validation with synchronization validation, device selection.
+#include "device_access.hpp"
 #include "device_memory_model.hpp"
 #include "device_selection.hpp"
 #include "vk_util.hpp"
@@ -103,7 +104,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBits
                                              VkDebugUtilsMessageTypeFlagsEXT types,
                                              const VkDebugUtilsMessengerCallbackDataEXT* data,
                                              void* user) {
-    auto* impl = static_cast<Device::Impl*>(user);
+    auto* impl = static_cast<DeviceAccess::Impl*>(user);
     const char* id = data->pMessageIdName ? data->pMessageIdName : "";
     const char* text = data->pMessage ? data->pMessage : "";
     // Performance advice (e.g. "use TRANSFER_SRC_OPTIMAL instead of GENERAL" for a pass that

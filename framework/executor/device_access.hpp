@@ -7,8 +7,11 @@
 namespace skygraph {
 
 struct DeviceAccess {
+    /// The device's state type, for the executor's sources that hold or pass it.
+    using Impl = Device::Impl;
+
     /// The device's state (vk_util.hpp defines it); valid while `device` lives.
-    [[nodiscard]] static Device::Impl& impl(Device& device) noexcept { return *device.impl_; }
+    [[nodiscard]] static Impl& impl(Device& device) noexcept { return *device.impl_; }
 };
 
 }  // namespace skygraph

@@ -167,7 +167,7 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
     d.repeatSampler = owned::Sampler(d.vkd, sampler);
     d.createFrames();
     if (Swapchain* presentTo = d.options.presentTo) {
-        const Swapchain::Impl& sc = SwapchainAccess::impl(*presentTo);
+        const SwapchainAccess::Impl& sc = SwapchainAccess::impl(*presentTo);
         if (&sc.device != &device) throw ExecutorError("RendererOptions::presentTo: a swapchain of another device");
         if (!sc.needsRecreate(presentRequirements(compiled)) && !sc.paused()) {
             compiled = Impl::atPresentExtent(std::move(compiled), sc.extent);

@@ -73,6 +73,10 @@ struct RendererMemory {
 };
 
 struct RendererAccess {
+    /// The renderer's state type (renderer_impl.hpp defines it), for the executor's sources that
+    /// hold or pass it outside Renderer's own members.
+    using Impl = Renderer::Impl;
+
     /// Records `renderer`'s current plan for frame slot `slot` into `cmd` (begun by the
     /// caller), without labels or timestamps (its Readback steps included). For benchmarks that
     /// compare against hand recording. Throws ExecutorError for a slot out of range.

@@ -16,6 +16,7 @@
 #include "device_memory.hpp"
 #include "pass_error.hpp"
 #include "spirv_cache.hpp"
+#include "swapchain.hpp"
 #include "texel_encoding.hpp"
 #include "vk_util.hpp"
 
@@ -327,7 +328,7 @@ struct SharedImage::Impl {
 
 struct Renderer::Impl {
     Device& device;
-    Device::Impl& dev;
+    DeviceAccess::Impl& dev;
     VkDevice vkd;
     RendererOptions options;
     /// Keeps the shader sources the running pipelines were built from (ShaderCompiler::source),
@@ -354,7 +355,7 @@ struct Renderer::Impl {
     /// Presenting: the images the plan's Present resource is, and where they came from.
     struct PresentBinding {
         PresentImages images;
-        const Swapchain::Impl* swapchain = nullptr;  ///< Null: the application's own images.
+        const SwapchainAccess::Impl* swapchain = nullptr;  ///< Null: the application's own images.
         uint64_t imagesId = 0;                       ///< The swapchain's images_id, when bound.
     };
     std::optional<PresentBinding> present;
@@ -531,7 +532,7 @@ struct Renderer::Impl {
     // --- renderer_present.cpp: presenting -----------------------------------------------------
     /// Makes `images` the plan's Present resource and rebuilds the plan state (compiled again at
     /// their extent when it differs). On failure throws and keeps the old state and binding.
-    void bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain);
+    void bindPresentImages(PresentImages images, const SwapchainAccess::Impl* swapchain);
     /// `compiled` at the present images' `extent` (as it is when it has that size already);
     /// throws ExecutorError when it does not compile there.
     static CompiledGraph atPresentExtent(CompiledGraph compiled, VkExtent2D extent);

@@ -104,7 +104,7 @@ namespace {
 /// Binds through `bind(memory, offset)`: into the resource's heap after checking `req` against
 /// its placement, else into memory of its own.
 template <typename Bind>
-SharedMemory bindResource(Renderer::Impl& d, const PlanState& s, const ResourceState& r, uint32_t copy,
+SharedMemory bindResource(RendererAccess::Impl& d, const PlanState& s, const ResourceState& r, uint32_t copy,
                           const VkMemoryRequirements& req, Bind bind) {
     const std::string name = r.desc->name + (r.perSlot ? "#" + std::to_string(copy) : "");
     if (r.placement == PlannedResource::kNoPlacement) {

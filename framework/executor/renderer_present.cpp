@@ -50,7 +50,7 @@ CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D
     }
 }
 
-void Renderer::Impl::bindPresentImages(PresentImages images, const Swapchain::Impl* swapchain) {
+void Renderer::Impl::bindPresentImages(PresentImages images, const SwapchainAccess::Impl* swapchain) {
     if (images.images.empty()) throw ExecutorError("setPresentImages: no images");
     if (images.extent.width == 0 || images.extent.height == 0) throw ExecutorError("setPresentImages: 0x0 images");
     for (size_t i = 0; i < images.images.size(); ++i)
@@ -87,7 +87,7 @@ void Renderer::Impl::renderFrame(const PresentTarget& target) {
 }
 
 PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
-    Swapchain::Impl& sc = SwapchainAccess::impl(swapchain);
+    SwapchainAccess::Impl& sc = SwapchainAccess::impl(swapchain);
     if (&sc.device != &device) throw ExecutorError("renderFrame: the swapchain was made for another device");
     // An out-of-date acquire re-creates and tries again; the surface changing size faster
     // than that is not presented this time.

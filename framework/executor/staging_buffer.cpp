@@ -19,7 +19,7 @@ struct StagingBuffer::Impl {
 
 std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSize bytes) {
     if (bytes == 0) throw ExecutorError("StagingBuffer::create: 0 bytes");
-    Device::Impl& d = DeviceAccess::impl(device);
+    DeviceAccess::Impl& d = DeviceAccess::impl(device);
     auto impl = std::make_unique<Impl>();
     impl->size = bytes;
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

@@ -2,6 +2,7 @@
 // (acquire, present, re-create), and where the present semaphores' stages come from.
 #pragma once
 
+#include "device_access.hpp"
 #include "vk_util.hpp"
 
 #include <skygraph/plan.hpp>
@@ -30,7 +31,7 @@ namespace detail {
 
 struct Swapchain::Impl {
     Device& device;
-    Device::Impl& dev;
+    DeviceAccess::Impl& dev;
     PresentRequirements requirements;
     PresentMode requested = PresentMode::Fifo;
     PresentMode mode = PresentMode::Fifo;
@@ -74,8 +75,11 @@ struct Swapchain::Impl {
 };
 
 struct SwapchainAccess {
+    /// The swapchain's state type, for the executor's sources that hold or pass it.
+    using Impl = Swapchain::Impl;
+
     /// The swapchain's state; valid while `swapchain` lives.
-    [[nodiscard]] static Swapchain::Impl& impl(Swapchain& swapchain) noexcept { return *swapchain.impl_; }
+    [[nodiscard]] static Impl& impl(Swapchain& swapchain) noexcept { return *swapchain.impl_; }
 };
 
 }  // namespace skygraph

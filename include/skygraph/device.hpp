@@ -197,9 +197,8 @@ public:
     /// destroys an instance of its own; needs no Device. Empty when Vulkan cannot start.
     [[nodiscard]] static std::vector<std::string> listDevices();
 
-    struct Impl;
-
 private:
+    struct Impl;
     friend struct DeviceAccess;  // the implementation's own access; not part of the API
     explicit Device(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;

@@ -387,9 +387,8 @@ public:
     /// RendererOptions::passes: borrowed, null when the renderer has no recording code.
     [[nodiscard]] const PassLibrary* passes() const noexcept;
 
-    struct Impl;
-
 private:
+    struct Impl;
     friend struct RendererAccess;  // the implementation's own access; not part of the API
     std::unique_ptr<Impl> impl_;
 };

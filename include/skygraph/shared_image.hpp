@@ -25,9 +25,8 @@ public:
     /// True for a default-constructed SharedImage, which holds no image.
     [[nodiscard]] bool empty() const noexcept { return !impl_; }
 
-    struct Impl;
-
 private:
+    struct Impl;
     friend class Renderer;
     std::shared_ptr<const Impl> impl_;
 };

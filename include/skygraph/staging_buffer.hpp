@@ -50,9 +50,8 @@ public:
         return true;
     }
 
-    struct Impl;
-
 private:
+    struct Impl;
     explicit StagingBuffer(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };

@@ -126,9 +126,8 @@ public:
     /// Counts creations: 1 after create(), one more for each re-creation.
     [[nodiscard]] uint64_t generation() const noexcept;
 
-    struct Impl;
-
 private:
+    struct Impl;
     friend struct SwapchainAccess;  // the implementation's own access; not part of the API
     explicit Swapchain(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
