@@ -12,6 +12,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <type_traits>
 
 namespace skygraph {
 namespace {
@@ -43,72 +44,100 @@ std::map<std::filesystem::path, size_t> hashDir(const std::filesystem::path& dir
 
 }  // namespace
 
+struct HotReloader::State {
+    Renderer* renderer;
+    std::filesystem::path graphFile;
+    std::filesystem::path shaderDir;
+    PassRegistry ownRegistry;  ///< When none is given.
+    const PassRegistry* registry = nullptr;  ///< The given one, or ownRegistry.
+    size_t graphHash = 0;
+    std::map<std::filesystem::path, size_t> shaderHashes;  ///< Per file under shaderDir.
+    bool graphPending = false;  ///< Edited since the last reload that succeeded.
+    bool shadersPending = false;
+    std::string lastError;
+};
+
 HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir,
                          const PassRegistry* registry)
-    : renderer_(&renderer), graphFile_(std::move(graphFile)),
-      shaderDir_(shaderDir.empty() ? renderer.shaderDir() : std::move(shaderDir)),
-      registry_(registry ? registry : &ownRegistry_) {
+    : state_(std::make_unique<State>()) {
+    State& st = *state_;
+    st.renderer = &renderer;
+    st.graphFile = std::move(graphFile);
+    st.shaderDir = shaderDir.empty() ? renderer.shaderDir() : std::move(shaderDir);
+    st.registry = registry ? registry : &st.ownRegistry;
     if (!registry) {
         // The library's declarations first: a type it redeclares records with its factory,
         // so its graphs are parsed against its declaration, not the built-in one.
         const PassRegistry builtins = PassRegistry::withBuiltins();
-        if (const PassLibrary* library = renderer.passes()) ownRegistry_ = library->registry();
+        if (const PassLibrary* library = renderer.passes()) st.ownRegistry = library->registry();
         for (const std::string& name : builtins.names())
-            if (!ownRegistry_.find(name)) ownRegistry_.add(*builtins.find(name));
+            if (!st.ownRegistry.find(name)) st.ownRegistry.add(*builtins.find(name));
     }
-    graphHash_ = hashFile(graphFile_);
-    shaderHashes_ = hashDir(shaderDir_);
+    st.graphHash = hashFile(st.graphFile);
+    st.shaderHashes = hashDir(st.shaderDir);
 }
 
+HotReloader::~HotReloader() = default;
+
+// The pimpl must not add moves the class never offered: deleted copies (a copy would reload
+// every change into the same renderer twice) leave no move declared, so neither is possible.
+static_assert(!std::is_copy_constructible_v<HotReloader> && !std::is_move_constructible_v<HotReloader>);
+static_assert(!std::is_copy_assignable_v<HotReloader> && !std::is_move_assignable_v<HotReloader>);
+
+const std::string& HotReloader::lastError() const noexcept { return state_->lastError; }
+
+void HotReloader::follow(Renderer& renderer) noexcept { state_->renderer = &renderer; }
+
 HotReloader::Result HotReloader::poll() {
-    const size_t g = hashFile(graphFile_);
-    std::map<std::filesystem::path, size_t> s = hashDir(shaderDir_);
+    State& st = *state_;
+    const size_t g = hashFile(st.graphFile);
+    std::map<std::filesystem::path, size_t> s = hashDir(st.shaderDir);
     // Until a save in place is written, nothing is taken from any file: a reload then would
     // read the empty file with the others.
-    if (midSave(g, graphHash_)) return Result::Unchanged;
+    if (midSave(g, st.graphHash)) return Result::Unchanged;
     for (const auto& [file, hash] : s)
-        if (const auto before = shaderHashes_.find(file); before != shaderHashes_.end() && midSave(hash, before->second))
+        if (const auto before = st.shaderHashes.find(file); before != st.shaderHashes.end() && midSave(hash, before->second))
             return Result::Unchanged;
-    if (g == graphHash_ && s == shaderHashes_) return Result::Unchanged;
+    if (g == st.graphHash && s == st.shaderHashes) return Result::Unchanged;
     // Edits that a failed reload left unapplied are applied with this one: a fixed shader
     // must not run the graph from before an edit that failed only for the shader's sake.
-    const bool graphChanged = g != graphHash_;
-    graphPending_ |= graphChanged;
-    shadersPending_ |= s != shaderHashes_;
-    graphHash_ = g;
-    shaderHashes_ = std::move(s);
+    const bool graphChanged = g != st.graphHash;
+    st.graphPending |= graphChanged;
+    st.shadersPending |= s != st.shaderHashes;
+    st.graphHash = g;
+    st.shaderHashes = std::move(s);
     // Deleted while watched: keep rendering the last good plan and say so once, when it goes;
     // shader edits meanwhile go to the running plan, and the file's return (any content) is
     // the next change.
-    const bool graphGone = graphPending_ && g == kMissing;
+    const bool graphGone = st.graphPending && g == kMissing;
     if (graphGone && graphChanged) {
-        lastError_ = graphFile_.string() + ": the watched graph file is gone (deleted or renamed); the "
-                     "previous version keeps running until it is back";
-        spdlog::warn("hot reload: {}", lastError_);
+        st.lastError = st.graphFile.string() + ": the watched graph file is gone (deleted or renamed); the "
+                       "previous version keeps running until it is back";
+        spdlog::warn("hot reload: {}", st.lastError);
         return Result::Failed;
     }
-    const bool graph = graphPending_ && !graphGone;
+    const bool graph = st.graphPending && !graphGone;
     try {
         if (graph) {
-            GraphDesc desc = loadGraphFile(graphFile_, *registry_);
+            GraphDesc desc = loadGraphFile(st.graphFile, *st.registry);
             // One rebuild for both: the new graph and the edited shaders run together or not at all.
-            renderer_->setGraph(renderer_->compiled().withGraph(std::move(desc)),
-                               shadersPending_ ? Renderer::ShaderSources::Reread : Renderer::ShaderSources::Cached);
+            st.renderer->setGraph(st.renderer->compiled().withGraph(std::move(desc)),
+                                  st.shadersPending ? Renderer::ShaderSources::Reread : Renderer::ShaderSources::Cached);
         } else {
-            renderer_->reloadShaders();
+            st.renderer->reloadShaders();
         }
-        lastError_.clear();
-        spdlog::info("hot reload: {}{}{} reloaded", graph ? graphFile_.string() : "",
-                     graph && shadersPending_ ? " and " : "", shadersPending_ ? shaderDir_.string() : "");
-        if (graph) graphPending_ = false;
-        shadersPending_ = false;
+        st.lastError.clear();
+        spdlog::info("hot reload: {}{}{} reloaded", graph ? st.graphFile.string() : "",
+                     graph && st.shadersPending ? " and " : "", st.shadersPending ? st.shaderDir.string() : "");
+        if (graph) st.graphPending = false;
+        st.shadersPending = false;
         return Result::Reloaded;
     } catch (const GraphError& e) {
-        lastError_ = e.diagnostics().format();
+        st.lastError = e.diagnostics().format();
     } catch (const std::exception& e) {
-        lastError_ = e.what();
+        st.lastError = e.what();
     }
-    spdlog::warn("hot reload failed; the previous version keeps running:\n{}", lastError_);
+    spdlog::warn("hot reload failed; the previous version keeps running:\n{}", st.lastError);
     return Result::Failed;
 }
 

@@ -4,10 +4,9 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/pass_registry.hpp>
 
-#include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <map>
+#include <memory>
 #include <string>
 
 namespace skygraph {
@@ -38,6 +37,7 @@ public:
                 const PassRegistry* registry = nullptr);
     HotReloader(const HotReloader&) = delete;
     HotReloader& operator=(const HotReloader&) = delete;
+    ~HotReloader();
 
     /// Checks the watched files (by content: it reads them all on every call) and, when any
     /// changed, applies every edit not yet applied in one rebuild: a changed graph is
@@ -54,25 +54,17 @@ public:
     Result poll();
     /// The message of the last failed reload; empty after a success. The reference is valid
     /// until the next poll().
-    [[nodiscard]] const std::string& lastError() const noexcept { return lastError_; }
+    [[nodiscard]] const std::string& lastError() const noexcept;
 
     /// Applies later edits to `renderer` (borrowed like the first) instead: one that replaced
     /// the watched renderer. What was seen so far stays the state changes are measured against,
     /// and edits a failed reload left pending stay pending, so that an edit saved while the
     /// replacement was being built is still applied to it.
-    void follow(Renderer& renderer) noexcept { renderer_ = &renderer; }
+    void follow(Renderer& renderer) noexcept;
 
 private:
-    Renderer* renderer_;
-    std::filesystem::path graphFile_;
-    std::filesystem::path shaderDir_;
-    PassRegistry ownRegistry_;  // when none is given
-    const PassRegistry* registry_ = nullptr;
-    size_t graphHash_ = 0;
-    std::map<std::filesystem::path, size_t> shaderHashes_;  // per file under shaderDir_
-    bool graphPending_ = false;    // edited since the last reload that succeeded
-    bool shadersPending_ = false;
-    std::string lastError_;
+    struct State;
+    std::unique_ptr<State> state_;
 };
 
 }  // namespace skygraph
