@@ -508,7 +508,7 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
         impl->timestamps[k] = chosenFacts.families[queueChoices[k].family].timestamps;
     }
     impl->queue = impl->queues[static_cast<size_t>(QueueKind::Graphics)];
-    impl->memoryModel = std::make_shared<detail::DeviceMemoryModel>(impl->device, chosen, impl->name);
+    impl->memoryModel = std::make_shared<detail::DeviceMemoryModel>(impl->device, chosen, impl->name, impl->families);
 
     impl->fn.cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(impl->device, "vkCmdPushDescriptorSetKHR"));

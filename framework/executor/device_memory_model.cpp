@@ -3,11 +3,26 @@
 #include <skygraph/device.hpp>
 
 #include <algorithm>
+#include <type_traits>
 
 namespace skygraph::detail {
 
-DeviceMemoryModel::DeviceMemoryModel(VkDevice device, VkPhysicalDevice physical, std::string name)
-    : physical_(physical), capacity_(DeviceCapacity::of(physical)), name_(std::move(name)), device_(device) {
+MemoryRequirements servingBothSharingModes(const MemoryRequirements& exclusive, const MemoryRequirements& concurrent,
+                                           const std::string& resource, const std::string& device) {
+    const uint32_t types = exclusive.memoryTypeBits & concurrent.memoryTypeBits;
+    if (types == 0)
+        throw ExecutorError("resource '" + resource + "': device '" + device +
+                            "' has no DEVICE_LOCAL memory type for it both exclusive and shared concurrently; "
+                            "nothing was allocated");
+    // Alignments are powers of two (the spec's VkMemoryRequirements), so the larger is a
+    // multiple of the smaller.
+    return {std::max(exclusive.size, concurrent.size), std::max(exclusive.alignment, concurrent.alignment), types};
+}
+
+DeviceMemoryModel::DeviceMemoryModel(VkDevice device, VkPhysicalDevice physical, std::string name,
+                                     const std::array<uint32_t, kQueueKinds>& queueFamilies)
+    : physical_(physical), capacity_(DeviceCapacity::of(physical)), name_(std::move(name)),
+      families_(distinctFamilies(queueFamilies)), device_(device) {
     VkPhysicalDeviceMemoryProperties mem;
     vkGetPhysicalDeviceMemoryProperties(physical, &mem);
     for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
@@ -44,25 +59,38 @@ MemoryRequirements DeviceMemoryModel::requirements(const MemoryQuery& q) const {
 
 MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
     const ResourceDesc& d = *q.resource;
-    VkMemoryRequirements2 req{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
     if (d.isImage()) {
         // Refused first: asking about an image the device cannot create is invalid usage.
         refuseImageBeyondLimits(capacity_, d, q.width, q.height, q.mips, q.layers, "");
-        const VkImageCreateInfo ci = imageCreateInfo(d, q.width, q.height, q.mips, q.layers, q.imageUsage);
+        VkImageCreateInfo ci = imageCreateInfo(d, q.width, q.height, q.mips, q.layers, q.imageUsage);
         refuseUnsupportedImage(physical_, d, ci);
+        const MemoryRequirements exclusive = askAbout(d, ci);
+        if (families_.count < 2) return exclusive;
+        shareConcurrently(ci, families_);
+        return servingBothSharingModes(exclusive, askAbout(d, ci), d.name, name_);
+    }
+    refuseBufferBeyondLimits(capacity_, d, q.bufferUsage);
+    VkBufferCreateInfo ci = bufferCreateInfo(d, q.bufferUsage);
+    const MemoryRequirements exclusive = askAbout(d, ci);
+    if (families_.count < 2) return exclusive;
+    shareConcurrently(ci, families_);
+    return servingBothSharingModes(exclusive, askAbout(d, ci), d.name, name_);
+}
+
+template <typename CreateInfo>
+MemoryRequirements DeviceMemoryModel::askAbout(const ResourceDesc& d, const CreateInfo& ci) const {
+    VkMemoryRequirements2 req{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
+    if constexpr (std::is_same_v<CreateInfo, VkImageCreateInfo>) {
         VkDeviceImageMemoryRequirements info{VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS};
         info.pCreateInfo = &ci;
         vkGetDeviceImageMemoryRequirements(device_, &info, &req);
     } else {
-        refuseBufferBeyondLimits(capacity_, d, q.bufferUsage);
-        const VkBufferCreateInfo ci = bufferCreateInfo(d, q.bufferUsage);
         VkDeviceBufferMemoryRequirements info{VK_STRUCTURE_TYPE_DEVICE_BUFFER_MEMORY_REQUIREMENTS};
         info.pCreateInfo = &ci;
         vkGetDeviceBufferMemoryRequirements(device_, &info, &req);
     }
     const VkMemoryRequirements& r = req.memoryRequirements;
     const uint32_t types = r.memoryTypeBits & deviceLocalTypes_;
-    // A driver that cannot make the resource answers with nothing (lavapipe: size 0).
     // (size 0: what lavapipe answers for a resource too large to make)
     if (r.size == 0)
         throw DeviceCapacityError("resource '" + d.name + "': device '" + name_ +

@@ -9,6 +9,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <mutex>
@@ -17,11 +18,21 @@
 
 namespace skygraph::detail {
 
+/// The requirements of a resource that may be created either way: the larger size and
+/// alignment, and the memory types both allow. Throws ExecutorError naming `resource` and
+/// `device` when no type allows both.
+[[nodiscard]] MemoryRequirements servingBothSharingModes(const MemoryRequirements& exclusive,
+                                                         const MemoryRequirements& concurrent,
+                                                         const std::string& resource, const std::string& device);
+
 /// Asks the device with vkGetDeviceImageMemoryRequirements / vkGetDeviceBufferMemoryRequirements
 /// (Vulkan 1.3; nothing is created to ask) about the create info the Renderer would use for a
 /// query, after refusing what the device cannot create (resource_creation.hpp's checks, so
 /// the driver is never asked about an invalid image). memoryTypeBits keep only the
 /// DEVICE_LOCAL types, the ones the Renderer allocates from. Answers are cached per query.
+/// On a device with several queue families it asks twice, exclusive and concurrent over them,
+/// and answers what serves both: memory is placed before the queue planner decides which
+/// transients the families share concurrently, and the Renderer creates those concurrent.
 ///
 /// Thread-safe: every call locks one mutex, which the driver call runs under, so detach()
 /// cannot destroy the device during a call. The Device owns it and calls detach() before it
@@ -30,8 +41,10 @@ namespace skygraph::detail {
 class DeviceMemoryModel final : public MemoryModel {
 public:
     /// Borrows `device`, valid until detach(). Reads the physical device's limits and memory
-    /// types once.
-    DeviceMemoryModel(VkDevice device, VkPhysicalDevice physical, std::string name);
+    /// types once. `queueFamilies`: Device::queueFamilies(), which concurrent resources are
+    /// shared over.
+    DeviceMemoryModel(VkDevice device, VkPhysicalDevice physical, std::string name,
+                      const std::array<uint32_t, kQueueKinds>& queueFamilies);
     DeviceMemoryModel(const DeviceMemoryModel&) = delete;
     DeviceMemoryModel& operator=(const DeviceMemoryModel&) = delete;
 
@@ -55,10 +68,13 @@ private:
     /// Everything of a query that the create info depends on.
     using Key = std::tuple<bool, uint32_t, VkFormat, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint64_t>;
     [[nodiscard]] MemoryRequirements ask(const MemoryQuery& query) const;  // under mutex_
+    template <typename CreateInfo>
+    [[nodiscard]] MemoryRequirements askAbout(const ResourceDesc& d, const CreateInfo& ci) const;  // under mutex_
 
     const VkPhysicalDevice physical_;
     const DeviceCapacity capacity_;
     const std::string name_;
+    const ConcurrentFamilies families_;
     uint32_t deviceLocalTypes_ = 0;
     mutable std::mutex mutex_;
     VkDevice device_;  ///< Guarded by mutex_; VK_NULL_HANDLE once detached.
