@@ -1,6 +1,7 @@
 // `skygraph check` as users call it: the shipped graphs under every feature combination,
 // goldens written, edited and compared, a compute-only graph, a combination that cannot
-// compile, a device that does not exist, JUnit XML read back by an independent parser.
+// compile, a device that does not exist, JUnit XML read back by an independent parser; and
+// `compile`'s warning for a combination that `check` fails because it presents nothing.
 #include "cli_fixture.hpp"
 #include "folder_events.hpp"
 
@@ -17,6 +18,13 @@ namespace {
 
 using namespace skygraph::cli_test;
 namespace fs = std::filesystem;
+
+/// A frame graph whose one pass, the only user of its presented image, is culled with `lit`
+/// off: that combination presents nothing.
+const char* kDarkWhenUnlit = R"({"version": 1, "name": "dark", "features": {"lit": true},
+  "resources": {"swapchain": {"type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                              "external": true, "final": "Present"}},
+  "passes": [{"name": "light", "type": "Generic", "if": "lit", "uses": {"swapchain": "Write@ColorAttachment"}}]})";
 
 #if SKYGRAPH_CLI_HAS_RENDER
 
@@ -155,10 +163,7 @@ TEST_F(Cli, CheckGoesOnPastACombinationThatCannotCompile) {
 // A frame graph whose passes, in some combination, use none of its presented images would
 // present nothing: that combination fails, naming them; the others pass.
 TEST_F(Cli, CheckFailsACombinationThatPresentsNothing) {
-    const fs::path graph = writeGraph("dark.json", R"({"version": 1, "name": "dark", "features": {"lit": true},
-      "resources": {"swapchain": {"type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
-                                  "external": true, "final": "Present"}},
-      "passes": [{"name": "light", "type": "Generic", "if": "lit", "uses": {"swapchain": "Write@ColorAttachment"}}]})");
+    const fs::path graph = writeGraph("dark.json", kDarkWhenUnlit);
     const CliRun r = run({"check", graph.string(), "--no-run"});
     EXPECT_EQ(r.status, 1) << r.out;
     EXPECT_EQ(rows(r.out, "FAIL"), 1u) << r.out;
@@ -525,5 +530,24 @@ TEST_F(Cli, CheckDrawsAProgressBarOnlyWhenAskedOrOnATerminal) {
 }
 
 #endif
+
+// The same combination compiled is only a warning (the plan is printed, exit status 0), naming
+// the file and the presented image; a combination that presents, and a shipped frame, compile
+// without one. Outside the render-only section: `compile` needs no device.
+TEST_F(Cli, CompileWarnsOfACombinationThatPresentsNothing) {
+    const fs::path graph = writeGraph("dark.json", kDarkWhenUnlit);
+    const CliRun dark = run({"compile", graph.string(), "--feature", "lit=off"});
+    EXPECT_EQ(dark.status, 0) << dark.err;
+    EXPECT_NE(dark.out.find("features: lit=off"), std::string::npos) << dark.out;
+    EXPECT_EQ(dark.err, "warning: " + graph.string() +
+                            ": no pass of this combination uses a presented image ('swapchain'): the frame presents "
+                            "nothing\n");
+    const CliRun lit = run({"compile", graph.string()});
+    EXPECT_EQ(lit.status, 0) << lit.err;
+    EXPECT_EQ(lit.err, "");
+    const CliRun raster = run({"compile", "graphs/raster.json"});
+    EXPECT_EQ(raster.status, 0) << raster.err;
+    EXPECT_EQ(raster.err, "");
+}
 
 }  // namespace

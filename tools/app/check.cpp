@@ -1,6 +1,7 @@
 // `skygraph check`: compile, compare with the golden, verify, run; case by case.
 #include "check.hpp"
 
+#include "presented_images.hpp"
 #include "printable_name.hpp"
 #include "render.hpp"
 
@@ -163,15 +164,6 @@ void runOnDevice(CheckCase& c, Device& device, const CheckOptions& options) {
 }
 
 }  // namespace
-
-std::string presentsNothing(const Plan& plan, const GraphDesc& graph) {
-    if (!plan.presentations().empty()) return {};
-    std::string declared;
-    for (const ResourceDesc& r : graph.resources)
-        if (r.final == ExternalState::Present) declared += (declared.empty() ? "'" : ", '") + r.name + "'";
-    if (declared.empty()) return {};
-    return "no pass of this combination uses a presented image (" + declared + "): the frame presents nothing";
-}
 
 bool CheckCase::failed(bool warningsAsErrors) const { return !failures(warningsAsErrors).empty(); }
 

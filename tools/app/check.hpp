@@ -69,7 +69,7 @@ struct CheckCase {
     bool goldenWritten = false;
     size_t verifierFindings = 0;
     std::string verifierReport;  ///< One line per finding.
-    std::string presentsNothing;  ///< presentsNothing()'s answer for its plan.
+    std::string presentsNothing;  ///< presentsNothing()'s answer for its plan (presented_images.hpp).
     bool runAttempted = false;  ///< A run was tried (it may have failed: runError).
     bool ran = false;           ///< It rendered every frame.
     std::string runError;  ///< The device could not run it.
@@ -85,11 +85,6 @@ struct CheckCase {
     /// The reasons it fails, one line each; empty when it passes.
     [[nodiscard]] std::vector<std::string> failures(bool warningsAsErrors) const;
 };
-
-/// For a graph that declares presented images, a plan that presents none of them: why (no pass
-/// of this combination uses one), naming them. Empty otherwise, and for a graph without any
-/// (a bake), whose outputs are exported images.
-[[nodiscard]] std::string presentsNothing(const Plan& plan, const GraphDesc& graph);
 
 /// Every case, graph by graph and combination by combination. Never throws for bad graphs,
 /// goldens or devices: each case says what went wrong, and the others still run.

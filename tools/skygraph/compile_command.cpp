@@ -1,5 +1,6 @@
 #include "compile_command.hpp"
 
+#include "app/presented_images.hpp"
 #include "file_watcher.hpp"
 #include "printable_name.hpp"
 #include "replace_file.hpp"
@@ -73,6 +74,10 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
     spdlog::debug("{}: {} passes and {} resources -> {} passes run, {} culled, in {:.2f} ms", args.graph,
                   graph.passes.size(), graph.resources.size(), plan.passes().size(), plan.culled().size(),
                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    // Not an error, unlike in `check`: a combination is compiled to be looked at, and this one
+    // may be looked at because its frame shows nothing.
+    if (const std::string why = app::presentsNothing(plan, graph); !why.empty())
+        spdlog::warn("{}: {}", printableName(args.graph), why);
     // What runs once before the first frame belongs to the plan as much as the frame does.
     const Plan setup = planSetup(graph, plan);
     CompiledPlan out;
