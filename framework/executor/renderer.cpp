@@ -312,6 +312,10 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
     // A presenting renderer renders at its present images' extent, as its constructor does.
     if (d.present) compiled = Impl::atPresentExtent(std::move(compiled), d.present->images.extent);
+    // Swapchain images of another format or usage than the graph presents: the plan is built
+    // unbound, and the next frame re-creates the swapchain for it and binds the new images, as
+    // a new renderer's first frame does. A format or usage the surface cannot give fails here.
+    const bool unbinds = d.needsOtherSwapchainImages(compiled);
     d.waitIdle();
     // Rereading builds with a new compiler, which reads every shader again. When that fails,
     // the old one comes back with the sources the running pipelines were built from, so that
@@ -320,11 +324,14 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     if (shaders == ShaderSources::Reread)
         previous = std::exchange(d.shaders, std::make_shared<ShaderCompiler>(d.shaders->includeDir(),
                                                                              d.shaders->cacheDir()));
+    std::optional<Impl::PresentBinding> bound;
+    if (unbinds) bound = std::exchange(d.present, std::nullopt);
     std::unique_ptr<detail::PlanState> next;
     try {
         next = d.build(std::move(compiled));  // throws: the old plan keeps running
     } catch (...) {
         if (previous) d.shaders = std::move(previous);
+        if (unbinds) d.present = std::move(bound);
         throw;
     }
     d.replaceState(std::move(next));

@@ -536,6 +536,10 @@ struct Renderer::Impl {
     /// `compiled` at the present images' `extent` (as it is when it has that size already);
     /// throws ExecutorError when it does not compile there.
     static CompiledGraph atPresentExtent(CompiledGraph compiled, VkExtent2D extent);
+    /// Whether `compiled` presents another format, or with other usage, than the swapchain
+    /// images it is bound to have (false when bound to the application's own images, or to
+    /// none). Throws ExecutorError when the device's surface cannot give them.
+    [[nodiscard]] bool needsOtherSwapchainImages(const CompiledGraph& compiled) const;
     /// The checks of the binding against a plan state being built; sets presentResource.
     void describePresent(detail::PlanState& s) const;
     [[nodiscard]] uint32_t waitForFrameSlot();

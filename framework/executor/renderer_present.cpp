@@ -41,6 +41,20 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     s.presentImages = static_cast<uint32_t>(p.images.size());
 }
 
+bool Renderer::Impl::needsOtherSwapchainImages(const CompiledGraph& compiled) const {
+    if (!present || !present->swapchain) return false;
+    const Plan& plan = compiled.plan();
+    const int32_t index = presentResource(plan);
+    // A plan that presents nothing, or was compiled headless, is refused by describePresent.
+    if (index < 0 || plan.resources()[size_t(index)].finalLayout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) return false;
+    const PresentRequirements need = presentRequirements(compiled);
+    const PresentImages& have = present->images;
+    if (need.format == have.format && (need.usage & ~have.usage) == 0) return false;
+    // The binding's swapchain may be gone (a renderer outlives it): the device's surface answers.
+    (void)surfaceSupportFor(dev, need, 0);
+    return true;
+}
+
 CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D extent) {
     if (compiled.outputWidth() == extent.width && compiled.outputHeight() == extent.height) return compiled;
     try {

@@ -104,6 +104,37 @@ bool Swapchain::Impl::needsRecreate(const PresentRequirements& plan) const noexc
            (plan.usage & ~requirements.usage) != 0 || wanted.width != extent.width || wanted.height != extent.height;
 }
 
+namespace detail {
+
+SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentRequirements& plan,
+                                 VkImageUsageFlags extraUsage) {
+    const VkPhysicalDevice pd = dev.physical;
+    const VkSurfaceKHR surface = dev.surface;
+    VkSurfaceCapabilitiesKHR caps;
+    vk::check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, surface, &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+    uint32_t n = 0;
+    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, nullptr);
+    std::vector<VkSurfaceFormatKHR> formats(n);
+    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, formats.data());
+    const auto format = std::find_if(formats.begin(), formats.end(), [&](const VkSurfaceFormatKHR& f) {
+        return f.format == plan.format && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
+    });
+    if (format == formats.end()) {
+        std::string have;
+        for (const VkSurfaceFormatKHR& f : formats) have += (have.empty() ? "" : ", ") + formatName(f.format);
+        throw ExecutorError("the surface cannot present " + formatName(plan.format) + ", the format of the plan's "
+                            "Present resource '" + plan.resource + "'; it presents " + (have.empty() ? "none" : have));
+    }
+    const VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
+    if ((usage & ~caps.supportedUsageFlags) != 0)
+        throw ExecutorError("the surface's images cannot be used as the plan uses '" + plan.resource +
+                            "' (image usage " + vk::imageUsageText(usage) + ", the surface allows " +
+                            vk::imageUsageText(caps.supportedUsageFlags) + ")");
+    return {*format, usage, caps.supportedUsageFlags};
+}
+
+}  // namespace detail
+
 void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     const VkPhysicalDevice pd = dev.physical;
     const VkSurfaceKHR surface = dev.surface;
@@ -123,29 +154,13 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     }
     wanted = e;
 
-    uint32_t n = 0;
-    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, nullptr);
-    std::vector<VkSurfaceFormatKHR> formats(n);
-    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, formats.data());
-    const auto format = std::find_if(formats.begin(), formats.end(), [&](const VkSurfaceFormatKHR& f) {
-        return f.format == plan.format && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
-    });
-    if (format == formats.end()) {
-        std::string have;
-        for (const VkSurfaceFormatKHR& f : formats) have += (have.empty() ? "" : ", ") + formatName(f.format);
-        throw ExecutorError("the surface cannot present " + formatName(plan.format) + ", the format of the plan's "
-                            "Present resource '" + plan.resource + "'; it presents " + (have.empty() ? "none" : have));
-    }
-    if ((extraUsage & ~caps.supportedUsageFlags) != 0)
+    const SurfaceSupport support = surfaceSupportFor(dev, plan, extraUsage);
+    if ((extraUsage & ~support.surfaceUsage) != 0)
         spdlog::warn("the surface's images cannot have usage {} besides the plan's",
-                     vk::imageUsageText(extraUsage & ~caps.supportedUsageFlags));
-    const VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
-    if ((usage & ~caps.supportedUsageFlags) != 0)
-        throw ExecutorError("the surface's images cannot be used as the plan uses '" + plan.resource +
-                            "' (image usage " + vk::imageUsageText(usage) + ", the surface allows " +
-                            vk::imageUsageText(caps.supportedUsageFlags) + ")");
+                     vk::imageUsageText(extraUsage & ~support.surfaceUsage));
+    const VkImageUsageFlags usage = support.usage;
 
-    n = 0;
+    uint32_t n = 0;
     vkGetPhysicalDeviceSurfacePresentModesKHR(pd, surface, &n, nullptr);
     std::vector<VkPresentModeKHR> modes(n);
     vkGetPhysicalDeviceSurfacePresentModesKHR(pd, surface, &n, modes.data());
@@ -159,8 +174,8 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     ci.surface = surface;
     ci.minImageCount = caps.minImageCount + 1;
     if (caps.maxImageCount != 0) ci.minImageCount = std::min(ci.minImageCount, caps.maxImageCount);
-    ci.imageFormat = format->format;
-    ci.imageColorSpace = format->colorSpace;
+    ci.imageFormat = support.format.format;
+    ci.imageColorSpace = support.format.colorSpace;
     ci.imageExtent = e;
     ci.imageArrayLayers = 1;
     ci.imageUsage = usage;

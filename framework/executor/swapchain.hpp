@@ -23,6 +23,19 @@ namespace detail {
 /// states them (Presentation::renderCompleteStages).
 [[nodiscard]] VkPipelineStageFlags2 presentSignalStages(const Plan& plan, uint32_t resource);
 
+/// What the device's surface gives `plan`'s Present resource: the surface format, and the image
+/// usage a swapchain is made with (the plan's and what the surface allows of `extraUsage`,
+/// SwapchainOptions::extraUsage).
+struct SurfaceSupport {
+    VkSurfaceFormatKHR format{};
+    VkImageUsageFlags usage = 0;
+    VkImageUsageFlags surfaceUsage = 0;  ///< Everything the surface allows.
+};
+/// Throws ExecutorError naming the resource and what the surface can give when it cannot
+/// present that format (in sRGB nonlinear colour space) or with that usage.
+[[nodiscard]] SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentRequirements& plan,
+                                               VkImageUsageFlags extraUsage);
+
 /// The Present resource of `plan` (index into its resources), or -1 when it presents nothing.
 /// Throws ExecutorError when it presents several.
 [[nodiscard]] int32_t presentResource(const Plan& plan);

@@ -244,10 +244,12 @@ public:
     /// unless it was (the class comment), and, while the renderer presents, at its present
     /// images' extent (as the constructor does with RendererOptions::presentTo). On failure
     /// throws ExecutorError (also when the graph does not compile at that extent, or when its
-    /// Present resource wants another format or usage than the present images have: such a
-    /// graph needs a new renderer, whose first frame re-creates the swapchain) and keeps the
-    /// old plan and pipelines running: with ShaderSources::Reread, a new graph and edited
-    /// shaders take effect together or not at all.
+    /// Present resource wants another format or usage than the application's own present
+    /// images have, or than the device's surface can give) and keeps the old plan and pipelines
+    /// running: with ShaderSources::Reread, a new graph and edited shaders take effect together
+    /// or not at all. A graph that presents another format or usage than the Swapchain's
+    /// images the renderer is bound to is installed unbound: the next renderFrame(swapchain)
+    /// re-creates the swapchain for it, as a new renderer's first frame would.
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
     /// an edit), once this renderer's frames have finished. On failure throws ExecutorError

@@ -292,6 +292,17 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
             renderer.renderFrame(PresentTarget{image, acquired[slot], done[image]});
             ASSERT_EQ(presentImage(device_->queue(), swapchain, image, done[image]), VK_SUCCESS);
         }
+        // The renderer cannot re-create the application's images: a graph presenting another
+        // format is refused, and the old plan stays.
+        try {
+            renderer.setGraph(raster(caps.currentExtent.width, caps.currentExtent.height, {{"compute_tonemap", true}}));
+            ADD_FAILURE() << "a graph presenting another format than the application's images was installed";
+        } catch (const ExecutorError& e) {
+            EXPECT_NE(std::string(e.what()).find("its format is B8G8R8A8_UNORM, the present images' is B8G8R8A8_SRGB"),
+                      std::string::npos)
+                << e.what();
+        }
+        EXPECT_EQ(presentRequirements(renderer.compiled()).format, VK_FORMAT_B8G8R8A8_SRGB);
         EXPECT_THROW(renderer.renderFrame(PresentTarget{n, acquired[0], done[0]}), ExecutorError);
         renderer.waitIdle();
         vkQueueWaitIdle(device_->queue());
@@ -449,6 +460,54 @@ TEST_F(Present, SetGraphCompilesAtThePresentImagesExtent) {
     EXPECT_EQ(swapchain->generation(), 1u) << "the swapchain's images were kept";
     EXPECT_THROW(renderer.resize(50, 40), ExecutorError);
     present(renderer, *swapchain, 1);
+    expectSilent();
+}
+
+// A graph edit that presents another format and usage (raster.json's compute tonemap writes
+// the UNORM storage image `swapchain_storage` instead of the sRGB attachment `swapchain`)
+// re-creates the renderer's swapchain at the next frame, and back again.
+TEST_F(Present, SetGraphToAnotherPresentFormatRecreatesTheSwapchain) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer renderer(*device_, raster(96, 64), genericOptions(2));
+    present(renderer, *swapchain, 2);
+    ASSERT_EQ(swapchain->format(), VK_FORMAT_B8G8R8A8_SRGB);
+    renderer.setGraph(raster(96, 64, {{"compute_tonemap", true}}));
+    EXPECT_EQ(presentRequirements(renderer.compiled()).resource, "swapchain_storage");
+    EXPECT_EQ(swapchain->generation(), 1u) << "re-created by the next frame, not by setGraph";
+    present(renderer, *swapchain, 3);
+    EXPECT_EQ(swapchain->format(), VK_FORMAT_B8G8R8A8_UNORM);
+    EXPECT_EQ(swapchain->generation(), 2u);
+    renderer.setGraph(raster(96, 64));
+    present(renderer, *swapchain, 3);
+    EXPECT_EQ(swapchain->format(), VK_FORMAT_B8G8R8A8_SRGB);
+    EXPECT_EQ(swapchain->generation(), 3u);
+    expectSilent();
+}
+
+// A format the surface cannot present fails setGraph itself, and the old plan presents on.
+TEST_F(Present, SetGraphToAFormatTheSurfaceLacksKeepsTheOldPlan) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer renderer(*device_, raster(96, 64), genericOptions(2));
+    present(renderer, *swapchain, 2);
+    GraphDesc graph = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
+                                    PassRegistry::withBuiltins());
+    for (ResourceDesc& r : graph.resources)
+        if (r.name == "swapchain_storage") r.format = *findFormat(VK_FORMAT_R8G8B8A8_UNORM);
+    CompileOptions o;
+    o.outputWidth = 96;
+    o.outputHeight = 64;
+    o.features = {{"compute_tonemap", true}};
+    try {
+        renderer.setGraph(CompiledGraph(std::move(graph), o));
+        FAIL() << "a graph presenting a format the surface lacks was installed";
+    } catch (const ExecutorError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("the surface cannot present R8G8B8A8_UNORM"), std::string::npos) << what;
+        EXPECT_NE(what.find("'swapchain_storage'"), std::string::npos) << what;
+    }
+    EXPECT_EQ(presentRequirements(renderer.compiled()).resource, "swapchain");
+    present(renderer, *swapchain, 2);
+    EXPECT_EQ(swapchain->generation(), 1u);
     expectSilent();
 }
 
