@@ -44,9 +44,11 @@ uint64_t DeviceMemoryModel::bufferImageGranularity() const {
 MemoryRequirements DeviceMemoryModel::requirements(const MemoryQuery& q) const {
     if (!q.resource) throw ExecutorError("a memory query without a resource");
     const ResourceDesc& d = *q.resource;
-    const Key key = d.isImage() ? Key{true, uint32_t(d.type), d.format.format, q.width, q.height, q.mips, q.layers,
-                                      q.imageUsage, 0}
-                                : Key{false, 0, VK_FORMAT_UNDEFINED, 0, 0, 0, 0, q.bufferUsage, bufferBytes(d)};
+    const bool concurrent = mayBeConcurrent(d);
+    const Key key = d.isImage() ? Key{true, concurrent, uint32_t(d.type), d.format.format, q.width, q.height, q.mips,
+                                      q.layers, q.imageUsage, 0}
+                                : Key{false, concurrent, 0, VK_FORMAT_UNDEFINED, 0, 0, 0, 0, q.bufferUsage,
+                                      bufferBytes(d)};
     std::lock_guard lock(mutex_);
     if (!device_)
         throw ExecutorError("resource '" + d.name + "': the memory model of device '" + name_ +
@@ -57,6 +59,10 @@ MemoryRequirements DeviceMemoryModel::requirements(const MemoryQuery& q) const {
     return answer;
 }
 
+bool DeviceMemoryModel::mayBeConcurrent(const ResourceDesc& d) const noexcept {
+    return families_.count >= 2 && d.sharing != Sharing::Exclusive;
+}
+
 MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
     const ResourceDesc& d = *q.resource;
     if (d.isImage()) {
@@ -65,14 +71,14 @@ MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
         VkImageCreateInfo ci = imageCreateInfo(d, q.width, q.height, q.mips, q.layers, q.imageUsage);
         refuseUnsupportedImage(physical_, d, ci);
         const MemoryRequirements exclusive = askAbout(d, ci);
-        if (families_.count < 2) return exclusive;
+        if (!mayBeConcurrent(d)) return exclusive;
         shareConcurrently(ci, families_);
         return servingBothSharingModes(exclusive, askAbout(d, ci), d.name, name_);
     }
     refuseBufferBeyondLimits(capacity_, d, q.bufferUsage);
     VkBufferCreateInfo ci = bufferCreateInfo(d, q.bufferUsage);
     const MemoryRequirements exclusive = askAbout(d, ci);
-    if (families_.count < 2) return exclusive;
+    if (!mayBeConcurrent(d)) return exclusive;
     shareConcurrently(ci, families_);
     return servingBothSharingModes(exclusive, askAbout(d, ci), d.name, name_);
 }

@@ -30,9 +30,10 @@ namespace skygraph::detail {
 /// query, after refusing what the device cannot create (resource_creation.hpp's checks, so
 /// the driver is never asked about an invalid image). memoryTypeBits keep only the
 /// DEVICE_LOCAL types, the ones the Renderer allocates from. Answers are cached per query.
-/// On a device with several queue families it asks twice, exclusive and concurrent over them,
-/// and answers what serves both: memory is placed before the queue planner decides which
-/// transients the families share concurrently, and the Renderer creates those concurrent.
+/// Where the device's queues span several families it asks twice, exclusive and concurrent over
+/// them (not for a resource declared `"sharing": "exclusive"`), and answers what serves both:
+/// memory is placed before the queue planner decides which transients the families share
+/// concurrently, and the Renderer creates those concurrent.
 ///
 /// Thread-safe: every call locks one mutex, which the driver call runs under, so detach()
 /// cannot destroy the device during a call. The Device owns it and calls detach() before it
@@ -51,8 +52,8 @@ public:
     /// Throws DeviceCapacityError naming the resource when it is past the device's limits
     /// (refuseImageBeyondLimits / refuseBufferBeyondLimits) or the device reports no memory for
     /// it (too large to make); ExecutorError when the device cannot create it otherwise
-    /// (refuseUnsupportedImage), when none of its memory types is DEVICE_LOCAL, or once the
-    /// device is gone.
+    /// (refuseUnsupportedImage), when none of its memory types is DEVICE_LOCAL (for both
+    /// sharing modes, where it asks about both), or once the device is gone.
     [[nodiscard]] MemoryRequirements requirements(const MemoryQuery& query) const override;
     /// The device's bufferImageGranularity. Throws ExecutorError once the device is gone.
     [[nodiscard]] uint64_t bufferImageGranularity() const override;
@@ -65,9 +66,12 @@ public:
     void detach() noexcept;
 
 private:
-    /// Everything of a query that the create info depends on.
-    using Key = std::tuple<bool, uint32_t, VkFormat, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint64_t>;
+    /// Everything of a query that the create infos asked about depend on, and whether the
+    /// concurrent one is asked too.
+    using Key = std::tuple<bool, bool, uint32_t, VkFormat, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint64_t>;
     [[nodiscard]] MemoryRequirements ask(const MemoryQuery& query) const;  // under mutex_
+    /// Whether the queue planner may share a resource of this declaration concurrently.
+    [[nodiscard]] bool mayBeConcurrent(const ResourceDesc& d) const noexcept;
     template <typename CreateInfo>
     [[nodiscard]] MemoryRequirements askAbout(const ResourceDesc& d, const CreateInfo& ci) const;  // under mutex_
 
