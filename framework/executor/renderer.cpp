@@ -252,7 +252,7 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     }
     const uint32_t index = uint32_t(s.plan.resourceIndex(resource));
     const ResourceState& r = s.resources[index];
-    if (r.presented)
+    if (d.presents(index))
         throw ExecutorError("cannot read '" + resource + "': it is the presented image, the presentation engine's");
     if (!readsBack(r.format)) throw ExecutorError(notReadBackable(resource, r.format));
     // A transient whose memory a later resource of the frame takes over holds that one's
@@ -313,9 +313,10 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     // A presenting renderer renders at its present images' extent, as its constructor does.
     if (d.present) compiled = Impl::atPresentExtent(std::move(compiled), d.present->images.extent);
     // Swapchain images of another format or usage than the graph presents: the plan is built
-    // unbound, and the next frame re-creates the swapchain for it and binds the new images, as
-    // a new renderer's first frame does. A format or usage the surface cannot give fails here.
-    const bool unbinds = d.needsOtherSwapchainImages(compiled);
+    // with a stand-in for them, and the next frame re-creates the swapchain and binds its new
+    // images, as a new renderer's first frame does. A format or usage the surface cannot give
+    // fails here.
+    const bool awaitsImages = d.needsOtherSwapchainImages(compiled);
     d.waitIdle();
     // Rereading builds with a new compiler, which reads every shader again. When that fails,
     // the old one comes back with the sources the running pipelines were built from, so that
@@ -324,17 +325,16 @@ void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     if (shaders == ShaderSources::Reread)
         previous = std::exchange(d.shaders, std::make_shared<ShaderCompiler>(d.shaders->includeDir(),
                                                                              d.shaders->cacheDir()));
-    std::optional<Impl::PresentBinding> bound;
-    if (unbinds) bound = std::exchange(d.present, std::nullopt);
-    std::unique_ptr<detail::PlanState> next;
+    // The build reads whether to bind the present images; a failure puts it back.
+    const bool awaited = d.present && d.present->awaitingImages;
+    if (d.present) d.present->awaitingImages = awaitsImages;
     try {
-        next = d.build(std::move(compiled));  // throws: the old plan keeps running
+        d.replaceState(d.build(std::move(compiled)));  // throws: the old plan keeps running
     } catch (...) {
         if (previous) d.shaders = std::move(previous);
-        if (unbinds) d.present = std::move(bound);
+        if (d.present) d.present->awaitingImages = awaited;
         throw;
     }
-    d.replaceState(std::move(next));
 }
 
 void Renderer::Impl::replaceState(std::unique_ptr<PlanState> next) {
@@ -379,7 +379,7 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
     if (index < 0) throw ExecutorError("shareImage: no resource '" + resource + "' in the current plan");
     const ResourceState& r = d.state->resources[size_t(index)];
     const std::string why = !r.isImage            ? "is a buffer, and only images are shared"
-                            : r.presented          ? "is the presented image"
+                            : d.presents(uint32_t(index)) ? "is the presented image"
                             : !r.desc->external    ? "is not external: set \"external\": true and `final`"
                             : !r.desc->isExported() ? "is not exported: set `final`"
                             : r.perSlot || r.images.size() != 1 ? "has a copy per frame in flight"

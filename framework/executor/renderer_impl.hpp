@@ -357,6 +357,10 @@ struct Renderer::Impl {
         PresentImages images;
         const SwapchainAccess::Impl* swapchain = nullptr;  ///< Null: the application's own images.
         uint64_t imagesId = 0;                       ///< The swapchain's images_id, when bound.
+        /// The plan presents another format or usage than `images` have (setGraph): the state
+        /// renders into a stand-in until the next frame re-creates the swapchain and binds its
+        /// new images. The renderer still presents, at `images`' extent.
+        bool awaitingImages = false;
     };
     std::optional<PresentBinding> present;
     /// Test hooks (RendererAccess): stages in place of the plan's acquire wait (0: no wait) and
@@ -540,6 +544,9 @@ struct Renderer::Impl {
     /// images it is bound to have (false when bound to the application's own images, or to
     /// none). Throws ExecutorError when the device's surface cannot give them.
     [[nodiscard]] bool needsOtherSwapchainImages(const CompiledGraph& compiled) const;
+    /// Whether plan resource `index` of the running state is what this renderer presents (its
+    /// present images, or the stand-in while awaiting new ones).
+    [[nodiscard]] bool presents(uint32_t index) const;
     /// The checks of the binding against a plan state being built; sets presentResource.
     void describePresent(detail::PlanState& s) const;
     [[nodiscard]] uint32_t waitForFrameSlot();

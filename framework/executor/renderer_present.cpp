@@ -12,7 +12,7 @@ using namespace detail;
 void Renderer::Impl::describePresent(PlanState& s) const {
     s.presentResource = -1;
     s.presentImages = 1;
-    if (!present) return;
+    if (!present || present->awaitingImages) return;
     const PresentImages& p = present->images;
     const int32_t index = presentResource(s.plan);
     if (index < 0)
@@ -53,6 +53,10 @@ bool Renderer::Impl::needsOtherSwapchainImages(const CompiledGraph& compiled) co
     // The binding's swapchain may be gone (a renderer outlives it): the device's surface answers.
     (void)surfaceSupportFor(dev, need, 0);
     return true;
+}
+
+bool Renderer::Impl::presents(uint32_t index) const {
+    return present && int32_t(index) == presentResource(state->plan);
 }
 
 CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D extent) {
@@ -114,7 +118,7 @@ PresentStatus Renderer::Impl::renderFrame(Swapchain& swapchain) {
             sc.recreate(need);
         }
         if (sc.paused()) return PresentStatus::Paused;
-        if (!present || present->imagesId != sc.imagesId) {
+        if (!present || present->imagesId != sc.imagesId || present->awaitingImages) {
             bindPresentImages(PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage}, &sc);
             sc.releaseRetired();  // no view of its images is left
         }

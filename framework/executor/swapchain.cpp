@@ -113,9 +113,10 @@ SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentReq
     VkSurfaceCapabilitiesKHR caps;
     vk::check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(pd, surface, &caps), "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
     uint32_t n = 0;
-    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, nullptr);
+    vk::check(vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, nullptr), "vkGetPhysicalDeviceSurfaceFormatsKHR");
     std::vector<VkSurfaceFormatKHR> formats(n);
-    vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, formats.data());
+    vk::check(vkGetPhysicalDeviceSurfaceFormatsKHR(pd, surface, &n, formats.data()),
+              "vkGetPhysicalDeviceSurfaceFormatsKHR");
     const auto format = std::find_if(formats.begin(), formats.end(), [&](const VkSurfaceFormatKHR& f) {
         return f.format == plan.format && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR;
     });
@@ -125,11 +126,25 @@ SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentReq
         throw ExecutorError("the surface cannot present " + formatName(plan.format) + ", the format of the plan's "
                             "Present resource '" + plan.resource + "'; it presents " + (have.empty() ? "none" : have));
     }
-    const VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
-    if ((usage & ~caps.supportedUsageFlags) != 0)
+    if ((plan.usage & ~caps.supportedUsageFlags) != 0)
         throw ExecutorError("the surface's images cannot be used as the plan uses '" + plan.resource +
-                            "' (image usage " + vk::imageUsageText(usage) + ", the surface allows " +
+                            "' (image usage " + vk::imageUsageText(plan.usage) + ", the surface allows " +
                             vk::imageUsageText(caps.supportedUsageFlags) + ")");
+    // The images a swapchain implies must be ones the device can make (the spec's
+    // VkSwapchainCreateInfoKHR imageFormat rule): a surface may list a format and a usage
+    // that the format does not support together.
+    const auto makes = [&](VkImageUsageFlags usage) {
+        VkImageFormatProperties props;
+        return vkGetPhysicalDeviceImageFormatProperties(pd, plan.format, VK_IMAGE_TYPE_2D, VK_IMAGE_TILING_OPTIMAL,
+                                                        usage, 0, &props) == VK_SUCCESS;
+    };
+    if (!makes(plan.usage))
+        throw ExecutorError("the device cannot make " + formatName(plan.format) + " images with usage " +
+                            vk::imageUsageText(plan.usage) + " for the swapchain, as the plan uses its Present "
+                            "resource '" + plan.resource + "'");
+    // Extra usage the surface or the format cannot give is left out (recreate warns).
+    VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
+    if (!makes(usage)) usage = plan.usage;
     return {*format, usage, caps.supportedUsageFlags};
 }
 
@@ -155,9 +170,9 @@ void Swapchain::Impl::recreate(const PresentRequirements& plan) {
     wanted = e;
 
     const SurfaceSupport support = surfaceSupportFor(dev, plan, extraUsage);
-    if ((extraUsage & ~support.surfaceUsage) != 0)
-        spdlog::warn("the surface's images cannot have usage {} besides the plan's",
-                     vk::imageUsageText(extraUsage & ~support.surfaceUsage));
+    if (const VkImageUsageFlags missing = extraUsage & ~support.usage; missing != 0)
+        spdlog::warn("the swapchain's images cannot have usage {} besides the plan's",
+                     vk::imageUsageText(missing));
     const VkImageUsageFlags usage = support.usage;
 
     uint32_t n = 0;

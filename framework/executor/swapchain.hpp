@@ -24,15 +24,16 @@ namespace detail {
 [[nodiscard]] VkPipelineStageFlags2 presentSignalStages(const Plan& plan, uint32_t resource);
 
 /// What the device's surface gives `plan`'s Present resource: the surface format, and the image
-/// usage a swapchain is made with (the plan's and what the surface allows of `extraUsage`,
-/// SwapchainOptions::extraUsage).
+/// usage a swapchain is made with (the plan's, and `extraUsage`, SwapchainOptions::extraUsage,
+/// when the surface and the format allow all of it).
 struct SurfaceSupport {
     VkSurfaceFormatKHR format{};
     VkImageUsageFlags usage = 0;
     VkImageUsageFlags surfaceUsage = 0;  ///< Everything the surface allows.
 };
 /// Throws ExecutorError naming the resource and what the surface can give when it cannot
-/// present that format (in sRGB nonlinear colour space) or with that usage.
+/// present that format (in sRGB nonlinear colour space) or with that usage, or when the device
+/// cannot make images of that format with that usage.
 [[nodiscard]] SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentRequirements& plan,
                                                VkImageUsageFlags extraUsage);
 

@@ -30,6 +30,7 @@
 #include <unistd.h>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -44,6 +45,20 @@ CompiledGraph raster(uint32_t width, uint32_t height, FeatureValues features = {
     o.outputWidth = width;
     o.outputHeight = height;
     o.features = std::move(features);
+    return CompiledGraph(std::move(graph), o);
+}
+
+/// raster.json with the compute tonemap on, its target `swapchain_storage` edited to
+/// R8G8B8A8_UNORM (a storage image): lavapipe's X11 surface offers B8G8R8A8 only.
+CompiledGraph rasterPresentingAFormatTheSurfaceLacks(uint32_t width, uint32_t height) {
+    GraphDesc graph = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
+                                    PassRegistry::withBuiltins());
+    for (ResourceDesc& r : graph.resources)
+        if (r.name == "swapchain_storage") r.format = *findFormat(VK_FORMAT_R8G8B8A8_UNORM);
+    CompileOptions o;
+    o.outputWidth = width;
+    o.outputHeight = height;
+    o.features = {{"compute_tonemap", true}};
     return CompiledGraph(std::move(graph), o);
 }
 
@@ -190,17 +205,7 @@ TEST_F(Present, HeadlessRenderFrameRefusesOncePresenting) {
 }
 
 TEST_F(Present, AFormatTheSurfaceLacksIsAClearError) {
-    // The compute tonemap's target edited to R8G8B8A8_UNORM (a storage image): lavapipe's X11
-    // surface offers B8G8R8A8 only.
-    GraphDesc graph = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
-                                    PassRegistry::withBuiltins());
-    for (ResourceDesc& r : graph.resources)
-        if (r.name == "swapchain_storage") r.format = *findFormat(VK_FORMAT_R8G8B8A8_UNORM);
-    CompileOptions o;
-    o.outputWidth = 96;
-    o.outputHeight = 64;
-    o.features = {{"compute_tonemap", true}};
-    const CompiledGraph compiled(std::move(graph), o);
+    const CompiledGraph compiled = rasterPresentingAFormatTheSurfaceLacks(96, 64);
     EXPECT_EQ(presentRequirements(compiled).resource, "swapchain_storage");
     EXPECT_TRUE(presentRequirements(compiled).usage & VK_IMAGE_USAGE_STORAGE_BIT);
     try {
@@ -474,6 +479,15 @@ TEST_F(Present, SetGraphToAnotherPresentFormatRecreatesTheSwapchain) {
     renderer.setGraph(raster(96, 64, {{"compute_tonemap", true}}));
     EXPECT_EQ(presentRequirements(renderer.compiled()).resource, "swapchain_storage");
     EXPECT_EQ(swapchain->generation(), 1u) << "re-created by the next frame, not by setGraph";
+    // Until then the renderer still presents: what a presenting renderer refuses stays refused,
+    // and another graph is still compiled at the window's extent and checked against the surface.
+    EXPECT_THROW(renderer.renderFrame(), ExecutorError);
+    EXPECT_THROW(renderer.resize(50, 40), ExecutorError);
+    EXPECT_THROW((void)renderer.readImage("swapchain_storage"), ExecutorError);
+    EXPECT_THROW(renderer.setGraph(rasterPresentingAFormatTheSurfaceLacks(96, 64)), ExecutorError);
+    renderer.setGraph(raster(50, 40, {{"compute_tonemap", true}}));
+    EXPECT_EQ(renderer.compiled().outputWidth(), 96u);
+    EXPECT_EQ(renderer.compiled().outputHeight(), 64u);
     present(renderer, *swapchain, 3);
     EXPECT_EQ(swapchain->format(), VK_FORMAT_B8G8R8A8_UNORM);
     EXPECT_EQ(swapchain->generation(), 2u);
@@ -484,21 +498,55 @@ TEST_F(Present, SetGraphToAnotherPresentFormatRecreatesTheSwapchain) {
     expectSilent();
 }
 
+/// A pass whose pipelines cannot be made: a plan state that fails to build.
+class Unbuildable : public PassImplementation {
+public:
+    void createPipelines(const PipelineContext&) override { throw std::runtime_error("no pipelines, as asked"); }
+    void record(const RecordContext&) override {}
+};
+
+// A graph of another present format whose build fails leaves the renderer bound to its
+// swapchain's images, presenting the old plan.
+TEST_F(Present, AFailedSetGraphToAnotherPresentFormatKeepsTheSwapchainsImages) {
+    PassLibrary library = PassLibrary::genericOnly();
+    PassTypeInfo info;
+    info.name = "Unbuildable";
+    info.acceptsAnyUsage = true;
+    library.add(std::move(info), [](const PassDesc&) { return std::make_unique<Unbuildable>(); });
+    RendererOptions ro = genericOptions(2);
+    ro.passes = &library;
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer renderer(*device_, raster(96, 64), ro);
+    present(renderer, *swapchain, 2);
+    GraphDesc unorm = parseGraph(R"({ "version": 1, "name": "unbuildable", "resources": {
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                       "external": true, "final": "Present" } },
+      "passes": [ { "name": "draw", "type": "Unbuildable", "uses": { "swapchain": "Write@ColorAttachment" } } ] })",
+                                 "unbuildable.json", library.registry());
+    CompileOptions o;
+    o.outputWidth = 96;
+    o.outputHeight = 64;
+    try {
+        renderer.setGraph(CompiledGraph(std::move(unorm), o));
+        FAIL() << "a graph whose pipelines cannot be made was installed";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("no pipelines, as asked"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(renderer.compiled().graph().name, "raster");
+    EXPECT_THROW(renderer.renderFrame(), ExecutorError) << "still presenting";
+    present(renderer, *swapchain, 2);
+    EXPECT_EQ(swapchain->generation(), 1u) << "the old images are still bound";
+    EXPECT_EQ(swapchain->format(), VK_FORMAT_B8G8R8A8_SRGB);
+    expectSilent();
+}
+
 // A format the surface cannot present fails setGraph itself, and the old plan presents on.
 TEST_F(Present, SetGraphToAFormatTheSurfaceLacksKeepsTheOldPlan) {
     auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
     Renderer renderer(*device_, raster(96, 64), genericOptions(2));
     present(renderer, *swapchain, 2);
-    GraphDesc graph = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
-                                    PassRegistry::withBuiltins());
-    for (ResourceDesc& r : graph.resources)
-        if (r.name == "swapchain_storage") r.format = *findFormat(VK_FORMAT_R8G8B8A8_UNORM);
-    CompileOptions o;
-    o.outputWidth = 96;
-    o.outputHeight = 64;
-    o.features = {{"compute_tonemap", true}};
     try {
-        renderer.setGraph(CompiledGraph(std::move(graph), o));
+        renderer.setGraph(rasterPresentingAFormatTheSurfaceLacks(96, 64));
         FAIL() << "a graph presenting a format the surface lacks was installed";
     } catch (const ExecutorError& e) {
         const std::string what = e.what();
