@@ -121,9 +121,9 @@ public:
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
     /// Waits for this renderer's own frames to finish, not for other renderers' (a background
     /// bake may go on running), then destroys what the renderer owns; images shared with
-    /// other renderers live on while they use them. A renderer whose plan submits to several
-    /// queues also waits for each of the device's queues (Device::queue) to be idle, so then
-    /// it waits for other renderers' work on those queues too.
+    /// other renderers live on while they use them. A renderer that has submitted to several
+    /// queues (a plan of any of its graphs did) also waits for each of those queues to be
+    /// idle, so then it waits for other renderers' work on them too.
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
