@@ -43,8 +43,8 @@ std::string withCubeFace(std::string graph, const std::string& name, uint32_t fa
 /// declare 256).
 std::string withEnvironmentFace(std::string graph, uint32_t face) { return withCubeFace(std::move(graph), "environment", face); }
 
-/// The memory cap a renderer holds all of a plan's resources to (docs/reliability.md, "Extent
-/// too large"): half the device's largest device-local heap.
+/// The memory cap a renderer holds all of a plan's resources to (docs/reliability.md, "Faults",
+/// an extent too large): half the device's largest device-local heap.
 VkDeviceSize memoryCap(const Device& device) {
     VkPhysicalDeviceMemoryProperties memory;
     vkGetPhysicalDeviceMemoryProperties(device.physicalDevice(), &memory);
