@@ -12,7 +12,7 @@ using namespace detail;
 void Renderer::Impl::describePresent(PlanState& s) const {
     s.presentResource = -1;
     s.presentImages = 1;
-    if (!present || present->awaitingImages) return;
+    if (!present) return;
     const PresentImages& p = present->images;
     const int32_t index = presentResource(s.plan);
     if (index < 0)
@@ -24,7 +24,10 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     if (res.finalLayout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)
         throw ExecutorError(what + "the plan was compiled with CompileOptions::presentReplacement, for rendering "
                                    "headless; compile it to present");
-    if (p.format != desc.format.format)
+    // Awaiting a re-created swapchain: its images will have another format and usage, but the
+    // window's extent.
+    const bool checksImages = !present->awaitingImages;
+    if (checksImages && p.format != desc.format.format)
         throw ExecutorError(what + "its format is " + std::string(desc.format.name) + ", the present images' is " +
                             (findFormat(p.format) ? std::string(findFormat(p.format)->name)
                                                   : "VkFormat " + std::to_string(int(p.format))));
@@ -34,9 +37,10 @@ void Renderer::Impl::describePresent(PlanState& s) const {
         throw ExecutorError(what + "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
                             ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)");
     const VkImageUsageFlags need = planImageUsage(s.plan, uint32_t(index));
-    if ((need & ~p.usage) != 0)
+    if (checksImages && (need & ~p.usage) != 0)
         throw ExecutorError(what + "the plan needs image usage " + vk::imageUsageText(need) +
                             ", the present images were created with " + vk::imageUsageText(p.usage));
+    if (!checksImages) return;  // a stand-in takes the images' place
     s.presentResource = index;
     s.presentImages = static_cast<uint32_t>(p.images.size());
 }
@@ -95,6 +99,9 @@ uint32_t Renderer::Impl::waitForFrameSlot() {
 
 void Renderer::Impl::renderFrame(const PresentTarget& target) {
     if (!present) throw ExecutorError("renderFrame(PresentTarget): no present images (setPresentImages)");
+    if (present->awaitingImages)
+        throw ExecutorError("renderFrame(PresentTarget): the plan presents another format or usage than the "
+                            "swapchain's images have; renderFrame(Swapchain&) re-creates them");
     if (target.image >= state->presentImages)
         throw ExecutorError("renderFrame(PresentTarget): image " + std::to_string(target.image) + " of " +
                             std::to_string(state->presentImages));

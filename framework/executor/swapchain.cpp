@@ -142,10 +142,12 @@ SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentReq
         throw ExecutorError("the device cannot make " + formatName(plan.format) + " images with usage " +
                             vk::imageUsageText(plan.usage) + " for the swapchain, as the plan uses its Present "
                             "resource '" + plan.resource + "'");
-    // Extra usage the surface or the format cannot give is left out (recreate warns).
-    VkImageUsageFlags usage = plan.usage | (extraUsage & caps.supportedUsageFlags);
-    if (!makes(usage)) usage = plan.usage;
-    return {*format, usage, caps.supportedUsageFlags};
+    // Extra usage the surface or the format cannot give is left out, a bit at a time (recreate
+    // warns).
+    VkImageUsageFlags usage = plan.usage;
+    for (VkImageUsageFlags bit = 1; bit != 0 && bit <= extraUsage; bit <<= 1)
+        if ((extraUsage & caps.supportedUsageFlags & bit) != 0 && makes(usage | bit)) usage |= bit;
+    return {*format, usage};
 }
 
 }  // namespace detail

@@ -29,7 +29,6 @@ namespace detail {
 struct SurfaceSupport {
     VkSurfaceFormatKHR format{};
     VkImageUsageFlags usage = 0;
-    VkImageUsageFlags surfaceUsage = 0;  ///< Everything the surface allows.
 };
 /// Throws ExecutorError naming the resource and what the surface can give when it cannot
 /// present that format (in sRGB nonlinear colour space) or with that usage, or when the device

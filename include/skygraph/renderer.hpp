@@ -248,8 +248,10 @@ public:
     /// images have, or than the device's surface can give) and keeps the old plan and pipelines
     /// running: with ShaderSources::Reread, a new graph and edited shaders take effect together
     /// or not at all. A graph that presents another format or usage than the Swapchain's
-    /// images the renderer is bound to is installed unbound: the next renderFrame(swapchain)
-    /// re-creates the swapchain for it, as a new renderer's first frame would.
+    /// images the renderer is bound to is installed with a stand-in for them: the next
+    /// renderFrame(swapchain) re-creates the swapchain for it, as a new renderer's first frame
+    /// would; until then the renderer presents as before (renderFrame() and
+    /// renderFrame(const PresentTarget&) throw, resize() takes only its extent).
     void setGraph(CompiledGraph compiled, ShaderSources shaders = ShaderSources::Cached);
     /// Reads every shader again from the shader directory and rebuilds the plan state (after
     /// an edit), once this renderer's frames have finished. On failure throws ExecutorError

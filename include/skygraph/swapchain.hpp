@@ -74,8 +74,8 @@ struct SwapchainOptions {
     PresentMode presentMode = PresentMode::Fifo;
     /// Usages the images get besides the plan's: VK_IMAGE_USAGE_TRANSFER_SRC_BIT lets a plan
     /// compiled with the presented image in CompileOptions::readbacks (a screenshot) run on
-    /// these images without re-creating them. Those the surface does not allow are left out
-    /// (with a warning in the log).
+    /// these images without re-creating them. Those the surface does not allow, or the device
+    /// cannot give images of the plan's format, are left out (with a warning in the log).
     VkImageUsageFlags extraUsage = 0;
 };
 
