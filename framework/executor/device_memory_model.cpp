@@ -54,7 +54,7 @@ MemoryRequirements DeviceMemoryModel::requirements(const MemoryQuery& q) const {
         throw ExecutorError("resource '" + d.name + "': the memory model of device '" + name_ +
                             "' was asked after the device was destroyed");
     if (const auto it = cache_.find(key); it != cache_.end()) return it->second;
-    const MemoryRequirements answer = ask(q);
+    const MemoryRequirements answer = ask(q, concurrent);
     cache_.emplace(key, answer);
     return answer;
 }
@@ -63,22 +63,23 @@ bool DeviceMemoryModel::mayBeConcurrent(const ResourceDesc& d) const noexcept {
     return families_.count >= 2 && d.sharing != Sharing::Exclusive;
 }
 
-MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q) const {
+MemoryRequirements DeviceMemoryModel::ask(const MemoryQuery& q, bool concurrent) const {
     const ResourceDesc& d = *q.resource;
     if (d.isImage()) {
         // Refused first: asking about an image the device cannot create is invalid usage.
         refuseImageBeyondLimits(capacity_, d, q.width, q.height, q.mips, q.layers, "");
-        VkImageCreateInfo ci = imageCreateInfo(d, q.width, q.height, q.mips, q.layers, q.imageUsage);
+        const VkImageCreateInfo ci = imageCreateInfo(d, q.width, q.height, q.mips, q.layers, q.imageUsage);
         refuseUnsupportedImage(physical_, d, ci);
-        const MemoryRequirements exclusive = askAbout(d, ci);
-        if (!mayBeConcurrent(d)) return exclusive;
-        shareConcurrently(ci, families_);
-        return servingBothSharingModes(exclusive, askAbout(d, ci), d.name, name_);
+        return askInSharingModes(d, ci, concurrent);
     }
     refuseBufferBeyondLimits(capacity_, d, q.bufferUsage);
-    VkBufferCreateInfo ci = bufferCreateInfo(d, q.bufferUsage);
+    return askInSharingModes(d, bufferCreateInfo(d, q.bufferUsage), concurrent);
+}
+
+template <typename CreateInfo>
+MemoryRequirements DeviceMemoryModel::askInSharingModes(const ResourceDesc& d, CreateInfo ci, bool concurrent) const {
     const MemoryRequirements exclusive = askAbout(d, ci);
-    if (!mayBeConcurrent(d)) return exclusive;
+    if (!concurrent) return exclusive;
     shareConcurrently(ci, families_);
     return servingBothSharingModes(exclusive, askAbout(d, ci), d.name, name_);
 }

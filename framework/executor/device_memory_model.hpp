@@ -69,11 +69,15 @@ private:
     /// Everything of a query that the create infos asked about depend on, and whether the
     /// concurrent one is asked too.
     using Key = std::tuple<bool, bool, uint32_t, VkFormat, uint32_t, uint32_t, uint32_t, uint32_t, uint32_t, uint64_t>;
-    [[nodiscard]] MemoryRequirements ask(const MemoryQuery& query) const;  // under mutex_
     /// Whether the queue planner may share a resource of this declaration concurrently.
     [[nodiscard]] bool mayBeConcurrent(const ResourceDesc& d) const noexcept;
+    // Under mutex_: `concurrent` is mayBeConcurrent()'s answer for the query's resource.
+    [[nodiscard]] MemoryRequirements ask(const MemoryQuery& query, bool concurrent) const;
+    /// `ci` as it is, and when `concurrent` also shared concurrently, combined.
     template <typename CreateInfo>
-    [[nodiscard]] MemoryRequirements askAbout(const ResourceDesc& d, const CreateInfo& ci) const;  // under mutex_
+    [[nodiscard]] MemoryRequirements askInSharingModes(const ResourceDesc& d, CreateInfo ci, bool concurrent) const;
+    template <typename CreateInfo>
+    [[nodiscard]] MemoryRequirements askAbout(const ResourceDesc& d, const CreateInfo& ci) const;
 
     const VkPhysicalDevice physical_;
     const DeviceCapacity capacity_;
