@@ -1,6 +1,6 @@
 // Rule 11 of docs/barriers.md: barriers that agree in everything but their subresource
 // ranges become one barrier over the union of those ranges, when it is a rectangle of mips x
-// layers. Internal to the synchronizer (synchronizer.cpp).
+// layers. Internal to the synchronizer's barrier sweep (synchronizer_barriers.cpp).
 #pragma once
 
 #include "subresources.hpp"

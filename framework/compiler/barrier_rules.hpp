@@ -1,7 +1,8 @@
 // The hazard rules of docs/barriers.md for one subresource: what is known of it between
 // passes, the barrier an access needs given that, and what the access leaves. Whole-frame,
 // per-subresource state tracking in the spirit of Granite's render graph. Internal to the
-// synchronizer (synchronizer.cpp), which walks the plan's accesses in order and calls these.
+// synchronizer's barrier sweep (synchronizer_barriers.cpp), which walks the plan's accesses in
+// order and calls these.
 #pragma once
 
 #include "vulkan_state.hpp"

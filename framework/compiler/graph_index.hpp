@@ -2,7 +2,7 @@
 // GraphDesc is pointer-rich (each pass keeps its usages, and its condition, in allocations of
 // their own), so a sweep over it misses the cache at every pass; compile() sweeps the graph
 // twice more (culling, plan building). The walk that builds the index also finds reads with
-// no source. Shared by validation.cpp, scheduler.cpp and synchronizer.cpp.
+// no source. Shared by validation.cpp, scheduler.cpp and the synchronizer.
 #pragma once
 
 #include "graph_limits.hpp"

@@ -1,5 +1,5 @@
 // Rule 4 of docs/barriers.md: the layout that a run of reads shares. Internal to the
-// synchronizer (synchronizer.cpp), which adds every access of the plan in order.
+// synchronizer (synchronizer_accesses.cpp), which adds every access of the plan in order.
 #pragma once
 
 #include "subresources.hpp"
@@ -38,7 +38,7 @@ public:
     /// for every access of a plan. (Two functions rather than a test of the policy per read,
     /// which costs FewestBarriers half a percent of a compile.)
     void add(uint32_t k, VkImageLayout own) { nodes_[k] = {k, own}; }
-    void visit(uint32_t k, size_t sub, bool read) {
+    [[gnu::always_inline]] void visit(uint32_t k, size_t sub, bool read) {
         uint32_t& open = open_[sub];
         if (read && open != kNoRun) unite(open, k);
         open = read ? k : kNoRun;  // a write ends the run
@@ -57,7 +57,7 @@ private:
         while (nodes_[a].parent != a) a = nodes_[a].parent = nodes_[nodes_[a].parent].parent;
         return a;
     }
-    void unite(uint32_t a, uint32_t b) {
+    [[gnu::always_inline]] void unite(uint32_t a, uint32_t b) {
         const uint32_t from = find(a), to = find(b);
         if (from == to) return;
         nodes_[from].parent = to;

@@ -1,0 +1,106 @@
+// The frame's boundaries: the final barriers of exported resources and read-backs, which
+// resources need a copy per frame in flight, and the presented image's semaphores.
+#include "synchronizer_state.hpp"
+
+#include <string>
+
+namespace skygraph::sync {
+
+/// The final barriers of exported resources, and their final layouts, once every pass
+/// is emitted.
+void Synchronizer::finishResources() {
+    for (const uint32_t r : exported_) {
+        auto& res = planResources()[r];
+        SubresourceState* states = stateOf(r);
+        const auto& d = decl(r);
+        const VulkanScope scope = boundaryScope(r, replaced(d.final));
+        // A persistent resource's next frame repeats this one. If it writes anywhere, the
+        // final barrier must order every access of this frame, readers included, before
+        // the next frame's first use, exactly as a write would: later passes of the next
+        // frame chain through that first use and never name this frame's stages.
+        const bool persistent = d.external && replaced(d.final) == replaced(d.initial);
+        bool framesWrite = false;
+        for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next)
+            framesWrite |= accesses_[k].writes;
+        const bool nextUseWrites = writeBits(scope.access) != 0 || (persistent && framesWrite);
+        perSub_.clear();
+        const SubresourceGrid& grid = facts_[r].grid;
+        grid.forEach(grid.whole(), [&](size_t sub) {
+            perSub_.push_back(barrierFor(states[sub], scope,
+                                         d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED,
+                                         nextUseWrites, false,
+                                         [&] { return StageAccess{scope.stages, scope.access}; }));
+        });
+        merger_.emitMerged(r, isImage(r) ? BarrierKind::Image : BarrierKind::Buffer, grid.whole(), perSub_,
+                           detail::PlanBuilder::finalBarriers(plan_));
+        res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
+    }
+    // Each read-back's copy lands in host memory the executor reads after the frame's
+    // fence: its writes are made available to the host domain here.
+    for (const uint32_t s : readbackSteps_) {
+        Barrier b;
+        b.resource = (*usages_)[steps_[s].firstAccess].resource;
+        b.kind = BarrierKind::Memory;
+        b.srcStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+        b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
+        b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
+        detail::PlanBuilder::finalBarriers(plan_).push_back(b);
+    }
+}
+
+/// Which resources need a copy per frame in flight: frames in flight overlap on the GPU,
+/// and nothing in a plan orders one frame's accesses after another's unless a resource is
+/// exported (its final barrier and the next frame's first use chain across frames). A
+/// transient is SharedTransient when the frames share the heaps (set by planMemory), and
+/// otherwise keeps the default, PerFrameTransient.
+void Synchronizer::decideCopies() {
+    int64_t presented = -1;
+    for (const uint32_t r : external_) {
+        const ResourceFacts& f = facts_[r];
+        PlannedResource& res = planResources()[r];
+        if (decl(r).final == ExternalState::Present) {
+            res.copies = ResourceCopies::PerFramePresented;
+            if (replaced(ExternalState::Present) == ExternalState::Present) {
+                if (presented >= 0) secondPresentedImage(static_cast<uint32_t>(presented), r);
+                presented = r;
+                presentation(r);
+            }
+        } else if (f.exported) {
+            res.copies = ResourceCopies::SharedExported;
+        } else {
+            bool written = false;
+            for (uint32_t k = f.firstAccess; k != kNone; k = accesses_[k].next) written |= accesses_[k].writes;
+            res.copies = written ? ResourceCopies::PerFrameWrittenNotExported : ResourceCopies::SharedReadOnly;
+        }
+    }
+}
+
+/// A frame has one swapchain image to present. A file may declare several presented
+/// images for passes that features choose between, but one plan presents one (a plan
+/// compiled to run headless, CompileOptions::presentReplacement, presents none).
+[[noreturn]] void Synchronizer::secondPresentedImage(uint32_t first, uint32_t second) const {
+    Diagnostics diags;
+    diags.add({graph_.file, decl(second).jsonPath() + ".final", "", decl(second).name,
+               "a frame presents one image, and passes of this plan also use the presented image '" +
+                   decl(first).name + "'; choose one with features or conditions"});
+    throw GraphError(std::move(diags));
+}
+
+/// A presented image (not read back instead) meets the swapchain's semaphores. The
+/// frame's first use (its first barrier, from UNDEFINED, waits in those stages) waits on
+/// the acquire. The final barrier to PRESENT_SRC_KHR gets the last use's stages as its
+/// destination, and the render-complete signal is in them: the signal chains with the
+/// barrier, so it follows the layout transition. (With destination NONE only an
+/// ALL_COMMANDS signal would, and validation layers before 1.3.278 report that as a hazard.)
+void Synchronizer::presentation(uint32_t r) {
+    VkPipelineStageFlags2 lastStages = 0;
+    for (Barrier& b : detail::PlanBuilder::finalBarriers(plan_))
+        if (b.resource == r && b.newLayout == VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) {
+            b.dstStages = b.srcStages;
+            lastStages |= b.srcStages;
+        }
+    detail::PlanBuilder::presentations(plan_).push_back({r, planResources()[r].firstStages, lastStages});
+}
+
+}  // namespace skygraph::sync
