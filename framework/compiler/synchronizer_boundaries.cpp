@@ -1,24 +1,37 @@
-// The frame's boundaries: the final barriers of exported resources and read-backs, which
-// resources need a copy per frame in flight, and the presented image's semaphores.
+// The frame's boundaries: the final barriers of resources that outlive the frame and of
+// read-backs, which resources need a copy per frame in flight, and the presented image's
+// semaphores.
 #include "synchronizer_state.hpp"
 
+#include <algorithm>
+#include <iterator>
 #include <string>
+#include <vector>
 
 namespace skygraph::sync {
 
-/// The final barriers of exported resources, and their final layouts, once every pass
-/// is emitted.
+/// The final barriers, and the final layouts, of the resources that outlive the frame: an
+/// exported one goes into its `final` state; an external one that is not exported goes back
+/// into its `initial` state, where the next frame (or the next frame on this copy) finds it.
+/// Without that, a frame that reads an input in another layout (storage, a copy) would leave it
+/// there, and the next frame's barriers would transition it from a layout it is not in.
 void Synchronizer::finishResources() {
-    for (const uint32_t r : exported_) {
+    std::vector<uint32_t> outliving;  // in plan order
+    outliving.reserve(exported_.size() + external_.size());
+    std::set_union(exported_.begin(), exported_.end(), external_.begin(), external_.end(),
+                   std::back_inserter(outliving));
+    for (const uint32_t r : outliving) {
         auto& res = planResources()[r];
         SubresourceState* states = stateOf(r);
         const auto& d = decl(r);
-        const VulkanScope scope = boundaryScope(r, replaced(d.final));
-        // A persistent resource's next frame repeats this one. If it writes anywhere, the
-        // final barrier must order every access of this frame, readers included, before
-        // the next frame's first use, exactly as a write would: later passes of the next
-        // frame chain through that first use and never name this frame's stages.
-        const bool persistent = d.external && replaced(d.final) == replaced(d.initial);
+        const ExternalState end = replaced(facts_[r].exported ? d.final : d.initial);
+        const VulkanScope scope = boundaryScope(r, end);
+        // A persistent resource's next frame repeats this one (an external one that is not
+        // exported is one too). If it writes anywhere, the final barrier must order every
+        // access of this frame, readers included, before the next frame's first use, exactly
+        // as a write would: later passes of the next frame chain through that first use and
+        // never name this frame's stages.
+        const bool persistent = d.external && end == replaced(d.initial);
         bool framesWrite = false;
         for (uint32_t k = facts_[r].firstAccess; k != kNone; k = accesses_[k].next)
             framesWrite |= accesses_[k].writes;

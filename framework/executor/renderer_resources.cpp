@@ -3,6 +3,8 @@
 #include "renderer_impl.hpp"
 #include "resource_creation.hpp"
 
+#include <skygraph/plan_format.hpp>
+
 #include <string_view>
 #include <unordered_set>
 
@@ -149,12 +151,15 @@ void Renderer::Impl::describeResources(PlanState& s) {
         r.presented = int32_t(i) == s.presentResource;
         r.perSlot = perFrameInFlight(pr.copies) && slots > 1 && !r.presented;
         r.presentImages = s.presentImages;
-        if (pr.copies == ResourceCopies::PerFrameWrittenNotExported && r.isImage &&
-            pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
+        // The compiler moves such an image back; a plan edited or built without that would
+        // have the next frame's barriers transition it from a layout it is not in.
+        const bool arrivesAsItWasLeft = pr.copies == ResourceCopies::PerFrameWrittenNotExported ||
+                                        pr.copies == ResourceCopies::SharedReadOnly;
+        if (arrivesAsItWasLeft && r.isImage && pr.initialLayout != VK_IMAGE_LAYOUT_UNDEFINED &&
             pr.finalLayout != pr.initialLayout) {
-            throw ExecutorError("resource '" + r.desc->name +
-                                "': an external image that the graph writes ends the frame in a "
-                                "different layout than it arrives in; give it a `final` state");
+            throw ExecutorError("resource '" + r.desc->name + "': an external image that is not exported ends the frame in " +
+                                layoutName(pr.finalLayout) + " but the next frame expects it in " +
+                                layoutName(pr.initialLayout) + "; the plan lacks the final barrier back");
         }
         if (r.isImage) {
             r.format = r.desc->format.format;

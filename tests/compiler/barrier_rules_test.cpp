@@ -3,6 +3,7 @@
 // an availability + visibility operation, a WAR only an execution dependency, and an image
 // layout transition is itself a write ordered by the barrier that performs it.
 #include <skygraph/compiler.hpp>
+#include <skygraph/plan_format.hpp>
 
 #include "plan_queries.hpp"
 #include "usage_fit.hpp"
@@ -228,6 +229,60 @@ TEST(BarrierRules, ExportedResourcesEndInTheirFinalState) {
     EXPECT_EQ(h.passes()[0].barriers[0].srcStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
 }
 
+// Rules 8 and 9: an external input that is not exported arrives in its `initial` state every
+// frame, so a frame that leaves it in another layout moves it back, and one that only samples
+// it in that state needs nothing.
+TEST(BarrierRules, ExternalInputsGoBackToTheirInitialState) {
+    const std::string lut = R"("lut": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true})";
+    const auto readAs = [&](const std::string& access, const std::string& stage, const std::string& as) {
+        return compileGraph(lut + "," + kOut, R"({"name": "p", "type": "Generic", "uses": [
+            {"resource": "lut", "access": ")" + access + R"(", "stage": ")" + stage + R"(")" + as + R"(},
+            {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]})");
+    };
+    const auto finalsOf = [](const Plan& plan, const std::string& name) {
+        std::vector<Barrier> found;
+        for (const Barrier& b : plan.finalBarriers())
+            if (b.resource == static_cast<uint32_t>(plan.resourceIndex(name))) found.push_back(b);
+        return found;
+    };
+
+    // Read as storage: GENERAL during the frame, then back to SHADER_READ_ONLY_OPTIMAL, visible
+    // to the ShaderRead scope. The frame wrote nothing, so the barrier has no source access.
+    Plan plan = readAs("Read", "Compute", R"(, "as": "storage")");
+    auto fin = finalsOf(plan, "lut");
+    ASSERT_EQ(fin.size(), 1u) << planToText(plan);
+    EXPECT_EQ(fin[0].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(fin[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_TRUE(fin[0].srcStages & VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(fin[0].srcAccess, 0u);
+    EXPECT_EQ(fin[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(fin[0].dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    const PlannedResource& res = plan.resources()[static_cast<size_t>(plan.resourceIndex("lut"))];
+    EXPECT_EQ(res.finalLayout, res.initialLayout);
+    EXPECT_EQ(res.copies, ResourceCopies::SharedReadOnly);
+
+    // A copy source: TRANSFER_SRC_OPTIMAL, then back, after the copy.
+    plan = readAs("Read", "Transfer", "");
+    fin = finalsOf(plan, "lut");
+    ASSERT_EQ(fin.size(), 1u) << planToText(plan);
+    EXPECT_EQ(fin[0].oldLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(fin[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_TRUE(fin[0].srcStages & VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+
+    // Written as storage: the write is made visible to the ShaderRead scope too (rule 1).
+    plan = readAs("Write", "Compute", R"(, "as": "storage")");
+    fin = finalsOf(plan, "lut");
+    ASSERT_EQ(fin.size(), 1u) << planToText(plan);
+    EXPECT_EQ(fin[0].oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(fin[0].newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(fin[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(fin[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+
+    // Sampled where its state promises: nothing to undo.
+    plan = readAs("Read", "Fragment", "");
+    EXPECT_TRUE(finalsOf(plan, "lut").empty()) << planToText(plan);
+}
+
 TEST(BarrierRules, PersistentAccumulationChainsAcrossFrames) {
     const Plan plan = compileGraph(
         R"("acc": {"type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [16, 16], "external": true, "final": "General"})",
@@ -420,7 +475,11 @@ TEST(Culling, OutputsKeepOnlyTheProductsAConsumerNeeds) {
     EXPECT_EQ(culledNames(sky), (std::set<std::string>{"irradiance", "prefilter", "brdf_lut"}));
     EXPECT_EQ(sky.resourceIndex("irradiance"), -1) << "an unused product is never created";
     ASSERT_GE(sky.resourceIndex("environment"), 0);
-    for (const auto& b : sky.finalBarriers()) EXPECT_EQ(sky.resources()[b.resource].name, "environment");
+    // The one product asked for, and the streamed equirect, an external input that goes back
+    // to the state it arrives in.
+    for (const auto& b : sky.finalBarriers())
+        EXPECT_TRUE(sky.resources()[b.resource].name == "environment" || sky.resources()[b.resource].name == "equirect")
+            << sky.resources()[b.resource].name;
 
     CompileOptions everything;
     everything.features = streamed;

@@ -32,6 +32,25 @@ size_t aliasingBarrier(const Plan& plan, size_t step) {
     throw std::out_of_range("no aliasing barrier");
 }
 
+// An external input read as storage leaves the frame in GENERAL unless its final barrier moves
+// it back to the ShaderRead state the next frame expects (one copy, shared by the frames).
+TEST(NegativeControls, DroppedReturnOfAnExternalInput) {
+    test::Compiled c = test::compileText(R"({"version": 1, "name": "input", "resources": {
+        "lut": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true, "final": "TransferSrc"}},
+      "passes": [{"name": "apply", "type": "Generic", "uses": [
+        {"resource": "lut", "access": "Read", "stage": "Compute", "as": "storage"},
+        {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]}]})");
+    expectClean(c);
+    auto& finals = PlanEditor::finalBarriers(c.plan);
+    const auto lut = static_cast<uint32_t>(c.plan.resourceIndex("lut"));
+    const auto before = finals.size();
+    std::erase_if(finals, [&](const Barrier& b) { return b.resource == lut; });
+    ASSERT_EQ(finals.size(), before - 1);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::FinalLayout, "lut")) << r.summary();
+}
+
 TEST(NegativeControls, DroppedAliasingBarrier) {
     test::Compiled c = test::compileText(test::fixtures::kAliasAfterRead);
     expectClean(c);
