@@ -19,9 +19,11 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <system_error>
 
 namespace skygraph {
 namespace {
@@ -292,6 +294,7 @@ private:
             error(path + ".name", "", "", "'" + printableName(p.name) + "' holds a control character; " + kPrintedNames);
             p.name.clear();
         }
+        if (p.name.find(' ') != std::string::npos) refuseInsertedStepName(path, p.name);
         report_.unknownKeys(v, f, [&] { return path; }, kPassKeys, p.name);
         if (!p.name.empty()) {
             passNames_[index] = name.string();
@@ -359,6 +362,29 @@ private:
                                                  "duplicate pass name; the first is " + passPath(first)));
         }
         namesToCheck_.clear();
+    }
+
+    /// The compiler names the steps it inserts "<verb> <resource>" (docs/graph-format.md,
+    /// "Compiled plan"): a pass of such a name would make two steps of one name in a plan, in
+    /// its timings and in its DOT graph.
+    void refuseInsertedStepName(const std::string& path, const std::string& name) {
+        static constexpr std::string_view kVerbs[] = {"clear ", "clobber ", "read back ", "initialize ", "upload ",
+                                                      "downsample "};
+        for (const std::string_view verb : kVerbs) {
+            if (!name.starts_with(verb)) continue;
+            std::string_view resource = std::string_view(name).substr(verb.size());
+            if (verb == "downsample ") {
+                const size_t to = resource.rfind(" to mip ");
+                if (to == std::string_view::npos) continue;
+                resource = resource.substr(0, to);
+            }
+            if (!resourceIndex_.find(resource)) continue;
+            error(path + ".name", name, resource,
+                  "'" + name + "' is the name the compiler gives the step it inserts to " +
+                      std::string(verb.substr(0, verb.size() - 1)) + " '" + std::string(resource) +
+                      "'; choose another");
+            return;
+        }
     }
 
     /// Passes of one type usually come in runs: the last type found is asked first.
@@ -798,8 +824,10 @@ GraphDesc loadGraphFile(const std::filesystem::path& path, const PassRegistry& r
         d.add({path.string(), "", "", "", message});
         throw GraphError(std::move(d));
     };
+    errno = 0;
     std::ifstream in(path, std::ios::binary);
-    if (!in) fail("cannot open the file");
+    // The reason tells a missing file from one the user may not read.
+    if (!in) fail(errno ? "cannot open the file: " + std::generic_category().message(errno) : "cannot open the file");
     // In pieces, up to the limit: a device or a pipe need not end.
     std::string text;
     std::array<char, 1 << 16> piece;

@@ -8,11 +8,13 @@
 #include <skygraph/shading_math.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
+#include <system_error>
 
 namespace skygraph {
 namespace {
@@ -370,8 +372,11 @@ Scene loadSceneFile(const std::filesystem::path& path) {
         d.add({path.string(), "", "", "", message});
         throw SceneError(std::move(d));
     };
+    errno = 0;
     std::ifstream in(path, std::ios::binary);
+    const int openError = errno;
     std::error_code ec;
+    if (!in && openError) fail("cannot open the file: " + std::generic_category().message(openError));
     if (!in || std::filesystem::is_directory(path, ec)) fail("cannot open the file");
     // Up to the limit: a device or a pipe need not end.
     std::string text;

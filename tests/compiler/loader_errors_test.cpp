@@ -351,6 +351,40 @@ TEST(LoaderErrors, NonStringResourceInUsageArrayIsAnError) {
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].resource", "gen", "", {"resource"}));
 }
 
+// The names of the steps the compiler inserts are taken: a pass named like one would make two
+// steps of one name in a plan. A name that only looks like one (no such resource) is free.
+TEST(LoaderErrors, PassNamesOfInsertedStepsAreTaken) {
+    const std::pair<std::string, std::string> taken[] = {
+        {"clear hdr_color", "hdr_color"},   {"clobber depth", "depth"},  {"read back swapchain", "swapchain"},
+        {"initialize mipped", "mipped"},    {"upload cube", "cube"},     {"downsample mipped to mip 1", "mipped"}};
+    for (const auto& [name, resource] : taken) {
+        Json g = baseGraph();
+        g["passes"][1]["name"] = name;
+        EXPECT_TRUE(hasDiag(loadErrors(g), "passes[1].name", name, resource,
+                            {"the name the compiler gives the step it inserts", "choose another"}))
+            << name;
+    }
+    for (const std::string name : {"clear the sky", "upload", "downsample mipped", "clearhdr_color"}) {
+        Json g = baseGraph();
+        g["passes"][1]["name"] = name;
+        EXPECT_NO_THROW((void)parseGraph(g.dump(2), kFile, registry())) << name;
+    }
+}
+
+// A file that cannot be opened says why: a missing file reads differently from one the user
+// may not read.
+TEST(LoaderErrors, AFileThatCannotBeOpenedSaysWhy) {
+    const std::filesystem::path missing = std::filesystem::temp_directory_path() / "skygraph_no_such_dir" / "g.json";
+    try {
+        (void)loadGraphFile(missing, registry());
+        FAIL() << "loaded " << missing;
+    } catch (const GraphError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(missing.string()), std::string::npos) << what;
+        EXPECT_NE(what.find("cannot open the file: No such file or directory"), std::string::npos) << what;
+    }
+}
+
 TEST(LoaderErrors, DuplicatePassNames) {
     Json g = baseGraph();
     g["passes"][1]["name"] = "forward";
