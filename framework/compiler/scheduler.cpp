@@ -36,7 +36,7 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
     if (names.empty()) return "it writes nothing (mark it never_cull if it has side effects)";
     std::string list;
     for (const std::string* n : names) list += (list.empty() ? "'" : ", '") + *n + "'";
-    return "nothing reads what it writes: no later pass reads " + list + " and none of it is exported";
+    return "nothing reads what it writes: no later pass that runs reads " + list + " and none of it is exported";
 }
 
 /// Culling: backwards liveness per subresource. Contents are live if an exported resource

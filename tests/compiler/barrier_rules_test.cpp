@@ -380,7 +380,7 @@ TEST(Culling, ReasonsForEveryRemovedPass) {
         options, R"({"fx": true, "other": false})");
     ASSERT_EQ(plan.culled().size(), 3u);
     EXPECT_EQ(plan.culled()[0].name, "unused");
-    EXPECT_NE(plan.culled()[0].reason.find("no later pass reads 'buf'"), std::string::npos) << plan.culled()[0].reason;
+    EXPECT_NE(plan.culled()[0].reason.find("no later pass that runs reads 'buf'"), std::string::npos) << plan.culled()[0].reason;
     EXPECT_EQ(plan.culled()[1].name, "fx");
     EXPECT_EQ(plan.culled()[1].reason, "feature 'fx' is off");
     EXPECT_EQ(plan.culled()[2].name, "both");
@@ -440,7 +440,7 @@ TEST(Reordering, SkyboxAfterTonemappingIsCulledWithItsReason) {
     ASSERT_EQ(plan.culled().size(), 1u);
     EXPECT_EQ(plan.culled()[0].name, "skybox");
     EXPECT_EQ(plan.culled()[0].reason,
-              "nothing reads what it writes: no later pass reads 'hdr_color' and none of it is exported");
+              "nothing reads what it writes: no later pass that runs reads 'hdr_color' and none of it is exported");
     ASSERT_EQ(plan.passes().size(), 2u);
     // Forward's depth is now read by nobody: its store is dropped.
     EXPECT_EQ(plan.passes()[0].usages[0].store, StoreOp::DontCare);
