@@ -541,6 +541,8 @@ TEST_F(Cli, BadSizesAndMemoryFlagsAreMisuse) {
         {{"--placement", "worst-fit"}, "--placement"},
         {{"--no-alias", "--placement", "first-use"}, "--placement"},
         {{"--memory-svg"}, "--memory-svg"},
+        {{"--watch-iterations", "2"}, "requires --watch"},
+        {{"--watch-interval-ms", "100"}, "requires --watch"},
     };
     for (const auto& [flags, named] : cases) {
         std::vector<std::string> args{"compile", kDeferred.string(), "-o", (dir_ / "work" / "plan.txt").string()};

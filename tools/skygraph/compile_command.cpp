@@ -224,12 +224,14 @@ Command addCompileCommand(CLI::App& parent) {
     cmd->add_option("--memory-svg", args->memorySvg,
                     "Also draw the memory layout (passes across, byte offsets down) as SVG to FILE (never half-written)")
         ->check(kNotEmpty);
-    cmd->add_flag("--watch", args->watch,
-                  "Recompile whenever GRAPH is saved and print the text plan's diff (until Ctrl-C)");
+    CLI::Option* watchFlag = cmd->add_flag("--watch", args->watch,
+                                           "Recompile whenever GRAPH is saved and print the text plan's diff (until Ctrl-C)");
     cmd->add_option("--watch-interval-ms", args->watchIntervalMs, "How often --watch looks at GRAPH")
-        ->check(CLI::Range(10u, 60000u));
+        ->check(CLI::Range(10u, 60000u))
+        ->needs(watchFlag);
     cmd->add_option("--watch-iterations", args->watchIterations,
-                    "Stop --watch after this many recompilations (0: never; for scripts and tests)");
+                    "Stop --watch after this many recompilations (0: never; for scripts and tests)")
+        ->needs(watchFlag);
     return {cmd, [args] { return run(*args); }};
 }
 
