@@ -9,6 +9,7 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 #include <skygraph/renderer.hpp>
+#include <skygraph/verifier.hpp>
 
 #include <bit>
 #include <span>
@@ -161,7 +162,8 @@ MinimalityReport checkMinimality(Device& device, const CompiledGraph& compiled, 
     MinimalityReport report;
     for (auto& m : weakenedPlans(compiled.plan())) {
         ++report.mutations;
-        if (messagesFor(device, compiled, m.plan, settings) == 0) report.unneeded.push_back(m.description);
+        if (messagesFor(device, compiled, m.plan, settings) == 0)
+            report.unneeded.push_back({m.description, !verifier::verifyPlan(m.plan, compiled.graph()).ok()});
     }
     return report;
 }

@@ -59,11 +59,18 @@ struct BarrierMutation {
 /// where it changes. Each must cause a validation message if the plan is minimal.
 [[nodiscard]] std::vector<BarrierMutation> weakenedPlans(const Plan& plan);
 
+/// A mutation that produced no message.
+struct UnnoticedWeakening {
+    std::string description;
+    /// Whether the plan verifier finds the weakened plan wrong: the oracle where the layer is
+    /// blind (a storage write after a storage write between dispatches, docs/verifier.md).
+    bool verifierFinds = false;
+};
 /// The mutations that produced no message: barriers (or bits of them) that are not needed,
 /// as far as the validation layer sees real accesses of the Generic pass.
 struct MinimalityReport {
     size_t mutations = 0;
-    std::vector<std::string> unneeded;
+    std::vector<UnnoticedWeakening> unneeded;
 };
 [[nodiscard]] MinimalityReport checkMinimality(Device& device, const CompiledGraph& compiled,
                                                const RunSettings& settings = {});

@@ -67,7 +67,9 @@ int main(int argc, char** argv) {
             const MinimalityReport m = checkMinimality(*device, *base.compiled);
             mutations += m.mutations;
             unneeded += m.unneeded.size();
-            for (const auto& u : m.unneeded) std::printf("UNNEEDED seed %u: %s\n", seed, u.c_str());
+            for (const auto& u : m.unneeded)
+                std::printf("UNNEEDED seed %u: %s%s\n", seed, u.description.c_str(),
+                            u.verifierFinds ? " (the plan verifier finds it)" : "");
         }
         if ((seed - first + 1) % 100 == 0) std::fprintf(stderr, "%u graphs, %u failed\n", graphs, failed);
     }
