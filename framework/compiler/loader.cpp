@@ -330,10 +330,19 @@ private:
             if (!params.isObject()) error(path + ".params", p.name, "", "expected an object");
             else if (params.size() != 0) p.params = PassParams(params.toJson());
         }
-        if (type && type->validateParams)
-            for (const auto& e : type->validateParams(p.params))
+        if (type && type->validateParams) {
+            // The application's code: an exception from it (nlohmann's at() and get<T>() throw)
+            // is a problem with these params, not with the file's JSON.
+            std::vector<ParamError> problems;
+            try {
+                problems = type->validateParams(p.params);
+            } catch (const std::exception& e) {
+                error(path + ".params", p.name, "", "the params validator of type '" + type->name + "' threw: " + e.what());
+            }
+            for (const auto& e : problems)
                 error(path + ".params" + (e.path.empty() || e.path.starts_with('[') ? "" : ".") + e.path, p.name, "",
                       e.message);
+        }
         if (const JsonValue uses = f[passKey::uses]) {
             loadUses(p, uses);
             if ((uses.isObject() || uses.isArray()) && uses.size() == 0)
@@ -641,7 +650,13 @@ private:
     void checkUsagesWithType(const PassDesc& p, const PassTypeInfo& type) {
         for (const UsageDecl& u : p.uses)
             if (faultyResources_[u.resource]) return;  // its declaration's error says enough
-        for (const UsageError& e : type.validateUsages(p, graph_)) {
+        std::vector<UsageError> problems;
+        try {
+            problems = type.validateUsages(p, graph_);
+        } catch (const std::exception& e) {  // the application's code, as validateParams
+            error(p.jsonPath + ".uses", p.name, "", "the usage validator of type '" + type.name + "' threw: " + e.what());
+        }
+        for (const UsageError& e : problems) {
             if (e.usage < p.uses.size())
                 error(usePath(p, e.usage), p.name, graph_.resources[p.uses[e.usage].resource].name, e.message);
             else

@@ -33,6 +33,8 @@ void PassRegistry::add(PassTypeInfo info) {
         throw std::invalid_argument("pass type '" + info.name + "' is already registered");
     std::set<std::string, std::less<>> slotNames;
     for (const auto& slot : info.slots) {
+        // An empty name is what a usage without a slot (Generic's) has.
+        if (slot.name.empty()) throw std::invalid_argument("pass type '" + info.name + "': a slot with an empty name");
         if (slot.accesses.empty())
             throw std::invalid_argument("pass type '" + info.name + "': slot '" + slot.name +
                                         "' allows no access");

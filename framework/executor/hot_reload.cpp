@@ -73,6 +73,12 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
         for (const std::string& name : builtins.names())
             if (!st.ownRegistry.find(name)) st.ownRegistry.add(*builtins.find(name));
     }
+    // A path that is not there would be watched in vain: a typo must not pass for "no change".
+    std::error_code ec;
+    if (!st.graphFile.empty() && !std::filesystem::is_regular_file(st.graphFile, ec))
+        throw ExecutorError("HotReloader: the graph file '" + st.graphFile.string() + "' does not exist");
+    if (!std::filesystem::is_directory(st.shaderDir, ec))
+        throw ExecutorError("HotReloader: the shader directory '" + st.shaderDir.string() + "' does not exist");
     st.graphHash = hashFile(st.graphFile);
     st.shaderHashes = hashDir(st.shaderDir);
 }

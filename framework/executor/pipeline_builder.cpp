@@ -3,8 +3,9 @@
 
 #include "vk_util.hpp"
 
-#include <array>
 #include <algorithm>
+#include <array>
+#include <string>
 
 namespace skygraph {
 
@@ -63,6 +64,16 @@ void createLayouts(VkDevice device, const std::vector<VkDescriptorSetLayoutBindi
     layout = owned::PipelineLayout(device, l);
 }
 
+/// Code a stage can be built from: checked here, as Vulkan would take empty or foreign code as
+/// undefined behaviour (a driver may crash on it).
+void requireSpirv(const std::vector<uint32_t>& code, const char* function, const char* stage) {
+    constexpr uint32_t kSpirvMagic = 0x07230203;
+    if (code.empty())
+        throw ExecutorError(std::string(function) + ": the recipe has no " + stage + " shader");
+    if (code.front() != kSpirvMagic)
+        throw ExecutorError(std::string(function) + ": the recipe's " + stage + " shader is not SPIR-V");
+}
+
 owned::ShaderModule shaderModule(VkDevice device, const std::vector<uint32_t>& code) {
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mi.codeSize = code.size() * 4;
@@ -75,12 +86,19 @@ owned::ShaderModule shaderModule(VkDevice device, const std::vector<uint32_t>& c
 }  // namespace
 
 GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineRecipe& recipe) {
+    requireSpirv(recipe.vertex, "createGraphicsPipeline", "vertex");
+    const bool fragmentStage = !recipe.fragment.empty();
+    if (fragmentStage) requireSpirv(recipe.fragment, "createGraphicsPipeline", "fragment");
+    if (recipe.renderPass == VK_NULL_HANDLE)
+        throw ExecutorError("createGraphicsPipeline: the recipe has no render pass (a pass without attachment slots has "
+                            "none, and records compute or copies instead)");
     GraphicsPipeline out;
     createLayouts(device, recipe.bindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                   recipe.pushConstantBytes, out.setLayout, out.layout);
     const VkPipelineLayout layout = out.layout.get();
 
-    const owned::ShaderModule vs = shaderModule(device, recipe.vertex), fs = shaderModule(device, recipe.fragment);
+    const owned::ShaderModule vs = shaderModule(device, recipe.vertex);
+    const owned::ShaderModule fs = fragmentStage ? shaderModule(device, recipe.fragment) : owned::ShaderModule();
     std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                  VK_SHADER_STAGE_VERTEX_BIT, vs.get(), "main", nullptr};
@@ -126,7 +144,7 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     dyn.pDynamicStates = dynamics.data();
 
     VkGraphicsPipelineCreateInfo gi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    gi.stageCount = 2;
+    gi.stageCount = fragmentStage ? 2 : 1;
     gi.pStages = stages.data();
     gi.pVertexInputState = &vi;
     gi.pInputAssemblyState = &ia;
@@ -146,6 +164,7 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
 }
 
 ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineRecipe& recipe) {
+    requireSpirv(recipe.compute, "createComputePipeline", "compute");
     ComputePipeline out;
     createLayouts(device, recipe.bindings, VK_SHADER_STAGE_COMPUTE_BIT, recipe.pushConstantBytes,
                   out.setLayout, out.layout);

@@ -382,6 +382,9 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
                             : d.presents(uint32_t(index)) ? "is the presented image"
                             : !r.desc->external    ? "is not external: set \"external\": true and `final`"
                             : !r.desc->isExported() ? "is not exported: set `final`"
+                            : d.state->plan.resources()[size_t(index)].copies == ResourceCopies::PerFramePresented
+                                ? "is the plan's presented image (`final: Present`, compiled headless with "
+                                  "CompileOptions::presentReplacement), with a copy per frame in flight"
                             : r.perSlot || r.images.size() != 1 ? "has a copy per frame in flight"
                                                                 : "";
     if (!why.empty()) throw ExecutorError("shareImage: '" + resource + "' " + why + " (only an exported external image is shared)");

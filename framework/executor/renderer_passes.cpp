@@ -66,7 +66,14 @@ std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const Plann
                          "for '{}' (the pass performs its declared accesses and draws nothing of its own)",
                          pass.name, desc.type, desc.type);
     }
-    std::unique_ptr<PassImplementation> implementation = (*factory)(desc);
+    // The application's code: what it throws is named with the pass, as an ExecutorError, the
+    // one exception the renderer's construction and setGraph promise.
+    std::unique_ptr<PassImplementation> implementation;
+    try {
+        implementation = (*factory)(desc);
+    } catch (const std::exception& e) {
+        throw ExecutorError(passError(pass, "making the implementation of type '" + desc.type + "'", e));
+    }
     if (!implementation) throw ExecutorError(passError(pass, "", "the pass factory returned nothing"));
     return implementation;
 }
@@ -124,10 +131,8 @@ void Renderer::Impl::createPipelines(PlanState& s, PassState& ps) {
         pc.shaders = shaders.get();
         try {
             ps.implementation->createPipelines(pc);
-        } catch (const ExecutorError&) {
-            throw;
-        } catch (const std::exception& e) {
-            throw ExecutorError(passError(*ps.pass, "", std::string("creating pipelines: ") + e.what()));
+        } catch (const std::exception& e) {  // an ExecutorError of the pipeline builder too: it knows no pass
+            throw ExecutorError(passError(*ps.pass, "creating pipelines", e));
         }
     }
 }

@@ -32,7 +32,8 @@ public:
     /// where the library declares a built-in type's name, its declaration is the one that
     /// counts, as its factory is the one that records. Both are fixed here:
     /// follow() keeps them. A reloaded graph compiles with the options the renderer's
-    /// current graph was compiled with (Renderer::compiled()).
+    /// current graph was compiled with (Renderer::compiled()). Throws ExecutorError when the
+    /// graph file or the shader directory does not exist.
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
                 const PassRegistry* registry = nullptr);
     HotReloader(const HotReloader&) = delete;

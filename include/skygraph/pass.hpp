@@ -183,7 +183,7 @@ public:
 
     /// Builds pipelines: called once, after construction and before any record (a rebuild
     /// makes new implementations). Throwing fails that build, so the previous plan state keeps
-    /// running; a std::exception other than ExecutorError comes out as one naming the pass.
+    /// running; a std::exception comes out as an ExecutorError naming the pass.
     virtual void createPipelines(const PipelineContext& context) = 0;
 
     /// Records the pass's work. The executor has already recorded the plan's barrier batch
@@ -208,8 +208,9 @@ public:
 };
 
 /// Makes the recording code of one pass whenever a renderer builds its plan state; it must not
-/// return null (the renderer throws ExecutorError). `desc` is the pass in the renderer's
-/// CompiledGraph: valid for the whole life of the implementation.
+/// return null (the renderer throws ExecutorError). What it throws comes out of the renderer
+/// as an ExecutorError naming the pass. `desc` is the pass in the renderer's CompiledGraph:
+/// valid for the whole life of the implementation.
 using PassFactory = std::function<std::unique_ptr<PassImplementation>(const PassDesc&)>;
 
 /// Pass types with both halves: the declaration the compiler checks graphs against, and the

@@ -67,7 +67,8 @@ struct PassTypeInfo {
     std::vector<SlotDecl> slots;
     /// The built-in Generic type: any usages, no slots.
     bool acceptsAnyUsage = false;
-    /// Optional; when empty, any params object is accepted.
+    /// Optional; when empty, any params object is accepted. An exception it throws is reported
+    /// like a returned error, at the pass's `params`, naming the pass.
     ParamValidator validateParams;
     std::string doc;
     /// The queues its recording code can run on; empty: every queue whose kind supports the
@@ -77,7 +78,7 @@ struct PassTypeInfo {
     std::vector<QueueKind> queues;
     /// Optional. parseGraph calls it for each pass of this type whose usages bound without an
     /// error, so that a pass the type cannot record is refused with the file's JSON path
-    /// rather than when the graph runs.
+    /// rather than when the graph runs. An exception it throws is reported at the pass's `uses`.
     UsageValidator validateUsages;
 };
 
@@ -93,8 +94,8 @@ public:
     [[nodiscard]] static PassRegistry withBuiltins();
 
     /// Registers a type (the registry keeps `info`). Throws std::invalid_argument, registering
-    /// nothing, if the name is empty or taken or a slot is malformed (no accesses, duplicate
-    /// names, `as` on a non-shader stage).
+    /// nothing, if the name is empty or taken or a slot is malformed (an empty name, no
+    /// accesses, duplicate names, `as` on a non-shader stage).
     void add(PassTypeInfo info);
 
     /// nullptr when unknown. The pointer stays valid until the registry is destroyed,

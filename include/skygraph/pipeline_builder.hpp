@@ -38,8 +38,12 @@ namespace skygraph {
 /// polygons, counter-clockwise front faces, one sample, dynamic viewport and scissor, and a
 /// layout of one push-descriptor set 0 plus optional push constants at offset 0.
 struct GraphicsPipelineRecipe {
-    std::vector<uint32_t> vertex, fragment;  ///< SPIR-V; entry point "main".
-    VkRenderPass renderPass = VK_NULL_HANDLE;  ///< Borrowed; must be compatible at draw time.
+    /// SPIR-V; entry point "main". An empty `fragment` builds a pipeline without a fragment
+    /// stage (depth only); `vertex` is required.
+    std::vector<uint32_t> vertex, fragment;
+    /// Borrowed; must be compatible at draw time. Required: a pass without attachment slots
+    /// has none (PipelineContext::renderPass is null) and records compute or copies instead.
+    VkRenderPass renderPass = VK_NULL_HANDLE;
     /// Color attachments without blending, writing all channels; ignored when `blends` is set.
     uint32_t colorAttachments = 1;
     /// Per-attachment blend states; when not empty, one per color attachment of the subpass.

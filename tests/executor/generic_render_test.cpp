@@ -531,14 +531,18 @@ TEST_F(ExecutorTest, ShareImageSaysWhyAResourceCannotBeShared) {
                      "initial": "ShaderRead" },
           "buf": { "type": "buffer", "size": 64, "external": true, "final": "General" },
           "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
-                   "final": "ShaderRead" } },
+                   "final": "ShaderRead" },
+          "screen": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "external": true,
+                      "final": "Present" } },
           "passes": [ { "name": "fill", "type": "Generic", "params": { "color": [0, 0, 0, 1] },
                         "uses": { "kept": "Write@ColorAttachment", "photo": "Read@Fragment",
-                                  "buf": "Write@Compute", "out": "Write@ColorAttachment" } } ] })"),
+                                  "buf": "Write@Compute", "out": "Write@ColorAttachment" } },
+                      { "name": "show", "type": "Generic", "uses": { "screen": "Write@ColorAttachment" } } ] })"),
                genericOptions());
-    for (const auto& [resource, why] : {std::pair{"kept", "is not external: set \"external\": true and `final`"},
-                                        std::pair{"photo", "is not exported: set `final`"},
-                                        std::pair{"buf", "is a buffer, and only images are shared"}}) {
+    for (const auto& [resource, why] :
+         {std::pair{"kept", "is not external: set \"external\": true and `final`"},
+          std::pair{"photo", "is not exported: set `final`"}, std::pair{"buf", "is a buffer, and only images are shared"},
+          std::pair{"screen", "is the plan's presented image (`final: Present`, compiled headless"}}) {
         try {
             (void)r.shareImage(resource);
             FAIL() << resource << " was shared";

@@ -149,6 +149,22 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
 
 // A save in place truncates the file and then writes it: polled in between, the empty graph or
 // shader is not a change, so the save is one reload rather than a failed one and then another.
+// A watched path that is not there is refused, naming it: a typo would otherwise never reload.
+TEST_F(ExecutorTest, HotReloadRefusesAPathThatDoesNotExist) {
+    WatchedRenderer watched("hot_reload_missing");
+    const std::pair<std::filesystem::path, std::filesystem::path> cases[] = {
+        {watched.dir / "no_such_graph.json", {}}, {watched.graphFile, watched.dir / "no_such_shaders"}};
+    for (const auto& [graph, shaders] : cases) {
+        try {
+            HotReloader reloader(*watched.renderer, graph, shaders);
+            ADD_FAILURE() << "watched " << graph << " and " << shaders;
+        } catch (const ExecutorError& e) {
+            const std::string missing = (shaders.empty() ? graph : shaders).string();
+            EXPECT_NE(std::string(e.what()).find("'" + missing + "' does not exist"), std::string::npos) << e.what();
+        }
+    }
+}
+
 TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
     WatchedRenderer watched("skygraph_reload_in_place");
     Renderer& r = *watched.renderer;

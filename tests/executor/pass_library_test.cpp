@@ -10,6 +10,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <stdexcept>
 #include <type_traits>
 
 #include <unistd.h>
@@ -267,6 +269,172 @@ TEST_F(ExecutorTest, ATypeWithoutRecordingCodeRunsWithTheLibrarysGeneric) {
     r.renderFrame();
     EXPECT_PIXEL_NEAR(r.readback(), 3, 3, 0.25, 0.5, 0.5, 1.0);
     r.waitIdle();
+}
+
+/// Builds its pipeline from `recipe`'s shaders: the vertex shader of the fullscreen triangle
+/// unless `vertex` is false, a fragment shader only when `fragment` is, and `notSpirv` words
+/// in place of the vertex shader when it is set.
+class RecipePass final : public PassImplementation {
+public:
+    RecipePass(bool vertex, bool fragment, bool notSpirv) : vertex_(vertex), fragment_(fragment), notSpirv_(notSpirv) {}
+    void createPipelines(const PipelineContext& ctx) override {
+        GraphicsPipelineRecipe recipe;
+        if (vertex_) recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/fullscreen.vert");
+        if (notSpirv_) recipe.vertex = {1, 2, 3, 4};
+        if (fragment_)
+            recipe.fragment = ctx.shaders->compile(VK_SHADER_STAGE_FRAGMENT_BIT,
+                                                   "#version 450\nlayout(location = 0) out vec4 o;\n"
+                                                   "void main() { o = vec4(1); }\n",
+                                                   "white.frag");
+        recipe.renderPass = ctx.renderPass;
+        pipeline_ = createGraphicsPipeline(ctx.device, recipe);
+    }
+    void record(const RecordContext& ctx) override {
+        vkCmdBindPipeline(ctx.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.pipeline.get());
+        const VkViewport viewport{0, 0, float(ctx.renderArea.width), float(ctx.renderArea.height), 0, 1};
+        const VkRect2D scissor{{0, 0}, ctx.renderArea};
+        vkCmdSetViewport(ctx.cmd, 0, 1, &viewport);
+        vkCmdSetScissor(ctx.cmd, 0, 1, &scissor);
+        vkCmdDraw(ctx.cmd, 3, 1, 0, 0);
+    }
+
+private:
+    bool vertex_, fragment_, notSpirv_;
+    GraphicsPipeline pipeline_;
+};
+
+/// The renderer's result for a graph whose "fill" pass is of `type`, from `lib`: the error
+/// message, or empty when it renders (a frame, read back).
+std::string renderError(const PassLibrary& lib, const std::string& type) {
+    GraphDesc graph = parseGraph(graphText(type), "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
+    RendererOptions o;
+    o.passes = &lib;
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), o);
+        r.renderFrame();
+        (void)r.readback();
+        r.waitIdle();
+    } catch (const ExecutorError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+// What an application's pass code throws, from its factory or through the pipeline builder,
+// comes out of the renderer as an ExecutorError naming the pass; the pipeline builder refuses
+// empty or foreign shader code (which a driver may crash on) and a missing render pass, and
+// builds a pipeline without a fragment stage.
+TEST_F(ExecutorTest, ErrorsOfAPassesOwnCodeNameThePass) {
+    PassLibrary lib = library();
+    PassTypeInfo throwing = fillType();
+    throwing.name = "ThrowingFactory";
+    lib.add(throwing, [](const PassDesc& d) -> std::unique_ptr<PassImplementation> {
+        (void)d.params.json().at("strength");  // nlohmann throws: the key is missing
+        return nullptr;
+    });
+    const std::pair<const char*, std::function<std::unique_ptr<PassImplementation>(const PassDesc&)>> recipes[] = {
+        {"NoVertex", [](const PassDesc&) { return std::make_unique<RecipePass>(false, true, false); }},
+        {"NotSpirv", [](const PassDesc&) { return std::make_unique<RecipePass>(true, true, true); }},
+        {"DepthOnly", [](const PassDesc&) { return std::make_unique<RecipePass>(true, false, false); }},
+    };
+    for (const auto& [name, factory] : recipes) {
+        PassTypeInfo info = fillType();
+        info.name = name;
+        lib.add(info, factory);
+    }
+    std::string e = renderError(lib, "ThrowingFactory");
+    EXPECT_TRUE(e.starts_with("pass 'fill': making the implementation of type 'ThrowingFactory': ")) << e;
+    EXPECT_NE(e.find("strength"), std::string::npos) << e;
+    e = renderError(lib, "NoVertex");
+    EXPECT_EQ(e, "pass 'fill': creating pipelines: createGraphicsPipeline: the recipe has no vertex shader");
+    e = renderError(lib, "NotSpirv");
+    EXPECT_EQ(e, "pass 'fill': creating pipelines: createGraphicsPipeline: the recipe's vertex shader is not SPIR-V");
+    EXPECT_EQ(renderError(lib, "DepthOnly"), "");
+    EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+
+    // setGraph keeps the old plan, and says the same.
+    GraphDesc good = parseGraph(graphText("Fill"), "<lib>", lib.registry());
+    const CompileOptions co = headless(good);
+    RendererOptions o;
+    o.passes = &lib;
+    Renderer r(sharedDevice(), CompiledGraph(std::move(good), co), o);
+    try {
+        r.setGraph(CompiledGraph(parseGraph(graphText("ThrowingFactory"), "<lib>", lib.registry()), co));
+        FAIL() << "expected ExecutorError";
+    } catch (const ExecutorError& error) {
+        EXPECT_NE(std::string(error.what()).find("pass 'fill': making the implementation"), std::string::npos)
+            << error.what();
+    }
+    r.renderFrame();
+    EXPECT_PIXEL_NEAR(r.readback(), 1, 1, 0.25, 0.5, 0.5, 1.0);
+    r.waitIdle();
+}
+
+// A pass type's validators are the application's code too: what they throw is a GraphError
+// at the pass's params or uses, naming the pass, not a JSON syntax error.
+TEST(PassValidators, AValidatorThatThrowsIsReportedAtThePass) {
+    PassRegistry registry = PassRegistry::withBuiltins();
+    PassTypeInfo params = fillType();
+    params.name = "StrictParams";
+    params.validateParams = [](const nlohmann::json& p) {
+        (void)p.at("strength").get<double>();
+        return std::vector<ParamError>{};
+    };
+    registry.add(params);
+    PassTypeInfo usages = fillType();
+    usages.name = "StrictUsages";
+    usages.validateUsages = [](const PassDesc&, const GraphDesc&) -> std::vector<UsageError> {
+        throw std::runtime_error("cannot tell");
+    };
+    registry.add(usages);
+    const std::pair<const char*, const char*> cases[] = {
+        {"StrictParams", "passes[0].params: pass 'fill': the params validator of type 'StrictParams' threw: "},
+        {"StrictUsages", "passes[0].uses: pass 'fill': the usage validator of type 'StrictUsages' threw: cannot tell"},
+    };
+    for (const auto& [type, expected] : cases) {
+        try {
+            (void)parseGraph(graphText(type), "lib.json", registry);
+            ADD_FAILURE() << type << " loaded";
+        } catch (const GraphError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(expected), std::string::npos) << what;
+            EXPECT_EQ(what.find("malformed JSON"), std::string::npos) << what;
+        }
+    }
+}
+
+// PassRegistry::add refuses a declaration the loader could not bind usages to, naming the type
+// and the slot, and registers nothing.
+TEST(PassValidators, AMalformedTypeIsRefusedWhenAdded) {
+    PassRegistry registry = PassRegistry::withBuiltins();
+    const auto refusal = [&](PassTypeInfo info) -> std::string {
+        try {
+            registry.add(std::move(info));
+        } catch (const std::invalid_argument& e) {
+            return e.what();
+        }
+        return "added";
+    };
+    PassTypeInfo info = fillType();
+    info.name = "";
+    EXPECT_EQ(refusal(info), "pass type with an empty name");
+    info.name = "Generic";
+    EXPECT_EQ(refusal(info), "pass type 'Generic' is already registered");
+    info = fillType();
+    info.slots[0].name = "";
+    EXPECT_EQ(refusal(info), "pass type 'Fill': a slot with an empty name");
+    info = fillType();
+    info.slots[0].accesses.clear();
+    EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' allows no access");
+    info = fillType();
+    info.slots.push_back(info.slots[0]);
+    EXPECT_EQ(refusal(info), "pass type 'Fill': duplicate slot 'target'");
+    info = fillType();
+    info.slots[0].as = BindAs::Storage;
+    EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' sets `as` on a non-shader stage");
+    EXPECT_EQ(registry.find("Fill"), nullptr);
+    EXPECT_EQ(refusal(fillType()), "added");
 }
 
 // A type the library has no recording code for runs as Generic, and the renderer says so as a
