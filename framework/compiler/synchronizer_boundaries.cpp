@@ -48,17 +48,9 @@ void Synchronizer::finishResources() {
                            detail::PlanBuilder::finalBarriers(plan_));
         res.finalLayout = d.isImage() ? scope.layout : VK_IMAGE_LAYOUT_UNDEFINED;
     }
-    // Each read-back's copy lands in host memory the executor reads after the frame's
-    // fence: its writes are made available to the host domain here.
     for (const uint32_t s : readbackSteps_) {
-        Barrier b;
-        b.resource = (*usages_)[steps_[s].firstAccess].resource;
-        b.kind = BarrierKind::Memory;
-        b.srcStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-        b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
-        b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
-        detail::PlanBuilder::finalBarriers(plan_).push_back(b);
+        const uint32_t copied = (*usages_)[steps_[s].firstAccess].resource;
+        detail::PlanBuilder::finalBarriers(plan_).push_back(hostReadAfterCopy(copied));
     }
 }
 

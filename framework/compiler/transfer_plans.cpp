@@ -105,16 +105,7 @@ public:
     }
 
     /// The host reads what the steps copied out once the plan's fence has signalled.
-    void addHostRead(uint32_t r) {
-        Barrier b;
-        b.resource = r;
-        b.kind = BarrierKind::Memory;
-        b.srcStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
-        b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
-        b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
-        detail::PlanBuilder::finalBarriers(plan_).push_back(b);
-    }
+    void addHostRead(uint32_t r) { detail::PlanBuilder::finalBarriers(plan_).push_back(hostReadAfterCopy(r)); }
 
     Plan finish() && {
         auto& usages = detail::PlanBuilder::usages(plan_);

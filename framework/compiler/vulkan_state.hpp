@@ -3,12 +3,14 @@
 #pragma once
 
 #include <skygraph/graph.hpp>
+#include <skygraph/plan.hpp>
 #include <skygraph/usage.hpp>
 
 #include <vulkan/vulkan_core.h>
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 namespace skygraph {
@@ -69,5 +71,18 @@ enum class ScopeRow : uint8_t {};
 
 /// The write bits of an access mask: the part that needs making available.
 [[nodiscard]] VkAccessFlags2 writeBits(VkAccessFlags2 access) noexcept;
+
+/// The final barrier after a read-back's copy of resource r: the host reads the copy once
+/// the plan's fence has signalled, so its writes are made available to the host domain.
+[[nodiscard]] inline Barrier hostReadAfterCopy(uint32_t r) noexcept {
+    Barrier b;
+    b.resource = r;
+    b.kind = BarrierKind::Memory;
+    b.srcStages = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+    b.srcAccess = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    b.dstStages = VK_PIPELINE_STAGE_2_HOST_BIT;
+    b.dstAccess = VK_ACCESS_2_HOST_READ_BIT;
+    return b;
+}
 
 }  // namespace skygraph

@@ -130,35 +130,41 @@ TEST_F(NegativeControl, SemaphoreWaitAtALaterStageIsReadAfterWrite) {
     expectHazard(c, broken, "SYNC-HAZARD-READ-AFTER-WRITE");
 }
 
-// An external input read as storage, whose final barrier moves it back to SHADER_READ_ONLY:
-// without it, the second frame's barrier transitions it from a layout it is not in.
-TEST_F(NegativeControl, DroppedReturnOfAnExternalInputIsAnInvalidLayout) {
-    const auto c = compileText(graph(
+/// An external input, `lut`, read as storage: in GENERAL during the frame, and moved back to
+/// SHADER_READ_ONLY_OPTIMAL, its initial state, by a final barrier.
+CompiledGraph externalInputReadAsStorage() {
+    return compileText(graph(
         R"("lut": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true })",
         R"({ "name": "apply", "type": "Generic", "uses": [
                { "resource": "lut", "access": "Read", "stage": "Compute", "as": "storage" },
                { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] })"));
-    Plan broken = c.plan();
+}
+
+/// The plan without its final barrier for `resource` (there must be one).
+Plan withoutFinalBarrierOf(const Plan& plan, const std::string& resource) {
+    Plan broken = plan;
     auto& finals = detail::PlanEditor::finalBarriers(broken);
-    const auto lut = static_cast<uint32_t>(broken.resourceIndex("lut"));
+    const auto r = static_cast<uint32_t>(broken.resourceIndex(resource));
     const auto before = finals.size();
-    std::erase_if(finals, [&](const Barrier& b) { return b.resource == lut; });
-    ASSERT_EQ(finals.size(), before - 1) << planToText(c.plan());
-    expectHazard(c, broken, "InvalidImageLayout");
+    std::erase_if(finals, [&](const Barrier& b) { return b.resource == r; });
+    EXPECT_EQ(finals.size(), before - 1) << planToText(plan);
+    return broken;
+}
+
+// Without the final barrier back, the second frame's barrier transitions the input from a
+// layout it is not in.
+TEST_F(NegativeControl, DroppedReturnOfAnExternalInputIsAnInvalidLayout) {
+    const auto c = externalInputReadAsStorage();
+    expectHazard(c, withoutFinalBarrierOf(c.plan(), "lut"), "InvalidImageLayout");
 }
 
 // The executor's own check: a plan that says the input ends the frame in GENERAL (as it would
 // without the final barrier back) is refused before anything is recorded, naming it.
 TEST_F(NegativeControl, APlanLeavingAnExternalInputInAnotherLayoutIsRefused) {
-    const auto c = compileText(graph(
-        R"("lut": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true })",
-        R"({ "name": "apply", "type": "Generic", "uses": [
-               { "resource": "lut", "access": "Read", "stage": "Compute", "as": "storage" },
-               { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] })"));
-    Plan broken = c.plan();
-    const auto lut = static_cast<uint32_t>(broken.resourceIndex("lut"));
-    std::erase_if(detail::PlanEditor::finalBarriers(broken), [&](const Barrier& b) { return b.resource == lut; });
-    detail::PlanEditor::resources(broken)[lut].finalLayout = VK_IMAGE_LAYOUT_GENERAL;
+    const auto c = externalInputReadAsStorage();
+    Plan broken = withoutFinalBarrierOf(c.plan(), "lut");
+    detail::PlanEditor::resources(broken)[static_cast<size_t>(broken.resourceIndex("lut"))].finalLayout =
+        VK_IMAGE_LAYOUT_GENERAL;
     try {
         Renderer r(sharedDevice(), detail::CompiledGraphAccess::withPlan(c, broken), genericOptions());
         FAIL() << "a plan leaving 'lut' in GENERAL was installed";
