@@ -25,7 +25,8 @@
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
-#   no_display   without an X server: exit 1 and one line that suggests `skygraph render`
+#   no_display   without an X server: exit 1 and one line that suggests `skygraph render`;
+#                a graph file that is missing is named first
 set -euo pipefail
 case_name="$1" skygraph="$2" root="$3" work="$4"
 # Nothing from an earlier run may stand in for this one's captures and comparisons.
@@ -51,6 +52,13 @@ if [ "$case_name" = no_display ]; then
         grep -q "skygraph render" view.err || fail "the line does not suggest skygraph render ($display)"
     done
     echo "no display: $(cat view.err)"
+    set +e
+    env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view "$work/no_such_graph.json" --frames 1 >view.out 2>view.err
+    status=$?
+    set -e
+    [ "$status" -eq 1 ] || fail "a missing graph file without a display exited $status"
+    grep -q "no_such_graph.json: cannot open the file" view.err || fail "the missing graph file is not named"
+    ! grep -q "no display" view.err || fail "'no display' hid the missing graph file"
     exit 0
 fi
 

@@ -161,6 +161,9 @@ int viewCommand(const ViewOptions& options) {
             std::cerr << "skygraph view: --width and --height must be at least 1\n";
             return 1;
         }
+        // A broken or missing graph file is the error to report first: without a display it
+        // would otherwise go unnoticed behind "no display".
+        if (!fo.graph.empty()) (void)loadGraphFile(fo.graph, fo.passes ? fo.passes->registry() : PassRegistry::withBuiltins());
         glfwSetErrorCallback(onGlfwError);
         Glfw glfw;
         if (!glfw.ok) {
