@@ -1,6 +1,7 @@
 // Rule 11 of docs/barriers.md: barriers that agree in everything but their subresource
 // ranges become one barrier over the union of those ranges, when it is a rectangle of mips x
-// layers. Internal to the synchronizer's barrier sweep (synchronizer_barriers.cpp).
+// layers. Internal to the synchronizer's barrier sweep (synchronizer_barriers.cpp) and final barriers
+// (synchronizer_boundaries.cpp).
 #pragma once
 
 #include "subresources.hpp"

@@ -2,7 +2,7 @@
 // passes, the barrier an access needs given that, and what the access leaves. Whole-frame,
 // per-subresource state tracking in the spirit of Granite's render graph. Internal to the
 // synchronizer's barrier sweep (synchronizer_barriers.cpp), which walks the plan's accesses in
-// order and calls these.
+// order and calls these, and to its final barriers (synchronizer_boundaries.cpp).
 #pragma once
 
 #include "vulkan_state.hpp"

@@ -373,20 +373,15 @@ private:
         namesToCheck_.clear();
     }
 
-    /// The compiler names the steps it inserts "<verb> <resource>" (docs/graph-format.md,
-    /// "Compiled plan"): a pass of such a name would make two steps of one name in a plan, in
-    /// its timings and in its DOT graph.
+    /// The compiler names the steps it inserts into a frame "<verb> <resource>"
+    /// (docs/graph-format.md, "Compiled plan"): a pass of such a name would make two steps of
+    /// one name in a plan, in its timings and in its DOT graph. (The setup plan's steps are in
+    /// a plan of their own.)
     void refuseInsertedStepName(const std::string& path, const std::string& name) {
-        static constexpr std::string_view kVerbs[] = {"clear ", "clobber ", "read back ", "initialize ", "upload ",
-                                                      "downsample "};
+        static constexpr std::string_view kVerbs[] = {"clear ", "clobber ", "read back "};
         for (const std::string_view verb : kVerbs) {
             if (!name.starts_with(verb)) continue;
-            std::string_view resource = std::string_view(name).substr(verb.size());
-            if (verb == "downsample ") {
-                const size_t to = resource.rfind(" to mip ");
-                if (to == std::string_view::npos) continue;
-                resource = resource.substr(0, to);
-            }
+            const std::string_view resource = std::string_view(name).substr(verb.size());
             if (!resourceIndex_.find(resource)) continue;
             error(path + ".name", name, resource,
                   "'" + name + "' is the name the compiler gives the step it inserts to " +

@@ -34,8 +34,8 @@ void Synchronizer::nameInsertedStep(std::string_view verb, uint32_t r) {
     insertedNameAt_.push_back({currentStep_, at, static_cast<uint32_t>(ownText_.size() - at)});
 }
 
-// Both run once per usage or resource, from planAccesses' loop: inlined there (GCC 12 stops
-// inlining them once they have three callers, which costs 5% of a large compile).
+// Run once per resource, from planAccesses' loop, and always inlined there (as addAccess is,
+// per usage): as calls they cost 5% of a large compile.
 inline uint32_t Synchronizer::addResource(uint32_t declIndex) {
     PlannedResource& res = planResources().emplace_back();
     res.decl = declIndex;

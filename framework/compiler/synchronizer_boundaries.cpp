@@ -25,7 +25,11 @@ void Synchronizer::finishResources() {
         SubresourceState* states = stateOf(r);
         const auto& d = decl(r);
         const ExternalState end = replaced(facts_[r].exported ? d.final : d.initial);
-        const VulkanScope scope = boundaryScope(r, end);
+        VulkanScope scope = boundaryScope(r, end);
+        // A state with no stages of its own (Present, of an image that is not presented): the
+        // next frame's first barrier waits in its first uses' stages (rule 8), so the barrier
+        // back ends in those, to chain with it.
+        if (!facts_[r].exported && scope.stages == 0) scope.stages = firstUsesScope(r).stages;
         // A persistent resource's next frame repeats this one (an external one that is not
         // exported is one too). If it writes anywhere, the final barrier must order every
         // access of this frame, readers included, before the next frame's first use, exactly
@@ -56,7 +60,8 @@ void Synchronizer::finishResources() {
 
 /// Which resources need a copy per frame in flight: frames in flight overlap on the GPU,
 /// and nothing in a plan orders one frame's accesses after another's unless a resource is
-/// exported (its final barrier and the next frame's first use chain across frames). A
+/// external or exported (its final barrier and the next frame's first use chain across frames;
+/// one written, not exported, gets a copy per frame all the same, as its contents are not kept). A
 /// transient is SharedTransient when the frames share the heaps (set by planMemory), and
 /// otherwise keeps the default, PerFrameTransient.
 void Synchronizer::decideCopies() {

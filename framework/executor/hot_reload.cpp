@@ -63,7 +63,8 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
     State& st = *state_;
     st.renderer = &renderer;
     st.graphFile = std::move(graphFile);
-    st.shaderDir = shaderDir.empty() ? renderer.shaderDir() : std::move(shaderDir);
+    const bool shaderDirGiven = !shaderDir.empty();
+    st.shaderDir = shaderDirGiven ? std::move(shaderDir) : renderer.shaderDir();
     st.registry = registry ? registry : &st.ownRegistry;
     if (!registry) {
         // The library's declarations first: a type it redeclares records with its factory,
@@ -77,7 +78,7 @@ HotReloader::HotReloader(Renderer& renderer, std::filesystem::path graphFile, st
     std::error_code ec;
     if (!st.graphFile.empty() && !std::filesystem::is_regular_file(st.graphFile, ec))
         throw ExecutorError("HotReloader: the graph file '" + st.graphFile.string() + "' does not exist");
-    if (!std::filesystem::is_directory(st.shaderDir, ec))
+    if (shaderDirGiven && !std::filesystem::is_directory(st.shaderDir, ec))
         throw ExecutorError("HotReloader: the shader directory '" + st.shaderDir.string() + "' does not exist");
     st.graphHash = hashFile(st.graphFile);
     st.shaderHashes = hashDir(st.shaderDir);

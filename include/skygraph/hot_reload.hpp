@@ -33,7 +33,7 @@ public:
     /// counts, as its factory is the one that records. Both are fixed here:
     /// follow() keeps them. A reloaded graph compiles with the options the renderer's
     /// current graph was compiled with (Renderer::compiled()). Throws ExecutorError when the
-    /// graph file or the shader directory does not exist.
+    /// graph file or a `shaderDir` given does not exist.
     HotReloader(Renderer& renderer, std::filesystem::path graphFile, std::filesystem::path shaderDir = {},
                 const PassRegistry* registry = nullptr);
     HotReloader(const HotReloader&) = delete;

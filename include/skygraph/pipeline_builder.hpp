@@ -39,7 +39,8 @@ namespace skygraph {
 /// layout of one push-descriptor set 0 plus optional push constants at offset 0.
 struct GraphicsPipelineRecipe {
     /// SPIR-V; entry point "main". An empty `fragment` builds a pipeline without a fragment
-    /// stage (depth only); `vertex` is required.
+    /// stage (depth only: set `colorAttachments` to the subpass's, 0 for a depth-only one);
+    /// `vertex` is required.
     std::vector<uint32_t> vertex, fragment;
     /// Borrowed; must be compatible at draw time. Required: a pass without attachment slots
     /// has none (PipelineContext::renderPass is null) and records compute or copies instead.

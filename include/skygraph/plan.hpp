@@ -122,8 +122,8 @@ struct PlannedPass {
 };
 
 /// How many copies of a resource the executor keeps, and why. Frames in flight overlap on
-/// the GPU; what orders one frame's accesses before the next frame's is an exported resource's
-/// final barrier, or, for transients in heaps the frames share, the next frame's aliasing
+/// the GPU; what orders one frame's accesses before the next frame's is an external or exported
+/// resource's final barrier, or, for transients in heaps the frames share, the next frame's aliasing
 /// barriers. Every other resource that a frame writes gets a copy per frame in flight. Plans
 /// that share transients between frames assume the frames run in submission order on one
 /// queue, as the executor submits them.

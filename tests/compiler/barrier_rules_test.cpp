@@ -281,6 +281,33 @@ TEST(BarrierRules, ExternalInputsGoBackToTheirInitialState) {
     // Sampled where its state promises: nothing to undo.
     plan = readAs("Read", "Fragment", "");
     EXPECT_TRUE(finalsOf(plan, "lut").empty()) << planToText(plan);
+
+    // A buffer (no layout) written as storage: the barrier is the write's memory dependency
+    // alone, made visible to the ShaderRead scope the next frame finds it in.
+    plan = compileGraph(R"("data": {"type": "buffer", "size": 256, "external": true},)" + std::string(kOut),
+                        R"({"name": "p", "type": "Generic", "uses": {"data": "Write@Compute", "out": "Write@ColorAttachment"}})");
+    fin = finalsOf(plan, "data");
+    ASSERT_EQ(fin.size(), 1u) << planToText(plan);
+    EXPECT_EQ(fin[0].kind, BarrierKind::Buffer);
+    EXPECT_EQ(fin[0].srcStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(fin[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(fin[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(fin[0].dstAccess, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+
+    // An image arriving in Present that is not presented (no `final`): the barrier back to
+    // PRESENT_SRC_KHR ends in its first use's stages, where the next frame's first barrier
+    // starts.
+    plan = compileGraph(
+        R"("shown": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true, "initial": "Present"},)" +
+            std::string(kOut),
+        R"({"name": "p", "type": "Generic", "uses": {"shown": "Read@Fragment", "out": "Write@ColorAttachment"}})");
+    fin = finalsOf(plan, "shown");
+    ASSERT_EQ(fin.size(), 1u) << planToText(plan);
+    EXPECT_EQ(fin[0].newLayout, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+    EXPECT_EQ(fin[0].dstStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    const auto first = barriersOf(plan, "p", "shown");
+    ASSERT_EQ(first.size(), 1u);
+    EXPECT_EQ(first[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
 }
 
 TEST(BarrierRules, PersistentAccumulationChainsAcrossFrames) {

@@ -147,8 +147,6 @@ TEST_F(ExecutorTest, HotReloadKeepsLastGoodGraphAndShaders) {
     EXPECT_PIXEL_NEAR(r.readback(), 7, 7, 0.0, 0.0, 1.0, 1.0);
 }
 
-// A save in place truncates the file and then writes it: polled in between, the empty graph or
-// shader is not a change, so the save is one reload rather than a failed one and then another.
 // A watched path that is not there is refused, naming it: a typo would otherwise never reload.
 TEST_F(ExecutorTest, HotReloadRefusesAPathThatDoesNotExist) {
     WatchedRenderer watched("hot_reload_missing");
@@ -165,6 +163,8 @@ TEST_F(ExecutorTest, HotReloadRefusesAPathThatDoesNotExist) {
     }
 }
 
+// A save in place truncates the file and then writes it: polled in between, the empty graph or
+// shader is not a change, so the save is one reload rather than a failed one and then another.
 TEST_F(ExecutorTest, HotReloadSeesASaveInPlaceAsOneChange) {
     WatchedRenderer watched("skygraph_reload_in_place");
     Renderer& r = *watched.renderer;

@@ -276,7 +276,8 @@ TEST_F(ExecutorTest, ATypeWithoutRecordingCodeRunsWithTheLibrarysGeneric) {
 /// in place of the vertex shader when it is set.
 class RecipePass final : public PassImplementation {
 public:
-    RecipePass(bool vertex, bool fragment, bool notSpirv) : vertex_(vertex), fragment_(fragment), notSpirv_(notSpirv) {}
+    RecipePass(bool vertex, bool fragment, bool notSpirv, bool renderPass = true)
+        : vertex_(vertex), fragment_(fragment), notSpirv_(notSpirv), renderPass_(renderPass) {}
     void createPipelines(const PipelineContext& ctx) override {
         GraphicsPipelineRecipe recipe;
         if (vertex_) recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/fullscreen.vert");
@@ -286,7 +287,7 @@ public:
                                                    "#version 450\nlayout(location = 0) out vec4 o;\n"
                                                    "void main() { o = vec4(1); }\n",
                                                    "white.frag");
-        recipe.renderPass = ctx.renderPass;
+        recipe.renderPass = renderPass_ ? ctx.renderPass : VK_NULL_HANDLE;
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
     }
     void record(const RecordContext& ctx) override {
@@ -299,7 +300,7 @@ public:
     }
 
 private:
-    bool vertex_, fragment_, notSpirv_;
+    bool vertex_, fragment_, notSpirv_, renderPass_;
     GraphicsPipeline pipeline_;
 };
 
@@ -337,6 +338,7 @@ TEST_F(ExecutorTest, ErrorsOfAPassesOwnCodeNameThePass) {
         {"NoVertex", [](const PassDesc&) { return std::make_unique<RecipePass>(false, true, false); }},
         {"NotSpirv", [](const PassDesc&) { return std::make_unique<RecipePass>(true, true, true); }},
         {"DepthOnly", [](const PassDesc&) { return std::make_unique<RecipePass>(true, false, false); }},
+        {"NoRenderPass", [](const PassDesc&) { return std::make_unique<RecipePass>(true, true, false, false); }},
     };
     for (const auto& [name, factory] : recipes) {
         PassTypeInfo info = fillType();
@@ -350,6 +352,10 @@ TEST_F(ExecutorTest, ErrorsOfAPassesOwnCodeNameThePass) {
     EXPECT_EQ(e, "pass 'fill': creating pipelines: createGraphicsPipeline: the recipe has no vertex shader");
     e = renderError(lib, "NotSpirv");
     EXPECT_EQ(e, "pass 'fill': creating pipelines: createGraphicsPipeline: the recipe's vertex shader is not SPIR-V");
+    e = renderError(lib, "NoRenderPass");
+    EXPECT_TRUE(e.starts_with("pass 'fill': creating pipelines: createGraphicsPipeline: the recipe has no render pass"))
+        << e;
+    // No fragment stage: the color attachment keeps what it had, and nothing is reported.
     EXPECT_EQ(renderError(lib, "DepthOnly"), "");
     EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
 

@@ -160,6 +160,7 @@ std::vector<BarrierMutation> weakenedPlans(const Plan& plan) {
 
 MinimalityReport checkMinimality(Device& device, const CompiledGraph& compiled, const RunSettings& settings) {
     MinimalityReport report;
+    report.planVerifies = verifier::verifyPlan(compiled.plan(), compiled.graph()).ok();
     for (auto& m : weakenedPlans(compiled.plan())) {
         ++report.mutations;
         if (messagesFor(device, compiled, m.plan, settings) == 0)

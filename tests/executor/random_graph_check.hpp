@@ -70,6 +70,9 @@ struct UnnoticedWeakening {
 /// as far as the validation layer sees real accesses of the Generic pass.
 struct MinimalityReport {
     size_t mutations = 0;
+    /// Whether the plan verifier passes the plan as compiled: only then does its finding on a
+    /// weakened plan come from the weakening.
+    bool planVerifies = false;
     std::vector<UnnoticedWeakening> unneeded;
 };
 [[nodiscard]] MinimalityReport checkMinimality(Device& device, const CompiledGraph& compiled,

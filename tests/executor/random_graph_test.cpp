@@ -89,6 +89,7 @@ TEST_P(BarrierMinimality, DroppedImageBarriersAndLayoutChangesAreCaught) {
     ASSERT_TRUE(run.passed()) << run.detail;
     const MinimalityReport report = checkMinimality(sharedDevice(), *run.compiled);
     ASSERT_GT(report.mutations, 0u);
+    ASSERT_TRUE(report.planVerifies) << planToText(run.compiled->plan());
     std::string missed, unnoticed;
     for (const auto& u : report.unneeded) {
         const std::string& d = u.description;
