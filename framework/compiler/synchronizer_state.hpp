@@ -146,7 +146,8 @@ private:
     [[gnu::always_inline]] inline uint32_t stepEnd(uint32_t s) const;
     [[gnu::always_inline]] inline bool readLater(uint32_t k, const SubresourceRange& range) const;
     [[gnu::always_inline]] inline StageAccess runScopeFrom(uint32_t k, size_t cell) const;
-    inline VulkanScope firstUsesScope(uint32_t r) const;
+    /// Also for the final barriers of inputs that arrive with no stages of their own.
+    VulkanScope firstUsesScope(uint32_t r) const;
     [[gnu::always_inline]] inline void startState(uint32_t r);
     inline void replayAccesses(uint32_t r);
     [[gnu::always_inline]] inline bool poisoned(uint32_t r, const SubresourceRange& range) const;
