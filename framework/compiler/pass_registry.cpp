@@ -31,6 +31,10 @@ void PassRegistry::add(PassTypeInfo info) {
     if (info.name.empty()) throw std::invalid_argument("pass type with an empty name");
     if (types_.count(info.name))
         throw std::invalid_argument("pass type '" + info.name + "' is already registered");
+    // The loader binds nothing to the slots of a type that takes any usage: they would be
+    // documentation that no graph can fill.
+    if (info.acceptsAnyUsage && !info.slots.empty())
+        throw std::invalid_argument("pass type '" + info.name + "' takes any usage and declares slots; it can do one");
     std::set<std::string, std::less<>> slotNames;
     for (const auto& slot : info.slots) {
         // An empty name is what a usage without a slot (Generic's) has.

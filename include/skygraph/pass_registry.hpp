@@ -65,7 +65,7 @@ using UsageValidator = std::function<std::vector<UsageError>(const PassDesc& pas
 struct PassTypeInfo {
     std::string name;
     std::vector<SlotDecl> slots;
-    /// The built-in Generic type: any usages, no slots.
+    /// The built-in Generic type: any usages, no slots (add() refuses a type with both).
     bool acceptsAnyUsage = false;
     /// Optional; when empty, any params object is accepted. An exception it throws is reported
     /// like a returned error, at the pass's `params`, naming the pass.
@@ -94,8 +94,9 @@ public:
     [[nodiscard]] static PassRegistry withBuiltins();
 
     /// Registers a type (the registry keeps `info`). Throws std::invalid_argument, registering
-    /// nothing, if the name is empty or taken or a slot is malformed (an empty name, no
-    /// accesses, duplicate names, `as` on a non-shader stage).
+    /// nothing, if the name is empty or taken, if it takes any usage and declares slots, or if
+    /// a slot is malformed (an empty name, no accesses, duplicate names, `as` on a non-shader
+    /// stage).
     void add(PassTypeInfo info);
 
     /// nullptr when unknown. The pointer stays valid until the registry is destroyed,

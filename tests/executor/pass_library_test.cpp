@@ -432,6 +432,12 @@ TEST(PassValidators, AMalformedTypeIsRefusedWhenAdded) {
     info = fillType();
     info.slots[0].as = BindAs::Storage;
     EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' sets `as` on a non-shader stage");
+    info = fillType();
+    info.acceptsAnyUsage = true;  // slots no usage would be bound to
+    EXPECT_EQ(refusal(info), "pass type 'Fill' takes any usage and declares slots; it can do one");
+    info.slots.clear();
+    info.name = "AnyFill";
+    EXPECT_EQ(refusal(info), "added");
     EXPECT_EQ(registry.find("Fill"), nullptr);
     EXPECT_EQ(refusal(fillType()), "added");
 }
