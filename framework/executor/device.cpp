@@ -308,8 +308,34 @@ Device::Impl::~Impl() {
     if (instance) vkDestroyInstance(instance, nullptr);
 }
 
+std::string Device::Impl::liveUsers() const {
+    static constexpr const char* kNames[kDeviceUserKinds] = {"Renderer", "Swapchain", "StagingBuffer", "SharedImage"};
+    std::vector<std::string> live;
+    for (size_t u = 0; u < kDeviceUserKinds; ++u)
+        if (const uint32_t n = users[u].load(); n > 0)
+            live.push_back(std::to_string(n) + " " + kNames[u] + (n > 1 ? "s" : ""));
+    std::string out;
+    for (size_t i = 0; i < live.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == live.size() ? " and " : ", ") + live[i];
+    return out;
+}
+
+detail::DeviceUse::DeviceUse(DeviceAccess::Impl& device, DeviceUser user) noexcept : device_(device), user_(user) {
+    device_.users[size_t(user_)].fetch_add(1);
+}
+detail::DeviceUse::~DeviceUse() { device_.users[size_t(user_)].fetch_sub(1); }
+
 Device::Device(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-Device::~Device() = default;
+
+Device::~Device() {
+    // What lives on would destroy its Vulkan objects with a destroyed device, which ends the
+    // process inside the loader, far from the cause: say it here, where the order went wrong.
+    if (const std::string live = impl_->liveUsers(); !live.empty()) {
+        std::fprintf(stderr, "skygraph: a Device is destroyed before what was made from it and is still alive: %s; destroy those first\n",
+                     live.c_str());
+        std::abort();
+    }
+}
 
 std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     auto impl = std::make_unique<Impl>();
@@ -576,7 +602,11 @@ bool Device::hasMessage(std::string_view needle) const {
                m.message.find(needle) != std::string::npos;
     });
 }
-void Device::finish() { impl_->finish(); }
+void Device::finish() {
+    if (const std::string live = impl_->liveUsers(); !live.empty())
+        throw ExecutorError("Device::finish(): made from this device and still alive: " + live + "; destroy those first");
+    impl_->finish();
+}
 
 uint32_t Device::performanceWarningCount() const {
     std::lock_guard lock(impl_->mutex);

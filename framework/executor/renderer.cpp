@@ -392,7 +392,7 @@ SharedImage Renderer::shareImage(const std::string& resource) const {
         if (f.held)
             throw ExecutorError("shareImage: '" + resource + "': the background frame that writes it is not "
                                 "finished (call finishBackgroundFrame() until it returns true)");
-    auto impl = std::make_shared<SharedImage::Impl>();
+    auto impl = std::make_shared<SharedImage::Impl>(d.dev);
     impl->storage = r.images[0].storage;
     impl->device = d.vkd;
     impl->format = r.format;

@@ -317,6 +317,8 @@ struct FrameSlot {
 namespace skygraph {
 
 struct SharedImage::Impl {
+    explicit Impl(DeviceAccess::Impl& owner) : use(owner, DeviceUser::SharedImage) {}
+    detail::DeviceUse use;
     std::shared_ptr<const detail::ImageStorage> storage;
     VkDevice device = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
@@ -327,6 +329,7 @@ struct SharedImage::Impl {
 };
 
 struct Renderer::Impl {
+    detail::DeviceUse use;
     Device& device;
     DeviceAccess::Impl& dev;
     VkDevice vkd;
@@ -373,7 +376,7 @@ struct Renderer::Impl {
     std::optional<VkPipelineStageFlags2> signalOverride;
 
     Impl(Device& d, RendererOptions o)
-        : device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
+        : use(DeviceAccess::impl(d), DeviceUser::Renderer), device(d), dev(DeviceAccess::impl(d)), vkd(d.device()), options(std::move(o)),
           shaders(options.shaderCompiler ? options.shaderCompiler
                                          : std::make_shared<ShaderCompiler>(
                                                options.shaderDir,

@@ -11,6 +11,8 @@
 namespace skygraph {
 
 struct StagingBuffer::Impl {
+    explicit Impl(DeviceAccess::Impl& owner) : use(owner, DeviceUser::StagingBuffer) {}
+    detail::DeviceUse use;
     detail::DeviceMemory memory;  ///< declared before the buffer: freed after it
     owned::Buffer buffer;
     std::byte* mapped = nullptr;
@@ -20,7 +22,7 @@ struct StagingBuffer::Impl {
 std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSize bytes) {
     if (bytes == 0) throw ExecutorError("StagingBuffer::create: 0 bytes");
     DeviceAccess::Impl& d = DeviceAccess::impl(device);
-    auto impl = std::make_unique<Impl>();
+    auto impl = std::make_unique<Impl>(d);
     impl->size = bytes;
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bci.size = bytes;

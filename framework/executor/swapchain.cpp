@@ -92,7 +92,7 @@ PresentRequirements presentRequirements(const CompiledGraph& compiled) {
 }
 
 Swapchain::Impl::Impl(Device& d, PresentRequirements r, const SwapchainOptions& o)
-    : device(d), dev(DeviceAccess::impl(d)), requirements(std::move(r)), requested(o.presentMode),
+    : use(DeviceAccess::impl(d), DeviceUser::Swapchain), device(d), dev(DeviceAccess::impl(d)), requirements(std::move(r)), requested(o.presentMode),
       wanted{o.width, o.height}, extraUsage(o.extraUsage) {}
 
 Swapchain::Impl::~Impl() {

@@ -43,6 +43,7 @@ struct SurfaceSupport {
 }  // namespace detail
 
 struct Swapchain::Impl {
+    detail::DeviceUse use;
     Device& device;
     DeviceAccess::Impl& dev;
     PresentRequirements requirements;

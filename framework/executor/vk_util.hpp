@@ -1,6 +1,8 @@
 // Internal helpers for the executor: error checking and small RAII owners of Vulkan handles.
 #pragma once
 
+#include "device_access.hpp"
+
 #include <skygraph/device.hpp>
 #include <skygraph/vk_handles.hpp>
 
@@ -110,6 +112,11 @@ struct Device::Impl {
     uint32_t performanceCount = 0;
     std::vector<ValidationMessage> performanceKept;
     uint32_t layerVersion = 0;  ///< The validation layer's specVersion; 0 without validation.
+
+    /// Live objects made from this device, per DeviceUser (detail::DeviceUse counts them).
+    std::array<std::atomic<uint32_t>, kDeviceUserKinds> users{};
+    /// "1 Renderer and 2 SharedImages", or empty when none lives.
+    [[nodiscard]] std::string liveUsers() const;
 
     /// Device::finish: waits, destroys the device and the surface (the messenger stays).
     void finish();

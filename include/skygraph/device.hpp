@@ -123,6 +123,8 @@ public:
     /// why each does not (e.g. "cannot present to the surface"), or when validation is asked
     /// for and the Khronos validation layer is not installed.
     static std::unique_ptr<Device> create(const DeviceOptions& options = {});
+    /// As finish(), except that a Renderer, Swapchain, SharedImage or StagingBuffer of this
+    /// device still alive ends the process (std::abort) with a message naming them.
     ~Device();
     Device(const Device&) = delete;
     Device& operator=(const Device&) = delete;
@@ -187,7 +189,8 @@ public:
     /// Waits for the queue, then destroys the logical device and the surface while validation
     /// still listens: the layer reports each object made from the device that is still alive
     /// (a leaked handle), and messageCount() counts those reports. Every Renderer, Swapchain,
-    /// SharedImage and StagingBuffer of this device must be destroyed first; afterwards device() and
+    /// SharedImage and StagingBuffer of this device must be destroyed first: while one lives,
+    /// throws ExecutorError naming them and destroys nothing. Afterwards device() and
     /// surface() are VK_NULL_HANDLE and only name(), validationEnabled() and the message
     /// accessors may be used. The destructor does the same when this was not called; calling
     /// it twice does nothing more.

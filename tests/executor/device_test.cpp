@@ -4,6 +4,7 @@
 #include "app/render.hpp"
 
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/staging_buffer.hpp>
 
 #include <cstdlib>
 #include <filesystem>
@@ -133,6 +134,54 @@ TEST(DeviceFinish, AnObjectStillAliveIsCountedAndACleanDeviceIsSilent) {
     EXPECT_TRUE(leaking->hasMessage("VUID-vkDestroyDevice-device-00378"));
     leaking->finish();
     EXPECT_EQ(leaking->messageCount(), 1u);
+}
+
+// What is made from a device destroys its Vulkan objects with that device, so finish() refuses
+// while any of it lives, naming each kind and how many, and leaves the device working; it
+// destroys the device once they are gone.
+TEST(DeviceFinish, IsRefusedWhileWhatWasMadeFromTheDeviceLives) {
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    o.validation = true;
+    o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
+    auto device = Device::create(o);
+    const std::string graph = graphWithSwapchain(
+        "owned", R"("t": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "draw", "type": "Generic", "uses": { "t": "Write@ColorAttachment" } },
+           { "name": "show", "type": "Generic", "uses": { "t": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })");
+    {
+        Renderer renderer(*device, compileText(graph), genericOptions(1));
+        const auto staging = StagingBuffer::create(*device, 256);
+        const auto another = StagingBuffer::create(*device, 256);
+        try {
+            device->finish();
+            ADD_FAILURE() << "finish() destroyed the device under a renderer";
+        } catch (const ExecutorError& e) {
+            EXPECT_STREQ(e.what(), "Device::finish(): made from this device and still alive: 1 Renderer and "
+                                   "2 StagingBuffers; destroy those first");
+        }
+        EXPECT_NE(device->device(), VK_NULL_HANDLE);
+        renderer.renderFrame();
+        renderer.waitIdle();
+    }
+    device->finish();
+    EXPECT_EQ(device->device(), VK_NULL_HANDLE);
+    EXPECT_EQ(device->messageCount(), 0u) << formatMessages(*device);
+}
+
+// Destroying the Device first would end the process inside the Vulkan loader when the rest
+// destroys its objects; the destructor ends it with the cause instead.
+TEST(DeviceFinishDeathTest, DestroyingTheDeviceFirstSaysWhatWasStillAlive) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");  // the parent has Vulkan threads
+    DeviceOptions o;
+    o.device = "llvmpipe";
+    EXPECT_DEATH(
+        {
+            auto device = Device::create(o);
+            const auto staging = StagingBuffer::create(*device, 256);
+            device.reset();
+        },
+        "a Device is destroyed before what was made from it and is still alive: 1 StagingBuffer; destroy those first");
 }
 
 TEST(RenderCommand, WritesPngAndReportsUserErrors) {
