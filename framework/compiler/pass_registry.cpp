@@ -34,7 +34,8 @@ void PassRegistry::add(PassTypeInfo info) {
     // The loader binds nothing to the slots of a type that takes any usage: they would be
     // documentation that no graph can fill.
     if (info.acceptsAnyUsage && !info.slots.empty())
-        throw std::invalid_argument("pass type '" + info.name + "' takes any usage and declares slots; it can do one");
+        throw std::invalid_argument("pass type '" + info.name +
+                                    "': takes any usage and declares slots (a type does one or the other)");
     std::set<std::string, std::less<>> slotNames;
     for (const auto& slot : info.slots) {
         // An empty name is what a usage without a slot (Generic's) has.

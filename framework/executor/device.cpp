@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <iterator>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -309,7 +310,8 @@ Device::Impl::~Impl() {
 }
 
 std::string Device::Impl::liveUsers() const {
-    static constexpr const char* kNames[kDeviceUserKinds] = {"Renderer", "Swapchain", "StagingBuffer", "SharedImage"};
+    static constexpr const char* kNames[] = {"Renderer", "Swapchain", "StagingBuffer", "SharedImage"};
+    static_assert(std::size(kNames) == kDeviceUserKinds, "a name per DeviceUser");
     std::vector<std::string> live;
     for (size_t u = 0; u < kDeviceUserKinds; ++u)
         if (const uint32_t n = users[u].load(); n > 0)
@@ -331,7 +333,7 @@ Device::~Device() {
     // What lives on would destroy its Vulkan objects with a destroyed device, which ends the
     // process inside the loader, far from the cause: say it here, where the order went wrong.
     if (const std::string live = impl_->liveUsers(); !live.empty()) {
-        std::fprintf(stderr, "skygraph: a Device is destroyed before what was made from it and is still alive: %s; destroy those first\n",
+        std::fprintf(stderr, "skygraph: Device destroyed while still alive, made from it: %s; destroy those before the Device\n",
                      live.c_str());
         std::abort();
     }

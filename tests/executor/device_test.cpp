@@ -112,10 +112,7 @@ TEST(DeviceSelection, ValidationLeavesTheEnvironmentAsItWas) {
 // semaphore made and never destroyed, the negative control) is reported and counted, and a
 // device whose objects were all destroyed finishes silent. Twice is the same as once.
 TEST(DeviceFinish, AnObjectStillAliveIsCountedAndACleanDeviceIsSilent) {
-    DeviceOptions o;
-    o.device = "llvmpipe";
-    o.validation = true;
-    o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
+    const DeviceOptions o = validatedOptions();
     auto clean = Device::create(o);
     VkSemaphoreCreateInfo sci{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore destroyed = VK_NULL_HANDLE;
@@ -140,17 +137,17 @@ TEST(DeviceFinish, AnObjectStillAliveIsCountedAndACleanDeviceIsSilent) {
 // while any of it lives, naming each kind and how many, and leaves the device working; it
 // destroys the device once they are gone.
 TEST(DeviceFinish, IsRefusedWhileWhatWasMadeFromTheDeviceLives) {
-    DeviceOptions o;
-    o.device = "llvmpipe";
-    o.validation = true;
-    o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
-    auto device = Device::create(o);
+    auto device = Device::create(validatedOptions());
     const std::string graph = graphWithSwapchain(
         "owned", R"("t": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "draw", "type": "Generic", "uses": { "t": "Write@ColorAttachment" } },
            { "name": "show", "type": "Generic", "uses": { "t": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })");
     {
-        Renderer renderer(*device, compileText(graph), genericOptions(1));
+        GraphDesc parsed = parseGraph(graph, "<test>", PassRegistry::withBuiltins());
+        CompileOptions options = sizedOptions();
+        options.memory = device->memoryModel();  // the plan as this device's renderer runs it
+        options = headless(parsed, std::move(options));
+        Renderer renderer(*device, CompiledGraph(std::move(parsed), std::move(options)), genericOptions(1));
         const auto staging = StagingBuffer::create(*device, 256);
         const auto another = StagingBuffer::create(*device, 256);
         try {
@@ -181,7 +178,7 @@ TEST(DeviceFinishDeathTest, DestroyingTheDeviceFirstSaysWhatWasStillAlive) {
             const auto staging = StagingBuffer::create(*device, 256);
             device.reset();
         },
-        "a Device is destroyed before what was made from it and is still alive: 1 StagingBuffer; destroy those first");
+        "Device destroyed while still alive, made from it: 1 StagingBuffer; destroy those before the Device");
 }
 
 TEST(RenderCommand, WritesPngAndReportsUserErrors) {

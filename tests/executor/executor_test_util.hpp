@@ -41,18 +41,24 @@ public:
     }
 };
 
-/// The device every test shares: validation + synchronization validation (QUEUE_SUBMIT
-/// included) on lavapipe unless SKYGRAPH_TEST_DEVICE names another.
+/// Validation + synchronization validation (QUEUE_SUBMIT included) on `device`, logging each
+/// message unless SKYGRAPH_TEST_QUIET is set: how the tests make their devices.
+inline DeviceOptions validatedOptions(const char* device = "llvmpipe") {
+    DeviceOptions o;
+    o.validation = true;
+    o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
+    o.device = device;
+    return o;
+}
+
+/// The device every test shares: validatedOptions() on lavapipe unless SKYGRAPH_TEST_DEVICE
+/// names another.
 inline Device& sharedDevice() {
     auto& device = DeviceEnvironment::slot();
     if (!device) {
         ::testing::AddGlobalTestEnvironment(new DeviceEnvironment);
-        DeviceOptions o;
-        o.validation = true;
-        o.logMessages = std::getenv("SKYGRAPH_TEST_QUIET") == nullptr;
         const char* name = std::getenv("SKYGRAPH_TEST_DEVICE");
-        o.device = name ? name : "llvmpipe";
-        device = Device::create(o);
+        device = Device::create(validatedOptions(name ? name : "llvmpipe"));
     }
     return *device;
 }

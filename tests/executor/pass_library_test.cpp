@@ -434,7 +434,7 @@ TEST(PassValidators, AMalformedTypeIsRefusedWhenAdded) {
     EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' sets `as` on a non-shader stage");
     info = fillType();
     info.acceptsAnyUsage = true;  // slots no usage would be bound to
-    EXPECT_EQ(refusal(info), "pass type 'Fill' takes any usage and declares slots; it can do one");
+    EXPECT_EQ(refusal(info), "pass type 'Fill': takes any usage and declares slots (a type does one or the other)");
     info.slots.clear();
     info.name = "AnyFill";
     EXPECT_EQ(refusal(info), "added");
