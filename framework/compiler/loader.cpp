@@ -22,6 +22,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
@@ -354,6 +355,7 @@ private:
         if (type && type->validateUsages && passDiags_.size() == problemsBeforePass) checkUsagesWithType(p, *type);
         if (type) checkQueue(p, *type);
         checkOverlaps(p);
+        checkAttachments(p);
     }
 
     /// Enters the names of the passes loaded since the last call, in file order, reporting
@@ -761,6 +763,30 @@ private:
                     error(usePath(p, i), p.name, res.name, "overlaps " + usePath(p, j) +
                                                                "; one pass may use each subresource once");
             }
+    }
+
+    /// What one subpass of a render pass can hold, on every device: the compiler places no
+    /// device's limit, but a pass past these renders nowhere.
+    static constexpr size_t kMostColorAttachments = 8;  // maxColorAttachments of current GPUs
+
+    void checkAttachments(const PassDesc& p) {
+        size_t colors = 0;
+        std::optional<size_t> depth;
+        for (size_t i = 0; i < p.uses.size(); ++i) {
+            const Stage stage = p.uses[i].usage.stage;
+            const std::string& name = graph_.resources[p.uses[i].resource].name;
+            if (stage == Stage::ColorAttachment && ++colors == kMostColorAttachments + 1)
+                error(usePath(p, i), p.name, name,
+                      "a pass renders to at most " + std::to_string(kMostColorAttachments) +
+                          " colour attachments (the maxColorAttachments of current GPUs); this is its " +
+                          std::to_string(colors) + "th");
+            if (stage != Stage::DepthAttachment) continue;
+            if (depth)
+                error(usePath(p, i), p.name, name,
+                      "a pass renders to one depth attachment, and " + usePath(p, *depth) + " is its depth attachment");
+            else
+                depth = i;
+        }
     }
 
     static constexpr size_t kPassesSampled = 256;

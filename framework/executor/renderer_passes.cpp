@@ -194,6 +194,12 @@ void Renderer::Impl::buildRenderPass(PlanState& s, PassState& ps) {
         atts.push_back(a);
         return VkAttachmentReference{static_cast<uint32_t>(atts.size() - 1), u.layout};
     };
+    // The loader allows what current GPUs do; a device that allows fewer refuses here, before
+    // a driver is handed a render pass it need not survive.
+    if (const uint32_t most = dev.properties.limits.maxColorAttachments; p.colors.size() > most)
+        throw ExecutorError(passError(pass, "", std::to_string(p.colors.size()) + " colour attachments, and the device '" +
+                                                    dev.name + "' allows " + std::to_string(most) +
+                                                    " (maxColorAttachments)"));
     for (uint32_t c : p.colors) colorRefs.push_back(addAttachment(c));
     if (p.depth >= 0) depthRef = addAttachment(static_cast<uint32_t>(p.depth));
     VkSubpassDescription sub{};

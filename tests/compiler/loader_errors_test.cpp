@@ -1252,6 +1252,29 @@ TEST(LoaderErrors, OverlappingUsagesOfOneResourceInOnePass) {
     expectLoads(g);
 }
 
+// One subpass holds one depth attachment and, on every current GPU, at most 8 colour ones: a
+// pass past either is refused where it is written, not when a device builds its render pass.
+TEST(LoaderErrors, APassRendersToOneDepthAndAtMostEightColourAttachments) {
+    Json g = baseGraph();
+    Json eight = Json::object(), nine;
+    for (int i = 0; i < 9; ++i) {
+        const std::string name = "target" + std::to_string(i);
+        g["resources"][name] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", "output"}};
+        (i < 8 ? eight : nine)[name] = "Write@ColorAttachment";
+    }
+    nine.update(eight);
+    Json d2 = g;
+    expectLoads(withGeneric(g, "mrt", eight));
+    auto ds = loadErrors(withGeneric(g, "mrt", nine));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.target8", "mrt", "target8",
+                        {"at most 8 colour attachments", "this is its 9th"}));
+    EXPECT_EQ(ds.size(), 1u);
+    d2["resources"]["depth2"] = Json{{"type", "image2d"}, {"format", "D16_UNORM"}, {"extent", "output"}};
+    ds = loadErrors(withGeneric(d2, "both", Json{{"depth", "Write@DepthAttachment"}, {"depth2", "Write@DepthAttachment"}}));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.depth2", "both", "depth2",
+                        {"one depth attachment", "passes[2].uses.depth is its depth attachment"}));
+}
+
 TEST(LoaderErrors, BadParams) {
     Json g = baseGraph();
     g["passes"][1]["params"]["operator"] = "foo";

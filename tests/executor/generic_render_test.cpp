@@ -279,6 +279,41 @@ TEST_F(ExecutorTest, ARendererKeepsItsSpirvWhereItsOptionsSay) {
     fs::remove_all(root);
 }
 
+// A graph built in code skips the loader's limit of 8 colour attachments a pass; a renderer
+// refuses a pass past its device's maxColorAttachments by name, before the driver sees it.
+TEST_F(ExecutorTest, APassPastTheDevicesColourAttachmentsIsRefusedByName) {
+    std::string resources, uses;
+    for (int i = 0; i < 8; ++i) {
+        const std::string name = "t" + std::to_string(i);
+        resources += (i ? ", " : "") + ("\"" + name + R"(": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })");
+        uses += (i ? ", " : "") + ("\"" + name + "\": \"Write@ColorAttachment\"");
+    }
+    GraphDesc graph = parseGraph(
+        graphWithSwapchain("mrt", resources,
+                           R"({ "name": "mrt", "type": "Generic", "uses": { )" + uses +
+                               R"( } }, { "name": "show", "type": "Generic", "uses": { "t0": "Read@Fragment", "t7": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })"),
+        "<test>", PassRegistry::withBuiltins());
+    ResourceDesc ninth = *graph.findResource("t7");
+    ninth.name = "t8";
+    graph.resources.push_back(ninth);
+    PassDesc& mrt = graph.passes[0];
+    UsageDecl extra = mrt.uses.back();
+    extra.resource = static_cast<uint32_t>(graph.resources.size() - 1);
+    mrt.uses.push_back(extra);
+    CompileOptions o = sizedOptions();
+    o.memory = sharedDevice().memoryModel();
+    o = headless(graph, std::move(o));
+    const CompiledGraph compiled(std::move(graph), std::move(o));
+    try {
+        Renderer r(sharedDevice(), compiled, genericOptions(1));
+        FAIL() << "a renderer ran 9 colour attachments";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'mrt': 9 colour attachments, and the device"), std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("allows 8 (maxColorAttachments)"), std::string::npos) << e.what();
+    }
+}
+
 // A ReadWrite colour attachment of a format the device cannot blend (SNORM on lavapipe, or an
 // integer one) is read through a logical XOR: what the pass leaves depends on what the image
 // held, and validation stays silent (blending it is an error).
