@@ -4,6 +4,7 @@
 #include "app/render.hpp"
 
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/pass.hpp>
 #include <skygraph/staging_buffer.hpp>
 
 #include <cstdlib>
@@ -179,6 +180,55 @@ TEST(DeviceFinishDeathTest, DestroyingTheDeviceFirstSaysWhatWasStillAlive) {
             device.reset();
         },
         "Device destroyed while still alive, made from it: 1 StagingBuffer; destroy those before the Device");
+}
+
+/// Generic's recording code, then a vkCmdSetViewport of no viewports: a call validation
+/// reports (VUID-vkCmdSetViewport-viewportCount-arraylength) and the driver records as nothing.
+class ReportedPass : public PassImplementation {
+public:
+    explicit ReportedPass(std::unique_ptr<PassImplementation> generic) : generic_(std::move(generic)) {}
+    void createPipelines(const PipelineContext& context) override { generic_->createPipelines(context); }
+    void recordBeforeRenderPass(const RecordContext& context) override { generic_->recordBeforeRenderPass(context); }
+    void record(const RecordContext& context) override {
+        generic_->record(context);
+        vkCmdSetViewport(context.cmd, 0, 0, nullptr);
+    }
+
+private:
+    std::unique_ptr<PassImplementation> generic_;
+};
+
+// A render whose frames validation reports on exits 1 and writes no image (the control, the
+// same graph as Generic, writes it); the message is on stderr.
+TEST(RenderCommand, AValidationMessageFailsTheRenderAndWritesNothing) {
+    PassLibrary library = PassLibrary::genericOnly();
+    PassTypeInfo info;
+    info.name = "Reported";
+    info.acceptsAnyUsage = true;
+    library.add(std::move(info), [](const PassDesc& desc) {
+        return std::make_unique<ReportedPass>((*PassLibrary::genericOnly().factory("Generic"))(desc));
+    });
+    const auto dir = std::filesystem::temp_directory_path() / ("skygraph_render_reported_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    for (const char* type : {"Generic", "Reported"}) {
+        SCOPED_TRACE(type);
+        RenderOptions o;
+        o.graphText = graphWithSwapchain(
+            "reported", R"("t": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+            std::string(R"({ "name": "draw", "type": "Generic", "uses": { "t": "Write@ColorAttachment" } },
+                           { "name": "show", "type": ")") + type +
+                R"(", "uses": { "t": "Read@Fragment", "swapchain": "Write@ColorAttachment" } })");
+        o.passes = &library;
+        o.width = o.height = 16;
+        o.frames = 1;
+        o.validate = true;
+        o.device = "llvmpipe";
+        o.output = dir / (std::string(type) + ".png");
+        const bool reported = std::string_view(type) == "Reported";
+        EXPECT_EQ(renderCommand(o), reported ? 1 : 0);
+        EXPECT_EQ(std::filesystem::exists(o.output), !reported);
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(RenderCommand, WritesPngAndReportsUserErrors) {

@@ -479,12 +479,18 @@ int renderCommand(const RenderOptions& options) {
         for (const auto& t : renderer.lastTimings()) {
             spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
         }
-        if (!target.empty()) {
-            const ImageData image = renderer.readback(target);
-            writeImage(output, image, format);
+        std::optional<ImageData> image;
+        if (!target.empty()) image = renderer.readback(target);
+        // A frame validation complained about is no result: exit 1 writes nothing.
+        if (const int status = validationExit(*device, "skygraph render"); status != 0) {
+            if (image) std::cerr << "skygraph render: '" << printableName(output.string()) << "' not written\n";
+            return status;
+        }
+        if (image) {
+            writeImage(output, *image, format);
             spdlog::info("wrote {}", printableName(output.string()));
         }
-        return validationExit(*device, "skygraph render");
+        return 0;
     } catch (...) {
         return exitForCurrentException("skygraph render");
     }
