@@ -116,6 +116,17 @@ JsonRead readJson(std::string_view text, JsonListener* listener) {
         result.column = 1;
         return result;
     }
+    // nlohmann's lexer takes a NUL byte for the end of the text, so what follows one would go
+    // unread (and a file of NULs would read as empty).
+    if (const void* nul = std::memchr(text.data(), '\0', text.size())) {
+        const auto at = static_cast<size_t>(static_cast<const char*>(nul) - text.data());
+        JsonSyntaxError e = describeJsonError(
+            text, at + 1, "a NUL byte (U+0000), which JSON has only inside a string, written \\u0000", false);
+        result.error = std::move(e.message);
+        result.line = e.line;
+        result.column = e.column;
+        return result;
+    }
     JsonDocumentBuilder builder(result.document, text, listener);
     SaxEvents events(builder, text);
     bool ok = false;

@@ -2,6 +2,7 @@
 
 #include "json_document.hpp"
 
+#include <algorithm>
 #include <cctype>
 
 namespace skygraph {
@@ -86,6 +87,13 @@ JsonSyntaxError describeJsonError(std::string_view text, size_t byte, const std:
         message = message.substr(colon + 2);
     else if (auto bracket = message.find("] "); message.starts_with("[json.exception.") && bracket != std::string::npos)
         message = message.substr(bracket + 2);
+    // nlohmann quotes what it read with control characters as <U+000A>; messages here write
+    // them as JSON does, \u000a.
+    for (size_t at = message.find("<U+"); at != std::string::npos; at = message.find("<U+", at + 1))
+        if (at + 8 <= message.size() && message[at + 7] == '>' &&
+            std::all_of(message.begin() + at + 3, message.begin() + at + 7,
+                        [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; }))
+            message.replace(at, 8, "\\u" + message.substr(at + 3, 4));
     if (tooDeep) {
         result.message = what;
         start = tooDeepOffset(text);

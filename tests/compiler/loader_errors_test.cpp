@@ -178,6 +178,34 @@ TEST(LoaderErrors, MalformedJsonBadLiteral) {
     EXPECT_EQ(ds[0].column, 25);  // start of "tru"
 }
 
+// nlohmann quotes what it read with a control character as <U+000A>; the message writes it
+// as JSON does, as every message here writes control characters.
+TEST(LoaderErrors, ControlCharactersInAQuotedExcerptAreWrittenAsJsonWritesThem) {
+    const auto ds = textErrors("{ \"version\": 1,\n \"name\": \"t\n\" }");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].message.find("<U+"), std::string::npos) << ds[0].message;
+    EXPECT_NE(ds[0].message.find("\\u000A"), std::string::npos) << ds[0].message;
+}
+
+// A NUL byte is no end of the text: what follows it is not skipped, and a file of NULs is not
+// empty. Each is named where it is.
+TEST(LoaderErrors, ANulByteIsAnErrorWhereItIs) {
+    const std::string graph = baseGraph().dump();
+    auto ds = textErrors(graph + "\n" + std::string(1, '\0') + " garbage {{{");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].line, 2);
+    EXPECT_EQ(ds[0].column, 1);
+    EXPECT_NE(ds[0].message.find("a NUL byte (U+0000)"), std::string::npos) << ds[0].message;
+    ds = textErrors(std::string(10, '\0'));
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].column, 1);
+    EXPECT_NE(ds[0].message.find("a NUL byte (U+0000)"), std::string::npos) << ds[0].message;
+    ds = textErrors("{ \"version\": 1," + std::string(1, '\0') + " \"name\": \"t\" }");
+    ASSERT_EQ(ds.size(), 1u) << listAll(ds);
+    EXPECT_EQ(ds[0].column, 16);
+    EXPECT_NE(ds[0].message.find("a NUL byte (U+0000)"), std::string::npos) << ds[0].message;
+}
+
 TEST(LoaderErrors, NumberOverflowIsAnErrorNotACrash) {
     const auto ds = textErrors(R"({ "version": 1e999, "name": "t", "resources": {}, "passes": [] })");
     ASSERT_EQ(ds.size(), 1u) << listAll(ds);
