@@ -261,6 +261,44 @@ owned::Sampler nearestSampler(VkDevice device) {
     return owned::Sampler(device, sampler);
 }
 
+/// Generic binds every shader usage of a pass in one push-descriptor set per pipeline, so a
+/// pass of many usages can pass what the device allows: refused here by name, where a driver
+/// would be handed a layout the spec makes undefined.
+void checkDescriptorLimits(VkPhysicalDevice physical, const PlannedPass& pass, const GenericProgram& p) {
+    VkPhysicalDevicePushDescriptorPropertiesKHR push{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &push;
+    vkGetPhysicalDeviceProperties2(physical, &properties);
+    const VkPhysicalDeviceLimits& limits = properties.properties.limits;
+    const auto refuse = [&](uint32_t count, const char* what, uint32_t most, const char* limit) {
+        if (count <= most) return;
+        throw ExecutorError(passError(pass, "", "binds " + std::to_string(count) + " " + what + ", and the device '" +
+                                                    properties.properties.deviceName + "' allows " +
+                                                    std::to_string(most) + " (" + limit + ")"));
+    };
+    for (const auto* set : {&p.graphicsBindings, &p.computeBindings}) {
+        uint32_t descriptors = 0;
+        for (const ShaderBinding& s : *set) descriptors += s.levels;
+        refuse(descriptors, "descriptors in one set", push.maxPushDescriptors, "maxPushDescriptors");
+        for (const VkShaderStageFlagBits stage :
+             {VK_SHADER_STAGE_VERTEX_BIT, VK_SHADER_STAGE_FRAGMENT_BIT, VK_SHADER_STAGE_COMPUTE_BIT}) {
+            uint32_t counts[4] = {};  // per BindKind
+            for (const ShaderBinding& s : *set)
+                if (s.stage == stage) counts[size_t(s.kind)] += s.levels;
+            // A combined image sampler counts as a sampler and as a sampled image.
+            refuse(counts[size_t(BindKind::SampledImage)], "sampled images in one stage",
+                   std::min(limits.maxPerStageDescriptorSamplers, limits.maxPerStageDescriptorSampledImages),
+                   "maxPerStageDescriptorSamplers, maxPerStageDescriptorSampledImages");
+            refuse(counts[size_t(BindKind::StorageImage)], "storage image views in one stage",
+                   limits.maxPerStageDescriptorStorageImages, "maxPerStageDescriptorStorageImages");
+            refuse(counts[size_t(BindKind::StorageBuffer)], "storage buffers in one stage",
+                   limits.maxPerStageDescriptorStorageBuffers, "maxPerStageDescriptorStorageBuffers");
+            refuse(counts[size_t(BindKind::UniformBuffer)], "uniform buffers in one stage",
+                   limits.maxPerStageDescriptorUniformBuffers, "maxPerStageDescriptorUniformBuffers");
+        }
+    }
+}
+
 }  // namespace
 
 void GenericPass::createPipelines(const PipelineContext& ctx) {
@@ -268,6 +306,7 @@ void GenericPass::createPipelines(const PipelineContext& ctx) {
     const PlannedPass& pass = *ctx.pass;
     b->program = buildGenericProgram(pass, ctx.resources, params_, hasShaderOutputLayer(ctx.physicalDevice));
     const GenericProgram& p = b->program;
+    checkDescriptorLimits(ctx.physicalDevice, pass, p);
     b->executorRenderPass = ctx.renderPass != VK_NULL_HANDLE;
     if (p.graphics) {
         if (!b->executorRenderPass) b->ownRenderPass = renderPassWithoutAttachments(ctx.device);

@@ -314,6 +314,33 @@ TEST_F(ExecutorTest, APassPastTheDevicesColourAttachmentsIsRefusedByName) {
     }
 }
 
+// Generic binds a pass's shader usages in one push-descriptor set: a pass sampling more images
+// than the device allows in one (lavapipe's maxPushDescriptors is 32) is refused by name when
+// its pipelines are made, and one at the limit renders with validation silent.
+TEST_F(ExecutorTest, AGenericPassPastTheDevicesDescriptorsIsRefusedByName) {
+    const auto sampling = [](int images) {
+        std::string resources, writes, reads;
+        for (int i = 0; i < images; ++i) {
+            const std::string name = "s" + std::to_string(i);
+            resources += (i ? ", " : "") + ("\"" + name + R"(": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [4, 4], "clear": { "color": [0, 0, 0, 1] } })");
+            reads += ", \"" + name + "\": \"Read@Fragment\"";
+        }
+        return compileText(graphWithSwapchain(
+            "sampling", resources,
+            R"({ "name": "sample", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment")" + reads + " } }"));
+    };
+    (void)render(sampling(31));  // the swapchain is an attachment, not a descriptor
+    try {
+        (void)render(sampling(40));
+        ADD_FAILURE() << "a renderer bound 40 sampled images in one push-descriptor set";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'sample': binds 40 descriptors in one set, and the device"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("(maxPushDescriptors)"), std::string::npos) << e.what();
+    }
+}
+
 // A ReadWrite colour attachment of a format the device cannot blend (SNORM on lavapipe, or an
 // integer one) is read through a logical XOR: what the pass leaves depends on what the image
 // held, and validation stays silent (blending it is an error).
