@@ -7,7 +7,7 @@
 
 namespace skygraph::passes {
 
-/// Any usages, no slots; recorded by the executor itself (framework/executor/renderer_generic.cpp).
+/// Any usages, no slots; its recording code is generic/generic_pass.cpp.
 [[nodiscard]] PassTypeInfo genericPassType();
 [[nodiscard]] PassTypeInfo forwardPassType();
 [[nodiscard]] PassTypeInfo skyboxPassType();

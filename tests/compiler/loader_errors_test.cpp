@@ -1303,6 +1303,38 @@ TEST(LoaderErrors, APassRendersToOneDepthAndAtMostEightColourAttachments) {
                         {"one depth attachment", "passes[2].uses.depth is its depth attachment"}));
 }
 
+// Generic draws one triangle and touches a word of each buffer a shader binds: buffers too
+// small for that, and a second index or indirect buffer, are refused at the usage (before,
+// the renderer refused them with neither file nor path).
+TEST(LoaderErrors, GenericRefusesBuffersItCannotDrawWith) {
+    Json g = baseGraph();
+    const auto buffer = [](int bytes) { return Json{{"type", "buffer"}, {"size", bytes}, {"external", true}}; };
+    g["resources"]["ib"] = buffer(8);
+    g["resources"]["ib2"] = buffer(12);
+    g["resources"]["args"] = buffer(16);
+    g["resources"]["word"] = buffer(3);
+    const auto index = [](const char* resource) {
+        return Json{{"resource", resource}, {"access", "Read"}, {"stage", "VertexInput"}, {"as", "index"}};
+    };
+    Json uses = Json::array();
+    uses.push_back(Json{{"resource", "hdr_color"}, {"access", "Write"}, {"stage", "ColorAttachment"}});
+    uses.push_back(index("ib"));
+    uses.push_back(index("ib2"));
+    uses.push_back(Json{{"resource", "args"}, {"access", "Read"}, {"stage", "Indirect"}});
+    uses.push_back(Json{{"resource", "word"}, {"access", "Read"}, {"stage", "Fragment"}});
+    auto ds = loadErrors(withGeneric(g, "draw", uses));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "draw", "ib", {"12 bytes of an index buffer", "'ib' has 8"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[2]", "draw", "ib2", {"one index buffer, and 'ib' is its"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[3]", "draw", "args", {"20 bytes of an indirect buffer", "has 16"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[4]", "draw", "word", {"4 bytes of a buffer a shader binds"})) << listAll(ds);
+    EXPECT_EQ(ds.size(), 4u) << listAll(ds);
+    g["resources"]["ib"] = buffer(12);
+    g["resources"]["args"] = buffer(20);
+    g["resources"]["word"] = buffer(4);
+    uses.erase(2);
+    expectLoads(withGeneric(g, "draw", uses));
+}
+
 TEST(LoaderErrors, BadParams) {
     Json g = baseGraph();
     g["passes"][1]["params"]["operator"] = "foo";
