@@ -1058,6 +1058,12 @@ TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
     EXPECT_EQ(buffer.status, 1) << buffer.err;
     EXPECT_NE(buffer.err.find("cannot read back 'table': it is a buffer"), std::string::npos) << buffer.err;
     EXPECT_TRUE(workFiles().empty());
+    // An existing folder as -o: said so, not that its name lacks an extension.
+    const CliRun folder = run({"render", graph.string(), "--readback", "field", "-o", (dir_ / "work").string()});
+    EXPECT_EQ(folder.status, 1) << folder.err;
+    EXPECT_NE(folder.err.find("cannot write '" + (dir_ / "work").string() + "': it is a folder"), std::string::npos)
+        << folder.err;
+    EXPECT_TRUE(workFiles().empty());
 }
 
 // The built-in graph and scene on lavapipe under validation; the bar counts frames when asked

@@ -138,7 +138,7 @@ std::string imageNames(const GraphDesc& graph) {
     std::string names;
     for (const ResourceDesc& r : graph.resources)
         if (r.isImage()) names += (names.empty() ? "" : ", ") + r.name;
-    return names.empty() ? "none" : names;
+    return names;
 }
 
 }  // namespace
@@ -401,6 +401,10 @@ std::optional<std::string> outputFormat(const RenderOptions& options) {
         return options.outputFormat;
     }
     if (options.output.empty()) return "png";
+    if (std::error_code ec; std::filesystem::is_directory(options.output, ec)) {
+        std::cerr << "skygraph render: cannot write '" << printableName(options.output.string()) << "': it is a folder\n";
+        return std::nullopt;
+    }
     if (!known(fromName)) {
         std::cerr << "skygraph render: cannot write '" << printableName(options.output.string())
                   << "': its extension must be .png, .hdr or .exr, or --format must say which (e.g. -o /dev/stdout "
@@ -440,9 +444,12 @@ int renderCommand(const RenderOptions& options) {
         const std::string target = outputTarget(graph, compile(graph, co), options.readback);
         if (target.empty()) {
             if (!output.empty()) {
+                const std::string images = imageNames(graph);
                 std::cerr << "skygraph render: nothing to write to " << printableName(output.string()) << ": graph '" << graph.name
-                          << "' has no Present image that a pass uses; add --readback NAME with one of its images: "
-                          << imageNames(graph) << "\n";
+                          << "' has no Present image that a pass uses; "
+                          << (images.empty() ? std::string("nor any image to read back")
+                                             : "add --readback NAME with one of its images: " + images)
+                          << "\n";
                 return 1;
             }
             spdlog::info("graph '{}' has no Present image that a pass uses: no file is written (-o FILE --readback NAME "
