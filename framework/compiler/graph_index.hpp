@@ -130,9 +130,12 @@ public:
     [[nodiscard]] size_t clearResources() const noexcept { return clearResources_; }
     [[nodiscard]] bool external(size_t r) const noexcept { return resources_[r].external; }
     [[nodiscard]] bool exported(size_t r) const noexcept { return resources_[r].exported; }
-    /// Output-relative images whose `mips` exceed what the output size gives them, in file
-    /// order: compile() reports them (mip counts can only be checked at a real output size).
+    /// Images whose `mips` exceed what their extent (at the output size) gives them, in file
+    /// order: compile() reports them (the loader checks a file's fixed extents itself).
     [[nodiscard]] std::span<const uint32_t> tooManyMips() const noexcept { return tooManyMips_; }
+    /// Passes on a queue other than graphics, or with a condition, in file order: compile()
+    /// checks their queues and the features their conditions name (the loader checks a file's).
+    [[nodiscard]] std::span<const uint32_t> offGraphicsOrConditional() const noexcept { return offGraphicsOrConditional_; }
     /// The active passes' usages that name a range, as (pass, usage index for use()), in
     /// file order: what compile() checks against the resolved mip chains.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> rangedUses() const noexcept { return ranged_; }
@@ -210,7 +213,7 @@ private:
             appendCells(heldAtStart, cells, uint32_t{res.clear || res.external});
             appendCells(liveAtEnd_, cells, uint8_t{res.exported});
             // One level always fits (most images): the extent is resolved only for more.
-            if (r.isImage() && r.mips > 1 && r.extent.relativeToOutput) {
+            if (r.isImage() && r.mips > 1) {
                 const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
                 if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(w, h))))
                     tooManyMips_.push_back(static_cast<uint32_t>(&r - graph_.resources.data()));
@@ -234,6 +237,9 @@ private:
             const PassDesc& pass = graph_.passes[p];
             passNames_.push_back({names_.add(pass.name), names_.add(pass.type)});
             const bool active = pass.condition.evaluate(features);
+            // evaluate() has read the condition's text: what validate() checks costs no more lines.
+            if (pass.queue != QueueKind::Graphics || !pass.condition.text().empty()) [[unlikely]]
+                offGraphicsOrConditional_.push_back(static_cast<uint32_t>(p));
             passFlags_.push_back(static_cast<uint8_t>((active ? kActive : 0) | (pass.neverCull ? kNeverCull : 0)));
             const auto stamp = static_cast<uint32_t>(p + 2);
             uint32_t next = firstUse_.back();  // the usage's index for use() (size() would divide by 12)
@@ -345,6 +351,7 @@ private:
     std::vector<FitRow> fitRows_;  // per resource: usageFits' row for a usage of all of it
     std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
     std::vector<uint32_t> tooManyMips_;
+    std::vector<uint32_t> offGraphicsOrConditional_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask
     // it of every usage, from an array dense enough to stay in cache (the resource records
     // are 28 bytes each); otherwise it takes the record, a range and a multiplication.

@@ -623,23 +623,9 @@ private:
             return;
         }
         for (size_t i = 0; i < p.uses.size(); ++i) {
-            const Usage& u = p.uses[i].usage;
             const ResourceDesc& r = graph_.resources[p.uses[i].resource];
-            // vkCmdCopy*Image* of a depth or stencil aspect needs a queue with graphics.
-            if (p.queue != QueueKind::Graphics && u.stage == Stage::Transfer && r.isImage() &&
-                r.format.isDepthStencil()) {
-                error(where, p.name, r.name,
-                      on + ", but copies of the depth/stencil image '" + r.name + "' (" + toString(u) +
-                          ") need the graphics queue");
-                continue;
-            }
-            if (queueSupports(p.queue, u.stage)) continue;
-            const std::string& resource = r.name;
-            error(where, p.name, resource,
-                  on + ", but its use of '" + resource + "' (" + toString(u) + ") needs the " +
-                      std::string(toString(queueSupports(QueueKind::Compute, u.stage) ? QueueKind::Compute
-                                                                                      : QueueKind::Graphics)) +
-                      " queue" + (queueSupports(QueueKind::Compute, u.stage) ? " or the graphics queue" : ""));
+            if (std::string problem = queueProblem(p.queue, r, p.uses[i].usage); !problem.empty())
+                error(where, p.name, r.name, std::move(problem));
         }
     }
 

@@ -79,6 +79,10 @@ inline constexpr size_t kAccesses = 3, kStages = 8, kBindings = 5;
 /// usage (e.g. a depth format used as a color attachment).
 [[nodiscard]] std::string usageProblem(const ResourceDesc& resource, const Usage& usage);
 
+/// Empty when a pass on `queue` can perform `usage` of `resource`; otherwise why not, naming
+/// the queue it needs (a copy of a depth or stencil image needs graphics).
+[[nodiscard]] std::string queueProblem(QueueKind queue, const ResourceDesc& resource, const Usage& usage);
+
 namespace detail {
 /// Per usage mode (stage << 5 | access << 3 | as, for stage and as below 8 and access below 4;
 /// usageFits refuses larger values before it looks), the rows (fitRow below) it fits as a

@@ -167,13 +167,18 @@ void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule
     if (!diags.empty()) throw GraphError(std::move(diags));
 }
 
+static std::vector<std::string> declaredFeatures(const GraphDesc& graph) {
+    std::vector<std::string> names;
+    for (const auto& f : graph.features) names.push_back(f.name);
+    return names;
+}
+
 FeatureValues checkedFeatures(const GraphDesc& graph, const CompileOptions& options, Diagnostics& out) {
     FeatureValues features = graph.defaultFeatures();
     for (const auto& [name, value] : options.features) {
         if (!features.count(name)) {
-            std::vector<std::string> known;
-            for (const auto& f : graph.features) known.push_back(f.name);
-            out.add({graph.file, "features", "", "", "unknown feature '" + name + "'; the graph declares: " + joinNames(known)});
+            out.add({graph.file, "features", "", "",
+                     "unknown feature '" + name + "'; the graph declares: " + joinNames(declaredFeatures(graph))});
             continue;
         }
         features[name] = value;
@@ -206,6 +211,27 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
                              std::to_string(graph.slotNames.size()) + " slot name(s)"});
     }
     if (!index.invalidUses().empty()) throw GraphError(std::move(diags));
+    // What the loader refuses of a file's passes, for a GraphDesc built in code: a queue
+    // outside its enum (it would index past the schedule's tables), a queue that cannot
+    // perform a usage, a condition naming no declared feature (its pass would be culled
+    // without a word).
+    for (const uint32_t i : index.offGraphicsOrConditional()) {
+        const PassDesc& p = graph.passes[i];
+        const std::string path = p.jsonPath.empty() ? "passes[" + std::to_string(i) + "]" : p.jsonPath;
+        for (const std::string& name : p.condition.features())
+            if (!features.count(name))
+                diags.add({graph.file, path + ".if", p.name, "",
+                           "unknown feature '" + name + "'; the graph declares: " + joinNames(declaredFeatures(graph))});
+        if (size_t(p.queue) >= kQueueKinds) {
+            diags.add({graph.file, path + ".queue", p.name, "",
+                       "its queue (" + std::to_string(int(p.queue)) + ") is not a value of its enum"});
+            continue;
+        }
+        for (const UsageDecl& u : p.uses)
+            if (std::string problem = queueProblem(p.queue, graph.resources[u.resource], u.usage); !problem.empty())
+                diags.add({graph.file, path + ".queue", p.name, graph.resources[u.resource].name, std::move(problem)});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
     // The loader refuses these in a file with the same words.
     for (const auto& [pass, k] : index.misfitUses()) {
         const IndexedUsage& iu = index.use(k);
@@ -214,16 +240,19 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
                    usageProblem(r, index.declOf(pass, iu).usage)});
     }
     if (!index.misfitUses().empty()) throw GraphError(std::move(diags));
-    // Mip counts of output-relative images can only be checked against a real output size.
-    // The index finds them (and the ranged usages below) in the walks it makes anyway.
+    // Mip counts of output-relative images can only be checked against a real output size,
+    // and those of a GraphDesc built in code have not been through the loader. The index
+    // finds them (and the ranged usages below) in the walks it makes anyway.
     for (const uint32_t i : index.tooManyMips()) {
         const ResourceDesc& r = graph.resources[i];
         const auto [w, h] = r.extent.resolve(width, height);
         const auto most = static_cast<uint32_t>(std::bit_width(std::max(w, h)));
         diags.add({graph.file, r.jsonPath() + ".mips", "", r.name,
                    std::to_string(r.mips) + " levels is more than a " + std::to_string(w) + "x" +
-                       std::to_string(h) + " image has (" + std::to_string(most) + ") at output " +
-                       std::to_string(width) + "x" + std::to_string(height)});
+                       std::to_string(h) + " image has (" + std::to_string(most) + ")" +
+                       (r.extent.relativeToOutput
+                            ? " at output " + std::to_string(width) + "x" + std::to_string(height)
+                            : std::string())});
     }
     // Ranges are checked against the chain the output size resolves (and against extents an
     // embedder may have changed after loading): a range that starts past the last level, or

@@ -102,7 +102,9 @@ struct CompileOptions {
 /// built in code can hold: a resource past the format's limits (an extent, layer or mip count
 /// or buffer size the loader refuses) or of a shape or states it refuses (a cube of other than
 /// 6 square layers, an image2d of several, an image of no format, a transient presented, a
-/// buffer left for presentation or cleared, a clear value of the other kind), a usage naming a resource index past `resources`, an empty range,
+/// buffer left for presentation or cleared, a clear value of the other kind, more mips than a
+/// fixed extent has), a pass on a queue outside QueueKind or one that cannot perform its usages,
+/// a condition naming an undeclared feature, a usage naming a resource index past `resources`, an empty range,
 /// or more than 2^24 subresources (mip levels x layers) together; and when `options.memory` answers
 /// what cannot be placed (no memory type, a zero size, an alignment or granularity that is not
 /// a power of two). What the model itself throws passes through. Every error names what it can of the

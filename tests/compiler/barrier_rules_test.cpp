@@ -664,6 +664,54 @@ GraphDesc writerThenReader(bool readerUsesArray = false) {
     return parseGraph(text, "rules.json", registry());
 }
 
+// What the loader refuses of a pass, a GraphDesc built in code can hold: compile() names each
+// with the loader's words (before, a queue past its enum crashed the queue schedule, a pass on
+// a queue that cannot perform its usages compiled into a plan the verifier rejects, a
+// condition naming no declared feature culled its pass silently, and too many mips for a
+// fixed extent went to vkCreateImage).
+TEST(GraphsFromCode, PassesTheLoaderWouldRefuseAreErrors) {
+    const GraphDesc raster = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "raster.json",
+                                           PassRegistry::withBuiltins());
+    size_t tonemap = 0;
+    while (tonemap < raster.passes.size() && raster.passes[tonemap].name != "tonemap") ++tonemap;
+    ASSERT_LT(tonemap, raster.passes.size());
+    const std::string at = raster.passes[tonemap].jsonPath;
+    GraphDesc g = raster;
+    g.passes[tonemap].queue = static_cast<QueueKind>(7);
+    std::string text = compileErrorText(g);
+    EXPECT_NE(text.find(at + ".queue: pass 'tonemap': its queue (7) is not a value of its enum"), std::string::npos) << text;
+    g = raster;
+    g.passes[tonemap].queue = QueueKind::Transfer;
+    text = compileErrorText(g);
+    EXPECT_NE(text.find(at + ".queue: pass 'tonemap', resource 'swapchain': runs on the transfer queue, but its use "
+                             "of 'swapchain' (Write@ColorAttachment) needs the graphics queue"),
+              std::string::npos)
+        << text;
+    g = raster;
+    std::string error;
+    g.passes[tonemap].condition = *Condition::parse("skybox && typo_feature", error);
+    text = compileErrorText(g);
+    EXPECT_NE(text.find(at + ".if: pass 'tonemap': unknown feature 'typo_feature'; the graph declares:"), std::string::npos)
+        << text;
+    GraphDesc fixed = parseGraph(
+        R"({"version": 1, "name": "t", "resources": {
+              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "mips": 4 },
+              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                       "final": "ShaderRead" } },
+            "passes": [
+              { "name": "w", "type": "Generic", "uses": { "img": "Write@Compute" } },
+              { "name": "r", "type": "Generic", "uses": { "img": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})",
+        "rules.json", registry());
+    ResourceDesc& img = *std::find_if(fixed.resources.begin(), fixed.resources.end(),
+                                      [](const ResourceDesc& r) { return r.name == "img"; });
+    img.mips = 5;  // an 8x8 image has 4
+    text = compileErrorText(fixed);
+    EXPECT_NE(text.find("resources.img.mips: resource 'img': 5 levels is more than a 8x8 image has (4)"), std::string::npos)
+        << text;
+    img.mips = 4;
+    EXPECT_EQ(compileErrorText(fixed), "");
+}
+
 // The compiler's table answers as the rule it is built from, for every subject and every byte
 // value of a usage's three fields (values past an enum do not fit).
 TEST(UsageFit, TheTableAnswersAsTheRule) {

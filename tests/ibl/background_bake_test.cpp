@@ -48,7 +48,8 @@ protected:
                 std::vector<Dir>{{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}});
         });
         iblGraph_ = loadGraphFile(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json", library_.registry());
-        app::resizeEnvironmentGraph(iblGraph_, {kCube, kCube / 2});
+        // The prefiltered cube as large as the environment: its 6 levels need 32 texels.
+        app::resizeEnvironmentGraph(iblGraph_, {kCube, kCube});
     }
 
     /// The probe frame of `graph` (kFrameGraph, or a copy probing with another pass type).
