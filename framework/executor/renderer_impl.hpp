@@ -140,6 +140,10 @@ struct PassAttachments {
 
 /// `pass`'s attachments. Throws ExecutorError for a second depth attachment.
 [[nodiscard]] PassAttachments attachmentsOf(const PlannedPass& pass, const std::vector<ResourceState>& resources);
+/// Throws ExecutorError naming the pass unless its usages fill `type`'s slots as the type
+/// declares them: each usage one declared slot, with the slot's usage; required slots filled;
+/// a slot that is not repeated filled once.
+void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources);
 /// The framebuffer's extent: the smallest of the attachments' (their usages' base mip).
 [[nodiscard]] VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
                                            const std::vector<ResourceState>& resources);

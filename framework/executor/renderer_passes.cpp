@@ -41,6 +41,33 @@ VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& att
     return e;
 }
 
+/// The loader binds a file's usages to its pass type's slots; a GraphDesc built in code names
+/// slots itself, and recording code counts on what its declaration promises (a required slot
+/// filled, with the usage it declares), so the renderer holds the plan to it.
+void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources) {
+    std::vector<uint32_t> filled(type.slots.size(), 0);
+    for (const PlannedUsage& u : pass.usages) {
+        const std::string& resource = resources.at(u.resource).desc->name;
+        const auto slot = std::find_if(type.slots.begin(), type.slots.end(),
+                                       [&](const SlotDecl& s) { return s.name == u.slot; });
+        if (slot == type.slots.end())
+            throw ExecutorError(passError(pass, resource,
+                                          u.slot.empty() ? "fills no slot of type '" + type.name + "'"
+                                                         : "fills '" + std::string(u.slot) + "', which type '" +
+                                                               type.name + "' does not declare"));
+        const bool accessFits = std::find(slot->accesses.begin(), slot->accesses.end(), u.usage.access) != slot->accesses.end();
+        if (slot->stage != u.usage.stage || !accessFits || (slot->as != BindAs::Default && slot->as != u.usage.as))
+            throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "' (" + slot->describeUsage() +
+                                                              ") as " + toString(u.usage)));
+        if (++filled[size_t(slot - type.slots.begin())] > 1 && !slot->repeated)
+            throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "' a second time"));
+    }
+    for (size_t i = 0; i < type.slots.size(); ++i)
+        if (!type.slots[i].optional && filled[i] == 0)
+            throw ExecutorError(passError(pass, "", "type '" + type.name + "' needs slot '" + type.slots[i].name + "' (" +
+                                                        type.slots[i].describeUsage() + "); no usage fills it"));
+}
+
 }  // namespace detail
 
 std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const PlannedPass& pass, const PassDesc& desc) const {
@@ -101,6 +128,9 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     if (static_cast<size_t>(pass.declIndex) >= s.graph.passes.size())
         throw ExecutorError(passError(pass, "", "the plan's pass is not in the graph"));
     ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
+    if (options.passes)
+        if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type); type && !type->acceptsAnyUsage)
+            checkSlots(pass, *type, s.resources);
     ps.implementation = implementationOf(pass, *ps.desc);
     ps.attachments = attachmentsOf(pass, s.resources);
     if (ps.attachments.any()) buildRenderPass(s, ps);

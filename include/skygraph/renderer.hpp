@@ -117,7 +117,9 @@ public:
     /// and runs its plan's setup (planSetup), waiting for it. Throws ExecutorError (e.g.
     /// framesInFlight outside 1..8, a pass type without recording code, a format the device
     /// cannot use as the plan requires, a read-back of a format readback() does not convert,
-    /// a pass's createPipelines failing). Rebuilds of the plan state throw the same.
+    /// a pass's createPipelines failing, a pass whose usages do not fill its type's slots as the
+    /// type declares them, a pass past the device's attachment or descriptor limits). Rebuilds
+    /// of the plan state throw the same.
     Renderer(Device& device, CompiledGraph compiled, RendererOptions options = {});
     /// Waits for this renderer's own frames to finish, not for other renderers' (a background
     /// bake may go on running), then destroys what the renderer owns; images shared with

@@ -119,6 +119,47 @@ TEST_F(ExecutorTest, PassLibraryImplementationRecordsInsideRenderPass) {
     r.waitIdle();
 }
 
+// A GraphDesc built in code names its usages' slots itself: a renderer refuses, by name, a
+// usage that fills no declared slot or fills one with another usage, and a required slot left
+// empty (before, the pass's recording code found no slot, and a built-in one crashed on it).
+TEST_F(ExecutorTest, APlanWhoseUsagesDoNotFillTheirTypesSlotsIsRefusedByName) {
+    PassLibrary lib = library();
+    PassTypeInfo pair = fillType();
+    pair.name = "Pair";
+    SlotDecl extra;
+    extra.name = "extra";
+    extra.stage = Stage::Fragment;
+    extra.accesses = {Access::Read};
+    extra.optional = true;  // as the graph is loaded; the library's declaration requires it
+    pair.slots.push_back(extra);
+    PassRegistry loading = lib.registry();
+    loading.add(pair);
+    pair.slots.back().optional = false;
+    lib.add(pair, [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
+    const auto error = [&](const std::string& type, const std::function<void(GraphDesc&)>& edit) -> std::string {
+        GraphDesc g = parseGraph(graphText(type), "<lib>", loading);
+        edit(g);
+        const CompileOptions co = headless(g);
+        RendererOptions o;
+        o.passes = &lib;
+        try {
+            Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), o);
+        } catch (const ExecutorError& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    EXPECT_EQ(error("Fill", [](GraphDesc&) {}), "accepted");
+    EXPECT_EQ(error("Fill", [](GraphDesc& g) { g.passes[0].uses[0].slot = 0; }),
+              "pass 'fill', resource 'tex': fills no slot of type 'Fill'");
+    EXPECT_EQ(error("Fill", [](GraphDesc& g) { g.passes[0].uses[0].slot = g.internSlot("other"); }),
+              "pass 'fill', resource 'tex': fills 'other', which type 'Fill' does not declare");
+    EXPECT_EQ(error("Fill", [](GraphDesc& g) { g.passes[0].uses[0].usage.stage = Stage::Compute; }),
+              "pass 'fill', resource 'tex': fills slot 'target' (Write@ColorAttachment) as Write@Compute");
+    EXPECT_EQ(error("Pair", [](GraphDesc&) {}),
+              "pass 'fill': type 'Pair' needs slot 'extra' (Read@Fragment); no usage fills it");
+}
+
 /// The error of setGraph() to a graph whose "fill" pass is of `type`, on a renderer of the
 /// graph with Fill, which must keep rendering its old plan; empty when setGraph succeeds.
 std::string setGraphError(const PassLibrary& lib, const std::string& type) {
