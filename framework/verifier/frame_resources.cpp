@@ -23,6 +23,19 @@ void describe(const Plan& plan, const GraphDesc& graph, std::vector<ResourceShap
             continue;
         }
         const ResourceDesc& d = graph.resources[pr.decl];
+        // What the checks below read of the graph must be this resource's: a plan verified
+        // against another graph (or one whose resources moved) would be judged by others'.
+        if (pr.name != d.name) {
+            report(reporter, plan, FindingKind::MalformedPlan, site,
+                   "decl " + std::to_string(pr.decl) + " is the graph's '" + d.name + "', not '" + std::string(pr.name) + "'",
+                   int64_t(r));
+            continue;
+        }
+        if (pr.firstPass > pr.lastPass || pr.lastPass >= plan.passes().size())
+            report(reporter, plan, FindingKind::MalformedPlan, site,
+                   "its lifetime, passes " + std::to_string(pr.firstPass) + " to " + std::to_string(pr.lastPass) +
+                       ", is not within the plan's " + std::to_string(plan.passes().size()) + " passes",
+                   int64_t(r));
         ResourceShape& s = shapes[r];
         s.valid = true;
         s.image = d.isImage();

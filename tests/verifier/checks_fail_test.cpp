@@ -158,6 +158,33 @@ TEST(ChecksFail, MalformedPlanIsReportedNotCrashed) {
     EXPECT_TRUE(hasFinding(verifyPlan(c.plan, c.graph), FindingKind::MalformedPlan));
 }
 
+// A resource's lifetime must lie within the plan's passes, and its decl must be the graph
+// resource of its name: verified against another graph, every check would read others' shapes.
+TEST(ChecksFail, ALifetimeOrADeclThatIsNotTheResourcesIsMalformed) {
+    test::Compiled c = test::compileShipped("raster.json");
+    EXPECT_TRUE(verifyPlan(c.plan, c.graph).ok());
+    std::vector<PlannedResource>& resources = PlanEditor::resources(c.plan);
+    ASSERT_GE(resources.size(), 2u);
+    const PlannedResource first = resources[0], second = resources[1];
+    const auto malformed = [](const VerificationReport& report, const std::string& words) {
+        return std::any_of(report.findings.begin(), report.findings.end(), [&](const Finding& f) {
+            return f.kind == FindingKind::MalformedPlan && f.reason.find(words) != std::string::npos;
+        });
+    };
+    resources[0].lastPass = 999;
+    VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(malformed(r, "its lifetime, passes")) << r.summary();
+    resources[0] = first;
+    resources[0].firstPass = resources[0].lastPass + 1;
+    r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(malformed(r, "its lifetime, passes")) << r.summary();
+    resources[0] = first;
+    std::swap(resources[0].decl, resources[1].decl);
+    r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(malformed(r, "is the graph's '" + std::string(second.name) + "', not '" + std::string(first.name) + "'"))
+        << r.summary();
+}
+
 /// Plans edited at random (indices, ranges, kinds, layouts, masks, placements) give findings,
 /// never a crash or an exception.
 TEST(ChecksFail, GarbageNeverCrashes) {
