@@ -55,6 +55,11 @@ std::optional<FormatInfo> findFormat(VkFormat format) noexcept {
     return std::nullopt;
 }
 
+std::string formatName(VkFormat format) {
+    const auto info = findFormat(format);
+    return info ? std::string(info->name) : "VkFormat " + std::to_string(int(format));
+}
+
 std::span<const FormatInfo> knownFormats() noexcept { return kFormats; }
 
 }  // namespace skygraph

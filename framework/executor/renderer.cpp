@@ -122,10 +122,7 @@ std::string notReadBackable(const std::string& resource, VkFormat format) {
     std::string formats;
     for (const FormatInfo& f : knownFormats())
         if (readsBack(f.format)) formats += (formats.empty() ? "" : ", ") + std::string(f.name);
-    const auto info = findFormat(format);
-    return "cannot read back '" + resource + "': its format " +
-           (info ? std::string(info->name) : "VkFormat " + std::to_string(int(format))) +
-           " is not supported for read-back, which converts " + formats;
+    return "cannot read back '" + resource + "': its format " + formatName(format) + " is not supported for read-back, which converts " + formats;
 }
 
 }  // namespace detail

@@ -29,8 +29,7 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     const bool checksImages = !present->awaitingImages;
     if (checksImages && p.format != desc.format.format)
         throw ExecutorError(what + "its format is " + std::string(desc.format.name) + ", the present images' is " +
-                            (findFormat(p.format) ? std::string(findFormat(p.format)->name)
-                                                  : "VkFormat " + std::to_string(int(p.format))));
+                            formatName(p.format));
     const auto ext = desc.extent.resolve(s.outputWidth(), s.outputHeight());
     if (ext[0] != p.extent.width || ext[1] != p.extent.height || desc.layers > 1 ||
         desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)

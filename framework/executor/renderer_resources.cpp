@@ -315,10 +315,9 @@ void Renderer::Impl::checkImportShape(const ResourceDesc& d, uint32_t outputWidt
         from.layers != layers) {
         throw ExecutorError(what + "the image is " + std::to_string(from.width) + "x" + std::to_string(from.height) +
                             ", " + std::to_string(from.mips) + " mips, " + std::to_string(from.layers) +
-                            " layers of format " + std::to_string(from.format) + "; the graph declares " +
+                            " layers of format " + formatName(from.format) + "; the graph declares " +
                             std::to_string(ext[0]) + "x" + std::to_string(ext[1]) + ", " + std::to_string(mips) +
-                            " mips, " + std::to_string(layers) + " layers of format " +
-                            std::to_string(d.format.format));
+                            " mips, " + std::to_string(layers) + " layers of format " + std::string(d.format.name));
     }
 }
 

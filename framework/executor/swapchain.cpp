@@ -57,11 +57,6 @@ VkPresentModeKHR vulkanMode(PresentMode m) {
     return VK_PRESENT_MODE_FIFO_KHR;
 }
 
-std::string formatName(VkFormat f) {
-    if (const auto info = findFormat(f)) return std::string(info->name);
-    return "VkFormat " + std::to_string(int(f));
-}
-
 }  // namespace
 
 const char* presentModeName(PresentMode mode) noexcept {

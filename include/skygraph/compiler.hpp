@@ -97,7 +97,8 @@ struct CompileOptions {
 
 /// Schedules and synchronizes `graph`. Throws GraphError for problems that depend on the
 /// feature values (a read whose only writer is switched off, an unknown feature override) or
-/// on the output size (a mip range past the resolved chain, a read of levels of an
+/// on the output size (a mip range that starts past the resolved chain, where one that only
+/// runs past its end is clipped to it; a read of levels of an
 /// output-sized "full" chain that no pass writes), and for what only a GraphDesc
 /// built in code can hold: a resource past the format's limits (an extent, layer or mip count
 /// or buffer size the loader refuses) or of a shape or states it refuses (a cube of other than

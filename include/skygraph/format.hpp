@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace skygraph {
@@ -29,6 +30,9 @@ struct FormatInfo {
 /// Returns a copy; `name` is read during the call only.
 [[nodiscard]] std::optional<FormatInfo> findFormat(std::string_view name) noexcept;
 [[nodiscard]] std::optional<FormatInfo> findFormat(VkFormat format) noexcept;
+/// For messages: "R16G16B16A16_SFLOAT" as graph files name it, or "VkFormat 1000" for a
+/// format skygraph does not know.
+[[nodiscard]] std::string formatName(VkFormat format);
 /// A view of a static table: valid for the whole program.
 [[nodiscard]] std::span<const FormatInfo> knownFormats() noexcept;
 

@@ -210,7 +210,10 @@ TEST_F(Resize, AnImportForACulledResourceIsCheckedAgainstItsDeclaration) {
                 consumer.importImage("shared", producer.shareImage("shared"));
                 FAIL() << "a 16x8 image imported for a 16x16 resource";
             } catch (const ExecutorError& e) {
-                EXPECT_NE(std::string(e.what()).find("the graph declares 16x16"), std::string::npos) << e.what();
+                EXPECT_NE(std::string(e.what()).find("the image is 16x8, 1 mips, 1 layers of format R8G8B8A8_UNORM; the "
+                                                     "graph declares 16x16, 1 mips, 1 layers of format R8G8B8A8_UNORM"),
+                          std::string::npos)
+                    << e.what();
             }
         } else {
             consumer.importImage("shared", producer.shareImage("shared"));
