@@ -662,11 +662,7 @@ private:
         }
         // Per slot of the type (slot names are unique in a type): the first usage filling it.
         filled_.assign(type.slots.size(), kUnfilled);
-        auto matches = [&](const SlotDecl& s, const UsageDecl& u) {
-            return s.stage == u.usage.stage &&
-                   std::find(s.accesses.begin(), s.accesses.end(), u.usage.access) != s.accesses.end() &&
-                   (s.as == BindAs::Default || s.as == u.usage.as);
-        };
+        auto matches = [](const SlotDecl& s, const UsageDecl& u) { return s.accepts(u.usage.mode()); };
         auto expected = [&] {
             std::string list;
             for (const auto& s : type.slots)

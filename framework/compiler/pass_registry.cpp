@@ -2,6 +2,7 @@
 
 #include "json_path.hpp"
 
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -17,6 +18,11 @@ std::string SlotDecl::describeUsage() const {
     out += "@" + std::string(toString(stage));
     if (as != BindAs::Default) out += " as " + std::string(toString(as));
     return out;
+}
+
+bool SlotDecl::accepts(const UsageMode& usage) const noexcept {
+    return stage == usage.stage && std::find(accesses.begin(), accesses.end(), usage.access) != accesses.end() &&
+           (as == BindAs::Default || as == usage.as);
 }
 
 ParamError ParamError::forKey(std::string_view key, std::string message) {

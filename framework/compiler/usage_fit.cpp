@@ -3,14 +3,14 @@
 namespace skygraph {
 
 std::string queueProblem(QueueKind queue, const ResourceDesc& r, const Usage& u) {
-    const std::string on = "runs on the " + std::string(toString(queue)) + " queue";
+    const auto on = [&] { return "runs on the " + std::string(toString(queue)) + " queue"; };
     // vkCmdCopy*Image* of a depth or stencil aspect needs a queue with graphics.
     if (queue != QueueKind::Graphics && u.stage == Stage::Transfer && r.isImage() && r.format.isDepthStencil())
-        return on + ", but copies of the depth/stencil image '" + r.name + "' (" + toString(u) +
+        return on() + ", but copies of the depth/stencil image '" + r.name + "' (" + toString(u) +
                ") need the graphics queue";
     if (queueSupports(queue, u.stage)) return {};
     const bool compute = queueSupports(QueueKind::Compute, u.stage);
-    return on + ", but its use of '" + r.name + "' (" + toString(u) + ") needs the " +
+    return on() + ", but its use of '" + r.name + "' (" + toString(u) + ") needs the " +
            std::string(toString(compute ? QueueKind::Compute : QueueKind::Graphics)) + " queue" +
            (compute ? " or the graphics queue" : "");
 }

@@ -227,6 +227,7 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
                        "its queue (" + std::to_string(int(p.queue)) + ") is not a value of its enum"});
             continue;
         }
+        if (p.queue == QueueKind::Graphics) continue;  // it performs every usage
         for (const UsageDecl& u : p.uses)
             if (std::string problem = queueProblem(p.queue, graph.resources[u.resource], u.usage); !problem.empty())
                 diags.add({graph.file, path + ".queue", p.name, graph.resources[u.resource].name, std::move(problem)});

@@ -55,8 +55,7 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
                                           u.slot.empty() ? "fills no slot of type '" + type.name + "'"
                                                          : "fills '" + std::string(u.slot) + "', which type '" +
                                                                type.name + "' does not declare"));
-        const bool accessFits = std::find(slot->accesses.begin(), slot->accesses.end(), u.usage.access) != slot->accesses.end();
-        if (slot->stage != u.usage.stage || !accessFits || (slot->as != BindAs::Default && slot->as != u.usage.as))
+        if (!slot->accepts(u.usage))
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "' (" + slot->describeUsage() +
                                                               ") as " + toString(u.usage)));
         if (++filled[size_t(slot - type.slots.begin())] > 1 && !slot->repeated)

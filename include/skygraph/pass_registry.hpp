@@ -32,6 +32,9 @@ struct SlotDecl {
 
     /// "Read@Fragment" or "Write|ReadWrite@ColorAttachment".
     [[nodiscard]] std::string describeUsage() const;
+    /// Whether a usage of `usage` can fill this slot: its stage, one of its accesses, and its
+    /// binding when the slot names one.
+    [[nodiscard]] bool accepts(const UsageMode& usage) const noexcept;
 };
 
 /// A problem found in a pass's `params`, relative to the params object.

@@ -1,5 +1,6 @@
 // Device selection, validation switches and the render command's exit statuses.
 #include "executor_test_util.hpp"
+#include "throwing_pass.hpp"
 
 #include "app/render.hpp"
 
@@ -184,18 +185,12 @@ TEST(DeviceFinishDeathTest, DestroyingTheDeviceFirstSaysWhatWasStillAlive) {
 
 /// Generic's recording code, then a vkCmdSetViewport of no viewports: a call validation
 /// reports (VUID-vkCmdSetViewport-viewportCount-arraylength) and the driver records as nothing.
-class ReportedPass : public PassImplementation {
+class ReportedPass : public AfterGeneric {
 public:
-    explicit ReportedPass(std::unique_ptr<PassImplementation> generic) : generic_(std::move(generic)) {}
-    void createPipelines(const PipelineContext& context) override { generic_->createPipelines(context); }
-    void recordBeforeRenderPass(const RecordContext& context) override { generic_->recordBeforeRenderPass(context); }
-    void record(const RecordContext& context) override {
-        generic_->record(context);
-        vkCmdSetViewport(context.cmd, 0, 0, nullptr);
-    }
+    using AfterGeneric::AfterGeneric;
 
-private:
-    std::unique_ptr<PassImplementation> generic_;
+protected:
+    void afterGeneric(const RecordContext& context) override { vkCmdSetViewport(context.cmd, 0, 0, nullptr); }
 };
 
 // A render whose frames validation reports on exits 1 and writes no image (the control, the
