@@ -18,6 +18,11 @@ SlotDecl byNameOnly(SlotDecl decl) {
     return decl;
 }
 
+SlotDecl ofTypes(SlotDecl decl, std::vector<ResourceType> types) {
+    decl.types = std::move(types);
+    return decl;
+}
+
 ParamValidator rules(std::vector<ParamRule> list) {
     return [list = std::move(list)](const json& params) {
         std::vector<ParamError> errors;

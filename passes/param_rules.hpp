@@ -17,6 +17,8 @@ namespace skygraph::passes {
                             bool optional = false, bool repeated = false);
 /// `decl`, bound only by name (SlotDecl::byNameOnly).
 [[nodiscard]] SlotDecl byNameOnly(SlotDecl decl);
+/// `decl`, filled only by resources of `types` (SlotDecl::types).
+[[nodiscard]] SlotDecl ofTypes(SlotDecl decl, std::vector<ResourceType> types);
 
 /// Checks one parameter's value: an empty string when it is fine, else what is wrong.
 using ParamCheck = std::function<std::string(const nlohmann::json&)>;

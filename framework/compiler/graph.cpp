@@ -19,6 +19,27 @@
 
 namespace skygraph {
 
+std::string_view toString(ResourceType type) noexcept {
+    switch (type) {
+        case ResourceType::Image2D: return "image2d";
+        case ResourceType::Cube: return "cube";
+        case ResourceType::Image2DArray: return "image2d_array";
+        case ResourceType::Buffer: return "buffer";
+    }
+    return "?";
+}
+
+std::string_view toString(ExternalState state) noexcept {
+    switch (state) {
+        case ExternalState::None: return "None";
+        case ExternalState::Present: return "Present";
+        case ExternalState::TransferSrc: return "TransferSrc";
+        case ExternalState::ShaderRead: return "ShaderRead";
+        case ExternalState::General: return "General";
+    }
+    return "?";
+}
+
 PassParams::PassParams() noexcept = default;
 PassParams::PassParams(nlohmann::json object) {
     if (!object.is_object()) throw std::invalid_argument("PassParams: params must be a JSON object");

@@ -13,10 +13,22 @@ std::string unpresentableShape(const ResourceDesc& r) {
     return "a presented image is a swapchain's: an image2d of a color format with one mip, not " + is;
 }
 
+std::string handedBackProblem(const ResourceDesc& r) {
+    return "an external resource is kept for the next frame as this frame leaves it, in its final state " +
+           std::string(toString(r.final)) + ", so it must arrive in that state too, not " +
+           std::string(toString(r.initial)) + " (leave `initial` out)";
+}
+
 Diagnostics limitProblems(const GraphDesc& graph) {
     Diagnostics diags;
     for (const ResourceDesc& r : graph.resources) {
         const auto problem = [&](std::string what) { diags.add({graph.file, r.jsonPath(), "", r.name, std::move(what)}); };
+        if (!enumsFit(r)) {
+            problem("its type (" + std::to_string(int(r.type)) + "), initial (" + std::to_string(int(r.initial)) +
+                    ") and final (" + std::to_string(int(r.final)) + ") states or sharing (" +
+                    std::to_string(int(r.sharing)) + ") hold a value outside its enum");
+            continue;
+        }
         if (!statesFit(r)) {
             if (r.final == ExternalState::Present && !r.external)
                 problem("only an external image (the swapchain's) can be presented");
@@ -26,6 +38,8 @@ Diagnostics limitProblems(const GraphDesc& graph) {
                 problem("a buffer cannot be cleared by the graph");
             else if (!r.isImage())
                 problem("a buffer cannot start or end as Present or TransferSrc, which are image layouts");
+            else if (handedBackChanged(r))
+                problem(handedBackProblem(r));
             else
                 problem(std::string(r.format.isDepthStencil() ? "the depth format " : "the color format ") +
                         std::string(r.format.name) + " clears to " +

@@ -32,9 +32,27 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 /// Whether a resource's states fit it as the loader requires of a file: only an external image
 /// of a swapchain image's shape is presented, a buffer is never left for presentation or a
 /// copy source, and only images clear, to a value of their format's kind.
+/// Whether `r` is an external resource that the frame exports in another state than it
+/// arrives in: the renderer keeps it for the next frame as this one leaves it, in its `final`
+/// state, so the next frame would not find it in its `initial` one.
+[[nodiscard]] inline bool handedBackChanged(const ResourceDesc& r) noexcept {
+    return r.external && r.isExported() && r.initial != ExternalState::None && r.initial != r.final;
+}
+
+/// What is wrong with a resource handedBackChanged() refuses, for messages.
+[[nodiscard]] std::string handedBackProblem(const ResourceDesc& r);
+
+/// Whether `r`'s type, states and sharing are values of their enums (a code-built GraphDesc
+/// can hold any byte there).
+[[nodiscard]] inline bool enumsFit(const ResourceDesc& r) noexcept {
+    return r.type <= ResourceType::Buffer && r.initial <= ExternalState::General && r.final <= ExternalState::General &&
+           r.sharing <= Sharing::Concurrent;
+}
+
 [[nodiscard]] inline bool statesFit(const ResourceDesc& r) noexcept {
     const auto imageOnly = [](ExternalState s) { return s == ExternalState::Present || s == ExternalState::TransferSrc; };
     if (r.final == ExternalState::Present && (!r.external || (r.isImage() && !presentable(r)))) return false;
+    if (handedBackChanged(r)) return false;
     if (!r.isImage()) return !imageOnly(r.final) && !imageOnly(r.initial) && !r.clear;
     return !r.clear || r.clear->isDepth == r.format.isDepthStencil();
 }
@@ -43,6 +61,7 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 /// states are as the loader allows (a code-built GraphDesc has not been through it); the index
 /// asks once per resource, so only a resource past them costs a message.
 [[nodiscard]] inline bool withinLimits(const ResourceDesc& r) noexcept {
+    if (!enumsFit(r)) return false;
     if (!r.isImage()) return r.sizeBytes != 0 && r.sizeBytes <= kMaxBufferBytes && statesFit(r);
     const Extent& e = r.extent;
     const bool extent = e.relativeToOutput ? e.divisor != 0 && e.divisor <= kMaxDivisor

@@ -719,6 +719,12 @@ private:
                                                           decl.describeUsage());
                 continue;
             }
+            if (!decl.takes(graph_.resources[u.resource].type)) {
+                error(usePath(p, i), p.name, resName, "slot '" + decl.name + "' of " + type.name + " takes " +
+                                                          decl.describeTypes() + ", not '" + resName + "' of type " +
+                                                          std::string(toString(graph_.resources[u.resource].type)));
+                continue;
+            }
             if (filled_[slot] != kUnfilled && !decl.repeated) {
                 error(usePath(p, i), p.name, resName, alreadyFilled(p, type, slot));
                 continue;

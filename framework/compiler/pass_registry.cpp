@@ -25,6 +25,19 @@ bool SlotDecl::accepts(const UsageMode& usage) const noexcept {
            (as == BindAs::Default || as == usage.as);
 }
 
+bool SlotDecl::takes(ResourceType type) const noexcept {
+    return types.empty() || std::find(types.begin(), types.end(), type) != types.end();
+}
+
+std::string SlotDecl::describeTypes() const {
+    std::string out;
+    for (size_t i = 0; i < types.size(); ++i) {
+        const std::string name(toString(types[i]));
+        out += (i == 0 ? "" : " or ") + std::string(name[0] == 'i' ? "an " : "a ") + name;
+    }
+    return out;
+}
+
 ParamError ParamError::forKey(std::string_view key, std::string message) {
     return {memberPath("", key), std::move(message)};
 }

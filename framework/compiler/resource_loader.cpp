@@ -131,11 +131,24 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
     }
 }
 
+/// What a depth/stencil format's clear holds, for advice: its aspects' keys.
+std::string depthStencilClear(const FormatInfo& f) {
+    if (f.hasDepth && f.hasStencil) return "{\"depth\": d, \"stencil\": s}";
+    return f.hasStencil ? "{\"stencil\": s}" : "{\"depth\": d}";
+}
+
 void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
     if (!clear) return;
     ClearValue c;
+    // The advice fits the format where it is known.
+    const std::string expected = !r.format.isDepthStencil() ? "expected {\"color\": [r, g, b, a]}"
+                                 : r.format.hasDepth         ? "expected " + depthStencilClear(r.format)
+                                                             : "expected {\"stencil\": s}";
+    const std::string either = r.format.format == VK_FORMAT_UNDEFINED
+                                   ? "expected {\"color\": [r, g, b, a]} or {\"depth\": d}"
+                                   : expected + " for the format " + std::string(r.format.name);
     if (!clear.isObject()) {
-        fail("clear", "expected {\"color\": [r, g, b, a]} or {\"depth\": d}");
+        fail("clear", either);
         return;
     }
     const auto f = fieldsOf(clear, kClearKeys);
@@ -163,14 +176,16 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
             fail("clear.color", "expected four numbers");
         else
             for (size_t i = 0; i < 4; ++i) c.color[i] = color[i].number<float>();
-        if (r.format.isDepthStencil()) fail("clear.color", "a depth format needs {\"depth\": d}");
+        if (r.format.isDepthStencil())
+            fail("clear.color", "the depth/stencil format " + std::string(r.format.name) + " needs " +
+                                    depthStencilClear(r.format));
     } else if (f[key::depth] || f[key::stencil]) {
         c.isDepth = true;
         if (const JsonValue depth = f[key::depth]) {
             if (r.format.isDepthStencil() && !r.format.hasDepth)
                 fail("clear.depth", "format " + std::string(r.format.name) + " has no depth aspect");
             else if (!depth.isNumber() || depth.number<double>() < 0.0 || depth.number<double>() > 1.0)
-                fail("clear.depth", "expected a number in [0, 1]");
+                fail("clear.depth", "expected a number in [0, 1], got " + depth.dump());
             else
                 c.depth = depth.number<float>();
         }
@@ -185,7 +200,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
         if (r.isImage() && r.format.format != VK_FORMAT_UNDEFINED && !r.format.isDepthStencil())
             fail("clear", "a color format needs {\"color\": [r, g, b, a]}");
     } else {
-        fail("clear", "expected {\"color\": [r, g, b, a]} or {\"depth\": d}");
+        fail("clear", either);
     }
     r.clear = c;
 }
@@ -219,6 +234,8 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
     // An external resource that persists comes back in the state it was left in.
     if (r.external && r.initial == ExternalState::None)
         r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;
+    else if (r.external && r.isExported() && r.initial != r.final)
+        fail("initial", handedBackProblem(r));
     if (r.external && r.clear) fail("clear", "an external resource arrives with contents; it is not cleared");
     if (const JsonValue alias = f[key::alias]) {
         if (!alias.isBoolean()) fail("alias", "expected true or false");

@@ -34,9 +34,19 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
             names.push_back(&name);
     }
     if (names.empty()) return "it writes nothing (mark it never_cull if it has side effects)";
-    std::string list;
-    for (const std::string* n : names) list += (list.empty() ? "'" : ", '") + *n + "'";
-    return "nothing reads what it writes: no later pass that runs reads " + list + " and none of it is exported";
+    // An exported resource is live at the end: what this pass wrote of it, a later pass
+    // wrote over before anything read it.
+    std::string unread, overwritten;
+    for (const std::string* n : names) {
+        std::string& list = graph.findResource(*n)->isExported() ? overwritten : unread;
+        list += (list.empty() ? "'" : ", '") + *n + "'";
+    }
+    std::string reason = "nothing reads what it writes: ";
+    if (!unread.empty()) reason += "no later pass that runs reads " + unread + " and none of it is exported";
+    if (!unread.empty() && !overwritten.empty()) reason += "; ";
+    if (!overwritten.empty())
+        reason += "a later pass that runs writes over what it writes of " + overwritten + " before anything reads it";
+    return reason;
 }
 
 /// Culling: backwards liveness per subresource. Contents are live if an exported resource

@@ -166,6 +166,25 @@ inline void Synchronizer::addAccess(uint32_t r, const UsageMode& usage, const Su
     }
 }
 
+/// What the loader refuses in a file, for a GraphDesc built in code: two usages of pass `p`
+/// (its scheduled step, the last added) that share a subresource. A render pass cannot take
+/// an attachment as its own input, and one barrier cannot order a pass after itself.
+void Synchronizer::checkUsedOnce(uint32_t p, std::span<const IndexedUsage> uses) const {
+    const uint32_t first = steps_.back().firstAccess;
+    const auto& usages = *usages_;
+    for (uint32_t i = 1; i < uses.size(); ++i)
+        for (uint32_t j = 0; j < i; ++j) {
+            const PlannedUsage& a = usages[first + i];
+            const PlannedUsage& b = usages[first + j];
+            if (a.resource != b.resource || !a.range.overlaps(b.range)) continue;
+            Diagnostics diags;
+            diags.add({graph_.file, index_.jsonPathOf(p, uses[i]), graph_.passes[p].name,
+                       std::string(plan_.resources()[a.resource].name),
+                       "overlaps " + index_.jsonPathOf(p, uses[j]) + "; one pass may use each subresource once"});
+            throw GraphError(std::move(diags));
+        }
+}
+
 // Plan steps (with clears placed), plan resources, and an access record per usage.
 void Synchronizer::planAccesses(const Schedule& schedule) {
     std::vector<uint32_t> planIndex(graph_.resources.size(), kNone);
@@ -216,6 +235,9 @@ void Synchronizer::planAccesses(const Schedule& schedule) {
             addAccess(r, u.usage, facts_[r].grid.resolve(index_.writtenRange(u)), loadOpClear);
             if (u.fillsSlot) addSlot(p, u);
         }
+        // Only a pass using a resource twice (or a range of several subresources) can use one
+        // subresource twice.
+        if (steps_.back().mayMerge) checkUsedOnce(p, uses);
     }
     // After the frame's last pass: each read-back copies its image's first mip and layer
     // (a `clear` image no pass uses is cleared first, as at any first use).

@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -128,6 +129,7 @@ private:
     [[gnu::always_inline]] inline bool clearsThroughLoadOp(const IndexedUsage& firstUse) const;
     [[gnu::always_inline]] static inline Access effectiveAccess(Access a, bool loadOpClear);
     inline void addSlot(uint32_t pass, const IndexedUsage& u);
+    void checkUsedOnce(uint32_t pass, std::span<const IndexedUsage> uses) const;
     inline uint32_t addOwnText(std::string_view text);
     [[gnu::always_inline]] inline void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range,
                                                  bool loadOpClear);

@@ -213,9 +213,24 @@ void checkUploads(const GraphDesc& graph, const SetupOptions& options) {
     if (!diags.empty()) throw GraphError(std::move(diags));
 }
 
+/// Throws unless each of `frame`'s resources names a resource of `graph` by its decl: the
+/// graph it was compiled from, which the plan's records index.
+void checkCompiledFrom(const GraphDesc& graph, const Plan& frame) {
+    for (const PlannedResource& res : frame.resources())
+        if (res.decl >= graph.resources.size() || graph.resources[res.decl].name != res.name) {
+            Diagnostics diags;
+            diags.add({graph.file, "resources", "", std::string(res.name),
+                       "the plan of graph '" + frame.graph() + "' was not compiled from this graph ('" + graph.name +
+                           "'): its resource '" + std::string(res.name) + "' is not resource " +
+                           std::to_string(res.decl) + " here"});
+            throw GraphError(std::move(diags));
+        }
+}
+
 }  // namespace
 
 Plan planSetup(const GraphDesc& graph, const Plan& frame, const SetupOptions& options) {
+    checkCompiledFrom(graph, frame);
     checkUploads(graph, options);
     StepListBuilder steps(frame);
     for (uint32_t fr = 0; fr < frame.resources().size(); ++fr) {
@@ -254,6 +269,7 @@ Plan planSetup(const GraphDesc& graph, const Plan& frame, const SetupOptions& op
 }
 
 Plan planImageRead(const GraphDesc& graph, const Plan& frame, std::string_view resource) {
+    checkCompiledFrom(graph, frame);
     const int32_t fr = frame.resourceIndex(resource);
     const ResourceDesc* d = graph.findResource(resource);
     std::string problem;

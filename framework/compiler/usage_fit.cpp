@@ -46,7 +46,8 @@ std::string usageProblem(const ResourceDesc& r, const Usage& u) {
         case UsageMisfit::UniformWrite: return "uniform buffers are read-only";
         case UsageMisfit::StorageFormat:
             return "format " + format +
-                   " cannot be a storage image (sRGB and depth formats never can); sample it or pick a storage format";
+                   " cannot be a storage image: it is not a storage format (no sRGB or depth format is); sample it or "
+                   "pick a storage format";
     }
     return {};
 }

@@ -7,17 +7,46 @@
 
 #include <algorithm>
 #include <bit>
+#include <set>
 
 namespace skygraph {
 namespace {
 
-/// "reads 'x' (Read@Fragment) but no earlier pass writes it, ...", for a read with no source.
-Diagnostic unsourcedRead(const GraphDesc& graph, size_t pass, size_t use, const std::string& why) {
+/// "reads 'x' (Read@Fragment) but no earlier pass writes it, ...", for a read with no source;
+/// `unwritten` names the part of the read no pass writes (e.g. "mip 1") where others are.
+Diagnostic unsourcedRead(const GraphDesc& graph, size_t pass, size_t use, const std::string& why,
+                         const std::string& unwritten = {}) {
     const UsageDecl& u = graph.passes[pass].uses[use];
     const ResourceDesc& res = graph.resources[u.resource];
     return {graph.file, graph.usageJsonPath(pass, use), graph.passes[pass].name, res.name,
-            "reads '" + res.name + "' (" + toString(u.usage) +
-                ") but no earlier pass writes it, and it is neither `clear` nor `external`" + why};
+            "reads '" + res.name + "' (" + toString(u.usage) + ") but no earlier pass writes " +
+                (unwritten.empty() ? "it" : unwritten + " of it") + ", and it is neither `clear` nor `external`" + why};
+}
+
+/// "mip 1", "mips 1 and 2", "mip 0 (layers 2, 3)": per mip of `range`, its layers for which
+/// `missing(mip, layer)` holds, all of them or those listed.
+template <typename Missing>
+std::string describeUnwritten(const SubresourceRange& range, Missing&& missing) {
+    std::vector<std::string> parts;
+    bool wholeMipsOnly = true;
+    for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m) {
+        std::string layers;
+        uint32_t count = 0;
+        for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l)
+            if (missing(m, l)) layers += (count++ == 0 ? "" : ", ") + std::to_string(l);
+        if (count == 0) continue;
+        const bool whole = count == range.layerCount;
+        wholeMipsOnly &= whole;
+        parts.push_back(std::to_string(m) + (whole ? "" : " (layer" + std::string(count > 1 ? "s " : " ") + layers + ")"));
+    }
+    std::string out;
+    if (!wholeMipsOnly) {  // "mip 0 (layers 2, 3), mip 1"
+        for (const std::string& part : parts) out += (out.empty() ? "mip " : ", mip ") + part;
+        return out;
+    }
+    out = parts.size() > 1 ? "mips " : "mip ";  // "mips 1, 2 and 3"
+    for (size_t i = 0; i < parts.size(); ++i) out += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+    return out;
 }
 
 /// "; its writer 'x' is off: ..." for the first earlier pass that would write `resource` but
@@ -104,9 +133,18 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
             if (readsContents(u.usage.access)) {
                 SubresourceRange read = range;
                 if (g.chainOfOutput) read.mipCount = 1;
-                bool missing = false;
-                forEachCell(g, read, [&](uint32_t held) { missing |= held - 1 >= stamp - 1; });  // 0 wraps
-                if (missing) out.add(unsourcedRead(graph, p, k, ""));
+                size_t missing = 0, cellsRead = 0;
+                forEachCell(g, read, [&](uint32_t held) {
+                    missing += held - 1 >= stamp - 1;  // 0 wraps
+                    ++cellsRead;
+                });
+                const auto unheld = [&](uint32_t m, uint32_t l) {
+                    return heldFrom[g.firstCell + size_t(m) * g.layers + l] - 1 >= stamp - 1;
+                };
+                if (missing == cellsRead)
+                    out.add(unsourcedRead(graph, p, k, ""));
+                else if (missing > 0)
+                    out.add(unsourcedRead(graph, p, k, "", describeUnwritten(read, unheld)));
             }
             if (writesContents(u.usage.access))
                 forEachCell(g, range, [&](uint32_t& held) { if (held == 0) held = stamp; });
@@ -123,6 +161,21 @@ void checkOutputNames(const GraphDesc& graph, const CompileOptions& options) {
         diags.add({graph.file, "", "", "",
                    "CompileOptions::presentReplacement must be a state to leave the image in (Present, TransferSrc, "
                    "ShaderRead or General), not None"});
+    // A code-built GraphDesc may hold two resources of one name (the loader refuses them):
+    // each option naming it would pick one of them, not necessarily the same.
+    std::set<std::string_view> named;
+    if (options.outputs) named.insert(options.outputs->begin(), options.outputs->end());
+    for (const auto& [name, state] : options.exports) named.insert(name);
+    named.insert(options.readbacks.begin(), options.readbacks.end());
+    for (const std::string_view name : named) {
+        const auto same = std::count_if(graph.resources.begin(), graph.resources.end(),
+                                        [&](const ResourceDesc& r) { return r.name == name; });
+        if (same > 1)
+            diags.add({graph.file, "resources", "", std::string(name),
+                       std::to_string(same) + " resources are named '" + std::string(name) +
+                           "': the options that name it cannot tell which"});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
     if (options.outputs)
         for (const std::string& name : *options.outputs) {
             const ResourceDesc* r = graph.findResource(name);
@@ -198,6 +251,17 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
               Diagnostics diags) {
     const GraphDesc& graph = index.graph();
     const uint32_t width = options.outputWidth, height = options.outputHeight;
+    // Enums the compile reads once: a value outside them would pick no branch of its switches.
+    const auto outside = [&](std::string_view what, int value) {
+        diags.add({graph.file, "", "", "", std::string(what) + " (" + std::to_string(value) + ") is not a value of its enum"});
+    };
+    if (graph.layouts > LayoutPolicy::Optimal) outside("the graph's layouts", int(graph.layouts));
+    if (options.layouts && *options.layouts > LayoutPolicy::Optimal)
+        outside("CompileOptions::layouts", int(*options.layouts));
+    if (options.presentReplacement > ExternalState::General)
+        outside("CompileOptions::presentReplacement", int(options.presentReplacement));
+    if (options.placement > MemoryStrategy::Unaliased) outside("CompileOptions::placement", int(options.placement));
+    if (!diags.empty()) throw GraphError(std::move(diags));
     // A GraphDesc built in code can name a resource or a slot that is not there: every sweep
     // would index past its tables.
     for (const auto& [pass, k] : index.invalidUses()) {

@@ -144,6 +144,11 @@ struct PassAttachments {
 /// declares them: each usage one declared slot, with the slot's usage; required slots filled;
 /// a slot that is not repeated filled once.
 void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources);
+/// Throws ExecutorError, naming the pass, for what its type's own validators refuse of
+/// `desc` (its params, its usages): the loader runs them for a graph file, not for a
+/// GraphDesc built in code.
+void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, const PassTypeInfo& type,
+                             const GraphDesc& graph);
 /// The framebuffer's extent: the smallest of the attachments' (their usages' base mip).
 [[nodiscard]] VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
                                            const std::vector<ResourceState>& resources);

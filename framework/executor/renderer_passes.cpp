@@ -58,6 +58,11 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
         if (!slot->accepts(u.usage))
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "' (" + slot->describeUsage() +
                                                               ") as " + toString(u.usage)));
+        const ResourceType resourceType = resources.at(u.resource).desc->type;
+        if (!slot->takes(resourceType))
+            throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "', which takes " +
+                                                              slot->describeTypes() + ", with a resource of type " +
+                                                              std::string(toString(resourceType))));
         if (++filled[size_t(slot - type.slots.begin())] > 1 && !slot->repeated)
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "' a second time"));
     }
@@ -65,6 +70,27 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
         if (!type.slots[i].optional && filled[i] == 0)
             throw ExecutorError(passError(pass, "", "type '" + type.name + "' needs slot '" + type.slots[i].name + "' (" +
                                                         type.slots[i].describeUsage() + "); no usage fills it"));
+}
+
+void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, const PassTypeInfo& type,
+                             const GraphDesc& graph) {
+    std::string problems;
+    const auto add = [&](const std::string& resource, const std::string& what) {
+        problems += (problems.empty() ? "" : "; ") + passError(pass, resource, what);
+    };
+    // The application's validators: what they throw is reported like what they return.
+    try {
+        if (type.validateParams)
+            for (const ParamError& e : type.validateParams(desc.params.json()))
+                add("", "params" + std::string(e.path.empty() || e.path.starts_with('[') ? "" : ".") + e.path + ": " +
+                            e.message);
+        if (type.validateUsages)
+            for (const UsageError& e : type.validateUsages(desc, graph))
+                add(e.usage < desc.uses.size() ? graph.resources.at(desc.uses[e.usage].resource).name : "", e.message);
+    } catch (const std::exception& e) {
+        add("", "the validators of type '" + type.name + "' threw: " + e.what());
+    }
+    if (!problems.empty()) throw ExecutorError(problems);
 }
 
 }  // namespace detail
@@ -128,8 +154,10 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
         throw ExecutorError(passError(pass, "", "the plan's pass is not in the graph"));
     ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
     if (options.passes)
-        if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type); type && !type->acceptsAnyUsage)
-            checkSlots(pass, *type, s.resources);
+        if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type)) {
+            if (!type->acceptsAnyUsage) checkSlots(pass, *type, s.resources);
+            checkWithTypeValidators(pass, *ps.desc, *type, s.graph);
+        }
     ps.implementation = implementationOf(pass, *ps.desc);
     ps.attachments = attachmentsOf(pass, s.resources);
     if (ps.attachments.any()) buildRenderPass(s, ps);

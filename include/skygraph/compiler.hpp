@@ -61,7 +61,8 @@ struct CompileOptions {
     /// Images copied to the host at the end of every frame (the first mip and layer), by
     /// steps of type Readback after the last pass; the final barriers make the copies visible
     /// to the host. Each is kept as an output, exported as TransferSrc unless the file exports
-    /// it. An unknown name, a buffer, or an image that nothing writes is an error.
+    /// it (an external image in its `initial` state, in which the next frame finds it). An
+    /// unknown name, a buffer, or an image that nothing writes is an error.
     std::set<std::string, std::less<>> readbacks;
     /// Transient resources (not external, not exported) share memory where their lifetimes
     /// allow, and the plan orders each one's first use after the last uses of the memory it
@@ -104,9 +105,12 @@ struct CompileOptions {
 /// or buffer size the loader refuses) or of a shape or states it refuses (a cube of other than
 /// 6 square layers, an image2d of several, an image of no format, a transient presented, a
 /// buffer left for presentation or cleared, a clear value of the other kind, more mips than a
-/// fixed extent has), a pass on a queue outside QueueKind or one that cannot perform its usages,
-/// a condition naming an undeclared feature, a usage naming a resource index past `resources`, an empty range,
-/// or more than 2^24 subresources (mip levels x layers) together; and when `options.memory` answers
+/// fixed extent has, an external resource exported in another state than it arrives in, a
+/// type, state or sharing outside its enum), a pass on a queue outside QueueKind or one that
+/// cannot perform its usages, a pass using one subresource twice, a condition naming an
+/// undeclared feature, a usage naming a resource index past `resources`, an empty range, two
+/// resources of a name the options name, or more than 2^24 subresources (mip levels x layers)
+/// together; for options outside their enums; and when `options.memory` answers
 /// what cannot be placed (no memory type, a zero size, an alignment or granularity that is not
 /// a power of two). What the model itself throws passes through. Every error names what it can of the
 /// file, JSON path, pass and resource. The plan owns copies of the names it holds (shared with

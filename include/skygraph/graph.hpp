@@ -19,10 +19,14 @@
 namespace skygraph {
 
 enum class ResourceType : uint8_t { Image2D, Cube, Image2DArray, Buffer };
+/// Its name in graph files: "image2d", "cube", "image2d_array", "buffer".
+[[nodiscard]] std::string_view toString(ResourceType type) noexcept;
 
 /// The state a resource arrives in (`initial`) or is left in (`final`): docs/graph-format.md,
 /// "External, initial and final".
 enum class ExternalState : uint8_t { None, Present, TransferSrc, ShaderRead, General };
+/// Its name in graph files ("ShaderRead"); "None" for None.
+[[nodiscard]] std::string_view toString(ExternalState state) noexcept;
 
 /// The kind of queue a pass runs on (a pass's `"queue"`). The executor maps each kind to a
 /// queue of a family that supports it, and to fewer queues where the device has fewer.

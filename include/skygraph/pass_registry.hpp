@@ -29,12 +29,19 @@ struct SlotDecl {
     /// one slot a usage fits: a slot added to a type this way leaves its graphs' bindings as
     /// they were.
     bool byNameOnly = false;
+    /// The resource types it binds, where its recording code's views and shaders take only
+    /// some (an environment cube, a 2D lookup table); empty: any.
+    std::vector<ResourceType> types;
 
     /// "Read@Fragment" or "Write|ReadWrite@ColorAttachment".
     [[nodiscard]] std::string describeUsage() const;
     /// Whether a usage of `usage` can fill this slot: its stage, one of its accesses, and its
     /// binding when the slot names one.
     [[nodiscard]] bool accepts(const UsageMode& usage) const noexcept;
+    /// Whether a resource of type `type` can fill it (`types` empty or listing it).
+    [[nodiscard]] bool takes(ResourceType type) const noexcept;
+    /// "a cube" or "an image2d or a cube": what `types` allows, for messages.
+    [[nodiscard]] std::string describeTypes() const;
 };
 
 /// A problem found in a pass's `params`, relative to the params object.

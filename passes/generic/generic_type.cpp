@@ -28,13 +28,15 @@ std::vector<UsageError> checkGenericUsages(const PassDesc& pass, const GraphDesc
         if (u.stage == Stage::VertexInput && u.as == BindAs::Index) {
             if (indexBuffer >= 0)
                 problems.push_back({i, "a pass draws with one index buffer, and '" +
-                                           graph.resources[pass.uses[size_t(indexBuffer)].resource].name + "' is its"});
+                                           graph.resources[pass.uses[size_t(indexBuffer)].resource].name +
+                                           "' is already this pass's index buffer"});
             indexBuffer = static_cast<int>(i);
             tooSmall(12, "an index buffer (3 indices)");
         } else if (u.stage == Stage::Indirect) {
             if (indirectBuffer >= 0)
                 problems.push_back({i, "a pass draws with one indirect buffer, and '" +
-                                           graph.resources[pass.uses[size_t(indirectBuffer)].resource].name + "' is its"});
+                                           graph.resources[pass.uses[size_t(indirectBuffer)].resource].name +
+                                           "' is already this pass's indirect buffer"});
             indirectBuffer = static_cast<int>(i);
             tooSmall(20, "an indirect buffer (one indexed draw)");
         } else if (isShaderStage(u.stage)) {

@@ -1,5 +1,6 @@
 // IblComputeProgram and helpers: see ibl_compute.hpp.
 #include "ibl_compute.hpp"
+#include "ibl_formats.hpp"
 
 namespace skygraph::passes::ibl {
 
@@ -10,17 +11,10 @@ const BoundResource* findSlot(const PipelineContext& ctx, std::string_view slot)
 }
 
 std::string storageQualifier(const PassDesc& pass, const BoundResource& resource) {
-    switch (resource.format) {
-        case VK_FORMAT_R16G16B16A16_SFLOAT: return "rgba16f";
-        case VK_FORMAT_R32G32B32A32_SFLOAT: return "rgba32f";
-        case VK_FORMAT_R16G16_SFLOAT: return "rg16f";
-        case VK_FORMAT_R32G32_SFLOAT: return "rg32f";
-        case VK_FORMAT_B10G11R11_UFLOAT_PACK32: return "r11f_g11f_b10f";
-        default: break;
-    }
+    // The loader refuses other formats for a graph file; a GraphDesc built in code meets this.
+    if (const char* qualifier = iblStorageQualifier(resource.format)) return qualifier;
     throw ExecutorError("pass '" + pass.name + "', resource '" + (resource.desc ? resource.desc->name : "?") +
-                        "': the environment pipeline writes float images only (R16G16B16A16_SFLOAT, "
-                        "R32G32B32A32_SFLOAT, R16G16_SFLOAT, R32G32_SFLOAT, B10G11R11_UFLOAT_PACK32)");
+                        "': " + iblStorageProblem(pass.type, formatName(resource.format)));
 }
 
 void IblComputeProgram::create(const PipelineContext& ctx, const std::string& shader, const BoundResource& storage,

@@ -26,17 +26,20 @@ PassTypeInfo skyboxPassType() {
                   "rejects covered pixels (GREATER_OR_EQUAL)"),
              slot("color", Stage::ColorAttachment, {Access::ReadWrite}, BindAs::Default,
                   "HDR target; sky fills uncovered pixels"),
-             slot("environment", Stage::Fragment, {Access::Read}, BindAs::Sampled, "cubemap or equirect environment",
-                  true),
-             byNameOnly(slot("previous", Stage::Fragment, {Access::Read}, BindAs::Sampled,
-                             "cubemap the sky fades from to `environment` (SkyFade): a sequence's previous frame",
-                             true))},
+             ofTypes(slot("environment", Stage::Fragment, {Access::Read}, BindAs::Sampled,
+                          "cubemap or equirect environment", true),
+                     {ResourceType::Cube, ResourceType::Image2D}),
+             byNameOnly(ofTypes(
+                 slot("previous", Stage::Fragment, {Access::Read}, BindAs::Sampled,
+                      "cubemap the sky fades from to `environment` (SkyFade): a sequence's previous frame", true),
+                 {ResourceType::Cube}))},
             false,
             rules({{"sampling", oneOf({"cubemap", "equirect"})},
                    {"rotation_deg", numberIn(-360.0, 360.0)},
                    {"output", oneOf({"radiance", "direction"})}}),
             "Fullscreen-triangle sky at the reverse-Z far plane.",
-            {}, checkFade};
+            {},
+            checkFade};
 }
 
 }  // namespace skygraph::passes

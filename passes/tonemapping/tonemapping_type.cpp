@@ -10,7 +10,8 @@ namespace skygraph::passes {
 
 PassTypeInfo tonemappingPassType() {
     return {"TonemappingPass",
-            {slot("hdr", Stage::Fragment, {Access::Read}, BindAs::Sampled, "HDR input"),
+            {ofTypes(slot("hdr", Stage::Fragment, {Access::Read}, BindAs::Sampled, "HDR input"),
+                     {ResourceType::Image2D}),
              slot("output", Stage::ColorAttachment, {Access::Write}, BindAs::Default, "display-referred output")},
             false,
             rules({{"operator", oneOf({"aces_narkowicz", "aces_hill", "khronos_pbr_neutral", "passthrough"})},
@@ -29,14 +30,18 @@ PassTypeInfo tonemappingComputePassType() {
         return problems;
     };
     return {"TonemappingComputePass",
-            {slot("hdr", Stage::Compute, {Access::Read}, BindAs::Sampled, "HDR input"),
-             slot("output", Stage::Compute, {Access::Write}, BindAs::Storage,
-                  std::string("display-referred output, sRGB-encoded by the shader: ") + tonemappingComputeOutputNames())},
+            {ofTypes(slot("hdr", Stage::Compute, {Access::Read}, BindAs::Sampled, "HDR input"),
+                     {ResourceType::Image2D}),
+             ofTypes(slot("output", Stage::Compute, {Access::Write}, BindAs::Storage,
+                          std::string("display-referred output, sRGB-encoded by the shader: ") +
+                              tonemappingComputeOutputNames()),
+                     {ResourceType::Image2D})},
             false,
             rules({{"operator", oneOf({"aces_narkowicz", "aces_hill", "khronos_pbr_neutral", "passthrough"})},
                    {"exposure_ev", numberIn(-64.0, 64.0)}}),
             "TonemappingPass as a compute shader (same math), writing a storage image with sRGB encoded by the shader.",
-            {}, checkOutput};
+            {},
+            checkOutput};
 }
 
 }  // namespace skygraph::passes

@@ -455,6 +455,18 @@ TEST(Culling, UnusedResourcesAreNeverCreated) {
     EXPECT_EQ(plan.resourceIndex("buf"), -1);
 }
 
+// An exported resource is live at the end: a pass whose write of it is culled lost it to a
+// later pass writing it over, which is what its reason says (not that nothing is exported).
+TEST(Culling, AWriteOfAnExportedResourceWrittenOverSaysSo) {
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut, R"(
+        {"name": "w1", "type": "Generic", "uses": {"out": "Write@Compute", "color": "Write@Compute"}},
+        {"name": "w2", "type": "Generic", "uses": {"out": "Write@Compute"}})");
+    ASSERT_EQ(plan.culled().size(), 1u);
+    EXPECT_EQ(plan.culled()[0].reason,
+              "nothing reads what it writes: no later pass that runs reads 'color' and none of it is exported; a later "
+              "pass that runs writes over what it writes of 'out' before anything reads it");
+}
+
 TEST(Reordering, SkyboxAfterTonemappingIsCulledWithItsReason) {
     const std::string resources = R"(
         "depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": {"depth": 0.0}},
@@ -712,6 +724,58 @@ TEST(GraphsFromCode, PassesTheLoaderWouldRefuseAreErrors) {
     EXPECT_EQ(compileErrorText(fixed), "");
 }
 
+// More of what a GraphDesc built in code can hold: enum fields outside their enums (a final
+// state past them left an image in UNDEFINED), and two resources of one name that options
+// name (a read-back and an export of one name took different resources).
+TEST(GraphsFromCode, EnumsOutsideAndAmbiguousNamesAreErrors) {
+    GraphDesc g = writerThenReader();
+    ResourceDesc& out = g.resources[1];
+    out.final = static_cast<ExternalState>(9);
+    const std::string text = compileErrorText(g);
+    EXPECT_NE(text.find("resources.out: resource 'out': its type (0), initial (3) and final (9) states or sharing (0) "
+                        "hold a value outside its enum"),
+              std::string::npos)
+        << text;
+    out.final = ExternalState::ShaderRead;
+    out.sharing = static_cast<Sharing>(5);
+    EXPECT_NE(compileErrorText(g).find("sharing (5) hold a value outside its enum"), std::string::npos);
+    out.sharing = Sharing::Auto;
+    out.type = static_cast<ResourceType>(9);
+    EXPECT_NE(compileErrorText(g).find("its type (9)"), std::string::npos);
+    out.type = ResourceType::Image2D;
+    ASSERT_EQ(compileErrorText(g), "");
+
+    const auto optionsError = [&](const CompileOptions& o) {
+        try {
+            (void)compile(g, o);
+        } catch (const GraphError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CompileOptions o;
+    o.placement = static_cast<MemoryStrategy>(9);
+    EXPECT_NE(optionsError(o).find("CompileOptions::placement (9) is not a value of its enum"), std::string::npos);
+    o = {};
+    o.layouts = static_cast<LayoutPolicy>(4);
+    EXPECT_NE(optionsError(o).find("CompileOptions::layouts (4) is not a value of its enum"), std::string::npos);
+    o = {};
+    o.presentReplacement = static_cast<ExternalState>(7);
+    EXPECT_NE(optionsError(o).find("CompileOptions::presentReplacement (7) is not a value of its enum"),
+              std::string::npos);
+    g.layouts = static_cast<LayoutPolicy>(3);
+    EXPECT_NE(optionsError({}).find("the graph's layouts (3) is not a value of its enum"), std::string::npos);
+    g.layouts = LayoutPolicy::FewestBarriers;
+
+    g.resources.push_back(g.resources[0]);  // a second 'img'
+    o = {};
+    o.readbacks = {"img"};
+    EXPECT_NE(optionsError(o).find("resource 'img': 2 resources are named 'img': the options that name it cannot tell "
+                                   "which"),
+              std::string::npos)
+        << optionsError(o);
+}
+
 // The compiler's table answers as the rule it is built from, for every subject and every byte
 // value of a usage's three fields (values past an enum do not fit).
 TEST(UsageFit, TheTableAnswersAsTheRule) {
@@ -817,9 +881,10 @@ TEST(GraphsFromCode, APassDoesNotSourceItsOwnReads) {
     EXPECT_NE(errors.find("no earlier pass writes it"), std::string::npos) << errors;
 }
 
-// Culling: a kept pass that reads a subresource and also writes it (only a GraphDesc built in
-// code can) still needs what earlier passes wrote there, whichever order its usages come in.
-TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
+// A pass that reads a subresource and also writes it (only a GraphDesc built in code can
+// hold one) is refused as the loader refuses it, whichever order its usages come in: a render
+// pass cannot sample its own attachment, and no barrier orders a pass after itself.
+TEST(GraphsFromCode, APassThatReadsAndWritesOneSubresourceIsAnError) {
     GraphDesc graph = writerThenReader();
     ASSERT_EQ(graph.passes[1].uses.at(0).usage.access, Access::Read);
     for (const bool writeFirst : {false, true}) {
@@ -830,9 +895,11 @@ TEST(GraphsFromCode, APassThatReadsAndWritesOneImageKeepsItsWriter) {
         write.usage.as = BindAs::Storage;
         auto& uses = g.passes[1].uses;
         uses.insert(writeFirst ? uses.begin() : uses.begin() + 1, write);
-        const Plan plan = compile(g);
-        ASSERT_EQ(plan.passes().size(), 2u) << "writeFirst=" << writeFirst;
-        EXPECT_EQ(plan.passes()[0].name, "w") << "writeFirst=" << writeFirst;
+        const std::string text = compileErrorText(g);
+        EXPECT_NE(text.find("pass 'r', resource 'img': overlaps passes[1].uses.img; one pass may use each subresource "
+                            "once"),
+                  std::string::npos)
+            << "writeFirst=" << writeFirst << ": " << text;
     }
 }
 

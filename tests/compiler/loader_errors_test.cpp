@@ -267,6 +267,24 @@ TEST(LoaderErrors, StencilClearNeedsAStencilAspect) {
     expectLoads(g);
 }
 
+// The advice for a clear names what the format's aspects take: following it loads.
+TEST(LoaderErrors, ClearAdviceFitsTheFormat) {
+    Json g = baseGraph();
+    g["resources"]["depth"]["format"] = "S8_UINT";
+    g["resources"]["depth"]["clear"] = Json::object();
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.depth.clear", "", "depth",
+                        {"expected {\"stencil\": s} for the format S8_UINT"}))
+        << listAll(loadErrors(g));
+    g["resources"]["depth"]["clear"] = Json{{"color", {0, 0, 0, 0}}};
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.depth.clear.color", "", "depth",
+                        {"the depth/stencil format S8_UINT needs {\"stencil\": s}"}));
+    g["resources"]["depth"]["clear"] = Json{{"stencil", 0}};
+    expectLoads(g);
+    g = baseGraph();
+    g["resources"]["depth"]["clear"] = Json{{"depth", 1.5}};
+    EXPECT_TRUE(hasDiag(loadErrors(g), "resources.depth.clear.depth", "", "depth", {"in [0, 1], got 1.5"}));
+}
+
 TEST(LoaderErrors, DescriptionsAreStrings) {
     Json g = baseGraph();
     g["description"] = 5;
@@ -479,6 +497,52 @@ TEST(LoaderErrors, UsageContradictingANamedSlot) {
     EXPECT_TRUE(hasDiag(ds, "passes[1].uses[0].slot", "tonemap", "hdr_color", {"no slot 'bloom'", "hdr (Read@Fragment"}));
 }
 
+// A slot whose shaders sample or store through one view type takes only resources of that
+// type: a cube sampled as an equirect map crashed the shader compiler when the pass ran.
+TEST(LoaderErrors, ASlotTakesOnlyTheResourceTypesItDeclares) {
+    Json g = baseGraph();
+    g["resources"]["acc"] = Json{{"type", "image2d"}, {"format", "R32G32B32A32_SFLOAT"}, {"extent", Json::array({16, 16})},
+                                 {"external", true}, {"final", "General"}};
+    g["passes"].push_back(Json{{"name", "pt"}, {"type", "PathTracePass"},
+                               {"uses", {{"acc", "ReadWrite@Compute"}, {"cube", "Read@Compute"}}}});
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.cube", "pt", "cube",
+                        {"slot 'environment' of PathTracePass takes an image2d, not 'cube' of type cube"}))
+        << listAll(ds);
+    g["passes"][1]["uses"] = Json{{"cube", "Read@Fragment"}, {"swapchain", "Write@ColorAttachment"}};
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].uses.cube", "tonemap", "cube", {"slot 'hdr'", "takes an image2d"})) << listAll(ds);
+    // The skybox samples a cube or an equirect map; the forward pass a cube only.
+    Json sky = baseGraph();
+    sky["passes"].push_back(Json{{"name", "sky"}, {"type", "SkyboxPass"},
+                                 {"uses", {{"depth", "Read@DepthAttachment"}, {"hdr_color", "ReadWrite@ColorAttachment"},
+                                           {"mipped", "Read@Fragment"}}}});
+    expectLoads(sky);
+    sky["passes"][0]["uses"] = Json::array(
+        {{{"resource", "depth"}, {"access", "Write"}, {"stage", "DepthAttachment"}},
+         {{"resource", "hdr_color"}, {"access", "Write"}, {"stage", "ColorAttachment"}},
+         {{"resource", "mipped"}, {"access", "Read"}, {"stage", "Fragment"}, {"slot", "environment"}}});
+    ds = loadErrors(sky);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses[2]", "forward", "mipped", {"takes a cube, not 'mipped' of type image2d"}))
+        << listAll(ds);
+}
+
+// The environment pipeline's shaders store through a float format qualifier: another
+// storage format is refused at the usage when the graph loads, not when its pipeline is made.
+TEST(LoaderErrors, EnvironmentPassesWriteOnlyTheirStorageFormats) {
+    Json g = baseGraph();
+    g["resources"]["lut"] = Json{{"type", "image2d"}, {"format", "R32_SFLOAT"}, {"extent", Json::array({32, 32})},
+                                 {"external", true}, {"final", "ShaderRead"}};
+    g["passes"].push_back(Json{{"name", "brdf"}, {"type", "BrdfLutPass"}, {"uses", {{"lut", "Write@Compute"}}}});
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.lut", "brdf", "lut",
+                        {"BrdfLutPass writes R16G16B16A16_SFLOAT, R32G32B32A32_SFLOAT, R16G16_SFLOAT or R32G32_SFLOAT "
+                         "storage images, not R32_SFLOAT"}))
+        << listAll(ds);
+    g["resources"]["lut"]["format"] = "R16G16_SFLOAT";
+    expectLoads(g);
+}
+
 // SkyboxPass's `previous` is bound by name only: a sampled fragment read still binds to
 // `environment` as the one slot it fits, as it did before `previous` existed.
 TEST(LoaderErrors, ASlotBoundByNameOnlyIsNeverChosenByFit) {
@@ -589,6 +653,26 @@ TEST(LoaderErrors, ReadWithNoEarlierWriter) {
     EXPECT_TRUE(hasDiag(ds, "passes[0].uses.hdr_color", "tonemap", "hdr_color",
                         {"no earlier pass writes it", "clear", "external"}));
     EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+}
+
+// A read whose range is written in part names the part no pass writes.
+TEST(LoaderErrors, AReadOfLevelsNoPassWritesNamesThem) {
+    Json g = baseGraph();
+    g["resources"]["levels"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", Json::array({16, 16})},
+                                    {"mips", 3}};
+    g = withGeneric(g, "w", Json::array({{{"resource", "levels"}, {"access", "Write"}, {"stage", "Compute"},
+                                          {"mips", Json::array({0, 1})}}}));
+    g = withGeneric(g, "r", {{"levels", "Read@Compute"}});
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses.levels", "r", "levels",
+                        {"reads 'levels' (Read@Compute", "but no earlier pass writes mips 1 and 2 of it"}))
+        << listAll(ds);
+    g["resources"]["levels"] = Json{{"type", "image2d_array"}, {"format", "R8G8B8A8_UNORM"},
+                                    {"extent", Json::array({16, 16})}, {"layers", 4}};
+    g["passes"][2]["uses"][0]["layers"] = Json::array({0, 2});
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses.levels", "r", "levels", {"no earlier pass writes mip 0 (layers 2, 3) of it"}))
+        << listAll(ds);
 }
 
 TEST(LoaderErrors, ReadBeforeItsWriterInFileOrder) {
@@ -844,7 +928,9 @@ TEST(LoaderErrors, PassTypesCheckWhatTheirSlotsCannotSay) {
     EXPECT_TRUE(hasDiag(ds, "passes[3].uses.r32", "tonemap_cs", "r32",
                         {"TonemappingComputePass writes R8G8B8A8_UNORM", "not R32_SFLOAT"}))
         << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "passes[4].uses.previous", "sky", "previous", {"must both be cubes"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[4].uses.previous", "sky", "previous",
+                        {"slot 'previous' of SkyboxPass takes a cube, not 'previous' of type image2d"}))
+        << listAll(ds);
     EXPECT_EQ(ds.size(), 3u) << listAll(ds);
 
     g["passes"][2]["uses"] = Json::array({Json{{"resource", "mipped_target"}, {"access", "Write"},
@@ -915,7 +1001,9 @@ TEST(LoaderErrors, APlanPresentsOneImageOfASwapchainsShape) {
         << listAll(ds);
 
     Json valid = withGeneric(baseGraph(), "reads", {{"mipped", "Read@Fragment"}});
-    valid["resources"]["plain"] = {{"type", "image2d"}, {"format", "B8G8R8A8_UNORM"}, {"extent", "output"}, {"external", true}};
+    // It arrives as it would be presented: exported so, the next frame finds it as it arrived.
+    valid["resources"]["plain"] = {{"type", "image2d"}, {"format", "B8G8R8A8_UNORM"}, {"extent", "output"}, {"external", true},
+                                   {"initial", "Present"}};
     valid["passes"].back()["uses"]["plain"] = "Read@Fragment";
     CompileOptions mips;
     mips.exports["mipped"] = ExternalState::Present;
@@ -1324,7 +1412,7 @@ TEST(LoaderErrors, GenericRefusesBuffersItCannotDrawWith) {
     uses.push_back(Json{{"resource", "word"}, {"access", "Read"}, {"stage", "Fragment"}});
     auto ds = loadErrors(withGeneric(g, "draw", uses));
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses[1]", "draw", "ib", {"12 bytes of an index buffer", "'ib' has 8"})) << listAll(ds);
-    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[2]", "draw", "ib2", {"one index buffer, and 'ib' is its"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses[2]", "draw", "ib2", {"one index buffer, and 'ib' is already this pass's index buffer"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses[3]", "draw", "args", {"20 bytes of an indirect buffer", "has 16"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses[4]", "draw", "word", {"4 bytes of a buffer a shader binds"})) << listAll(ds);
     EXPECT_EQ(ds.size(), 4u) << listAll(ds);

@@ -101,6 +101,57 @@ TEST(Readback, KeepsItsWritersFromBeingCulled) {
     EXPECT_EQ(compile(g, o).passes().size(), 3u);
 }
 
+// The renderer keeps an external image for the next frame as this one leaves it: one read
+// back goes back to the state it arrives in, where a transient read back stays TransferSrc.
+TEST(Readback, LeavesAnExternalImageInTheStateItArrivesIn) {
+    const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut, R"(
+        {"name": "blit", "type": "Generic", "uses": {"tex": "Read@Compute", "out": "Write@Compute"}})");
+    CompileOptions o;
+    o.readbacks = {"tex"};
+    const Plan plan = compile(g, o);
+    const PlannedResource& tex = plan.resources()[plan.resourceIndex("tex")];
+    EXPECT_EQ(tex.initialLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(tex.finalLayout, tex.initialLayout);
+    EXPECT_EQ(plan.passes().back().name, "read back tex");
+}
+
+// A code-built graph has not been through the loader, which refuses the same at `initial`.
+TEST(ExternalStates, AnExportedExternalMustArriveInTheStateItIsLeftIn) {
+    GraphDesc g = graphOf(std::string(kTexture) + "," + kOut, R"(
+        {"name": "blit", "type": "Generic", "uses": {"tex": "Read@Compute", "out": "Write@Compute"}})");
+    g.resources[g.findResource("tex") - g.resources.data()].final = ExternalState::General;
+    const std::string message = messageOf([&] { (void)compile(g); });
+    EXPECT_NE(message.find("resources.tex: resource 'tex': an external resource is kept for the next frame as this "
+                           "frame leaves it, in its final state General, so it must arrive in that state too, not "
+                           "ShaderRead"),
+              std::string::npos)
+        << message;
+    const std::string file = R"({"version": 1, "name": "t", "resources": {)" + std::string(kOut) +
+                             R"(, "acc": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16],
+                                 "external": true, "initial": "ShaderRead", "final": "General"}},
+                             "passes": [{"name": "w", "type": "Generic", "uses": {"acc": "ReadWrite@Compute",
+                                         "out": "Write@Compute"}}]})";
+    const std::string loaded = messageOf([&] { (void)parseGraph(file, "steps.json", registry()); });
+    EXPECT_NE(loaded.find("steps.json: resources.acc.initial: resource 'acc': an external resource is kept"),
+              std::string::npos)
+        << loaded;
+}
+
+// The setup and read plans index the graph by the frame plan's records: another graph is
+// refused, naming both, rather than read out of range.
+TEST(Setup, APlanOfAnotherGraphIsAnError) {
+    const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut, R"(
+        {"name": "blit", "type": "Generic", "uses": {"tex": "Read@Compute", "out": "Write@Compute"}})");
+    const Plan frame = compile(g);
+    GraphDesc other;
+    other.name = "other";
+    EXPECT_NE(messageOf([&] { (void)planSetup(other, frame); })
+                  .find("the plan of graph 't' was not compiled from this graph ('other')"),
+              std::string::npos);
+    EXPECT_NE(messageOf([&] { (void)planImageRead(other, frame, "out"); }).find("was not compiled from this graph"),
+              std::string::npos);
+}
+
 TEST(Readback, BadNamesAreErrorsNamingTheResource) {
     const GraphDesc g = graphOf(std::string(kColor) + "," + kOut + R"(, "buf": {"type": "buffer", "size": 64})", R"(
         {"name": "draw", "type": "Generic", "uses": {"out": "Write@ColorAttachment", "buf": "Write@Compute"}})");

@@ -160,6 +160,39 @@ TEST_F(ExecutorTest, APlanWhoseUsagesDoNotFillTheirTypesSlotsIsRefusedByName) {
               "pass 'fill': type 'Pair' needs slot 'extra' (Read@Fragment); no usage fills it");
 }
 
+// A GraphDesc built in code skips the loader, which runs a type's validators: a renderer runs
+// them too, and refuses by name what they refuse (before, params out of their declared range
+// rendered silently with other values).
+TEST_F(ExecutorTest, APassWhoseParamsOrUsagesItsTypeRefusesIsRefusedByName) {
+    PassLibrary lib = library();
+    PassTypeInfo checked = fillType();
+    checked.name = "Checked";
+    PassRegistry loading = lib.registry();
+    loading.add(checked);  // as the graph is built: nothing checked
+    checked.validateParams = [](const nlohmann::json& params) {
+        std::vector<ParamError> errors;
+        if (params.contains("color") && params["color"][0].get<double>() > 0.2)
+            errors.push_back(ParamError::forKey("color", "red must be at most 0.2"));
+        return errors;
+    };
+    checked.validateUsages = [](const PassDesc&, const GraphDesc&) {
+        return std::vector<UsageError>{{0, "wants a float target"}};
+    };
+    lib.add(checked, [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
+    GraphDesc g = parseGraph(graphText("Checked"), "<lib>", loading);
+    const CompileOptions co = headless(g);
+    RendererOptions o;
+    o.passes = &lib;
+    std::string error = "accepted";
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), o);
+    } catch (const ExecutorError& e) {
+        error = e.what();
+    }
+    EXPECT_EQ(error, "pass 'fill': params.color: red must be at most 0.2; pass 'fill', resource 'tex': wants a float "
+                     "target");
+}
+
 /// The error of setGraph() to a graph whose "fill" pass is of `type`, on a renderer of the
 /// graph with Fill, which must keep rendering its old plan; empty when setGraph succeeds.
 std::string setGraphError(const PassLibrary& lib, const std::string& type) {

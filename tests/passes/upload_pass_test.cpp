@@ -217,7 +217,7 @@ TEST_F(ExecutorTest, StagingForAResourceNoUploadPassWritesIsRefused) {
 
 TEST_F(ExecutorTest, AnUploadPassWritesMipZeroAlone) {
     // The loader refuses such a usage in a file (LoaderErrors.PassTypesCheckWhatTheirSlotsCannotSay);
-    // a graph built in code reaches the pass as it is.
+    // for a graph built in code the renderer runs the type's usage validator.
     const PassLibrary library = PassLibrary::withBuiltins();
     GraphDesc graph = parseGraph(R"({
       "version": 1, "name": "upload_mips",
@@ -234,8 +234,8 @@ TEST_F(ExecutorTest, AnUploadPassWritesMipZeroAlone) {
         Renderer r(sharedDevice(), CompiledGraph(graph, CompileOptions{}), ro);
         FAIL() << "a usage of both mips was accepted";
     } catch (const ExecutorError& e) {
-        EXPECT_NE(std::string(e.what()).find("pass 'upload_img': UploadPass copies mip 0 of every layer: its usage of "
-                                             "'img' must cover that and nothing else"),
+        EXPECT_NE(std::string(e.what()).find("pass 'upload_img', resource 'img': UploadPass copies mip 0 of every layer: "
+                                             "its usage of 'img' must cover that and nothing else"),
                   std::string::npos)
             << e.what();
     }
