@@ -87,6 +87,12 @@ private:
                 if (!ext.is_object()) error(jsonPathMember(path, name), "an extension must be an object, got " + kind(ext));
             return;
         }
+        // An accessor's sparse storage names its own `indices` and `values` objects; the loader
+        // refuses sparse accessors with that said, so only their shape is checked here.
+        if (key == "sparse") {
+            if (!v.is_object()) error(path, "must be an object, got " + kind(v));
+            return;
+        }
         if (kIndexKeys.count(key)) {
             if (!v.is_number_unsigned()) error(path, "must be an integer >= 0, got " + kind(v));
         } else if (kNumberKeys.count(key)) {
@@ -147,6 +153,13 @@ public:
         } else if (const auto min = asset->find("minVersion"); min != asset->end() && min->get<std::string>() != "2.0") {
             error("asset.minVersion", "skygraph reads glTF 2.0, got " + min->dump());
         }
+        // Before tinygltf reads the file: what an extension changes (Draco's compressed
+        // buffers) would fail there with a message about its effect, not its cause.
+        if (const auto required = root.find("extensionsRequired"); required != root.end())
+            for (const json& ext : *required)
+                error("extensionsRequired", "the file requires extension '" + ext.get<std::string>() +
+                                                "', which skygraph does not support");
+        if (!ok_) return false;
         const size_t views = root.contains("bufferViews") ? root["bufferViews"].size() : 0;
         each(root, "accessors", [&](const json& a, const std::string& at) {
             required(a, at, {"componentType", "count", "type"});
@@ -182,12 +195,17 @@ public:
             if (!b.contains("uri") && !(binary_ && at == "buffers[0]"))
                 error(at + ".uri", "missing; only the first buffer of a .glb may have none");
         });
+        const size_t accessors = root.contains("accessors") ? root["accessors"].size() : 0;
         each(root, "meshes", [&](const json& m, const std::string& at) {
             required(m, at, {"primitives"});
             if (const auto primitives = m.find("primitives"); primitives != m.end())
                 for (size_t i = 0; i < primitives->size(); ++i) {
                     const std::string p = at + ".primitives[" + std::to_string(i) + "]";
                     required((*primitives)[i], p, {"attributes"});
+                    // tinygltf says only "primitive indices accessor out of bounds", nowhere.
+                    if (const auto indices = (*primitives)[i].find("indices");
+                        indices != (*primitives)[i].end() && indices->get<uint64_t>() >= accessors)
+                        error(p + ".indices", "accessor " + indices->dump() + " does not exist");
                     if ((*primitives)[i].contains("mode") && (*primitives)[i]["mode"].get<uint64_t>() > 6)
                         error(p + ".mode", "must be a primitive mode from 0 to 6, got " + (*primitives)[i]["mode"].dump());
                 }

@@ -36,18 +36,28 @@ std::string at(const char* array, size_t i) { return std::string(array) + "[" + 
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+/// What tinygltf's file callbacks share: the glTF's folder, and the paths read so far.
+struct ExternalFiles {
+    std::string baseDir;  ///< As tinygltf joins it to a uri.
+    std::vector<std::filesystem::path> read;
+};
+
 /// tinygltf's file callbacks, for a buffer's or an image's uri: only regular files are read.
 /// Its own would block forever on a FIFO and read a directory's size as bytes to allocate.
 /// Anything that exists is found, so that readRegularFile says what it is rather than tinygltf
-/// saying "File not found".
-bool fileExists(const std::string& path, void*) {
+/// saying "File not found". tinygltf looks for a uri in the working directory too, after the
+/// glTF's folder: a file found there is not the model's, so only paths in that folder exist.
+bool fileExists(const std::string& path, void* files) {
+    const std::string& base = static_cast<const ExternalFiles*>(files)->baseDir;
+    if (!base.empty() && (path.compare(0, base.size(), base) != 0 ||
+                          (base.back() != '/' && path.size() > base.size() && path[base.size()] != '/')))
+        return false;
     std::error_code ec;
     return std::filesystem::exists(path, ec);
 }
 
-/// `read`: the paths read so far (a std::vector<std::filesystem::path>).
-bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* read) {
-    static_cast<std::vector<std::filesystem::path>*>(read)->emplace_back(path);
+bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* files) {
+    static_cast<ExternalFiles*>(files)->read.emplace_back(path);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
         if (error)
@@ -134,8 +144,6 @@ public:
     }
 
     std::optional<TriangleMesh> flatten(const dmat4& root) {
-        for (const std::string& ext : model_.extensionsRequired)
-            error("extensionsRequired", "the file requires extension '" + ext + "', which skygraph does not support");
         if (model_.scenes.empty()) {
             error("scenes", "the file has no scene: nothing to draw");
             return std::nullopt;
@@ -569,8 +577,8 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     tinygltf::Model model;
     ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
-    std::vector<std::filesystem::path> referenced;
-    reader.SetFsCallbacks({fileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &referenced});
+    ExternalFiles files{baseDir.string(), {}};
+    reader.SetFsCallbacks({fileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &files});
     std::string error, warning;
     bool read = false;
     try {
@@ -592,7 +600,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         diagnostics.add(Diagnostic{name, "images[" + std::to_string(index) + "]", "", "", problem});
     if (!read || !error.empty() || !headerCheck.problems.empty()) return std::nullopt;
     std::optional<TriangleMesh> mesh = GltfFlattener(name, model, limits, diagnostics).flatten(transformMatrix(transform));
-    if (mesh) mesh->referencedFiles = std::move(referenced);
+    if (mesh) mesh->referencedFiles = std::move(files.read);
     return mesh;
 }
 
@@ -606,7 +614,10 @@ std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const Me
     if (!std::filesystem::is_regular_file(path, ec)) return fail("does not exist or is not a file");
     const std::string extension = lowercaseExtension(path);
     if (extension != ".gltf" && extension != ".glb") return fail("is neither a .gltf nor a .glb file");
+    // Inserting no bytes sets failbit: an empty file is said to be one, not unreadable.
+    if (std::filesystem::file_size(path, ec) == 0 && !ec) return fail("is empty (0 bytes)");
     std::ifstream in(path, std::ios::binary);
+    if (!in) return fail("cannot be opened");
     std::ostringstream bytes;
     if (!(bytes << in.rdbuf())) return fail("cannot be read");
     // A .glb is never read as JSON: its first bytes would be reported as a JSON syntax error.

@@ -99,6 +99,16 @@ TEST_F(Cli, CheckPassesEveryShippedGraphAndCombinationWithJUnit) {
     EXPECT_EQ(slurp(dir_ / "parsed"), cases + " 0 4 " + cases + " 0\n");
 }
 
+// A --junit file that cannot be written is refused before any case runs (after, a run on
+// the device would have been thrown away).
+TEST_F(Cli, CheckRefusesAJUnitPathItCannotWriteBeforeRunning) {
+    const fs::path junit = dir_ / "no_such_folder" / "j.xml";
+    const CliRun r = run({"check", "graphs/pathtrace.json", "--no-run", "--junit", junit.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("cannot write '" + junit.string() + "'"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("case(s)"), std::string::npos) << "no case ran: " << r.out;
+}
+
 TEST_F(Cli, CheckShowsTheDiffOfAGoldenWithOneBarrierEdited) {
     const fs::path golden = dir_ / "golden";
     const CliRun update = run({"check", "graphs/pathtrace.json", "--golden", golden.string(), "--update", "--no-run"});

@@ -1044,13 +1044,40 @@ TEST_F(Cli, RenderOfAGraphWithoutAPresentImageRendersValidatesAndExitsZero) {
     EXPECT_TRUE(fs::exists(out));
 }
 
+// An output of the graph that no pass of the chosen features writes holds only the
+// placeholder it arrives with: reading it back is refused, naming the images passes write.
+TEST_F(Cli, RenderRefusesToReadBackAnOutputNoPassWrites) {
+    const fs::path graph = writeGraph("switch.json", R"({
+      "version": 1, "name": "switch", "features": { "compute": false },
+      "resources": {
+        "field": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16],
+                   "external": true, "final": "ShaderRead" },
+        "other": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16],
+                   "external": true, "final": "ShaderRead" }
+      },
+      "passes": [ { "name": "a", "type": "Generic", "if": "compute", "uses": { "field": "Write@Compute" } },
+                  { "name": "b", "type": "Generic", "uses": { "other": "Write@Compute" } } ]
+    })");
+    const fs::path out = dir_ / "work" / "out.exr";
+    const CliRun r = run({"render", graph.string(), "--readback", "field", "-o", out.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find(graph.string() + ": cannot read back 'field': it is an output of the graph, and no pass that "
+                         "runs with these features writes it; the images its passes write: other"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(workFiles().empty());
+    const CliRun on = run({"render", graph.string(), "--feature", "compute=on", "--readback", "field", "-o", out.string()});
+    EXPECT_EQ(on.status, 0) << on.err;
+    EXPECT_TRUE(fs::exists(out));
+}
+
 TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
     const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
     const fs::path out = dir_ / "work" / "out.png";
     const CliRun r = run({"render", graph.string(), "-o", out.string()});
     EXPECT_EQ(r.status, 1) << r.err;
     EXPECT_NE(r.err.find("nothing to write to " + out.string() + ": graph 'bake' has no Present image that a pass uses; add "
-                         "--readback NAME with one of its images: field"),
+                         "--readback NAME with one of the images its passes write: field"),
               std::string::npos)
         << r.err;
     EXPECT_TRUE(workFiles().empty());

@@ -75,6 +75,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf", "meshes[0].primitives[0].mode",
                 "draws points or lines"},
         BadFile{"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "extensionsRequired", "KHR_technique_webgl"},
+        // Said before tinygltf fails on the compressed buffers the extension implies.
+        BadFile{"draco/2CylinderEngine.gltf", "extensionsRequired",
+                "requires extension 'KHR_draco_mesh_compression', which skygraph does not support"},
         BadFile{"BoxTexcoords-glTF/boxTexcoords.gltf",
                 "materials[0].pbrMetallicRoughness.metallicRoughnessTexture.texCoord", "TEXCOORD_1 is not supported"},
         BadFile{"issue_3269/texcoord_crash.gltf", "meshes[0].primitives[0]",
@@ -85,6 +88,30 @@ INSTANTIATE_TEST_SUITE_P(
             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
         return n + "_" + std::to_string(p.index);
     });
+
+// tinygltf looks for a uri in the working directory after the model's folder: a file of the
+// missing buffer's name there must not stand in for it.
+TEST(Gltf, AMissingBufferIsNotTakenFromTheWorkingDirectory) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph_gltf_cwd_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    fs::copy_file(kModels / "BoxTextured-glTF/BoxTextured0.bin", dir / "BoxTextured0.bin",
+                  fs::copy_options::overwrite_existing);
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    Diagnostics d;
+    const auto mesh = loadGltf(kModels / "MissingBin/BoxTextured.gltf", {}, d);
+    fs::current_path(before);
+    fs::remove_all(dir);
+    EXPECT_FALSE(mesh) << "the working directory's BoxTextured0.bin was read";
+    ASSERT_FALSE(d.empty());
+    EXPECT_NE(d.items().front().message.find("BoxTextured0.bin"), std::string::npos) << messages(d);
+    // The model's own folder still finds its files from anywhere.
+    fs::current_path(fs::temp_directory_path());
+    Diagnostics good;
+    const auto box = loadGltf(kModels / "BoxTextured-glTF/BoxTextured.gltf", {}, good);
+    fs::current_path(before);
+    EXPECT_TRUE(box) << messages(good);
+}
 
 TEST(Gltf, TheBoxIsTheSameInEachContainer) {
     Diagnostics d;
@@ -231,6 +258,33 @@ TEST(Gltf, AnImageOutsideItsBufferIsRefused) {
     text.insert(text.rfind('}'), R"(, "images": [{"bufferView": 1, "mimeType": "image/png"}])");
     std::ofstream(file) << text;
     gltf_test::expectRefusedAt(file, "images[0]", "bufferViews[1], lies outside buffer 0 of 36 bytes");
+}
+
+// A well-formed sparse accessor is refused for what it is: sparse storage is not supported
+// (before, its `indices` object read as a primitive's index accessor number).
+TEST(Gltf, ASparseAccessorIsRefusedAsUnsupported) {
+    fs::path file = writeTriangle("sparse", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string type = R"("type": "VEC3"})";
+    text.replace(text.find(type), type.size(),
+                 R"("type": "VEC3", "sparse": {"count": 1, "indices": {"bufferView": 0, "componentType": 5123},
+                    "values": {"bufferView": 0}}})");
+    std::ofstream(file, std::ios::trunc) << text;
+    gltf_test::expectRefusedAt(file, "accessors[0] (POSITION of meshes[0].primitives[0])",
+                               "sparse accessors are not supported");
+}
+
+// An index accessor that does not exist is named where the primitive names it, as an
+// attribute's is (tinygltf's own message says where nothing).
+TEST(Gltf, AMissingIndexAccessorIsNamedAtThePrimitive) {
+    fs::path file = writeTriangle("missing-indices", 3, false);
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    const std::string attributes = R"({"attributes": {"POSITION": 0})";
+    text.replace(text.find(attributes), attributes.size(), R"({"indices": 42, "attributes": {"POSITION": 0})");
+    std::ofstream(file, std::ios::trunc) << text;
+    gltf_test::expectRefusedAt(file, "meshes[0].primitives[0].indices", "accessor 42 does not exist");
 }
 
 /// The triangle file with its nodes and scene roots replaced.
@@ -387,6 +441,14 @@ TEST(Gltf, AGlbWithoutItsMagicNumberIsNamed) {
     const fs::path file = fs::temp_directory_path() / "skygraph-no-magic.glb";
     std::ofstream(file, std::ios::binary | std::ios::trunc) << "NOT A GLB, BUT LONG ENOUGH TO HAVE A HEADER";
     gltf_test::expectRefusedAt(file, "", "is not a binary glTF: a .glb starts with the bytes 'glTF'");
+}
+
+TEST(Gltf, AnEmptyFileIsSaidToBeEmpty) {
+    for (const char* name : {"skygraph-empty.glb", "skygraph-empty.gltf"}) {
+        const fs::path file = fs::temp_directory_path() / name;
+        std::ofstream(file, std::ios::binary | std::ios::trunc);
+        gltf_test::expectRefusedAt(file, "", "is empty (0 bytes)");
+    }
 }
 
 // A buffer uri naming a directory is reported as one, not as a file that was not found.

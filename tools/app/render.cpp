@@ -134,10 +134,20 @@ std::string outputTarget(const GraphDesc& graph, const Plan& plan, const std::st
     return {};
 }
 
-std::string imageNames(const GraphDesc& graph) {
+/// Whether a pass of `plan` writes resource `name` (an inserted step, a Clear, does not count).
+bool writtenByAPass(const Plan& plan, std::string_view name) {
+    for (const PlannedPass& p : plan.passes())
+        for (const PlannedUsage& u : p.usages)
+            if (p.declIndex >= 0 && writesContents(u.usage.access) && plan.resources()[u.resource].name == name)
+                return true;
+    return false;
+}
+
+/// The images a pass of `plan` writes, which a read-back shows the frame's work in.
+std::string writtenImageNames(const GraphDesc& graph, const Plan& plan) {
     std::string names;
     for (const ResourceDesc& r : graph.resources)
-        if (r.isImage()) names += (names.empty() ? "" : ", ") + r.name;
+        if (r.isImage() && writtenByAPass(plan, r.name)) names += (names.empty() ? "" : ", ") + r.name;
     return names;
 }
 
@@ -441,14 +451,15 @@ int renderCommand(const RenderOptions& options) {
         // Headless: the swapchain target is an image of our own, read back instead of presented.
         co.presentReplacement = ExternalState::TransferSrc;
         std::filesystem::path output = options.output;
-        const std::string target = outputTarget(graph, compile(graph, co), options.readback);
+        const Plan unread = compile(graph, co);
+        const std::string target = outputTarget(graph, unread, options.readback);
         if (target.empty()) {
             if (!output.empty()) {
-                const std::string images = imageNames(graph);
+                const std::string images = writtenImageNames(graph, unread);
                 std::cerr << "skygraph render: nothing to write to " << printableName(output.string()) << ": graph '" << graph.name
                           << "' has no Present image that a pass uses; "
-                          << (images.empty() ? std::string("nor any image to read back")
-                                             : "add --readback NAME with one of its images: " + images)
+                          << (images.empty() ? std::string("nor any image that a pass writes, to read back")
+                                             : "add --readback NAME with one of the images its passes write: " + images)
                           << "\n";
                 return 1;
             }
@@ -456,6 +467,16 @@ int renderCommand(const RenderOptions& options) {
                          "writes one)",
                          graph.name);
         } else {
+            // An output of the graph (exported) that no pass of these features writes would be
+            // read back as the placeholder it arrives with.
+            const ResourceDesc* declared = graph.findResource(target);
+            if (declared && declared->external && declared->isExported() && !writtenByAPass(unread, target)) {
+                const std::string images = writtenImageNames(graph, unread);
+                std::cerr << "skygraph render: " << printableName(graph.file) << ": cannot read back '" << target
+                          << "': it is an output of the graph, and no pass that runs with these features writes it"
+                          << (images.empty() ? std::string() : "; the images its passes write: " + images) << "\n";
+                return 1;
+            }
             if (output.empty()) output = "skygraph." + format;
             co.readbacks = {target};
         }

@@ -66,6 +66,7 @@ int run(CheckArgs& args) {
     app::CheckOptions o = args.options;
     for (const std::string& g : args.graphs) o.graphs.emplace_back(g);
     refuseToOverwriteInputs("--junit", args.junit, o.graphs);
+    if (!args.junit.empty()) requireWritableOutput(args.junit);  // before the cases run
     if (!args.golden.empty()) {
         // A missing folder fails each case with a line that says so; a file there is a mistake
         // in the command line, named once instead of as a missing golden inside it per case.
@@ -119,8 +120,10 @@ Command addCheckCommand(CLI::App& parent) {
     cmd->add_option("--layouts", args->layouts,
                     "Compile and run with this layout policy (fewest-barriers, optimal) instead of the graph's")
         ->check(CLI::IsMember({"fewest-barriers", "optimal"}));
-    cmd->add_option("--frames", o.frames, "Frames to run each combination")->check(CLI::Range(1u, 1000u));
-    cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
+    cmd->add_option("--frames", o.frames, "Frames to run each combination")
+        ->check(CLI::Range(1u, 1000u))->capture_default_str();
+    cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")
+        ->check(CLI::Range(1u, 8u))->capture_default_str();
     cmd->add_option("--size", args->size, "Output size of the runs, WIDTHxHEIGHT (goldens and the verifier use "
                                           "1920x1080)");
     cmd->add_option("--device", o.device, "Device by index or name (default: a GPU, else lavapipe)")->check(kNotEmpty);

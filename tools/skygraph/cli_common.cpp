@@ -53,6 +53,14 @@ void refuseToOverwriteInputs(std::string_view option, const std::filesystem::pat
                                  printableName(input->string()) + "': it would be overwritten");
 }
 
+void requireWritableOutput(const std::string& path) {
+    try {
+        (void)files::writableOutputTarget(path);
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw std::runtime_error("cannot write '" + printableName(path) + "': " + files::whyNotWritten(e));
+    }
+}
+
 void writeOutput(const std::string& path, const std::string& text) {
     if (path.empty()) {
         std::cout << text << std::flush;

@@ -71,6 +71,10 @@ CLI::Option* addFlagSettingFalse(CLI::App& command, const std::string& name, boo
 void refuseToOverwriteInputs(std::string_view option, const std::filesystem::path& output,
                              const std::vector<std::filesystem::path>& inputs);
 
+/// Throws std::runtime_error naming `path` unless writeOutput() could write it (a file in an
+/// existing folder, not a folder): checked before the work, so that a mistyped path costs none.
+void requireWritableOutput(const std::string& path);
+
 /// Writes `text` to `path` (stdout when empty) with files::replaceFileContents: a failure never
 /// leaves half a file behind, a link's target gets the text, and a FIFO or device is written.
 void writeOutput(const std::string& path, const std::string& text);

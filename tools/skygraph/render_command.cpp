@@ -60,10 +60,11 @@ Command addRenderCommand(CLI::App& parent) {
                                             "the built-in scenes/default.json")
         ->check(kNotEmpty);
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
-    cmd->add_option("--width", o.width, "Output width")->check(CLI::Range(1u, 16384u));
-    cmd->add_option("--height", o.height, "Output height")->check(CLI::Range(1u, 16384u));
-    cmd->add_option("--frames", o.frames, "Frames to render")->check(CLI::Range(1u, 100000u));
-    cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
+    cmd->add_option("--width", o.width, "Output width")->check(CLI::Range(1u, 16384u))->capture_default_str();
+    cmd->add_option("--height", o.height, "Output height")->check(CLI::Range(1u, 16384u))->capture_default_str();
+    cmd->add_option("--frames", o.frames, "Frames to render")->check(CLI::Range(1u, 100000u))->capture_default_str();
+    cmd->add_option("--frames-in-flight", o.framesInFlight, "Frames in flight")
+        ->check(CLI::Range(1u, 8u))->capture_default_str();
     cmd->add_option("-o,--output", args->output,
                     "Write the result: .png, .hdr or .exr (default skygraph.png or skygraph.FORMAT, when the graph has a Present image "
                     "or --readback names one)")

@@ -57,11 +57,12 @@ Command addViewCommand(CLI::App& parent) {
                                             "the built-in scenes/default.json")
         ->check(kNotEmpty);
     cmd->add_option("--feature", args->features, "Override a feature: NAME=on|off (repeatable)");
-    cmd->add_option("--width", o.frame.width, "Window width")->check(CLI::Range(1u, 16384u));
-    cmd->add_option("--height", o.frame.height, "Window height")->check(CLI::Range(1u, 16384u));
+    cmd->add_option("--width", o.frame.width, "Window width")->check(CLI::Range(1u, 16384u))->capture_default_str();
+    cmd->add_option("--height", o.frame.height, "Window height")->check(CLI::Range(1u, 16384u))->capture_default_str();
     cmd->add_option("--frames", o.frames, "Quit after presenting this many frames (default: when the window closes)")
         ->check(CLI::Range(1u, 100000000u));
-    cmd->add_option("--frames-in-flight", o.frame.framesInFlight, "Frames in flight")->check(CLI::Range(1u, 8u));
+    cmd->add_option("--frames-in-flight", o.frame.framesInFlight, "Frames in flight")
+        ->check(CLI::Range(1u, 8u))->capture_default_str();
     cmd->add_option("--present-mode", args->presentMode, "fifo (default), mailbox or immediate; fifo when the "
                                                          "surface lacks it")
         ->check(CLI::IsMember({"fifo", "mailbox", "immediate"}));
