@@ -15,7 +15,8 @@ namespace {
 /// A copy of `graph` with `outputs`, `exports` and `readbacks` applied (checkOutputNames has
 /// found them): a read-back copies the image out after the frame, so it leaves it TransferSrc
 /// unless the graph exports it anyway; an external image goes back to its `initial` state,
-/// in which the next frame finds it.
+/// in which the next frame finds it (unless it arrives as presented: a plan presents only the
+/// images it exports so).
 GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     GraphDesc copy = graph;
     if (options.outputs)
@@ -31,7 +32,7 @@ GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     }
     for (const std::string& name : options.readbacks) {
         auto it = resource(name);
-        if (!it->isExported()) it->final = it->external ? it->initial : ExternalState::TransferSrc;
+        if (!it->isExported()) it->final = keptInItsInitialState(*it) ? it->initial : ExternalState::TransferSrc;
     }
     return copy;
 }

@@ -16,7 +16,7 @@ std::string unpresentableShape(const ResourceDesc& r) {
 std::string handedBackProblem(const ResourceDesc& r) {
     return "an external resource is kept for the next frame as this frame leaves it, in its final state " +
            std::string(toString(r.final)) + ", so it must arrive in that state too, not " +
-           std::string(toString(r.initial)) + " (leave `initial` out)";
+           std::string(toString(r.initial)) + ": give `initial` and `final` one state (to copy it out, read it back)";
 }
 
 Diagnostics limitProblems(const GraphDesc& graph) {
@@ -36,7 +36,7 @@ Diagnostics limitProblems(const GraphDesc& graph) {
                 problem(unpresentableShape(r));
             else if (!r.isImage() && r.clear)
                 problem("a buffer cannot be cleared by the graph");
-            else if (!r.isImage())
+            else if (!r.isImage() && (imageLayoutState(r.initial) || imageLayoutState(r.final)))
                 problem("a buffer cannot start or end as Present or TransferSrc, which are image layouts");
             else if (handedBackChanged(r))
                 problem(handedBackProblem(r));

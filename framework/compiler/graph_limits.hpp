@@ -32,11 +32,23 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 /// Whether a resource's states fit it as the loader requires of a file: only an external image
 /// of a swapchain image's shape is presented, a buffer is never left for presentation or a
 /// copy source, and only images clear, to a value of their format's kind.
+/// Whether `s` names an image layout (Present, TransferSrc), which a buffer cannot be in.
+[[nodiscard]] inline bool imageLayoutState(ExternalState s) noexcept {
+    return s == ExternalState::Present || s == ExternalState::TransferSrc;
+}
+
+/// Whether `r` is an external resource that arrives in a state of its own (not None, not
+/// Present: the presented image's state is the swapchain's, which headless plans replace),
+/// which the renderer keeps for the next frame as a frame leaves it.
+[[nodiscard]] inline bool keptInItsInitialState(const ResourceDesc& r) noexcept {
+    return r.external && r.initial != ExternalState::None && r.initial != ExternalState::Present;
+}
+
 /// Whether `r` is an external resource that the frame exports in another state than it
 /// arrives in: the renderer keeps it for the next frame as this one leaves it, in its `final`
 /// state, so the next frame would not find it in its `initial` one.
 [[nodiscard]] inline bool handedBackChanged(const ResourceDesc& r) noexcept {
-    return r.external && r.isExported() && r.initial != ExternalState::None && r.initial != r.final;
+    return keptInItsInitialState(r) && r.isExported() && r.initial != r.final;
 }
 
 /// What is wrong with a resource handedBackChanged() refuses, for messages.
@@ -50,10 +62,9 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 }
 
 [[nodiscard]] inline bool statesFit(const ResourceDesc& r) noexcept {
-    const auto imageOnly = [](ExternalState s) { return s == ExternalState::Present || s == ExternalState::TransferSrc; };
     if (r.final == ExternalState::Present && (!r.external || (r.isImage() && !presentable(r)))) return false;
     if (handedBackChanged(r)) return false;
-    if (!r.isImage()) return !imageOnly(r.final) && !imageOnly(r.initial) && !r.clear;
+    if (!r.isImage()) return !imageLayoutState(r.final) && !imageLayoutState(r.initial) && !r.clear;
     return !r.clear || r.clear->isDepth == r.format.isDepthStencil();
 }
 

@@ -234,7 +234,7 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
     // An external resource that persists comes back in the state it was left in.
     if (r.external && r.initial == ExternalState::None)
         r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;
-    else if (r.external && r.isExported() && r.initial != r.final)
+    else if (handedBackChanged(r))
         fail("initial", handedBackProblem(r));
     if (r.external && r.clear) fail("clear", "an external resource arrives with contents; it is not cleared");
     if (const JsonValue alias = f[key::alias]) {

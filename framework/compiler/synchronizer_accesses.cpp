@@ -145,6 +145,10 @@ inline void Synchronizer::addAccess(uint32_t r, const UsageMode& usage, const Su
         if (accesses_[f.lastAccess].step == a.step) {
             steps_.back().mayMerge = true;
             if (planResources()[r].firstPass == a.step) planResources()[r].firstStages |= scope.stages;
+            // Only a resource used again in its step can have a subresource used twice there.
+            if (usedTwice_ == kNone)
+                for (uint32_t j = steps_.back().firstAccess; j < k; ++j)
+                    if ((*usages_)[j].resource == r && (*usages_)[j].range.overlaps(range)) usedTwice_ = k;
         }
     }
     if (cells(range) > 1) steps_.back().mayMerge = true;
@@ -167,22 +171,24 @@ inline void Synchronizer::addAccess(uint32_t r, const UsageMode& usage, const Su
 }
 
 /// What the loader refuses in a file, for a GraphDesc built in code: two usages of pass `p`
-/// (its scheduled step, the last added) that share a subresource. A render pass cannot take
-/// an attachment as its own input, and one barrier cannot order a pass after itself.
-void Synchronizer::checkUsedOnce(uint32_t p, std::span<const IndexedUsage> uses) const {
+/// (its scheduled step, the last added) that share a subresource, the later of which
+/// addAccess found (usedTwice_). A render pass cannot take an attachment as its own input,
+/// and one barrier cannot order a pass after itself.
+void Synchronizer::refuseUsedTwice(uint32_t p, std::span<const IndexedUsage> uses) const {
     const uint32_t first = steps_.back().firstAccess;
     const auto& usages = *usages_;
-    for (uint32_t i = 1; i < uses.size(); ++i)
-        for (uint32_t j = 0; j < i; ++j) {
-            const PlannedUsage& a = usages[first + i];
-            const PlannedUsage& b = usages[first + j];
-            if (a.resource != b.resource || !a.range.overlaps(b.range)) continue;
-            Diagnostics diags;
-            diags.add({graph_.file, index_.jsonPathOf(p, uses[i]), graph_.passes[p].name,
-                       std::string(plan_.resources()[a.resource].name),
-                       "overlaps " + index_.jsonPathOf(p, uses[j]) + "; one pass may use each subresource once"});
-            throw GraphError(std::move(diags));
-        }
+    const uint32_t i = usedTwice_ - first;
+    uint32_t j = 0;
+    while (usages[first + j].resource != usages[usedTwice_].resource ||
+           !usages[first + j].range.overlaps(usages[usedTwice_].range))
+        ++j;
+    // Usages written by their resource's name share a path: the other is then named by index.
+    const std::string at = index_.jsonPathOf(p, uses[i]), other = index_.jsonPathOf(p, uses[j]);
+    Diagnostics diags;
+    diags.add({graph_.file, at, graph_.passes[p].name, std::string(plan_.resources()[usages[usedTwice_].resource].name),
+               "overlaps " + (other != at ? other : "the pass's usage " + std::to_string(j) + " of it") +
+                   "; one pass may use each subresource once"});
+    throw GraphError(std::move(diags));
 }
 
 // Plan steps (with clears placed), plan resources, and an access record per usage.
@@ -235,9 +241,7 @@ void Synchronizer::planAccesses(const Schedule& schedule) {
             addAccess(r, u.usage, facts_[r].grid.resolve(index_.writtenRange(u)), loadOpClear);
             if (u.fillsSlot) addSlot(p, u);
         }
-        // Only a pass using a resource twice (or a range of several subresources) can use one
-        // subresource twice.
-        if (steps_.back().mayMerge) checkUsedOnce(p, uses);
+        if (usedTwice_ != kNone) refuseUsedTwice(p, uses);
     }
     // After the frame's last pass: each read-back copies its image's first mip and layer
     // (a `clear` image no pass uses is cleared first, as at any first use).

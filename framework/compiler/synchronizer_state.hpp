@@ -129,7 +129,7 @@ private:
     [[gnu::always_inline]] inline bool clearsThroughLoadOp(const IndexedUsage& firstUse) const;
     [[gnu::always_inline]] static inline Access effectiveAccess(Access a, bool loadOpClear);
     inline void addSlot(uint32_t pass, const IndexedUsage& u);
-    void checkUsedOnce(uint32_t pass, std::span<const IndexedUsage> uses) const;
+    [[noreturn]] void refuseUsedTwice(uint32_t pass, std::span<const IndexedUsage> uses) const;
     inline uint32_t addOwnText(std::string_view text);
     [[gnu::always_inline]] inline void addAccess(uint32_t r, const UsageMode& usage, const SubresourceRange& range,
                                                  bool loadOpClear);
@@ -202,6 +202,7 @@ private:
     uint32_t cellCount_ = 0;               // subresources of all plan resources
     std::vector<Step> steps_;              // per plan pass
     uint32_t currentStep_ = 0;             // the step last added, whose accesses are being added
+    uint32_t usedTwice_ = kNone;           // an access sharing a subresource with one before it in its step
     // Per access (usage in plan order).
     // Sized for every access there can be (planAccesses), so records are written in place.
     std::unique_ptr<AccessRecord[]> accesses_;

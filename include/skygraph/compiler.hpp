@@ -49,8 +49,9 @@ struct CompileOptions {
     /// them in: e.g. {"hdr_color", TransferSrc} to read an intermediate target back. Exporting
     /// keeps the passes that write it from being culled. An unknown name is an error, and so
     /// is a state the resource cannot end in (as in a file: Present for an external image
-    /// alone, Present or TransferSrc for no buffer); a resource the file already exports keeps
-    /// its own `final`.
+    /// alone, Present or TransferSrc for no buffer, for an external one that arrives in a
+    /// state of its own any other state: the next frame would not find it so; `readbacks`
+    /// copies such an image out); a resource the file already exports keeps its own `final`.
     std::map<std::string, ExternalState, std::less<>> exports;
     /// When set, only these of the graph's exports are its outputs for this compile: the
     /// file's other exports are dropped, so passes that feed only them are culled. This is

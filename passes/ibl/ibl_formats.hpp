@@ -21,7 +21,8 @@ struct IblStorageFormat {
     const char* qualifier;  ///< GLSL's layout qualifier for it
 };
 
-/// Float formats every device can store to (Vulkan's required storage formats).
+/// The float formats the shaders' format qualifiers name (a device may still lack storage
+/// support for one: the renderer asks it).
 inline constexpr std::array<IblStorageFormat, 4> kIblStorageFormats{{{VK_FORMAT_R16G16B16A16_SFLOAT, "rgba16f"},
                                                                      {VK_FORMAT_R32G32B32A32_SFLOAT, "rgba32f"},
                                                                      {VK_FORMAT_R16G16_SFLOAT, "rg16f"},

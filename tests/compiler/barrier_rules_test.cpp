@@ -896,8 +896,9 @@ TEST(GraphsFromCode, APassThatReadsAndWritesOneSubresourceIsAnError) {
         auto& uses = g.passes[1].uses;
         uses.insert(writeFirst ? uses.begin() : uses.begin() + 1, write);
         const std::string text = compileErrorText(g);
-        EXPECT_NE(text.find("pass 'r', resource 'img': overlaps passes[1].uses.img; one pass may use each subresource "
-                            "once"),
+        // Both usages' paths are passes[1].uses.img (written by name): the other is named by index.
+        EXPECT_NE(text.find("passes[1].uses.img: pass 'r', resource 'img': overlaps the pass's usage 0 of it; one pass "
+                            "may use each subresource once"),
                   std::string::npos)
             << "writeFirst=" << writeFirst << ": " << text;
     }

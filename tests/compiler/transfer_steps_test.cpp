@@ -115,6 +115,18 @@ TEST(Readback, LeavesAnExternalImageInTheStateItArrivesIn) {
     EXPECT_EQ(plan.passes().back().name, "read back tex");
 }
 
+// An external image that arrives as presented is read back as before, left TransferSrc: a
+// plan presents only the images it exports so (headless, Present is TransferSrc anyway).
+TEST(Readback, LeavesAnImageArrivingAsPresentedTransferSrc) {
+    const GraphDesc g = graphOf(std::string(kOut) + R"(, "shown": {"type": "image2d", "format": "R8G8B8A8_UNORM",
+        "extent": [16, 16], "mips": 2, "external": true, "initial": "Present"})", R"(
+        {"name": "blit", "type": "Generic", "uses": {"shown": "Read@Compute", "out": "Write@Compute"}})");
+    CompileOptions o;
+    o.readbacks = {"shown"};
+    const Plan plan = compile(g, o);
+    EXPECT_EQ(plan.resources()[plan.resourceIndex("shown")].finalLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+}
+
 // A code-built graph has not been through the loader, which refuses the same at `initial`.
 TEST(ExternalStates, AnExportedExternalMustArriveInTheStateItIsLeftIn) {
     GraphDesc g = graphOf(std::string(kTexture) + "," + kOut, R"(
@@ -131,6 +143,14 @@ TEST(ExternalStates, AnExportedExternalMustArriveInTheStateItIsLeftIn) {
                                  "external": true, "initial": "ShaderRead", "final": "General"}},
                              "passes": [{"name": "w", "type": "Generic", "uses": {"acc": "ReadWrite@Compute",
                                          "out": "Write@Compute"}}]})";
+    // A buffer is named for the same reason, not as one left in an image layout.
+    GraphDesc withBuffer = graphOf(std::string(kVertices) + "," + kOut, R"(
+        {"name": "w", "type": "Generic", "uses": {"verts": "Read@Compute", "out": "Write@Compute"}})");
+    CompileOptions exportsIt;
+    exportsIt.exports = {{"verts", ExternalState::General}};
+    const std::string buffer = messageOf([&] { (void)compile(withBuffer, exportsIt); });
+    EXPECT_NE(buffer.find("resource 'verts': an external resource is kept for the next frame"), std::string::npos)
+        << buffer;
     const std::string loaded = messageOf([&] { (void)parseGraph(file, "steps.json", registry()); });
     EXPECT_NE(loaded.find("steps.json: resources.acc.initial: resource 'acc': an external resource is kept"),
               std::string::npos)
