@@ -30,8 +30,9 @@ struct SlotDecl {
     /// they were.
     bool byNameOnly = false;
     /// The resource types it binds, where its recording code's views and shaders take only
-    /// some (an environment cube, a 2D lookup table); empty: any.
-    std::vector<ResourceType> types;
+    /// some (an environment cube, a 2D lookup table); empty: any. A designated initializer
+    /// may leave it out.
+    std::vector<ResourceType> types{};
 
     /// "Read@Fragment" or "Write|ReadWrite@ColorAttachment".
     [[nodiscard]] std::string describeUsage() const;
