@@ -29,21 +29,22 @@ Diagnostics limitProblems(const GraphDesc& graph) {
                     std::to_string(int(r.sharing)) + ") hold a value outside its enum");
             continue;
         }
-        if (!statesFit(r)) {
-            if (r.final == ExternalState::Present && !r.external)
+        switch (statesProblem(r)) {
+            case StatesProblem::None: break;
+            case StatesProblem::PresentedNotExternal:
                 problem("only an external image (the swapchain's) can be presented");
-            else if (r.final == ExternalState::Present && r.isImage() && !presentable(r))
-                problem(unpresentableShape(r));
-            else if (!r.isImage() && r.clear)
-                problem("a buffer cannot be cleared by the graph");
-            else if (!r.isImage() && (imageLayoutState(r.initial) || imageLayoutState(r.final)))
+                break;
+            case StatesProblem::Unpresentable: problem(unpresentableShape(r)); break;
+            case StatesProblem::BufferCleared: problem("a buffer cannot be cleared by the graph"); break;
+            case StatesProblem::BufferInImageLayout:
                 problem("a buffer cannot start or end as Present or TransferSrc, which are image layouts");
-            else if (handedBackChanged(r))
-                problem(handedBackProblem(r));
-            else
+                break;
+            case StatesProblem::HandedBackChanged: problem(handedBackProblem(r)); break;
+            case StatesProblem::ClearOfOtherKind:
                 problem(std::string(r.format.isDepthStencil() ? "the depth format " : "the color format ") +
                         std::string(r.format.name) + " clears to " +
                         (r.format.isDepthStencil() ? "a depth value, not a color" : "a color, not a depth value"));
+                break;
         }
         if (!r.isImage()) {
             if (r.sizeBytes == 0 || r.sizeBytes > kMaxBufferBytes)

@@ -29,9 +29,6 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 /// Why `r` (presented, an image) is not presentable(), as the loader and compile() say it.
 [[nodiscard]] std::string unpresentableShape(const ResourceDesc& r);
 
-/// Whether a resource's states fit it as the loader requires of a file: only an external image
-/// of a swapchain image's shape is presented, a buffer is never left for presentation or a
-/// copy source, and only images clear, to a value of their format's kind.
 /// Whether `s` names an image layout (Present, TransferSrc), which a buffer cannot be in.
 [[nodiscard]] inline bool imageLayoutState(ExternalState s) noexcept {
     return s == ExternalState::Present || s == ExternalState::TransferSrc;
@@ -61,12 +58,32 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
            r.sharing <= Sharing::Concurrent;
 }
 
-[[nodiscard]] inline bool statesFit(const ResourceDesc& r) noexcept {
-    if (r.final == ExternalState::Present && (!r.external || (r.isImage() && !presentable(r)))) return false;
-    if (handedBackChanged(r)) return false;
-    if (!r.isImage()) return !imageLayoutState(r.final) && !imageLayoutState(r.initial) && !r.clear;
-    return !r.clear || r.clear->isDepth == r.format.isDepthStencil();
+/// What is wrong with a resource's states, as the loader requires them of a file: only an
+/// external image of a swapchain image's shape is presented, a buffer is never left for
+/// presentation or a copy source, an exported external arrives as it leaves, and only images
+/// clear, to a value of their format's kind. The first that applies, in this order.
+enum class StatesProblem : uint8_t {
+    None,
+    PresentedNotExternal,
+    Unpresentable,
+    BufferCleared,
+    BufferInImageLayout,
+    HandedBackChanged,
+    ClearOfOtherKind,
+};
+
+[[nodiscard]] inline StatesProblem statesProblem(const ResourceDesc& r) noexcept {
+    if (r.final == ExternalState::Present && !r.external) return StatesProblem::PresentedNotExternal;
+    if (r.final == ExternalState::Present && r.isImage() && !presentable(r)) return StatesProblem::Unpresentable;
+    if (!r.isImage() && r.clear) return StatesProblem::BufferCleared;
+    if (!r.isImage() && (imageLayoutState(r.initial) || imageLayoutState(r.final)))
+        return StatesProblem::BufferInImageLayout;
+    if (handedBackChanged(r)) return StatesProblem::HandedBackChanged;
+    if (r.clear && r.clear->isDepth != r.format.isDepthStencil()) return StatesProblem::ClearOfOtherKind;
+    return StatesProblem::None;
 }
+
+[[nodiscard]] inline bool statesFit(const ResourceDesc& r) noexcept { return statesProblem(r) == StatesProblem::None; }
 
 /// Whether `r`'s extent, layers, mip count and size are within the limits, and its shape and
 /// states are as the loader allows (a code-built GraphDesc has not been through it); the index

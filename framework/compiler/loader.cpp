@@ -341,8 +341,7 @@ private:
                 error(path + ".params", p.name, "", "the params validator of type '" + type->name + "' threw: " + e.what());
             }
             for (const auto& e : problems)
-                error(path + ".params" + (e.path.empty() || e.path.starts_with('[') ? "" : ".") + e.path, p.name, "",
-                      e.message);
+                error(e.pathUnder(path + ".params"), p.name, "", e.message);
         }
         if (const JsonValue uses = f[passKey::uses]) {
             loadUses(p, uses);

@@ -32,8 +32,8 @@ bool SlotDecl::takes(ResourceType type) const noexcept {
 std::string SlotDecl::describeTypes() const {
     std::string out;
     for (size_t i = 0; i < types.size(); ++i) {
-        const std::string name(toString(types[i]));
-        out += (i == 0 ? "" : " or ") + std::string(name[0] == 'i' ? "an " : "a ") + name;
+        const std::string type(toString(types[i]));
+        out += (i == 0 ? "" : " or ") + std::string(type[0] == 'i' ? "an " : "a ") + type;
     }
     return out;
 }
@@ -44,6 +44,10 @@ ParamError ParamError::forKey(std::string_view key, std::string message) {
 
 std::string ParamError::memberPath(std::string_view parent, std::string_view key) {
     return jsonPathMember(parent, key);
+}
+
+std::string ParamError::pathUnder(std::string_view params) const {
+    return std::string(params) + (path.empty() || path.starts_with('[') ? "" : ".") + path;
 }
 
 void PassRegistry::add(PassTypeInfo info) {

@@ -82,8 +82,7 @@ void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, cons
     try {
         if (type.validateParams)
             for (const ParamError& e : type.validateParams(desc.params.json()))
-                add("", "params" + std::string(e.path.empty() || e.path.starts_with('[') ? "" : ".") + e.path + ": " +
-                            e.message);
+                add("", e.pathUnder("params") + ": " + e.message);
         if (type.validateUsages)
             for (const UsageError& e : type.validateUsages(desc, graph))
                 add(e.usage < desc.uses.size() ? graph.resources.at(desc.uses[e.usage].resource).name : "", e.message);

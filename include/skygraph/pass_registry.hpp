@@ -57,6 +57,8 @@ struct ParamError {
     [[nodiscard]] static ParamError forKey(std::string_view key, std::string message);
     /// The path of member `key` of the value at `parent` ("" for the params object itself).
     [[nodiscard]] static std::string memberPath(std::string_view parent, std::string_view key);
+    /// `path` joined onto the path of the params object, e.g. "passes[2].params".
+    [[nodiscard]] std::string pathUnder(std::string_view params) const;
 };
 
 using ParamValidator = std::function<std::vector<ParamError>(const nlohmann::json& params)>;

@@ -3,7 +3,8 @@
 // format qualifier).
 #pragma once
 
-#include <skygraph/format.hpp>
+#include "../format_names.hpp"
+
 #include <skygraph/graph.hpp>
 #include <skygraph/pass_registry.hpp>
 
@@ -37,12 +38,9 @@ inline constexpr std::array<IblStorageFormat, 4> kIblStorageFormats{{{VK_FORMAT_
 
 /// Why pass type `type` cannot write `format`, a name from the format table.
 [[nodiscard]] inline std::string iblStorageProblem(std::string_view type, std::string_view format) {
-    std::string names;
-    for (size_t i = 0; i < kIblStorageFormats.size(); ++i) {
-        names += i == 0 ? "" : i + 1 == kIblStorageFormats.size() ? " or " : ", ";
-        names += findFormat(kIblStorageFormats[i].format)->name;
-    }
-    return std::string(type) + " writes " + names + " storage images, not " + std::string(format);
+    std::array<VkFormat, kIblStorageFormats.size()> formats{};
+    for (size_t i = 0; i < formats.size(); ++i) formats[i] = kIblStorageFormats[i].format;
+    return std::string(type) + " writes " + formatNames(formats) + " storage images, not " + std::string(format);
 }
 
 /// A usage validator refusing a format the pass's storage slot `slot` cannot take.

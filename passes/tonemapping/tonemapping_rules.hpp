@@ -2,7 +2,7 @@
 // when its pipeline is made (tonemapping_pass.cpp).
 #pragma once
 
-#include <skygraph/format.hpp>
+#include "../format_names.hpp"
 
 #include <vulkan/vulkan_core.h>
 
@@ -21,12 +21,7 @@ inline constexpr std::array kTonemappingComputeOutputs{VK_FORMAT_R8G8B8A8_UNORM,
 
 /// "R8G8B8A8_UNORM, ... or R32G32B32A32_SFLOAT": the formats above by their graph-file names.
 [[nodiscard]] inline std::string tonemappingComputeOutputNames() {
-    std::string names;
-    for (size_t i = 0; i < kTonemappingComputeOutputs.size(); ++i) {
-        names += i == 0 ? "" : i + 1 == kTonemappingComputeOutputs.size() ? " or " : ", ";
-        names += findFormat(kTonemappingComputeOutputs[i])->name;
-    }
-    return names;
+    return formatNames(kTonemappingComputeOutputs);
 }
 
 /// Why TonemappingComputePass cannot write `format`, a name from the format table.
