@@ -144,6 +144,9 @@ struct PassAttachments {
 /// declares them: each usage one declared slot, with the slot's usage; required slots filled;
 /// a slot that is not repeated filled once.
 void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources);
+/// For a type that takes any usage: throws ExecutorError naming the pass and the resource for
+/// a usage that names a slot.
+void checkNoSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources);
 /// Throws ExecutorError, naming the pass, for what its type's own validators refuse of
 /// `desc` (its params, its usages): the loader runs them for a graph file, not for a
 /// GraphDesc built in code.

@@ -72,6 +72,15 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
                                                         type.slots[i].describeUsage() + "); no usage fills it"));
 }
 
+// The loader tells a file that names a slot for such a type the same.
+void checkNoSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources) {
+    for (const PlannedUsage& u : pass.usages)
+        if (!u.slot.empty())
+            throw ExecutorError(passError(pass, resources.at(u.resource).desc->name,
+                                          "fills slot '" + std::string(u.slot) + "', but type '" + type.name +
+                                              "' takes any usage and has no slots"));
+}
+
 void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, const PassTypeInfo& type,
                              const GraphDesc& graph) {
     std::string problems;
@@ -154,7 +163,8 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
     if (options.passes)
         if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type)) {
-            if (!type->acceptsAnyUsage) checkSlots(pass, *type, s.resources);
+            if (type->acceptsAnyUsage) checkNoSlots(pass, *type, s.resources);
+            else checkSlots(pass, *type, s.resources);
             checkWithTypeValidators(pass, *ps.desc, *type, s.graph);
         }
     ps.implementation = implementationOf(pass, *ps.desc);

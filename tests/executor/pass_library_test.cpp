@@ -158,6 +158,13 @@ TEST_F(ExecutorTest, APlanWhoseUsagesDoNotFillTheirTypesSlotsIsRefusedByName) {
               "pass 'fill', resource 'tex': fills slot 'target' (Write@ColorAttachment) as Write@Compute");
     EXPECT_EQ(error("Pair", [](GraphDesc&) {}),
               "pass 'fill': type 'Pair' needs slot 'extra' (Read@Fragment); no usage fills it");
+    // Generic takes any usage: a slot named in code is a mistake, as the loader says of a file.
+    const auto nameSlotOfTex = [](GraphDesc& g) {
+        for (UsageDecl& u : g.passes[1].uses)
+            if (g.resources[u.resource].name == "tex") u.slot = g.internSlot("target");
+    };
+    EXPECT_EQ(error("Fill", nameSlotOfTex),
+              "pass 'show', resource 'tex': fills slot 'target', but type 'Generic' takes any usage and has no slots");
 }
 
 // A GraphDesc built in code skips the loader, which runs a type's validators: a renderer runs
