@@ -127,6 +127,10 @@ std::string notReadBackable(const std::string& resource, VkFormat format) {
 
 }  // namespace detail
 
+std::string readbackProblem(const std::string& resource, VkFormat format) {
+    return detail::readsBack(format) ? std::string() : detail::notReadBackable(resource, format);
+}
+
 namespace {
 
 ImageData convertPixels(const void* data, uint32_t width, uint32_t height, VkFormat format,

@@ -399,4 +399,8 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// Why Renderer::readback() cannot convert image `resource` of `format`, in the words a renderer
+/// compiled with that read-back throws; empty when it can. For refusing before a device is made.
+[[nodiscard]] std::string readbackProblem(const std::string& resource, VkFormat format);
+
 }  // namespace skygraph

@@ -383,6 +383,28 @@ TEST_F(Cli, SkySequenceWritesEveryFrameAndRefusesAPatternWithoutANumber) {
     EXPECT_FALSE(fs::exists(dir_ / "work" / "sky.exr"));
 }
 
+// An equirect is twice as wide as it is tall: an odd width is misuse, named with its value,
+// and nothing is written. One frame is counted as one.
+TEST_F(Cli, SkySequenceRefusesAnOddWidthAndCountsOneFrameInTheSingular) {
+    const fs::path pattern = dir_ / "work" / "sky_%d.exr";
+    for (const char* odd : {"3", "33"}) {
+        const CliRun r = run({"sky-sequence", pattern.string(), "--frames", "1", "--width", odd});
+        EXPECT_EQ(r.status, 2) << odd << ": " << r.err;
+        EXPECT_NE(r.err.find(std::string("error: --width: ") + odd + " is odd: an equirect is twice as wide as it is "
+                             "tall, so its width must be even"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_TRUE(workFiles().empty()) << odd;
+    }
+    const CliRun one = run({"sky-sequence", pattern.string(), "--frames", "1", "--width", "8"});
+    ASSERT_EQ(one.status, 0) << one.err;
+    EXPECT_EQ(one.out, "skygraph sky-sequence: 1 frame of 8x4, " + (dir_ / "work" / "sky_0.exr").string() + "\n");
+    const CliRun two = run({"sky-sequence", pattern.string(), "--frames", "2", "--width", "8"});
+    ASSERT_EQ(two.status, 0) << two.err;
+    EXPECT_EQ(two.out, "skygraph sky-sequence: 2 frames of 8x4, " + (dir_ / "work" / "sky_0.exr").string() + " to " +
+                           (dir_ / "work" / "sky_1.exr").string() + "\n");
+}
+
 // As every command does, sky-sequence refuses a folder that does not exist, making none.
 TEST_F(Cli, SkySequenceRefusesAFolderThatDoesNotExist) {
     const fs::path missing = dir_ / "work" / "no such folder" / "deeper";

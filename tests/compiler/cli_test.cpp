@@ -398,6 +398,30 @@ TEST_F(Cli, CommandLineTextIsShownEscaped) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+#if SKYGRAPH_CLI_HAS_RENDER
+// An output named only by an extension ("-o .ktx2") has the extension it needs and no name
+// before it: said so, not that its extension is missing; exit 1 and nothing written.
+TEST_F(Cli, AnOutputNamedOnlyByItsExtensionIsSaidToHaveNoStem) {
+    const fs::path cube = dir_ / "work" / ".ktx2", cross = dir_ / "work" / ".EXR", frame = dir_ / "work" / ".png";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"cubemap", "sky.hdr", "-o", cube.string()},
+         "error: -o '" + cube.string() + "': the file name has no stem, only an extension (e.g. sky.ktx2)\n"},
+        {{"cubemap", "sky.hdr", "-o", (dir_ / "work" / "sky.ktx2").string(), "--cross", cross.string()},
+         "error: --cross '" + cross.string() + "': the file name has no stem, only an extension (e.g. cross.EXR)\n"},
+        {{"render", "-o", frame.string()},
+         "skygraph render: -o '" + frame.string() + "': the file name has no stem, only an extension (e.g. "
+         "frame.png)\n"},
+    };
+    for (const auto& [args, message] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 1) << args.back() << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("its extension must be"), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty()) << args.back();
+    }
+}
+#endif
+
 TEST_F(Cli, MisuseExitsTwo) {
     const std::vector<std::vector<std::string>> cases{
         {"compile", "graphs/raster.json", "--bogus"},
@@ -552,6 +576,36 @@ TEST_F(Cli, BadSizesAndMemoryFlagsAreMisuse) {
         EXPECT_EQ(r.status, 2) << flags[0] << ": " << r.err;
         EXPECT_NE(r.err.find(named), std::string::npos) << flags[0] << ": " << r.err;
         EXPECT_TRUE(workFiles().empty()) << flags[0];
+    }
+}
+
+// A word or a fraction given for a number is named as such, not as a number out of range (a
+// range check) or one that cannot be converted (none); a number out of range still says so.
+TEST_F(Cli, AValueThatIsNotANumberIsSaidToBeNone) {
+    const std::string plan = (dir_ / "work" / "plan.txt").string();
+    std::vector<std::pair<std::vector<std::string>, std::string>> cases{
+        {{"compile", "graphs/raster.json", "-o", plan, "--width", "abc"}, "error: --width: 'abc' is not a number\n"},
+        {{"compile", "graphs/raster.json", "-o", plan, "--height", "1.5"},
+         "error: --height: '1.5' is not a whole number\n"},
+        {{"compile", "graphs/raster.json", "-o", plan, "--watch", "--watch-iterations", "many"},
+         "error: --watch-iterations: 'many' is not a number\n"},
+        {{"compile", "graphs/raster.json", "-o", plan, "--width", "0"},
+         "error: --width: Value 0 not in range 1 to 16384"},
+    };
+#if SKYGRAPH_CLI_HAS_RENDER
+    cases.push_back({{"render", "--frames", "lots"}, "error: --frames: 'lots' is not a number\n"});
+    cases.push_back({{"view", "--height", "tall"}, "error: --height: 'tall' is not a number\n"});
+    cases.push_back({{"check", "graphs/raster.json", "--jobs", "all"}, "error: --jobs: 'all' is not a number\n"});
+    cases.push_back({{"cubemap", "sky.hdr", "-o", (dir_ / "work" / "sky.ktx2").string(), "--samples", "many"},
+                     "error: --samples: 'many' is not a number\n"});
+    cases.push_back({{"sky-sequence", (dir_ / "work" / "sky%d.exr").string(), "--width", "wide"},
+                     "error: --width: 'wide' is not a number\n"});
+#endif
+    for (const auto& [args, message] : cases) {
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 2) << args[0] << " " << args.back() << ": " << r.err;
+        EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty()) << args[0] << " " << args.back();
     }
 }
 
@@ -1071,13 +1125,35 @@ TEST_F(Cli, RenderRefusesToReadBackAnOutputNoPassWrites) {
     EXPECT_TRUE(fs::exists(out));
 }
 
+// The executor reads back only the formats it converts to floats; another is refused before
+// any frame, named in the graph file at the resource's declaration.
+TEST_F(Cli, RenderNamesTheGraphFileOfAReadBackOfAFormatItCannotWrite) {
+    const fs::path graph = writeGraph("counts.json", R"({
+      "version": 1, "name": "counts",
+      "resources": {
+        "counts": { "type": "image2d", "format": "R32_UINT", "extent": [16, 16],
+                    "external": true, "final": "ShaderRead" }
+      },
+      "passes": [ { "name": "count", "type": "Generic", "uses": { "counts": "Write@Compute" } } ]
+    })");
+    const fs::path out = dir_ / "work" / "counts.exr";
+    const CliRun r = run({"render", graph.string(), "--readback", "counts", "-o", out.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("error: " + graph.string() + ": resources.counts: resource 'counts': cannot read back "
+                         "'counts': its format R32_UINT is not supported for read-back"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(workFiles().empty());
+}
+
 TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
     const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
     const fs::path out = dir_ / "work" / "out.png";
     const CliRun r = run({"render", graph.string(), "-o", out.string()});
     EXPECT_EQ(r.status, 1) << r.err;
-    EXPECT_NE(r.err.find("nothing to write to " + out.string() + ": graph 'bake' has no Present image that a pass uses; add "
-                         "--readback NAME with one of the images its passes write: field"),
+    EXPECT_NE(r.err.find("skygraph render: " + graph.string() + ": nothing to write to -o '" + out.string() +
+                         "': the graph has no Present image that a pass uses; add --readback NAME with one of the "
+                         "images its passes write: field"),
               std::string::npos)
         << r.err;
     EXPECT_TRUE(workFiles().empty());

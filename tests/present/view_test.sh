@@ -2,7 +2,8 @@
 # `skygraph view` end to end on a virtual X server of its own (xvfb-run -a, 24-bit screen).
 #
 # Usage: view_test.sh CASE SKYGRAPH ROOT WORKDIR
-#   frames       120 frames with validation + synchronization validation: no message
+#   frames       120 frames with validation + synchronization validation: no message; each
+#                culled pass is logged once
 #   resize       the same, the window resized twice mid-run (xdotool windowsize)
 #   mailbox      the same with --present-mode mailbox
 #   in_flight_K  the same with K frames in flight (1, 2, 3)
@@ -212,6 +213,10 @@ case "$case_name" in
     frames)
         view --validate --frames 120
         expect_clean_end "$pid" 120
+        # One plan, so each of its culled passes is logged once, when it is built.
+        grep -q "^info: culled " view.err || fail "the plan's culled passes are not logged"
+        twice="$(grep "^info: culled " view.err | sort | uniq -d || true)"
+        [ -z "$twice" ] || fail "culled passes logged more than once: $twice"
         ;;
     compute_ui)
         view --validate --frames 60 --feature compute_tonemap=on

@@ -9,6 +9,7 @@
 #include "replace_file.hpp"
 #include "environment_graph.hpp"
 #include "file_extension.hpp"
+#include "output_file_name.hpp"
 #include "printable_name.hpp"
 #include "procedural_environment.hpp"
 #include "shipped_names.hpp"
@@ -30,6 +31,8 @@
 #include <optional>
 #include <iostream>
 #include <set>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace skygraph::app {
@@ -134,20 +137,23 @@ std::string outputTarget(const GraphDesc& graph, const Plan& plan, const std::st
     return {};
 }
 
-/// Whether a pass of `plan` writes resource `name` (an inserted step, a Clear, does not count).
-bool writtenByAPass(const Plan& plan, std::string_view name) {
+/// The resources that passes of `plan` write (an inserted step, a Clear, does not count).
+std::set<std::string, std::less<>> writtenByPasses(const Plan& plan) {
+    std::set<std::string, std::less<>> written;
     for (const PlannedPass& p : plan.passes())
-        for (const PlannedUsage& u : p.usages)
-            if (p.declIndex >= 0 && writesContents(u.usage.access) && plan.resources()[u.resource].name == name)
-                return true;
-    return false;
+        if (p.declIndex >= 0)
+            for (const PlannedUsage& u : p.usages)
+                if (writesContents(u.usage.access)) written.emplace(plan.resources()[u.resource].name);
+    return written;
 }
 
-/// The images a pass of `plan` writes, which a read-back shows the frame's work in.
+/// The images a pass of `plan` writes, which a read-back shows the frame's work in, in the
+/// order `graph` declares them.
 std::string writtenImageNames(const GraphDesc& graph, const Plan& plan) {
+    const std::set<std::string, std::less<>> written = writtenByPasses(plan);
     std::string names;
     for (const ResourceDesc& r : graph.resources)
-        if (r.isImage() && writtenByAPass(plan, r.name)) names += (names.empty() ? "" : ", ") + r.name;
+        if (r.isImage() && written.contains(r.name)) names += (names.empty() ? "" : ", ") + r.name;
     return names;
 }
 
@@ -396,6 +402,11 @@ std::optional<std::filesystem::path> inputAt(const std::filesystem::path& output
 std::optional<std::string> outputFormat(const RenderOptions& options) {
     constexpr std::array<std::string_view, 3> kFormats{"png", "hdr", "exr"};
     const auto known = [&](std::string_view f) { return std::find(kFormats.begin(), kFormats.end(), f) != kFormats.end(); };
+    for (const std::string_view format : kFormats)
+        if (fileNameIsOnlyExtension(options.output, "." + std::string(format))) {
+            std::cerr << "skygraph render: " << noStemMessage("-o", options.output, "frame") << "\n";
+            return std::nullopt;
+        }
     std::string fromName = lowercaseExtension(options.output);
     if (!fromName.empty()) fromName.erase(0, 1);  // the dot
     if (!options.outputFormat.empty()) {
@@ -456,8 +467,8 @@ int renderCommand(const RenderOptions& options) {
         if (target.empty()) {
             if (!output.empty()) {
                 const std::string images = writtenImageNames(graph, unread);
-                std::cerr << "skygraph render: nothing to write to " << printableName(output.string()) << ": graph '" << graph.name
-                          << "' has no Present image that a pass uses; "
+                std::cerr << "skygraph render: " << printableName(graph.file) << ": nothing to write to -o '"
+                          << printableName(output.string()) << "': the graph has no Present image that a pass uses; "
                           << (images.empty() ? std::string("nor any image that a pass writes, to read back")
                                              : "add --readback NAME with one of the images its passes write: " + images)
                           << "\n";
@@ -470,13 +481,20 @@ int renderCommand(const RenderOptions& options) {
             // An output of the graph (exported) that no pass of these features writes would be
             // read back as the placeholder it arrives with.
             const ResourceDesc* declared = graph.findResource(target);
-            if (declared && declared->external && declared->isExported() && !writtenByAPass(unread, target)) {
+            if (declared && declared->external && declared->isExported() && !writtenByPasses(unread).contains(target)) {
                 const std::string images = writtenImageNames(graph, unread);
                 std::cerr << "skygraph render: " << printableName(graph.file) << ": cannot read back '" << target
                           << "': it is an output of the graph, and no pass that runs with these features writes it"
                           << (images.empty() ? std::string() : "; the images its passes write: " + images) << "\n";
                 return 1;
             }
+            // Before a device is made: the file's declaration is what to change.
+            if (declared && declared->isImage())
+                if (std::string problem = readbackProblem(target, declared->format.format); !problem.empty()) {
+                    Diagnostics d;
+                    d.add({graph.file, declared->jsonPath(), "", target, std::move(problem)});
+                    throw GraphError(std::move(d));
+                }
             if (output.empty()) output = "skygraph." + format;
             co.readbacks = {target};
         }

@@ -270,7 +270,6 @@ int viewCommand(const ViewOptions& options) {
             std::signal(SIGINT, previousInt);
             std::signal(SIGTERM, previousTerm);
             for (const auto& t : renderer.lastTimings()) spdlog::info("pass {:<24} {:8.3f} ms (GPU)", t.pass, t.milliseconds);
-            for (const auto& c : renderer.plan().culled()) spdlog::info("culled {}: {}", c.name, c.reason);
             lastExtent = swapchain->extent();
             lastMode = swapchain->presentMode();
             reloads = live.reloads();

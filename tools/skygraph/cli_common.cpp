@@ -9,6 +9,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -39,6 +40,42 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
             throw UsageError(std::string(option) + " gives feature '" + printableName(f.substr(0, eq)) + "' twice");
     }
     return out;
+}
+
+namespace {
+
+/// CLI11's name of the type of an option's value ("UINT", "INT", "FLOAT", "TEXT"; "" for a
+/// flag): what get_type_name() gives before the descriptions of its validators.
+std::string valueTypeName(const CLI::Option& option) {
+    const std::string full = option.get_type_name();
+    return full.substr(0, full.find(':'));
+}
+
+/// Leaves a value as it is; refuses one that reads as no number, or, with `whole`, as no whole
+/// number. It describes nothing, so that --help shows the option as before.
+CLI::Validator numberCheck(bool whole) {
+    return CLI::Validator(
+        [whole](std::string& value) -> std::string {
+            double number = 0.0;
+            if (!CLI::detail::lexical_cast(value, number)) return "'" + value + "' is not a number";
+            int64_t wholeNumber = 0;
+            if (whole && !CLI::detail::lexical_cast(value, wholeNumber)) return "'" + value + "' is not a whole number";
+            return {};
+        },
+        "");
+}
+
+}  // namespace
+
+void refuseValuesThatAreNotNumbers(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        const std::string type = valueTypeName(*option);
+        // A transform runs before the checks, the range among them.
+        if (type == "UINT" || type == "INT") option->transform(numberCheck(true));
+        else if (type == "FLOAT") option->transform(numberCheck(false));
+    }
+    for (CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+        refuseValuesThatAreNotNumbers(*command);
 }
 
 CLI::Option* addFlagSettingFalse(CLI::App& command, const std::string& name, bool& setting,

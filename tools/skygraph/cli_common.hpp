@@ -60,6 +60,12 @@ inline const CLI::Validator kNotEmpty(
     [](const std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
     "NOT EMPTY");
 
+/// Makes every numeric option of `app` and of its subcommands say that a value such as "abc" is
+/// not a number ("--width: 'abc' is not a number"), and that "1.5" given for a count is not a
+/// whole number, before any range check: CLI11's Range calls such a value out of range, and an
+/// option without one fails with "Could not convert". Call once, after every option is added.
+void refuseValuesThatAreNotNumbers(CLI::App& app);
+
 /// Adds a flag that sets `setting` to false when given (--no-alias for aliasing). `setting`
 /// must outlive parsing. CLI11's own form of it, "!--no-alias", would show in --help as
 /// "--no-alias{false}".

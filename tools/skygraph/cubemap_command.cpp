@@ -5,6 +5,7 @@
 #include "replace_file.hpp"
 
 #include "app/environment_bake.hpp"
+#include "app/output_file_name.hpp"
 #include "file_extension.hpp"
 #include "printable_name.hpp"
 #include "shipped_names.hpp"
@@ -22,6 +23,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string_view>
 #include <system_error>
 
 namespace skygraph::cli {
@@ -93,7 +95,12 @@ int run(CubemapArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::filesystem::path output = args.output;
     // As `render` does with its output: any case, and a wrong one is a problem with the input.
+    if (app::fileNameIsOnlyExtension(output, ".ktx2"))
+        throw std::runtime_error(app::noStemMessage("-o", output, "sky"));
     if (lowercaseExtension(output) != ".ktx2") throw ImageError(output, "cannot write: its extension must be .ktx2");
+    for (const std::string_view extension : {".hdr", ".exr"})
+        if (app::fileNameIsOnlyExtension(args.cross, extension))
+            throw std::runtime_error(app::noStemMessage("--cross", args.cross, "cross"));
     if (!args.cross.empty() && lowercaseExtension(args.cross) != ".hdr" && lowercaseExtension(args.cross) != ".exr")
         throw ImageError(args.cross, "cannot write --cross: its extension must be .hdr or .exr");
     if (args.bake.size & (args.bake.size - 1)) throw UsageError("--size must be a power of two");

@@ -68,6 +68,7 @@ int main(int argc, char** argv) {
         addSkySequenceCommand(app),
 #endif
     };
+    refuseValuesThatAreNotNumbers(app);
 
     // CLI11 would answer an unknown command with "A subcommand is required": name it instead.
     if (argc > 1 && argv[1][0] != '-') {

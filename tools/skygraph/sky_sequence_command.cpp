@@ -23,6 +23,15 @@ struct SkySequenceArgs {
     uint32_t width = 1024;
 };
 
+/// An equirect is twice as wide as it is tall, so its width is even: 3 would make a 3x1 image.
+const CLI::Validator kEvenWidth(
+    [](const std::string& value) {
+        uint32_t width = 0;
+        if (!CLI::detail::lexical_cast(value, width) || width % 2 == 0) return std::string();
+        return value + " is odd: an equirect is twice as wide as it is tall, so its width must be even";
+    },
+    "EVEN");
+
 int run(const SkySequenceArgs& args) {
     if (const std::string problem = sequencePatternProblem(std::filesystem::path(args.pattern).filename().string());
         !problem.empty())
@@ -36,9 +45,11 @@ int run(const SkySequenceArgs& args) {
         throw ImageError(firstFrame, "cannot write: " + files::whyNotWritten(e));
     }
     app::writeProceduralSkySequence(args.pattern, args.frames, args.width);
-    std::cout << "skygraph sky-sequence: " << args.frames << " frames of " << args.width << "x" << args.width / 2
-              << ", " << printableName(sequenceFrameFile(args.pattern, 0).string()) << " to "
-              << printableName(sequenceFrameFile(args.pattern, args.frames - 1).string()) << "\n";
+    std::cout << "skygraph sky-sequence: " << args.frames << (args.frames == 1 ? " frame" : " frames") << " of "
+              << args.width << "x" << args.width / 2 << ", " << printableName(firstFrame.string());
+    if (args.frames > 1)
+        std::cout << " to " << printableName(sequenceFrameFile(args.pattern, args.frames - 1).string());
+    std::cout << "\n";
     return kExitOk;
 }
 
@@ -51,8 +62,8 @@ Command addSkySequenceCommand(CLI::App& parent) {
                         "for an environment sequence: PATTERN holds the frame number as %d or %0Nd, e.g. frames/%04d.exr");
     cmd->add_option("pattern", args->pattern, "Frame files, .hdr or .exr, numbered from 0")->required()->check(kNotEmpty);
     cmd->add_option("--frames", args->frames, "How many frames")->check(CLI::Range(1u, 100000u))->capture_default_str();
-    cmd->add_option("--width", args->width, "Equirect width; the height is half")
-        ->check(CLI::Range(2u, 16384u))->capture_default_str();
+    cmd->add_option("--width", args->width, "Equirect width, even; the height is half")
+        ->check(CLI::Range(2u, 16384u))->check(kEvenWidth)->capture_default_str();
     return {cmd, [args] { return run(*args); }};
 }
 
