@@ -284,6 +284,24 @@ bool envFlagOff(const char* name) {
     return v && *v && !envFlag(name);
 }
 
+/// Why vkCreateInstance failed, in words. The loader answers VK_ERROR_INCOMPATIBLE_DRIVER when
+/// it finds no driver to load (none installed, or the driver variables name none), the usual
+/// state of a fresh machine or container, which the result's name alone does not say.
+std::string instanceCreationFailure(VkResult result) {
+    std::string message = std::string("vkCreateInstance failed: ") + vk::resultName(result);
+    if (result != VK_ERROR_INCOMPATIBLE_DRIVER) return message;
+    message += ": no Vulkan driver was found";
+    // The loader reads VK_DRIVER_FILES in place of VK_ICD_FILENAMES when both are set.
+    for (const char* variable : {"VK_DRIVER_FILES", "VK_ICD_FILENAMES"})
+        if (const char* files = std::getenv(variable); files && *files) {
+            message += std::string(" (") + variable + " is set to '" + files + "', and no driver loads from it)";
+            break;
+        }
+    return message + "; install one (Mesa's lavapipe runs on any CPU: apt install mesa-vulkan-drivers), or set "
+                     "VK_ICD_FILENAMES to an installed driver's manifest, e.g. "
+                     "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+}
+
 }  // namespace
 
 void Device::Impl::finish() {
@@ -411,7 +429,8 @@ std::unique_ptr<Device> Device::create(const DeviceOptions& options) {
     ici.ppEnabledLayerNames = layers.data();
     ici.enabledExtensionCount = static_cast<uint32_t>(exts.size());
     ici.ppEnabledExtensionNames = exts.data();
-    vk::check(vkCreateInstance(&ici, nullptr, &impl->instance), "vkCreateInstance");
+    if (const VkResult created = vkCreateInstance(&ici, nullptr, &impl->instance); created != VK_SUCCESS)
+        throw ExecutorError(instanceCreationFailure(created));
 
     if (debugUtils) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(

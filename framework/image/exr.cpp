@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfThreading.h>
@@ -16,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <thread>
 
@@ -42,16 +44,30 @@ private:
     size_t position_ = 0;
 };
 
-/// Reads only the first header and returns its data window, so that the size can be refused
-/// before OpenEXR or we allocate anything in proportion to it.
-Imath::Box2i peekDataWindow(const std::filesystem::path& path) {
-    Imf::StdIFStream stream(path.c_str());
-    int magic = 0, version = 0;
-    Imf::Xdr::read<Imf::StreamIO>(stream, magic);
-    Imf::Xdr::read<Imf::StreamIO>(stream, version);
-    Imf::Header header;
-    header.readFrom(stream, version);
-    return header.dataWindow();
+/// The first header, read alone (the magic number, the version field, the attributes) so that
+/// the file is known to be an OpenEXR file before anything else is believed of it, and so that
+/// its size can be refused before OpenEXR or we allocate anything in proportion to it. Throws
+/// ImageError for a version field OpenEXR does not write or a header it cannot read.
+Imf::Header readFirstHeader(const std::filesystem::path& path) {
+    const auto invalid = [&](const std::string& why) { return ImageError(path, "not a valid OpenEXR file: " + why); };
+    try {
+        Imf::StdIFStream stream(path.c_str());
+        int magic = 0, version = 0;
+        Imf::Xdr::read<Imf::StreamIO>(stream, magic);
+        Imf::Xdr::read<Imf::StreamIO>(stream, version);
+        if (Imf::getVersion(version) != Imf::EXR_VERSION || !Imf::supportsFlags(Imf::getFlags(version))) {
+            char field[16];
+            std::snprintf(field, sizeof field, "0x%08x", unsigned(version));
+            throw invalid(std::string("unknown version field ") + field + "; OpenEXR files are version 2");
+        }
+        Imf::Header header;
+        header.readFrom(stream, version);
+        return header;
+    } catch (const ImageError&) {
+        throw;
+    } catch (const std::exception& e) {  // Iex::BaseExc and std::bad_alloc
+        throw invalid(std::string("truncated or corrupt header (") + e.what() + ")");
+    }
 }
 
 /// OpenEXR decompresses a file's blocks on its global thread pool, which is empty until it is
@@ -106,21 +122,24 @@ void readPixels(const std::filesystem::path& path, Imf::InputFile& file, const I
 
 HdrImage loadExr(const std::filesystem::path& path) {
     image_detail::requireReadableFile(path);
-    bool tiled = false, deep = false, multiPart = false;
-    if (!Imf::isOpenExrFile(path.c_str(), tiled, deep, multiPart)) {
+    if (!Imf::isOpenExrFile(path.c_str())) {
         std::ifstream in(path, std::ios::binary);
         std::string head(16, '\0');
         in.read(head.data(), std::streamsize(head.size()));
         head.resize(size_t(in.gcount()));
         const std::string kind = image_detail::sniffFormat(head);
-        if (kind == "an OpenEXR image") throw ImageError(path, "truncated or corrupt OpenEXR header");
+        if (kind == "an OpenEXR image") throw ImageError(path, "not a valid OpenEXR file: truncated or corrupt header");
         throw ImageError(path, head.empty() ? "empty file; expected an OpenEXR image"
                                             : "not an OpenEXR image (" +
                                                   (kind.empty() ? "no EXR signature" : "it is " + kind) + ")");
     }
-    if (deep) throw ImageError(path, "deep OpenEXR images are not supported");
+    // Deep data is told by the header's part type, not by the version field's flag: any bytes
+    // after the magic number set that flag half the time.
+    const Imf::Header header = readFirstHeader(path);
+    if (header.hasType() && Imf::isDeepData(header.type()))
+        throw ImageError(path, "deep OpenEXR images are not supported");
     try {
-        const Imath::Box2i window = peekDataWindow(path);
+        const Imath::Box2i window = header.dataWindow();
         const int64_t w = int64_t(window.max.x) - window.min.x + 1;
         const int64_t h = int64_t(window.max.y) - window.min.y + 1;
         image_detail::requireLoadableSize(path, w, h);

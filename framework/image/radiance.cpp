@@ -9,10 +9,14 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
 #include <climits>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <string_view>
+#include <vector>
 
 namespace skygraph {
 namespace {
@@ -37,6 +41,20 @@ size_t rgbeDataOffset(const std::string& bytes) {
         headerEnded = line > 0 && empty;
     }
     return bytes.size();
+}
+
+/// The values of the header's FORMAT= lines, read as stb_image reads the header: each line
+/// after the signature up to the first empty one (or one that starts with NUL), whole.
+std::vector<std::string> headerFormats(const std::string& bytes) {
+    std::vector<std::string> formats;
+    for (size_t pos = bytes.find('\n'); pos != std::string::npos && ++pos < bytes.size();) {
+        const size_t end = bytes.find('\n', pos);
+        const std::string_view line = std::string_view(bytes).substr(pos, end == std::string::npos ? end : end - pos);
+        if (line.empty() || line.front() == '\0') break;
+        if (line.starts_with("FORMAT=")) formats.emplace_back(line.substr(std::strlen("FORMAT=")));
+        pos = end;
+    }
+    return formats;
 }
 
 void checkRgbeStream(const std::filesystem::path& path, const std::string& bytes, size_t p,
@@ -100,6 +118,16 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
                                    "newline alone (this one is followed by other bytes, e.g. CR LF line ends)");
         throw ImageError(path, "not a Radiance HDR image (" +
                                    (kind.empty() ? "no #?RADIANCE or #?RGBE signature" : "it is " + kind) + ")");
+    }
+    // stb_image reads only FORMAT=32-bit_rle_rgbe and calls any other header unknown.
+    if (const std::vector<std::string> formats = headerFormats(bytes);
+        !formats.empty() && std::find(formats.begin(), formats.end(), "32-bit_rle_rgbe") == formats.end()) {
+        if (std::find(formats.begin(), formats.end(), "32-bit_rle_xyze") != formats.end())
+            throw ImageError(path, "XYZE .hdr files (FORMAT=32-bit_rle_xyze) are not supported; only "
+                                   "FORMAT=32-bit_rle_rgbe is");
+        const std::string& format = formats.front();
+        const std::string shown = format.size() > 40 ? format.substr(0, 40) + "..." : format;
+        throw ImageError(path, "unknown pixel format FORMAT=" + shown + "; expected FORMAT=32-bit_rle_rgbe");
     }
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(data, len, &w, &h, &comp))

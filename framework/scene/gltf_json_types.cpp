@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <initializer_list>
 #include <cstring>
@@ -194,7 +195,9 @@ public:
             // Only a .glb's first buffer, its binary chunk, has no uri.
             if (!b.contains("uri") && !(binary_ && at == "buffers[0]"))
                 error(at + ".uri", "missing; only the first buffer of a .glb may have none");
+            relativeUri(b, at);
         });
+        each(root, "images", [&](const json& i, const std::string& at) { relativeUri(i, at); });
         const size_t accessors = root.contains("accessors") ? root["accessors"].size() : 0;
         each(root, "meshes", [&](const json& m, const std::string& at) {
             required(m, at, {"primitives"});
@@ -230,6 +233,14 @@ private:
     void required(const json& object, const std::string& at, std::initializer_list<const char*> keys) {
         for (const char* key : keys)
             if (!object.contains(key)) error(at + "." + key, "missing; glTF requires it here");
+    }
+
+    /// tinygltf joins an absolute path to the glTF's folder too, and says "File not found", or
+    /// for an image only warns.
+    void relativeUri(const json& object, const std::string& at) {
+        if (const auto uri = object.find("uri"); uri != object.end() && !uri->get<std::string>().starts_with("data:"))
+            if (const std::string problem = absoluteUriProblem(uri->get<std::string>()); !problem.empty())
+                error(at + ".uri", problem);
     }
 
     template <typename F>
@@ -302,6 +313,47 @@ std::string_view glbJsonChunk(std::string_view data) {
     uint32_t length = 0;
     std::memcpy(&length, data.data() + 12, 4);
     return data.substr(20, length);
+}
+
+namespace {
+
+/// `uri` with each %XX replaced by its byte and each + by a space, as tinygltf decodes a uri
+/// before it looks for the file.
+std::string percentDecoded(const std::string& uri) {
+    const auto hexDigit = [](char c) -> int {
+        if (c >= '0' && c <= '9') return c - '0';
+        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+        return 0;  // tinygltf reads any other character as 0 too
+    };
+    std::string decoded;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') {
+            decoded += ' ';
+        } else if (uri[i] == '%' && i + 2 < uri.size()) {
+            decoded += char(hexDigit(uri[i + 1]) << 4 | hexDigit(uri[i + 2]));
+            i += 2;
+        } else {
+            decoded += uri[i];
+        }
+    }
+    return decoded;
+}
+
+}  // namespace
+
+std::filesystem::path uriFile(const std::filesystem::path& baseDir, const std::string& uri) {
+    return baseDir / percentDecoded(uri);
+}
+
+std::string absoluteUriProblem(const std::string& uri) {
+    const std::string decoded = percentDecoded(uri);
+    std::string scheme = uri.substr(0, 5);
+    std::transform(scheme.begin(), scheme.end(), scheme.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const char* what = decoded.starts_with('/') ? "an absolute path" : scheme == "file:" ? "a file: URI" : nullptr;
+    if (!what) return {};
+    return "'" + uri + "' is " + what + "; a glTF uri names a file relative to the glTF file's folder, and absolute "
+           "paths are refused";
 }
 
 bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bool binary, Diagnostics& diagnostics) {

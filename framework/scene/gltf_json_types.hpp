@@ -6,6 +6,7 @@
 
 #include <skygraph/diagnostics.hpp>
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -27,5 +28,13 @@ namespace skygraph {
 /// strings, names that are not strings, extensions that are not objects. True when nothing
 /// was wrong.
 bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bool binary, Diagnostics& diagnostics);
+
+/// The file that a buffer's or an image's `uri` (not a data URI) names, found as tinygltf finds
+/// it: percent-decoded and joined to `baseDir`, the glTF file's folder.
+[[nodiscard]] std::filesystem::path uriFile(const std::filesystem::path& baseDir, const std::string& uri);
+
+/// Why `uri` (not a data URI) names no file skygraph reads, in words, or empty: glTF uris are
+/// relative to the glTF file's folder, and an absolute path or a file: URI is refused.
+[[nodiscard]] std::string absoluteUriProblem(const std::string& uri);
 
 }  // namespace skygraph

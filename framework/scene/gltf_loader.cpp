@@ -135,10 +135,10 @@ void setTangent(MeshVertex& v, const dvec3& t, double w) {
 
 class GltfFlattener {
 public:
-    GltfFlattener(std::filesystem::path file, const tinygltf::Model& model, const GltfLimits& limits,
-                  Diagnostics& diagnostics)
+    GltfFlattener(std::filesystem::path file, const tinygltf::Model& model, const std::filesystem::path& baseDir,
+                  const GltfLimits& limits, Diagnostics& diagnostics)
         : model_(model), limits_(limits), diagnostics_(diagnostics),
-          materials_(model, limits.maxImageBytes,
+          materials_(model, baseDir, limits.maxImageBytes,
                      [this](const std::string& path, const std::string& message) { error(path, message); }) {
         mesh_.file = std::move(file);
     }
@@ -575,7 +575,7 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         return std::nullopt;
     tinygltf::TinyGLTF reader;
     tinygltf::Model model;
-    ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, {}};
+    ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, baseDir, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
     ExternalFiles files{baseDir.string(), {}};
     reader.SetFsCallbacks({fileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &files});
@@ -597,9 +597,10 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         if (diagnostics.size() == before) fail("glTF: tinygltf could not read it");
     }
     for (const auto& [index, problem] : headerCheck.problems)
-        diagnostics.add(Diagnostic{name, "images[" + std::to_string(index) + "]", "", "", problem});
+        diagnostics.add(Diagnostic{name, problem.jsonPath, "", "", problem.message});
     if (!read || !error.empty() || !headerCheck.problems.empty()) return std::nullopt;
-    std::optional<TriangleMesh> mesh = GltfFlattener(name, model, limits, diagnostics).flatten(transformMatrix(transform));
+    std::optional<TriangleMesh> mesh =
+        GltfFlattener(name, model, baseDir, limits, diagnostics).flatten(transformMatrix(transform));
     if (mesh) mesh->referencedFiles = std::move(files.read);
     return mesh;
 }

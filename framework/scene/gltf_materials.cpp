@@ -2,6 +2,8 @@
 // RGBA whatever the file holds (16-bit PNGs included), since MeshImage has that one format.
 #include "gltf_materials.hpp"
 
+#include "gltf_json_types.hpp"
+
 #include <stb/stb_image.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <system_error>
 #include <utility>
 
 namespace skygraph {
@@ -57,11 +60,19 @@ std::pair<uint64_t, uint64_t> pngHeaderSize(std::span<const unsigned char> data)
 
 }  // namespace
 
+ImageProblem imageProblem(const tinygltf::Image& image, size_t index, const std::filesystem::path& baseDir,
+                          const std::string& problem) {
+    const std::string path = at("images", index);
+    // tinygltf keeps the uri of an image file only, not a data URI.
+    if (image.uri.empty() || image.bufferView >= 0) return {path, problem};
+    return {path + ".uri", "image file '" + uriFile(baseDir, image.uri).string() + "': " + problem};
+}
+
 bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                       const unsigned char* bytes, const int size, void* headerCheck) {
     auto& check = *static_cast<ImageHeaderCheck*>(headerCheck);
     const auto problem = [&](const std::string& message) {
-        check.problems.emplace(index, message);
+        check.problems.emplace(index, imageProblem(*image, size_t(index), check.baseDir, message));
         return true;
     };
     if (image->bufferView >= 0) {  // tinygltf passes the view's bytes without checking them against the buffer
@@ -97,8 +108,10 @@ bool samplesTextures(const MeshMaterial& m) {
            m.occlusionTexture.present() || m.emissiveTexture.present();
 }
 
-GltfMaterials::GltfMaterials(const tinygltf::Model& model, size_t maxImageBytes, GltfError error)
+GltfMaterials::GltfMaterials(const tinygltf::Model& model, std::filesystem::path baseDir, size_t maxImageBytes,
+                             GltfError error)
     : model_(model),
+      baseDir_(std::move(baseDir)),
       maxImageBytes_(maxImageBytes),
       error_(std::move(error)),
       meshImageOf_(model.images.size(), kNotDecoded) {}
@@ -199,25 +212,30 @@ int32_t GltfMaterials::decode(size_t fileImage, std::vector<MeshImage>& images) 
     meshImage = kUndecodable;  // until it is
     const tinygltf::Image& image = model_.images[fileImage];
     const std::string path = at("images", fileImage);
-    if (image.image.empty())  // tinygltf only warns when an image's file is missing
-        return error_(path, image.uri.empty() ? "has no data" : "'" + image.uri + "' cannot be read"), -1;
+    const auto fileError = [&](const std::string& problem) {
+        const ImageProblem where = imageProblem(image, fileImage, baseDir_, problem);
+        error_(where.jsonPath, where.message);
+        return -1;
+    };
+    if (image.image.empty()) {  // tinygltf only warns when an image's file cannot be read
+        if (image.uri.empty()) return error_(path, "has no data"), -1;
+        return fileError(unreadFileProblem(image));
+    }
     const size_t bytes = size_t(image.width) * size_t(image.height) * 4;
     // Checked before stb runs: it takes a buffer of the header's size before reading any pixel.
     if (decodedBytes_ + bytes > maxImageBytes_)
         return error_(path, "decoded, the file's images would take " + std::to_string(decodedBytes_ + bytes) +
                                 " bytes, more than " + std::to_string(maxImageBytes_)), -1;
     if (const std::string problem = pngChunkProblem(image.image); !problem.empty())
-        return error_(path, "cannot be decoded (" + problem + ")"), -1;
+        return fileError("cannot be decoded (" + problem + ")");
     int width = 0, height = 0, components = 0;
     const std::unique_ptr<stbi_uc, void (*)(void*)> rgba(
         stbi_load_from_memory(image.image.data(), int(image.image.size()), &width, &height, &components, 4),
         stbi_image_free);
-    if (!rgba) return error_(path, "cannot be decoded (" + stbReason() + ")"), -1;
-    if (width != image.width || height != image.height) {  // the header promised otherwise: a hostile file
-        error_(path, "decodes to " + std::to_string(width) + "x" + std::to_string(height) + ", not the header's " +
+    if (!rgba) return fileError("cannot be decoded (" + stbReason() + ")");
+    if (width != image.width || height != image.height)  // the header promised otherwise: a hostile file
+        return fileError("decodes to " + std::to_string(width) + "x" + std::to_string(height) + ", not the header's " +
                          std::to_string(image.width) + "x" + std::to_string(image.height));
-        return -1;
-    }
     MeshImage decoded;
     decoded.width = uint32_t(width);
     decoded.height = uint32_t(height);
@@ -227,6 +245,18 @@ int32_t GltfMaterials::decode(size_t fileImage, std::vector<MeshImage>& images) 
     images.push_back(std::move(decoded));
     meshImage = int32_t(images.size() - 1);
     return meshImage;
+}
+
+std::string GltfMaterials::unreadFileProblem(const tinygltf::Image& image) const {
+    const std::filesystem::path file = uriFile(baseDir_, image.uri);
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(file, ec);
+    if (status.type() == std::filesystem::file_type::not_found) return "does not exist";
+    if (ec) return "cannot be read (" + ec.message() + ")";
+    if (std::filesystem::is_directory(status)) return "is a directory";
+    if (!std::filesystem::is_regular_file(status)) return "is not a regular file";
+    if (std::filesystem::file_size(file, ec) == 0 && !ec) return "is empty";
+    return "cannot be read";
 }
 
 }  // namespace skygraph

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <string>
@@ -15,14 +16,28 @@
 
 namespace skygraph {
 
+/// An image found unusable: where in the glTF (`images[N]`, or `images[N].uri` for an image
+/// file) and what is wrong, naming the image file where there is one.
+struct ImageProblem {
+    std::string jsonPath;
+    std::string message;
+};
+
 /// checkImageHeader's user data: the model tinygltf is filling (its buffers are read before
-/// its images), and each image found unusable, by index, with the reason. The loader reports
-/// those with their JSON paths, which tinygltf's own error text would lack.
+/// its images), the glTF file's folder (which image uris are relative to), and each image found
+/// unusable, by index. The loader reports those with their JSON paths, which tinygltf's own
+/// error text would lack.
 struct ImageHeaderCheck {
     const tinygltf::Model* model = nullptr;
     size_t maxTextureSide = 0;
-    std::map<int, std::string> problems;
+    std::filesystem::path baseDir;
+    std::map<int, ImageProblem> problems;
 };
+
+/// Where images[index] is reported and how its problem is said: at its `uri` with the image
+/// file (resolved against `baseDir`) named for an image in a file of its own, else at the image.
+[[nodiscard]] ImageProblem imageProblem(const tinygltf::Image& image, size_t index,
+                                        const std::filesystem::path& baseDir, const std::string& problem);
 
 /// tinygltf's image callback (`headerCheck`: an ImageHeaderCheck). Checks the header with stb
 /// (a format stb decodes, at most `maxTextureSide` texels a side) and an image's buffer view
@@ -38,8 +53,9 @@ using GltfError = std::function<void(const std::string& path, const std::string&
 /// The materials of one file's drawn primitives, each image decoded at most once.
 class GltfMaterials {
 public:
-    /// Decodes images while their RGBA8 bytes stay within `maxImageBytes` in all.
-    GltfMaterials(const tinygltf::Model& model, size_t maxImageBytes, GltfError error);
+    /// Decodes images while their RGBA8 bytes stay within `maxImageBytes` in all; `baseDir`:
+    /// the glTF file's folder, which image uris are relative to.
+    GltfMaterials(const tinygltf::Model& model, std::filesystem::path baseDir, size_t maxImageBytes, GltfError error);
 
     /// materials[index] (glTF's default material for -1), checked. Its textures' `image` are
     /// still the file's image indices: use() turns them into TriangleMesh::images indices, once
@@ -55,7 +71,11 @@ private:
     MeshWrap wrap(int mode, const std::string& path);
     int32_t decode(size_t fileImage, std::vector<MeshImage>& images);
 
+    /// Why `image`, whose uri names a file, has no bytes: tinygltf only warns when it cannot read one.
+    std::string unreadFileProblem(const tinygltf::Image& image) const;
+
     const tinygltf::Model& model_;
+    std::filesystem::path baseDir_;
     size_t maxImageBytes_;
     GltfError error_;
     /// By the file's image index: where it is in TriangleMesh::images, or -1 (not decoded yet),

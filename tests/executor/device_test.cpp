@@ -110,6 +110,49 @@ TEST(DeviceSelection, ValidationLeavesTheEnvironmentAsItWas) {
     else unsetenv("VK_LAYER_ENABLES");
 }
 
+/// Sets an environment variable for its lifetime, then puts back what was there (or nothing).
+class ScopedVariable {
+public:
+    ScopedVariable(const char* name, const char* value) : name_(name) {
+        if (const char* previous = std::getenv(name)) previous_ = previous;
+        setenv(name, value, 1);
+    }
+    ~ScopedVariable() {
+        if (previous_) setenv(name_, previous_->c_str(), 1);
+        else unsetenv(name_);
+    }
+    ScopedVariable(const ScopedVariable&) = delete;
+    ScopedVariable& operator=(const ScopedVariable&) = delete;
+
+private:
+    const char* name_;
+    std::optional<std::string> previous_;
+};
+
+// A machine without a Vulkan driver (the loader reads the driver variables at each
+// vkCreateInstance, so pointing both at nothing stands for one): the loader answers
+// VK_ERROR_INCOMPATIBLE_DRIVER, which the message keeps, and says what is missing and how to
+// get it rather than leaving the result's name to be looked up.
+TEST(DeviceSelection, NoVulkanDriverIsSaidAsSuchWithHowToInstallOne) {
+    const char* nowhere = "/nonexistent/skygraph-no-such-driver.json";
+    std::optional<ScopedVariable> icdFiles(std::in_place, "VK_ICD_FILENAMES", nowhere);
+    std::optional<ScopedVariable> driverFiles(std::in_place, "VK_DRIVER_FILES", nowhere);
+    try {
+        (void)Device::create(validatedOptions());
+        ADD_FAILURE() << "a device was made without a driver";
+    } catch (const ExecutorError& e) {
+        const std::string what = e.what();
+        for (const std::string& expected :
+             std::vector<std::string>{"VK_ERROR_INCOMPATIBLE_DRIVER", "no Vulkan driver was found",
+                                      "VK_DRIVER_FILES is set to '" + std::string(nowhere) + "'",
+                                      "apt install mesa-vulkan-drivers", "set VK_ICD_FILENAMES"})
+            EXPECT_NE(what.find(expected), std::string::npos) << expected << " in: " << what;
+    }
+    driverFiles.reset();
+    icdFiles.reset();
+    EXPECT_NO_THROW((void)Device::create(validatedOptions())) << "the driver variables are back as they were";
+}
+
 // finish() destroys the device while validation listens: a handle still alive then (here a
 // semaphore made and never destroyed, the negative control) is reported and counted, and a
 // device whose objects were all destroyed finishes silent. Twice is the same as once.

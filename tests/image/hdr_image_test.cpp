@@ -3,10 +3,13 @@
 #include <skygraph/ktx2.hpp>
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDeepFrameBuffer.h>
+#include <OpenEXR/ImfDeepScanLineOutputFile.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfRgbaFile.h>
 #include <stb/stb_image_write.h>
 
@@ -392,7 +395,7 @@ TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
     writeBytes(dir_ / "long_run.hdr", header + std::string("\x02\x02\x00\x10\xff\x01", 6) + ones);
     expectLoadError(dir_ / "long_run.hdr", "corrupt data");
     writeBytes(dir_ / "bad_format.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 2 +X 16\n" + noise);
-    expectLoadError(dir_ / "bad_format.hdr", "header");
+    expectLoadError(dir_ / "bad_format.hdr", "XYZE .hdr files (FORMAT=32-bit_rle_xyze) are not supported");
     writeBytes(dir_ / "zero.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 16\n");
     expectLoadError(dir_ / "zero.hdr", "zero size");
     writeBytes(dir_ / "huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 99999999999999999999 +X 4\n");
@@ -401,7 +404,7 @@ TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
     writeBytes(dir_ / "crlf.hdr", "#?RADIANCE\r\nFORMAT=32-bit_rle_rgbe\r\n\r\n-Y 2 +X 16\r\n" + noise);
     expectLoadError(dir_ / "crlf.hdr", "must end its line with a newline alone");
     writeBytes(dir_ / "magic_only.exr", std::string("\x76\x2f\x31\x01", 4));
-    expectLoadError(dir_ / "magic_only.exr", "truncated or corrupt OpenEXR header");
+    expectLoadError(dir_ / "magic_only.exr", "not a valid OpenEXR file: truncated or corrupt header");
     // Run-length rows, then one without: stb reads the whole image again from there, so the
     // row the pixels run out in counts from the first.
     std::string rows = header;
@@ -411,6 +414,66 @@ TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
     }
     writeBytes(dir_ / "rle_then_flat.hdr", rows + std::string(16 * 4, '\x01'));
     expectLoadError(dir_ / "rle_then_flat.hdr", "ends in row 1 of 2");
+}
+
+// The version field's deep-data flag is only a claim: after the EXR signature, garbage or
+// nothing at all (with that flag set or an unknown version) makes no valid OpenEXR file, and
+// only a file whose header says its part is deep is refused as a deep image.
+TEST_F(HdrImageTest, OnlyAnExrWhoseHeaderSaysDeepIsRefusedAsDeep) {
+    const std::string signature("\x76\x2f\x31\x01", 4);
+    const std::string deepFlag("\x02\x08\0\0", 4);  // version 2 with the non-image (deep) flag
+    writeBytes(dir_ / "deep_flag_garbage.exr", signature + deepFlag + std::string(300, 'x'));
+    expectLoadError(dir_ / "deep_flag_garbage.exr", "not a valid OpenEXR file: truncated or corrupt header");
+    writeBytes(dir_ / "deep_flag_only.exr", signature + deepFlag);
+    expectLoadError(dir_ / "deep_flag_only.exr", "not a valid OpenEXR file: truncated or corrupt header");
+    writeBytes(dir_ / "unknown_version.exr", signature + std::string("\x07\x08\x01\x00", 4) + std::string(300, 'x'));
+    expectLoadError(dir_ / "unknown_version.exr", "not a valid OpenEXR file: unknown version field 0x00010807");
+    for (const char* name : {"deep_flag_garbage.exr", "deep_flag_only.exr", "unknown_version.exr"}) {
+        try {
+            (void)skygraph::loadHdrImage(dir_ / name);
+        } catch (const ImageError& e) {
+            EXPECT_EQ(std::string(e.what()).find("deep OpenEXR images"), std::string::npos) << e.what();
+        }
+    }
+
+    // A real deep scanline file, of 4x4 pixels with no samples.
+    const fs::path deep = dir_ / "deep.exr";
+    {
+        Imf::Header header(4, 4);
+        header.setType(Imf::DEEPSCANLINE);
+        header.compression() = Imf::ZIPS_COMPRESSION;
+        header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+        Imf::DeepScanLineOutputFile out(deep.c_str(), header);
+        std::vector<unsigned> counts(16, 0);
+        std::vector<float*> depths(16, nullptr);
+        Imf::DeepFrameBuffer frame;
+        frame.insertSampleCountSlice(Imf::Slice(Imf::UINT, reinterpret_cast<char*>(counts.data()), sizeof(unsigned),
+                                                4 * sizeof(unsigned)));
+        frame.insert("Z", Imf::DeepSlice(Imf::FLOAT, reinterpret_cast<char*>(depths.data()), sizeof(float*),
+                                         4 * sizeof(float*), sizeof(float)));
+        out.setFrameBuffer(frame);
+        out.writePixels(4);
+    }
+    expectLoadError(deep, "deep OpenEXR images are not supported");
+}
+
+// stb_image reads RGBE pixels only; a valid XYZE file is refused as the format it is, not as a
+// corrupt header. Another FORMAT is named as unknown.
+TEST_F(HdrImageTest, XyzeHdrIsRefusedAsUnsupportedNotAsCorrupt) {
+    const std::string pixels(2 * 4 * 4, '\x80');  // flat: narrower than 8, so no run-length rows
+    writeBytes(dir_ / "xyze.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_xyze\nEXPOSURE=1\n\n-Y 2 +X 4\n" + pixels);
+    expectLoadError(dir_ / "xyze.hdr",
+                    "XYZE .hdr files (FORMAT=32-bit_rle_xyze) are not supported; only FORMAT=32-bit_rle_rgbe is");
+    try {
+        (void)skygraph::loadHdrImage(dir_ / "xyze.hdr");
+    } catch (const ImageError& e) {
+        EXPECT_EQ(std::string(e.what()).find("corrupt or truncated header"), std::string::npos) << e.what();
+    }
+    writeBytes(dir_ / "other.hdr", "#?RADIANCE\nFORMAT=24-bit_rgb\n\n-Y 2 +X 4\n" + pixels);
+    expectLoadError(dir_ / "other.hdr", "unknown pixel format FORMAT=24-bit_rgb; expected FORMAT=32-bit_rle_rgbe");
+    // The same pixels under an RGBE header still load.
+    writeBytes(dir_ / "rgbe.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=1\n\n-Y 2 +X 4\n" + pixels);
+    EXPECT_EQ(skygraph::loadHdrImage(dir_ / "rgbe.hdr").width, 4u);
 }
 
 // stb_image ends the header at a line that starts with NUL as at an empty one. The check that

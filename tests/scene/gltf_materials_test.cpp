@@ -247,25 +247,58 @@ std::string fileBytes(const fs::path& file) {
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
-TEST(GltfTextures, AnImageThatCannotBeDecodedIsRefused) {
+// An image file that cannot be used is named as the loader looked for it, its uri resolved
+// against the glTF file's folder, at its uri's JSON path in the glTF file.
+TEST(GltfTextures, AnImageThatCannotBeDecodedIsRefusedNamingItsFile) {
     // The logo cut short: its header reads, its pixels do not.
     const std::string truncated = fileBytes(kModels / "BoxTextured-glTF/CesiumLogoFlat.png").substr(0, 600);
     const std::string garbage(300, 'x');
+    const std::string empty;
     struct Case {
-        std::string name, file;
+        std::string name, uri;
         const std::string* bytes;
+        std::string image;  ///< the file named, relative to the glTF file's folder
         std::string message;
     };
-    for (const Case& c : {Case{"truncated", "logo.png", &truncated, "cannot be decoded"},
-                          Case{"garbage", "logo.png", &garbage, "not an image stb can read"},
-                          Case{"missing", "absent.png", nullptr, "'absent.png' cannot be read"}}) {
-        const fs::path file = writeTexturedQuad("image-" + c.name, c.file, c.bytes, true);
+    for (const Case& c : {Case{"truncated", "logo.png", &truncated, "logo.png", "cannot be decoded"},
+                          Case{"garbage", "logo.png", &garbage, "logo.png", "not an image stb can read"},
+                          Case{"empty", "logo.png", &empty, "logo.png", "is empty"},
+                          Case{"missing", "absent.png", nullptr, "absent.png", "does not exist"},
+                          Case{"missing-in-folder", "textures/absent%20logo.png", nullptr, "textures/absent logo.png",
+                               "does not exist"}}) {
+        SCOPED_TRACE(c.name);
+        const fs::path file = writeTexturedQuad("image-" + c.name, c.uri, c.bytes, true);
+        const std::string named = "image file '" + (file.parent_path() / c.image).string() + "': " + c.message;
         Diagnostics d;
-        EXPECT_FALSE(loadGltf(file, {}, d)) << c.name;
-        ASSERT_FALSE(d.empty()) << c.name;
+        EXPECT_FALSE(loadGltf(file, {}, d));
+        ASSERT_FALSE(d.empty());
         EXPECT_EQ(d.items()[0].file, file.string());
-        EXPECT_EQ(d.items()[0].jsonPath, "images[0]") << messages(d);
-        EXPECT_NE(d.items()[0].message.find(c.message), std::string::npos) << messages(d);
+        EXPECT_EQ(d.items()[0].jsonPath, "images[0].uri") << messages(d);
+        EXPECT_NE(d.items()[0].message.find(named), std::string::npos) << messages(d);
+    }
+}
+
+// An absolute image path is never looked for (tinygltf would look inside the glTF's folder and
+// only warn): the file is refused, sampled or not, saying that uris are relative to it.
+TEST(GltfTextures, AnAbsoluteImageUriIsRefusedAsAbsolute) {
+    const std::string sampling = R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})";
+    struct Case {
+        std::string uri, material;
+    };
+    for (const Case& c : {Case{"/etc/passwd", sampling}, Case{"%2Fetc%2Fpasswd", sampling},
+                          Case{"file:///etc/passwd", sampling}, Case{"/etc/passwd", "{}"}}) {
+        SCOPED_TRACE(c.uri + " " + c.material);
+        const std::string image = R"("textures": [{"source": 0}], "images": [{"uri": ")" + c.uri + "\"}]";
+        const fs::path file = writeQuad("image-absolute", {kUpright, {}, c.material, image});
+        Diagnostics d;
+        EXPECT_FALSE(loadGltf(file, {}, d));
+        ASSERT_FALSE(d.empty());
+        EXPECT_EQ(d.items()[0].jsonPath, "images[0].uri") << messages(d);
+        const std::string what = c.uri.starts_with("file:") ? "a file: URI" : "an absolute path";
+        EXPECT_NE(d.items()[0].message.find("'" + c.uri + "' is " + what + "; a glTF uri names a file relative to the "
+                                            "glTF file's folder, and absolute paths are refused"),
+                  std::string::npos)
+            << messages(d);
     }
 }
 
@@ -298,20 +331,22 @@ TEST(GltfTextures, ForgedImageSizesAreRefusedBeforeAnyPixelIsDecoded) {
         std::string name;
         uint32_t width, height;
         GltfLimits limits;
-        std::string message;
+        std::string path, message;
     };
     GltfLimits fewBytes, narrow;
     fewBytes.maxImageBytes = size_t(64) << 20;
     narrow.maxTextureSide = 4096;
-    for (const Case& c : {Case{"wide", 16385, 1, {}, "16385x1 is larger than 16384 texels a side"},
-                          // stb's own reading refuses this one (over 2^30 bytes) as no image at all
-                          Case{"past-stb", 20000, 20000, {}, "20000x20000 is larger than 16384 texels a side"},
-                          Case{"narrow-limit", 1, 4097, narrow, "1x4097 is larger than 4096 texels a side"},
-                          Case{"byte-limit", 8192, 8192, fewBytes,
-                               "the file's images would take 268435456 bytes, more than 67108864"}}) {
+    for (const Case& c :
+         {Case{"wide", 16385, 1, {}, "images[0].uri", "16385x1 is larger than 16384 texels a side"},
+          // stb's own reading refuses this one (over 2^30 bytes) as no image at all
+          Case{"past-stb", 20000, 20000, {}, "images[0].uri", "20000x20000 is larger than 16384 texels a side"},
+          Case{"narrow-limit", 1, 4097, narrow, "images[0].uri", "1x4097 is larger than 4096 texels a side"},
+          // the images of the file together, not this one's file, are too large
+          Case{"byte-limit", 8192, 8192, fewBytes, "images[0]",
+               "the file's images would take 268435456 bytes, more than 67108864"}}) {
         const std::string png = forgedPngHeader(c.width, c.height);
         SCOPED_TRACE(c.name);
-        gltf_test::expectRefusedAt(writeTexturedQuad("forged-" + c.name, "forged.png", &png, true), "images[0]",
+        gltf_test::expectRefusedAt(writeTexturedQuad("forged-" + c.name, "forged.png", &png, true), c.path,
                                    c.message, c.limits);
     }
 }
@@ -322,7 +357,7 @@ TEST(GltfTextures, AForgedPngChunkLengthIsRefusedBeforeAnyPixelIsDecoded) {
     png += std::string("\x30\x00\x00\x00", 4);  // 805,306,368 bytes, big-endian
     png += "IDAT";
     png += std::string(16, '\0');
-    gltf_test::expectRefusedAt(writeTexturedQuad("forged-chunk", "forged.png", &png, true), "images[0]",
+    gltf_test::expectRefusedAt(writeTexturedQuad("forged-chunk", "forged.png", &png, true), "images[0].uri",
                                "declares 805306368 bytes, past the end of the image's");
 }
 

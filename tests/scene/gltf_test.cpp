@@ -469,6 +469,27 @@ TEST(Gltf, ABufferUriNamingADirectorySaysSo) {
     fs::remove_all(dir);
 }
 
+// tinygltf looks for every uri inside the glTF's folder, an absolute path too, and said "File
+// not found" for /dev/zero, which exists: the uri is refused for what it is, at its JSON path.
+TEST(Gltf, AnAbsoluteBufferUriIsRefusedAsAbsolute) {
+    for (const std::string uri : {"/dev/zero", "/etc/passwd", "%2Fetc%2Fpasswd", "file:///etc/passwd"}) {
+        SCOPED_TRACE(uri);
+        const fs::path file = writeTriangle("absolute-buffer-uri", 3, false);
+        std::ifstream in(file);
+        std::string text((std::istreambuf_iterator<char>(in)), {});
+        const size_t at = text.find("data:application");
+        text.replace(at, text.find('"', at) - at, uri);
+        std::ofstream(file, std::ios::trunc) << text;
+        const std::string what = uri.starts_with("file:") ? "a file: URI" : "an absolute path";
+        gltf_test::expectRefusedAt(file, "buffers[0].uri",
+                                   "'" + uri + "' is " + what + "; a glTF uri names a file relative to the glTF "
+                                   "file's folder, and absolute paths are refused");
+        Diagnostics d;
+        EXPECT_FALSE(loadGltf(file, {}, d));
+        EXPECT_EQ(messages(d).find("File not found"), std::string::npos) << messages(d);
+    }
+}
+
 TEST(Gltf, ARepeatedKeyIsRefused) {
     const fs::path file = writeTriangle("repeated-key", 3, false);
     std::ifstream in(file);
