@@ -327,20 +327,27 @@ Device::Impl::~Impl() {
     if (instance) vkDestroyInstance(instance, nullptr);
 }
 
+namespace {
+constexpr const char* kUserNames[] = {"Renderer", "Swapchain", "StagingBuffer", "SharedImage"};
+static_assert(std::size(kUserNames) == kDeviceUserKinds, "a name per DeviceUser");
+}  // namespace
+
 std::string Device::Impl::liveUsers() const {
-    static constexpr const char* kNames[] = {"Renderer", "Swapchain", "StagingBuffer", "SharedImage"};
-    static_assert(std::size(kNames) == kDeviceUserKinds, "a name per DeviceUser");
     std::vector<std::string> live;
     for (size_t u = 0; u < kDeviceUserKinds; ++u)
         if (const uint32_t n = users[u].load(); n > 0)
-            live.push_back(std::to_string(n) + " " + kNames[u] + (n > 1 ? "s" : ""));
+            live.push_back(std::to_string(n) + " " + kUserNames[u] + (n > 1 ? "s" : ""));
     std::string out;
     for (size_t i = 0; i < live.size(); ++i)
         out += (i == 0 ? "" : i + 1 == live.size() ? " and " : ", ") + live[i];
     return out;
 }
 
-detail::DeviceUse::DeviceUse(DeviceAccess::Impl& device, DeviceUser user) noexcept : device_(device), user_(user) {
+detail::DeviceUse::DeviceUse(DeviceAccess::Impl& device, DeviceUser user) : device_(device), user_(user) {
+    std::lock_guard lock(device_.usersMutex);
+    if (device_.device == VK_NULL_HANDLE)
+        throw ExecutorError(std::string("cannot make a ") + kUserNames[size_t(user)] +
+                            " from a Device after Device::finish(): its device is destroyed");
     device_.users[size_t(user_)].fetch_add(1);
 }
 detail::DeviceUse::~DeviceUse() { device_.users[size_t(user_)].fetch_sub(1); }
@@ -624,6 +631,7 @@ bool Device::hasMessage(std::string_view needle) const {
     });
 }
 void Device::finish() {
+    std::lock_guard lock(impl_->usersMutex);
     if (const std::string live = impl_->liveUsers(); !live.empty())
         throw ExecutorError("Device::finish(): made from this device and still alive: " + live + "; destroy those first");
     impl_->finish();

@@ -24,10 +24,11 @@ struct DeviceAccess {
 namespace detail {
 /// Counts one DeviceUser of a device while it lives, so that Device::finish() can refuse to
 /// destroy the device under it and the Device's destructor can say what it destroyed first.
-/// Declared first in its owner, so that it ends after the owner's Vulkan objects.
+/// Declared first in its owner, so that it ends after the owner's Vulkan objects, and begins
+/// before any is made: it throws ExecutorError once the device is finished.
 class DeviceUse {
 public:
-    DeviceUse(DeviceAccess::Impl& device, DeviceUser user) noexcept;
+    DeviceUse(DeviceAccess::Impl& device, DeviceUser user);
     ~DeviceUse();
     DeviceUse(const DeviceUse&) = delete;
     DeviceUse& operator=(const DeviceUse&) = delete;

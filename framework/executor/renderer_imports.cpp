@@ -19,6 +19,9 @@ struct SwapJournal {
         PassState* pass = nullptr;
         /// A pass that uses the image: its slots (and recording code, when made again), whole.
         bool rebuilt = false;
+        /// Its recording code is kept: its slots were rebuilt where they are, since it may keep
+        /// pointers to their BoundResources (PipelineContext), and `slots` holds what they held.
+        bool inPlace = false;
         std::unique_ptr<PassImplementation> implementation;
         std::vector<PassSlot> slots;
         /// Any other pass: only its slots' barriers change (they name the image's handle).
@@ -32,6 +35,17 @@ struct SwapJournal {
     /// Puts back everything saved so far (moves only: nothing here throws).
     void rollBack(PlanState& s, ResourceState& r) noexcept {
         for (PassBefore& p : passes) {
+            if (p.inPlace) {
+                for (size_t slot = 0; slot < p.slots.size(); ++slot) {
+                    PassSlot& now = p.pass->slots[slot];
+                    now.framebuffer = std::move(p.slots[slot].framebuffer);
+                    now.extent = p.slots[slot].extent;
+                    now.before = std::move(p.slots[slot].before);
+                    now.inPass = std::move(p.slots[slot].inPass);
+                    now.bound = p.slots[slot].bound;  // as many as now: the storage stays
+                }
+                continue;
+            }
             if (p.rebuilt) {
                 if (p.implementation) p.pass->implementation = std::move(p.implementation);
                 p.pass->slots = std::move(p.slots);
@@ -78,9 +92,9 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
         for (PassState& ps : s.passes) {
             SwapJournal::PassBefore& before = journal.passes.emplace_back();
             before.pass = &ps;
-            before.rebuilt = std::any_of(ps.pass->usages.begin(), ps.pass->usages.end(),
-                                         [&](const PlannedUsage& u) { return u.resource == index; });
-            if (!before.rebuilt) {
+            const bool usesImage = std::any_of(ps.pass->usages.begin(), ps.pass->usages.end(),
+                                               [&](const PlannedUsage& u) { return u.resource == index; });
+            if (!usesImage) {
                 before.before.reserve(ps.slots.size());  // so that a slot's two batches move together
                 before.inPass.reserve(ps.slots.size());
                 for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) {
@@ -90,17 +104,31 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
                 }
                 continue;
             }
-            before.slots = std::move(ps.slots);
-            ps.slots = std::vector<PassSlot>(before.slots.size());
             // A pass implementation may keep its slots' handles for its whole life
             // (PipelineContext::frameSlots): one that does is replaced. One that reads them while
-            // recording keeps its pipelines, which depend on formats and sizes, not images.
+            // recording keeps its pipelines, which depend on formats and sizes, not images, and
+            // the BoundResources it may point to, which are rebuilt where they are.
             if (ps.implementation && ps.implementation->keepsSlotHandles()) {
+                before.rebuilt = true;
+                before.slots = std::move(ps.slots);
+                ps.slots = std::vector<PassSlot>(before.slots.size());
                 before.implementation = std::move(ps.implementation);
                 ps.implementation = implementationOf(*ps.pass, *ps.desc);
                 for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) buildPassSlot(s, ps, slot);
                 createPipelines(s, ps);
             } else {
+                // Every slot is saved, the copies (which may throw) first, before any changes:
+                // until then a rollback has nothing of this pass's to put back.
+                std::vector<PassSlot> saved(ps.slots.size());
+                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) saved[slot].bound = ps.slots[slot].bound;
+                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) {
+                    saved[slot].framebuffer = std::move(ps.slots[slot].framebuffer);
+                    saved[slot].extent = ps.slots[slot].extent;
+                    saved[slot].before = std::move(ps.slots[slot].before);
+                    saved[slot].inPass = std::move(ps.slots[slot].inPass);
+                }
+                before.slots = std::move(saved);
+                before.inPlace = true;
                 for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) buildPassSlot(s, ps, slot);
             }
         }

@@ -115,6 +115,10 @@ struct Device::Impl {
 
     /// Live objects made from this device, per DeviceUser (detail::DeviceUse counts them).
     std::array<std::atomic<uint32_t>, kDeviceUserKinds> users{};
+    /// Held while a DeviceUse is counted in and while Device::finish() checks `users` and
+    /// destroys the device: one made on another thread is either counted before the check or
+    /// finds the device gone. Not `mutex`: destroying the device calls the message callback.
+    std::mutex usersMutex;
     /// "1 Renderer and 2 SharedImages", or empty when none lives.
     [[nodiscard]] std::string liveUsers() const;
 

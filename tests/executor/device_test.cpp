@@ -209,6 +209,22 @@ TEST(DeviceFinish, IsRefusedWhileWhatWasMadeFromTheDeviceLives) {
     device->finish();
     EXPECT_EQ(device->device(), VK_NULL_HANDLE);
     EXPECT_EQ(device->messageCount(), 0u) << formatMessages(*device);
+    // Nothing is made from it afterwards (before, the loader ended the process in vkCreateBuffer).
+    try {
+        (void)StagingBuffer::create(*device, 256);
+        ADD_FAILURE() << "a StagingBuffer was made from a finished device";
+    } catch (const ExecutorError& e) {
+        EXPECT_STREQ(e.what(), "cannot make a StagingBuffer from a Device after Device::finish(): its device is "
+                               "destroyed");
+    }
+    GraphDesc parsed = parseGraph(graph, "<test>", PassRegistry::withBuiltins());
+    CompileOptions options = headless(parsed, sizedOptions());
+    try {
+        Renderer renderer(*device, CompiledGraph(std::move(parsed), std::move(options)), genericOptions(1));
+        ADD_FAILURE() << "a Renderer was made from a finished device";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("destroyed"), std::string::npos) << e.what();
+    }
 }
 
 // Destroying the Device first would end the process inside the Vulkan loader when the rest

@@ -124,8 +124,10 @@ TEST_F(BackgroundBake, FramesSampleTheOldCubeUntilTheSwapThenTheNewOne) {
 
 // A pass that reads its handles while recording (keepsSlotHandles() false) is kept across an
 // import swap, pipelines and all, and still samples the new cube; one that may keep them is
-// made again.
+// made again. Either way the BoundResources it was shown stay where they were (before, a kept
+// pass's were freed by the swap, and a pass holding their addresses read freed memory).
 TEST_F(BackgroundBake, ASwapKeepsAPassThatReadsItsHandlesWhileRecording) {
+    CubeProbe::recordsAwayFromKeptSlots = 0;
     for (const bool keeps : {false, true}) {
         int made = 0;
         library_.add(CubeProbe::typeInfo(keeps ? "KeepingProbe" : "ReadingProbe"), [&made, keeps](const PassDesc&) {
@@ -145,6 +147,7 @@ TEST_F(BackgroundBake, ASwapKeepsAPassThatReadsItsHandlesWhileRecording) {
         frame.renderFrame();
         EXPECT_NEAR(frame.readback().rgba[0], 0.0f, 1e-3f) << "the new cube, keeps " << keeps;
         EXPECT_EQ(made, keeps ? before + 1 : before) << "keeps " << keeps;
+        EXPECT_EQ(CubeProbe::recordsAwayFromKeptSlots, 0) << "keeps " << keeps;
         frame.waitIdle();
     }
 }

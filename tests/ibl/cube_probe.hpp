@@ -38,9 +38,16 @@ public:
                            {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}};
         pipeline_ = createComputePipeline(ctx.device, recipe);
         push_ = pushDescriptorFunction(ctx.device);
+        keptSlots_.clear();
+        for (const std::span<const BoundResource> slot : ctx.frameSlots) keptSlots_.push_back(slot.data());
     }
 
     void record(const RecordContext& ctx) override {
+        // PipelineContext promises that what it points to outlives every call of the pass: a
+        // pass may keep its BoundResources' addresses, and read them through those now.
+        if (ctx.frameSlot >= keptSlots_.size() || keptSlots_[ctx.frameSlot] != ctx.resources.data() ||
+            keptSlots_[ctx.frameSlot]->desc != ctx.resources[0].desc)
+            ++recordsAwayFromKeptSlots;
         const BoundResource* env = ctx.slot("environment");
         const BoundResource* out = ctx.slot("probe");
         VkDescriptorImageInfo images[2] = {{ctx.linearSampler, env->view, env->usage->layout},
@@ -60,11 +67,15 @@ public:
                 false, {}, "samples a cube at fixed directions"};
     }
 
+    /// Records whose resources were not where createPipelines was shown them, by any probe.
+    static inline int recordsAwayFromKeptSlots = 0;
+
 private:
     std::vector<Dir> dirs_;
     bool keepsHandles_ = true;
     ComputePipeline pipeline_;
     PFN_vkCmdPushDescriptorSetKHR push_ = nullptr;
+    std::vector<const BoundResource*> keptSlots_;  // per frame slot
 };
 
 }  // namespace skygraph::test
