@@ -9,10 +9,13 @@
 namespace skygraph {
 namespace {
 
+/// A last line without its newline differs from the same line with one, and is printed
+/// with diff's and git's marker after it: texts that differ only there get a hunk too.
 std::vector<std::string> splitLines(const std::string& text) {
     std::vector<std::string> lines;
     std::istringstream in(text);
     for (std::string line; std::getline(in, line);) lines.push_back(line);
+    if (!text.empty() && text.back() != '\n') lines.back() += "\n\\ No newline at end of file";
     return lines;
 }
 

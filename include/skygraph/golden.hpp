@@ -65,7 +65,8 @@ struct GoldenComparison {
 void writeGolden(const Plan& plan, const std::filesystem::path& golden);
 
 /// A unified diff ("--- beforeName", "+++ afterName", "@@ -a,b +c,d @@" hunks with three lines
-/// of context) turning `before` into `after`, compared line by line. Empty when they are equal.
+/// of context) turning `before` into `after`, compared line by line; a last line without its
+/// newline is followed by "\ No newline at end of file". Empty when they are equal.
 [[nodiscard]] std::string unifiedDiff(const std::string& before, const std::string& after,
                                       std::string_view beforeName, std::string_view afterName);
 

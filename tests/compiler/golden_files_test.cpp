@@ -71,6 +71,16 @@ TEST_F(GoldenFile, EveryStatus) {
     EXPECT_NE(differs.diff.find("-output: 1920x1080"), std::string::npos) << differs.diff;
     EXPECT_NE(differs.diff.find("+output: 64x1080"), std::string::npos) << differs.diff;
 
+    // A golden whose last newline an editor dropped differs, and the diff shows where.
+    std::string cut = goldenText(plan_);
+    cut.pop_back();
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << cut;
+    const GoldenComparison noNewline = compareWithGolden(plan_, file);
+    EXPECT_EQ(noNewline.status, GoldenStatus::Differs);
+    EXPECT_NE(noNewline.diff.find("\\ No newline at end of file\n+"), std::string::npos) << noNewline.diff;
+    EXPECT_NE(noNewline.diff.find("@@"), std::string::npos) << noNewline.diff;
+    writeGolden(plan_, file);
+
     // A checkout that turned the line ends into CRLF still matches.
     std::string crlf;
     for (const char ch : goldenText(plan_)) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
