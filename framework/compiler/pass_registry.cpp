@@ -1,6 +1,7 @@
 #include <skygraph/pass_registry.hpp>
 
 #include "json_path.hpp"
+#include "usage_fit.hpp"
 
 #include <algorithm>
 #include <set>
@@ -8,6 +9,22 @@
 #include <utility>
 
 namespace skygraph {
+namespace {
+
+/// Whether some resource that `slot` takes can be used as `mode`, by the rules a file's usages
+/// are held to (a vertex input is read, a sampled image is not written, ...).
+bool someResourceFits(const SlotDecl& slot, const UsageMode& mode) {
+    constexpr UsageSubject kBuffer{false, false, false, false};
+    constexpr UsageSubject kColorImage{true, false, true, false};
+    constexpr UsageSubject kDepthImage{true, true, false, false};
+    const bool images = slot.types.empty() || std::any_of(slot.types.begin(), slot.types.end(),
+                                                          [](ResourceType t) { return t != ResourceType::Buffer; });
+    return (slot.takes(ResourceType::Buffer) && usageMisfit(kBuffer, mode) == UsageMisfit::Fits) ||
+           (images && (usageMisfit(kColorImage, mode) == UsageMisfit::Fits ||
+                       usageMisfit(kDepthImage, mode) == UsageMisfit::Fits));
+}
+
+}  // namespace
 
 std::string SlotDecl::describeUsage() const {
     std::string out;
@@ -73,6 +90,17 @@ void PassRegistry::add(PassTypeInfo info) {
             !(slot.as == BindAs::Index && slot.stage == Stage::VertexInput))
             throw std::invalid_argument("pass type '" + info.name + "': slot '" + slot.name +
                                         "' sets `as` on a non-shader stage");
+        // A slot no usage can fill fails every graph that uses the type, at the graph.
+        for (const Access access : slot.accesses) {
+            const UsageMode mode{access, slot.stage, slot.as};
+            if (size_t(access) >= kAccesses || size_t(slot.stage) >= kStages || size_t(slot.as) >= kBindings)
+                throw std::invalid_argument("pass type '" + info.name + "': slot '" + slot.name +
+                                            "' holds an access, stage or binding outside its enum");
+            if (!someResourceFits(slot, mode))
+                throw std::invalid_argument("pass type '" + info.name + "': slot '" + slot.name + "' declares " +
+                                            toString(mode) + ", which no resource " +
+                                            (slot.types.empty() ? "" : "of its types ") + "can be used as");
+        }
     }
     std::string name = info.name;
     types_.emplace(std::move(name), std::move(info));

@@ -23,29 +23,36 @@ bool writesLive(const GraphIndex& index, std::span<const IndexedUsage> uses, con
     return false;
 }
 
-/// Why a pass whose writes nobody reads is culled, naming what it writes.
-std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
-    std::vector<const std::string*> names;
-    for (const auto& u : pass.uses) {
+/// Why pass p, whose writes nobody reads, is culled, naming what it writes: per resource,
+/// whether nothing later reads what it wrote there, or a later pass wrote over it first (what
+/// it wrote is read later, by `readLater`, per subresource, or is exported).
+std::string unreadWritesReason(const GraphIndex& index, size_t p, const std::vector<uint8_t>& readLater) {
+    const GraphDesc& graph = index.graph();
+    std::vector<uint32_t> written;  // resources, in the order the pass names them
+    std::vector<uint8_t> overwritten;
+    for (const IndexedUsage& u : index.usesOf(p)) {
         if (!writesContents(u.usage.access)) continue;
-        const std::string& name = graph.resources[u.resource].name;
-        if (std::find_if(names.begin(), names.end(), [&](const std::string* n) { return *n == name; }) ==
-            names.end())
-            names.push_back(&name);
+        bool readAfter = graph.resources[u.resource].isExported();
+        index.forEachCell(u, [&](size_t i) { readAfter |= readLater[i] != 0; });
+        const auto at = std::find(written.begin(), written.end(), u.resource);
+        if (at == written.end()) {
+            written.push_back(u.resource);
+            overwritten.push_back(readAfter);
+        } else {
+            overwritten[size_t(at - written.begin())] |= readAfter;
+        }
     }
-    if (names.empty()) return "it writes nothing (mark it never_cull if it has side effects)";
-    // An exported resource is live at the end: what this pass wrote of it, a later pass
-    // wrote over before anything read it.
-    std::string unread, overwritten;
-    for (const std::string* n : names) {
-        std::string& list = graph.findResource(*n)->isExported() ? overwritten : unread;
-        list += (list.empty() ? "'" : ", '") + *n + "'";
+    if (written.empty()) return "it writes nothing (mark it never_cull if it has side effects)";
+    std::string unread, overwrittenNames;
+    for (size_t i = 0; i < written.size(); ++i) {
+        std::string& list = overwritten[i] ? overwrittenNames : unread;
+        list += (list.empty() ? "'" : ", '") + graph.resources[written[i]].name + "'";
     }
     std::string reason = "nothing reads what it writes: ";
     if (!unread.empty()) reason += "no later pass that runs reads " + unread + " and none of it is exported";
-    if (!unread.empty() && !overwritten.empty()) reason += "; ";
-    if (!overwritten.empty())
-        reason += "a later pass that runs writes over what it writes of " + overwritten + " before anything reads it";
+    if (!unread.empty() && !overwrittenNames.empty()) reason += "; ";
+    if (!overwrittenNames.empty())
+        reason += "a later pass that runs writes over what it writes of " + overwrittenNames + " before anything reads it";
     return reason;
 }
 
@@ -53,25 +60,30 @@ std::string unreadWritesReason(const GraphDesc& graph, const PassDesc& pass) {
 /// holds them at the end or a kept pass reads them later; a pass that writes nothing live
 /// (and is not never_cull) is removed: marked in `culled`, its reason in `reasons`.
 void cullUnreadPasses(const GraphIndex& index, std::vector<uint8_t>& culled, std::map<size_t, std::string>& reasons) {
-    const GraphDesc& graph = index.graph();
     // Per subresource, why its contents are live here: 0 they are not, 1 they are exported,
     // p + 2 kept pass p reads them. A kept pass's writes end liveness and its reads begin it,
     // the reads winning where both touch a subresource; the stamp lets one loop over its
     // usages do both, whichever order they come in.
     const std::vector<uint8_t>& atEnd = index.liveAtEnd();
     std::vector<uint32_t> liveFrom(atEnd.begin(), atEnd.end());
+    // Per subresource, whether a kept pass after this one reads it: what a culled pass's reason
+    // tells apart.
+    std::vector<uint8_t> readLater(liveFrom.size());
     for (size_t p = index.passes(); p-- > 0;) {
         if (!index.active(p)) continue;
         const auto uses = index.usesOf(p);
         if (!index.neverCull(p) && !writesLive(index, uses, liveFrom)) {
             culled[p] = 1;
-            reasons[p] = unreadWritesReason(graph, graph.passes[p]);
+            reasons[p] = unreadWritesReason(index, p, readLater);
             continue;
         }
         const auto stamp = static_cast<uint32_t>(p + 2);
         for (const auto& u : uses) {
             if (readsContents(u.usage.access))
-                index.forEachCell(u, [&](size_t i) { liveFrom[i] = stamp; });
+                index.forEachCell(u, [&](size_t i) {
+                    liveFrom[i] = stamp;
+                    readLater[i] = 1;
+                });
             else  // a Write
                 index.forEachCell(u, [&](size_t i) { if (liveFrom[i] != stamp) liveFrom[i] = 0; });
         }

@@ -64,6 +64,30 @@ std::string switchedOffWriter(const GraphIndex& index, const FeatureValues& feat
     return {};
 }
 
+/// What read `u` of pass `reader` finds unwritten ("mips 1 and 2"), at the output size, as
+/// describeUnwritten words it; empty when no part of it is written. Only for messages: it
+/// replays the earlier active passes' writes of the one resource.
+std::string unwrittenBefore(const GraphIndex& index, size_t reader, const IndexedUsage& u) {
+    const SubresourceGrid& grid = index.grid(u.resource);
+    std::vector<uint8_t> held(grid.size(), index.clear(u.resource) || index.external(u.resource));
+    for (size_t q = 0; q < reader; ++q) {
+        if (!index.active(q)) continue;
+        for (const IndexedUsage& w : index.usesOf(q))
+            if (w.resource == u.resource && writesContents(w.usage.access))
+                grid.forEach(index.range(w), [&](size_t cell) { held[cell] = 1; });
+    }
+    const SubresourceRange read = index.range(u);
+    size_t cells = 0, missing = 0;
+    grid.forEach(read, [&](size_t cell) {
+        ++cells;
+        missing += held[cell] == 0;
+    });
+    if (missing == cells) return {};
+    return describeUnwritten(read, [&](uint32_t mip, uint32_t layer) {
+        return held[grid.index(mip, layer)] == 0;
+    });
+}
+
 /// A resource's subresources as the load-time check sees them, with no output size. Small:
 /// the check reads one per usage, in no order.
 struct LoadGrid {
@@ -308,7 +332,17 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
     // Mip counts of output-relative images can only be checked against a real output size,
     // and those of a GraphDesc built in code have not been through the loader. The index
     // finds them (and the ranged usages below) in the walks it makes anyway.
+    // Only those a pass that runs uses: the others are never created (a chain too long for
+    // the output may belong to a feature that is off).
+    std::vector<uint8_t> usedByActive;
+    if (!index.tooManyMips().empty()) {
+        usedByActive.resize(graph.resources.size());
+        for (size_t p = 0; p < graph.passes.size(); ++p)
+            if (index.active(p))
+                for (const IndexedUsage& u : index.usesOf(p)) usedByActive[u.resource] = 1;
+    }
     for (const uint32_t i : index.tooManyMips()) {
+        if (!usedByActive[i]) continue;
         const ResourceDesc& r = graph.resources[i];
         const auto [w, h] = r.extent.resolve(width, height);
         const auto most = static_cast<uint32_t>(std::bit_width(std::max(w, h)));
@@ -360,7 +394,8 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
     for (const auto& [p, k] : index.unsourcedReads()) {
         const IndexedUsage& u = index.use(k);
         const size_t use = static_cast<size_t>(&u - index.usesOf(p).data());
-        diags.add(unsourcedRead(graph, p, use, switchedOffWriter(index, features, p, u.resource)));
+        diags.add(unsourcedRead(graph, p, use, switchedOffWriter(index, features, p, u.resource),
+                                unwrittenBefore(index, p, u)));
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 }

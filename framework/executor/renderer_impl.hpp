@@ -152,7 +152,8 @@ void checkNoSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::
 /// GraphDesc built in code.
 void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, const PassTypeInfo& type,
                              const GraphDesc& graph);
-/// The framebuffer's extent: the smallest of the attachments' (their usages' base mip).
+/// The framebuffer's extent: the attachments' (their usages' base mip). Throws ExecutorError
+/// naming the pass and two of them when they differ.
 [[nodiscard]] VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
                                            const std::vector<ResourceState>& resources);
 

@@ -36,7 +36,16 @@ VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& att
         const PlannedUsage& u = pass.usages[usages[i]];
         const ResourceState& r = resources[u.resource];
         const uint32_t w = r.mipWidth(u.range.baseMip), h = r.mipHeight(u.range.baseMip);
-        e = i > 0 ? VkExtent2D{std::min(e.width, w), std::min(e.height, h)} : VkExtent2D{w, h};
+        // The render area would be the smallest: the rest of the larger ones silently kept.
+        if (i > 0 && (w != e.width || h != e.height)) {
+            const ResourceState& first = resources[pass.usages[usages[0]].resource];
+            throw ExecutorError(passError(pass, r.desc->name,
+                                          "its attachments differ in size: '" + first.desc->name + "' is " +
+                                              std::to_string(e.width) + "x" + std::to_string(e.height) + " and '" +
+                                              r.desc->name + "' " + std::to_string(w) + "x" + std::to_string(h) +
+                                              " at this output size; a pass renders to attachments of one size"));
+        }
+        e = VkExtent2D{w, h};
     }
     return e;
 }
@@ -63,6 +72,12 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "', which takes " +
                                                               slot->describeTypes() + ", with a resource of type " +
                                                               std::string(toString(resourceType))));
+        if (resourceType == ResourceType::Cube && !slot->types.empty() &&
+            (u.range.baseLayer != 0 || u.range.layerCount != resources.at(u.resource).desc->layers))
+            throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name +
+                                                              "', which binds the whole cube, with layers [" +
+                                                              std::to_string(u.range.baseLayer) + ", " +
+                                                              std::to_string(u.range.layerCount) + "] of it"));
         if (++filled[size_t(slot - type.slots.begin())] > 1 && !slot->repeated)
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "' a second time"));
     }

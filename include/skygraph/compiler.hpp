@@ -56,8 +56,9 @@ struct CompileOptions {
     /// When set, only these of the graph's exports are its outputs for this compile: the
     /// file's other exports are dropped, so passes that feed only them are culled. This is
     /// how a consumer asks for just the products it samples (e.g. graphs/ibl.json builds only
-    /// the cube a skybox-only scene needs). An unknown name, or one that is neither exported
-    /// nor in `exports` or `readbacks`, is an error.
+    /// the cube a skybox-only scene needs). An empty set asks for nothing, and every pass is
+    /// culled. An unknown name, or one that is neither exported nor in `exports` or
+    /// `readbacks`, is an error.
     std::optional<std::set<std::string, std::less<>>> outputs;
     /// Images copied to the host at the end of every frame (the first mip and layer), by
     /// steps of type Readback after the last pass; the final barriers make the copies visible

@@ -109,7 +109,8 @@ public:
     /// Registers a type (the registry keeps `info`). Throws std::invalid_argument, registering
     /// nothing, if the name is empty or taken, if it takes any usage and declares slots, or if
     /// a slot is malformed (an empty name, no accesses, duplicate names, `as` on a non-shader
-    /// stage).
+    /// stage, a value outside its enum, an access that no resource of the slot's types can be
+    /// used with, such as Write@VertexInput).
     void add(PassTypeInfo info);
 
     /// nullptr when unknown. The pointer stays valid until the registry is destroyed,

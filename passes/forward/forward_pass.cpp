@@ -1,5 +1,7 @@
 // ForwardPass: the scene's spheres, planes and glTF meshes, metal/rough GGX, into hdr_color
-// and a reverse-Z depth buffer (GREATER test, cleared to 0 by the graph).
+// and a reverse-Z depth buffer (GREATER test). The pass clears nothing itself: its depth starts
+// from the resource's load-op clear (0) or an earlier pass's depth (forward_type.cpp refuses
+// a Write of a depth resource without `clear`). The debug view is the scene's.
 #include "builtin_passes.hpp"
 #include "model_resources.hpp"
 #include "scene_camera.hpp"

@@ -1,15 +1,31 @@
-// ForwardPass's declaration: its slots and params (recording code: forward_pass.cpp).
+// ForwardPass's declaration: its slots, params and usage checks (recording code: forward_pass.cpp).
 #include "builtin_pass_types.hpp"
 #include "param_rules.hpp"
 
 namespace skygraph::passes {
 
 PassTypeInfo forwardPassType() {
+    // The pipeline tests GREATER against what the depth attachment starts with. A Write loads
+    // nothing (DONT_CARE), so without a load-op clear every fragment meets undefined depth.
+    const auto checkDepthStart = [](const PassDesc& pass, const GraphDesc& graph) {
+        std::vector<UsageError> problems;
+        for (size_t i = 0; i < pass.uses.size(); ++i) {
+            const UsageDecl& use = pass.uses[i];
+            const ResourceDesc& depth = graph.resources[use.resource];
+            if (graph.slotName(use.slot) != "depth" || use.usage.access != Access::Write || depth.clear) continue;
+            problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write of '" +
+                                       depth.name + "', which has no `clear`, starts with undefined values: add "
+                                       "\"clear\": { \"depth\": 0.0 } (reverse-Z's far plane) to '" + depth.name +
+                                       "', or use ReadWrite after an earlier depth pass"});
+        }
+        return problems;
+    };
     return {"ForwardPass",
             {slot("color", Stage::ColorAttachment, {Access::Write, Access::ReadWrite}, BindAs::Default,
                   "HDR target the objects shade into"),
              slot("depth", Stage::DepthAttachment, {Access::Write, Access::ReadWrite}, BindAs::Default,
-                  "reverse-Z depth, cleared to 0"),
+                  "reverse-Z depth: a Write starts from the resource's `clear` (0, the far plane), a ReadWrite "
+                  "from an earlier pass's depth"),
              ofTypes(slot("environment", Stage::Fragment, {Access::Read}, BindAs::Sampled, "environment cubemap", true),
                      {ResourceType::Cube}),
              ofTypes(slot("irradiance", Stage::Fragment, {Access::Read}, BindAs::Sampled, "diffuse IBL", true),
@@ -20,8 +36,12 @@ PassTypeInfo forwardPassType() {
              ofTypes(slot("brdf_lut", Stage::Fragment, {Access::Read}, BindAs::Sampled, "split-sum BRDF table", true),
                      {ResourceType::Image2D})},
             false,
-            rules({{"debug_view", oneOf({"none", "normal", "metallic", "roughness", "ao"})}}),
-            "Metal/rough GGX shading of the scene's objects."};
+            // No params: the debug view is the scene's (Scene::debugView), which also makes the
+            // tonemapper a passthrough.
+            rules({}),
+            "Metal/rough GGX shading of the scene's objects.",
+            {},
+            checkDepthStart};
 }
 
 }  // namespace skygraph::passes

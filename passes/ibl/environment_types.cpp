@@ -16,7 +16,7 @@ PassTypeInfo equirectToCubemapPassType() {
             rules({{"supersample", integerIn(1, 16)}}),
             "Resamples an equirect map into cube faces (Vulkan face selection rules).",
             {},
-            iblStorageFormatCheck("EquirectToCubemapPass", "cubemap")};
+            iblStorageCheck("EquirectToCubemapPass", "cubemap")};
 }
 
 PassTypeInfo cubemapMipPassType() {
@@ -29,7 +29,7 @@ PassTypeInfo cubemapMipPassType() {
             rules({}),
             "Writes one mip level of a cubemap from the level above.",
             {},
-            iblStorageFormatCheck("CubemapMipPass", "target")};
+            iblStorageCheck("CubemapMipPass", "target")};
 }
 
 PassTypeInfo irradiancePassType() {
@@ -43,7 +43,7 @@ PassTypeInfo irradiancePassType() {
             rules({{"samples", integerIn(1, 1 << 20)}}),
             "Cosine-weighted diffuse convolution.",
             {},
-            iblStorageFormatCheck("IrradiancePass", "irradiance")};
+            iblStorageCheck("IrradiancePass", "irradiance")};
 }
 
 PassTypeInfo prefilterPassType() {
@@ -58,7 +58,7 @@ PassTypeInfo prefilterPassType() {
             rules({{"samples", integerIn(1, 1 << 20)}}),
             "GGX-prefiltered specular, one roughness per mip.",
             {},
-            iblStorageFormatCheck("PrefilterPass", "prefiltered")};
+            iblStorageCheck("PrefilterPass", "prefiltered", true)};
 }
 
 PassTypeInfo brdfLutPassType() {
@@ -69,7 +69,7 @@ PassTypeInfo brdfLutPassType() {
             rules({{"samples", integerIn(1, 1 << 20)}}),
             "Split-sum BRDF integration table.",
             {},
-            iblStorageFormatCheck("BrdfLutPass", "lut")};
+            iblStorageCheck("BrdfLutPass", "lut")};
 }
 
 }  // namespace skygraph::passes

@@ -1,6 +1,6 @@
 // What the environment pipeline's shaders write, checked when a graph loads
-// (environment_types.cpp) and when a pipeline is made (ibl_compute.cpp, which picks the GLSL
-// format qualifier).
+// (environment_types.cpp; the renderer runs the same check on a graph built in code) and, for
+// the format, when a pipeline is made (ibl_compute.cpp, which picks the GLSL format qualifier).
 #pragma once
 
 #include "../format_names.hpp"
@@ -11,6 +11,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,14 +44,42 @@ inline constexpr std::array<IblStorageFormat, 4> kIblStorageFormats{{{VK_FORMAT_
     return std::string(type) + " writes " + formatNames(formats) + " storage images, not " + std::string(format);
 }
 
-/// A usage validator refusing a format the pass's storage slot `slot` cannot take.
-[[nodiscard]] inline UsageValidator iblStorageFormatCheck(std::string type, std::string slot) {
-    return [type = std::move(type), slot = std::move(slot)](const PassDesc& pass, const GraphDesc& graph) {
+/// Why pass type `type` cannot write `range` (nullopt: the whole resource) of `target` through
+/// its storage slot `slot`, or nothing. Its storage view is the usage's first mip level alone,
+/// so a usage of more would leave the others undefined while the plan calls them written.
+/// `repeated`: the slot takes one usage per level (PrefilterPass), else one usage in all.
+[[nodiscard]] inline std::optional<std::string> iblStorageMipProblem(std::string_view type, std::string_view slot,
+                                                                     bool repeated, const ResourceDesc& target,
+                                                                     const std::optional<SubresourceRange>& range) {
+    std::string covered;
+    if (range) {
+        if (range->mipCount == 1) return std::nullopt;
+        covered = "mips [" + std::to_string(range->baseMip) + ", " + std::to_string(range->mipCount) + "]";
+    } else if (target.mips == 0) {
+        // A fixed 1x1 extent is a chain of one level; any other "full" chain has more.
+        if (!target.extent.relativeToOutput && target.extent.width == 1 && target.extent.height == 1)
+            return std::nullopt;
+        covered = "its whole mip chain (\"mips\": \"full\")";
+    } else {
+        if (target.mips == 1) return std::nullopt;
+        covered = "all " + std::to_string(target.mips) + " of its mips";
+    }
+    return std::string(type) + " writes one mip per usage of slot '" + std::string(slot) + "': the usage of '" +
+           target.name + "' covers " + covered + "; " +
+           (repeated ? "give one usage per mip (\"mips\": [m, 1])" : "name one mip (\"mips\": [m, 1])");
+}
+
+/// A usage validator for the pass type `type`'s storage slot `slot`: refuses a format the shaders
+/// cannot write and a usage of more than one mip level (iblStorageMipProblem).
+[[nodiscard]] inline UsageValidator iblStorageCheck(std::string type, std::string slot, bool repeated = false) {
+    return [type = std::move(type), slot = std::move(slot), repeated](const PassDesc& pass, const GraphDesc& graph) {
         std::vector<UsageError> problems;
         for (size_t i = 0; i < pass.uses.size(); ++i) {
+            if (graph.slotName(pass.uses[i].slot) != slot) continue;
             const ResourceDesc& r = graph.resources[pass.uses[i].resource];
-            if (graph.slotName(pass.uses[i].slot) == slot && !iblStorageQualifier(r.format.format))
-                problems.push_back({i, iblStorageProblem(type, r.format.name)});
+            if (!iblStorageQualifier(r.format.format)) problems.push_back({i, iblStorageProblem(type, r.format.name)});
+            if (auto problem = iblStorageMipProblem(type, slot, repeated, r, pass.uses[i].usage.range))
+                problems.push_back({i, std::move(*problem)});
         }
         return problems;
     };

@@ -36,7 +36,9 @@ public:
         // A graph built in code has not been through the loader's check.
         if (const auto problem = skyboxFadeProblem(env ? env->desc : nullptr, previous ? previous->desc : nullptr))
             throw ExecutorError(detail::passError(*ctx.pass, previous->desc->name, *problem));
-        // Which textures, if any, decide the pipeline: each mode binds only what it samples.
+        // Which textures, if any, decide the pipeline: each mode binds only what it samples. The
+        // environment's type picks cubemap or equirect sampling; the `sampling` param only states
+        // it, and the type's usage check refuses one that disagrees.
         const int mode = !env ? 0 : previous ? 3 : cube ? 1 : 2;
         GraphicsPipelineRecipe recipe;
         recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/skybox.vert");

@@ -1,4 +1,4 @@
-// SkyboxPass's declaration: its slots and params (recording code: skybox_pass.cpp).
+// SkyboxPass's declaration: its slots, params and usage checks (recording code: skybox_pass.cpp).
 #include "builtin_pass_types.hpp"
 #include "param_rules.hpp"
 #include "skybox_rules.hpp"
@@ -6,12 +6,15 @@
 namespace skygraph::passes {
 
 PassTypeInfo skyboxPassType() {
-    const auto checkFade = [](const PassDesc& pass, const GraphDesc& graph) {
+    const auto checkEnvironment = [](const PassDesc& pass, const GraphDesc& graph) {
         const ResourceDesc *environment = nullptr, *previous = nullptr;
-        size_t previousUsage = 0;
+        size_t environmentUsage = 0, previousUsage = 0;
         for (size_t i = 0; i < pass.uses.size(); ++i) {
             const std::string_view slot = graph.slotName(pass.uses[i].slot);
-            if (slot == "environment") environment = &graph.resources[pass.uses[i].resource];
+            if (slot == "environment") {
+                environment = &graph.resources[pass.uses[i].resource];
+                environmentUsage = i;
+            }
             if (slot == "previous") {
                 previous = &graph.resources[pass.uses[i].resource];
                 previousUsage = i;
@@ -19,6 +22,11 @@ PassTypeInfo skyboxPassType() {
         }
         std::vector<UsageError> problems;
         if (auto problem = skyboxFadeProblem(environment, previous)) problems.push_back({previousUsage, std::move(*problem)});
+        // Without an environment the sky is procedural, and `sampling` has nothing to state.
+        const auto sampling = pass.params.json().find("sampling");
+        if (environment && sampling != pass.params.json().end() && sampling->is_string())
+            if (auto problem = skyboxSamplingProblem(*environment, sampling->get<std::string>()))
+                problems.push_back({environmentUsage, std::move(*problem)});
         return problems;
     };
     return {"SkyboxPass",
@@ -39,7 +47,7 @@ PassTypeInfo skyboxPassType() {
                    {"output", oneOf({"radiance", "direction"})}}),
             "Fullscreen-triangle sky at the reverse-Z far plane.",
             {},
-            checkFade};
+            checkEnvironment};
 }
 
 }  // namespace skygraph::passes

@@ -467,6 +467,20 @@ TEST(Culling, AWriteOfAnExportedResourceWrittenOverSaysSo) {
               "pass that runs writes over what it writes of 'out' before anything reads it");
 }
 
+// The same of a resource that is not exported but read later: what the culled pass wrote, a
+// later pass wrote over before the read (it said that nothing reads it).
+TEST(Culling, AWriteWrittenOverBeforeALaterReadSaysSo) {
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut, R"(
+        {"name": "w1", "type": "Generic", "uses": {"color": "Write@Compute"}},
+        {"name": "w2", "type": "Generic", "uses": {"color": "Write@Compute"}},
+        {"name": "r", "type": "Generic", "uses": {"color": "Read@Compute", "out": "Write@Compute"}})");
+    ASSERT_EQ(plan.culled().size(), 1u);
+    EXPECT_EQ(plan.culled()[0].name, "w1");
+    EXPECT_EQ(plan.culled()[0].reason,
+              "nothing reads what it writes: a later pass that runs writes over what it writes of 'color' before "
+              "anything reads it");
+}
+
 TEST(Reordering, SkyboxAfterTonemappingIsCulledWithItsReason) {
     const std::string resources = R"(
         "depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": {"depth": 0.0}},
@@ -547,6 +561,29 @@ std::string compileErrorText(const GraphDesc& graph) {
         return e.diagnostics().format();
     }
     return {};
+}
+
+// An output-sized full chain has its length only at compile time, where a read of levels no
+// pass writes is found: the message names the levels, as the loader's does for a fixed extent
+// (it said "no earlier pass writes it" of a read whose first level was written).
+TEST(Ranges, AReadOfAnOutputChainNamesTheLevelsNoPassWrites) {
+    const GraphDesc g = parseGraph(
+        R"({"version": 1, "name": "t", "resources": {
+              "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "mips": "full" },
+              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                       "final": "ShaderRead" } },
+            "passes": [
+              { "name": "w", "type": "Generic", "uses": [
+                  { "resource": "img", "access": "Write", "stage": "Compute", "mips": [0, 1] } ] },
+              { "name": "r", "type": "Generic", "uses": [
+                  { "resource": "img", "access": "Read", "stage": "Compute", "mips": [0, 3] },
+                  { "resource": "out", "access": "Write", "stage": "ColorAttachment" } ] } ]})",
+        "chain.json", registry());
+    const std::string text = compileErrorText(g);
+    EXPECT_NE(text.find("passes[1].uses[0]: pass 'r', resource 'img': reads 'img' (Read@Compute as sampled) but no earlier "
+                        "pass writes mips 1 and 2 of it"),
+              std::string::npos)
+        << text;
 }
 
 // A level that the resolved chain does not have is an error at compile time, naming the pass

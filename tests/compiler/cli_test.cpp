@@ -496,6 +496,10 @@ TEST_F(Cli, TheDeferredFrameNeedsALongerSideOf64) {
     EXPECT_NE(small.err.find("resources.bloom_down.mips: resource 'bloom_down': 6 levels is more than a 31x31 image has (5)"),
               std::string::npos)
         << small.err;
+    // With bloom off no pass that runs uses the chain: it is never created, and not checked.
+    const CliRun bloomOff = run({"compile", kDeferred.string(), "--width", "63", "--height", "63", "--feature",
+                                 "bloom=off"});
+    EXPECT_EQ(bloomOff.status, 0) << bloomOff.err;
 }
 
 TEST_F(Cli, MemorySvgIsWrittenWhole) {

@@ -525,6 +525,15 @@ TEST(LoaderErrors, ASlotTakesOnlyTheResourceTypesItDeclares) {
     ds = loadErrors(sky);
     EXPECT_TRUE(hasDiag(ds, "passes[0].uses[2]", "forward", "mipped", {"takes a cube, not 'mipped' of type image2d"}))
         << listAll(ds);
+    // Such a slot binds a cube view, of every face: some of them would make a 2D array view,
+    // which the shader's samplerCube cannot read.
+    sky["passes"][0]["uses"][2] = {{"resource", "cube"}, {"access", "Read"}, {"stage", "Fragment"},
+                                   {"slot", "environment"}, {"layers", Json::array({0, 3})}};
+    ds = loadErrors(sky);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses[2].layers", "forward", "cube",
+                        {"slot 'environment' of ForwardPass binds the whole cube: its usage must cover layers [0, 6], "
+                         "not [0, 3]"}))
+        << listAll(ds);
 }
 
 // The environment pipeline's shaders store through a float format qualifier: another
@@ -541,6 +550,125 @@ TEST(LoaderErrors, EnvironmentPassesWriteOnlyTheirStorageFormats) {
         << listAll(ds);
     g["resources"]["lut"]["format"] = "R16G16_SFLOAT";
     expectLoads(g);
+}
+
+/// graphs/ibl.json, the shipped environment graph, for tests that break one thing of it.
+Json shippedEnvironmentGraph() {
+    std::ifstream in(std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "graphs" / "ibl.json");
+    return Json::parse(in);
+}
+
+/// The index in `g["passes"]` of the pass named `name`.
+size_t passIndex(const Json& g, std::string_view name) {
+    for (size_t i = 0; i < g["passes"].size(); ++i)
+        if (g["passes"][i]["name"].get<std::string>() == name) return i;
+    ADD_FAILURE() << "no pass '" << name << "'";
+    return 0;
+}
+
+// Each environment pass stores through a view of its usage's first mip level: a usage of more
+// levels compiled, and the plan called the other levels written while they stayed undefined.
+TEST(LoaderErrors, EnvironmentPassesWriteOneMipPerStorageUsage) {
+    const Json shipped = shippedEnvironmentGraph();
+    expectLoads(shipped);  // one usage per level, or the whole of a resource of one level
+
+    // PrefilterPass's six per-mip usages as one usage of the whole resource.
+    Json g = shipped;
+    const size_t prefilter = passIndex(g, "prefilter");
+    Json uses = Json::array();
+    for (const Json& use : g["passes"][prefilter]["uses"])
+        if (use["resource"] != "prefiltered") uses.push_back(use);
+    uses.push_back(Json{{"resource", "prefiltered"}, {"access", "Write"}, {"stage", "Compute"}});
+    g["passes"][prefilter]["uses"] = uses;
+    auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[" + std::to_string(prefilter) + "].uses[1]", "prefilter", "prefiltered",
+                        {"PrefilterPass writes one mip per usage of slot 'prefiltered': the usage of 'prefiltered' "
+                         "covers all 6 of its mips; give one usage per mip (\"mips\": [m, 1])"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+
+    // The cube's faces without `"mips": [0, 1]`: the whole chain of a "full" resource.
+    g = shipped;
+    const size_t toCube = passIndex(g, "equirect_to_cube");
+    g["passes"][toCube]["uses"][1].erase("mips");
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[" + std::to_string(toCube) + "].uses[1]", "equirect_to_cube", "environment",
+                        {"EquirectToCubemapPass writes one mip per usage of slot 'cubemap': the usage of 'environment' "
+                         "covers its whole mip chain (\"mips\": \"full\"); name one mip (\"mips\": [m, 1])"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+
+    // A range of two levels, and whole resources of several.
+    g = shipped;
+    const size_t mip1 = passIndex(g, "environment_mip1"), irradiance = passIndex(g, "irradiance"),
+                 lut = passIndex(g, "brdf_lut");
+    g["passes"][mip1]["uses"][1]["mips"] = Json::array({1, 2});
+    g["resources"]["irradiance"]["mips"] = 2;
+    g["resources"]["brdf_lut"]["mips"] = "full";
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[" + std::to_string(mip1) + "].uses[1]", "environment_mip1", "environment",
+                        {"CubemapMipPass writes one mip per usage of slot 'target'", "covers mips [1, 2]"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[" + std::to_string(irradiance) + "].uses.irradiance", "irradiance", "irradiance",
+                        {"IrradiancePass writes one mip per usage of slot 'irradiance'", "covers all 2 of its mips"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[" + std::to_string(lut) + "].uses.brdf_lut", "brdf_lut", "brdf_lut",
+                        {"BrdfLutPass writes one mip per usage of slot 'lut'", "covers its whole mip chain"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 3u) << listAll(ds);
+
+    // The "full" chain of a 1x1 extent is one level.
+    g = shipped;
+    g["resources"]["irradiance"]["extent"] = Json::array({1, 1});
+    g["resources"]["irradiance"]["mips"] = "full";
+    expectLoads(g);
+}
+
+// ForwardPass clears nothing itself: a Write of its depth loads nothing (DONT_CARE), so without
+// the resource's load-op clear every fragment met undefined depth, and the frame rendered black.
+TEST(LoaderErrors, ForwardPassWritesDepthOnlyFromAClear) {
+    Json g = baseGraph();
+    g["resources"]["depth"].erase("clear");
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[0].uses.depth", "forward", "depth",
+                        {"ForwardPass tests depth against what slot 'depth' starts with, and a Write of 'depth', "
+                         "which has no `clear`, starts with undefined values: add \"clear\": { \"depth\": 0.0 } "
+                         "(reverse-Z's far plane) to 'depth', or use ReadWrite after an earlier depth pass"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    // A ReadWrite starts from an earlier pass's depth.
+    g["passes"][0]["uses"]["depth"] = "ReadWrite@DepthAttachment";
+    g["passes"].insert(g["passes"].begin(), Json{{"name", "depth_prepass"}, {"type", "Generic"},
+                                                 {"uses", {{"depth", "Write@DepthAttachment"}}}});
+    expectLoads(g);
+}
+
+// SkyboxPass samples its environment as the resource's type says: `sampling` only states how,
+// and a statement that contradicts the type is refused rather than ignored.
+TEST(LoaderErrors, SkyboxSamplingAgreesWithTheEnvironmentsType) {
+    const auto skyOf = [](const std::string& environment, const std::string& sampling) {
+        Json g = baseGraph();
+        Json uses = {{"depth", "Read@DepthAttachment"}, {"hdr_color", "ReadWrite@ColorAttachment"}};
+        if (!environment.empty()) uses[environment] = "Read@Fragment";
+        g["passes"].push_back(Json{{"name", "sky"}, {"type", "SkyboxPass"}, {"uses", uses},
+                                   {"params", {{"sampling", sampling}}}});
+        return g;
+    };
+    auto ds = loadErrors(skyOf("cube", "equirect"));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.cube", "sky", "cube",
+                        {"SkyboxPass samples the cube 'cube' as a cubemap, which its type decides, but \"sampling\" "
+                         "says \"equirect\": say \"cubemap\" or bind an image2d"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    ds = loadErrors(skyOf("mipped", "cubemap"));
+    EXPECT_TRUE(hasDiag(ds, "passes[2].uses.mipped", "sky", "mipped",
+                        {"SkyboxPass samples the image2d 'mipped' as an equirect map",
+                         "say \"equirect\" or bind a cube"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    expectLoads(skyOf("cube", "cubemap"));
+    expectLoads(skyOf("mipped", "equirect"));
+    expectLoads(skyOf("", "equirect"));  // the procedural sky samples nothing
 }
 
 // SkyboxPass's `previous` is bound by name only: a sampled fragment read still binds to
@@ -716,7 +844,9 @@ TEST(LoaderErrors, ReadOfAnOutputSizedChainIsCheckedAtTheOutputSizeItCompilesFor
     EXPECT_NO_THROW((void)compile(graph, small));
     const auto ds = compileErrors(g, CompileOptions{});
     EXPECT_TRUE(hasDiag(ds, "passes[3].uses.chain", "r", "chain",
-                        {"reads 'chain' (Read@Fragment as sampled) but no earlier pass writes it", "clear", "external"}));
+                        {"reads 'chain' (Read@Fragment as sampled) but no earlier pass writes mips 4, 5, 6, 7, 8, 9 and 10 "
+                         "of it", "clear", "external"}))
+        << listAll(ds);
     EXPECT_EQ(ds.size(), 1u) << listAll(ds);
     // A read whose first level nothing writes has no source at any output size.
     g["passes"][3]["uses"] = Json::array({{{"resource", "chain"}, {"access", "Read"}, {"stage", "Fragment"},

@@ -205,7 +205,7 @@ TEST_F(MemoryModelTest, AllocatedBytesFollowWhatRenderersHold) {
     const std::string graph = graphWithSwapchain(
         "held", R"("big": { "type": "image2d", "format": "R32G32B32A32_SFLOAT", "extent": [256, 256],
                             "external": true, "final": "ShaderRead" })",
-        R"({ "name": "fill", "type": "Generic", "uses": { "big": "Write@ColorAttachment", "swapchain": "Write@ColorAttachment" } })");
+        R"({ "name": "fill", "type": "Generic", "uses": { "big": "Write@Compute", "swapchain": "Write@ColorAttachment" } })");
     SharedImage kept;
     {
         Renderer renderer(device, compileText(graph), genericOptions(1));

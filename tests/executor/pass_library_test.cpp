@@ -167,6 +167,65 @@ TEST_F(ExecutorTest, APlanWhoseUsagesDoNotFillTheirTypesSlotsIsRefusedByName) {
               "pass 'show', resource 'tex': fills slot 'target', but type 'Generic' takes any usage and has no slots");
 }
 
+// A slot that binds a cube binds a cube view, of every face: a GraphDesc built in code that
+// narrows the usage to some faces is refused as the loader refuses it in a file (the renderer
+// made a 2D array view, which the shader's samplerCube cannot read).
+TEST_F(ExecutorTest, ACubeSlotFilledWithSomeFacesIsRefusedByName) {
+    const PassLibrary lib = library();
+    GraphDesc g = parseGraph(R"({ "version": 1, "name": "faces", "resources": {
+        "sky": { "type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "external": true },
+        "depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": { "depth": 0.0 } },
+        "color": { "type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output", "external": true,
+                   "final": "TransferSrc" } },
+      "passes": [ { "name": "forward", "type": "ForwardPass", "uses": {
+          "color": "Write@ColorAttachment", "depth": "Write@DepthAttachment" } } ] })",
+                             "<faces>", lib.registry());
+    UsageDecl faces;
+    faces.resource = static_cast<uint32_t>(g.findResource("sky") - g.resources.data());
+    faces.usage.access = Access::Read;
+    faces.usage.stage = Stage::Fragment;
+    faces.usage.as = BindAs::Sampled;
+    faces.usage.range = SubresourceRange{0, 1, 0, 3};
+    faces.slot = g.internSlot("environment");
+    g.passes[0].uses.push_back(faces);
+    const CompileOptions co = headless(g);
+    RendererOptions o;
+    o.passes = &lib;
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), o);
+        ADD_FAILURE() << "a cube slot was filled with three faces";
+    } catch (const ExecutorError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "pass 'forward', resource 'sky': fills slot 'environment', which binds the whole cube, with layers "
+                  "[0, 3] of it");
+    }
+}
+
+// A pass renders to attachments of one size: the render area would be the smallest, and the
+// rest of the larger ones left as they were (the frame came out cropped to a corner).
+TEST_F(ExecutorTest, APassWhoseAttachmentsDifferInSizeIsRefusedByName) {
+    const PassLibrary lib = library();
+    GraphDesc g = parseGraph(R"({ "version": 1, "name": "sizes", "resources": {
+        "color": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "external": true,
+                   "final": "TransferSrc" },
+        "depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output/2", "clear": { "depth": 0.0 } } },
+      "passes": [ { "name": "draw", "type": "Generic",
+                    "uses": { "color": "Write@ColorAttachment", "depth": "Write@DepthAttachment" } } ] })",
+                             "<sizes>", lib.registry());
+    const CompileOptions co = headless(g);
+    const std::string sizes = std::to_string(co.outputWidth) + "x" + std::to_string(co.outputHeight) + " and 'depth' " +
+                              std::to_string(co.outputWidth / 2) + "x" + std::to_string(co.outputHeight / 2);
+    RendererOptions o;
+    o.passes = &lib;
+    try {
+        Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), o);
+        ADD_FAILURE() << "a pass rendered to attachments of two sizes";
+    } catch (const ExecutorError& e) {
+        EXPECT_EQ(std::string(e.what()), "pass 'draw', resource 'depth': its attachments differ in size: 'color' is " +
+                                             sizes + " at this output size; a pass renders to attachments of one size");
+    }
+}
+
 // A GraphDesc built in code skips the loader, which runs a type's validators: a renderer runs
 // them too, and refuses by name what they refuse (before, params out of their declared range
 // rendered silently with other values).
@@ -513,6 +572,22 @@ TEST(PassValidators, AMalformedTypeIsRefusedWhenAdded) {
     info = fillType();
     info.slots[0].as = BindAs::Storage;
     EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' sets `as` on a non-shader stage");
+    // Slots no usage could fill: every graph using the type would fail, blaming the graph.
+    info = fillType();
+    info.slots[0].stage = Stage::VertexInput;
+    info.slots[0].accesses = {Access::Read, Access::Write};
+    EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' declares Write@VertexInput, which no resource can be "
+                             "used as");
+    info = fillType();
+    info.slots[0].stage = Stage::Fragment;
+    info.slots[0].as = BindAs::Sampled;
+    info.slots[0].types = {ResourceType::Buffer};
+    info.slots[0].accesses = {Access::Read};
+    EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' declares Read@Fragment as sampled, which no resource "
+                             "of its types can be used as");
+    info = fillType();
+    info.slots[0].stage = Stage(42);
+    EXPECT_EQ(refusal(info), "pass type 'Fill': slot 'target' holds an access, stage or binding outside its enum");
     info = fillType();
     info.acceptsAnyUsage = true;  // slots no usage would be bound to
     EXPECT_EQ(refusal(info), "pass type 'Fill': takes any usage and declares slots (a type does one or the other)");
