@@ -191,9 +191,9 @@ public:
     /// (a leaked handle), and messageCount() counts those reports. Every Renderer, Swapchain,
     /// SharedImage and StagingBuffer of this device must be destroyed first: while one lives,
     /// throws ExecutorError naming them and destroys nothing. Afterwards device() and
-    /// surface() are VK_NULL_HANDLE and only name(), validationEnabled() and the message
-    /// accessors may be used. The destructor does the same when this was not called; calling
-    /// it twice does nothing more.
+    /// surface() are VK_NULL_HANDLE, making any of those from it throws ExecutorError, and only
+    /// name(), validationEnabled() and the message accessors may be used. The destructor does
+    /// the same when this was not called; calling it twice does nothing more.
     void finish();
 
     /// Lists "index: name (type)" for every physical device, for --device help. Makes and
