@@ -724,10 +724,8 @@ private:
                                                           std::string(toString(graph_.resources[u.resource].type)));
                 continue;
             }
-            // The shaders bind such a slot's cube as a cube view, which has every face.
             const ResourceDesc& bound = graph_.resources[u.resource];
-            if (bound.type == ResourceType::Cube && !decl.types.empty() && u.usage.range &&
-                (u.usage.range->baseLayer != 0 || u.usage.range->layerCount != bound.layers)) {
+            if (u.usage.range && !decl.takesLayers(bound, u.usage.range->baseLayer, u.usage.range->layerCount)) {
                 error(usePath(p, i) + ".layers", p.name, resName,
                       "slot '" + decl.name + "' of " + type.name + " binds the whole cube: its usage must cover layers [0, " +
                           std::to_string(bound.layers) + "], not [" + std::to_string(u.usage.range->baseLayer) + ", " +

@@ -46,6 +46,11 @@ bool SlotDecl::takes(ResourceType type) const noexcept {
     return types.empty() || std::find(types.begin(), types.end(), type) != types.end();
 }
 
+bool SlotDecl::takesLayers(const ResourceDesc& resource, uint32_t baseLayer, uint32_t layerCount) const noexcept {
+    const bool cubeView = resource.type == ResourceType::Cube && !types.empty();
+    return !cubeView || (baseLayer == 0 && layerCount == resource.layers);
+}
+
 std::string SlotDecl::describeTypes() const {
     std::string out;
     for (size_t i = 0; i < types.size(); ++i) {

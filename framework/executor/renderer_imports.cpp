@@ -11,6 +11,15 @@ using namespace detail;
 
 namespace {
 
+/// Moves what a slot holds but its BoundResources (the framebuffer and its extent, the barrier
+/// batches) from `from` to `to`: a pass whose recording code is kept keeps those where they are.
+void moveAllButBound(PassSlot& from, PassSlot& to) noexcept {
+    to.framebuffer = std::move(from.framebuffer);
+    to.extent = from.extent;
+    to.before = std::move(from.before);
+    to.inPass = std::move(from.inPass);
+}
+
 /// What a swap replaced, kept until the new state is whole: when a pass implementation or a
 /// pipeline throws part way, the renderer goes on with the old image, and until then the
 /// frames in flight still use what is being replaced.
@@ -37,12 +46,8 @@ struct SwapJournal {
         for (PassBefore& p : passes) {
             if (p.inPlace) {
                 for (size_t slot = 0; slot < p.slots.size(); ++slot) {
-                    PassSlot& now = p.pass->slots[slot];
-                    now.framebuffer = std::move(p.slots[slot].framebuffer);
-                    now.extent = p.slots[slot].extent;
-                    now.before = std::move(p.slots[slot].before);
-                    now.inPass = std::move(p.slots[slot].inPass);
-                    now.bound = p.slots[slot].bound;  // as many as now: the storage stays
+                    moveAllButBound(p.slots[slot], p.pass->slots[slot]);
+                    p.pass->slots[slot].bound = p.slots[slot].bound;  // as many as now: the storage stays
                 }
                 continue;
             }
@@ -121,12 +126,7 @@ void Renderer::Impl::swapImport(PlanState& s, size_t index, const SharedImage& i
                 // until then a rollback has nothing of this pass's to put back.
                 std::vector<PassSlot> saved(ps.slots.size());
                 for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) saved[slot].bound = ps.slots[slot].bound;
-                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) {
-                    saved[slot].framebuffer = std::move(ps.slots[slot].framebuffer);
-                    saved[slot].extent = ps.slots[slot].extent;
-                    saved[slot].before = std::move(ps.slots[slot].before);
-                    saved[slot].inPass = std::move(ps.slots[slot].inPass);
-                }
+                for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) moveAllButBound(ps.slots[slot], saved[slot]);
                 before.slots = std::move(saved);
                 before.inPlace = true;
                 for (uint32_t slot = 0; slot < ps.slots.size(); ++slot) buildPassSlot(s, ps, slot);

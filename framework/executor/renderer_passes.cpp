@@ -72,8 +72,7 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name + "', which takes " +
                                                               slot->describeTypes() + ", with a resource of type " +
                                                               std::string(toString(resourceType))));
-        if (resourceType == ResourceType::Cube && !slot->types.empty() &&
-            (u.range.baseLayer != 0 || u.range.layerCount != resources.at(u.resource).desc->layers))
+        if (!slot->takesLayers(*resources.at(u.resource).desc, u.range.baseLayer, u.range.layerCount))
             throw ExecutorError(passError(pass, resource, "fills slot '" + slot->name +
                                                               "', which binds the whole cube, with layers [" +
                                                               std::to_string(u.range.baseLayer) + ", " +

@@ -14,6 +14,7 @@
 #include <initializer_list>
 #include <cstring>
 #include <set>
+#include <system_error>
 
 namespace skygraph {
 namespace {
@@ -344,6 +345,16 @@ std::string percentDecoded(const std::string& uri) {
 
 std::filesystem::path uriFile(const std::filesystem::path& baseDir, const std::string& uri) {
     return baseDir / percentDecoded(uri);
+}
+
+std::string notARegularFile(const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (status.type() == std::filesystem::file_type::not_found) return "does not exist";
+    if (ec) return "cannot be read (" + ec.message() + ")";
+    if (std::filesystem::is_directory(status)) return "is a directory";
+    if (!std::filesystem::is_regular_file(status)) return "is not a regular file";
+    return {};
 }
 
 std::string absoluteUriProblem(const std::string& uri) {

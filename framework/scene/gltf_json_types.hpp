@@ -33,6 +33,10 @@ bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bo
 /// it: percent-decoded and joined to `baseDir`, the glTF file's folder.
 [[nodiscard]] std::filesystem::path uriFile(const std::filesystem::path& baseDir, const std::string& uri);
 
+/// Why `path`, a file a glTF names, cannot be read as one: "does not exist", "is a directory",
+/// "is not a regular file", "cannot be read (REASON)"; empty for a regular file.
+[[nodiscard]] std::string notARegularFile(const std::filesystem::path& path);
+
 /// Why `uri` (not a data URI) names no file skygraph reads, in words, or empty: glTF uris are
 /// relative to the glTF file's folder, and an absolute path or a file: URI is refused.
 [[nodiscard]] std::string absoluteUriProblem(const std::string& uri);

@@ -58,11 +58,8 @@ bool fileExists(const std::string& path, void* files) {
 
 bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* files) {
     static_cast<ExternalFiles*>(files)->read.emplace_back(path);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        if (error)
-            *error += "'" + path + "' is " +
-                      (std::filesystem::is_directory(path, ec) ? "a directory" : "not a regular file") + "\n";
+    if (const std::string why = notARegularFile(path); !why.empty()) {
+        if (error) *error += "'" + path + "' " + why + "\n";
         return false;
     }
     std::ifstream in(path, std::ios::binary);

@@ -249,12 +249,8 @@ int32_t GltfMaterials::decode(size_t fileImage, std::vector<MeshImage>& images) 
 
 std::string GltfMaterials::unreadFileProblem(const tinygltf::Image& image) const {
     const std::filesystem::path file = uriFile(baseDir_, image.uri);
+    if (std::string why = notARegularFile(file); !why.empty()) return why;
     std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(file, ec);
-    if (status.type() == std::filesystem::file_type::not_found) return "does not exist";
-    if (ec) return "cannot be read (" + ec.message() + ")";
-    if (std::filesystem::is_directory(status)) return "is a directory";
-    if (!std::filesystem::is_regular_file(status)) return "is not a regular file";
     if (std::filesystem::file_size(file, ec) == 0 && !ec) return "is empty";
     return "cannot be read";
 }

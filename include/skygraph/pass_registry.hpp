@@ -41,6 +41,9 @@ struct SlotDecl {
     [[nodiscard]] bool accepts(const UsageMode& usage) const noexcept;
     /// Whether a resource of type `type` can fill it (`types` empty or listing it).
     [[nodiscard]] bool takes(ResourceType type) const noexcept;
+    /// Whether it can bind layers [baseLayer, baseLayer + layerCount) of `resource`: a slot of
+    /// declared types binds a cube as a cube view, of every face; any other takes any layers.
+    [[nodiscard]] bool takesLayers(const ResourceDesc& resource, uint32_t baseLayer, uint32_t layerCount) const noexcept;
     /// "a cube" or "an image2d or a cube": what `types` allows, for messages.
     [[nodiscard]] std::string describeTypes() const;
 };

@@ -55,14 +55,12 @@ inline constexpr std::array<IblStorageFormat, 4> kIblStorageFormats{{{VK_FORMAT_
     if (range) {
         if (range->mipCount == 1) return std::nullopt;
         covered = "mips [" + std::to_string(range->baseMip) + ", " + std::to_string(range->mipCount) + "]";
-    } else if (target.mips == 0) {
-        // A fixed 1x1 extent is a chain of one level; any other "full" chain has more.
-        if (!target.extent.relativeToOutput && target.extent.width == 1 && target.extent.height == 1)
-            return std::nullopt;
-        covered = "its whole mip chain (\"mips\": \"full\")";
     } else {
-        if (target.mips == 1) return std::nullopt;
-        covered = "all " + std::to_string(target.mips) + " of its mips";
+        // Without an output size the length is known unless it is a full chain of the output's.
+        const bool chainOfOutput = target.mips == 0 && target.extent.relativeToOutput;
+        if (!chainOfOutput && target.mipCount(1, 1) == 1) return std::nullopt;
+        covered = target.mips == 0 ? "its whole mip chain (\"mips\": \"full\")"
+                                   : "all " + std::to_string(target.mips) + " of its mips";
     }
     return std::string(type) + " writes one mip per usage of slot '" + std::string(slot) + "': the usage of '" +
            target.name + "' covers " + covered + "; " +

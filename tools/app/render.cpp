@@ -147,10 +147,9 @@ std::set<std::string, std::less<>> writtenByPasses(const Plan& plan) {
     return written;
 }
 
-/// The images a pass of `plan` writes, which a read-back shows the frame's work in, in the
-/// order `graph` declares them.
-std::string writtenImageNames(const GraphDesc& graph, const Plan& plan) {
-    const std::set<std::string, std::less<>> written = writtenByPasses(plan);
+/// The images of `written` (writtenByPasses), which a read-back shows the frame's work in, in
+/// the order `graph` declares them.
+std::string writtenImageNames(const GraphDesc& graph, const std::set<std::string, std::less<>>& written) {
     std::string names;
     for (const ResourceDesc& r : graph.resources)
         if (r.isImage() && written.contains(r.name)) names += (names.empty() ? "" : ", ") + r.name;
@@ -464,9 +463,10 @@ int renderCommand(const RenderOptions& options) {
         std::filesystem::path output = options.output;
         const Plan unread = compile(graph, co);
         const std::string target = outputTarget(graph, unread, options.readback);
+        const std::set<std::string, std::less<>> written = writtenByPasses(unread);
         if (target.empty()) {
             if (!output.empty()) {
-                const std::string images = writtenImageNames(graph, unread);
+                const std::string images = writtenImageNames(graph, written);
                 std::cerr << "skygraph render: " << printableName(graph.file) << ": nothing to write to -o '"
                           << printableName(output.string()) << "': the graph has no Present image that a pass uses; "
                           << (images.empty() ? std::string("nor any image that a pass writes, to read back")
@@ -481,8 +481,8 @@ int renderCommand(const RenderOptions& options) {
             // An output of the graph (exported) that no pass of these features writes would be
             // read back as the placeholder it arrives with.
             const ResourceDesc* declared = graph.findResource(target);
-            if (declared && declared->external && declared->isExported() && !writtenByPasses(unread).contains(target)) {
-                const std::string images = writtenImageNames(graph, unread);
+            if (declared && declared->external && declared->isExported() && !written.contains(target)) {
+                const std::string images = writtenImageNames(graph, written);
                 std::cerr << "skygraph render: " << printableName(graph.file) << ": cannot read back '" << target
                           << "': it is an output of the graph, and no pass that runs with these features writes it"
                           << (images.empty() ? std::string() : "; the images its passes write: " + images) << "\n";

@@ -95,11 +95,11 @@ int run(CubemapArgs& args) {
     const auto start = std::chrono::steady_clock::now();
     const std::filesystem::path output = args.output;
     // As `render` does with its output: any case, and a wrong one is a problem with the input.
-    if (app::fileNameIsOnlyExtension(output, ".ktx2"))
+    if (fileNameIsOnlyExtension(output, ".ktx2"))
         throw std::runtime_error(app::noStemMessage("-o", output, "sky"));
     if (lowercaseExtension(output) != ".ktx2") throw ImageError(output, "cannot write: its extension must be .ktx2");
     for (const std::string_view extension : {".hdr", ".exr"})
-        if (app::fileNameIsOnlyExtension(args.cross, extension))
+        if (fileNameIsOnlyExtension(args.cross, extension))
             throw std::runtime_error(app::noStemMessage("--cross", args.cross, "cross"));
     if (!args.cross.empty() && lowercaseExtension(args.cross) != ".hdr" && lowercaseExtension(args.cross) != ".exr")
         throw ImageError(args.cross, "cannot write --cross: its extension must be .hdr or .exr");
