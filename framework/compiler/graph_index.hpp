@@ -15,6 +15,7 @@
 #include <skygraph/graph.hpp>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -102,6 +103,10 @@ public:
 
     /// Per resource (index into GraphDesc::resources).
     [[nodiscard]] const SubresourceGrid& grid(size_t r) const noexcept { return resources_[r].grid; }
+    /// Mip `mip`'s width and height at the output size, for an image.
+    [[nodiscard]] std::array<uint32_t, 2> extentAt(size_t r, uint32_t mip) const noexcept {
+        return {std::max(1u, resources_[r].width >> mip), std::max(1u, resources_[r].height >> mip)};
+    }
     /// Subresources of all resources together: the size of a flat per-subresource array,
     /// which holds each resource's end to end, in file order.
     [[nodiscard]] size_t cells() const noexcept { return cells_; }
@@ -203,9 +208,12 @@ private:
             // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can
             // come near (the loader bounds mips and layers).
             if (cells > kMaxCells - cells_) throw GraphError(tooManySubresources(graph_, r));
+            // A buffer's extent is not checked (nor used): it may divide by zero.
+            const auto [width, height] =
+                r.isImage() ? r.extent.resolve(outputWidth, outputHeight) : std::array<uint32_t, 2>{1, 1};
             const IndexedResource& res = resources_.emplace_back(
                 IndexedResource{grid, static_cast<uint32_t>(cells_), names_.add(r.name), aspectsOf(r),
-                                r.clear.has_value(), r.external, r.isExported()});
+                                r.clear.has_value(), r.external, r.isExported(), width, height});
             onlyCell_.push_back(cells == 1 ? static_cast<uint32_t>(cells_) : kSeveralCells);
             fitRows_[resources_.size() - 1] = fitRow(usageSubject(r, std::nullopt));
             cells_ += cells;
@@ -214,8 +222,7 @@ private:
             appendCells(liveAtEnd_, cells, uint8_t{res.exported});
             // One level always fits (most images): the extent is resolved only for more.
             if (r.isImage() && r.mips > 1) {
-                const auto [w, h] = r.extent.resolve(outputWidth, outputHeight);
-                if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(w, h))))
+                if (r.mips > static_cast<uint32_t>(std::bit_width(std::max(width, height))))
                     tooManyMips_.push_back(static_cast<uint32_t>(&r - graph_.resources.data()));
             }
         }
@@ -337,6 +344,7 @@ private:
         bool clear;
         bool external;
         bool exported;
+        uint32_t width, height;  ///< Mip 0's, at the output size (1x1 for a buffer).
     };
 
     const GraphDesc& graph_;

@@ -29,25 +29,11 @@ PassAttachments attachmentsOf(const PlannedPass& pass, const std::vector<Resourc
 
 VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
                              const std::vector<ResourceState>& resources) {
-    std::vector<uint32_t> usages = attachments.colors;
-    if (attachments.depth >= 0) usages.push_back(static_cast<uint32_t>(attachments.depth));
-    VkExtent2D e{0, 0};
-    for (size_t i = 0; i < usages.size(); ++i) {
-        const PlannedUsage& u = pass.usages[usages[i]];
-        const ResourceState& r = resources[u.resource];
-        const uint32_t w = r.mipWidth(u.range.baseMip), h = r.mipHeight(u.range.baseMip);
-        // The render area would be the smallest: the rest of the larger ones silently kept.
-        if (i > 0 && (w != e.width || h != e.height)) {
-            const ResourceState& first = resources[pass.usages[usages[0]].resource];
-            throw ExecutorError(passError(pass, r.desc->name,
-                                          "its attachments differ in size: '" + first.desc->name + "' is " +
-                                              std::to_string(e.width) + "x" + std::to_string(e.height) + " and '" +
-                                              r.desc->name + "' " + std::to_string(w) + "x" + std::to_string(h) +
-                                              " at this output size; a pass renders to attachments of one size"));
-        }
-        e = VkExtent2D{w, h};
-    }
-    return e;
+    // compile() refuses attachments of different sizes or layer counts: the first speaks for all.
+    const uint32_t first = attachments.colors.empty() ? static_cast<uint32_t>(attachments.depth) : attachments.colors[0];
+    const PlannedUsage& u = pass.usages[first];
+    const ResourceState& r = resources[u.resource];
+    return VkExtent2D{r.mipWidth(u.range.baseMip), r.mipHeight(u.range.baseMip)};
 }
 
 /// The loader binds a file's usages to its pass type's slots; a GraphDesc built in code names

@@ -761,6 +761,45 @@ TEST(GraphsFromCode, PassesTheLoaderWouldRefuseAreErrors) {
     EXPECT_EQ(compileErrorText(fixed), "");
 }
 
+// A pass renders into one framebuffer. Attachments of two sizes were cropped to the smaller,
+// and of two layer counts made an invalid framebuffer that crashed `render`; both meet only at
+// an output size (mips included), where compile() names them.
+TEST(Attachments, OfDifferentSizesOrLayerCountsAreRefusedAtTheOutputSize) {
+    // The pass writes "sc" and then the usage `use` of the resource `resource`.
+    const auto graph = [](const std::string& resource, const std::string& use) {
+        return parseGraph(R"({"version": 1, "name": "t", "resources": {
+              "sc": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true,
+                      "final": "ShaderRead" }, )" + resource + R"( },
+            "passes": [ { "name": "p", "type": "Generic", "uses": [
+              { "resource": "sc", "access": "Write", "stage": "ColorAttachment" }, )" + use + R"( ] } ]})",
+                          "shapes.json", registry());
+    };
+    const std::string array =
+        R"("arr": { "type": "image2d_array", "format": "R8G8B8A8_UNORM", "extent": "output", "layers": 2 })";
+    std::string text =
+        compileErrorText(graph(array, R"({ "resource": "arr", "access": "Write", "stage": "ColorAttachment" })"));
+    EXPECT_NE(text.find("shapes.json: passes[0].uses[1]: pass 'p', resource 'arr': its attachments differ in shape: "
+                        "'sc' 1920x1080 (1 layer) and 'arr' 1920x1080 (2 layers) at output 1920x1080; a pass renders "
+                        "into attachments of one size and layer count"),
+              std::string::npos)
+        << text;
+    text = compileErrorText(
+        graph(R"("depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output/2", "clear": { "depth": 0.0 } })",
+              R"({ "resource": "depth", "access": "Write", "stage": "DepthAttachment" })"));
+    EXPECT_NE(text.find("passes[0].uses[1]: pass 'p', resource 'depth': its attachments differ in shape: 'sc' "
+                        "1920x1080 (1 layer) and 'depth' 960x540 (1 layer)"),
+              std::string::npos)
+        << text;
+    // One layer of the array, or mip 1 of an image twice the size, is the same shape.
+    EXPECT_EQ(compileErrorText(graph(
+                  array, R"({ "resource": "arr", "access": "Write", "stage": "ColorAttachment", "layers": [1, 1] })")),
+              "");
+    EXPECT_EQ(compileErrorText(graph(
+                  R"("big": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [3840, 2160], "mips": 2 })",
+                  R"({ "resource": "big", "access": "Write", "stage": "ColorAttachment", "mips": [1, 1] })")),
+              "");
+}
+
 // More of what a GraphDesc built in code can hold: enum fields outside their enums (a final
 // state past them left an image in UNDEFINED), and two resources of one name that options
 // name (a read-back and an export of one name took different resources).

@@ -1299,6 +1299,7 @@ TEST(LoaderErrors, MipCountsOfOutputSizedImagesAreCheckedAtCompile) {
     Json g = baseGraph();
     g["resources"]["hdr_color"]["extent"] = "output/2";
     g["resources"]["hdr_color"]["mips"] = 11;
+    g["resources"]["depth"]["extent"] = "output/2";  // forward's attachments share a size
     g["passes"][0]["uses"] = Json::array(
         {{{"resource", "depth"}, {"access", "Write"}, {"stage", "DepthAttachment"}},
          {{"resource", "hdr_color"}, {"access", "Write"}, {"stage", "ColorAttachment"}, {"mips", {0, 1}}}});

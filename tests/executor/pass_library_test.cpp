@@ -201,31 +201,6 @@ TEST_F(ExecutorTest, ACubeSlotFilledWithSomeFacesIsRefusedByName) {
     }
 }
 
-// A pass renders to attachments of one size: the render area would be the smallest, and the
-// rest of the larger ones left as they were (the frame came out cropped to a corner).
-TEST_F(ExecutorTest, APassWhoseAttachmentsDifferInSizeIsRefusedByName) {
-    const PassLibrary lib = library();
-    GraphDesc g = parseGraph(R"({ "version": 1, "name": "sizes", "resources": {
-        "color": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "external": true,
-                   "final": "TransferSrc" },
-        "depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output/2", "clear": { "depth": 0.0 } } },
-      "passes": [ { "name": "draw", "type": "Generic",
-                    "uses": { "color": "Write@ColorAttachment", "depth": "Write@DepthAttachment" } } ] })",
-                             "<sizes>", lib.registry());
-    const CompileOptions co = headless(g);
-    const std::string sizes = std::to_string(co.outputWidth) + "x" + std::to_string(co.outputHeight) + " and 'depth' " +
-                              std::to_string(co.outputWidth / 2) + "x" + std::to_string(co.outputHeight / 2);
-    RendererOptions o;
-    o.passes = &lib;
-    try {
-        Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), o);
-        ADD_FAILURE() << "a pass rendered to attachments of two sizes";
-    } catch (const ExecutorError& e) {
-        EXPECT_EQ(std::string(e.what()), "pass 'draw', resource 'depth': its attachments differ in size: 'color' is " +
-                                             sizes + " at this output size; a pass renders to attachments of one size");
-    }
-}
-
 // A GraphDesc built in code skips the loader, which runs a type's validators: a renderer runs
 // them too, and refuses by name what they refuse (before, params out of their declared range
 // rendered silently with other values).

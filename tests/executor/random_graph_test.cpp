@@ -57,6 +57,7 @@ TEST(RandomGraphGenerator, CoversTheVocabulary) {
         const RandomGraph g = generateRandomGraph(seed);
         CompileOptions o;
         o.features = g.features;
+        o.outputWidth = o.outputHeight = RandomGraphShape{}.outputSize;  // its attachments match there
         const Plan plan = compile(parseGraph(g.json(), "random.json", PassRegistry::withBuiltins()), o);
         for (const Barrier& b : plan.finalBarriers()) {
             if (b.kind != BarrierKind::Image || b.oldLayout == b.newLayout) continue;
