@@ -318,6 +318,13 @@ private:
                     release.srcStages |= cell.useStages[from];
                     release.srcAccess |= writeBits(cell.useAccess[from]);
                 }
+                // A subresource that `from` only transitioned (the rest of a resource whose first
+                // pass there uses part of it; its aliasing barrier covers all) is released after
+                // that barrier, on that queue.
+                if (cell.lastWrite != kNever && cell.writeQueue == from) {
+                    if (cell.lastWrite > source) source = cell.lastWrite;
+                    release.srcStages |= cell.writeStages;
+                }
                 cells_[c].owner = static_cast<uint8_t>(q);
             });
             if (source == kNever) {  // owned since the frame's start: released there

@@ -213,6 +213,41 @@ TEST(QueueRules, ExclusiveImageChangesFamilyBothWays) {
     EXPECT_EQ(submitOf(plan, "show").waits[0].stages, kFragment);
 }
 
+// An exclusive image whose first pass, on the compute queue, uses one of its mips: the
+// aliasing barrier there moves every mip from UNDEFINED, so the compute family owns the others
+// too, unused. Their release went to the frame's start, a graphics submit, where a release
+// from the compute family cannot be recorded (§7.7.4: on a queue of the source family); it
+// follows the barrier on the compute queue instead.
+TEST(QueueRules, AReleaseIsRecordedOnTheQueueOfTheFamilyThatOwnsTheResource) {
+    const Plan plan = compileText(graphText(
+        R"("img": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "mips": 2})",
+        R"({"name": "mip0", "type": "Generic", "queue": "compute", "never_cull": true,
+            "uses": [{"resource": "img", "access": "Write", "stage": "Compute", "mips": [0, 1]}]},
+           {"name": "all", "type": "Generic", "never_cull": true, "uses": {"img": "Write@Compute"}})"));
+    SCOPED_TRACE(planToText(plan));
+    size_t releases = 0;
+    for (const Submit& s : plan.submits())
+        for (const Barrier& b : s.releases) {
+            EXPECT_EQ(b.srcQueue, s.queue) << "a release from the " << toString(b.srcQueue) << " family on the "
+                                           << toString(s.queue) << " queue";
+            ++releases;
+        }
+    const Submit& mip0 = submitOf(plan, "mip0");
+    ASSERT_EQ(mip0.releases.size(), 2u);  // each mip: a transfer per barrier range
+    for (const Barrier& b : mip0.releases) {
+        EXPECT_EQ(b.srcQueue, QueueKind::Compute);
+        EXPECT_EQ(b.dstQueue, QueueKind::Graphics);
+        EXPECT_EQ(b.srcStages, kCompute);
+    }
+    EXPECT_EQ(releases, 2u);
+    // The graphics submit that acquires them waits for the compute queue's signal after mip0.
+    const Submit& all = submitOf(plan, "all");
+    ASSERT_EQ(all.waits.size(), 1u);
+    EXPECT_EQ(all.waits[0].semaphore, QueueKind::Compute);
+    ASSERT_EQ(mip0.signals.size(), 1u);
+    EXPECT_EQ(all.waits[0].value, mip0.signals[0].value);
+}
+
 // External resources are owned by the graphics family between frames: used on the compute
 // queue alone, they still change family at the frame's start and back at its end (an image
 // written from UNDEFINED needs no acquire: its contents are discarded).
