@@ -27,13 +27,14 @@ bool layoutAllowed(const PlannedUsage& u, bool depthFormat, bool copyOut, bool c
         case skygraph::Stage::DepthAttachment: {
             const bool writable =
                 oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                          VK_IMAGE_LAYOUT_ATTACHMENT_OPTIMAL,
+                          VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_ATTACHMENT_OPTIMAL,
                           VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_STENCIL_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL});
             if (writable) return true;
             // A depth attachment that is only read (no load-op clear) may use a read-only layout.
             const bool writes = accessTypes(u.access).has(AccessType::DepthStencilAttachmentWrite);
             return !writes && oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
                                         VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL,
+                                        VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL,
                                         VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL});
         }
         case skygraph::Stage::Vertex:
@@ -44,6 +45,7 @@ bool layoutAllowed(const PlannedUsage& u, bool depthFormat, bool copyOut, bool c
                                  VK_IMAGE_LAYOUT_GENERAL}) ||
                        (depthFormat && oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
                                                  VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
+                                                 VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL,
                                                  VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL}));
             return l == VK_IMAGE_LAYOUT_GENERAL;  // storage images
         case skygraph::Stage::Transfer: {
