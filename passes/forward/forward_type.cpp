@@ -6,17 +6,29 @@ namespace skygraph::passes {
 
 PassTypeInfo forwardPassType() {
     // The pipeline tests GREATER against what the depth attachment starts with. A Write loads
-    // nothing (DONT_CARE), so without a load-op clear every fragment meets undefined depth.
+    // nothing (DONT_CARE), so only a load-op clear gives it a start: the resource's `clear`,
+    // applied by the load op when the usage covers the whole image (a part of it is cleared by a
+    // Clear step, which the Write then discards). Otherwise every fragment meets undefined depth.
     const auto checkDepthStart = [](const PassDesc& pass, const GraphDesc& graph) {
         std::vector<UsageError> problems;
         for (size_t i = 0; i < pass.uses.size(); ++i) {
             const UsageDecl& use = pass.uses[i];
             const ResourceDesc& depth = graph.resources[use.resource];
-            if (graph.slotName(use.slot) != "depth" || use.usage.access != Access::Write || depth.clear) continue;
-            problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write of '" +
-                                       depth.name + "', which has no `clear`, starts with undefined values: add "
-                                       "\"clear\": { \"depth\": 0.0 } (reverse-Z's far plane) to '" + depth.name +
-                                       "', or use ReadWrite after an earlier depth pass"});
+            if (graph.slotName(use.slot) != "depth" || use.usage.access != Access::Write) continue;
+            if (!depth.clear) {
+                problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write of '" +
+                                           depth.name + "', which has no `clear`, starts with undefined values: add "
+                                           "\"clear\": { \"depth\": 0.0 } (reverse-Z's far plane) to '" + depth.name +
+                                           "', or use ReadWrite after an earlier depth pass"});
+                continue;
+            }
+            // (A full chain's length waits for the output size: only its first level is known.)
+            const std::optional<SubresourceRange>& range = use.usage.range;
+            if (range && (range->baseMip != 0 || range->baseLayer != 0 || range->layerCount < depth.layers ||
+                          (depth.mips != 0 && range->mipCount < depth.mips)))
+                problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write of "
+                                       "part of '" + depth.name + "' discards it: only a Write of the whole image "
+                                       "starts from its `clear` (the load op's); write all of it, or use ReadWrite"});
         }
         return problems;
     };

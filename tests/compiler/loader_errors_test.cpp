@@ -636,6 +636,22 @@ TEST(LoaderErrors, ForwardPassWritesDepthOnlyFromAClear) {
                          "(reverse-Z's far plane) to 'depth', or use ReadWrite after an earlier depth pass"}))
         << listAll(ds);
     EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    // A Write of part of a cleared image is cleared by a Clear step the Write then discards:
+    // only the load op of a whole-image Write starts it from the clear.
+    Json partial = baseGraph();
+    partial["resources"]["depth"]["mips"] = 2;
+    partial["passes"][0]["uses"] = Json::parse(R"([
+        { "resource": "depth", "access": "Write", "stage": "DepthAttachment", "mips": [0, 1] },
+        { "resource": "hdr_color", "access": "Write", "stage": "ColorAttachment" } ])");
+    const auto parts = loadErrors(partial);
+    EXPECT_TRUE(hasDiag(parts, "passes[0].uses[0]", "forward", "depth",
+                        {"ForwardPass tests depth against what slot 'depth' starts with, and a Write of part of "
+                         "'depth' discards it: only a Write of the whole image starts from its `clear` (the load "
+                         "op's); write all of it, or use ReadWrite"}))
+        << listAll(parts);
+    EXPECT_EQ(parts.size(), 1u) << listAll(parts);
+    partial["resources"]["depth"]["mips"] = 1;  // the same range is now all of it
+    expectLoads(partial);
     // A ReadWrite starts from an earlier pass's depth.
     g["passes"][0]["uses"]["depth"] = "ReadWrite@DepthAttachment";
     g["passes"].insert(g["passes"].begin(), Json{{"name", "depth_prepass"}, {"type", "Generic"},
