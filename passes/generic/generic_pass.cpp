@@ -198,7 +198,7 @@ GraphicsPipeline graphicsPipeline(const PipelineContext& ctx, const GenericProgr
     // format, else (integer formats; SNORM ones on lavapipe) by a logical XOR where the device
     // has logicOp. A logic op turns blending off for the whole subpass, so it is taken only when
     // every ReadWrite attachment of the pass takes it too; otherwise the attachments that cannot
-    // blend are only written.
+    // blend are only written. A Read is read by the load op alone.
     const auto blends = [&](const BoundResource& r) {
         VkFormatProperties properties{};
         vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice, r.format, &properties);
@@ -218,8 +218,10 @@ GraphicsPipeline graphicsPipeline(const PipelineContext& ctx, const GenericProgr
     for (uint32_t c : p.colors) {
         const BoundResource& r = ctx.resources[c];
         VkPipelineColorBlendAttachmentState b{};
-        b.colorWriteMask = 0xf;
-        if (!logicOp && r.usage->usage.access == Access::ReadWrite && blends(r)) {
+        // A Read has no output in the fragment shader (generic_program.cpp): nothing to write.
+        const Access access = r.usage->usage.access;
+        b.colorWriteMask = access == Access::Read ? 0 : 0xf;
+        if (!logicOp && access == Access::ReadWrite && blends(r)) {
             b.blendEnable = VK_TRUE;
             b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
             b.srcAlphaBlendFactor = b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;

@@ -350,7 +350,11 @@ GenericProgram buildGenericProgram(const PlannedPass& pass, std::span<const Boun
         fs << header;
         for (const auto& b : p.graphicsBindings)
             if (b.stage == VK_SHADER_STAGE_FRAGMENT_BIT) fs << declare(b);
+        // A Read attachment gets no output: the load op reads it, and a draw into it would be a
+        // write the plan never ordered (blending writes even with every channel masked).
+        const auto drawnInto = [&](size_t c) { return resources[p.colors[c]].usage->usage.access != Access::Read; };
         for (size_t c = 0; c < p.colors.size(); ++c) {
+            if (!drawnInto(c)) continue;
             const ResourceDesc& r = *resources[p.colors[c]].desc;
             fs << "layout(location = " << c << ") out " << scalarPrefix(r.format.format)
                << "vec4 o" << c << ";\n";
@@ -362,6 +366,7 @@ GenericProgram buildGenericProgram(const PlannedPass& pass, std::span<const Boun
            << "    uint li = uint(xy.y) * pc.extent.x + uint(xy.x);\n"
            << body(p.graphicsBindings, VK_SHADER_STAGE_FRAGMENT_BIT);
         for (size_t c = 0; c < p.colors.size(); ++c) {
+            if (!drawnInto(c)) continue;
             const ResourceDesc& r = *resources[p.colors[c]].desc;
             fs << "    o" << c << " = " << scalarPrefix(r.format.format) << "vec4(genericOutput(acc));\n";
         }

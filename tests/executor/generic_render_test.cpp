@@ -37,6 +37,26 @@ TEST_F(ExecutorTest, ColorThenSampledRAW) {
     EXPECT_PIXEL_NEAR(img, 15, 15, 1.0, 0.25, 0.0, 1.0);
 }
 
+// A Read@ColorAttachment is loaded and kept (no store): Generic reads it by the load op and
+// draws nothing into it. It drew into it (write mask 0xf), a write the plan never ordered:
+// synchronization validation reported the next pass's read, and the contents changed.
+TEST_F(ExecutorTest, AColorAttachmentReadIsNotWritten) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
+        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
+             "params": { "color": [1, 0, 0, 1] } },
+           { "name": "b", "type": "Generic",
+             "uses": { "tex": "Read@ColorAttachment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0, 0.25, 0, 0] } },
+           { "name": "c", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "ReadWrite@ColorAttachment" },
+             "params": { "color": [0, 0, 0.5, 0] } })"));
+    const ImageData img = render(c);
+    // b's colour, plus what c sampled of a's red and its own blue.
+    EXPECT_PIXEL_NEAR(img, 0, 0, 1.0, 0.25, 0.5, 1.0);
+    EXPECT_PIXEL_NEAR(img, 15, 15, 1.0, 0.25, 0.5, 1.0);
+}
+
 // RAW on a storage image written by compute and loaded in the fragment shader (GENERAL,
 // no layout change: a pure memory dependency).
 TEST_F(ExecutorTest, ComputeStorageImageThenFragmentLoad) {
