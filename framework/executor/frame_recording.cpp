@@ -88,12 +88,24 @@ void recordStep(CommandSink& sink, PlanState& s, uint32_t step, const FrameRecor
     rc.recordInPassBarriers = [&] {
         if (!sl.inPass.empty()) sink.barriers(sl.inPass);
     };
+    // Copies, blits and their barriers are not allowed inside a render pass, and the blits
+    // and the fragment shader's wait need the graphics queue.
+    bool inRenderPass = false;
+    const bool onGraphicsQueue = s.plan.queueOf(step) == QueueKind::Graphics;
     rc.fillSampledImages = [&](std::span<const SampledImageFill> fills) {
+        if (inRenderPass || !onGraphicsQueue)
+            throw ExecutorError(passError(*ps.pass, "",
+                                          inRenderPass ? "fillSampledImages was called inside the render pass: call it "
+                                                         "from recordBeforeRenderPass"
+                                                       : "fillSampledImages needs the graphics queue, and the pass "
+                                                         "runs on the " + std::string(toString(s.plan.queueOf(step))) +
+                                                             " queue"));
         recordSampledImageFills(sink, fills, s.families(), r.sampledImagePlanEdit);
     };
     if (graphics) {
         sink.recordPassBeforeRenderPass(*ps.implementation, rc);
         sink.beginRenderPass(renderPassBegin(ps, sl));
+        inRenderPass = true;
     }
     sink.recordPass(*ps.implementation, rc);
     if (graphics) sink.endRenderPass();

@@ -74,6 +74,13 @@ void requireSpirv(const std::vector<uint32_t>& code, const char* function, const
         throw ExecutorError(std::string(function) + ": the recipe's " + stage + " shader is not SPIR-V");
 }
 
+/// Vulkan takes push constant sizes in multiples of 4 bytes (VUID-VkPushConstantRange-size-00297).
+void requirePushConstantSize(uint32_t bytes, const char* function) {
+    if (bytes % 4 != 0)
+        throw ExecutorError(std::string(function) + ": the recipe's pushConstantBytes (" + std::to_string(bytes) +
+                            ") is not a multiple of 4");
+}
+
 owned::ShaderModule shaderModule(VkDevice device, const std::vector<uint32_t>& code) {
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mi.codeSize = code.size() * 4;
@@ -92,6 +99,11 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
     if (recipe.renderPass == VK_NULL_HANDLE)
         throw ExecutorError("createGraphicsPipeline: the recipe has no render pass (a pass without attachment slots has "
                             "none, and records compute or copies instead)");
+    requirePushConstantSize(recipe.pushConstantBytes, "createGraphicsPipeline");
+    if (!recipe.blends.empty() && recipe.blends.size() != recipe.colorAttachments)
+        throw ExecutorError("createGraphicsPipeline: the recipe has " + std::to_string(recipe.blends.size()) +
+                            " blend state(s) for " + std::to_string(recipe.colorAttachments) +
+                            " color attachment(s); give one per attachment of the subpass");
     GraphicsPipeline out;
     createLayouts(device, recipe.bindings, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                   recipe.pushConstantBytes, out.setLayout, out.layout);
@@ -165,6 +177,7 @@ GraphicsPipeline createGraphicsPipeline(VkDevice device, const GraphicsPipelineR
 
 ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineRecipe& recipe) {
     requireSpirv(recipe.compute, "createComputePipeline", "compute");
+    requirePushConstantSize(recipe.pushConstantBytes, "createComputePipeline");
     ComputePipeline out;
     createLayouts(device, recipe.bindings, VK_SHADER_STAGE_COMPUTE_BIT, recipe.pushConstantBytes,
                   out.setLayout, out.layout);

@@ -7,10 +7,13 @@
 #include <skygraph/format.hpp>
 #include <skygraph/transfer_plans.hpp>
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <cstring>
+#include <exception>
 
 namespace skygraph {
 
@@ -29,6 +32,11 @@ std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
 }
 
 namespace {
+
+/// Why a read finds nothing: no frame has been rendered into the images it would read.
+constexpr const char* kNoFrameYet =
+    "no frame has been rendered since the renderer was made or last set up its images (setGraph, resize, "
+    "reloadShaders, a new swapchain or setExternalImage)";
 
 float halfToFloat(uint16_t h) {
     const uint32_t sign = (h & 0x8000u) << 16;
@@ -173,7 +181,7 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
         if (!sc.needsRecreate(presentRequirements(compiled)) && !sc.paused()) {
             compiled = Impl::atPresentExtent(std::move(compiled), sc.extent);
             d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},
-                                             &sc, sc.imagesId};
+                                             &sc, sc.imagesId, sc.lifetime};
         }
     }
     d.state = d.build(std::move(compiled));
@@ -188,7 +196,16 @@ Renderer::~Renderer() {
         vkDeviceWaitIdle(impl_->vkd);
         return;
     }
-    impl_->waitIdle();
+    try {
+        impl_->waitIdle();
+    } catch (const std::exception& e) {
+        // A lost device fails the fence waits, most often while a failed frame unwinds past
+        // this renderer: a destructor must not throw, and an idle device (or a lost one, whose
+        // work counts as done) is still the point at which its objects may go.
+        spdlog::warn("destroying a renderer: {}; waiting for the device to be idle instead", e.what());
+        vkDeviceWaitIdle(impl_->vkd);
+        return;
+    }
     // A plan on several queues orders them with the renderer's timeline semaphores. The spec
     // lets a semaphore go once the batches that use it have completed, which the fences show;
     // lavapipe's queue threads still release their hold on a waited-for semaphore after the
@@ -234,7 +251,7 @@ ImageData Renderer::readback(std::string_view resource) {
     if (!target)
         throw ExecutorError("no read-back of '" + std::string(resource) +
                             "': the plan does not copy it to the host (CompileOptions::readbacks)");
-    if (d.lastSlot < 0) throw ExecutorError("no frame has been rendered yet");
+    if (d.lastSlot < 0) throw ExecutorError("no read-back of '" + std::string(resource) + "': " + kNoFrameYet);
     d.waitSlot(d.frames[size_t(d.lastSlot)]);
     const ResourceState& r = s.resources[target->resource];
     return convertPixels(target->perSlot[size_t(d.lastSlot)].mapped, r.width, r.height, r.format, r.desc->name);
@@ -244,7 +261,7 @@ std::vector<ImageData> Renderer::readImage(const std::string& resource) {
     Impl& d = *impl_;
     d.waitIdle();
     PlanState& s = *d.state;
-    if (d.lastSlot < 0) throw ExecutorError("cannot read '" + resource + "': no frame has been rendered yet");
+    if (d.lastSlot < 0) throw ExecutorError("cannot read '" + resource + "': " + kNoFrameYet);
     Plan read;
     try {
         read = planImageRead(s.graph, s.plan, resource);
@@ -496,6 +513,8 @@ void Renderer::stageUpload(const std::string& resource, std::shared_ptr<const St
     Impl& d = *impl_;
     const ResourceState& r = stagedResource(*d.state, resource, "stageUpload");
     if (!pixels) throw ExecutorError("stageUpload: no staging buffer for '" + resource + "'");
+    if (pixels->device() != d.vkd)
+        throw ExecutorError("stageUpload: '" + resource + "': the staging buffer belongs to another device");
     // Nothing else copies staged pixels: without an UploadPass they would be dropped unread.
     if (!r.uploaded)
         throw ExecutorError("stageUpload: no UploadPass of the plan writes '" + resource +

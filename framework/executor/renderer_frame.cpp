@@ -394,6 +394,11 @@ void Renderer::Impl::renderFrame(bool background) {
     if (present)
         throw ExecutorError("this renderer presents: render with renderFrame(Swapchain&) or "
                             "renderFrame(const PresentTarget&)");
+    if (const int32_t index = state->presentsWithoutImages; index >= 0)
+        throw ExecutorError("present resource '" + std::string(state->plan.resources()[size_t(index)].name) +
+                            "': the plan was compiled to present, and this renderer has no present images: "
+                            "render with renderFrame(Swapchain&) (or RendererOptions::presentTo, setPresentImages), "
+                            "or compile with CompileOptions::presentReplacement to render headless");
     const auto slot = static_cast<uint32_t>(frameIndex % frames.size());
     submitFrame(slot, slot, nullptr, background);  // headless: the binding slot is the frame slot
 }

@@ -219,6 +219,9 @@ struct PlanState {
     /// present images; headless: -1 and 1.
     int32_t presentResource = -1;
     uint32_t presentImages = 1;
+    /// Headless, the resource of a plan compiled to present (left in PRESENT_SRC_KHR, which a
+    /// headless frame cannot leave its own image in); else -1.
+    int32_t presentsWithoutImages = -1;
 
     [[nodiscard]] const ReadbackTarget* readbackOf(uint32_t resource) const {
         for (const ReadbackTarget& t : readbacks)
@@ -373,6 +376,7 @@ struct Renderer::Impl {
         PresentImages images;
         const SwapchainAccess::Impl* swapchain = nullptr;  ///< Null: the application's own images.
         uint64_t imagesId = 0;                       ///< The swapchain's images_id, when bound.
+        std::weak_ptr<const bool> swapchainLifetime;  ///< Its Impl::lifetime, when bound.
         /// The plan presents another format or usage than `images` have (setGraph): the state
         /// renders into a stand-in until the next frame re-creates the swapchain and binds its
         /// new images. The renderer still presents, at `images`' extent.

@@ -12,8 +12,17 @@ using namespace detail;
 void Renderer::Impl::describePresent(PlanState& s) const {
     s.presentResource = -1;
     s.presentImages = 1;
-    if (!present) return;
+    s.presentsWithoutImages = -1;
+    if (!present) {
+        const int32_t index = presentResource(s.plan);
+        if (index >= 0 && s.plan.resources()[size_t(index)].finalLayout == VK_IMAGE_LAYOUT_PRESENT_SRC_KHR)
+            s.presentsWithoutImages = index;
+        return;
+    }
     const PresentImages& p = present->images;
+    if (present->swapchain && present->swapchainLifetime.expired() && !present->awaitingImages)
+        throw ExecutorError("the swapchain this renderer presents into was destroyed: its plan state is built again "
+                            "only by rendering into another one, renderFrame(Swapchain&)");
     const int32_t index = presentResource(s.plan);
     if (index < 0)
         throw ExecutorError("graph '" + s.graph.name + "' presents nothing (no resource has `final: Present`), "
@@ -79,7 +88,8 @@ void Renderer::Impl::bindPresentImages(PresentImages images, const SwapchainAcce
             throw ExecutorError("setPresentImages: image " + std::to_string(i) + " is VK_NULL_HANDLE");
     std::optional<CompiledGraph> next = atPresentExtent(state->compiled, images.extent);
     std::optional<PresentBinding> previous = std::move(present);
-    present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->imagesId : 0};
+    present = PresentBinding{std::move(images), swapchain, swapchain ? swapchain->imagesId : 0,
+                             swapchain ? swapchain->lifetime : nullptr};
     try {
         waitIdle();
         auto built = build(std::move(*next));  // throws: the old plan and binding stay

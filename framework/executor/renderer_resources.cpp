@@ -326,15 +326,17 @@ ImageCopy Renderer::Impl::adoptImport(const PlanState& s, size_t index, const Sh
     const ResourceState& r = s.resources[index];
     const std::string what = "importImage: resource '" + r.desc->name + "' from " + from.origin + ": ";
     checkImportShape(*r.desc, s.outputWidth(), s.outputHeight(), shared);
-    if ((r.imageUsage & ~from.usage) != 0) throw ExecutorError(what + "the image lacks usages this plan needs");
+    if ((r.imageUsage & ~from.usage) != 0)
+        throw ExecutorError(what + "the image lacks usage " + vk::imageUsageText(r.imageUsage & ~from.usage) +
+                            ", which this plan needs");
     for (const PlannedPass& pass : s.plan.passes())
         for (const PlannedUsage& u : pass.usages)
             if (u.resource == index && writesContents(u.usage.access))
                 throw ExecutorError(what + "pass '" + std::string(pass.name) + "' writes it; an imported image is read-only");
     if (s.plan.resources()[index].initialLayout != from.layout)
-        throw ExecutorError(what + "the producer leaves it in layout " + std::to_string(from.layout) +
+        throw ExecutorError(what + "the producer leaves it in " + layoutName(from.layout) +
                             ", this plan expects it to arrive in " +
-                            std::to_string(s.plan.resources()[index].initialLayout) + " (its `initial` state)");
+                            layoutName(s.plan.resources()[index].initialLayout) + " (its `initial` state)");
     const bool concurrentHere = s.plan.concurrent(static_cast<uint32_t>(index)) && distinctFamilies(dev.families).count > 1;
     if (from.storage->concurrent != concurrentHere)
         throw ExecutorError(what + "the producer created it " +

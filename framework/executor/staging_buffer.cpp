@@ -17,6 +17,7 @@ struct StagingBuffer::Impl {
     owned::Buffer buffer;
     std::byte* mapped = nullptr;
     VkDeviceSize size = 0;
+    VkDevice device = VK_NULL_HANDLE;
 };
 
 std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSize bytes) {
@@ -24,6 +25,7 @@ std::shared_ptr<StagingBuffer> StagingBuffer::create(Device& device, VkDeviceSiz
     DeviceAccess::Impl& d = DeviceAccess::impl(device);
     auto impl = std::make_unique<Impl>(d);
     impl->size = bytes;
+    impl->device = d.device;
     VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
     bci.size = bytes;
     bci.usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
@@ -59,5 +61,6 @@ std::span<std::byte> StagingBuffer::bytes() noexcept { return {impl_->mapped, si
 std::span<const std::byte> StagingBuffer::bytes() const noexcept { return {impl_->mapped, size_t(impl_->size)}; }
 VkDeviceSize StagingBuffer::size() const noexcept { return impl_->size; }
 VkBuffer StagingBuffer::buffer() const noexcept { return impl_->buffer.get(); }
+VkDevice StagingBuffer::device() const noexcept { return impl_->device; }
 
 }  // namespace skygraph

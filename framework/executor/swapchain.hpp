@@ -9,6 +9,7 @@
 #include <skygraph/swapchain.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace skygraph {
@@ -64,6 +65,9 @@ struct Swapchain::Impl {
     /// Unique in the process to the current images: what a renderer bound to them knows them
     /// by, since a swapchain made after this one is destroyed can have its address.
     uint64_t imagesId = 0;
+    /// Expires with the swapchain: a renderer still bound to its images learns that they are
+    /// gone before it would build views of them again.
+    std::shared_ptr<const bool> lifetime = std::make_shared<const bool>(true);
     bool stale = false;  ///< Out of date, suboptimal or resized: re-create before the next frame.
     bool surfaceEmpty = false;  ///< The last re-creation found the surface 0x0.
 

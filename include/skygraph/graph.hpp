@@ -145,7 +145,9 @@ public:
     /// The object; an empty one when there are no params. The reference is valid until this
     /// PassParams is changed, assigned to or destroyed.
     [[nodiscard]] const nlohmann::json& json() const noexcept;
-    /// The object, to change (e.g. a tool raising a pass's sample count). Keep it an object.
+    /// The object, to change (e.g. a tool raising a pass's sample count). Keep it an object:
+    /// value() of anything else throws nlohmann::json::type_error. The reference is valid until
+    /// this PassParams is assigned to, moved from or destroyed.
     [[nodiscard]] nlohmann::json& edit();
     /// A PassParams reads as its object wherever a const nlohmann::json& is wanted.
     operator const nlohmann::json&() const noexcept { return json(); }
@@ -163,7 +165,9 @@ public:
         const Json& object = json();
         return object.value(key, std::string(fallback));
     }
-    /// The value at `key`, added as null if there is none (edit()[key]).
+    /// The value at `key`, added as null if there is none (edit()[key]). The reference is
+    /// valid until the object loses that key, or this PassParams is assigned to, moved from or
+    /// destroyed.
     nlohmann::json& operator[](std::string_view key);
 
     [[nodiscard]] bool empty() const noexcept;

@@ -153,7 +153,8 @@ struct RecordContext {
     /// mip 0 copied from its staging buffer, the rest of its chain blitted down, and the
     /// barriers that leave it in SHADER_READ_ONLY_OPTIMAL, visible to the fragment and compute
     /// shaders of this frame and of later ones. A pass records no barrier of its own. Throws
-    /// ExecutorError for shapes that plan refuses.
+    /// ExecutorError for shapes that plan refuses, inside the render pass (from record() of a
+    /// graphics pass), and for a pass on a queue other than graphics.
     std::function<void(std::span<const SampledImageFill>)> fillSampledImages;
     /// Records the plan's in-pass barriers of this pass (Plan::inPassBarriers()). A pass with a
     /// ReadWrite transfer calls it once, between its copies out and its copies in; it is the

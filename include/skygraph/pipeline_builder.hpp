@@ -45,12 +45,15 @@ struct GraphicsPipelineRecipe {
     /// Borrowed; must be compatible at draw time. Required: a pass without attachment slots
     /// has none (PipelineContext::renderPass is null) and records compute or copies instead.
     VkRenderPass renderPass = VK_NULL_HANDLE;
-    /// Color attachments without blending, writing all channels; ignored when `blends` is set.
+    /// The subpass's color attachments: without `blends`, each is written unblended, all
+    /// channels.
     uint32_t colorAttachments = 1;
-    /// Per-attachment blend states; when not empty, one per color attachment of the subpass.
+    /// Per-attachment blend states; when not empty, one per color attachment (as many as
+    /// `colorAttachments`, else createGraphicsPipeline throws).
     std::vector<VkPipelineColorBlendAttachmentState> blends;
     /// A logical operation between each output and its integer or normalized attachment,
-    /// instead of blending (the device's logicOp feature, enabled where it has it); none when
+    /// instead of blending (needs the device's logicOp feature, which Device enables where the
+    /// device has it; not checked here, as only the VkDevice is given); none when
     /// empty. Float and sRGB attachments are written as they are.
     std::optional<VkLogicOp> logicOp;
     /// Depth test enabled: the attachment is read with `depthCompare` (ALWAYS keeps the read
@@ -63,7 +66,7 @@ struct GraphicsPipelineRecipe {
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     /// Set 0, created with VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR.
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    /// Push constants for the vertex and fragment stages; none when 0.
+    /// Push constants for the vertex and fragment stages, a multiple of 4 bytes; none when 0.
     uint32_t pushConstantBytes = 0;
 };
 
@@ -84,7 +87,7 @@ using ComputePipeline = PipelineObjects;
 struct ComputePipelineRecipe {
     std::vector<uint32_t> compute;  ///< SPIR-V; entry point "main".
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    uint32_t pushConstantBytes = 0;
+    uint32_t pushConstantBytes = 0;  ///< A multiple of 4; none when 0.
 };
 
 [[nodiscard]] ComputePipeline createComputePipeline(VkDevice device, const ComputePipelineRecipe& recipe);

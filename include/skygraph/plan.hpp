@@ -267,7 +267,8 @@ public:
         return pass < passQueues_.size() ? passQueues_[pass] : QueueKind::Graphics;
     }
     /// The queue family of each queue kind that the plan was compiled for
-    /// (CompileOptions::queueFamilies): ownership transfers are between different ones.
+    /// (CompileOptions::queueFamilies): ownership transfers are between different ones. Owned
+    /// by this plan; valid while it lives and is not assigned to.
     [[nodiscard]] const std::array<uint32_t, kQueueKinds>& queueFamilies() const noexcept { return queueFamilies_; }
     /// Whether plan resource `r` is shared concurrently by the queue families that use it
     /// (VK_SHARING_MODE_CONCURRENT) rather than owned by one at a time.

@@ -125,16 +125,19 @@ public:
     /// bake may go on running), then destroys what the renderer owns; images shared with
     /// other renderers live on while they use them. A renderer that has submitted to several
     /// queues (a plan of any of its graphs did) also waits for each of those queues to be
-    /// idle, so then it waits for other renderers' work on them too.
+    /// idle, so then it waits for other renderers' work on them too. Never throws: when the
+    /// wait fails (a lost device), it logs why and waits for the whole device instead.
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
     /// Waits for the frame slot to be free, records the plan and submits. Non-blocking
     /// otherwise: up to framesInFlight frames run at once. Throws ExecutorError for a Vulkan
-    /// failure, and once the renderer presents (renderFrame(Swapchain&), setPresentImages).
-    /// What a pass implementation throws while the frame is recorded comes out as it is, and
-    /// the renderer stays usable: the frame is not submitted (frameCount() does not count it,
+    /// failure, once the renderer presents (renderFrame(Swapchain&), setPresentImages), and
+    /// before it has present images when the plan was compiled to present (without
+    /// CompileOptions::presentReplacement), submitting nothing. What a pass implementation
+    /// throws while the frame is recorded comes out as it is, and the renderer stays usable:
+    /// the frame is not submitted (frameCount() does not count it,
     /// readback() still reads the frame before), what was to ride with it (stageUpload(),
     /// updateExternalImage() with WithNextFrame) rides with the next one, and since the work
     /// every pass recorded for it never runs, the next frame first waits for this renderer's
@@ -307,8 +310,8 @@ public:
     /// updateExternalImage(), nothing runs outside the plan, and the copy runs on whatever
     /// queue the graph puts the pass (a transfer queue copies beside the frames). Throws
     /// ExecutorError, staging nothing, for a resource the plan does not have or that no
-    /// UploadPass of it writes (nothing would copy the pixels), or a buffer of another size
-    /// than the resource needs.
+    /// UploadPass of it writes (nothing would copy the pixels), a buffer of another size
+    /// than the resource needs, or a buffer of another device.
     void stageUpload(const std::string& resource, std::shared_ptr<const StagingBuffer> pixels);
     /// The bytes stageUpload() takes for `resource`: width x height x layers x texel bytes
     /// of an image, the size of a buffer. Throws ExecutorError for a resource the plan does

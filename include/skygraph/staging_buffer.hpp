@@ -51,6 +51,8 @@ public:
     }
 
 private:
+    friend class Renderer;  // refuses a buffer of another device
+    [[nodiscard]] VkDevice device() const noexcept;
     struct Impl;
     explicit StagingBuffer(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;

@@ -87,11 +87,11 @@ struct SwapchainOptions {
 /// and renderFrame() borrow it for the call), but one that has rendered into it, or was bound to it
 /// by presentTo, keeps views of its images until it renders into another swapchain or is destroyed.
 /// Either may be destroyed first: destroying the swapchain waits for the Device's queue, and so for
-/// every frame into it. After that, until the renderer renders into another swapchain, it must not
-/// rebuild its plan state in any other way (setGraph(), resize(), reloadShaders(),
-/// setPresentImages(), a HotReloader's poll()), which would build on the destroyed images. So, to
-/// replace one (for another present mode, say): destroy it, create the next and pass that to the
-/// renderer's next renderFrame(). Not copyable or movable. Used one thread at a time together with
+/// every frame into it. After that, until the renderer renders into another swapchain (or is given
+/// images by setPresentImages()), rebuilding its plan state in any other way (setGraph(),
+/// reloadShaders(), a HotReloader's poll()) would build on the destroyed images: it throws
+/// ExecutorError and keeps the plan. So, to replace one (for another present mode, say): destroy
+/// it, create the next and pass that to the renderer's next renderFrame(). Not copyable or movable. Used one thread at a time together with
 /// the Device and every renderer made with it (Device's comment says why).
 class Swapchain {
 public:

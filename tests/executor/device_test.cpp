@@ -339,6 +339,7 @@ TEST_F(RenderCapacity, AResourceTooLargeIsNamedAtItsDeclaration) {
     o.width = o.height = 16384;
     o.frames = 1;
     app::FrameInputs inputs = app::loadFrameInputs(o);
+    inputs.compile.presentReplacement = ExternalState::TransferSrc;  // headless, as `render` compiles it
     try {
         (void)app::renderFrames(sharedDevice(), CompiledGraph(inputs.graph, inputs.compile), inputs, o);
         FAIL() << "16384x16384 was accepted";
@@ -354,6 +355,7 @@ TEST_F(RenderCapacity, AResourceTooLargeIsNamedAtItsDeclaration) {
     }
     o.width = o.height = 16;
     inputs = app::loadFrameInputs(o);
+    inputs.compile.presentReplacement = ExternalState::TransferSrc;
     const app::RenderedFrames frames =
         app::renderFrames(sharedDevice(), CompiledGraph(inputs.graph, inputs.compile), inputs, o);
     EXPECT_EQ(frames.renderer->frameCount(), 1u);

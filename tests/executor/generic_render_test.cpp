@@ -427,8 +427,9 @@ TEST_F(ExecutorTest, ReadbackNeedsTheImageInCompileOptionsReadbacks) {
         R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
         R"({ "name": "b", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" } })"),
         "<test>", PassRegistry::withBuiltins());
-    CompileOptions co;  // final stays Present, nothing read back
+    CompileOptions co;  // nothing read back
     co.outputWidth = co.outputHeight = 16;
+    co.presentReplacement = ExternalState::ShaderRead;
     Renderer r(sharedDevice(), CompiledGraph(std::move(g), co), genericOptions());
     r.renderFrame();
     EXPECT_THROW((void)r.readback(), ExecutorError);
@@ -446,6 +447,7 @@ TEST_F(ExecutorTest, AReadBackOfAnUnconvertedFormatIsRefusedBeforeRendering) {
                                                                               "ids": "Write@Compute" } })");
     CompileOptions co;
     co.outputWidth = co.outputHeight = 16;
+    co.presentReplacement = ExternalState::ShaderRead;
     co.readbacks = {"ids"};
     const std::string expected = "cannot read back 'ids': its format R32_UINT is not supported for read-back, "
                                  "which converts ";
@@ -602,6 +604,34 @@ TEST_F(ExecutorTest, ANullPresentImageIsRefusedByIndex) {
         EXPECT_NE(std::string(e.what()).find("setPresentImages: image 0 is VK_NULL_HANDLE"), std::string::npos)
             << e.what();
     }
+}
+
+// A plan compiled to present, rendered headless, left the renderer's own image in
+// PRESENT_SRC_KHR on a device without VK_KHR_swapchain, unnoticed.
+TEST_F(ExecutorTest, APlanCompiledToPresentIsRefusedHeadless) {
+    const std::string json = R"({ "version": 1, "name": "t", "resources": {
+          "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output",
+                         "external": true, "final": "Present" } },
+          "passes": [ { "name": "fill", "type": "Generic", "uses": { "swapchain": "Write@ColorAttachment" },
+                        "params": { "color": [0, 0, 0, 1] } } ] })";
+    CompileOptions o = sizedOptions();
+    o.memory = sharedDevice().memoryModel();
+    Renderer r(sharedDevice(), CompiledGraph(parseGraph(json, "<test>", PassRegistry::withBuiltins()), o),
+               genericOptions());
+    try {
+        r.renderFrame();
+        FAIL() << "a plan that presents rendered headless";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("present resource 'swapchain': the plan was compiled to present"),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("CompileOptions::presentReplacement"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(r.frameCount(), 0u);
+    // Compiled headless, the same graph renders.
+    Renderer headlessRenderer(sharedDevice(), compileText(json), genericOptions());
+    headlessRenderer.renderFrame();
+    headlessRenderer.waitIdle();
 }
 
 // shareImage() names why a resource cannot be shared; it had said "set `final`" of a resource

@@ -394,21 +394,25 @@ TEST_F(ExecutorTest, ATypeWithoutRecordingCodeRunsWithTheLibrarysGeneric) {
 
 /// Builds its pipeline from `recipe`'s shaders: the vertex shader of the fullscreen triangle
 /// unless `vertex` is false, a fragment shader only when `fragment` is, and `notSpirv` words
-/// in place of the vertex shader when it is set.
+/// in place of the vertex shader when it is set; `adjust` changes the recipe last.
 class RecipePass final : public PassImplementation {
 public:
-    RecipePass(bool vertex, bool fragment, bool notSpirv, bool renderPass = true)
-        : vertex_(vertex), fragment_(fragment), notSpirv_(notSpirv), renderPass_(renderPass) {}
+    RecipePass(bool vertex, bool fragment, bool notSpirv, bool renderPass = true,
+               std::function<void(GraphicsPipelineRecipe&)> adjust = {})
+        : vertex_(vertex), fragment_(fragment), notSpirv_(notSpirv), renderPass_(renderPass),
+          adjust_(std::move(adjust)) {}
     void createPipelines(const PipelineContext& ctx) override {
         GraphicsPipelineRecipe recipe;
         if (vertex_) recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/fullscreen.vert");
         if (notSpirv_) recipe.vertex = {1, 2, 3, 4};
         if (fragment_)
             recipe.fragment = ctx.shaders->compile(VK_SHADER_STAGE_FRAGMENT_BIT,
-                                                   "#version 450\nlayout(location = 0) out vec4 o;\n"
-                                                   "void main() { o = vec4(1); }\n",
+                                                   "#version 450\nlayout(location = 0) in vec2 uv;\n"
+                                                   "layout(location = 0) out vec4 o;\n"
+                                                   "void main() { o = vec4(uv, 1, 1); }\n",
                                                    "white.frag");
         recipe.renderPass = renderPass_ ? ctx.renderPass : VK_NULL_HANDLE;
+        if (adjust_) adjust_(recipe);
         pipeline_ = createGraphicsPipeline(ctx.device, recipe);
     }
     void record(const RecordContext& ctx) override {
@@ -422,6 +426,7 @@ public:
 
 private:
     bool vertex_, fragment_, notSpirv_, renderPass_;
+    std::function<void(GraphicsPipelineRecipe&)> adjust_;
     GraphicsPipeline pipeline_;
 };
 
@@ -443,6 +448,37 @@ std::string renderError(const PassLibrary& lib, const std::string& type) {
     return {};
 }
 
+/// Calls fillSampledImages, with nothing to fill, before its render pass or inside it.
+class SampledFillPass final : public PassImplementation {
+public:
+    explicit SampledFillPass(bool insideRenderPass) : inside_(insideRenderPass) {}
+    void createPipelines(const PipelineContext&) override {}
+    void recordBeforeRenderPass(const RecordContext& ctx) override {
+        if (!inside_) ctx.fillSampledImages({});
+    }
+    void record(const RecordContext& ctx) override {
+        if (inside_) ctx.fillSampledImages({});
+    }
+
+private:
+    bool inside_;
+};
+
+// Copies, blits and barriers inside a render pass are invalid Vulkan: a pass calling
+// fillSampledImages from record() is told where to call it instead.
+TEST_F(ExecutorTest, FillingSampledImagesInsideTheRenderPassIsRefusedByPass) {
+    PassLibrary lib = library();
+    for (const bool inside : {true, false}) {
+        PassTypeInfo info = fillType();
+        info.name = inside ? "FillsInside" : "FillsBefore";
+        lib.add(info, [inside](const PassDesc&) { return std::make_unique<SampledFillPass>(inside); });
+    }
+    EXPECT_EQ(renderError(lib, "FillsInside"),
+              "pass 'fill': fillSampledImages was called inside the render pass: call it from recordBeforeRenderPass");
+    EXPECT_EQ(renderError(lib, "FillsBefore"), "");
+    EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+}
+
 // What an application's pass code throws, from its factory or through the pipeline builder,
 // comes out of the renderer as an ExecutorError naming the pass; the pipeline builder refuses
 // empty or foreign shader code (which a driver may crash on) and a missing render pass, and
@@ -460,6 +496,26 @@ TEST_F(ExecutorTest, ErrorsOfAPassesOwnCodeNameThePass) {
         {"NotSpirv", [](const PassDesc&) { return std::make_unique<RecipePass>(true, true, true); }},
         {"DepthOnly", [](const PassDesc&) { return std::make_unique<RecipePass>(true, false, false); }},
         {"NoRenderPass", [](const PassDesc&) { return std::make_unique<RecipePass>(true, true, false, false); }},
+        {"OddPushConstants",
+         [](const PassDesc&) {
+             return std::make_unique<RecipePass>(true, true, false, true,
+                                                 [](GraphicsPipelineRecipe& r) { r.pushConstantBytes = 6; });
+         }},
+        {"TwoBlendsForOne",
+         [](const PassDesc&) {
+             return std::make_unique<RecipePass>(true, true, false, true, [](GraphicsPipelineRecipe& r) {
+                 r.blends.resize(2);
+                 for (auto& b : r.blends) b.colorWriteMask = 0xf;
+             });
+         }},
+        {"OneBlendForOne",
+         [](const PassDesc&) {
+             return std::make_unique<RecipePass>(true, true, false, true, [](GraphicsPipelineRecipe& r) {
+                 r.blends.resize(1);
+                 r.blends[0].colorWriteMask = 0xf;
+                 r.pushConstantBytes = 8;
+             });
+         }},
     };
     for (const auto& [name, factory] : recipes) {
         PassTypeInfo info = fillType();
@@ -476,6 +532,15 @@ TEST_F(ExecutorTest, ErrorsOfAPassesOwnCodeNameThePass) {
     e = renderError(lib, "NoRenderPass");
     EXPECT_TRUE(e.starts_with("pass 'fill': creating pipelines: createGraphicsPipeline: the recipe has no render pass"))
         << e;
+    // Vulkan takes push constants in words and a blend state per attachment: the builder
+    // says so rather than handing the driver a recipe it may crash on.
+    e = renderError(lib, "OddPushConstants");
+    EXPECT_EQ(e, "pass 'fill': creating pipelines: createGraphicsPipeline: the recipe's pushConstantBytes (6) is not "
+                 "a multiple of 4");
+    e = renderError(lib, "TwoBlendsForOne");
+    EXPECT_EQ(e, "pass 'fill': creating pipelines: createGraphicsPipeline: the recipe has 2 blend state(s) for 1 "
+                 "color attachment(s); give one per attachment of the subpass");
+    EXPECT_EQ(renderError(lib, "OneBlendForOne"), "");
     // No fragment stage: the color attachment keeps what it had, and nothing is reported.
     EXPECT_EQ(renderError(lib, "DepthOnly"), "");
     EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());

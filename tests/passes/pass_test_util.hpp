@@ -19,8 +19,12 @@ inline Renderer rendererAt(const GraphDesc& graph, const PassLibrary& library, C
                            uint32_t height, const std::string& readback = {}) {
     co.outputWidth = width;
     co.outputHeight = height;
-    if (readback.empty()) co = headless(graph, std::move(co));
-    else co.readbacks = {readback};
+    if (readback.empty()) {
+        co = headless(graph, std::move(co));
+    } else {
+        co.readbacks = {readback};
+        co.presentReplacement = ExternalState::ShaderRead;  // headless: nothing presents
+    }
     RendererOptions ro;
     ro.passes = &library;
     return Renderer(sharedDevice(), CompiledGraph(graph, std::move(co)), ro);

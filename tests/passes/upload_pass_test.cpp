@@ -127,6 +127,12 @@ TEST_F(UploadPassTest, StagingRefusesAnUnknownResourceOrAWrongSize) {
                   "holds 16");
     expectRefused("sky", nullptr, "no staging buffer for 'sky'");
     EXPECT_THROW((void)StagingBuffer::create(sharedDevice(), 0), ExecutorError);
+    // Of the right size, but another device's: its copy would name a buffer this device
+    // never made.
+    auto other = Device::create(validatedOptions());
+    expectRefused("sky", StagingBuffer::create(*other, renderer_.stagingBytes("sky")),
+                  "stageUpload: 'sky': the staging buffer belongs to another device");
+    EXPECT_EQ(other->messageCount(), 0u) << formatMessages(*other);
 }
 
 // The oracle can fail: without the compute submit's wait for the transfer queue's signal, the

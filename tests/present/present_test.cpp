@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iterator>
 
 #include <unistd.h>
@@ -148,6 +149,33 @@ TEST_F(Present, ARendererGoesOnInASwapchainMadeAfterItsLastWasDestroyed) {
         swapchain = Swapchain::create(*device_, compiled, {96, 64, mode});
         present(renderer, *swapchain, 4);  // ends with waitIdle()
     }
+    expectSilent();
+}
+
+// Between destroying its swapchain and rendering into the next, a renderer that rebuilt its
+// plan state made views of the destroyed swapchain's images: it refuses instead, and keeps
+// its plan until the next swapchain comes.
+TEST_F(Present, ARebuildAfterTheSwapchainIsDestroyedIsRefusedUntilTheNext) {
+    const CompiledGraph compiled = raster(96, 64);
+    Renderer renderer(*device_, compiled, genericOptions(2));
+    auto swapchain = Swapchain::create(*device_, compiled, {96, 64, PresentMode::Fifo});
+    present(renderer, *swapchain, 1);
+    swapchain.reset();
+    for (const auto& rebuild : std::vector<std::function<void()>>{[&] { renderer.setGraph(compiled); },
+                                                                  [&] { renderer.reloadShaders(); }}) {
+        try {
+            rebuild();
+            ADD_FAILURE() << "the plan state was built on a destroyed swapchain's images";
+        } catch (const ExecutorError& e) {
+            EXPECT_NE(std::string(e.what()).find("the swapchain this renderer presents into was destroyed"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+    swapchain = Swapchain::create(*device_, compiled, {96, 64, PresentMode::Fifo});
+    present(renderer, *swapchain, 2);
+    renderer.setGraph(compiled);
+    present(renderer, *swapchain, 1);
     expectSilent();
 }
 
