@@ -158,6 +158,12 @@ public:
     /// order. Found in the index's own walk (a sweep of their own cost as much again as
     /// finding them there); validate() words them.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> unsourcedReads() const noexcept { return unsourced_; }
+    /// Per active pass whose attachments differ in size (of the mip each renders to) or layer
+    /// count at the output size: its first attachment usage that differs from its first
+    /// attachment, as (pass, usage index for use()). Found in the index's walk; validate() words them.
+    [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> misshapenAttachments() const noexcept {
+        return misshapen_;
+    }
 
 private:
     /// Appends `count` subresources' `value`; one (most resources) without insert's overhead.
@@ -250,6 +256,8 @@ private:
             passFlags_.push_back(static_cast<uint8_t>((active ? kActive : 0) | (pass.neverCull ? kNeverCull : 0)));
             const auto stamp = static_cast<uint32_t>(p + 2);
             uint32_t next = firstUse_.back();  // the usage's index for use() (size() would divide by 12)
+            AttachmentShape attachments{};  // the first attachment's, when width != 0
+            bool misshapen = false;
             for (const auto& u : pass.uses) {
                 IndexedUsage& iu = uses_.emplace_back();  // field by field: see vulkanScope
                 iu.usage = u.usage.mode();
@@ -269,6 +277,14 @@ private:
                 if (!usageFits(u.usage.range ? withLevels(row, u.usage.range->mipCount) : row, iu.usage)) [[unlikely]]
                     misfits_.emplace_back(static_cast<uint32_t>(p), at);
                 if (!active) continue;
+                if (isAttachmentStage(iu.usage.stage) && !misshapen) {
+                    const AttachmentShape shape = attachmentShape(iu);
+                    if (attachments.width == 0) attachments = shape;
+                    else if (!(shape == attachments)) {
+                        misshapen = true;
+                        misshapen_.emplace_back(static_cast<uint32_t>(p), at);
+                    }
+                }
                 if (readsContents(iu.usage.access)) {
                     bool missing = false;
                     forEachCell(iu, [&](size_t i) { missing |= heldFrom[i] - 1 >= stamp - 1; });  // 0 wraps
@@ -279,6 +295,20 @@ private:
             }
             firstUse_.push_back(next);
         }
+    }
+
+    /// What one framebuffer asks its attachments to share: the size of the mip each renders to
+    /// and the layer count.
+    struct AttachmentShape {
+        uint32_t width, height, layers;
+        bool operator==(const AttachmentShape&) const = default;
+    };
+    [[nodiscard]] AttachmentShape attachmentShape(const IndexedUsage& u) const noexcept {
+        const IndexedResource& res = resources_[u.resource];
+        const SubresourceRange* written = u.rangeIndex == IndexedUsage::kWhole ? nullptr : &ranges_[u.rangeIndex];
+        const uint32_t mip = written ? std::min(written->baseMip, res.grid.mips - 1) : 0;
+        return {std::max(1u, res.width >> mip), std::max(1u, res.height >> mip),
+                written ? written->layerCount : res.grid.layers};
     }
 
     /// Each pass keeps its usages in an allocation of its own, usually on another page than
@@ -358,6 +388,7 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> misfits_;
     std::vector<FitRow> fitRows_;  // per resource: usageFits' row for a usage of all of it
     std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
+    std::vector<std::pair<uint32_t, uint32_t>> misshapen_;
     std::vector<uint32_t> tooManyMips_;
     std::vector<uint32_t> offGraphicsOrConditional_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask

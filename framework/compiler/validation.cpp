@@ -247,39 +247,25 @@ void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule
 /// A pass renders into one framebuffer, whose size and layer count its attachments share: a
 /// larger attachment would be cropped, one of fewer layers is invalid Vulkan. Output-relative
 /// and fixed extents, and mips, meet only at an output size, so compile() checks it, for the
-/// passes that run.
+/// passes that run (the index finds them in its walk).
 static void checkAttachmentShapes(const GraphIndex& index, uint32_t width, uint32_t height, Diagnostics& diags) {
     const GraphDesc& graph = index.graph();
-    struct Shape {
-        uint32_t w, h, layers;
-        bool operator==(const Shape&) const = default;
+    const auto describe = [&](const IndexedUsage& u) {
+        const SubresourceRange range = index.range(u);
+        const auto [w, h] = index.extentAt(u.resource, range.baseMip);
+        return "'" + graph.resources[u.resource].name + "' " + std::to_string(w) + "x" + std::to_string(h) + " (" +
+               std::to_string(range.layerCount) + (range.layerCount == 1 ? " layer)" : " layers)");
     };
-    const auto describe = [](const std::string& name, const Shape& s) {
-        return "'" + name + "' " + std::to_string(s.w) + "x" + std::to_string(s.h) + " (" + std::to_string(s.layers) +
-               (s.layers == 1 ? " layer)" : " layers)");
-    };
-    for (size_t p = 0; p < index.passes(); ++p) {
-        if (!index.active(p)) continue;
-        const IndexedUsage* first = nullptr;
-        Shape firstShape{};
-        for (const IndexedUsage& u : index.usesOf(p)) {
-            if (u.usage.stage != Stage::ColorAttachment && u.usage.stage != Stage::DepthAttachment) continue;
-            const SubresourceRange range = index.range(u);
-            const auto [w, h] = index.extentAt(u.resource, range.baseMip);
-            const Shape shape{w, h, range.layerCount};
-            if (!first) {
-                first = &u;
-                firstShape = shape;
-                continue;
-            }
-            if (shape == firstShape) continue;
-            const std::string& name = graph.resources[u.resource].name;
-            diags.add({graph.file, index.jsonPathOf(p, u), graph.passes[p].name, name,
-                       "its attachments differ in shape: " + describe(graph.resources[first->resource].name, firstShape) +
-                           " and " + describe(name, shape) + " at output " + std::to_string(width) + "x" +
-                           std::to_string(height) + "; a pass renders into attachments of one size and layer count"});
-            break;
-        }
+    for (const auto& [p, k] : index.misshapenAttachments()) {
+        const IndexedUsage& u = index.use(k);
+        const auto uses = index.usesOf(p);
+        const IndexedUsage& first = *std::find_if(uses.begin(), uses.end(), [](const IndexedUsage& x) {
+            return isAttachmentStage(x.usage.stage);
+        });
+        diags.add({graph.file, index.jsonPathOf(p, u), graph.passes[p].name, graph.resources[u.resource].name,
+                   "its attachments differ in shape: " + describe(first) + " and " + describe(u) + " at output " +
+                       std::to_string(width) + "x" + std::to_string(height) +
+                       "; a pass renders into attachments of one size and layer count"});
     }
 }
 
