@@ -80,6 +80,7 @@ public:
         checkPresentedOnGraphics();
         chooseSharing();
         startCells();
+        gatherLaterReadsOnTheQueue();
         const auto& passes = plan_.passes();
         schedule_.barriers.resize(passes.size());
         schedule_.waits.resize(passes.size());
@@ -199,6 +200,50 @@ private:
         }
     }
 
+    /// Per pass and plan resource, the stages and accesses with which later passes on the
+    /// pass's queue read the subresources it uses before any of them is written again. A run of
+    /// reads shares one barrier, so when the pass acquires the resource from another family,
+    /// that acquire is all that orders those reads after the transfer: its destination scope
+    /// holds theirs too (§7.7.4: accesses of the acquiring queue happen after the acquire only
+    /// through its second scope).
+    void gatherLaterReadsOnTheQueue() {
+        const auto& passes = plan_.passes();
+        struct Pending {
+            std::array<VkPipelineStageFlags2, kQueueKinds> stages{};
+            std::array<VkAccessFlags2, kQueueKinds> access{};
+        };
+        std::vector<Pending> pending(cells_.size());
+        laterReads_.assign(passes.size(), {});
+        for (size_t i = passes.size(); i-- > 0;) {
+            const size_t q = slot(schedule_.queues[i]);
+            for (const PlannedUsage& u : passes[i].usages) {
+                LaterReads later{u.resource, 0, 0};
+                forCells(u.resource, u.range, [&](uint32_t c, const SubresourceRange&) {
+                    later.stages |= pending[c].stages[q];
+                    later.access |= pending[c].access[q];
+                });
+                if (later.stages) laterReads_[i].push_back(later);
+            }
+            for (const PlannedUsage& u : passes[i].usages)
+                forCells(u.resource, u.range, [&](uint32_t c, const SubresourceRange&) {
+                    if (writeBits(u.access)) pending[c] = {};
+                    else {
+                        pending[c].stages[q] |= u.stages;
+                        pending[c].access[q] |= u.access;
+                    }
+                });
+        }
+    }
+
+    /// An acquire by pass i of resource r on its queue also waits for what laterReads_ holds.
+    void waitForLaterReads(uint32_t i, Barrier& acquire) const {
+        for (const LaterReads& later : laterReads_[i])
+            if (later.resource == acquire.resource) {
+                acquire.dstStages |= later.stages;
+                acquire.dstAccess |= later.access;
+            }
+    }
+
     template <class F>
     void forCells(uint32_t r, const SubresourceRange& range, F&& f) {
         const SubresourceGrid& g = grids_[r];
@@ -303,6 +348,7 @@ private:
                         }
         }
         if (from != kNoOwner) {
+            waitForLaterReads(i, b);
             Barrier release = b;
             release.srcQueue = kindAt(from);
             release.dstQueue = kindAt(q);
@@ -531,9 +577,19 @@ private:
             });
         }
         // Subresources no final barrier covers (already in their final layout) come back too.
+        // Their acquire is all that orders the graphics queue's later work after the transfer,
+        // so it waits in the scope the state they are left in is used in (the next frame's
+        // uses, or the application's); a state without one, or General (whose next uses are
+        // the frame's own, on any queue), gets every stage.
         for (size_t r = 0; r < resources.size(); ++r) {
             const ResourceDesc& d = graph_.resources[resources[r].decl];
             if (!exclusive_[r] || !(d.external || d.isExported())) continue;
+            ExternalState end = d.isExported() ? d.final : d.initial;
+            if (end == ExternalState::Present) end = options_.presentReplacement;
+            VulkanScope next = externalScope(d, end);
+            if (next.stages == 0 || end == ExternalState::General)
+                next = {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                        next.layout};
             const auto res = static_cast<uint32_t>(r);
             forCells(res, grids_[r].whole(), [&](uint32_t c, const SubresourceRange& one) {
                 if (coveredByFinal[c]) return;
@@ -544,6 +600,8 @@ private:
                 b.kind = isImage(res) ? BarrierKind::Image : BarrierKind::Buffer;
                 b.range = isImage(res) ? one : SubresourceRange{};
                 b.oldLayout = b.newLayout = cells_[c].layout;
+                b.dstStages = next.stages;
+                b.dstAccess = next.access;
                 finals.push_back(acquireAtEnd(b, from));
             });
         }
@@ -607,6 +665,12 @@ private:
     std::vector<SubresourceGrid> grids_;
     std::vector<uint32_t> firstCell_{0};
     std::vector<Cell> cells_;
+    struct LaterReads {
+        uint32_t resource;
+        VkPipelineStageFlags2 stages;
+        VkAccessFlags2 access;
+    };
+    std::vector<std::vector<LaterReads>> laterReads_;  // per pass: gatherLaterReadsOnTheQueue
     std::vector<std::array<int32_t, kQueueKinds>> lastUseOf_;  // per resource and queue
     std::vector<std::array<VkPipelineStageFlags2, kQueueKinds>> useStagesOf_;
     std::array<bool, kQueueKinds> startedQueue_{};

@@ -248,6 +248,45 @@ TEST(QueueRules, AReleaseIsRecordedOnTheQueueOfTheFamilyThatOwnsTheResource) {
     EXPECT_EQ(all.waits[0].value, mip0.signals[0].value);
 }
 
+// An acquire is all that orders the acquiring queue's later work after a transfer (§7.7.4:
+// through its second synchronization scope). Handed back to the graphics family at the frame's
+// end, an exclusive input already in its final layout got an acquire that waited in no stage,
+// so the next frame's sampling on the graphics queue raced it; it now waits where the state it
+// is left in is used. Within the frame, an acquire for the first of a run of reads on its queue
+// waits for the later readers of the run too, as they share its barrier.
+TEST(QueueRules, AnAcquireWaitsWhereItsQueueUsesTheResourceNext) {
+    const Plan handBack = compileText(graphText(
+        R"("tex": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                   "initial": "ShaderRead", "sharing": "exclusive"},
+           "a": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                 "final": "ShaderRead"},
+           "b": {"type": "buffer", "size": 64, "external": true, "final": "General"})",
+        R"({"name": "draw", "type": "Generic", "uses": {"tex": "Read@Fragment", "a": "Write@ColorAttachment"}},
+           {"name": "reduce", "type": "Generic", "queue": "compute", "uses": {"tex": "Read@Compute", "b": "Write@Compute"}})"));
+    SCOPED_TRACE(planToText(handBack));
+    const auto finals = handBack.finalBarriers();
+    const auto tex = std::find_if(finals.begin(), finals.end(), [&](const Barrier& b) {
+        return handBack.resources()[b.resource].name == "tex" && b.transfersOwnership();
+    });
+    ASSERT_NE(tex, finals.end());
+    EXPECT_EQ(tex->srcQueue, QueueKind::Compute);
+    EXPECT_EQ(tex->dstStages, kFragment | kCompute);
+    EXPECT_EQ(tex->dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+
+    const Plan run = compileText(graphText(
+        R"("img": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "sharing": "exclusive"},
+           "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true, "final": "TransferSrc"})",
+        R"({"name": "draw", "type": "Generic", "uses": {"img": "Write@ColorAttachment"}},
+           {"name": "measure", "type": "Generic", "queue": "compute", "never_cull": true, "uses": {"img": "Read@Compute"}},
+           {"name": "cull", "type": "Generic", "never_cull": true, "uses": {"img": "Read@Compute"}},
+           {"name": "show", "type": "Generic", "uses": {"img": "Read@Fragment", "out": "Write@ColorAttachment"}})"));
+    SCOPED_TRACE(planToText(run));
+    const auto acquire = barriersOf(run, "cull", "img");
+    ASSERT_EQ(acquire.size(), 1u);
+    EXPECT_TRUE(acquire[0].transfersOwnership());
+    EXPECT_EQ(acquire[0].dstStages, kCompute | kFragment);
+}
+
 // External resources are owned by the graphics family between frames: used on the compute
 // queue alone, they still change family at the frame's start and back at its end (an image
 // written from UNDEFINED needs no acquire: its contents are discarded).
