@@ -103,10 +103,6 @@ public:
 
     /// Per resource (index into GraphDesc::resources).
     [[nodiscard]] const SubresourceGrid& grid(size_t r) const noexcept { return resources_[r].grid; }
-    /// Mip `mip`'s width and height at the output size, for an image.
-    [[nodiscard]] std::array<uint32_t, 2> extentAt(size_t r, uint32_t mip) const noexcept {
-        return {std::max(1u, resources_[r].width >> mip), std::max(1u, resources_[r].height >> mip)};
-    }
     /// Subresources of all resources together: the size of a flat per-subresource array,
     /// which holds each resource's end to end, in file order.
     [[nodiscard]] size_t cells() const noexcept { return cells_; }
@@ -164,6 +160,20 @@ public:
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> misshapenAttachments() const noexcept {
         return misshapen_;
     }
+    /// What one framebuffer asks its attachments to share: the size of the mip each renders to
+    /// and the layer count.
+    struct AttachmentShape {
+        uint32_t width, height, layers;
+        bool operator==(const AttachmentShape&) const = default;
+    };
+    [[nodiscard]] AttachmentShape attachmentShape(const IndexedUsage& u) const noexcept {
+        const IndexedResource& res = resources_[u.resource];
+        const SubresourceRange* written = u.rangeIndex == IndexedUsage::kWhole ? nullptr : &ranges_[u.rangeIndex];
+        const uint32_t mip = written ? std::min(written->baseMip, res.grid.mips - 1) : 0;
+        return {std::max(1u, res.width >> mip), std::max(1u, res.height >> mip),
+                written ? written->layerCount : res.grid.layers};
+    }
+
 
 private:
     /// Appends `count` subresources' `value`; one (most resources) without insert's overhead.
@@ -297,20 +307,6 @@ private:
         }
     }
 
-    /// What one framebuffer asks its attachments to share: the size of the mip each renders to
-    /// and the layer count.
-    struct AttachmentShape {
-        uint32_t width, height, layers;
-        bool operator==(const AttachmentShape&) const = default;
-    };
-    [[nodiscard]] AttachmentShape attachmentShape(const IndexedUsage& u) const noexcept {
-        const IndexedResource& res = resources_[u.resource];
-        const SubresourceRange* written = u.rangeIndex == IndexedUsage::kWhole ? nullptr : &ranges_[u.rangeIndex];
-        const uint32_t mip = written ? std::min(written->baseMip, res.grid.mips - 1) : 0;
-        return {std::max(1u, res.width >> mip), std::max(1u, res.height >> mip),
-                written ? written->layerCount : res.grid.layers};
-    }
-
     /// Each pass keeps its usages in an allocation of its own, usually on another page than
     /// the last pass's: reading them in turn waits for memory at every pass unless they are
     /// asked for a few passes ahead.
@@ -393,7 +389,7 @@ private:
     std::vector<uint32_t> offGraphicsOrConditional_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask
     // it of every usage, from an array dense enough to stay in cache (the resource records
-    // are 28 bytes each); otherwise it takes the record, a range and a multiplication.
+    // are 36 bytes each); otherwise it takes the record, a range and a multiplication.
     static constexpr uint32_t kSeveralCells = ~0u;
     static constexpr uint32_t kMaxCells = kMaxSubresources;
     static_assert(kMaxCells < kSeveralCells);

@@ -251,10 +251,9 @@ void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule
 static void checkAttachmentShapes(const GraphIndex& index, uint32_t width, uint32_t height, Diagnostics& diags) {
     const GraphDesc& graph = index.graph();
     const auto describe = [&](const IndexedUsage& u) {
-        const SubresourceRange range = index.range(u);
-        const auto [w, h] = index.extentAt(u.resource, range.baseMip);
-        return "'" + graph.resources[u.resource].name + "' " + std::to_string(w) + "x" + std::to_string(h) + " (" +
-               std::to_string(range.layerCount) + (range.layerCount == 1 ? " layer)" : " layers)");
+        const GraphIndex::AttachmentShape s = index.attachmentShape(u);
+        return "'" + graph.resources[u.resource].name + "' " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+               " (" + std::to_string(s.layers) + (s.layers == 1 ? " layer)" : " layers)");
     };
     for (const auto& [p, k] : index.misshapenAttachments()) {
         const IndexedUsage& u = index.use(k);

@@ -30,7 +30,8 @@ PassAttachments attachmentsOf(const PlannedPass& pass, const std::vector<Resourc
 VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,
                              const std::vector<ResourceState>& resources) {
     // compile() refuses attachments of different sizes or layer counts: the first speaks for all.
-    const uint32_t first = attachments.colors.empty() ? static_cast<uint32_t>(attachments.depth) : attachments.colors[0];
+    const uint32_t first =
+        attachments.colors.empty() ? static_cast<uint32_t>(attachments.depth) : attachments.colors[0];
     const PlannedUsage& u = pass.usages[first];
     const ResourceState& r = resources[u.resource];
     return VkExtent2D{r.mipWidth(u.range.baseMip), r.mipHeight(u.range.baseMip)};

@@ -256,12 +256,12 @@ Swapchain::~Swapchain() = default;
 
 std::unique_ptr<Swapchain> Swapchain::create(Device& device, const CompiledGraph& compiled,
                                              const SwapchainOptions& options) {
-    if (DeviceAccess::impl(device).device == VK_NULL_HANDLE)
-        throw ExecutorError("cannot make a Swapchain from a Device after Device::finish(): its device is destroyed");
-    if (!device.surface())
-        throw ExecutorError("device '" + device.name() + "' has no surface: create it with DeviceOptions::presentation");
     PresentRequirements requirements = presentRequirements(compiled);
+    // First: its DeviceUse refuses a finished device, whose surface is gone too.
     auto impl = std::make_unique<Impl>(device, requirements, options);
+    if (!device.surface())
+        throw ExecutorError("device '" + device.name() +
+                            "' has no surface: create it with DeviceOptions::presentation");
     impl->recreate(requirements);
     return std::unique_ptr<Swapchain>(new Swapchain(std::move(impl)));
 }

@@ -17,8 +17,23 @@ bool oneOf(VkImageLayout l, std::initializer_list<VkImageLayout> allowed) {
     return std::find(allowed.begin(), allowed.end(), l) != allowed.end();
 }
 
+/// Whether `l` names aspects the format has (§12.4): the DEPTH_ ones a depth aspect; the
+/// STENCIL_ ones a stencil aspect and no depth, as a usage of a combined image covers both.
+bool layoutFitsAspects(VkImageLayout l, const FormatInfo& f) {
+    if (oneOf(l, {VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL}))
+        return f.hasStencil && !f.hasDepth;
+    if (oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_STENCIL_READ_ONLY_OPTIMAL,
+                  VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL}))
+        return f.isDepthStencil() && (f.hasDepth || oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                                                              VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL}));
+    return true;
+}
+
 /// The layouts a usage (or one half of a ReadWrite transfer) may be performed in.
-bool layoutAllowed(const PlannedUsage& u, bool depthFormat, bool copyOut, bool copyIn, VkImageLayout l) {
+bool layoutAllowed(const PlannedUsage& u, const FormatInfo& format, bool copyOut, bool copyIn, VkImageLayout l) {
+    if (!layoutFitsAspects(l, format)) return false;
     const UsageMode& m = u.usage;
     switch (m.stage) {
         case skygraph::Stage::ColorAttachment:
@@ -43,10 +58,10 @@ bool layoutAllowed(const PlannedUsage& u, bool depthFormat, bool copyOut, bool c
             if (resolvedBinding(m, true) == BindAs::Sampled)
                 return oneOf(l, {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_READ_ONLY_OPTIMAL,
                                  VK_IMAGE_LAYOUT_GENERAL}) ||
-                       (depthFormat && oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
-                                                 VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL,
-                                                 VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL,
-                                                 VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL}));
+                       (format.isDepthStencil() &&
+                        oneOf(l, {VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                                  VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL, VK_IMAGE_LAYOUT_STENCIL_READ_ONLY_OPTIMAL,
+                                  VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_STENCIL_ATTACHMENT_OPTIMAL}));
             return l == VK_IMAGE_LAYOUT_GENERAL;  // storage images
         case skygraph::Stage::Transfer: {
             const bool reads = copyOut || (!copyIn && m.access == Access::Read);
@@ -306,7 +321,7 @@ private:
     void checkLayout(const TimelineItem& t, const PlannedUsage& u) {
         const MemoryObject& o = model_.memory.object(t.object);
         const ResourceDesc& d = graph_.resources[plan_.resources()[static_cast<size_t>(o.resource)].decl];
-        if (!layoutAllowed(u, d.format.isDepthStencil(), t.copyOut, t.copyIn, u.layout))
+        if (!layoutAllowed(u, d.format, t.copyOut, t.copyIn, u.layout))
             add(FindingKind::LayoutNotAllowed, t,
                 "a " + toString(u.usage) + " usage cannot be in " + layoutNameShort(u.layout));
         std::string mismatch;

@@ -91,8 +91,9 @@ struct SwapchainOptions {
 /// images by setPresentImages()), rebuilding its plan state in any other way (setGraph(),
 /// reloadShaders(), a HotReloader's poll()) would build on the destroyed images: it throws
 /// ExecutorError and keeps the plan. So, to replace one (for another present mode, say): destroy
-/// it, create the next and pass that to the renderer's next renderFrame(). Not copyable or movable. Used one thread at a time together with
-/// the Device and every renderer made with it (Device's comment says why).
+/// it, create the next and pass that to the renderer's next renderFrame(). Not copyable or
+/// movable. Used one thread at a time together with the Device and every renderer made with it
+/// (Device's comment says why).
 class Swapchain {
 public:
     /// A swapchain for `device`'s surface, with images for `compiled`'s Present resource: the

@@ -16,16 +16,17 @@ PassTypeInfo forwardPassType() {
             const ResourceDesc& depth = graph.resources[use.resource];
             if (graph.slotName(use.slot) != "depth" || use.usage.access != Access::Write) continue;
             if (!depth.clear) {
-                problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write of '" +
-                                           depth.name + "', which has no `clear`, starts with undefined values: add "
-                                           "\"clear\": { \"depth\": 0.0 } (reverse-Z's far plane) to '" + depth.name +
-                                           "', or use ReadWrite after an earlier depth pass"});
+                problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write "
+                                       "of '" + depth.name + "', which has no `clear`, starts with undefined values: "
+                                       "add \"clear\": { \"depth\": 0.0 } (reverse-Z's far plane) to '" +
+                                           depth.name + "', or use ReadWrite after an earlier depth pass"});
                 continue;
             }
-            // (A full chain's length waits for the output size: only its first level is known.)
+            // An attachment renders to one level, so a range of a full chain ("mips": 0, whose
+            // length waits for the output size) is a part of it but at a 1x1 output.
             const std::optional<SubresourceRange>& range = use.usage.range;
             if (range && (range->baseMip != 0 || range->baseLayer != 0 || range->layerCount < depth.layers ||
-                          (depth.mips != 0 && range->mipCount < depth.mips)))
+                          range->mipCount != depth.mips))
                 problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and a Write of "
                                        "part of '" + depth.name + "' discards it: only a Write of the whole image "
                                        "starts from its `clear` (the load op's); write all of it, or use ReadWrite"});

@@ -784,7 +784,8 @@ TEST(Attachments, OfDifferentSizesOrLayerCountsAreRefusedAtTheOutputSize) {
               std::string::npos)
         << text;
     text = compileErrorText(
-        graph(R"("depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output/2", "clear": { "depth": 0.0 } })",
+        graph(R"("depth": { "type": "image2d", "format": "D32_SFLOAT", "extent": "output/2",
+                            "clear": { "depth": 0.0 } })",
               R"({ "resource": "depth", "access": "Write", "stage": "DepthAttachment" })"));
     EXPECT_NE(text.find("passes[0].uses[1]: pass 'p', resource 'depth': its attachments differ in shape: 'sc' "
                         "1920x1080 (1 layer) and 'depth' 960x540 (1 layer)"),

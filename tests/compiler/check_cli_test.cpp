@@ -178,8 +178,8 @@ TEST_F(Cli, CheckFailsACombinationThatPresentsNothing) {
     EXPECT_EQ(r.status, 1) << r.out;
     EXPECT_EQ(rows(r.out, "FAIL"), 1u) << r.out;
     EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
-    EXPECT_NE(r.out.find("[lit=off]\n  presents nothing: no pass that runs in this combination uses a presented image ('swapchain'): "
-                         "the frame presents nothing"),
+    EXPECT_NE(r.out.find("[lit=off]\n  presents nothing: no pass that runs in this combination uses a presented "
+                         "image ('swapchain'): the frame presents nothing"),
               std::string::npos)
         << r.out;
 }
@@ -572,8 +572,8 @@ TEST_F(Cli, CompileWarnsOfACombinationThatPresentsNothing) {
     EXPECT_EQ(dark.status, 0) << dark.err;
     EXPECT_NE(dark.out.find("features: lit=off"), std::string::npos) << dark.out;
     EXPECT_EQ(dark.err, "warning: " + graph.string() +
-                            ": no pass that runs in this combination uses a presented image ('swapchain'): the frame presents "
-                            "nothing\n");
+                            ": no pass that runs in this combination uses a presented image ('swapchain'): "
+                            "the frame presents nothing\n");
     const CliRun lit = run({"compile", graph.string()});
     EXPECT_EQ(lit.status, 0) << lit.err;
     EXPECT_EQ(lit.err, "");

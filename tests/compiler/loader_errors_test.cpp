@@ -650,6 +650,10 @@ TEST(LoaderErrors, ForwardPassWritesDepthOnlyFromAClear) {
                          "op's); write all of it, or use ReadWrite"}))
         << listAll(parts);
     EXPECT_EQ(parts.size(), 1u) << listAll(parts);
+    // A full chain's length waits for the output size: a range of one level is a part of it.
+    partial["resources"]["depth"]["mips"] = "full";
+    EXPECT_TRUE(hasDiag(loadErrors(partial), "passes[0].uses[0]", "forward", "depth", {"a Write of part of"}))
+        << listAll(loadErrors(partial));
     partial["resources"]["depth"]["mips"] = 1;  // the same range is now all of it
     expectLoads(partial);
     // A ReadWrite starts from an earlier pass's depth.

@@ -448,20 +448,21 @@ std::string renderError(const PassLibrary& lib, const std::string& type) {
     return {};
 }
 
-/// Calls fillSampledImages, with nothing to fill, before its render pass or inside it.
+/// Calls fillSampledImages, with nothing to fill, before its render pass or from record()
+/// (inside the render pass of a graphics pass; a compute pass has no other place).
 class SampledFillPass final : public PassImplementation {
 public:
-    explicit SampledFillPass(bool insideRenderPass) : inside_(insideRenderPass) {}
+    explicit SampledFillPass(bool fromRecord) : fromRecord_(fromRecord) {}
     void createPipelines(const PipelineContext&) override {}
     void recordBeforeRenderPass(const RecordContext& ctx) override {
-        if (!inside_) ctx.fillSampledImages({});
+        if (!fromRecord_) ctx.fillSampledImages({});
     }
     void record(const RecordContext& ctx) override {
-        if (inside_) ctx.fillSampledImages({});
+        if (fromRecord_) ctx.fillSampledImages({});
     }
 
 private:
-    bool inside_;
+    bool fromRecord_;
 };
 
 // Copies, blits and barriers inside a render pass are invalid Vulkan: a pass calling
@@ -477,6 +478,33 @@ TEST_F(ExecutorTest, FillingSampledImagesInsideTheRenderPassIsRefusedByPass) {
               "pass 'fill': fillSampledImages was called inside the render pass: call it from recordBeforeRenderPass");
     EXPECT_EQ(renderError(lib, "FillsBefore"), "");
     EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
+
+    // The blits and the fragment shader's wait need the graphics queue.
+    PassTypeInfo compute;
+    compute.name = "FillsOnCompute";
+    SlotDecl target;
+    target.name = "target";
+    target.stage = Stage::Compute;
+    target.accesses = {Access::Write};
+    compute.slots = {target};
+    lib.add(compute, [](const PassDesc&) { return std::make_unique<SampledFillPass>(true); });
+    GraphDesc graph = parseGraph(R"({ "version": 1, "name": "lib", "resources": {
+          "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] } },
+        "passes": [ { "name": "fill", "type": "FillsOnCompute", "queue": "compute", "never_cull": true,
+                      "uses": { "img": "Write@Compute" } } ] })",
+                                 "<lib>", lib.registry());
+    const CompileOptions co = headless(graph);
+    RendererOptions o;
+    o.passes = &lib;
+    Renderer r(sharedDevice(), CompiledGraph(std::move(graph), co), o);
+    try {
+        r.renderFrame();
+        ADD_FAILURE() << "sampled images were filled on the compute queue";
+    } catch (const ExecutorError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "pass 'fill': fillSampledImages needs the graphics queue, and the pass runs on the compute queue");
+    }
+    r.waitIdle();
 }
 
 // What an application's pass code throws, from its factory or through the pipeline builder,

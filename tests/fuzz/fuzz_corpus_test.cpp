@@ -6,6 +6,10 @@
 #include "graph_fuzz_target.hpp"
 #include "gltf_fuzz_target.hpp"
 
+#include <skygraph/compiler.hpp>
+#include <skygraph/feature_combinations.hpp>
+#include <skygraph/pass_registry.hpp>
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -48,6 +52,21 @@ TEST(FuzzCorpus, EveryInputEndsInAPlanOrAGraphError) {
     const auto files = inputs();
     ASSERT_GT(files.size(), 20u) << "the corpus is missing";
     replay(files, &runOneInput);
+}
+
+// The valid seeds are what the fuzzer mutates into the sweeps past validation: a rule that
+// refuses them (a compile error any GraphError would let the test above accept) leaves the
+// scheduler, synchronizer and printers without a seed. They compile in every combination.
+TEST(FuzzCorpus, TheValidSeedsCompileInEveryFeatureCombination) {
+    const std::filesystem::path corpus = std::filesystem::path(SKYGRAPH_SOURCE_DIR) / "tests/fuzz/corpus";
+    for (const char* name : {"seed_valid.json", "seed_minimal.json"}) {
+        const GraphDesc graph = loadGraphFile(corpus / name, PassRegistry::withBuiltins());
+        for (const FeatureValues& features : allFeatureCombinations(graph)) {
+            CompileOptions o;
+            o.features = features;
+            EXPECT_NO_THROW((void)compile(graph, o)) << name;
+        }
+    }
 }
 
 /// tests/fuzz/gltf_corpus, and every .gltf and .glb of Debian's assimp-testmodels.

@@ -11,7 +11,7 @@ BASE = {
     "features": {"geo": True, "sky": False},
     "resources": {
         "depth": {"type": "image2d", "format": "D32_SFLOAT", "extent": "output", "clear": {"depth": 1.0}},
-        "hdr": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output/2",
+        "hdr": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": "output",
                 "clear": {"color": [0, 0, 0, 1]}},
         "cube": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16], "mips": 3},
         "arr": {"type": "image2d_array", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "layers": 4,

@@ -274,16 +274,18 @@ TEST(ChecksFail, LayoutNotAllowed) {
 }
 
 // A stencil-only attachment is written in STENCIL_ATTACHMENT_OPTIMAL and read in
-// STENCIL_READ_ONLY_OPTIMAL (Vulkan 1.3 §12.4): the verifier once knew only the depth
-// layouts and failed every S8_UINT attachment that validation accepts.
+// STENCIL_READ_ONLY_OPTIMAL (Vulkan 1.3 §12.4): the verifier knew only the depth layouts and
+// failed every S8_UINT attachment that validation accepts. A depth-only one may not take them.
 TEST(ChecksFail, StencilOnlyAttachmentsTakeTheStencilLayouts) {
     test::Compiled c = test::compileText(R"({ "version": 1, "name": "stencil", "resources": {
         "st": { "type": "image2d", "format": "S8_UINT", "extent": "output", "clear": { "stencil": 1 } },
         "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output", "external": true,
                  "final": "ShaderRead" } },
       "passes": [
-        { "name": "mask", "type": "Generic", "uses": { "st": "Write@DepthAttachment", "out": "Write@ColorAttachment" } },
-        { "name": "test", "type": "Generic", "uses": { "st": "Read@DepthAttachment", "out": "ReadWrite@ColorAttachment" } } ] })");
+        { "name": "mask", "type": "Generic",
+          "uses": { "st": "Write@DepthAttachment", "out": "Write@ColorAttachment" } },
+        { "name": "test", "type": "Generic",
+          "uses": { "st": "Read@DepthAttachment", "out": "ReadWrite@ColorAttachment" } } ] })");
     const size_t mask = stepIndex(c.plan, "mask"), test = stepIndex(c.plan, "test");
     EXPECT_EQ(c.plan.passes()[mask].usages[usageOf(c.plan, mask, "st")].layout,
               VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL);
@@ -293,6 +295,12 @@ TEST(ChecksFail, StencilOnlyAttachmentsTakeTheStencilLayouts) {
     EXPECT_TRUE(r.ok()) << r.summary();
     PlanEditor::usagesOf(c.plan, test)[usageOf(c.plan, test, "st")].layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     EXPECT_TRUE(hasFinding(verifyPlan(c.plan, c.graph), FindingKind::LayoutNotAllowed, "st"));
+    // A stencil layout names an aspect a depth-only image lacks.
+    test::Compiled raster = test::compileShipped("raster.json");
+    const size_t forward = stepIndex(raster.plan, "forward_ibl");
+    PlanEditor::usagesOf(raster.plan, forward)[usageOf(raster.plan, forward, "depth")].layout =
+        VK_IMAGE_LAYOUT_STENCIL_ATTACHMENT_OPTIMAL;
+    EXPECT_TRUE(hasFinding(verifyPlan(raster.plan, raster.graph), FindingKind::LayoutNotAllowed, "depth"));
 }
 
 TEST(ChecksFail, BadOldLayout) {

@@ -8,7 +8,8 @@ std::string presentsNothing(const Plan& plan, const GraphDesc& graph) {
     for (const ResourceDesc& r : graph.resources)
         if (r.final == ExternalState::Present) declared += (declared.empty() ? "'" : ", '") + r.name + "'";
     if (declared.empty()) return {};
-    return "no pass that runs in this combination uses a presented image (" + declared + "): the frame presents nothing";
+    return "no pass that runs in this combination uses a presented image (" + declared +
+           "): the frame presents nothing";
 }
 
 }  // namespace skygraph::app
