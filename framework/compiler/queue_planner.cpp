@@ -214,6 +214,34 @@ private:
         };
         std::vector<Pending> pending(cells_.size());
         laterReads_.assign(passes.size(), {});
+        // What the frame leaves carries on: on the graphics family, the next frame (which repeats
+        // this one: its first reads, before any write) and the state it is left in are used next.
+        const auto& resources = plan_.resources();
+        for (size_t r = 0; r < resources.size(); ++r) {
+            const ResourceDesc& d = graph_.resources[resources[r].decl];
+            if (!d.external && !d.isExported()) continue;
+            ExternalState end = d.isExported() ? d.final : d.initial;
+            if (end == ExternalState::Present) end = options_.presentReplacement;
+            const VulkanScope next = externalScope(d, end);
+            for (uint32_t c = firstCell_[r]; c < firstCell_[r + 1]; ++c) {
+                pending[c].stages[kGraphics] = next.stages ? next.stages : VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+                pending[c].access[kGraphics] = next.stages ? next.access : VK_ACCESS_2_MEMORY_READ_BIT;
+            }
+        }
+        std::vector<uint8_t> written(cells_.size(), 0);
+        for (size_t i = 0; i < passes.size(); ++i)
+            for (const PlannedUsage& u : passes[i].usages)
+                forCells(u.resource, u.range, [&](uint32_t c, const SubresourceRange&) {
+                    if (written[c] || schedule_.queues[i] != QueueKind::Graphics) {
+                        written[c] |= writeBits(u.access) != 0;
+                        return;
+                    }
+                    if (writeBits(u.access)) written[c] = 1;
+                    else if (pending[c].stages[kGraphics] != 0) {  // carried over
+                        pending[c].stages[kGraphics] |= u.stages;
+                        pending[c].access[kGraphics] |= u.access;
+                    }
+                });
         for (size_t i = passes.size(); i-- > 0;) {
             const size_t q = slot(schedule_.queues[i]);
             for (const PlannedUsage& u : passes[i].usages) {

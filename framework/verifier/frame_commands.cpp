@@ -89,8 +89,11 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
         item.release = releases;
         model_.timeline.push_back(item);
         // The transition of an ownership transfer happens once, between its release and its
-        // acquire: it is placed in the acquire.
-        if (b.oldLayout != b.newLayout && !releases) {
+        // acquire: it is placed in the acquire. An acquire without one still changes what the
+        // queue may access (§7.7.4): later accesses must follow it as they would a transition,
+        // so it is modelled as one.
+        const bool transition = image && b.oldLayout != b.newLayout;
+        if ((transition || b.transfersOwnership()) && !releases) {
             ModelAccess t;
             t.kind = ModelAccess::Kind::Transition;
             t.object = static_cast<uint32_t>(object);
@@ -99,7 +102,7 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
             t.anchor = id;
             t.frame = f;
             t.site = site;
-            t.site.what = "layout transition of " + t.site.what;
+            t.site.what = (transition ? "layout transition of " : "ownership acquire of ") + t.site.what;
             addAccess(std::move(t), {PlaceSpec::Kind::Inside, {}, id, {}});
         }
     }

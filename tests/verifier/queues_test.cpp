@@ -1,7 +1,7 @@
 // Plans on several queues: the verifier follows happens-before through semaphore signals and
 // waits and through queue family ownership transfers, and catches each of them missing or
 // wrong: a dropped wait, a wait at the wrong stages or for a value too low or never signalled,
-// a dropped release, an acquire turned into a plain barrier.
+// a dropped release, an acquire turned into a plain barrier, an acquire that orders nothing.
 #include "plan_editor.hpp"
 #include "verifier_test_util.hpp"
 
@@ -188,6 +188,40 @@ TEST(Queues, TheBackgroundBakeHandsItsProductsBackToTheGraphicsFamily) {
         if (c.plan.resources()[b.resource].name == "environment" && b.transfersOwnership()) b.srcQueue = b.dstQueue;
     const VerificationReport r = verifyPlan(c.plan, c.graph);
     EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "environment")) << r.summary();
+}
+
+// An acquire is all that orders the acquiring queue's later accesses after a transfer
+// (§7.7.4): the verifier models one without a layout transition as an access too, which later
+// accesses must follow. An input read last on the compute queue is handed back to the graphics
+// family at the frame's end by an acquire alone; with an empty destination scope the next
+// frame's graphics read races it, which the verifier did not see while it modelled only
+// acquires that change the layout.
+TEST(Queues, AnAcquireWithoutATransitionIsAnAccessLaterUsesFollow) {
+    CompileOptions o;
+    o.queueFamilies = {0, 1, 2};
+    test::Compiled c = test::compileText(R"({ "version": 1, "name": "handback", "resources": {
+        "tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                 "initial": "ShaderRead", "sharing": "exclusive" },
+        "a": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+               "final": "ShaderRead" },
+        "b": { "type": "buffer", "size": 64, "external": true, "final": "General" } },
+      "passes": [
+        { "name": "draw", "type": "Generic", "uses": { "tex": "Read@Fragment", "a": "Write@ColorAttachment" } },
+        { "name": "reduce", "type": "Generic", "queue": "compute",
+          "uses": { "tex": "Read@Compute", "b": "Write@Compute" } } ] })",
+                                         o);
+    VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    bool edited = false;
+    for (Barrier& b : PlanEditor::finalBarriers(c.plan))
+        if (c.plan.resources()[b.resource].name == "tex" && b.transfersOwnership()) {
+            b.dstStages = VK_PIPELINE_STAGE_2_NONE;
+            b.dstAccess = VK_ACCESS_2_NONE;
+            edited = true;
+        }
+    ASSERT_TRUE(edited);
+    r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "tex")) << r.summary();
 }
 
 TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
