@@ -232,14 +232,21 @@ void checkReadbacksHaveSources(const GraphIndex& index, const Schedule& schedule
     for (const std::string& name : options.readbacks) {
         const ResourceDesc* r = graph.findResource(name);
         const auto d = static_cast<uint32_t>(r - graph.resources.data());
-        bool source = r->external || r->clear.has_value();
+        // The read-back copies mip 0 of layer 0: a write of other subresources leaves it undefined.
+        bool source = r->external || r->clear.has_value(), anyWrite = false;
         for (size_t s = 0; s < schedule.passes.size() && !source; ++s)
-            for (const IndexedUsage& u : index.usesOf(schedule.passes[s]))
-                source = source || (u.resource == d && writesContents(u.usage.access));
+            for (const IndexedUsage& u : index.usesOf(schedule.passes[s])) {
+                if (u.resource != d || !writesContents(u.usage.access)) continue;
+                anyWrite = true;
+                const SubresourceRange range = index.range(u);
+                source = source || (range.baseMip == 0 && range.baseLayer == 0);
+            }
         if (!source)
             diags.add({graph.file, r->jsonPath(), "", name,
-                       "cannot read back '" + name +
-                           "': no pass that runs writes it, and it is neither external nor `clear`"});
+                       "cannot read back '" + name + "': " +
+                           (anyWrite ? std::string("it copies mip 0 of layer 0, which no pass that runs writes")
+                                     : std::string("no pass that runs writes it")) +
+                           ", and it is neither external nor `clear`"});
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 }

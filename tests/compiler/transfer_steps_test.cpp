@@ -185,6 +185,25 @@ TEST(Readback, BadNamesAreErrorsNamingTheResource) {
               std::string::npos);
 }
 
+// A read-back copies mip 0 of layer 0. A cube whose passes wrote only faces 1 to 5 was read
+// back from its unwritten first face, silently: the check asked whether any pass wrote the
+// resource at all.
+TEST(Readback, OfASubresourceNoPassWritesIsRefused) {
+    const GraphDesc g = graphOf(R"("sky": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16]})", R"(
+        {"name": "faces", "type": "Generic",
+         "uses": [{"resource": "sky", "access": "Write", "stage": "Compute", "layers": [1, 5]}]})");
+    CompileOptions o;
+    o.readbacks = {"sky"};
+    EXPECT_NE(messageOf([&] { (void)compile(g, o); })
+                  .find("resources.sky: resource 'sky': cannot read back 'sky': it copies mip 0 of layer 0, which "
+                        "no pass that runs writes, and it is neither external nor `clear`"),
+              std::string::npos)
+        << messageOf([&] { (void)compile(g, o); });
+    const GraphDesc all = graphOf(R"("sky": {"type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [16, 16]})", R"(
+        {"name": "faces", "type": "Generic", "uses": {"sky": "Write@Compute"}})");
+    EXPECT_NO_THROW((void)compile(all, o));
+}
+
 TEST(InPassBarrier, OrdersAReadWriteTransfersCopyInAfterItsCopyOut) {
     const GraphDesc g = graphOf(std::string(kColor) + "," + kOut, R"(
         {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
