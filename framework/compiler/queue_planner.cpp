@@ -220,8 +220,7 @@ private:
         for (size_t r = 0; r < resources.size(); ++r) {
             const ResourceDesc& d = graph_.resources[resources[r].decl];
             if (!d.external && !d.isExported()) continue;
-            ExternalState end = d.isExported() ? d.final : d.initial;
-            if (end == ExternalState::Present) end = options_.presentReplacement;
+            const ExternalState end = leftIn(d);
             const VulkanScope next = externalScope(d, end);
             for (uint32_t c = firstCell_[r]; c < firstCell_[r + 1]; ++c) {
                 pending[c].stages[kGraphics] = next.stages ? next.stages : VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
@@ -261,6 +260,13 @@ private:
                     }
                 });
         }
+    }
+
+    /// The state the frame leaves an external or exported resource in, where its next user
+    /// (the next frame, or the application) finds it.
+    ExternalState leftIn(const ResourceDesc& d) const {
+        const ExternalState end = d.isExported() ? d.final : d.initial;
+        return end == ExternalState::Present ? options_.presentReplacement : end;
     }
 
     /// An acquire by pass i of resource r on its queue also waits for what laterReads_ holds.
@@ -612,8 +618,7 @@ private:
         for (size_t r = 0; r < resources.size(); ++r) {
             const ResourceDesc& d = graph_.resources[resources[r].decl];
             if (!exclusive_[r] || !(d.external || d.isExported())) continue;
-            ExternalState end = d.isExported() ? d.final : d.initial;
-            if (end == ExternalState::Present) end = options_.presentReplacement;
+            const ExternalState end = leftIn(d);
             VulkanScope next = externalScope(d, end);
             if (next.stages == 0 || end == ExternalState::General)
                 next = {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,

@@ -67,12 +67,13 @@ public:
     void record(const RecordContext&) override {}
 };
 
-PassTypeInfo fillType() {
+/// One required slot, "target", that `stage` writes.
+PassTypeInfo fillType(Stage stage = Stage::ColorAttachment) {
     PassTypeInfo fill;
     fill.name = "Fill";
     SlotDecl target;
     target.name = "target";
-    target.stage = Stage::ColorAttachment;
+    target.stage = stage;
     target.accesses = {Access::Write};
     fill.slots = {target};
     return fill;
@@ -480,13 +481,8 @@ TEST_F(ExecutorTest, FillingSampledImagesInsideTheRenderPassIsRefusedByPass) {
     EXPECT_EQ(sharedDevice().messageCount(), 0u) << formatMessages(sharedDevice());
 
     // The blits and the fragment shader's wait need the graphics queue.
-    PassTypeInfo compute;
+    PassTypeInfo compute = fillType(Stage::Compute);
     compute.name = "FillsOnCompute";
-    SlotDecl target;
-    target.name = "target";
-    target.stage = Stage::Compute;
-    target.accesses = {Access::Write};
-    compute.slots = {target};
     lib.add(compute, [](const PassDesc&) { return std::make_unique<SampledFillPass>(true); });
     GraphDesc graph = parseGraph(R"({ "version": 1, "name": "lib", "resources": {
           "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8] } },
