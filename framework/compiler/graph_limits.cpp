@@ -1,5 +1,7 @@
 #include "graph_limits.hpp"
 
+#include <optional>
+#include <sstream>
 #include <string>
 
 namespace skygraph {
@@ -18,6 +20,33 @@ std::string handedBackProblem(const ResourceDesc& r) {
            std::string(toString(r.final)) + ", so it must arrive in that state too, not " +
            std::string(toString(r.initial)) + ": give `initial` and `final` one state (to copy it out, read it back)";
 }
+
+namespace {
+
+/// How a FormatInfo that formatInfoMatches() refuses differs from the known one, if any.
+std::string formatInfoProblem(const FormatInfo& f) {
+    const std::optional<FormatInfo> known = findFormat(f.format);
+    if (!known)
+        return "its format, VkFormat " + std::to_string(int(f.format)) +
+               ", is not one skygraph knows (knownFormats() lists them)";
+    std::string differs;
+    const auto field = [&](const char* name, auto given, auto is) {
+        if (given == is) return;
+        std::ostringstream text;
+        text << std::boolalpha << name << " " << given << " where it is " << is;
+        differs += (differs.empty() ? "" : ", ") + text.str();
+    };
+    field("name", '"' + std::string(f.name) + '"', '"' + std::string(known->name) + '"');
+    field("bytesPerTexel", f.bytesPerTexel, known->bytesPerTexel);
+    field("hasDepth", f.hasDepth, known->hasDepth);
+    field("hasStencil", f.hasStencil, known->hasStencil);
+    field("srgb", f.srgb, known->srgb);
+    field("storageCapable", f.storageCapable, known->storageCapable);
+    return "its FormatInfo disagrees with its format " + std::string(known->name) + ": " + differs +
+           " (take it from findFormat())";
+}
+
+}  // namespace
 
 Diagnostics limitProblems(const GraphDesc& graph) {
     Diagnostics diags;
@@ -60,6 +89,7 @@ Diagnostics limitProblems(const GraphDesc& graph) {
             problem("a fixed extent must be between 1 and " + std::to_string(kMaxImageExtent) + " each way, not " +
                     std::to_string(e.width) + "x" + std::to_string(e.height));
         if (r.format.format == VK_FORMAT_UNDEFINED) problem("an image needs a format");
+        else if (!formatInfoMatches(r.format)) problem(formatInfoProblem(r.format));
         if (r.type == ResourceType::Cube && (r.layers != 6 || e.relativeToOutput || e.width != e.height))
             problem("a cube has 6 layers of square faces of a fixed extent, not " + std::to_string(r.layers) +
                     " layer(s) " + (e.relativeToOutput ? "of the output's extent" : "of " + std::to_string(e.width) +

@@ -2,6 +2,8 @@
 // a file past them, and compile() a GraphDesc built in code.
 #pragma once
 
+#include "format_table.hpp"
+
 #include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
 
@@ -98,7 +100,9 @@ enum class StatesProblem : uint8_t {
     const bool shape = r.type == ResourceType::Cube    ? r.layers == 6 && !e.relativeToOutput && e.width == e.height
                        : r.type == ResourceType::Image2D ? r.layers == 1
                                                          : true;
-    return extent && shape && r.format.format != VK_FORMAT_UNDEFINED && r.layers != 0 && r.layers <= kMaxLayers &&
+    // The compiler takes an image's aspects and size from its FormatInfo, which one put
+    // together in code can make disagree with its VkFormat.
+    return extent && shape && formatInfoMatches(r.format) && r.layers != 0 && r.layers <= kMaxLayers &&
            r.mips <= std::bit_width(kMaxImageExtent) && statesFit(r);
 }
 

@@ -649,6 +649,19 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
         {[](ResourceDesc& r) { r.type = ResourceType::Cube; },
          "a cube has 6 layers of square faces of a fixed extent, not 1 layer(s) of the output's extent"},
         {[](ResourceDesc& r) { r.format = FormatInfo{}; }, "an image needs a format"},
+        // A FormatInfo put together in code: the compiler takes aspects and sizes from its
+        // fields (a depth flag on a colour format gave its barriers the depth aspect).
+        {[](ResourceDesc& r) { r.format.hasDepth = true; },
+         "its FormatInfo disagrees with its format R16G16B16A16_SFLOAT: hasDepth true where it is false (take it "
+         "from findFormat())"},
+        {[](ResourceDesc& r) { r.format.bytesPerTexel = 4; }, "bytesPerTexel 4 where it is 8"},
+        {[](ResourceDesc& r) { r.format.srgb = r.format.hasStencil = true; },
+         "hasStencil true where it is false, srgb true where it is false"},
+        {[](ResourceDesc& r) { r.format.storageCapable = false; }, "storageCapable false where it is true"},
+        {[](ResourceDesc& r) { r.format.name = "RGBA16F"; }, "name \"RGBA16F\" where it is \"R16G16B16A16_SFLOAT\""},
+        {[](ResourceDesc& r) { r.format = FormatInfo{"R8G8B8_UNORM", VK_FORMAT_R8G8B8_UNORM, 3}; },
+         "its format, VkFormat 23, is not one skygraph knows"},
+        {[](ResourceDesc& r) { r.format.format = static_cast<VkFormat>(1000156000); }, "VkFormat 1000156000, is not"},
         {[](ResourceDesc& r) { r.final = ExternalState::Present; },
          "only an external image (the swapchain's) can be presented"},
         {[](ResourceDesc& r) { r.clear = ClearValue{true}; }, "clears to a color, not a depth value"},
@@ -674,6 +687,11 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
     g.resources.back().clear = ClearValue{};
     EXPECT_NE(compileErrorText(g).find("a buffer cannot be cleared by the graph"), std::string::npos);
     EXPECT_EQ(compileErrorText(raster), "") << "the graph as loaded compiles";
+    // A FormatInfo of the same fields whose name is text of the caller's own is the same format.
+    g = raster;
+    const std::string ownName = "R16G16B16A16_SFLOAT";
+    imageNamed(g, "hdr_color").format.name = ownName;
+    EXPECT_EQ(compileErrorText(g), "");
 }
 
 // The loader only writes resource indices it resolved, but an embedder's GraphDesc can name one

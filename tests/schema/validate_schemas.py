@@ -88,16 +88,16 @@ def check_schemas_valid(root):
 def check_drift(root, graph_schema, plan_schema):
     """Enumerations in the schemas against the C++ sources they mirror."""
     defs = graph_schema["definitions"]
-    fmt_src = (root / "framework/compiler/format.cpp").read_text()
+    fmt_src = (root / "framework/compiler/format_table.hpp").read_text()
     formats = re.findall(r"^\s*SG_FORMAT\((\w+),", fmt_src, re.M)
     schema_formats = defs["resource"]["properties"]["format"]["enum"]
-    check(formats and schema_formats == formats, "format enum lists every format of format.cpp, in order",
-          f"format.cpp: {formats}\nschema: {schema_formats}")
+    check(formats and schema_formats == formats, "format enum lists every format of format_table.hpp, in order",
+          f"format_table.hpp: {formats}\nschema: {schema_formats}")
     depth = [f for f, d, s in re.findall(r"^\s*SG_FORMAT\((\w+), \d+, (\w+), (\w+),", fmt_src, re.M)
              if "true" in (d, s)]
     depth_rule = [r for r in defs["resource"]["allOf"]
                   if r["if"].get("properties", {}).get("format", {}).get("enum") == depth]
-    check(len(depth_rule) == 1, "depth/stencil formats in the clear rule match format.cpp", depth)
+    check(len(depth_rule) == 1, "depth/stencil formats in the clear rule match format_table.hpp", depth)
 
     usage_src = (root / "framework/compiler/usage.cpp").read_text()
     stages = re.findall(r'\{"(\w+)", Stage::\w+\}', usage_src)

@@ -1,0 +1,83 @@
+// The formats skygraph knows, as one table: what findFormat() answers from, and what the
+// compiler checks each image's FormatInfo against (graph_limits.hpp), inline, as it asks once
+// per resource.
+#pragma once
+
+#include <skygraph/format.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+
+namespace skygraph {
+namespace format_table {
+
+// storageCapable follows the spec's table of formats with mandatory STORAGE_IMAGE support,
+// plus the widely available ones (B8G8R8A8_UNORM: the storage swapchain format that surfaces
+// offer); sRGB and depth formats are never storage images. The executor asks the device.
+#define SG_FORMAT(name, bytes, depth, stencil, srgb, storage) \
+    FormatInfo{#name, VK_FORMAT_##name, bytes, depth, stencil, srgb, storage}
+
+inline constexpr std::array kFormats{
+    SG_FORMAT(R8_UNORM, 1, false, false, false, true),
+    SG_FORMAT(R8G8_UNORM, 2, false, false, false, true),
+    SG_FORMAT(R8G8B8A8_UNORM, 4, false, false, false, true),
+    SG_FORMAT(R8G8B8A8_SNORM, 4, false, false, false, true),
+    SG_FORMAT(R8G8B8A8_SRGB, 4, false, false, true, false),
+    SG_FORMAT(B8G8R8A8_UNORM, 4, false, false, false, true),
+    SG_FORMAT(B8G8R8A8_SRGB, 4, false, false, true, false),
+    SG_FORMAT(A2B10G10R10_UNORM_PACK32, 4, false, false, false, false),
+    SG_FORMAT(B10G11R11_UFLOAT_PACK32, 4, false, false, false, false),
+    SG_FORMAT(E5B9G9R9_UFLOAT_PACK32, 4, false, false, false, false),
+    SG_FORMAT(R16_SFLOAT, 2, false, false, false, true),
+    SG_FORMAT(R16G16_SFLOAT, 4, false, false, false, true),
+    SG_FORMAT(R16G16B16A16_SFLOAT, 8, false, false, false, true),
+    SG_FORMAT(R16G16B16A16_UNORM, 8, false, false, false, true),
+    SG_FORMAT(R32_SFLOAT, 4, false, false, false, true),
+    SG_FORMAT(R32_UINT, 4, false, false, false, true),
+    SG_FORMAT(R32_SINT, 4, false, false, false, true),
+    SG_FORMAT(R32G32_SFLOAT, 8, false, false, false, true),
+    SG_FORMAT(R32G32B32A32_SFLOAT, 16, false, false, false, true),
+    SG_FORMAT(R32G32B32A32_UINT, 16, false, false, false, true),
+    SG_FORMAT(D16_UNORM, 2, true, false, false, false),
+    SG_FORMAT(D32_SFLOAT, 4, true, false, false, false),
+    SG_FORMAT(X8_D24_UNORM_PACK32, 4, true, false, false, false),
+    SG_FORMAT(D24_UNORM_S8_UINT, 4, true, true, false, false),
+    SG_FORMAT(D32_SFLOAT_S8_UINT, 8, true, true, false, false),
+    SG_FORMAT(S8_UINT, 1, false, true, false, false),
+};
+#undef SG_FORMAT
+
+// Every format above is a core one, numbered below 256: its entry + 1, by VkFormat, so that
+// the check of each resource's format in compile() is one load.
+inline constexpr size_t kCoreFormats = 256;
+inline constexpr auto kEntryOf = [] {
+    std::array<uint8_t, kCoreFormats> entry{};
+    for (size_t i = 0; i < kFormats.size(); ++i) entry[static_cast<size_t>(kFormats[i].format)] = uint8_t(i + 1);
+    return entry;
+}();
+static_assert(kFormats.size() < 256);
+
+[[nodiscard]] inline const FormatInfo* entryOf(VkFormat format) noexcept {
+    const auto v = static_cast<size_t>(format);
+    return v < kCoreFormats && kEntryOf[v] != 0 ? &kFormats[kEntryOf[v] - 1] : nullptr;
+}
+
+}  // namespace format_table
+
+/// Whether `f` is the table's entry for f.format, field by field.
+[[nodiscard]] inline bool formatInfoMatches(const FormatInfo& f) noexcept {
+    const FormatInfo* known = format_table::entryOf(f.format);
+    if (!known) return false;
+    // bytesPerTexel and the four flags after it, as one word: the compiler asks of every resource.
+    static_assert(offsetof(FormatInfo, storageCapable) == offsetof(FormatInfo, bytesPerTexel) + 7);
+    uint64_t given, is;
+    std::memcpy(&given, &f.bytesPerTexel, sizeof given);
+    std::memcpy(&is, &known->bytesPerTexel, sizeof is);
+    // Nearly every FormatInfo is a copy of the table's own, whose name views the table's text.
+    return given == is && ((f.name.data() == known->name.data() && f.name.size() == known->name.size()) ||
+                           f.name == known->name);
+}
+
+}  // namespace skygraph
