@@ -7,6 +7,9 @@
 #include <skygraph/shading_math.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 namespace skygraph::test {
 namespace {
@@ -81,6 +84,48 @@ TEST_F(SeedPasses, DefaultSceneDrawsObjectsInFrontOfTheSky) {
     // The objects cover a good part of the frame, and the sky still shows somewhere.
     EXPECT_GT(differing, 64 * 48 / 10);
     EXPECT_LT(differing, 64 * 48);
+}
+
+// raster.json's two forward passes, edited so that both run and the second draws over the
+// first's colour: its depth Write comes after the first's, so its load op neither clears nor
+// loads, and its depth test would meet undefined values. Which pass is first depends on the
+// features, so the loader accepts the file; the renderer refuses the plan, naming the pass.
+// With ReadWrite the plan runs. (Had the second written the colour whole too, the first would
+// be culled, and the second's Write would be the first use.)
+TEST_F(SeedPasses, AForwardPassDepthWriteAfterAnotherPassIsRefused) {
+    std::ifstream in(kSource / "graphs/raster.json");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string onlyWithoutSky = R"("if": "geometry && !skybox")";
+    ASSERT_NE(text.find(onlyWithoutSky), std::string::npos);
+    text.replace(text.find(onlyWithoutSky), onlyWithoutSky.size(), R"("if": "geometry")");
+    const std::string iblColor = R"("hdr_color": "Write@ColorAttachment",
+                "irradiance")";
+    ASSERT_NE(text.find(iblColor), std::string::npos);
+    text.replace(text.find(iblColor), iblColor.size(), R"("hdr_color": "ReadWrite@ColorAttachment",
+                "irradiance")");
+    const PassLibrary library = PassLibrary::withBuiltins();
+    CompileOptions co;
+    co.features = {{"geometry", true}, {"skybox", true}};
+    const GraphDesc both = parseGraph(text, "raster.json", library.registry());
+    try {
+        (void)rendererAt(both, library, co, 32, 24);
+        FAIL() << "a depth Write after another pass's was accepted";
+    } catch (const ExecutorError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("pass 'forward_ibl'"), std::string::npos) << what;
+        EXPECT_NE(what.find("this Write of 'depth' is not the first use of it in the plan"), std::string::npos) << what;
+    }
+    // The same two passes, the second testing against what the first left.
+    const std::string iblDepth = R"("name": "forward_ibl", "type": "ForwardPass", "if": "geometry && skybox",
+      "uses": { "depth": "Write@DepthAttachment")";
+    ASSERT_NE(text.find(iblDepth), std::string::npos);
+    std::string readWrite = iblDepth;
+    readWrite.replace(readWrite.find("Write@DepthAttachment"), 5, "ReadWrite");
+    text.replace(text.find(iblDepth), iblDepth.size(), readWrite);
+    Renderer renderer = rendererAt(parseGraph(text, "raster.json", library.registry()), library, co, 32, 24);
+    renderer.frameData().set(loadSceneFile(kSource / "scenes/default.json"));
+    renderer.renderFrame();
+    renderer.waitIdle();
 }
 
 TEST_F(SeedPasses, DebugViewsPassThroughInZeroToOne) {
