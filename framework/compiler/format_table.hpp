@@ -8,7 +8,6 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 namespace skygraph {
 namespace format_table {
@@ -69,15 +68,10 @@ static_assert(kFormats.size() < 256);
 /// Whether `f` is the table's entry for f.format, field by field.
 [[nodiscard]] inline bool formatInfoMatches(const FormatInfo& f) noexcept {
     const FormatInfo* known = format_table::entryOf(f.format);
-    if (!known) return false;
-    // bytesPerTexel and the four flags after it, as one word: the compiler asks of every resource.
-    static_assert(offsetof(FormatInfo, storageCapable) == offsetof(FormatInfo, bytesPerTexel) + 7);
-    uint64_t given, is;
-    std::memcpy(&given, &f.bytesPerTexel, sizeof given);
-    std::memcpy(&is, &known->bytesPerTexel, sizeof is);
     // Nearly every FormatInfo is a copy of the table's own, whose name views the table's text.
-    return given == is && ((f.name.data() == known->name.data() && f.name.size() == known->name.size()) ||
-                           f.name == known->name);
+    return known && f.bytesPerTexel == known->bytesPerTexel && f.hasDepth == known->hasDepth &&
+           f.hasStencil == known->hasStencil && f.srgb == known->srgb && f.storageCapable == known->storageCapable &&
+           ((f.name.data() == known->name.data() && f.name.size() == known->name.size()) || f.name == known->name);
 }
 
 }  // namespace skygraph

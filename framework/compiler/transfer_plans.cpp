@@ -2,6 +2,7 @@
 // synchronizer's own per-subresource rules (barrier_rules.hpp). Each resource's steps touch
 // only that resource, so one state per resource is enough: every step covers the whole
 // resource or a part of it that the previous step wrote as a whole.
+#include "format_table.hpp"
 #include "barrier_rules.hpp"
 #include "graph_file.hpp"
 #include "plan_builder.hpp"
@@ -328,6 +329,8 @@ GraphDesc sampledImagesGraph(std::span<const SampledImageShape> images) {
         else if (g.findResource(image.name)) refuse(image, "another image has that name");
         else if (image.format.format == VK_FORMAT_UNDEFINED || image.format.isDepthStencil())
             refuse(image, "its format is not a colour format");
+        else if (!formatInfoMatches(image.format))
+            refuse(image, "its FormatInfo is not the one findFormat() gives for its format");
         else if (image.width < 1 || image.height < 1 || image.width > kMaxImageExtent || image.height > kMaxImageExtent)
             refuse(image, std::to_string(image.width) + "x" + std::to_string(image.height) + " is outside 1.." +
                               std::to_string(kMaxImageExtent) + " a side");

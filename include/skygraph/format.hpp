@@ -11,6 +11,8 @@
 namespace skygraph {
 
 /// Static facts about a VkFormat that the compiler needs to check usages without a device.
+/// Take it from findFormat(): compile() refuses an image whose FormatInfo differs from that in
+/// any field, or whose format is not one of knownFormats().
 struct FormatInfo {
     /// Graph-file spelling: the VkFormat name without "VK_FORMAT_". Static storage in every
     /// FormatInfo that findFormat() and knownFormats() give.
@@ -20,7 +22,8 @@ struct FormatInfo {
     bool hasDepth = false;
     bool hasStencil = false;
     bool srgb = false;
-    /// Whether storage-image use is plausible; the executor still asks the device.
+    /// Whether storage-image use is plausible (the compiler refuses `as: storage` otherwise); the
+    /// executor still asks the device.
     bool storageCapable = false;
 
     [[nodiscard]] bool isDepthStencil() const noexcept { return hasDepth || hasStencil; }

@@ -59,7 +59,8 @@ struct SampledImageShape {
 /// final barriers that leave every mip in SHADER_READ_ONLY_OPTIMAL, visible to the sampled
 /// reads of later fragment and compute shaders (the ShaderRead external state). The plan's graph is made for it (one external image per
 /// shape, in order). Throws GraphError for an empty list, a repeated or bad name, a format the
-/// executor cannot fill from RGBA (depth, stencil) or a zero or too large size.
+/// executor cannot fill from RGBA (depth, stencil), a FormatInfo that is not findFormat()'s for
+/// its format, or a zero or too large size.
 [[nodiscard]] Plan planSampledImageUploads(std::span<const SampledImageShape> images);
 
 }  // namespace skygraph

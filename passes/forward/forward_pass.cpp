@@ -121,12 +121,13 @@ public:
             if (!r.usage || r.usage->slot != "depth" || r.usage->usage.access != Access::Write ||
                 r.usage->load == LoadOp::Clear)
                 continue;
-            const std::string name = r.desc ? r.desc->name : "depth";
+            const std::string where = "pass '" + std::string(ctx.pass ? ctx.pass->name : "") + "', " +
+                                      (r.desc ? "resource '" + r.desc->name + "'" : std::string("slot 'depth'")) + ": ";
             throw std::runtime_error(
-                "ForwardPass tests depth against what slot 'depth' starts with, and this Write of '" + name +
-                "' is not the first use of it in the plan (a pass before it that runs uses it), so it discards what "
-                "that pass left and does not start from the clear either: use ReadWrite to test against what that "
-                "pass left, or let only one of them run");
+                where + "ForwardPass tests depth against what slot 'depth' starts with, and this Write is not the "
+                        "first use of the resource in the plan (a pass before it that runs uses it), so it discards "
+                        "what that pass left and does not start from the clear either: use ReadWrite to test against "
+                        "what that pass left, or let only one of them run");
         }
     }
 

@@ -372,6 +372,13 @@ TEST(SampledImageUploads, BadShapesAreErrorsNamingTheImage) {
               std::string::npos);
     EXPECT_NE(problem({{"z", rgba, 0, 2}}).find("'z': 0x2 is outside 1..16384"), std::string::npos);
     EXPECT_NE(problem({{"big", rgba, 16385, 1}}).find("'big': 16385x1"), std::string::npos);
+    FormatInfo wide = rgba;
+    wide.bytesPerTexel = 8;
+    const std::string widened = problem({{"w", wide, 2, 2}});
+    EXPECT_NE(widened.find("images.w: resource 'w': cannot upload 'w': its FormatInfo is not the one findFormat() "
+                           "gives for its format"),
+              std::string::npos)
+        << widened;
 }
 
 TEST(ImageRead, CopiesEveryLevelAndReturnsTheImageToTheLayoutTheFrameLeftIt) {

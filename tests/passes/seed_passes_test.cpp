@@ -112,8 +112,9 @@ TEST_F(SeedPasses, AForwardPassDepthWriteAfterAnotherPassIsRefused) {
         FAIL() << "a depth Write after another pass's was accepted";
     } catch (const ExecutorError& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("pass 'forward_ibl'"), std::string::npos) << what;
-        EXPECT_NE(what.find("this Write of 'depth' is not the first use of it in the plan"), std::string::npos) << what;
+        EXPECT_NE(what.find("pass 'forward_ibl', resource 'depth': ForwardPass tests depth"), std::string::npos)
+            << what;
+        EXPECT_NE(what.find("this Write is not the first use of the resource in the plan"), std::string::npos) << what;
     }
     // The same two passes, the second testing against what the first left.
     const std::string iblDepth = R"("name": "forward_ibl", "type": "ForwardPass", "if": "geometry && skybox",
