@@ -595,6 +595,10 @@ TEST_F(Cli, AValueThatIsNotANumberIsSaidToBeNone) {
          "error: --watch-iterations: 'many' is not a number\n"},
         {{"compile", "graphs/raster.json", "-o", plan, "--width", "0"},
          "error: --width: Value 0 not in range 1 to 16384"},
+        // Decimal only: CLI11 alone reads "0x20" as 32 and " 64" as 64.
+        {{"compile", "graphs/raster.json", "-o", plan, "--width", "0x20"}, "error: --width: '0x20' is not a number\n"},
+        {{"compile", "graphs/raster.json", "-o", plan, "--width", " 64"}, "error: --width: ' 64' is not a number\n"},
+        {{"compile", "graphs/raster.json", "-o", plan, "--width", "1e3"}, "error: --width: '1e3' is not a whole number\n"},
     };
 #if SKYGRAPH_CLI_HAS_RENDER
     cases.push_back({{"render", "--frames", "lots"}, "error: --frames: 'lots' is not a number\n"});
@@ -611,6 +615,11 @@ TEST_F(Cli, AValueThatIsNotANumberIsSaidToBeNone) {
         EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
         EXPECT_TRUE(workFiles().empty()) << args[0] << " " << args.back();
     }
+    // Leading zeros are decimal, not octal: 010 is ten.
+    const CliRun padded = run({"compile", "graphs/raster.json", "--width", "032", "--height", "010"});
+    EXPECT_EQ(padded.status, 0) << padded.err;
+    EXPECT_NE(padded.out.find("32x10"), std::string::npos) << padded.out.substr(0, 300);
+    EXPECT_EQ(padded.out.find("32x8"), std::string::npos) << padded.out.substr(0, 300);
 }
 
 TEST_F(Cli, UnwritableMemorySvgExitsOneAndWritesNothing) {

@@ -9,6 +9,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -51,15 +52,29 @@ std::string valueTypeName(const CLI::Option& option) {
     return full.substr(0, full.find(':'));
 }
 
-/// Leaves a value as it is; refuses one that reads as no number, or, with `whole`, as no whole
-/// number. It describes nothing, so that --help shows the option as before.
+/// Refuses a value that is not a number written in decimal, or, with `whole`, not a whole one;
+/// strips a whole number's leading zeros, which CLI11 would read as octal ("010" is 10, not 8),
+/// as it reads "0x" as hexadecimal. It describes nothing, so that --help shows the option as
+/// before.
 CLI::Validator numberCheck(bool whole) {
     return CLI::Validator(
         [whole](std::string& value) -> std::string {
+            const bool negative = !value.empty() && value[0] == '-';
+            const std::string_view digits = std::string_view(value).substr(negative ? 1 : 0);
+            const auto isDigit = [](char c) { return c >= '0' && c <= '9'; };
+            const bool decimalWhole = !digits.empty() && std::all_of(digits.begin(), digits.end(), isDigit);
+            if (decimalWhole) {
+                const size_t zeros = std::min(digits.find_first_not_of('0'), digits.size() - 1);
+                value.erase(negative ? 1 : 0, zeros);
+                return {};
+            }
+            // A fraction or an exponent, in decimal: no hexadecimal float, no space, no "inf".
+            const bool decimal = !digits.empty() && isDigit(digits.back()) &&
+                                 digits.find_first_not_of("0123456789.eE+-") == std::string_view::npos &&
+                                 (isDigit(digits[0]) || digits[0] == '.');
             double number = 0.0;
-            if (!CLI::detail::lexical_cast(value, number)) return "'" + value + "' is not a number";
-            int64_t wholeNumber = 0;
-            if (whole && !CLI::detail::lexical_cast(value, wholeNumber)) return "'" + value + "' is not a whole number";
+            if (!decimal || !CLI::detail::lexical_cast(value, number)) return "'" + value + "' is not a number";
+            if (whole) return "'" + value + "' is not a whole number";
             return {};
         },
         "");
