@@ -211,6 +211,8 @@ private:
             graph_.name = name.string();
             if (hasControlCharacter(graph_.name))
                 error("name", "", "", "'" + printableName(graph_.name) + "' holds a control character; " + kPrintedNames);
+            else if (const char32_t cp = firstInvisibleCharacter(graph_.name))
+                error("name", "", "", "'" + printableName(graph_.name) + "' " + invisibleCharacterProblem(cp));
         } else {
             error("name", "", "", "missing or not a string");
         }
@@ -293,6 +295,9 @@ private:
             error(path + ".name", "", "", "missing or not a non-empty string");
         if (hasControlCharacter(p.name)) {
             error(path + ".name", "", "", "'" + printableName(p.name) + "' holds a control character; " + kPrintedNames);
+            p.name.clear();
+        } else if (const char32_t cp = firstInvisibleCharacter(p.name)) {
+            error(path + ".name", "", "", "'" + printableName(p.name) + "' " + invisibleCharacterProblem(cp));
             p.name.clear();
         }
         if (p.name.find(' ') != std::string::npos) refuseInsertedStepName(path, p.name);

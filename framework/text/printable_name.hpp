@@ -1,9 +1,10 @@
 // Names end up in terminals, logs, text plans, DOT graphs and XML. A control character in one
-// (a JSON "\u0007" or "\n") would ring, break a line or make a file invalid. The graph loader
-// refuses such names in graph files, where a name is an identifier that plans and code must
-// find again; names and paths from scene and glTF files are valid as they are, and every
-// message and log line shows them escaped instead. Header-only, for the libraries and the
-// tool; not installed.
+// (a JSON "\u0007" or "\n") would ring, break a line or make a file invalid, and an invisible
+// format character (a zero-width space, a right-to-left override) would make one name print
+// like another or a line read otherwise than it is. The graph loader refuses such names in
+// graph files, where a name is an identifier that plans and code must find again; names and
+// paths from scene and glTF files are valid as they are, and every message and log line shows
+// them escaped instead. Header-only, for the libraries and the tool; not installed.
 #pragma once
 
 #include <cstdio>
@@ -43,9 +44,47 @@ inline constexpr const char* kPrintedNames = "names are printed in plans, DOT gr
     return length;
 }
 
-/// `name` with each control character written as JSON writes it (\u0007), and each byte that is
-/// not part of valid UTF-8 as \xff, for messages: a terminal or a reader of the log that
-/// decodes UTF-8 sees every byte.
+/// The code point of the UTF-8 sequence `seq` (of utf8SequenceLength(seq) bytes) when it is a
+/// format character that prints as nothing or reorders what follows it (a zero-width space or
+/// joiner, a bidirectional embedding, override or isolate, a soft hyphen, a byte order mark),
+/// else 0: two names that differ only by one look the same, and an override makes a message
+/// read otherwise than it is.
+[[nodiscard]] constexpr char32_t invisibleFormatCharacter(std::string_view seq) noexcept {
+    const auto byte = [&](size_t i) { return static_cast<unsigned char>(seq[i]); };
+    if (seq.size() >= 2 && byte(0) == 0xc2 && byte(1) == 0xad) return 0x00ad;
+    if (seq.size() >= 2 && byte(0) == 0xd8 && byte(1) == 0x9c) return 0x061c;
+    if (seq.size() < 3) return 0;
+    if (byte(0) < 0xe0 || byte(0) > 0xef) return 0;
+    const char32_t cp = char32_t(byte(0) & 0x0f) << 12 | char32_t(byte(1) & 0x3f) << 6 | char32_t(byte(2) & 0x3f);
+    const bool invisible = cp == 0x180e || (cp >= 0x200b && cp <= 0x200f) || (cp >= 0x202a && cp <= 0x202e) ||
+                           (cp >= 0x2060 && cp <= 0x2064) || (cp >= 0x2066 && cp <= 0x2069) || cp == 0xfeff;
+    return invisible ? cp : 0;
+}
+
+/// The first invisible format character of valid UTF-8 `name` (invisibleFormatCharacter), or 0.
+[[nodiscard]] inline char32_t firstInvisibleCharacter(std::string_view name) noexcept {
+    for (size_t i = 0; i < name.size();) {
+        const size_t length = utf8SequenceLength(name.substr(i));
+        if (length == 0) return 0;  // not UTF-8: JSON text always is
+        if (length > 1)
+            if (const char32_t cp = invisibleFormatCharacter(name.substr(i, length))) return cp;
+        i += length;
+    }
+    return 0;
+}
+
+/// Why a name with an invisible format character is refused, for the loader's messages.
+[[nodiscard]] inline std::string invisibleCharacterProblem(char32_t cp) {
+    char code[16];
+    std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(cp));
+    return "holds the invisible character " + std::string(code) +
+           ", which prints as nothing or reorders what follows it; " + kPrintedNames;
+}
+
+/// `name` with each control character and each invisible format character written as JSON
+/// writes it (\u0007, \u200b), and each byte that is not part of valid UTF-8 as \xff, for
+/// messages: a terminal or a reader of the log that decodes UTF-8 sees every byte, and two names
+/// that differ only by a zero-width space do not print alike.
 [[nodiscard]] inline std::string printableName(std::string_view name) {
     bool plain = true;
     for (const char c : name) plain = plain && !isControlCharacter(c) && static_cast<unsigned char>(c) < 0x80;
@@ -54,7 +93,7 @@ inline constexpr const char* kPrintedNames = "names are printed in plans, DOT gr
     for (size_t i = 0; i < name.size();) {
         const char c = name[i];
         const size_t length = utf8SequenceLength(name.substr(i));
-        char escaped[8];
+        char escaped[12];
         if (length == 0) {
             std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
             out += escaped;
@@ -63,6 +102,10 @@ inline constexpr const char* kPrintedNames = "names are printed in plans, DOT gr
             std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned char>(c));
             out += escaped;
             ++i;
+        } else if (const char32_t cp = length > 1 ? invisibleFormatCharacter(name.substr(i, length)) : 0) {
+            std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(cp));
+            out += escaped;
+            i += length;
         } else {
             out.append(name.substr(i, length));
             i += length;

@@ -937,6 +937,33 @@ TEST(LoaderErrors, BadFeatureDeclarations) {
     EXPECT_TRUE(hasDiag(ds, "features.on", "", "", {"true or false"}));
 }
 
+// A name with a zero-width space prints like the name without it, and a right-to-left override
+// makes the rest of a message read backwards: refused where the name is given, like control
+// characters, and shown escaped in every message.
+TEST(LoaderErrors, NamesWithInvisibleCharactersAreRefusedAndShownEscaped) {
+    Json g = baseGraph();
+    g["name"] = "t\u00ad";                                   // a soft hyphen
+    g["passes"][1]["name"] = "\u202eevil";                  // a right-to-left override
+    g["resources"]["hdr_color\u200b"] = g["resources"]["hdr_color"];  // a zero-width space
+    g["resources"]["b\ufeff"] = g["resources"]["buf"];               // a byte order mark
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "name", "", "", {"'t\\u00ad' holds the invisible character U+00AD", "printed in plans"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "passes[1].name", "", "", {"'\\u202eevil' holds the invisible character U+202E"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.hdr_color\u200b", "", "hdr_color\u200b",
+                        {"its name holds the invisible character U+200B"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.b\ufeff", "", "b\ufeff", {"U+FEFF"})) << listAll(ds);
+    for (const Diagnostic& d : ds)
+        for (const std::string raw : {"\u00ad", "\u202e", "\u200b", "\ufeff"})
+            EXPECT_EQ(d.format().find(raw), std::string::npos) << "escaped in every message: " << d.format();
+    // Other characters outside ASCII are names like any other.
+    Json ok = baseGraph();
+    ok["passes"][1]["name"] = "tonemap_\u00e9t\u00e9_\u6f22";
+    EXPECT_NO_THROW((void)parseGraph(ok.dump(2), kFile, registry()));
+}
+
 // A control character in a name would ring a terminal or break a line of a text plan or DOT
 // graph: refused where the name is given, and shown escaped in every message.
 TEST(LoaderErrors, NamesWithControlCharactersAreRefusedAndShownEscaped) {

@@ -20,6 +20,21 @@ TEST(PrintableName, EscapesControlCharactersAsJsonDoes) {
     EXPECT_EQ(printableName("line\nbreak\x7f"), "line\\u000abreak\\u007f");
 }
 
+// Format characters that print as nothing or reorder the text after them, so that two names
+// differing by one would print alike and a message could read otherwise than it is.
+TEST(PrintableName, EscapesInvisibleFormatCharacters) {
+    EXPECT_EQ(printableName("hdr\u200bcolor"), "hdr\\u200bcolor");       // zero-width space
+    EXPECT_EQ(printableName("\u202eevil"), "\\u202eevil");                // right-to-left override
+    EXPECT_EQ(printableName("a\u2066b\u2069"), "a\\u2066b\\u2069");      // an isolate and its end
+    EXPECT_EQ(printableName("soft\u00adhyphen\ufeff"), "soft\\u00adhyphen\\ufeff");
+    EXPECT_EQ(printableName("\u200e\u200f\u061c\u180e\u2060"), "\\u200e\\u200f\\u061c\\u180e\\u2060");
+    // Their neighbours in the tables print as they are.
+    EXPECT_EQ(printableName("\u200a\u2010\u2029\u2030\u205f\u2065\u206a\ufefe\u00ac\u00ae"),
+              "\u200a\u2010\u2029\u2030\u205f\u2065\u206a\ufefe\u00ac\u00ae");
+    EXPECT_EQ(firstInvisibleCharacter("plain \u00e9"), 0u);
+    EXPECT_EQ(firstInvisibleCharacter("x\u200dy\u202e"), 0x200du);
+}
+
 TEST(PrintableName, EscapesEveryByteThatIsNotValidUtf8) {
     EXPECT_EQ(printableName("t\xff"), "t\\xff");
     EXPECT_EQ(printableName("\x80stray"), "\\x80stray");                      // a lone continuation byte
