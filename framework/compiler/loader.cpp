@@ -209,10 +209,8 @@ private:
         }
         if (const JsonValue name = f[rootKey::name]; name && name.isString()) {
             graph_.name = name.string();
-            if (hasControlCharacter(graph_.name))
-                error("name", "", "", "'" + printableName(graph_.name) + "' holds a control character; " + kPrintedNames);
-            else if (const char32_t cp = firstInvisibleCharacter(graph_.name))
-                error("name", "", "", "'" + printableName(graph_.name) + "' " + invisibleCharacterProblem(cp));
+            if (const std::string why = unprintableNameProblem(graph_.name); !why.empty())
+                error("name", "", "", "'" + printableName(graph_.name) + "' " + why);
         } else {
             error("name", "", "", "missing or not a string");
         }
@@ -293,11 +291,8 @@ private:
             p.name = name.string();
         else
             error(path + ".name", "", "", "missing or not a non-empty string");
-        if (hasControlCharacter(p.name)) {
-            error(path + ".name", "", "", "'" + printableName(p.name) + "' holds a control character; " + kPrintedNames);
-            p.name.clear();
-        } else if (const char32_t cp = firstInvisibleCharacter(p.name)) {
-            error(path + ".name", "", "", "'" + printableName(p.name) + "' " + invisibleCharacterProblem(cp));
+        if (const std::string why = unprintableNameProblem(p.name); !why.empty()) {
+            error(path + ".name", "", "", "'" + printableName(p.name) + "' " + why);
             p.name.clear();
         }
         if (p.name.find(' ') != std::string::npos) refuseInsertedStepName(path, p.name);

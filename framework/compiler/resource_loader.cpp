@@ -258,8 +258,7 @@ void loadResource(std::string_view name, JsonValue v, FileProblems& report, Reso
     r.name = name;
     const ResourceProblems fail(name, report);
     if (name.empty()) fail("", "a resource needs a name: plans and passes refer to it by its key");
-    if (hasControlCharacter(name)) fail("", "its name holds a control character; " + std::string(kPrintedNames));
-    else if (const char32_t cp = firstInvisibleCharacter(name)) fail("", "its name " + invisibleCharacterProblem(cp));
+    if (const std::string why = unprintableNameProblem(name); !why.empty()) fail("", "its name " + why);
     if (!v.isObject()) {
         fail("", "must be an object");
         return;

@@ -73,8 +73,12 @@ inline constexpr const char* kPrintedNames = "names are printed in plans, DOT gr
     return 0;
 }
 
-/// Why a name with an invisible format character is refused, for the loader's messages.
-[[nodiscard]] inline std::string invisibleCharacterProblem(char32_t cp) {
+/// Why the loader refuses `name` ("holds a control character; ...", "holds the invisible
+/// character U+200B, ..."), or "" when it prints as it is.
+[[nodiscard]] inline std::string unprintableNameProblem(std::string_view name) {
+    if (hasControlCharacter(name)) return std::string("holds a control character; ") + kPrintedNames;
+    const char32_t cp = firstInvisibleCharacter(name);
+    if (cp == 0) return {};
     char code[16];
     std::snprintf(code, sizeof code, "U+%04X", static_cast<unsigned>(cp));
     return "holds the invisible character " + std::string(code) +
