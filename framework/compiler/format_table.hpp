@@ -63,6 +63,41 @@ static_assert(kFormats.size() < 256);
     return v < kCoreFormats && kEntryOf[v] != 0 ? &kFormats[kEntryOf[v] - 1] : nullptr;
 }
 
+/// What a colour clear of a format holds as written (docs/graph-format.md, `clear`). The spec
+/// converts a clear value to the format: a normalized format clamps it into its range, and a
+/// float format's overflow is the implementation's. A value outside is refused, not changed.
+struct ClearColorRange {
+    double lowest = 0, highest = 0;  ///< Every channel holds both; empty for depth/stencil formats.
+    bool integers = false;           ///< UINT and SINT: the clear writes integers, kept as floats.
+};
+
+[[nodiscard]] constexpr ClearColorRange clearColorRange(VkFormat format) noexcept {
+    constexpr double kExactInFloat = 16777216.0;  // 2^24: a float holds every integer up to it
+    constexpr double kHalfMax = 65504.0;
+    constexpr double kFloatMax = 3.40282346638528859812e+38;  // FLT_MAX
+    switch (format) {
+        case VK_FORMAT_R8_UNORM: case VK_FORMAT_R8G8_UNORM: case VK_FORMAT_R8G8B8A8_UNORM:
+        case VK_FORMAT_R8G8B8A8_SRGB: case VK_FORMAT_B8G8R8A8_UNORM: case VK_FORMAT_B8G8R8A8_SRGB:
+        case VK_FORMAT_A2B10G10R10_UNORM_PACK32: case VK_FORMAT_R16G16B16A16_UNORM: return {0.0, 1.0};
+        case VK_FORMAT_R8G8B8A8_SNORM: return {-1.0, 1.0};
+        case VK_FORMAT_B10G11R11_UFLOAT_PACK32: return {0.0, 64512.0};  // blue's 10 bits: the least of the three
+        case VK_FORMAT_E5B9G9R9_UFLOAT_PACK32: return {0.0, 65408.0};
+        case VK_FORMAT_R16_SFLOAT: case VK_FORMAT_R16G16_SFLOAT: case VK_FORMAT_R16G16B16A16_SFLOAT:
+            return {-kHalfMax, kHalfMax};
+        case VK_FORMAT_R32_SFLOAT: case VK_FORMAT_R32G32_SFLOAT: case VK_FORMAT_R32G32B32A32_SFLOAT:
+            return {-kFloatMax, kFloatMax};
+        case VK_FORMAT_R32_UINT: case VK_FORMAT_R32G32B32A32_UINT: return {0.0, kExactInFloat, true};
+        case VK_FORMAT_R32_SINT: return {-kExactInFloat, kExactInFloat, true};
+        default: return {};
+    }
+}
+
+static_assert([] {
+    for (const FormatInfo& f : kFormats)
+        if ((f.hasDepth || f.hasStencil) == (clearColorRange(f.format).highest > 0)) return false;
+    return true;
+}(), "every colour format of the table has a clear range, and no depth/stencil format has one");
+
 }  // namespace format_table
 
 /// Whether `f` is the table's entry for f.format, field by field.

@@ -1,5 +1,6 @@
 #include "graph_limits.hpp"
 
+#include <cstdio>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -21,7 +22,29 @@ std::string handedBackProblem(const ResourceDesc& r) {
            std::string(toString(r.initial)) + ": give `initial` and `final` one state (to copy it out, read it back)";
 }
 
+std::string clearRangeText(const format_table::ClearColorRange& range) {
+    char text[64];
+    std::snprintf(text, sizeof text, "[%.9g, %.9g]", range.lowest, range.highest);
+    return text;
+}
+
 namespace {
+
+/// What a clear that clearFits() refuses holds, and what its format takes.
+std::string clearProblem(const ResourceDesc& r) {
+    const ClearValue& c = *r.clear;
+    char text[160];
+    if (c.isDepth) {
+        std::snprintf(text, sizeof text, "its clear depth %.9g must be in [0, 1] and its stencil %u at most 255",
+                      double(c.depth), c.stencil);
+        return text;
+    }
+    const format_table::ClearColorRange range = format_table::clearColorRange(r.format.format);
+    std::snprintf(text, sizeof text, "its clear color [%.9g, %.9g, %.9g, %.9g] must hold four ", double(c.color[0]),
+                  double(c.color[1]), double(c.color[2]), double(c.color[3]));
+    return text + std::string(range.integers ? "integers" : "numbers") + " in " + clearRangeText(range) +
+           ", the range of the format " + std::string(r.format.name) + " (Vulkan converts a value outside it to another)";
+}
 
 /// How a FormatInfo that formatInfoMatches() refuses differs from the known one, if any.
 std::string formatInfoProblem(const FormatInfo& f) {
@@ -74,6 +97,7 @@ Diagnostics limitProblems(const GraphDesc& graph) {
                         std::string(r.format.name) + " clears to " +
                         (r.format.isDepthStencil() ? "a depth value, not a color" : "a color, not a depth value"));
                 break;
+            case StatesProblem::ClearOutOfRange: problem(clearProblem(r)); break;
         }
         if (!r.isImage()) {
             if (r.sizeBytes == 0 || r.sizeBytes > kMaxBufferBytes)

@@ -8,6 +8,7 @@
 #include <skygraph/graph.hpp>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -63,7 +64,7 @@ inline constexpr uint64_t kMaxGraphFileBytes = 256ull << 20;
 /// What is wrong with a resource's states, as the loader requires them of a file: only an
 /// external image of a swapchain image's shape is presented, a buffer is never left for
 /// presentation or a copy source, an exported external arrives as it leaves, and only images
-/// clear, to a value of their format's kind. The first that applies, in this order.
+/// clear, to a value of their format's kind that it holds (clearFits()). The first that applies, in this order.
 enum class StatesProblem : uint8_t {
     None,
     PresentedNotExternal,
@@ -72,7 +73,24 @@ enum class StatesProblem : uint8_t {
     BufferInImageLayout,
     HandedBackChanged,
     ClearOfOtherKind,
+    ClearOutOfRange,
 };
+
+/// Whether `r`'s clear holds values its format takes as given: a colour within
+/// format_table::clearColorRange() (integers for the integer formats), a depth in [0, 1], a
+/// stencil of 8 bits. NaN fits nowhere. A format without a range is named on its own.
+[[nodiscard]] inline bool clearFits(const ResourceDesc& r) noexcept {
+    const ClearValue& c = *r.clear;
+    if (c.isDepth) return c.depth >= 0.0f && c.depth <= 1.0f && c.stencil <= 255;
+    const format_table::ClearColorRange range = format_table::clearColorRange(r.format.format);
+    if (range.highest == 0) return true;
+    for (const float v : c.color)
+        if (!(v >= range.lowest && v <= range.highest) || (range.integers && std::trunc(v) != v)) return false;
+    return true;
+}
+
+/// "[0, 1]", "[-65504, 65504]": a range as messages give it.
+[[nodiscard]] std::string clearRangeText(const format_table::ClearColorRange& range);
 
 [[nodiscard]] inline StatesProblem statesProblem(const ResourceDesc& r) noexcept {
     if (r.final == ExternalState::Present && !r.external) return StatesProblem::PresentedNotExternal;
@@ -82,6 +100,7 @@ enum class StatesProblem : uint8_t {
         return StatesProblem::BufferInImageLayout;
     if (handedBackChanged(r)) return StatesProblem::HandedBackChanged;
     if (r.clear && r.clear->isDepth != r.format.isDepthStencil()) return StatesProblem::ClearOfOtherKind;
+    if (r.clear && !clearFits(r)) return StatesProblem::ClearOutOfRange;
     return StatesProblem::None;
 }
 

@@ -159,21 +159,23 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
     if (const JsonValue color = f[key::color]) {
         bool numbers = color.isArray() && color.size() == 4;
         for (size_t i = 0; numbers && i < 4; ++i) numbers = color[i].isNumber();
-        // An integer format clears to integers, and the value is kept as a float: one that
-        // holds each of them exactly.
-        const bool unsignedInts = r.format.name.ends_with("_UINT"), signedInts = r.format.name.ends_with("_SINT");
-        constexpr double kExactInFloat = 16777216.0;  // 2^24
-        const double lowest = unsignedInts ? 0.0 : -kExactInFloat;
-        for (size_t i = 0; numbers && (unsignedInts || signedInts) && i < 4; ++i) {
+        // Empty while the format is unknown or a depth format's, which are named on their own.
+        const format_table::ClearColorRange range = format_table::clearColorRange(r.format.format);
+        bool fits = numbers;
+        for (size_t i = 0; fits && i < 4; ++i) {
             const double v = color[i].number<double>();
-            numbers = color[i].isInteger() && v >= lowest && v <= kExactInFloat;
+            fits = (!range.integers || color[i].isInteger()) && v >= range.lowest && v <= range.highest;
         }
-        if (!numbers && (unsignedInts || signedInts))
-            fail("clear.color", "expected four integers in [" + std::string(unsignedInts ? "0" : "-16777216") +
-                                    ", 16777216] for the integer format " + std::string(r.format.name) + ", got " +
-                                    color.dump() + color.integersHint(lowest, kExactInFloat));
+        if (range.integers && !fits)
+            fail("clear.color", "expected four integers in " + clearRangeText(range) + " for the integer format " +
+                                    std::string(r.format.name) + ", got " + color.dump() +
+                                    color.integersHint(range.lowest, range.highest));
         else if (!numbers)
             fail("clear.color", "expected four numbers");
+        else if (range.highest > 0 && !fits)
+            fail("clear.color", "expected four numbers in " + clearRangeText(range) + ", the range of the format " +
+                                    std::string(r.format.name) + " (Vulkan converts a value outside it to another), got " +
+                                    color.dump());
         else
             for (size_t i = 0; i < 4; ++i) c.color[i] = color[i].number<float>();
         if (r.format.isDepthStencil())

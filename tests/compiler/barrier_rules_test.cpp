@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -665,6 +666,32 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
         {[](ResourceDesc& r) { r.final = ExternalState::Present; },
          "only an external image (the swapchain's) can be presented"},
         {[](ResourceDesc& r) { r.clear = ClearValue{true}; }, "clears to a color, not a depth value"},
+        // A clear value its format does not hold, which Vulkan would clamp or overflow.
+        {[](ResourceDesc& r) { r.clear = ClearValue{.color = {70000, 0, 0, 1}}; },
+         "its clear color [70000, 0, 0, 1] must hold four numbers in [-65504, 65504], the range of the format "
+         "R16G16B16A16_SFLOAT (Vulkan converts a value outside it to another)"},
+        {[](ResourceDesc& r) { r.clear = ClearValue{.color = {0, std::numeric_limits<float>::quiet_NaN(), 0, 1}}; },
+         "its clear color [0, nan, 0, 1] must hold four numbers in [-65504, 65504]"},
+        {[](ResourceDesc& r) {
+             r.format = *findFormat("R8G8B8A8_UNORM");
+             r.clear = ClearValue{.color = {0, 0, 1.01f, 1}};
+         },
+         "must hold four numbers in [0, 1], the range of the format R8G8B8A8_UNORM"},
+        {[](ResourceDesc& r) {
+             r.format = *findFormat("R32_UINT");
+             r.clear = ClearValue{.color = {1.5f, 0, 0, 1}};
+         },
+         "its clear color [1.5, 0, 0, 1] must hold four integers in [0, 16777216], the range of the format R32_UINT"},
+        {[](ResourceDesc& r) {
+             r.format = *findFormat("D32_SFLOAT");
+             r.clear = ClearValue{.isDepth = true, .depth = 2.0f};
+         },
+         "its clear depth 2 must be in [0, 1] and its stencil 0 at most 255"},
+        {[](ResourceDesc& r) {
+             r.format = *findFormat("D24_UNORM_S8_UINT");
+             r.clear = ClearValue{.isDepth = true, .stencil = 256};
+         },
+         "its clear depth 0 must be in [0, 1] and its stencil 256 at most 255"},
     };
     for (const auto& [edit, words] : cases) {
         GraphDesc g = raster;

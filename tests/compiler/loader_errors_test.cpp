@@ -1139,6 +1139,43 @@ TEST(LoaderErrors, IntegerFormatsClearToIntegers) {
     EXPECT_EQ(ds.size(), 3u) << listAll(ds);
 }
 
+// A clear converts its value to the format: a normalized format clamps what lies outside its
+// range and a float format overflows, so a value the format does not hold is refused, never
+// changed. The edges of each range load.
+TEST(LoaderErrors, ColorClearsHoldValuesOfTheirFormat) {
+    Json g = baseGraph();
+    const auto image = [](const char* format, Json color) {
+        return Json{{"type", "image2d"}, {"format", format}, {"extent", {4, 4}}, {"clear", {{"color", color}}}};
+    };
+    g["resources"]["unorm"] = image("R8G8B8A8_UNORM", {0, 0, 1.5, 1});
+    g["resources"]["srgb"] = image("B8G8R8A8_SRGB", {-0.25, 0, 0, 1});
+    g["resources"]["snorm"] = image("R8G8B8A8_SNORM", {0, -1.01, 0, 1});
+    g["resources"]["half"] = image("R16G16B16A16_SFLOAT", {0, 0, 0, 65505});
+    g["resources"]["single"] = image("R32_SFLOAT", {1e39, 0, 0, 1});
+    g["resources"]["ufloat"] = image("B10G11R11_UFLOAT_PACK32", {-1, 0, 0, 1});
+    g["resources"]["fine_unorm"] = image("A2B10G10R10_UNORM_PACK32", {0, 1, 0.5, 1});
+    g["resources"]["fine_snorm"] = image("R8G8B8A8_SNORM", {-1, 1, 0, 1});
+    g["resources"]["fine_half"] = image("R16_SFLOAT", {-65504, 65504, 0, 1});
+    g["resources"]["fine_single"] = image("R32G32B32A32_SFLOAT", {-3.4028234e38, 3.4028234e38, 1e30, 1});
+    g["resources"]["fine_ufloat"] = image("B10G11R11_UFLOAT_PACK32", {64512, 0, 0, 1});
+    g["resources"]["fine_shared"] = image("E5B9G9R9_UFLOAT_PACK32", {65408, 0, 0, 1});
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.unorm.clear.color", "", "unorm",
+                        {"expected four numbers in [0, 1], the range of the format R8G8B8A8_UNORM (Vulkan converts a "
+                         "value outside it to another), got [0,0,1.5,1]"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.srgb.clear.color", "", "srgb", {"[0, 1]", "B8G8R8A8_SRGB"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.snorm.clear.color", "", "snorm", {"[-1, 1]", "R8G8B8A8_SNORM"})) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.half.clear.color", "", "half", {"[-65504, 65504]", "R16G16B16A16_SFLOAT"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.single.clear.color", "", "single",
+                        {"[-3.40282347e+38, 3.40282347e+38]", "R32_SFLOAT"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.ufloat.clear.color", "", "ufloat", {"[0, 64512]", "B10G11R11_UFLOAT_PACK32"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 6u) << listAll(ds);
+}
+
 TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {
     CompileOptions options;
     options.features["bloom"] = true;
