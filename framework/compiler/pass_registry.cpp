@@ -1,4 +1,5 @@
 #include <skygraph/pass_registry.hpp>
+#include <skygraph/plan.hpp>
 
 #include "json_path.hpp"
 #include "usage_fit.hpp"
@@ -120,6 +121,34 @@ std::vector<std::string> PassRegistry::names() const {
     std::vector<std::string> out;
     for (const auto& [name, _] : types_) out.push_back(name);
     return out;
+}
+
+Diagnostics plannedPassProblems(const Plan& plan, const GraphDesc& graph, const PassRegistry& registry) {
+    Diagnostics diags;
+    for (const PlannedPass& pass : plan.passes()) {
+        const auto index = static_cast<size_t>(pass.declIndex);
+        if (pass.declIndex < 0 || index >= graph.passes.size()) continue;  // an inserted step
+        const PassDesc& desc = graph.passes[index];
+        const PassTypeInfo* type = registry.find(desc.type);
+        if (!type || !type->validatePlannedPass) continue;
+        const std::string passPath = desc.jsonPath.empty() ? "passes[" + std::to_string(index) + "]" : desc.jsonPath;
+        std::vector<UsageError> problems;
+        try {
+            problems = type->validatePlannedPass(pass, plan);
+        } catch (const std::exception& e) {  // the application's code, as validateUsages
+            diags.add({graph.file, passPath, desc.name, "",
+                       "the plan validator of type '" + type->name + "' threw: " + e.what()});
+        }
+        for (UsageError& e : problems) {
+            // The plan's usages are the pass's, in its order.
+            if (e.usage < pass.usages.size() && e.usage < desc.uses.size())
+                diags.add({graph.file, graph.usageJsonPath(index, e.usage), desc.name,
+                           graph.resources[desc.uses[e.usage].resource].name, std::move(e.message)});
+            else
+                diags.add({graph.file, passPath, desc.name, "", std::move(e.message)});
+        }
+    }
+    return diags;
 }
 
 }  // namespace skygraph

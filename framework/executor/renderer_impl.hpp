@@ -148,10 +148,10 @@ void checkSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::ve
 /// a usage that names a slot.
 void checkNoSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::vector<ResourceState>& resources);
 /// Throws ExecutorError, naming the pass, for what its type's own validators refuse of
-/// `desc` (its params, its usages): the loader runs them for a graph file, not for a
-/// GraphDesc built in code.
+/// `desc` (its params, its usages: the loader runs them for a graph file, not for a
+/// GraphDesc built in code) and of `pass` as `plan` runs it.
 void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, const PassTypeInfo& type,
-                             const GraphDesc& graph);
+                             const GraphDesc& graph, const Plan& plan);
 /// The framebuffer's extent: the attachments' (their usages' base mip). Throws ExecutorError
 /// naming the pass and two of them when they differ.
 [[nodiscard]] VkExtent2D framebufferExtent(const PlannedPass& pass, const PassAttachments& attachments,

@@ -83,7 +83,7 @@ void checkNoSlots(const PlannedPass& pass, const PassTypeInfo& type, const std::
 }
 
 void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, const PassTypeInfo& type,
-                             const GraphDesc& graph) {
+                             const GraphDesc& graph, const Plan& plan) {
     std::string problems;
     const auto add = [&](const std::string& resource, const std::string& what) {
         problems += (problems.empty() ? "" : "; ") + passError(pass, resource, what);
@@ -96,6 +96,11 @@ void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, cons
         if (type.validateUsages)
             for (const UsageError& e : type.validateUsages(desc, graph))
                 add(e.usage < desc.uses.size() ? graph.resources.at(desc.uses[e.usage].resource).name : "", e.message);
+        if (type.validatePlannedPass)
+            for (const UsageError& e : type.validatePlannedPass(pass, plan)) {
+                const bool named = e.usage < pass.usages.size();
+                add(named ? std::string(plan.resources()[pass.usages[e.usage].resource].name) : "", e.message);
+            }
     } catch (const std::exception& e) {
         add("", "the validators of type '" + type.name + "' threw: " + e.what());
     }
@@ -166,7 +171,7 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
         if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type)) {
             if (type->acceptsAnyUsage) checkNoSlots(pass, *type, s.resources);
             else checkSlots(pass, *type, s.resources);
-            checkWithTypeValidators(pass, *ps.desc, *type, s.graph);
+            checkWithTypeValidators(pass, *ps.desc, *type, s.graph, s.plan);
         }
     ps.implementation = implementationOf(pass, *ps.desc);
     ps.attachments = attachmentsOf(pass, s.resources);

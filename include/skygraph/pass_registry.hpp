@@ -2,6 +2,7 @@
 // against it without a device, and the executor later attaches recording code by type name.
 #pragma once
 
+#include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
 #include <skygraph/usage.hpp>
 
@@ -77,6 +78,14 @@ struct UsageError {
 /// `graph` holds the resources they name. Reads both during the call only.
 using UsageValidator = std::function<std::vector<UsageError>(const PassDesc& pass, const GraphDesc& graph)>;
 
+class Plan;
+struct PlannedPass;
+
+/// Checks `pass`, a pass of this type as `plan` runs it: what depends on which passes run
+/// before it, which the features choose (a UsageError's `usage` indexes pass.usages, which
+/// are in the order the pass declares them). Reads both during the call only.
+using PlannedPassValidator = std::function<std::vector<UsageError>(const PlannedPass& pass, const Plan& plan)>;
+
 /// Everything the compiler needs to know about a pass type.
 struct PassTypeInfo {
     std::string name;
@@ -96,6 +105,11 @@ struct PassTypeInfo {
     /// error, so that a pass the type cannot record is refused with the file's JSON path
     /// rather than when the graph runs. An exception it throws is reported at the pass's `uses`.
     UsageValidator validateUsages;
+    /// Optional. Called for each pass of this type in a plan by plannedPassProblems() (which
+    /// `skygraph compile` and `check` call) and by a renderer building the plan, so that what
+    /// only the plan shows is refused before anything records. An exception it throws is
+    /// reported like a returned error, at the pass.
+    PlannedPassValidator validatePlannedPass;
 };
 
 /// Pass types by name. Owns its entries; copyable because it is only data.
@@ -131,5 +145,11 @@ private:
 /// Throws std::invalid_argument when `registry` already has one of them; those added before
 /// it stay.
 void registerBuiltinPassTypes(PassRegistry& registry);
+
+/// What the validatePlannedPass of each type in `registry` finds in the passes of `plan`,
+/// compiled from `graph`: a diagnostic per problem at the usage's JSON path (the pass's for a
+/// problem of no usage), naming the pass and the resource. Empty when there is none. Reads all
+/// three during the call only.
+[[nodiscard]] Diagnostics plannedPassProblems(const Plan& plan, const GraphDesc& graph, const PassRegistry& registry);
 
 }  // namespace skygraph

@@ -77,7 +77,6 @@ public:
     explicit ForwardPass(const PassDesc&) {}
 
     void createPipelines(const PipelineContext& ctx) override {
-        checkDepthStart(ctx);
         GraphicsPipelineRecipe recipe;
         recipe.vertex = compileShader(*ctx.shaders, VK_SHADER_STAGE_VERTEX_BIT, "passes/forward.vert");
         // Lit by the environment pipeline's products when the graph binds all three (split-sum
@@ -110,25 +109,6 @@ public:
         if (!vertices_.buffer) createMeshBuffer();
         if (!models_) models_ = std::make_unique<ModelResources>(ctx.device, ctx.physicalDevice);
         pipeline_ = std::move(pipeline);
-    }
-
-    /// The depth test needs a start: a Write is cleared by its load op only where it is the
-    /// first use of the resource in the plan. The loader refuses a Write of a resource without
-    /// `clear`, but which pass comes first depends on the features, so a Write after another
-    /// pass's use (two depth passes that both run) is found only here, in the plan.
-    static void checkDepthStart(const PipelineContext& ctx) {
-        for (const BoundResource& r : ctx.resources) {
-            if (!r.usage || r.usage->slot != "depth" || r.usage->usage.access != Access::Write ||
-                r.usage->load == LoadOp::Clear)
-                continue;
-            const std::string where = "pass '" + std::string(ctx.pass ? ctx.pass->name : "") + "', " +
-                                      (r.desc ? "resource '" + r.desc->name + "'" : std::string("slot 'depth'")) + ": ";
-            throw std::runtime_error(
-                where + "ForwardPass tests depth against what slot 'depth' starts with, and this Write is not the "
-                        "first use of the resource in the plan (a pass before it that runs uses it), so it discards "
-                        "what that pass left and does not start from the clear either: use ReadWrite to test against "
-                        "what that pass left, or let only one of them run");
-        }
     }
 
     /// The textures of models drawn for the first time, filled by the compiler's upload steps

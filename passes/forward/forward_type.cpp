@@ -2,6 +2,8 @@
 #include "builtin_pass_types.hpp"
 #include "param_rules.hpp"
 
+#include <skygraph/plan.hpp>
+
 namespace skygraph::passes {
 
 PassTypeInfo forwardPassType() {
@@ -33,6 +35,21 @@ PassTypeInfo forwardPassType() {
         }
         return problems;
     };
+    // Which pass uses the resource first depends on the features, so a Write after another
+    // pass's use (two depth passes that both run) shows only in the plan: its load op there is
+    // not the clear's.
+    const auto checkDepthStartInPlan = [](const PlannedPass& pass, const Plan&) {
+        std::vector<UsageError> problems;
+        for (size_t i = 0; i < pass.usages.size(); ++i) {
+            const PlannedUsage& use = pass.usages[i];
+            if (use.slot != "depth" || use.usage.access != Access::Write || use.load == LoadOp::Clear) continue;
+            problems.push_back({i, "ForwardPass tests depth against what slot 'depth' starts with, and this Write is "
+                                   "not the first use of the resource in the plan (a pass before it that runs uses "
+                                   "it), so it discards what that pass left and does not start from the clear either: "
+                                   "use ReadWrite to test against what that pass left, or let only one of them run"});
+        }
+        return problems;
+    };
     return {"ForwardPass",
             {slot("color", Stage::ColorAttachment, {Access::Write, Access::ReadWrite}, BindAs::Default,
                   "HDR target the objects shade into"),
@@ -54,7 +71,8 @@ PassTypeInfo forwardPassType() {
             rules({}),
             "Metal/rough GGX shading of the scene's objects.",
             {},
-            checkDepthStart};
+            checkDepthStart,
+            checkDepthStartInPlan};
 }
 
 }  // namespace skygraph::passes

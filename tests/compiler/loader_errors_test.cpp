@@ -1118,16 +1118,18 @@ TEST(LoaderErrors, PassTypesCheckWhatTheirSlotsCannotSay) {
     expectLoads(g);
 }
 
+/// A 4x4 image of `format` cleared to `color`.
+Json clearedImage(const char* format, Json color) {
+    return Json{{"type", "image2d"}, {"format", format}, {"extent", {4, 4}}, {"clear", {{"color", std::move(color)}}}};
+}
+
 TEST(LoaderErrors, IntegerFormatsClearToIntegers) {
     Json g = baseGraph();
-    const auto image = [](const char* format, Json color) {
-        return Json{{"type", "image2d"}, {"format", format}, {"extent", {4, 4}}, {"clear", {{"color", color}}}};
-    };
-    g["resources"]["fraction"] = image("R32_UINT", {0.5, 0, 0, 1});
-    g["resources"]["negative"] = image("R32G32B32A32_UINT", {-1, 0, 0, 1});
-    g["resources"]["huge"] = image("R32_SINT", {0, 0, 0, 16777217});
-    g["resources"]["fine_uint"] = image("R32_UINT", {16777216, 0, 0, 1});
-    g["resources"]["fine_sint"] = image("R32_SINT", {-16777216, 7, 0, 1});
+    g["resources"]["fraction"] = clearedImage("R32_UINT", {0.5, 0, 0, 1});
+    g["resources"]["negative"] = clearedImage("R32G32B32A32_UINT", {-1, 0, 0, 1});
+    g["resources"]["huge"] = clearedImage("R32_SINT", {0, 0, 0, 16777217});
+    g["resources"]["fine_uint"] = clearedImage("R32_UINT", {16777216, 0, 0, 1});
+    g["resources"]["fine_sint"] = clearedImage("R32_SINT", {-16777216, 7, 0, 1});
     const auto ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "resources.fraction.clear.color", "", "fraction",
                         {"expected four integers in [0, 16777216] for the integer format R32_UINT"}))
@@ -1144,21 +1146,18 @@ TEST(LoaderErrors, IntegerFormatsClearToIntegers) {
 // changed. The edges of each range load.
 TEST(LoaderErrors, ColorClearsHoldValuesOfTheirFormat) {
     Json g = baseGraph();
-    const auto image = [](const char* format, Json color) {
-        return Json{{"type", "image2d"}, {"format", format}, {"extent", {4, 4}}, {"clear", {{"color", color}}}};
-    };
-    g["resources"]["unorm"] = image("R8G8B8A8_UNORM", {0, 0, 1.5, 1});
-    g["resources"]["srgb"] = image("B8G8R8A8_SRGB", {-0.25, 0, 0, 1});
-    g["resources"]["snorm"] = image("R8G8B8A8_SNORM", {0, -1.01, 0, 1});
-    g["resources"]["half"] = image("R16G16B16A16_SFLOAT", {0, 0, 0, 65505});
-    g["resources"]["single"] = image("R32_SFLOAT", {1e39, 0, 0, 1});
-    g["resources"]["ufloat"] = image("B10G11R11_UFLOAT_PACK32", {-1, 0, 0, 1});
-    g["resources"]["fine_unorm"] = image("A2B10G10R10_UNORM_PACK32", {0, 1, 0.5, 1});
-    g["resources"]["fine_snorm"] = image("R8G8B8A8_SNORM", {-1, 1, 0, 1});
-    g["resources"]["fine_half"] = image("R16_SFLOAT", {-65504, 65504, 0, 1});
-    g["resources"]["fine_single"] = image("R32G32B32A32_SFLOAT", {-3.4028234e38, 3.4028234e38, 1e30, 1});
-    g["resources"]["fine_ufloat"] = image("B10G11R11_UFLOAT_PACK32", {64512, 0, 0, 1});
-    g["resources"]["fine_shared"] = image("E5B9G9R9_UFLOAT_PACK32", {65408, 0, 0, 1});
+    g["resources"]["unorm"] = clearedImage("R8G8B8A8_UNORM", {0, 0, 1.5, 1});
+    g["resources"]["srgb"] = clearedImage("B8G8R8A8_SRGB", {-0.25, 0, 0, 1});
+    g["resources"]["snorm"] = clearedImage("R8G8B8A8_SNORM", {0, -1.01, 0, 1});
+    g["resources"]["half"] = clearedImage("R16G16B16A16_SFLOAT", {0, 0, 0, 65505});
+    g["resources"]["single"] = clearedImage("R32_SFLOAT", {1e39, 0, 0, 1});
+    g["resources"]["ufloat"] = clearedImage("B10G11R11_UFLOAT_PACK32", {-1, 0, 0, 1});
+    g["resources"]["fine_unorm"] = clearedImage("A2B10G10R10_UNORM_PACK32", {0, 1, 0.5, 1});
+    g["resources"]["fine_snorm"] = clearedImage("R8G8B8A8_SNORM", {-1, 1, 0, 1});
+    g["resources"]["fine_half"] = clearedImage("R16_SFLOAT", {-65504, 65504, 0, 1});
+    g["resources"]["fine_single"] = clearedImage("R32G32B32A32_SFLOAT", {-3.4028234e38, 3.4028234e38, 1e30, 1});
+    g["resources"]["fine_ufloat"] = clearedImage("B10G11R11_UFLOAT_PACK32", {64512, 0, 0, 1});
+    g["resources"]["fine_shared"] = clearedImage("E5B9G9R9_UFLOAT_PACK32", {65408, 0, 0, 1});
     const auto ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "resources.unorm.clear.color", "", "unorm",
                         {"expected four numbers in [0, 1], the range of the format R8G8B8A8_UNORM (Vulkan converts a "

@@ -220,6 +220,9 @@ TEST_F(ExecutorTest, APassWhoseParamsOrUsagesItsTypeRefusesIsRefusedByName) {
     checked.validateUsages = [](const PassDesc&, const GraphDesc&) {
         return std::vector<UsageError>{{0, "wants a float target"}};
     };
+    checked.validatePlannedPass = [](const PlannedPass& pass, const Plan&) {
+        return std::vector<UsageError>{{0, "wants to run after '" + std::string(pass.name) + "'"}};
+    };
     lib.add(checked, [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
     GraphDesc g = parseGraph(graphText("Checked"), "<lib>", loading);
     const CompileOptions co = headless(g);
@@ -232,7 +235,7 @@ TEST_F(ExecutorTest, APassWhoseParamsOrUsagesItsTypeRefusesIsRefusedByName) {
         error = e.what();
     }
     EXPECT_EQ(error, "pass 'fill': params.color: red must be at most 0.2; pass 'fill', resource 'tex': wants a float "
-                     "target");
+                     "target; pass 'fill', resource 'tex': wants to run after 'fill'");
 }
 
 /// The error of setGraph() to a graph whose "fill" pass is of `type`, on a renderer of the
@@ -605,6 +608,36 @@ TEST(PassValidators, AValidatorThatThrowsIsReportedAtThePass) {
             EXPECT_EQ(what.find("malformed JSON"), std::string::npos) << what;
         }
     }
+}
+
+// What a type's plan validator finds is a diagnostic at the usage it names, or at the pass for
+// one it cannot name, and what it throws is one at the pass; passes of other types, and the
+// plan's inserted steps, are not asked.
+TEST(PassValidators, APlanValidatorIsReportedAtTheUsageOrThePass) {
+    PassRegistry registry = PassRegistry::withBuiltins();
+    PassTypeInfo named = fillType();
+    named.name = "PlanChecked";
+    named.validatePlannedPass = [](const PlannedPass& pass, const Plan& plan) {
+        EXPECT_EQ(pass.name, "fill");
+        EXPECT_EQ(plan.passes().front().name, "fill");
+        return std::vector<UsageError>{{0, "wants it cleared"}, {7, "wants a second usage"}};
+    };
+    registry.add(named);
+    PassTypeInfo throwing = fillType();
+    throwing.name = "PlanThrows";
+    throwing.validatePlannedPass = [](const PlannedPass&, const Plan&) -> std::vector<UsageError> {
+        throw std::runtime_error("cannot tell");
+    };
+    registry.add(throwing);
+    const auto problems = [&](const std::string& type) {
+        const GraphDesc g = parseGraph(graphText(type), "lib.json", registry);
+        return plannedPassProblems(compile(g, headless(g)), g, registry).format();
+    };
+    EXPECT_EQ(problems("PlanChecked"), "lib.json: passes[0].uses.tex: pass 'fill', resource 'tex': wants it cleared\n"
+                                       "lib.json: passes[0]: pass 'fill': wants a second usage\n");
+    EXPECT_EQ(problems("PlanThrows"), "lib.json: passes[0]: pass 'fill': the plan validator of type 'PlanThrows' "
+                                      "threw: cannot tell\n");
+    EXPECT_EQ(problems("Generic"), "");
 }
 
 // PassRegistry::add refuses a declaration the loader could not bind usages to, naming the type

@@ -84,7 +84,8 @@ fs::path goldenOf(const CheckCase& c, const GraphDesc& graph, const CheckOptions
 }
 
 /// Compile, golden and verifier: device-free, so cases run on several threads.
-void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions& options) {
+void compileAndCompare(CheckCase& c, const GraphDesc& graph, const PassRegistry& registry,
+                       const CheckOptions& options) {
     CompileOptions co;
     co.features = c.features;
     co.outputWidth = options.planWidth;
@@ -95,6 +96,11 @@ void compileAndCompare(CheckCase& c, const GraphDesc& graph, const CheckOptions&
         plan = compile(graph, co);
     } catch (const std::exception& e) {
         c.compileError = errorText(e);
+        return;
+    }
+    // What a pass type refuses of its passes as this plan runs them, a renderer would refuse.
+    if (const Diagnostics problems = plannedPassProblems(plan, graph, registry); !problems.empty()) {
+        c.compileError = problems.format();
         return;
     }
     c.passes = plan.passes().size();
@@ -230,7 +236,7 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
             if (!graphOf[i]) continue;
             const auto start = Clock::now();
             try {
-                compileAndCompare(cases[i], *graphOf[i], options);
+                compileAndCompare(cases[i], *graphOf[i], registry, options);
             } catch (const std::exception& e) {  // out of memory, say: this case fails, the rest go on
                 cases[i].notChecked = e.what();
             }

@@ -71,6 +71,9 @@ CompiledPlan compileOnce(const CompileArgs& args, const FeatureValues& features)
     const PassRegistry registry = PassRegistry::withBuiltins();
     const GraphDesc graph = loadGraphFile(args.graph, registry);
     const Plan plan = compile(graph, compileOptions(args, features));
+    // What a pass type refuses of its passes as this plan runs them, a renderer would refuse.
+    if (Diagnostics problems = plannedPassProblems(plan, graph, registry); !problems.empty())
+        throw GraphError(std::move(problems));
     spdlog::debug("{}: {} passes and {} resources -> {} passes run, {} culled, in {:.2f} ms", args.graph,
                   graph.passes.size(), graph.resources.size(), plan.passes().size(), plan.culled().size(),
                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
