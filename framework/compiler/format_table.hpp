@@ -64,8 +64,9 @@ static_assert(kFormats.size() < 256);
 }
 
 /// What a colour clear of a format holds as written (docs/graph-format.md, `clear`). The spec
-/// converts a clear value to the format: a normalized format clamps it into its range, and a
-/// float format's overflow is the implementation's. A value outside is refused, not changed.
+/// converts a clear value to the format: a normalized or shared-exponent format clamps it into
+/// its range, a float format's overflow is the implementation's, and a channel the format
+/// lacks is ignored. A value outside is refused, not changed.
 struct ClearColorRange {
     double lowest = 0, highest = 0;  ///< Every channel holds both; empty for depth/stencil formats.
     bool integers = false;           ///< UINT and SINT: the clear writes integers, kept as floats.
@@ -74,7 +75,9 @@ struct ClearColorRange {
 [[nodiscard]] constexpr ClearColorRange clearColorRange(VkFormat format) noexcept {
     constexpr double kExactInFloat = 16777216.0;  // 2^24: a float holds every integer up to it
     constexpr double kHalfMax = 65504.0;
-    constexpr double kFloatMax = 3.40282346638528859812e+38;  // FLT_MAX
+    // The largest double that a graph file's number, stored as a float, rounds to FLT_MAX from
+    // rather than to infinity: FLT_MAX plus half its ulp, less a double's ulp there.
+    constexpr double kFloatMax = 3.40282346638528859812e+38 + 0x1p103 - 0x1p76;
     switch (format) {
         case VK_FORMAT_R8_UNORM: case VK_FORMAT_R8G8_UNORM: case VK_FORMAT_R8G8B8A8_UNORM:
         case VK_FORMAT_R8G8B8A8_SRGB: case VK_FORMAT_B8G8R8A8_UNORM: case VK_FORMAT_B8G8R8A8_SRGB:

@@ -43,7 +43,7 @@ std::string clearProblem(const ResourceDesc& r) {
     std::snprintf(text, sizeof text, "its clear color [%.9g, %.9g, %.9g, %.9g] must hold four ", double(c.color[0]),
                   double(c.color[1]), double(c.color[2]), double(c.color[3]));
     return text + std::string(range.integers ? "integers" : "numbers") + " in " + clearRangeText(range) +
-           ", the range of the format " + std::string(r.format.name) + " (Vulkan converts a value outside it to another)";
+           ", the range of the format " + std::string(r.format.name) + " (" + std::string(kClearOutsideRange) + ")";
 }
 
 /// How a FormatInfo that formatInfoMatches() refuses differs from the known one, if any.

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace skygraph {
 
@@ -88,6 +89,9 @@ enum class StatesProblem : uint8_t {
         if (!(v >= range.lowest && v <= range.highest) || (range.integers && std::trunc(v) != v)) return false;
     return true;
 }
+
+/// Why a clear value outside its format's range is refused, as messages say it.
+inline constexpr std::string_view kClearOutsideRange = "a clear would not write any other value as given";
 
 /// "[0, 1]", "[-65504, 65504]": a range as messages give it.
 [[nodiscard]] std::string clearRangeText(const format_table::ClearColorRange& range);

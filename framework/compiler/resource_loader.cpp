@@ -174,7 +174,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
             fail("clear.color", "expected four numbers");
         else if (range.highest > 0 && !fits)
             fail("clear.color", "expected four numbers in " + clearRangeText(range) + ", the range of the format " +
-                                    std::string(r.format.name) + " (Vulkan converts a value outside it to another), got " +
+                                    std::string(r.format.name) + " (" + std::string(kClearOutsideRange) + "), got " +
                                     color.dump());
         else
             for (size_t i = 0; i < 4; ++i) c.color[i] = color[i].number<float>();

@@ -108,7 +108,8 @@ struct PassTypeInfo {
     /// Optional. Called for each pass of this type in a plan by plannedPassProblems() (which
     /// `skygraph compile` and `check` call) and by a renderer building the plan, so that what
     /// only the plan shows is refused before anything records. An exception it throws is
-    /// reported like a returned error, at the pass.
+    /// reported like a returned error, at the pass. `check --jobs N` calls it from several
+    /// threads at once: it must not change state that other calls read.
     PlannedPassValidator validatePlannedPass;
 };
 

@@ -669,7 +669,7 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
         // A clear value its format does not hold, which Vulkan would clamp or overflow.
         {[](ResourceDesc& r) { r.clear = ClearValue{.color = {70000, 0, 0, 1}}; },
          "its clear color [70000, 0, 0, 1] must hold four numbers in [-65504, 65504], the range of the format "
-         "R16G16B16A16_SFLOAT (Vulkan converts a value outside it to another)"},
+         "R16G16B16A16_SFLOAT (a clear would not write any other value as given)"},
         {[](ResourceDesc& r) { r.clear = ClearValue{.color = {0, std::numeric_limits<float>::quiet_NaN(), 0, 1}}; },
          "its clear color [0, nan, 0, 1] must hold four numbers in [-65504, 65504]"},
         {[](ResourceDesc& r) {

@@ -1155,24 +1155,27 @@ TEST(LoaderErrors, ColorClearsHoldValuesOfTheirFormat) {
     g["resources"]["fine_unorm"] = clearedImage("A2B10G10R10_UNORM_PACK32", {0, 1, 0.5, 1});
     g["resources"]["fine_snorm"] = clearedImage("R8G8B8A8_SNORM", {-1, 1, 0, 1});
     g["resources"]["fine_half"] = clearedImage("R16_SFLOAT", {-65504, 65504, 0, 1});
-    g["resources"]["fine_single"] = clearedImage("R32G32B32A32_SFLOAT", {-3.4028234e38, 3.4028234e38, 1e30, 1});
+    g["resources"]["past_single"] = clearedImage("R32_SFLOAT", {0, 3.4028236e38, 0, 1});
+    // FLT_MAX as printed to 9 digits: a little more, and stored as a float it is FLT_MAX.
+    g["resources"]["fine_single"] = clearedImage("R32G32B32A32_SFLOAT", {-3.4028235e38, 3.4028235e38, 1e30, 1});
     g["resources"]["fine_ufloat"] = clearedImage("B10G11R11_UFLOAT_PACK32", {64512, 0, 0, 1});
     g["resources"]["fine_shared"] = clearedImage("E5B9G9R9_UFLOAT_PACK32", {65408, 0, 0, 1});
     const auto ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "resources.unorm.clear.color", "", "unorm",
-                        {"expected four numbers in [0, 1], the range of the format R8G8B8A8_UNORM (Vulkan converts a "
-                         "value outside it to another), got [0,0,1.5,1]"}))
+                        {"expected four numbers in [0, 1], the range of the format R8G8B8A8_UNORM (a clear would not "
+                         "write any other value as given), got [0,0,1.5,1]"}))
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.srgb.clear.color", "", "srgb", {"[0, 1]", "B8G8R8A8_SRGB"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.snorm.clear.color", "", "snorm", {"[-1, 1]", "R8G8B8A8_SNORM"})) << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.half.clear.color", "", "half", {"[-65504, 65504]", "R16G16B16A16_SFLOAT"}))
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.single.clear.color", "", "single",
-                        {"[-3.40282347e+38, 3.40282347e+38]", "R32_SFLOAT"}))
+                        {"[-3.40282357e+38, 3.40282357e+38]", "R32_SFLOAT"}))
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.ufloat.clear.color", "", "ufloat", {"[0, 64512]", "B10G11R11_UFLOAT_PACK32"}))
         << listAll(ds);
-    EXPECT_EQ(ds.size(), 6u) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.past_single.clear.color", "", "past_single", {"R32_SFLOAT"})) << listAll(ds);
+    EXPECT_EQ(ds.size(), 7u) << listAll(ds);
 }
 
 TEST(LoaderErrors, UnknownFeatureOverrideInCompileOptions) {
