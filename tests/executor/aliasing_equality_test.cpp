@@ -122,6 +122,12 @@ struct RandomCase {
     bool heapsShared = true;
 };
 
+// Names the case in test listings (gtest would print the struct's bytes, padding included).
+void PrintTo(const RandomCase& c, std::ostream* out) {
+    *out << "seed " << c.seed << ", " << c.framesInFlight << " frame(s) in flight, heaps "
+         << (c.heapsShared ? "shared" : "per frame");
+}
+
 class AliasedRandomGraph : public ExecutorTest, public ::testing::WithParamInterface<RandomCase> {};
 
 TEST_P(AliasedRandomGraph, RendersTheSameBytesAsUnaliased) {

@@ -44,6 +44,9 @@ struct Case {
     std::string reference;  ///< reference/<reference>.png; empty: <name>
 };
 
+// Names the case in test listings (gtest would print the struct's bytes, padding included).
+void PrintTo(const Case& c, std::ostream* out) { *out << c.name; }
+
 class ReferenceImages : public ::testing::TestWithParam<Case> {};
 
 TEST_P(ReferenceImages, MatchTheReviewedFrame) {

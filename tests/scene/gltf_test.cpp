@@ -32,6 +32,9 @@ struct BadFile {
     std::string message;  ///< part of its message
 };
 
+// Names the case in test listings (gtest would print the struct's bytes, padding included).
+void PrintTo(const BadFile& b, std::ostream* out) { *out << b.file; }
+
 class BadGltf : public ::testing::TestWithParam<BadFile> {};
 
 TEST_P(BadGltf, IsRefusedNamingTheFileAndThePlace) {
