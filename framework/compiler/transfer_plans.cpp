@@ -157,14 +157,35 @@ SubresourceRange wholeOf(const ResourceDesc& d, const Plan& frame) {
     return {0, std::max(1u, d.mipCount(frame.outputWidth(), frame.outputHeight())), 0, std::max(1u, d.layers)};
 }
 
-/// Where the frame's first pass that uses resource `r` uses it.
-VulkanScope firstUseScope(const Plan& frame, uint32_t r) {
+/// Where the frame first uses each subresource of resource `r` (declared as `d`): the scopes of
+/// those uses together, which is where the frame expects a General resource's contents to be
+/// visible when it starts (the synchronizer's boundary scope). A later pass's first use of
+/// another mip or layer counts as much as the first pass's.
+VulkanScope firstUsesScope(const Plan& frame, uint32_t r, const ResourceDesc& d) {
     VulkanScope scope;
     const std::span<const PlannedPass> passes = frame.passes();
-    const uint32_t first = frame.resources()[r].firstPass;
-    if (first >= passes.size()) throw std::out_of_range("a plan resource's first pass is not in the plan");
-    for (const PlannedUsage& u : passes[first].usages)
-        if (u.resource == r) {
+    const PlannedResource& res = frame.resources()[r];
+    if (res.firstPass >= passes.size() || res.lastPass >= passes.size() || res.firstPass > res.lastPass)
+        throw std::out_of_range("a plan resource's lifetime is not in the plan");
+    const SubresourceRange whole = wholeOf(d, frame);
+    const size_t layers = whole.layerCount;
+    std::vector<bool> seen(d.isImage() ? size_t(whole.mipCount) * layers : 1, false);
+    size_t unseen = seen.size();
+    for (uint32_t p = res.firstPass; p <= res.lastPass && unseen > 0; ++p)
+        for (const PlannedUsage& u : passes[p].usages) {
+            if (u.resource != r) continue;
+            bool first = false;
+            const auto mark = [&](size_t cell) {
+                if (cell >= seen.size() || seen[cell]) return;
+                seen[cell] = true;
+                first = true;
+                --unseen;
+            };
+            if (!d.isImage()) mark(0);
+            for (uint32_t m = u.range.baseMip; d.isImage() && m < u.range.baseMip + u.range.mipCount; ++m)
+                for (uint32_t l = u.range.baseLayer; l < u.range.baseLayer + u.range.layerCount; ++l)
+                    mark(size_t(m) * layers + l);
+            if (!first) continue;
             scope.stages |= u.stages;
             scope.access |= u.access;
         }
@@ -189,7 +210,7 @@ ExternalState arrivesIn(const PlannedResource& res, const ResourceDesc& d) {
 VulkanScope frameStartScope(const Plan& frame, uint32_t r, const ResourceDesc& d) {
     VulkanScope scope = externalScope(d, arrivesIn(frame.resources()[r], d));
     if (scope.stages == 0 || d.initial == ExternalState::General) {
-        const VulkanScope first = firstUseScope(frame, r);
+        const VulkanScope first = firstUsesScope(frame, r, d);
         scope.stages = first.stages;
         scope.access = first.access;
     }

@@ -5,6 +5,7 @@
 // the host domain (dstStage HOST, HOST_READ); a write after a read in one pass only an
 // execution dependency.
 #include <skygraph/compiler.hpp>
+#include <skygraph/plan_format.hpp>
 #include <skygraph/transfer_plans.hpp>
 
 #include <gtest/gtest.h>
@@ -221,6 +222,28 @@ TEST(InPassBarrier, OrdersAReadWriteTransfersCopyInAfterItsCopyOut) {
     EXPECT_EQ(ib.barrier.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
     EXPECT_EQ(ib.barrier.oldLayout, VK_IMAGE_LAYOUT_GENERAL);
     EXPECT_EQ(ib.barrier.newLayout, VK_IMAGE_LAYOUT_GENERAL);
+}
+
+// The frame expects a General resource's contents visible where it first uses each of its
+// subresources (the synchronizer's boundary scope), and there is no barrier before a pass that
+// is the first to touch a layer. Layer 1 is first used by the second pass's fragment shader:
+// the setup's last barrier must reach it as well as the first pass's compute shader.
+TEST(Setup, AGeneralResourceIsReadyForTheFirstUseOfEachSubresource) {
+    const GraphDesc g = graphOf(R"("acc": {"type": "image2d_array", "format": "R16G16B16A16_SFLOAT",
+        "extent": [16, 16], "layers": 2, "external": true, "final": "General"})", R"(
+        {"name": "a", "type": "Generic", "uses": [{"resource": "acc", "access": "ReadWrite", "stage": "Compute",
+                                                   "layers": [0, 1]}]},
+        {"name": "b", "type": "Generic", "uses": [{"resource": "acc", "access": "ReadWrite", "stage": "Fragment",
+                                                   "layers": [1, 1]}]})");
+    const Plan frame = compile(g);
+    EXPECT_TRUE(frame.passes()[1].barriers.empty()) << planToText(frame);
+    const Plan setup = planSetup(g, frame);
+    ASSERT_EQ(setup.finalBarriers().size(), 1u) << planToText(setup);
+    const Barrier& ready = setup.finalBarriers()[0];
+    EXPECT_EQ(ready.range, (SubresourceRange{0, 1, 0, 2}));
+    EXPECT_EQ(ready.newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(ready.dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    EXPECT_EQ(ready.dstAccess, VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
 }
 
 TEST(Setup, EveryExternalThatArrivesInAStateIsSetUpAndNothingElse) {
