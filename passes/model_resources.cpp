@@ -134,11 +134,12 @@ ModelResources::Model& ModelResources::prepare(const std::shared_ptr<const Trian
             if (t->present()) used.at(size_t(t->image))[0] = true;
     }
     m->textures.resize(mesh->images.size());
+    const std::string model = "model " + std::to_string(++modelsPrepared_) + " ";
     for (size_t i = 0; i < mesh->images.size(); ++i) {
         const MeshImage& image = mesh->images[i];
         for (size_t srgb = 0; srgb < 2; ++srgb) {
             if (!used[i][srgb]) continue;
-            const SampledImageShape shape{image.name + (srgb ? " (sRGB)" : ""),
+            const SampledImageShape shape{model + image.name + (srgb ? " (sRGB)" : ""),
                                           *findFormat(srgb ? "R8G8B8A8_SRGB" : "R8G8B8A8_UNORM"), image.width,
                                           image.height};
             m->staging.push_back(hostBuffer(image.rgba.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, image.rgba.data()));

@@ -83,6 +83,9 @@ private:
     OwnedTexture white_;
     HostBuffer whiteStaging_;
     std::vector<std::unique_ptr<Model>> models_;
+    /// Models prepared so far: each one's number keeps its images' upload names apart from
+    /// another model's (every glTF file names its images "images[i]").
+    uint64_t modelsPrepared_ = 0;
 };
 
 }  // namespace skygraph::passes

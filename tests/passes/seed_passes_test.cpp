@@ -129,6 +129,32 @@ TEST_F(SeedPasses, AForwardPassDepthWriteAfterAnotherPassIsRefused) {
     renderer.waitIdle();
 }
 
+// Every glTF file names its images "images[i]": two textured models uploaded in one frame must
+// not share upload names (the second was refused: "another image has that name"). Both
+// copies of the box stand in one place, so the second fails the depth test everywhere and the
+// frame is the first copy's.
+TEST_F(SeedPasses, TwoTexturedModelsInOneFrameRenderAsEachAlone) {
+    const std::string box = R"({ "type": "gltf", "file": "/usr/share/assimp/models/glTF2/)";
+    const auto scene = [&](const std::string& objects) {
+        return parseScene(R"({ "camera": { "position": [0.0, 0.9, 2.6], "pitch_deg": -18.0, "fov_y_deg": 40.0 },
+                               "environment": { "file": "procedural" }, "objects": [)" + objects + "] }",
+                          "boxes.json", kSource);
+    };
+    const std::string binary = box + R"(BoxTextured-glTF-Binary/BoxTextured.glb" })";
+    const ImageData one = renderRaster(scene(binary), 48, 32);
+    // The .gltf's own copy of the box, drawn second: a model of its own, with its own images.
+    const ImageData two = renderRaster(scene(binary + ", " + box + R"(BoxTextured-glTF/BoxTextured.gltf" })"), 48, 32);
+    ASSERT_EQ(one.rgba.size(), two.rgba.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < one.rgba.size(); ++i) differing += one.rgba[i] != two.rgba[i];
+    EXPECT_EQ(differing, 0u);
+    // The box covers part of the frame: the comparison sees its texture.
+    const ImageData sky = renderRaster(scene(""), 48, 32);
+    size_t boxValues = 0;
+    for (size_t i = 0; i < one.rgba.size(); ++i) boxValues += std::abs(one.rgba[i] - sky.rgba[i]) > 0.01f;
+    EXPECT_GT(boxValues, 48u * 32u / 10u);
+}
+
 TEST_F(SeedPasses, DebugViewsPassThroughInZeroToOne) {
     Scene scene = loadSceneFile(kSource / "scenes/default.json");
     scene.debugView = DebugView::Roughness;
