@@ -258,6 +258,15 @@ private:
         if (a.byteOffset > view.byteLength)
             return error(label, "byteOffset " + std::to_string(a.byteOffset) + " lies outside its buffer view of " +
                                     std::to_string(view.byteLength) + " bytes"), Span{};
+        // glTF requires each element's components aligned to their size, in the view and in the
+        // buffer: a file that is not was written wrongly, and read as it is it draws garbage.
+        const int componentBytes = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+        if (componentBytes > 0 && ((a.byteOffset % size_t(componentBytes)) != 0 ||
+                                   ((view.byteOffset + a.byteOffset) % size_t(componentBytes)) != 0))
+            return error(label, "byteOffset " + std::to_string(a.byteOffset) + " (" +
+                                    std::to_string(view.byteOffset + a.byteOffset) + " into its buffer) is not a " +
+                                    "multiple of its components' " + std::to_string(componentBytes) +
+                                    " bytes, as glTF requires"), Span{};
         // byteOffset <= the view's length <= its buffer's, count <= 2^32 and the schema check holds
         // byteStride to 252: no overflow in size_t.
         const size_t needed = a.byteOffset + stride * (a.count - 1) + elementBytes;

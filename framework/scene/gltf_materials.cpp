@@ -134,12 +134,12 @@ MeshMaterial GltfMaterials::read(int index, const std::string& reference) {
                 unit(pbr.baseColorFactor[size_t(c)], "pbrMetallicRoughness.baseColorFactor[" + std::to_string(c) + "]");
     m.metallic = unit(pbr.metallicFactor, "pbrMetallicRoughness.metallicFactor");
     m.roughness = unit(pbr.roughnessFactor, "pbrMetallicRoughness.roughnessFactor");
+    // glTF bounds it to [0, 1] (brighter takes KHR_materials_emissive_strength, which skygraph
+    // does not read): a larger value would pass for the file's intent, and past a float's
+    // range shade infinity.
     if (mat.emissiveFactor.size() == 3)
-        for (int c = 0; c < 3; ++c) {
-            const double e = mat.emissiveFactor[size_t(c)];
-            if (!(e >= 0.0) || !std::isfinite(e)) error_(mpath + ".emissiveFactor", "must be finite and >= 0");
-            else m.emissive[size_t(c)] = e;
-        }
+        for (int c = 0; c < 3; ++c)
+            m.emissive[size_t(c)] = unit(mat.emissiveFactor[size_t(c)], "emissiveFactor[" + std::to_string(c) + "]");
     const auto textureOf = [&](const auto& info, const std::string& key) {
         return texture(info.index, info.texCoord, mpath + key);
     };

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -74,15 +75,19 @@ private:
         }
     }
 
+    /// The GPU reads scenes as 32-bit floats: past their range a value becomes infinite, and
+    /// below their normal numbers it loses its precision (or becomes 0).
+    static bool floatHolds(double d) {
+        return d == 0.0 || (std::abs(d) <= double(std::numeric_limits<float>::max()) &&
+                            std::abs(d) >= double(std::numeric_limits<float>::min()));
+    }
+
     /// A finite number in `range` at `path`; false (with an error) otherwise.
     bool number(const json& v, const std::string& path, const Range& range, double& out) {
         if (!v.is_number()) return error(path, "expected a number, got " + v.dump()), false;
         const double d = v.get<double>();
         if (!std::isfinite(d)) return error(path, "must be a finite number"), false;
-        // The GPU reads scenes as 32-bit floats: past their range a value becomes infinite, and
-        // below their normal numbers it loses its precision (or becomes 0).
-        if (std::abs(d) > double(std::numeric_limits<float>::max()) ||
-            (d != 0.0 && std::abs(d) < double(std::numeric_limits<float>::min())))
+        if (!floatHolds(d))
             return error(path, "must be 0 or of a magnitude a 32-bit float holds (1.2e-38 to 3.4e38), got " + v.dump()),
                    false;
         if (!range.contains(d)) return error(path, "must be " + range.text() + ", got " + v.dump()), false;
@@ -144,9 +149,11 @@ private:
                     scene_.debugView);
         if (auto it = root.find("objects"); it != root.end()) {
             if (!it->is_array()) return error("objects", "must be an array of objects");
+            // Refused before any is loaded: each glTF object decodes its file, and thousands of
+            // them would take the memory the limit is there to keep.
             if (it->size() > kMaxSceneObjects)
-                error("objects", "has " + std::to_string(it->size()) + " objects; at most " +
-                                     std::to_string(kMaxSceneObjects) + " are allowed");
+                return error("objects", "has " + std::to_string(it->size()) + " objects; at most " +
+                                            std::to_string(kMaxSceneObjects) + " are allowed");
             for (size_t i = 0; i < it->size(); ++i) loadObject((*it)[i], "objects[" + std::to_string(i) + "]");
         }
         if (gltfCamera) cameraFromGltf();
@@ -154,10 +161,21 @@ private:
 
     /// `"camera": "gltf"`: the first camera of the first glTF object that has one.
     void cameraFromGltf() {
-        for (const SceneObject& o : scene_.objects) {
-            const auto* model = std::get_if<GltfModel>(&o.shape);
+        for (size_t i = 0; i < scene_.objects.size(); ++i) {
+            const auto* model = std::get_if<GltfModel>(&scene_.objects[i].shape);
             if (!model || !model->mesh->camera) continue;
             const MeshCamera& c = *model->mesh->camera;
+            // What camera.position and camera.near take from the scene file, they take from the glTF.
+            const bool holds = floatHolds(c.near) && floatHolds(c.position[0]) && floatHolds(c.position[1]) &&
+                               floatHolds(c.position[2]);
+            if (!holds) {
+                char values[160];
+                std::snprintf(values, sizeof values, "position [%.9g, %.9g, %.9g] and near plane %.9g", c.position[0],
+                              c.position[1], c.position[2], c.near);
+                return error("camera", "objects[" + std::to_string(i) + "]'s glTF camera has the " + values +
+                                           ": each must be 0 or of a magnitude a 32-bit float holds (1.2e-38 to "
+                                           "3.4e38), as the scene's camera's");
+            }
             SceneCamera& cam = scene_.camera;
             cam.position = c.position;
             const math::Vec3<double> f(c.forward[0], c.forward[1], c.forward[2]), u(c.up[0], c.up[1], c.up[2]);

@@ -410,6 +410,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "must be 10497 (REPEAT), 33071 (CLAMP_TO_EDGE) or 33648 (MIRRORED_REPEAT), got 9729"},
         BadQuad{"strength", {kUpright, {}, R"({"occlusionTexture": {"index": 0, "strength": 1.5}})", kPixelTexture},
                 "materials[0].occlusionTexture.strength", "must be in [0, 1], got 1.5"},
+        BadQuad{"emissive", {{}, {}, R"({"emissiveFactor": [0, 2.5, 0]})"}, "materials[0].emissiveFactor[1]",
+                "must be in [0, 1], got 2.500000"},
         BadQuad{"alpha-mode", {{}, {}, R"({"alphaMode": "GLASS"})"}, "materials[0].alphaMode",
                 "must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"GLASS\""},
         BadQuad{"alpha-cutoff", {{}, {}, R"({"alphaCutoff": -1})"}, "materials[0].alphaCutoff",

@@ -618,6 +618,30 @@ TEST(Gltf, NamesWithControlCharactersLoadAndMessagesShowThemEscaped) {
     fs::remove_all(mesh->file.parent_path());
 }
 
+// glTF requires an accessor's components aligned to their size in its buffer view and buffer;
+// read as it is, a misaligned one drew garbage (the model vanished) without a word.
+TEST(Gltf, AMisalignedAccessorIsRefused) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-misaligned-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    const fs::path source = kModels / "cameras";
+    fs::copy_file(source / "simpleSquare.bin", dir / "simpleSquare.bin", fs::copy_options::overwrite_existing);
+    std::ifstream in(source / "Cameras.gltf");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string indices = "\"byteOffset\" : 0,\n      \"componentType\" : 5123,\n      \"count\" : 6,";
+    ASSERT_NE(text.find(indices), std::string::npos);
+    // Five 2-byte indices from byte 1 fit the view's 12 bytes, one byte off their alignment.
+    text.replace(text.find(indices), indices.size(),
+                 "\"byteOffset\" : 1,\n      \"componentType\" : 5123,\n      \"count\" : 5,");
+    std::ofstream(dir / "Cameras.gltf") << text;
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(dir / "Cameras.gltf", {}, d));
+    EXPECT_NE(messages(d).find("accessors[0] (indices of meshes[0].primitives[0]): byteOffset 1 (1 into its buffer) is "
+                               "not a multiple of its components' 2 bytes, as glTF requires"),
+              std::string::npos)
+        << messages(d);
+    fs::remove_all(dir);
+}
+
 TEST(Gltf, NotAGltfFile) {
     Diagnostics d;
     EXPECT_FALSE(loadGltf(fs::path(SKYGRAPH_SOURCE_DIR) / "scenes/default.json", {}, d));
@@ -656,6 +680,42 @@ TEST(GltfScene, AGltfCameraNeedsAModelWithOne) {
     } catch (const SceneError& e) {
         EXPECT_NE(std::string(e.what()).find("camera: is \"gltf\", but no glTF object"), std::string::npos) << e.what();
     }
+}
+
+// A glTF camera's values become the scene's camera, which the GPU reads as 32-bit floats: a
+// near plane or a position a float does not hold is refused as camera.near and
+// camera.position are (before, the frame showed only the sky and the command succeeded).
+TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-camera-range-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    const fs::path source = kModels / "cameras";
+    fs::copy_file(source / "simpleSquare.bin", dir / "simpleSquare.bin", fs::copy_options::overwrite_existing);
+    std::ifstream in(source / "Cameras.gltf");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto refusal = [&](const std::string& from, const std::string& to) {
+        std::string edited = text;
+        const size_t at = edited.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        if (at != std::string::npos) edited.replace(at, from.size(), to);
+        std::ofstream(dir / "Cameras.gltf") << edited;
+        try {
+            (void)parse(R"({"camera": "gltf", "objects": [{"type": "gltf", "file": ")" + (dir / "Cameras.gltf").string() +
+                        R"("}]})");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    EXPECT_NE(refusal("\"znear\": 0.01", "\"znear\": 1e-300")
+                  .find("test.json: camera: objects[0]'s glTF camera has the position [0.5, 0.5, 3] and near plane "
+                        "1e-300: each must be 0 or of a magnitude a 32-bit float holds (1.2e-38 to 3.4e38), as the "
+                        "scene's camera's"),
+              std::string::npos);
+    EXPECT_NE(refusal("\"translation\" : [ 0.5, 0.5, 3.0 ]", "\"translation\" : [ 0.5, 1e300, 3.0 ]")
+                  .find("position [0.5, 1e+300, 3] and near plane 0.01"),
+              std::string::npos);
+    EXPECT_EQ(refusal("\"znear\": 0.01", "\"znear\": 0.02"), "accepted");
+    fs::remove_all(dir);
 }
 
 TEST(GltfScene, TheSceneNamesItsObjectAndTheFileItsProblem) {

@@ -84,6 +84,32 @@ TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
 
 // A scene file past the limit, or a device that never ends, is refused with the file named,
 // having read no more than the limit.
+// Past the object limit the scene is refused before any object loads: each glTF object decodes
+// its file, so thousands of them took gigabytes before the count was refused. The glTF files
+// here do not exist; none is opened, so the count is the only error.
+TEST(SceneFiles, MoreObjectsThanTheLimitAreRefusedBeforeAnyLoads) {
+    const auto objects = [](size_t n) {
+        std::string text = R"({"objects": [)";
+        for (size_t i = 0; i < n; ++i) text += std::string(i ? ", " : "") + R"({"type": "gltf", "file": "none.glb"})";
+        return text + "]}";
+    };
+    try {
+        (void)parse(objects(kMaxSceneObjects + 1));
+        ADD_FAILURE() << "loaded";
+    } catch (const SceneError& e) {
+        ASSERT_EQ(e.diagnostics().size(), 1u) << e.what();
+        EXPECT_EQ(e.diagnostics().items()[0].jsonPath, "objects");
+        EXPECT_EQ(e.diagnostics().items()[0].message, "has 257 objects; at most 256 are allowed");
+    }
+    // At the limit, each object is tried.
+    try {
+        (void)parse(objects(kMaxSceneObjects));
+        ADD_FAILURE() << "loaded";
+    } catch (const SceneError& e) {
+        EXPECT_NE(std::string(e.what()).find("test.json: objects[255].file: '"), std::string::npos);
+    }
+}
+
 TEST(SceneFiles, AFileLargerThanTheLimitIsRefused) {
     for (const std::filesystem::path& file : {std::filesystem::path("/dev/zero"),
                                              std::filesystem::temp_directory_path() / "skygraph-large-scene.json"}) {
