@@ -201,6 +201,19 @@ private:
                                       "form disjoint trees");
             const std::string path = at("nodes", n);
             const tinygltf::Node& node = model_.nodes[n];
+            // glTF's rotation is a unit quaternion and its matrix an affine transform: another
+            // quaternion (a zero one was drawn as no rotation) or a projective last row was drawn
+            // as something else without a word. Exporters round: a thousandth is allowed.
+            if (node.rotation.size() == 4) {
+                const double length =
+                    glm::length(glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
+                if (!(std::abs(length - 1.0) <= 1e-3))
+                    return error(path + ".rotation",
+                                 "must be a unit quaternion, but its length is " + std::to_string(length));
+            }
+            if (node.matrix.size() == 16 &&
+                !(node.matrix[3] == 0.0 && node.matrix[7] == 0.0 && node.matrix[11] == 0.0 && node.matrix[15] == 1.0))
+                return error(path + ".matrix", "is not an affine transform: its last row must be 0, 0, 0, 1");
             const dmat4 world = parent * localMatrix(node);
             for (int c = 0; c < 4; ++c)
                 if (!finite(dvec3(world[c])) || !std::isfinite(world[c][3])) return error(path, "its transform is not finite");
@@ -598,8 +611,14 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     if (!read || !error.empty()) {
         std::istringstream lines(error.empty() ? std::string("tinygltf could not read it") : error);
         const size_t before = diagnostics.size();
-        for (std::string line; std::getline(lines, line);)
+        // tinygltf quotes what it failed to read, a data URI whole (megabytes of base64).
+        constexpr size_t kLongestLine = 240;
+        for (std::string line; std::getline(lines, line);) {
+            if (line.size() > kLongestLine)
+                line = line.substr(0, kLongestLine) + "... (" + std::to_string(line.size() - kLongestLine) +
+                       " more characters)";
             if (!line.empty()) diagnostics.add(Diagnostic{name, "", "", "", "glTF: " + line});
+        }
         if (diagnostics.size() == before) fail("glTF: tinygltf could not read it");
     }
     for (const auto& [index, problem] : headerCheck.problems)

@@ -383,6 +383,29 @@ TEST_P(BadTexturing, IsRefusedNamingThePlace) {
     EXPECT_NE(d.items()[0].message.find(b.message), std::string::npos) << messages(d);
 }
 
+// tinygltf quotes what it could not read: a data URI buffer one byte shorter than its
+// byteLength came back with its whole base64 in the message. Each line is cut short.
+TEST(GltfErrors, TinygltfsMessagesDoNotQuoteWholeDataUris) {
+    const fs::path file = writeQuad("short-buffer", Quad{std::vector<float>(8 * 64, 0.5f)});
+    std::ifstream in(file);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t at = text.find(R"("buffers": [{"byteLength": )");
+    ASSERT_NE(at, std::string::npos);
+    const size_t number = at + std::string(R"("buffers": [{"byteLength": )").size();
+    const size_t end = text.find(',', number);
+    text.replace(number, end - number, std::to_string(std::stoul(text.substr(number, end - number)) + 1));
+    std::ofstream(file) << text;
+    Diagnostics d;
+    EXPECT_FALSE(loadGltf(file, {}, d));
+    ASSERT_FALSE(d.empty());
+    bool cut = false;
+    for (const Diagnostic& x : d.items()) {
+        EXPECT_LT(x.message.size(), 320u) << x.message.substr(0, 400);
+        cut |= x.message.find(" more characters)") != std::string::npos;
+    }
+    EXPECT_TRUE(cut) << messages(d).substr(0, 2000);
+}
+
 const std::string kBaseColorTexture = R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})";
 const float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -412,6 +435,12 @@ INSTANTIATE_TEST_SUITE_P(
                 "materials[0].occlusionTexture.strength", "must be in [0, 1], got 1.5"},
         BadQuad{"emissive", {{}, {}, R"({"emissiveFactor": [0, 2.5, 0]})"}, "materials[0].emissiveFactor[1]",
                 "must be in [0, 1], got 2.500000"},
+        BadQuad{"zero-rotation", {{}, {}, "", "", R"({"mesh": 0, "rotation": [0, 0, 0, 0]})"}, "nodes[0].rotation",
+                "must be a unit quaternion, but its length is 0.000000"},
+        BadQuad{"long-rotation", {{}, {}, "", "", R"({"mesh": 0, "rotation": [0, 0, 0, 2]})"}, "nodes[0].rotation",
+                "must be a unit quaternion, but its length is 2.000000"},
+        BadQuad{"projective", {{}, {}, "", "", R"({"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,0]})"},
+                "nodes[0].matrix", "is not an affine transform: its last row must be 0, 0, 0, 1"},
         BadQuad{"alpha-mode", {{}, {}, R"({"alphaMode": "GLASS"})"}, "materials[0].alphaMode",
                 "must be \"OPAQUE\", \"MASK\" or \"BLEND\", got \"GLASS\""},
         BadQuad{"alpha-cutoff", {{}, {}, R"({"alphaCutoff": -1})"}, "materials[0].alphaCutoff",
