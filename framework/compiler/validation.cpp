@@ -174,6 +174,25 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
                 forEachCell(g, range, [&](uint32_t& held) { if (held == 0) held = stamp; });
         }
     }
+    // An output hands on all of itself: a part that no pass writes would leave the frame
+    // undefined. (One that no pass writes at all is named elsewhere: unused, or read unsourced.)
+    for (size_t i = 0; i < graph.resources.size(); ++i) {
+        const ResourceDesc& r = graph.resources[i];
+        if (!r.isExported() || r.external || r.clear || !r.isImage()) continue;
+        const LoadGrid& g = grids[i];
+        const SubresourceRange exported{0, g.chainOfOutput ? 1u : g.mips, 0, g.layers};
+        const auto unwritten = [&](uint32_t m, uint32_t l) {
+            return heldFrom[g.firstCell + size_t(m) * g.layers + l] == 0;
+        };
+        size_t missing = 0;
+        for (uint32_t m = 0; m < exported.mipCount; ++m)
+            for (uint32_t l = 0; l < exported.layerCount; ++l) missing += unwritten(m, l);
+        if (missing == 0 || missing == size_t(exported.mipCount) * exported.layerCount) continue;
+        out.add({graph.file, r.jsonPath() + ".final", "", r.name,
+                 "'" + r.name + "' is an output of the graph (`final`), but no pass writes " +
+                     describeUnwritten(exported, unwritten) +
+                     " of it, and it is not `clear`: the frame would hand that part on undefined"});
+    }
 }
 
 // ---- compile() ---------------------------------------------------------------------------

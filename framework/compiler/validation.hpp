@@ -19,7 +19,8 @@ namespace skygraph {
 /// every pass counts as a writer, and a read of a "full" chain of an output-relative image
 /// (whose length only the output size gives) is checked at its first level, which every
 /// output size has. Neither `clear` nor `external`. For a loaded graph only (every usage
-/// names one of its resources and a range within it).
+/// names one of its resources and a range within it). An output (`final`, not external) is
+/// read whole as the frame ends: a part of it that no pass writes is an error too.
 void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out);
 
 // ---- compile(): in the order it calls them -----------------------------------------------

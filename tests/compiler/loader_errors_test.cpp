@@ -1040,6 +1040,31 @@ TEST(LoaderErrors, AnOutputNoPassUsesIsRefused) {
         << listAll(ds);
 }
 
+// An output is handed on whole: a mip or layer of it that no pass writes (and no clear fills)
+// would leave the frame undefined. Written whole, cleared, or external, it loads.
+TEST(LoaderErrors, AnOutputThatNoPassWritesWholeIsRefused) {
+    Json g = withGeneric(baseGraph(), "half",
+                         Json::array({Json{{"resource", "partial"}, {"access", "Write"}, {"stage", "Compute"},
+                                           {"mips", {0, 1}}},
+                                      Json{{"resource", "layered"}, {"access", "Write"}, {"stage", "Compute"},
+                                           {"layers", {1, 1}}}}));
+    g["resources"]["partial"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", {16, 16}},
+                                     {"mips", 3}, {"final", "ShaderRead"}};
+    g["resources"]["layered"] = Json{{"type", "image2d_array"}, {"format", "R8G8B8A8_UNORM"}, {"extent", {16, 16}},
+                                     {"layers", 3}, {"final", "ShaderRead"}};
+    const auto ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "resources.partial.final", "", "partial",
+                        {"'partial' is an output of the graph (`final`), but no pass writes mips 1 and 2 of it, and "
+                         "it is not `clear`: the frame would hand that part on undefined"}))
+        << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.layered.final", "", "layered", {"no pass writes mip 0 (layers 0, 2) of it"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 2u) << listAll(ds);
+    g["resources"]["partial"]["clear"] = Json{{"color", {0, 0, 0, 1}}};
+    g["resources"]["layered"]["external"] = true;
+    expectLoads(g);
+}
+
 TEST(LoaderErrors, ASlotAlreadyFilledNamesWhatFilledIt) {
     Json g = baseGraph();
     g["resources"]["other"] = g["resources"]["hdr_color"];
