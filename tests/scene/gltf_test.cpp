@@ -618,15 +618,21 @@ TEST(Gltf, NamesWithControlCharactersLoadAndMessagesShowThemEscaped) {
     fs::remove_all(mesh->file.parent_path());
 }
 
-// glTF requires an accessor's components aligned to their size in its buffer view and buffer;
-// read as it is, a misaligned one drew garbage (the model vanished) without a word.
-TEST(Gltf, AMisalignedAccessorIsRefused) {
-    const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-misaligned-" + std::to_string(getpid()));
+/// assimp-testmodels' Cameras.gltf (a square and two cameras) as text, its buffer copied into
+/// `dir`, which it creates: a test edits the text and writes it there.
+std::string camerasGltfBesideItsBuffer(const fs::path& dir) {
     fs::create_directories(dir);
     const fs::path source = kModels / "cameras";
     fs::copy_file(source / "simpleSquare.bin", dir / "simpleSquare.bin", fs::copy_options::overwrite_existing);
     std::ifstream in(source / "Cameras.gltf");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// glTF requires an accessor's components aligned to their size in its buffer view and buffer;
+// read as it is, a misaligned one drew garbage (the model vanished) without a word.
+TEST(Gltf, AMisalignedAccessorIsRefused) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-misaligned-" + std::to_string(getpid()));
+    std::string text = camerasGltfBesideItsBuffer(dir);
     const std::string indices = "\"byteOffset\" : 0,\n      \"componentType\" : 5123,\n      \"count\" : 6,";
     ASSERT_NE(text.find(indices), std::string::npos);
     // Five 2-byte indices from byte 1 fit the view's 12 bytes, one byte off their alignment.
@@ -687,11 +693,7 @@ TEST(GltfScene, AGltfCameraNeedsAModelWithOne) {
 // camera.position are (before, the frame showed only the sky and the command succeeded).
 TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
     const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-camera-range-" + std::to_string(getpid()));
-    fs::create_directories(dir);
-    const fs::path source = kModels / "cameras";
-    fs::copy_file(source / "simpleSquare.bin", dir / "simpleSquare.bin", fs::copy_options::overwrite_existing);
-    std::ifstream in(source / "Cameras.gltf");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string text = camerasGltfBesideItsBuffer(dir);
     const auto refusal = [&](const std::string& from, const std::string& to) {
         std::string edited = text;
         const size_t at = edited.find(from);
