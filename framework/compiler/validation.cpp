@@ -175,7 +175,8 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
         }
     }
     // An output hands on all of itself: a part that no pass writes would leave the frame
-    // undefined. (One that no pass writes at all is named elsewhere: unused, or read unsourced.)
+    // undefined. (One that no pass writes any part of is named elsewhere: unused, or read
+    // unsourced. A full chain of an output-relative image is checked at its first level.)
     for (size_t i = 0; i < graph.resources.size(); ++i) {
         const ResourceDesc& r = graph.resources[i];
         if (!r.isExported() || r.external || r.clear || !r.isImage()) continue;
@@ -184,10 +185,13 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
         const auto unwritten = [&](uint32_t m, uint32_t l) {
             return heldFrom[g.firstCell + size_t(m) * g.layers + l] == 0;
         };
-        size_t missing = 0;
-        for (uint32_t m = 0; m < exported.mipCount; ++m)
-            for (uint32_t l = 0; l < exported.layerCount; ++l) missing += unwritten(m, l);
-        if (missing == 0 || missing == size_t(exported.mipCount) * exported.layerCount) continue;
+        size_t missing = 0, writtenAnywhere = 0;
+        for (uint32_t m = 0; m < g.mips; ++m)
+            for (uint32_t l = 0; l < g.layers; ++l) {
+                writtenAnywhere += !unwritten(m, l);
+                missing += m < exported.mipCount && unwritten(m, l);
+            }
+        if (missing == 0 || writtenAnywhere == 0) continue;
         out.add({graph.file, r.jsonPath() + ".final", "", r.name,
                  "'" + r.name + "' is an output of the graph (`final`), but no pass writes " +
                      describeUnwritten(exported, unwritten) +

@@ -171,8 +171,9 @@ private:
         if (node.matrix.size() == 16) return glm::make_mat4(node.matrix.data());  // column-major, as glTF
         dmat4 m(1.0);
         if (node.translation.size() == 3) m = glm::translate(m, dvec3(node.translation[0], node.translation[1], node.translation[2]));
-        if (node.rotation.size() == 4)  // glTF: x, y, z, w
-            m *= glm::mat4_cast(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]));
+        if (node.rotation.size() == 4)  // glTF: x, y, z, w; within the unit length enter() allows
+            m *= glm::mat4_cast(
+                glm::normalize(glm::dquat(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2])));
         if (node.scale.size() == 3) m = glm::scale(m, dvec3(node.scale[0], node.scale[1], node.scale[2]));
         return m;
     }
@@ -203,11 +204,12 @@ private:
             const tinygltf::Node& node = model_.nodes[n];
             // glTF's rotation is a unit quaternion and its matrix an affine transform: another
             // quaternion (a zero one was drawn as no rotation) or a projective last row was drawn
-            // as something else without a word. Exporters round: a thousandth is allowed.
+            // as something else without a word. Exporters quantize: glTF-Validator allows a
+            // length within 0.00769 of 1 (8-bit components), which localMatrix normalizes.
             if (node.rotation.size() == 4) {
                 const double length =
                     glm::length(glm::dvec4(node.rotation[0], node.rotation[1], node.rotation[2], node.rotation[3]));
-                if (!(std::abs(length - 1.0) <= 1e-3))
+                if (!(std::abs(length - 1.0) <= 0.00769))
                     return error(path + ".rotation",
                                  "must be a unit quaternion, but its length is " + std::to_string(length));
             }
@@ -614,9 +616,11 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         // tinygltf quotes what it failed to read, a data URI whole (megabytes of base64).
         constexpr size_t kLongestLine = 240;
         for (std::string line; std::getline(lines, line);) {
-            if (line.size() > kLongestLine)
-                line = line.substr(0, kLongestLine) + "... (" + std::to_string(line.size() - kLongestLine) +
-                       " more characters)";
+            if (line.size() > kLongestLine) {
+                size_t cut = kLongestLine;  // not inside a UTF-8 character
+                while (cut > 0 && (static_cast<unsigned char>(line[cut]) & 0xC0) == 0x80) --cut;
+                line = line.substr(0, cut) + "... (" + std::to_string(line.size() - cut) + " more bytes)";
+            }
             if (!line.empty()) diagnostics.add(Diagnostic{name, "", "", "", "glTF: " + line});
         }
         if (diagnostics.size() == before) fail("glTF: tinygltf could not read it");

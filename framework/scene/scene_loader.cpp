@@ -161,6 +161,8 @@ private:
 
     /// `"camera": "gltf"`: the first camera of the first glTF object that has one.
     void cameraFromGltf() {
+        // An object that failed to load is not in scene_.objects: its numbers would be off.
+        if (!diags_.empty()) return;
         for (size_t i = 0; i < scene_.objects.size(); ++i) {
             const auto* model = std::get_if<GltfModel>(&scene_.objects[i].shape);
             if (!model || !model->mesh->camera) continue;
@@ -188,7 +190,7 @@ private:
             cam.near = c.near;
             return;
         }
-        if (diags_.empty()) error("camera", "is \"gltf\", but no glTF object of the scene has a perspective camera");
+        error("camera", "is \"gltf\", but no glTF object of the scene has a perspective camera");
     }
 
     void loadCamera(const json& c) {

@@ -1047,11 +1047,16 @@ TEST(LoaderErrors, AnOutputThatNoPassWritesWholeIsRefused) {
                          Json::array({Json{{"resource", "partial"}, {"access", "Write"}, {"stage", "Compute"},
                                            {"mips", {0, 1}}},
                                       Json{{"resource", "layered"}, {"access", "Write"}, {"stage", "Compute"},
-                                           {"layers", {1, 1}}}}));
+                                           {"layers", {1, 1}}},
+                                      Json{{"resource", "chain"}, {"access", "Write"}, {"stage", "Compute"},
+                                           {"mips", {1, 1}}}}));
     g["resources"]["partial"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", {16, 16}},
                                      {"mips", 3}, {"final", "ShaderRead"}};
     g["resources"]["layered"] = Json{{"type", "image2d_array"}, {"format", "R8G8B8A8_UNORM"}, {"extent", {16, 16}},
                                      {"layers", 3}, {"final", "ShaderRead"}};
+    // A full chain of the output's size: its length waits for the output, its first level not.
+    g["resources"]["chain"] = Json{{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", "output"},
+                                   {"mips", "full"}, {"final", "ShaderRead"}};
     const auto ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "resources.partial.final", "", "partial",
                         {"'partial' is an output of the graph (`final`), but no pass writes mips 1 and 2 of it, and "
@@ -1059,9 +1064,11 @@ TEST(LoaderErrors, AnOutputThatNoPassWritesWholeIsRefused) {
         << listAll(ds);
     EXPECT_TRUE(hasDiag(ds, "resources.layered.final", "", "layered", {"no pass writes mip 0 (layers 0, 2) of it"}))
         << listAll(ds);
-    EXPECT_EQ(ds.size(), 2u) << listAll(ds);
+    EXPECT_TRUE(hasDiag(ds, "resources.chain.final", "", "chain", {"no pass writes mip 0 of it"})) << listAll(ds);
+    EXPECT_EQ(ds.size(), 3u) << listAll(ds);
     g["resources"]["partial"]["clear"] = Json{{"color", {0, 0, 0, 1}}};
     g["resources"]["layered"]["external"] = true;
+    g["resources"]["chain"]["clear"] = Json{{"color", {0, 0, 0, 1}}};
     expectLoads(g);
 }
 

@@ -401,7 +401,7 @@ TEST(GltfErrors, TinygltfsMessagesDoNotQuoteWholeDataUris) {
     bool cut = false;
     for (const Diagnostic& x : d.items()) {
         EXPECT_LT(x.message.size(), 320u) << x.message.substr(0, 400);
-        cut |= x.message.find(" more characters)") != std::string::npos;
+        cut |= x.message.find(" more bytes)") != std::string::npos;
     }
     EXPECT_TRUE(cut) << messages(d).substr(0, 2000);
 }

@@ -694,15 +694,15 @@ TEST(GltfScene, AGltfCameraNeedsAModelWithOne) {
 TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
     const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-camera-range-" + std::to_string(getpid()));
     const std::string text = camerasGltfBesideItsBuffer(dir);
-    const auto refusal = [&](const std::string& from, const std::string& to) {
+    const auto refusal = [&](const std::string& from, const std::string& to, const std::string& before = "") {
         std::string edited = text;
         const size_t at = edited.find(from);
         EXPECT_NE(at, std::string::npos) << from;
         if (at != std::string::npos) edited.replace(at, from.size(), to);
         std::ofstream(dir / "Cameras.gltf") << edited;
         try {
-            (void)parse(R"({"camera": "gltf", "objects": [{"type": "gltf", "file": ")" + (dir / "Cameras.gltf").string() +
-                        R"("}]})");
+            (void)parse(R"({"camera": "gltf", "objects": [)" + before + R"({"type": "gltf", "file": ")" +
+                        (dir / "Cameras.gltf").string() + R"("}]})");
         } catch (const SceneError& e) {
             return std::string(e.what());
         }
@@ -717,6 +717,11 @@ TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
                   .find("position [0.5, 1e+300, 3] and near plane 0.01"),
               std::string::npos);
     EXPECT_EQ(refusal("\"znear\": 0.01", "\"znear\": 0.02"), "accepted");
+    // Behind an object that did not load, the camera's object would be misnumbered: that
+    // object's error is the scene's.
+    const std::string behind = refusal("\"znear\": 0.01", "\"znear\": 1e-300", R"({"type": "cube"}, )");
+    EXPECT_NE(behind.find("objects[0].type"), std::string::npos) << behind;
+    EXPECT_EQ(behind.find("glTF camera"), std::string::npos) << behind;
     fs::remove_all(dir);
 }
 

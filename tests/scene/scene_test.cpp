@@ -82,8 +82,6 @@ TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
                                         "skybox = off: the scene has no environment (no skybox, no IBL)"}));
 }
 
-// A scene file past the limit, or a device that never ends, is refused with the file named,
-// having read no more than the limit.
 // Past the object limit the scene is refused before any object loads: each glTF object decodes
 // its file, so thousands of them took gigabytes before the count was refused. The glTF files
 // here do not exist; none is opened, so the count is the only error.
@@ -110,6 +108,8 @@ TEST(SceneFiles, MoreObjectsThanTheLimitAreRefusedBeforeAnyLoads) {
     }
 }
 
+// A scene file past the limit, or a device that never ends, is refused with the file named,
+// having read no more than the limit.
 TEST(SceneFiles, AFileLargerThanTheLimitIsRefused) {
     for (const std::filesystem::path& file : {std::filesystem::path("/dev/zero"),
                                              std::filesystem::temp_directory_path() / "skygraph-large-scene.json"}) {
