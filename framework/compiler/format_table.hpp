@@ -70,6 +70,13 @@ static_assert(kFormats.size() < 256);
 struct ClearColorRange {
     double lowest = 0, highest = 0;  ///< Every channel holds both; empty for depth/stencil formats.
     bool integers = false;           ///< UINT and SINT: the clear writes integers, kept as floats.
+
+    /// A format skygraph does not know, or a depth/stencil one: no colour clear to hold.
+    [[nodiscard]] constexpr bool empty() const noexcept { return highest == 0; }
+    /// Whether a channel's value `v` fits, `whole` saying whether it is written as an integer.
+    [[nodiscard]] constexpr bool holds(double v, bool whole) const noexcept {
+        return v >= lowest && v <= highest && (whole || !integers);
+    }
 };
 
 [[nodiscard]] constexpr ClearColorRange clearColorRange(VkFormat format) noexcept {
@@ -97,7 +104,7 @@ struct ClearColorRange {
 
 static_assert([] {
     for (const FormatInfo& f : kFormats)
-        if ((f.hasDepth || f.hasStencil) == (clearColorRange(f.format).highest > 0)) return false;
+        if ((f.hasDepth || f.hasStencil) != clearColorRange(f.format).empty()) return false;
     return true;
 }(), "every colour format of the table has a clear range, and no depth/stencil format has one");
 

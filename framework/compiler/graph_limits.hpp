@@ -7,6 +7,7 @@
 #include <skygraph/diagnostics.hpp>
 #include <skygraph/graph.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -84,10 +85,8 @@ enum class StatesProblem : uint8_t {
     const ClearValue& c = *r.clear;
     if (c.isDepth) return c.depth >= 0.0f && c.depth <= 1.0f && c.stencil <= 255;
     const format_table::ClearColorRange range = format_table::clearColorRange(r.format.format);
-    if (range.highest == 0) return true;
-    for (const float v : c.color)
-        if (!(v >= range.lowest && v <= range.highest) || (range.integers && std::trunc(v) != v)) return false;
-    return true;
+    if (range.empty()) return true;
+    return std::all_of(c.color.begin(), c.color.end(), [&](float v) { return range.holds(v, std::trunc(v) == v); });
 }
 
 /// Why a clear value outside its format's range is refused, as messages say it.

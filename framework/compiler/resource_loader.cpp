@@ -164,7 +164,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
         bool fits = numbers;
         for (size_t i = 0; fits && i < 4; ++i) {
             const double v = color[i].number<double>();
-            fits = (!range.integers || color[i].isInteger()) && v >= range.lowest && v <= range.highest;
+            fits = range.holds(v, color[i].isInteger());
         }
         if (range.integers && !fits)
             fail("clear.color", "expected four integers in " + clearRangeText(range) + " for the integer format " +
@@ -172,7 +172,7 @@ void loadClear(ResourceDesc& r, JsonValue clear, const ResourceProblems& fail) {
                                     color.integersHint(range.lowest, range.highest));
         else if (!numbers)
             fail("clear.color", "expected four numbers");
-        else if (range.highest > 0 && !fits)
+        else if (!range.empty() && !fits)
             fail("clear.color", "expected four numbers in " + clearRangeText(range) + ", the range of the format " +
                                     std::string(r.format.name) + " (" + std::string(kClearOutsideRange) + "), got " +
                                     color.dump());
