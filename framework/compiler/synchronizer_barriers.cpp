@@ -21,7 +21,7 @@ void Synchronizer::emitSteps() {
     auto& barriers = detail::PlanBuilder::barriers(plan_);
     // Room for the most barriers there can be (one per subresource an access touches), so
     // the array never moves and each pass's spans are set as its batch is done.
-    barriers.reserve(accessCount_ - runScopeAccesses_.size() + runScopeCount_ + aliasedCells_);
+    barriers.reserve(accessCount_ - runScopeAccesses_.size() + runScopeCount_ + wholeAliasingBarriers_);
     const Barrier* const base = barriers.data();
     const size_t room = barriers.capacity();
     // Each plan pass is written once, whole, here (an inserted Clear's name comes at the
@@ -33,8 +33,7 @@ void Synchronizer::emitSteps() {
         const Step& step = steps_[s];
         const uint32_t first = step.firstAccess, end = stepEnd(s);
         for (uint32_t k = first; k < end; ++k) applyAccess(usages[k], k, barriers);
-        const bool aliasingAdded = !aliasedHere_.empty() && finishAliasing(barriers, s);
-        if (step.mayMerge || aliasingAdded) mergeAdjacent(barriers, batch);
+        if (step.mayMerge) mergeAdjacent(barriers, batch);
         const std::span<const Barrier> batchView =
             barriers.size() > batch ? std::span<const Barrier>(base + batch, barriers.size() - batch)
                                     : std::span<const Barrier>();
@@ -146,14 +145,14 @@ VulkanScope Synchronizer::boundaryScope(uint32_t r, ExternalState state) const {
 /// that follows, where zeroing the whole array first would have them evicted by then (a
 /// second miss per line). External resources' states are written field by field (a local
 /// SubresourceState copied in would stall the CPU's store forwarding, once per resource).
-void Synchronizer::startState(uint32_t r) {
+void Synchronizer::startState(uint32_t r, std::vector<Barrier>& batch) {
     const ResourceFacts& facts = facts_[r];
     SubresourceState* states = &state_[facts.firstCell];
     const size_t cells = facts.grid.size();
     if (cells == 1) *states = SubresourceState{};  // most resources; fill_n's loop costs more
     else std::fill_n(states, cells, SubresourceState{});
     if (!facts_[r].external) {
-        if (!takesOver_.empty() && takesOver_[r]) startAliased(r, states, cells);
+        if (!takesOver_.empty() && takesOver_[r]) startAliased(r, states, cells, batch);
         return;
     }
     const VulkanScope scope = boundaryScope(r, replaced(decl(r).initial));
@@ -207,7 +206,7 @@ void Synchronizer::applyAccess(PlannedUsage& pu, uint32_t k, std::vector<Barrier
     const bool image = a.image;
     const bool write = a.writes;
     // Here, not in a loop of its own: the first pass's usages it reads are in cache now.
-    if (a.firstOfResource) startState(r);
+    if (a.firstOfResource) startState(r, batch);
     if (!write && image) pu.layout = readRuns_.layout(k);  // rule 4
     bool discard = pu.usage.access == Access::Write;  // a load-op clear only turns Read into ReadWrite
     // Poison from a Clobber step stays where a discarding write does not write: no
@@ -270,7 +269,7 @@ void Synchronizer::applyAccess(PlannedUsage& pu, uint32_t k, std::vector<Barrier
         res.finalLayout = stateOf(r)->layout;
         // What a resource taking over its memory later will wait for; kept now, while its
         // state is in cache. (Subresources it never used have nothing to wait for unless
-        // aliased, which finishAliasing adds.)
+        // aliased: then their aliasing barrier's transition is their last use.)
         if (!lastUses_.empty() && predecessor_[r]) addLastUses(lastUses_[r], stateOf(r), facts_[r].grid.size());
     }
 }
@@ -294,8 +293,10 @@ void Synchronizer::addInPassBarrier(const PlannedUsage& pu, uint32_t k) {
 /// (rule 16): every subresource of r starts as if they had written it, their last uses
 /// standing for the write. Where they read last, waiting for the reads orders the writes
 /// before them too (rule 2); writes nothing read are waited for with a memory dependency.
-/// Returns false when r takes over no memory.
-bool Synchronizer::startAliased(uint32_t r, SubresourceState* states, size_t cells) {
+/// A resource of one subresource gets its aliasing barrier from its first access, as any
+/// other barrier; one of several, here (startAliasedWhole). Returns false when r takes over
+/// no memory.
+bool Synchronizer::startAliased(uint32_t r, SubresourceState* states, size_t cells, std::vector<Barrier>& batch) {
     const uint32_t p = facts_[r].placement;
     if (p == PlannedResource::kNoPlacement) return false;
     const MemoryPlacement& placement = plan_.memory().placements[p];
@@ -312,71 +313,59 @@ bool Synchronizer::startAliased(uint32_t r, SubresourceState* states, size_t cel
     }
     earlierUses_[r] = last;
     if (!last.stages) return false;
-    for (size_t c = 0; c < cells; ++c) {
-        states[c].aliased = true;
-        states[c].writeStages = last.stages;
-        states[c].writeAccess = last.access;
+    if (cells > 1) {
+        startAliasedWhole(r, states, cells, last, batch);
+        return true;
     }
-    // A resource of one subresource is covered by its first access's own barrier.
-    if (cells > 1) aliasedHere_.push_back(r);
+    states->aliased = true;
+    states->writeStages = last.stages;
+    states->writeAccess = last.access;
     return true;
 }
 
-/// Stages and accesses of resource r's uses in its first pass.
-VulkanScope Synchronizer::firstPassScope(uint32_t r) const {
-    VulkanScope scope;
-    const uint32_t first = plan_.resources()[r].firstPass;
-    for (uint32_t k = facts_[r].firstAccess; k != kNone && accesses_[k].step == first; k = accesses_[k].next) {
-        scope.stages |= (*usages_)[k].stages;
-        scope.access |= (*usages_)[k].access;
+/// The aliasing barrier of a resource of several subresources: one barrier over all of them,
+/// before its first step's usages, since the spec's "Memory Aliasing" asks that a barrier
+/// contain every subresource that overlaps, and for images described differently that is
+/// each one. So the barrier has one layout and one destination scope, those of the whole
+/// first step: where its usages need different layouts, all of them take GENERAL, which every
+/// usage accepts. (Each of them writes: a read there would have no source.) Subresources
+/// the first step does not use are transitioned too, and start from the transition.
+void Synchronizer::startAliasedWhole(uint32_t r, SubresourceState* states, size_t cells, StageAccess last,
+                                     std::vector<Barrier>& batch) {
+    auto& usages = *usages_;
+    const uint32_t firstAccess = facts_[r].firstAccess;
+    const uint32_t step = accesses_[firstAccess].step;
+    VulkanScope first{0, 0, usages[firstAccess].layout};
+    for (uint32_t k = firstAccess; k != kNone && accesses_[k].step == step; k = accesses_[k].next) {
+        first.stages |= usages[k].stages;
+        first.access |= usages[k].access;
+        if (usages[k].layout != first.layout) first.layout = VK_IMAGE_LAYOUT_GENERAL;
     }
-    return scope;
-}
-
-/// After the first step of each resource that takes over memory (aliasedHere_): the
-/// subresources that step did not touch get their aliasing barrier too, into the layout
-/// of its first use, so that the step's batch covers the whole resource (the spec's
-/// "Memory Aliasing": the barrier must contain every subresource that overlaps). Returns
-/// whether it added any.
-bool Synchronizer::finishAliasing(std::vector<Barrier>& batch, uint32_t step) {
-    bool added = false;
-    for (const uint32_t r : aliasedHere_) {
-        SubresourceState* states = stateOf(r);
-        const SubresourceGrid& grid = facts_[r].grid;
-        const VulkanScope first = firstPassScope(r);
-        const VkImageLayout layout = (*usages_)[facts_[r].firstAccess].layout;
-        perSub_.clear();
-        bool any = false;
-        grid.forEach(grid.whole(), [&](size_t sub) {
-            SubresourceState& st = states[sub];
-            if (!st.aliased) {
-                perSub_.emplace_back();
-                return;
-            }
-            Barrier b;
-            b.aliasing = true;
-            b.srcStages = st.writeStages;
-            b.srcAccess = st.writeAccess;
-            b.dstStages = first.stages;
-            b.dstAccess = first.access;
-            b.newLayout = layout;
-            perSub_.push_back(b);
-            // The transition wrote it: visible to the first step's scope (a later use
-            // inside that scope needs no barrier, rule 8's reasoning), nothing else.
-            st = SubresourceState{};
-            st.layout = layout;
-            st.fromOutside = true;
-            st.writeStages = first.stages;
-            st.visibleStages = first.stages;
-            st.visibleAccess = first.access;
-            any = true;
-        });
-        if (any) merger_.emitMerged(r, BarrierKind::Image, grid.whole(), perSub_, batch);
-        if (any && planResources()[r].lastPass == step && predecessor_[r]) lastUses_[r].stages |= first.stages;
-        added |= any;
+    if (first.layout == VK_IMAGE_LAYOUT_GENERAL)
+        for (uint32_t k = firstAccess; k != kNone && accesses_[k].step == step; k = accesses_[k].next)
+            usages[k].layout = VK_IMAGE_LAYOUT_GENERAL;
+    Barrier& b = batch.emplace_back();
+    b.resource = r;
+    b.kind = BarrierKind::Image;
+    b.range = facts_[r].grid.whole();
+    b.aliasing = true;
+    b.srcStages = last.stages;
+    b.srcAccess = last.access;
+    b.dstStages = first.stages;
+    b.dstAccess = first.access;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = first.layout;
+    // The transition wrote every subresource: visible to the first step's scope (its usages
+    // need no barrier of their own, rule 8's reasoning), nothing else.
+    for (size_t c = 0; c < cells; ++c) {
+        SubresourceState& st = states[c];
+        st = SubresourceState{};
+        st.layout = first.layout;
+        st.fromOutside = true;
+        st.writeStages = first.stages;
+        st.visibleStages = first.stages;
+        st.visibleAccess = first.access;
     }
-    aliasedHere_.clear();
-    return added;
 }
 
 }  // namespace skygraph::sync

@@ -117,7 +117,7 @@ void Synchronizer::planMemory() {
         if (placement.aliases.empty() && placement.previousFrameAliases.empty()) continue;
         // Which resources take over memory (startAliased looks no further for the rest)
         // and which are taken over from (their last uses are kept when they end).
-        if (facts_[r].grid.size() > 1) aliasedCells_ += static_cast<uint32_t>(facts_[r].grid.size());
+        if (facts_[r].grid.size() > 1) ++wholeAliasingBarriers_;
         if (takesOver_.empty()) {
             takesOver_.resize(facts_.size());
             predecessor_.resize(facts_.size());

@@ -150,14 +150,15 @@ private:
     [[gnu::always_inline]] inline StageAccess runScopeFrom(uint32_t k, size_t cell) const;
     /// Also for the final barriers of inputs that arrive with no stages of their own.
     VulkanScope firstUsesScope(uint32_t r) const;
-    [[gnu::always_inline]] inline void startState(uint32_t r);
+    [[gnu::always_inline]] inline void startState(uint32_t r, std::vector<Barrier>& batch);
     inline void replayAccesses(uint32_t r);
     [[gnu::always_inline]] inline bool poisoned(uint32_t r, const SubresourceRange& range) const;
     [[gnu::always_inline]] inline void applyAccess(PlannedUsage& pu, uint32_t k, std::vector<Barrier>& batch);
     inline void addInPassBarrier(const PlannedUsage& pu, uint32_t k);
-    [[gnu::always_inline]] inline bool startAliased(uint32_t r, SubresourceState* states, size_t cells);
-    inline VulkanScope firstPassScope(uint32_t r) const;
-    [[gnu::always_inline]] inline bool finishAliasing(std::vector<Barrier>& batch, uint32_t step);
+    [[gnu::always_inline]] inline bool startAliased(uint32_t r, SubresourceState* states, size_t cells,
+                                                    std::vector<Barrier>& batch);
+    inline void startAliasedWhole(uint32_t r, SubresourceState* states, size_t cells, StageAccess last,
+                                  std::vector<Barrier>& batch);
     /// Adds to `last` what a barrier after the uses of a resource in the frame waits for, given
     /// the state of its subresources `states` after them (rule 16): per subresource, its last
     /// write with its access and the reads since. The caller adds every earlier write of the
@@ -222,10 +223,9 @@ private:
     // Scratch, reused across usages.
     std::vector<std::optional<Barrier>> perSub_;
     BarrierMerger merger_;
-    // Rule 16: resources whose first step is being emitted and that take over memory, and
-    // room for their aliasing barriers beyond the usages' own.
-    std::vector<uint32_t> aliasedHere_;
-    uint32_t aliasedCells_ = 0;
+    // Rule 16: room for the aliasing barriers of resources of several subresources, beyond
+    // the usages' own.
+    uint32_t wholeAliasingBarriers_ = 0;
     // With frames sharing the heaps: per placement, the previous frame's last uses of the bytes
     // no earlier resource of the frame holds.
     std::vector<StageAccess> previousFrameLastUses_;

@@ -138,6 +138,50 @@ TEST(AliasingRules, TheAliasingBarrierCoversEverySubresource) {
     EXPECT_EQ(second[0].range, (SubresourceRange{0, 1, 0, 1}));
 }
 
+TEST(AliasingRules, AFirstStepInSeveralLayoutsTakesGeneralUnderOneBarrier) {
+    // `b`'s first pass writes layer 0 as a colour attachment and layer 1 in a dispatch. One
+    // barrier per layout would each contain only part of b; so the pass uses both in GENERAL
+    // (which a colour attachment accepts) after one barrier over both layers, whose
+    // destination is the whole pass's.
+    const Plan plan = compileGraph(R"(
+        "a": {"type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "layers": 2},
+        "b": {"type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "layers": 2},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})",
+                                   R"(
+        {"name": "make_a", "type": "Generic", "uses": {"a": "Write@Compute"}},
+        {"name": "use_a", "type": "Generic", "uses": [{"resource": "a", "access": "Read", "stage": "Fragment", "layers": [0, 1]},
+                                                      {"resource": "out", "access": "Write", "stage": "ColorAttachment"}]},
+        {"name": "make_b", "type": "Generic", "uses": [{"resource": "b", "access": "Write", "stage": "ColorAttachment", "layers": [0, 1]},
+                                                       {"resource": "b", "access": "Write", "stage": "Compute", "layers": [1, 1]}]},
+        {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "ReadWrite@ColorAttachment"}})");
+    ASSERT_EQ(ids(placementOf(plan, "b").aliases), std::vector<uint32_t>{uint32_t(plan.resourceIndex("a"))});
+    const auto b = barriersOf(plan, "make_b", "b");
+    ASSERT_EQ(b.size(), 1u);
+    EXPECT_TRUE(b[0].aliasing);
+    EXPECT_EQ(b[0].range, (SubresourceRange{0, 1, 0, 2}));
+    // a's layer 1 was written and never read: the write is repeated, with the read of layer 0.
+    EXPECT_EQ(b[0].srcStages, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].srcAccess, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(b[0].dstStages, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b[0].dstAccess, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    for (const PlannedUsage& u : pass(plan, "make_b").usages) EXPECT_EQ(u.layout, VK_IMAGE_LAYOUT_GENERAL);
+    // Without aliasing the pass keeps each usage's own layout.
+    CompileOptions off = oneFrame();
+    off.aliasing = false;
+    const Plan apart = compileGraph(R"(
+        "b": {"type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "layers": 2},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})",
+                                    R"(
+        {"name": "make_b", "type": "Generic", "uses": [{"resource": "b", "access": "Write", "stage": "ColorAttachment", "layers": [0, 1]},
+                                                       {"resource": "b", "access": "Write", "stage": "Compute", "layers": [1, 1]}]},
+        {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "Write@ColorAttachment"}})",
+                                    off);
+    EXPECT_EQ(pass(apart, "make_b").usages[0].layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    EXPECT_EQ(barriersOf(apart, "make_b", "b").size(), 2u);
+}
+
 TEST(AliasingRules, ATakenOverResourceWaitsForEveryEarlierUseOfItsBytes) {
     // x is drawn and sampled, y takes over its bytes (compute), z takes over y's: z's barrier
     // names y's uses and, through what y waited for, x's too. y alone would order x before z,

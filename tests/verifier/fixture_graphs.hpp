@@ -71,6 +71,25 @@ inline constexpr const char* kPartialAvailabilityBeforeAliasing = R"({ "version"
     { "name": "present", "type": "Generic", "uses": [ { "resource": "b", "access": "Read", "stage": "Fragment" },
                                                      { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] } ] })";
 
+
+/// A resource taking over memory whose first pass uses it in two layouts: `b` (two layers)
+/// takes over `a`'s bytes, and its first pass writes layer 0 as a colour attachment and layer
+/// 1 in a dispatch. `a`'s dispatch wrote both layers and only layer 0 was read since, so only
+/// b's aliasing barrier makes the write of layer 1 available; one barrier per layout would
+/// each contain part of b.
+inline constexpr const char* kMixedLayoutsTakingOverMemory = R"({ "version": 1, "name": "mixed_layouts_aliased",
+  "resources": {
+    "a": { "type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "layers": 2 },
+    "b": { "type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "layers": 2 },
+    "c": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc" } },
+  "passes": [
+    { "name": "write_a", "type": "Generic", "uses": { "a": "Write@Compute" } },
+    { "name": "read_a", "type": "Generic", "uses": [ { "resource": "a", "access": "Read", "stage": "Fragment", "layers": [0, 1] },
+                                                   { "resource": "c", "access": "Write", "stage": "ColorAttachment" } ] },
+    { "name": "write_b", "type": "Generic", "uses": [ { "resource": "b", "access": "Write", "stage": "ColorAttachment", "layers": [0, 1] },
+                                                    { "resource": "b", "access": "Write", "stage": "Compute", "layers": [1, 1] } ] },
+    { "name": "read_b", "type": "Generic", "uses": { "b": "Read@Fragment", "c": "ReadWrite@ColorAttachment" } } ] })";
+
 }  // namespace skygraph::test::fixtures
 
 namespace skygraph::test::fixtures {
