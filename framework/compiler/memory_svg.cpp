@@ -4,6 +4,8 @@
 // that share memory sit in the same rows at different times.
 #include <skygraph/plan_format.hpp>
 
+#include "byte_text.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -41,15 +43,6 @@ std::string num(double v) {
     std::string s = fixed(v, 1);
     if (s.ends_with(".0")) s.resize(s.size() - 2);
     return s == "-0" ? "0" : s;
-}
-
-std::string bytesText(uint64_t bytes) {
-    constexpr double kKiB = 1024.0, kMiB = kKiB * 1024, kGiB = kMiB * 1024;
-    const auto b = static_cast<double>(bytes);
-    if (bytes < 1024) return std::to_string(bytes) + " B";
-    if (b < kMiB) return fixed(b / kKiB, 1) + " KiB";
-    if (b < kGiB) return fixed(b / kMiB, 2) + " MiB";
-    return fixed(b / kGiB, 2) + " GiB";
 }
 
 /// Offset ticks are powers of two: "4 MiB", "512 KiB".
@@ -193,10 +186,10 @@ private:
         if (!m_.model.empty()) line += std::string(" (") + toString(m_.strategy) + ", requirements: " + m_.model + ")";
         text(12, 20, line, R"(font-size="14" font-weight="bold")");
         text(12, 38,
-             "heaps " + bytesText(m_.heapBytes()) +
+             "heaps " + byteText(m_.heapBytes()) +
                  (m_.sharedAcrossFrames ? " shared by the frames in flight" : " per frame in flight") +
-                 " vs unaliased " + bytesText(m_.unaliasedBytes) +
-                 " vs peak live " + bytesText(m_.peakLiveBytes) + "; " + std::to_string(m_.placements.size()) +
+                 " vs unaliased " + byteText(m_.unaliasedBytes) +
+                 " vs peak live " + byteText(m_.peakLiveBytes) + "; " + std::to_string(m_.placements.size()) +
                  " transient(s) in " + std::to_string(m_.heaps.size()) + " heap(s)",
              R"(font-size="12")");
     }
@@ -221,11 +214,11 @@ private:
     void heap(size_t h) {
         const HeapBand& b = bands_[h];
         const MemoryHeap& heap = m_.heaps[h];
-        std::string label = "heap " + std::to_string(h) + ": " + bytesText(heap.bytes) + ", memory types 0x";
+        std::string label = "heap " + std::to_string(h) + ": " + byteText(heap.bytes) + ", memory types 0x";
         std::ostringstream bits;
         bits << std::hex << heap.memoryTypeBits;
         label += bits.str();
-        if (heap.granular) label += ", buffers and images on the " + bytesText(m_.granularity) + " granularity";
+        if (heap.granular) label += ", buffers and images on the " + byteText(m_.granularity) + " granularity";
         text(kLeft, b.top - 7, label, R"(font-weight="bold")");
         o_ << R"(<rect class="heap" x=")" << num(kLeft) << R"(" y=")" << num(b.top) << R"(" width=")"
            << num(plotRight() - kLeft) << R"(" height=")" << num(b.height) << R"(" fill="#f6f6f6" stroke="#888888"/>)"
@@ -256,7 +249,7 @@ private:
         // Dashed: the exceptions to sharing, which --no-alias would make of every placement.
         const bool unshared = !p.aliasable && m_.strategy != MemoryStrategy::Unaliased;
 
-        std::string tooltip = std::string(r.name) + ": " + bytesText(p.bytes) + " at offset " + std::to_string(p.offset) +
+        std::string tooltip = std::string(r.name) + ": " + byteText(p.bytes) + " at offset " + std::to_string(p.offset) +
                               " of heap " + std::to_string(p.heap) + ", passes " + std::to_string(r.firstPass) + ".." +
                               std::to_string(r.lastPass) + " (" + std::string(plan_.passes()[r.firstPass].name) +
                               " .. " + std::string(plan_.passes()[r.lastPass].name) + ")";
@@ -275,7 +268,7 @@ private:
            << "</title></rect>\n";
 
         // The name, and the size below it when there is room; nothing that would spill over.
-        const std::string size = bytesText(p.bytes);
+        const std::string size = byteText(p.bytes);
         const auto fits = [&](std::string_view s) { return static_cast<double>(s.size()) * kCharWidth + 6 <= w; };
         if (h < kLineHeight || !fits(r.name)) return;
         if (h >= 2 * kLineHeight + 2 && fits(size)) {
@@ -293,7 +286,7 @@ private:
         const double y = stackedY(m_, bands_, m_.peakLiveBytes);
         o_ << R"(<line class="peak" x1=")" << num(kLeft) << R"(" y1=")" << num(y) << R"(" x2=")" << num(plotRight() + 6)
            << R"(" y2=")" << num(y) << R"(" stroke="#c00000" stroke-width="1.5" stroke-dasharray="5,3"/>)" << "\n";
-        text(plotRight() + 10, y + 4, "peak live " + bytesText(m_.peakLiveBytes), R"(fill="#c00000")");
+        text(plotRight() + 10, y + 4, "peak live " + byteText(m_.peakLiveBytes), R"(fill="#c00000")");
     }
 
     void passLabels() {

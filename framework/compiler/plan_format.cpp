@@ -1,5 +1,7 @@
 #include <skygraph/plan_format.hpp>
 
+#include "byte_text.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -210,24 +212,6 @@ json submitsJson(const Plan& plan) {
         j.push_back(std::move(js));
     }
     return j;
-}
-
-std::string mib(uint64_t bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f MiB", static_cast<double>(bytes) / double(1 << 20));
-    return text;
-}
-
-/// "0", "512 B", "1.0 KiB", "16.00 MiB": small buffers stay readable next to large images.
-std::string byteText(uint64_t bytes) {
-    // From 1023.95 KiB (1 MiB less 51 bytes) on, "%.1f KiB" would print 1024.0.
-    if (bytes >= (1u << 20) - 51) return mib(bytes);
-    if (bytes >= 1024) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
-        return text;
-    }
-    return bytes == 0 ? "0" : std::to_string(bytes) + " B";
 }
 
 json memoryJson(const Plan& plan) {

@@ -4,6 +4,8 @@
 #include <skygraph/compiler.hpp>
 #include <skygraph/plan_format.hpp>
 
+#include "byte_text.hpp"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -53,6 +55,18 @@ std::string parseWithPython(const std::string& svg, const std::string& name) {
 
 Plan compileFile(const fs::path& path, CompileOptions options = {}) {
     return compile(loadGraphFile(path, PassRegistry::withBuiltins()), options);
+}
+
+TEST(ByteText, PrintsEachSizeInTheLargestUnitItReaches) {
+    EXPECT_EQ(byteText(0), "0");
+    EXPECT_EQ(byteText(512), "512 B");
+    EXPECT_EQ(byteText(1024), "1.0 KiB");
+    EXPECT_EQ(byteText((1u << 20) - 52), "1023.9 KiB");
+    EXPECT_EQ(byteText((1u << 20) - 51), "1.00 MiB") << "not 1024.0 KiB";
+    EXPECT_EQ(byteText(16u << 20), "16.00 MiB");
+    EXPECT_EQ(byteText((uint64_t(1) << 30) - 5000), "1.00 GiB") << "not 1024.00 MiB";
+    EXPECT_EQ(byteText(uint64_t(11) << 40), "11.00 TiB");
+    EXPECT_EQ(byteText(~uint64_t(0)), "16.00 EiB");
 }
 
 TEST(MemorySvg, DrawsOneRectanglePerPlacementTheSameEveryTime) {
