@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -111,6 +114,23 @@ TEST(EnvironmentImage, NegativeColourValuesAreClampedToZero) {
     EXPECT_EQ(loaded.rgba[0], 0.0f);
     EXPECT_EQ(loaded.rgba[6], 0.0f);
     for (size_t i : {1u, 2u, 3u, 4u, 5u, 7u}) EXPECT_EQ(loaded.rgba[i], 1.0f) << "value " << i << " as it was";
+    std::filesystem::remove(exr);
+}
+
+// Every command that takes a sky (cubemap, render, view, sky sequences) loads it here.
+TEST(EnvironmentImage, OneThatIsNot2To1IsWarnedOf) {
+    const auto exr = std::filesystem::temp_directory_path() / ("skygraph-square-" + std::to_string(::getpid()) + ".exr");
+    const auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(8);
+    const auto previous = spdlog::default_logger();
+    spdlog::set_default_logger(std::make_shared<spdlog::logger>("environment_test", sink));
+    for (const uint32_t width : {4u, 3u}) {
+        saveExr(exr, HdrImage{width, 2, std::vector<float>(size_t(width) * 2 * 4, 1.0f)});
+        (void)app::loadEnvironmentImage(exr);
+    }
+    spdlog::set_default_logger(previous);
+    const std::vector<std::string> lines = sink->last_formatted();
+    ASSERT_EQ(lines.size(), 1u) << "the 4x2 image is 2:1";
+    EXPECT_NE(lines[0].find("is 3x2, not 2:1; it is read as an equirect map all the same"), std::string::npos) << lines[0];
     std::filesystem::remove(exr);
 }
 

@@ -79,6 +79,10 @@ ImageData toImageData(HdrImage image) {
 
 HdrImage loadEnvironmentImage(const std::filesystem::path& file, float largest) {
     HdrImage image = loadHdrImage(file);
+    // Every command that bakes or renders a sky says so, not only `cubemap`.
+    if (image.width != 2 * image.height)
+        spdlog::warn("'{}' is {}x{}, not 2:1; it is read as an equirect map all the same",
+                     printableName(file.string()), image.width, image.height);
     if (const size_t bad = countNonFinite(image))
         throw ImageError(file, std::to_string(bad) + " pixel values are NaN or infinite; an environment must be finite");
     // Radiance is never negative, but filters (an EXR's denoiser, its resampling) leave small

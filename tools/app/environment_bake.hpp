@@ -41,6 +41,7 @@ using BakeStepCallback = std::function<void(const std::string& step)>;
 /// light the whole frame with it. Values past +-`largest`, the most the products hold
 /// (math::kLargestHalf for half-float cubes), are clamped to it, with a warning, rather than
 /// becoming infinite in the products; negative colour values are clamped to 0, with a warning.
+/// An image that is not 2:1 is read as an equirect map all the same, with a warning.
 [[nodiscard]] HdrImage loadEnvironmentImage(const std::filesystem::path& file, float largest = math::kLargestHalf);
 
 /// One run of the environment graph. Owns the renderer, which owns the products.

@@ -130,9 +130,6 @@ int run(CubemapArgs& args) {
     // bake: the EXR writer clamps what it writes, so rgba32f keeps a float's range here.
     const HdrImage equirect = app::loadEnvironmentImage(
         args.input, bake.float32 ? std::numeric_limits<float>::max() : math::kLargestHalf);
-    if (equirect.width != 2 * equirect.height)
-        spdlog::warn("'{}' is {}x{}, not 2:1; it is read as an equirect map all the same", printableName(args.input),
-                     equirect.width, equirect.height);
     bar.advance();
     bake.onStep = [&](const std::string&) { bar.advance(); };
     const BakeResult result = app::bakeAndReadBack(equirect, bake);
