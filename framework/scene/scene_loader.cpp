@@ -8,6 +8,7 @@
 #include <skygraph/shading_math.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cstdio>
 #include <cmath>
@@ -167,19 +168,24 @@ private:
             const auto* model = std::get_if<GltfModel>(&scene_.objects[i].shape);
             if (!model || !model->mesh->camera) continue;
             const MeshCamera& c = *model->mesh->camera;
+            // The position comes out of the node transforms: a coordinate below a float's
+            // smallest normal is their rounding about 0, and is 0.
+            std::array<double, 3> position = c.position;
+            for (double& x : position)
+                if (std::abs(x) < double(std::numeric_limits<float>::min())) x = 0.0;
             // What camera.position and camera.near take from the scene file, they take from the glTF.
-            const bool holds = floatHolds(c.near) && floatHolds(c.position[0]) && floatHolds(c.position[1]) &&
-                               floatHolds(c.position[2]);
+            const bool holds =
+                floatHolds(c.near) && floatHolds(position[0]) && floatHolds(position[1]) && floatHolds(position[2]);
             if (!holds) {
                 char values[160];
-                std::snprintf(values, sizeof values, "position [%.9g, %.9g, %.9g] and near plane %.9g", c.position[0],
-                              c.position[1], c.position[2], c.near);
+                std::snprintf(values, sizeof values, "position [%.9g, %.9g, %.9g] and near plane %.9g", position[0],
+                              position[1], position[2], c.near);
                 return error("camera", "objects[" + std::to_string(i) + "]'s glTF camera has the " + values +
                                            ": each must be 0 or of a magnitude a 32-bit float holds (1.2e-38 to "
                                            "3.4e38), as the scene's camera's");
             }
             SceneCamera& cam = scene_.camera;
-            cam.position = c.position;
+            cam.position = position;
             const math::Vec3<double> f(c.forward[0], c.forward[1], c.forward[2]), u(c.up[0], c.up[1], c.up[2]);
             // Inverts math::cameraRotation (R = Ry(yaw) Rx(pitch) Rz(roll)): forward is R (0, 0, -1).
             cam.pitchDeg = glm::degrees(std::asin(std::clamp(f.y, -1.0, 1.0)));
