@@ -37,8 +37,8 @@ public:
     void emitMerged(uint32_t r, BarrierKind kind, const SubresourceRange& range,
                     const std::vector<std::optional<Barrier>>& perSub, std::vector<Barrier>& out) {
         assert(perSub.size() == cells(range));
-        // One barrier (the aliasing barrier of the one subresource a resource's first use left
-        // out, most often) is its own rectangle: no scratch to fill.
+        // One barrier (a usage of a range whose other subresources need none, most often) is
+        // its own rectangle: no scratch to fill.
         const auto set = [](const std::optional<Barrier>& b) { return b.has_value(); };
         if (const auto only = std::find_if(perSub.begin(), perSub.end(), set);
             only != perSub.end() && std::find_if(only + 1, perSub.end(), set) == perSub.end()) {
@@ -111,8 +111,8 @@ inline void mergeAdjacent(std::vector<Barrier>& batch, size_t first) {
                                         a.range.layerCount == b.range.layerCount;
                 const bool sameMips = a.range.baseMip == b.range.baseMip &&
                                       a.range.mipCount == b.range.mipCount;
-                // Either may come first: a whole-resource aliasing barrier is completed by one
-                // over what the first use left out, which can lie below or above it (rule 16).
+                // Either may come first: a pass's usages of one resource may name its ranges
+                // in any order.
                 if (sameLayers && a.range.baseMip + a.range.mipCount == b.range.baseMip) {
                     a.range.mipCount += b.range.mipCount;
                 } else if (sameLayers && b.range.baseMip + b.range.mipCount == a.range.baseMip) {

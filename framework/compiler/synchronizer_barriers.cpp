@@ -293,9 +293,11 @@ void Synchronizer::addInPassBarrier(const PlannedUsage& pu, uint32_t k) {
 /// (rule 16): every subresource of r starts as if they had written it, their last uses
 /// standing for the write. Where they read last, waiting for the reads orders the writes
 /// before them too (rule 2); writes nothing read are waited for with a memory dependency.
-/// A resource of one subresource gets its aliasing barrier from its first access, as any
-/// other barrier; one of several, here (startAliasedWhole). Returns false when r takes over
-/// no memory.
+/// A resource of several subresources gets its aliasing barrier here (startAliasedWhole); one
+/// of one subresource, from its first access, as any other barrier. (One that takes over only
+/// its own bytes from the previous frame is the same image in the executor, but the plan
+/// verifier, and this rule, treat each frame's as a resource of its own.) Returns false when
+/// r takes over no memory.
 bool Synchronizer::startAliased(uint32_t r, SubresourceState* states, size_t cells, std::vector<Barrier>& batch) {
     const uint32_t p = facts_[r].placement;
     if (p == PlannedResource::kNoPlacement) return false;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -167,19 +168,34 @@ TEST(AliasingRules, AFirstStepInSeveralLayoutsTakesGeneralUnderOneBarrier) {
     EXPECT_EQ(b[0].oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
     EXPECT_EQ(b[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
     for (const PlannedUsage& u : pass(plan, "make_b").usages) EXPECT_EQ(u.layout, VK_IMAGE_LAYOUT_GENERAL);
-    // Without aliasing the pass keeps each usage's own layout.
-    CompileOptions off = oneFrame();
-    off.aliasing = false;
-    const Plan apart = compileGraph(R"(
+    // Taking over no memory (each frame in flight with heaps of its own, alone in them), the
+    // pass keeps each usage's own layout, aliasing or not. With the frames sharing the heaps
+    // b takes over its own bytes from the previous frame, and the pass takes GENERAL.
+    const std::string alone = R"(
         "b": {"type": "image2d_array", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "layers": 2},
-        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})",
-                                    R"(
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true, "final": "TransferSrc"})";
+    const std::string alonePasses = R"(
         {"name": "make_b", "type": "Generic", "uses": [{"resource": "b", "access": "Write", "stage": "ColorAttachment", "layers": [0, 1]},
                                                        {"resource": "b", "access": "Write", "stage": "Compute", "layers": [1, 1]}]},
-        {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "Write@ColorAttachment"}})",
-                                    off);
-    EXPECT_EQ(pass(apart, "make_b").usages[0].layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    EXPECT_EQ(barriersOf(apart, "make_b", "b").size(), 2u);
+        {"name": "use_b", "type": "Generic", "uses": {"b": "Read@Fragment", "out": "Write@ColorAttachment"}})";
+    CompileOptions off = oneFrame();
+    off.aliasing = false;
+    const CompileOptions on = oneFrame();
+    for (const CompileOptions* o : std::initializer_list<const CompileOptions*>{&off, &on}) {
+        const Plan apart = compileGraph(alone, alonePasses, *o);
+        EXPECT_EQ(pass(apart, "make_b").usages[0].layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+        EXPECT_EQ(pass(apart, "make_b").usages[1].layout, VK_IMAGE_LAYOUT_GENERAL);
+        EXPECT_EQ(barriersOf(apart, "make_b", "b").size(), 2u);
+    }
+    const CompileOptions shared;
+    ASSERT_TRUE(shared.shareTransientsAcrossFrames && shared.aliasing);
+    const Plan sharedPlan = compileGraph(alone, alonePasses, shared);
+    EXPECT_EQ(ids(placementOf(sharedPlan, "b").previousFrameAliases),
+              std::vector<uint32_t>{uint32_t(sharedPlan.resourceIndex("b"))});
+    const auto fromPreviousFrame = barriersOf(sharedPlan, "make_b", "b");
+    ASSERT_EQ(fromPreviousFrame.size(), 1u);
+    EXPECT_TRUE(fromPreviousFrame[0].aliasing);
+    EXPECT_EQ(fromPreviousFrame[0].newLayout, VK_IMAGE_LAYOUT_GENERAL);
 }
 
 TEST(AliasingRules, ATakenOverResourceWaitsForEveryEarlierUseOfItsBytes) {
