@@ -11,10 +11,14 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -23,12 +27,10 @@ namespace {
 
 using image_detail::sniffFormat;
 
-/// Offset of the first pixel byte: after the signature line, the header lines up to the one
-/// that ends it, and the resolution line. Returns the file size when the header is not
-/// terminated.
-size_t rgbeDataOffset(const std::string& bytes) {
+/// Where the resolution line starts: after the signature line and the header lines up to the
+/// one that ends it. The file size when the header is not terminated.
+size_t resolutionLineOffset(const std::string& bytes) {
     size_t pos = 0;
-    bool headerEnded = false;
     for (int line = 0; pos < bytes.size(); ++line) {
         const size_t end = bytes.find('\n', pos);
         if (end == std::string::npos) return bytes.size();
@@ -37,24 +39,95 @@ size_t rgbeDataOffset(const std::string& bytes) {
         // would check one stream and let stb decode another.
         const bool empty = end == pos || bytes[pos] == '\0';
         pos = end + 1;
-        if (headerEnded) return pos;  // that was the resolution line
-        headerEnded = line > 0 && empty;
+        if (line > 0 && empty) return pos;
     }
     return bytes.size();
 }
 
-/// The values of the header's FORMAT= lines, read as stb_image reads the header: each line
-/// after the signature up to the first empty one (or one that starts with NUL), whole.
-std::vector<std::string> headerFormats(const std::string& bytes) {
-    std::vector<std::string> formats;
+/// Offset of the first pixel byte: after the resolution line.
+size_t rgbeDataOffset(const std::string& bytes) {
+    const size_t end = bytes.find('\n', resolutionLineOffset(bytes));
+    return end == std::string::npos ? bytes.size() : end + 1;
+}
+
+/// What the header says beyond the pixels, read as stb_image reads it: each line after the
+/// signature up to the first empty one (or one that starts with NUL), whole.
+struct RadianceHeader {
+    std::vector<std::string> formats;  ///< FORMAT= values
+    /// The product of every EXPOSURE= and COLORCORR= (per channel) value: Radiance's file
+    /// format says both are cumulative multipliers already applied to the pixels, which are
+    /// divided by them to give radiance.
+    double multiplier[3] = {1.0, 1.0, 1.0};
+};
+
+/// One positive finite number per value of a header line's `line` (after its `key`).
+std::vector<double> headerNumbers(const std::filesystem::path& path, std::string_view line, std::string_view key,
+                                  size_t count) {
+    std::vector<double> values;
+    std::string text(line.substr(key.size()));
+    const char* at = text.c_str();
+    for (size_t i = 0; i < count; ++i) {
+        char* end = nullptr;
+        const double v = std::strtod(at, &end);
+        if (end == at || !std::isfinite(v) || v <= 0.0) {
+            const std::string shown = line.size() > 60 ? std::string(line.substr(0, 60)) + "..." : std::string(line);
+            throw ImageError(path, "corrupt header line '" + shown + "': " + std::string(key) + " takes " +
+                                       (count == 1 ? "a positive number" : std::to_string(count) + " positive numbers"));
+        }
+        values.push_back(v);
+        at = end;
+    }
+    return values;
+}
+
+RadianceHeader readHeader(const std::filesystem::path& path, const std::string& bytes) {
+    RadianceHeader header;
     for (size_t pos = bytes.find('\n'); pos != std::string::npos && ++pos < bytes.size();) {
         const size_t end = bytes.find('\n', pos);
         const std::string_view line = std::string_view(bytes).substr(pos, end == std::string::npos ? end : end - pos);
         if (line.empty() || line.front() == '\0') break;
-        if (line.starts_with("FORMAT=")) formats.emplace_back(line.substr(std::strlen("FORMAT=")));
+        if (line.starts_with("FORMAT=")) header.formats.emplace_back(line.substr(std::strlen("FORMAT=")));
+        if (line.starts_with("EXPOSURE=")) {
+            const double e = headerNumbers(path, line, "EXPOSURE=", 1)[0];
+            for (double& m : header.multiplier) m *= e;
+        }
+        if (line.starts_with("COLORCORR=")) {
+            const std::vector<double> c = headerNumbers(path, line, "COLORCORR=", 3);
+            for (size_t i = 0; i < 3; ++i) header.multiplier[i] *= c[i];
+        }
         pos = end;
     }
-    return formats;
+    return header;
+}
+
+/// The resolution line's order of the pixels. The standard one, "-Y H +X W", is scanlines top
+/// to bottom, each left to right, and the only one stb_image reads; the other seven (a bottom-up
+/// "+Y", a mirrored "-X", and the transposed "+X W -Y H" forms) hold the same pixels in another
+/// order, so the line is read here, stb is handed the standard one, and the pixels are put back.
+struct ScanOrder {
+    bool transposed = false;   ///< Scanlines run along Y (the line names X first).
+    bool rowsUp = false;       ///< Along Y, bottom to top ("+Y").
+    bool columnsLeft = false;  ///< Along X, right to left ("-X").
+    uint32_t width = 0, height = 0;
+};
+
+std::optional<ScanOrder> readScanOrder(const std::string& line) {
+    char s1 = 0, a1 = 0, s2 = 0, a2 = 0;
+    unsigned long n1 = 0, n2 = 0;
+    int used = 0;
+    if (std::sscanf(line.c_str(), "%c%c %lu %c%c %lu%n", &s1, &a1, &n1, &s2, &a2, &n2, &used) != 6 ||
+        size_t(used) != line.size())
+        return std::nullopt;
+    const auto sign = [](char c) { return c == '+' || c == '-'; };
+    if (!sign(s1) || !sign(s2) || !((a1 == 'Y' && a2 == 'X') || (a1 == 'X' && a2 == 'Y'))) return std::nullopt;
+    if (n1 > UINT32_MAX || n2 > UINT32_MAX) return std::nullopt;
+    ScanOrder o;
+    o.transposed = a1 == 'X';
+    o.rowsUp = (o.transposed ? s2 : s1) == '+';
+    o.columnsLeft = (o.transposed ? s1 : s2) == '-';
+    o.width = uint32_t(o.transposed ? n1 : n2);
+    o.height = uint32_t(o.transposed ? n2 : n1);
+    return o;
 }
 
 void checkRgbeStream(const std::filesystem::path& path, const std::string& bytes, size_t p,
@@ -110,7 +183,7 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
     if (bytes.empty()) throw ImageError(path, "empty file; expected a Radiance HDR image");
     if (bytes.size() > size_t(INT_MAX)) throw ImageError(path, "over 2 GiB; stb_image cannot read it");
     const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-    const int len = static_cast<int>(bytes.size());
+    int len = static_cast<int>(bytes.size());
     if (!stbi_is_hdr_from_memory(data, len)) {
         const std::string kind = sniffFormat(bytes);
         if (kind == "a Radiance HDR image")  // the signature, but not on a line of its own
@@ -119,8 +192,9 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
         throw ImageError(path, "not a Radiance HDR image (" +
                                    (kind.empty() ? "no #?RADIANCE or #?RGBE signature" : "it is " + kind) + ")");
     }
+    const RadianceHeader header = readHeader(path, bytes);
     // stb_image reads only FORMAT=32-bit_rle_rgbe and calls any other header unknown.
-    if (const std::vector<std::string> formats = headerFormats(bytes);
+    if (const std::vector<std::string>& formats = header.formats;
         !formats.empty() && std::find(formats.begin(), formats.end(), "32-bit_rle_rgbe") == formats.end()) {
         if (std::find(formats.begin(), formats.end(), "32-bit_rle_xyze") != formats.end())
             throw ImageError(path, "XYZE .hdr files (FORMAT=32-bit_rle_xyze) are not supported; only "
@@ -129,6 +203,21 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
         const std::string shown = format.size() > 40 ? format.substr(0, 40) + "..." : format;
         throw ImageError(path, "unknown pixel format FORMAT=" + shown + "; expected FORMAT=32-bit_rle_rgbe");
     }
+    // stb is handed the scanlines as the file orders them, under the standard line.
+    const size_t resolutionAt = resolutionLineOffset(bytes);
+    const size_t resolutionEnd = std::min(bytes.find('\n', resolutionAt), bytes.size());
+    const std::optional<ScanOrder> order =
+        readScanOrder(bytes.substr(resolutionAt, resolutionEnd - resolutionAt));
+    std::string reordered;
+    if (order && (order->transposed || order->rowsUp || order->columnsLeft)) {
+        const uint32_t scanlines = order->transposed ? order->width : order->height;
+        const uint32_t perScanline = order->transposed ? order->height : order->width;
+        const std::string standard = "-Y " + std::to_string(scanlines) + " +X " + std::to_string(perScanline);
+        reordered = bytes.substr(0, resolutionAt) + standard + bytes.substr(resolutionEnd);
+        data = reinterpret_cast<const stbi_uc*>(reordered.data());
+        len = static_cast<int>(reordered.size());
+    }
+    const std::string& stream = reordered.empty() ? bytes : reordered;
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(data, len, &w, &h, &comp))
         throw ImageError(path, std::string("corrupt or truncated header: ") + stbi_failure_reason());
@@ -136,17 +225,25 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
     if (size_t(w) * size_t(h) * 3 * sizeof(float) > size_t(INT_MAX))
         throw ImageError(path, "size " + std::to_string(w) + "x" + std::to_string(h) +
                                    " is over stb_image's 2 GiB decode limit for .hdr; use .exr");
-    checkRgbeStream(path, bytes, rgbeDataOffset(bytes), size_t(w), size_t(h));
+    checkRgbeStream(path, stream, rgbeDataOffset(stream), size_t(w), size_t(h));
 
     std::unique_ptr<float, void (*)(void*)> rgb(stbi_loadf_from_memory(data, len, &w, &h, &comp, 3),
                                                 stbi_image_free);
     if (!rgb) throw ImageError(path, std::string("cannot decode: ") + stbi_failure_reason());
-    HdrImage image{uint32_t(w), uint32_t(h), {}};
-    image.rgba.resize(size_t(w) * size_t(h) * 4);
-    for (size_t i = 0, n = size_t(w) * size_t(h); i < n; ++i) {
-        for (size_t c = 0; c < 3; ++c) image.rgba[i * 4 + c] = rgb.get()[i * 3 + c];
-        image.rgba[i * 4 + 3] = 1.0f;
-    }
+    const ScanOrder o = order.value_or(ScanOrder{false, false, false, uint32_t(w), uint32_t(h)});
+    HdrImage image{o.width, o.height, {}};
+    image.rgba.resize(size_t(o.width) * o.height * 4);
+    // Pixel j of scanline i in the file, at its place in the image (top row first, left to right).
+    for (size_t i = 0; i < size_t(h); ++i)
+        for (size_t j = 0; j < size_t(w); ++j) {
+            size_t x = o.transposed ? i : j, y = o.transposed ? j : i;
+            if (o.columnsLeft) x = o.width - 1 - x;
+            if (o.rowsUp) y = o.height - 1 - y;
+            float* to = &image.rgba[(y * o.width + x) * 4];
+            const float* from = rgb.get() + (i * size_t(w) + j) * 3;
+            for (size_t c = 0; c < 3; ++c) to[c] = static_cast<float>(from[c] / header.multiplier[c]);
+            to[3] = 1.0f;
+        }
     return image;
 }
 

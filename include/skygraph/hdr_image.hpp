@@ -53,7 +53,9 @@ private:
 /// contents are not of the format its extension names, a zero size, or a size over the limits.
 [[nodiscard]] HdrImage loadHdrImage(const std::filesystem::path& path);
 
-/// Loads a Radiance RGBE file through stb_image, whatever its extension. Throws ImageError.
+/// Loads a Radiance RGBE file through stb_image, whatever its extension: in any of the format's
+/// eight scanline orders, top row first, and with its EXPOSURE= and COLORCORR= multipliers
+/// divided out, so that the values are radiance. Throws ImageError.
 [[nodiscard]] HdrImage loadRadianceHdr(const std::filesystem::path& path);
 
 /// Loads the first part of an OpenEXR file (any compression, scanline or tiled, float, half or

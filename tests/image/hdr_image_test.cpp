@@ -20,6 +20,7 @@
 #include <csignal>
 #include <fstream>
 #include <functional>
+#include <utility>
 #include <iterator>
 #include <limits>
 #include <random>
@@ -474,6 +475,69 @@ TEST_F(HdrImageTest, XyzeHdrIsRefusedAsUnsupportedNotAsCorrupt) {
     // The same pixels under an RGBE header still load.
     writeBytes(dir_ / "rgbe.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=1\n\n-Y 2 +X 4\n" + pixels);
     EXPECT_EQ(skygraph::loadHdrImage(dir_ / "rgbe.hdr").width, 4u);
+}
+
+// Radiance's EXPOSURE= and COLORCORR= are multipliers already applied to the pixels, and
+// cumulative: the reader divides by their product (per channel for COLORCORR) to give
+// radiance. A value that is not a positive number is a corrupt header, named with its line.
+TEST_F(HdrImageTest, RadianceExposureAndColourCorrectionAreDividedOut) {
+    std::string pixels;
+    for (int i = 0; i < 4 * 2; ++i) pixels += "\x80\x80\x80\x81";  // (1, 1, 1) in RGBE: 128 * 2^(129-136)
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n";
+    writeBytes(dir_ / "plain.hdr", header + "\n-Y 2 +X 4\n" + pixels);
+    EXPECT_EQ(skygraph::loadHdrImage(dir_ / "plain.hdr").rgba[0], 1.0f);
+    writeBytes(dir_ / "exposed.hdr", header + "EXPOSURE=2\nEXPOSURE= 2.0\nCOLORCORR=1 2 0.5\n\n-Y 2 +X 4\n" + pixels);
+    const HdrImage exposed = skygraph::loadHdrImage(dir_ / "exposed.hdr");
+    for (size_t i = 0; i < 8; ++i) {
+        EXPECT_EQ(exposed.rgba[i * 4 + 0], 0.25f);
+        EXPECT_EQ(exposed.rgba[i * 4 + 1], 0.125f);
+        EXPECT_EQ(exposed.rgba[i * 4 + 2], 0.5f);
+        EXPECT_EQ(exposed.rgba[i * 4 + 3], 1.0f);
+    }
+    writeBytes(dir_ / "zero.hdr", header + "EXPOSURE=0\n\n-Y 2 +X 4\n" + pixels);
+    expectLoadError(dir_ / "zero.hdr", "corrupt header line 'EXPOSURE=0': EXPOSURE= takes a positive number");
+    writeBytes(dir_ / "short.hdr", header + "COLORCORR=1 2\n\n-Y 2 +X 4\n" + pixels);
+    expectLoadError(dir_ / "short.hdr", "corrupt header line 'COLORCORR=1 2': COLORCORR= takes 3 positive numbers");
+}
+
+// The resolution line orders the pixels eight ways (Radiance's file format): scanlines along Y
+// down ("-Y", the standard) or up ("+Y"), pixels along X right ("+X") or left ("-X"), or
+// transposed, scanlines along X ("+X W -Y H"). stb_image reads only "-Y H +X W"; every order
+// loads as the same image, top row first.
+TEST_F(HdrImageTest, EveryRadianceScanlineOrderLoadsTheSameImage) {
+    constexpr uint32_t kW = 4, kH = 2;
+    // Distinct red per pixel: (64 + 16 x + 4 y) / 128.
+    const auto pixel = [](uint32_t x, uint32_t y) {
+        return std::string{char(64 + 16 * x + 4 * y), '\x40', '\x40', '\x81'};
+    };
+    struct Order {
+        const char* line;
+        uint32_t scanlines, perScanline;
+        std::function<std::pair<uint32_t, uint32_t>(uint32_t, uint32_t)> at;  // (scanline, pixel) -> (x, y)
+    };
+    const Order orders[] = {
+        {"-Y 2 +X 4", kH, kW, [](uint32_t i, uint32_t j) { return std::pair{j, i}; }},
+        {"+Y 2 +X 4", kH, kW, [](uint32_t i, uint32_t j) { return std::pair{j, kH - 1 - i}; }},
+        {"-Y 2 -X 4", kH, kW, [](uint32_t i, uint32_t j) { return std::pair{kW - 1 - j, i}; }},
+        {"+Y 2 -X 4", kH, kW, [](uint32_t i, uint32_t j) { return std::pair{kW - 1 - j, kH - 1 - i}; }},
+        {"+X 4 -Y 2", kW, kH, [](uint32_t i, uint32_t j) { return std::pair{i, j}; }},
+        {"+X 4 +Y 2", kW, kH, [](uint32_t i, uint32_t j) { return std::pair{i, kH - 1 - j}; }},
+        {"-X 4 -Y 2", kW, kH, [](uint32_t i, uint32_t j) { return std::pair{kW - 1 - i, j}; }},
+        {"-X 4 +Y 2", kW, kH, [](uint32_t i, uint32_t j) { return std::pair{kW - 1 - i, kH - 1 - j}; }},
+    };
+    for (const Order& o : orders) {
+        std::string pixels;
+        for (uint32_t i = 0; i < o.scanlines; ++i)
+            for (uint32_t j = 0; j < o.perScanline; ++j) pixels += pixel(o.at(i, j).first, o.at(i, j).second);
+        writeBytes(dir_ / "order.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" + std::string(o.line) + "\n" + pixels);
+        const HdrImage image = skygraph::loadHdrImage(dir_ / "order.hdr");
+        ASSERT_EQ(image.width, kW) << o.line;
+        ASSERT_EQ(image.height, kH) << o.line;
+        for (uint32_t y = 0; y < kH; ++y)
+            for (uint32_t x = 0; x < kW; ++x)
+                EXPECT_EQ(image.rgba[(y * kW + x) * 4], float(64 + 16 * x + 4 * y) / 128.0f)
+                    << o.line << " at (" << x << ", " << y << ")";
+    }
 }
 
 // stb_image ends the header at a line that starts with NUL as at an empty one. The check that
