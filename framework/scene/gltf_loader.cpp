@@ -10,6 +10,8 @@
 
 #include <tiny_gltf.h>
 
+#include <nlohmann/json.hpp>
+
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -24,6 +26,7 @@
 #include <limits>
 #include <sstream>
 #include <system_error>
+#include <utility>
 
 namespace skygraph {
 namespace {
@@ -36,19 +39,75 @@ std::string at(const char* array, size_t i) { return std::string(array) + "[" + 
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-/// What tinygltf's file callbacks share: the glTF's folder, and the paths read so far.
+/// A uri percent-decoded as tinygltf 2.7 does it (its urldecode), or, with `plusIsSpace` off,
+/// as RFC 3986 (which glTF follows) does: a '+' in a path is a '+', not the space of an HTML
+/// form.
+std::string decodeUri(const std::string& uri, bool plusIsSpace) {
+    const auto hex = [](char c) -> unsigned {
+        if (c >= '0' && c <= '9') return unsigned(c - '0');
+        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
+        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
+        return 0;
+    };
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+' && plusIsSpace) {
+            out += ' ';
+        } else if (uri[i] == '%' && uri.size() > i + 2) {
+            out += static_cast<char>(hex(uri[i + 1]) << 4 | hex(uri[i + 2]));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+/// What tinygltf's file callbacks share: the glTF's folder, the paths read so far, and the
+/// file each uri with a '+' names, under the name tinygltf asks for (with a space there).
 struct ExternalFiles {
     std::string baseDir;  ///< As tinygltf joins it to a uri.
     std::vector<std::filesystem::path> read;
+    std::vector<std::pair<std::string, std::string>> plusUris;  ///< (as tinygltf decodes it, as it should)
+
+    /// The file `path` (as tinygltf joined it) names.
+    [[nodiscard]] std::string actual(const std::string& path) const {
+        for (const auto& [asked, meant] : plusUris)
+            if (path.size() >= asked.size() && path.compare(path.size() - asked.size(), asked.size(), asked) == 0 &&
+                (path.size() == asked.size() || path[path.size() - asked.size() - 1] == '/'))
+                return path.substr(0, path.size() - asked.size()) + meant;
+        return path;
+    }
 };
+
+/// Every buffer and image uri of the glTF JSON `json` that holds a '+' (not a data URI).
+std::vector<std::pair<std::string, std::string>> urisWithPlus(const std::string& json) {
+    std::vector<std::pair<std::string, std::string>> found;
+    if (json.find('+') == std::string::npos) return found;
+    const nlohmann::json doc = nlohmann::json::parse(json, nullptr, false);
+    if (!doc.is_object()) return found;  // checkGltfJsonTypes has said why
+    for (const char* array : {"buffers", "images"}) {
+        const auto list = doc.find(array);
+        if (list == doc.end() || !list->is_array()) continue;
+        for (const nlohmann::json& item : *list) {
+            if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+            const std::string uri = item["uri"].get<std::string>();
+            if (uri.find('+') != std::string::npos && !uri.starts_with("data:"))
+                found.emplace_back(decodeUri(uri, true), decodeUri(uri, false));
+        }
+    }
+    return found;
+}
 
 /// tinygltf's file callbacks, for a buffer's or an image's uri: only regular files are read.
 /// Its own would block forever on a FIFO and read a directory's size as bytes to allocate.
 /// Anything that exists is found, so that readRegularFile says what it is rather than tinygltf
 /// saying "File not found". tinygltf looks for a uri in the working directory too, after the
 /// glTF's folder: a file found there is not the model's, so only paths in that folder exist.
-bool fileExists(const std::string& path, void* files) {
-    const std::string& base = static_cast<const ExternalFiles*>(files)->baseDir;
+bool fileExists(const std::string& asked, void* data) {
+    const auto* files = static_cast<const ExternalFiles*>(data);
+    const std::string path = files->actual(asked);
+    const std::string& base = files->baseDir;
     if (!base.empty() && (path.compare(0, base.size(), base) != 0 ||
                           (base.back() != '/' && path.size() > base.size() && path[base.size()] != '/')))
         return false;
@@ -56,8 +115,10 @@ bool fileExists(const std::string& path, void* files) {
     return std::filesystem::exists(path, ec);
 }
 
-bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* files) {
-    static_cast<ExternalFiles*>(files)->read.emplace_back(path);
+bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const std::string& asked, void* data) {
+    auto* files = static_cast<ExternalFiles*>(data);
+    const std::string path = files->actual(asked);
+    files->read.emplace_back(path);
     if (const std::string why = notARegularFile(path); !why.empty()) {
         if (error) *error += "'" + path + "' " + why + "\n";
         return false;
@@ -592,13 +653,13 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (binary)
         if (const std::string problem = glbProblem(bytes); !problem.empty()) return fail(problem);
-    if (!checkGltfJsonTypes(std::string(binary ? glbJsonChunk(bytes) : bytes), name, binary, diagnostics))
-        return std::nullopt;
+    const std::string json(binary ? glbJsonChunk(bytes) : bytes);
+    if (!checkGltfJsonTypes(json, name, binary, diagnostics)) return std::nullopt;
     tinygltf::TinyGLTF reader;
     tinygltf::Model model;
     ImageHeaderCheck headerCheck{&model, limits.maxTextureSide, baseDir, {}};
     reader.SetImageLoader(checkImageHeader, &headerCheck);
-    ExternalFiles files{baseDir.string(), {}};
+    ExternalFiles files{baseDir.string(), {}, urisWithPlus(json)};
     reader.SetFsCallbacks({fileExists, tinygltf::ExpandFilePath, readRegularFile, tinygltf::WriteWholeFile, &files});
     std::string error, warning;
     bool read = false;

@@ -727,6 +727,34 @@ TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
     fs::remove_all(dir);
 }
 
+// glTF uris are RFC 3986 references: a '+' in one is a '+'. tinygltf decodes them as HTML
+// forms do, '+' as a space, and looked for "simple Square.bin".
+TEST(GltfScene, APlusInABufferUriIsAPlus) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-plus-" + std::to_string(getpid()));
+    std::string text = camerasGltfBesideItsBuffer(dir);
+    const std::string uri = "\"uri\" : \"simpleSquare.bin\"";
+    ASSERT_NE(text.find(uri), std::string::npos);
+    const auto load = [&](const std::string& referenced) {
+        std::string edited = text;
+        edited.replace(edited.find(uri), uri.size(), "\"uri\" : \"" + referenced + "\"");
+        std::ofstream(dir / "Cameras.gltf") << edited;
+        try {
+            (void)parse(R"({"camera": "gltf", "objects": [{"type": "gltf", "file": ")" +
+                                      (dir / "Cameras.gltf").string() + R"("}]})");
+            return std::string("loaded");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+    };
+    fs::rename(dir / "simpleSquare.bin", dir / "simple+Square.bin");
+    EXPECT_EQ(load("simple+Square.bin"), "loaded");
+    EXPECT_EQ(load("simple%2BSquare.bin"), "loaded");
+    fs::rename(dir / "simple+Square.bin", dir / "simple Square.bin");
+    EXPECT_EQ(load("simple%20Square.bin"), "loaded");
+    EXPECT_NE(load("simple+Square.bin"), "loaded") << "a '+' is not a space";
+    fs::remove_all(dir);
+}
+
 TEST(GltfScene, TheSceneNamesItsObjectAndTheFileItsProblem) {
     const std::string bad = (kModels / "IndexOutOfRange/IndexOutOfRange.gltf").string();
     try {
