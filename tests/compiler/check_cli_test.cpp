@@ -435,6 +435,25 @@ TEST_F(Cli, SkySequenceRefusesAFolderThatDoesNotExist) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+// A sequence plays on to its first missing frame: a shorter run over an earlier one's frames
+// would leave the rest playing after it. It is refused, writing nothing; the same length
+// replaces the frames.
+TEST_F(Cli, SkySequenceRefusesToEndBeforeAnEarlierRunsFrames) {
+    const std::string pattern = (dir_ / "work" / "sky_%d.exr").string();
+    ASSERT_EQ(run({"sky-sequence", pattern, "--frames", "3", "--width", "8"}).status, 0);
+    const auto before = fs::last_write_time(dir_ / "work" / "sky_0.exr");
+    const CliRun shorter = run({"sky-sequence", pattern, "--frames", "2", "--width", "16"});
+    EXPECT_EQ(shorter.status, 1) << shorter.err;
+    EXPECT_NE(shorter.err.find("error: '" + (dir_ / "work" / "sky_2.exr").string() +
+                               "': exists, and a sequence plays on to its first missing frame: frames from 2 on, "
+                               "left from an earlier run, would follow these; remove them first"),
+              std::string::npos)
+        << shorter.err;
+    EXPECT_EQ(fs::last_write_time(dir_ / "work" / "sky_0.exr"), before) << "nothing written";
+    EXPECT_EQ(workFiles().size(), 3u);
+    EXPECT_EQ(run({"sky-sequence", pattern, "--frames", "3", "--width", "16"}).status, 0);
+}
+
 // A run that fails part way writes none of its outputs: a frame path that is a folder, a
 // cross in a folder that does not exist, a product where a folder is.
 TEST_F(Cli, SkySequenceAndCubemapWriteAllTheirOutputsOrNone) {

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <system_error>
 
 namespace skygraph::cli {
 namespace {
@@ -44,6 +45,14 @@ int run(const SkySequenceArgs& args) {
     } catch (const std::filesystem::filesystem_error& e) {
         throw ImageError(firstFrame, "cannot write: " + files::whyNotWritten(e));
     }
+    // A reader plays a sequence up to its first missing frame: an earlier, longer run's frames
+    // past this one's would play on after it as if they were its own.
+    const std::filesystem::path next = sequenceFrameFile(args.pattern, args.frames);
+    std::error_code ec;
+    if (std::filesystem::exists(std::filesystem::symlink_status(next, ec)))
+        throw ImageError(next, "exists, and a sequence plays on to its first missing frame: frames from " +
+                                   std::to_string(args.frames) +
+                                   " on, left from an earlier run, would follow these; remove them first");
     app::writeProceduralSkySequence(args.pattern, args.frames, args.width);
     std::cout << "skygraph sky-sequence: " << args.frames << (args.frames == 1 ? " frame" : " frames") << " of "
               << args.width << "x" << args.width / 2 << ", " << printableName(firstFrame.string());
