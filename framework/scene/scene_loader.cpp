@@ -39,6 +39,14 @@ struct Range {
 const Range kAny{};
 const Range kUnit{0.0, 1.0};
 const Range kPositive{0.0, HUGE_VAL, true};
+/// The depth buffer holds near / distance (reverse-Z, infinite far plane): a nearer plane puts
+/// geometry at ordinary distances below a 32-bit float's smallest normal, which GPUs flush to 0,
+/// the depth of the sky, and it vanishes (2e-38 does past 1.7 units). 1e-6 keeps every distance
+/// below 1e32 in range.
+constexpr double kNearestNear = 1e-6;
+const std::string kNearTooNear =
+    "must be at least 1e-6: depth is near / distance, and a nearer plane leaves distant geometry "
+    "below a float's smallest normal, where it vanishes; got ";
 
 class SceneLoader {
 public:
@@ -176,6 +184,12 @@ private:
             // What camera.position and camera.near take from the scene file, they take from the glTF.
             const bool holds =
                 floatHolds(c.near) && floatHolds(position[0]) && floatHolds(position[1]) && floatHolds(position[2]);
+            if (holds && c.near < kNearestNear) {
+                char value[32];
+                std::snprintf(value, sizeof value, "%.9g", c.near);
+                return error("camera", "objects[" + std::to_string(i) + "]'s glTF camera's znear " + kNearTooNear +
+                                           value);
+            }
             if (!holds) {
                 char values[160];
                 std::snprintf(values, sizeof values, "position [%.9g, %.9g, %.9g] and near plane %.9g", position[0],
@@ -208,7 +222,9 @@ private:
         optionalNumber(c, "camera", "pitch_deg", kAny, cam.pitchDeg);
         optionalNumber(c, "camera", "roll_deg", kAny, cam.rollDeg);
         optionalNumber(c, "camera", "fov_y_deg", Range{0.0, 180.0, true, true}, cam.fovYDeg);
-        optionalNumber(c, "camera", "near", kPositive, cam.near);
+        if (auto it = c.find("near"); it != c.end() && number(*it, "camera.near", kPositive, cam.near) &&
+                                      cam.near < kNearestNear)
+            error("camera.near", kNearTooNear + it->dump());
     }
 
     void loadEnvironment(const json& e) {

@@ -717,6 +717,9 @@ TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
                   .find("position [0.5, 1e+300, 3] and near plane 0.01"),
               std::string::npos);
     EXPECT_EQ(refusal("\"znear\": 0.01", "\"znear\": 0.02"), "accepted");
+    EXPECT_NE(refusal("\"znear\": 0.01", "\"znear\": 1e-9")
+                  .find("test.json: camera: objects[0]'s glTF camera's znear must be at least 1e-6"),
+              std::string::npos);
     // A coordinate that the node transforms leave below a float's smallest normal is 0.
     EXPECT_EQ(refusal("\"translation\" : [ 0.5, 0.5, 3.0 ]", "\"translation\" : [ 0.5, 1e-40, 3.0 ]"), "accepted");
     // Behind an object that did not load, the camera's object would be misnumbered: that

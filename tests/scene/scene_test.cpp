@@ -368,6 +368,13 @@ TEST(SceneErrors, RangesAreChecked) {
     expectError(R"({"camera": {"fov_y_deg": 180}})", "camera.fov_y_deg", "must be in (0, 180)");
     expectError(R"({"camera": {"near": 0}})", "camera.near", "must be > 0");
     expectError(R"({"camera": {"near": -1}})", "camera.near", "must be > 0");
+    // Depth is near / distance: 2e-38 put geometry 1.7 units away below a float's smallest
+    // normal, flushed to the sky's depth.
+    expectError(R"({"camera": {"near": 2e-38}})", "camera.near",
+                "must be at least 1e-6: depth is near / distance, and a nearer plane leaves distant geometry below a "
+                "float's smallest normal, where it vanishes; got 2e-38");
+    expectError(R"({"camera": {"near": 9.9e-7}})", "camera.near", "must be at least 1e-6");
+    EXPECT_EQ(parse(R"({"camera": {"near": 1e-6}})").camera.near, 1e-6);
     expectError(R"({"exposure_ev": 100})", "exposure_ev", "must be in [-64, 64]");
     expectError(sphereWith(R"({"roughness": 1.5})"), "objects[0].material.roughness", "must be in [0, 1]");
     expectError(sphereWith(R"({"metallic": -0.1})"), "objects[0].material.metallic", "must be in [0, 1]");
