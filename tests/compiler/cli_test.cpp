@@ -4,13 +4,17 @@
 #include "cli_fixture.hpp"
 
 #include <skygraph/hdr_image.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 #include <string_view>
 
 #include <fcntl.h>
@@ -1067,6 +1071,35 @@ TEST_F(Cli, RenderWritesTheFormatItIsToldToStandardOutput) {
     EXPECT_EQ(unknown.status, 2) << unknown.err;
     EXPECT_NE(unknown.err.find("--format"), std::string::npos) << unknown.err;
     EXPECT_EQ(unknown.out, "");
+}
+
+// The presented image holds sRGB-encoded values, which a PNG keeps; .hdr and .exr hold linear
+// ones, so `render` decodes it for them (it wrote the encoded values, byte/255, which a viewer
+// then encoded again).
+TEST_F(Cli, RenderWritesThePresentedImageToHdrAndExrAsLinearValues) {
+    const fs::path png = dir_ / "work" / "f.png", exr = dir_ / "work" / "f.exr", hdr = dir_ / "work" / "f.hdr";
+    for (const fs::path& out : {png, exr, hdr}) {
+        const CliRun r = run({"render", "--width", "8", "--height", "6", "-o", out.string()});
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    const std::string bytes = slurp(png);
+    int w = 0, h = 0, n = 0;
+    std::unique_ptr<stbi_uc, void (*)(void*)> encoded(
+        stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), int(bytes.size()), &w, &h, &n, 4),
+        stbi_image_free);
+    ASSERT_TRUE(encoded) << stbi_failure_reason();
+    ASSERT_EQ(w, 8);
+    ASSERT_EQ(h, 6);
+    const skygraph::HdrImage fromExr = skygraph::loadExr(exr), fromHdr = skygraph::loadRadianceHdr(hdr);
+    size_t midTones = 0;
+    for (size_t i = 0; i < size_t(w) * size_t(h) * 4; ++i) {
+        if (i % 4 == 3) continue;
+        const float byte = float(encoded.get()[i]) / 255.0f, linear = skygraph::math::srgbDecode(byte);
+        midTones += std::abs(linear - byte) > 0.05f;
+        EXPECT_NEAR(fromExr.rgba[i], linear, 1e-3f) << "value " << i << ", PNG byte " << int(encoded.get()[i]);
+        EXPECT_NEAR(fromHdr.rgba[i], linear, 0.01f) << "value " << i << ", PNG byte " << int(encoded.get()[i]);
+    }
+    EXPECT_GT(midTones, 0u) << "the frame has values that decoding changes";
 }
 
 // A PNG that cannot be written (a folder where it would go) is refused before the render,

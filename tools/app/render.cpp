@@ -15,12 +15,14 @@
 #include "shipped_names.hpp"
 
 #include <skygraph/compiler.hpp>
+#include <skygraph/format.hpp>
 #include <skygraph/device.hpp>
 #include <skygraph/hdr_image.hpp>
 #include <skygraph/image_data.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/renderer.hpp>
 #include <skygraph/scene.hpp>
+#include <skygraph/shading_math.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -434,8 +436,17 @@ std::optional<std::string> outputFormat(const RenderOptions& options) {
     return fromName;
 }
 
-void writeImage(const std::filesystem::path& output, const ImageData& image, std::string_view format) {
+/// Writes `image` as `format`. A PNG holds sRGB-encoded bytes, as a presented image or an
+/// *_SRGB one does; .hdr and .exr hold linear values, so those two are decoded for them (the
+/// presented image is encoded in either format: by the hardware for *_SRGB, by the tone
+/// mapper otherwise, as the sRGB-nonlinear swapchain expects). Any other image is written as
+/// stored.
+void writeImage(const std::filesystem::path& output, ImageData image, std::string_view format, bool presented) {
     if (format == "png") return writePng(output, image);
+    const std::optional<FormatInfo> info = findFormat(image.format);
+    if (presented || (info && info->srgb))
+        for (size_t i = 0; i < image.rgba.size(); ++i)
+            if (i % 4 != 3) image.rgba[i] = math::srgbDecode(image.rgba[i]);
     if (format == "hdr") return saveRadianceHdr(output, toHdrImage(image));
     saveExr(output, toHdrImage(image));
 }
@@ -533,7 +544,7 @@ int renderCommand(const RenderOptions& options) {
             return status;
         }
         if (image) {
-            writeImage(output, *image, format);
+            writeImage(output, std::move(*image), format, options.readback.empty());
             spdlog::info("wrote {}", printableName(output.string()));
         }
         return 0;
