@@ -198,14 +198,20 @@ void intersectMeshes(vec3 o, vec3 d, inout Hit hit) {
     }
 }
 
-// Nearest hit along o + t d (o camera-relative), t > tMin, analytic objects and meshes.
-Hit intersect(vec3 o, vec3 d) {
+// Nearest hit along o + t d (o camera-relative), t > 0, analytic objects and meshes. The ray
+// leaves analytic object `leaving` (-1: none), from inside it when `inside`: a plane, or a
+// sphere left from outside, is never met again, so it is skipped, and only a sphere left from
+// inside needs a least distance against meeting itself by float error (one scaled by the
+// radius, for every ray, passed over ground nearer than a ten-thousandth of a large sphere's
+// radius and hit its far side from within).
+Hit intersect(vec3 o, vec3 d, int leaving, bool inside) {
     Hit hit;
     hit.t = -1.0;
     hit.object = -1;
     hit.triangle = -1;
     float best = 3.4e38;
     for (int i = 0; i < scene.count.x; ++i) {
+        if (i == leaving && !inside) continue;
         Object obj = scene.objects[i];
         float t = -1.0;
         vec3 n;
@@ -219,7 +225,7 @@ Hit intersect(vec3 o, vec3 d) {
             if (disc < 0.0) continue;
             float s = sqrt(disc);
             float t0 = -b - s, t1 = -b + s;
-            float tMin = 1e-4 * max(obj.originSize.w, 1e-3);
+            float tMin = i == leaving ? 1e-4 * max(obj.originSize.w, 1e-3) : 0.0;
             t = t0 > tMin ? t0 : (t1 > tMin ? t1 : -1.0);
             n = normalize(o + t * d - obj.originSize.xyz);
         } else {
@@ -313,8 +319,10 @@ vec3 ggxHalfVector(vec3 n, float alpha) {
 
 vec3 tracePath(vec3 origin, vec3 dir) {
     vec3 radiance = vec3(0.0), throughput = vec3(1.0);
+    int leaving = -1;
+    bool inside = false;
     for (int bounce = 0; bounce <= params.frame.z; ++bounce) {
-        Hit hit = intersect(origin, dir);
+        Hit hit = intersect(origin, dir, leaving, inside);
         if (hit.t < 0.0) {
             radiance += throughput * environment(dir);
             break;
@@ -351,6 +359,10 @@ vec3 tracePath(vec3 origin, vec3 dir) {
         float scale = max(max(abs(p.x), abs(p.y)), max(abs(p.z), 1.0));
         origin = p + surface.offset * (1e-4 * scale);
         dir = l;
+        // Outward from a sphere when the side it leaves by is the outer one (hit.normal points
+        // out of a sphere); a plane is never met again from either side.
+        leaving = hit.object;
+        inside = hit.object >= 0 && scene.objects[hit.object].normalKind.w < 0.5 && dot(surface.offset, hit.normal) < 0.0;
     }
     return radiance;
 }

@@ -286,5 +286,39 @@ TEST_F(PathTrace, AGltfQuadTracesAsTheAnalyticPlaneItEquals) {
     EXPECT_LE(differing, 8) << "worst difference " << worst;
 }
 
+// A sphere a hundred thousand times larger than its distance from the camera is, near the
+// camera, the plane it touches (the curvature moves it by 3.5e-4 at the frame's edge). Its
+// least hit distance, a ten-thousandth of its radius, once passed over the near side (3 away)
+// and met the far side from within: the sphere came out black where the plane is lit.
+TEST_F(PathTrace, ALargeSphereTracesAsThePlaneItTouches) {
+    constexpr double kRadius = 1e5;
+    Scene sphere = furnaceScene();
+    sphere.objects[0].shape = Sphere{{0.0, 0.0, -3.0 - kRadius}, kRadius};
+    Scene plane = furnaceScene();
+    plane.objects[0].shape = Plane{{0.0, 0.0, -3.0}, {0.0, 0.0, 1.0}, std::nullopt};
+    const auto trace = [&](const Scene& scene) {
+        const PassLibrary library = PassLibrary::withBuiltins();
+        const GraphDesc graph = parseGraph(kFurnaceGraph, "furnace.json", library.registry());
+        Renderer renderer = rendererAt(graph, library, {}, kWidth, kHeight);
+        renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(float(kEnvironment))));
+        renderer.frameData().set(scene);
+        for (int i = 0; i < 4; ++i) renderer.renderFrame();
+        return renderer.readImage("accumulation").at(0);
+    };
+    const ImageData fromSphere = trace(sphere), fromPlane = trace(plane);
+    double sphereSum = 0.0, planeSum = 0.0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+        for (uint32_t x = 0; x < kWidth; ++x) {
+            const double a = fromSphere.pixel(x, y)[0], b = fromPlane.pixel(x, y)[0];
+            ASSERT_TRUE(std::isfinite(a)) << x << "," << y;
+            sphereSum += a;
+            planeSum += b;
+            // The plane fills the view: it reflects less than the environment gives.
+            EXPECT_LT(b, kEnvironment) << x << "," << y;
+            EXPECT_NEAR(a, b, 0.1) << x << "," << y;
+        }
+    EXPECT_NEAR(sphereSum / planeSum, 1.0, 0.01);
+}
+
 }  // namespace
 }  // namespace skygraph::test
