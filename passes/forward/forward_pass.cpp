@@ -179,14 +179,21 @@ public:
                 const auto& plane = std::get<Plane>(object.shape);
                 const math::Vec3<double> n(plane.normal[0], plane.normal[1], plane.normal[2]);
                 const math::Vec3<double> p(plane.point[0], plane.point[1], plane.point[2]);
-                // Bounded planes sit on their point; infinite ones under the camera.
-                const math::Vec3<double> origin =
-                    plane.halfExtent ? p - view.position : -n * glm::dot(view.position - p, n);
+                // Bounded planes sit on their point; infinite ones under the camera. So does a
+                // bounded one whose extent holds the infinite one's square around the camera's
+                // foot (within the disc its own square holds): rasterizers lose a square as
+                // large as 1e9 (lavapipe drew none), and beyond 1e5 it looks no different.
+                const math::Vec3<double> underCamera = -n * glm::dot(view.position - p, n);
+                const bool drawnAsInfinite =
+                    !plane.halfExtent || glm::length(view.position + underCamera - p) +
+                                                 kInfinitePlaneHalfSize * std::sqrt(2.0) <=
+                                             *plane.halfExtent;
+                const math::Vec3<double> origin = drawnAsInfinite ? underCamera : p - view.position;
                 for (int i = 0; i < 3; ++i) {
                     push.originAndScale[i] = float(origin[i]);
                     push.planeNormalRoughness[i] = float(n[i]);
                 }
-                push.originAndScale[3] = float(plane.halfExtent.value_or(kInfinitePlaneHalfSize));
+                push.originAndScale[3] = float(drawnAsInfinite ? kInfinitePlaneHalfSize : *plane.halfExtent);
                 push.aoViewKind[2] = kindAndView(1, scene->debugView);
                 first = meshes_.planeFirstIndex;
                 count = meshes_.planeIndexCount;

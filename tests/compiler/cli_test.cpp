@@ -1102,6 +1102,24 @@ TEST_F(Cli, RenderWritesThePresentedImageToHdrAndExrAsLinearValues) {
     EXPECT_GT(midTones, 0u) << "the frame has values that decoding changes";
 }
 
+// A bounded plane whose extent holds the square an infinite one is drawn as, around the
+// camera, draws as the infinite plane: drawn at its own size (1e9) lavapipe lost it and the
+// frame showed only the sky. A smaller one draws as itself.
+TEST_F(Cli, AVastBoundedPlaneRendersAsTheInfiniteOne) {
+    const auto render = [&](const std::string& halfExtent) {
+        const fs::path scene = dir_ / "work" / "plane.json", out = dir_ / "work" / "plane.png";
+        std::ofstream(scene) << R"({"objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0])" +
+                                    (halfExtent.empty() ? "" : ", \"half_extent\": " + halfExtent) + "}]}";
+        const CliRun r = run({"render", "--scene", scene.string(), "--width", "32", "--height", "24", "-o", out.string()});
+        EXPECT_EQ(r.status, 0) << r.err;
+        return slurp(out);
+    };
+    const std::string infinite = render("");
+    EXPECT_TRUE(render("1e9") == infinite);
+    EXPECT_TRUE(render("1e6") == infinite);
+    EXPECT_FALSE(render("2") == infinite) << "a plane 4 wide under the camera leaves sky below the horizon";
+}
+
 // A PNG that cannot be written (a folder where it would go) is refused before the render,
 // leaves no temporary behind, and never touches a file of a temporary's old name.
 TEST_F(Cli, RenderThatCannotWriteItsPngLeavesNothingBehind) {
