@@ -154,6 +154,9 @@ public:
     /// order. Found in the index's own walk (a sweep of their own cost as much again as
     /// finding them there); validate() words them.
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> unsourcedReads() const noexcept { return unsourced_; }
+    /// Outputs (exported, neither external nor `clear`) with a subresource that no active pass
+    /// writes: the frame would hand it on undefined. Resource indices, in order.
+    [[nodiscard]] std::span<const uint32_t> unwrittenOutputs() const noexcept { return unwrittenOutputs_; }
     /// Per active pass whose attachments differ in size (of the mip each renders to) or layer
     /// count at the output size: its first attachment usage that differs from its first
     /// attachment, as (pass, usage index for use()). Found in the index's walk; validate() words them.
@@ -305,6 +308,13 @@ private:
             }
             firstUse_.push_back(next);
         }
+        for (uint32_t r = 0; r < resources_.size(); ++r) {
+            const IndexedResource& res = resources_[r];
+            if (!res.exported || res.external || res.clear) continue;
+            const auto cell = heldFrom.begin() + res.firstCell;
+            if (std::find(cell, cell + static_cast<std::ptrdiff_t>(res.grid.size()), 0u) != cell + res.grid.size())
+                unwrittenOutputs_.push_back(r);
+        }
     }
 
     /// Each pass keeps its usages in an allocation of its own, usually on another page than
@@ -384,6 +394,7 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> misfits_;
     std::vector<FitRow> fitRows_;  // per resource: usageFits' row for a usage of all of it
     std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
+    std::vector<uint32_t> unwrittenOutputs_;
     std::vector<std::pair<uint32_t, uint32_t>> misshapen_;
     std::vector<uint32_t> tooManyMips_;
     std::vector<uint32_t> offGraphicsOrConditional_;

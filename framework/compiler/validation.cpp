@@ -454,6 +454,28 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
                                 unwrittenBefore(index, p, u)));
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
+    // Outputs with a part no active pass writes (the loader checks them with every pass on).
+    for (const uint32_t r : index.unwrittenOutputs()) {
+        const ResourceDesc& d = graph.resources[r];
+        const SubresourceGrid& grid = index.grid(r);
+        std::vector<uint8_t> held(grid.size());
+        for (size_t p = 0; p < graph.passes.size(); ++p) {
+            if (!index.active(p)) continue;
+            for (const IndexedUsage& w : index.usesOf(p))
+                if (w.resource == r && writesContents(w.usage.access))
+                    grid.forEach(index.range(w), [&](size_t cell) { held[cell] = 1; });
+        }
+        const bool none = std::find(held.begin(), held.end(), 1) == held.end();
+        const std::string part =
+            none ? "it"
+                 : describeUnwritten(grid.whole(), [&](uint32_t m, uint32_t l) { return !held[grid.index(m, l)]; }) +
+                       " of it";
+        diags.add({graph.file, d.jsonPath() + ".final", "", d.name,
+                   "'" + d.name + "' is an output of the graph (`final`), but no pass that runs with these features "
+                   "writes " + part + ", and it is not `clear`: the frame would hand " + (none ? "it" : "that part") +
+                       " on undefined" + switchedOffWriter(index, features, graph.passes.size(), r)});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
 }
 
 }  // namespace skygraph

@@ -1072,6 +1072,38 @@ TEST(LoaderErrors, AnOutputThatNoPassWritesWholeIsRefused) {
     expectLoads(g);
 }
 
+// The loader checks outputs with every pass on; compile() with the passes that run: a feature
+// that switches off a writer of an output would leave that part of it, or all of it, undefined
+// as the frame hands it on. The message names the writer that is off.
+TEST(LoaderErrors, AnOutputWhoseWriterAFeatureSwitchesOffIsRefusedWhereItIsOff) {
+    const Json g = Json::parse(R"({"version": 1, "name": "outputs", "features": {"m1": true, "all": true},
+        "resources": {"o": {"type": "image2d", "format": "R16G16B16A16_SFLOAT", "extent": [64, 64], "mips": 2,
+                            "final": "ShaderRead"},
+                      "b": {"type": "buffer", "size": 256, "final": "ShaderRead"}},
+        "passes": [
+          {"name": "w0", "type": "Generic", "uses": [{"resource": "o", "access": "Write", "stage": "Compute", "mips": [0, 1]}]},
+          {"name": "w1", "type": "Generic", "if": "m1",
+           "uses": [{"resource": "o", "access": "Write", "stage": "Compute", "mips": [1, 1]}]},
+          {"name": "wb", "type": "Generic", "if": "all", "uses": {"b": "Write@Compute"}}]})");
+    CompileOptions options;
+    options.features["m1"] = false;
+    const auto ds = compileErrors(g, options);
+    EXPECT_TRUE(hasDiag(ds, "resources.o.final", "", "o",
+                        {"'o' is an output of the graph (`final`), but no pass that runs with these features writes "
+                         "mip 1 of it, and it is not `clear`: the frame would hand that part on undefined; its writer "
+                         "'w1' is off: feature 'm1' is off"}))
+        << listAll(ds);
+    EXPECT_EQ(ds.size(), 1u) << listAll(ds);
+    options.features = {{"all", false}};
+    const auto none = compileErrors(g, options);
+    EXPECT_TRUE(hasDiag(none, "resources.b.final", "", "b",
+                        {"no pass that runs with these features writes it, and it is not `clear`: the frame would "
+                         "hand it on undefined; its writer 'wb' is off: feature 'all' is off"}))
+        << listAll(none);
+    options.features = {};
+    EXPECT_NO_THROW((void)compile(parseGraph(g.dump(), kFile, registry()), options));
+}
+
 TEST(LoaderErrors, ASlotAlreadyFilledNamesWhatFilledIt) {
     Json g = baseGraph();
     g["resources"]["other"] = g["resources"]["hdr_color"];
