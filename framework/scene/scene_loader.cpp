@@ -248,13 +248,17 @@ private:
         if (auto sun = e.find("sun_direction"); sun != e.end()) {
             Vec3 v{};
             vec3(*sun, "environment.sun_direction", kAny, v);
-            const double len = std::hypot(v[0], v[1], v[2]);
+            // Scaled by its largest component first: the length of [1e-20, 1e-20, 1e-20] squares
+            // to below a double's range.
+            const double largest = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
             if (name != "procedural")
                 error("environment.sun_direction", "only the procedural sky has a sun; this environment is a file");
-            else if (!(len > 1e-12))
+            else if (!(largest > 0.0))
                 error("environment.sun_direction", "must not be the zero vector");
-            else
-                for (size_t i = 0; i < 3; ++i) env.sunDirection[i] = v[i] / len;
+            else {
+                const double len = std::hypot(v[0] / largest, v[1] / largest, v[2] / largest);
+                for (size_t i = 0; i < 3; ++i) env.sunDirection[i] = v[i] / largest / len;
+            }
         }
         if (name != "procedural") {
             env.procedural = false;

@@ -192,6 +192,12 @@ TEST(SceneLoader, TheSunDirectionIsNormalisedAndOnlyForTheProceduralSky) {
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(d.environment->sunDirection[size_t(i)], def[i], 1e-12) << "the shaders' default";
     expectError(R"({"environment": {"file": "procedural", "sun_direction": [0, 0, 0]}})", "environment.sun_direction",
                 "must not be the zero vector");
+    // Any length a float holds: 1e-20 a component squares below a double's range.
+    const Scene tiny = parse(R"({"environment": {"file": "procedural", "sun_direction": [1e-20, 1e-20, 1e-20]}})");
+    for (size_t i = 0; i < 3; ++i) EXPECT_NEAR(tiny.environment->sunDirection[i], 1.0 / std::sqrt(3.0), 1e-15);
+    const Scene huge = parse(R"({"environment": {"file": "procedural", "sun_direction": [3e38, 0, 3.2e38]}})");
+    EXPECT_NEAR(huge.environment->sunDirection[0], 3.0 / std::hypot(3.0, 3.2), 1e-15);
+    EXPECT_NEAR(huge.environment->sunDirection[2], 3.2 / std::hypot(3.0, 3.2), 1e-15);
     expectError(R"({"environment": {"file": "sky.hdr", "sun_direction": [0, 1, 0]}})", "environment.sun_direction",
                 "only the procedural sky has a sun");
 }
