@@ -455,8 +455,10 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
     // Outputs with a part no active pass writes (the loader checks them with every pass on).
+    // A read-back copies mip 0 of layer 0 alone, which checkReadbacksHaveSources words.
     for (const uint32_t r : index.unwrittenOutputs()) {
         const ResourceDesc& d = graph.resources[r];
+        if (options.readbacks.count(d.name)) continue;
         const SubresourceGrid& grid = index.grid(r);
         std::vector<uint8_t> held(grid.size());
         for (size_t p = 0; p < graph.passes.size(); ++p) {
