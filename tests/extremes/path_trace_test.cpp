@@ -119,6 +119,16 @@ protected:
         return s;
     }
 
+    /// The accumulation after four frames of `scene` in the furnace.
+    ImageData traceFurnace(const Scene& scene) {
+        const GraphDesc graph = parseGraph(kFurnaceGraph, "furnace.json", library_.registry());
+        Renderer renderer = rendererAt(graph, library_, {}, kWidth, kHeight);
+        renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(float(kEnvironment))));
+        renderer.frameData().set(scene);
+        for (int i = 0; i < 4; ++i) renderer.renderFrame();
+        return renderer.readImage("accumulation").at(0);
+    }
+
     /// graphs/pathtrace.json with environment_file on, headless at 16x12: no objects, lit by a
     /// constant map of `radiance` turned by `rotationDeg`.
     std::unique_ptr<Renderer> environmentFileTracer(glm::vec3 radiance, double rotationDeg) {
@@ -258,16 +268,7 @@ TEST_F(PathTrace, AGltfQuadTracesAsTheAnalyticPlaneItEquals) {
     Scene plane = furnaceScene();
     plane.objects[0].shape = Plane{{0.0, 0.0, -3.0}, {0.0, 0.0, 1.0}, 1.0};
     plane.objects[0].material.baseColor = {linear, linear, linear};
-    const auto trace = [&](const Scene& scene) {
-        const PassLibrary library = PassLibrary::withBuiltins();
-        const GraphDesc graph = parseGraph(kFurnaceGraph, "furnace.json", library.registry());
-        Renderer renderer = rendererAt(graph, library, {}, kWidth, kHeight);
-        renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(float(kEnvironment))));
-        renderer.frameData().set(scene);
-        for (int i = 0; i < 4; ++i) renderer.renderFrame();
-        return renderer.readImage("accumulation").at(0);
-    };
-    const ImageData fromMesh = trace(mesh), fromPlane = trace(plane);
+    const ImageData fromMesh = traceFurnace(mesh), fromPlane = traceFurnace(plane);
     double worst = 0.0;
     int onQuad = 0;
     for (uint32_t y = 0; y < kHeight; ++y)
@@ -296,16 +297,7 @@ TEST_F(PathTrace, ALargeSphereTracesAsThePlaneItTouches) {
     sphere.objects[0].shape = Sphere{{0.0, 0.0, -3.0 - kRadius}, kRadius};
     Scene plane = furnaceScene();
     plane.objects[0].shape = Plane{{0.0, 0.0, -3.0}, {0.0, 0.0, 1.0}, std::nullopt};
-    const auto trace = [&](const Scene& scene) {
-        const PassLibrary library = PassLibrary::withBuiltins();
-        const GraphDesc graph = parseGraph(kFurnaceGraph, "furnace.json", library.registry());
-        Renderer renderer = rendererAt(graph, library, {}, kWidth, kHeight);
-        renderer.setExternalImage("equirect", constantImage(2, 1, glm::vec3(float(kEnvironment))));
-        renderer.frameData().set(scene);
-        for (int i = 0; i < 4; ++i) renderer.renderFrame();
-        return renderer.readImage("accumulation").at(0);
-    };
-    const ImageData fromSphere = trace(sphere), fromPlane = trace(plane);
+    const ImageData fromSphere = traceFurnace(sphere), fromPlane = traceFurnace(plane);
     double sphereSum = 0.0, planeSum = 0.0;
     for (uint32_t y = 0; y < kHeight; ++y)
         for (uint32_t x = 0; x < kWidth; ++x) {
