@@ -148,7 +148,24 @@ HdrImage loadExr(const std::filesystem::path& path) {
         if (!file.isComplete()) throw ImageError(path, "truncated: some pixel blocks are missing");
         HdrImage image{uint32_t(w), uint32_t(h), std::vector<float>(size_t(w) * size_t(h) * 4)};
         readPixels(path, file, window, image);
-        return image;
+        // The image is the display window: pixels it holds outside the data window are
+        // transparent black, and data outside it (overscan) is not part of the image.
+        const Imath::Box2i display = header.displayWindow();
+        if (display == window) return image;
+        const int64_t dw = int64_t(display.max.x) - display.min.x + 1;
+        const int64_t dh = int64_t(display.max.y) - display.min.y + 1;
+        image_detail::requireLoadableSize(path, dw, dh);
+        HdrImage shown{uint32_t(dw), uint32_t(dh), std::vector<float>(size_t(dw) * size_t(dh) * 4, 0.0f)};
+        for (int64_t y = 0; y < dh; ++y) {
+            const int64_t sy = y + display.min.y - window.min.y;
+            if (sy < 0 || sy >= h) continue;
+            for (int64_t x = 0; x < dw; ++x) {
+                const int64_t sx = x + display.min.x - window.min.x;
+                if (sx < 0 || sx >= w) continue;
+                std::copy_n(&image.rgba[size_t(sy * w + sx) * 4], 4, &shown.rgba[size_t(y * dw + x) * 4]);
+            }
+        }
+        return shown;
     } catch (const ImageError&) {
         throw;
     } catch (const std::exception& e) {  // Iex::BaseExc and std::bad_alloc

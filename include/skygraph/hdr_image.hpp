@@ -60,7 +60,8 @@ private:
 
 /// Loads the first part of an OpenEXR file (any compression, scanline or tiled, float, half or
 /// uint channels) at full float precision, whatever its extension. A luminance-only file (Y)
-/// becomes grey. Throws ImageError.
+/// becomes grey. The image is the file's display window: where the data window leaves part of
+/// it, that part is transparent black, and data outside it is left out. Throws ImageError.
 [[nodiscard]] HdrImage loadExr(const std::filesystem::path& path);
 
 /// Saves by extension (.hdr or .exr). Reads `image` only; writes a temporary file next to

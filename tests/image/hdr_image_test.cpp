@@ -206,6 +206,42 @@ TEST_F(HdrImageTest, ExrFloatChannelsKeepFullPrecisionAndAnyDataWindow) {
     }
 }
 
+// OpenEXR's image is its display window; the data window may cover part of it (the rest is
+// transparent black) or more (overscan, not part of the image). An equirect cropped to its
+// data window was stretched over the sphere, and overscan was baked into the sky.
+TEST_F(HdrImageTest, ExrIsReadAsItsDisplayWindow) {
+    const auto write = [&](const fs::path& path, const Imath::Box2i& display, const Imath::Box2i& data, float base) {
+        const int w = data.max.x - data.min.x + 1, h = data.max.y - data.min.y + 1;
+        std::vector<float> r(size_t(w) * size_t(h));
+        for (size_t i = 0; i < r.size(); ++i) r[i] = base + float(i);
+        Imf::Header header(display, data);
+        header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+        Imf::FrameBuffer frame;
+        frame.insert("R", Imf::Slice::Make(Imf::FLOAT, r.data(), data, sizeof(float), sizeof(float) * size_t(w)));
+        Imf::OutputFile out(path.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(h);
+    };
+    // Data at (1, 1) to (2, 1) of a 4 x 2 display window.
+    write(dir_ / "inside.exr", Imath::Box2i({0, 0}, {3, 1}), Imath::Box2i({1, 1}, {2, 1}), 10.0f);
+    const HdrImage inside = skygraph::loadHdrImage(dir_ / "inside.exr");
+    ASSERT_EQ(inside.width, 4u);
+    ASSERT_EQ(inside.height, 2u);
+    for (uint32_t y = 0; y < 2; ++y)
+        for (uint32_t x = 0; x < 4; ++x) {
+            const bool data = y == 1 && (x == 1 || x == 2);
+            EXPECT_EQ(inside.rgba[(y * 4 + x) * 4], data ? 10.0f + float(x - 1) : 0.0f) << x << "," << y;
+            EXPECT_EQ(inside.rgba[(y * 4 + x) * 4 + 3], data ? 1.0f : 0.0f) << x << "," << y;
+        }
+    // Data from (-1, -1) to (2, 1) over a 2 x 1 display window at (0, 0): the overscan goes.
+    write(dir_ / "overscan.exr", Imath::Box2i({0, 0}, {1, 0}), Imath::Box2i({-1, -1}, {2, 1}), 100.0f);
+    const HdrImage overscan = skygraph::loadHdrImage(dir_ / "overscan.exr");
+    ASSERT_EQ(overscan.width, 2u);
+    ASSERT_EQ(overscan.height, 1u);
+    EXPECT_EQ(overscan.rgba[0], 100.0f + 5.0f);  // data row 1 (y = 0), column 1 (x = 0) of 4
+    EXPECT_EQ(overscan.rgba[4], 100.0f + 6.0f);
+}
+
 TEST_F(HdrImageTest, ExrLuminanceOnlyAndLuminanceChromaFilesBecomeRgb) {
     const fs::path grey = dir_ / "y.exr";
     std::vector<float> y = {0.25f, 2.0f, 8.0f, 0.0f};
