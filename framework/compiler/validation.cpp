@@ -64,18 +64,26 @@ std::string switchedOffWriter(const GraphIndex& index, const FeatureValues& feat
     return {};
 }
 
-/// What read `u` of pass `reader` finds unwritten ("mips 1 and 2"), at the output size, as
-/// describeUnwritten words it; empty when no part of it is written. Only for messages: it
-/// replays the earlier active passes' writes of the one resource.
-std::string unwrittenBefore(const GraphIndex& index, size_t reader, const IndexedUsage& u) {
-    const SubresourceGrid& grid = index.grid(u.resource);
-    std::vector<uint8_t> held(grid.size(), index.clear(u.resource) || index.external(u.resource));
+/// Per subresource of `resource`, whether it holds contents before pass `reader` (it is
+/// `clear` or `external`, or an earlier active pass wrote it). Only for messages: it replays
+/// the earlier active passes' writes of the one resource.
+std::vector<uint8_t> heldBefore(const GraphIndex& index, size_t reader, uint32_t resource) {
+    const SubresourceGrid& grid = index.grid(resource);
+    std::vector<uint8_t> held(grid.size(), index.clear(resource) || index.external(resource));
     for (size_t q = 0; q < reader; ++q) {
         if (!index.active(q)) continue;
         for (const IndexedUsage& w : index.usesOf(q))
-            if (w.resource == u.resource && writesContents(w.usage.access))
+            if (w.resource == resource && writesContents(w.usage.access))
                 grid.forEach(index.range(w), [&](size_t cell) { held[cell] = 1; });
     }
+    return held;
+}
+
+/// What read `u` of pass `reader` finds unwritten ("mips 1 and 2"), at the output size, as
+/// describeUnwritten words it; empty when no part of it is written.
+std::string unwrittenBefore(const GraphIndex& index, size_t reader, const IndexedUsage& u) {
+    const SubresourceGrid& grid = index.grid(u.resource);
+    const std::vector<uint8_t> held = heldBefore(index, reader, u.resource);
     const SubresourceRange read = index.range(u);
     size_t cells = 0, missing = 0;
     grid.forEach(read, [&](size_t cell) {
@@ -86,6 +94,14 @@ std::string unwrittenBefore(const GraphIndex& index, size_t reader, const Indexe
     return describeUnwritten(read, [&](uint32_t mip, uint32_t layer) {
         return held[grid.index(mip, layer)] == 0;
     });
+}
+
+/// "'o' is an output of the graph (`final`), but no pass writes mip 1 of it, ...": `writer`
+/// says which passes ("pass", "pass that runs with these features"); an empty `part` is all of it.
+std::string unwrittenOutput(const std::string& name, const std::string& writer, const std::string& part) {
+    return "'" + name + "' is an output of the graph (`final`), but no " + writer + " writes " +
+           (part.empty() ? "it" : part + " of it") + ", and it is not `clear`: the frame would hand " +
+           (part.empty() ? "it" : "that part") + " on undefined";
 }
 
 /// A resource's subresources as the load-time check sees them, with no output size. Small:
@@ -193,9 +209,7 @@ void checkReadsHaveSourcesAtLoad(const GraphDesc& graph, Diagnostics& out) {
             }
         if (missing == 0 || writtenAnywhere == 0) continue;
         out.add({graph.file, r.jsonPath() + ".final", "", r.name,
-                 "'" + r.name + "' is an output of the graph (`final`), but no pass writes " +
-                     describeUnwritten(exported, unwritten) +
-                     " of it, and it is not `clear`: the frame would hand that part on undefined"});
+                 unwrittenOutput(r.name, "pass", describeUnwritten(exported, unwritten))});
     }
 }
 
@@ -460,22 +474,13 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
         const ResourceDesc& d = graph.resources[r];
         if (options.readbacks.count(d.name)) continue;
         const SubresourceGrid& grid = index.grid(r);
-        std::vector<uint8_t> held(grid.size());
-        for (size_t p = 0; p < graph.passes.size(); ++p) {
-            if (!index.active(p)) continue;
-            for (const IndexedUsage& w : index.usesOf(p))
-                if (w.resource == r && writesContents(w.usage.access))
-                    grid.forEach(index.range(w), [&](size_t cell) { held[cell] = 1; });
-        }
+        const std::vector<uint8_t> held = heldBefore(index, graph.passes.size(), r);
         const bool none = std::find(held.begin(), held.end(), 1) == held.end();
         const std::string part =
-            none ? "it"
-                 : describeUnwritten(grid.whole(), [&](uint32_t m, uint32_t l) { return !held[grid.index(m, l)]; }) +
-                       " of it";
+            none ? "" : describeUnwritten(grid.whole(), [&](uint32_t m, uint32_t l) { return !held[grid.index(m, l)]; });
         diags.add({graph.file, d.jsonPath() + ".final", "", d.name,
-                   "'" + d.name + "' is an output of the graph (`final`), but no pass that runs with these features "
-                   "writes " + part + ", and it is not `clear`: the frame would hand " + (none ? "it" : "that part") +
-                       " on undefined" + switchedOffWriter(index, features, graph.passes.size(), r)});
+                   unwrittenOutput(d.name, "pass that runs with these features", part) +
+                       switchedOffWriter(index, features, graph.passes.size(), r)});
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 }
