@@ -132,6 +132,27 @@ bool readRegularFile(std::vector<unsigned char>* out, std::string* error, const 
     return true;
 }
 
+/// By image index: whether only a texture's extension names the image (`"extensions":
+/// {"KHR_texture_basisu": {"source": 1}}`) and no texture's own `source` does. skygraph reads
+/// no texture extension, and a file that requires one is refused before this, so such an image
+/// is for readers that have the extension and need not be in a format stb reads (KTX2, WebP):
+/// a reader without the extension samples the texture's own `source`, its fallback (glTF 2.0).
+std::vector<bool> imagesOnlyExtensionsName(const tinygltf::Model& model) {
+    std::vector<bool> byExtension(model.images.size(), false), bySource(model.images.size(), false);
+    const auto mark = [&](std::vector<bool>& named, int image) {
+        if (image >= 0 && size_t(image) < named.size()) named[size_t(image)] = true;
+    };
+    for (const tinygltf::Texture& texture : model.textures) {
+        mark(bySource, texture.source);
+        for (const auto& [name, extension] : texture.extensions)
+            if (extension.IsObject() && extension.Has("source") && extension.Get("source").IsInt())
+                mark(byExtension, extension.Get("source").GetNumberAsInt());
+    }
+    std::vector<bool> only(model.images.size());
+    for (size_t i = 0; i < only.size(); ++i) only[i] = byExtension[i] && !bySource[i];
+    return only;
+}
+
 /// A vertex attribute as skygraph reads it: its accessor type and, for texture coordinates,
 /// the normalized integers glTF allows besides floats.
 struct AttributeFormat {
@@ -686,6 +707,11 @@ std::optional<TriangleMesh> loadGltfFromMemory(std::string_view bytes, const std
         }
         if (diagnostics.size() == before) fail("glTF: tinygltf could not read it");
     }
+    // Nothing samples an image that only an ignored extension names: no reason to refuse the file.
+    const std::vector<bool> onlyForExtensions = imagesOnlyExtensionsName(model);
+    std::erase_if(headerCheck.problems, [&](const auto& entry) {
+        return size_t(entry.first) < onlyForExtensions.size() && onlyForExtensions[size_t(entry.first)];
+    });
     for (const auto& [index, problem] : headerCheck.problems)
         diagnostics.add(Diagnostic{name, problem.jsonPath, "", "", problem.message});
     if (!read || !error.empty() || !headerCheck.problems.empty()) return std::nullopt;

@@ -130,10 +130,10 @@ struct Quad {
     std::vector<uint8_t> uvBytes;    ///< or UNSIGNED_BYTE
 };
 
-/// A 1x1 RGBA PNG as a Quad's `more` members, and a texture of it.
-const std::string kPixelImage =
-    R"("images": [{"uri": "data:image/png;base64,)"
-    R"(iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+M9QDwADhgGAWjR9awAAAABJRU5ErkJggg=="}])";
+/// A 1x1 RGBA PNG, in base64; as a Quad's `more` members; and a texture of it.
+const std::string kPixelPng =
+    "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mNk+M9QDwADhgGAWjR9awAAAABJRU5ErkJggg==";
+const std::string kPixelImage = R"("images": [{"uri": "data:image/png;base64,)" + kPixelPng + R"("}])";
 const std::string kPixelTexture = R"("textures": [{"source": 0}], )" + kPixelImage;
 const std::vector<float> kUpright{0, 1, 1, 1, 1, 0, 0, 0};  ///< the image upright on the quad: v = 0 at the top
 
@@ -308,6 +308,39 @@ TEST(GltfTextures, AnImageNothingSamplesIsNotDecoded) {
     const auto quad = loadGltf(writeTexturedQuad("image-unsampled", "logo.png", &truncated, false), {}, d);
     ASSERT_TRUE(quad) << messages(d);
     EXPECT_TRUE(quad->images.empty());
+}
+
+// KHR_texture_basisu and EXT_texture_webp name their image inside the texture's extension and
+// keep `source` for a fallback, which a loader without the extension samples (glTF 2.0,
+// "Specifying Extensions"). The KTX2 or WebP image, which stb cannot read, was refused.
+TEST(GltfTextures, AnImageOnlyAnIgnoredExtensionNamesIsNotRequired) {
+    struct Case {
+        std::string extension, file, bytes;
+    };
+    const std::string ktx2 = std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) + std::string(68, '\0');
+    const std::string webp = std::string("RIFF\x48\0\0\0WEBPVP8 ", 16) + std::string(64, '\0');
+    for (const Case& c : {Case{"KHR_texture_basisu", "logo.ktx2", ktx2}, Case{"EXT_texture_webp", "logo.webp", webp}}) {
+        SCOPED_TRACE(c.extension);
+        const fs::path dir = fs::temp_directory_path() / ("skygraph-fallback-" + c.file);
+        fs::create_directories(dir);
+        std::ofstream(dir / c.file, std::ios::binary) << c.bytes;
+        Quad q{kUpright, {}, R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}})"};
+        q.more = R"("extensionsUsed": [")" + c.extension + R"("], "textures": [{"source": 0, "extensions": {")" +
+                 c.extension + R"(": {"source": 1}}}], "images": [{"uri": "data:image/png;base64,)" + kPixelPng +
+                 R"("}, {"uri": ")" + c.file + "\"}]";
+        Diagnostics d;
+        const auto quad = loadGltf(writeQuad("fallback-" + c.extension, q, dir), {}, d);
+        ASSERT_TRUE(quad) << messages(d);
+        ASSERT_EQ(quad->images.size(), 1u);
+        EXPECT_EQ(quad->images[0].name, "images[0]") << "the fallback";
+        EXPECT_EQ(quad->primitives.at(0).material.baseColorTexture.image, 0);
+
+        // A file that requires the extension has no fallback to offer.
+        q.more = R"("extensionsRequired": [")" + c.extension + R"("], )" + q.more;
+        gltf_test::expectRefusedAt(
+            writeQuad("required-" + c.extension, q, dir), "extensionsRequired",
+            "the file requires extension '" + c.extension + "', which skygraph does not support");
+    }
 }
 
 /// A PNG of nothing but its signature and header, claiming `width` x `height` RGBA8 texels: a
