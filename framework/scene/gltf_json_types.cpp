@@ -219,8 +219,20 @@ public:
             if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end())
                 length(*pbr, "baseColorFactor", at + ".pbrMetallicRoughness", 4);
         });
+        // tinygltf says "Orthographic camera description not found." and the like, naming no camera.
         each(root, "cameras", [&](const json& c, const std::string& at) {
+            required(c, at, {"type"});
             oneOf(c, "type", at, {"perspective", "orthographic"});
+            const auto type = c.find("type");
+            if (type == c.end()) return;
+            const std::string projection = type->get<std::string>();
+            if (projection != "perspective" && projection != "orthographic") return;
+            const auto description = c.find(projection);
+            if (description == c.end())
+                return error(at + "." + projection,
+                             "missing; a camera of type \"" + projection + "\" describes its projection there");
+            if (projection == "perspective") required(*description, at + ".perspective", {"yfov", "znear"});
+            else required(*description, at + ".orthographic", {"xmag", "ymag", "zfar", "znear"});
         });
         return ok_;
     }

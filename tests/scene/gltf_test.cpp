@@ -648,6 +648,45 @@ TEST(Gltf, AMisalignedAccessorIsRefused) {
     fs::remove_all(dir);
 }
 
+// A camera's projection lies in the object its `type` names. Without it, or without a number
+// glTF requires there, tinygltf's own words ("Orthographic camera description not found.")
+// named neither the camera nor where in the file it is.
+TEST(Gltf, ACameraWithoutItsProjectionIsNamedAtItsPath) {
+    const fs::path dir = fs::temp_directory_path() / ("skygraph-gltf-camera-projection-" + std::to_string(getpid()));
+    const std::string text = camerasGltfBesideItsBuffer(dir);
+    const std::string perspective = R"("perspective": {
+        "aspectRatio": 1.0,
+        "yfov": 0.7,)";
+    const std::string orthographic = R"("orthographic": {
+        "xmag": 1.0,)";
+    const struct {
+        std::string from, to, path, message;
+    } cases[]{
+        {orthographic, R"("extras": {)", "cameras[1].orthographic",
+         R"(missing; a camera of type "orthographic" describes its projection there)"},
+        {perspective, R"("extras": {)", "cameras[0].perspective",
+         R"(missing; a camera of type "perspective" describes its projection there)"},
+        {orthographic, R"("orthographic": {)", "cameras[1].orthographic.xmag", "missing; glTF requires it here"},
+        {perspective, R"("perspective": { "aspectRatio": 1.0,)", "cameras[0].perspective.yfov",
+         "missing; glTF requires it here"},
+        {R"("type": "perspective",)", "", "cameras[0].type", "missing; glTF requires it here"},
+    };
+    const fs::path file = dir / "Cameras.gltf";
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.path);
+        ASSERT_NE(text.find(c.from), std::string::npos) << c.from;
+        std::string edited = text;
+        edited.replace(edited.find(c.from), c.from.size(), c.to);
+        std::ofstream(file, std::ios::trunc) << edited;
+        Diagnostics d;
+        EXPECT_FALSE(loadGltf(file, {}, d));
+        ASSERT_FALSE(d.empty());
+        EXPECT_NE(d.items()[0].format().find(file.string() + ": " + c.path + ": " + c.message), std::string::npos)
+            << messages(d);
+    }
+    fs::remove_all(dir);
+}
+
 TEST(Gltf, NotAGltfFile) {
     Diagnostics d;
     EXPECT_FALSE(loadGltf(fs::path(SKYGRAPH_SOURCE_DIR) / "scenes/default.json", {}, d));
