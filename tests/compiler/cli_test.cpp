@@ -1210,6 +1210,22 @@ TEST_F(Cli, RenderNamesTheGraphFileOfAReadBackOfAFormatItCannotWrite) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+// The name came from the command line, not the graph file: it was reported at the file's
+// `resources`, as if the file had named it there.
+TEST_F(Cli, RenderNamesTheReadbackOptionOfAResourceTheGraphLacks) {
+    const fs::path graph = kSource / "graphs/raster.json";
+    const fs::path out = dir_ / "work" / "out.exr";
+    const CliRun r = run({"render", graph.string(), "--readback", "NONE", "-o", out.string()});
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("skygraph render: " + graph.string() + ": cannot read back 'NONE' (--readback): the graph "
+                         "has no resource of that name; the images its passes write: "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("hdr_color"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("resources"), std::string::npos) << r.err;
+    EXPECT_TRUE(workFiles().empty());
+}
+
 TEST_F(Cli, RenderWithAnOutputButNothingToWriteSaysWhatToNameAndWritesNothing) {
     const fs::path graph = writeGraph("bake.json", kComputeOnlyGraph);
     const fs::path out = dir_ / "work" / "out.png";

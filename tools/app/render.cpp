@@ -475,6 +475,15 @@ int renderCommand(const RenderOptions& options) {
         const Plan unread = compile(graph, co);
         const std::string target = outputTarget(graph, unread, options.readback);
         const std::set<std::string, std::less<>> written = writtenByPasses(unread);
+        // Said here, not by compile(): it would report the name at the file's `resources`, and the
+        // name came from the command line.
+        if (!options.readback.empty() && !graph.findResource(options.readback)) {
+            const std::string images = writtenImageNames(graph, written);
+            std::cerr << "skygraph render: " << printableName(graph.file) << ": cannot read back '"
+                      << printableName(options.readback) << "' (--readback): the graph has no resource of that name"
+                      << (images.empty() ? std::string() : "; the images its passes write: " + images) << "\n";
+            return 1;
+        }
         if (target.empty()) {
             if (!output.empty()) {
                 const std::string images = writtenImageNames(graph, written);
