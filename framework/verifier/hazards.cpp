@@ -6,6 +6,8 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace skygraph::verifier {
 namespace {
@@ -20,7 +22,21 @@ const char* hazardName(const ModelAccess& earlier, const ModelAccess& later) {
 class PairChecker {
 public:
     PairChecker(const FrameModel& model, const Plan& plan, Reporter& reporter)
-        : model_(model), plan_(plan), reporter_(reporter), reach_(model.accesses.size()) {}
+        : model_(model), plan_(plan), reporter_(reporter), reach_(model.accesses.size()),
+          transitionsOf_(model.memory.size()) {
+        // Indexed once: asked per pair, a scan of every access between the two (and, across
+        // aliases, of every resource) made the check quartic in the passes of a long chain.
+        for (uint32_t t = 0; t < model.accesses.size(); ++t) {
+            const ModelAccess& a = model.accesses[t];
+            if (a.kind != ModelAccess::Kind::Transition) continue;
+            transitionsOf_[a.object].push_back(t);
+            const MemoryObject& o = model.memory.object(a.object);
+            if (o.kind != MemoryObject::Kind::Image || !o.placement) continue;
+            if (o.placement->heapInstance >= placedTransitions_.size())
+                placedTransitions_.resize(o.placement->heapInstance + 1);
+            placedTransitions_[o.placement->heapInstance].push_back(t);
+        }
+    }
 
     size_t run() {
         const auto& accesses = model_.accesses;
@@ -91,11 +107,9 @@ private:
     /// Whether a layout transition of `cell` of `object` lies between accesses e and x: it
     /// rewrote the subresource, so (e, it) and (it, x) are the pairs that matter.
     bool transitionedBetween(uint32_t object, const SubresourceRange& cell, size_t e, size_t x) const {
-        for (size_t t = e + 1; t < x; ++t) {
-            const ModelAccess& a = model_.accesses[t];
-            if (a.kind == ModelAccess::Kind::Transition && a.object == object && rangeContains(a.cells, cell))
-                return true;
-        }
+        const std::vector<uint32_t>& transitions = transitionsOf_[object];
+        for (auto t = std::upper_bound(transitions.begin(), transitions.end(), e); t != transitions.end() && *t < x; ++t)
+            if (rangeContains(model_.accesses[*t].cells, cell)) return true;
         return false;
     }
 
@@ -105,31 +119,36 @@ private:
     /// ones that matter, not (e, x).
     bool supersededAcrossAliases(const ModelAccess& earlier, size_t e, size_t x, const ByteRange& shared) const {
         const MemoryObject& a = model_.memory.object(earlier.object);
-        if (!a.placement) return false;
+        if (!a.placement || a.placement->heapInstance >= placedTransitions_.size()) return false;
+        // The transitions between the two in the heap, in order: the first resource rewritten
+        // whole usually holds all the shared bytes, and the walk stops there.
+        std::vector<std::pair<uint32_t, std::vector<uint8_t>>> marked;  // per object met: cells transitioned
         std::vector<ByteRange> rewritten;  // placements whose every subresource was transitioned
-        for (uint32_t o = 0; o < model_.memory.size(); ++o) {
-            const MemoryObject& candidate = model_.memory.object(o);
-            if (candidate.kind != MemoryObject::Kind::Image || !candidate.placement ||
-                candidate.placement->heapInstance != a.placement->heapInstance)
-                continue;
+        const std::vector<uint32_t>& transitions = placedTransitions_[a.placement->heapInstance];
+        for (auto t = std::upper_bound(transitions.begin(), transitions.end(), e); t != transitions.end() && *t < x;
+             ++t) {
+            const ModelAccess& tr = model_.accesses[*t];
+            const MemoryObject& candidate = model_.memory.object(tr.object);
             const ByteRange& bytes = candidate.placement->bytes;
             if (bytes.end <= shared.begin || shared.end <= bytes.begin) continue;
-            std::vector<uint8_t> cells(candidate.cellCount(), 0);
-            for (size_t t = e + 1; t < x; ++t) {
-                const ModelAccess& tr = model_.accesses[t];
-                if (tr.kind != ModelAccess::Kind::Transition || tr.object != o) continue;
-                for (uint32_t mip = tr.cells.baseMip; mip < tr.cells.baseMip + tr.cells.mipCount; ++mip)
-                    for (uint32_t layer = tr.cells.baseLayer; layer < tr.cells.baseLayer + tr.cells.layerCount; ++layer)
-                        cells[candidate.cell(mip, layer)] = 1;
-            }
-            if (std::all_of(cells.begin(), cells.end(), [](uint8_t c) { return c != 0; })) rewritten.push_back(bytes);
+            auto m = std::find_if(marked.begin(), marked.end(), [&](const auto& p) { return p.first == tr.object; });
+            if (m == marked.end()) m = marked.insert(marked.end(), {tr.object, std::vector<uint8_t>(candidate.cellCount())});
+            std::vector<uint8_t>& cells = m->second;
+            if (cells.empty()) continue;  // already rewritten whole
+            for (uint32_t mip = tr.cells.baseMip; mip < tr.cells.baseMip + tr.cells.mipCount; ++mip)
+                for (uint32_t layer = tr.cells.baseLayer; layer < tr.cells.baseLayer + tr.cells.layerCount; ++layer)
+                    cells[candidate.cell(mip, layer)] = 1;
+            if (!std::all_of(cells.begin(), cells.end(), [](uint8_t c) { return c != 0; })) continue;
+            cells.clear();
+            rewritten.push_back(bytes);
+            std::sort(rewritten.begin(), rewritten.end(),
+                      [](const ByteRange& l, const ByteRange& r) { return l.begin < r.begin; });
+            uint64_t covered = shared.begin;
+            for (const ByteRange& r : rewritten)
+                if (r.begin <= covered) covered = std::max(covered, r.end);
+            if (covered >= shared.end) return true;
         }
-        std::sort(rewritten.begin(), rewritten.end(),
-                  [](const ByteRange& l, const ByteRange& r) { return l.begin < r.begin; });
-        uint64_t covered = shared.begin;
-        for (const ByteRange& r : rewritten)
-            if (r.begin <= covered) covered = std::max(covered, r.end);
-        return covered >= shared.end;
+        return false;
     }
 
     /// The relaxed reading, to tell a partial barrier from a missing one: every subresource of
@@ -253,6 +272,8 @@ private:
     const Plan& plan_;
     Reporter& reporter_;
     std::vector<std::optional<PointSet>> reach_;
+    std::vector<std::vector<uint32_t>> transitionsOf_;      // per object: its transitions' access indices
+    std::vector<std::vector<uint32_t>> placedTransitions_;  // per heap instance: transitions of images in it
 };
 
 }  // namespace
