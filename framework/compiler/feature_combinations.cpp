@@ -1,7 +1,7 @@
 #include <skygraph/feature_combinations.hpp>
 
 #include <algorithm>
-#include <array>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -30,66 +30,40 @@ std::vector<FeatureValues> allFeatureCombinations(const GraphDesc& graph) {
     return out;
 }
 
+/// Kleitman and Spencer's construction of the smallest binary covering array of strength 2:
+/// with k rows, give each feature a distinct column that is 0 in the first row and has
+/// exactly ceil(k/2) ones in the other k - 1. Row 0 gives every pair (0, 0); two distinct sets
+/// of ones of one size each have a row the other lacks, which gives (1, 0) and (0, 1); and two
+/// sets of ceil(k/2) among k - 1 rows must share one, which gives (1, 1). The least k with
+/// C(k - 1, ceil(k/2)) columns to give is the fewest rows any covering set has. Each feature's
+/// column is read relative to its default, which keeps every pair's four values and makes row
+/// 0 the defaults.
 std::vector<FeatureValues> pairwiseFeatureCombinations(const GraphDesc& graph) {
     const size_t n = graph.features.size();
     if (n == 0) return {FeatureValues{}};
-    // uncovered[i][j][a*2+b]: features i < j have not yet been seen with values a and b.
-    std::vector<std::vector<std::array<bool, 4>>> uncovered(n, std::vector<std::array<bool, 4>>(n, {true, true, true, true}));
-    size_t left = n * (n - 1) / 2 * 4;
-    std::vector<std::vector<bool>> rows;
-    const auto cover = [&](const std::vector<bool>& row) {
-        for (size_t i = 0; i < n; ++i)
-            for (size_t j = i + 1; j < n; ++j) {
-                bool& u = uncovered[i][j][size_t(row[i]) * 2 + row[j]];
-                if (u) --left;
-                u = false;
-            }
-        rows.push_back(row);
+    const auto choose = [](uint64_t from, uint64_t pick) {
+        uint64_t c = 1;  // exact: each step's product is divisible by i
+        for (uint64_t i = 1; i <= pick; ++i) c = c * (from - pick + i) / i;
+        return c;
     };
-    std::vector<bool> defaults(n);
-    for (size_t i = 0; i < n; ++i) defaults[i] = graph.features[i].defaultValue;
-    cover(defaults);
-    std::vector<bool> inverted(n);
-    for (size_t i = 0; i < n; ++i) inverted[i] = !defaults[i];
-    cover(inverted);  // with one feature, both values; with more, a start on every pair
-    while (left > 0) {
-        // Greedy, feature by feature: seed the row with the first uncovered pair, then give each
-        // other feature the value that covers more pairs with those already chosen.
-        std::vector<bool> row(n);
-        std::vector<bool> chosen(n, false);
-        const auto seed = [&] {
-            for (size_t i = 0; i < n; ++i)
-                for (size_t j = i + 1; j < n; ++j)
-                    for (size_t v = 0; v < 4; ++v)
-                        if (uncovered[i][j][v]) {
-                            row[i] = (v >> 1) != 0;
-                            row[j] = (v & 1u) != 0;
-                            chosen[i] = chosen[j] = true;
-                            return;
-                        }
-        };
-        seed();
-        for (size_t k = 0; k < n; ++k) {
-            if (chosen[k]) continue;
-            size_t gain[2] = {0, 0};
-            for (size_t value = 0; value < 2; ++value)
-                for (size_t o = 0; o < n; ++o) {
-                    if (!chosen[o]) continue;
-                    const size_t i = std::min(k, o), j = std::max(k, o);
-                    const bool a = i == k ? bool(value) : row[i], b = j == k ? bool(value) : row[j];
-                    gain[value] += uncovered[i][j][size_t(a) * 2 + b];
-                }
-            row[k] = gain[1] > gain[0];
-            chosen[k] = true;
-        }
-        cover(row);
+    uint64_t rows = 2;
+    while (choose(rows - 1, (rows + 1) / 2) < n) ++rows;
+    const uint64_t ones = (rows + 1) / 2;
+    // Columns in increasing numeric order of their bits (bit r - 1 for row r): deterministic.
+    std::vector<uint64_t> columns;
+    columns.reserve(n);
+    for (uint64_t column = (uint64_t(1) << ones) - 1; columns.size() < n;) {
+        columns.push_back(column);
+        const uint64_t lowest = column & -column, ripple = column + lowest;  // Gosper's next subset
+        column = ripple | (((column ^ ripple) >> 2) / lowest);
     }
     std::vector<FeatureValues> out;
-    for (const std::vector<bool>& row : rows) {
-        FeatureValues values = toValues(graph, row);
-        bool duplicate = false;
-        for (const FeatureValues& o : out) duplicate |= o == values;
-        if (!duplicate) out.push_back(std::move(values));
+    for (uint64_t r = 0; r < rows; ++r) {
+        std::vector<bool> on(n);
+        for (size_t i = 0; i < n; ++i)
+            on[i] = graph.features[i].defaultValue != (r > 0 && (columns[i] >> (r - 1) & 1u) != 0);
+        FeatureValues values = toValues(graph, on);
+        if (std::find(out.begin(), out.end(), values) == out.end()) out.push_back(std::move(values));
     }
     return out;
 }
