@@ -128,12 +128,14 @@ TEST_F(AliasedFixture, AFirstPassInSeveralLayoutsRendersTheSameBytesAsUnaliased)
     const PlannedResource& b = plan.resources()[plan.resourceIndex("b")];
     ASSERT_NE(b.placement, PlannedResource::kNoPlacement);
     ASSERT_FALSE(plan.memory().placements[b.placement].aliases.empty()) << "b takes over a's memory";
-    for (const PlannedPass& p : plan.passes())
-        if (p.name == "write_b")
-            for (const PlannedUsage& u : p.usages) EXPECT_EQ(u.layout, VK_IMAGE_LAYOUT_GENERAL) << planToText(plan);
-    for (const PlannedPass& p : unaliased.plan().passes())
-        if (p.name == "write_b")
-            EXPECT_EQ(p.usages[0].layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) << planToText(unaliased.plan());
+    for (const PlannedPass& p : plan.passes()) {
+        if (p.name != "write_b") continue;
+        for (const PlannedUsage& u : p.usages) EXPECT_EQ(u.layout, VK_IMAGE_LAYOUT_GENERAL) << planToText(plan);
+    }
+    for (const PlannedPass& p : unaliased.plan().passes()) {
+        if (p.name != "write_b") continue;
+        EXPECT_EQ(p.usages[0].layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL) << planToText(unaliased.plan());
+    }
     const std::string why = difference(renderExports(unaliased), renderExports(aliased));
     EXPECT_TRUE(why.empty()) << why << "\n" << planToText(plan);
 }
