@@ -890,6 +890,40 @@ TEST_F(Cli, CompileRefusesALinkFromOneOutputToTheOther) {
     }
 }
 
+// --memory-svg naming standard output while the plan is printed there: the picture went first,
+// and the plan after it (a pipe) or over it from the file's start (a redirection to a file),
+// which exited 0.
+TEST_F(Cli, CompileRefusesStandardOutputForThePictureWhileThePlanIsPrintedThere) {
+    std::ofstream(dir_ / "stdout").flush();  // there before the run, for a hard link to it
+    fs::create_hard_link(dir_ / "stdout", dir_ / "another_name.svg");
+    for (const std::string& picture : {std::string("/dev/stdout"), std::string("/proc/self/fd/1"),
+                                       (dir_ / "stdout").string(), (dir_ / "another_name.svg").string()})
+        for (const char* format : {"text", "dot"}) {
+            const CliRun r = run({"compile", "graphs/async.json", "--format", format, "--memory-svg", picture});
+            EXPECT_EQ(r.status, 1) << picture << " " << format << ": " << r.err;
+            EXPECT_NE(r.err.find("--memory-svg '" + picture + "' is standard output, where the plan is printed"),
+                      std::string::npos) << r.err;
+            EXPECT_EQ(r.out, "") << picture << " " << format << ": nothing written";
+        }
+    const std::string piped = "cd " + quote(kSource.string()) + " && { " + quote(kCli.string()) +
+                              " compile graphs/raster.json --memory-svg /dev/stdout 2>/dev/null; echo $? >" +
+                              quote((dir_ / "status").string()) + "; } | cat >" + quote((dir_ / "piped").string());
+    ASSERT_EQ(std::system(piped.c_str()), 0);
+    EXPECT_EQ(slurp(dir_ / "status"), "1\n");
+    EXPECT_EQ(slurp(dir_ / "piped"), "");
+    // Another file for the picture, or the plan to a file and the picture to standard output.
+    const fs::path svg = dir_ / "work" / "picture.svg";
+    const CliRun apart = run({"compile", "graphs/raster.json", "--memory-svg", svg.string()});
+    EXPECT_EQ(apart.status, 0) << apart.err;
+    EXPECT_EQ(apart.out.find("<svg"), std::string::npos) << apart.out;
+    EXPECT_NE(slurp(svg).find("</svg>"), std::string::npos);
+    const fs::path plan = dir_ / "work" / "plan.txt";
+    const CliRun swapped = run({"compile", "graphs/raster.json", "-o", plan.string(), "--memory-svg", "/dev/stdout"});
+    EXPECT_EQ(swapped.status, 0) << swapped.err;
+    EXPECT_NE(swapped.out.find("</svg>"), std::string::npos) << swapped.out;
+    EXPECT_EQ(slurp(plan), run({"compile", "graphs/raster.json"}).out);
+}
+
 // An environment image that cannot be read is named with the scene key that names it.
 TEST_F(Cli, RenderNamesTheSceneKeyOfAnUnreadableEnvironment) {
     fs::create_directories(dir_ / "frames");

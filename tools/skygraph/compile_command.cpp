@@ -14,6 +14,9 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -180,10 +183,27 @@ void refuseOneFileForBothOutputs(const CompileArgs& args) {
                                  "': the plan would replace the picture");
 }
 
+/// --memory-svg naming standard output while the plan is printed there (no -o): the picture is
+/// written first, through a name of the stream, and the plan then at standard output's own
+/// offset, over the picture in a file and after it in a pipe; neither is a file anyone can read.
+/// The same file rather than the same name: /dev/stdout, /proc/self/fd/1, or the file or
+/// terminal that the shell redirected standard output to, under any of its names.
+void refusePictureOnThePlansStandardOutput(const CompileArgs& args) {
+    if (!args.output.empty() || args.memorySvg.empty()) return;
+    struct stat standardOutput {}, picture {};
+    if (::fstat(STDOUT_FILENO, &standardOutput) != 0 || ::stat(args.memorySvg.c_str(), &picture) != 0) return;
+    if (standardOutput.st_dev == picture.st_dev && standardOutput.st_ino == picture.st_ino)
+        throw std::runtime_error("--memory-svg '" + printableName(args.memorySvg) +
+                                 "' is standard output, where the plan is printed: the plan would be written over "
+                                 "the picture or after it; draw the picture to another file, or write the plan "
+                                 "with -o");
+}
+
 int run(const CompileArgs& args) {
     refuseToOverwriteInputs("-o", args.output, {args.graph});
     refuseToOverwriteInputs("--memory-svg", args.memorySvg, {args.graph});
     refuseOneFileForBothOutputs(args);
+    refusePictureOnThePlansStandardOutput(args);
     const FeatureValues features = parseFeatureFlags(args.features);
     if (args.watch) return watch(args, features);
     writeCompiled(args, compileOnce(args, features), true);
