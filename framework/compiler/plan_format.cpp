@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <set>
 #include <sstream>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -564,6 +566,7 @@ std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setu
             if (readsContents(u.usage.access)) o << "  " << res << " -> " << pass << label << ";\n";
             if (writesContents(u.usage.access)) o << "  " << pass << " -> " << res << label << ";\n";
         }
+    std::set<std::string> onlyCulledUse;  // resources no pass of the plan uses, declared once
     for (const auto& c : plan.culled()) {
         o << "  \"pass:" << dotEscape(c.name) << "\" [shape=box, style=\"rounded,dashed,filled\", "
           << "fillcolor=\"#eeeeee\", fontcolor=\"#888888\", color=\"#aaaaaa\", label=\""
@@ -571,9 +574,13 @@ std::string planToDot(const Plan& plan, const GraphDesc& graph, const Plan* setu
         for (const auto& pass : graph.passes) {
             if (pass.name != c.name) continue;
             for (const auto& u : pass.uses) {
-                const std::string res = "\"res:" + dotEscape(graph.resources[u.resource].name) + "\"";
-                if (plan.resourceIndex(graph.resources[u.resource].name) < 0)
-                    o << "  " << res << " [shape=ellipse, style=dashed, fontcolor=\"#888888\"];\n";
+                const std::string& name = graph.resources[u.resource].name;
+                const std::string res = "\"res:" + dotEscape(name) + "\"";
+                // Labelled as the plan's resources are: Graphviz labels a node without one by
+                // its id, "res:lonely".
+                if (plan.resourceIndex(name) < 0 && onlyCulledUse.insert(name).second)
+                    o << "  " << res << " [shape=ellipse, style=dashed, fontcolor=\"#888888\", label=\""
+                      << dotEscape(name) << "\"];\n";
                 o << "  \"pass:" << dotEscape(c.name) << "\" -> " << res
                   << " [style=dashed, color=\"#aaaaaa\", arrowhead=none];\n";
             }

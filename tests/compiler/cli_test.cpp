@@ -701,6 +701,39 @@ std::vector<std::string> subcommandsFromHelp(const std::string& help) {
     return names;
 }
 
+// A resource that only culled passes use was declared once per such pass and without a label,
+// so graphviz showed its id, "res:lonely", where every other resource shows its bare name.
+TEST_F(Cli, DotDeclaresAResourceOnlyCulledPassesUseOnceUnderItsName) {
+    const fs::path graph = writeGraph("orphan.json", R"({"version": 1, "name": "t", "features": {"f": true},
+      "resources": {
+        "img": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+        "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true,
+                "final": "TransferSrc"},
+        "lonely": {"type": "buffer", "size": 16},
+        "say \"hi\"": {"type": "buffer", "size": 16}},
+      "passes": [
+        {"name": "a", "type": "Generic", "uses": {"img": "Write@Compute"}},
+        {"name": "b", "type": "Generic", "uses": {"img": "Read@Fragment", "out": "Write@ColorAttachment"}},
+        {"name": "orphan", "type": "Generic", "if": "!f", "uses": {"lonely": "Write@Compute"}},
+        {"name": "culled", "type": "Generic", "uses": {"lonely": "Write@Compute", "say \"hi\"": "Write@Compute"}}]})");
+    const CliRun r = run({"compile", graph.string(), "--format", "dot"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto declarations = [&](const std::string& node) {  // statements of the node alone, not of an edge
+        const std::string statement = "\n  " + node + " [";
+        size_t n = 0;
+        for (size_t at = r.out.find(statement); at != std::string::npos; at = r.out.find(statement, at + 1)) ++n;
+        return n;
+    };
+    EXPECT_EQ(declarations("\"res:lonely\""), 1u) << r.out;
+    EXPECT_NE(r.out.find("\"res:lonely\" [shape=ellipse, style=dashed, fontcolor=\"#888888\", label=\"lonely\"];"),
+              std::string::npos) << r.out;
+    EXPECT_EQ(declarations(R"("res:say \"hi\"")"), 1u) << r.out;
+    EXPECT_NE(r.out.find(R"(label="say \"hi\""];)"), std::string::npos) << r.out;
+    // Both culled passes still draw their edge to it.
+    EXPECT_NE(r.out.find("\"pass:orphan\" -> \"res:lonely\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"pass:culled\" -> \"res:lonely\""), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, EverySubcommandHasHelp) {
     const CliRun top = run({"--help"});
     ASSERT_EQ(top.status, 0) << top.err;
