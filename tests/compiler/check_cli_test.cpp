@@ -152,6 +152,33 @@ TEST_F(Cli, CheckShowsTheDiffOfAGoldenWithOneBarrierEdited) {
     EXPECT_EQ(rows(r.out, "pass"), 1u) << r.out;
 }
 
+// A golden may hold any bytes: its diff and the first line of a golden of another version were
+// printed as they were, a terminal's escape sequence (here, to red) included.
+TEST_F(Cli, CheckShowsControlCharactersOfAGoldenEscaped) {
+    const fs::path golden = dir_ / "golden";
+    const std::vector<std::string> check{"check", "graphs/ibl.json", "--features", "streamed_equirect=off",
+                                         "--golden", golden.string(), "--no-run"};
+    std::vector<std::string> update = check;
+    update.push_back("--update");
+    ASSERT_EQ(run(update).status, 0);
+    const fs::path file = golden / "ibl.streamed_equirect-off.plan.txt";
+    const std::string written = slurp(file);
+    std::ofstream(file, std::ios::binary) << written << "\x01\x0c\x1b[31m\xff\n";
+    const CliRun diff = run(check);
+    EXPECT_EQ(diff.status, 1) << diff.out;
+    EXPECT_NE(diff.out.find("\n-\\u0001\\u000c\\u001b[31m\\xff\n"), std::string::npos) << diff.out;
+    EXPECT_EQ(diff.out.find_first_of("\x01\x0c\x1b\xff"), std::string::npos) << diff.out;
+
+    std::string other = written;
+    other.replace(0, other.find('\n'), "# skygraph golden plan, format \x1b[31m");
+    std::ofstream(file, std::ios::binary) << other;
+    const CliRun version = run(check);
+    EXPECT_EQ(version.status, 1) << version.out;
+    EXPECT_NE(version.out.find("its first line is '# skygraph golden plan, format \\u001b[31m'"), std::string::npos)
+        << version.out;
+    EXPECT_EQ(version.out.find('\x1b'), std::string::npos) << version.out;
+}
+
 TEST_F(Cli, CheckReportsGoldensOfAnotherVersionAndMissingDirectories) {
     const fs::path golden = dir_ / "golden";
     ASSERT_EQ(run({"check", "graphs/ibl.json", "--golden", golden.string(), "--update", "--no-run"}).status, 0);

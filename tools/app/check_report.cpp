@@ -73,6 +73,19 @@ std::string prefix(const std::string& s, size_t most) {
     return s.substr(0, end);
 }
 
+/// `text` line by line through printableName(): a golden file may hold anything, and its
+/// diff goes to a terminal, where an escape sequence in it would be obeyed rather than shown.
+std::string printableLines(const std::string& text) {
+    std::string out;
+    for (size_t start = 0; start < text.size();) {
+        const size_t end = std::min(text.find('\n', start), text.size());
+        out += printableName(std::string_view(text).substr(start, end - start));
+        if (end < text.size()) out += '\n';
+        start = end + 1;
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsErrors) {
@@ -109,9 +122,10 @@ std::string checkTable(const std::vector<CheckCase>& cases, bool warningsAsError
         const std::vector<std::string> reasons = c.failures(warningsAsErrors);
         if (reasons.empty() && c.messages.empty()) continue;
         out << "\n" << (reasons.empty() ? "WARN " : "FAIL ") << printableName(c.file.string()) << " [" << c.combination << "]\n";
-        for (const std::string& r : reasons) out << "  " << r << "\n";
+        // A golden of another version is quoted by its first line, which may hold anything too.
+        for (const std::string& r : reasons) out << "  " << printableLines(r) << "\n";
         if (!c.verifierReport.empty()) out << c.verifierReport;
-        if (c.golden && !c.golden->diff.empty()) out << c.golden->diff;
+        if (c.golden && !c.golden->diff.empty()) out << printableLines(c.golden->diff);
         for (const std::string& m : c.messages) out << "  " << m << "\n";
     }
     out << "\n" << cases.size() << " case(s): " << cases.size() - failed << " passed, " << failed << " failed";
