@@ -354,6 +354,35 @@ TEST_F(Cli, CheckFeatureSelection) {
     EXPECT_EQ(run({"check", "graphs/raster.json", "--update", "--no-run"}).status, 2);  // needs --golden
 }
 
+// --size was read by sscanf, which takes a sign and white space before a number: "+64x64",
+// "64x 64" and a leading tab passed, though --width calls " 64" no number.
+TEST_F(Cli, CheckSizeTakesEachSideAsWidthTakesANumber) {
+    const std::vector<std::pair<std::string, std::string>> refused{
+        {"+64x64", "'+64' is not a number"},
+        {"64x+64", "'+64' is not a number"},
+        {"64x 64", "' 64' is not a number"},
+        {"\t64x64", "'\\u000964' is not a number"},
+        {"64 x64", "'64 ' is not a number"},
+        {"64x64 ", "'64 ' is not a number"},
+        {"64x1e2", "'1e2' is not a whole number in decimal digits"},
+        {"64x64x64", "'64x64' is not a number"},
+        {"x64", "'' is not a number"},
+        {"-64x64", "expected WIDTHxHEIGHT, each 1 to 16384"},
+        {"64x16385", "expected WIDTHxHEIGHT, each 1 to 16384"},
+        {"64x99999999999", "expected WIDTHxHEIGHT, each 1 to 16384"},
+    };
+    for (const auto& [size, why] : refused) {
+        const CliRun r = run({"check", "graphs/raster.json", "--features", "skybox=off,ui=on", "--size", size, "--no-run"});
+        EXPECT_EQ(r.status, 2) << size << ": " << r.out << r.err;
+        EXPECT_NE(r.err.find("error: --size '"), std::string::npos) << size << ": " << r.err;
+        EXPECT_NE(r.err.find(why), std::string::npos) << size << ": " << r.err;
+    }
+    // Leading zeros are decimal there too.
+    const CliRun padded = run({"check", "graphs/raster.json", "--features", "skybox=off,ui=on", "--size", "064x010",
+                               "--no-run"});
+    EXPECT_EQ(padded.status, 0) << padded.err;
+}
+
 // A graph of 17 features: every combination, 2^17, is more than check tries. The graph loads
 // and would compile: its row says it was not checked, and why.
 TEST_F(Cli, CheckSaysAGraphWithTooManyFeaturesForAllIsNotChecked) {

@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -51,14 +52,23 @@ void parseCoverage(const std::string& text, app::CheckOptions& o) {
     }
 }
 
+/// --size WIDTHxHEIGHT, each side a number as --width takes one: " 64" and "+64" are not.
 void parseSize(const std::string& text, app::CheckOptions& o) {
-    unsigned w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || x != 'x' || w == 0 || h == 0 || w > 16384 ||
-        h > 16384)
-        throw UsageError("--size " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 64x64)");
-    o.runWidth = w;
-    o.runHeight = h;
+    const std::string expected = "expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 64x64)";
+    const size_t x = text.find('x');
+    if (x == std::string::npos)
+        throw UsageError("--size '" + printableName(text) + "': " + expected);
+    uint32_t sides[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        std::string side = i == 0 ? text.substr(0, x) : text.substr(x + 1);
+        if (const std::string why = whyNotANumber(side, true); !why.empty())
+            throw UsageError("--size '" + printableName(text) + "': " + printableName(why) + "; " + expected);
+        const auto [end, error] = std::from_chars(side.data(), side.data() + side.size(), sides[i]);
+        if (error != std::errc() || end != side.data() + side.size() || sides[i] == 0 || sides[i] > 16384)
+            throw UsageError("--size '" + printableName(text) + "': " + expected);
+    }
+    o.runWidth = sides[0];
+    o.runHeight = sides[1];
 }
 
 int run(CheckArgs& args) {

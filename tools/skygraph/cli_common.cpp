@@ -43,6 +43,27 @@ FeatureValues parseFeatureFlags(const std::vector<std::string>& flags, std::stri
     return out;
 }
 
+std::string whyNotANumber(std::string& value, bool whole) {
+    const bool negative = !value.empty() && value[0] == '-';
+    const std::string_view digits = std::string_view(value).substr(negative ? 1 : 0);
+    const auto isDigit = [](char c) { return c >= '0' && c <= '9'; };
+    const bool decimalWhole = !digits.empty() && std::all_of(digits.begin(), digits.end(), isDigit);
+    if (decimalWhole) {
+        const size_t zeros = std::min(digits.find_first_not_of('0'), digits.size() - 1);
+        value.erase(negative ? 1 : 0, zeros);
+        return {};
+    }
+    // A fraction or an exponent, in decimal: no hexadecimal float, no space, no "inf".
+    const bool decimal = !digits.empty() && isDigit(digits.back()) &&
+                         digits.find_first_not_of("0123456789.eE+-") == std::string_view::npos &&
+                         (isDigit(digits[0]) || digits[0] == '.');
+    double number = 0.0;
+    if (!decimal || !CLI::detail::lexical_cast(value, number)) return "'" + value + "' is not a number";
+    // "1e3" is a thousand, but a count is written in digits alone.
+    if (whole) return "'" + value + "' is not a whole number in decimal digits";
+    return {};
+}
+
 namespace {
 
 /// CLI11's name of the type of an option's value ("UINT", "INT", "FLOAT", "TEXT"; "" for a
@@ -52,32 +73,9 @@ std::string valueTypeName(const CLI::Option& option) {
     return full.substr(0, full.find(':'));
 }
 
-/// Refuses a value that is not a number written in decimal, or, with `whole`, not a whole one;
-/// strips a whole number's leading zeros, which CLI11 would read as octal ("010" is 10, not 8),
-/// as it reads "0x" as hexadecimal. It describes nothing, so that --help shows the option as
-/// before.
+/// numberCheck's rule, as a validator: describes nothing, so that --help shows the option as before.
 CLI::Validator numberCheck(bool whole) {
-    return CLI::Validator(
-        [whole](std::string& value) -> std::string {
-            const bool negative = !value.empty() && value[0] == '-';
-            const std::string_view digits = std::string_view(value).substr(negative ? 1 : 0);
-            const auto isDigit = [](char c) { return c >= '0' && c <= '9'; };
-            const bool decimalWhole = !digits.empty() && std::all_of(digits.begin(), digits.end(), isDigit);
-            if (decimalWhole) {
-                const size_t zeros = std::min(digits.find_first_not_of('0'), digits.size() - 1);
-                value.erase(negative ? 1 : 0, zeros);
-                return {};
-            }
-            // A fraction or an exponent, in decimal: no hexadecimal float, no space, no "inf".
-            const bool decimal = !digits.empty() && isDigit(digits.back()) &&
-                                 digits.find_first_not_of("0123456789.eE+-") == std::string_view::npos &&
-                                 (isDigit(digits[0]) || digits[0] == '.');
-            double number = 0.0;
-            if (!decimal || !CLI::detail::lexical_cast(value, number)) return "'" + value + "' is not a number";
-            if (whole) return "'" + value + "' is not a whole number";
-            return {};
-        },
-        "");
+    return CLI::Validator([whole](std::string& value) { return whyNotANumber(value, whole); }, "");
 }
 
 }  // namespace

@@ -60,6 +60,13 @@ inline const CLI::Validator kNotEmpty(
     [](const std::string& value) { return value.empty() ? std::string("must not be empty") : std::string(); },
     "NOT EMPTY");
 
+/// Why `value` is not a number as the command line takes one, or "" when it is: written in
+/// decimal ("0x20" and " 64" are not numbers), and with `whole` in decimal digits alone, after
+/// a '-' ("1.5" and "1e3" are not whole numbers in decimal digits). Strips a whole number's
+/// leading zeros, which CLI11 would read as octal ("010" is ten, not 8), as it reads "0x" as
+/// hexadecimal. The message quotes `value` as it is: printableName() it for a terminal.
+[[nodiscard]] std::string whyNotANumber(std::string& value, bool whole);
+
 /// Makes every numeric option of `app` and of its subcommands say that a value such as "abc" is
 /// not a number ("--width: 'abc' is not a number"), and that "1.5" given for a count is not a
 /// whole number, before any range check: CLI11's Range calls such a value out of range, and an
