@@ -294,6 +294,31 @@ TEST_F(Cli, CheckRefusesTwoCasesWithOneGoldenAndNamesTheLayoutsItForces) {
     EXPECT_TRUE(fs::exists(golden / "ibl.streamed_equirect-off.layouts-optimal.plan.txt"));
 }
 
+// a.json with its feature b on and a.b-on.json have one golden name: the message said to check
+// graphs of one file name apart, though their names differ.
+TEST_F(Cli, CheckNamesBothGraphsWhoseGoldenNamesCollide) {
+    const std::string graph = R"({"version": 1, "name": "NAME", "features": FEATURES,
+      "resources": {"img": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64]},
+                    "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [64, 64], "external": true,
+                            "final": "TransferSrc"}},
+      "passes": [{"name": "a", "type": "Generic", "uses": {"img": "Write@Compute"}},
+                 {"name": "b", "type": "Generic", "uses": {"img": "Read@Fragment", "out": "Write@ColorAttachment"}}]})";
+    const auto withFeatures = [&](const std::string& name, const std::string& features) {
+        std::string text = std::regex_replace(graph, std::regex("NAME"), name);
+        return std::regex_replace(text, std::regex("FEATURES"), features);
+    };
+    const fs::path first = writeGraph("a.json", withFeatures("first", R"({"b": true, "f": true})"));
+    const fs::path second = writeGraph("a.b-on.json", withFeatures("second", R"({"f": true})"));
+    const fs::path golden = dir_ / "golden";
+    const CliRun r = run({"check", first.string(), second.string(), "--golden", golden.string(), "--update", "--no-run"});
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find("not checked: its golden " + (golden / "a.b-on.f-on.plan.txt").string() + " is also " +
+                         first.string() + "'s: the golden names of " + first.string() + " and " + second.string() +
+                         " collide"),
+              std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("one file name"), std::string::npos) << r.out;
+}
+
 TEST_F(Cli, CheckCountsPerformanceWarningsAndCanFailOnThem) {
     // The deferred frame's history copy reads an image kept in GENERAL, which the layer
     // reports as a performance warning (it suggests TRANSFER_SRC_OPTIMAL).

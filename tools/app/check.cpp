@@ -214,8 +214,9 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
             graphOf.push_back(graph);
         }
     }
-    // Two cases with one golden file (the same graph twice, or two graphs of one file name)
-    // would overwrite or compare against each other's: the later ones fail instead.
+    // Two cases with one golden file (the same graph twice, two graphs of one file name, or
+    // names that meet: a.json's feature b on and a.b-on.json) would overwrite or compare
+    // against each other's: the later ones fail instead.
     if (options.goldenDir) {
         std::map<fs::path, size_t> firstWith;
         for (size_t i = 0; i < cases.size(); ++i) {
@@ -223,8 +224,19 @@ std::vector<CheckCase> runCheck(const CheckOptions& options) {
             const fs::path golden = goldenOf(cases[i], *graphOf[i], options);
             const auto [it, fresh] = firstWith.emplace(golden, i);
             if (fresh) continue;
-            cases[i].notChecked = "its golden " + golden.string() + " is also " + cases[it->second].file.string() +
-                                    "'s: check graphs of one file name with different --golden directories";
+            const fs::path& first = cases[it->second].file;
+            const fs::path& second = cases[i].file;
+            std::error_code ec;
+            const bool sameFile = first == second || fs::equivalent(first, second, ec);
+            std::string why;
+            if (sameFile) why = "the file is named twice";
+            else if (first.stem() == second.stem())
+                why = "check graphs of one file name with different --golden directories";
+            else
+                why = "the golden names of " + first.string() + " and " + second.string() +
+                      " collide (a file name and features spell the other's); check them with different --golden "
+                      "directories or rename one";
+            cases[i].notChecked = "its golden " + golden.string() + " is also " + first.string() + "'s: " + why;
             graphOf[i] = nullptr;
         }
     }
