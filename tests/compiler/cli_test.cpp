@@ -946,6 +946,10 @@ TEST_F(Cli, CompileRefusesStandardOutputForThePictureWhileThePlanIsPrintedThere)
     ASSERT_EQ(std::system(piped.c_str()), 0);
     EXPECT_EQ(slurp(dir_ / "status"), "1\n");
     EXPECT_EQ(slurp(dir_ / "piped"), "");
+    // A device is no file to read back: /dev/null takes the picture and the plan alike.
+    const std::string discarded = "cd " + quote(kSource.string()) + " && " + quote(kCli.string()) +
+                                  " compile graphs/raster.json --memory-svg /dev/null >/dev/null";
+    EXPECT_EQ(std::system(discarded.c_str()), 0);
     // Another file for the picture, or the plan to a file and the picture to standard output.
     const fs::path svg = dir_ / "work" / "picture.svg";
     const CliRun apart = run({"compile", "graphs/raster.json", "--memory-svg", svg.string()});

@@ -187,11 +187,13 @@ void refuseOneFileForBothOutputs(const CompileArgs& args) {
 /// written first, through a name of the stream, and the plan then at standard output's own
 /// offset, over the picture in a file and after it in a pipe; neither is a file anyone can read.
 /// The same file rather than the same name: /dev/stdout, /proc/self/fd/1, or the file or
-/// terminal that the shell redirected standard output to, under any of its names.
+/// file that the shell redirected standard output to, under any of its names. Not a device:
+/// a terminal shows the picture and then the plan, and /dev/null takes both.
 void refusePictureOnThePlansStandardOutput(const CompileArgs& args) {
     if (!args.output.empty() || args.memorySvg.empty()) return;
     struct stat standardOutput {}, picture {};
     if (::fstat(STDOUT_FILENO, &standardOutput) != 0 || ::stat(args.memorySvg.c_str(), &picture) != 0) return;
+    if (S_ISCHR(standardOutput.st_mode)) return;
     if (standardOutput.st_dev == picture.st_dev && standardOutput.st_ino == picture.st_ino)
         throw std::runtime_error("--memory-svg '" + printableName(args.memorySvg) +
                                  "' is standard output, where the plan is printed: the plan would be written over "
