@@ -73,7 +73,7 @@ std::string valueTypeName(const CLI::Option& option) {
     return full.substr(0, full.find(':'));
 }
 
-/// numberCheck's rule, as a validator: describes nothing, so that --help shows the option as before.
+/// whyNotANumber() as a validator: it describes nothing, so that --help shows the option as before.
 CLI::Validator numberCheck(bool whole) {
     return CLI::Validator([whole](std::string& value) { return whyNotANumber(value, whole); }, "");
 }
