@@ -15,8 +15,8 @@ namespace {
 /// A copy of `graph` with `outputs`, `exports` and `readbacks` applied (checkOutputNames has
 /// found them): a read-back copies the image out after the frame, so it leaves it TransferSrc
 /// unless the graph exports it anyway; an external image goes back to its `initial` state,
-/// in which the next frame finds it (unless it arrives as presented: a plan presents only the
-/// images it exports so).
+/// in which the next frame finds it (one arriving as presented is read back only by a plan
+/// that replaces Present, and is left in the replacement, as it arrives there).
 GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     GraphDesc copy = graph;
     if (options.outputs)
@@ -32,7 +32,9 @@ GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
     }
     for (const std::string& name : options.readbacks) {
         auto it = resource(name);
-        if (!it->isExported()) it->final = keptInItsInitialState(*it) ? it->initial : ExternalState::TransferSrc;
+        if (it->isExported()) continue;
+        if (!it->external) it->final = ExternalState::TransferSrc;
+        else it->final = it->initial == ExternalState::Present ? options.presentReplacement : it->initial;
     }
     return copy;
 }
@@ -41,7 +43,7 @@ GraphDesc withExports(const GraphDesc& graph, const CompileOptions& options) {
 Plan compileExported(const GraphDesc& graph, const CompileOptions& options) {
     Diagnostics problems;
     FeatureValues features = checkedFeatures(graph, options, problems);
-    const GraphIndex index(graph, features, options.outputWidth, options.outputHeight);
+    const GraphIndex index(graph, features, options.outputWidth, options.outputHeight, options.presentReplacement);
     validate(index, features, options, std::move(problems));
     Schedule schedule = schedulePasses(index, features, options.cull);
     checkReadbacksHaveSources(index, schedule, options);

@@ -58,11 +58,13 @@ inline Diagnostics tooManySubresources(const GraphDesc& graph, const ResourceDes
 class GraphIndex {
 public:
     /// A pass is active when its `if` holds under `features`. Grids are resolved at the given
-    /// output size.
-    GraphIndex(const GraphDesc& graph, const FeatureValues& features, uint32_t outputWidth, uint32_t outputHeight)
+    /// output size. Resources' states are checked with Present replaced by `presentReplacement`
+    /// (CompileOptions::presentReplacement).
+    GraphIndex(const GraphDesc& graph, const FeatureValues& features, uint32_t outputWidth, uint32_t outputHeight,
+               ExternalState presentReplacement)
         : graph_(graph) {
         reserveForPasses();
-        indexPasses(features, indexResources(outputWidth, outputHeight));
+        indexPasses(features, indexResources(outputWidth, outputHeight, presentReplacement));
         names_.finish();
     }
 
@@ -163,6 +165,12 @@ public:
     [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> misshapenAttachments() const noexcept {
         return misshapen_;
     }
+    /// Per pass (active or not), its colour attachment usage past kMaxColorAttachments and its
+    /// second depth attachment usage, as (pass, usage index for use()), in file order. Only a
+    /// GraphDesc built in code has them (the loader refuses them); validate() words them.
+    [[nodiscard]] std::span<const std::pair<uint32_t, uint32_t>> overfullAttachments() const noexcept {
+        return overfull_;
+    }
     /// What one framebuffer asks its attachments to share: the size of the mip each renders to
     /// and the layer count.
     struct AttachmentShape {
@@ -211,7 +219,7 @@ private:
 
     /// Returns, per subresource, 1 where it holds contents when the frame starts (its resource
     /// is `clear` or `external`), else 0: where indexPasses' read check starts.
-    std::vector<uint32_t> indexResources(uint32_t outputWidth, uint32_t outputHeight) {
+    std::vector<uint32_t> indexResources(uint32_t outputWidth, uint32_t outputHeight, ExternalState presentReplacement) {
         std::vector<uint32_t> heldAtStart;
         resources_.reserve(graph_.resources.size());
         onlyCell_.reserve(graph_.resources.size());
@@ -221,7 +229,7 @@ private:
         for (const auto& r : graph_.resources) {
             // The loader keeps these; a GraphDesc built in code may not (a divisor of 0 would
             // divide by zero resolving the extent).
-            if (!withinLimits(r)) throw GraphError(limitProblems(graph_));
+            if (!withinLimits(r, presentReplacement)) throw GraphError(limitProblems(graph_, presentReplacement));
             const SubresourceGrid grid(r, outputWidth, outputHeight);
             const size_t cells = grid.size();
             // The sweeps number subresources with 32 bits. Only a GraphDesc built in code can
@@ -271,6 +279,7 @@ private:
             uint32_t next = firstUse_.back();  // the usage's index for use() (size() would divide by 12)
             AttachmentShape attachments{};  // the first attachment's, when width != 0
             bool misshapen = false;
+            uint32_t colors = 0, depths = 0;
             for (const auto& u : pass.uses) {
                 IndexedUsage& iu = uses_.emplace_back();  // field by field: see vulkanScope
                 iu.usage = u.usage.mode();
@@ -289,6 +298,11 @@ private:
                 const FitRow row = fitRows_[u.resource];
                 if (!usageFits(u.usage.range ? withLevels(row, u.usage.range->mipCount) : row, iu.usage)) [[unlikely]]
                     misfits_.emplace_back(static_cast<uint32_t>(p), at);
+                // Counted in every pass, as the loader counts them.
+                if (iu.usage.stage == Stage::ColorAttachment && ++colors == kMaxColorAttachments + 1) [[unlikely]]
+                    overfull_.emplace_back(static_cast<uint32_t>(p), at);
+                if (iu.usage.stage == Stage::DepthAttachment && ++depths == 2) [[unlikely]]
+                    overfull_.emplace_back(static_cast<uint32_t>(p), at);
                 if (!active) continue;
                 if (isAttachmentStage(iu.usage.stage) && !misshapen) {
                     const AttachmentShape shape = attachmentShape(iu);
@@ -396,6 +410,7 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
     std::vector<uint32_t> unwrittenOutputs_;
     std::vector<std::pair<uint32_t, uint32_t>> misshapen_;
+    std::vector<std::pair<uint32_t, uint32_t>> overfull_;
     std::vector<uint32_t> tooManyMips_;
     std::vector<uint32_t> offGraphicsOrConditional_;
     // Per resource: the flat index of its one subresource, or kSeveralCells. The sweeps ask

@@ -71,7 +71,16 @@ std::string formatInfoProblem(const FormatInfo& f) {
 
 }  // namespace
 
-Diagnostics limitProblems(const GraphDesc& graph) {
+std::string extraColorAttachmentProblem(size_t nth) {
+    return "a pass renders to at most " + std::to_string(kMaxColorAttachments) +
+           " colour attachments (the maxColorAttachments of current GPUs); this is its " + std::to_string(nth) + "th";
+}
+
+std::string secondDepthAttachmentProblem(const std::string& first) {
+    return "a pass renders to one depth attachment, and " + first + " is its depth attachment";
+}
+
+Diagnostics limitProblems(const GraphDesc& graph, ExternalState presentReplacement) {
     Diagnostics diags;
     for (const ResourceDesc& r : graph.resources) {
         const auto problem = [&](std::string what) { diags.add({graph.file, r.jsonPath(), "", r.name, std::move(what)}); };
@@ -81,12 +90,22 @@ Diagnostics limitProblems(const GraphDesc& graph) {
                     std::to_string(int(r.sharing)) + ") hold a value outside its enum");
             continue;
         }
-        switch (statesProblem(r)) {
+        switch (statesProblem(r, presentReplacement)) {
             case StatesProblem::None: break;
             case StatesProblem::PresentedNotExternal:
                 problem("only an external image (the swapchain's) can be presented");
                 break;
             case StatesProblem::Unpresentable: problem(unpresentableShape(r)); break;
+            case StatesProblem::InitialNotExternal:
+                problem("only external resources arrive in a state; its initial is " + std::string(toString(r.initial)));
+                break;
+            case StatesProblem::ExternalWithoutInitial:
+                problem("an external resource arrives in a state: give it an initial (a graph file's default is its "
+                        "final, else ShaderRead)");
+                break;
+            case StatesProblem::ExternalCleared:
+                problem("an external resource arrives with contents; it is not cleared");
+                break;
             case StatesProblem::BufferCleared: problem("a buffer cannot be cleared by the graph"); break;
             case StatesProblem::BufferInImageLayout:
                 problem("a buffer cannot start or end as Present or TransferSrc, which are image layouts");

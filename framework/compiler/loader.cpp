@@ -760,25 +760,17 @@ private:
             }
     }
 
-    /// What one subpass of a render pass can hold, on every device: the compiler places no
-    /// device's limit, but a pass past these renders nowhere.
-    static constexpr size_t kMostColorAttachments = 8;  // maxColorAttachments of current GPUs
-
     void checkAttachments(const PassDesc& p) {
         size_t colors = 0;
         std::optional<size_t> depth;
         for (size_t i = 0; i < p.uses.size(); ++i) {
             const Stage stage = p.uses[i].usage.stage;
             const std::string& name = graph_.resources[p.uses[i].resource].name;
-            if (stage == Stage::ColorAttachment && ++colors == kMostColorAttachments + 1)
-                error(usePath(p, i), p.name, name,
-                      "a pass renders to at most " + std::to_string(kMostColorAttachments) +
-                          " colour attachments (the maxColorAttachments of current GPUs); this is its " +
-                          std::to_string(colors) + "th");
+            if (stage == Stage::ColorAttachment && ++colors == kMaxColorAttachments + 1)
+                error(usePath(p, i), p.name, name, extraColorAttachmentProblem(colors));
             if (stage != Stage::DepthAttachment) continue;
             if (depth)
-                error(usePath(p, i), p.name, name,
-                      "a pass renders to one depth attachment, and " + usePath(p, *depth) + " is its depth attachment");
+                error(usePath(p, i), p.name, name, secondDepthAttachmentProblem(usePath(p, *depth)));
             else
                 depth = i;
         }

@@ -92,7 +92,8 @@ void loadImageShape(ResourceDesc& r, const ResourceFields& f, const ResourceProb
     } else if (extent.isArray() && extent.size() == 2 && extent[0].isInteger() && extent[1].isInteger()) {
         const auto w = extent[0].number<int64_t>(), h = extent[1].number<int64_t>();
         if (w < 1 || h < 1 || w > kMaxImageExtent || h > kMaxImageExtent)
-            fail("extent", "[" + std::to_string(w) + ", " + std::to_string(h) + "] is outside 1.." +
+            // As written: a number past int64_t (18446744073709551615) would print as -1.
+            fail("extent", "[" + extent[0].dump() + ", " + extent[1].dump() + "] is outside 1.." +
                                std::to_string(kMaxImageExtent));
         r.extent.relativeToOutput = false;
         r.extent.width = static_cast<uint32_t>(std::clamp<int64_t>(w, 1, kMaxImageExtent));
@@ -236,7 +237,7 @@ void loadExternal(ResourceDesc& r, const ResourceFields& f, const ResourceProble
     // An external resource that persists comes back in the state it was left in.
     if (r.external && r.initial == ExternalState::None)
         r.initial = r.final != ExternalState::None ? r.final : ExternalState::ShaderRead;
-    else if (handedBackChanged(r))
+    else if (handedBackChanged(r, ExternalState::Present))  // a file is as written
         fail("initial", handedBackProblem(r));
     if (r.external && r.clear) fail("clear", "an external resource arrives with contents; it is not cleared");
     if (const JsonValue alias = f[key::alias]) {

@@ -27,11 +27,15 @@ struct SubresourceGrid {
     }
     [[nodiscard]] SubresourceRange whole() const noexcept { return {0, mips, 0, layers}; }
     /// A usage's range as written (null: none), or the whole resource; clipped to the grid.
+    /// Layers too: a GraphDesc built in code may name layers the image lacks, and the index
+    /// walks a usage's subresources before validate() words that.
     [[nodiscard]] SubresourceRange resolve(const SubresourceRange* written) const noexcept {
         if (!written) return whole();
         SubresourceRange r = *written;
         r.baseMip = std::min(r.baseMip, mips - 1);
         r.mipCount = std::min(r.mipCount, mips - r.baseMip);
+        r.baseLayer = std::min(r.baseLayer, layers - 1);
+        r.layerCount = std::min(r.layerCount, layers - r.baseLayer);
         return r;
     }
     [[nodiscard]] bool contains(const SubresourceRange& r) const noexcept {

@@ -252,6 +252,13 @@ void checkOutputNames(const GraphDesc& graph, const CompileOptions& options) {
     for (const auto& [name, state] : options.exports)
         if (!graph.findResource(name))
             diags.add({graph.file, "resources", "", name, "cannot export '" + name + "': no such resource"});
+        // None would leave it unexported, and outputs naming it would cull its writers silently.
+        else if (state == ExternalState::None || state > ExternalState::General)
+            diags.add({graph.file, graph.findResource(name)->jsonPath(), "", name,
+                       "cannot export '" + name + "' in state " +
+                           (state == ExternalState::None ? std::string("None") : std::to_string(int(state))) +
+                           ": CompileOptions::exports gives the state to leave it in (Present, TransferSrc, "
+                           "ShaderRead or General)"});
     for (const std::string& name : options.readbacks) {
         const ResourceDesc* r = graph.findResource(name);
         if (!r)
@@ -259,6 +266,14 @@ void checkOutputNames(const GraphDesc& graph, const CompileOptions& options) {
         else if (!r->isImage())
             diags.add({graph.file, r->jsonPath(), "", name,
                        "cannot read back '" + name + "': it is a buffer; read-backs copy images"});
+        // Exported Present it would be presented; left TransferSrc, the next frame would not
+        // find it as presented.
+        else if (r->external && r->initial == ExternalState::Present && !r->isExported() &&
+                 options.presentReplacement == ExternalState::Present)
+            diags.add({graph.file, r->jsonPath() + ".initial", "", name,
+                       "cannot read back '" + name + "': it arrives as presented and is not exported, so the next "
+                       "frame must find it in PRESENT_SRC_KHR; read it back in a plan that replaces Present "
+                       "(CompileOptions::presentReplacement, as headless rendering does)"});
     }
     if (!diags.empty()) throw GraphError(std::move(diags));
 }
@@ -397,6 +412,22 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
                    usageProblem(r, index.declOf(pass, iu).usage)});
     }
     if (!index.misfitUses().empty()) throw GraphError(std::move(diags));
+    for (const auto& [pass, k] : index.overfullAttachments()) {
+        const IndexedUsage& iu = index.use(k);
+        const auto uses = index.usesOf(pass);
+        std::string problem;
+        if (iu.usage.stage == Stage::DepthAttachment) {
+            const IndexedUsage& depth = *std::find_if(uses.begin(), uses.end(), [](const IndexedUsage& x) {
+                return x.usage.stage == Stage::DepthAttachment;
+            });
+            problem = secondDepthAttachmentProblem(index.jsonPathOf(pass, depth));
+        } else {
+            problem = extraColorAttachmentProblem(kMaxColorAttachments + 1);
+        }
+        diags.add({graph.file, index.jsonPathOf(pass, iu), graph.passes[pass].name, graph.resources[iu.resource].name,
+                   std::move(problem)});
+    }
+    if (!diags.empty()) throw GraphError(std::move(diags));
     // Mip counts of output-relative images can only be checked against a real output size,
     // and those of a GraphDesc built in code have not been through the loader. The index
     // finds them (and the ranged usages below) in the walks it makes anyway.
@@ -427,14 +458,17 @@ void validate(const GraphIndex& index, const FeatureValues& features, const Comp
     // that runs past the end of a chain is clipped to it: the loader gives a `layers`-only
     // usage of a full output-sized chain every level the largest image could have.
     // Images are checked against the index's grids; the graph's own (cold) records are read
-    // for buffers and to word a diagnostic.
+    // only to word a diagnostic.
     for (const auto& [pass, k] : index.rangedUses()) {
         const IndexedUsage& iu = index.use(k);
-        const bool image = index.aspects(iu.resource).image;
+        // As the loader says of a file's `mips` or `layers` on a buffer.
+        if (!index.aspects(iu.resource).image) {
+            diags.add({graph.file, index.jsonPathOf(pass, iu), graph.passes[pass].name,
+                       graph.resources[iu.resource].name, "buffers have no mips or layers: a usage takes all of one"});
+            continue;
+        }
         const SubresourceGrid& grid = index.grid(iu.resource);
-        const ResourceDesc* r = image ? nullptr : &graph.resources[iu.resource];
-        const uint32_t levels = std::max(1u, r ? r->mipCount(width, height) : grid.mips);
-        const uint32_t layers = std::max(1u, r ? r->layers : grid.layers);
+        const uint32_t levels = grid.mips, layers = grid.layers;
         const SubresourceRange& range = *index.writtenRange(iu);
         // The loader never writes an empty range; a GraphDesc built in code can, and every
         // sweep assumes a usage touches at least one subresource.

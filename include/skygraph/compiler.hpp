@@ -48,8 +48,8 @@ struct CompileOptions {
     /// Resources to export in addition to the file's own exports, with the state to leave
     /// them in: e.g. {"hdr_color", TransferSrc} to read an intermediate target back. Exporting
     /// keeps the passes that write it from being culled. An unknown name is an error, and so
-    /// is a state the resource cannot end in (as in a file: Present for an external image
-    /// alone, Present or TransferSrc for no buffer, for an external one that arrives in a
+    /// is None, and a state the resource cannot end in (as in a file: Present for an external
+    /// image alone, Present or TransferSrc for no buffer, for an external one that arrives in a
     /// state of its own any other state: the next frame would not find it so; `readbacks`
     /// copies such an image out); a resource the file already exports keeps its own `final`.
     std::map<std::string, ExternalState, std::less<>> exports;
@@ -64,7 +64,8 @@ struct CompileOptions {
     /// steps of type Readback after the last pass; the final barriers make the copies visible
     /// to the host. Each is kept as an output, exported as TransferSrc unless the file exports
     /// it (an external image in its `initial` state, in which the next frame finds it). An
-    /// unknown name, a buffer, or an image that nothing writes is an error.
+    /// unknown name, a buffer, an image that nothing writes, or one arriving as presented
+    /// that is not exported (unless presentReplacement replaces Present) is an error.
     std::set<std::string, std::less<>> readbacks;
     /// Transient resources (not external, not exported) share memory where their lifetimes
     /// allow, and the plan orders each one's first use after the last uses of the memory it

@@ -666,6 +666,18 @@ TEST(GraphsFromCode, ShapesPastTheLoadersLimitsAreErrors) {
         {[](ResourceDesc& r) { r.final = ExternalState::Present; },
          "only an external image (the swapchain's) can be presented"},
         {[](ResourceDesc& r) { r.clear = ClearValue{true}; }, "clears to a color, not a depth value"},
+        // States the loader never leaves so: an external image left without one came in
+        // UNDEFINED every frame (its contents discarded) and its final barrier went to
+        // UNDEFINED; a cleared external one was overwritten every frame.
+        {[](ResourceDesc& r) { r.initial = ExternalState::ShaderRead; },
+         "only external resources arrive in a state; its initial is ShaderRead"},
+        {[](ResourceDesc& r) { r.external = true; }, "an external resource arrives in a state: give it an initial"},
+        {[](ResourceDesc& r) {
+             r.external = true;
+             r.initial = ExternalState::ShaderRead;
+             r.clear = ClearValue{};
+         },
+         "an external resource arrives with contents; it is not cleared"},
         // A clear value its format does not hold, which Vulkan would clamp or overflow.
         {[](ResourceDesc& r) { r.clear = ClearValue{.color = {70000, 0, 0, 1}}; },
          "its clear color [70000, 0, 0, 1] must hold four numbers in [-65504, 65504], the range of the format "
@@ -738,6 +750,97 @@ TEST(GraphsFromCode, AResourceIndexPastTheGraphIsAnError) {
                         std::to_string(raster.resources.size()) + " resource(s)"),
               std::string::npos)
         << text;
+}
+
+// A usage's layers past its image, from code: the index walked the layers as written, past the
+// image's subresources (a heap overflow: glibc aborted at 4096 layers, ASan caught 3), before
+// compile() named the range.
+TEST(GraphsFromCode, LayersPastTheImageAreAnErrorNotAnOverflow) {
+    for (const auto& [base, count] : {std::pair{0u, 4096u}, {0u, 3u}, {7u, 1u}, {1u, ~0u}}) {
+        GraphDesc g = parseGraph(
+            R"({"version": 1, "name": "t", "resources": {
+                  "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "mips": 2 },
+                  "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                           "final": "ShaderRead" } },
+                "passes": [
+                  { "name": "w", "type": "Generic", "uses": { "img": "Write@Compute" } },
+                  { "name": "r", "type": "Generic", "uses": { "img": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})",
+            "layers.json", registry());
+        g.passes[0].uses.at(0).usage.range = SubresourceRange{0, 1, base, count};
+        const std::string text = compileErrorText(g);
+        ASSERT_FALSE(text.empty()) << "expected a GraphError";
+        EXPECT_NE(text.find(g.usageJsonPath(0, 0) + ".layers: pass 'w', resource 'img'"), std::string::npos) << text;
+        EXPECT_NE(text.find("uses layers [" + std::to_string(base) + ", " + std::to_string(count) +
+                            "] but the image has 1 layer(s)"),
+                  std::string::npos)
+            << text;
+    }
+}
+
+// The loader refuses `mips` or `layers` on a buffer's usage. From code, compile() read the
+// buffer's mip count through its (unused) extent, and a divisor of 0 ended it by SIGFPE.
+TEST(GraphsFromCode, ARangeOnABufferIsAnError) {
+    GraphDesc g = parseGraph(
+        R"({"version": 1, "name": "t", "resources": {
+              "buf": { "type": "buffer", "size": 256 },
+              "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true,
+                       "final": "ShaderRead" } },
+            "passes": [
+              { "name": "w", "type": "Generic", "uses": { "buf": "Write@Compute" } },
+              { "name": "r", "type": "Generic", "uses": { "buf": "Read@Fragment", "out": "Write@ColorAttachment" } } ]})",
+        "buffer.json", registry());
+    g.resources[0].mips = 0;
+    g.resources[0].extent.divisor = 0;
+    g.passes[1].uses.at(0).usage.range = SubresourceRange{0, 1, 0, 1};
+    const std::string text = compileErrorText(g);
+    EXPECT_NE(text.find(g.usageJsonPath(1, 0) + ": pass 'r', resource 'buf': buffers have no mips or layers"),
+              std::string::npos)
+        << text;
+}
+
+// The loader's attachment limits hold for a GraphDesc built in code: two depth attachments were
+// planned as both the pass's depth attachment, and nine colour attachments past every device's
+// maxColorAttachments.
+TEST(GraphsFromCode, AttachmentsPastWhatAPassRendersToAreErrors) {
+    // Passes p and q test depth d0 and d1 (cleared); `colors` renders to `count` targets.
+    const auto graphText = [](int count) {
+        std::string resources = R"("d0": { "type": "image2d", "format": "D32_SFLOAT", "extent": [8, 8], "clear": {"depth": 0} },
+              "d1": { "type": "image2d", "format": "D32_SFLOAT", "extent": [8, 8], "clear": {"depth": 0} })";
+        std::string colors;
+        for (int i = 0; i < count; ++i) {
+            const std::string c = "c" + std::to_string(i);
+            resources += R"(, ")" + c + R"(": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], )" +
+                         R"("external": true, "final": "ShaderRead" })";
+            colors += (colors.empty() ? "" : ", ") + std::string(R"(")") + c + R"(": "Write@ColorAttachment")";
+        }
+        return R"({"version": 1, "name": "t", "resources": {)" + resources + R"(},
+            "passes": [
+              { "name": "p", "type": "Generic", "uses": { "d0": "ReadWrite@DepthAttachment" } },
+              { "name": "q", "type": "Generic", "uses": { "d1": "ReadWrite@DepthAttachment" } },
+              { "name": "colors", "type": "Generic", "uses": {)" + colors + "} } ]}";
+    };
+    // As a file: refused by the loader (the ninth colour attachment).
+    EXPECT_THROW((void)parseGraph(graphText(9), "many.json", registry()), GraphError);
+    GraphDesc g = parseGraph(graphText(8), "many.json", registry());
+    EXPECT_EQ(compileErrorText(g), "") << "eight colour attachments and one depth attachment a pass";
+    g.passes[0].uses.push_back(g.passes[1].uses[0]);
+    std::string errors = compileErrorText(g);
+    EXPECT_NE(errors.find(g.usageJsonPath(0, 1) + ": pass 'p', resource 'd1': a pass renders to one depth attachment, "
+                                                  "and " + g.usageJsonPath(0, 0) + " is its depth attachment"),
+              std::string::npos)
+        << errors;
+    g.passes[0].uses.pop_back();
+    ResourceDesc c8 = g.resources[g.passes[2].uses.back().resource];  // as c7
+    c8.name = "c8";
+    g.resources.push_back(c8);
+    UsageDecl ninth = g.passes[2].uses.back();
+    ninth.resource = static_cast<uint32_t>(g.resources.size() - 1);
+    g.passes[2].uses.push_back(ninth);
+    errors = compileErrorText(g);
+    EXPECT_NE(errors.find(g.usageJsonPath(2, 8) + ": pass 'colors', resource 'c8': a pass renders to at most 8 colour "
+                                                  "attachments"),
+              std::string::npos)
+        << errors;
 }
 
 /// Two Generic passes: `w` writes img, then `r` samples it and writes the exported `out`;
@@ -1085,6 +1188,7 @@ TEST(GraphsFromCode, MoreSubresourcesThanTheBoundIsAnError) {
     big.mips = 15;
     big.layers = 2048;
     big.external = true;
+    big.initial = ExternalState::ShaderRead;
     const size_t count = (size_t(1) << 24) / (15 * 2048) + 1;
     for (size_t i = 0; i < count; ++i) {
         big.name = "big" + std::to_string(i);

@@ -1302,7 +1302,8 @@ TEST(LoaderErrors, APlanPresentsOneImageOfASwapchainsShape) {
     CompileOptions skyOff;
     skyOff.features["sky"] = false;
     EXPECT_NO_THROW((void)compile(parseGraph(twice.dump(), kFile, registry()), skyOff));
-    // Built in code, a presentable image with a clear of the wrong kind is told of the clear.
+    // Built in code, a presented (external) image with a clear is told it is not cleared, as
+    // the loader tells a file.
     GraphDesc coded = parseGraph(baseGraph().dump(), kFile, registry());
     for (ResourceDesc& r : coded.resources)
         if (r.name == "swapchain") r.clear = ClearValue{.isDepth = true};
@@ -1311,7 +1312,7 @@ TEST(LoaderErrors, APlanPresentsOneImageOfASwapchainsShape) {
         ADD_FAILURE() << "expected a GraphError";
     } catch (const GraphError& e) {
         EXPECT_TRUE(hasDiag(e.diagnostics().items(), "resources.swapchain", "", "swapchain",
-                            {"the color format B8G8R8A8_SRGB clears to a color, not a depth value"}))
+                            {"an external resource arrives with contents; it is not cleared"}))
             << e.what();
     }
     // A plan compiled to run headless presents neither: both are outputs read like any other.
@@ -1338,6 +1339,14 @@ TEST(LoaderErrors, CompileOptionsThatWouldMakeAnInvalidPlan) {
     outputs.outputs = std::set<std::string, std::less<>>{"hdr_color"};
     EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), outputs), "resources.hdr_color", "", "hdr_color",
                         {"cannot keep 'hdr_color' as an output: it is not exported"}));
+    // An export in state None exported nothing, and outputs naming it culled every pass.
+    CompileOptions exportNone;
+    exportNone.exports["hdr_color"] = ExternalState::None;
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), exportNone), "resources.hdr_color", "", "hdr_color",
+                        {"cannot export 'hdr_color' in state None"}));
+    exportNone.outputs = std::set<std::string, std::less<>>{"hdr_color"};
+    EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), exportNone), "resources.hdr_color", "", "hdr_color",
+                        {"cannot export 'hdr_color' in state None"}));
     CompileOptions huge;
     huge.outputWidth = 16385;
     EXPECT_TRUE(hasDiag(compileErrors(baseGraph(), huge), "", "", "", {"the output extent 16385x1080 is past 16384 a side"}));
@@ -1388,6 +1397,8 @@ TEST(LoaderErrors, AbsurdExtents) {
         {Json::array({-4, 16}), "outside 1..16384"},
         {Json::array({100000, 100000}), "outside 1..16384"},
         {Json::array({16384, 16385}), "outside 1..16384"},
+        // Named as written, not as the 64-bit integer it wraps to (it said [-1, 32]).
+        {Json::array({18446744073709551615ull, 32}), "[18446744073709551615, 32] is outside 1..16384"},
         {"output/0", "between 1 and 4096"},
         {"output/5000", "between 1 and 4096"},
         {"output/", "\"output\", \"output/N\" or [width, height]"},

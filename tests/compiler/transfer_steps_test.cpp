@@ -116,16 +116,28 @@ TEST(Readback, LeavesAnExternalImageInTheStateItArrivesIn) {
     EXPECT_EQ(plan.passes().back().name, "read back tex");
 }
 
-// An external image that arrives as presented is read back as before, left TransferSrc: a
-// plan presents only the images it exports so (headless, Present is TransferSrc anyway).
-TEST(Readback, LeavesAnImageArrivingAsPresentedTransferSrc) {
+// An external image that arrives as presented, and is not exported, must be found so by the
+// next frame: left TransferSrc after its read-back, it arrived in a layout it was not in (the
+// plan verifier's BadOldLayout and FinalLayout). Exported Present it would be presented. So
+// it is read back only where Present is replaced (headless), which leaves it as it arrived.
+TEST(Readback, AnImageArrivingAsPresentedIsReadBackOnlyWherePresentIsReplaced) {
     const GraphDesc g = graphOf(std::string(kOut) + R"(, "shown": {"type": "image2d", "format": "R8G8B8A8_UNORM",
         "extent": [16, 16], "mips": 2, "external": true, "initial": "Present"})", R"(
         {"name": "blit", "type": "Generic", "uses": {"shown": "Read@Compute", "out": "Write@Compute"}})");
     CompileOptions o;
     o.readbacks = {"shown"};
+    const std::string message = messageOf([&] { (void)compile(g, o); });
+    EXPECT_NE(message.find("resources.shown.initial: resource 'shown': cannot read back 'shown': it arrives as "
+                           "presented and is not exported"),
+              std::string::npos)
+        << message;
+    o.presentReplacement = ExternalState::TransferSrc;
     const Plan plan = compile(g, o);
-    EXPECT_EQ(plan.resources()[plan.resourceIndex("shown")].finalLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    const PlannedResource& shown = plan.resources()[plan.resourceIndex("shown")];
+    EXPECT_EQ(shown.initialLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_EQ(shown.finalLayout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    EXPECT_TRUE(plan.presentations().empty());
+    EXPECT_EQ(plan.passes().back().name, "read back shown");
 }
 
 // A code-built graph has not been through the loader, which refuses the same at `initial`.
@@ -156,6 +168,17 @@ TEST(ExternalStates, AnExportedExternalMustArriveInTheStateItIsLeftIn) {
     EXPECT_NE(loaded.find("steps.json: resources.acc.initial: resource 'acc': an external resource is kept"),
               std::string::npos)
         << loaded;
+    // Arriving as presented is no exception: left ShaderRead, the next frame found it in
+    // SHADER_READ_ONLY_OPTIMAL where the plan's first barrier said PRESENT_SRC_KHR.
+    std::string presented = file;
+    presented.replace(presented.find(R"("initial": "ShaderRead")"), std::string(R"("initial": "ShaderRead")").size(),
+                      R"("initial": "Present")");
+    const std::string fromPresent = messageOf([&] { (void)parseGraph(presented, "steps.json", registry()); });
+    EXPECT_NE(fromPresent.find("resources.acc.initial: resource 'acc': an external resource is kept for the next "
+                               "frame as this frame leaves it, in its final state General, so it must arrive in "
+                               "that state too, not Present"),
+              std::string::npos)
+        << fromPresent;
 }
 
 // The setup and read plans index the graph by the frame plan's records: another graph is

@@ -299,9 +299,11 @@ TEST_F(ExecutorTest, ARendererKeepsItsSpirvWhereItsOptionsSay) {
     fs::remove_all(root);
 }
 
-// A graph built in code skips the loader's limit of 8 colour attachments a pass; a renderer
-// refuses a pass past its device's maxColorAttachments by name, before the driver sees it.
-TEST_F(ExecutorTest, APassPastTheDevicesColourAttachmentsIsRefusedByName) {
+// A graph built in code skips the loader, but compile() holds it to the loader's 8 colour
+// attachments a pass, so no plan reaches a renderer with more than lavapipe's 8 (the
+// renderer's own check, against a device's maxColorAttachments, is for devices of fewer: the
+// spec's minimum is 4).
+TEST_F(ExecutorTest, APassPastEightColourAttachmentsIsRefusedByName) {
     std::string resources, uses;
     for (int i = 0; i < 8; ++i) {
         const std::string name = "t" + std::to_string(i);
@@ -322,15 +324,14 @@ TEST_F(ExecutorTest, APassPastTheDevicesColourAttachmentsIsRefusedByName) {
     mrt.uses.push_back(extra);
     CompileOptions o = sizedOptions();
     o.memory = sharedDevice().memoryModel();
-    o = headless(graph, std::move(o));
-    const CompiledGraph compiled(std::move(graph), std::move(o));
     try {
-        Renderer r(sharedDevice(), compiled, genericOptions(1));
-        FAIL() << "a renderer ran 9 colour attachments";
-    } catch (const ExecutorError& e) {
-        EXPECT_NE(std::string(e.what()).find("pass 'mrt': 9 colour attachments, and the device"), std::string::npos)
+        o = headless(graph, std::move(o));
+        const CompiledGraph compiled(std::move(graph), std::move(o));
+        FAIL() << "a plan of 9 colour attachments in a pass";
+    } catch (const GraphError& e) {
+        EXPECT_NE(std::string(e.what()).find("pass 'mrt', resource 't8': a pass renders to at most 8 colour attachments"),
+                  std::string::npos)
             << e.what();
-        EXPECT_NE(std::string(e.what()).find("allows 8 (maxColorAttachments)"), std::string::npos) << e.what();
     }
 }
 
