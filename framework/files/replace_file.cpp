@@ -13,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -33,6 +34,22 @@ bool inProc(const fs::path& path) {
 }
 
 std::error_code lastError() { return {errno ? errno : EIO, std::system_category()}; }
+
+/// For `link` in /proc, a descriptor's link of this process (/proc/self/fd/N, where
+/// /dev/stdout leads): whether descriptor N is open for writing. Reopening the link opens
+/// whatever file N leads to afresh, for writing, even where N is held only to read (the
+/// command line holds a standard descriptor its parent closed so, and its writes fail as a
+/// closed one's would): a stream that takes no writes must not get them by another road.
+/// Any other entry of /proc is left to open() to judge.
+bool writableIfOwnDescriptor(const fs::path& link) {
+    std::error_code ec;
+    const fs::path folder = fs::canonical(link.parent_path(), ec);
+    if (ec || folder != fs::path("/proc") / std::to_string(::getpid()) / "fd") return true;
+    const std::string name = link.filename().string();
+    if (name.empty() || name.find_first_not_of("0123456789") != std::string::npos || name.size() > 9) return true;
+    const int flags = ::fcntl(std::stoi(name), F_GETFL);
+    return flags != -1 && (flags & O_ACCMODE) != O_RDONLY;
+}
 
 /// Appends the whole of `from` to `to`, an existing FIFO, device or descriptor, opened without
 /// truncating it: a shell's `>>` log is appended to, as its redirection asked. Errors name
@@ -184,7 +201,11 @@ OutputTarget outputTarget(const fs::path& path) {
     for (int links = 0;; ++links) {
         // The stream a shell set up, not the file it may lead to: writing that file would
         // replace a `>>` log rather than append to it.
-        if (inProc(at)) return {path, true};
+        if (inProc(at)) {
+            if (!writableIfOwnDescriptor(at))
+                throw fs::filesystem_error("cannot write", path, std::make_error_code(std::errc::bad_file_descriptor));
+            return {path, true};
+        }
         if (!fs::is_symlink(fs::symlink_status(at))) break;
         if (links == kMostLinks)
             throw fs::filesystem_error("cannot write", path, std::make_error_code(std::errc::too_many_symbolic_link_levels));
@@ -214,6 +235,38 @@ std::optional<fs::path> sameFileAmong(const fs::path& output, std::span<const fs
     return std::nullopt;
 }
 
+namespace {
+/// Where a write to `p` lands, absolute, with links and dots resolved; empty where that
+/// cannot be told (writing there fails and says why).
+fs::path landingPath(const fs::path& p) {
+    fs::path landing = p;
+    try {
+        landing = outputTarget(p).path;  // a dangling link is followed: weakly_canonical leaves it
+    } catch (const fs::filesystem_error&) {
+        return {};  // a folder or a loop of links
+    }
+    // Absolute first: a relative path none of whose parts exists stays relative, so "a.svg"
+    // would not meet "./a.svg".
+    std::error_code ec;
+    fs::path full = fs::absolute(landing, ec);
+    if (!ec) full = fs::weakly_canonical(full, ec);
+    return ec ? fs::path() : full;
+}
+}  // namespace
+
+std::optional<std::pair<size_t, size_t>> twoNamesOfOneFile(std::span<const fs::path> outputs) {
+    std::vector<fs::path> landing(outputs.size());
+    for (size_t i = 0; i < outputs.size(); ++i)
+        if (!outputs[i].empty()) landing[i] = landingPath(outputs[i]);
+    for (size_t j = 1; j < outputs.size(); ++j)
+        for (size_t i = 0; i < j; ++i) {
+            if (outputs[i].empty() || outputs[j].empty()) continue;
+            if ((!landing[i].empty() && landing[i] == landing[j]) || sameFileAmong(outputs[j], outputs.subspan(i, 1)))
+                return std::pair{i, j};
+        }
+    return std::nullopt;
+}
+
 MissingFolder::MissingFolder(const fs::path& output, const fs::path& folder, bool temporaryFolder)
     : fs::filesystem_error("cannot write", output, folder, std::make_error_code(std::errc::no_such_file_or_directory)),
       temporaryFolder_(temporaryFolder) {}
@@ -229,6 +282,7 @@ std::string whyNotWritten(const fs::filesystem_error& error) {
         return "the folder '" + printableName(missing->path2().string()) + "' does not exist" +
                (missing->temporaryFolder() ? " (TMPDIR names it: a stream is written through a temporary there)" : "");
     if (error.code() == std::errc::is_a_directory) return "it is a folder";
+    if (error.code() == std::errc::bad_file_descriptor) return "it names a descriptor that is closed or not open for writing";
     return error.code().message();
 }
 
@@ -273,6 +327,10 @@ void replaceFileContents(const fs::path& path, std::string_view bytes) {
 }
 
 void replaceFilesContents(std::span<const fs::path> paths, const std::function<std::string(size_t)>& contents) {
+    if (const auto two = twoNamesOfOneFile(paths))
+        throw std::invalid_argument("replaceFilesContents: '" + printableName(paths[two->second].string()) +
+                                    "' is the file '" + printableName(paths[two->first].string()) +
+                                    "' is: one would replace the other");
     std::vector<fs::path> temporaries(paths.size());
     std::vector<OutputTarget> targets(paths.size());
     std::vector<std::unique_ptr<PendingTemporary>> pending;

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace skygraph::files {
 
@@ -16,7 +17,8 @@ namespace skygraph::files {
 /// other device there is written in place (`inPlace`): its reader takes the bytes as they come
 /// and there is no file to replace. So is a descriptor's link in /proc (/dev/stdout,
 /// /dev/fd/N, /proc/self/fd/N): the stream a shell's redirection set up is written, not the
-/// file it may lead to. Anything else, a regular file or nothing yet, is replaced.
+/// file it may lead to; one of this process's descriptors that is closed or only read from
+/// takes nothing (EBADF). Anything else, a regular file or nothing yet, is replaced.
 struct OutputTarget {
     std::filesystem::path path;
     bool inPlace = false;
@@ -35,7 +37,7 @@ private:
 };
 
 /// Resolves `path` as described above. Throws std::filesystem::filesystem_error for a folder,
-/// a loop of links or a link that cannot be read.
+/// a loop of links, a link that cannot be read, or a descriptor that takes no writes.
 [[nodiscard]] OutputTarget outputTarget(const std::filesystem::path& path);
 
 /// outputTarget(), checked before any work is done for it: not a folder and, unless written
@@ -48,9 +50,16 @@ private:
 [[nodiscard]] std::optional<std::filesystem::path> sameFileAmong(const std::filesystem::path& output,
                                                                  std::span<const std::filesystem::path> inputs);
 
+/// The first two of `outputs` (as indices, i < j) that one file would take: the same path
+/// once links and dots are resolved, followed to where a write lands (outputTarget()) even
+/// before anything is there, or an existing file under two names (a hard link). The second
+/// write would replace the first. Empty names are skipped.
+[[nodiscard]] std::optional<std::pair<size_t, size_t>> twoNamesOfOneFile(std::span<const std::filesystem::path> outputs);
+
 /// Why a write that threw `error` (from the functions here) failed, in words for a message
 /// that names the output already: "it is a folder", "the folder 'F' does not exist" (for
-/// MissingFolder; the system's temporary folder says that TMPDIR names it), or the system's
+/// MissingFolder; the system's temporary folder says that TMPDIR names it), a descriptor that
+/// takes no writes, or the system's
 /// reason (for OldFileKept, followed by where the old file is kept).
 [[nodiscard]] std::string whyNotWritten(const std::filesystem::filesystem_error& error);
 
@@ -93,7 +102,8 @@ void replaceFileContents(const std::filesystem::path& path, std::string_view byt
 /// other failure throws std::filesystem::filesystem_error whose path1() is the paths[i] it
 /// concerns: MissingFolder, and OldFileKept for an old file that could not be put back. On a
 /// filesystem without hard links the old files cannot be kept, and a failure part way leaves
-/// the targets renamed so far replaced.
+/// the targets renamed so far replaced. Throws std::invalid_argument, writing nothing, where
+/// twoNamesOfOneFile(paths) finds two: one would be replaced by the other.
 void replaceFilesContents(std::span<const std::filesystem::path> paths,
                           const std::function<std::string(size_t)>& contents);
 

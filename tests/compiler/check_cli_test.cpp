@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include <csignal>
+#include <iterator>
 #include <regex>
 
 namespace {
@@ -514,6 +515,19 @@ TEST_F(Cli, SkySequenceRefusesAFolderThatDoesNotExist) {
         << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_TRUE(workFiles().empty());
+    // A later frame that is a link into a missing folder: refused before the frames ahead of
+    // it were replaced (they were, and then the run failed).
+    const fs::path work = dir_ / "work";
+    std::ofstream(work / "sky_0.exr") << "old 0";
+    fs::create_symlink(missing / "sky.exr", work / "sky_1.exr");
+    const CliRun linked = run({"sky-sequence", (work / "sky_%d.exr").string(), "--frames", "2", "--width", "16"});
+    EXPECT_EQ(linked.status, 1) << linked.err;
+    EXPECT_NE(linked.err.find("error: '" + (work / "sky_1.exr").string() + "': cannot write: the folder '" +
+                              missing.string() + "' does not exist"),
+              std::string::npos)
+        << linked.err;
+    std::ifstream first(work / "sky_0.exr");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(first), {}), "old 0") << "nothing written";
 }
 
 // A sequence plays on to its first missing frame: a shorter run over an earlier one's frames

@@ -285,6 +285,33 @@ TEST_F(Cli, StandardOutputThatCannotBeWrittenExitsOne) {
     }
 }
 
+// Standard output or error closed by the parent (`>&-`): the next file opened took its number,
+// so `-o /dev/stdout` wrote the plan into the output's own temporary, which was then removed
+// (exit 0, nothing written), and log lines went into whatever file held fd 2. Now every write
+// to a closed standard descriptor fails and says so, and other files get none of it.
+TEST_F(Cli, ClosedStandardDescriptorsTakeNoWritesByAnyName) {
+    const auto shell = [&](const std::string& tail) {
+        const std::string command = std::string(SKYGRAPH_CLI) + " -v compile " + SKYGRAPH_SOURCE_DIR +
+                                    "/graphs/raster.json " + tail;
+        const int status = std::system(command.c_str());
+        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    };
+    const std::string err = " 2>" + (dir_ / "err.txt").string();
+    for (const char* name : {"/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"}) {
+        EXPECT_EQ(shell(std::string("-o ") + name + " >&-" + err), 1) << name;
+        EXPECT_NE(slurp(dir_ / "err.txt").find(std::string("cannot write '") + name +
+                                               "': it names a descriptor that is closed or not open for writing"),
+                  std::string::npos)
+            << slurp(dir_ / "err.txt");
+    }
+    EXPECT_EQ(shell(">&-" + err), 1);
+    EXPECT_NE(slurp(dir_ / "err.txt").find("error: cannot write to standard output"), std::string::npos);
+    // Standard error closed: the message has nowhere to go, the exit status still says it.
+    EXPECT_EQ(shell("-o /dev/stderr 2>&-"), 1);
+    EXPECT_EQ(shell("-o " + (dir_ / "plan.txt").string() + " 2>&-"), 0) << "other outputs are written";
+    EXPECT_NE(slurp(dir_ / "plan.txt").find("[0] forward_ibl (ForwardPass)"), std::string::npos);
+}
+
 // An output stream whose reader is gone ends the run with SIGPIPE, as it would any program,
 // and the temporary the plan was written to first (in TMPDIR) goes with it.
 TEST_F(Cli, AStreamWhoseReaderIsGoneEndsTheRunWithoutItsTemporary) {

@@ -357,6 +357,59 @@ TEST_F(ReplaceFile, AStreamInASetIsWrittenThroughTheSystemsTemporaryFolder) {
 
 // An old file that a failed set could not put back is kept under a hidden name, and the
 // reason says where.
+// A descriptor of this process that takes no writes (held only to read, as the command line
+// holds a standard one its parent closed, or closed): reopening its /proc link for writing
+// would reach the file behind it, so its names are refused.
+TEST_F(ReplaceFile, ADescriptorThatTakesNoWritesIsRefusedByEveryName) {
+    write(dir_ / "behind.txt", "kept");
+    const int readOnly = ::open((dir_ / "behind.txt").c_str(), O_RDONLY | O_CLOEXEC);
+    ASSERT_GE(readOnly, 0);
+    const int closed = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    ASSERT_GE(closed, 0);
+    ::close(closed);
+    for (const int fd : {readOnly, closed})
+        for (const std::string prefix : {"/dev/fd/", "/proc/self/fd/"}) {
+            const fs::path name = prefix + std::to_string(fd);
+            try {
+                replaceFileContents(name, "new");
+                ADD_FAILURE() << name << " was written";
+            } catch (const fs::filesystem_error& e) {
+                EXPECT_EQ(e.code(), std::errc::bad_file_descriptor) << name;
+                EXPECT_EQ(whyNotWritten(e), "it names a descriptor that is closed or not open for writing");
+            }
+        }
+    ::close(readOnly);
+    EXPECT_EQ(slurp(dir_ / "behind.txt"), "kept");
+    EXPECT_EQ(names(dir_), std::vector<std::string>{"behind.txt"});
+}
+
+// Outputs of one command that one file would take: through a link (to nothing yet too),
+// dots, a relative name, or a hard link. replaceFilesContents() refuses them before writing:
+// the second file replaced the first.
+TEST_F(ReplaceFile, TwoNamesOfOneFileAreFoundAndASetNamingOneTwiceIsRefused) {
+    const fs::path a = dir_ / "a.txt", b = dir_ / "b.txt";
+    fs::create_symlink("a.txt", dir_ / "link.txt");  // to nothing yet
+    std::vector<fs::path> outputs{b, a, dir_ / "link.txt"};
+    EXPECT_EQ(skygraph::files::twoNamesOfOneFile(outputs), (std::pair<size_t, size_t>{1, 2}));
+    outputs = {a, dir_ / "sub" / ".." / "a.txt"};
+    fs::create_directory(dir_ / "sub");
+    EXPECT_EQ(skygraph::files::twoNamesOfOneFile(outputs), (std::pair<size_t, size_t>{0, 1}));
+    std::ofstream(b) << "old b";
+    fs::create_hard_link(b, dir_ / "hard.txt");
+    outputs = {dir_ / "hard.txt", a, b};
+    EXPECT_EQ(skygraph::files::twoNamesOfOneFile(outputs), (std::pair<size_t, size_t>{0, 2}));
+    outputs = {a, b, fs::path()};
+    EXPECT_EQ(skygraph::files::twoNamesOfOneFile(outputs), std::nullopt);
+
+    outputs = {a, dir_ / "link.txt"};
+    bool called = false;
+    EXPECT_THROW(replaceFilesContents(outputs, [&](size_t) { return called = true, std::string("x"); }),
+                 std::invalid_argument);
+    EXPECT_FALSE(called);
+    EXPECT_FALSE(fs::exists(a));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 4) << "no temporary left";
+}
+
 TEST_F(ReplaceFile, AnOldFileThatCannotBePutBackSaysWhereItIsKept) {
     const skygraph::files::OldFileKept e(dir_ / "cube.ktx2", dir_ / ".cube.partial1-0.ktx2",
                                          std::make_error_code(std::errc::permission_denied));

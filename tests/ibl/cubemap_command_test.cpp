@@ -208,6 +208,17 @@ TEST_F(CubemapCommand, BadInputFailsWithTheFileNamedAndWritesNothing) {
             "' --products none,brdf");
     EXPECT_EQ(r.status, 2) << "'none' with a product is misuse: " << r.output;
     EXPECT_NE(r.output.find("'none' is the cube alone"), std::string::npos) << r.output;
+    // --cross through a link to -o's file: the cross replaced the cube, and the command said
+    // it had written both.
+    fs::create_symlink("out.ktx2", dir_ / "cross.hdr");
+    r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" + out.string() +
+            "' --size 32 --cross '" + (dir_ / "cross.hdr").string() + "'");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("cross.hdr': cannot write: it is the same file as '" + out.string() + "'"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "nothing written";
+    fs::remove(dir_ / "cross.hdr");
 
     for (const auto& entry : fs::directory_iterator(dir_))
         EXPECT_NE(entry.path().extension(), ".ktx2") << "nothing written: " << entry.path();

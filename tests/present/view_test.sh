@@ -60,6 +60,21 @@ if [ "$case_name" = no_display ]; then
     [ "$status" -eq 1 ] || fail "a missing graph file without a display exited $status"
     grep -q "no_such_graph.json: cannot open the file" view.err || fail "the missing graph file is not named"
     ! grep -q "no display" view.err || fail "'no display' hid the missing graph file"
+    # So do a missing scene and a feature the graph does not declare.
+    set +e
+    env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view --scene "$work/no_such_scene.json" --frames 1 >view.out 2>view.err
+    status=$?
+    set -e
+    [ "$status" -eq 1 ] || fail "a missing scene file without a display exited $status"
+    grep -q "no_such_scene.json" view.err || fail "the missing scene file is not named"
+    ! grep -q "no display" view.err || fail "'no display' hid the missing scene file"
+    set +e
+    env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view --feature no_such_feature=on --frames 1 >view.out 2>view.err
+    status=$?
+    set -e
+    [ "$status" -eq 1 ] || fail "an unknown feature without a display exited $status"
+    grep -q "unknown feature 'no_such_feature'" view.err || fail "the unknown feature is not named"
+    ! grep -q "no display" view.err || fail "'no display' hid the unknown feature"
     exit 0
 fi
 

@@ -9,6 +9,7 @@
 #include "shipped_names.hpp"
 
 #include <skygraph/compiled_graph.hpp>
+#include <skygraph/compiler.hpp>
 #include <skygraph/device.hpp>
 #include <skygraph/pass.hpp>
 #include <skygraph/renderer.hpp>
@@ -148,6 +149,22 @@ void reportReloadLatency(LiveGraph& live) {
                  ms(presented - reload.rebuilt));
 }
 
+/// Throws what is wrong with the inputs (graph, scene, environment file, features), as
+/// `render` would say it. Called where no window can be had: a broken input would otherwise go
+/// unnoticed behind "no display". Quietly: loading them is a check here, not progress.
+void refuseBrokenInputs(const RenderOptions& frame) {
+    const spdlog::level::level_enum level = spdlog::get_level();
+    spdlog::set_level(std::max(level, spdlog::level::warn));
+    try {
+        const FrameInputs inputs = loadFrameInputs(frame);
+        (void)compile(inputs.graph, inputs.compile);
+    } catch (...) {
+        spdlog::set_level(level);
+        throw;
+    }
+    spdlog::set_level(level);
+}
+
 }  // namespace
 
 int viewCommand(const ViewOptions& options) {
@@ -161,17 +178,16 @@ int viewCommand(const ViewOptions& options) {
             std::cerr << "skygraph view: --width and --height must be at least 1\n";
             return 1;
         }
-        // A broken or missing graph file is the error to report first: without a display it
-        // would otherwise go unnoticed behind "no display".
-        if (!fo.graph.empty()) (void)loadGraphFile(fo.graph, fo.passes ? fo.passes->registry() : PassRegistry::withBuiltins());
         glfwSetErrorCallback(onGlfwError);
         Glfw glfw;
         if (!glfw.ok) {
+            refuseBrokenInputs(fo);
             std::cerr << "skygraph view: no display (" << glfwLastError()
                       << "); render to a file without one: skygraph render\n";
             return 1;
         }
         if (glfwVulkanSupported() != GLFW_TRUE) {
+            refuseBrokenInputs(fo);
             std::cerr << "skygraph view: GLFW finds no Vulkan loader (" << glfwLastError()
                       << "); render to a file instead: skygraph render\n";
             return 1;
@@ -182,6 +198,7 @@ int viewCommand(const ViewOptions& options) {
                                                                          : fo.graph.filename().string());
         glfw.window = glfwCreateWindow(int(fo.width), int(fo.height), title.c_str(), nullptr, nullptr);
         if (!glfw.window) {
+            refuseBrokenInputs(fo);
             std::cerr << "skygraph view: cannot open a window (" << glfwLastError()
                       << "); render to a file instead: skygraph render\n";
             return 1;

@@ -156,29 +156,8 @@ int watch(const CompileArgs& args, const FeatureValues& features) {
 /// -o and --memory-svg naming one file: the second write would replace the first.
 void refuseOneFileForBothOutputs(const CompileArgs& args) {
     if (args.output.empty() || args.memorySvg.empty()) return;
-    // Two names of one file: the same path once links and dots are resolved (neither exists
-    // yet, so sameFileAmong cannot compare them), or an existing file under two names (a hard
-    // link, which no path comparison sees).
-    // The write lands at the end of a link's chain even when nothing is there yet: a dangling
-    // link is followed first, since weakly_canonical leaves a link to a missing file as it is.
-    // Absolute then: a relative path none of whose parts exists stays relative, so "a.svg"
-    // would not meet "./a.svg".
-    const auto resolved = [](const std::filesystem::path& p) {
-        std::filesystem::path landing = p;
-        try {
-            landing = files::outputTarget(p).path;
-        } catch (const std::filesystem::filesystem_error&) {
-            // A folder or a loop of links: writing it fails and says so.
-        }
-        std::error_code ec;
-        std::filesystem::path full = std::filesystem::absolute(landing, ec);
-        if (!ec) full = std::filesystem::weakly_canonical(full, ec);
-        return ec ? std::filesystem::path() : full;
-    };
-    const std::filesystem::path plan = resolved(args.output);
-    const bool same = (!plan.empty() && plan == resolved(args.memorySvg)) ||
-                      files::sameFileAmong(args.memorySvg, std::vector<std::filesystem::path>{args.output});
-    if (same)
+    const std::filesystem::path outputs[] = {args.output, args.memorySvg};
+    if (files::twoNamesOfOneFile(outputs))
         throw std::runtime_error("-o and --memory-svg both name '" + printableName(args.output) +
                                  "': the plan would replace the picture");
 }

@@ -123,6 +123,11 @@ int run(CubemapArgs& args) {
         refuseToOverwriteInputs(path == output ? "-o" : "an output", path, {args.input});
         requireWritableOutput(path);
     }
+    // Through a link or another name: the later file would replace the earlier.
+    if (const auto two = files::twoNamesOfOneFile(outputs))
+        throw ImageError(outputs[two->second], "cannot write: it is the same file as '" +
+                                                   printableName(outputs[two->first].string()) +
+                                                   "', another output of this bake");
 
     ProgressBar bar("cubemap", 6, "steps");
     // Half-float products would hold what a half cannot as infinity, and spread it through

@@ -16,7 +16,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <fcntl.h>
 #include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
 
 #include <csignal>
 #include <iostream>
@@ -35,9 +39,24 @@ extern "C" void removeTemporariesAndEnd(int signal) {
     std::raise(signal);
 }
 
+/// A standard descriptor the parent closed (`>&-`) is the number the next file opened takes:
+/// a plan for standard output went into the temporary of another output, and log lines into a
+/// shader cache's file. Each is held by /dev/null, opened the other way round, so that using
+/// it fails as using a closed one does (files:: refuses its /dev/stdout and /dev/fd/N names).
+void holdClosedStandardDescriptors() {
+    for (const int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO}) {
+        if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+        const int held = ::open("/dev/null", fd == STDIN_FILENO ? O_WRONLY : O_RDONLY);
+        if (held < 0 || held == fd) continue;
+        ::dup2(held, fd);
+        ::close(held);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    holdClosedStandardDescriptors();
     // A signal the parent had ignored (nohup's SIGHUP, a background job's SIGINT) stays ignored.
     for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
         struct sigaction previous {};

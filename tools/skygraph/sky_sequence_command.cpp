@@ -38,12 +38,17 @@ int run(const SkySequenceArgs& args) {
         !problem.empty())
         throw UsageError("skygraph sky-sequence: '" + printableName(args.pattern) + "': its file name " + problem);
     // Every other command refuses an output in a folder that does not exist (a typo in it would
-    // otherwise make folders), and so does this one, before any frame is drawn.
+    // otherwise make folders), and so does this one, before any frame is drawn: every frame's,
+    // since a later one may be a link into another folder (the frames before it were
+    // replaced, and then the run failed).
     const std::filesystem::path firstFrame = sequenceFrameFile(args.pattern, 0);
-    try {
-        (void)files::writableOutputTarget(firstFrame);
-    } catch (const std::filesystem::filesystem_error& e) {
-        throw ImageError(firstFrame, "cannot write: " + files::whyNotWritten(e));
+    for (uint32_t i = 0; i < args.frames; ++i) {
+        const std::filesystem::path frame = sequenceFrameFile(args.pattern, i);
+        try {
+            (void)files::writableOutputTarget(frame);
+        } catch (const std::filesystem::filesystem_error& e) {
+            throw ImageError(frame, "cannot write: " + files::whyNotWritten(e));
+        }
     }
     // A reader plays a sequence up to its first missing frame: an earlier, longer run's frames
     // past this one's would play on after it as if they were its own.
