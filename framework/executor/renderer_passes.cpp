@@ -109,6 +109,17 @@ void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, cons
 
 }  // namespace detail
 
+namespace {
+
+/// Where the graph declares `pass` (a pass of the graph, not a step the compiler inserted), as
+/// the compiler's messages begin ("graphs/raster.json: passes[3]"): what to fix is in that file.
+std::string declaredAt(const GraphDesc& graph, const PlannedPass& pass) {
+    const PassDesc& d = graph.passes.at(static_cast<size_t>(pass.declIndex));
+    return graph.file + ": " + (d.jsonPath.empty() ? "passes[" + std::to_string(pass.declIndex) + "]" : d.jsonPath);
+}
+
+}  // namespace
+
 std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const PlannedPass& pass, const PassDesc& desc) const {
     if (!options.passes)
         throw ExecutorError(passError(pass, "", "no recording code for type '" + desc.type +
@@ -167,15 +178,21 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
     if (static_cast<size_t>(pass.declIndex) >= s.graph.passes.size())
         throw ExecutorError(passError(pass, "", "the plan's pass is not in the graph"));
     ps.desc = &s.graph.passes[static_cast<size_t>(pass.declIndex)];
-    if (options.passes)
-        if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type)) {
-            if (type->acceptsAnyUsage) checkNoSlots(pass, *type, s.resources);
-            else checkSlots(pass, *type, s.resources);
-            checkWithTypeValidators(pass, *ps.desc, *type, s.graph, s.plan);
-        }
-    ps.implementation = implementationOf(pass, *ps.desc);
-    ps.attachments = attachmentsOf(pass, s.resources);
-    if (ps.attachments.any()) buildRenderPass(s, ps);
+    try {
+        if (options.passes)
+            if (const PassTypeInfo* type = options.passes->registry().find(ps.desc->type)) {
+                if (type->acceptsAnyUsage) checkNoSlots(pass, *type, s.resources);
+                else checkSlots(pass, *type, s.resources);
+                checkWithTypeValidators(pass, *ps.desc, *type, s.graph, s.plan);
+            }
+        ps.implementation = implementationOf(pass, *ps.desc);
+        ps.attachments = attachmentsOf(pass, s.resources);
+        if (ps.attachments.any()) buildRenderPass(s, ps);
+    } catch (const DeviceCapacityError&) {
+        throw;  // named at the resource's declaration by whoever knows the size it was asked for
+    } catch (const ExecutorError& e) {
+        throw ExecutorError(declaredAt(s.graph, pass) + ": " + e.what());
+    }
     s.passes.push_back(std::move(ps));
 }
 
@@ -204,7 +221,7 @@ void Renderer::Impl::createPipelines(PlanState& s, PassState& ps) {
         try {
             ps.implementation->createPipelines(pc);
         } catch (const std::exception& e) {  // an ExecutorError of the pipeline builder too: it knows no pass
-            throw ExecutorError(passError(*ps.pass, "creating pipelines", e));
+            throw ExecutorError(declaredAt(s.graph, *ps.pass) + ": " + passError(*ps.pass, "creating pipelines", e));
         }
     }
 }
