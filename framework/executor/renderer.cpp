@@ -434,12 +434,18 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
         throw ExecutorError("importImage: '" + resource + "' is not an external image");
     if (!image.impl_) throw ExecutorError("importImage: '" + resource + "': the SharedImage is empty");
     // A resource the plan culled is imported when a rebuild brings it back; what the plan
-    // would say of it (usages, layout, sharing) is checked then.
-    if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0)
+    // would say of it (usages, layout, sharing) is checked then. So is one of a renderer whose
+    // swapchain was destroyed: its passes' framebuffers would be made again from the views of
+    // the destroyed images (a use after free); the plan state for the next swapchain takes it.
+    const bool swapchainGone =
+        d.present && d.present->swapchain && d.present->swapchainLifetime.expired() && !d.present->awaitingImages;
+    if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0 && !swapchainGone)
         d.swapImport(*d.state, static_cast<size_t>(index), image);
     else
         d.checkImportShape(*desc, d.state->outputWidth(), d.state->outputHeight(), image);
     d.imports[resource] = std::move(image);
+    // Pixels waiting to ride with the next frame would be copied into the producer's image.
+    std::erase_if(d.pendingSetups, [&](const Impl::PendingSetup& p) { return p.resource == resource; });
 }
 
 void Renderer::forgetImport(const std::string& resource) {
@@ -452,11 +458,22 @@ void Renderer::forgetExternalImage(const std::string& resource) {
         throw ExecutorError("forgetExternalImage: '" + resource + "' has no pixels from setExternalImage()");
 }
 
+namespace {
+
+/// Pixels for an imported image would write the producer's image, which this renderer only
+/// reads (they did nothing, or were copied into it with the next frame).
+std::string importedPixelsProblem(const std::string& resource) {
+    return "'" + resource + "' is an imported image (importImage()), which this renderer only reads: its pixels are "
+           "its producer's (forgetImport() and a rebuild give it an image of its own again)";
+}
+
+}  // namespace
 
 void Renderer::setExternalImage(const std::string& resource, ImageData pixels) {
     Impl& d = *impl_;
     if (const auto problem = Impl::externalPixelsProblem(*d.state, resource, pixels))
         throw ExecutorError("setExternalImage: " + *problem);
+    if (d.imports.count(resource)) throw ExecutorError("setExternalImage: " + importedPixelsProblem(resource));
     auto previous = d.uploads;
     d.uploads[resource] = std::move(pixels);
     try {
@@ -475,6 +492,7 @@ void Renderer::updateExternalImage(const std::string& resource, ImageData pixels
     Impl& d = *impl_;
     if (const auto problem = Impl::externalPixelsProblem(*d.state, resource, pixels))
         throw ExecutorError("updateExternalImage: " + *problem);
+    if (d.imports.count(resource)) throw ExecutorError("updateExternalImage: " + importedPixelsProblem(resource));
     const auto it = d.uploads.find(resource);
     if (it == d.uploads.end())
         throw ExecutorError("updateExternalImage: '" + resource + "' has no pixels yet (setExternalImage first)");

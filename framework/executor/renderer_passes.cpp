@@ -150,6 +150,9 @@ std::unique_ptr<PassImplementation> Renderer::Impl::implementationOf(const Plann
         implementation = (*factory)(desc);
     } catch (const std::exception& e) {
         throw ExecutorError(passError(pass, "making the implementation of type '" + desc.type + "'", e));
+    } catch (...) {
+        throw ExecutorError(passError(pass, "", "making the implementation of type '" + desc.type +
+                                                    "': its factory threw something other than a std::exception"));
     }
     if (!implementation) throw ExecutorError(passError(pass, "", "the pass factory returned nothing"));
     return implementation;

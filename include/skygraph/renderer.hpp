@@ -277,7 +277,8 @@ public:
     /// shares must have finished before: the caller orders that), then runs the whole setup
     /// again and waits for it, so every external resource it covers gets its first contents
     /// back. Throws ExecutorError for a wrong name or size, `pixels.rgba` of another length than
-    /// width x height x 4, or an image format pixels cannot be uploaded to. A rebuild whose
+    /// width x height x 4, an image format pixels cannot be uploaded to, or an image imported
+    /// from another renderer (importImage(): its pixels are the producer's). A rebuild whose
     /// plan the kept pixels no longer fit throws too (forgetExternalImage()).
     void setExternalImage(const std::string& resource, ImageData pixels);
     /// Undoes setExternalImage() for `resource` from the next time the setup runs (a rebuild,
@@ -333,7 +334,10 @@ public:
     /// The caller orders the two renderers' work: the producer's frames must have finished
     /// (its waitIdle()), or its background frame been finished (finishBackgroundFrame()),
     /// before this renderer's next frame. Neither waits nor rebuilds: frames already submitted
-    /// keep the image they were recorded with, which stays alive until they finish. Throws
+    /// keep the image they were recorded with, which stays alive until they finish. Pixels of
+    /// updateExternalImage() waiting for the next frame are dropped. While the swapchain this
+    /// renderer presents into is destroyed, the import waits for the plan state built for the
+    /// next one, as for a culled resource. Throws
     /// ExecutorError for an empty handle or on any mismatch, keeping the old image; when the
     /// recording code made again for the new image fails (its factory's exception passes on,
     /// createPipelines' as an ExecutorError naming the pass), the old image, with everything

@@ -179,6 +179,37 @@ TEST_F(Present, ARebuildAfterTheSwapchainIsDestroyedIsRefusedUntilTheNext) {
     expectSilent();
 }
 
+// An import while the swapchain is destroyed: the renderer made its passes' framebuffers again
+// from the destroyed images' views (a segmentation fault inside the validation layer). The
+// import waits for the plan state of the next swapchain, and its frames sample it.
+TEST_F(Present, AnImportWhileTheSwapchainIsDestroyedWaitsForTheNext) {
+    CompileOptions o;
+    o.outputWidth = 96;
+    o.outputHeight = 64;
+    const CompiledGraph producerGraph(parseGraph(R"({ "version": 1, "name": "producer", "resources": {
+        "shared": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true, "final": "ShaderRead" } },
+      "passes": [ { "name": "paint", "type": "Generic", "uses": { "shared": "Write@ColorAttachment" } } ] })",
+                                                 "producer.json", PassRegistry::withBuiltins()),
+                                      o);
+    const CompiledGraph consumerGraph(parseGraph(R"({ "version": 1, "name": "consumer", "resources": {
+        "shared": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true, "final": "Present" } },
+      "passes": [ { "name": "show", "type": "Generic", "uses": { "shared": "Read@Fragment", "swapchain": "Write@ColorAttachment" } } ] })",
+                                                 "consumer.json", PassRegistry::withBuiltins()),
+                                      o);
+    Renderer producer(*device_, producerGraph, genericOptions(1));
+    producer.renderFrame();
+    producer.waitIdle();
+    Renderer consumer(*device_, consumerGraph, genericOptions(2));
+    auto swapchain = Swapchain::create(*device_, consumerGraph, {96, 64, PresentMode::Fifo});
+    present(consumer, *swapchain, 2);
+    swapchain.reset();
+    consumer.importImage("shared", producer.shareImage("shared"));
+    swapchain = Swapchain::create(*device_, consumerGraph, {96, 64, PresentMode::Fifo});
+    present(consumer, *swapchain, 2);
+    expectSilent();
+}
+
 TEST_F(Present, ResizeRecreatesTheSwapchainAndRecompiles) {
     auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
     Renderer renderer(*device_, raster(96, 64), genericOptions(2));
