@@ -45,6 +45,9 @@ void FrameBuilder::makeObjects() {
             o.frame = f;
             o.shared = s.shared;
             o.handedOut = s.external || s.exported;
+            // The file's exports, and what the plan exports beyond them (read-backs, options);
+            // an external input's final barrier only gives it back, its contents not needed.
+            o.readAfterFrame = !s.presented && (s.finalState != ExternalState::None || (!s.external && s.exported));
             o.mips = s.mips;
             o.layers = s.layers;
             o.name = std::string(resources[r].name);

@@ -2,6 +2,7 @@
 // Transitions", §12.4 "Image Layouts", the render pass load and store operations, and the
 // Memory Aliasing section's "writes via one alias make the contents ... undefined").
 #include "checks.hpp"
+#include "frame_resources.hpp"
 
 #include <skygraph/format.hpp>
 
@@ -81,6 +82,8 @@ struct CellState {
     /// the acquire.
     uint8_t owner = kNoQueue;
     uint8_t releasedTo = kNoQueue;
+    /// The release the acquire must match (§7.7.4: the same layouts and range), while released.
+    const TimelineItem* release = nullptr;
     bool defined = false;
     /// Another resource wrote the memory: this subresource must move from UNDEFINED before use.
     bool takenOver = false;
@@ -201,12 +204,23 @@ private:
     bool ownership(const TimelineItem& t, const Barrier& b) {
         if (!owned_[t.object]) return !t.release;
         std::string problem;
+        bool badOld = false;
+        std::string current;
+        const TimelineItem* unmatched = nullptr;
+        const bool image = model_.memory.object(t.object).kind == MemoryObject::Kind::Image;
         forCells(t.object, b.range, [&](CellState& c, uint32_t, uint32_t) {
             if (t.release) {
                 if (c.owner != kNoQueue && !sameFamily(c.owner, t.queue) && problem.empty())
                     problem = "released by the " + std::string(toString(t.queue)) + " queue but owned by the " +
                               std::string(toString(static_cast<QueueKind>(c.owner))) + " queue's family";
+                // The release performs the transition its acquire names (once, between the two),
+                // so it leaves the current layout as its acquire would.
+                if (image && b.oldLayout != VK_IMAGE_LAYOUT_UNDEFINED && b.oldLayout != c.layout && !badOld) {
+                    badOld = true;
+                    current = layoutNameShort(c.layout);
+                }
                 c.releasedTo = static_cast<uint8_t>(b.dstQueue);
+                c.release = &t;
                 return;
             }
             if (b.transfersOwnership()) {
@@ -215,18 +229,58 @@ private:
                         problem = "acquired by the " + std::string(toString(t.queue)) +
                                   " queue with no release from the " + std::string(toString(b.srcQueue)) +
                                   " queue before it";
+                } else if (c.release && !unmatched && !halvesAgree(*c.release->barrier, b, image)) {
+                    unmatched = c.release;
                 }
                 c.owner = static_cast<uint8_t>(t.queue);
                 c.releasedTo = kNoQueue;
+                c.release = nullptr;
                 return;
             }
             if (b.oldLayout == VK_IMAGE_LAYOUT_UNDEFINED && b.oldLayout != b.newLayout) {
                 c.owner = static_cast<uint8_t>(t.queue);
                 c.releasedTo = kNoQueue;
+                c.release = nullptr;
             }
         });
         if (!problem.empty()) add(FindingKind::Ownership, t, problem);
+        if (badOld)
+            add(FindingKind::BadOldLayout, t,
+                "the release's oldLayout " + layoutNameShort(b.oldLayout) + " is neither UNDEFINED nor the current " +
+                    "layout " + current);
+        if (unmatched) disagreeingHalves(*unmatched, t, image);
         return !t.release;
+    }
+
+    /// The release and the acquire of one ownership transfer must name the same queues and, for
+    /// an image, the same layouts and subresource range (§7.7.4): the transition happens once,
+    /// and an image whose halves disagree is left in a layout neither of them says.
+    static bool halvesAgree(const Barrier& release, const Barrier& acquire, bool image) {
+        if (release.srcQueue != acquire.srcQueue || release.dstQueue != acquire.dstQueue) return false;
+        return !image || (release.oldLayout == acquire.oldLayout && release.newLayout == acquire.newLayout &&
+                          release.range == acquire.range);
+    }
+
+    static std::string halfText(const Barrier& b, bool image) {
+        std::string text = std::string(toString(b.srcQueue)) + " -> " + std::string(toString(b.dstQueue));
+        if (image)
+            text += ", " + layoutNameShort(b.oldLayout) + " -> " + layoutNameShort(b.newLayout) + " " +
+                    rangeText(b.range);
+        return text;
+    }
+
+    void disagreeingHalves(const TimelineItem& release, const TimelineItem& acquire, bool image) {
+        if (!reports(acquire)) return;
+        Finding f;
+        f.kind = FindingKind::Ownership;
+        const MemoryObject& o = model_.memory.object(acquire.object);
+        if (o.resource >= 0) f.resources.push_back(static_cast<uint32_t>(o.resource));
+        f.resourceNames.push_back(o.name);
+        f.earlier = release.site;
+        f.later = acquire.site;
+        f.reason = "the release (" + halfText(*release.barrier, image) + ") and its acquire (" +
+                   halfText(*acquire.barrier, image) + ") of one ownership transfer disagree";
+        reporter_.add(std::move(f));
     }
 
     void barrier(const TimelineItem& t) {
@@ -344,6 +398,7 @@ private:
             TimelineItem at = t;
             at.object = object;
             if (owned_[object]) handedBack(at, graph_.resources[pr.decl]);
+            if (o.readAfterFrame) handedOutDefined(at);
             if (o.kind != MemoryObject::Kind::Image || !o.handedOut) continue;
             std::string wrong;
             for (const CellState& c : cells_[object])
@@ -356,6 +411,17 @@ private:
                     "shared across frames, it ends in " + layoutNameShort(pr.finalLayout) +
                         " but the next frame expects " + layoutNameShort(pr.initialLayout));
         }
+    }
+
+    /// An export is read after the frame in its final state: a final barrier from UNDEFINED, or
+    /// a DONT_CARE store, would hand that reader contents that are not there.
+    void handedOutDefined(const TimelineItem& t) {
+        std::string why;
+        for (const CellState& c : cells_[t.object])
+            if (!c.defined && why.empty()) why = c.undefinedBecause;
+        if (!why.empty())
+            add(FindingKind::UndefinedContents, t,
+                "exported, it is read after the frame, but the frame leaves its contents undefined: " + why);
     }
 
     /// What outlives the frame (external or exported) is the graphics family's between frames:

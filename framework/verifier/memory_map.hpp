@@ -31,6 +31,9 @@ struct MemoryObject {
     bool shared = false;    ///< One copy for all frames.
     /// External or exported: what it holds after the frame (PlannedResource::finalLayout) matters.
     bool handedOut = false;
+    /// Exported to a reader after the frame other than the presentation engine (the file's
+    /// final state, a read-back): its contents at the frame's end are what that reader gets.
+    bool readAfterFrame = false;
     uint32_t mips = 1, layers = 1;
     std::optional<PlacedBytes> placement;
     std::string name;

@@ -36,7 +36,8 @@ enum class FindingKind : uint8_t {
     PresentLayout,        ///< A presented image is not in PRESENT_SRC_KHR when presented.
     FinalLayout,          ///< A resource's layout after the frame differs from PlannedResource::finalLayout.
     /// An exclusive resource used on a queue of a family that does not own it, or an acquire
-    /// with no release before it (or a release of what the family does not own).
+    /// with no release before it (or a release of what the family does not own), or a release
+    /// whose queues, layouts or range differ from its acquire's.
     Ownership,
     /// A semaphore wait for a value that no signal of the frame reaches, or signal values of
     /// one semaphore that do not grow.

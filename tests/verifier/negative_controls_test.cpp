@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string_view>
 
 namespace skygraph::verifier {
 namespace {
@@ -174,6 +175,35 @@ TEST(NegativeControls, MissingHostMemoryBarrier) {
         return f.kind == FindingKind::NotVisible && f.later.pass == "host";
     });
     EXPECT_TRUE(hostRead) << r.summary();
+}
+
+/// Sets oldLayout UNDEFINED on the final barriers of image `resource`; how many there were.
+size_t discardInFinalBarriers(Plan& plan, std::string_view resource) {
+    size_t edited = 0;
+    for (Barrier& b : PlanEditor::finalBarriers(plan))
+        if (b.kind == BarrierKind::Image && plan.resources()[b.resource].name == resource) {
+            b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+            ++edited;
+        }
+    return edited;
+}
+
+// A final barrier from UNDEFINED moves an export into its final layout with its contents
+// discarded: whoever takes it after the frame (a sampler of the bake's products, the read-back
+// of a headless frame) gets garbage, although every layout is right.
+TEST(NegativeControls, FinalBarrierThatDiscardsAnExport) {
+    test::Compiled ibl = test::compileShipped("ibl.json");
+    expectClean(ibl);
+    ASSERT_GE(discardInFinalBarriers(ibl.plan, "irradiance"), 1u);
+    VerificationReport r = verifyPlan(ibl.plan, ibl.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "irradiance")) << r.summary();
+
+    const test::Compiled shipped = test::compileShipped("raster.json");
+    test::Compiled headless = test::compileShipped("raster.json", test::headless(shipped.graph, CompileOptions{}));
+    expectClean(headless);
+    ASSERT_GE(discardInFinalBarriers(headless.plan, "swapchain"), 1u);
+    r = verifyPlan(headless.plan, headless.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "swapchain")) << r.summary();
 }
 
 /// Two dispatches writing one storage buffer with nothing between them: a write-after-write

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 
 namespace skygraph::verifier {
 namespace {
@@ -122,6 +123,40 @@ TEST(Queues, AcquireTurnedIntoAPlainBarrierIsCaught) {
     ASSERT_TRUE(edited);
     const VerificationReport r = verifyPlan(c.plan, c.graph);
     EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "normals")) << r.summary();
+}
+
+/// The normals release (graphics -> compute, for ssao) edited by `edit`, and the report.
+VerificationReport verifyWithNormalsReleaseEdited(const std::function<void(Barrier&)>& edit) {
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    size_t edited = 0;
+    for (auto& s : submits)
+        for (Barrier& b : s.releases)
+            if (c.plan.resources()[b.resource].name == "normals") {
+                EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+                EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+                edit(b);
+                ++edited;
+            }
+    EXPECT_EQ(edited, 1u);
+    PlanEditor::setSubmits(c.plan, submits);
+    return verifyPlan(c.plan, c.graph);
+}
+
+// The two halves of an ownership transfer name the same layouts and range (§7.7.4): the
+// transition happens once, and a release that says otherwise than its acquire leaves the image
+// in a layout neither says. The acquire alone is what the rest of the walk follows, so the
+// release is compared with it.
+TEST(Queues, AReleaseWhoseLayoutsDifferFromItsAcquiresIsCaught) {
+    const VerificationReport newLayout =
+        verifyWithNormalsReleaseEdited([](Barrier& b) { b.newLayout = VK_IMAGE_LAYOUT_GENERAL; });
+    EXPECT_TRUE(hasFinding(newLayout, FindingKind::Ownership, "normals")) << newLayout.summary();
+
+    // A release from a layout the image is not in is also a bad oldLayout of its own.
+    const VerificationReport oldLayout =
+        verifyWithNormalsReleaseEdited([](Barrier& b) { b.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL; });
+    EXPECT_TRUE(hasFinding(oldLayout, FindingKind::Ownership, "normals")) << oldLayout.summary();
+    EXPECT_TRUE(hasFinding(oldLayout, FindingKind::BadOldLayout, "normals")) << oldLayout.summary();
 }
 
 /// graphs/ibl.json as EnvironmentBaker runs it beside the frames: the equirect copied in on the
