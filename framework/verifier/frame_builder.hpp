@@ -81,6 +81,7 @@ private:
 
     // frame_outside.cpp
     std::vector<Presented> recordAcquires(uint32_t f);
+    void recordAcquireWaits(QueueKind queue, uint64_t batch, bool waited);
     void recordPresentsAndFence(uint32_t f, const std::vector<Presented>& presented);
     void recordOutsideReadsBefore(uint32_t f);
     void recordOutsideReadsAfter(uint32_t f);
@@ -94,6 +95,12 @@ private:
     std::vector<ResourceShape> shapes_;
     std::vector<PlaceSpec> pending_;     // per access: how to place it once the points exist
     std::vector<uint32_t> hostCopies_;   // this frame's read-back copies, which the host reads
+    /// This frame's presentation engine reads (their accesses) whose acquire wait is not yet recorded.
+    struct AcquireRead {
+        const Presentation* presentation;
+        size_t access;
+    };
+    std::vector<AcquireRead> acquireReads_;
     uint64_t position_ = 0, batch_ = 0;  // submission order; batches, which never chain within
     QueueKind queue_ = QueueKind::Graphics;  // of the submit being recorded
     /// Per frame, the semaphore operations recorded: signals and waits by semaphore and value.

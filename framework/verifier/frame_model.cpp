@@ -65,10 +65,12 @@ void FrameBuilder::recordFrame(uint32_t f) {
     recordOutsideReadsBefore(f);
     const std::vector<Presented> presented = recordAcquires(f);
     if (plan_.submits().empty()) {  // a plan built without submits: every step on one queue
+        recordAcquireWaits(QueueKind::Graphics, ++batch_, true);
         for (size_t i = 0; i < plan_.passes().size(); ++i) recordStep(f, i);
         recordBatch(f, plan_.passes().size(), pointers(plan_.finalBarriers()), -1, "final barrier", ++position_);
     }
     for (size_t k = 0; k < plan_.submits().size(); ++k) recordSubmit(f, k);
+    if (!acquireReads_.empty()) recordAcquireWaits(QueueKind::Graphics, ++batch_, false);  // no submit waits
     queue_ = QueueKind::Graphics;
     const auto passes = plan_.passes();
     model_.timeline.push_back({TimelineItem::Kind::FrameEnd, f, 0, nullptr, nullptr, false, false,
@@ -116,7 +118,7 @@ void FrameBuilder::recordSubmit(uint32_t f, size_t k) {
 
 void FrameBuilder::recordWaits(uint32_t f, size_t k) {
     const Submit& s = plan_.submits()[k];
-    if (s.waits.empty()) return;
+    if (s.waits.empty() && !s.waitsForAcquire) return;
     const uint64_t batch = ++batch_;
     for (const SemaphoreOp& w : s.waits) {
         const FindingSite site = submitSite(f, k, "wait for " + std::string(toString(w.semaphore)) + "=" +
@@ -132,6 +134,7 @@ void FrameBuilder::recordWaits(uint32_t f, size_t k) {
         const PointId id = addPoint(p, BarrierMemory{true, 0, {}, true});
         waits_.push_back({f, w.semaphore, w.value, id, k});
     }
+    if (s.waitsForAcquire) recordAcquireWaits(s.queue, batch, true);
 }
 
 void FrameBuilder::recordSignals(uint32_t f, size_t k) {

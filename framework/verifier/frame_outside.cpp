@@ -26,6 +26,9 @@ std::optional<RequiredScope> outsideScope(bool image, VkImageLayout layout, Exte
 
 }  // namespace
 
+/// The presentation engine's read of each presented image before its acquire semaphore is
+/// signalled. It reaches the frame only through the wait for that semaphore, which
+/// recordAcquireWaits places where the executor waits.
 std::vector<FrameBuilder::Presented> FrameBuilder::recordAcquires(uint32_t f) {
     const auto presentations = plan_.presentations();
     std::vector<Presented> presented;
@@ -38,23 +41,35 @@ std::vector<FrameBuilder::Presented> FrameBuilder::recordAcquires(uint32_t f) {
             if (f == 1) report(FindingKind::MalformedPlan, site, "a presented buffer", pr.resource);
             continue;
         }
-        SyncPoint wait;
-        wait.kind = SyncPoint::Kind::SemaphoreWait;
-        wait.position = ++position_;
-        wait.batch = ++batch_;
-        wait.secondSync = synchronizationScope(pr.acquireWaitStages, ScopeSide::Second);
-        wait.secondAccess = AccessScope::allDeviceAccess();
-        const PointId w = addPoint(wait, BarrierMemory{true, 0, {}, true});
         ModelAccess a;
         a.kind = ModelAccess::Kind::PresentationAcquire;
         a.object = static_cast<uint32_t>(object);
         a.cells = model_.memory.object(a.object).whole();
         a.frame = f;
         a.site = site;
-        addAccess(std::move(a), {PlaceSpec::Kind::Signalling, {}, w, {}});
+        acquireReads_.push_back({&pr, model_.accesses.size()});
+        addAccess(std::move(a), {PlaceSpec::Kind::Signalling, {}, 0, {}});  // the point: its wait's
         presented.push_back({&pr, static_cast<uint32_t>(object)});
     }
     return presented;
+}
+
+/// The waits for the acquire semaphores of the reads recordAcquires left waiting, in `batch`
+/// on `queue`: the executor waits in the submit that has Submit::waitsForAcquire (in the batch
+/// of its other waits), at Presentation::acquireWaitStages. Where no submit has it (`waited`
+/// false), nothing in the frame waits and the wait orders nothing.
+void FrameBuilder::recordAcquireWaits(QueueKind queue, uint64_t batch, bool waited) {
+    for (const auto& [pr, access] : acquireReads_) {
+        SyncPoint wait;
+        wait.kind = SyncPoint::Kind::SemaphoreWait;
+        wait.queue = static_cast<uint32_t>(queue);
+        wait.position = ++position_;
+        wait.batch = batch;
+        if (waited) wait.secondSync = synchronizationScope(pr->acquireWaitStages, ScopeSide::Second);
+        wait.secondAccess = AccessScope::allDeviceAccess();
+        pending_[access].point = addPoint(wait, BarrierMemory{true, 0, {}, true});
+    }
+    acquireReads_.clear();
 }
 
 void FrameBuilder::recordPresentsAndFence(uint32_t f, const std::vector<Presented>& presented) {

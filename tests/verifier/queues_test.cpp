@@ -259,6 +259,24 @@ TEST(Queues, AnAcquireWithoutATransitionIsAnAccessLaterUsesFollow) {
     EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "tex")) << r.summary();
 }
 
+// The executor waits for the swapchain's acquire in the submit that has waitsForAcquire (the
+// one of the image's first use), not the frame's first: a wait at the wrong stages there is
+// not made good by the submits before it and their signals.
+TEST(Queues, TheAcquireWaitIsWhereTheSubmitThatWaitsForItIs) {
+    const test::Compiled intact = async();
+    ASSERT_EQ(intact.plan.presentations().size(), 1u);
+    ASSERT_FALSE(intact.plan.submits()[0].waitsForAcquire);
+    for (const VkPipelineStageFlags2 stages : {VkPipelineStageFlags2{VK_PIPELINE_STAGE_2_NONE},
+                                               VkPipelineStageFlags2{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT}}) {
+        test::Compiled c = intact;
+        PlanEditor::presentations(c.plan)[0].acquireWaitStages = stages;
+        const VerificationReport r = verifyPlan(c.plan, c.graph);
+        EXPECT_TRUE(std::any_of(r.findings.begin(), r.findings.end(), [](const Finding& f) {
+            return f.kind == FindingKind::Unordered && f.earlier.pass == "presentation engine";
+        })) << "acquireWaitStages " << stages << "\n" << r.summary();
+    }
+}
+
 TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
     test::Compiled c = async();
     const size_t step = stepIndex(c.plan, "histogram");
