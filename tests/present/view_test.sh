@@ -53,28 +53,22 @@ if [ "$case_name" = no_display ]; then
         grep -q "skygraph render" view.err || fail "the line does not suggest skygraph render ($display)"
     done
     echo "no display: $(cat view.err)"
-    set +e
-    env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view "$work/no_such_graph.json" --frames 1 >view.out 2>view.err
-    status=$?
-    set -e
-    [ "$status" -eq 1 ] || fail "a missing graph file without a display exited $status"
-    grep -q "no_such_graph.json: cannot open the file" view.err || fail "the missing graph file is not named"
-    ! grep -q "no display" view.err || fail "'no display' hid the missing graph file"
-    # So do a missing scene and a feature the graph does not declare.
-    set +e
-    env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view --scene "$work/no_such_scene.json" --frames 1 >view.out 2>view.err
-    status=$?
-    set -e
-    [ "$status" -eq 1 ] || fail "a missing scene file without a display exited $status"
-    grep -q "no_such_scene.json" view.err || fail "the missing scene file is not named"
-    ! grep -q "no display" view.err || fail "'no display' hid the missing scene file"
-    set +e
-    env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view --feature no_such_feature=on --frames 1 >view.out 2>view.err
-    status=$?
-    set -e
-    [ "$status" -eq 1 ] || fail "an unknown feature without a display exited $status"
-    grep -q "unknown feature 'no_such_feature'" view.err || fail "the unknown feature is not named"
-    ! grep -q "no display" view.err || fail "'no display' hid the unknown feature"
+    # What is wrong with the inputs is said first, not hidden behind "no display":
+    # refused WHAT EXPECTED_LINE VIEW_ARGS...
+    refused() {
+        local what="$1" expected="$2"
+        shift 2
+        set +e
+        env -u DISPLAY -u WAYLAND_DISPLAY "$skygraph" view "$@" --frames 1 >view.out 2>view.err
+        status=$?
+        set -e
+        [ "$status" -eq 1 ] || fail "$what without a display exited $status"
+        grep -q "$expected" view.err || fail "$what is not named"
+        ! grep -q "no display" view.err || fail "'no display' hid $what"
+    }
+    refused "a missing graph file" "no_such_graph.json: cannot open the file" "$work/no_such_graph.json"
+    refused "a missing scene file" "no_such_scene.json" --scene "$work/no_such_scene.json"
+    refused "an unknown feature" "unknown feature 'no_such_feature'" --feature no_such_feature=on
     exit 0
 fi
 
