@@ -298,20 +298,21 @@ private:
                 const FitRow row = fitRows_[u.resource];
                 if (!usageFits(u.usage.range ? withLevels(row, u.usage.range->mipCount) : row, iu.usage)) [[unlikely]]
                     misfits_.emplace_back(static_cast<uint32_t>(p), at);
-                // Counted in every pass, as the loader counts them.
-                if (iu.usage.stage == Stage::ColorAttachment && ++colors == kMaxColorAttachments + 1) [[unlikely]]
-                    overfull_.emplace_back(static_cast<uint32_t>(p), at);
-                if (iu.usage.stage == Stage::DepthAttachment && ++depths == 2) [[unlikely]]
-                    overfull_.emplace_back(static_cast<uint32_t>(p), at);
-                if (!active) continue;
-                if (isAttachmentStage(iu.usage.stage) && !misshapen) {
-                    const AttachmentShape shape = attachmentShape(iu);
-                    if (attachments.width == 0) attachments = shape;
-                    else if (!(shape == attachments)) {
-                        misshapen = true;
-                        misshapen_.emplace_back(static_cast<uint32_t>(p), at);
+                if (isAttachmentStage(iu.usage.stage)) {
+                    // Counted in every pass, as the loader counts them; shapes in those that run.
+                    const bool depth = iu.usage.stage == Stage::DepthAttachment;
+                    if (depth ? ++depths == 2 : ++colors == kMaxColorAttachments + 1) [[unlikely]]
+                        overfull_.emplace_back(static_cast<uint32_t>(p), at);
+                    if (active && !misshapen) {
+                        const AttachmentShape shape = attachmentShape(iu);
+                        if (attachments.width == 0) attachments = shape;
+                        else if (!(shape == attachments)) {
+                            misshapen = true;
+                            misshapen_.emplace_back(static_cast<uint32_t>(p), at);
+                        }
                     }
                 }
+                if (!active) continue;
                 if (readsContents(iu.usage.access)) {
                     bool missing = false;
                     forEachCell(iu, [&](size_t i) { missing |= heldFrom[i] - 1 >= stamp - 1; });  // 0 wraps

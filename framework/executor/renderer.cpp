@@ -437,9 +437,7 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     // would say of it (usages, layout, sharing) is checked then. So is one of a renderer whose
     // swapchain was destroyed: its passes' framebuffers would be made again from the views of
     // the destroyed images (a use after free); the plan state for the next swapchain takes it.
-    const bool swapchainGone =
-        d.present && d.present->swapchain && d.present->swapchainLifetime.expired() && !d.present->awaitingImages;
-    if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0 && !swapchainGone)
+    if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0 && !d.presentSwapchainDestroyed())
         d.swapImport(*d.state, static_cast<size_t>(index), image);
     else
         d.checkImportShape(*desc, d.state->outputWidth(), d.state->outputHeight(), image);

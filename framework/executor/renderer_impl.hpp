@@ -567,6 +567,11 @@ struct Renderer::Impl {
     /// Whether plan resource `index` of the running state is what this renderer presents (its
     /// present images, or the stand-in while awaiting new ones).
     [[nodiscard]] bool presents(uint32_t index) const;
+    /// Whether the swapchain this renderer presents into was destroyed, with no images in its
+    /// place yet: the plan state keeps views of its images until one is built for the next.
+    [[nodiscard]] bool presentSwapchainDestroyed() const noexcept {
+        return present && present->swapchain && present->swapchainLifetime.expired() && !present->awaitingImages;
+    }
     /// The checks of the binding against a plan state being built; sets presentResource.
     void describePresent(detail::PlanState& s) const;
     [[nodiscard]] uint32_t waitForFrameSlot();

@@ -20,7 +20,7 @@ void Renderer::Impl::describePresent(PlanState& s) const {
         return;
     }
     const PresentImages& p = present->images;
-    if (present->swapchain && present->swapchainLifetime.expired() && !present->awaitingImages)
+    if (presentSwapchainDestroyed())
         throw ExecutorError("the swapchain this renderer presents into was destroyed: its plan state is built again "
                             "only by rendering into another one, renderFrame(Swapchain&)");
     const int32_t index = presentResource(s.plan);

@@ -329,8 +329,8 @@ void replaceFileContents(const fs::path& path, std::string_view bytes) {
 void replaceFilesContents(std::span<const fs::path> paths, const std::function<std::string(size_t)>& contents) {
     if (const auto two = twoNamesOfOneFile(paths))
         throw std::invalid_argument("replaceFilesContents: '" + printableName(paths[two->second].string()) +
-                                    "' is the file '" + printableName(paths[two->first].string()) +
-                                    "' is: one would replace the other");
+                                    "' and '" + printableName(paths[two->first].string()) +
+                                    "' are one file: one would replace the other");
     std::vector<fs::path> temporaries(paths.size());
     std::vector<OutputTarget> targets(paths.size());
     std::vector<std::unique_ptr<PendingTemporary>> pending;

@@ -153,16 +153,13 @@ void reportReloadLatency(LiveGraph& live) {
 /// `render` would say it. Called where no window can be had: a broken input would otherwise go
 /// unnoticed behind "no display". Quietly: loading them is a check here, not progress.
 void refuseBrokenInputs(const RenderOptions& frame) {
-    const spdlog::level::level_enum level = spdlog::get_level();
-    spdlog::set_level(std::max(level, spdlog::level::warn));
-    try {
-        const FrameInputs inputs = loadFrameInputs(frame);
-        (void)compile(inputs.graph, inputs.compile);
-    } catch (...) {
-        spdlog::set_level(level);
-        throw;
-    }
-    spdlog::set_level(level);
+    struct Quiet {
+        spdlog::level::level_enum level = spdlog::get_level();
+        Quiet() { spdlog::set_level(std::max(level, spdlog::level::warn)); }
+        ~Quiet() { spdlog::set_level(level); }
+    } quiet;
+    const FrameInputs inputs = loadFrameInputs(frame);
+    (void)compile(inputs.graph, inputs.compile);
 }
 
 }  // namespace
