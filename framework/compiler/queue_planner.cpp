@@ -388,14 +388,17 @@ private:
             release.dstQueue = kindAt(q);
             release.dstStages = 0;
             release.dstAccess = 0;
-            release.srcStages = 0;
-            release.srcAccess = 0;
+            // The layout transition happens after the release (§7.7.4), so the release waits
+            // for what the barrier would have on one queue: every read since the last write,
+            // the outside world's included, where the source queue has those stages.
+            release.srcStages = b.srcStages & queueStages(kindAt(from));
+            release.srcAccess = writeBits(b.srcAccess) & accessesOf(release.srcStages);
             int32_t source = kNever;
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
                 const Cell& cell = cells_[c];
                 if (cell.lastUse[from] > source) source = cell.lastUse[from];
                 if (cell.lastUse[from] != kNever) {
-                    release.srcStages |= cell.useStages[from];
+                    release.srcStages |= cell.useStages[from] | cell.readStagesSince[from];
                     release.srcAccess |= writeBits(cell.useAccess[from]);
                 }
                 // A subresource that `from` only transitioned (the rest of a resource whose first
@@ -667,10 +670,10 @@ private:
         Barrier release = b;
         release.srcQueue = kindAt(from);
         release.dstQueue = QueueKind::Graphics;
-        release.srcStages = 0;
-        release.srcAccess = 0;
+        release.srcStages = b.srcStages & queueStages(kindAt(from));  // as addBarrier's
+        release.srcAccess = writeBits(b.srcAccess) & accessesOf(release.srcStages);
         forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
-            release.srcStages |= cells_[c].useStages[from];
+            release.srcStages |= cells_[c].useStages[from] | cells_[c].readStagesSince[from];
             release.srcAccess |= writeBits(cells_[c].useAccess[from]);
         });
         if (!release.srcStages) release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;

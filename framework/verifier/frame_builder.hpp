@@ -14,11 +14,12 @@ namespace skygraph::verifier {
 
 /// How an access is placed among the points, resolved once every point exists.
 struct PlaceSpec {
-    enum class Kind : uint8_t { Queue, Inside, WaitingFor, Signalling };
+    enum class Kind : uint8_t { Queue, Inside, Between, WaitingFor, Signalling };
     Kind kind = Kind::Queue;
     QueuePlace queue;
     PointId point = 0;
     StageSet stages;
+    PointId release = 0;  ///< Between: the release; `point` is the acquire.
 };
 
 class FrameBuilder {
@@ -57,6 +58,8 @@ private:
     void checkQueueStages(uint32_t f, const FindingSite& site, const char* side, VkPipelineStageFlags2 stages,
                           int64_t resource = -1);
     void resolvePlaces();
+    /// Each transfer's release happens before its acquire (once the graph is final).
+    void checkTransfersOrdered();
     /// The object of plan resource `r` in frame `f`, or -1 (reported when `r` is out of range).
     int32_t objectOf(uint32_t f, uint32_t r, const FindingSite& site);
     void addAccess(ModelAccess a, PlaceSpec spec);
@@ -112,6 +115,24 @@ private:
         size_t submit;
     };
     std::vector<SemaphorePoint> signals_, waits_;
+    /// Releases recorded and not yet acquired: what an acquire's transition happens after.
+    struct PendingRelease {
+        uint32_t object;
+        QueueKind from, to;
+        SubresourceRange range;  ///< Images.
+        PointId point;
+        FindingSite site;
+        uint32_t frame;
+    };
+    std::vector<PendingRelease> releases_;
+    /// The transfers of the first frame whose transition happens between their halves: the
+    /// release must happen before the acquire.
+    struct Transfer {
+        PointId release, acquire;
+        FindingSite releaseSite, acquireSite;
+        uint32_t resource;
+    };
+    std::vector<Transfer> transfers_;
 };
 
 }  // namespace skygraph::verifier

@@ -88,10 +88,13 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
         item.queue = queue_;
         item.release = releases;
         model_.timeline.push_back(item);
-        // The transition of an ownership transfer happens once, between its release and its
-        // acquire: it is placed in the acquire. An acquire without one still changes what the
-        // queue may access (§7.7.4): later accesses must follow it as they would a transition,
-        // so it is modelled as one.
+        if (releases) releases_.push_back({static_cast<uint32_t>(object), b.srcQueue, b.dstQueue, b.range, id, site, f});
+        // The transition of an ownership transfer happens once, after its release and before
+        // its acquire is done (§7.7.4): the accesses before it must happen before the release
+        // and their writes be available there (the acquire's source scope counts for
+        // nothing), and the accesses after it follow the acquire. An acquire without one
+        // still changes what the queue may access: later accesses must follow it as they
+        // would a transition, so it is modelled as one, in the acquire.
         const bool transition = image && b.oldLayout != b.newLayout;
         if ((transition || b.transfersOwnership()) && !releases) {
             ModelAccess t;
@@ -103,7 +106,20 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
             t.frame = f;
             t.site = site;
             t.site.what = (transition ? "layout transition of " : "ownership acquire of ") + t.site.what;
-            addAccess(std::move(t), {PlaceSpec::Kind::Inside, {}, id, {}});
+            PlaceSpec place{PlaceSpec::Kind::Inside, {}, id, {}};
+            // Its release names the same range (a release that differs is reported with the
+            // layouts); without one it is placed in the acquire.
+            const auto release = std::find_if(releases_.rbegin(), releases_.rend(), [&](const PendingRelease& r) {
+                return r.object == t.object && r.from == b.srcQueue && r.to == b.dstQueue && r.range == b.range;
+            });
+            if (transition && b.transfersOwnership() && release != releases_.rend()) {
+                place = {PlaceSpec::Kind::Between, {}, id, {}, release->point};
+                t.anchor = release->point;
+                t.doneAt = id;
+                if (release->frame == 1) transfers_.push_back({release->point, id, release->site, site, b.resource});
+                releases_.erase(std::next(release).base());
+            }
+            addAccess(std::move(t), place);
         }
     }
     markWholeObjects(entries);

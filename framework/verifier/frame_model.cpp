@@ -25,6 +25,7 @@ void FrameBuilder::run() {
     linkSemaphores();
     model_.graph.finalize();
     resolvePlaces();
+    checkTransfersOrdered();
 }
 
 void FrameBuilder::makeObjects() {
@@ -216,9 +217,25 @@ void FrameBuilder::resolvePlaces() {
         switch (s.kind) {
             case PlaceSpec::Kind::Queue: place = g.onQueue(s.queue); break;
             case PlaceSpec::Kind::Inside: place = g.inside(s.point); break;
+            case PlaceSpec::Kind::Between: place = g.between(s.release, s.point); break;
             case PlaceSpec::Kind::WaitingFor: place = g.waitingFor(s.point, s.stages); break;
             case PlaceSpec::Kind::Signalling: place = g.signalling(s.point); break;
         }
+    }
+}
+
+void FrameBuilder::checkTransfersOrdered() {
+    for (const Transfer& t : transfers_) {
+        if (model_.graph.successors(t.release).test(t.acquire)) continue;
+        Finding f;
+        f.kind = FindingKind::Unordered;
+        f.resources.push_back(t.resource);
+        f.resourceNames.emplace_back(plan_.resources()[t.resource].name);
+        f.earlier = t.releaseSite;
+        f.later = t.acquireSite;
+        f.reason = "the release does not happen before its acquire: no chain of barriers and semaphores orders "
+                   "them, and the layout transition between them races both";
+        reporter_.add(std::move(f));
     }
 }
 

@@ -34,9 +34,13 @@ struct ModelAccess {
     AccessScope performs;  ///< (stage, access type) pairs; empty for transitions and the presentation engine.
     bool writes = false;
     AccessPlace place;
-    /// Transitions: their barrier; the present: the render-complete signal. Visibility to
-    /// these is automatic; what they need is availability at or before this point.
+    /// Transitions: their barrier (an ownership transfer's: its release); the present: the
+    /// render-complete signal. Visibility to these is automatic; what they need is
+    /// availability at or before this point.
     std::optional<PointId> anchor;
+    /// A transition of an ownership transfer: its acquire, where its own writes are done.
+    /// Others: the anchor.
+    std::optional<PointId> doneAt;
     uint32_t frame = 1;
     FindingSite site;
 };

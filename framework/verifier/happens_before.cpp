@@ -90,6 +90,13 @@ AccessPlace HappensBefore::inside(PointId barrier) const {
     return place;
 }
 
+AccessPlace HappensBefore::between(PointId release, PointId acquire) const {
+    AccessPlace place{PointSet(points_.size()), PointSet(points_.size())};
+    place.enters.set(acquire);
+    place.after.set(release);
+    return place;
+}
+
 AccessPlace HappensBefore::waitingFor(PointId signal, StageSet stages) const {
     AccessPlace place{PointSet(points_.size()), PointSet(points_.size())};
     place.after.set(signal);

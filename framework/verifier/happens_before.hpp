@@ -99,6 +99,9 @@ public:
     /// A layout transition: inside its barrier, after the availability operation and before
     /// the visibility operation.
     [[nodiscard]] AccessPlace inside(PointId barrier) const;
+    /// The layout transition (or the change of owner) of a queue family ownership transfer:
+    /// after its release, and before its acquire is done (§7.7.4).
+    [[nodiscard]] AccessPlace between(PointId release, PointId acquire) const;
     /// An access by an agent outside the queues (the host after a fence, the presentation
     /// engine after the render-complete signal) that waits for `signal`: the signal, and every
     /// earlier point of the signal's queue whose second scope holds `stages` (a barrier with a

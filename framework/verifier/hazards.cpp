@@ -191,7 +191,8 @@ private:
         };
         if (earlier.kind == ModelAccess::Kind::Transition) {
             // A layout transition's writes are available as soon as it is done.
-            if (beforeLater(*earlier.anchor)) points.set(*earlier.anchor);
+            const PointId done = earlier.doneAt.value_or(*earlier.anchor);
+            if (beforeLater(done)) points.set(done);
         } else {
             const AccessScope writes = earlier.performs.writesOnly();
             earlier.place.enters.forEach([&](uint32_t p) {

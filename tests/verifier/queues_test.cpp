@@ -159,6 +159,65 @@ TEST(Queues, AReleaseWhoseLayoutsDifferFromItsAcquiresIsCaught) {
     EXPECT_TRUE(hasFinding(oldLayout, FindingKind::BadOldLayout, "normals")) << oldLayout.summary();
 }
 
+// The release is where the writes before a transfer are made available (§7.7.4: the
+// acquire's source access scope is ignored), and its source stages are what the semaphore
+// signal after it waits for.
+TEST(Queues, AReleaseWhoseSourceScopeMissesTheWritesIsCaught) {
+    const VerificationReport noAccess = verifyWithNormalsReleaseEdited([](Barrier& b) { b.srcAccess = 0; });
+    EXPECT_TRUE(anyFinding(noAccess, {FindingKind::NotAvailable, FindingKind::NotVisible}, "normals"))
+        << noAccess.summary();
+    const VerificationReport noStages = verifyWithNormalsReleaseEdited([](Barrier& b) {
+        b.srcStages = VK_PIPELINE_STAGE_2_NONE;
+        b.srcAccess = 0;
+    });
+    EXPECT_TRUE(hasFinding(noStages, FindingKind::Unordered, "normals")) << noStages.summary();
+}
+
+// A transfer's layout transition happens after the release, so every read before it must be
+// in the release's source scope: reads in one layout follow each other with no barrier
+// between, and the world outside the frame reads an input in its initial state. The release
+// of 'tex' once waited for its last reader's stages alone (COMPUTE_SHADER), and the fragment
+// reads, the frame's and the outside world's, raced the transition to GENERAL.
+TEST(Queues, AReleaseWaitsForEveryReadBeforeTheTransition) {
+    CompileOptions o;
+    o.queueFamilies = {0, 1, 2};
+    const test::Compiled intact = test::compileText(R"({ "version": 1, "name": "reads", "resources": {
+        "tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                 "initial": "ShaderRead", "final": "ShaderRead", "sharing": "exclusive" } },
+      "passes": [
+        { "name": "sample", "type": "Generic", "never_cull": true, "uses": { "tex": "Read@Fragment" } },
+        { "name": "reduce", "type": "Generic", "never_cull": true, "uses": { "tex": "Read@Compute" } },
+        { "name": "edit", "type": "Generic", "queue": "compute", "uses": { "tex": "ReadWrite@Compute" } } ] })",
+                                                    o);
+    const VerificationReport clean = verifyPlan(intact.plan, intact.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    const auto isTheRelease = [](const Barrier& b) {
+        return b.srcQueue == QueueKind::Graphics && b.oldLayout != b.newLayout;
+    };
+    size_t releases = 0;
+    for (const Submit& s : intact.plan.submits())
+        for (const Barrier& b : s.releases)
+            if (isTheRelease(b)) {
+                ++releases;
+                const VkPipelineStageFlags2 readers =
+                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+                EXPECT_EQ(b.srcStages & readers, readers) << b.srcStages;
+            }
+    ASSERT_EQ(releases, 1u);
+
+    test::Compiled lastReaderOnly = intact;
+    auto submits = PlanEditor::submits(lastReaderOnly.plan);
+    for (auto& s : submits)
+        for (Barrier& b : s.releases)
+            if (isTheRelease(b)) b.srcStages = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    PlanEditor::setSubmits(lastReaderOnly.plan, submits);
+    const VerificationReport raced = verifyPlan(lastReaderOnly.plan, lastReaderOnly.graph);
+    for (const char* reader : {"sample", "outside the frame"})
+        EXPECT_TRUE(std::any_of(raced.findings.begin(), raced.findings.end(), [&](const Finding& f) {
+            return f.kind == FindingKind::Unordered && f.earlier.pass == reader;
+        })) << reader << "\n" << raced.summary();
+}
+
 /// graphs/ibl.json as EnvironmentBaker runs it beside the frames: the equirect copied in on the
 /// transfer queue, every other pass on the compute queue, three families.
 test::Compiled backgroundBake() {
@@ -221,6 +280,23 @@ TEST(Queues, TheBackgroundBakeHandsItsProductsBackToTheGraphicsFamily) {
     EXPECT_TRUE(verifyPlan(c.plan, c.graph).ok()) << verifyPlan(c.plan, c.graph).summary();
     for (Barrier& b : PlanEditor::finalBarriers(c.plan))
         if (c.plan.resources()[b.resource].name == "environment" && b.transfersOwnership()) b.srcQueue = b.dstQueue;
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "environment")) << r.summary();
+}
+
+// The halves of a transfer name the same range (§7.7.4): a hand-back release of part of the
+// environment cube, its layouts those of the acquire, is caught.
+TEST(Queues, AReleaseWhoseRangeAloneDiffersFromItsAcquiresIsCaught) {
+    test::Compiled c = backgroundBake();
+    size_t edited = 0;
+    for (Barrier& b : PlanEditor::finalBarriers(c.plan))
+        if (c.plan.resources()[b.resource].name == "environment" && b.transfersOwnership() &&
+            b.srcQueue == QueueKind::Compute) {
+            ASSERT_EQ(b.range.layerCount, 6u);
+            b.range.layerCount = 5;
+            ++edited;
+        }
+    ASSERT_GE(edited, 1u);
     const VerificationReport r = verifyPlan(c.plan, c.graph);
     EXPECT_TRUE(hasFinding(r, FindingKind::Ownership, "environment")) << r.summary();
 }
