@@ -179,7 +179,7 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
         const SwapchainAccess::Impl& sc = SwapchainAccess::impl(*presentTo);
         if (&sc.device != &device) throw ExecutorError("RendererOptions::presentTo: a swapchain of another device");
         if (!sc.needsRecreate(presentRequirements(compiled)) && !sc.paused()) {
-            compiled = Impl::atPresentExtent(std::move(compiled), sc.extent);
+            compiled = d.atPresentExtent(std::move(compiled), sc.extent);
             d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},
                                              &sc, sc.imagesId, sc.lifetime};
         }
@@ -329,7 +329,7 @@ void Renderer::resize(uint32_t width, uint32_t height) {
 void Renderer::setGraph(CompiledGraph compiled, ShaderSources shaders) {
     Impl& d = *impl_;
     // A presenting renderer renders at its present images' extent, as its constructor does.
-    if (d.present) compiled = Impl::atPresentExtent(std::move(compiled), d.present->images.extent);
+    if (d.present) compiled = d.atPresentExtent(std::move(compiled), d.present->images.extent);
     // Swapchain images of another format or usage than the graph presents: the plan is built
     // with a stand-in for them, and the next frame re-creates the swapchain and binds its new
     // images, as a new renderer's first frame does. A format or usage the surface cannot give

@@ -423,9 +423,10 @@ struct Renderer::Impl {
     detail::SharedMemory bindImage(const detail::PlanState& s, const detail::ResourceState& r, uint32_t copy, VkImage image);
     detail::SharedMemory bindBuffer(const detail::PlanState& s, const detail::ResourceState& r, uint32_t copy, VkBuffer buffer);
     /// `compiled` as the renderer runs it: compiled with this device's memory model and queue
-    /// families, compiled again with them when it was not (Renderer::compiled() then reports
-    /// the recompiled one).
-    [[nodiscard]] CompiledGraph forDevice(CompiledGraph compiled) const;
+    /// families (and at `extent` when given), compiled again with them when it was not
+    /// (Renderer::compiled() then reports the recompiled one). Never asks the model it was
+    /// compiled with, which may be another device's, and gone.
+    [[nodiscard]] CompiledGraph forDevice(CompiledGraph compiled, std::optional<VkExtent2D> extent = {}) const;
 
     // --- renderer_resources.cpp: resources and their per-slot copies --------------------------
     /// Per-frame copies of the plan's read-backs: host-visible buffers.
@@ -557,9 +558,11 @@ struct Renderer::Impl {
     /// Makes `images` the plan's Present resource and rebuilds the plan state (compiled again at
     /// their extent when it differs). On failure throws and keeps the old state and binding.
     void bindPresentImages(PresentImages images, const SwapchainAccess::Impl* swapchain);
-    /// `compiled` at the present images' `extent` (as it is when it has that size already);
-    /// throws ExecutorError when it does not compile there.
-    static CompiledGraph atPresentExtent(CompiledGraph compiled, VkExtent2D extent);
+    /// `compiled` at the present images' `extent`, for this device (forDevice); throws
+    /// ExecutorError when it does not compile there.
+    [[nodiscard]] CompiledGraph atPresentExtent(CompiledGraph compiled, VkExtent2D extent) const {
+        return forDevice(std::move(compiled), extent);
+    }
     /// Whether `compiled` presents another format, or with other usage, than the swapchain
     /// images it is bound to have (false when bound to the application's own images, or to
     /// none). Throws ExecutorError when the device's surface cannot give them.

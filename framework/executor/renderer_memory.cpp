@@ -35,19 +35,27 @@ std::string placementMismatch(const VkMemoryRequirements& device, const MemoryPl
 
 }  // namespace detail
 
-CompiledGraph Renderer::Impl::forDevice(CompiledGraph compiled) const {
+CompiledGraph Renderer::Impl::forDevice(CompiledGraph compiled, std::optional<VkExtent2D> extent) const {
     std::shared_ptr<const MemoryModel> model = device.memoryModel();
     const auto families = device.queueFamilies();
     // A plan whose passes all run on the graphics queue is the same for every queue family.
     const bool familiesMatter = compiled.plan().submits().size() > 1;
-    if (compiled.options().memory == model && (!familiesMatter || compiled.options().queueFamilies == families))
+    const bool resizes =
+        extent && (compiled.outputWidth() != extent->width || compiled.outputHeight() != extent->height);
+    if (!resizes && compiled.options().memory == model &&
+        (!familiesMatter || compiled.options().queueFamilies == families))
         return compiled;
     CompileOptions onDevice = compiled.options();
     onDevice.memory = std::move(model);
     onDevice.queueFamilies = families;
+    if (resizes) {
+        onDevice.outputWidth = extent->width;
+        onDevice.outputHeight = extent->height;
+    }
     try {
         return CompiledGraph(compiled.graph(), std::move(onDevice));
     } catch (const GraphError& e) {
+        if (resizes) throw ExecutorError("presenting at " + vk::extentText(*extent) + ": " + e.what());
         throw ExecutorError("graph '" + compiled.graph().name + "' with the memory requirements and queue families of device '" +
                             device.name() + "': " + e.what());
     }

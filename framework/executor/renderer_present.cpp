@@ -71,15 +71,6 @@ bool Renderer::Impl::presents(uint32_t index) const {
     return present && int32_t(index) == presentResource(state->plan);
 }
 
-CompiledGraph Renderer::Impl::atPresentExtent(CompiledGraph compiled, VkExtent2D extent) {
-    if (compiled.outputWidth() == extent.width && compiled.outputHeight() == extent.height) return compiled;
-    try {
-        return compiled.resized(extent.width, extent.height);
-    } catch (const GraphError& e) {
-        throw ExecutorError("presenting at " + vk::extentText(extent) + ": " + e.what());
-    }
-}
-
 void Renderer::Impl::bindPresentImages(PresentImages images, const SwapchainAccess::Impl* swapchain) {
     if (images.images.empty()) throw ExecutorError("setPresentImages: no images");
     if (images.extent.width == 0 || images.extent.height == 0) throw ExecutorError("setPresentImages: 0x0 images");

@@ -527,6 +527,32 @@ TEST_F(Present, SetGraphCompilesAtThePresentImagesExtent) {
     expectSilent();
 }
 
+// A graph compiled with another device's memory model is placed with this device's at the
+// present images' extent in one compile: the other device may be gone, and its model throws
+// once it is.
+TEST_F(Present, SetGraphOfAPlanFromAFinishedDeviceCompilesWithThisDevicesModel) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer renderer(*device_, raster(96, 64), genericOptions(2));
+    present(renderer, *swapchain, 1);
+    DeviceOptions o;
+    o.validation = true;
+    o.device = "llvmpipe";
+    auto other = Device::create(o);
+    GraphDesc graph = loadGraphFile(std::string(SKYGRAPH_SOURCE_DIR) + "/graphs/raster.json",
+                                    PassRegistry::withBuiltins());
+    CompileOptions elsewhere;
+    elsewhere.outputWidth = 50;
+    elsewhere.outputHeight = 40;
+    elsewhere.memory = other->memoryModel();
+    CompiledGraph compiled(std::move(graph), elsewhere);
+    EXPECT_EQ(other->messageCount(), 0u) << formatMessages(*other);
+    other.reset();
+    renderer.setGraph(std::move(compiled));
+    EXPECT_EQ(renderer.compiled().outputWidth(), 96u);
+    EXPECT_EQ(renderer.compiled().options().memory, device_->memoryModel());
+    present(renderer, *swapchain, 2);
+}
+
 // A graph edit that presents another format and usage (raster.json's compute tonemap writes
 // the UNORM storage image `swapchain_storage` instead of the sRGB attachment `swapchain`)
 // re-creates the renderer's swapchain at the next frame, and back again.
