@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 namespace skygraph::test {
@@ -40,6 +41,28 @@ auto waitFor(Ask ask) -> decltype(ask()) {
         if (std::chrono::steady_clock::now() > until) return {};
         std::this_thread::sleep_for(std::chrono::milliseconds(2));
     }
+}
+
+/// The bytes of file `f`.
+std::string bytesOf(const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A sequence cut short is no sequence: a frame that cannot be written (here a link into a
+// folder that does not exist) leaves the frames before it as they were, not replaced.
+TEST(ProceduralSkySequence, AFailureLeavesEveryFrameAsItWas) {
+    const EnvironmentSequence s = writeSequence("all-or-none", 3);
+    const std::string first = bytesOf(s.frame(0)), second = bytesOf(s.frame(1));
+    ASSERT_FALSE(first.empty());
+    fs::remove(s.frame(2));
+    fs::create_symlink(s.frame(2).parent_path() / "missing" / "sky.exr", s.frame(2));
+    EXPECT_THROW(app::writeProceduralSkySequence(s.pattern, 3, 64), ImageError);
+    EXPECT_TRUE(bytesOf(s.frame(0)) == first) << "frame 0 was replaced";
+    EXPECT_TRUE(bytesOf(s.frame(1)) == second) << "frame 1 was replaced";
+    EXPECT_TRUE(fs::is_symlink(s.frame(2)));
+    for (const auto& entry : fs::directory_iterator(s.frame(0).parent_path()))
+        EXPECT_EQ(entry.path().filename().string().rfind("sky_", 0), 0u) << "left behind: " << entry.path();
 }
 
 TEST(SequenceStream, DecodesEveryFrameInOrderAndHoldsNoMoreThanItsLookahead) {

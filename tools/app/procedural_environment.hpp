@@ -28,9 +28,9 @@ inline constexpr uint32_t kProceduralEquirectWidth = 1024;
 
 /// Writes a time-lapse of the procedural sky, the test content of environment sequences:
 /// frames 0 to `frames` - 1 of proceduralSkyEquirect(sequenceSunDirection(i, frames), width),
-/// each to sequenceFrameFile(pattern, i) (.hdr or .exr, saveHdrImage), making the folder if
-/// need be. Nothing large is committed: tests and benchmarks write what they play. Throws
-/// ImageError.
+/// each to sequenceFrameFile(pattern, i) (.hdr or .exr), making the folder if need be. All
+/// frames are replaced or none: a failure leaves every frame file as it was. Nothing large is
+/// committed: tests and benchmarks write what they play. Throws ImageError.
 void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uint32_t width);
 
 }  // namespace skygraph::app

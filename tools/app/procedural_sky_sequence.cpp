@@ -1,6 +1,8 @@
 // sequenceSunDirection and writeProceduralSkySequence: see procedural_environment.hpp.
 #include "procedural_environment.hpp"
 
+#include "replace_file.hpp"
+
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 
@@ -24,22 +26,20 @@ void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uin
         std::filesystem::create_directories(folder, ec);
         if (ec) throw ImageError(folder, "cannot make the folder: " + ec.message());
     }
+    std::vector<std::filesystem::path> files(frames);
     std::error_code ec;
-    for (uint32_t i = 0; i < frames; ++i)
-        if (std::filesystem::is_directory(sequenceFrameFile(pattern, i), ec))
-            throw ImageError(sequenceFrameFile(pattern, i), "cannot write: it is a folder");
-    // A sequence cut short by a failure is no sequence: the frames this run made go again.
-    std::vector<std::filesystem::path> made;
+    for (uint32_t i = 0; i < frames; ++i) {
+        files[i] = sequenceFrameFile(pattern, i);
+        if (std::filesystem::is_directory(files[i], ec)) throw ImageError(files[i], "cannot write: it is a folder");
+    }
+    // A sequence cut short by a failure is no sequence: all frames are replaced, or none (one
+    // frame's pixels are held at a time).
     try {
-        for (uint32_t i = 0; i < frames; ++i) {
-            const std::filesystem::path frame = sequenceFrameFile(pattern, i);
-            const bool existed = std::filesystem::exists(frame, ec);
-            saveHdrImage(frame, proceduralSkyEquirect(sequenceSunDirection(i, frames), width));
-            if (!existed) made.push_back(frame);
-        }
-    } catch (...) {
-        for (const auto& frame : made) std::filesystem::remove(frame, ec);
-        throw;
+        files::replaceFilesContents(files, [&](size_t i) {
+            return encodeHdrImage(files[i], proceduralSkyEquirect(sequenceSunDirection(uint32_t(i), frames), width));
+        });
+    } catch (const std::filesystem::filesystem_error& e) {
+        throw ImageError(e.path1(), "cannot write: " + files::whyNotWritten(e));
     }
 }
 
