@@ -39,8 +39,7 @@ int run(const SkySequenceArgs& args) {
         throw UsageError("skygraph sky-sequence: '" + printableName(args.pattern) + "': its file name " + problem);
     // Every other command refuses an output in a folder that does not exist (a typo in it would
     // otherwise make folders), and so does this one, before any frame is drawn: every frame's,
-    // since a later one may be a link into another folder (the frames before it were
-    // replaced, and then the run failed).
+    // since a later one may be a link into another folder.
     const std::filesystem::path firstFrame = sequenceFrameFile(args.pattern, 0);
     for (uint32_t i = 0; i < args.frames; ++i) {
         const std::filesystem::path frame = sequenceFrameFile(args.pattern, i);
