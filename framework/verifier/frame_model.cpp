@@ -46,9 +46,11 @@ void FrameBuilder::makeObjects() {
             o.frame = f;
             o.shared = s.shared;
             o.handedOut = s.external || s.exported;
-            // The file's exports, and what the plan exports beyond them (read-backs, options);
+            // The file's exports, and what the plan exports beyond them (read-backs, options:
+            // an external input exported there is one the plan says carries its contents);
             // an external input's final barrier only gives it back, its contents not needed.
-            o.readAfterFrame = !s.presented && (s.finalState != ExternalState::None || (!s.external && s.exported));
+            o.readAfterFrame = !s.presented && (s.finalState != ExternalState::None || (!s.external && s.exported) ||
+                                                resources[r].copies == ResourceCopies::SharedExported);
             o.mips = s.mips;
             o.layers = s.layers;
             o.name = std::string(resources[r].name);

@@ -206,6 +206,28 @@ TEST(NegativeControls, FinalBarrierThatDiscardsAnExport) {
     EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "swapchain")) << r.summary();
 }
 
+// An external input exported through CompileOptions::exports (the file gives it no `final`)
+// is taken after the frame as any export is: the plan says so (ResourceCopies::SharedExported),
+// and a final barrier that discards it is caught against the file's graph.
+TEST(NegativeControls, FinalBarrierThatDiscardsAnInputExportedThroughTheOptions) {
+    CompileOptions o;
+    o.exports = {{"canvas", ExternalState::ShaderRead}};
+    test::Compiled c = test::compileText(R"({ "version": 1, "name": "exported-input", "resources": {
+        "canvas": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                    "initial": "ShaderRead" },
+        "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                 "final": "ShaderRead" } },
+      "passes": [
+        { "name": "paint", "type": "Generic", "uses": { "canvas": "Write@ColorAttachment" } },
+        { "name": "show", "type": "Generic", "uses": { "canvas": "Read@Fragment", "out": "Write@ColorAttachment" } } ] })",
+                                         o);
+    ASSERT_EQ(c.graph.resources[0].final, ExternalState::None);
+    expectClean(c);
+    ASSERT_GE(discardInFinalBarriers(c.plan, "canvas"), 1u);
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "canvas")) << r.summary();
+}
+
 /// Two dispatches writing one storage buffer with nothing between them: a write-after-write
 /// the validation layer does not report.
 TEST(NegativeControls, StorageWriteAfterWriteBetweenDispatches) {
