@@ -28,12 +28,40 @@ std::string stbReason() {
     return reason ? reason : "no reason given";
 }
 
+constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+constexpr unsigned char kJpegSignature[3] = {0xff, 0xd8, 0xff};
+
+bool startsWith(std::span<const unsigned char> data, std::span<const unsigned char> signature) {
+    return data.size() >= signature.size() && std::equal(signature.begin(), signature.end(), data.begin());
+}
+
+/// glTF 2.0's images are PNG or JPEG. stb reads more (Radiance, PNM, GIF, PSD...), and the
+/// Debian stb's readers of those hang on a zero run length, read past a 16-bit PNM's pixels,
+/// and fill a cut-short GIF without a word: none of them is let near it.
+std::string notPngOrJpeg(std::span<const unsigned char> data) {
+    if (startsWith(data, kPngSignature) || startsWith(data, kJpegSignature)) return {};
+    return "is neither a PNG nor a JPEG file (a glTF 2.0 image is one or the other)";
+}
+
+/// Why a JPEG's bytes are too few for its size, or empty: every 8x8 block of the full-size
+/// component takes at least one bit (its DC difference's code, in a baseline or a progressive
+/// first scan), and stb fills missing coded data with zeros, so a file of a hundred bytes
+/// would decode to a 16384x16384 image of nothing, gigabytes of it.
+std::string jpegTooShort(std::span<const unsigned char> data, uint64_t width, uint64_t height) {
+    if (!startsWith(data, kJpegSignature)) return {};
+    const uint64_t blocks = ((width + 7) / 8) * ((height + 7) / 8);
+    const uint64_t fewest = (blocks + 7) / 8;
+    if (data.size() >= fewest) return {};
+    return "is a JPEG of " + std::to_string(width) + "x" + std::to_string(height) + ", whose " +
+           std::to_string(blocks) + " blocks take at least " + std::to_string(fewest) + " bytes, but it has " +
+           std::to_string(data.size()) + ": it is cut short";
+}
+
 /// Why a PNG's chunks cannot all be in `data`, or empty (also for data that is no PNG): stb
 /// grows its buffer for the compressed pixels to a chunk's declared length before reading it,
 /// so a forged length would allocate up to 2 GiB for a file of a few bytes.
 std::string pngChunkProblem(std::span<const unsigned char> data) {
-    static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (data.size() < 8 || !std::equal(kSignature, kSignature + 8, data.begin())) return {};
+    if (!startsWith(data, kPngSignature)) return {};
     for (size_t at = 8; at + 8 <= data.size();) {
         const uint64_t length = uint64_t(data[at]) << 24 | uint64_t(data[at + 1]) << 16 | uint64_t(data[at + 2]) << 8 |
                                 uint64_t(data[at + 3]);
@@ -84,6 +112,8 @@ bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std
                            std::to_string(bufferBytes) + " bytes");
     }
     if (size <= 0) return problem("has no bytes, or more than 2 GiB");
+    const std::span<const unsigned char> data(bytes, size_t(size));
+    if (const std::string why = notPngOrJpeg(data); !why.empty()) return problem(why);
     const auto tooLarge = [&](uint64_t width, uint64_t height) {
         return (width > check.maxTextureSide || height > check.maxTextureSide) &&
                problem(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
@@ -95,6 +125,7 @@ bool checkImageHeader(tinygltf::Image* image, const int index, std::string*, std
     if (!stbi_info_from_memory(bytes, size, &width, &height, &components))
         return problem("not an image stb can read (" + stbReason() + ")");
     if (tooLarge(uint64_t(width), uint64_t(height))) return true;
+    if (const std::string why = jpegTooShort(data, uint64_t(width), uint64_t(height)); !why.empty()) return problem(why);
     image->width = width;
     image->height = height;
     image->component = components;

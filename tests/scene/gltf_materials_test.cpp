@@ -254,6 +254,17 @@ TEST(GltfTextures, AnImageThatCannotBeDecodedIsRefusedNamingItsFile) {
     const std::string truncated = fileBytes(kModels / "BoxTextured-glTF/CesiumLogoFlat.png").substr(0, 600);
     const std::string garbage(300, 'x');
     const std::string empty;
+    // Formats stb reads and glTF does not have, whose Debian stb readers misbehave: a 16-bit
+    // PGM (read past its pixels), a Radiance file with a zero run length (a loop that never
+    // ends), a GIF cut short (filled in silently).
+    const std::string pgm16 = "P5 16 16 65535\n" + std::string(512, '\x7f');
+    const std::string zeroRun = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n" + std::string("\x02\x02\x00\x08", 4) +
+                                std::string(4, '\0');
+    const std::string gif = std::string("GIF89a\x10\x00\x10\x00\x00\x00\x00", 13) + std::string("\x2c", 1) +
+                            std::string(9, '\0') + std::string("\x02", 1);
+    // A JPEG header claiming 4096x4096 and no coded data: stb would fill 64 MiB of zeros.
+    const std::string hollowJpeg = std::string("\xff\xd8\xff\xc0\x00\x0b\x08\x10\x00\x10\x00\x01\x01\x11\x00"
+                                               "\xff\xd9", 17);
     struct Case {
         std::string name, uri;
         const std::string* bytes;
@@ -261,7 +272,13 @@ TEST(GltfTextures, AnImageThatCannotBeDecodedIsRefusedNamingItsFile) {
         std::string message;
     };
     for (const Case& c : {Case{"truncated", "logo.png", &truncated, "logo.png", "cannot be decoded"},
-                          Case{"garbage", "logo.png", &garbage, "logo.png", "not an image stb can read"},
+                          Case{"garbage", "logo.png", &garbage, "logo.png", "is neither a PNG nor a JPEG file"},
+                          Case{"pgm16", "logo.pgm", &pgm16, "logo.pgm", "is neither a PNG nor a JPEG file"},
+                          Case{"radiance", "sky.hdr", &zeroRun, "sky.hdr", "is neither a PNG nor a JPEG file"},
+                          Case{"gif", "logo.gif", &gif, "logo.gif", "is neither a PNG nor a JPEG file"},
+                          Case{"hollow-jpeg", "logo.jpg", &hollowJpeg, "logo.jpg",
+                               "is a JPEG of 4096x4096, whose 262144 blocks take at least 32768 bytes, but it has 17: "
+                               "it is cut short"},
                           Case{"empty", "logo.png", &empty, "logo.png", "is empty"},
                           Case{"missing", "absent.png", nullptr, "absent.png", "does not exist"},
                           Case{"missing-in-folder", "textures/absent%20logo.png", nullptr, "textures/absent logo.png",
