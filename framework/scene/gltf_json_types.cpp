@@ -328,35 +328,29 @@ std::string_view glbJsonChunk(std::string_view data) {
     return data.substr(20, length);
 }
 
-namespace {
-
-/// `uri` with each %XX replaced by its byte and each + by a space, as tinygltf decodes a uri
-/// before it looks for the file.
-std::string percentDecoded(const std::string& uri) {
-    const auto hexDigit = [](char c) -> int {
-        if (c >= '0' && c <= '9') return c - '0';
-        if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-        if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+std::string decodeUri(const std::string& uri, bool plusIsSpace) {
+    const auto hex = [](char c) -> unsigned {
+        if (c >= '0' && c <= '9') return unsigned(c - '0');
+        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
+        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
         return 0;  // tinygltf reads any other character as 0 too
     };
-    std::string decoded;
+    std::string out;
     for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '+') {
-            decoded += ' ';
-        } else if (uri[i] == '%' && i + 2 < uri.size()) {
-            decoded += char(hexDigit(uri[i + 1]) << 4 | hexDigit(uri[i + 2]));
+        if (uri[i] == '+' && plusIsSpace) {
+            out += ' ';
+        } else if (uri[i] == '%' && uri.size() > i + 2) {
+            out += static_cast<char>(hex(uri[i + 1]) << 4 | hex(uri[i + 2]));
             i += 2;
         } else {
-            decoded += uri[i];
+            out += uri[i];
         }
     }
-    return decoded;
+    return out;
 }
 
-}  // namespace
-
 std::filesystem::path uriFile(const std::filesystem::path& baseDir, const std::string& uri) {
-    return baseDir / percentDecoded(uri);
+    return baseDir / decodeUri(uri, false);
 }
 
 std::string notARegularFile(const std::filesystem::path& path) {
@@ -370,7 +364,7 @@ std::string notARegularFile(const std::filesystem::path& path) {
 }
 
 std::string absoluteUriProblem(const std::string& uri) {
-    const std::string decoded = percentDecoded(uri);
+    const std::string decoded = decodeUri(uri, false);
     std::string scheme = uri.substr(0, 5);
     std::transform(scheme.begin(), scheme.end(), scheme.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     const char* what = decoded.starts_with('/') ? "an absolute path" : scheme == "file:" ? "a file: URI" : nullptr;

@@ -29,8 +29,14 @@ namespace skygraph {
 /// was wrong.
 bool checkGltfJsonTypes(const std::string& jsonText, const std::string& file, bool binary, Diagnostics& diagnostics);
 
-/// The file that a buffer's or an image's `uri` (not a data URI) names, found as tinygltf finds
-/// it: percent-decoded and joined to `baseDir`, the glTF file's folder.
+/// A uri percent-decoded as tinygltf 2.7 does it (its urldecode), or, with `plusIsSpace` off,
+/// as RFC 3986 (which glTF follows) does: a '+' in a path is a '+', not the space of an HTML
+/// form.
+[[nodiscard]] std::string decodeUri(const std::string& uri, bool plusIsSpace);
+
+/// The file that a buffer's or an image's `uri` (not a data URI) names, as the loader reads it:
+/// percent-decoded as RFC 3986 does (a '+' stays one) and joined to `baseDir`, the glTF
+/// file's folder.
 [[nodiscard]] std::filesystem::path uriFile(const std::filesystem::path& baseDir, const std::string& uri);
 
 /// Why `path`, a file a glTF names, cannot be read as one: "does not exist", "is a directory",

@@ -39,29 +39,6 @@ std::string at(const char* array, size_t i) { return std::string(array) + "[" + 
 
 bool finite(const dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-/// A uri percent-decoded as tinygltf 2.7 does it (its urldecode), or, with `plusIsSpace` off,
-/// as RFC 3986 (which glTF follows) does: a '+' in a path is a '+', not the space of an HTML
-/// form.
-std::string decodeUri(const std::string& uri, bool plusIsSpace) {
-    const auto hex = [](char c) -> unsigned {
-        if (c >= '0' && c <= '9') return unsigned(c - '0');
-        if (c >= 'a' && c <= 'f') return unsigned(c - 'a' + 10);
-        if (c >= 'A' && c <= 'F') return unsigned(c - 'A' + 10);
-        return 0;
-    };
-    std::string out;
-    for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '+' && plusIsSpace) {
-            out += ' ';
-        } else if (uri[i] == '%' && uri.size() > i + 2) {
-            out += static_cast<char>(hex(uri[i + 1]) << 4 | hex(uri[i + 2]));
-            i += 2;
-        } else {
-            out += uri[i];
-        }
-    }
-    return out;
-}
 
 /// What tinygltf's file callbacks share: the glTF's folder, the paths read so far, and the
 /// file each uri with a '+' names, under the name tinygltf asks for (with a space there).

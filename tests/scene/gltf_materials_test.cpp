@@ -281,6 +281,9 @@ TEST(GltfTextures, AnImageThatCannotBeDecodedIsRefusedNamingItsFile) {
                                "it is cut short"},
                           Case{"empty", "logo.png", &empty, "logo.png", "is empty"},
                           Case{"missing", "absent.png", nullptr, "absent.png", "does not exist"},
+                          // A '+' in a uri is a '+' (RFC 3986), as the loader reads the file.
+                          Case{"plus", "my+logo.png", &truncated, "my+logo.png", "cannot be decoded"},
+                          Case{"missing-plus", "absent+logo.png", nullptr, "absent+logo.png", "does not exist"},
                           Case{"missing-in-folder", "textures/absent%20logo.png", nullptr, "textures/absent logo.png",
                                "does not exist"}}) {
         SCOPED_TRACE(c.name);
