@@ -50,7 +50,8 @@ const std::string kNearTooNear =
 
 class SceneLoader {
 public:
-    SceneLoader(std::string file, std::filesystem::path baseDir) : baseDir_(std::move(baseDir)) {
+    SceneLoader(std::string file, std::filesystem::path baseDir, const GltfLimits& limits)
+        : baseDir_(std::move(baseDir)), limits_(limits) {
         scene_.file = std::move(file);
     }
 
@@ -378,14 +379,30 @@ private:
         if (file == o.end() || !file->is_string() || file->get<std::string>().empty())
             return error(path + ".file", "missing; expected a .gltf or .glb path");
         const std::filesystem::path resolved = (baseDir_ / file->get<std::string>()).lexically_normal();
+        // What one file may bring, a scene's files may bring together: 256 objects of one file
+        // would otherwise each take what that file does.
+        const GltfLimits& whole = limits_;
+        GltfLimits left = whole;
+        left.maxVertices -= sceneVertices_;
+        left.maxIndices -= sceneIndices_;
+        left.maxImageBytes -= sceneImageBytes_;
         Diagnostics problems;
-        std::optional<TriangleMesh> mesh = loadGltf(resolved, model.transform, problems);
+        std::optional<TriangleMesh> mesh = loadGltf(resolved, model.transform, problems, left);
         if (!mesh) {
             error(path + ".file", "'" + resolved.string() + "' cannot be drawn: " + std::to_string(problems.size()) +
                                       (problems.size() == 1 ? " problem follows" : " problems follow"));
+            if (sceneVertices_ || sceneIndices_ || sceneImageBytes_)
+                error(path + ".file", "the limits that follow are what the scene's glTF files may hold together (" +
+                                          std::to_string(whole.maxVertices) + " vertices, " +
+                                          std::to_string(whole.maxIndices) + " indices and " +
+                                          std::to_string(whole.maxImageBytes) +
+                                          " bytes of decoded images), less what its earlier objects hold");
             for (const Diagnostic& d : problems.items()) diags_.add(d);
             return;
         }
+        sceneVertices_ += mesh->vertices.size();
+        sceneIndices_ += mesh->indices.size();
+        for (const MeshImage& image : mesh->images) sceneImageBytes_ += image.rgba.size();
         model.mesh = std::make_shared<const TriangleMesh>(std::move(*mesh));
         SceneObject obj;
         obj.shape = std::move(model);
@@ -402,17 +419,20 @@ private:
     }
 
     std::filesystem::path baseDir_;
+    const GltfLimits limits_;
     Scene scene_;
     Diagnostics diags_;
+    size_t sceneVertices_ = 0, sceneIndices_ = 0, sceneImageBytes_ = 0;  // of the glTF objects loaded so far
 };
 
 }  // namespace
 
-Scene parseScene(std::string_view text, const std::string& fileName, const std::filesystem::path& baseDir) {
-    return SceneLoader(fileName, baseDir).load(text);
+Scene parseScene(std::string_view text, const std::string& fileName, const std::filesystem::path& baseDir,
+                 const GltfLimits& limits) {
+    return SceneLoader(fileName, baseDir, limits).load(text);
 }
 
-Scene loadSceneFile(const std::filesystem::path& path) {
+Scene loadSceneFile(const std::filesystem::path& path, const GltfLimits& limits) {
     const auto fail = [&](const std::string& message) {
         Diagnostics d;
         d.add({path.string(), "", "", "", message});
@@ -432,7 +452,7 @@ Scene loadSceneFile(const std::filesystem::path& path) {
             fail("is larger than " + std::to_string(kMaxSceneFileBytes >> 20) + " MiB, the most a scene file may be");
     }
     if (in.bad()) fail("cannot read the file");
-    return parseScene(text, path.string(), std::filesystem::absolute(path, ec).parent_path());
+    return parseScene(text, path.string(), std::filesystem::absolute(path, ec).parent_path(), limits);
 }
 
 }  // namespace skygraph

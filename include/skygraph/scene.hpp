@@ -142,13 +142,14 @@ public:
 /// Throws SceneError listing all problems: unreadable file, malformed JSON, duplicate or
 /// unknown keys, wrong types, non-finite numbers, values out of range, and every problem of
 /// its glTF files (each naming that file and its JSON path: loadGltf()). Relative glTF files
-/// are resolved like environment files.
-[[nodiscard]] Scene loadSceneFile(const std::filesystem::path& path);
+/// are resolved like environment files. `limits` hold for all of its glTF files together:
+/// what one file may bring, a scene's files may bring between them.
+[[nodiscard]] Scene loadSceneFile(const std::filesystem::path& path, const GltfLimits& limits = {});
 
 /// As loadSceneFile() for text in memory (read during the call only). `fileName` is used in
 /// messages; relative environment files are resolved against `baseDir`.
 [[nodiscard]] Scene parseScene(std::string_view text, const std::string& fileName,
-                               const std::filesystem::path& baseDir);
+                               const std::filesystem::path& baseDir, const GltfLimits& limits = {});
 
 /// The features of graphs/raster.json that the scene decides:
 ///   geometry = the scene has objects   (off: the forward pass and depth are culled)

@@ -122,8 +122,8 @@ struct GltfLimits {
 /// indices past the vertices, non-finite or zero-length data, primitives of points or lines,
 /// sparse or normalized position data, required extensions, textures that sample texture
 /// coordinates other than TEXCOORD_0, or that a primitive without TEXCOORD_0 uses, malformed
-/// texture coordinates or tangents, images that are not PNG,
-/// JPEG or another format stb decodes, sizes beyond `limits`.
+/// texture coordinates or tangents, images that are not PNG or JPEG (or a JPEG too short for
+/// its size), sizes beyond `limits`.
 [[nodiscard]] std::optional<TriangleMesh> loadGltf(const std::filesystem::path& path, const MeshTransform& transform,
                                                    Diagnostics& diagnostics, const GltfLimits& limits = {});
 

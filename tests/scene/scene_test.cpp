@@ -3,6 +3,8 @@
 #include <skygraph/scene.hpp>
 #include <skygraph/shading_math.hpp>
 
+#include "gltf_test_util.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -80,6 +82,30 @@ TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
     EXPECT_EQ(explainSceneFeatures(empty),
               (std::vector<std::string>{"geometry = off: the scene has no objects (no forward pass, no depth)",
                                         "skybox = off: the scene has no environment (no skybox, no IBL)"}));
+}
+
+// What one glTF file may bring, a scene's files may bring together: objects of one file each
+// flatten it again, so a small file drawn 256 times took 256 times what it does. The box has
+// 24 vertices and 36 indices; a budget of 60 vertices holds two of them, not three.
+TEST(SceneFiles, TheGltfLimitsHoldForTheSceneFilesTogether) {
+    const std::string box = (gltf_test::kModels / "BoxTextured-glTF/BoxTextured.gltf").string();
+    std::string text = R"({"objects": [)";
+    for (int i = 0; i < 3; ++i) text += std::string(i ? ", " : "") + R"({"type": "gltf", "file": ")" + box + R"("})";
+    text += "]}";
+    GltfLimits limits;
+    limits.maxVertices = 60;
+    EXPECT_EQ(parseScene(text, "test.json", kScenes, {}).objects.size(), 3u) << "the default limits hold three";
+    try {
+        (void)parseScene(text, "test.json", kScenes, limits);
+        ADD_FAILURE() << "loaded";
+    } catch (const SceneError& e) {
+        const auto& d = e.diagnostics().items();
+        ASSERT_GE(d.size(), 3u) << e.what();
+        EXPECT_EQ(d[0].jsonPath, "objects[2].file") << e.what();
+        EXPECT_NE(d[1].message.find("what the scene's glTF files may hold together (60 vertices"), std::string::npos)
+            << e.what();
+        EXPECT_NE(d[2].message.find("the file has more than 12 vertices"), std::string::npos) << e.what();
+    }
 }
 
 // Past the object limit the scene is refused before any object loads: each glTF object decodes
