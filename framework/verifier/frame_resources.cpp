@@ -2,6 +2,7 @@
 #include "frame_resources.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace skygraph::verifier {
 namespace {
@@ -106,6 +107,14 @@ void place(const Plan& plan, std::vector<ResourceShape>& shapes, Reporter& repor
                    "offset " + std::to_string(pl.offset) + " is not aligned to " +
                        std::to_string(pl.requirements.alignment),
                    r);
+        if ((pl.requirements.memoryTypeBits & heap.memoryTypeBits) == 0) {
+            char types[48];
+            std::snprintf(types, sizeof types, "0x%x, and its heap's 0x%x", pl.requirements.memoryTypeBits,
+                          heap.memoryTypeBits);
+            report(reporter, plan, FindingKind::PlacementInvalid, site,
+                   std::string("cannot live in its heap: none of its memory types is the heap's (its ") + types + ")",
+                   r);
+        }
         if (heap.granular && m.granularity > 1 && (pl.offset % m.granularity || pl.bytes % m.granularity))
             report(reporter, plan, FindingKind::PlacementInvalid, site,
                    "a granular heap's placement must start and end on a multiple of " + std::to_string(m.granularity),

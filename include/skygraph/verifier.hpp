@@ -32,7 +32,8 @@ enum class FindingKind : uint8_t {
     UndefinedContents,    ///< A read of contents that were never written or were discarded.
     AliasNotInitialized,  ///< A resource taking over memory has a subresource not moved from UNDEFINED.
     LiveOverlap,          ///< Two resources whose placements overlap are in use at the same time.
-    PlacementInvalid,     ///< A placement outside its heap, misaligned, or of a resource that must not have one.
+    PlacementInvalid,     ///< A placement outside its heap, misaligned, of a memory type its heap lacks, or of a
+                          ///< resource that must not have one.
     PresentLayout,        ///< A presented image is not in PRESENT_SRC_KHR when presented.
     FinalLayout,          ///< A resource's layout after the frame differs from PlannedResource::finalLayout.
     /// An exclusive resource used on a queue of a family that does not own it, or an acquire

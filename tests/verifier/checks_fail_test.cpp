@@ -356,6 +356,19 @@ TEST(ChecksFail, PlacementInvalid) {
     EXPECT_TRUE(hasFinding(verifyPlan(c.plan, c.graph), FindingKind::PlacementInvalid));
 }
 
+// A resource in a heap of memory types it cannot live in (the executor refuses to bind it).
+TEST(ChecksFail, PlacementInvalidForItsHeapsMemoryType) {
+    test::Compiled c = test::compileShipped("deferred.json");
+    ASSERT_TRUE(verifyPlan(c.plan, c.graph).ok());
+    MemoryLayout& m = PlanEditor::memory(c.plan);
+    ASSERT_FALSE(m.placements.empty());
+    m.placements[0].requirements.memoryTypeBits = ~m.heaps[m.placements[0].heap].memoryTypeBits;
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    ASSERT_EQ(r.findings.size(), 1u) << r.summary();
+    EXPECT_EQ(r.findings[0].kind, FindingKind::PlacementInvalid);
+    EXPECT_NE(r.findings[0].reason.find("none of its memory types is the heap's"), std::string::npos) << r.summary();
+}
+
 /// A write made available only by a barrier that names part of its image before another
 /// resource takes over the memory: the aliasing barrier repeats the write (rule 16); without
 /// its source access, only the partial barrier is left.
