@@ -125,12 +125,12 @@ private:
         uint32_t frame;
     };
     std::vector<PendingRelease> releases_;
-    /// The transfers of the first frame whose transition happens between their halves: the
-    /// release must happen before the acquire.
+    /// The ownership transfers of the first frame: the release must happen before the acquire.
     struct Transfer {
         PointId release, acquire;
         FindingSite releaseSite, acquireSite;
         uint32_t resource;
+        bool transition;  ///< A layout transition happens between the halves.
     };
     std::vector<Transfer> transfers_;
 };

@@ -112,11 +112,16 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
             const auto release = std::find_if(releases_.rbegin(), releases_.rend(), [&](const PendingRelease& r) {
                 return r.object == t.object && r.from == b.srcQueue && r.to == b.dstQueue && r.range == b.range;
             });
-            if (transition && b.transfersOwnership() && release != releases_.rend()) {
-                place = {PlaceSpec::Kind::Between, {}, id, {}, release->point};
-                t.anchor = release->point;
-                t.doneAt = id;
-                if (release->frame == 1) transfers_.push_back({release->point, id, release->site, site, b.resource});
+            // Every transfer's release must happen before its acquire, with or without a transition
+            // between them (§7.7.4: the acquire takes over what the release gave up).
+            if (b.transfersOwnership() && release != releases_.rend()) {
+                if (transition) {
+                    place = {PlaceSpec::Kind::Between, {}, id, {}, release->point};
+                    t.anchor = release->point;
+                    t.doneAt = id;
+                }
+                if (release->frame == 1)
+                    transfers_.push_back({release->point, id, release->site, site, b.resource, transition});
                 releases_.erase(std::next(release).base());
             }
             addAccess(std::move(t), place);

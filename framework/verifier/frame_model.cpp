@@ -235,8 +235,10 @@ void FrameBuilder::checkTransfersOrdered() {
         f.resourceNames.emplace_back(plan_.resources()[t.resource].name);
         f.earlier = t.releaseSite;
         f.later = t.acquireSite;
-        f.reason = "the release does not happen before its acquire: no chain of barriers and semaphores orders "
-                   "them, and the layout transition between them races both";
+        f.reason = std::string("the release does not happen before its acquire: no chain of barriers and semaphores "
+                               "orders them") +
+                   (t.transition ? ", and the layout transition between them races both"
+                                 : ", so the acquire may take over what was not yet given up");
         reporter_.add(std::move(f));
     }
 }

@@ -353,6 +353,70 @@ TEST(Queues, TheAcquireWaitIsWhereTheSubmitThatWaitsForItIs) {
     }
 }
 
+// 'buf' moves from the compute family to the graphics family: released after 'a' (compute),
+// acquired before 'g' (graphics). Between a release and its acquire no family owns it:
+// "access after a release operation has undefined results" (§7.7.4), whoever accesses it.
+const char* const kBufferHandedToGraphics = R"({ "version": 1, "name": "handover", "resources": {
+    "buf": { "type": "buffer", "size": 256, "sharing": "exclusive" },
+    "o0": { "type": "buffer", "size": 256 },
+    "o2": { "type": "buffer", "size": 256 },
+    "o3": { "type": "buffer", "size": 256 },
+    "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output", "external": true,
+                   "final": "Present" } },
+  "passes": [
+    { "name": "a", "type": "Generic", "queue": "compute", "uses": { "buf": "Write@Compute", "o0": "Write@Compute" } },
+    { "name": "x", "type": "Generic",
+      "uses": [ { "resource": "o0", "access": "Read", "stage": "Fragment", "as": "storage" },
+        { "resource": "o2", "access": "Write", "stage": "Fragment", "as": "storage" } ] },
+    { "name": "b", "type": "Generic", "queue": "compute",
+      "uses": { "BUF_USE": "o2": "Read@Compute", "o3": "Write@Compute" } },
+    { "name": "g", "type": "Generic",
+      "uses": [ { "resource": "buf", "access": "Read", "stage": "Fragment", "as": "storage" },
+        { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] },
+    { "name": "h", "type": "Generic",
+      "uses": [ { "resource": "o3", "access": "Read", "stage": "Fragment", "as": "storage" },
+        { "resource": "swapchain", "access": "ReadWrite", "stage": "ColorAttachment" } ] } ] })";
+
+test::Compiled bufferHandedToGraphics(bool usedByB) {
+    std::string json = kBufferHandedToGraphics;
+    json.replace(json.find("\"BUF_USE\": "), 11, usedByB ? "\"buf\": \"ReadWrite@Compute\", " : "");
+    return test::compileText(json, CompileOptions{});
+}
+
+/// Moves the plan's one release of 'buf' to the submit that holds step `to`.
+void moveBufferRelease(test::Compiled& c, size_t to) {
+    auto submits = PlanEditor::submits(c.plan);
+    std::vector<Barrier> moved;
+    for (auto& s : submits)
+        for (auto it = s.releases.begin(); it != s.releases.end();)
+            if (c.plan.resources()[it->resource].name == "buf") {
+                moved.push_back(*it);
+                it = s.releases.erase(it);
+            } else {
+                ++it;
+            }
+    ASSERT_EQ(moved.size(), 1u);
+    auto& target = submits.at(submitOf(c.plan, to)).releases;
+    target.insert(target.end(), moved.begin(), moved.end());
+    PlanEditor::setSubmits(c.plan, submits);
+}
+
+// A buffer's release moved to a later compute submit, whose signal g's submit does not wait
+// for: the release no longer happens before its acquire, with no transition between them.
+TEST(Queues, ABufferReleaseThatDoesNotHappenBeforeItsAcquireIsCaught) {
+    test::Compiled c = bufferHandedToGraphics(false);
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    ASSERT_TRUE(clean.ok()) << clean.summary();
+    ASSERT_NE(submitOf(c.plan, stepIndex(c.plan, "a")), submitOf(c.plan, stepIndex(c.plan, "b")));
+    moveBufferRelease(c, stepIndex(c.plan, "b"));
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(std::any_of(r.findings.begin(), r.findings.end(), [](const Finding& f) {
+        return f.kind == FindingKind::Unordered && f.resourceNames == std::vector<std::string>{"buf"} &&
+               f.earlier.pass == "b" && f.later.pass == "g" &&
+               f.reason.find("release does not happen before its acquire") != std::string::npos;
+    })) << r.summary();
+}
+
 TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
     test::Compiled c = async();
     const size_t step = stepIndex(c.plan, "histogram");
