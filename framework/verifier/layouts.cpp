@@ -318,6 +318,12 @@ private:
         if (!owned_[t.object]) return;
         std::string problem;
         forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) {
+            // Between the halves no queue owns it: "access after a release operation has
+            // undefined results" (§7.7.4), on the releasing family as much as any other.
+            if (c.releasedTo != kNoQueue && problem.empty())
+                problem = "used on the " + std::string(toString(t.queue)) + " queue after its release to the " +
+                          std::string(toString(static_cast<QueueKind>(c.releasedTo))) +
+                          " queue's family and before the acquire";
             if (c.owner != kNoQueue && !sameFamily(c.owner, t.queue) && c.defined && problem.empty())
                 problem = "used on the " + std::string(toString(t.queue)) + " queue while the " +
                           std::string(toString(static_cast<QueueKind>(c.owner))) +

@@ -417,6 +417,21 @@ TEST(Queues, ABufferReleaseThatDoesNotHappenBeforeItsAcquireIsCaught) {
     })) << r.summary();
 }
 
+// A buffer's release moved before the compute queue's last use of it: b reads and writes it
+// after its family gave it up.
+TEST(Queues, AUseAfterTheReleaseIsCaught) {
+    test::Compiled c = bufferHandedToGraphics(true);
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    ASSERT_TRUE(clean.ok()) << clean.summary();
+    ASSERT_NE(submitOf(c.plan, stepIndex(c.plan, "a")), submitOf(c.plan, stepIndex(c.plan, "b")));
+    moveBufferRelease(c, stepIndex(c.plan, "a"));
+    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(std::any_of(r.findings.begin(), r.findings.end(), [](const Finding& f) {
+        return f.kind == FindingKind::Ownership && f.resourceNames == std::vector<std::string>{"buf"} &&
+               f.earlier.pass == "b" && f.reason.find("after its release") != std::string::npos;
+    })) << r.summary();
+}
+
 TEST(Queues, BarrierStagesTheQueueLacksAreCaught) {
     test::Compiled c = async();
     const size_t step = stepIndex(c.plan, "histogram");
