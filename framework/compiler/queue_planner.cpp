@@ -414,6 +414,7 @@ private:
                 source = kFrameStart;
                 release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
             }
+            if (source >= 0) releaseAfterFamily(source, from, b, release.srcStages);
             schedule_.releases.push_back({source, release});
             schedule_.signals[from].insert(source);
             if (source >= 0) schedule_.signalStages[static_cast<size_t>(source)] |= release.srcStages;
@@ -451,6 +452,38 @@ private:
         if (isImage(b.resource))
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) { cells_[c].layout = b.newLayout; });
         schedule_.barriers[i].push_back(b);
+    }
+
+    /// Ownership is the family's, but a release's first scope holds only its own queue's work,
+    /// and the transition after it happens before the acquire, not after the semaphore waits of
+    /// the acquiring side (§7.7.4). So the pass the release follows (`source`, on queue `from`)
+    /// waits for the reads since the last write on the family's other queues; they come before
+    /// it in the plan (the owner is the family's last user), so the wait closes no cycle.
+    void releaseAfterFamily(int32_t source, size_t from, const Barrier& b, VkPipelineStageFlags2 releaseStages) {
+        Needs extra;
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            const Cell& cell = cells_[c];
+            for (size_t x = 0; x < kQueueKinds; ++x)
+                if (x != from && sameFamily(x, from) && cell.readSince[x] != kNever && cell.readSince[x] < source)
+                    extra.add(x, cell.readSince[x], releaseStages, cell.readStagesSince[x]);
+        });
+        auto& waits = schedule_.waits[static_cast<size_t>(source)];
+        for (size_t x = 0; x < kQueueKinds; ++x) {
+            if (extra.source[x] == kNever) continue;
+            const VkPipelineStageFlags2 stages = extra.stages[x] & queueStages(kindAt(from));
+            schedule_.signals[x].insert(extra.source[x]);
+            schedule_.signalStages[static_cast<size_t>(extra.source[x])] |= extra.sourceStages[x];
+            // An earlier wait of the queue at those stages for that pass or a later one covers it.
+            bool covered = false;
+            for (int32_t p = source; p >= 0 && !covered; --p)
+                if (slot(schedule_.queues[static_cast<size_t>(p)]) == from)
+                    for (const QueueWait& w : schedule_.waits[static_cast<size_t>(p)])
+                        covered |= w.queue == x && w.source >= extra.source[x] &&
+                                   ((w.stages & stages) == stages || (w.stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT));
+            if (covered) continue;
+            waits.push_back({x, extra.source[x], stages});
+            waited_[from][x].emplace_back(extra.source[x], stages);
+        }
     }
 
     /// Adds the other queues' accesses that an access of `c` on q must wait for: the last
@@ -679,7 +712,9 @@ private:
         if (!release.srcStages) release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
         release.dstStages = 0;
         release.dstAccess = 0;
-        schedule_.releases.push_back({lastPassOn(from), release});
+        const int32_t source = lastPassOn(from);
+        if (source >= 0) releaseAfterFamily(source, from, b, release.srcStages);
+        schedule_.releases.push_back({source, release});
         b.srcQueue = release.srcQueue;
         b.dstQueue = QueueKind::Graphics;
         if (!b.srcStages) b.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;

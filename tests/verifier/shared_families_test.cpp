@@ -1,0 +1,144 @@
+// Queue kinds that share a family but are different queues (CompileOptions::queueFamilies such
+// as {0, 0, 1} or {0, 1, 1}, which chooseQueues picks on real devices): ownership belongs to
+// the family, but only semaphores order the family's queues. Each plan verifies clean, and
+// with the wait the compiler adds for these queues edited out (the plan as the compiler made
+// it before it ordered them), the verifier reports the race.
+#include "plan_editor.hpp"
+#include "verifier_test_util.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace skygraph::verifier {
+namespace {
+
+using detail::PlanEditor;
+using test::stepIndex;
+
+test::Compiled compileOn(const char* json, std::array<uint32_t, kQueueKinds> families, bool optimal = false) {
+    CompileOptions o;
+    o.queueFamilies = families;
+    if (optimal) o.layouts = LayoutPolicy::Optimal;
+    return test::compileText(json, o);
+}
+
+size_t submitOf(const Plan& plan, size_t step) {
+    for (size_t k = 0; k < plan.submits().size(); ++k)
+        for (uint32_t p : plan.submits()[k].passes)
+            if (p == step) return k;
+    throw std::out_of_range("no submit holds the step");
+}
+
+/// The value the submit holding `step` signals.
+uint32_t signalAfter(const Plan& plan, size_t step) {
+    const Submit& s = plan.submits()[submitOf(plan, step)];
+    if (s.signals.empty()) throw std::out_of_range("the step's submit signals nothing");
+    return s.signals[0].value;
+}
+
+/// The plan with the wait on `semaphore` of the submit holding `step` edited by `edit`, which
+/// returns false to drop it.
+template <class F>
+Plan withWaitEdited(const Plan& plan, size_t step, QueueKind semaphore, F&& edit) {
+    Plan edited = plan;
+    auto submits = PlanEditor::submits(edited);
+    auto& waits = submits.at(submitOf(edited, step)).waits;
+    const auto w =
+        std::find_if(waits.begin(), waits.end(), [&](const SemaphoreOp& op) { return op.semaphore == semaphore; });
+    if (w == waits.end()) throw std::out_of_range("the step's submit does not wait on that semaphore");
+    if (!edit(*w)) waits.erase(w);
+    PlanEditor::setSubmits(edited, submits);
+    return edited;
+}
+
+Plan withWaitLowered(const Plan& plan, size_t step, QueueKind semaphore, uint32_t value) {
+    return withWaitEdited(plan, step, semaphore, [&](SemaphoreOp& op) {
+        op.value = value;
+        return true;
+    });
+}
+
+bool raceBetween(const VerificationReport& r, const char* resource, const char* earlier, const char* later) {
+    return std::any_of(r.findings.begin(), r.findings.end(), [&](const Finding& f) {
+        return (f.kind == FindingKind::Unordered || f.kind == FindingKind::NotVisible) && !f.resourceNames.empty() &&
+               f.resourceNames[0] == resource && f.earlier.pass == earlier && f.later.pass == later;
+    });
+}
+
+// Graphics and compute on one family, transfer on another. 'img' is read on the graphics queue
+// (r0, r1) and then on the compute queue (r2), which therefore releases it to the transfer
+// family; the transition to TRANSFER_SRC happens after that release and before the acquire
+// (§7.7.4), so the release must follow the graphics reads too: r2 waits for r1, not only for
+// the write.
+TEST(SharedFamilies, AReleaseFollowsTheReadsOfTheFamilysOtherQueues) {
+    const test::Compiled c = compileOn(R"({ "version": 1, "name": "release", "resources": {
+        "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "sharing": "exclusive" },
+        "o0": { "type": "buffer", "size": 256 },
+        "o1": { "type": "buffer", "size": 256 },
+        "cp": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16] },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output", "external": true,
+                       "final": "Present" } },
+      "passes": [
+        { "name": "c0", "type": "Generic", "queue": "compute", "uses": { "o0": "Write@Compute" } },
+        { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
+        { "name": "r0", "type": "Generic", "uses": [ { "resource": "img", "access": "Read", "stage": "Fragment" },
+            { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] },
+        { "name": "r1", "type": "Generic", "uses": [ { "resource": "img", "access": "Read", "stage": "Fragment" },
+            { "resource": "swapchain", "access": "ReadWrite", "stage": "ColorAttachment" } ] },
+        { "name": "r2", "type": "Generic", "queue": "compute",
+          "uses": { "img": "Read@Compute", "o1": "Write@Compute", "o0": "Read@Compute" } },
+        { "name": "t", "type": "Generic", "queue": "transfer",
+          "uses": { "img": "Read@Transfer", "cp": "Write@Transfer" } },
+        { "name": "g", "type": "Generic", "uses": [
+            { "resource": "o1", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "cp", "access": "Read", "stage": "Fragment" },
+            { "resource": "swapchain", "access": "ReadWrite", "stage": "ColorAttachment" } ] } ] })",
+                                       {0, 0, 1}, true);
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    const size_t r2 = stepIndex(c.plan, "r2");
+    ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, r2)].releases.empty());
+    // The compute queue waited for the write alone.
+    const Plan old = withWaitLowered(c.plan, r2, QueueKind::Graphics, signalAfter(c.plan, stepIndex(c.plan, "w")));
+    const VerificationReport raced = verifyPlan(old, c.graph);
+    EXPECT_TRUE(raceBetween(raced, "img", "r1", "t")) << raced.summary();
+}
+
+// Compute and transfer on one family. 'img' is read on the compute queue (c0, c1), last on the
+// transfer queue (t), which hands it back to the graphics family at the frame's end with the
+// transition to its final layout: that release must follow c1's read too.
+TEST(SharedFamilies, AHandBackAtTheFramesEndFollowsTheReadsOfTheFamilysOtherQueues) {
+    const test::Compiled c = compileOn(R"({ "version": 1, "name": "handback", "resources": {
+        "img": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "final": "ShaderRead" },
+        "o1": { "type": "buffer", "size": 256 },
+        "o2": { "type": "buffer", "size": 256 },
+        "cp": { "type": "buffer", "size": 1024 },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output", "external": true,
+                       "final": "Present" } },
+      "passes": [
+        { "name": "w", "type": "Generic", "uses": { "img": "Write@ColorAttachment" } },
+        { "name": "c0", "type": "Generic", "queue": "compute",
+          "uses": { "img": "Read@Compute", "o1": "Write@Compute" } },
+        { "name": "c1", "type": "Generic", "queue": "compute",
+          "uses": { "img": "Read@Compute", "o2": "Write@Compute" } },
+        { "name": "t", "type": "Generic", "queue": "transfer",
+          "uses": { "img": "Read@Transfer", "cp": "Write@Transfer" } },
+        { "name": "g", "type": "Generic", "uses": [
+            { "resource": "o1", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "o2", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "cp", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] } ] })",
+                                       {0, 1, 1});
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    const size_t t = stepIndex(c.plan, "t");
+    ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, t)].releases.empty());
+    // The transfer queue waited for c0 alone (the acquire from the graphics family).
+    const Plan old = withWaitLowered(c.plan, t, QueueKind::Compute, signalAfter(c.plan, stepIndex(c.plan, "c0")));
+    const VerificationReport raced = verifyPlan(old, c.graph);
+    EXPECT_TRUE(raceBetween(raced, "img", "c1", "final barriers")) << raced.summary();
+}
+
+}  // namespace
+}  // namespace skygraph::verifier
