@@ -48,6 +48,11 @@ struct Cell {
     std::array<VkPipelineStageFlags2, kQueueKinds> frameStages{};  // of every use in the frame so far
     std::array<VkAccessFlags2, kQueueKinds> frameAccess{};
     bool touched = false;  // used in the frame so far, on any queue
+    /// The last acquire of an ownership transfer since lastWrite, with no layout change (one with
+    /// a change is a write): the pass, its queue and its destination stages.
+    int32_t acquire = kNever;
+    uint8_t acquireQueue = 0;
+    VkPipelineStageFlags2 acquireStages = 0;
     uint8_t owner = kNoOwner;  // the queue kind whose family owns it; kNoOwner: nothing to keep
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
@@ -342,8 +347,14 @@ private:
             if (b.kind == BarrierKind::Memory) continue;
             const VkPipelineStageFlags2 dst = b.dstStages & queueStages(schedule_.queues[i]);
             const bool transition = b.oldLayout != b.newLayout && isImage(b.resource);
+            const bool acquires = b.transfersOwnership();
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
                 if (transition) write(cells_[c], i, q, dst, 0);
+                else if (acquires) {
+                    cells_[c].acquire = static_cast<int32_t>(i);
+                    cells_[c].acquireQueue = static_cast<uint8_t>(q);
+                    cells_[c].acquireStages = dst;
+                }
                 cells_[c].visibleStages[q] |= dst;
                 cells_[c].visibleAccess[q] |= b.dstAccess & accessesOf(dst);
             });
@@ -494,6 +505,13 @@ private:
             needs.add(c.writeQueue, c.lastWrite, at, c.writeStages);
             any = true;
         }
+        // The family took the cell over in that acquire: another queue of the family may use it
+        // only after it (§7.7.4). Queues of other families take it over in acquires of their own,
+        // whose releases follow it.
+        if (c.acquire != kNever && c.acquireQueue != q && sameFamily(c.acquireQueue, q)) {
+            needs.add(c.acquireQueue, c.acquire, at, c.acquireStages);
+            any = true;
+        }
         if (writes)
             for (size_t x = 0; x < kQueueKinds; ++x)
                 if (x != q && c.readSince[x] != kNever) {
@@ -537,6 +555,7 @@ private:
         c.readStagesSince = {};
         c.visibleStages = {};
         c.visibleAccess = {};
+        c.acquire = kNever;
     }
 
     /// A read run that spans queues has its barrier before its first reader, which may be on

@@ -140,5 +140,67 @@ TEST(SharedFamilies, AHandBackAtTheFramesEndFollowsTheReadsOfTheFamilysOtherQueu
     EXPECT_TRUE(raceBetween(raced, "img", "c1", "final barriers")) << raced.summary();
 }
 
+// Compute and transfer on one family: the transfer queue (t) acquires 'buf' from the graphics
+// family, and the compute queue reads it after. Only the acquire makes it the family's, so c
+// waits for t, not only for the write on the graphics queue.
+TEST(SharedFamilies, AnAcquireOrdersLaterUsesOnTheFamilysOtherQueues) {
+    const test::Compiled c = compileOn(R"({ "version": 1, "name": "acquire", "resources": {
+        "buf": { "type": "buffer", "size": 256, "sharing": "exclusive" },
+        "cp": { "type": "buffer", "size": 256 },
+        "o1": { "type": "buffer", "size": 256 },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output", "external": true,
+                       "final": "Present" } },
+      "passes": [
+        { "name": "w", "type": "Generic", "uses": { "buf": "Write@Compute" } },
+        { "name": "t", "type": "Generic", "queue": "transfer",
+          "uses": { "buf": "Read@Transfer", "cp": "Write@Transfer" } },
+        { "name": "c", "type": "Generic", "queue": "compute", "uses": [
+            { "resource": "buf", "access": "Read", "stage": "Compute", "as": "uniform" },
+            { "resource": "o1", "access": "Write", "stage": "Compute" } ] },
+        { "name": "g", "type": "Generic", "uses": [
+            { "resource": "o1", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "cp", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] } ] })",
+                                       {0, 1, 1});
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    const Plan old =
+        withWaitEdited(c.plan, stepIndex(c.plan, "c"), QueueKind::Transfer, [](SemaphoreOp&) { return false; });
+    const VerificationReport raced = verifyPlan(old, c.graph);
+    EXPECT_TRUE(raceBetween(raced, "buf", "t", "c")) << raced.summary();
+}
+
+// Graphics and compute on one family, transfer on another: the compute queue acquires 'buf'
+// from the transfer family, and the graphics queue reads it after, which must wait for that
+// acquire rather than for the upload on the transfer queue.
+TEST(SharedFamilies, AnAcquireOrdersLaterUsesOnTheFamilysOtherQueuesAcrossTheGraphicsQueue) {
+    const test::Compiled c = compileOn(R"({ "version": 1, "name": "acquire", "resources": {
+        "buf": { "type": "buffer", "size": 256, "sharing": "exclusive" },
+        "o1": { "type": "buffer", "size": 256, "sharing": "exclusive" },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output", "external": true,
+                       "final": "Present" } },
+      "passes": [
+        { "name": "up", "type": "Generic", "queue": "transfer", "uses": { "buf": "Write@Transfer" } },
+        { "name": "c", "type": "Generic", "queue": "compute", "uses": [
+            { "resource": "buf", "access": "Read", "stage": "Compute", "as": "uniform" },
+            { "resource": "o1", "access": "Write", "stage": "Compute" } ] },
+        { "name": "g", "type": "Generic", "uses": [
+            { "resource": "buf", "access": "Read", "stage": "Vertex", "as": "uniform" },
+            { "resource": "o1", "access": "Read", "stage": "Fragment", "as": "storage" },
+            { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] } ] })",
+                                       {0, 0, 1});
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    // g waits for c for 'o1' too, but at FRAGMENT_SHADER alone: the vertex read of 'buf' is not
+    // in that wait's scope.
+    const Plan old = withWaitEdited(c.plan, stepIndex(c.plan, "g"), QueueKind::Compute, [](SemaphoreOp& op) {
+        EXPECT_NE(op.stages & VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, 0u);
+        op.stages = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+        return true;
+    });
+    const VerificationReport raced = verifyPlan(old, c.graph);
+    EXPECT_TRUE(raceBetween(raced, "buf", "c", "g")) << raced.summary();
+}
+
 }  // namespace
 }  // namespace skygraph::verifier
