@@ -394,24 +394,11 @@ private:
         }
         if (from != kNoOwner) {
             waitForLaterReads(i, b);
-            Barrier release = b;
-            release.srcQueue = kindAt(from);
-            release.dstQueue = kindAt(q);
-            release.dstStages = 0;
-            release.dstAccess = 0;
-            // The layout transition happens after the release (§7.7.4), so the release waits
-            // for what the barrier would have on one queue: every read since the last write,
-            // the outside world's included, where the source queue has those stages.
-            release.srcStages = b.srcStages & queueStages(kindAt(from));
-            release.srcAccess = writeBits(b.srcAccess) & accessesOf(release.srcStages);
+            Barrier release = releaseHalf(b, from, kindAt(q));
             int32_t source = kNever;
             forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
                 const Cell& cell = cells_[c];
                 if (cell.lastUse[from] > source) source = cell.lastUse[from];
-                if (cell.lastUse[from] != kNever) {
-                    release.srcStages |= cell.useStages[from] | cell.readStagesSince[from];
-                    release.srcAccess |= writeBits(cell.useAccess[from]);
-                }
                 // A subresource that `from` only transitioned (the rest of a resource whose first
                 // pass there uses part of it; its aliasing barrier covers all) is released after
                 // that barrier, on that queue.
@@ -465,6 +452,27 @@ private:
         schedule_.barriers[i].push_back(b);
     }
 
+    /// The release half, on queue `from`, of the transfer whose acquire is `b`. The layout
+    /// transition happens after the release (§7.7.4), so the release waits for what the
+    /// barrier would have on one queue, where `from` has those stages (the last write and every
+    /// read since, the outside world's included), and for `from`'s own uses since the last write.
+    Barrier releaseHalf(const Barrier& b, uint8_t from, QueueKind to) {
+        Barrier release = b;
+        release.srcQueue = kindAt(from);
+        release.dstQueue = to;
+        release.dstStages = 0;
+        release.dstAccess = 0;
+        release.srcStages = b.srcStages & queueStages(kindAt(from));
+        release.srcAccess = writeBits(b.srcAccess) & accessesOf(release.srcStages);
+        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
+            const Cell& cell = cells_[c];
+            if (cell.lastUse[from] == kNever) return;
+            release.srcStages |= cell.useStages[from] | cell.readStagesSince[from];
+            release.srcAccess |= writeBits(cell.useAccess[from]);
+        });
+        return release;
+    }
+
     /// Ownership is the family's, but a release's first scope holds only its own queue's work,
     /// and the transition after it happens before the acquire, not after the semaphore waits of
     /// the acquiring side (§7.7.4). So the pass the release follows (`source`, on queue `from`)
@@ -482,16 +490,19 @@ private:
         for (size_t x = 0; x < kQueueKinds; ++x) {
             if (extra.source[x] == kNever) continue;
             const VkPipelineStageFlags2 stages = extra.stages[x] & queueStages(kindAt(from));
-            schedule_.signals[x].insert(extra.source[x]);
-            schedule_.signalStages[static_cast<size_t>(extra.source[x])] |= extra.sourceStages[x];
-            // An earlier wait of the queue at those stages for that pass or a later one covers it.
-            bool covered = false;
-            for (int32_t p = source; p >= 0 && !covered; --p)
+            // An earlier wait of the queue at those stages for that pass or a later one covers it;
+            // the signal waited for then holds the reads' stages, as addWaits credits it.
+            int32_t covering = kNever;
+            for (int32_t p = source; p >= 0 && covering == kNever; --p)
                 if (slot(schedule_.queues[static_cast<size_t>(p)]) == from)
                     for (const QueueWait& w : schedule_.waits[static_cast<size_t>(p)])
-                        covered |= w.queue == x && w.source >= extra.source[x] &&
-                                   ((w.stages & stages) == stages || (w.stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT));
-            if (covered) continue;
+                        if (covering == kNever && w.queue == x && w.source >= extra.source[x] &&
+                            ((w.stages & stages) == stages || (w.stages & VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT)))
+                            covering = w.source;
+            const int32_t signaller = covering != kNever ? covering : extra.source[x];
+            schedule_.signalStages[static_cast<size_t>(signaller)] |= extra.sourceStages[x];
+            if (covering != kNever) continue;
+            schedule_.signals[x].insert(extra.source[x]);
             waits.push_back({x, extra.source[x], stages});
             waited_[from][x].emplace_back(extra.source[x], stages);
         }
@@ -719,18 +730,8 @@ private:
     /// Final barrier `b` as the acquire half of a transfer back to the graphics family; the
     /// release goes after the last pass of the queue that owns it.
     Barrier acquireAtEnd(Barrier b, uint8_t from) {
-        Barrier release = b;
-        release.srcQueue = kindAt(from);
-        release.dstQueue = QueueKind::Graphics;
-        release.srcStages = b.srcStages & queueStages(kindAt(from));  // as addBarrier's
-        release.srcAccess = writeBits(b.srcAccess) & accessesOf(release.srcStages);
-        forCells(b.resource, b.range, [&](uint32_t c, const SubresourceRange&) {
-            release.srcStages |= cells_[c].useStages[from] | cells_[c].readStagesSince[from];
-            release.srcAccess |= writeBits(cells_[c].useAccess[from]);
-        });
+        Barrier release = releaseHalf(b, from, QueueKind::Graphics);
         if (!release.srcStages) release.srcStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        release.dstStages = 0;
-        release.dstAccess = 0;
         const int32_t source = lastPassOn(from);
         if (source >= 0) releaseAfterFamily(source, from, b, release.srcStages);
         schedule_.releases.push_back({source, release});
