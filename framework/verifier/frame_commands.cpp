@@ -110,7 +110,8 @@ void FrameBuilder::recordBatch(uint32_t f, size_t step, const std::vector<const 
             // Its release names the same range (a release that differs is reported with the
             // layouts); without one it is placed in the acquire.
             const auto release = std::find_if(releases_.rbegin(), releases_.rend(), [&](const PendingRelease& r) {
-                return r.object == t.object && r.from == b.srcQueue && r.to == b.dstQueue && r.range == b.range;
+                return r.object == t.object && r.from == b.srcQueue && r.to == b.dstQueue &&
+                       (!image || r.range == b.range);  // a buffer barrier is always of all of it
             });
             // Every transfer's release must happen before its acquire, with or without a transition
             // between them (§7.7.4: the acquire takes over what the release gave up).

@@ -107,12 +107,15 @@ void place(const Plan& plan, std::vector<ResourceShape>& shapes, Reporter& repor
                    "offset " + std::to_string(pl.offset) + " is not aligned to " +
                        std::to_string(pl.requirements.alignment),
                    r);
-        if ((pl.requirements.memoryTypeBits & heap.memoryTypeBits) == 0) {
+        // The executor allocates a heap in any one of its types: each must be one the resource
+        // can live in.
+        if ((heap.memoryTypeBits & ~pl.requirements.memoryTypeBits) != 0) {
             char types[48];
-            std::snprintf(types, sizeof types, "0x%x, and its heap's 0x%x", pl.requirements.memoryTypeBits,
+            std::snprintf(types, sizeof types, "0x%x, the heap's 0x%x", pl.requirements.memoryTypeBits,
                           heap.memoryTypeBits);
             report(reporter, plan, FindingKind::PlacementInvalid, site,
-                   std::string("cannot live in its heap: none of its memory types is the heap's (its ") + types + ")",
+                   std::string("its heap may be allocated in a memory type it cannot live in (its types ") + types +
+                       ")",
                    r);
         }
         if (heap.granular && m.granularity > 1 && (pl.offset % m.granularity || pl.bytes % m.granularity))

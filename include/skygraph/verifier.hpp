@@ -21,7 +21,9 @@ enum class FindingKind : uint8_t {
     MalformedPlan,        ///< An index out of range, an empty or oversized range, a bad barrier kind.
     InvalidMask,          ///< An access type no stage of the mask performs, or an unmodelled bit.
     UsageScope,           ///< A usage's stages or access miss what its usage (and load/store ops) does.
-    Unordered,            ///< No execution dependency chain between two conflicting accesses.
+    /// No execution dependency chain between two conflicting accesses, or from an ownership
+    /// transfer's release to its acquire.
+    Unordered,
     NotAvailable,         ///< A write that no barrier makes available before the later access.
     NotVisible,           ///< A write made available but not visible to the later access.
     PartialAliasBarrier,  ///< A dependency between resources sharing memory through a barrier naming part of a
@@ -36,9 +38,10 @@ enum class FindingKind : uint8_t {
                           ///< resource that must not have one.
     PresentLayout,        ///< A presented image is not in PRESENT_SRC_KHR when presented.
     FinalLayout,          ///< A resource's layout after the frame differs from PlannedResource::finalLayout.
-    /// An exclusive resource used on a queue of a family that does not own it, or an acquire
-    /// with no release before it (or a release of what the family does not own), or a release
-    /// whose queues, layouts or range differ from its acquire's.
+    /// An exclusive resource used on a queue of a family that does not own it, or between a
+    /// release and its acquire, or an acquire with no release before it (or a release of what
+    /// the family does not own), or a release whose queues, layouts or range differ from its
+    /// acquire's.
     Ownership,
     /// A semaphore wait for a value that no signal of the frame reaches, or signal values of
     /// one semaphore that do not grow.

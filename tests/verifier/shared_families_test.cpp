@@ -1,8 +1,8 @@
 // Queue kinds that share a family but are different queues (CompileOptions::queueFamilies such
 // as {0, 0, 1} or {0, 1, 1}, which chooseQueues picks on real devices): ownership belongs to
 // the family, but only semaphores order the family's queues. Each plan verifies clean, and
-// with the wait the compiler adds for these queues edited out (the plan as the compiler made
-// it before it ordered them), the verifier reports the race.
+// with the wait the compiler adds for these queues edited out, the verifier reports the race
+// that wait prevents.
 #include "plan_editor.hpp"
 #include "verifier_test_util.hpp"
 
@@ -99,7 +99,7 @@ TEST(SharedFamilies, AReleaseFollowsTheReadsOfTheFamilysOtherQueues) {
     EXPECT_TRUE(clean.ok()) << clean.summary();
     const size_t r2 = stepIndex(c.plan, "r2");
     ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, r2)].releases.empty());
-    // The compute queue waited for the write alone.
+    // Lowered to the write's signal: the reads on graphics then race the release's transition.
     const Plan old = withWaitLowered(c.plan, r2, QueueKind::Graphics, signalAfter(c.plan, stepIndex(c.plan, "w")));
     const VerificationReport raced = verifyPlan(old, c.graph);
     EXPECT_TRUE(raceBetween(raced, "img", "r1", "t")) << raced.summary();
@@ -134,7 +134,7 @@ TEST(SharedFamilies, AHandBackAtTheFramesEndFollowsTheReadsOfTheFamilysOtherQueu
     EXPECT_TRUE(clean.ok()) << clean.summary();
     const size_t t = stepIndex(c.plan, "t");
     ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, t)].releases.empty());
-    // The transfer queue waited for c0 alone (the acquire from the graphics family).
+    // Lowered to c0's signal (the acquire from the graphics family): c1's read then races.
     const Plan old = withWaitLowered(c.plan, t, QueueKind::Compute, signalAfter(c.plan, stepIndex(c.plan, "c0")));
     const VerificationReport raced = verifyPlan(old, c.graph);
     EXPECT_TRUE(raceBetween(raced, "img", "c1", "final barriers")) << raced.summary();
