@@ -48,6 +48,15 @@ const std::string kNearTooNear =
     "must be at least 1e-6: depth is near / distance, and a nearer plane leaves distant geometry "
     "below a float's smallest normal, where it vanishes; got ";
 
+/// Whether the loader refused a file for being past `limits` (its messages name them).
+bool refusedForLimits(const Diagnostics& problems, const GltfLimits& limits) {
+    const std::string vertices = "more than " + std::to_string(limits.maxVertices) + " vertices";
+    const std::string imageBytes = "bytes, more than " + std::to_string(limits.maxImageBytes);
+    return std::any_of(problems.items().begin(), problems.items().end(), [&](const Diagnostic& d) {
+        return d.message.find(vertices) != std::string::npos || d.message.find(imageBytes) != std::string::npos;
+    });
+}
+
 class SceneLoader {
 public:
     SceneLoader(std::string file, std::filesystem::path baseDir, const GltfLimits& limits)
@@ -391,7 +400,7 @@ private:
         if (!mesh) {
             error(path + ".file", "'" + resolved.string() + "' cannot be drawn: " + std::to_string(problems.size()) +
                                       (problems.size() == 1 ? " problem follows" : " problems follow"));
-            if (sceneVertices_ || sceneIndices_ || sceneImageBytes_)
+            if ((sceneVertices_ || sceneIndices_ || sceneImageBytes_) && refusedForLimits(problems, left))
                 error(path + ".file", "the limits that follow are what the scene's glTF files may hold together (" +
                                           std::to_string(whole.maxVertices) + " vertices, " +
                                           std::to_string(whole.maxIndices) + " indices and " +

@@ -63,6 +63,12 @@ TEST(ProceduralSkySequence, AFailureLeavesEveryFrameAsItWas) {
     EXPECT_TRUE(fs::is_symlink(s.frame(2)));
     for (const auto& entry : fs::directory_iterator(s.frame(0).parent_path()))
         EXPECT_EQ(entry.path().filename().string().rfind("sky_", 0), 0u) << "left behind: " << entry.path();
+
+    // A frame that is a link to another is refused as an ImageError too, before anything is drawn.
+    fs::remove(s.frame(2));
+    fs::create_symlink(s.frame(0), s.frame(2));
+    EXPECT_THROW(app::writeProceduralSkySequence(s.pattern, 3, 64), ImageError);
+    EXPECT_TRUE(bytesOf(s.frame(0)) == first) << "frame 0 was replaced";
 }
 
 TEST(SequenceStream, DecodesEveryFrameInOrderAndHoldsNoMoreThanItsLookahead) {

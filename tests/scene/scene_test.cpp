@@ -85,7 +85,7 @@ TEST(SceneFiles, ShippedScenesDecideTheRasterFeatures) {
 }
 
 // What one glTF file may bring, a scene's files may bring together: objects of one file each
-// flatten it again, so a small file drawn 256 times took 256 times what it does. The box has
+// flatten it again, so a small file drawn 256 times would take 256 times what it does. The box has
 // 24 vertices and 36 indices; a budget of 60 vertices holds two of them, not three.
 TEST(SceneFiles, TheGltfLimitsHoldForTheSceneFilesTogether) {
     const std::string box = (gltf_test::kModels / "BoxTextured-glTF/BoxTextured.gltf").string();
@@ -105,6 +105,15 @@ TEST(SceneFiles, TheGltfLimitsHoldForTheSceneFilesTogether) {
         EXPECT_NE(d[1].message.find("what the scene's glTF files may hold together (60 vertices"), std::string::npos)
             << e.what();
         EXPECT_NE(d[2].message.find("the file has more than 12 vertices"), std::string::npos) << e.what();
+    }
+    // A file refused for another reason after the first is not said to be past the limits.
+    const std::string missing = R"({"objects": [{"type": "gltf", "file": ")" + box +
+                                R"("}, {"type": "gltf", "file": "absent.gltf"}]})";
+    try {
+        (void)parseScene(missing, "test.json", kScenes, limits);
+        ADD_FAILURE() << "loaded";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(std::string(e.what()).find("may hold together"), std::string::npos) << e.what();
     }
 }
 

@@ -1,6 +1,7 @@
 // sequenceSunDirection and writeProceduralSkySequence: see procedural_environment.hpp.
 #include "procedural_environment.hpp"
 
+#include "printable_name.hpp"
 #include "replace_file.hpp"
 
 #include <skygraph/scene.hpp>
@@ -32,6 +33,11 @@ void writeProceduralSkySequence(const std::string& pattern, uint32_t frames, uin
         files[i] = sequenceFrameFile(pattern, i);
         if (std::filesystem::is_directory(files[i], ec)) throw ImageError(files[i], "cannot write: it is a folder");
     }
+    // One frame replacing another would leave the sequence a frame short.
+    if (const auto two = files::twoNamesOfOneFile(files))
+        throw ImageError(files[two->second], "cannot write: it is the same file as '" +
+                                                 printableName(files[two->first].string()) +
+                                                 "', another frame of this sequence");
     // A sequence cut short by a failure is no sequence: all frames are replaced, or none (one
     // frame's pixels are held at a time).
     try {
