@@ -17,19 +17,12 @@ namespace {
 using detail::PlanEditor;
 using test::hasFinding;
 using test::stepIndex;
+using test::submitOf;
 
 test::Compiled async(std::array<uint32_t, kQueueKinds> families = {0, 1, 2}) {
     CompileOptions o;
     o.queueFamilies = families;
     return test::compileShipped("async.json", o);
-}
-
-/// The submit that holds step `step`.
-size_t submitOf(const Plan& plan, size_t step) {
-    for (size_t k = 0; k < plan.submits().size(); ++k)
-        for (uint32_t p : plan.submits()[k].passes)
-            if (p == step) return k;
-    throw std::out_of_range("no submit holds the step");
 }
 
 bool anyFinding(const VerificationReport& r, std::initializer_list<FindingKind> kinds, const char* resource) {
@@ -405,15 +398,21 @@ void moveBufferRelease(test::Compiled& c, size_t to) {
     PlanEditor::setSubmits(c.plan, submits);
 }
 
+/// The handover plan (b using 'buf' or not), which verifies clean, with its release of 'buf'
+/// moved to the submit that holds step `to`, and the report.
+VerificationReport withBufferReleaseMoved(bool usedByB, const char* to) {
+    test::Compiled c = bufferHandedToGraphics(usedByB);
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    EXPECT_NE(submitOf(c.plan, stepIndex(c.plan, "a")), submitOf(c.plan, stepIndex(c.plan, "b")));
+    moveBufferRelease(c, stepIndex(c.plan, to));
+    return verifyPlan(c.plan, c.graph);
+}
+
 // A buffer's release moved to a later compute submit, whose signal g's submit does not wait
 // for: the release no longer happens before its acquire, with no transition between them.
 TEST(Queues, ABufferReleaseThatDoesNotHappenBeforeItsAcquireIsCaught) {
-    test::Compiled c = bufferHandedToGraphics(false);
-    const VerificationReport clean = verifyPlan(c.plan, c.graph);
-    ASSERT_TRUE(clean.ok()) << clean.summary();
-    ASSERT_NE(submitOf(c.plan, stepIndex(c.plan, "a")), submitOf(c.plan, stepIndex(c.plan, "b")));
-    moveBufferRelease(c, stepIndex(c.plan, "b"));
-    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    const VerificationReport r = withBufferReleaseMoved(false, "b");
     EXPECT_TRUE(std::any_of(r.findings.begin(), r.findings.end(), [](const Finding& f) {
         return f.kind == FindingKind::Unordered && f.resourceNames == std::vector<std::string>{"buf"} &&
                f.earlier.pass == "b" && f.later.pass == "g" &&
@@ -424,12 +423,7 @@ TEST(Queues, ABufferReleaseThatDoesNotHappenBeforeItsAcquireIsCaught) {
 // A buffer's release moved before the compute queue's last use of it: b reads and writes it
 // after its family gave it up.
 TEST(Queues, AUseAfterTheReleaseIsCaught) {
-    test::Compiled c = bufferHandedToGraphics(true);
-    const VerificationReport clean = verifyPlan(c.plan, c.graph);
-    ASSERT_TRUE(clean.ok()) << clean.summary();
-    ASSERT_NE(submitOf(c.plan, stepIndex(c.plan, "a")), submitOf(c.plan, stepIndex(c.plan, "b")));
-    moveBufferRelease(c, stepIndex(c.plan, "a"));
-    const VerificationReport r = verifyPlan(c.plan, c.graph);
+    const VerificationReport r = withBufferReleaseMoved(true, "a");
     EXPECT_TRUE(std::any_of(r.findings.begin(), r.findings.end(), [](const Finding& f) {
         return f.kind == FindingKind::Ownership && f.resourceNames == std::vector<std::string>{"buf"} &&
                f.earlier.pass == "b" && f.reason.find("after its release") != std::string::npos;

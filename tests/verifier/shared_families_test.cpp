@@ -15,19 +15,13 @@ namespace {
 
 using detail::PlanEditor;
 using test::stepIndex;
+using test::submitOf;
 
 test::Compiled compileOn(const char* json, std::array<uint32_t, kQueueKinds> families, bool optimal = false) {
     CompileOptions o;
     o.queueFamilies = families;
     if (optimal) o.layouts = LayoutPolicy::Optimal;
     return test::compileText(json, o);
-}
-
-size_t submitOf(const Plan& plan, size_t step) {
-    for (size_t k = 0; k < plan.submits().size(); ++k)
-        for (uint32_t p : plan.submits()[k].passes)
-            if (p == step) return k;
-    throw std::out_of_range("no submit holds the step");
 }
 
 /// The value the submit holding `step` signals.
@@ -66,6 +60,21 @@ bool raceBetween(const VerificationReport& r, const char* resource, const char* 
     });
 }
 
+/// Whether `c` verifies clean, and, with the wait on `semaphore` of the submit holding step
+/// `releasing` (which releases) lowered to the signal after step `lowerTo`, reports `resource`
+/// racing between `earlier` and `later`.
+void expectCleanAndRaceWithWaitLowered(const test::Compiled& c, const char* releasing, QueueKind semaphore,
+                                       const char* lowerTo, const char* resource, const char* earlier,
+                                       const char* later) {
+    const VerificationReport clean = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(clean.ok()) << clean.summary();
+    const size_t step = stepIndex(c.plan, releasing);
+    ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, step)].releases.empty());
+    const Plan old = withWaitLowered(c.plan, step, semaphore, signalAfter(c.plan, stepIndex(c.plan, lowerTo)));
+    const VerificationReport raced = verifyPlan(old, c.graph);
+    EXPECT_TRUE(raceBetween(raced, resource, earlier, later)) << raced.summary();
+}
+
 // Graphics and compute on one family, transfer on another. 'img' is read on the graphics queue
 // (r0, r1) and then on the compute queue (r2), which therefore releases it to the transfer
 // family; the transition to TRANSFER_SRC happens after that release and before the acquire
@@ -95,14 +104,8 @@ TEST(SharedFamilies, AReleaseFollowsTheReadsOfTheFamilysOtherQueues) {
             { "resource": "cp", "access": "Read", "stage": "Fragment" },
             { "resource": "swapchain", "access": "ReadWrite", "stage": "ColorAttachment" } ] } ] })",
                                        {0, 0, 1}, true);
-    const VerificationReport clean = verifyPlan(c.plan, c.graph);
-    EXPECT_TRUE(clean.ok()) << clean.summary();
-    const size_t r2 = stepIndex(c.plan, "r2");
-    ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, r2)].releases.empty());
     // Lowered to the write's signal: the reads on graphics then race the release's transition.
-    const Plan old = withWaitLowered(c.plan, r2, QueueKind::Graphics, signalAfter(c.plan, stepIndex(c.plan, "w")));
-    const VerificationReport raced = verifyPlan(old, c.graph);
-    EXPECT_TRUE(raceBetween(raced, "img", "r1", "t")) << raced.summary();
+    expectCleanAndRaceWithWaitLowered(c, "r2", QueueKind::Graphics, "w", "img", "r1", "t");
 }
 
 // Compute and transfer on one family. 'img' is read on the compute queue (c0, c1), last on the
@@ -130,14 +133,8 @@ TEST(SharedFamilies, AHandBackAtTheFramesEndFollowsTheReadsOfTheFamilysOtherQueu
             { "resource": "cp", "access": "Read", "stage": "Fragment", "as": "storage" },
             { "resource": "swapchain", "access": "Write", "stage": "ColorAttachment" } ] } ] })",
                                        {0, 1, 1});
-    const VerificationReport clean = verifyPlan(c.plan, c.graph);
-    EXPECT_TRUE(clean.ok()) << clean.summary();
-    const size_t t = stepIndex(c.plan, "t");
-    ASSERT_FALSE(c.plan.submits()[submitOf(c.plan, t)].releases.empty());
     // Lowered to c0's signal (the acquire from the graphics family): c1's read then races.
-    const Plan old = withWaitLowered(c.plan, t, QueueKind::Compute, signalAfter(c.plan, stepIndex(c.plan, "c0")));
-    const VerificationReport raced = verifyPlan(old, c.graph);
-    EXPECT_TRUE(raceBetween(raced, "img", "c1", "final barriers")) << raced.summary();
+    expectCleanAndRaceWithWaitLowered(c, "t", QueueKind::Compute, "c0", "img", "c1", "final barriers");
 }
 
 // Compute and transfer on one family: the transfer queue (t) acquires 'buf' from the graphics

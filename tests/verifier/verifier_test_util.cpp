@@ -151,6 +151,13 @@ Compiled compileShipped(const std::string& name, CompileOptions options) {
     return {std::move(graph), std::move(plan)};
 }
 
+size_t submitOf(const Plan& plan, size_t step) {
+    for (size_t k = 0; k < plan.submits().size(); ++k)
+        for (uint32_t p : plan.submits()[k].passes)
+            if (p == step) return k;
+    throw std::out_of_range("no submit holds the step");
+}
+
 size_t stepIndex(const Plan& plan, std::string_view name) {
     for (size_t i = 0; i < plan.passes().size(); ++i)
         if (plan.passes()[i].name == name) return i;

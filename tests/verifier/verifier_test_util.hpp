@@ -77,6 +77,8 @@ struct Compiled {
 [[nodiscard]] Compiled compileShipped(const std::string& name, CompileOptions options = {});
 /// The index of the step called `name`; throws std::out_of_range when there is none.
 [[nodiscard]] size_t stepIndex(const Plan& plan, std::string_view name);
+/// The submit that holds step `step`; throws std::out_of_range when none does.
+[[nodiscard]] size_t submitOf(const Plan& plan, size_t step);
 /// The index into `plan.passes()[step].barriers` of the first barrier on resource `resource`;
 /// throws std::out_of_range when there is none.
 [[nodiscard]] size_t barrierOn(const Plan& plan, size_t step, std::string_view resource);
