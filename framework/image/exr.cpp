@@ -143,18 +143,19 @@ HdrImage loadExr(const std::filesystem::path& path) {
         const int64_t w = int64_t(window.max.x) - window.min.x + 1;
         const int64_t h = int64_t(window.max.y) - window.min.y + 1;
         image_detail::requireLoadableSize(path, w, h);
-        // Before the pixels are allocated: a few hundred bytes may claim gigabytes of them.
+        // Both windows before any pixels are allocated: a few hundred bytes may claim
+        // gigabytes of them.
+        const Imath::Box2i display = header.displayWindow();
+        const int64_t dw = int64_t(display.max.x) - display.min.x + 1;
+        const int64_t dh = int64_t(display.max.y) - display.min.y + 1;
+        image_detail::requireLoadableSize(path, dw, dh);
         Imf::InputFile file(path.c_str(), decodeThreads());
         if (!file.isComplete()) throw ImageError(path, "truncated: some pixel blocks are missing");
         HdrImage image{uint32_t(w), uint32_t(h), std::vector<float>(size_t(w) * size_t(h) * 4)};
         readPixels(path, file, window, image);
         // The image is the display window: pixels it holds outside the data window are
         // transparent black, and data outside it (overscan) is not part of the image.
-        const Imath::Box2i display = header.displayWindow();
         if (display == window) return image;
-        const int64_t dw = int64_t(display.max.x) - display.min.x + 1;
-        const int64_t dh = int64_t(display.max.y) - display.min.y + 1;
-        image_detail::requireLoadableSize(path, dw, dh);
         HdrImage shown{uint32_t(dw), uint32_t(dh), std::vector<float>(size_t(dw) * size_t(dh) * 4, 0.0f)};
         for (int64_t y = 0; y < dh; ++y) {
             const int64_t sy = y + display.min.y - window.min.y;

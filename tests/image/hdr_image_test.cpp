@@ -242,6 +242,34 @@ TEST_F(HdrImageTest, ExrIsReadAsItsDisplayWindow) {
     EXPECT_EQ(overscan.rgba[4], 100.0f + 6.0f);
 }
 
+// The display window's size is checked from the header, like the data window's: a file of
+// a few bytes of pixels that claims a display window past the limit is refused before any
+// pixel is read. Its last pixel block is cut off, which the size check must come before.
+TEST_F(HdrImageTest, ExrDisplayWindowPastTheLimitIsRefusedFromTheHeader) {
+    const fs::path path = dir_ / "wide_display.exr";
+    const int wide = int(skygraph::kMaxHdrImageWidth) + 1;
+    {
+        const Imath::Box2i data({0, 0}, {1, 0});
+        Imf::Header header(Imath::Box2i({0, 0}, {wide - 1, 0}), data);
+        header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+        std::vector<float> r = {1.0f, 2.0f};
+        Imf::FrameBuffer frame;
+        frame.insert("R", Imf::Slice::Make(Imf::FLOAT, r.data(), data, sizeof(float), 2 * sizeof(float)));
+        Imf::OutputFile out(path.c_str(), header);
+        out.setFrameBuffer(frame);
+        out.writePixels(1);
+    }
+    fs::resize_file(path, fs::file_size(path) - 4);
+    try {
+        (void)skygraph::loadHdrImage(path);
+        FAIL() << "a display window of " << wide << " columns was read";
+    } catch (const skygraph::ImageError& e) {
+        EXPECT_NE(std::string(e.what()).find(std::to_string(wide) + "x1 exceeds the limit"), std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(HdrImageTest, ExrLuminanceOnlyAndLuminanceChromaFilesBecomeRgb) {
     const fs::path grey = dir_ / "y.exr";
     std::vector<float> y = {0.25f, 2.0f, 8.0f, 0.0f};
