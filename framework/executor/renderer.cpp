@@ -178,7 +178,12 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
     if (Swapchain* presentTo = d.options.presentTo) {
         const SwapchainAccess::Impl& sc = SwapchainAccess::impl(*presentTo);
         if (&sc.device != &device) throw ExecutorError("RendererOptions::presentTo: a swapchain of another device");
-        if (!sc.needsRecreate(presentRequirements(compiled)) && !sc.paused()) {
+        // A format or usage the surface cannot give fails here, as in setGraph, and not at the
+        // first frame, which re-creates the swapchain for it.
+        const PresentRequirements need = presentRequirements(compiled);
+        if (need.format != sc.requirements.format || (need.usage & ~sc.requirements.usage) != 0)
+            (void)detail::surfaceSupportFor(d.dev, need, 0);
+        if (!sc.needsRecreate(need) && !sc.paused()) {
             compiled = d.atPresentExtent(std::move(compiled), sc.extent);
             d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},
                                              &sc, sc.imagesId, sc.lifetime};

@@ -48,7 +48,8 @@ struct RendererOptions {
     /// compiles the graph at the images' extent (compiled() has that size) and throws
     /// ExecutorError when it does not compile there. When the swapchain has no fitting images
     /// (paused, out of date, or made for another format or usage) nothing is bound and the first
-    /// frame binds, as with null.
+    /// frame binds, as with null; a format or usage the surface cannot give throws
+    /// ExecutorError here, as setGraph() does.
     Swapchain* presentTo = nullptr;
     /// GPU timestamps around each pass (lastTimings(), completedTimings()). Off, a frame
     /// writes none and none is read back, which on some drivers waits for whatever the queue

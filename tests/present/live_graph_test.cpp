@@ -303,6 +303,27 @@ TEST_F(Present, ASaveThatDidNotBuildKeepsItsMessageThroughAnEnvironmentChange) {
     expectSilent();
 }
 
+// A save that presents a format the window's surface lacks is refused as the new renderer is
+// made: its message shows and the last good frame goes on presenting, as for any broken save.
+TEST_F(Present, ASavePresentingAFormatTheSurfaceLacksKeepsTheLastGoodFrame) {
+    const std::filesystem::path dir = copyOfTheGraphs("skygraph-format-save-");
+    LiveWindow w(*device_, optionsForTheCopy(dir, "scenes/studio.json"));
+    for (int i = 0; i < 2; ++i) w.frame();
+    std::string graph = readText(dir / "raster.json");
+    const std::string srgb = R"("swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB")";
+    ASSERT_NE(graph.find(srgb), std::string::npos);
+    graph.replace(graph.find(srgb), srgb.size(),
+                  R"("swapchain": { "type": "image2d", "format": "R16G16B16A16_SFLOAT")");
+    std::ofstream(dir / "raster.json", std::ios::trunc) << graph;
+    for (int i = 0; i < 3; ++i) w.frame();
+    EXPECT_NE(w.live.error().find("the surface cannot present R16G16B16A16_SFLOAT"), std::string::npos)
+        << w.live.error();
+    EXPECT_EQ(w.swapchain->format(), VK_FORMAT_B8G8R8A8_SRGB);
+    w.live.renderer().waitIdle();
+    std::filesystem::remove_all(dir);
+    expectSilent();
+}
+
 // graphs/ibl.json beside the graph is part of the frame's graphs: a save of it builds and bakes
 // again, and one that does not load is reported while the frames go on.
 TEST_F(Present, ASavedEnvironmentGraphBakesTheEnvironmentAgain) {

@@ -678,6 +678,27 @@ TEST_F(Present, SetGraphToAFormatTheSurfaceLacksKeepsTheOldPlan) {
     expectSilent();
 }
 
+// A renderer made for a window (RendererOptions::presentTo) with a graph presenting a format
+// the surface lacks throws as it is made, as setGraph does, not at its first frame: the view's
+// reload of such a save keeps the running renderer instead of ending at that frame.
+TEST_F(Present, ARendererForAWindowRefusesAFormatTheSurfaceLacksAsItIsMade) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer first(*device_, raster(96, 64), genericOptions(2));
+    present(first, *swapchain, 2);
+    RendererOptions options = genericOptions(2);
+    options.presentTo = swapchain.get();
+    try {
+        Renderer second(*device_, rasterPresentingAFormatTheSurfaceLacks(96, 64), options);
+        FAIL() << "a renderer presenting a format the surface lacks was made";
+    } catch (const ExecutorError& e) {
+        EXPECT_NE(std::string(e.what()).find("the surface cannot present R8G8B8A8_UNORM"), std::string::npos)
+            << e.what();
+    }
+    present(first, *swapchain, 2);
+    EXPECT_EQ(swapchain->generation(), 1u);
+    expectSilent();
+}
+
 // --- Negative controls: the same frames, weakened on purpose, must be reported. ------------
 
 /// Renders frames with the acquire wait at `stages` (0: no wait) and returns what validation said.
