@@ -440,6 +440,22 @@ TEST_F(Cli, CheckRefusesAGoldenThatIsNotAFolder) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+// The goldens' folder holds golden plans only: a --junit there, under another spelling of the
+// folder too, is refused before any case runs, so that --update cannot write a golden and then
+// replace it with the report (and a check cannot replace one of the same name).
+TEST_F(Cli, CheckRefusesAJUnitInTheGoldenFolder) {
+    const fs::path golden = dir_ / "work" / "golden";
+    fs::create_directories(golden);
+    const fs::path report = golden / "pathtrace.environment_file-off.plan.txt";
+    for (const fs::path& junit : {report, golden / ".." / "golden" / "check.xml"}) {
+        const CliRun r = run({"check", "graphs/pathtrace.json", "--no-run", "--golden", golden.string(), "--update",
+                              "--junit", junit.string()});
+        EXPECT_EQ(r.status, 2) << r.out << r.err;
+        EXPECT_NE(r.err.find("--junit '" + junit.string() + "' is in the --golden folder"), std::string::npos) << r.err;
+        EXPECT_TRUE(fs::is_empty(golden)) << "a golden was written";
+    }
+}
+
 // Two files whose graphs have one name: the table and the JUnit XML tell them apart by file.
 TEST_F(Cli, CheckNamesEachCaseByItsFile) {
     fs::create_directories(dir_ / "a");

@@ -3,6 +3,7 @@
 #include "builtin_defaults.hpp"
 #include "printable_name.hpp"
 #include "progress_bar.hpp"
+#include "replace_file.hpp"
 
 #include "app/check.hpp"
 #include "app/check_report.hpp"
@@ -71,6 +72,20 @@ void parseSize(const std::string& text, app::CheckOptions& o) {
     o.runHeight = sides[1];
 }
 
+/// The goldens' folder holds golden plans only: a report written there would replace the
+/// golden of its name (or stand among them as one), and a check would not see that.
+void refuseJUnitAmongGoldens(const std::string& junit, const std::filesystem::path& golden) {
+    if (junit.empty() || golden.empty()) return;
+    std::error_code ec;
+    const std::filesystem::path folder = std::filesystem::weakly_canonical(std::filesystem::absolute(golden, ec), ec);
+    if (ec) return;
+    const std::filesystem::path report = files::outputTarget(junit).path;
+    const std::filesystem::path into = std::filesystem::weakly_canonical(std::filesystem::absolute(report, ec), ec);
+    if (!ec && into.parent_path() == folder)
+        throw UsageError("--junit '" + printableName(junit) + "' is in the --golden folder '" +
+                         printableName(golden.string()) + "', which holds golden plans only");
+}
+
 int run(CheckArgs& args) {
     static const PassLibrary library = PassLibrary::withBuiltins();
     app::CheckOptions o = args.options;
@@ -84,6 +99,7 @@ int run(CheckArgs& args) {
         if (std::filesystem::exists(args.golden, ec) && !std::filesystem::is_directory(args.golden, ec))
             throw std::runtime_error("--golden '" + printableName(args.golden) + "' is not a folder");
         o.goldenDir = args.golden;
+        refuseJUnitAmongGoldens(args.junit, args.golden);
     }
     if (o.updateGoldens && !o.goldenDir) throw UsageError("--update needs --golden DIR");
     parseCoverage(args.features, o);
