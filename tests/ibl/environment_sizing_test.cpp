@@ -91,6 +91,31 @@ TEST_F(ShippedGraphs, ViewSizesAreCappedByTheDeclaredExtents) {
     EXPECT_FALSE(viewEnvironmentSizes(noEnvironment, 64, 60.0, 4096));
 }
 
+// A frame graph that samples the environment cube but declares no prefiltered cube sizes the
+// prefiltered cube at half the environment's, which for a small cube leaves ibl.json's six
+// roughness levels without texels: the environment graph's own levels bound it, and it compiles.
+TEST_F(ShippedGraphs, AFrameWithoutAPrefilteredCubeLeavesItsSizeToTheEnvironmentGraph) {
+    GraphDesc frame = raster;
+    std::erase_if(frame.resources, [](const ResourceDesc& r) { return r.name == "prefiltered"; });
+    ResourceDesc* environment = nullptr;
+    for (ResourceDesc& r : frame.resources)
+        if (r.name == "environment") environment = &r;
+    ASSERT_NE(environment, nullptr);
+    environment->extent = Extent{false, 1, 8, 8};
+    environment->mips = 1;
+    const auto sizes = viewEnvironmentSizes(frame, 1080, 60.0, 4096);
+    ASSERT_TRUE(sizes);
+    EXPECT_EQ(*sizes, (EnvironmentSizes{8, 4}));
+    const EnvironmentSizes forIbl = sizesForEnvironmentGraph(*sizes, ibl);
+    EXPECT_EQ(forIbl, (EnvironmentSizes{8, 32})) << "6 roughness levels need a 32^2 base";
+    GraphDesc resized = ibl;
+    resizeEnvironmentGraph(resized, forIbl);
+    EXPECT_NO_THROW((void)compile(resized, CompileOptions{}));
+    resized = ibl;
+    resizeEnvironmentGraph(resized, *sizes);
+    EXPECT_THROW((void)compile(resized, CompileOptions{}), GraphError) << "the case this guards against";
+}
+
 TEST_F(ShippedGraphs, ResizedGraphsCompileAndAgreeOnTheProducts) {
     for (const EnvironmentSizes sizes : {EnvironmentSizes{1, 32}, EnvironmentSizes{8, 32}, EnvironmentSizes{128, 64},
                                          EnvironmentSizes{512, 256}}) {

@@ -28,6 +28,12 @@ uint32_t powerOfTwoAtLeast(double texels) {
     return std::bit_ceil(uint32_t(std::ceil(texels)));
 }
 
+/// The smallest face that keeps a texel in each of a cube's declared levels ("full", 0, needs one).
+uint32_t smallestFaceFor(const ResourceDesc& cube) {
+    const uint32_t levels = std::max(cube.mips, 1u);
+    return levels >= 32 ? (1u << 31) : (1u << (levels - 1));
+}
+
 }  // namespace
 
 uint32_t viewEnvironmentFaceSize(uint32_t outputHeight, double fovYDeg, uint32_t equirectWidth,
@@ -55,12 +61,15 @@ std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph
         sizes.environment < viewEnvironmentFaceSize(outputHeight, fovYDeg, ~0u, environment->extent.width);
     sizes.prefiltered = sizes.environment / 2;
     if (const ResourceDesc* prefiltered = frameGraph.findResource(kPrefiltered);
-        prefiltered && !prefiltered->extent.relativeToOutput) {
-        const uint32_t levels = std::max(prefiltered->mips, 1u);  // "full" (0) needs one texel only
-        const uint32_t smallest = levels >= 32 ? (1u << 31) : (1u << (levels - 1));
-        sizes.prefiltered = std::max(std::min(sizes.prefiltered, prefiltered->extent.width), smallest);
-    }
+        prefiltered && !prefiltered->extent.relativeToOutput)
+        sizes.prefiltered = std::max(std::min(sizes.prefiltered, prefiltered->extent.width), smallestFaceFor(*prefiltered));
     sizes.prefiltered = std::max(sizes.prefiltered, 1u);
+    return sizes;
+}
+
+EnvironmentSizes sizesForEnvironmentGraph(EnvironmentSizes sizes, const GraphDesc& environmentGraph) {
+    if (const ResourceDesc* prefiltered = environmentGraph.findResource(kPrefiltered))
+        sizes.prefiltered = std::max(sizes.prefiltered, smallestFaceFor(*prefiltered));
     return sizes;
 }
 

@@ -287,7 +287,8 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     env.products = environmentProducts(plan, inputs.graph, envGraph ? &*envGraph : nullptr);
     if (env.products.empty()) return env;
     env.graph = *envGraph;
-    if (inputs.environmentSizes) resizeEnvironmentGraph(*env.graph, *inputs.environmentSizes);
+    if (inputs.environmentSizes)
+        resizeEnvironmentGraph(*env.graph, sizesForEnvironmentGraph(*inputs.environmentSizes, *env.graph));
     try {
         env.renderer =
             bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
