@@ -74,7 +74,8 @@ std::optional<std::string> Renderer::Impl::externalPixelsProblem(const PlanState
                                                                  const ImageData& pixels) {
     const ResourceDesc* desc = s.graph.findResource(resource);
     if (!desc) return "no resource '" + resource + "' in the graph";
-    if (!desc->external || !desc->isImage()) return "'" + resource + "' is not an external image";
+    if (!desc->isImage()) return "'" + resource + "' is a buffer, not an external image";
+    if (!desc->external) return "'" + resource + "' is not an external image";
     const auto ext = desc->extent.resolve(s.outputWidth(), s.outputHeight());
     if (pixels.width != ext[0] || pixels.height != ext[1])
         return "'" + resource + "' is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) + ", the pixels are " +

@@ -881,6 +881,42 @@ TEST_F(Cli, RenderRefusesAnEnvironmentThatIsNotFinite) {
     EXPECT_TRUE(workFiles().empty());
 }
 
+// A frame graph whose environment inputs disagree with what the environment pipeline bakes or
+// the scene's file gives is refused naming the graph's declaration: a cube of one level where
+// graphs/ibl.json bakes a chain, and an equirect declared as a buffer.
+TEST_F(Cli, RenderNamesTheDeclarationOfAnEnvironmentInputThatDisagrees) {
+    const skygraph::HdrImage sky{16, 8, std::vector<float>(16 * 8 * 4, 0.5f)};
+    skygraph::saveExr(dir_ / "sky.exr", sky);
+    const fs::path scene = writeGraph("scene.json", R"({
+      "camera": { "position": [0.0, 1.7, 0.0], "fov_y_deg": 70.0, "near": 0.1 },
+      "environment": { "file": "sky.exr" }, "objects": [] })");
+    const std::string out = R"("out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8],
+                                        "external": true, "final": "TransferSrc" })";
+    const fs::path cube = writeGraph("cube.json", R"({ "version": 1, "name": "cube", "resources": { )" + out + R"(,
+        "environment": { "type": "cube", "format": "R16G16B16A16_SFLOAT", "extent": [8, 8], "external": true,
+                         "initial": "ShaderRead" } },
+      "passes": [ { "name": "p", "type": "Generic", "uses": { "out": "Write@ColorAttachment",
+                                                             "environment": "Read@Fragment" } } ] })");
+    const fs::path buffer = writeGraph("buffer.json", R"({ "version": 1, "name": "buffer", "resources": { )" + out +
+                                                          R"(,
+        "equirect": { "type": "buffer", "size": 16, "external": true, "initial": "ShaderRead" } },
+      "passes": [ { "name": "p", "type": "Generic", "uses": { "out": "Write@ColorAttachment",
+                                                             "equirect": "Read@Compute" } } ] })");
+    const fs::path procedural = fs::path(SKYGRAPH_SOURCE_DIR) / "scenes/default.json";
+    fs::copy_file(fs::path(SKYGRAPH_SOURCE_DIR) / "graphs/ibl.json", dir_ / "ibl.json");  // the environment graph
+    const std::vector<std::tuple<fs::path, fs::path, std::string>> cases = {
+        {cube, procedural, "resources.environment: importImage: resource 'environment' from graph 'ibl'"},
+        {buffer, scene, "resources.equirect: setExternalImage: 'equirect' is a buffer, not an external image"},
+    };
+    for (const auto& [graph, sceneFile, expected] : cases) {
+        const CliRun r = run({"render", graph.string(), "--scene", sceneFile.string(), "--readback", "out", "--width",
+                              "8", "--height", "8", "-o", (dir_ / "work" / "out.png").string()});
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find("error: " + graph.string() + ": " + expected), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty());
+    }
+}
+
 // -o naming a file the render reads is refused before anything is rendered: the environment
 // file and a sequence's later frames are inputs as much as the graph and the scene are.
 TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {

@@ -312,15 +312,40 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     return env;
 }
 
+namespace {
+
+/// `attach()`, which gives the frame graph's resource `name` its image or pixels, with its
+/// refusal named at that resource's declaration: the declaration is what disagrees with the
+/// environment pipeline's product or the scene's file.
+template <class Attach>
+void attachAtDeclaration(const FrameInputs& inputs, std::string_view name, Attach&& attach) {
+    try {
+        attach();
+    } catch (const ExecutorError& e) {
+        const ResourceDesc* declared = inputs.graph.findResource(name);
+        if (!declared) throw;
+        Diagnostics d;
+        d.add({inputs.graph.file, declared->jsonPath(), "", "", e.what()});
+        throw GraphError(std::move(d));
+    }
+}
+
+}  // namespace
+
 void attachFrameInputs(Renderer& renderer, FrameInputs& inputs, const FrameEnvironment& environment) {
     if (inputs.scene) renderer.frameData().set(*inputs.scene);
     for (const auto& name : environment.products)
-        renderer.importImage(name, environment.renderer->shareImage(name));
+        attachAtDeclaration(inputs, name, [&] { renderer.importImage(name, environment.renderer->shareImage(name)); });
     // A sequence's sky fades from the previous frame's cube: until there is one, the first.
     if (environment.products.contains(kEnvironment) && renderer.plan().resourceIndex(kEnvironmentPrevious) >= 0)
-        renderer.importImage(std::string(kEnvironmentPrevious), environment.renderer->shareImage(std::string(kEnvironment)));
+        attachAtDeclaration(inputs, kEnvironmentPrevious, [&] {
+            renderer.importImage(std::string(kEnvironmentPrevious),
+                                 environment.renderer->shareImage(std::string(kEnvironment)));
+        });
     if (inputs.environment && renderer.plan().resourceIndex(kEquirect) >= 0)
-        renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*inputs.environment)));
+        attachAtDeclaration(inputs, kEquirect, [&] {
+            renderer.setExternalImage(std::string(kEquirect), toImageData(std::move(*inputs.environment)));
+        });
 }
 
 UploadPassPixels::UploadPassPixels(Device& device, const Renderer& renderer, const std::optional<HdrImage>& environment) {
