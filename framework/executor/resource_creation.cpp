@@ -1,6 +1,7 @@
 #include "resource_creation.hpp"
 
 #include "texel_encoding.hpp"
+#include "vk_util.hpp"
 
 #include <skygraph/device.hpp>
 
@@ -110,9 +111,11 @@ void refuseUnsupportedImage(VkPhysicalDevice physical, const ResourceDesc& d, co
                                                  &fp) != VK_SUCCESS ||
         fp.maxMipLevels < ci.mipLevels || fp.maxArrayLayers < ci.arrayLayers ||
         fp.maxExtent.width < ci.extent.width || fp.maxExtent.height < ci.extent.height) {
-        throw ExecutorError("resource '" + d.name + "': the device cannot create a " + std::string(d.format.name) +
-                            " image of " + std::to_string(ci.extent.width) + "x" + std::to_string(ci.extent.height) +
-                            " with the usages the plan needs");
+        throw DeviceCapacityError("resource '" + d.name + "': the device cannot create a " +
+                                      std::string(d.format.name) + " image of " + std::to_string(ci.extent.width) +
+                                      "x" + std::to_string(ci.extent.height) + " with the usages the plan needs (" +
+                                      vk::imageUsageText(ci.usage) + ")",
+                                  d.name);
     }
 }
 

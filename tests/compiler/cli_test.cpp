@@ -917,6 +917,33 @@ TEST_F(Cli, RenderNamesTheDeclarationOfAnEnvironmentInputThatDisagrees) {
     }
 }
 
+// What the device refuses is named in the graph: a format it cannot make with the plan's
+// usages at the resource's declaration, and all the resources together past the memory cap at
+// the graph's file.
+TEST_F(Cli, RenderNamesTheGraphOfWhatTheDeviceRefuses) {
+    const fs::path e5 = writeGraph("e5.json", R"({ "version": 1, "name": "e5", "resources": {
+        "x": { "type": "image2d", "format": "E5B9G9R9_UFLOAT_PACK32", "extent": [16, 16] },
+        "out": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true,
+                 "final": "TransferSrc" } },
+      "passes": [ { "name": "w", "type": "Generic", "uses": { "x": "Write@ColorAttachment" } },
+                  { "name": "r", "type": "Generic", "uses": { "x": "Read@Fragment", "out": "Write@ColorAttachment" } } ] })");
+    const fs::path raster = fs::path(SKYGRAPH_SOURCE_DIR) / "graphs/raster.json";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"render", e5.string(), "--readback", "out"},
+         "error: " + e5.string() + ": resources.x: resource 'x': the device cannot create a E5B9G9R9_UFLOAT_PACK32 "
+                                   "image of 16x16 with the usages the plan needs ("},
+        {{"render", raster.string(), "--width", "8192", "--height", "8192"},
+         "error: " + raster.string() + ": the plan's resources need "},
+    };
+    for (auto [args, expected] : cases) {
+        args.insert(args.end(), {"-o", (dir_ / "work" / "out.png").string()});
+        const CliRun r = run(args);
+        EXPECT_EQ(r.status, 1) << r.err;
+        EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+        EXPECT_TRUE(workFiles().empty());
+    }
+}
+
 // -o naming a file the render reads is refused before anything is rendered: the environment
 // file and a sequence's later frames are inputs as much as the graph and the scene are.
 TEST_F(Cli, RenderRefusesToWriteOverItsEnvironmentFiles) {

@@ -72,17 +72,16 @@ const SceneEnvironment* environmentFile(const FrameInputs& inputs) {
 }
 
 /// `e` named at the declaration in `graph` of the resource it names, with the output size
-/// (`compiled`'s, when given) for an extent that follows it; `e` as it is when it names no
-/// resource of `graph`.
+/// (`compiled`'s, when given) for an extent that follows it; named at `graph`'s file when it
+/// names no resource of `graph` (all of them together past a limit).
 [[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e, const CompileOptions* compiled) {
     const ResourceDesc* declared = e.resource().empty() ? nullptr : graph.findResource(e.resource());
-    if (!declared) throw e;
-    std::string message = e.what();  // it names the resource
-    if (compiled && declared->extent.relativeToOutput)
+    std::string message = e.what();  // it names the resource, if one, or says the output size
+    if (compiled && declared && declared->extent.relativeToOutput)
         message += " (its extent follows the output, " + std::to_string(compiled->outputWidth) + "x" +
                    std::to_string(compiled->outputHeight) + ")";
     Diagnostics d;
-    d.add({graph.file, declared->jsonPath(), "", "", std::move(message)});
+    d.add({graph.file, declared ? declared->jsonPath() : "", "", "", std::move(message)});
     throw GraphError(std::move(d));
 }
 
