@@ -279,6 +279,9 @@ def raster_cases():
         ("unknown resource type", lambda d: add(d, "resources", "depth", "type", value="image3d"), False),
         ("extent \"output/0\"", lambda d: add(d, "resources", "hdr_color", "extent", value="output/0"), False),
         ("extent \"output/4097\"", lambda d: add(d, "resources", "hdr_color", "extent", value="output/4097"), False),
+        ("extent \"output/000002\" (six digits)", lambda d: add(d, "resources", "hdr_color", "extent",
+                                                                value="output/000002"), False),
+        ("`if` with a no-break space", lambda d: add(d, "passes", 2, "if", value="skybox\u00a0&& skybox"), False),
         ("extent \"half\"", lambda d: add(d, "resources", "hdr_color", "extent", value="half"), False),
         ("extent [0, 16]", lambda d: add(d, "resources", "hdr_color", "extent", value=[0, 16]), False),
         ("extent [16385, 16]", lambda d: add(d, "resources", "hdr_color", "extent", value=[16385, 16]), False),
@@ -326,6 +329,8 @@ def raster_cases():
         ("array-form uses with `as` and `slot`", lambda d: add(d, "passes", tonemap, "uses", value=tonemap_array), True),
         ("descriptions on resources and passes", lambda d: add(d, "resources", "depth", "description", value="z") and add(
             d, "passes", 0, "description", value="draws"), True),
+        ("`if` split over lines by tab, line feed and carriage return",
+            lambda d: add(d, "passes", 2, "if", value="skybox\t&&\n\r skybox"), True),
         ("`if` expression with !, && and parentheses", lambda d: add(d, "passes", 2, "if", value="(skybox && !false) || skybox"), True),
         ("never_cull", lambda d: add(d, "passes", 0, "never_cull", value=True), True),
         ("layouts \"optimal\"", lambda d: add(d, "layouts", value="optimal"), True),
