@@ -1,5 +1,6 @@
 #include "scheduler.hpp"
 
+#include "printable_name.hpp"
 #include "subresources.hpp"
 
 #include <algorithm>
@@ -99,10 +100,13 @@ std::string conditionReason(const Condition& c, const FeatureValues& features) {
     };
     if (c.features().size() == 1 && c.text().find_first_of("!&|()") == std::string::npos)
         return "feature '" + c.features().front() + "' is off";
-    if (c.features().empty()) return "condition '" + c.text() + "' is always false";
+    // One line wherever the reason is shown (a text plan, a DOT label, a log): a condition
+    // written over several lines shows its line breaks escaped.
+    const std::string text = printableName(c.text());
+    if (c.features().empty()) return "condition '" + text + "' is always false";
     std::string values;
     for (const auto& f : c.features()) values += (values.empty() ? "" : ", ") + f + "=" + onOff(value(f));
-    return "condition '" + c.text() + "' is false (" + values + ")";
+    return "condition '" + text + "' is false (" + values + ")";
 }
 
 Schedule schedulePasses(const GraphIndex& index, const FeatureValues& features, bool cull) {

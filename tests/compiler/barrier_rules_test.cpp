@@ -395,6 +395,20 @@ TEST(Culling, AConditionOfNoFeatureIsAlwaysFalse) {
     EXPECT_EQ(plan.culled()[0].reason, "condition 'false' is always false");
 }
 
+// A condition written over several lines keeps its reason on one line: a text plan's `culled:`
+// line, a DOT label and a log line each show the line breaks escaped.
+TEST(Culling, AReasonShowsTheConditionsLineBreaksEscaped) {
+    CompileOptions options;
+    options.features = {{"fx", false}};
+    const Plan plan = compileGraph(std::string(kColor) + "," + kOut, R"(
+        {"name": "draw", "type": "Generic", "uses": {"color": "Write@ColorAttachment"}},
+        {"name": "both", "type": "Generic", "if": "fx &&\r\n!other", "uses": {"color": "ReadWrite@Compute"}},
+        {"name": "copy", "type": "Generic", "uses": {"color": "Read@Transfer", "out": "Write@Transfer"}})",
+        options, R"({"fx": true, "other": false})");
+    ASSERT_EQ(plan.culled().size(), 1u);
+    EXPECT_EQ(plan.culled()[0].reason, "condition 'fx &&\\u000d\\u000a!other' is false (fx=off, other=off)");
+}
+
 TEST(Culling, ReasonsForEveryRemovedPass) {
     CompileOptions options;
     options.features = {{"fx", false}};
