@@ -23,17 +23,27 @@ Diagnostic unsourcedRead(const GraphDesc& graph, size_t pass, size_t use, const 
                 (unwritten.empty() ? "it" : unwritten + " of it") + ", and it is neither `clear` nor `external`" + why};
 }
 
-/// "mip 1", "mips 1 and 2", "mip 0 (layers 2, 3)": per mip of `range`, its layers for which
-/// `missing(mip, layer)` holds, all of them or those listed.
+/// "mip 1", "mips 1 and 2", "mip 0 (layers 2, 3)", "mip 0 (layers 0 to 2046)": per mip of
+/// `range`, its layers for which `missing(mip, layer)` holds, all of them or those listed, a
+/// run of three or more as its ends (an array of 2048 layers gives one short line).
 template <typename Missing>
 std::string describeUnwritten(const SubresourceRange& range, Missing&& missing) {
     std::vector<std::string> parts;
     bool wholeMipsOnly = true;
+    const uint32_t endLayer = range.baseLayer + range.layerCount;
     for (uint32_t m = range.baseMip; m < range.baseMip + range.mipCount; ++m) {
         std::string layers;
         uint32_t count = 0;
-        for (uint32_t l = range.baseLayer; l < range.baseLayer + range.layerCount; ++l)
-            if (missing(m, l)) layers += (count++ == 0 ? "" : ", ") + std::to_string(l);
+        for (uint32_t l = range.baseLayer; l < endLayer; ++l) {
+            if (!missing(m, l)) continue;
+            uint32_t last = l;
+            while (last + 1 < endLayer && missing(m, last + 1)) ++last;
+            const std::string separator = count == 0 ? "" : ", ";
+            if (last - l >= 2) layers += separator + std::to_string(l) + " to " + std::to_string(last);
+            else layers += separator + std::to_string(l) + (last > l ? ", " + std::to_string(last) : "");
+            count += last - l + 1;
+            l = last;
+        }
         if (count == 0) continue;
         const bool whole = count == range.layerCount;
         wholeMipsOnly &= whole;

@@ -821,6 +821,23 @@ TEST(LoaderErrors, AReadOfLevelsNoPassWritesNamesThem) {
     ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "passes[3].uses.levels", "r", "levels", {"no earlier pass writes mip 0 (layers 2, 3) of it"}))
         << listAll(ds);
+    // Runs of three layers or more by their ends: 2048 layers, every other one written but a
+    // run, make one short line, not one number per layer.
+    g["resources"]["levels"]["layers"] = 2048;
+    g["passes"][2]["uses"][0]["layers"] = Json::array({0, 1});
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses.levels", "r", "levels", {"no earlier pass writes mip 0 (layers 1 to 2047) of it"}))
+        << listAll(ds);
+    g["passes"][2]["uses"] = Json::array({{{"resource", "levels"}, {"access", "Write"}, {"stage", "Compute"},
+                                           {"layers", Json::array({0, 1})}},
+                                          {{"resource", "levels"}, {"access", "Write"}, {"stage", "Compute"},
+                                           {"layers", Json::array({3, 2044})}},
+                                          {{"resource", "levels"}, {"access", "Write"}, {"stage", "Compute"},
+                                           {"layers", Json::array({2047, 1})}}});
+    ds = loadErrors(g);
+    EXPECT_TRUE(hasDiag(ds, "passes[3].uses.levels", "r", "levels", {"no earlier pass writes mip 0 (layers 1, 2) of it"}))
+        << listAll(ds);
+    for (const auto& d : ds) EXPECT_LT(d.format().size(), 400u) << d.format();
 }
 
 TEST(LoaderErrors, ReadBeforeItsWriterInFileOrder) {
