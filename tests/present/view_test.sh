@@ -26,6 +26,8 @@
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
+#   unpresentable  a graph presenting a format the surface lacks: exit 1, the error named at
+#                the resource's declaration
 #   no_display   without an X server: exit 1 and one line that suggests `skygraph render`;
 #                a graph file that is missing is named first
 set -euo pipefail
@@ -488,6 +490,19 @@ EOF
         sleep 1
         kill -TERM "$pid"
         expect_clean_end "$pid" ""
+        ;;
+    unpresentable)
+        # A graph presenting a format the window's surface lacks: exit 1, named at the
+        # resource's declaration in the graph's file.
+        sed 's/"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB"/"swapchain": { "type": "image2d", "format": "R16G16B16A16_SFLOAT"/' \
+            "$root/graphs/raster.json" >f16.json
+        grep -q R16G16B16A16_SFLOAT f16.json || fail "the edit did not apply"
+        view f16.json --frames 1
+        status=0
+        wait "$pid" || status=$?
+        [ "$status" -eq 1 ] || fail "exit status $status"
+        grep -q "^error: f16.json: resources.swapchain: the surface cannot present R16G16B16A16_SFLOAT" view.err ||
+            fail "not named at the declaration"
         ;;
     *)
         echo "unknown case $case_name" >&2

@@ -71,19 +71,6 @@ const SceneEnvironment* environmentFile(const FrameInputs& inputs) {
     throw SceneError(std::move(d));
 }
 
-/// `e` named at the declaration in `graph` of the resource it names, with the output size
-/// (`compiled`'s, when given) for an extent that follows it; named at `graph`'s file when it
-/// names no resource of `graph` (all of them together past a limit).
-[[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e, const CompileOptions* compiled) {
-    const ResourceDesc* declared = e.resource().empty() ? nullptr : graph.findResource(e.resource());
-    std::string message = e.what();  // it names the resource, if one, or says the output size
-    if (compiled && declared && declared->extent.relativeToOutput)
-        message += " (its extent follows the output, " + std::to_string(compiled->outputWidth) + "x" +
-                   std::to_string(compiled->outputHeight) + ")";
-    Diagnostics d;
-    d.add({graph.file, declared ? declared->jsonPath() : "", "", "", std::move(message)});
-    throw GraphError(std::move(d));
-}
 
 /// What the plan samples of the environment pipeline's outputs: the externals it imports
 /// (`initial` set) that the environment graph exports under the same name.
@@ -364,6 +351,17 @@ UploadPassPixels::UploadPassPixels(Device& device, const Renderer& renderer, con
 
 void UploadPassPixels::stageFor(Renderer& renderer) const {
     for (const auto& [resource, buffer] : staged_) renderer.stageUpload(resource, buffer);
+}
+
+void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e, const CompileOptions* compiled) {
+    const ResourceDesc* declared = e.resource().empty() ? nullptr : graph.findResource(e.resource());
+    std::string message = e.what();  // it names the resource, if one, or says the output size
+    if (compiled && declared && declared->extent.relativeToOutput)
+        message += " (its extent follows the output, " + std::to_string(compiled->outputWidth) + "x" +
+                   std::to_string(compiled->outputHeight) + ")";
+    Diagnostics d;
+    d.add({graph.file, declared ? declared->jsonPath() : "", "", "", std::move(message)});
+    throw GraphError(std::move(d));
 }
 
 void throwCapacityError(const FrameInputs& inputs, const CompileOptions& compiled, const DeviceCapacityError& e) {

@@ -170,11 +170,15 @@ struct RenderedFrames {
     std::unique_ptr<Renderer> renderer;
 };
 
+/// Throws `e` as a GraphError named at the declaration in `graph` of the resource it names,
+/// with the output size (`compiled`'s, when given) for an extent that follows it; named at
+/// `graph`'s file when it names no resource of `graph` (all of them together past a limit).
+[[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e,
+                                     const CompileOptions* compiled);
+
 /// Throws `e`, a resource of inputs.graph that the device cannot hold when compiled with
 /// `compiled`, named where its size comes from: the scene's environment file for the
-/// equirect (as a SceneError), else the resource's declaration in the graph (a GraphError with
-/// its file and JSON path, and the output size for an extent that follows it). Rethrows `e`
-/// as it is when it names no resource of the graph.
+/// equirect (as a SceneError), else as throwAtDeclaration() does.
 [[noreturn]] void throwCapacityError(const FrameInputs& inputs, const CompileOptions& compiled,
                                      const DeviceCapacityError& e);
 

@@ -5,6 +5,7 @@
 #include "glfw_presentation.hpp"
 #include "view_overlay.hpp"
 #include "live_graph.hpp"
+#include "render.hpp"
 
 #include "shipped_names.hpp"
 
@@ -238,7 +239,11 @@ int viewCommand(const ViewOptions& options) {
             so.height = uint32_t(std::max(fbh, 0));
             so.presentMode = options.presentMode;
             so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
-            swapchain = Swapchain::create(*device, live.renderer().compiled(), so);
+            try {
+                swapchain = Swapchain::create(*device, live.renderer().compiled(), so);
+            } catch (const DeviceCapacityError& e) {  // the surface cannot present the graph's image
+                throwAtDeclaration(live.renderer().graph(), e, nullptr);
+            }
             state.swapchain = swapchain.get();
             live.presentTo(*swapchain);
             if (live.scene() && options.orbit) {
