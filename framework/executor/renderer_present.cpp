@@ -43,7 +43,9 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     if (ext[0] != p.extent.width || ext[1] != p.extent.height || desc.layers > 1 ||
         desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)
         throw ExecutorError(what + "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
-                            ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)");
+                            ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)" +
+                            (desc.extent.relativeToOutput ? "" : "; a presented image follows the window: give it "
+                                                                 "\"extent\": \"output\""));
     const VkImageUsageFlags need = planImageUsage(s.plan, uint32_t(index));
     if (checksImages && (need & ~p.usage) != 0)
         throw ExecutorError(what + "the plan needs image usage " + vk::imageUsageText(need) +
