@@ -22,6 +22,9 @@ using namespace detail;
 std::unique_ptr<PlanState> Renderer::Impl::build(CompiledGraph compiled) {
     if (compiled.outputWidth() == 0 || compiled.outputHeight() == 0)
         throw ExecutorError("output extent must be at least 1x1");
+    // A plan state then renders into a stand-in, as while awaiting images of another format,
+    // and makes no view of the destroyed ones.
+    if (presentImagesRecreatedElsewhere()) present->awaitingImages = true;
     // Placements are only as good as the requirements they were made with: this device's.
     auto s = std::make_unique<PlanState>(forDevice(std::move(compiled)));
     describeResources(*s);
@@ -440,9 +443,11 @@ void Renderer::importImage(const std::string& resource, SharedImage image) {
     if (!image.impl_) throw ExecutorError("importImage: '" + resource + "': the SharedImage is empty");
     // A resource the plan culled is imported when a rebuild brings it back; what the plan
     // would say of it (usages, layout, sharing) is checked then. So is one of a renderer whose
-    // swapchain was destroyed: its passes' framebuffers would be made again from the views of
-    // the destroyed images (a use after free); the plan state for the next swapchain takes it.
-    if (const int32_t index = d.state->plan.resourceIndex(resource); index >= 0 && !d.presentSwapchainDestroyed())
+    // swapchain was destroyed, or re-created by another renderer: its passes' framebuffers
+    // would be made again from the views of the destroyed images (a use after free); the plan
+    // state for the next swapchain, or the next frame's new images, takes it.
+    if (const int32_t index = d.state->plan.resourceIndex(resource);
+        index >= 0 && !d.presentSwapchainDestroyed() && !d.presentImagesRecreatedElsewhere())
         d.swapImport(*d.state, static_cast<size_t>(index), image);
     else
         d.checkImportShape(*desc, d.state->outputWidth(), d.state->outputHeight(), image);

@@ -575,6 +575,12 @@ struct Renderer::Impl {
     [[nodiscard]] bool presentSwapchainDestroyed() const noexcept {
         return present && present->swapchain && present->swapchainLifetime.expired() && !present->awaitingImages;
     }
+    /// Another renderer presenting into the bound swapchain re-created it: the images bound
+    /// here are gone, and only the next frame into the swapchain binds the new ones.
+    [[nodiscard]] bool presentImagesRecreatedElsewhere() const noexcept {
+        return present && present->swapchain && !present->swapchainLifetime.expired() &&
+               present->swapchain->imagesId != present->imagesId;
+    }
     /// The checks of the binding against a plan state being built; sets presentResource.
     void describePresent(detail::PlanState& s) const;
     [[nodiscard]] uint32_t waitForFrameSlot();

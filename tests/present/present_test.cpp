@@ -511,6 +511,40 @@ TEST_F(Present, ASecondRendererPresentsWhileTheFirstsFramesAreInFlight) {
     expectSilent();
 }
 
+// Two renderers present into one window, and the second re-creates the swapchain for a new
+// size: the first's images are gone. Its rebuilds (reloadShaders, as a HotReloader's poll
+// makes, setGraph, resize) made views of the destroyed images (a crash in the driver); they
+// now render into a stand-in until its next frame binds the new images, silently.
+TEST_F(Present, RebuildsAfterAnotherRendererRecreatedTheSwapchainMakeNoViewOfItsOldImages) {
+    auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
+    Renderer first(*device_, raster(96, 64), genericOptions(2));
+    present(first, *swapchain, 1);
+    RendererOptions options = genericOptions(2);
+    options.presentTo = swapchain.get();
+    Renderer second(*device_, raster(96, 64), options);
+    present(second, *swapchain, 1);
+    for (int rebuild = 0; rebuild < 3; ++rebuild) {
+        const uint32_t width = rebuild % 2 ? 96 : 40, height = rebuild % 2 ? 64 : 30;
+        swapchain->resize(width, height);
+        glfwSetWindowSize(window_, int(width), int(height));
+        for (int i = 0; i < 200; ++i) {
+            int fw = 0, fh = 0;
+            glfwWaitEventsTimeout(0.01);
+            glfwGetFramebufferSize(window_, &fw, &fh);
+            if (fw == int(width) && fh == int(height)) break;
+        }
+        const uint64_t generation = swapchain->generation();
+        present(second, *swapchain, 1);
+        ASSERT_GT(swapchain->generation(), generation) << "the second renderer re-created the swapchain";
+        if (rebuild == 0) first.reloadShaders();
+        if (rebuild == 1) first.setGraph(raster(96, 64));
+        if (rebuild == 2) first.resize(first.compiled().outputWidth(), first.compiled().outputHeight());
+        present(first, *swapchain, 2);
+        EXPECT_EQ(first.compiled().outputWidth(), width);
+    }
+    expectSilent();
+}
+
 // setGraph on a presenting renderer compiles the graph at the present images' extent, as the
 // constructor does with RendererOptions::presentTo; resize() to another size still throws.
 TEST_F(Present, SetGraphCompilesAtThePresentImagesExtent) {
