@@ -51,8 +51,8 @@ public:
 
     /// Throws DeviceCapacityError naming the resource when it is past the device's limits
     /// (refuseImageBeyondLimits / refuseBufferBeyondLimits) or the device reports no memory for
-    /// it (too large to make); ExecutorError when the device cannot create it otherwise
-    /// (refuseUnsupportedImage), when none of its memory types is DEVICE_LOCAL (for both
+    /// it (too large to make); UnsupportedResourceError when the device cannot create it
+    /// otherwise (refuseUnsupportedImage); ExecutorError when none of its memory types is DEVICE_LOCAL (for both
     /// sharing modes, where it asks about both), or once the device is gone.
     [[nodiscard]] MemoryRequirements requirements(const MemoryQuery& query) const override;
     /// The device's bufferImageGranularity. Throws ExecutorError once the device is gone.

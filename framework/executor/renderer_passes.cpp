@@ -193,6 +193,8 @@ void Renderer::Impl::buildPassStatic(PlanState& s, size_t index) {
         if (ps.attachments.any()) buildRenderPass(s, ps);
     } catch (const DeviceCapacityError&) {
         throw;  // named at the resource's declaration by whoever knows the size it was asked for
+    } catch (const UnsupportedResourceError&) {
+        throw;  // named at the resource's declaration by whoever has the graph's file
     } catch (const ExecutorError& e) {
         throw ExecutorError(declaredAt(s.graph, pass) + ": " + e.what());
     }

@@ -111,11 +111,11 @@ void refuseUnsupportedImage(VkPhysicalDevice physical, const ResourceDesc& d, co
                                                  &fp) != VK_SUCCESS ||
         fp.maxMipLevels < ci.mipLevels || fp.maxArrayLayers < ci.arrayLayers ||
         fp.maxExtent.width < ci.extent.width || fp.maxExtent.height < ci.extent.height) {
-        throw DeviceCapacityError("resource '" + d.name + "': the device cannot create a " +
-                                      std::string(d.format.name) + " image of " + std::to_string(ci.extent.width) +
-                                      "x" + std::to_string(ci.extent.height) + " with the usages the plan needs (" +
-                                      vk::imageUsageText(ci.usage) + ")",
-                                  d.name);
+        throw UnsupportedResourceError("resource '" + d.name + "': the device cannot create a " +
+                                           std::string(d.format.name) + " image of " +
+                                           std::to_string(ci.extent.width) + "x" + std::to_string(ci.extent.height) +
+                                           " with the usages the plan needs (" + vk::imageUsageText(ci.usage) + ")",
+                                       d.name);
     }
 }
 

@@ -59,8 +59,8 @@ struct DeviceCapacity {
 /// the memory cap; `at` follows the extent in the message (e.g. " at output 64x64").
 void refuseImageBeyondLimits(const DeviceCapacity& capacity, const ResourceDesc& d, uint32_t width,
                              uint32_t height, uint32_t mips, uint32_t layers, const std::string& at);
-/// Throws ExecutorError naming the resource when the device cannot create `ci` (its format
-/// with that usage, flags, extent, mips and layers).
+/// Throws UnsupportedResourceError naming the resource when the device cannot create `ci` (its
+/// format with that usage, flags, extent, mips and layers).
 void refuseUnsupportedImage(VkPhysicalDevice physical, const ResourceDesc& d, const VkImageCreateInfo& ci);
 /// Throws DeviceCapacityError for a buffer beyond the device's binding ranges for its usage, or alone
 /// over the memory cap.

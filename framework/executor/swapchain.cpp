@@ -118,16 +118,16 @@ SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentReq
     if (format == formats.end()) {
         std::string have;
         for (const VkSurfaceFormatKHR& f : formats) have += (have.empty() ? "" : ", ") + formatName(f.format);
-        throw DeviceCapacityError("the surface cannot present " + formatName(plan.format) +
-                                      ", the format of the plan's Present resource '" + plan.resource +
-                                      "'; it presents " + (have.empty() ? "none" : have),
-                                  plan.resource);
+        throw UnsupportedResourceError("the surface cannot present " + formatName(plan.format) +
+                                           ", the format of the plan's Present resource '" + plan.resource +
+                                           "'; it presents " + (have.empty() ? "none" : have),
+                                       plan.resource);
     }
     if ((plan.usage & ~caps.supportedUsageFlags) != 0)
-        throw DeviceCapacityError("the surface's images cannot be used as the plan uses '" + plan.resource +
-                                      "' (image usage " + vk::imageUsageText(plan.usage) + ", the surface allows " +
-                                      vk::imageUsageText(caps.supportedUsageFlags) + ")",
-                                  plan.resource);
+        throw UnsupportedResourceError("the surface's images cannot be used as the plan uses '" + plan.resource +
+                                           "' (image usage " + vk::imageUsageText(plan.usage) +
+                                           ", the surface allows " + vk::imageUsageText(caps.supportedUsageFlags) + ")",
+                                       plan.resource);
     // The images a swapchain implies must be ones the device can make (the spec's
     // VkSwapchainCreateInfoKHR imageFormat rule): a surface may list a format and a usage
     // that the format does not support together.
@@ -137,10 +137,11 @@ SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentReq
                                                         usage, 0, &props) == VK_SUCCESS;
     };
     if (!makes(plan.usage))
-        throw DeviceCapacityError("the device cannot make " + formatName(plan.format) + " images with usage " +
-                                      vk::imageUsageText(plan.usage) + " for the swapchain, as the plan uses its " +
-                                      "Present resource '" + plan.resource + "'",
-                                  plan.resource);
+        throw UnsupportedResourceError("the device cannot make " + formatName(plan.format) + " images with usage " +
+                                           vk::imageUsageText(plan.usage) +
+                                           " for the swapchain, as the plan uses its Present resource '" +
+                                           plan.resource + "'",
+                                       plan.resource);
     // Extra usage the surface or the format cannot give is left out, a bit at a time (recreate
     // warns).
     VkImageUsageFlags usage = plan.usage;

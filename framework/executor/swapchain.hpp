@@ -31,7 +31,7 @@ struct SurfaceSupport {
     VkSurfaceFormatKHR format{};
     VkImageUsageFlags usage = 0;
 };
-/// Throws DeviceCapacityError naming the resource and what the surface can give when it cannot
+/// Throws UnsupportedResourceError naming the resource and what the surface can give when it cannot
 /// present that format (in sRGB nonlinear colour space) or with that usage, or when the device
 /// cannot make images of that format with that usage.
 [[nodiscard]] SurfaceSupport surfaceSupportFor(const DeviceAccess::Impl& dev, const PresentRequirements& plan,

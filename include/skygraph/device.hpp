@@ -46,6 +46,21 @@ private:
     std::string resource_;
 };
 
+/// An ExecutorError for a graph resource the device or the window cannot have as the plan
+/// uses it, whatever its size: a format it cannot make with the plan's usages, or one the
+/// window's surface cannot present. Another format or usage in the graph would run.
+class UnsupportedResourceError : public ExecutorError {
+public:
+    /// `resource`: the graph resource refused.
+    UnsupportedResourceError(const std::string& message, std::string resource)
+        : ExecutorError(message), resource_(std::move(resource)) {}
+    /// The resource refused. Valid while this exception object lives.
+    [[nodiscard]] const std::string& resource() const noexcept { return resource_; }
+
+private:
+    std::string resource_;
+};
+
 /// What presenting to a window needs of the Device. Both halves come from the application's
 /// window library (GLFW: glfwGetRequiredInstanceExtensions and glfwCreateWindowSurface); the
 /// library itself depends on no window system.

@@ -106,8 +106,9 @@ TEST_F(ShippedGraphs, AFrameWithoutAPrefilteredCubeLeavesItsSizeToTheEnvironment
     const auto sizes = viewEnvironmentSizes(frame, 1080, 60.0, 4096);
     ASSERT_TRUE(sizes);
     EXPECT_EQ(*sizes, (EnvironmentSizes{8, 4}));
-    const EnvironmentSizes forIbl = sizesForEnvironmentGraph(*sizes, ibl);
+    const EnvironmentSizes forIbl = sizesForEnvironmentGraph(*sizes, frame, ibl);
     EXPECT_EQ(forIbl, (EnvironmentSizes{8, 32})) << "6 roughness levels need a 32^2 base";
+    EXPECT_EQ(sizesForEnvironmentGraph(*sizes, raster, ibl), *sizes) << "raster.json's prefiltered sizes both";
     GraphDesc resized = ibl;
     resizeEnvironmentGraph(resized, forIbl);
     EXPECT_NO_THROW((void)compile(resized, CompileOptions{}));

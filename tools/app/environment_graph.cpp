@@ -67,7 +67,9 @@ std::optional<EnvironmentSizes> viewEnvironmentSizes(const GraphDesc& frameGraph
     return sizes;
 }
 
-EnvironmentSizes sizesForEnvironmentGraph(EnvironmentSizes sizes, const GraphDesc& environmentGraph) {
+EnvironmentSizes sizesForEnvironmentGraph(EnvironmentSizes sizes, const GraphDesc& frameGraph,
+                                          const GraphDesc& environmentGraph) {
+    if (frameGraph.findResource(kPrefiltered)) return sizes;  // the size both import and export
     if (const ResourceDesc* prefiltered = environmentGraph.findResource(kPrefiltered))
         sizes.prefiltered = std::max(sizes.prefiltered, smallestFaceFor(*prefiltered));
     return sizes;

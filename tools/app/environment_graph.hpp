@@ -47,10 +47,12 @@ struct EnvironmentSizes {
                                                                    uint32_t outputHeight, double fovYDeg,
                                                                    uint32_t equirectWidth);
 
-/// `sizes` (a frame graph's, from viewEnvironmentSizes()) for the environment graph that bakes
-/// its products: its prefiltered cube never below 2^(mips - 1) of its own declared levels,
-/// which a frame graph that samples no prefiltered cube says nothing of.
-[[nodiscard]] EnvironmentSizes sizesForEnvironmentGraph(EnvironmentSizes sizes, const GraphDesc& environmentGraph);
+/// `sizes` (`frameGraph`'s, from viewEnvironmentSizes()) for the environment graph that bakes
+/// its products: where the frame graph declares no prefiltered cube, which would say how
+/// large the one it imports is, the environment graph's is never below 2^(mips - 1) of its
+/// own declared levels.
+[[nodiscard]] EnvironmentSizes sizesForEnvironmentGraph(EnvironmentSizes sizes, const GraphDesc& frameGraph,
+                                                        const GraphDesc& environmentGraph);
 
 /// Sets the extents of `environment` and `prefiltered` in `graph` (either the environment
 /// graph or a frame graph importing its products; resources it lacks are skipped), and

@@ -26,12 +26,15 @@ namespace skygraph::app {
 namespace {
 
 /// inputs.graph compiled with `co` (whose memory model is the device's): a transient the
-/// device cannot hold is named where its size comes from (throwCapacityError).
+/// device cannot hold is named where its size comes from (throwCapacityError), one it cannot
+/// make at its declaration.
 CompiledGraph compileForDevice(const FrameInputs& inputs, const CompileOptions& co) {
     try {
         return CompiledGraph(inputs.graph, co);
     } catch (const DeviceCapacityError& e) {
         throwCapacityError(inputs, co, e);
+    } catch (const UnsupportedResourceError& e) {  // a format the device cannot make as the plan uses it
+        throwAtDeclaration(inputs.graph, e);
     }
 }
 
@@ -199,6 +202,8 @@ std::unique_ptr<LiveGraph::Built> LiveGraph::build(const RenderOptions& options,
         b->renderer = std::make_unique<Renderer>(device_, std::move(compiled), ro);
     } catch (const DeviceCapacityError& e) {
         throwCapacityError(inputs, co, e);
+    } catch (const UnsupportedResourceError& e) {  // e.g. a format the window cannot present
+        throwAtDeclaration(inputs.graph, e);
     }
     b->uploads = UploadPassPixels(device_, *b->renderer, inputs.environment);
     attachFrameInputs(*b->renderer, inputs, b->environment);

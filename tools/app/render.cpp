@@ -274,7 +274,8 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
     if (env.products.empty()) return env;
     env.graph = *envGraph;
     if (inputs.environmentSizes)
-        resizeEnvironmentGraph(*env.graph, sizesForEnvironmentGraph(*inputs.environmentSizes, *env.graph));
+        resizeEnvironmentGraph(*env.graph,
+                               sizesForEnvironmentGraph(*inputs.environmentSizes, inputs.graph, *env.graph));
     try {
         env.renderer =
             bakeForFrame(device, *env.graph, *inputs.environment, env.products, inputs.passes, std::move(shaders));
@@ -364,6 +365,14 @@ void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e, co
     throw GraphError(std::move(d));
 }
 
+void throwAtDeclaration(const GraphDesc& graph, const UnsupportedResourceError& e) {
+    const ResourceDesc* declared = graph.findResource(e.resource());
+    if (!declared) throw e;
+    Diagnostics d;
+    d.add({graph.file, declared->jsonPath(), "", "", e.what()});
+    throw GraphError(std::move(d));
+}
+
 void throwCapacityError(const FrameInputs& inputs, const CompileOptions& compiled, const DeviceCapacityError& e) {
     if (e.resource() == kEquirect)
         if (const SceneEnvironment* sky = environmentFile(inputs)) throwAtEnvironmentFile(inputs, *sky, e, "");
@@ -381,6 +390,8 @@ RenderedFrames renderFrames(Device& device, CompiledGraph compiled, FrameInputs&
         out.renderer = std::make_unique<Renderer>(device, std::move(compiled), ropts);
     } catch (const DeviceCapacityError& e) {
         throwCapacityError(inputs, compiledWith, e);
+    } catch (const UnsupportedResourceError& e) {
+        throwAtDeclaration(inputs.graph, e);
     }
     const UploadPassPixels uploads(device, *out.renderer, inputs.environment);
     attachFrameInputs(*out.renderer, inputs, out.environment);

@@ -175,6 +175,9 @@ struct RenderedFrames {
 /// `graph`'s file when it names no resource of `graph` (all of them together past a limit).
 [[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e,
                                      const CompileOptions* compiled);
+/// Throws `e` as a GraphError named at the declaration in `graph` of the resource it names;
+/// `e` as it is when `graph` declares no such resource.
+[[noreturn]] void throwAtDeclaration(const GraphDesc& graph, const UnsupportedResourceError& e);
 
 /// Throws `e`, a resource of inputs.graph that the device cannot hold when compiled with
 /// `compiled`, named where its size comes from: the scene's environment file for the

@@ -241,8 +241,8 @@ int viewCommand(const ViewOptions& options) {
             so.extraUsage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT;  // screenshots read the presented image back
             try {
                 swapchain = Swapchain::create(*device, live.renderer().compiled(), so);
-            } catch (const DeviceCapacityError& e) {  // the surface cannot present the graph's image
-                throwAtDeclaration(live.renderer().graph(), e, nullptr);
+            } catch (const UnsupportedResourceError& e) {  // the surface cannot present the graph's image
+                throwAtDeclaration(live.renderer().graph(), e);
             }
             state.swapchain = swapchain.get();
             live.presentTo(*swapchain);
