@@ -40,12 +40,14 @@ void Renderer::Impl::describePresent(PlanState& s) const {
         throw ExecutorError(what + "its format is " + std::string(desc.format.name) + ", the present images' is " +
                             formatName(p.format));
     const auto ext = desc.extent.resolve(s.outputWidth(), s.outputHeight());
-    if (ext[0] != p.extent.width || ext[1] != p.extent.height || desc.layers > 1 ||
-        desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)
+    const bool otherSize = ext[0] != p.extent.width || ext[1] != p.extent.height;
+    const bool followsWindow = desc.extent.relativeToOutput && desc.extent.divisor == 1;
+    if (otherSize || desc.layers > 1 || desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)
         throw ExecutorError(what + "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
                             ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)" +
-                            (desc.extent.relativeToOutput ? "" : "; a presented image follows the window: give it "
-                                                                 "\"extent\": \"output\""));
+                            (otherSize && !followsWindow
+                                 ? "; a presented image follows the window: give it \"extent\": \"output\""
+                                 : ""));
     const VkImageUsageFlags need = planImageUsage(s.plan, uint32_t(index));
     if (checksImages && (need & ~p.usage) != 0)
         throw ExecutorError(what + "the plan needs image usage " + vk::imageUsageText(need) +

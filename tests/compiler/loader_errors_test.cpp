@@ -821,8 +821,8 @@ TEST(LoaderErrors, AReadOfLevelsNoPassWritesNamesThem) {
     ds = loadErrors(g);
     EXPECT_TRUE(hasDiag(ds, "passes[3].uses.levels", "r", "levels", {"no earlier pass writes mip 0 (layers 2, 3) of it"}))
         << listAll(ds);
-    // Runs of three layers or more by their ends: 2048 layers, every other one written but a
-    // run, make one short line, not one number per layer.
+    // Runs of three layers or more by their ends: 2048 layers of which only layer 0 is written
+    // make one short line, not one number per layer; a run of two is listed.
     g["resources"]["levels"]["layers"] = 2048;
     g["passes"][2]["uses"][0]["layers"] = Json::array({0, 1});
     ds = loadErrors(g);
