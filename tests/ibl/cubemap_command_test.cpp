@@ -179,6 +179,18 @@ TEST(Ktx2Writer, RefusesInconsistentLevelsAndLeavesNoFile) {
     EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
 }
 
+// A cube past what the device can hold is named by the option that sized it (the input file,
+// for an equirect too large, is named the same way by the command; lavapipe's cap needs a
+// 12000x6000 file to reach, too large for a test).
+TEST_F(CubemapCommand, ACubeTheDeviceCannotHoldIsNamedByItsOption) {
+    const fs::path out = dir_ / "out.ktx2";
+    const CommandRun r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "sky.exr").string() + "' -o '" +
+                             out.string() + "' --size 4096 --format rgba32f --products none");
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find("error: --size 4096: resource 'environment' needs "), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out));
+}
+
 TEST_F(CubemapCommand, BadInputFailsWithTheFileNamedAndWritesNothing) {
     const fs::path out = dir_ / "out.ktx2";
     CommandRun r = run("'" + kCli.string() + "' cubemap '" + (dir_ / "missing.exr").string() + "' -o '" + out.string() + "'");

@@ -137,7 +137,21 @@ int run(CubemapArgs& args) {
         args.input, bake.float32 ? std::numeric_limits<float>::max() : math::kLargestHalf);
     bar.advance();
     bake.onStep = [&](const std::string&) { bar.advance(); };
-    const BakeResult result = app::bakeAndReadBack(equirect, bake);
+    const BakeResult result = [&] {
+        try {
+            return app::bakeAndReadBack(equirect, bake);
+        } catch (const DeviceCapacityError& e) {  // named by what sets the resource's size
+            if (e.resource() == kEquirect)
+                throw ImageError(args.input, std::to_string(equirect.width) + "x" + std::to_string(equirect.height) +
+                                                 " is too large for this device to bake: " + e.what());
+            if (e.resource() == kEnvironment) throw UsageError("--size " + std::to_string(bake.size) + ": " + e.what());
+            if (e.resource() == kPrefiltered)
+                throw UsageError((bake.prefilteredSize ? "--prefiltered-size " + std::to_string(bake.prefilteredSize)
+                                                       : "--size " + std::to_string(bake.size)) +
+                                 ": " + e.what());
+            throw;
+        }
+    }();
     if (args.bake.validate && result.validationMessages != 0)
         throw std::runtime_error(std::to_string(result.validationMessages) + " validation messages (see the log)");
 
