@@ -339,6 +339,9 @@ private:
                 problems = type->validateParams(p.params);
             } catch (const std::exception& e) {
                 error(path + ".params", p.name, "", "the params validator of type '" + type->name + "' threw: " + e.what());
+            } catch (...) {
+                error(path + ".params", p.name, "", "the params validator of type '" + type->name +
+                                                        "' threw something other than a std::exception");
             }
             for (const auto& e : problems)
                 error(e.pathUnder(path + ".params"), p.name, "", e.message);
@@ -637,6 +640,9 @@ private:
             problems = type.validateUsages(p, graph_);
         } catch (const std::exception& e) {  // the application's code, as validateParams
             error(p.jsonPath + ".uses", p.name, "", "the usage validator of type '" + type.name + "' threw: " + e.what());
+        } catch (...) {
+            error(p.jsonPath + ".uses", p.name, "", "the usage validator of type '" + type.name +
+                                                        "' threw something other than a std::exception");
         }
         for (const UsageError& e : problems) {
             if (e.usage < p.uses.size())

@@ -138,6 +138,9 @@ Diagnostics plannedPassProblems(const Plan& plan, const GraphDesc& graph, const 
         } catch (const std::exception& e) {  // the application's code, as validateUsages
             diags.add({graph.file, passPath, desc.name, "",
                        "the plan validator of type '" + type->name + "' threw: " + e.what()});
+        } catch (...) {
+            diags.add({graph.file, passPath, desc.name, "",
+                       "the plan validator of type '" + type->name + "' threw something other than a std::exception"});
         }
         for (UsageError& e : problems) {
             // The plan's usages are the pass's, in its order.

@@ -103,6 +103,8 @@ void checkWithTypeValidators(const PlannedPass& pass, const PassDesc& desc, cons
             }
     } catch (const std::exception& e) {
         add("", "the validators of type '" + type.name + "' threw: " + e.what());
+    } catch (...) {
+        add("", "the validators of type '" + type.name + "' threw something other than a std::exception");
     }
     if (!problems.empty()) throw ExecutorError(problems);
 }

@@ -602,9 +602,22 @@ TEST(PassValidators, AValidatorThatThrowsIsReportedAtThePass) {
         throw std::runtime_error("cannot tell");
     };
     registry.add(usages);
+    // Something other than a std::exception is named as such, not let through untyped.
+    PassTypeInfo oddParams = fillType();
+    oddParams.name = "OddParams";
+    oddParams.validateParams = [](const nlohmann::json&) -> std::vector<ParamError> { throw 42; };
+    registry.add(oddParams);
+    PassTypeInfo oddUsages = fillType();
+    oddUsages.name = "OddUsages";
+    oddUsages.validateUsages = [](const PassDesc&, const GraphDesc&) -> std::vector<UsageError> { throw 42; };
+    registry.add(oddUsages);
     const std::pair<const char*, const char*> cases[] = {
         {"StrictParams", "passes[0].params: pass 'fill': the params validator of type 'StrictParams' threw: "},
         {"StrictUsages", "passes[0].uses: pass 'fill': the usage validator of type 'StrictUsages' threw: cannot tell"},
+        {"OddParams", "passes[0].params: pass 'fill': the params validator of type 'OddParams' threw something "
+                      "other than a std::exception"},
+        {"OddUsages", "passes[0].uses: pass 'fill': the usage validator of type 'OddUsages' threw something other "
+                      "than a std::exception"},
     };
     for (const auto& [type, expected] : cases) {
         try {
@@ -637,6 +650,10 @@ TEST(PassValidators, APlanValidatorIsReportedAtTheUsageOrThePass) {
         throw std::runtime_error("cannot tell");
     };
     registry.add(throwing);
+    PassTypeInfo odd = fillType();
+    odd.name = "PlanThrowsOddly";
+    odd.validatePlannedPass = [](const PlannedPass&, const Plan&) -> std::vector<UsageError> { throw 42; };
+    registry.add(odd);
     const auto problems = [&](const std::string& type) {
         const GraphDesc g = parseGraph(graphText(type), "lib.json", registry);
         return plannedPassProblems(compile(g, headless(g)), g, registry).format();
@@ -645,7 +662,16 @@ TEST(PassValidators, APlanValidatorIsReportedAtTheUsageOrThePass) {
                                        "lib.json: passes[0]: pass 'fill': wants a second usage\n");
     EXPECT_EQ(problems("PlanThrows"), "lib.json: passes[0]: pass 'fill': the plan validator of type 'PlanThrows' "
                                       "threw: cannot tell\n");
+    EXPECT_EQ(problems("PlanThrowsOddly"), "lib.json: passes[0]: pass 'fill': the plan validator of type "
+                                           "'PlanThrowsOddly' threw something other than a std::exception\n");
     EXPECT_EQ(problems("Generic"), "");
+    // A renderer asks the same validators, and refuses the pass alike.
+    PassLibrary lib = library();
+    for (PassTypeInfo info : {throwing, odd})
+        lib.add(info, [](const PassDesc& d) { return std::make_unique<FillPass>(d); });
+    EXPECT_EQ(renderError(lib, "PlanThrows"), "pass 'fill': the validators of type 'PlanThrows' threw: cannot tell");
+    EXPECT_EQ(renderError(lib, "PlanThrowsOddly"),
+              "pass 'fill': the validators of type 'PlanThrowsOddly' threw something other than a std::exception");
 }
 
 // PassRegistry::add refuses a declaration the loader could not bind usages to, naming the type
