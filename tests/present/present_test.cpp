@@ -49,6 +49,18 @@ CompiledGraph raster(uint32_t width, uint32_t height, FeatureValues features = {
     return CompiledGraph(std::move(graph), o);
 }
 
+/// Resizes `window` and waits (2 s at most) for the X server, which answers asynchronously, to
+/// give it that size.
+void resizeWindow(GLFWwindow* window, int width, int height) {
+    glfwSetWindowSize(window, width, height);
+    for (int i = 0; i < 200; ++i) {
+        int fw = 0, fh = 0;
+        glfwWaitEventsTimeout(0.01);
+        glfwGetFramebufferSize(window, &fw, &fh);
+        if (fw == width && fh == height) return;
+    }
+}
+
 /// raster.json with the compute tonemap on, its target `swapchain_storage` edited to
 /// R8G8B8A8_UNORM (a storage image): lavapipe's X11 surface offers B8G8R8A8 only.
 CompiledGraph rasterPresentingAFormatTheSurfaceLacks(uint32_t width, uint32_t height) {
@@ -219,14 +231,7 @@ TEST_F(Present, ResizeRecreatesTheSwapchainAndRecompiles) {
     });
     present(renderer, *swapchain, 4);
     for (const auto& [w, h] : std::vector<std::pair<int, int>>{{130, 90}, {40, 30}}) {
-        glfwSetWindowSize(window_, w, h);
-        // The X server answers the resize asynchronously; wait for the size to arrive.
-        for (int i = 0; i < 200; ++i) {
-            int fw = 0, fh = 0;
-            glfwWaitEventsTimeout(0.01);
-            glfwGetFramebufferSize(window_, &fw, &fh);
-            if (fw == w && fh == h) break;
-        }
+        resizeWindow(window_, w, h);
         present(renderer, *swapchain, 4);
         EXPECT_EQ(renderer.compiled().outputWidth(), uint32_t(w));
         EXPECT_EQ(renderer.compiled().outputHeight(), uint32_t(h));
@@ -526,13 +531,7 @@ TEST_F(Present, RebuildsAfterAnotherRendererRecreatedTheSwapchainMakeNoViewOfIts
     for (int rebuild = 0; rebuild < 3; ++rebuild) {
         const uint32_t width = rebuild % 2 ? 96 : 40, height = rebuild % 2 ? 64 : 30;
         swapchain->resize(width, height);
-        glfwSetWindowSize(window_, int(width), int(height));
-        for (int i = 0; i < 200; ++i) {
-            int fw = 0, fh = 0;
-            glfwWaitEventsTimeout(0.01);
-            glfwGetFramebufferSize(window_, &fw, &fh);
-            if (fw == int(width) && fh == int(height)) break;
-        }
+        resizeWindow(window_, int(width), int(height));
         const uint64_t generation = swapchain->generation();
         present(second, *swapchain, 1);
         ASSERT_GT(swapchain->generation(), generation) << "the second renderer re-created the swapchain";
