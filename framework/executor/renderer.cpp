@@ -184,8 +184,7 @@ Renderer::Renderer(Device& device, CompiledGraph compiled, RendererOptions optio
         // A format or usage the surface cannot give fails here, as in setGraph, and not at the
         // first frame, which re-creates the swapchain for it.
         const PresentRequirements need = presentRequirements(compiled);
-        if (need.format != sc.requirements.format || (need.usage & ~sc.requirements.usage) != 0)
-            (void)detail::surfaceSupportFor(d.dev, need, 0);
+        (void)d.needsOtherImages(need, sc.requirements.format, sc.requirements.usage);
         if (!sc.needsRecreate(need) && !sc.paused()) {
             compiled = d.atPresentExtent(std::move(compiled), sc.extent);
             d.present = Impl::PresentBinding{PresentImages{sc.images, sc.requirements.format, sc.extent, sc.requirements.usage},

@@ -565,8 +565,12 @@ struct Renderer::Impl {
     }
     /// Whether `compiled` presents another format, or with other usage, than the swapchain
     /// images it is bound to have (false when bound to the application's own images, or to
-    /// none). Throws ExecutorError when the device's surface cannot give them.
+    /// none). Throws UnsupportedResourceError when the device's surface cannot give them.
     [[nodiscard]] bool needsOtherSwapchainImages(const CompiledGraph& compiled) const;
+    /// Whether `need` asks for swapchain images of another format, or more usage, than
+    /// `format` and `usage`. Throws UnsupportedResourceError when the device's surface cannot
+    /// give them.
+    [[nodiscard]] bool needsOtherImages(const PresentRequirements& need, VkFormat format, VkImageUsageFlags usage) const;
     /// Whether plan resource `index` of the running state is what this renderer presents (its
     /// present images, or the stand-in while awaiting new ones).
     [[nodiscard]] bool presents(uint32_t index) const;

@@ -63,10 +63,12 @@ bool Renderer::Impl::needsOtherSwapchainImages(const CompiledGraph& compiled) co
     const int32_t index = presentResource(plan);
     // A plan that presents nothing, or was compiled headless, is refused by describePresent.
     if (index < 0 || plan.resources()[size_t(index)].finalLayout != VK_IMAGE_LAYOUT_PRESENT_SRC_KHR) return false;
-    const PresentRequirements need = presentRequirements(compiled);
-    const PresentImages& have = present->images;
-    if (need.format == have.format && (need.usage & ~have.usage) == 0) return false;
     // The binding's swapchain may be gone (a renderer outlives it): the device's surface answers.
+    return needsOtherImages(presentRequirements(compiled), present->images.format, present->images.usage);
+}
+
+bool Renderer::Impl::needsOtherImages(const PresentRequirements& need, VkFormat format, VkImageUsageFlags usage) const {
+    if (need.format == format && (need.usage & ~usage) == 0) return false;
     (void)surfaceSupportFor(dev, need, 0);
     return true;
 }

@@ -235,9 +235,6 @@ std::optional<fs::path> sameFileAmong(const fs::path& output, std::span<const fs
     return std::nullopt;
 }
 
-namespace {
-/// Where a write to `p` lands, absolute, with links and dots resolved; empty where that
-/// cannot be told (writing there fails and says why).
 fs::path landingPath(const fs::path& p) {
     fs::path landing = p;
     try {
@@ -252,7 +249,6 @@ fs::path landingPath(const fs::path& p) {
     if (!ec) full = fs::weakly_canonical(full, ec);
     return ec ? fs::path() : full;
 }
-}  // namespace
 
 std::optional<std::pair<size_t, size_t>> twoNamesOfOneFile(std::span<const fs::path> outputs) {
     std::vector<fs::path> landing(outputs.size());

@@ -45,6 +45,10 @@ private:
 /// (EISDIR for a folder), MissingFolder for a missing folder.
 [[nodiscard]] OutputTarget writableOutputTarget(const std::filesystem::path& path);
 
+/// Where a write to `path` lands, absolute, with links and dots resolved; empty where that
+/// cannot be told (a folder, a loop of links: writing there fails and says why).
+[[nodiscard]] std::filesystem::path landingPath(const std::filesystem::path& path);
+
 /// The first of `inputs` that is the same file as `output` (an existing file, through links
 /// and other names): writing `output` would destroy it. Empty names are skipped.
 [[nodiscard]] std::optional<std::filesystem::path> sameFileAmong(const std::filesystem::path& output,

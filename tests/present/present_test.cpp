@@ -61,6 +61,14 @@ void resizeWindow(GLFWwindow* window, int width, int height) {
     }
 }
 
+/// Options (two frames in flight) for a renderer made for a window that already presents
+/// into `swapchain` (RendererOptions::presentTo).
+RendererOptions presentingTo(Swapchain& swapchain) {
+    RendererOptions options = genericOptions(2);
+    options.presentTo = &swapchain;
+    return options;
+}
+
 /// raster.json with the compute tonemap on, its target `swapchain_storage` edited to
 /// R8G8B8A8_UNORM (a storage image): lavapipe's X11 surface offers B8G8R8A8 only.
 CompiledGraph rasterPresentingAFormatTheSurfaceLacks(uint32_t width, uint32_t height) {
@@ -507,9 +515,7 @@ TEST_F(Present, ASecondRendererPresentsWhileTheFirstsFramesAreInFlight) {
     auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
     auto first = std::make_unique<Renderer>(*device_, raster(96, 64), genericOptions(2));
     for (int i = 0; i < 2; ++i) ASSERT_EQ(first->renderFrame(*swapchain), PresentStatus::Presented);
-    RendererOptions options = genericOptions(2);
-    options.presentTo = swapchain.get();
-    Renderer second(*device_, raster(96, 64), options);
+    Renderer second(*device_, raster(96, 64), presentingTo(*swapchain));
     EXPECT_EQ(second.renderFrame(*swapchain), PresentStatus::Presented);
     first.reset();
     present(second, *swapchain, 2);
@@ -524,9 +530,7 @@ TEST_F(Present, RebuildsAfterAnotherRendererRecreatedTheSwapchainMakeNoViewOfIts
     auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
     Renderer first(*device_, raster(96, 64), genericOptions(2));
     present(first, *swapchain, 1);
-    RendererOptions options = genericOptions(2);
-    options.presentTo = swapchain.get();
-    Renderer second(*device_, raster(96, 64), options);
+    Renderer second(*device_, raster(96, 64), presentingTo(*swapchain));
     present(second, *swapchain, 1);
     for (int rebuild = 0; rebuild < 3; ++rebuild) {
         const uint32_t width = rebuild % 2 ? 96 : 40, height = rebuild % 2 ? 64 : 30;
@@ -721,10 +725,8 @@ TEST_F(Present, ARendererForAWindowRefusesAFormatTheSurfaceLacksAsItIsMade) {
     auto swapchain = Swapchain::create(*device_, raster(96, 64), {96, 64, PresentMode::Fifo});
     Renderer first(*device_, raster(96, 64), genericOptions(2));
     present(first, *swapchain, 2);
-    RendererOptions options = genericOptions(2);
-    options.presentTo = swapchain.get();
     try {
-        Renderer second(*device_, rasterPresentingAFormatTheSurfaceLacks(96, 64), options);
+        Renderer second(*device_, rasterPresentingAFormatTheSurfaceLacks(96, 64), presentingTo(*swapchain));
         FAIL() << "a renderer presenting a format the surface lacks was made";
     } catch (const ExecutorError& e) {
         EXPECT_NE(std::string(e.what()).find("the surface cannot present R8G8B8A8_UNORM"), std::string::npos)

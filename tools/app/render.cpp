@@ -42,6 +42,14 @@ namespace {
 
 using namespace shipped;
 
+/// `message` as a GraphError at `declared`'s declaration in `graph`, or at `graph`'s file
+/// when `declared` is null.
+[[noreturn]] void throwInGraph(const GraphDesc& graph, const ResourceDesc* declared, std::string message) {
+    Diagnostics d;
+    d.add({graph.file, declared ? declared->jsonPath() : "", "", "", std::move(message)});
+    throw GraphError(std::move(d));
+}
+
 /// graphs/ibl.json: RenderOptions::environmentGraphText, else environmentGraphFile().
 std::optional<GraphDesc> loadEnvironmentGraph(const RenderOptions& options, const PassRegistry& registry) {
     if (!options.environmentGraphText.empty())
@@ -289,11 +297,8 @@ FrameEnvironment bakeFrameEnvironment(Device& device, const Plan& plan, const Fr
         if (sky && (e.resource() == kEquirect || (sizedForView && inputs.environmentSizes->boundBySource)))
             throwAtEnvironmentFile(inputs, *sky, e, " to bake");
         if (sizedForView) throwAtDeclaration(inputs.graph, e, nullptr);
-        if (e.resource().empty()) {  // the bake's resources together: named by its graph
-            Diagnostics d;
-            d.add({env.graph->file, "", "", "", "the environment bake: " + std::string(e.what())});
-            throw GraphError(std::move(d));
-        }
+        if (e.resource().empty())  // the bake's resources together: named by its graph
+            throwInGraph(*env.graph, nullptr, "the environment bake: " + std::string(e.what()));
         throwAtDeclaration(*env.graph, e, nullptr);
     }
     return env;
@@ -311,9 +316,7 @@ void attachAtDeclaration(const FrameInputs& inputs, std::string_view name, Attac
     } catch (const ExecutorError& e) {
         const ResourceDesc* declared = inputs.graph.findResource(name);
         if (!declared) throw;
-        Diagnostics d;
-        d.add({inputs.graph.file, declared->jsonPath(), "", "", e.what()});
-        throw GraphError(std::move(d));
+        throwInGraph(inputs.graph, declared, e.what());
     }
 }
 
@@ -360,17 +363,13 @@ void throwAtDeclaration(const GraphDesc& graph, const DeviceCapacityError& e, co
     if (compiled && declared && declared->extent.relativeToOutput)
         message += " (its extent follows the output, " + std::to_string(compiled->outputWidth) + "x" +
                    std::to_string(compiled->outputHeight) + ")";
-    Diagnostics d;
-    d.add({graph.file, declared ? declared->jsonPath() : "", "", "", std::move(message)});
-    throw GraphError(std::move(d));
+    throwInGraph(graph, declared, std::move(message));
 }
 
 void throwAtDeclaration(const GraphDesc& graph, const UnsupportedResourceError& e) {
     const ResourceDesc* declared = graph.findResource(e.resource());
     if (!declared) throw e;
-    Diagnostics d;
-    d.add({graph.file, declared->jsonPath(), "", "", e.what()});
-    throw GraphError(std::move(d));
+    throwInGraph(graph, declared, e.what());
 }
 
 void throwCapacityError(const FrameInputs& inputs, const CompileOptions& compiled, const DeviceCapacityError& e) {

@@ -78,10 +78,8 @@ void refuseJUnitAmongGoldens(const std::string& junit, const std::filesystem::pa
     if (junit.empty() || golden.empty()) return;
     std::error_code ec;
     const std::filesystem::path folder = std::filesystem::weakly_canonical(std::filesystem::absolute(golden, ec), ec);
-    if (ec) return;
-    const std::filesystem::path report = files::outputTarget(junit).path;
-    const std::filesystem::path into = std::filesystem::weakly_canonical(std::filesystem::absolute(report, ec), ec);
-    if (!ec && into.parent_path() == folder)
+    const std::filesystem::path report = files::landingPath(junit);
+    if (!ec && !report.empty() && report.parent_path() == folder)
         throw UsageError("--junit '" + printableName(junit) + "' is in the --golden folder '" +
                          printableName(golden.string()) + "', which holds golden plans only");
 }
