@@ -36,22 +36,28 @@ void Renderer::Impl::describePresent(PlanState& s) const {
     // Awaiting a re-created swapchain: its images will have another format and usage, but the
     // window's extent.
     const bool checksImages = !present->awaitingImages;
+    // What the declaration alone decides is refused at it (UnsupportedResourceError): the
+    // application names the graph file's line to change.
+    const auto refuse = [&](const std::string& problem) { throw UnsupportedResourceError(what + problem, desc.name); };
     if (checksImages && p.format != desc.format.format)
-        throw ExecutorError(what + "its format is " + std::string(desc.format.name) + ", the present images' is " +
-                            formatName(p.format));
+        refuse("its format is " + std::string(desc.format.name) + ", the present images' is " + formatName(p.format));
     const auto ext = desc.extent.resolve(s.outputWidth(), s.outputHeight());
     const bool otherSize = ext[0] != p.extent.width || ext[1] != p.extent.height;
     const bool followsWindow = desc.extent.relativeToOutput && desc.extent.divisor == 1;
-    if (otherSize || desc.layers > 1 || desc.mipCount(s.outputWidth(), s.outputHeight()) > 1)
-        throw ExecutorError(what + "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
-                            ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)" +
-                            (otherSize && !followsWindow
-                                 ? "; a presented image follows the window: give it \"extent\": \"output\""
-                                 : ""));
+    const bool severalSubresources = desc.layers > 1 || desc.mipCount(s.outputWidth(), s.outputHeight()) > 1;
+    if (otherSize || severalSubresources) {
+        const std::string problem = "the plan's is " + std::to_string(ext[0]) + "x" + std::to_string(ext[1]) +
+                                    ", the present images are " + vk::extentText(p.extent) + " (one mip, one layer)";
+        // An image that follows the window was compiled at another output size: the caller's doing.
+        if (followsWindow && !severalSubresources) throw ExecutorError(what + problem);
+        refuse(problem + (otherSize && !followsWindow
+                              ? "; a presented image follows the window: give it \"extent\": \"output\""
+                              : ""));
+    }
     const VkImageUsageFlags need = planImageUsage(s.plan, uint32_t(index));
     if (checksImages && (need & ~p.usage) != 0)
-        throw ExecutorError(what + "the plan needs image usage " + vk::imageUsageText(need) +
-                            ", the present images were created with " + vk::imageUsageText(p.usage));
+        refuse("the plan needs image usage " + vk::imageUsageText(need) + ", the present images were created with " +
+               vk::imageUsageText(p.usage));
     if (!checksImages) return;  // a stand-in takes the images' place
     s.presentResource = index;
     s.presentImages = static_cast<uint32_t>(p.images.size());

@@ -46,9 +46,11 @@ private:
     std::string resource_;
 };
 
-/// An ExecutorError for a graph resource the device or the window cannot have as the plan
-/// uses it, whatever its size: a format it cannot make with the plan's usages, or one the
-/// window's surface cannot present. Another format or usage in the graph would run.
+/// An ExecutorError for a graph resource the device or the window cannot have as the graph
+/// declares it and the plan uses it: a format the device cannot make with the plan's usages,
+/// one the window's surface cannot present, or a presented image that the present images
+/// cannot be (another format, a fixed extent of another size, several mips or layers, a usage
+/// they were not created with). A change to the graph would run.
 class UnsupportedResourceError : public ExecutorError {
 public:
     /// `resource`: the graph resource refused.

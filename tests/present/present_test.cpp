@@ -353,7 +353,8 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
         try {
             renderer.setPresentImages(unusable);
             ADD_FAILURE() << "present images without COLOR_ATTACHMENT usage were taken";
-        } catch (const ExecutorError& e) {
+        } catch (const UnsupportedResourceError& e) {
+            EXPECT_EQ(e.resource(), "swapchain");
             const std::string message = e.what();
             const size_t needs = message.find("needs image usage "), made = message.find("were created with");
             ASSERT_NE(needs, std::string::npos) << message;
@@ -374,7 +375,8 @@ TEST_F(Present, OwnSwapchainImagesAndSemaphores) {
         try {
             renderer.setGraph(raster(caps.currentExtent.width, caps.currentExtent.height, {{"compute_tonemap", true}}));
             ADD_FAILURE() << "a graph presenting another format than the application's images was installed";
-        } catch (const ExecutorError& e) {
+        } catch (const UnsupportedResourceError& e) {  // the declaration decides it: named there
+            EXPECT_EQ(e.resource(), "swapchain_storage");
             EXPECT_NE(std::string(e.what()).find("its format is B8G8R8A8_UNORM, the present images' is B8G8R8A8_SRGB"),
                       std::string::npos)
                 << e.what();
@@ -614,7 +616,8 @@ TEST_F(Present, SetGraphToAnotherPresentFormatRecreatesTheSwapchain) {
         try {
             renderer.setGraph(CompiledGraph(parseGraph(text, "raster.json", PassRegistry::withBuiltins()), o));
             ADD_FAILURE() << "a presented image of 50x40 was taken for a 96x64 window";
-        } catch (const ExecutorError& e) {
+        } catch (const UnsupportedResourceError& e) {  // the declaration decides it: named there
+            EXPECT_EQ(e.resource(), "swapchain_storage");
             EXPECT_NE(std::string(e.what()).find("the plan's is 50x40, the present images are 96x64 (one mip, one "
                                                  "layer); a presented image follows the window: give it \"extent\": "
                                                  "\"output\""),

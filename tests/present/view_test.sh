@@ -26,8 +26,8 @@
 #   screenshot   F12 writes a PNG equal to the window's pixels (xwd) within one code, twice
 #   close        the window's close button (WM_DELETE_WINDOW) ends it with exit 0
 #   signal       SIGTERM ends it with exit 0
-#   unpresentable  a graph presenting a format the surface lacks: exit 1, the error named at
-#                the resource's declaration
+#   unpresentable  a graph presenting a format the surface lacks, or an image of a fixed size
+#                other than the window's: exit 1, the error named at the resource's declaration
 #   no_display   without an X server: exit 1 and one line that suggests `skygraph render`;
 #                a graph file that is missing is named first
 set -euo pipefail
@@ -503,6 +503,16 @@ EOF
         [ "$status" -eq 1 ] || fail "exit status $status"
         grep -q "^error: f16.json: resources.swapchain: the surface cannot present R16G16B16A16_SFLOAT" view.err ||
             fail "not named at the declaration"
+        # One of a fixed size other than the window's: the same, with what to write instead.
+        sed 's/"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output"/"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": [50, 40]/' \
+            "$root/graphs/raster.json" >fixed.json
+        grep -q '"extent": \[50, 40\]' fixed.json || fail "the extent edit did not apply"
+        view fixed.json --frames 1
+        status=0
+        wait "$pid" || status=$?
+        [ "$status" -eq 1 ] || fail "a fixed-size presented image: exit status $status"
+        grep -q "^error: fixed.json: resources.swapchain: present resource 'swapchain': the plan's is 50x40, .*give it \"extent\": \"output\"" view.err ||
+            fail "a fixed-size presented image is not named at its declaration"
         ;;
     *)
         echo "unknown case $case_name" >&2

@@ -272,7 +272,11 @@ bool LiveGraph::rebuild(RenderOptions options, Renderer::ShaderSources shaders, 
 
 PresentStatus LiveGraph::renderFrame(Swapchain& swapchain) {
     built_->uploads.stageFor(*renderer_);
-    return renderer_->renderFrame(swapchain);
+    try {  // the first frame into a swapchain checks the presented image against its images
+        return renderer_->renderFrame(swapchain);
+    } catch (const UnsupportedResourceError& e) {  // e.g. a fixed extent that is not the window's
+        throwAtDeclaration(renderer_->graph(), e);
+    }
 }
 
 void LiveGraph::sceneChanged() {
