@@ -23,9 +23,15 @@ struct UsageSubject {
     bool severalLevels = false;   ///< The usage touches more than one mip level.
 };
 
+/// Whether `"mips": "full"` of `r` is one level whatever the output: a fixed 1x1 extent.
+[[nodiscard]] inline bool fullChainIsOneLevel(const ResourceDesc& r) noexcept {
+    return !r.extent.relativeToOutput && r.mipCount(1, 1) == 1;
+}
+
 /// `resource` as usages of `range` (nullopt: the whole resource) touch it.
 [[nodiscard]] inline UsageSubject usageSubject(const ResourceDesc& r, const std::optional<SubresourceRange>& range) noexcept {
-    return {r.isImage(), r.format.isDepthStencil(), r.format.storageCapable, range ? range->mipCount != 1 : r.mips != 1};
+    return {r.isImage(), r.format.isDepthStencil(), r.format.storageCapable,
+            range ? range->mipCount != 1 : r.mips != 1 && !(r.mips == 0 && fullChainIsOneLevel(r))};
 }
 
 /// Why a usage does not fit its resource, or Fits.

@@ -318,6 +318,23 @@ TEST(LoaderErrors, UnknownUsageKey) {
     EXPECT_TRUE(hasDiag(ds, "passes[2].uses[0].mip", "gen", "cube", {"unknown key 'mip'", "mips"}));
 }
 
+// A usage of a whole image as an attachment needs an image of one level: "full" is one only
+// for a fixed 1x1 extent; an output-relative extent or a larger fixed one has several.
+TEST(LoaderErrors, AWholeFullChainIsAnAttachmentOnlyWhereItIsOneLevel) {
+    for (const Json& extent : {Json::array({1, 1}), Json::array({2, 1}), Json("output")}) {
+        Json g = baseGraph();
+        g["resources"]["chain"] = {{"type", "image2d"}, {"format", "R8G8B8A8_UNORM"}, {"extent", extent}, {"mips", "full"}};
+        g = withGeneric(g, "gen", Json{{"chain", "Write@ColorAttachment"}});
+        if (extent == Json::array({1, 1})) {
+            expectLoads(g);
+            continue;
+        }
+        EXPECT_TRUE(hasDiag(loadErrors(g), "passes[2].uses.chain", "gen", "chain",
+                            {"an attachment renders to one mip level"}))
+            << extent.dump();
+    }
+}
+
 TEST(LoaderErrors, UnknownResourceType) {
     Json g = baseGraph();
     g["resources"]["hdr_color"]["type"] = "texture3d";

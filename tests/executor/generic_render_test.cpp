@@ -37,6 +37,20 @@ TEST_F(ExecutorTest, ColorThenSampledRAW) {
     EXPECT_PIXEL_NEAR(img, 15, 15, 1.0, 0.25, 0.0, 1.0);
 }
 
+// A fixed 1x1 image with "mips": "full" has one level, so it is an attachment as a whole, as
+// one of "mips": 1 is; it was refused as several levels.
+TEST_F(ExecutorTest, AOneTexelFullChainIsAnAttachment) {
+    const auto c = compileText(graph(
+        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [1, 1], "mips": "full" })",
+        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
+             "params": { "color": [1, 0, 0, 1] } },
+           { "name": "b", "type": "Generic",
+             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+             "params": { "color": [0, 0.25, 0, 0] } })"));
+    const ImageData img = render(c);
+    EXPECT_PIXEL_NEAR(img, 7, 7, 1.0, 0.25, 0.0, 1.0);
+}
+
 // A Read@ColorAttachment is loaded and kept (no store): Generic reads it by the load op and
 // draws nothing into it. It drew into it (write mask 0xf), a write the plan never ordered:
 // synchronization validation reported the next pass's read, and the contents changed.
