@@ -159,6 +159,9 @@ public:
     /// Outputs (exported, neither external nor `clear`) with a subresource that no active pass
     /// writes: the frame would hand it on undefined. Resource indices, in order.
     [[nodiscard]] std::span<const uint32_t> unwrittenOutputs() const noexcept { return unwrittenOutputs_; }
+    /// Outputs that are `clear` and not external: a plan holds each, cleared where no pass
+    /// that runs uses it. Resource indices, in order.
+    [[nodiscard]] std::span<const uint32_t> clearOutputs() const noexcept { return clearOutputs_; }
     /// Per active pass whose attachments differ in size (of the mip each renders to) or layer
     /// count at the output size: its first attachment usage that differs from its first
     /// attachment, as (pass, usage index for use()). Found in the index's walk; validate() words them.
@@ -325,7 +328,11 @@ private:
         }
         for (uint32_t r = 0; r < resources_.size(); ++r) {
             const IndexedResource& res = resources_[r];
-            if (!res.exported || res.external || res.clear) continue;
+            if (!res.exported || res.external) continue;
+            if (res.clear) {
+                clearOutputs_.push_back(r);
+                continue;
+            }
             const auto cell = heldFrom.begin() + res.firstCell;
             if (std::find(cell, cell + static_cast<std::ptrdiff_t>(res.grid.size()), 0u) != cell + res.grid.size())
                 unwrittenOutputs_.push_back(r);
@@ -410,6 +417,7 @@ private:
     std::vector<FitRow> fitRows_;  // per resource: usageFits' row for a usage of all of it
     std::vector<std::pair<uint32_t, uint32_t>> unsourced_;
     std::vector<uint32_t> unwrittenOutputs_;
+    std::vector<uint32_t> clearOutputs_;
     std::vector<std::pair<uint32_t, uint32_t>> misshapen_;
     std::vector<std::pair<uint32_t, uint32_t>> overfull_;
     std::vector<uint32_t> tooManyMips_;

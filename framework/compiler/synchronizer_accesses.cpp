@@ -243,6 +243,13 @@ void Synchronizer::planAccesses(const Schedule& schedule) {
         }
         if (usedTwice_ != kNone) refuseUsedTwice(p, uses);
     }
+    // An output is handed on whole: a `clear` one that no pass that runs uses (its users are
+    // switched off or culled) is cleared after the last pass, as at any first use.
+    for (const uint32_t d : index_.clearOutputs()) {
+        if (planIndex[d] != kNone) continue;
+        planIndex[d] = addResource(d);
+        addClearStep(planIndex[d]);
+    }
     // After the frame's last pass: each read-back copies its image's first mip and layer
     // (a `clear` image no pass uses is cleared first, as at any first use).
     for (const uint32_t d : readbacks_) {

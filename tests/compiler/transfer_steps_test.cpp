@@ -448,6 +448,63 @@ TEST(ImageRead, CopiesEveryLevelAndReturnsTheImageToTheLayoutTheFrameLeftIt) {
     EXPECT_NE(messageOf([&] { (void)planImageRead(g, frame, "nope"); }).find("cannot read 'nope'"), std::string::npos);
 }
 
+// An output is handed on whole, and a `clear` one needs no writer: where no pass that runs
+// uses it (its user switched off, or culled for writing nothing), a Clear after the last pass
+// makes it. Before, the plan left the output out, silently. The Clear's barrier starts from
+// UNDEFINED (nothing before it in the frame; each frame has its own copy) and orders nothing
+// before it; the final barrier makes the transfer write available to the exported state's
+// scope, with the transition to its layout.
+TEST(ClearOutputs, OneNoPassThatRunsUsesIsClearedAfterTheLastPass) {
+    // `look` reads `shown` where feature f is on; `peek` reads it and writes nothing (culled).
+    const GraphDesc g = parseGraph(R"({"version": 1, "name": "t", "features": {"f": true},
+        "resources": {
+          "shown": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "final": "ShaderRead",
+                    "clear": {"color": [1, 0, 0, 1]}},
+          "out": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [8, 8], "external": true, "final": "TransferSrc"}},
+        "passes": [
+          {"name": "look", "type": "Generic", "if": "f", "uses": {"shown": "Read@Compute", "out": "Write@Compute"}},
+          {"name": "peek", "type": "Generic", "uses": {"shown": "Read@Fragment"}},
+          {"name": "draw", "type": "Generic", "if": "!f", "uses": {"out": "Write@Compute"}}]})",
+                                   "clear_output.json", registry());
+    // Used: cleared before its first use, as every `clear` resource is.
+    CompileOptions on;
+    on.features = {{"f", true}};
+    const Plan used = compile(g, on);
+    ASSERT_EQ(used.passes().size(), 2u) << planToText(used);
+    EXPECT_EQ(used.passes()[0].name, "clear shown");
+    EXPECT_EQ(used.passes()[1].name, "look");
+    // Unused by the passes that run: cleared after the last one, and handed on.
+    CompileOptions off;
+    off.features = {{"f", false}};
+    const Plan plan = compile(g, off);
+    ASSERT_EQ(plan.passes().size(), 2u) << planToText(plan);
+    EXPECT_EQ(plan.passes()[0].name, "draw");
+    const PlannedPass& clear = plan.passes()[1];
+    EXPECT_EQ(clear.name, "clear shown");
+    EXPECT_EQ(clear.type, "Clear");
+    const int32_t shown = plan.resourceIndex("shown");
+    ASSERT_GE(shown, 0);
+    ASSERT_EQ(clear.barriers.size(), 1u);
+    const Barrier& start = clear.barriers[0];
+    EXPECT_EQ(start.resource, uint32_t(shown));
+    EXPECT_EQ(start.oldLayout, VK_IMAGE_LAYOUT_UNDEFINED);
+    EXPECT_EQ(start.newLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    EXPECT_EQ(start.srcStages, VK_PIPELINE_STAGE_2_NONE);  // its frame's own copy: the fence ordered the last
+    EXPECT_EQ(start.dstStages, VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(start.dstAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    const auto finals = plan.finalBarriers();
+    const auto final = std::find_if(finals.begin(), finals.end(), [&](const Barrier& b) { return b.resource == uint32_t(shown); });
+    ASSERT_NE(final, finals.end());
+    EXPECT_TRUE(final->srcStages & VK_PIPELINE_STAGE_2_TRANSFER_BIT);
+    EXPECT_EQ(final->srcAccess, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    EXPECT_EQ(final->oldLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    EXPECT_EQ(final->newLayout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    EXPECT_EQ(final->dstAccess, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    bool culled = false;
+    for (const auto& c : plan.culled()) culled |= c.name == "peek";
+    EXPECT_TRUE(culled) << planToText(plan);
+}
+
 TEST(Copies, EachResourceSaysWhyItHasOneCopyOrOnePerFrameInFlight) {
     const GraphDesc g = graphOf(std::string(kTexture) + "," + kOut + "," + kColor +
                                     R"(, "scratch": {"type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [16, 16], "external": true},

@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -49,6 +50,29 @@ TEST_F(ExecutorTest, AOneTexelFullChainIsAnAttachment) {
              "params": { "color": [0, 0.25, 0, 0] } })"));
     const ImageData img = render(c);
     EXPECT_PIXEL_NEAR(img, 7, 7, 1.0, 0.25, 0.0, 1.0);
+}
+
+// A `clear` output that no pass that runs uses is cleared after the last pass and handed on
+// holding its clear value (it was left out of the plan, and readImage found no such image).
+TEST_F(ExecutorTest, AClearOutputNoPassThatRunsUsesHoldsItsClearValue) {
+    const auto c = compileText(R"({ "version": 1, "name": "t", "features": { "f": true }, "resources": {
+        "shown": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [4, 4], "final": "ShaderRead",
+                   "clear": { "color": [0.25, 0.5, 1, 1] } },
+        "swapchain": { "type": "image2d", "format": "B8G8R8A8_UNORM", "extent": "output", "external": true,
+                       "final": "Present" } },
+      "passes": [
+        { "name": "look", "type": "Generic", "if": "f", "uses": { "shown": "Read@Fragment", "swapchain": "Write@ColorAttachment" } },
+        { "name": "draw", "type": "Generic", "if": "!f", "uses": { "swapchain": "Write@ColorAttachment" } } ] })",
+                               {{"f", false}});
+    const auto steps = c.plan().passes();
+    ASSERT_TRUE(std::any_of(steps.begin(), steps.end(), [](const PlannedPass& p) { return p.name == "clear shown"; }));
+    Renderer r(sharedDevice(), c, genericOptions(2));
+    for (int frame = 0; frame < 3; ++frame) r.renderFrame();
+    const std::vector<ImageData> levels = r.readImage("shown");
+    r.waitIdle();
+    ASSERT_EQ(levels.size(), 1u);
+    EXPECT_PIXEL_NEAR(levels[0], 0, 0, 0.25, 0.5, 1.0, 1.0);
+    EXPECT_PIXEL_NEAR(levels[0], 3, 3, 0.25, 0.5, 1.0, 1.0);
 }
 
 // A Read@ColorAttachment is loaded and kept (no store): Generic reads it by the load op and
