@@ -135,6 +135,12 @@ void FrameBuilder::recordWaits(uint32_t f, size_t k) {
         p.secondSync = synchronizationScope(w.stages, ScopeSide::Second);
         p.secondAccess = AccessScope::allDeviceAccess();
         const PointId id = addPoint(p, BarrierMemory{true, 0, {}, true});
+        // Values count the frame's signals from 1, on top of what the semaphore held: a wait
+        // for 0 has long been satisfied and orders nothing (linkSemaphores gives it no edge).
+        if (w.value == 0 && f == 1)
+            report(FindingKind::Semaphore, site,
+                   "a wait for value 0 waits for nothing: the frame's signals count from 1, and the semaphore "
+                   "holds at least the frames before");
         waits_.push_back({f, w.semaphore, w.value, id, k});
     }
     if (s.waitsForAcquire) recordAcquireWaits(s.queue, batch, true);
@@ -150,6 +156,9 @@ void FrameBuilder::recordSignals(uint32_t f, size_t k) {
         checkQueueStages(f, site, "signal", sg.stages);
         if (sg.semaphore != s.queue && f == 1)
             report(FindingKind::Semaphore, site, "a queue signals its own semaphore only");
+        if (sg.value == 0 && f == 1)  // a timeline signal must exceed the semaphore's value
+            report(FindingKind::Semaphore, site,
+                   "a signal of value 0 does not grow past what the semaphore holds: the frame's signals count from 1");
         for (const SemaphorePoint& earlier : signals_)
             if (earlier.frame == f && earlier.semaphore == sg.semaphore && earlier.value >= sg.value && f == 1)
                 report(FindingKind::Semaphore, site,
@@ -171,6 +180,7 @@ void FrameBuilder::recordSignals(uint32_t f, size_t k) {
 /// v; signals of one semaphore come in order, so that one happens before the rest.
 void FrameBuilder::linkSemaphores() {
     for (const SemaphorePoint& w : waits_) {
+        if (w.value == 0) continue;  // reported where it is recorded
         const SemaphorePoint* first = nullptr;
         for (const SemaphorePoint& sg : signals_)
             if (sg.frame == w.frame && sg.semaphore == w.semaphore && sg.value >= w.value &&

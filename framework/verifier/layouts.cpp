@@ -371,10 +371,16 @@ private:
             forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) { c.defined = true; });
             wroteMemory(t.object, t.site);
         }
-        if (attachment && u.store == StoreOp::DontCare)
+        // STORE_OP_NONE keeps the contents only where the render pass wrote nothing (the load
+        // op's clear included); after a write it behaves as DONT_CARE (VkAttachmentStoreOp).
+        const bool discards = u.store == StoreOp::DontCare ||
+                              (u.store == StoreOp::None && (writes || u.load == LoadOp::Clear));
+        if (attachment && discards)
             forCells(t.object, range, [&](CellState& c, uint32_t, uint32_t) {
                 c.defined = false;
-                c.undefinedBecause = "the DONT_CARE store op at " + where(t.site) + " discarded them";
+                c.undefinedBecause = std::string(u.store == StoreOp::None ? "the NONE store op after a write"
+                                                                          : "the DONT_CARE store op") +
+                                     " at " + where(t.site) + " discarded them";
             });
     }
 

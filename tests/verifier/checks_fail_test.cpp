@@ -320,6 +320,27 @@ TEST(ChecksFail, UndefinedContents) {
     EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, "hdr_color")) << r.summary();
 }
 
+// STORE_OP_NONE keeps contents only where the render pass writes nothing; after forward_ibl's
+// writes it discards them as DONT_CARE does, and skybox loads undefined depth and colour. (It
+// passed as "touches nothing".) On a read-only attachment it keeps them: the compiled plan's
+// own NONE stores verify.
+TEST(ChecksFail, UndefinedContentsAfterANoneStoreOfAWrite) {
+    for (const char* resource : {"hdr_color", "depth"}) {
+        test::Compiled edited = test::compileShipped("raster.json");
+        const size_t step = stepIndex(edited.plan, "forward_ibl");
+        PlanEditor::usagesOf(edited.plan, step)[usageOf(edited.plan, step, resource)].store = StoreOp::None;
+        const VerificationReport r = verifyPlan(edited.plan, edited.graph);
+        EXPECT_TRUE(hasFinding(r, FindingKind::UndefinedContents, resource)) << r.summary();
+        EXPECT_NE(r.summary().find("the NONE store op after a write"), std::string::npos) << r.summary();
+    }
+    const test::Compiled c = test::compileShipped("raster.json");
+    bool noneStore = false;
+    for (const PlannedPass& p : c.plan.passes())
+        for (const PlannedUsage& u : p.usages) noneStore |= u.store == StoreOp::None;
+    EXPECT_TRUE(noneStore) << "raster.json's plan no longer has a NONE store to verify";
+    EXPECT_TRUE(verifyPlan(c.plan, c.graph).ok()) << verifyPlan(c.plan, c.graph).summary();
+}
+
 // A transient's contents start undefined in every frame, whether the frames share its heap
 // or each has its own: a buffer (no layout transition to discard them) read before anything
 // wrote it in the frame.

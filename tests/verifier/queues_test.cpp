@@ -79,6 +79,32 @@ TEST(Queues, WaitForTooLowAValueIsCaught) {
     EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "histogram")) << r.summary();
 }
 
+// Values count a frame's signals from 1 on top of the frames before: a wait for 0 is already
+// satisfied, so tonemap would race the histogram, and a signal of 0 does not grow. (A wait
+// for 0 was linked to the frame's first signal and passed.)
+TEST(Queues, WaitForValueZeroAndSignalOfZeroAreCaught) {
+    test::Compiled c = async();
+    auto submits = PlanEditor::submits(c.plan);
+    submits.at(submitOf(c.plan, stepIndex(c.plan, "tonemap"))).waits.at(0).value = 0;
+    PlanEditor::setSubmits(c.plan, submits);
+    VerificationReport r = verifyPlan(c.plan, c.graph);
+    EXPECT_TRUE(anyFinding(r, {FindingKind::Unordered, FindingKind::NotVisible}, "histogram")) << r.summary();
+    EXPECT_GE(r.count(FindingKind::Semaphore), 1u) << r.summary();
+    EXPECT_NE(r.summary().find("a wait for value 0 waits for nothing"), std::string::npos) << r.summary();
+    // Every value one lower: the compute queue signals 0 first, and its waiters wait for 0.
+    test::Compiled lower = async();
+    submits = PlanEditor::submits(lower.plan);
+    for (auto& s : submits) {
+        for (auto& w : s.waits)
+            if (w.semaphore == QueueKind::Compute) --w.value;
+        for (auto& sg : s.signals)
+            if (sg.semaphore == QueueKind::Compute) --sg.value;
+    }
+    PlanEditor::setSubmits(lower.plan, submits);
+    r = verifyPlan(lower.plan, lower.graph);
+    EXPECT_NE(r.summary().find("a signal of value 0 does not grow"), std::string::npos) << r.summary();
+}
+
 TEST(Queues, WaitForAValueNeverSignalledIsCaught) {
     test::Compiled c = async();
     auto submits = PlanEditor::submits(c.plan);
