@@ -18,6 +18,16 @@ std::string graph(const std::string& resources, const std::string& passes) {
     return graphWithSwapchain("t", resources, passes);
 }
 
+/// Pass a draws red into `tex` (its declaration); b samples it and adds 0.25 green into the
+/// swapchain.
+CompiledGraph redThenSampled(const std::string& tex) {
+    return compileText(graph(tex, R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
+                                       "params": { "color": [1, 0, 0, 1] } },
+                                     { "name": "b", "type": "Generic",
+                                       "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
+                                       "params": { "color": [0, 0.25, 0, 0] } })"));
+}
+
 TEST_F(ExecutorTest, DeviceIsValidatedLavapipe) {
     EXPECT_TRUE(sharedDevice().validationEnabled());
     EXPECT_FALSE(sharedDevice().name().empty());
@@ -25,14 +35,7 @@ TEST_F(ExecutorTest, DeviceIsValidatedLavapipe) {
 
 // RAW through a layout transition: color attachment -> sampled in the fragment shader.
 TEST_F(ExecutorTest, ColorThenSampledRAW) {
-    const auto c = compileText(graph(
-        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })",
-        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
-             "params": { "color": [1, 0, 0, 1] } },
-           { "name": "b", "type": "Generic",
-             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
-             "params": { "color": [0, 0.25, 0, 0] } })"));
-    const ImageData img = render(c);
+    const ImageData img = render(redThenSampled(R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": "output" })"));
     ASSERT_EQ(img.width, 16u);
     EXPECT_PIXEL_NEAR(img, 0, 0, 1.0, 0.25, 0.0, 1.0);
     EXPECT_PIXEL_NEAR(img, 15, 15, 1.0, 0.25, 0.0, 1.0);
@@ -41,14 +44,8 @@ TEST_F(ExecutorTest, ColorThenSampledRAW) {
 // A fixed 1x1 image with "mips": "full" has one level, so it is an attachment as a whole, as
 // one of "mips": 1 is; it was refused as several levels.
 TEST_F(ExecutorTest, AOneTexelFullChainIsAnAttachment) {
-    const auto c = compileText(graph(
-        R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [1, 1], "mips": "full" })",
-        R"({ "name": "a", "type": "Generic", "uses": { "tex": "Write@ColorAttachment" },
-             "params": { "color": [1, 0, 0, 1] } },
-           { "name": "b", "type": "Generic",
-             "uses": { "tex": "Read@Fragment", "swapchain": "Write@ColorAttachment" },
-             "params": { "color": [0, 0.25, 0, 0] } })"));
-    const ImageData img = render(c);
+    const ImageData img =
+        render(redThenSampled(R"("tex": { "type": "image2d", "format": "R8G8B8A8_UNORM", "extent": [1, 1], "mips": "full" })"));
     EXPECT_PIXEL_NEAR(img, 7, 7, 1.0, 0.25, 0.0, 1.0);
 }
 

@@ -492,27 +492,28 @@ EOF
         expect_clean_end "$pid" ""
         ;;
     unpresentable)
-        # A graph presenting a format the window's surface lacks: exit 1, named at the
-        # resource's declaration in the graph's file.
-        sed 's/"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB"/"swapchain": { "type": "image2d", "format": "R16G16B16A16_SFLOAT"/' \
-            "$root/graphs/raster.json" >f16.json
-        grep -q R16G16B16A16_SFLOAT f16.json || fail "the edit did not apply"
-        view f16.json --frames 1
-        status=0
-        wait "$pid" || status=$?
-        [ "$status" -eq 1 ] || fail "exit status $status"
-        grep -q "^error: f16.json: resources.swapchain: the surface cannot present R16G16B16A16_SFLOAT" view.err ||
-            fail "not named at the declaration"
-        # One of a fixed size other than the window's: the same, with what to write instead.
-        sed 's/"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": "output"/"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB", "extent": [50, 40]/' \
-            "$root/graphs/raster.json" >fixed.json
-        grep -q '"extent": \[50, 40\]' fixed.json || fail "the extent edit did not apply"
-        view fixed.json --frames 1
-        status=0
-        wait "$pid" || status=$?
-        [ "$status" -eq 1 ] || fail "a fixed-size presented image: exit status $status"
-        grep -q "^error: fixed.json: resources.swapchain: present resource 'swapchain': the plan's is 50x40, .*give it \"extent\": \"output\"" view.err ||
-            fail "a fixed-size presented image is not named at its declaration"
+        # refused_at_declaration FILE SED_EDIT GREP_CHECK EXPECTED WHAT: raster.json edited by
+        # SED_EDIT into FILE exits 1 with the error named at the resource's declaration.
+        refused_at_declaration() {
+            local file="$1" edit="$2" applied="$3" expected="$4" what="$5"
+            sed "$edit" "$root/graphs/raster.json" >"$file"
+            grep -q "$applied" "$file" || fail "the edit for $what did not apply"
+            view "$file" --frames 1
+            status=0
+            wait "$pid" || status=$?
+            [ "$status" -eq 1 ] || fail "$what: exit status $status"
+            grep -q "$expected" view.err || fail "$what is not named at its declaration"
+        }
+        declared='"swapchain": { "type": "image2d", "format": "B8G8R8A8_SRGB"'
+        # A format the window's surface lacks.
+        refused_at_declaration f16.json "s/$declared/\"swapchain\": { \"type\": \"image2d\", \"format\": \"R16G16B16A16_SFLOAT\"/" \
+            R16G16B16A16_SFLOAT "^error: f16.json: resources.swapchain: the surface cannot present R16G16B16A16_SFLOAT" \
+            "an unpresentable format"
+        # A fixed size other than the window's, with what to write instead.
+        refused_at_declaration fixed.json "s/$declared, \"extent\": \"output\"/$declared, \"extent\": [50, 40]/" \
+            '"extent": \[50, 40\]' \
+            "^error: fixed.json: resources.swapchain: present resource 'swapchain': the plan's is 50x40, .*give it \"extent\": \"output\"" \
+            "a fixed-size presented image"
         ;;
     *)
         echo "unknown case $case_name" >&2
