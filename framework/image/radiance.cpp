@@ -108,7 +108,7 @@ struct ScanOrder {
     bool transposed = false;   ///< Scanlines run along Y (the line names X first).
     bool rowsUp = false;       ///< Along Y, bottom to top ("+Y").
     bool columnsLeft = false;  ///< Along X, right to left ("-X").
-    uint32_t width = 0, height = 0;
+    uint64_t width = 0, height = 0;  ///< As the header says: checked against the limits before use.
 };
 
 std::optional<ScanOrder> readScanOrder(const std::string& line) {
@@ -120,13 +120,14 @@ std::optional<ScanOrder> readScanOrder(const std::string& line) {
         return std::nullopt;
     const auto sign = [](char c) { return c == '+' || c == '-'; };
     if (!sign(s1) || !sign(s2) || !((a1 == 'Y' && a2 == 'X') || (a1 == 'X' && a2 == 'Y'))) return std::nullopt;
-    if (n1 > UINT32_MAX || n2 > UINT32_MAX) return std::nullopt;
     ScanOrder o;
     o.transposed = a1 == 'X';
     o.rowsUp = (o.transposed ? s2 : s1) == '+';
     o.columnsLeft = (o.transposed ? s1 : s2) == '-';
-    o.width = uint32_t(o.transposed ? n1 : n2);
-    o.height = uint32_t(o.transposed ? n2 : n1);
+    // strtoul saturates; past int64 it is past every limit all the same.
+    const auto size = [](unsigned long n) { return std::min<uint64_t>(n, INT64_MAX); };
+    o.width = size(o.transposed ? n1 : n2);
+    o.height = size(o.transposed ? n2 : n1);
     return o;
 }
 
@@ -208,10 +209,13 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
     const size_t resolutionEnd = std::min(bytes.find('\n', resolutionAt), bytes.size());
     const std::optional<ScanOrder> order =
         readScanOrder(bytes.substr(resolutionAt, resolutionEnd - resolutionAt));
+    // Checked as the header says it: stb keeps only the low 32 bits of each number, so a size
+    // past them would load as another, smaller image.
+    if (order) image_detail::requireLoadableSize(path, int64_t(order->width), int64_t(order->height));
     std::string reordered;
     if (order && (order->transposed || order->rowsUp || order->columnsLeft)) {
-        const uint32_t scanlines = order->transposed ? order->width : order->height;
-        const uint32_t perScanline = order->transposed ? order->height : order->width;
+        const auto scanlines = static_cast<uint32_t>(order->transposed ? order->width : order->height);
+        const auto perScanline = static_cast<uint32_t>(order->transposed ? order->height : order->width);
         const std::string standard = "-Y " + std::to_string(scanlines) + " +X " + std::to_string(perScanline);
         reordered = bytes.substr(0, resolutionAt) + standard + bytes.substr(resolutionEnd);
         data = reinterpret_cast<const stbi_uc*>(reordered.data());
@@ -230,8 +234,8 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
     std::unique_ptr<float, void (*)(void*)> rgb(stbi_loadf_from_memory(data, len, &w, &h, &comp, 3),
                                                 stbi_image_free);
     if (!rgb) throw ImageError(path, std::string("cannot decode: ") + stbi_failure_reason());
-    const ScanOrder o = order.value_or(ScanOrder{false, false, false, uint32_t(w), uint32_t(h)});
-    HdrImage image{o.width, o.height, {}};
+    const ScanOrder o = order.value_or(ScanOrder{false, false, false, uint64_t(w), uint64_t(h)});
+    HdrImage image{uint32_t(o.width), uint32_t(o.height), {}};
     image.rgba.resize(size_t(o.width) * o.height * 4);
     // Pixel j of scanline i in the file, at its place in the image (top row first, left to right).
     for (size_t i = 0; i < size_t(h); ++i)

@@ -464,7 +464,14 @@ TEST_F(HdrImageTest, GarbageAndWrongFormatsGiveACleanError) {
     writeBytes(dir_ / "zero.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 16\n");
     expectLoadError(dir_ / "zero.hdr", "zero size");
     writeBytes(dir_ / "huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 99999999999999999999 +X 4\n");
-    expectLoadError(dir_ / "huge.hdr", "corrupt header: its size reads as 4x-1");
+    expectLoadError(dir_ / "huge.hdr", "size 4x9223372036854775807 exceeds the limit");
+    // Sizes past 32 bits are refused as the header says them: stb keeps their low 32 bits, which
+    // made 2^32 + 8 rows of 16 load as a 16x8 image, and 2^32 + 1 rows of 8 as 8x1.
+    const std::string pixels(size_t(128) * 4, '\x80');
+    for (const char* size : {"-Y 4294967304 +X 16", "-Y 8 +X 4294967312", "-Y 4294967297 +X 8", "+X 4294967304 -Y 16"}) {
+        writeBytes(dir_ / "wrapped.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" + std::string(size) + "\n" + pixels);
+        expectLoadError(dir_ / "wrapped.hdr", "exceeds the limit 16384x");
+    }
     // A signature the readers do not take, said as such (not "not a Radiance image (it is one)").
     writeBytes(dir_ / "crlf.hdr", "#?RADIANCE\r\nFORMAT=32-bit_rle_rgbe\r\n\r\n-Y 2 +X 16\r\n" + noise);
     expectLoadError(dir_ / "crlf.hdr", "must end its line with a newline alone");
