@@ -43,6 +43,10 @@ const Range kPositive{0.0, HUGE_VAL, true};
 /// geometry at ordinary distances below a 32-bit float's smallest normal, which GPUs flush to 0,
 /// the depth of the sky, and it vanishes (2e-38 does past 1.7 units). 1e-6 keeps every distance
 /// below 1e32 in range.
+/// The narrowest view: it magnifies view-space positions by 1 / tan(fov / 2), and much past
+/// this the float rounding of world positions shows, then the projection leaves a float's
+/// range and nothing draws (1e-30 degrees drew part of a sphere, 1e-37 none of it).
+constexpr double kNarrowestFovDeg = 1e-3;
 constexpr double kNearestNear = 1e-6;
 const std::string kNearTooNear =
     "must be at least 1e-6: depth is near / distance, and a nearer plane leaves distant geometry "
@@ -208,6 +212,13 @@ private:
                                            ": each must be 0 or of a magnitude a 32-bit float holds (1.2e-38 to "
                                            "3.4e38), as the scene's camera's");
             }
+            if (!(c.fovYDeg >= kNarrowestFovDeg)) {
+                char value[32];
+                std::snprintf(value, sizeof value, "%.9g", c.fovYDeg);
+                return error("camera", "objects[" + std::to_string(i) + "]'s glTF camera's yfov is " + value +
+                                           " degrees, narrower than the 0.001 degrees a view may be (as the "
+                                           "scene's camera's fov_y_deg)");
+            }
             SceneCamera& cam = scene_.camera;
             cam.position = position;
             const math::Vec3<double> f(c.forward[0], c.forward[1], c.forward[2]), u(c.up[0], c.up[1], c.up[2]);
@@ -231,7 +242,7 @@ private:
         optionalNumber(c, "camera", "yaw_deg", kAny, cam.yawDeg);
         optionalNumber(c, "camera", "pitch_deg", kAny, cam.pitchDeg);
         optionalNumber(c, "camera", "roll_deg", kAny, cam.rollDeg);
-        optionalNumber(c, "camera", "fov_y_deg", Range{0.0, 180.0, true, true}, cam.fovYDeg);
+        optionalNumber(c, "camera", "fov_y_deg", Range{kNarrowestFovDeg, 180.0, false, true}, cam.fovYDeg);
         if (auto it = c.find("near"); it != c.end() && number(*it, "camera.near", kPositive, cam.near) &&
                                       cam.near < kNearestNear)
             error("camera.near", kNearTooNear + it->dump());

@@ -168,5 +168,35 @@ TEST(ProceduralSkyEquirect, TheSunsPowerSurvivesAtEveryWidth) {
     }
 }
 
+// The narrowest field of view a scene may have (0.001 degrees) still draws what it sees: the
+// edge of a sphere through the view's centre splits the frame into sky and sphere, column by
+// column. (Far narrower views the loader once took drew only the sky.)
+TEST(NarrowestView, ASphereEdgeThroughItsCentreSplitsTheFrame) {
+    const fs::path out = fs::path(SKYGRAPH_BINARY_DIR) / "narrowest-view";
+    fs::create_directories(out);
+    std::ofstream(out / "scene.json") << R"({
+      "camera": { "position": [0.0, 0.0, 3.0], "fov_y_deg": 0.001, "near": 0.1 },
+      "environment": { "file": "procedural" },
+      "objects": [ { "type": "sphere", "center": [0.5, 0.0, 0.0], "radius": 0.5,
+                     "material": { "base_color": [0.8, 0.1, 0.1], "metallic": 0.0, "roughness": 0.5 } } ] })";
+    static const PassLibrary library = PassLibrary::withBuiltins();
+    app::RenderOptions o;
+    o.graph = fs::path(SKYGRAPH_SOURCE_DIR) / "graphs/raster.json";
+    o.scene = out / "scene.json";
+    o.width = o.height = 16;
+    o.readback = "hdr_color";
+    o.output = out / "frame.exr";
+    o.validate = true;
+    o.passes = &library;
+    ASSERT_EQ(app::renderCommand(o), 0) << "render failed or validation reported messages";
+    const HdrImage frame = loadHdrImage(o.output);
+    for (uint32_t y = 0; y < 16; ++y)
+        for (uint32_t x = 0; x < 16; ++x) {
+            const float* p = frame.rgba.data() + (size_t(y) * 16 + x) * 4;
+            const bool sphere = p[0] > 2.0f * p[1] && p[0] > p[2];  // red, where the sky is blue-white
+            EXPECT_EQ(sphere, x >= 8) << "pixel " << x << "," << y << ": " << p[0] << " " << p[1] << " " << p[2];
+        }
+}
+
 }  // namespace
 }  // namespace skygraph::test

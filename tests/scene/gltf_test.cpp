@@ -759,6 +759,13 @@ TEST(GltfScene, AGltfCameraPastAFloatsRangeIsRefused) {
     EXPECT_NE(refusal("\"znear\": 0.01", "\"znear\": 1e-9")
                   .find("test.json: camera: objects[0]'s glTF camera's znear must be at least 1e-6"),
               std::string::npos);
+    const std::string yfov = "\"yfov\": 0.7";
+    // A view narrower than the scene's camera may have: its projection leaves a float's range
+    // (1e-37 degrees drew only the sky, and the command succeeded).
+    EXPECT_NE(refusal(yfov, "\"yfov\": 1e-300").find("test.json: camera: objects[0]'s glTF camera's yfov is 5.72957795e-299 "
+                                                      "degrees, narrower than the 0.001 degrees"),
+              std::string::npos);
+    EXPECT_EQ(refusal(yfov, "\"yfov\": 1.75e-5"), "accepted");  // 0.0010027 degrees
     // A coordinate that the node transforms leave below a float's smallest normal is 0.
     EXPECT_EQ(refusal("\"translation\" : [ 0.5, 0.5, 3.0 ]", "\"translation\" : [ 0.5, 1e-40, 3.0 ]"), "accepted");
     // Behind an object that did not load, the camera's object would be misnumbered: that

@@ -405,8 +405,10 @@ TEST(SceneErrors, TypesAndFiniteNumbers) {
 }
 
 TEST(SceneErrors, RangesAreChecked) {
-    expectError(R"({"camera": {"fov_y_deg": 0}})", "camera.fov_y_deg", "must be in (0, 180)");
-    expectError(R"({"camera": {"fov_y_deg": 180}})", "camera.fov_y_deg", "must be in (0, 180)");
+    expectError(R"({"camera": {"fov_y_deg": 0}})", "camera.fov_y_deg", "must be in [0.001, 180)");
+    expectError(R"({"camera": {"fov_y_deg": 180}})", "camera.fov_y_deg", "must be in [0.001, 180)");
+    expectError(R"({"camera": {"fov_y_deg": 0.0009}})", "camera.fov_y_deg", "must be in [0.001, 180)");
+    EXPECT_EQ(parse(R"({"camera": {"fov_y_deg": 0.001}})").camera.fovYDeg, 0.001);
     expectError(R"({"camera": {"near": 0}})", "camera.near", "must be > 0");
     expectError(R"({"camera": {"near": -1}})", "camera.near", "must be > 0");
     // Depth is near / distance: 2e-38 put geometry 1.7 units away below a float's smallest

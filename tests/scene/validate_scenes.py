@@ -22,6 +22,7 @@ sphere = {"type": "sphere", "center": [0, 0, 0], "radius": 1}
 bad = {
     "unknown key": {"camra": {}},
     "fov 180": {"camera": {"fov_y_deg": 180}},
+    "fov below 0.001": {"camera": {"fov_y_deg": 0.0009}},
     "near 0": {"camera": {"near": 0}},
     "roughness 1.5": {"objects": [dict(sphere, material={"roughness": 1.5})]},
     "radius 0": {"objects": [dict(sphere, radius=0)]},
