@@ -10,6 +10,7 @@
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include <iterator>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string_view>
 #include <vector>
 
@@ -97,6 +99,14 @@ RadianceHeader readHeader(const std::filesystem::path& path, const std::string& 
         }
         pos = end;
     }
+    // Many lines can multiply past a double's range: dividing by 0 or infinity gives no radiance.
+    for (const double m : header.multiplier)
+        if (!std::isnormal(m)) {
+            std::ostringstream product;
+            product << m;
+            throw ImageError(path, "corrupt header: its EXPOSURE= and COLORCORR= lines multiply to " + product.str() +
+                                       ", past the range of a number");
+        }
     return header;
 }
 
@@ -245,7 +255,10 @@ HdrImage loadRadianceHdr(const std::filesystem::path& path) {
             if (o.rowsUp) y = o.height - 1 - y;
             float* to = &image.rgba[(y * o.width + x) * 4];
             const float* from = rgb.get() + (i * size_t(w) + j) * 3;
-            for (size_t c = 0; c < 3; ++c) to[c] = static_cast<float>(from[c] / header.multiplier[c]);
+            // A small exposure divides out to more than a float holds: the largest float, for
+            // the environment loaders to clamp as they clamp any value past half-float range.
+            for (size_t c = 0; c < 3; ++c)
+                to[c] = static_cast<float>(std::min(from[c] / header.multiplier[c], double(FLT_MAX)));
             to[3] = 1.0f;
         }
     return image;

@@ -567,6 +567,14 @@ TEST_F(HdrImageTest, RadianceExposureAndColourCorrectionAreDividedOut) {
     }
     writeBytes(dir_ / "zero.hdr", header + "EXPOSURE=0\n\n-Y 2 +X 4\n" + pixels);
     expectLoadError(dir_ / "zero.hdr", "corrupt header line 'EXPOSURE=0': EXPOSURE= takes a positive number");
+    // An exposure that divides out past a float's range gives the largest float, not infinity
+    // (which the environment loaders refused as a non-finite pixel); lines multiplying past a
+    // double's range are a corrupt header.
+    writeBytes(dir_ / "dim.hdr", header + "EXPOSURE=1e-40\n\n-Y 2 +X 4\n" + pixels);
+    const HdrImage dim = skygraph::loadHdrImage(dir_ / "dim.hdr");
+    for (size_t i = 0; i < 8; ++i) EXPECT_EQ(dim.rgba[i * 4], std::numeric_limits<float>::max());
+    writeBytes(dir_ / "vanishing.hdr", header + "EXPOSURE=1e-200\nEXPOSURE=1e-200\n\n-Y 2 +X 4\n" + pixels);
+    expectLoadError(dir_ / "vanishing.hdr", "its EXPOSURE= and COLORCORR= lines multiply to 0, past the range");
     writeBytes(dir_ / "short.hdr", header + "COLORCORR=1 2\n\n-Y 2 +X 4\n" + pixels);
     expectLoadError(dir_ / "short.hdr", "corrupt header line 'COLORCORR=1 2': COLORCORR= takes 3 positive numbers");
 }
