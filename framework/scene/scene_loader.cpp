@@ -39,14 +39,14 @@ struct Range {
 const Range kAny{};
 const Range kUnit{0.0, 1.0};
 const Range kPositive{0.0, HUGE_VAL, true};
-/// The depth buffer holds near / distance (reverse-Z, infinite far plane): a nearer plane puts
-/// geometry at ordinary distances below a 32-bit float's smallest normal, which GPUs flush to 0,
-/// the depth of the sky, and it vanishes (2e-38 does past 1.7 units). 1e-6 keeps every distance
-/// below 1e32 in range.
 /// The narrowest view: it magnifies view-space positions by 1 / tan(fov / 2), and much past
 /// this the float rounding of world positions shows, then the projection leaves a float's
 /// range and nothing draws (1e-30 degrees drew part of a sphere, 1e-37 none of it).
 constexpr double kNarrowestFovDeg = 1e-3;
+/// The depth buffer holds near / distance (reverse-Z, infinite far plane): a nearer plane puts
+/// geometry at ordinary distances below a 32-bit float's smallest normal, which GPUs flush to 0,
+/// the depth of the sky, and it vanishes (2e-38 does past 1.7 units). 1e-6 keeps every distance
+/// below 1e32 in range.
 constexpr double kNearestNear = 1e-6;
 const std::string kNearTooNear =
     "must be at least 1e-6: depth is near / distance, and a nearer plane leaves distant geometry "
