@@ -243,21 +243,20 @@ void Synchronizer::planAccesses(const Schedule& schedule) {
         }
         if (usedTwice_ != kNone) refuseUsedTwice(p, uses);
     }
-    // An output is handed on whole: a `clear` one that no pass that runs uses (its users are
-    // switched off or culled) is cleared after the last pass, as at any first use.
-    for (const uint32_t d : index_.clearOutputs()) {
-        if (planIndex[d] != kNone) continue;
-        planIndex[d] = addResource(d);
-        addClearStep(planIndex[d]);
-    }
-    // After the frame's last pass: each read-back copies its image's first mip and layer
-    // (a `clear` image no pass uses is cleared first, as at any first use).
-    for (const uint32_t d : readbacks_) {
+    // What the frame hands on after its last pass but no pass that runs used (its users
+    // switched off or culled) joins the plan there: a `clear` one cleared, as at any first use.
+    const auto usedAfterThePasses = [&](uint32_t d) {
         if (planIndex[d] == kNone) {
             planIndex[d] = addResource(d);
             if (index_.clear(d)) addClearStep(planIndex[d]);
         }
-        const uint32_t r = planIndex[d];
+        return planIndex[d];
+    };
+    // An output is handed on whole.
+    for (const uint32_t d : index_.clearOutputs()) (void)usedAfterThePasses(d);
+    // Each read-back copies its image's first mip and layer.
+    for (const uint32_t d : readbacks_) {
+        const uint32_t r = usedAfterThePasses(d);
         steps_.push_back({accessCount_, kInsertedPass, false, true});
         currentStep_ = static_cast<uint32_t>(steps_.size() - 1);
         readbackSteps_.push_back(currentStep_);

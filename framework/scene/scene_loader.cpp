@@ -213,11 +213,10 @@ private:
                                            "3.4e38), as the scene's camera's");
             }
             if (!(c.fovYDeg >= kNarrowestFovDeg)) {
-                char value[32];
-                std::snprintf(value, sizeof value, "%.9g", c.fovYDeg);
-                return error("camera", "objects[" + std::to_string(i) + "]'s glTF camera's yfov is " + value +
-                                           " degrees, narrower than the 0.001 degrees a view may be (as the "
-                                           "scene's camera's fov_y_deg)");
+                char values[80];
+                std::snprintf(values, sizeof values, "%.9g degrees, narrower than the %g", c.fovYDeg, kNarrowestFovDeg);
+                return error("camera", "objects[" + std::to_string(i) + "]'s glTF camera's yfov is " + values +
+                                           " degrees a view may be (as the scene's camera's fov_y_deg)");
             }
             SceneCamera& cam = scene_.camera;
             cam.position = position;
